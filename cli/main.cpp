@@ -1,0 +1,2 @@
+// glintlab command line (being written).
+int main() { return 0; }

@@ -1,0 +1,40 @@
+// Adaptive cubature over regions of the sphere in (θ, φ), with an error estimate: nested adaptive
+// Gauss–Kronrod (15-point, Boost.Math) in θ inside φ, with caller-given breakpoints so narrow lobes
+// (α down to 1e-3, anisotropy to 1:1000) are resolved rather than stepped over.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "core/math/vec.h"
+
+namespace glintlab::verify {
+
+struct Integral {
+  double value = 0;
+  double error = 0;        // estimated absolute error (outer + accumulated inner estimates)
+  long evaluations = 0;    // integrand calls
+};
+
+struct SphereCubatureOptions {
+  double theta_min = 0;
+  double theta_max = 3.14159265358979323846;  // whole sphere by default
+  std::vector<double> theta_breaks;           // extra split points in (theta_min, theta_max)
+  std::vector<double> phi_breaks;             // extra split points in (0, 2π)
+  double rel_tol = 1e-9;
+  unsigned max_depth = 18;
+};
+
+// ∫ f(ω) dω over θ ∈ [theta_min, theta_max], φ ∈ [0, 2π), ω = (sinθ cosφ, sinθ sinφ, cosθ).
+Integral integrate_sphere(const std::function<double(const Vec3<double>&)>& f,
+                          const SphereCubatureOptions& options);
+
+// Breakpoints that resolve a lobe of angular width `width` around θ = 0 (geometric: width·2^k,
+// k = −6..) and the horizon θ = π/2, clipped to (lo, hi). Used for NDF lobes of roughness α.
+std::vector<double> lobe_theta_breaks(double width, double lo, double hi);
+
+// Azimuth breakpoints for an anisotropic lobe αx:αy: the angles where tanφ = (αy/αx)·2^k, in all
+// four quadrants, so a lobe squeezed to 1:1000 in φ is split where it varies.
+std::vector<double> anisotropy_phi_breaks(double alpha_x, double alpha_y);
+
+}  // namespace glintlab::verify
