@@ -1,0 +1,22 @@
+// The subcommands of the `glintlab` executable; main.cpp registers each on the CLI11 app.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace glintlab::cli {
+
+// Bad input from the user (a value out of range, a malformed row, a missing file). main() prints
+// it as one line, "glintlab: error: <message>", and exits with code 2. The message names the
+// parameter (and row, for CSV input) and its valid range.
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+void add_eval_command(CLI::App& app);    // cli/eval.cpp
+void add_sample_command(CLI::App& app);  // cli/sample.cpp
+void add_verify_command(CLI::App& app);  // cli/verify.cpp
+
+}  // namespace glintlab::cli
