@@ -95,7 +95,14 @@ Integral integrate_sphere(const std::function<double(const Vec3<double>&)>& f,
       const double st = std::sin(theta);
       return f(Vec3<double>{st * cp, st * sp, std::cos(theta)}) * st;
     };
-    const Integral in = integrate_1d(inner, thetas, o.rel_tol, o.max_depth);
+    Integral in;
+    if (o.theta_breaks_at_phi) {
+      std::vector<double> breaks = o.theta_breaks;
+      o.theta_breaks_at_phi(phi, breaks);
+      in = integrate_1d(inner, partition(o.theta_min, o.theta_max, breaks), 0.1 * o.rel_tol, o.max_depth);
+    } else {
+      in = integrate_1d(inner, thetas, 0.1 * o.rel_tol, o.max_depth);
+    }
     inner_error = std::max(inner_error, in.error);
     return in.value;
   };
@@ -114,6 +121,14 @@ std::vector<double> lobe_theta_breaks(double width, double lo, double hi) {
   const double half_pi = std::numbers::pi / 2;
   if (half_pi > lo && half_pi < hi) b.push_back(half_pi);
   return b;
+}
+
+double plane_crossing_theta(const Vec3<double>& w, double phi) {
+  // sinθ (wx cosφ + wy sinφ) + cosθ wz = 0  ⇔  θ = atan2(−wz, wx cosφ + wy sinφ) taken in [0, π].
+  const double c = w.x * std::cos(phi) + w.y * std::sin(phi);
+  double t = std::atan2(-w.z, c);
+  if (t < 0) t += std::numbers::pi;
+  return t;
 }
 
 std::vector<double> anisotropy_phi_breaks(double alpha_x, double alpha_y) {

@@ -21,6 +21,9 @@ struct SphereCubatureOptions {
   double theta_max = 3.14159265358979323846;  // whole sphere by default
   std::vector<double> theta_breaks;           // extra split points in (theta_min, theta_max)
   std::vector<double> phi_breaks;             // extra split points in (0, 2π)
+  // Split points in θ that depend on φ, e.g. where a factor max(0, ω·m) has its kink; appended to
+  // theta_breaks for each φ.
+  std::function<void(double phi, std::vector<double>& breaks)> theta_breaks_at_phi;
   double rel_tol = 1e-9;
   unsigned max_depth = 18;
 };
@@ -36,5 +39,8 @@ std::vector<double> lobe_theta_breaks(double width, double lo, double hi);
 // Azimuth breakpoints for an anisotropic lobe αx:αy: the angles where tanφ = (αy/αx)·2^k, in all
 // four quadrants, so a lobe squeezed to 1:1000 in φ is split where it varies.
 std::vector<double> anisotropy_phi_breaks(double alpha_x, double alpha_y);
+
+// The θ ∈ [0, π] at which the great circle ω·m = 0 crosses azimuth φ (the kink of max(0, ω·m)).
+double plane_crossing_theta(const Vec3<double>& w, double phi);
 
 }  // namespace glintlab::verify
