@@ -2,12 +2,11 @@
 // stderr, "glintlab: error: <message>", with exit code 2. `--help` prints help and exits 0.
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 #include <string>
 #include <string_view>
-
-#include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
 
@@ -43,9 +42,10 @@ int main(int argc, char** argv) {
       "claims.\nDirections are in the local shading frame: x tangent, y bitangent, z the normal.",
       "glintlab"};
   app.require_subcommand(1);
-  app.footer("Run 'glintlab <subcommand> --help' for the options and output columns of each.\n"
-             "Errors print one line, 'glintlab: error: <message>', and exit with code 2; a failed "
-             "run writes no output file.");
+  app.footer(
+      "Run 'glintlab <subcommand> --help' for the options and output columns of each.\n"
+      "Errors print one line, 'glintlab: error: <message>', and exit with code 2; a failed "
+      "run writes no output file.");
 
   try {
     glintlab::cli::add_eval_command(app);
@@ -68,6 +68,11 @@ int main(int argc, char** argv) {
     if (first[0] != '-' && !known) {
       return fail(
           fmt::format("unknown subcommand '{}' (valid: {}; see glintlab --help)", first, names));
+    }
+    if (first[0] == '-' && first != "-h" && first != "--help") {
+      return fail(fmt::format(
+          "unknown option '{}' before the subcommand (valid: --help, or a subcommand: {})", first,
+          names));
     }
 
     app.parse(argc, argv);

@@ -26,8 +26,8 @@ class Progress {
     ++done_;
     if (!tty_) return;
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    const double rate = s > 0 ? done_ / s : 0;
-    const double eta = rate > 0 ? (total_ - done_) / rate : 0;
+    const double rate = s > 0 ? static_cast<double>(done_) / s : 0;
+    const double eta = rate > 0 ? static_cast<double>(total_ - done_) / rate : 0;
     fmt::print(stderr, "\r\033[K{} {}/{} ({:.2f}/s, ETA {:.0f} s) {}", what_, done_, total_, rate, eta,
                label);
     std::fflush(stderr);

@@ -1,10 +1,16 @@
-// `glintlab verify`: runs the registered checks of the papers' claims and writes their verdicts
-// (CSV for tools, Markdown for people). Exit 0 when every check ran and every negative control
-// was rejected; 1 when a control was not rejected (the check could not have failed).
+// `glintlab verify`: runs the registered checks of the papers' claims, prints a verdict table and
+// writes claims.json, claims.csv and claims.md. Exit 0 when every verdict equals the one recorded
+// in the repository and every negative control was rejected; 1 otherwise; 2 on bad input.
+#include <fnmatch.h>
 #include <fmt/format.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
 
 #include <chrono>
 #include <filesystem>
+#include <memory>
+#include <sstream>
+#include <thread>
 #include <string>
 #include <vector>
 
@@ -12,6 +18,7 @@
 #include "cli/progress.h"
 #include "core/io/atomic_file.h"
 #include "verify/check.h"
+#include "verify/results.h"
 
 namespace glintlab::cli {
 namespace {
@@ -19,95 +26,94 @@ namespace {
 struct VerifyOptions {
   std::string budget = "quick";
   std::string out = "out/verify";
-  std::string only;
+  std::string claims = "*";
+  int threads = 0;
   bool list = false;
 };
 
-struct Row {
-  const verify::Check* check;
-  verify::CheckResult result;
-  double seconds;
-};
-
-std::string csv_field(const std::string& s) {
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
+std::vector<std::string> split_globs(const std::string& s) {
+  std::vector<std::string> globs;
+  std::stringstream in(s);
+  for (std::string g; std::getline(in, g, ',');)
+    if (!g.empty()) globs.push_back(g);
+  return globs;
 }
 
-std::string md_cell(const std::string& s) {
-  std::string r;
-  for (char c : s) r += c == '|' ? std::string("\\|") : std::string(1, c);
-  return r;
+std::vector<const verify::Check*> select_checks(const std::string& pattern) {
+  const auto globs = split_globs(pattern);
+  if (globs.empty()) throw InputError("--claims: empty pattern (e.g. 'smooth.*' or 'eto.*,kneiphof.*')");
+  std::vector<const verify::Check*> out;
+  for (const auto& c : verify::registered_checks())
+    for (const auto& g : globs)
+      if (fnmatch(g.c_str(), c.id.c_str(), 0) == 0) {
+        out.push_back(&c);
+        break;
+      }
+  if (out.empty())
+    throw InputError(fmt::format("--claims: '{}' matches no registered claim id (see --list)", pattern));
+  return out;
 }
 
-void write_results(const std::filesystem::path& dir, const std::vector<Row>& rows,
-                   const std::string& budget) {
-  std::string csv =
-      "id,paper,source,verdict,statistic,value,bound,configurations,control_rejected,control,"
-      "evidence,seconds\n";
-  std::string md = fmt::format("# glintlab verify — budget {}\n\n", budget);
-  md += "| claim | paper | source | verdict | measured | bound | control | evidence | time |\n";
-  md += "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
-  for (const Row& r : rows) {
-    const auto& c = *r.check;
-    const auto& x = r.result;
-    csv += fmt::format("{},{},{},{},{},{:.17g},{:.17g},{},{},{},{},{:.3f}\n", c.id, csv_field(c.paper),
-                       csv_field(c.source), csv_field(verify::to_string(x.verdict)),
-                       csv_field(x.statistic), x.value, x.bound, x.configurations,
-                       x.control_rejected ? 1 : 0, csv_field(x.control), csv_field(x.evidence),
-                       r.seconds);
-    md += fmt::format("| {} | {} | {} | **{}** | {} = {:.3g} | {:.3g} | {} | {} | {:.1f} s |\n", c.id,
-                      md_cell(c.paper), md_cell(c.source), verify::to_string(x.verdict),
-                      md_cell(x.statistic), x.value, x.bound, md_cell(x.control),
-                      md_cell(x.evidence), r.seconds);
-  }
-  std::filesystem::create_directories(dir);
-  io::write_file_atomic(dir / "verdicts.csv", csv);
-  io::write_file_atomic(dir / "verdicts.md", md);
+std::string machine_description(int threads) {
+  return fmt::format("{} hardware thread(s), {} used", std::thread::hardware_concurrency(), threads);
 }
 
 int run(const VerifyOptions& o) {
   if (o.budget != "quick" && o.budget != "full")
     throw InputError(fmt::format("--budget: '{}' is not one of quick|full", o.budget));
-  const verify::Budget budget = o.budget == "full" ? verify::Budget::kFull : verify::Budget::kQuick;
-  std::vector<const verify::Check*> selected;
-  for (const auto& c : verify::registered_checks())
-    if (o.only.empty() || c.id.rfind(o.only, 0) == 0) selected.push_back(&c);
-  if (selected.empty())
-    throw InputError(fmt::format("--only: no registered check id starts with '{}' (see --list)", o.only));
+  if (o.threads < 0 || o.threads > 1024)
+    throw InputError(fmt::format("--threads: {} is out of range (0 = all cores, or 1..1024)", o.threads));
+  const auto selected = select_checks(o.claims);
   if (o.list) {
-    for (const auto* c : selected) fmt::print("{:<28} {} — {}\n", c->id, c->paper, c->source);
+    for (const auto* c : selected)
+      fmt::print("{:<30} {:<16} {} — {}\n", c->id, verify::to_string(c->expected), c->paper, c->source);
     return 0;
   }
+  const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  const verify::Budget budget = o.budget == "full" ? verify::Budget::kFull : verify::Budget::kQuick;
+
   std::error_code ec;
   std::filesystem::create_directories(o.out, ec);
   if (ec) throw InputError(fmt::format("--out: cannot create directory '{}': {}", o.out, ec.message()));
 
-  std::vector<Row> rows;
+  std::vector<verify::RunRecord> records;
   Progress progress("verify", long(selected.size()));
   for (const auto* c : selected) {
     const auto t0 = std::chrono::steady_clock::now();
     verify::CheckResult r = c->run(budget);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    rows.push_back({c, std::move(r), s});
+    records.push_back({c, std::move(r), s});
     progress.step(c->id);
   }
-  write_results(o.out, rows, o.budget);
+  const verify::RunInfo info{o.budget, threads, machine_description(threads)};
+  const std::filesystem::path dir(o.out);
+  io::write_file_atomic(dir / "claims.json", verify::to_json(records, info));
+  io::write_file_atomic(dir / "claims.csv", verify::to_csv(records));
+  io::write_file_atomic(dir / "claims.md", verify::to_markdown(records, info));
 
-  int broken = 0;
-  fmt::print("{:<28} {:<24} {:>11} {:>10}  {}\n", "claim", "verdict", "measured", "bound", "control");
-  for (const Row& r : rows) {
-    fmt::print("{:<28} {:<24} {:>11.3g} {:>10.3g}  {}\n", r.check->id,
-               verify::to_string(r.result.verdict), r.result.value, r.result.bound,
-               r.result.control_rejected ? "rejected" : "NOT REJECTED");
-    broken += r.result.control_rejected ? 0 : 1;
+  int unexpected = 0;
+  fmt::print("{:<30} {:<16} {:>10} {:>10} {:>10}  {}\n", "claim", "verdict", "measured", "p",
+             "control p", "control");
+  for (const auto& r : records) {
+    const auto& x = r.result;
+    const bool ok = verify::as_expected(r);
+    unexpected += ok ? 0 : 1;
+    fmt::print("{:<30} {:<16} {:>10.3g} {:>10} {:>10}  {}{}\n", r.check->id, verify::to_string(x.verdict),
+               x.value, x.p_value ? fmt::format("{:.3g}", *x.p_value) : "—",
+               x.control_p_value ? fmt::format("{:.3g}", *x.control_p_value) : "—",
+               x.control_rejected ? "rejected" : "NOT REJECTED (check is broken)",
+               x.verdict == r.check->expected
+                   ? ""
+                   : fmt::format("  [recorded verdict: {}]", verify::to_string(r.check->expected)));
   }
-  fmt::print("{} checks, budget {}; verdicts in {}/verdicts.md and verdicts.csv\n", rows.size(),
-             o.budget, o.out);
-  if (broken) {
-    fmt::print(stderr, "glintlab: error: {} negative control(s) not rejected: those checks cannot fail\n",
-               broken);
+  fmt::print("{} claims, budget {}, {} thread(s); results in {}/claims.{{json,csv,md}}\n", records.size(),
+             o.budget, threads, o.out);
+  if (unexpected) {
+    fmt::print(stderr,
+               "glintlab: error: {} claim(s) differ from their recorded verdict or did not reject "
+               "their negative control\n",
+               unexpected);
     return 1;
   }
   return 0;
@@ -119,15 +125,20 @@ void add_verify_command(CLI::App& app) {
   auto opts = std::make_shared<VerifyOptions>();
   CLI::App* sub = app.add_subcommand(
       "verify",
-      "Run the registered checks of the papers' claims (ids from shared/CLAIMS.md). Each reports the "
-      "statistic it measured, the bound it is held to, a verdict (holds, holds within tolerance, "
-      "holds only in regime, fails, inconclusive), and whether its negative control (a "
-      "deliberately wrong input) was rejected. Writes <out>/verdicts.csv and <out>/verdicts.md.");
-  sub->add_option("--budget", opts->budget, "quick (CI, minutes) or full (denser grids)")
+      "Run the registered checks of the papers' claims (ids from shared/CLAIMS.md). Each reports "
+      "what it measured, its p-value or error bound, a verdict (holds, holds-within, "
+      "holds-in-regime, fails, inconclusive) and whether its negative control (a deliberately "
+      "wrong input) was rejected. Writes <out>/claims.json, claims.csv and claims.md. Exit 0 when "
+      "every verdict equals the verdict recorded in the repository, 1 when one differs, 2 on bad "
+      "input.");
+  sub->add_option("--claims", opts->claims, "comma-separated globs over claim ids, e.g. 'eto.*'")
+      ->capture_default_str();
+  sub->add_option("--budget", opts->budget, "quick (CI: minutes) or full (>= 1e7 samples per chi-square)")
       ->capture_default_str();
   sub->add_option("--out", opts->out, "output directory")->capture_default_str();
-  sub->add_option("--only", opts->only, "run only the checks whose id starts with this prefix");
-  sub->add_flag("--list", opts->list, "list the registered checks and exit");
+  sub->add_option("--threads", opts->threads, "worker threads (0 = all cores); results do not depend on it")
+      ->capture_default_str();
+  sub->add_flag("--list", opts->list, "list the matching claims with their recorded verdicts and exit");
   sub->callback([opts] {
     const int rc = run(*opts);
     if (rc != 0) throw CLI::RuntimeError(rc);

@@ -8,4 +8,4 @@ bash scripts/build.sh release
 out="${GLINTLAB_OUT:-out}"
 mkdir -p "$out"
 ./build/release/cli/glintlab verify --out "$out/verify" "$@"
-echo "main: results in $out/verify (verdicts.csv, verdicts.md)"
+echo "main: results in $out/verify (claims.md, claims.csv, claims.json)"

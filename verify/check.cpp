@@ -8,8 +8,8 @@ namespace glintlab::verify {
 const char* to_string(Verdict v) {
   switch (v) {
     case Verdict::kHolds: return "holds";
-    case Verdict::kHoldsWithin: return "holds within tolerance";
-    case Verdict::kHoldsOnlyIn: return "holds only in regime";
+    case Verdict::kHoldsWithin: return "holds-within";
+    case Verdict::kHoldsInRegime: return "holds-in-regime";
     case Verdict::kFails: return "fails";
     case Verdict::kInconclusive: return "inconclusive";
   }

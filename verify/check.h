@@ -1,10 +1,11 @@
 // A registered check of one paper claim: what it measures, its verdict, and the negative control
-// it must reject. The statistical engine of the verification issue grows this; the checks here are
-// deterministic (cubature and exact-recomputation error bounds).
+// it must reject. Deterministic checks (cubature, exact recomputation) report an error bound;
+// statistical checks report p-values, corrected for the number of configurations they test.
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,18 +13,22 @@ namespace glintlab::verify {
 
 enum class Budget { kQuick, kFull };
 
-// Verdicts as CLAIMS.md defines them.
-enum class Verdict { kHolds, kHoldsWithin, kHoldsOnlyIn, kFails, kInconclusive };
-const char* to_string(Verdict v);
+// Verdicts as shared/CLAIMS.md defines them.
+enum class Verdict { kHolds, kHoldsWithin, kHoldsInRegime, kFails, kInconclusive };
+const char* to_string(Verdict v);  // "holds", "holds-within", "holds-in-regime", "fails", ...
 
 struct CheckResult {
   Verdict verdict = Verdict::kInconclusive;
-  std::string statistic;   // what was measured, e.g. "max |∫ D cos − 1|"
-  double value = 0;        // the measured statistic
-  double bound = 0;        // the error bound or tolerance it is compared with
-  std::string evidence;    // one sentence a person reads: where, how much, how many configurations
-  std::string control;     // the negative control, and what it measured
+  std::string detail;                 // one line a person reads: where, how much, how many
+  std::string statistic;              // what was measured, e.g. "max |∫ D cos − 1|"
+  double value = 0;                   // the measured statistic
+  std::optional<double> bound;        // error bound / tolerance it is held to, where one applies
+  std::optional<double> p_value;      // combined (corrected) p-value, for statistical checks
+  std::vector<double> raw_p_values;   // every configuration's raw p-value, kept
+  std::string control;                // the negative control and what it measured
+  std::optional<double> control_p_value;
   bool control_rejected = false;
+  std::string power;                  // smallest effect detected at 90 % power, where computed
   int configurations = 0;
 };
 
@@ -31,7 +36,12 @@ struct Check {
   std::string id;      // the id in shared/CLAIMS.md
   std::string paper;   // paper (and baseline) it comes from
   std::string source;  // equation / figure
+  Verdict expected;    // the verdict recorded for it today; a change is a regression or a finding
   std::function<CheckResult(Budget)> run;
+  // For statistical checks: one run of the test on a known-correct input with the given seed,
+  // returning its raw p-value (uniform on [0, 1] when the test is calibrated). Empty for
+  // deterministic checks.
+  std::function<double(std::uint64_t seed)> calibration = {};
 };
 
 // Every registered check, in a stable order.

@@ -111,8 +111,8 @@ GLINTLAB_FN T safe_div(T a, T b) {
 }
 
 // Inverse error function. Giles, "Approximating the erfinv function" (GPU Gems Pro 2010), single-
-// precision polynomial as the start, then two Newton steps on erf(x) - y = 0 to reach the precision
-// of T. Valid for y in (-1, 1); returns +-inf at +-1.
+// precision polynomial as the start, then Newton steps (see below) to reach the precision of T.
+// Valid for y in (-1, 1); returns +-inf at +-1.
 template <class T>
 GLINTLAB_FN T erfinv(T y) {
   T w = -log((T(1) - y) * (T(1) + y));
@@ -140,11 +140,50 @@ GLINTLAB_FN T erfinv(T y) {
   T x = select(central, pc, pt) * y;
   // Newton on f(x) = erf(x) - y, f'(x) = 2/sqrt(pi) exp(-x^2).
   const T k = T(0.886226925452758013649);  // sqrt(pi)/2
-  for (int i = 0; i < 2; ++i) {
-    const T step = (erf(x) - y) * k * exp(x * x);
+  // For |y| > ½ Newton runs on log erfc|x| = log(1 − |y|) instead: 1 − |y| is exact there and erfc
+  // keeps relative precision, whereas erf(x) − y has lost its digits near ±1; in log form the
+  // equation is nearly linear in x², so the float-accurate start converges in double too, up to
+  // |y| = 1 − 2⁻⁵³. The start is single-precision accurate only for 1 − |y| ≳ 2⁻²⁸, so double
+  // takes four steps (two leave ~1e10 ulp at 1 − |y| = 2⁻⁵¹); float's range needs two.
+  const Mask<T> tail = abs(y) > T(0.5);
+  const T log_r = log(T(1) - abs(y));
+  constexpr int kSteps = sizeof(Scalar<T>) > 4 ? 4 : 2;
+  for (int i = 0; i < kSteps; ++i) {
+    const T e = exp(x * x);
+    const T c = erfc(abs(x));
+    const T step_tail = sign_not_zero(y) * (log_r - log(c)) * k * e * c;
+    const T step = select(tail, step_tail, (erf(x) - y) * k * e);
     x = x - select(isfinite(step), step, T(0));
   }
   return x;
+}
+
+// exp(−x²) without the rounding of x²: x² = p + e exactly (fma), exp(−p)(1 − e). The plain form
+// has a relative error of about x²·ε, which differences of exponentials then amplify.
+template <class T>
+GLINTLAB_FN T exp_neg_sqr(T x) {
+  const T p = x * x;
+  const T e = fma(x, x, -p);
+  return exp(-p) * (T(1) - e);
+}
+
+// Scaled complementary error function erfcx(x) = exp(x²) erfc(x), for x ≥ 0 (finite for x < 0
+// until exp(x²) overflows). For x < 8: exp(x²) erfc(x) with x² split exactly as p + e (fma), so
+// the argument of exp is not rounded: exp(p)(1 + e) erfc(x), a few ulp. For x ≥ 8: the asymptotic
+// series (1/(x√π)) Σ_k (−1)^k (2k−1)!!/(2x²)^k to k = 16 (first omitted term < 1e-17 at x = 8),
+// so the product never overflows (exp(x²) would past x ≈ 9.4 in float, 26.6 in double).
+template <class T>
+GLINTLAB_FN T erfcx(T x) {
+  const Mask<T> large = x >= T(8);
+  const T p = x * x;
+  const T e = fma(x, x, -p);
+  const T direct = exp(select(large, T(0), p)) * (T(1) + e) * erfc(x);
+  const T xl = select(large, x, T(8));
+  const T y = T(0.5) / (xl * xl);
+  T s = T(1);
+  for (int k = 16; k >= 1; --k) s = fma(-T(2 * k - 1) * y, s, T(1));
+  const T asym = s * T(0.56418958354775628695) / xl;  // 1/√π
+  return select(large, asym, direct);
 }
 
 }  // namespace glintlab

@@ -15,8 +15,12 @@ struct Beckmann {
     const T z2 = sqr(m.z);
     const T safe_z2 = select(m.z > T(0), z2, T(1));
     const T slope2 = (sqr(m.x / alpha_x) + sqr(m.y / alpha_y)) / safe_z2;
-    const T d = T(kInvPi<T>) * exp(-slope2) / (alpha_x * alpha_y * safe_z2 * safe_z2);
-    return select(m.z > T(0), d, T(0));
+    // e^{−s} applied as two halves, one after the division, so that D keeps its precision where
+    // e^{−s} alone would be subnormal but D is not (small α, grazing m).
+    const T h = exp(T(-0.5) * slope2);
+    const T d = T(kInvPi<T>) * h / (alpha_x * alpha_y * safe_z2 * safe_z2) * h;
+    // h = 0 also covers mz⁴ underflowing to 0 at grazing m (0/0 in float for mz ≲ 1e-10).
+    return select(m.z > T(0) && h > T(0), d, T(0));
   }
 
   GLINTLAB_FN T sigma2(Vec3<T> w) const { return sqr(alpha_x * w.x) + sqr(alpha_y * w.y); }
@@ -28,9 +32,11 @@ struct Beckmann {
     const T az = abs(w.z);
     const Mask<T> normal = sigma == T(0);
     const T a = az / select(normal, T(1), sigma);
-    const T tail = select(normal, T(0), sigma * exp(-a * a));
-    const T erf_a = select(normal, T(1), erf(a));
-    return T(0.5) * (w.z + az * erf_a) + T(0.28209479177387814347) * tail;  // 1/(2√π)
+    const T tail = select(normal, T(0), sigma * exp_neg_sqr(a));
+    const T erfc_a = select(normal, T(0), erfc(a));
+    // ½(ωz + |ωz| erf a) = max(ωz, 0) − ½|ωz| erfc a: erf a rounds to 1 while the difference it
+    // carries (below the horizon, the whole result |ωz|Λ) is still far from negligible.
+    return max(w.z, T(0)) + fma(T(0.28209479177387814347), tail, T(-0.5) * az * erfc_a);  // 1/(2√π)
   }
 
   // Smith Λ, same convention as GGX<T>::lambda: above the surface
@@ -40,7 +46,8 @@ struct Beckmann {
     const T sigma = sqrt(sigma2(w));
     const Mask<T> normal = sigma == T(0);
     const T a = abs(w.z) / select(normal, T(1), sigma);
-    const T up = T(0.5) * (T(0.56418958354775628695) * exp(-a * a) / a - erfc(a));  // 1/√π
+    // exp(−a²) with an unrounded exponent: the difference below amplifies its error by ~2a².
+    const T up = T(0.5) * (T(0.56418958354775628695) * exp_neg_sqr(a) / a - erfc(a));  // 1/√π
     const T lam = select(normal, T(0), up);
     return select(w.z > T(0), lam, T(1) + lam);
   }

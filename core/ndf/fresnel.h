@@ -25,7 +25,11 @@ GLINTLAB_FN T fresnel_conductor(T eta, T kappa, T cos_theta) {
   const T k2 = kappa * kappa;
   const T t0 = eta2 - k2 - sin2;
   const T a2pb2 = sqrt(fma(t0, t0, T(4) * eta2 * k2));
-  const T a = safe_sqrt(T(0.5) * (a2pb2 + t0));
+  // a = Re √(t0 + 2iηκ). For t0 < 0 (every conductor with κ > η) a2pb2 + t0 cancels, so there
+  // b = Im √(·) = √((a2pb2 − t0)/2) is taken first and a = ηκ/b (ab = ηκ).
+  const T b = safe_sqrt(T(0.5) * (a2pb2 - t0));
+  const T a =
+      select(t0 >= T(0), safe_sqrt(T(0.5) * (a2pb2 + t0)), eta * kappa / select(b > T(0), b, T(1)));
   const T t1 = a2pb2 + cos2;
   const T t2 = T(2) * c * a;
   const T rs = (t1 - t2) / (t1 + t2);

@@ -26,8 +26,11 @@ struct GGX {
   // Projected area of the microsurface seen from ω, ∫ max(0, ω·m) D(m) dm (Heitz 2014 Eq. 14),
   // for every ω: (ωz + sqrt(ωz² + σ²)) / 2. For ωz ≤ 0 this is the area of microfacets a
   // back-facing shading normal still sees (Eto & Tokuyoshi 2023, denominator of Eq. 7).
+  // Below the horizon ωz + √(ωz² + σ²) cancels; there it is written σ²/(√(ωz² + σ²) + |ωz|).
   GLINTLAB_FN T projected_area(Vec3<T> w) const {
-    return T(0.5) * (w.z + sqrt(sqr(w.z) + sigma2(w)));
+    const T s2 = sigma2(w);
+    const T t = sqrt(sqr(w.z) + s2);
+    return T(0.5) * select(w.z > T(0), w.z + t, safe_div(s2, t + abs(w.z)));
   }
 
   // Smith Λ with the convention Λ(ω)|ωz| = ∫ max(0, −ω·m) D(m) dm for every ω, so that

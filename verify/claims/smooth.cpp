@@ -87,7 +87,7 @@ CheckResult normalization_verdict(const std::vector<Config>& grid, Measure&& mea
   }
   r.value = m[worst].error;
   const Config& w = grid[worst];
-  r.evidence = fmt::format("worst {} at {} αx={:.3g} αy={:.3g}{}; cubature error estimate ≤ {:.1e}",
+  r.detail = fmt::format("worst {} at {} αx={:.3g} αy={:.3g}{}; cubature error estimate ≤ {:.1e}",
                            r.value, ndf_name(w.ggx), w.ax, w.ay,
                            w.theta_i_deg != 0 ? fmt::format(" θi={}°", w.theta_i_deg) : "", quad);
   if (quad > 0.1 * kTolerance)
@@ -144,9 +144,9 @@ CheckResult vndf_normalized(Budget b) {
 std::vector<Check> smooth_checks() {
   return {
       {"smooth.projected-area", "Walter et al. 2007; Heitz 2014",
-       "∫ D(ω)(ω·n) dω = 1 (Heitz 2014 Eq. 4)", projected_area},
+       "∫ D(ω)(ω·n) dω = 1 (Heitz 2014 Eq. 4)", Verdict::kHolds, projected_area},
       {"smooth.vndf-normalized", "Heitz 2018", "D_ωi(ω) integrates to 1 (Heitz 2018 Eq. 1)",
-       vndf_normalized},
+       Verdict::kHolds, vndf_normalized},
   };
 }
 

@@ -1,0 +1,48 @@
+// Validation shared by the subcommands: NDF names, roughness, unit directions and the dispatch
+// from a runtime NDF name to the templated kernels. Every check throws cli::InputError with a
+// one-line message "<where>: <problem> (valid: <range>)".
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cli/commands.h"
+#include "core/math/vec.h"
+#include "core/ndf/beckmann.h"
+#include "core/ndf/ggx.h"
+
+namespace glintlab::cli {
+
+enum class NdfKind { kGGX, kBeckmann };
+
+inline constexpr std::string_view kNdfNames = "ggx, beckmann";
+inline constexpr double kUnitTolerance = 1e-6;
+
+// "ggx" or "beckmann"; throws InputError naming `where` otherwise.
+NdfKind parse_ndf(std::string_view text, std::string_view where);
+std::string_view ndf_name(NdfKind kind);
+
+// Throws unless α is finite and > 0.
+void check_alpha(double alpha, std::string_view where);
+// Throws unless |‖w‖ − 1| ≤ 1e-6; the message gives the length.
+void check_unit(Vec3<double> w, std::string_view where);
+
+// Parses a decimal number (finite) / a comma-separated list of them; throws naming `where` and
+// `valid` (the description of the valid range used in the message).
+double parse_number(std::string_view text, std::string_view where, std::string_view valid);
+std::vector<double> parse_number_list(std::string_view text, std::string_view where,
+                                      std::string_view valid);
+// Parses a non-negative decimal integer in [lo, hi]; throws naming `where` and the range.
+std::uint64_t parse_integer(std::string_view text, std::string_view where, std::uint64_t lo,
+                            std::uint64_t hi);
+
+// Calls f(GGX<double>{ax, ay}) or f(Beckmann<double>{ax, ay}) and returns its result.
+template <class F>
+decltype(auto) with_ndf(NdfKind kind, double alpha_x, double alpha_y, F&& f) {
+  if (kind == NdfKind::kGGX) return f(GGX<double>{alpha_x, alpha_y});
+  return f(Beckmann<double>{alpha_x, alpha_y});
+}
+
+}  // namespace glintlab::cli

@@ -1,0 +1,219 @@
+// `glintlab eval`: evaluates every microfacet term of the library for a CSV file of queries.
+#include <fmt/format.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "core/io/atomic_file.h"
+#include "core/io/csv.h"
+#include "core/maps/beckmann_map.h"
+#include "core/maps/ggx_map.h"
+#include "core/ndf/microfacet.h"
+#include "core/ndf/total_area.h"
+#include "core/samplers/beckmann_vndf.h"
+#include "core/samplers/bounded_vndf.h"
+#include "core/samplers/heitz_vndf.h"
+#include "core/samplers/walter.h"
+
+namespace glintlab::cli {
+namespace {
+
+constexpr std::array<std::string_view, 9> kQueryColumns = {
+    "ndf", "alpha_x", "alpha_y", "wi_x", "wi_y", "wi_z", "wo_x", "wo_y", "wo_z"};
+
+constexpr std::array<std::string_view, 18> kResultColumns = {
+    "h_x",   "h_y", "h_z",    "D",       "lambda_wi", "G1_wi",
+    "G1_wo", "G2",  "vndf_h", "pdf_ndf", "pdf_vndf",  "pdf_bounded",
+    "brdf",  "DH",  "T_x",    "T_y",     "JT_paper",  "JT_true"};
+
+struct Query {
+  NdfKind ndf;
+  double alpha_x, alpha_y;
+  Vec3<double> wi, wo;
+};
+
+// Reads and validates every row before anything is computed or written.
+std::vector<Query> read_queries(const io::CsvTable& table) {
+  // Columns: all of kQueryColumns, in any order, and no others.
+  std::string missing, extra;
+  for (std::string_view name : kQueryColumns) {
+    if (!table.find_column(name)) missing += fmt::format("{}{}", missing.empty() ? "" : ", ", name);
+  }
+  for (const std::string& name : table.header()) {
+    bool known = false;
+    for (std::string_view q : kQueryColumns) known = known || name == q;
+    if (!known) extra += fmt::format("{}'{}'", extra.empty() ? "" : ", ", name);
+  }
+  if (!missing.empty() || !extra.empty()) {
+    std::string msg = fmt::format("--in '{}' header row:", table.source());
+    if (!missing.empty()) msg += fmt::format(" missing column(s) {};", missing);
+    if (!extra.empty()) msg += fmt::format(" unknown column(s) {};", extra);
+    msg.back() = ' ';
+    msg +=
+        fmt::format("(valid: exactly the columns {}, in any order)", fmt::join(kQueryColumns, ","));
+    throw InputError(msg);
+  }
+
+  std::array<std::size_t, kQueryColumns.size()> col{};
+  for (std::size_t i = 0; i < kQueryColumns.size(); ++i) col[i] = table.column(kQueryColumns[i]);
+
+  std::vector<Query> queries;
+  queries.reserve(table.num_rows());
+  for (std::size_t r = 0; r < table.num_rows(); ++r) {
+    const auto where = [&](std::size_t c) { return "--in " + table.where(r, col[c]); };
+    const auto num = [&](std::size_t c) {
+      try {
+        return table.number(r, col[c]);
+      } catch (const io::CsvError& e) {
+        throw InputError(std::string("--in ") + e.what());
+      }
+    };
+    Query q{};
+    q.ndf = parse_ndf(table.text(r, col[0]), where(0));
+    q.alpha_x = num(1);
+    check_alpha(q.alpha_x, where(1));
+    q.alpha_y = num(2);
+    check_alpha(q.alpha_y, where(2));
+    q.wi = {num(3), num(4), num(5)};
+    q.wo = {num(6), num(7), num(8)};
+    check_unit(q.wi, fmt::format("--in {}, columns wi_x,wi_y,wi_z (wi)", table.where(r)));
+    check_unit(q.wo, fmt::format("--in {}, columns wo_x,wo_y,wo_z (wo)", table.where(r)));
+    queries.push_back(q);
+  }
+  return queries;
+}
+
+// Every result column for one query, in the order of kResultColumns.
+std::array<double, kResultColumns.size()> evaluate(const Query& q) {
+  return with_ndf(q.ndf, q.alpha_x, q.alpha_y, [&](const auto& ndf) {
+    using Ndf = std::decay_t<decltype(ndf)>;
+    constexpr bool kIsGGX = std::is_same_v<Ndf, GGX<double>>;
+    const Vec3<double> wi = q.wi, wo = q.wo;
+    const Vec3<double> h = half_vector(wi, wo);
+    double pdf_vndf = 0.0, pdf_bounded = 0.0;
+    if constexpr (kIsGGX) {
+      pdf_vndf = pdf_heitz_vndf(ndf, wi, wo);
+      pdf_bounded = pdf_bounded_vndf(ndf, wi, wo, BoundedVndfBound::kListing1);
+    } else {
+      pdf_vndf = pdf_beckmann_vndf(ndf, wi, wo);
+      pdf_bounded = std::numeric_limits<double>::quiet_NaN();  // the bounded sampler is GGX-only
+    }
+    const Vec2<double> t = map_to_square(ndf, h);
+    return std::array<double, kResultColumns.size()>{h.x,
+                                                     h.y,
+                                                     h.z,
+                                                     ndf.D(h),
+                                                     ndf.lambda(wi),
+                                                     smith_g1(ndf, wi, h),
+                                                     smith_g1(ndf, wo, h),
+                                                     smith_g2_height_correlated(ndf, wi, wo, h),
+                                                     vndf(ndf, wi, h),
+                                                     pdf_walter(ndf, wi, wo),
+                                                     pdf_vndf,
+                                                     pdf_bounded,
+                                                     microfacet_brdf(ndf, wi, wo, 1.0),
+                                                     total_area(ndf),
+                                                     t.x,
+                                                     t.y,
+                                                     map_jacobian_paper(ndf, h),
+                                                     map_jacobian_true(ndf, h)};
+  });
+}
+
+void run_eval(const std::string& in_path, const std::string& out_path) {
+  io::CsvTable table = [&] {
+    try {
+      return io::read_csv(in_path);
+    } catch (const io::CsvError& e) {
+      throw InputError(std::string("--in ") + e.what());
+    }
+  }();
+  const std::vector<Query> queries = read_queries(table);
+
+  std::vector<std::string_view> header(kQueryColumns.begin(), kQueryColumns.end());
+  header.insert(header.end(), kResultColumns.begin(), kResultColumns.end());
+
+  try {
+    io::AtomicFile file(out_path);
+    {
+      io::CsvWriter w(file.stream(), header);
+      for (const Query& q : queries) {
+        w.cell(ndf_name(q.ndf)).cell(q.alpha_x).cell(q.alpha_y);
+        w.cell(q.wi.x).cell(q.wi.y).cell(q.wi.z).cell(q.wo.x).cell(q.wo.y).cell(q.wo.z);
+        for (double v : evaluate(q)) w.cell(v);
+        w.end_row();
+      }
+    }
+    file.commit();
+  } catch (const std::runtime_error& e) {
+    // AtomicFile reports an unwritable --out as std::runtime_error naming the path.
+    throw InputError(std::string("--out: ") + e.what());
+  }
+}
+
+constexpr const char* kEvalFooter =
+    R"(INPUT (--in): a CSV file, a header row then one query per data row. Columns, in any order, and
+no others:
+  ndf               ggx or beckmann
+  alpha_x, alpha_y  roughness along the tangent (x) and bitangent (y) axes; finite, > 0
+  wi_x, wi_y, wi_z  the given direction wi, pointing toward the viewer; unit length (within 1e-6)
+  wo_x, wo_y, wo_z  the other direction wo; unit length (within 1e-6)
+Directions are in the local shading frame: x tangent, y bitangent, z the macrosurface normal.
+Any unit directions are accepted, including ones at or below the surface (z <= 0): each term
+then takes the value its formula gives there (D, G1, G2 and brdf are 0 where they vanish; the
+VNDF and its pdfs are defined for a back-facing wi, as in Eto & Tokuyoshi 2023).
+Numbers are decimal (std::from_chars) and must be finite; fields may not be empty or quoted.
+
+OUTPUT (--out): a CSV file, one row per query, in input order. Columns: the query columns (in
+the order above; the same values, reprinted), then
+  h_x, h_y, h_z  half vector h = normalize(wi + wo); (0, 0, 0) when wo = -wi
+  D              the NDF D(h), per steradian of microfacet normal
+  lambda_wi      Smith Lambda(wi) (Heitz 2014), with Lambda(-w) = 1 + Lambda(w) below the surface
+  G1_wi, G1_wo   Smith masking G1(wi, h) and G1(wo, h)
+  G2             height-correlated masking-shadowing G2(wi, wo, h) (Heitz 2014 Eq. 99)
+  vndf_h         visible-normal density D_wi(h) = max(0, wi.h) D(h) / A(wi) (Heitz 2018 Eq. 1)
+  pdf_ndf        density of wo (per steradian) when sampling h from D(h)|h.z| and reflecting wi
+                 (Walter et al. 2007)
+  pdf_vndf       density of wo when sampling h from the VNDF: Heitz 2018 for ggx, the Beckmann
+                 VNDF sampler for beckmann
+  pdf_bounded    density of wo under the bounded VNDF sampler with the Listing 1 bound (Eto &
+                 Tokuyoshi 2023); ggx only, 'nan' for beckmann
+  brdf           microfacet reflection BRDF F G2 D / (4 |wi.z| |wo.z|) with F = 1, 0 unless both
+                 wi and wo are above the surface
+  DH             total microfacet area D_H = integral of D(m) over the hemisphere (Kneiphof &
+                 Klein 2024 Eq. 29-31, with glintlab's anisotropic extension); depends on ndf
+                 and alpha only
+  T_x, T_y       map_to_square(ndf, h): the NDF-to-disk map T of Kemppinen et al. 2025
+                 (Sec. 3.2.1) at h, stored as p = (q + 1)/2 for the paper's unit-disk point q
+                 (the disk of radius 1/2 centred at (1/2, 1/2) in the unit square)
+  JT_paper       |J_T| as the paper uses it in Eq. 3: D(h) / |U|, |U| = pi/4 (disk area in
+                 square units)
+  JT_true        the actual Jacobian |det dT/dh| of map_to_square, per steradian of h
+Every number is a double printed with 17 significant digits (reads back to the same double).
+Any invalid row stops the run with an error naming the file, the 1-based data row and the
+column; no output file is written then.)";
+
+}  // namespace
+
+void add_eval_command(CLI::App& app) {
+  CLI::App* cmd = app.add_subcommand(
+      "eval", "Evaluate every microfacet term (D, G1, G2, VNDF, pdfs, BRDF, maps) for CSV queries");
+  auto in = std::make_shared<std::string>();
+  auto out = std::make_shared<std::string>();
+  cmd->add_option("--in", *in, "Query CSV file (columns described below)")->required();
+  cmd->add_option("--out", *out,
+                  "Result CSV file; written to a temporary file and renamed into place only "
+                  "when every row succeeded")
+      ->required();
+  cmd->footer(kEvalFooter);
+  cmd->callback([in, out] { run_eval(*in, *out); });
+}
+
+}  // namespace glintlab::cli

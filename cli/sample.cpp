@@ -1,0 +1,224 @@
+// `glintlab sample`: draws reflected directions from one of the samplers and writes them as CSV.
+#include "core/samplers/sample.h"
+
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "core/io/atomic_file.h"
+#include "core/io/csv.h"
+#include "core/math/rng.h"
+#include "core/samplers/beckmann_vndf.h"
+#include "core/samplers/bounded_vndf.h"
+#include "core/samplers/heitz_vndf.h"
+#include "core/samplers/spherical_caps.h"
+#include "core/samplers/walter.h"
+
+namespace glintlab::cli {
+namespace {
+
+enum class Sampler { kNdf, kVndf, kCaps, kBounded };
+
+constexpr std::uint64_t kMaxSamples = 1000000000;  // 1e9 rows is already ~200 GB of CSV
+
+struct SampleArgs {
+  std::string ndf, alpha, wi, sampler, n, seed = "0", bound = "listing1", out;
+  bool bound_given = false;
+};
+
+struct SampleJob {
+  NdfKind ndf;
+  double alpha_x, alpha_y;
+  Vec3<double> wi;
+  Sampler sampler;
+  BoundedVndfBound bound;
+  std::uint64_t n, seed;
+};
+
+SampleJob validate(const SampleArgs& a) {
+  SampleJob job{};
+  job.ndf = parse_ndf(a.ndf, "--ndf");
+
+  const std::vector<double> alpha = parse_number_list(
+      a.alpha, "--alpha", "one value, or two comma-separated values alpha_x,alpha_y; finite, > 0");
+  if (alpha.size() != 1 && alpha.size() != 2) {
+    throw InputError(
+        fmt::format("--alpha: '{}' has {} values (valid: one value, or two comma-separated values "
+                    "alpha_x,alpha_y; finite, > 0)",
+                    a.alpha, alpha.size()));
+  }
+  job.alpha_x = alpha[0];
+  job.alpha_y = alpha.size() == 2 ? alpha[1] : alpha[0];
+  check_alpha(job.alpha_x, alpha.size() == 2 ? "--alpha (alpha_x)" : "--alpha");
+  check_alpha(job.alpha_y, "--alpha (alpha_y)");
+
+  const std::vector<double> wi =
+      parse_number_list(a.wi, "--wi", "three comma-separated numbers x,y,z of a unit vector");
+  if (wi.size() != 3) {
+    throw InputError(fmt::format(
+        "--wi: '{}' has {} values (valid: three comma-separated numbers x,y,z of a unit vector)",
+        a.wi, wi.size()));
+  }
+  job.wi = {wi[0], wi[1], wi[2]};
+  check_unit(job.wi, "--wi");
+
+  if (a.sampler == "ndf") {
+    job.sampler = Sampler::kNdf;
+  } else if (a.sampler == "vndf") {
+    job.sampler = Sampler::kVndf;
+  } else if (a.sampler == "caps") {
+    job.sampler = Sampler::kCaps;
+  } else if (a.sampler == "bounded") {
+    job.sampler = Sampler::kBounded;
+  } else {
+    throw InputError(
+        fmt::format("--sampler: unknown sampler '{}' (valid: ndf, vndf, caps, "
+                    "bounded; caps and bounded with --ndf ggx only)",
+                    a.sampler));
+  }
+  const bool ggx_only = job.sampler == Sampler::kCaps || job.sampler == Sampler::kBounded;
+  if (ggx_only && job.ndf != NdfKind::kGGX) {
+    throw InputError(fmt::format(
+        "--sampler: '{}' samples GGX only, not --ndf {} (valid for --ndf {}: ndf, vndf)", a.sampler,
+        ndf_name(job.ndf), ndf_name(job.ndf)));
+  }
+  if ((job.sampler == Sampler::kNdf || job.sampler == Sampler::kVndf) && !(job.wi.z > 0.0)) {
+    throw InputError(fmt::format(
+        "--wi: wi.z = {} is not above the surface, which the {} sampler needs (valid: wi.z > 0; "
+        "the caps and bounded samplers also accept wi.z <= 0)",
+        job.wi.z, a.sampler));
+  }
+
+  if (a.bound == "listing1") {
+    job.bound = BoundedVndfBound::kListing1;
+  } else if (a.bound == "exact-isotropic") {
+    job.bound = BoundedVndfBound::kExactIsotropic;
+  } else {
+    throw InputError(
+        fmt::format("--bound: unknown bound '{}' (valid: listing1, exact-isotropic)", a.bound));
+  }
+  if (a.bound_given && job.sampler != Sampler::kBounded) {
+    throw InputError(fmt::format(
+        "--bound: only applies to --sampler bounded, not '{}' (valid: omit --bound)", a.sampler));
+  }
+
+  job.n = parse_integer(a.n, "--n", 1, kMaxSamples);
+  job.seed = parse_integer(a.seed, "--seed", 0, UINT64_MAX);
+  return job;
+}
+
+// Draws sample i of the job. The uniforms depend only on (seed, i), never on evaluation order.
+template <class Ndf>
+MicrofacetSample<double> draw(const Ndf& ndf, const SampleJob& job, std::uint64_t i) {
+  const Vec2<double> u{counter_uniform<double>(job.seed, i, 0),
+                       counter_uniform<double>(job.seed, i, 1)};
+  if constexpr (std::is_same_v<Ndf, GGX<double>>) {
+    switch (job.sampler) {
+      case Sampler::kNdf:
+        return sample_walter(ndf, job.wi, u);
+      case Sampler::kVndf:
+        return sample_heitz_vndf(ndf, job.wi, u);
+      case Sampler::kCaps:
+        return sample_spherical_caps(ndf, job.wi, u);
+      case Sampler::kBounded:
+        return sample_bounded_vndf(ndf, job.wi, u, job.bound);
+    }
+    return {};
+  } else {
+    // validate() lets only ndf and vndf through for Beckmann.
+    if (job.sampler == Sampler::kNdf) return sample_walter(ndf, job.wi, u);
+    return sample_beckmann_vndf(ndf, job.wi, u);
+  }
+}
+
+void run_sample(const SampleArgs& args) {
+  const SampleJob job = validate(args);
+  try {
+    io::AtomicFile file(args.out);
+    {
+      io::CsvWriter w(file.stream(),
+                      {"wo_x", "wo_y", "wo_z", "h_x", "h_y", "h_z", "pdf", "weight", "rejected"});
+      with_ndf(job.ndf, job.alpha_x, job.alpha_y, [&](const auto& ndf) {
+        for (std::uint64_t i = 0; i < job.n; ++i) {
+          const MicrofacetSample<double> s = draw(ndf, job, i);
+          const bool rejected = static_cast<bool>(s.rejected);
+          const double weight = rejected ? 0.0 : sample_weight(ndf, job.wi, s);
+          w.cell(s.wo.x).cell(s.wo.y).cell(s.wo.z).cell(s.m.x).cell(s.m.y).cell(s.m.z);
+          w.cell(s.pdf).cell(weight).cell_int(rejected ? 1 : 0);
+          w.end_row();
+        }
+      });
+    }
+    file.commit();
+  } catch (const std::runtime_error& e) {
+    // AtomicFile reports an unwritable --out as std::runtime_error naming the path.
+    throw InputError(std::string("--out: ") + e.what());
+  }
+}
+
+constexpr const char* kSampleFooter = R"(SAMPLERS (--sampler):
+  ndf      Walter et al. 2007: h drawn from D(h) h.z, wo = reflect(wi, h); ggx and beckmann
+  vndf     visible normals D_wi(h): Heitz 2018 for ggx, the Beckmann VNDF sampler for beckmann
+  caps     spherical caps VNDF sampling (Dupuy & Benyoub 2023); ggx only
+  bounded  bounded VNDF sampling (Eto & Tokuyoshi 2023), bound chosen by --bound; ggx only
+ndf and vndf need wi above the surface (wi.z > 0); caps and bounded also accept wi.z <= 0.
+Directions are in the local shading frame: x tangent, y bitangent, z the macrosurface normal.
+
+OUTPUT (--out): a CSV file with one row per sample i = 0 .. N-1, columns
+  wo_x, wo_y, wo_z  the sampled reflected direction wo (unit vector)
+  h_x, h_y, h_z     the sampled microfacet normal m (wo = reflect(wi, m))
+  pdf               density of wo per steradian over the whole sphere: the sampler's standalone
+                    pdf (pdf_walter, pdf_heitz_vndf, ...) evaluated at this wo
+  weight            the Monte Carlo weight of the sample for the F = 1 microfacet BRDF,
+                    sample_weight(ndf, wi, sample) = brdf * wo.z / pdf; 0 for a rejected sample
+  rejected          1 if the sampler rejected the sample (wo below the surface, or m facing
+                    away from wi: no opaque reflection), else 0; wo, m and pdf are still written
+Doubles are printed with 17 significant digits. Sample i uses the uniforms
+u = (counter_uniform(S, i, 0), counter_uniform(S, i, 1)) of the counter-based generator, so the
+file depends only on the arguments: the same seed gives a byte-identical file.
+Invalid arguments stop the run with a one-line error naming the option and its valid range;
+no output file is written then.)";
+
+}  // namespace
+
+void add_sample_command(CLI::App& app) {
+  CLI::App* cmd = app.add_subcommand(
+      "sample",
+      "Draw N reflected directions from a microfacet sampler, with pdf and weight, as CSV");
+  auto a = std::make_shared<SampleArgs>();
+  cmd->add_option("--ndf", a->ndf, "Normal distribution: ggx or beckmann")->required();
+  cmd->add_option("--alpha", a->alpha,
+                  "Roughness 'ax,ay' (tangent, bitangent), or one value for isotropic; each "
+                  "finite and > 0")
+      ->required();
+  cmd->add_option("--wi", a->wi,
+                  "Incident direction 'x,y,z' toward the viewer, unit length within 1e-6 (write "
+                  "--wi=-0.6,0,0.8 when x is negative)")
+      ->required();
+  cmd->add_option("--sampler", a->sampler, "ndf, vndf, caps or bounded (see below)")->required();
+  cmd->add_option("--bound", a->bound,
+                  "Bound of the bounded sampler: listing1 (Eto & Tokuyoshi 2023 Listing 1) or "
+                  "exact-isotropic; only with --sampler bounded (default listing1)");
+  cmd->add_option("--n", a->n, "Number of samples, an integer in [1, 1000000000]")->required();
+  cmd->add_option("--seed", a->seed,
+                  "Seed of the counter-based generator, an unsigned 64-bit "
+                  "integer (default 0)");
+  cmd->add_option("--out", a->out,
+                  "Output CSV file; written to a temporary file and renamed into place only "
+                  "when the run succeeded")
+      ->required();
+  cmd->footer(kSampleFooter);
+  cmd->callback([a, cmd] {
+    a->bound_given = cmd->count("--bound") > 0;
+    run_sample(*a);
+  });
+}
+
+}  // namespace glintlab::cli

@@ -1,0 +1,65 @@
+// Helpers for the CLI tests: run the real `glintlab` executable in a fresh temporary directory
+// per test and inspect its exit code, stdout, stderr and the files it leaves behind.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/io/csv.h"
+
+#ifndef GLINTLAB_EXE
+#error "GLINTLAB_EXE (the path of the glintlab executable) must be defined by the build"
+#endif
+
+namespace glintlab::cli_test {
+
+struct RunResult {
+  int exit_code = -1;  // the process's exit status; -1 if it did not exit normally
+  std::string out;     // everything it wrote to stdout
+  std::string err;     // everything it wrote to stderr
+};
+
+// Lines of a text, without their line ends (a final line end does not start a new line).
+std::vector<std::string> lines_of(const std::string& text);
+std::string read_text(const std::filesystem::path& path);
+void write_text(const std::filesystem::path& path, const std::string& text);
+
+// A numeric cell of an output file; unlike CsvTable::number also reads "nan", "-nan", "inf" and
+// "-inf", which the executable prints for non-finite results.
+double cell_value(const io::CsvTable& table, std::size_t row, std::size_t col);
+// a == b, or both NaN.
+bool same_value(double a, double b);
+
+// Names of the entries of `dir` (recursively, relative to it) that are not in `expected`.
+std::vector<std::string> unexpected_files(const std::filesystem::path& dir,
+                                          const std::set<std::string>& expected);
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override;
+  void TearDown() override;
+
+  // Runs `glintlab args...` with the working directory work(); arguments are shell-quoted.
+  RunResult run(const std::vector<std::string>& args) const;
+
+  // The directory the executable runs in; empty at the start of each test.
+  const std::filesystem::path& work() const { return work_; }
+  std::filesystem::path path(const std::string& name) const { return work_ / name; }
+
+  // Asserts a failed run: exit code 2, nothing on stdout, exactly one stderr line of the form
+  // "glintlab: error: <message>" whose message contains every string of `needles`, and that
+  // work() holds exactly the files in `expected_files` (no output file, no temporary file).
+  void expect_input_error(const RunResult& r, const std::vector<std::string>& needles,
+                          const std::set<std::string>& expected_files) const;
+
+ private:
+  std::filesystem::path root_;     // per-test temporary directory
+  std::filesystem::path work_;     // root_/work: the executable's working directory
+  std::filesystem::path capture_;  // root_/capture: stdout and stderr of the runs
+};
+
+}  // namespace glintlab::cli_test

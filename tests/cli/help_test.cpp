@@ -1,0 +1,81 @@
+// --help on the executable and on every subcommand exits 0 and documents the options and columns.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "cli/cli_test_util.h"
+
+namespace glintlab::cli_test {
+namespace {
+
+using HelpTest = CliTest;
+
+void expect_contains(const std::string& text, const std::vector<std::string>& needles) {
+  for (const std::string& n : needles) {
+    EXPECT_NE(text.find(n), std::string::npos) << "help lacks '" << n << "'";
+  }
+}
+
+TEST_F(HelpTest, TopLevelListsSubcommands) {
+  for (const std::string flag : {"--help", "-h"}) {
+    const RunResult r = run({flag});
+    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_EQ(r.err, "");
+    expect_contains(r.out, {"Usage: glintlab", "eval", "sample", "verify", "exit with code 2"});
+  }
+}
+
+TEST_F(HelpTest, EvalDocumentsEveryColumn) {
+  const RunResult r = run({"eval", "--help"});
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err, "");
+  expect_contains(r.out, {"--in",
+                          "--out",
+                          "ndf",
+                          "alpha_x, alpha_y",
+                          "wi_x, wi_y, wi_z",
+                          "wo_x, wo_y, wo_z",
+                          "h_x, h_y, h_z",
+                          "lambda_wi",
+                          "G1_wi, G1_wo",
+                          "G2",
+                          "vndf_h",
+                          "pdf_ndf",
+                          "pdf_vndf",
+                          "pdf_bounded",
+                          "brdf",
+                          "DH",
+                          "T_x, T_y",
+                          "JT_paper",
+                          "JT_true",
+                          "17 significant digits",
+                          "below the surface"});
+}
+
+TEST_F(HelpTest, SampleDocumentsOptionsAndColumns) {
+  const RunResult r = run({"sample", "--help"});
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err, "");
+  expect_contains(r.out, {"--ndf", "--alpha", "--wi", "--sampler", "--bound", "--n", "--seed",
+                          "--out", "wo_x, wo_y, wo_z", "h_x, h_y, h_z", "pdf", "weight", "rejected",
+                          "wi.z > 0", "listing1", "exact-isotropic"});
+}
+
+TEST_F(HelpTest, VerifyHasHelp) {
+  const RunResult r = run({"verify", "--help"});
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err, "");
+  expect_contains(r.out, {"verify"});
+}
+
+TEST_F(HelpTest, HelpWinsOverOtherArguments) {
+  // --help with otherwise missing or invalid options still prints help and succeeds, and
+  // writes nothing.
+  const RunResult r = run({"sample", "--ndf", "phong", "--help"});
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(unexpected_files(work(), {}), std::vector<std::string>{});
+}
+
+}  // namespace
+}  // namespace glintlab::cli_test

@@ -1,0 +1,98 @@
+// Serialisation of a verify run; see results.h.
+#include "verify/results.h"
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+
+namespace glintlab::verify {
+namespace {
+
+nlohmann::json optional_number(const std::optional<double>& v) {
+  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+}
+
+std::string csv_field(const std::string& s) {
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+std::string md_cell(const std::string& s) {
+  std::string r;
+  for (char c : s) r += c == '|' ? std::string("\\|") : std::string(1, c);
+  return r;
+}
+
+std::string number_or_dash(const std::optional<double>& v) {
+  return v ? fmt::format("{:.3g}", *v) : std::string("—");
+}
+
+}  // namespace
+
+bool as_expected(const RunRecord& r) {
+  return r.result.verdict == r.check->expected && r.result.control_rejected;
+}
+
+std::string to_json(const std::vector<RunRecord>& records, const RunInfo& info) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const RunRecord& r : records) {
+    const CheckResult& x = r.result;
+    list.push_back({{"id", r.check->id},
+                    {"paper", r.check->paper},
+                    {"source", r.check->source},
+                    {"verdict", to_string(x.verdict)},
+                    {"expected_verdict", to_string(r.check->expected)},
+                    {"detail", x.detail},
+                    {"statistic", x.statistic},
+                    {"value", x.value},
+                    {"bound", optional_number(x.bound)},
+                    {"p_value", optional_number(x.p_value)},
+                    {"raw_p_values", x.raw_p_values},
+                    {"control", x.control},
+                    {"control_p_value", optional_number(x.control_p_value)},
+                    {"control_rejected", x.control_rejected},
+                    {"power", x.power},
+                    {"configurations", x.configurations},
+                    {"budget", info.budget},
+                    {"seconds", r.seconds}});
+  }
+  return list.dump(2) + "\n";
+}
+
+std::string to_csv(const std::vector<RunRecord>& records) {
+  std::string csv =
+      "id,paper,source,verdict,expected_verdict,detail,statistic,value,bound,p_value,"
+      "control_p_value,control_rejected,control,power,configurations,seconds\n";
+  auto num = [](const std::optional<double>& v) { return v ? fmt::format("{:.17g}", *v) : std::string(); };
+  for (const RunRecord& r : records) {
+    const CheckResult& x = r.result;
+    csv += fmt::format("{},{},{},{},{},{},{},{:.17g},{},{},{},{},{},{},{},{:.3f}\n", r.check->id,
+                       csv_field(r.check->paper), csv_field(r.check->source), to_string(x.verdict),
+                       to_string(r.check->expected), csv_field(x.detail), csv_field(x.statistic),
+                       x.value, num(x.bound), num(x.p_value), num(x.control_p_value),
+                       x.control_rejected ? 1 : 0, csv_field(x.control), csv_field(x.power),
+                       x.configurations, r.seconds);
+  }
+  return csv;
+}
+
+std::string to_markdown(const std::vector<RunRecord>& records, const RunInfo& info) {
+  std::string md = fmt::format("# glintlab verify — budget {}, {} thread(s), {}\n\n", info.budget,
+                               info.threads, info.machine);
+  md += "| claim | paper | source | verdict | measured | bound | p | control | evidence | time |\n";
+  md += "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  for (const RunRecord& r : records) {
+    const CheckResult& x = r.result;
+    std::string verdict = fmt::format("**{}**", to_string(x.verdict));
+    if (x.verdict != r.check->expected)
+      verdict += fmt::format(" (recorded: {})", to_string(r.check->expected));
+    md += fmt::format("| {} | {} | {} | {} | {} = {:.3g} | {} | {} | {} | {} | {:.1f} s |\n", r.check->id,
+                      md_cell(r.check->paper), md_cell(r.check->source), verdict,
+                      md_cell(x.statistic), x.value, number_or_dash(x.bound),
+                      number_or_dash(x.p_value), md_cell(x.control), md_cell(x.detail), r.seconds);
+  }
+  return md;
+}
+
+}  // namespace glintlab::verify
