@@ -181,35 +181,7 @@ TEST(BeckmannMap, JacobianPaperVersusTrue) {
   }
 }
 
-TEST(BeckmannMap, FloatStable) {
-  std::vector<Vec3<float>> dirs = {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {-0.6f, 0.8f, 0}};
-  for (V3 w : directions()) dirs.push_back(cast<float>(w));
-  for (double deg : {89.99, 89.999, 89.9999})
-    for (double phi : {0.0, 0.7, 1.5707963})
-      dirs.push_back(cast<float>(direction(deg * std::numbers::pi / 180, phi)));
-  for (const Alpha& a : kAlphas) {
-    const Beckmann<float> b{float(a.x), float(a.y)};
-    for (Vec3<float> w : dirs) {
-      const Vec2<float> p = map_to_square(b, w);
-      ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y));
-      EXPECT_LE(std::hypot(p.x - 0.5f, p.y - 0.5f), 0.5f + 1e-6f);
-      const float jt = map_jacobian_true(b, w), jp = map_jacobian_paper(b, w);
-      EXPECT_TRUE(std::isfinite(jt) && jt >= 0);
-      EXPECT_TRUE(std::isfinite(jp) && jp >= 0);
-    }
-    float worst = 0;
-    for (V2 pd : disk_points()) {
-      const Vec2<float> p{float(pd.x), float(pd.y)};
-      const Vec3<float> w = map_from_square(b, p);
-      ASSERT_TRUE(std::isfinite(w.x) && std::isfinite(w.y) && std::isfinite(w.z));
-      EXPECT_GE(w.z, 0.0f);
-      EXPECT_NEAR(length(w), 1.0f, 3e-7f);
-      const Vec2<float> q = map_to_square(b, w);
-      worst = std::max(worst, std::hypot(q.x - p.x, q.y - p.y));
-    }
-    EXPECT_LT(worst, 4e-7f) << a.x << " " << a.y;
-  }
-}
+TEST(BeckmannMap, FloatStable) { check_float_stable<Beckmann<float>>(false); }
 
 }  // namespace
 }  // namespace glintlab
