@@ -50,4 +50,15 @@ const std::vector<Check>& registered_checks();
 // A seed derived from the check id and a configuration index, never hand-picked.
 std::uint64_t check_seed(const std::string& id, std::uint64_t configuration);
 
+// True for a check that tests a hypothesis (it has a calibration function): it takes a share of
+// the suite's family-wise false-positive rate.
+inline bool is_statistical(const Check& c) { return static_cast<bool>(c.calibration); }
+
+// The significance level one statistical check holds its configuration-corrected p-value to: the
+// suite's family-wise rate kFamilyWiseRate (verify/stats/multiple_testing.h) split by Šidák over
+// every statistical check registered, so that a run of the whole suite rejects any true claim with
+// probability at most kFamilyWiseRate. Inside a check, its configurations are corrected by
+// Holm–Šidák at this level. The level does not depend on which claims a run selects.
+double check_level();
+
 }  // namespace glintlab::verify

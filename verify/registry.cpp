@@ -1,6 +1,10 @@
 // The registry of every check, in the order of shared/CLAIMS.md.
 #include "verify/check.h"
+
+#include <algorithm>
+
 #include "verify/claims/claims.h"
+#include "verify/stats/multiple_testing.h"
 
 namespace glintlab::verify {
 
@@ -13,6 +17,15 @@ const std::vector<Check>& registered_checks() {
     return all;
   }();
   return checks;
+}
+
+double check_level() {
+  static const double level = [] {
+    const auto& all = registered_checks();
+    const auto k = std::size_t(std::count_if(all.begin(), all.end(), is_statistical));
+    return sidak_level(kFamilyWiseRate, std::max<std::size_t>(k, 1));
+  }();
+  return level;
 }
 
 }  // namespace glintlab::verify
