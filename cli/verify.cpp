@@ -17,6 +17,7 @@
 #include "cli/commands.h"
 #include "cli/progress.h"
 #include "core/io/atomic_file.h"
+#include "verify/calibration.h"
 #include "verify/check.h"
 #include "verify/results.h"
 
@@ -29,6 +30,9 @@ struct VerifyOptions {
   std::string claims = "*";
   int threads = 0;
   bool list = false;
+  std::string calibrate;  // a check id: run its calibration instead of the suite
+  int runs = 100;
+  double level = 0.05;
 };
 
 std::vector<std::string> split_globs(const std::string& s) {
@@ -58,11 +62,41 @@ std::string machine_description(int threads) {
   return fmt::format("{} hardware thread(s), {} used", std::thread::hardware_concurrency(), threads);
 }
 
+// The check `--calibrate ID` names; it must exist and be statistical.
+const verify::Check& calibration_check(const std::string& id) {
+  for (const auto& c : verify::registered_checks())
+    if (c.id == id) {
+      if (!verify::is_statistical(c))
+        throw InputError(fmt::format(
+            "--calibrate: '{}' is a deterministic check (an error bound, no p-value); calibrate one "
+            "of the statistical checks (see --list)",
+            id));
+      return c;
+    }
+  throw InputError(fmt::format("--calibrate: '{}' is not a registered claim id (see --list)", id));
+}
+
+// `--calibrate ID`: the check's test on a known-correct input over `runs` derived seeds; exit 0 when
+// its false-positive rate and p-value distribution are those of a calibrated test, 1 otherwise.
+int run_calibration(const verify::Check& check, const VerifyOptions& o, const std::filesystem::path& dir) {
+  Progress progress("calibrate " + check.id, o.runs);
+  const verify::CalibrationResult r =
+      verify::calibrate(check, std::size_t(o.runs), o.level, 0.99, [&] { progress.step(""); });
+  io::write_file_atomic(dir / fmt::format("calibration-{}.json", check.id), verify::to_json(r));
+  fmt::print("{}\n", verify::summary(r));
+  return r.calibrated ? 0 : 1;
+}
+
 int run(const VerifyOptions& o) {
   if (o.budget != "quick" && o.budget != "full")
     throw InputError(fmt::format("--budget: '{}' is not one of quick|full", o.budget));
   if (o.threads < 0 || o.threads > 1024)
     throw InputError(fmt::format("--threads: {} is out of range (0 = all cores, or 1..1024)", o.threads));
+  if (o.runs < 2 || o.runs > 1000000)
+    throw InputError(fmt::format("--runs: {} is out of range (2..1000000)", o.runs));
+  if (!(o.level > 0 && o.level < 1))
+    throw InputError(fmt::format("--level: {} is out of range (0 < level < 1)", o.level));
+  const verify::Check* to_calibrate = o.calibrate.empty() ? nullptr : &calibration_check(o.calibrate);
   const auto selected = select_checks(o.claims);
   if (o.list) {
     for (const auto* c : selected)
@@ -77,6 +111,8 @@ int run(const VerifyOptions& o) {
   std::filesystem::create_directories(o.out, ec);
   if (ec) throw InputError(fmt::format("--out: cannot create directory '{}': {}", o.out, ec.message()));
 
+  if (to_calibrate) return run_calibration(*to_calibrate, o, o.out);
+
   std::vector<verify::RunRecord> records;
   Progress progress("verify", long(selected.size()));
   for (const auto* c : selected) {
@@ -86,6 +122,7 @@ int run(const VerifyOptions& o) {
     records.push_back({c, std::move(r), s});
     progress.step(c->id);
   }
+  verify::adjust_for_suite(records);
   const verify::RunInfo info{o.budget, threads, machine_description(threads)};
   const std::filesystem::path dir(o.out);
   io::write_file_atomic(dir / "claims.json", verify::to_json(records, info));
@@ -139,6 +176,14 @@ void add_verify_command(CLI::App& app) {
   sub->add_option("--threads", opts->threads, "worker threads (0 = all cores); results do not depend on it")
       ->capture_default_str();
   sub->add_flag("--list", opts->list, "list the matching claims with their recorded verdicts and exit");
+  sub->add_option("--calibrate", opts->calibrate,
+                  "a statistical check's id: run its test on a known-correct input over --runs "
+                  "derived seeds, test the p-values for uniformity (KS) and print the measured "
+                  "false-positive rate at --level with its 99 % interval; writes "
+                  "<out>/calibration-ID.json; exit 0 when calibrated, 1 when not");
+  sub->add_option("--runs", opts->runs, "calibration runs (2..1000000)")->capture_default_str();
+  sub->add_option("--level", opts->level, "nominal level for the calibration's false-positive rate")
+      ->capture_default_str();
   sub->callback([opts] {
     const int rc = run(*opts);
     if (rc != 0) throw CLI::RuntimeError(rc);

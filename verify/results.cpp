@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "verify/stats/multiple_testing.h"
+
 namespace glintlab::verify {
 namespace {
 
@@ -30,6 +32,18 @@ std::string number_or_dash(const std::optional<double>& v) {
 
 }  // namespace
 
+void adjust_for_suite(std::vector<RunRecord>& records) {
+  std::vector<double> p;
+  std::vector<std::size_t> index;
+  for (std::size_t i = 0; i < records.size(); ++i)
+    if (records[i].result.p_value) {
+      p.push_back(*records[i].result.p_value);
+      index.push_back(i);
+    }
+  const HolmSidakResult h = holm_sidak(p, kFamilyWiseRate);
+  for (std::size_t j = 0; j < index.size(); ++j) records[index[j]].suite_adjusted_p = h.adjusted[j];
+}
+
 bool as_expected(const RunRecord& r) {
   return r.result.verdict == r.check->expected && r.result.control_rejected;
 }
@@ -48,6 +62,7 @@ std::string to_json(const std::vector<RunRecord>& records, const RunInfo& info) 
                     {"value", x.value},
                     {"bound", optional_number(x.bound)},
                     {"p_value", optional_number(x.p_value)},
+                    {"suite_adjusted_p_value", optional_number(r.suite_adjusted_p)},
                     {"raw_p_values", x.raw_p_values},
                     {"control", x.control},
                     {"control_p_value", optional_number(x.control_p_value)},
@@ -63,14 +78,14 @@ std::string to_json(const std::vector<RunRecord>& records, const RunInfo& info) 
 std::string to_csv(const std::vector<RunRecord>& records) {
   std::string csv =
       "id,paper,source,verdict,expected_verdict,detail,statistic,value,bound,p_value,"
-      "control_p_value,control_rejected,control,power,configurations,seconds\n";
+      "suite_adjusted_p_value,control_p_value,control_rejected,control,power,configurations,seconds\n";
   auto num = [](const std::optional<double>& v) { return v ? fmt::format("{:.17g}", *v) : std::string(); };
   for (const RunRecord& r : records) {
     const CheckResult& x = r.result;
-    csv += fmt::format("{},{},{},{},{},{},{},{:.17g},{},{},{},{},{},{},{},{:.3f}\n", r.check->id,
+    csv += fmt::format("{},{},{},{},{},{},{},{:.17g},{},{},{},{},{},{},{},{},{:.3f}\n", r.check->id,
                        csv_field(r.check->paper), csv_field(r.check->source), to_string(x.verdict),
                        to_string(r.check->expected), csv_field(x.detail), csv_field(x.statistic),
-                       x.value, num(x.bound), num(x.p_value), num(x.control_p_value),
+                       x.value, num(x.bound), num(x.p_value), num(r.suite_adjusted_p), num(x.control_p_value),
                        x.control_rejected ? 1 : 0, csv_field(x.control), csv_field(x.power),
                        x.configurations, r.seconds);
   }

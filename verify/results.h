@@ -1,6 +1,7 @@
 // Serialisation of a verify run: claims.json (for tools and the report), claims.csv, claims.md.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,9 @@ struct RunRecord {
   const Check* check;
   CheckResult result;
   double seconds;
+  // Holm–Šidák adjusted p-value over every statistical check of this run (at kFamilyWiseRate);
+  // empty for deterministic checks. See adjust_for_suite.
+  std::optional<double> suite_adjusted_p = {};
 };
 
 struct RunInfo {
@@ -23,6 +27,12 @@ struct RunInfo {
 std::string to_json(const std::vector<RunRecord>& records, const RunInfo& info);
 std::string to_csv(const std::vector<RunRecord>& records);
 std::string to_markdown(const std::vector<RunRecord>& records, const RunInfo& info);
+
+// Fills suite_adjusted_p: Holm–Šidák over the p-values of the run's statistical checks. Each check
+// already holds its own p-value to check_level(), the single-step Šidák share of the suite's rate,
+// which Holm–Šidák never rejects less than; the adjusted values show how far each result is from
+// the suite's threshold.
+void adjust_for_suite(std::vector<RunRecord>& records);
 
 // True when the verdict is the one recorded for the check and its control was rejected.
 bool as_expected(const RunRecord& r);
