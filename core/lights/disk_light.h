@@ -1,19 +1,15 @@
 // One-sided disk area light with uniform radiance: uniform-area sampling converted to solid angle
-// (p_ω = d² / (A cos θ_l), Veach 1997 Eq. 8.10) and the exact subtended solid angle as a boundary
-// integral evaluated by the trapezoidal rule (see solid_angle). Podee's only light is this disk.
+// (p_ω = d² / (A cos θ_l), Veach 1997 Eq. 8.10) and the exact subtended solid angle in closed form
+// by complete and incomplete elliptic integrals (Paxton 1959). Podee's only light is this disk.
 #pragma once
 
 #include "core/lights/light_sample.h"
 #include "core/lights/planar_emitter.h"
+#include "core/math/elliptic_integrals.h"
 #include "core/math/orthonormal_basis.h"
 #include "core/parameter_check.h"
 
 namespace glintlab {
-
-// Trapezoidal nodes of the disk's boundary integral. The integrand is smooth and periodic, so the
-// rule converges geometrically; its rate falls with the height of the point over the plane
-// relative to the radius (measured in tests/core/lights/planar_lights_test.cpp).
-inline constexpr int kDiskSolidAngleNodes = 256;
 
 template <class T>
 struct DiskLight {
@@ -54,27 +50,39 @@ struct DiskLight {
     return select(hits(p, wi, &h), emitted, Vec3<T>{T(0), T(0), T(0)});
   }
 
-  // Ω = ∫_disk h/|q − p|³ dA. In polar coordinates (ρ, φ) about the foot f of p on the plane, the
-  // radial integral is 1 − h/√(h² + ρ²), so Ω = ∮ (1 − h/s) dφ along the boundary (s = √(h²+ρ²)),
-  // which holds whether f lies inside the disk or not (the signed dφ cancels the part outside).
-  // With the boundary q(ψ) = c + R(cos ψ, sin ψ) and r = q − f, dφ = (r × r')/ρ² dψ and
-  // 1 − h/s = ρ²/((s + h) s): the integrand (r × r')/((s + h) s) has no singularity even where f
-  // is on the rim. It is periodic and analytic in ψ, so the trapezoidal rule converges
-  // geometrically (Trefethen & Weideman 2014, SIAM Review 56(3), Thm. 3.2).
+  // Ω in closed form (Paxton 1959, "Solid angle calculation for a circular disk", Rev. Sci.
+  // Instrum. 30(4), Eq. 27–29; with Heuman's Lambda function as in DLMF 19.2.iv / Byrd & Friedman
+  // 150.03): with h the height of p over the plane, e the distance of its foot from the centre,
+  // R_max = √(h² + (e + R)²), R_1 = √(h² + (e − R)²), k² = 4eR/R_max², k' = R_1/R_max and
+  // ξ = atan(h / |e − R|),
+  //   Ω = π − 2 (h/R_max) K(k) + sgn(R − e) π (1 − Λ0(ξ, k)),
+  //   Λ0(ξ, k) = (2/π) [E(k) F(ξ, k') + K(k) E(ξ, k') − K(k) F(ξ, k')],
+  // which joins Paxton's three cases (e < R, e = R, e > R: Λ0(π/2, k) = 1 by Legendre's relation).
+  // K, E, F through Carlson's R_F, R_D with k'² passed directly, so a point just above the rim
+  // (k → 1) keeps its digits. An earlier trapezoidal boundary integral failed there (measured:
+  // Ω = 10.4 > 2π at h = 1e-3 R, e = 0.999 R).
   GLINTLAB_FN T solid_angle(Vec3<T> p) const {
     const Vec3<T> d = p - center;
     const T h = dot(d, frame.z);
-    const T ex = -dot(d, frame.x), ey = -dot(d, frame.y);  // centre relative to the foot
-    T sum = T(0);
-    for (int k = 0; k < kDiskSolidAngleNodes; ++k) {
-      T sp, cp;
-      sincos(T(2 * kPi<T>) * T(k) / T(kDiskSolidAngleNodes), &sp, &cp);
-      const T rx = ex + radius * cp, ry = ey + radius * sp;
-      const T cr = radius * (rx * cp + ry * sp);  // r × r' with r' = R(−sin ψ, cos ψ)
-      const T s = sqrt(h * h + rx * rx + ry * ry);
-      sum = sum + cr / ((s + abs(h)) * s);
-    }
-    return select(h > T(0), sum * T(2 * kPi<T>) / T(kDiskSolidAngleNodes), T(0));
+    const T ex = dot(d, frame.x), ey = dot(d, frame.y);
+    const T e = sqrt(ex * ex + ey * ey);
+    const T rmax2 = h * h + sqr(e + radius);
+    const T r12 = h * h + sqr(e - radius);
+    const T m = T(4) * e * radius / rmax2;  // k²
+    const T mc = r12 / rmax2;               // k'² = 1 − k², without the cancellation
+    const T kk = carlson_rf(T(0), mc, T(1));
+    const T ek = kk - m / T(3) * carlson_rd(T(0), mc, T(1));
+    const T xi = atan2(abs(h), abs(e - radius));
+    T sx, cx;
+    sincos(xi, &sx, &cx);
+    const T dd = T(1) - mc * sx * sx;  // 1 − k'² sin²ξ
+    const T rf = carlson_rf(cx * cx, dd, T(1));
+    const T f_xi = sx * rf;
+    const T e_xi = f_xi - mc * sx * sx * sx / T(3) * carlson_rd(cx * cx, dd, T(1));
+    const T lambda0 = T(2 * kInvPi<T>) * (ek * f_xi + kk * e_xi - kk * f_xi);
+    const T om = T(kPi<T>) - T(2) * abs(h) * rsqrt(rmax2) * kk +
+                 sign_not_zero(radius - e) * T(kPi<T>) * (T(1) - lambda0);
+    return select(h > T(0), max(om, T(0)), T(0));
   }
 };
 

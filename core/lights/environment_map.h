@@ -8,6 +8,8 @@
 // Convention: z up; row j covers θ ∈ [πj/H, π(j+1)/H] from +z (row 0 at the zenith, the top of
 // the image), column i covers φ ∈ [2πi/W, 2π(i+1)/W) with φ = atan2(y, x);
 // ω = (sin θ cos φ, sin θ sin φ, cos θ). A caller with another convention rotates its directions.
+// The map owns its tables (host memory), so its lookups are host functions for scalar T; a GPU or
+// batch backend would take a view of the same tables and gather.
 #pragma once
 
 #include <fmt/format.h>

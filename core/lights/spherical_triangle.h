@@ -34,7 +34,10 @@ GLINTLAB_FN T vertex_angle(Vec3<T> a, Vec3<T> b, Vec3<T> c) {
 // [0, 1)². u.x picks the sub-triangle of area u.x·Ω (fixing the point c' on arc ac), u.y the
 // point on the arc from b to c' with z = 1 − u.y (1 − c'·b). The algorithm loses precision for
 // triangles that subtend very little (its q and z are differences of near-equal cosines): double
-// precision is the intended use.
+// precision is the intended use. Measured in float against double on the same u, for a pentagon
+// of angular radius 0.38 / 0.038 / 0.0038 rad: direction error up to 2.5e-4 / 5.3e-4 / 2.2e-3 rad
+// (the last is half the light's size), while Ureña's rectangle sampler stays at 5e-7 / 3e-6 /
+// 3e-5 rad for rectangles of similar sizes.
 template <class T>
 GLINTLAB_FN Vec3<T> sample_spherical_triangle(Vec3<T> a, Vec3<T> b, Vec3<T> c, Vec2<T> u) {
   const T alpha = detail::vertex_angle(a, b, c);
