@@ -94,6 +94,7 @@ class EnvironmentMap {
     return T(pixel_pdf_[std::size_t(j) * image_.width + i]);
   }
 
+  // The map surrounds every point: its extent is the whole sphere (black pixels included).
   template <class T>
   T solid_angle(Vec3<T>) const {
     return T(4 * kPi<T>);
