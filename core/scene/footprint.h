@@ -8,6 +8,7 @@
 #include <array>
 
 #include "core/model.h"
+#include "core/ndf/microfacet.h"
 #include "core/scene/camera.h"
 
 namespace glintlab {
