@@ -51,4 +51,26 @@ using RowProgress = std::function<void(long done, long total)>;
 Image render_image(int width, int height, std::vector<std::string> channels, int threads,
                    const PixelFunction& pixel, const RowProgress& progress = {});
 
+// The stratified N-sample pixel average: for sample s of pixel (x, y), with global sample index
+// i = (y·width + x)·N + s, calls f(film position (x, y) + stratified_offset, i, acc), which adds
+// that sample's channel values into acc; each pixel is acc / N. f draws its further random
+// numbers as counter_uniform(seed, i, dim) with dim >= 2 (0 and 1 are the film position).
+template <class SampleFn>
+Image render_supersampled(int width, int height, std::vector<std::string> channels, int spp,
+                          std::uint64_t seed, int threads, const SampleFn& f,
+                          const RowProgress& progress = {}) {
+  const std::size_t nc = channels.size();
+  const auto pixel = [&](int x, int y, double* out) {
+    const std::uint64_t first = (static_cast<std::uint64_t>(y) * static_cast<std::uint64_t>(width) +
+                                 static_cast<std::uint64_t>(x)) *
+                                static_cast<std::uint64_t>(spp);
+    for (int s = 0; s < spp; ++s) {
+      const Vec2<double> o = stratified_offset(seed, first + s, s, spp);
+      f(Vec2<double>{x + o.x, y + o.y}, first + s, out);
+    }
+    for (std::size_t c = 0; c < nc; ++c) out[c] /= spp;
+  };
+  return render_image(width, height, std::move(channels), threads, pixel, progress);
+}
+
 }  // namespace glintlab

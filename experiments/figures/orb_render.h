@@ -27,30 +27,23 @@ inline OrbScene make_orb_scene(int width, int height) {
           Sphere<double>{{0, 0, 0}, 1.0}};
 }
 
-// Channels of an orb render: radiance, the fraction of samples that hit the orb, and the fraction
-// of the orb's samples the sampler rejected.
+// Channels of an orb render: radiance, the fraction of the pixel's samples that hit the orb, and
+// the fraction of them the sampler rejected.
 inline std::vector<std::string> orb_channels() { return {"R", "G", "B", "coverage", "rejected"}; }
 
-// Renders the scene with model M (parameters `params`) at `spp` samples per pixel.
+// Renders the scene with model M (parameters `params`) at `spp` stratified samples per pixel.
 template <Model M, class Env>
 Image render_orb(const OrbScene& scene, const typename M::template Params<double>& params,
                  const Env& env, int spp, std::uint64_t seed, int threads,
                  const RowProgress& progress = {}) {
-  const int w = scene.camera.width;
-  const auto pixel = [&](int x, int y, double* out) {
-    const std::uint64_t pixel_index = static_cast<std::uint64_t>(y) * w + x;
-    Vec3<double> sum{0, 0, 0};
-    int hits = 0, rejected = 0;
-    for (int s = 0; s < spp; ++s) {
-      const std::uint64_t index = pixel_index * static_cast<std::uint64_t>(spp) + s;
-      const Vec2<double> o = stratified_offset(seed, index, s, spp);
-      const Ray<double> ray = scene.camera.ray(x + o.x, y + o.y);
-      const SurfaceHit<double> hit = scene.sphere.intersect(ray);
-      if (!hit.hit) {
-        sum = sum + env.lookup(normalize(ray.d));
-        continue;
-      }
-      ++hits;
+  const auto sample = [&](Vec2<double> film, std::uint64_t index, double* acc) {
+    const Ray<double> ray = scene.camera.ray(film.x, film.y);
+    const SurfaceHit<double> hit = scene.sphere.intersect(ray);
+    Vec3<double> l{0, 0, 0};
+    if (!hit.hit) {
+      l = env.lookup(normalize(ray.d));
+    } else {
+      acc[3] += 1;
       const Frame<double> frame = hit.frame();
       ModelQuery<double> q{};
       q.footprint.uv = hit.uv;
@@ -60,19 +53,17 @@ Image render_orb(const OrbScene& scene, const typename M::template Params<double
                            counter_uniform<double>(seed, index, 3)};
       const ModelSample<double> smp = M::template sample<double>(params, q, u);
       if (smp.rejected) {
-        ++rejected;
-        continue;
+        acc[4] += 1;
+      } else {
+        l = smp.weight * env.lookup(frame.to_world(smp.wo));
       }
-      sum = sum + smp.weight * env.lookup(frame.to_world(smp.wo));
     }
-    const double inv = 1.0 / spp;
-    out[0] = sum.x * inv;
-    out[1] = sum.y * inv;
-    out[2] = sum.z * inv;
-    out[3] = hits * inv;
-    out[4] = hits > 0 ? static_cast<double>(rejected) / hits : 0.0;
+    acc[0] += l.x;
+    acc[1] += l.y;
+    acc[2] += l.z;
   };
-  return render_image(w, scene.camera.height, orb_channels(), threads, pixel, progress);
+  return render_supersampled(scene.camera.width, scene.camera.height, orb_channels(), spp, seed,
+                             threads, sample, progress);
 }
 
 }  // namespace glintlab::experiments

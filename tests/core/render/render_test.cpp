@@ -73,6 +73,30 @@ TEST(RenderImage, IdenticalForAnyThreadCount) {
   EXPECT_EQ(rows, 9);
 }
 
+TEST(RenderSupersampled, AveragesStratifiedFilmSamples) {
+  // f = film x: each pixel averages N positions inside its own column, so the value lies in
+  // [x, x + 1) and, over the image, deviates from the centre x + ½ only by the jitter's noise.
+  // The channel "n" counts samples: exactly 1 after the division by N.
+  const auto f = [](Vec2<double> film, std::uint64_t, double* acc) {
+    acc[0] += film.x;
+    acc[1] += 1;
+  };
+  const Image a = render_supersampled(20, 10, {"x", "n"}, 6, 17, 1, f);
+  const Image b = render_supersampled(20, 10, {"x", "n"}, 6, 17, 2, f);
+  EXPECT_EQ(a.data, b.data);
+  double dev = 0;
+  for (int y = 0; y < 10; ++y) {
+    for (int x = 0; x < 20; ++x) {
+      ASSERT_GE(a.at(x, y, 0), x);
+      ASSERT_LT(a.at(x, y, 0), x + 1);
+      EXPECT_EQ(a.at(x, y, 1), 1.0);
+      dev += a.at(x, y, 0) - x - 0.5;
+    }
+  }
+  // The x offsets of a 2 × 3 grid: per pixel the mean of 2 strata centres ± jitter/(2·√3·√6).
+  EXPECT_LT(std::abs(dev / 200), 5 * 0.5 / std::sqrt(12.0 * 6 * 200));
+}
+
 TEST(Metrics, RmseAndRelMseByHand) {
   Image x(2, 1, {"R", "G", "B"}), r(2, 1, {"R", "G", "B"});
   r.data = {1, 1, 1, 0, 0, 0};
