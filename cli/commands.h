@@ -18,5 +18,7 @@ struct InputError : std::runtime_error {
 void add_eval_command(CLI::App& app);    // cli/eval.cpp
 void add_sample_command(CLI::App& app);  // cli/sample.cpp
 void add_verify_command(CLI::App& app);  // cli/verify.cpp
+void add_figure_command(CLI::App& app);  // cli/figure.cpp
+void add_models_command(CLI::App& app);  // cli/models.cpp
 
 }  // namespace glintlab::cli

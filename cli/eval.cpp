@@ -11,6 +11,7 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/eval_model.h"
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/maps/beckmann_map.h"
@@ -212,8 +213,23 @@ void add_eval_command(CLI::App& app) {
                   "Result CSV file; written to a temporary file and renamed into place only "
                   "when every row succeeded")
       ->required();
-  cmd->footer(kEvalFooter);
-  cmd->callback([in, out] { run_eval(*in, *out); });
+  auto model = std::make_shared<std::string>();
+  auto params = std::make_shared<std::vector<std::string>>();
+  cmd->add_option("--model", *model,
+                  "Evaluate this registered model instead (see glintlab models and below)");
+  cmd->add_option("--param", *params, "With --model: name=value, repeatable")
+      ->allow_extra_args(false);
+  cmd->footer(std::string(kEvalFooter) + kModelEvalFooter);
+  cmd->callback([in, out, model, params] {
+    if (model->empty() && !params->empty()) {
+      throw InputError("--param: needs --model (see glintlab models)");
+    }
+    if (model->empty()) {
+      run_eval(*in, *out);
+    } else {
+      run_model_eval(*model, *params, *in, *out);
+    }
+  });
 }
 
 }  // namespace glintlab::cli

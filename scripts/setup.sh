@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev libgtest-dev libgmock-dev libopenexr-dev libboost-math-dev libfmt-dev
   libcli11-dev nlohmann-json3-dev libxsimd-dev libbenchmark-dev libtbb-dev
   python3 python3-matplotlib
+  libpng-dev openexr
 )
 
 missing=()

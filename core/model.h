@@ -1,0 +1,117 @@
+// The interface every NDF or glint model satisfies (ARCHITECTURE.md "model.h"): queries, results,
+// parameter specifications and the Model concept the static kernels are written against.
+//
+// A model is a struct with static members (no state, no virtual calls):
+//   kName, kDescription, kSource            identification (kSource cites the paper/equations)
+//   kNeeds                                  bit set of ModelNeeds: what a scene must provide
+//   kParams                                 std::array<ParamSpec, N>: name, default, range
+//   kIntermediates                          std::array<std::string_view, M>: named quantities
+//   template <class T> struct Params        plain parameter struct for the kernels
+//   params<T>(span<const double> values)    values in kParams order (already validated)
+//   eval<T>(Params, ModelQuery)   -> ModelEval<T, M>   value, pdf, intermediates
+//   pdf<T>(Params, ModelQuery)    -> T                 density of wo given wi (per steradian)
+//   sample<T>(Params, ModelQuery, Vec2 u) -> ModelSample<T>   wo from wi
+// core/model_registry.h turns such a struct into a type-erased entry for the CLI, the claims, the
+// figures and the benchmarks; adding a model = its file plus one line in core/model_registry.cpp.
+#pragma once
+
+#include <array>
+#include <concepts>
+#include <cstddef>
+#include <span>
+#include <string_view>
+
+#include "core/math/vec.h"
+
+namespace glintlab {
+
+// What a model needs from the scene. kDirections: only ω_i and ω_o (smooth NDFs).
+// kFootprint: the pixel footprint (uv and its Jacobian; glint models). kPointLight: evaluated for
+// a single light direction (delta or small cap, described by the query's light). kAreaLight: the
+// model integrates over an extended light itself (the query's light cap).
+enum ModelNeeds : unsigned {
+  kNeedsDirections = 0u,
+  kNeedsFootprint = 1u << 0,
+  kNeedsPointLight = 1u << 1,
+  kNeedsAreaLight = 1u << 2,
+};
+
+// The pixel footprint in texture space: uv at the pixel centre and the Jacobian ∂uv/∂(pixel)
+// (columns duv_dx = ∂(u,v)/∂x, duv_dy = ∂(u,v)/∂y), from ray differentials (core/scene/camera.h).
+template <class T>
+struct FootprintQuery {
+  Vec2<T> uv;
+  Vec2<T> duv_dx, duv_dy;
+};
+
+// The light seen from the shading point, in the local frame: a cone around the query's ω_o with
+// cosine of the half-angle γ (1 = a delta direction, point or directional light) and the
+// irradiance-normalized intensity carried along ω_o.
+template <class T>
+struct LightQuery {
+  T cos_half_angle;
+  T intensity;
+};
+
+// One query. Directions are unit vectors in the local shading frame (x tangent, y bitangent,
+// z normal): ω_i is the given direction (toward the viewer), ω_o the other one (toward the light).
+template <class T>
+struct ModelQuery {
+  FootprintQuery<T> footprint;
+  Vec3<T> wi, wo;
+  LightQuery<T> light;
+};
+
+// Result of eval: value = f(ω_i, ω_o) · max(ω_o.z, 0), the cosine-weighted BRDF (the integrand
+// against incident radiance; per steradian); pdf = density of ω_o under the model's sampler;
+// intermediates in kIntermediates order.
+template <class T, std::size_t M>
+struct ModelEval {
+  T value;
+  T pdf;
+  std::array<T, M> intermediates;
+};
+
+// One sampled direction: wo, its density, the estimator weight value/pdf (0 when rejected) and
+// whether the sampler rejected it (below the surface, back-facing microfacet).
+template <class T>
+struct ModelSample {
+  Vec3<T> wo;
+  T pdf;
+  T weight;
+  Mask<T> rejected;
+};
+
+// A model parameter: a real number in a range, or (choices non-empty) one of a list of names,
+// stored as the index of the name.
+struct ParamSpec {
+  std::string_view name;
+  double default_value;
+  double lo, hi;          // valid range of a real parameter
+  bool lo_open, hi_open;  // whether the bound itself is excluded
+  std::string_view description;
+  std::span<const std::string_view> choices = {};
+};
+
+template <class M>
+concept Model = requires(std::span<const double> values) {
+  { M::kName } -> std::convertible_to<std::string_view>;
+  { M::kDescription } -> std::convertible_to<std::string_view>;
+  { M::kSource } -> std::convertible_to<std::string_view>;
+  { M::kNeeds } -> std::convertible_to<unsigned>;
+  M::kParams.size();
+  M::kIntermediates.size();
+  { M::template params<double>(values) } -> std::same_as<typename M::template Params<double>>;
+  {
+    M::template eval<double>(M::template params<double>(values), ModelQuery<double>{})
+    } -> std::same_as<ModelEval<double, M::kIntermediates.size()>>;
+  {
+    M::template pdf<double>(M::template params<double>(values), ModelQuery<double>{})
+    } -> std::same_as<double>;
+  {
+    M::template sample<double>(M::template params<double>(values), ModelQuery<double>{},
+                               Vec2<double>{})
+    } -> std::same_as<ModelSample<double>>;
+};
+
+}  // namespace glintlab

@@ -1,0 +1,94 @@
+// The model registry: one registration line per model, and parameter parsing/validation.
+#include "core/model_registry.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "core/io/csv.h"
+#include "core/models/smooth_beckmann.h"
+#include "core/models/smooth_ggx.h"
+
+namespace glintlab {
+
+const std::vector<ModelEntry>& registered_models() {
+  static const std::vector<ModelEntry> kModels = [] {
+    std::vector<ModelEntry> m;
+    m.push_back(make_model_entry<SmoothGGX>());
+    m.push_back(make_model_entry<SmoothBeckmann>());
+    return m;
+  }();
+  return kModels;
+}
+
+const ModelEntry& find_model(std::string_view name) {
+  std::string names;
+  for (const ModelEntry& e : registered_models()) {
+    if (e.name == name) return e;
+    names += fmt::format("{}{}", names.empty() ? "" : ", ", e.name);
+  }
+  throw ModelParamError(fmt::format("--model: unknown model '{}' (valid: {})", name, names));
+}
+
+std::string describe_range(const ParamSpec& p) {
+  if (!p.choices.empty()) return fmt::format("one of: {}", fmt::join(p.choices, ", "));
+  return fmt::format("{}{}, {}{}", p.lo_open ? '(' : '[', p.lo, p.hi, p.hi_open ? ')' : ']');
+}
+
+std::string format_param_value(const ParamSpec& p, double value) {
+  if (!p.choices.empty()) return std::string(p.choices[static_cast<std::size_t>(value)]);
+  return fmt::format("{}", value);
+}
+
+std::string describe_needs(unsigned needs) {
+  std::vector<std::string_view> parts;
+  if (needs & kNeedsFootprint) parts.push_back("footprint");
+  if (needs & kNeedsPointLight) parts.push_back("point light");
+  if (needs & kNeedsAreaLight) parts.push_back("area light");
+  if (parts.empty()) return "needs: directions only";
+  return fmt::format("needs: {}", fmt::join(parts, ", "));
+}
+
+std::vector<double> resolve_params(
+    const ModelEntry& model, const std::vector<std::pair<std::string, std::string>>& assignments) {
+  std::vector<double> values;
+  std::vector<bool> set(model.params.size(), false);
+  for (const ParamSpec& p : model.params) values.push_back(p.default_value);
+  for (const auto& [name, text] : assignments) {
+    std::size_t i = 0;
+    while (i < model.params.size() && model.params[i].name != name) ++i;
+    if (i == model.params.size()) {
+      std::string names;
+      for (const ParamSpec& p : model.params) {
+        names += fmt::format("{}{}", names.empty() ? "" : ", ", p.name);
+      }
+      throw ModelParamError(fmt::format("--param: model {} has no parameter '{}' (valid: {})",
+                                        model.name, name, names));
+    }
+    const ParamSpec& p = model.params[i];
+    if (set[i]) throw ModelParamError(fmt::format("--param {}: given twice", p.name));
+    set[i] = true;
+    if (!p.choices.empty()) {
+      std::size_t c = 0;
+      while (c < p.choices.size() && p.choices[c] != text) ++c;
+      if (c == p.choices.size()) {
+        throw ModelParamError(fmt::format("--param {}: unknown value '{}' (valid: {})", p.name,
+                                          text, describe_range(p)));
+      }
+      values[i] = static_cast<double>(c);
+      continue;
+    }
+    const auto v = io::parse_finite_double(text);
+    const bool in_range =
+        v && (p.lo_open ? *v > p.lo : *v >= p.lo) && (p.hi_open ? *v < p.hi : *v <= p.hi);
+    if (!in_range) {
+      throw ModelParamError(fmt::format("--param {}: '{}' is {} (valid: {})", p.name, text,
+                                        v ? "out of range" : io::number_problem(text),
+                                        describe_range(p)));
+    }
+    values[i] = *v;
+  }
+  return values;
+}
+
+}  // namespace glintlab

@@ -1,0 +1,69 @@
+// Smooth anisotropic Beckmann reflection as a model (core/model.h): Walter et al. 2007 Eq. 20,
+// 25–27; samplers Walter 2007 Eq. 28–29 and the Beckmann VNDF sampler (Heitz & d'Eon 2014).
+#pragma once
+
+#include <array>
+#include <span>
+#include <string_view>
+
+#include "core/model.h"
+#include "core/models/smooth_microfacet.h"
+#include "core/ndf/beckmann.h"
+#include "core/samplers/beckmann_vndf.h"
+#include "core/samplers/walter.h"
+
+namespace glintlab {
+
+struct SmoothBeckmann {
+  static constexpr std::string_view kName = "smooth_beckmann";
+  static constexpr std::string_view kDescription =
+      "smooth anisotropic Beckmann reflection, F = 1, height-correlated Smith G2";
+  static constexpr std::string_view kSource =
+      "Walter et al. 2007 Eq. 20, 25-27; Heitz 2014 Eq. 99; samplers: Walter 2007, Heitz & "
+      "d'Eon 2014";
+  static constexpr unsigned kNeeds = kNeedsDirections;
+
+  enum Sampler { kNdf = 0, kVndf = 1 };
+  static constexpr std::array<std::string_view, 2> kSamplerNames = {"ndf", "vndf"};
+  static constexpr std::array<ParamSpec, 3> kParams = {{
+      {"alpha_x", 0.5, 0.0, 100.0, true, false, "roughness along the tangent (x)"},
+      {"alpha_y", 0.5, 0.0, 100.0, true, false, "roughness along the bitangent (y)"},
+      {"sampler", 1.0, 0.0, 1.0, false, false,
+       "sampler of wo: ndf (Walter 2007), vndf (Heitz & d'Eon 2014)", kSamplerNames},
+  }};
+  static constexpr auto kIntermediates = detail::kSmoothIntermediates;
+
+  template <class T>
+  struct Params {
+    Beckmann<T> beckmann;
+    int sampler;  // a uniform choice (not per lane)
+  };
+
+  template <class T>
+  static Params<T> params(std::span<const double> v) {
+    return {Beckmann<T>{T(v[0]), T(v[1])}, static_cast<int>(v[2])};
+  }
+
+  template <class T>
+  GLINTLAB_FN static T pdf(const Params<T>& p, const ModelQuery<T>& q) {
+    return p.sampler == kNdf ? pdf_walter(p.beckmann, q.wi, q.wo)
+                             : pdf_beckmann_vndf(p.beckmann, q.wi, q.wo);
+  }
+
+  template <class T>
+  GLINTLAB_FN static ModelEval<T, kIntermediates.size()> eval(const Params<T>& p,
+                                                              const ModelQuery<T>& q) {
+    return detail::smooth_eval(p.beckmann, q, pdf(p, q));
+  }
+
+  template <class T>
+  GLINTLAB_FN static ModelSample<T> sample(const Params<T>& p, const ModelQuery<T>& q, Vec2<T> u) {
+    return p.sampler == kNdf
+               ? detail::smooth_sample(p.beckmann, q.wi, sample_walter(p.beckmann, q.wi, u))
+               : detail::smooth_sample(p.beckmann, q.wi, sample_beckmann_vndf(p.beckmann, q.wi, u));
+  }
+};
+
+static_assert(Model<SmoothBeckmann>);
+
+}  // namespace glintlab

@@ -1,0 +1,95 @@
+// Smooth anisotropic GGX reflection as a model (core/model.h): Walter et al. 2007 Eq. 20, 33–34;
+// samplers Walter 2007 Eq. 35–36, Heitz 2018 VNDF, Dupuy & Benyoub 2023 spherical caps and Eto &
+// Tokuyoshi 2023 bounded caps (Eq. 5–8, Listings 1–2), chosen by the `sampler` parameter.
+#pragma once
+
+#include <array>
+#include <span>
+#include <string_view>
+
+#include "core/model.h"
+#include "core/models/smooth_microfacet.h"
+#include "core/ndf/ggx.h"
+#include "core/samplers/bounded_vndf.h"
+#include "core/samplers/heitz_vndf.h"
+#include "core/samplers/spherical_caps.h"
+#include "core/samplers/walter.h"
+
+namespace glintlab {
+
+struct SmoothGGX {
+  static constexpr std::string_view kName = "smooth_ggx";
+  static constexpr std::string_view kDescription =
+      "smooth anisotropic GGX reflection, F = 1, height-correlated Smith G2";
+  static constexpr std::string_view kSource =
+      "Walter et al. 2007 Eq. 20, 33-34; Heitz 2014 Eq. 99; samplers: Walter 2007, Heitz 2018, "
+      "Dupuy & Benyoub 2023, Eto & Tokuyoshi 2023";
+  static constexpr unsigned kNeeds = kNeedsDirections;
+
+  enum Sampler { kNdf = 0, kVndf = 1, kSphericalCaps = 2, kBoundedCaps = 3 };
+  static constexpr std::array<std::string_view, 4> kSamplerNames = {"ndf", "vndf", "spherical_caps",
+                                                                    "bounded_caps"};
+  static constexpr std::array<std::string_view, 2> kBoundNames = {"listing1", "exact_isotropic"};
+  static constexpr std::array<ParamSpec, 4> kParams = {{
+      {"alpha_x", 0.5, 0.0, 100.0, true, false, "roughness along the tangent (x)"},
+      {"alpha_y", 0.5, 0.0, 100.0, true, false, "roughness along the bitangent (y)"},
+      {"sampler", 1.0, 0.0, 3.0, false, false,
+       "sampler of wo: ndf (Walter 2007), vndf (Heitz 2018), spherical_caps (Dupuy & Benyoub "
+       "2023), bounded_caps (Eto & Tokuyoshi 2023)",
+       kSamplerNames},
+      {"bound", 0.0, 0.0, 1.0, false, false,
+       "bounded_caps only: k of Eq. 5 as in Listing 1, or exact for isotropic alpha", kBoundNames},
+  }};
+  static constexpr auto kIntermediates = detail::kSmoothIntermediates;
+
+  template <class T>
+  struct Params {
+    GGX<T> ggx;
+    int sampler;  // a uniform choice (not per lane): branching on it is allowed
+    BoundedVndfBound bound;
+  };
+
+  template <class T>
+  static Params<T> params(std::span<const double> v) {
+    return {GGX<T>{T(v[0]), T(v[1])}, static_cast<int>(v[2]),
+            v[3] == 0.0 ? BoundedVndfBound::kListing1 : BoundedVndfBound::kExactIsotropic};
+  }
+
+  template <class T>
+  GLINTLAB_FN static T pdf(const Params<T>& p, const ModelQuery<T>& q) {
+    switch (p.sampler) {
+      case kNdf:
+        return pdf_walter(p.ggx, q.wi, q.wo);
+      case kVndf:
+        return pdf_heitz_vndf(p.ggx, q.wi, q.wo);
+      case kSphericalCaps:
+        return pdf_spherical_caps(p.ggx, q.wi, q.wo);
+      default:
+        return pdf_bounded_vndf(p.ggx, q.wi, q.wo, p.bound);
+    }
+  }
+
+  template <class T>
+  GLINTLAB_FN static ModelEval<T, kIntermediates.size()> eval(const Params<T>& p,
+                                                              const ModelQuery<T>& q) {
+    return detail::smooth_eval(p.ggx, q, pdf(p, q));
+  }
+
+  template <class T>
+  GLINTLAB_FN static ModelSample<T> sample(const Params<T>& p, const ModelQuery<T>& q, Vec2<T> u) {
+    switch (p.sampler) {
+      case kNdf:
+        return detail::smooth_sample(p.ggx, q.wi, sample_walter(p.ggx, q.wi, u));
+      case kVndf:
+        return detail::smooth_sample(p.ggx, q.wi, sample_heitz_vndf(p.ggx, q.wi, u));
+      case kSphericalCaps:
+        return detail::smooth_sample(p.ggx, q.wi, sample_spherical_caps(p.ggx, q.wi, u));
+      default:
+        return detail::smooth_sample(p.ggx, q.wi, sample_bounded_vndf(p.ggx, q.wi, u, p.bound));
+    }
+  }
+};
+
+static_assert(Model<SmoothGGX>);
+
+}  // namespace glintlab

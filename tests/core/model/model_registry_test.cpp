@@ -1,0 +1,143 @@
+// The model interface: registry entries evaluate exactly the kernels they wrap, samples agree
+// with the standalone pdf and the value, the samplers all estimate the same albedo, and bad
+// parameters get one-line errors naming the parameter and range.
+#include "core/model_registry.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "core/math/rng.h"
+#include "core/models/smooth_beckmann.h"
+#include "core/models/smooth_ggx.h"
+
+namespace glintlab {
+namespace {
+
+ModelQuery<double> query(Vec3<double> wi, Vec3<double> wo) {
+  ModelQuery<double> q{};
+  q.wi = wi;
+  q.wo = wo;
+  q.light = {1, 1};
+  return q;
+}
+
+TEST(ModelRegistry, ListsTheSmoothModels) {
+  const auto& models = registered_models();
+  ASSERT_GE(models.size(), 2u);
+  EXPECT_EQ(models[0].name, "smooth_ggx");
+  EXPECT_EQ(models[1].name, "smooth_beckmann");
+  EXPECT_EQ(&find_model("smooth_beckmann"), &models[1]);
+  EXPECT_THROW(find_model("phong"), ModelParamError);
+}
+
+TEST(ModelRegistry, EntryEvaluatesTheKernels) {
+  const ModelEntry& m = find_model("smooth_ggx");
+  const auto values =
+      resolve_params(m, {{"alpha_x", "0.3"}, {"alpha_y", "0.6"}, {"sampler", "bounded_caps"}});
+  const GGX<double> ggx{0.3, 0.6};
+  const Vec3<double> wi = normalize(Vec3<double>{0.4, -0.2, 0.7});
+  const Vec3<double> wo = normalize(Vec3<double>{-0.3, 0.5, 0.6});
+  const ErasedEval e = m.eval(values, query(wi, wo));
+  EXPECT_EQ(e.value, microfacet_brdf(ggx, wi, wo, 1.0) * wo.z);
+  EXPECT_EQ(e.pdf, pdf_bounded_vndf(ggx, wi, wo, BoundedVndfBound::kListing1));
+  ASSERT_EQ(e.intermediates.size(), m.intermediates.size());
+  EXPECT_EQ(e.intermediates[3], ggx.D(half_vector(wi, wo)));  // "D"
+  // A different sampler changes the pdf, not the value.
+  const auto caps =
+      resolve_params(m, {{"alpha_x", "0.3"}, {"alpha_y", "0.6"}, {"sampler", "spherical_caps"}});
+  const ErasedEval c = m.eval(caps, query(wi, wo));
+  EXPECT_EQ(c.value, e.value);
+  EXPECT_NE(c.pdf, e.pdf);
+}
+
+TEST(ModelRegistry, SamplesCarryTheStandalonePdfAndWeight) {
+  for (const ModelEntry& m : registered_models()) {
+    const ParamSpec& sampler = m.params[2];
+    for (std::size_t s = 0; s < sampler.choices.size(); ++s) {
+      const auto values =
+          resolve_params(m, {{"alpha_x", "0.4"}, {"sampler", std::string(sampler.choices[s])}});
+      const Vec3<double> wi = normalize(Vec3<double>{0.6, 0.1, 0.5});
+      int accepted = 0;
+      for (int i = 0; i < 200; ++i) {
+        const Vec2<double> u{counter_uniform<double>(7, i, 0), counter_uniform<double>(7, i, 1)};
+        const ModelSample<double> smp = m.sample(values, query(wi, {0, 0, 1}), u);
+        if (smp.rejected) {
+          EXPECT_EQ(smp.weight, 0.0);
+          continue;
+        }
+        ++accepted;
+        const ModelQuery<double> q = query(wi, smp.wo);
+        EXPECT_NEAR(smp.pdf, m.pdf(values, q), 1e-12 * smp.pdf)
+            << m.name << " " << sampler.choices[s];
+        const ErasedEval e = m.eval(values, q);
+        EXPECT_NEAR(smp.weight, e.value / e.pdf, 1e-9 * smp.weight);
+      }
+      EXPECT_GT(accepted, 100);
+    }
+  }
+}
+
+// Every sampler of a model estimates the same directional albedo ∫ f cos dωo: the means of
+// independent runs agree within 5 standard errors; the control (weights doubled) is rejected.
+TEST(ModelRegistry, SamplersEstimateTheSameAlbedo) {
+  const ModelEntry& m = find_model("smooth_ggx");
+  const Vec3<double> wi = normalize(Vec3<double>{0.8, 0.0, 0.3});
+  const int n = 100000;
+  const std::uint64_t seed = hash_string("model_registry/albedo");
+  std::vector<std::pair<double, double>> stats;  // mean, standard error
+  for (std::string_view s : {"ndf", "vndf", "spherical_caps", "bounded_caps"}) {
+    const auto values =
+        resolve_params(m, {{"alpha_x", "0.8"}, {"alpha_y", "0.8"}, {"sampler", std::string(s)}});
+    double sum = 0, sum2 = 0;
+    for (int i = 0; i < n; ++i) {
+      const Vec2<double> u{counter_uniform<double>(seed, i, 0),
+                           counter_uniform<double>(seed, i, 1)};
+      const double w = m.sample(values, query(wi, {0, 0, 1}), u).weight;
+      sum += w;
+      sum2 += w * w;
+    }
+    const double mean = sum / n;
+    stats.emplace_back(mean, std::sqrt((sum2 / n - mean * mean) / n));
+  }
+  const auto agree = [](std::pair<double, double> a, std::pair<double, double> b) {
+    return std::abs(a.first - b.first) <= 5 * std::hypot(a.second, b.second);
+  };
+  for (std::size_t i = 1; i < stats.size(); ++i) EXPECT_TRUE(agree(stats[0], stats[i])) << i;
+  EXPECT_FALSE(agree(stats[0], {2 * stats[3].first, 2 * stats[3].second}));
+  // Bounded caps rejects fewer samples, so its weights vary less (Eto & Tokuyoshi Sec. 3).
+  EXPECT_LT(stats[3].second, stats[2].second);
+}
+
+std::string error_of(const ModelEntry& m, std::vector<std::pair<std::string, std::string>> kv) {
+  try {
+    resolve_params(m, kv);
+  } catch (const ModelParamError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ModelRegistry, BadParametersNameTheParameterAndRange) {
+  const ModelEntry& m = find_model("smooth_ggx");
+  const std::string range = error_of(m, {{"alpha_x", "0"}});
+  EXPECT_NE(range.find("alpha_x"), std::string::npos);
+  EXPECT_NE(range.find("(0, 100]"), std::string::npos);
+  EXPECT_NE(error_of(m, {{"alpha_y", "abc"}}).find("is not a number"), std::string::npos);
+  EXPECT_NE(error_of(m, {{"sampler", "heitz"}}).find("one of: ndf, vndf"), std::string::npos);
+  EXPECT_NE(error_of(m, {{"eta", "1.5"}}).find("valid: alpha_x, alpha_y, sampler, bound"),
+            std::string::npos);
+  EXPECT_NE(error_of(m, {{"alpha_x", "1"}, {"alpha_x", "2"}}).find("given twice"),
+            std::string::npos);
+  EXPECT_EQ(error_of(m, {{"alpha_x", "100"}}), "");
+  for (const ModelEntry& e : registered_models()) {
+    for (const ParamSpec& p : e.params) {
+      // Every default is valid.
+      EXPECT_EQ(error_of(e, {{std::string(p.name), format_param_value(p, p.default_value)}}), "");
+    }
+  }
+}
+
+}  // namespace
+}  // namespace glintlab
