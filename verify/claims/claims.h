@@ -8,5 +8,6 @@
 namespace glintlab::verify {
 
 std::vector<Check> smooth_checks();  // verify/claims/smooth.cpp
+std::vector<Check> smooth_sampler_checks();  // verify/claims/smooth_samplers.cpp
 
 }  // namespace glintlab::verify
