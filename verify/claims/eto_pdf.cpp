@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -138,11 +139,17 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
   const int upper = find(g, kL1, 0.6, 0.2, 150, Form::kListing2);
   const int upper_rough = find(g, kL1, 1.5, 1.5, 89, Form::kListing2);
   const int aniso_front = find(g, kEx, 0.6, 0.2, 45, Form::kEq8);
+  // α = 1: k = 0, the bounded cap is the upper half of the full one.
+  const int unit = find(g, kL1, 1, 1, 60, Form::kEq8) >= 0 ? find(g, kL1, 1, 1, 60, Form::kEq8)
+                                                           : find(g, kL1, 1, 1, 45, Form::kEq8);
   const int back = find(g, kL1, 0.3, 0.3, 150, Form::kEq8) >= 0
                        ? find(g, kL1, 0.3, 0.3, 150, Form::kEq8)
                        : find(g, kL1, 0.3, 0.3, 120, Form::kEq8);
   const int back2 = find(g, kEx, 0.6, 0.2, 150, Form::kEq8);
-  auto at = [&](int i) -> const Config& { return g[std::size_t(i)]; };
+  auto at = [&](int i) -> const Config& {
+    if (i < 0) throw std::logic_error("control built on a configuration missing from the grid");
+    return g[std::size_t(i)];
+  };
   auto replanned = [&](int i, const std::string& what, DirectionPdf pdf) {
     GofCase w = make_case(at(i));
     w.label += " " + what;
@@ -166,9 +173,7 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
   // Listing 2 as printed, without χ⁺, taken as the density over the whole sphere: it integrates
   // to (1 + î_z)/(1 + k î_z) > 1.
   GofControl no_heaviside{"Listing 2 without χ⁺ over the whole sphere", {}, true};
-  for (int i :
-       {iso, find(g, kL1, 1, 1, 60, Form::kEq8) >= 0 ? find(g, kL1, 1, 1, 60, Form::kEq8)
-                                                     : find(g, kL1, 1, 1, 45, Form::kEq8)}) {
+  for (int i : {iso, unit}) {
     const GGX<double> ggx{at(i).ax, at(i).ay};
     const V3 wi = incidence(at(i).theta_deg);
     no_heaviside.cases.push_back(replanned(i, "Listing 2 without χ⁺", [ggx, wi](const V3& wo) {
@@ -179,7 +184,7 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
 
   // The previous (full-cap, k = 1) density of Dupuy & Benyoub for the bounded sampler's ωo.
   GofControl full_cap{"full-cap density (k = 1) for the bounded sampler", {}, true};
-  for (int i : {iso, rough}) {
+  for (int i : {iso, unit}) {
     const GGX<double> ggx{at(i).ax, at(i).ay};
     const V3 wi = incidence(at(i).theta_deg);
     full_cap.cases.push_back(replanned(
@@ -219,9 +224,7 @@ constexpr GofSize kFull{10'000'000, 10'000'000, 4096};
 
 CheckResult run(Budget b) {
   const std::vector<Config> g = grid(b);
-  std::vector<GofCase> cases;
-  for (const Config& c : g) cases.push_back(make_case(c));
-  const auto ctl = controls(g);
+  const auto [cases, ctl] = eto_pdf_spec(b);
   const GofSize size = b == Budget::kQuick ? kQuick : kFull;
   const GofOutcome o = run_gof_family(kId, cases, ctl, size);
   CheckResult r;
@@ -248,6 +251,14 @@ double calibration(std::uint64_t seed) {
 }
 
 }  // namespace
+
+GofSpec eto_pdf_spec(Budget b) {
+  const std::vector<Config> g = grid(b);
+  GofSpec s;
+  for (const Config& c : g) s.cases.push_back(make_case(c));
+  s.controls = controls(g);
+  return s;
+}
 
 std::vector<Check> eto_pdf_checks() {
   return {{kId, "Eto & Tokuyoshi 2023", "Eq. 8 (with χ⁺), Eq. 7 for i_z ≤ 0, Listing 2",

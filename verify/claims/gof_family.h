@@ -89,6 +89,16 @@ GofOutcome run_gof_family(const std::string& id, const std::vector<GofCase>& cas
 Verdict summarize_gof(const GofOutcome& o, const std::vector<GofControl>& controls, CheckResult& r,
                       std::size_t& worst);
 
+// A chi-square claim's configurations and controls at one budget, as its check runs them (exposed
+// for the tests in tests/verify/claims/, which run the controls at reduced sample counts).
+struct GofSpec {
+  std::vector<GofCase> cases;
+  std::vector<GofControl> controls;
+};
+GofSpec smooth_sampler_spec(Budget b);  // verify/claims/smooth_samplers.cpp
+GofSpec eto_pdf_spec(Budget b);         // verify/claims/eto_pdf.cpp
+GofSpec kemppinen_spec(Budget b);       // verify/claims/kemppinen.cpp (the chi-square family)
+
 // ---- Reflection samplers ------------------------------------------------------------------------
 
 // The incidence at polar angle theta_deg and the azimuth kIncidencePhi (generic against the

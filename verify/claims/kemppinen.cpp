@@ -187,9 +187,7 @@ CheckResult run(Budget b) {
     measure_jacobian(Beckmann<double>{a.x, a.y}, false, beck);
   }
   const std::vector<Config> g = family();
-  std::vector<GofCase> cases;
-  for (const Config& c : g) cases.push_back(make_case(c));
-  const auto ctl = controls(g);
+  const auto [cases, ctl] = kemppinen_spec(b);
   const GofSize size = b == Budget::kQuick ? kQuick : kFull;
   const GofOutcome o = run_gof_family(kId, cases, ctl, size);
 
@@ -252,6 +250,14 @@ double calibration(std::uint64_t seed) {
 }
 
 }  // namespace
+
+GofSpec kemppinen_spec(Budget) {
+  const std::vector<Config> g = family();
+  GofSpec s;
+  for (const Config& c : g) s.cases.push_back(make_case(c));
+  s.controls = controls(g);
+  return s;
+}
 
 std::vector<Check> kemppinen_checks() {
   return {{kId, "Kemppinen et al. 2025",
