@@ -218,8 +218,8 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
   return out;
 }
 
-// Quick: 10^5 samples per configuration (≤ 1000 fine bins), subtle controls at 10^6. Full: 10^7.
-constexpr GofSize kQuick{100'000, 1'000'000, 1000};
+// Quick: 10^5 samples per configuration (≤ 600 fine bins), subtle controls at 5·10^5 (λ ≈ 200 for a 2 % error). Full: 10^7.
+constexpr GofSize kQuick{100'000, 500'000, 600};
 constexpr GofSize kFull{10'000'000, 10'000'000, 4096};
 
 CheckResult run(Budget b) {

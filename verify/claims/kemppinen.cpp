@@ -176,7 +176,7 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
   return {scaled, alpha};
 }
 
-constexpr GofSize kQuick{100'000, 1'000'000, 1000};
+constexpr GofSize kQuick{100'000, 500'000, 600};
 constexpr GofSize kFull{10'000'000, 10'000'000, 4096};
 constexpr double kTolerance = 1e-6;  // on |log J ratios|; the measured FD error is ~1e-9
 

@@ -82,6 +82,15 @@ GofCase make_case(const Config& c) {
   GofCase g;
   g.label = label(c);
   g.options = reflection_options(wi);
+  // NDF sampling's density has its 1/|ωi + ωo| singularity at −ωi, with a thin ray from there
+  // towards the mirror direction (normals seen edge-on): binned about the mirror direction, bins
+  // holding −ωi lost up to 8e-4 of the mass with error estimates of 4e-8 (measured, Beckmann
+  // α = (1, 0.1), θi = 45°). With the pole at −ωi the singularity is integrable in the polar
+  // coordinates and the ray lies on the meridian through the mirror direction, a cubature break.
+  if (e.name.starts_with("walter/")) {
+    g.options.lobe = -wi;
+    g.options.point_features = {V3{-wi.x, -wi.y, wi.z}};
+  }
   // The bounded cap's edge χ⁺(k î_z + ô_z) (Eto & Tokuyoshi Eq. 8) is, for anisotropic α, a curve
   // far from any parallel of the bin frame: near its extreme polar angle the support is a thin
   // sliver in azimuth that 15 Kronrod nodes over a whole ring step over (measured: ~1e-3 of the
@@ -201,9 +210,9 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
   return out;
 }
 
-// Quick: 10^5 samples per configuration, ≤ 1000 fine bins; the controls at 10^6 samples, where a
-// 2 % error is far above the detectable δ. Full: 10^7 samples everywhere, ≤ 4096 fine bins.
-constexpr GofSize kQuick{100'000, 1'000'000, 1000};
+// Quick: 10^5 samples per configuration, ≤ 600 fine bins; the subtle controls at 5·10^5 samples,
+// where a 2 % error is far above the detectable δ. Full: 10^7 samples everywhere, ≤ 4096 fine bins.
+constexpr GofSize kQuick{100'000, 500'000, 600};
 constexpr GofSize kFull{10'000'000, 10'000'000, 4096};
 
 CheckResult run(Budget b) {
