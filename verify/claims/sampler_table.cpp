@@ -28,24 +28,44 @@ const std::vector<SamplerEntry>& sampler_table() {
   using B = Beckmann<double>;
   static const std::vector<SamplerEntry> table = {
       {"walter/ggx", true, false,
-       [](double ax, double ay, V3 wi, V2 u) { return sample_walter(G{ax, ay}, wi, u); },
-       [](double ax, double ay, V3 wi, V3 wo) { return pdf_walter(G{ax, ay}, wi, wo); },
+       [](double ax, double ay, V3 wi, V2 u) {
+         return sample_walter(G{ax, ay}, wi, u);
+       },
+       [](double ax, double ay, V3 wi, V3 wo) {
+         return pdf_walter(G{ax, ay}, wi, wo);
+       },
        brdf_of<G>},
       {"walter/beckmann", false, false,
-       [](double ax, double ay, V3 wi, V2 u) { return sample_walter(B{ax, ay}, wi, u); },
-       [](double ax, double ay, V3 wi, V3 wo) { return pdf_walter(B{ax, ay}, wi, wo); },
+       [](double ax, double ay, V3 wi, V2 u) {
+         return sample_walter(B{ax, ay}, wi, u);
+       },
+       [](double ax, double ay, V3 wi, V3 wo) {
+         return pdf_walter(B{ax, ay}, wi, wo);
+       },
        brdf_of<B>},
       {"heitz-vndf/ggx", true, false,
-       [](double ax, double ay, V3 wi, V2 u) { return sample_heitz_vndf(G{ax, ay}, wi, u); },
-       [](double ax, double ay, V3 wi, V3 wo) { return pdf_heitz_vndf(G{ax, ay}, wi, wo); },
+       [](double ax, double ay, V3 wi, V2 u) {
+         return sample_heitz_vndf(G{ax, ay}, wi, u);
+       },
+       [](double ax, double ay, V3 wi, V3 wo) {
+         return pdf_heitz_vndf(G{ax, ay}, wi, wo);
+       },
        brdf_of<G>},
       {"vndf/beckmann", false, false,
-       [](double ax, double ay, V3 wi, V2 u) { return sample_beckmann_vndf(B{ax, ay}, wi, u); },
-       [](double ax, double ay, V3 wi, V3 wo) { return pdf_beckmann_vndf(B{ax, ay}, wi, wo); },
+       [](double ax, double ay, V3 wi, V2 u) {
+         return sample_beckmann_vndf(B{ax, ay}, wi, u);
+       },
+       [](double ax, double ay, V3 wi, V3 wo) {
+         return pdf_beckmann_vndf(B{ax, ay}, wi, wo);
+       },
        brdf_of<B>},
       {"spherical-caps/ggx", true, true,
-       [](double ax, double ay, V3 wi, V2 u) { return sample_spherical_caps(G{ax, ay}, wi, u); },
-       [](double ax, double ay, V3 wi, V3 wo) { return pdf_spherical_caps(G{ax, ay}, wi, wo); },
+       [](double ax, double ay, V3 wi, V2 u) {
+         return sample_spherical_caps(G{ax, ay}, wi, u);
+       },
+       [](double ax, double ay, V3 wi, V3 wo) {
+         return pdf_spherical_caps(G{ax, ay}, wi, wo);
+       },
        brdf_of<G>},
       {"bounded-listing1/ggx", true, true,
        [](double ax, double ay, V3 wi, V2 u) {

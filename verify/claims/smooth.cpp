@@ -74,7 +74,8 @@ CheckResult normalization_verdict(const std::vector<Config>& grid, Measure&& mea
                                   const std::string& statistic) {
   constexpr double kTolerance = 1e-6;  // far above cubature error (~1e-10), far below 2 %
   std::vector<Measured> m(grid.size());
-  tbb::parallel_for(std::size_t(0), grid.size(), [&](std::size_t i) { m[i] = measure(grid[i], 1.0); });
+  tbb::parallel_for(std::size_t(0), grid.size(),
+                    [&](std::size_t i) { m[i] = measure(grid[i], 1.0); });
   CheckResult r;
   r.statistic = statistic;
   r.bound = kTolerance;
@@ -88,8 +89,8 @@ CheckResult normalization_verdict(const std::vector<Config>& grid, Measure&& mea
   r.value = m[worst].error;
   const Config& w = grid[worst];
   r.detail = fmt::format("worst {} at {} αx={:.3g} αy={:.3g}{}; cubature error estimate ≤ {:.1e}",
-                           r.value, ndf_name(w.ggx), w.ax, w.ay,
-                           w.theta_i_deg != 0 ? fmt::format(" θi={}°", w.theta_i_deg) : "", quad);
+                         r.value, ndf_name(w.ggx), w.ax, w.ay,
+                         w.theta_i_deg != 0 ? fmt::format(" θi={}°", w.theta_i_deg) : "", quad);
   if (quad > 0.1 * kTolerance)
     r.verdict = Verdict::kInconclusive;
   else
@@ -107,8 +108,8 @@ CheckResult projected_area(Budget b) {
   const auto grid = roughness_grid(b);
   auto measure = [](const Config& c, double scale) {
     return normalization(c, scale, [](const auto& ndf, const Config& cc) {
-      return integrate_ndf_lobe([&](const Vec3<double>& m) { return ndf.D(m) * m.z; }, cc.ax,
-                                cc.ay, true);
+      return integrate_ndf_lobe([&](const Vec3<double>& m) { return ndf.D(m) * m.z; }, cc.ax, cc.ay,
+                                true);
     });
   };
   return normalization_verdict(grid, measure, "max |∫ D(m) m·n dm − 1|");

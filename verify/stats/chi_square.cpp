@@ -408,6 +408,13 @@ ChiSquarePlan make_plan(SampleDomain domain, DirectionPdf dpdf, PointPdf ppdf, s
   for (int k = 1; k <= 24; ++k) cs.u_breaks.push_back(pm.u_of_t(std::ldexp(plan.t_max, -k)));
   for (double b : o.radial_breaks)
     if (b > 0 && b < plan.t_max) cs.u_breaks.push_back(pm.u_of_t(b));
+  for (const Vec3<double>& f : o.point_features) {
+    if (pm.disk()) break;
+    double t = 0, phi = 0;
+    plan.to_bin_coordinates(f, t, phi);
+    if (t > 0 && t < plan.t_max) cs.u_breaks.push_back(pm.u_of_t(t));
+    if (t > 0 && t < plan.t_max && phi > 0 && phi < kTwoPi) cs.phi_breaks.push_back(phi);
+  }
   if (!pm.disk() && plan.t_max > 0.5 * kPi) cs.u_breaks.push_back(1.0);
   std::sort(cs.u_breaks.begin(), cs.u_breaks.end());
   cs.u_breaks.erase(std::unique(cs.u_breaks.begin(), cs.u_breaks.end()), cs.u_breaks.end());

@@ -155,6 +155,10 @@ struct ChiSquareOptions {
   unsigned max_subdivisions = 200;      // bisections per 1D integration (inner and outer)
   std::vector<double> radial_breaks;    // extra cubature splits in θ' (rad) or r (disk)
   std::vector<double> phi_breaks;       // extra cubature splits in φ' ∈ (0, 2π), from frame_x
+  // Directions where the pdf has a point feature (an integrable singularity, a kink): the cubature
+  // is split through each in θ' and φ' of the bin frame, so the feature sits on a corner of the
+  // integration pieces, where adaptive bisection resolves it (directions only).
+  std::vector<Vec3<double>> point_features;
   double inconclusive_shift = 0.1;      // in units of the null standard deviation √(2·dof)
   double level = kFamilyWiseRate;       // significance level for the power report
   double power = 0.9;

@@ -1,0 +1,130 @@
+// The chi-square claims' negative controls (smooth.sampler-matches-pdf, eto.pdf-matches,
+// kemppinen.jacobian): every control variant is rejected and the correct samplers it is built on
+// are not, at reduced sample counts; outcomes are identical with 1 and 2 threads; calibration runs
+// give valid p-values. The full quick checks run once in registry_test.cpp.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "verify/check.h"
+#include "verify/claims/gof_family.h"
+
+namespace glintlab::verify {
+namespace {
+
+// The configurations a spec's controls are built on, with the controls' plan_of remapped, so the
+// controls run without the rest of the grid.
+GofSpec controls_only(const GofSpec& s) {
+  std::map<int, int> index;
+  GofSpec out;
+  for (const GofControl& c : s.controls)
+    for (const GofControlCase& cc : c.cases)
+      if (cc.plan_of >= 0 && !index.count(cc.plan_of)) {
+        index[cc.plan_of] = int(out.cases.size());
+        out.cases.push_back(s.cases[std::size_t(cc.plan_of)]);
+      }
+  out.controls = s.controls;
+  for (GofControl& c : out.controls)
+    for (GofControlCase& cc : c.cases)
+      if (cc.plan_of >= 0) cc.plan_of = index.at(cc.plan_of);
+  return out;
+}
+
+// Correct configurations: 3·10^4 samples; subtle controls: 3·10^5 (a 2 % error then gives a
+// non-centrality ≈ 120 against ≈ 90 needed); gross controls at 3·10^4.
+constexpr GofSize kReduced{30'000, 300'000, 500};
+
+void expect_controls_rejected(const std::string& id, const GofSpec& spec) {
+  const GofSpec s = controls_only(spec);
+  ASSERT_FALSE(s.controls.empty());
+  const GofOutcome o = run_gof_family(id, s.cases, s.controls, kReduced);
+  for (std::size_t i = 0; i < o.results.size(); ++i) {
+    EXPECT_FALSE(o.results[i].rejects(o.configuration_level))
+        << s.cases[i].label << ": " << o.results[i].summary();
+    EXPECT_FALSE(o.results[i].inconclusive) << s.cases[i].label << ": " << o.results[i].reason;
+  }
+  for (std::size_t c = 0; c < s.controls.size(); ++c)
+    for (std::size_t k = 0; k < s.controls[c].cases.size(); ++k)
+      EXPECT_TRUE(o.control_results[c][k].rejects(o.configuration_level))
+          << s.controls[c].name << " — " << s.controls[c].cases[k].wrong.label << ": "
+          << o.control_results[c][k].summary();
+}
+
+TEST(ChiSquareClaims, SamplerMatchesPdfControlsRejected) {
+  expect_controls_rejected("smooth.sampler-matches-pdf", smooth_sampler_spec(Budget::kQuick));
+}
+
+TEST(ChiSquareClaims, EtoPdfMatchesControlsRejected) {
+  expect_controls_rejected("eto.pdf-matches", eto_pdf_spec(Budget::kQuick));
+}
+
+TEST(ChiSquareClaims, KemppinenControlsRejected) {
+  expect_controls_rejected("kemppinen.jacobian", kemppinen_spec(Budget::kQuick));
+}
+
+// Every control of every budget is built on configurations of that budget's grid.
+TEST(ChiSquareClaims, ControlsReferToTheirGrid) {
+  for (Budget b : {Budget::kQuick, Budget::kFull}) {
+    EXPECT_NO_THROW(smooth_sampler_spec(b));
+    EXPECT_NO_THROW(eto_pdf_spec(b));
+  }
+  for (Budget b : {Budget::kQuick, Budget::kFull})
+    for (const GofSpec& s : {smooth_sampler_spec(b), eto_pdf_spec(b), kemppinen_spec(b)})
+      for (const GofControl& c : s.controls) {
+        EXPECT_FALSE(c.cases.empty()) << c.name;
+        for (const GofControlCase& cc : c.cases) {
+          EXPECT_LT(cc.plan_of, int(s.cases.size())) << cc.wrong.label;
+          if (cc.plan_of < 0) {
+            EXPECT_TRUE(cc.wrong.direction_pdf || cc.wrong.point_pdf) << cc.wrong.label;
+          }
+        }
+      }
+}
+
+// A small family with its controls gives bit-identical p-values with 1 and 2 threads.
+TEST(ChiSquareClaims, IdenticalWithOneAndTwoThreads) {
+  const GofSpec s = controls_only(kemppinen_spec(Budget::kQuick));
+  const GofSpec e = controls_only(eto_pdf_spec(Budget::kQuick));
+  constexpr GofSize kSmall{20'000, 20'000, 300};
+  auto run = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+    std::vector<double> p;
+    for (const GofSpec* x : {&s, &e}) {
+      const GofOutcome o = run_gof_family("threads.test", x->cases, x->controls, kSmall);
+      for (const ChiSquareResult& r : o.results) {
+        p.push_back(r.p_value);
+        for (const ChiSquareResolution& res : r.resolutions) p.push_back(res.statistic);
+      }
+      for (double q : o.control_p) p.push_back(q);
+    }
+    return p;
+  };
+  const std::vector<double> one = run(1), two = run(2);
+  ASSERT_EQ(one.size(), two.size());
+  for (std::size_t i = 0; i < one.size(); ++i)
+    EXPECT_TRUE(one[i] == two[i] || (std::isnan(one[i]) && std::isnan(two[i])))
+        << i << ": " << one[i] << " vs " << two[i];
+}
+
+// The calibration functions return p-values in [0, 1] that depend on the seed only.
+TEST(ChiSquareClaims, CalibrationRunsAreValidAndDeterministic) {
+  for (const Check& c : registered_checks()) {
+    if (c.id != "smooth.sampler-matches-pdf" && c.id != "eto.pdf-matches" &&
+        c.id != "kemppinen.jacobian")
+      continue;
+    ASSERT_TRUE(is_statistical(c)) << c.id;
+    const double a = c.calibration(1), b = c.calibration(2), a2 = c.calibration(1);
+    EXPECT_GE(a, 0);
+    EXPECT_LE(a, 1);
+    EXPECT_GE(b, 0);
+    EXPECT_LE(b, 1);
+    EXPECT_EQ(a, a2) << c.id;
+    EXPECT_NE(a, b) << c.id;
+  }
+}
+
+}  // namespace
+}  // namespace glintlab::verify

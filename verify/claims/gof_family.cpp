@@ -1,0 +1,211 @@
+// A family of chi-square configurations with Holm–Šidák correction and negative controls; see
+// gof_family.h.
+#include "verify/claims/gof_family.h"
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+
+#include "core/math/rng.h"
+
+namespace glintlab::verify {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The plan of a pdf scaled by s: every expectation, its error and the mass scale with it.
+ChiSquarePlan scaled_plan(const ChiSquarePlan& p, double s) {
+  ChiSquarePlan q = p;
+  for (BinGrid& g : q.grids) {
+    for (double& e : g.expected) e *= s;
+    for (double& e : g.error) e *= s;
+    g.mass *= s;
+    g.mass_error *= s;
+  }
+  if (p.direction_pdf)
+    q.direction_pdf = [f = p.direction_pdf, s](const Vec3<double>& w) { return s * f(w); };
+  if (p.point_pdf) q.point_pdf = [f = p.point_pdf, s](const Vec2<double>& x) { return s * f(x); };
+  return q;
+}
+
+// The p-value a result contributes to a family: 0 on a hard failure, NaN (never rejected) when the
+// cubature could not decide.
+double family_p(const ChiSquareResult& r) {
+  if (r.hard_fail) return 0;
+  return r.inconclusive ? kNaN : r.p_value;
+}
+
+}  // namespace
+
+ChiSquarePlan plan_gof_case(const GofCase& c, std::uint64_t n, double level,
+                            std::size_t fine_max_bins) {
+  ChiSquareOptions o = c.options;
+  o.level = level;
+  o.fine_max_bins = fine_max_bins;
+  return c.domain == SampleDomain::kDisk
+             ? plan_disk_chi_square(c.point_pdf, n, o)
+             : plan_direction_chi_square(SampleDomain::kSphere, c.direction_pdf, n, o);
+}
+
+ChiSquareResult run_gof_case(const ChiSquarePlan& plan, const GofCase& c, std::uint64_t seed) {
+  if (c.domain == SampleDomain::kDisk)
+    return run_disk_chi_square(plan, [&](std::uint64_t i) { return c.points(seed, i); });
+  return run_direction_chi_square(plan, [&](std::uint64_t i) { return c.directions(seed, i); });
+}
+
+GofOutcome run_gof_family(const std::string& id, const std::vector<GofCase>& cases,
+                          const std::vector<GofControl>& controls, const GofSize& size) {
+  GofOutcome out;
+  const std::uint64_t n = size.n, control_n = size.control_n;
+  const std::size_t fine = size.fine_max_bins;
+  const std::size_t m = cases.size();
+  out.configuration_level = sidak_level(check_level(), std::max<std::size_t>(m, 1));
+  const double level = out.configuration_level;
+
+  // The sample count of each control, and the configurations whose plan a control case reuses,
+  // at that count: the configuration's own plan where it is n, a new one otherwise.
+  auto count_of = [&](const GofControl& c) { return c.gross ? n : control_n; };
+  std::map<std::pair<int, std::uint64_t>, ChiSquarePlan> shared;
+  for (const GofControl& c : controls)
+    for (const GofControlCase& cc : c.cases)
+      if (cc.plan_of >= 0) shared[{cc.plan_of, count_of(c)}] = ChiSquarePlan{};
+  std::vector<ChiSquarePlan*> keep(m, nullptr);
+  for (auto& [key, plan] : shared)
+    if (key.second == n) keep[std::size_t(key.first)] = &plan;
+
+  out.results.resize(m);
+  tbb::parallel_for(std::size_t(0), m, [&](std::size_t i) {
+    ChiSquarePlan plan = plan_gof_case(cases[i], n, level, fine);
+    out.results[i] = run_gof_case(plan, cases[i], check_seed(id, i));
+    if (keep[i]) *keep[i] = std::move(plan);
+  });
+  std::vector<double> p(m);
+  for (std::size_t i = 0; i < m; ++i) {
+    p[i] = family_p(out.results[i]);
+    out.inconclusive += out.results[i].inconclusive && !out.results[i].hard_fail ? 1 : 0;
+    out.hard_failures += out.results[i].hard_fail ? 1 : 0;
+  }
+  out.family = holm_sidak(p, check_level());
+
+  std::vector<std::pair<std::pair<int, std::uint64_t>, ChiSquarePlan*>> missing;
+  for (auto& [key, plan] : shared)
+    if (key.second != n) missing.push_back({key, &plan});
+  tbb::parallel_for(std::size_t(0), missing.size(), [&](std::size_t b) {
+    const auto [i, count] = missing[b].first;
+    *missing[b].second = plan_gof_case(cases[std::size_t(i)], count, level, fine);
+  });
+
+  struct Job {
+    std::size_t control, index;
+  };
+  std::vector<Job> jobs;
+  out.control_results.resize(controls.size());
+  for (std::size_t c = 0; c < controls.size(); ++c) {
+    out.control_results[c].resize(controls[c].cases.size());
+    for (std::size_t k = 0; k < controls[c].cases.size(); ++k) jobs.push_back({c, k});
+  }
+  tbb::parallel_for(std::size_t(0), jobs.size(), [&](std::size_t j) {
+    const GofControlCase& cc = controls[jobs[j].control].cases[jobs[j].index];
+    const std::uint64_t seed = check_seed(id, m + j);
+    ChiSquareResult& r = out.control_results[jobs[j].control][jobs[j].index];
+    const GofControl& control = controls[jobs[j].control];
+    if (cc.plan_of >= 0) {
+      const ChiSquarePlan& base = shared.at({cc.plan_of, count_of(control)});
+      r = cc.pdf_scale == 1 ? run_gof_case(base, cc.wrong, seed)
+                            : run_gof_case(scaled_plan(base, cc.pdf_scale), cc.wrong, seed);
+    } else {
+      r = run_gof_case(plan_gof_case(cc.wrong, count_of(control), level, fine), cc.wrong, seed);
+    }
+  });
+  for (std::size_t c = 0; c < controls.size(); ++c) {
+    double worst = 0;
+    bool all = !out.control_results[c].empty();
+    for (const ChiSquareResult& r : out.control_results[c]) {
+      const double q = family_p(r);
+      worst = std::isnan(q) ? 1.0 : std::max(worst, q);
+      all = all && r.rejects(level) && !(r.inconclusive && !r.hard_fail);
+    }
+    out.control_p.push_back(worst);
+    out.control_rejected.push_back(all);
+  }
+  return out;
+}
+
+Verdict summarize_gof(const GofOutcome& o, const std::vector<GofControl>& controls, CheckResult& r,
+                      std::size_t& worst) {
+  const std::size_t m = o.results.size();
+  r.configurations = int(m);
+  r.raw_p_values.clear();
+  worst = 0;
+  double min_adjusted = 1;
+  double coarse_global = 0, fine_cell = 0;
+  for (std::size_t i = 0; i < m; ++i) {
+    const ChiSquareResult& x = o.results[i];
+    r.raw_p_values.push_back(family_p(x));
+    const double pi = std::isnan(r.raw_p_values[i]) ? 2.0 : r.raw_p_values[i];
+    const double pw = std::isnan(r.raw_p_values[worst]) ? 2.0 : r.raw_p_values[worst];
+    if (pi < pw) worst = i;
+    if (!std::isnan(o.family.adjusted[i]))
+      min_adjusted = std::min(min_adjusted, o.family.adjusted[i]);
+    if (!x.resolutions.empty()) {
+      coarse_global = std::max(coarse_global, x.resolutions.front().detectable_global);
+      fine_cell = std::max(fine_cell, x.resolutions.back().detectable_one_cell);
+    }
+  }
+  r.p_value = min_adjusted;
+  const std::uint64_t n = m > 0 ? o.results[0].n : 0;
+  r.power = fmt::format(
+      "at 90 % power, per configuration (N = {}, level {:.2g}): a relative pdf error δ ≥ {:.3g} "
+      "over the whole domain (coarse bins), or ≥ {:.3g} confined to one fine cell (worst "
+      "configuration)",
+      n, o.configuration_level, coarse_global, fine_cell);
+
+  std::string text;
+  r.control_rejected = !controls.empty();
+  double largest = 0;
+  for (std::size_t c = 0; c < controls.size(); ++c) {
+    largest = std::max(largest, o.control_p[c]);
+    r.control_rejected = r.control_rejected && o.control_rejected[c];
+    std::string where;
+    if (!o.control_rejected[c])
+      for (std::size_t k = 0; k < o.control_results[c].size(); ++k)
+        if (!o.control_results[c][k].rejects(o.configuration_level))
+          where = fmt::format(" (kept: {}: {})", controls[c].cases[k].wrong.label,
+                              o.control_results[c][k].summary());
+    text += fmt::format("{}{}: largest p {:.3g} over {} case(s), {}{}", text.empty() ? "" : "; ",
+                        controls[c].name, o.control_p[c], controls[c].cases.size(),
+                        o.control_rejected[c] ? "rejected" : "NOT rejected", where);
+  }
+  r.control =
+      fmt::format("rejected at the first Holm level {:.2g}: {}", o.configuration_level, text);
+  r.control_p_value = largest;
+
+  if (o.family.rejections > 0 || o.hard_failures > 0) return Verdict::kFails;
+  if (o.inconclusive > 0) return Verdict::kInconclusive;
+  return Verdict::kHolds;
+}
+
+Vec3<double> incidence(double theta_deg) {
+  if (theta_deg == 0) return {0, 0, 1};
+  const double t = theta_deg * std::numbers::pi / 180;
+  return {std::sin(t) * std::cos(kIncidencePhi), std::sin(t) * std::sin(kIncidencePhi),
+          std::cos(t)};
+}
+
+Vec2<double> uniform_pair(std::uint64_t seed, std::uint64_t index) {
+  return {counter_uniform<double>(seed, index, 0), counter_uniform<double>(seed, index, 1)};
+}
+
+ChiSquareOptions reflection_options(const Vec3<double>& wi) {
+  ChiSquareOptions o;
+  o.lobe = wi.z > 0 ? Vec3<double>{-wi.x, -wi.y, wi.z} : Vec3<double>{0, 0, 1};
+  o.point_features.push_back(-wi);
+  return o;
+}
+
+}  // namespace glintlab::verify
