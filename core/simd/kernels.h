@@ -329,10 +329,11 @@ GLINTLAB_ISO_AREA_KERNEL(TotalAreaBeckmannEq31, "beckmann.total_area_eq31_printe
 // The list. X(Type) once per kernel; the batch tables, tests and benchmarks expand it.
 #define GLINTLAB_SIMD_KERNELS(X)                                                                  \
   X(GgxD)                                                                                         \
-  X(GgxLambda) X(GgxProjectedArea) X(GgxG1) X(GgxG2HeightCorrelated) X(GgxG2Separable) X(         \
-      GgxVndf) X(GgxBrdfSchlick) X(GgxBrdfConductor) X(BeckmannD) X(BeckmannLambda)               \
-      X(BeckmannProjectedArea) X(BeckmannG1) X(BeckmannG2HeightCorrelated) X(BeckmannG2Separable) \
-          X(BeckmannVndf) X(BeckmannBrdfSchlick) X(BeckmannBrdfConductor) X(SampleWalterGgx)      \
+  X(GgxLambda)                                                                                    \
+  X(GgxProjectedArea) X(GgxG1) X(GgxG2HeightCorrelated) X(GgxG2Separable) X(GgxVndf) X(           \
+      GgxBrdfSchlick) X(GgxBrdfConductor) X(BeckmannD) X(BeckmannLambda) X(BeckmannProjectedArea) \
+      X(BeckmannG1) X(BeckmannG2HeightCorrelated) X(BeckmannG2Separable) X(BeckmannVndf)          \
+          X(BeckmannBrdfSchlick) X(BeckmannBrdfConductor) X(SampleWalterGgx)                      \
               X(SampleWalterBeckmann) X(SampleHeitzVndf) X(SampleBeckmannVndf)                    \
                   X(SampleSphericalCaps) X(SampleBoundedListing1) X(SampleBoundedExactIso)        \
                       X(PdfWalterGgx) X(PdfWalterBeckmann) X(PdfHeitzVndf) X(PdfBeckmannVndf)     \
