@@ -52,8 +52,13 @@ struct RawTraits<xsimd::batch<S, A>> {
 // a*b + c it falls back to (SSE4.2): the kernels use fma for error-free products (exp_neg_sqr),
 // which the unfused form silently turns into 0.
 template <class A>
-inline constexpr bool kHasFusedFma =
-    std::is_base_of_v<xsimd::fma3<xsimd::sse4_2>, A> || std::is_base_of_v<xsimd::avx512f, A>;
+inline constexpr bool kHasFusedFma = std::is_base_of_v<xsimd::fma3<xsimd::sse4_2>, A> ||
+                                     std::is_base_of_v<xsimd::fma3<xsimd::avx>, A> ||
+                                     std::is_base_of_v<xsimd::fma3<xsimd::avx2>, A> ||
+                                     std::is_base_of_v<xsimd::avx512f, A>;
+// The xsimd arch types are not one chain (fma3<avx2> derives from avx2, avx512f from generic).
+static_assert(kHasFusedFma<xsimd::fma3<xsimd::avx2>> && kHasFusedFma<xsimd::avx512bw> &&
+              !kHasFusedFma<xsimd::sse4_2>);
 
 // --- Raw ops: one overload set per raw type, used only by the Wide ops below -------------------
 namespace raw {
