@@ -41,6 +41,16 @@ const detail::IsaTable& table(Isa isa) {
 }
 
 template <class S>
+void check_strides(std::span<const Column<S>> inputs) {
+  for (std::size_t j = 0; j < inputs.size(); ++j) {
+    if (inputs[j].stride > 1) {
+      throw std::invalid_argument("eval_batch: input column " + std::to_string(j) + " has stride " +
+                                  std::to_string(inputs[j].stride) + " (valid: 0 or 1)");
+    }
+  }
+}
+
+template <class S>
 void check_call(int kernel, std::size_t n_in, std::size_t n_out, Isa isa, Math math) {
   if (kernel < 0 || kernel >= kCount) {
     throw std::invalid_argument("eval_batch: kernel id " + std::to_string(kernel) +
@@ -162,6 +172,7 @@ KernelInfo kernel_info(int kernel) {
 void eval_batch(int kernel, std::span<const Column<float>> inputs, std::span<float* const> outputs,
                 std::size_t n, Isa isa, Math math) {
   check_call<float>(kernel, inputs.size(), outputs.size(), isa, math);
+  check_strides(inputs);
   const detail::IsaTable& t = table(isa);
   (math == Math::kFast ? t.fast_float : t.exact_float)[kernel](inputs.data(), outputs.data(), n);
 }
@@ -169,6 +180,7 @@ void eval_batch(int kernel, std::span<const Column<float>> inputs, std::span<flo
 void eval_batch(int kernel, std::span<const Column<double>> inputs,
                 std::span<double* const> outputs, std::size_t n, Isa isa, Math math) {
   check_call<double>(kernel, inputs.size(), outputs.size(), isa, math);
+  check_strides(inputs);
   table(isa).exact_double[kernel](inputs.data(), outputs.data(), n);
 }
 

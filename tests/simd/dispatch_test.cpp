@@ -69,6 +69,11 @@ TEST(SimdDispatch, EvalBatchChecksItsArguments) {
   float* outs[1] = {&out};
   eval_batch(k, std::span<const Column<float>>(in), std::span<float* const>(outs), 1, Isa::kScalar);
   EXPECT_FLOAT_EQ(out, 1.0f / (3.14159265f * 0.01f));
+  in[0].stride = 2;
+  EXPECT_THROW(eval_batch(k, std::span<const Column<float>>(in), std::span<float* const>(outs), 1,
+                          Isa::kScalar),
+               std::invalid_argument);
+  in[0].stride = 0;
   in.pop_back();
   EXPECT_THROW(eval_batch(k, std::span<const Column<float>>(in), std::span<float* const>(outs), 1,
                           Isa::kScalar),
