@@ -1,0 +1,109 @@
+// The batch driver: loads SoA columns into one float type W, runs a kernel functor, stores. Each
+// ISA translation unit includes this once and instantiates it for its own W (include in .cpp only).
+#pragma once
+
+#include <cstddef>
+#include <type_traits>
+
+// xsimd 8.1 has two non-template inline functions (the double-precision sin/cos argument
+// reduction) whose out-of-line copies every ISA TU emits under one mangled name; the linker keeps
+// one of them, possibly the AVX-512 one, for all ISAs. Renamed per TU, each ISA keeps its own
+// (tests/simd/isa_symbols_test.cmake checks that no ISA object exports a shared weak symbol).
+#if !defined(GLINTLAB_SIMD_TU)
+#error "define GLINTLAB_SIMD_TU (a per-ISA token) before including core/simd/instantiate.h"
+#endif
+#define GLINTLAB_SIMD_CAT2(a, b) a##b
+#define GLINTLAB_SIMD_CAT(a, b) GLINTLAB_SIMD_CAT2(a, b)
+#define __ieee754_rem_pio2 GLINTLAB_SIMD_CAT(glintlab_ieee754_rem_pio2_, GLINTLAB_SIMD_TU)
+#define __kernel_rem_pio2 GLINTLAB_SIMD_CAT(glintlab_kernel_rem_pio2_, GLINTLAB_SIMD_TU)
+#include <xsimd/xsimd.hpp>
+#undef __ieee754_rem_pio2
+#undef __kernel_rem_pio2
+
+#include "core/simd/kernels.h"
+#include "core/simd/table.h"
+#include "core/simd/wide.h"  // (any order works: the Wide ops are found by ADL, see wide.h)
+
+namespace glintlab::simd::detail {
+namespace {  // internal linkage: nothing here may be merged with another ISA's copy
+
+template <class W>
+constexpr std::size_t kLanesOf = 1;
+template <class B, class M>
+constexpr std::size_t kLanesOf<Wide<B, M>> = Wide<B, M>::kLanes;
+
+template <class W, class S>
+GLINTLAB_FN W load_lanes(const S* p) {
+  if constexpr (std::is_floating_point_v<W>) {
+    return *p;
+  } else if constexpr (std::is_floating_point_v<typename W::Raw>) {
+    return W(*p);
+  } else {
+    return W::wrap(W::Raw::load_unaligned(p));
+  }
+}
+
+template <class W, class S>
+GLINTLAB_FN void store_lanes(S* p, const W& w) {
+  if constexpr (std::is_floating_point_v<W>) {
+    *p = w;
+  } else if constexpr (std::is_floating_point_v<typename W::Raw>) {
+    *p = w.v;
+  } else {
+    w.v.store_unaligned(p);
+  }
+}
+
+// Rows [i, i + count) of a column as one W; a partial batch is padded with row i (valid input,
+// so the padding lanes compute something finite that is then dropped).
+template <class W, class S>
+GLINTLAB_FN W load_column(const Column<S>& c, std::size_t i, std::size_t count) {
+  constexpr std::size_t kL = kLanesOf<W>;
+  if (c.stride == 0) return W(c.data[0]);
+  if (count == kL) return load_lanes<W>(c.data + i);
+  alignas(64) S tmp[kL];
+  for (std::size_t k = 0; k < kL; ++k) tmp[k] = c.data[i + (k < count ? k : 0)];
+  return load_lanes<W>(tmp);
+}
+
+template <class K, class W, class S>
+void run_kernel(const Column<S>* inputs, S* const* outputs, std::size_t n) {
+  constexpr std::size_t kL = kLanesOf<W>;
+  constexpr std::size_t kIn = K::kIn.size();
+  constexpr std::size_t kOut = K::kOut.size();
+  for (std::size_t i = 0; i < n; i += kL) {
+    const std::size_t count = n - i < kL ? n - i : kL;
+    W x[kIn];
+    W y[kOut];
+    for (std::size_t j = 0; j < kIn; ++j) x[j] = load_column<W>(inputs[j], i, count);
+    K::template eval<W>(x, y);
+    if (count == kL) {
+      for (std::size_t k = 0; k < kOut; ++k) store_lanes(outputs[k] + i, y[k]);
+    } else {
+      alignas(64) S tmp[kL];
+      for (std::size_t k = 0; k < kOut; ++k) {
+        store_lanes(tmp, y[k]);
+        for (std::size_t l = 0; l < count; ++l) outputs[k][i + l] = tmp[l];
+      }
+    }
+  }
+}
+
+// WF: exact float type, WFF: fast float type, WD: exact double type of one ISA.
+template <class WF, class WFF, class WD>
+const IsaTable& make_table() {
+#define GLINTLAB_ENTRY_F(K) &run_kernel<K, WF, float>,
+#define GLINTLAB_ENTRY_FF(K) &run_kernel<K, WFF, float>,
+#define GLINTLAB_ENTRY_D(K) &run_kernel<K, WD, double>,
+  static constexpr BatchFn<float> kExactF[] = {GLINTLAB_SIMD_KERNELS(GLINTLAB_ENTRY_F)};
+  static constexpr BatchFn<float> kFastF[] = {GLINTLAB_SIMD_KERNELS(GLINTLAB_ENTRY_FF)};
+  static constexpr BatchFn<double> kExactD[] = {GLINTLAB_SIMD_KERNELS(GLINTLAB_ENTRY_D)};
+#undef GLINTLAB_ENTRY_F
+#undef GLINTLAB_ENTRY_FF
+#undef GLINTLAB_ENTRY_D
+  static constexpr IsaTable kTable{kExactF, kFastF, kExactD};
+  return kTable;
+}
+
+}  // namespace
+}  // namespace glintlab::simd::detail

@@ -1,0 +1,253 @@
+// Google Benchmark suite of the batch API: items/s of every kernel × ISA × {exact, fast}, its
+// counted FLOPs and roofline fraction, and the batched 10^7-sample chi-square workload.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/math/rng.h"
+#include "core/simd/batch.h"
+#include "core/simd/inputs.h"
+#include "core/simd/kernels.h"
+#include "experiments/bench/flop_count.h"
+
+namespace glintlab::simd::bench {
+namespace {
+
+using glintlab::bench::Counted;
+using glintlab::bench::g_flops;
+
+// --- Machine model for the roofline ---------------------------------------------------------
+// Peak = lanes × 2 FLOPs (fma) × kFmaPorts × clock. kFmaPorts = 2: two FMA pipes per core, as on
+// AMD Zen 2/3/4 and Intel Skylake and later (256-bit each on Zen 2/3). Clock: "cpu MHz" of
+// /proc/cpuinfo (the nominal clock reported by the kernel; boost clocks make the true peak
+// higher, so achieved fractions are upper estimates). Single thread: one core's peak.
+constexpr double kFmaPorts = 2.0;
+
+struct Cpu {
+  std::string model = "unknown";
+  double mhz = 0.0;
+};
+const Cpu& cpu() {
+  static const Cpu c = [] {
+    Cpu r;
+    std::ifstream f("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(f, line)) {
+      const auto value = [&] { return line.substr(line.find(':') + 2); };
+      if (r.model == "unknown" && line.rfind("model name", 0) == 0) r.model = value();
+      if (r.mhz == 0.0 && line.rfind("cpu MHz", 0) == 0) r.mhz = std::stod(value());
+    }
+    return r;
+  }();
+  return c;
+}
+double peak_flops(Isa isa, bool dbl) {
+  return double(lanes(isa, dbl)) * 2.0 * kFmaPorts * cpu().mhz * 1e6;
+}
+
+// --- FLOPs per evaluation, counted by instantiating each kernel on Counted -----------------
+template <class K>
+double count_flops() {
+  std::vector<int> domains;
+  for (auto d : K::kIn) domains.push_back(static_cast<int>(d));
+  constexpr std::size_t kRows = 64;
+  const auto cols = make_inputs(domains, kRows, 7);
+  g_flops.flops = 0;
+  for (std::size_t i = 0; i < kRows; ++i) {
+    Counted x[K::kIn.size()];
+    Counted y[K::kOut.size()];
+    for (std::size_t j = 0; j < K::kIn.size(); ++j) x[j] = Counted(cols[j][i]);
+    K::template eval<Counted>(x, y);
+  }
+  return double(g_flops.flops) / double(kRows);
+}
+const std::vector<double>& flops_per_eval() {
+#define GLINTLAB_FLOPS(K) count_flops<K>(),
+  static const std::vector<double> f = {GLINTLAB_SIMD_KERNELS(GLINTLAB_FLOPS)};
+#undef GLINTLAB_FLOPS
+  return f;
+}
+
+// --- Kernel throughput ----------------------------------------------------------------------
+constexpr std::size_t kN = 4096;  // rows per call: fits L1/L2 with every column
+
+template <class S>
+struct Data {
+  std::vector<std::vector<S>> in, out;
+  std::vector<Column<S>> cols;
+  std::vector<S*> outs;
+};
+template <class S>
+Data<S> make_data(int kernel) {
+  const KernelInfo info = kernel_info(kernel);
+  const auto d = make_inputs(info.inputs, kN, hash_string("experiments/bench"));
+  Data<S> r;
+  for (const auto& c : d) r.in.emplace_back(c.begin(), c.end());
+  r.out.assign(info.outputs.size(), std::vector<S>(kN));
+  for (const auto& c : r.in) r.cols.push_back({c.data(), 1});
+  for (auto& c : r.out) r.outs.push_back(c.data());
+  return r;
+}
+
+template <class S>
+void bm_kernel(benchmark::State& state, int kernel, Isa isa, Math math) {
+  Data<S> d = make_data<S>(kernel);
+  for (auto _ : state) {
+    eval_batch(kernel, std::span<const Column<S>>(d.cols), std::span<S* const>(d.outs), kN, isa,
+               math);
+    benchmark::DoNotOptimize(d.out[0].data());
+    benchmark::ClobberMemory();
+  }
+  const double items = double(state.iterations()) * double(kN);
+  const double flops = flops_per_eval()[kernel];
+  state.SetItemsProcessed(static_cast<std::int64_t>(items));
+  state.counters["flops_per_item"] = flops;
+  state.counters["gflops"] = benchmark::Counter(items * flops * 1e-9, benchmark::Counter::kIsRate);
+  state.counters["peak_gflops"] = peak_flops(isa, sizeof(S) == 8) * 1e-9;
+  state.counters["roofline_fraction"] = benchmark::Counter(
+      items * flops / peak_flops(isa, sizeof(S) == 8), benchmark::Counter::kIsRate);
+  state.counters["lanes"] = double(lanes(isa, sizeof(S) == 8));
+}
+
+// --- The chi-square workload: 10^7 samples of one configuration, binned, on 2 threads -------
+// Heitz VNDF on GGX αx = 0.3, αy = 0.15, θi = 60° (float). Per chunk of 2^16 samples: counter
+// uniforms, sample_batch, bin wo into 32 (cosθ) × 64 (φ) cells; chunk histograms are summed in
+// chunk order (deterministic for any thread count). Then the expected counts by a 4×4 midpoint
+// rule per cell on the batched pdf, and Pearson's statistic over the cells with ≥ 5 expected.
+constexpr std::size_t kSamples = 10000000;
+constexpr int kThetaBins = 32, kPhiBins = 64, kCells = kThetaBins * kPhiBins;
+constexpr std::size_t kChunk = std::size_t(1) << 16;
+
+int cell_of(float x, float y, float z) {
+  if (!(z > 0.0f)) return -1;
+  const int t = std::min(kThetaBins - 1, static_cast<int>(z * kThetaBins));
+  float phi = std::atan2(y, x);
+  if (phi < 0.0f) phi += 6.2831853f;
+  const int p = std::min(kPhiBins - 1, static_cast<int>(phi * (kPhiBins / 6.2831853f)));
+  return t * kPhiBins + p;
+}
+
+void bm_chi_square(benchmark::State& state, Isa isa, int threads) {
+  const int sampler = *find_kernel("sample.heitz_vndf/ggx");
+  const int pdf = *find_kernel("pdf.heitz_vndf/ggx");
+  const float wi[3] = {0.8660254f, 0.0f, 0.5f};
+  const std::size_t chunks = (kSamples + kChunk - 1) / kChunk;
+  double statistic = 0.0;
+  for (auto _ : state) {
+    std::vector<std::vector<std::uint32_t>> hist(chunks, std::vector<std::uint32_t>(kCells));
+    const auto worker = [&](int t) {
+      std::vector<float> u1(kChunk), u2(kChunk), o[8];
+      for (auto& v : o) v.resize(kChunk);
+      for (std::size_t c = std::size_t(t); c < chunks; c += std::size_t(threads)) {
+        const std::size_t begin = c * kChunk, n = std::min(kChunk, kSamples - begin);
+        for (std::size_t i = 0; i < n; ++i) {
+          u1[i] = counter_uniform<float>(1, begin + i, 0);
+          u2[i] = counter_uniform<float>(1, begin + i, 1);
+        }
+        sample_batch<float>(sampler, 0.3f, 0.15f, wi, u1.data(), u2.data(),
+                            {o[0].data(), o[1].data(), o[2].data(), o[3].data(), o[4].data(),
+                             o[5].data(), o[6].data(), o[7].data()},
+                            n, isa);
+        for (std::size_t i = 0; i < n; ++i) {
+          if (o[7][i] != 0.0f) continue;
+          const int cell = cell_of(o[0][i], o[1][i], o[2][i]);
+          if (cell >= 0) ++hist[c][std::size_t(cell)];
+        }
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(worker, t);
+    worker(0);
+    for (auto& th : pool) th.join();
+    std::vector<double> observed(kCells, 0.0);
+    for (const auto& h : hist) {
+      for (int c = 0; c < kCells; ++c) observed[std::size_t(c)] += h[std::size_t(c)];
+    }
+    // Expected counts: 4×4 midpoints per cell in (cosθ, φ), dω = dcosθ dφ.
+    constexpr int kSub = 4;
+    const std::size_t m = std::size_t(kCells) * kSub * kSub;
+    std::vector<float> x(m), y(m), z(m), p(m);
+    for (int c = 0; c < kCells; ++c) {
+      for (int s = 0; s < kSub * kSub; ++s) {
+        const float ct = (float(c / kPhiBins) + (float(s / kSub) + 0.5f) / kSub) / kThetaBins;
+        const float ph =
+            (float(c % kPhiBins) + (float(s % kSub) + 0.5f) / kSub) * (6.2831853f / kPhiBins);
+        const float st = std::sqrt(std::max(0.0f, 1.0f - ct * ct));
+        const std::size_t i = std::size_t(c) * kSub * kSub + std::size_t(s);
+        x[i] = st * std::cos(ph);
+        y[i] = st * std::sin(ph);
+        z[i] = ct;
+      }
+    }
+    const float params[5] = {0.3f, 0.15f, wi[0], wi[1], wi[2]};
+    const float* cols[3] = {x.data(), y.data(), z.data()};
+    float* outs[1] = {p.data()};
+    eval_batch<float>(pdf, params, cols, outs, m, isa);
+    const double cell_area = (1.0 / kThetaBins) * (6.283185307179586 / kPhiBins) / (kSub * kSub);
+    statistic = 0.0;
+    for (int c = 0; c < kCells; ++c) {
+      double e = 0.0;
+      for (int s = 0; s < kSub * kSub; ++s) e += p[std::size_t(c) * kSub * kSub + std::size_t(s)];
+      e *= cell_area * double(kSamples);
+      if (e >= 5.0)
+        statistic += (observed[std::size_t(c)] - e) * (observed[std::size_t(c)] - e) / e;
+    }
+    benchmark::DoNotOptimize(statistic);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kSamples));
+  state.counters["samples"] = double(kSamples);
+  state.counters["threads"] = threads;
+  state.counters["chi2_statistic"] = statistic;
+  state.counters["cells"] = kCells;
+}
+
+void register_all() {
+  for (int k = 0; k < kernel_count(); ++k) {
+    const std::string name(kernel_info(k).name);
+    for (Isa isa : kAllIsas) {
+      if (!isa_supported(isa)) continue;
+      const std::string i(isa_name(isa));
+      benchmark::RegisterBenchmark((name + "/" + i + "/float_exact").c_str(), bm_kernel<float>, k,
+                                   isa, Math::kExact);
+      benchmark::RegisterBenchmark((name + "/" + i + "/float_fast").c_str(), bm_kernel<float>, k,
+                                   isa, Math::kFast);
+      benchmark::RegisterBenchmark((name + "/" + i + "/double_exact").c_str(), bm_kernel<double>, k,
+                                   isa, Math::kExact);
+    }
+  }
+  for (Isa isa : {Isa::kScalar, best_isa()}) {
+    for (int threads : {1, 2}) {
+      benchmark::RegisterBenchmark(("chi_square_1e7/heitz_vndf/" + std::string(isa_name(isa)) +
+                                    "/threads:" + std::to_string(threads))
+                                       .c_str(),
+                                   bm_chi_square, isa, threads)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime()
+          ->Iterations(1);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace glintlab::simd::bench
+
+int main(int argc, char** argv) {
+  using namespace glintlab::simd::bench;
+  benchmark::Initialize(&argc, argv);
+  benchmark::AddCustomContext("cpu_model", cpu().model);
+  benchmark::AddCustomContext("cpu_mhz_proc_cpuinfo", std::to_string(cpu().mhz));
+  benchmark::AddCustomContext(
+      "roofline_peak", "lanes x 2 (fma) x 2 FMA ports x cpu MHz, one core; see flop_count.h");
+  benchmark::AddCustomContext("best_isa",
+                              std::string(glintlab::simd::isa_name(glintlab::simd::best_isa())));
+  register_all();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

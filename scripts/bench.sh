@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Runs every glintlab benchmark (experiments/bench/) into one JSON, out/bench/bench.json, and a
+# speed-up table (median items/s over scalar float exact, per kernel and ISA) out/bench/speedups.md.
+# Extra arguments go to Google Benchmark, e.g. --benchmark_filter=ggx.d or
+# --benchmark_repetitions=9. Timings on a shared machine are noisy: medians of repetitions.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+export CMAKE_CXX_COMPILER_LAUNCHER="${CMAKE_CXX_COMPILER_LAUNCHER:-}"
+cmake --preset release >/dev/null
+cmake --build --preset release --target glintlab_bench_kernels >/dev/null
+mkdir -p out/bench
+tmp="out/bench/.bench.json.tmp"
+./build/release/experiments/bench/glintlab_bench_kernels \
+  --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+  --benchmark_min_time=0.05 \
+  --benchmark_out="$tmp" --benchmark_out_format=json "$@"
+mv "$tmp" out/bench/bench.json
+/usr/bin/python3 - <<'PY'
+import json, collections
+d = json.load(open("out/bench/bench.json"))
+med = {}
+for b in d["benchmarks"]:
+    if b.get("aggregate_name") != "median":
+        continue
+    med[b["run_name"]] = b
+rows = collections.OrderedDict()
+for name, b in med.items():
+    if name.startswith("chi_square"):
+        continue
+    kernel, isa, flavour = name.rsplit("/", 2)
+    rows.setdefault(kernel, {})[(isa, flavour)] = b
+isas = [i for i in ["sse4.2", "avx2", "avx512"] if any((i, "float_exact") in r for r in rows.values())]
+ctx = d["context"]
+lines = [f"CPU: {ctx.get('cpu_model')} ({ctx.get('cpu_mhz_proc_cpuinfo')} MHz per /proc/cpuinfo), "
+         f"median of the repetitions, single thread, CPU time.", "",
+         "| kernel | scalar Mitem/s | " + " | ".join(f"{i} ×" for i in isas) +
+         " | " + " | ".join(f"{i} fast ×" for i in isas) + " | " +
+         " | ".join(f"{i} double ×" for i in isas) + " | FLOP/item | best roofline |",
+         "|" + "---|" * (3 + 3 * len(isas) + 1)]
+for kernel, r in rows.items():
+    base = r.get(("scalar", "float_exact"))
+    based = r.get(("scalar", "double_exact"))
+    if not base:
+        continue
+    s = base["items_per_second"]
+    cells = [f"{r[(i,'float_exact')]['items_per_second']/s:.1f}" for i in isas]
+    cells += [f"{r[(i,'float_fast')]['items_per_second']/s:.1f}" for i in isas]
+    cells += [f"{r[(i,'double_exact')]['items_per_second']/based['items_per_second']:.1f}" for i in isas]
+    best = max(v.get("roofline_fraction", 0) for v in r.values())
+    lines.append(f"| {kernel} | {s/1e6:.1f} | " + " | ".join(cells) +
+                 f" | {base['flops_per_item']:.0f} | {100*best:.1f} % |")
+lines.append("")
+for name, b in med.items():
+    if name.startswith("chi_square"):
+        lines.append(f"- {name}: {b['real_time']:.0f} ms wall for 10^7 samples "
+                     f"(sampling + binning + expected counts + statistic)")
+open("out/bench/speedups.md", "w").write("\n".join(lines) + "\n")
+print("\n".join(lines))
+PY
+echo "bench: wrote out/bench/bench.json and out/bench/speedups.md"
