@@ -7,6 +7,7 @@
 
 #include "cli/commands.h"
 #include "cli/progress.h"
+#include "core/io/environment_exr.h"
 #include "experiments/figures/figure_registry.h"
 
 namespace glintlab::cli {
@@ -18,6 +19,7 @@ struct FigureOptions {
   bool quick = false;
   bool list = false;
   int threads = 0;
+  std::string env;  // lat-long EXR environment map; empty = the experiment's procedural sky
 };
 
 void list_figures() {
@@ -46,6 +48,16 @@ void run(const FigureOptions& o) {
     experiments::FigureContext ctx;
     ctx.quick = o.quick;
     ctx.threads = o.threads;
+    if (!o.env.empty()) {
+      // Loaded before anything is written, so a missing or malformed map leaves no output.
+      try {
+        ctx.environment = std::make_shared<const EnvironmentMap>(io::load_environment_map(o.env));
+      } catch (const io::ExrError& e) {
+        throw InputError(fmt::format("--env: {}", e.what()));
+      }
+      ctx.environment_name = fmt::format("lat-long EXR {} ({}x{})", o.env, ctx.environment->width(),
+                                         ctx.environment->height());
+    }
     std::unique_ptr<Progress> bar;
     std::string current;
     ctx.progress = [&](const std::string& stage, long done, long total) {
@@ -83,6 +95,10 @@ void add_figure_command(CLI::App& app) {
   cmd->add_flag("--quick", o->quick, "Smaller images and sample budgets (seconds)");
   cmd->add_option("--threads", o->threads,
                   "Worker threads (0 = all cores; the output is the same)");
+  cmd->add_option("--env", o->env,
+                  "Lat-long EXR environment map (R, G, B radiance; width = 2 x height; row 0 at "
+                  "the zenith, z up) lighting the experiments that use one, instead of their "
+                  "procedural sky");
   cmd->footer(kFooter);
   cmd->callback([o] { run(*o); });
 }

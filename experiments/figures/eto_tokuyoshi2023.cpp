@@ -19,20 +19,38 @@
 #include "core/models/smooth_ggx.h"
 #include "core/render/metrics.h"
 #include "experiments/figures/orb_render.h"
-#include "experiments/figures/sky.h"
+#include "core/lights/procedural_sky.h"
 
 namespace glintlab::experiments {
 namespace {
 
 constexpr std::array<double, 2> kAlphas = {0.2, 0.8};
 
-// The lighting of both experiments, behind this one function so that the environment-map light
-// of core/lights/ can replace it.
-const LatLongImage& eto_environment() {
-  static const LatLongImage kSky = procedural_sky(512, 256);
+// The default lighting of both experiments: the procedural sky of core/lights/ with a sun disc of
+// 5° half-angle and radiance 40 at 40° elevation — the bright source that makes rough reflections
+// noisy, as in the paper's HDR probes, yet large enough that a 16-spp image's RMSE is not mostly
+// the noise of rare sun hits. `glintlab figure --env FILE` replaces it by a lat-long EXR.
+SkyParameters eto_sky() {
+  SkyParameters s;
+  const double elev = 40 * kPi<double> / 180, az = 30 * kPi<double> / 180;
+  s.sun_direction = {std::cos(elev) * std::cos(az), std::cos(elev) * std::sin(az), std::sin(elev)};
+  s.sun_half_angle = 5 * kPi<double> / 180;
+  s.sun_radiance = {40.0, 38.0, 34.0};
+  return s;
+}
+constexpr std::string_view kSkyName =
+    "procedural sky 512x256 (core/lights/procedural_sky.h; sun 5 deg half-angle, radiance 40, 40 deg elevation)";
+
+const EnvironmentMap& default_environment() {
+  static const EnvironmentMap kSky(make_procedural_sky(eto_sky(), 512, 256));
   return kSky;
 }
-constexpr std::string_view kEnvironmentName = "procedural_sky 512x256 (sun 5 deg, radiance 40)";
+const EnvironmentMap& eto_environment(const FigureContext& ctx) {
+  return ctx.environment ? *ctx.environment : default_environment();
+}
+std::string environment_name(const FigureContext& ctx) {
+  return ctx.environment ? ctx.environment_name : std::string(kSkyName);
+}
 
 struct Budget {
   int size;           // image width = height
@@ -68,7 +86,7 @@ std::uint64_t seed_for(std::string_view figure, std::string_view method, double 
   return hash_string(fmt::format("{}/{}/alpha={}/spp={}", figure, method, alpha, spp).c_str());
 }
 
-io::ExrAttributes attributes(std::string_view figure, double alpha, std::string_view sampler,
+io::ExrAttributes attributes(const FigureContext& ctx, std::string_view figure, double alpha, std::string_view sampler,
                              std::uint64_t seed, int spp, int reference_spp) {
   return {{"glintlab_figure", std::string(figure)},
           {"glintlab_model", std::string(SmoothGGX::kName)},
@@ -78,7 +96,7 @@ io::ExrAttributes attributes(std::string_view figure, double alpha, std::string_
           {"glintlab_reference_spp", fmt::format("{}", reference_spp)},
           {"glintlab_version", std::string(glintlab_version())},
           {"glintlab_scene", "unit sphere, pinhole camera 36 deg, one bounce, BRDF sampling only"},
-          {"glintlab_environment", std::string(kEnvironmentName)}};
+          {"glintlab_environment", environment_name(ctx)}};
 }
 
 struct Render {
@@ -92,7 +110,7 @@ Render render(const FigureContext& ctx, std::string_view figure, const OrbScene&
   const std::string stage = fmt::format("{} alpha={} {} {} spp", figure, alpha, m.name, spp);
   RowProgress progress;
   if (ctx.progress) progress = [&](long d, long t) { ctx.progress(stage, d, t); };
-  return {render_orb<SmoothGGX>(scene, ggx_params(alpha, m.sampler), eto_environment(), spp, seed,
+  return {render_orb<SmoothGGX>(scene, ggx_params(alpha, m.sampler), eto_environment(ctx), spp, seed,
                                 ctx.threads, progress),
           seed};
 }
@@ -173,12 +191,12 @@ void run_fig4(const FigureContext& ctx) {
     const MetricOptions metric{{"R", "G", "B"}, &mask};
     io::write_exr(
         ctx.dir / fmt::format("{}_reference.exr", alpha_tag(alpha)), ref.image,
-        attributes(kFig4Id, alpha, kReference.name, ref.seed, b.reference_spp, b.reference_spp));
+        attributes(ctx, kFig4Id, alpha, kReference.name, ref.seed, b.reference_spp, b.reference_spp));
     previews.push_back(ref.image);
     for (const Method& m : kMethods) {
       const Render r = render(ctx, kFig4Id, scene, alpha, m, b.spp);
       io::write_exr(ctx.dir / fmt::format("{}_{}.exr", alpha_tag(alpha), m.name), r.image,
-                    attributes(kFig4Id, alpha, m.name, r.seed, b.spp, b.reference_spp));
+                    attributes(ctx, kFig4Id, alpha, m.name, r.seed, b.spp, b.reference_spp));
       rows.push_back({alpha, m.name, r.seed, rmse(r.image, ref.image, metric),
                       rel_mse(r.image, ref.image, metric), mean_rejected(r.image, mask)});
       previews.push_back(r.image);
@@ -221,7 +239,7 @@ void run_series(const FigureContext& ctx) {
     const MetricOptions metric{{"R", "G", "B"}, &mask};
     io::write_exr(
         ctx.dir / fmt::format("{}_reference.exr", alpha_tag(alpha)), ref.image,
-        attributes(kSeriesId, alpha, kReference.name, ref.seed, b.reference_spp, b.reference_spp));
+        attributes(ctx, kSeriesId, alpha, kReference.name, ref.seed, b.reference_spp, b.reference_spp));
     for (const Method& m : kMethods) {
       for (int spp : b.series_spp) {
         const Render r = render(ctx, kSeriesId, scene, alpha, m, spp);

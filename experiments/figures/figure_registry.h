@@ -4,10 +4,13 @@
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "core/lights/environment_map.h"
 
 namespace glintlab::experiments {
 
@@ -20,6 +23,10 @@ struct FigureContext {
   std::filesystem::path dir;  // the (staging) folder the experiment writes every file into
   bool quick = false;         // smaller images and budgets (the ctest runs)
   int threads = 0;            // 0 = all cores
+  // The environment light of experiments lit by one (`glintlab figure --env FILE`); null = each
+  // experiment's default (a procedural sky). `environment_name` describes it in the outputs.
+  std::shared_ptr<const EnvironmentMap> environment;
+  std::string environment_name;
   // (stage, done, total); called from one thread at a time.
   std::function<void(const std::string& stage, long done, long total)> progress;
 };

@@ -32,6 +32,7 @@ inline OrbScene make_orb_scene(int width, int height) {
 inline std::vector<std::string> orb_channels() { return {"R", "G", "B", "coverage", "rejected"}; }
 
 // Renders the scene with model M (parameters `params`) at `spp` stratified samples per pixel.
+// Env is a distant light with radiance(p, ω) (EnvironmentMap of core/lights/, p unused).
 template <Model M, class Env>
 Image render_orb(const OrbScene& scene, const typename M::template Params<double>& params,
                  const Env& env, int spp, std::uint64_t seed, int threads,
@@ -41,7 +42,7 @@ Image render_orb(const OrbScene& scene, const typename M::template Params<double
     const SurfaceHit<double> hit = scene.sphere.intersect(ray);
     Vec3<double> l{0, 0, 0};
     if (!hit.hit) {
-      l = env.lookup(normalize(ray.d));
+      l = env.radiance(Vec3<double>{0, 0, 0}, normalize(ray.d));
     } else {
       acc[3] += 1;
       const Frame<double> frame = hit.frame();
@@ -55,7 +56,7 @@ Image render_orb(const OrbScene& scene, const typename M::template Params<double
       if (smp.rejected) {
         acc[4] += 1;
       } else {
-        l = smp.weight * env.lookup(frame.to_world(smp.wo));
+        l = smp.weight * env.radiance(Vec3<double>{0, 0, 0}, frame.to_world(smp.wo));
       }
     }
     acc[0] += l.x;

@@ -111,5 +111,39 @@ TEST_F(FigureTest, BadInputGetsOneLineAndNoOutput) {
                      {"blocker"});
 }
 
+// A lat-long EXR environment: a small uniform map lights the quick Fig. 4 and is named in the EXR
+// attributes; a missing file, a non-lat-long size, a missing channel and a negative pixel are each
+// one-line errors that leave no output.
+TEST_F(FigureTest, EnvironmentMapFromExr) {
+  auto env_image = [](int w, int h, std::vector<std::string> channels, double value) {
+    Image im(w, h, std::move(channels));
+    for (double& v : im.data) v = value;
+    return im;
+  };
+  io::write_exr(path("sky.exr"), env_image(16, 8, {"R", "G", "B"}, 0.5), {});
+  const RunResult r = run({"figure", "eto2023-fig4", "--quick", "--env", "sky.exr", "--out", "out"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const io::ExrFile f = io::read_exr(path("out/eto2023-fig4/a0.8_reference.exr"));
+  EXPECT_NE(f.attributes.at("glintlab_environment").find("sky.exr (16x8)"), std::string::npos);
+  // Uniform radiance 0.5: the background pixels are exactly 0.5.
+  EXPECT_EQ(f.image.at(0, 0, f.image.channel("R")), 0.5);
+  fs::remove_all(path("out"));
+
+  io::write_exr(path("square.exr"), env_image(8, 8, {"R", "G", "B"}, 1), {});
+  io::write_exr(path("gray.exr"), env_image(16, 8, {"Y"}, 1), {});
+  io::write_exr(path("negative.exr"), env_image(16, 8, {"R", "G", "B"}, -1), {});
+  write_text(path("garbage.exr"), "not an exr file");
+  const std::set<std::string> files = {"sky.exr", "square.exr", "gray.exr", "negative.exr", "garbage.exr"};
+  auto bad = [&](const std::string& file, const std::vector<std::string>& needles) {
+    expect_input_error(run({"figure", "eto2023-fig4", "--quick", "--env", file, "--out", "out"}),
+                       needles, files);
+  };
+  bad("missing.exr", {"--env", "missing.exr"});
+  bad("garbage.exr", {"--env", "garbage.exr"});
+  bad("square.exr", {"--env", "8x8", "width = 2 x height"});
+  bad("gray.exr", {"--env", "no channel R"});
+  bad("negative.exr", {"--env", "out of range", "finite, >= 0"});
+}
+
 }  // namespace
 }  // namespace glintlab::cli_test

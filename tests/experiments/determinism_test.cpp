@@ -10,7 +10,7 @@
 #include "core/io/exr.h"
 #include "core/models/smooth_ggx.h"
 #include "experiments/figures/orb_render.h"
-#include "experiments/figures/sky.h"
+#include "core/lights/procedural_sky.h"
 
 namespace glintlab::experiments {
 namespace {
@@ -24,7 +24,7 @@ std::string bytes_of(const fs::path& p) {
 
 std::string render_bytes(int threads, std::uint64_t seed, const fs::path& dir) {
   const OrbScene scene = make_orb_scene(16, 12);
-  const LatLongImage sky = procedural_sky(64, 32);
+  const EnvironmentMap sky(make_procedural_sky(SkyParameters{}, 64, 32));
   const SmoothGGX::Params<double> p{GGX<double>{0.8, 0.8}, SmoothGGX::kBoundedCaps,
                                     BoundedVndfBound::kListing1};
   const Image img = render_orb<SmoothGGX>(scene, p, sky, 4, seed, threads);
@@ -48,7 +48,7 @@ TEST(OrbRender, UniformSkyGivesTheAlbedoAndBackground) {
   // Under a uniform white sky the orb's pixels estimate the directional albedo (<= 1) and the
   // background pixels are exactly 1; the rejected fraction is in [0, 1].
   struct White {
-    Vec3<double> lookup(Vec3<double>) const { return {1, 1, 1}; }
+    Vec3<double> radiance(Vec3<double>, Vec3<double>) const { return {1, 1, 1}; }
   };
   const OrbScene scene = make_orb_scene(24, 24);
   const SmoothGGX::Params<double> p{GGX<double>{0.3, 0.3}, SmoothGGX::kVndf,
@@ -60,17 +60,6 @@ TEST(OrbRender, UniformSkyGivesTheAlbedoAndBackground) {
   EXPECT_EQ(img.at(12, 12, 3), 1.0);
   EXPECT_GT(centre, 0.8);
   EXPECT_LE(centre, 1.0 + 1e-12);
-}
-
-TEST(Sky, LookupInterpolatesAndWraps) {
-  const LatLongImage sky = procedural_sky(64, 32);
-  const Vec3<double> zenith = sky.lookup({0, 0, 1});
-  EXPECT_NEAR(zenith.z, 0.9, 0.05);
-  const Vec3<double> a = sky.lookup(normalize(Vec3<double>{1, -1e-9, 0.3}));
-  const Vec3<double> b = sky.lookup(normalize(Vec3<double>{1, 1e-9, 0.3}));
-  EXPECT_NEAR(a.x, b.x, 1e-6);  // continuous across φ = 0
-  const Vec3<double> ground = sky.lookup({0.3, 0.2, -0.9});
-  EXPECT_LT(ground.x, 0.31);
 }
 
 }  // namespace
