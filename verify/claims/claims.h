@@ -8,5 +8,8 @@
 namespace glintlab::verify {
 
 std::vector<Check> smooth_checks();  // verify/claims/smooth.cpp
+std::vector<Check> smooth_consistency_checks();  // verify/claims/smooth_consistency.cpp
+std::vector<Check> eto_checks();  // verify/claims/eto.cpp
+std::vector<Check> kneiphof_checks();  // verify/claims/kneiphof.cpp
 
 }  // namespace glintlab::verify
