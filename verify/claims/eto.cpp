@@ -21,6 +21,7 @@
 #include "core/samplers/bounded_vndf.h"
 #include "core/samplers/spherical_caps.h"
 #include "verify/claims/claims.h"
+#include "verify/claims/control_probes.h"
 #include "verify/claims/eto_common.h"
 #include "verify/stats/count_tests.h"
 #include "verify/stats/mean_tests.h"
@@ -694,27 +695,26 @@ Vec3<T> cast3(V3 v) {
   return {T(v.x), T(v.y), T(v.z)};
 }
 
-CheckResult backfacing_stable_pdf(Budget b) {
-  const bool quick = b == Budget::kQuick;
-  const std::vector<double> alphas =
-      quick ? std::vector<double>{1e-3, 0.05, 0.5, 2.0}
-            : std::vector<double>{1e-4, 1e-3, 0.01, 0.05, 0.2, 0.5, 1.0, 2.0};
-  const std::vector<double> ratios =
-      quick ? std::vector<double>{1, 10} : std::vector<double>{1, 3, 30};
-  // i_z → 0⁻ (just below the horizon) and i_z → −1 (where i_z + t cancels).
-  std::vector<double> thetas = {90 + 1e-6, 90 + 1e-3, 90.5, 100,   120,
-                                150,       170,       179,  179.9, 179.999};
-  if (!quick) thetas.insert(thetas.end(), {90 + 1e-9, 91, 135, 160, 175, 179.99, 179.9999});
-  const int n_o = quick ? 12 : 48;  // ωo directions per incidence (upper hemisphere, spiral)
-  struct Worst {
-    double err = 0;
-    std::string where;
-    void update(double e, const std::string& w) {
-      if (!(e <= err)) err = std::isnan(e) ? std::numeric_limits<double>::infinity() : e, where = w;
-    }
-  };
+struct Worst {
+  double err = 0;
+  std::string where;
+  void update(double e, const std::string& w) {
+    if (!(e <= err)) err = std::isnan(e) ? std::numeric_limits<double>::infinity() : e, where = w;
+  }
+};
+
+struct BackfacingErrors {
   Worst stable, printed, stable_f, printed_f, samplers, control, stable_density, printed_density;
   std::size_t evaluated = 0;
+};
+
+// Both forms over (α, anisotropy, θi > 90°) and n_o directions ωo per incidence.
+BackfacingErrors backfacing_errors(const std::vector<double>& alphas,
+                                   const std::vector<double>& ratios,
+                                   const std::vector<double>& thetas, int n_o) {
+  BackfacingErrors out;
+  auto& [stable, printed, stable_f, printed_f, samplers, control, stable_density, printed_density,
+         evaluated] = out;
   for (double a : alphas)
     for (double r : ratios)
       for (double th : thetas) {
@@ -766,6 +766,24 @@ CheckResult backfacing_stable_pdf(Budget b) {
                            where);
         }
       }
+  return out;
+}
+
+CheckResult backfacing_stable_pdf(Budget b) {
+  const bool quick = b == Budget::kQuick;
+  const std::vector<double> alphas =
+      quick ? std::vector<double>{1e-3, 0.05, 0.5, 2.0}
+            : std::vector<double>{1e-4, 1e-3, 0.01, 0.05, 0.2, 0.5, 1.0, 2.0};
+  const std::vector<double> ratios =
+      quick ? std::vector<double>{1, 10} : std::vector<double>{1, 3, 30};
+  // i_z → 0⁻ (just below the horizon) and i_z → −1 (where i_z + t cancels).
+  std::vector<double> thetas = {90 + 1e-6, 90 + 1e-3, 90.5, 100,   120,
+                                150,       170,       179,  179.9, 179.999};
+  if (!quick) thetas.insert(thetas.end(), {90 + 1e-9, 91, 135, 160, 175, 179.99, 179.9999});
+  const int n_o = quick ? 12 : 48;  // ωo directions per incidence (upper hemisphere, spiral)
+  const BackfacingErrors e = backfacing_errors(alphas, ratios, thetas, n_o);
+  const auto& [stable, printed, stable_f, printed_f, samplers, control, stable_density,
+               printed_density, evaluated] = e;
   CheckResult res;
   res.statistic =
       "max relative error of the stable factor (t − i_z)/(2 len2) vs Eq. 7's (50-digit), double";
@@ -787,6 +805,44 @@ CheckResult backfacing_stable_pdf(Budget b) {
 }
 
 }  // namespace
+
+ControlProbe probe_eto_unbiased() {
+  const Config c{0.2, 0.2, 45};
+  const std::uint64_t n = 1u << 15;
+  const double albedo = eto::moments_by_cubature(c, false).albedo;
+  const MeanAccumulator bounded =
+      weights(Technique::kBounded, c, check_seed(kUnbiased, 1u << 20), n);
+  const MeanAccumulator caps =
+      weights(Technique::kSphericalCaps, c, check_seed(kUnbiased, (1u << 20) + 1), n);
+  auto p_of = [&](const MeanAccumulator& x) {
+    return std::min(welch_t_test(x, caps).p_value, t_test(x, albedo).p_value);
+  };
+  return {p_of(bounded), p_of(scaled(bounded, 1.02)), check_level(), true};
+}
+
+ControlProbe probe_eto_bound_is_infimum() {
+  const Infimum r = search_infimum(0.5, 0.5, 60, 256, 65);
+  return {std::abs(r.searched - r.eq5), std::abs(r.searched - 0.97 * r.eq5), kInfimumTolerance,
+          false};
+}
+
+ControlProbe probe_eto_fewer_rejections() {
+  const std::uint64_t n = 1u << 16;
+  const std::uint64_t k =
+      count_rejected(Technique::kSphericalCaps, {1, 1, 0}, check_seed(kRejections, 1u << 20), n);
+  return {binomial_test(k, n, 0.5).p_value, binomial_test(k, n, 0.52).p_value, check_level(), true};
+}
+
+ControlProbe probe_eto_variance_rough() {
+  const VarianceRow r = variance_row({1, 1, 0}, check_seed(kVariance, 1u << 20),
+                                     check_seed(kVariance, (1u << 20) + 1), 1u << 14);
+  return {r.second.p, ratio_test(r.caps.w2, r.bounded.w2, r.c_analytic).p, check_level(), true};
+}
+
+ControlProbe probe_eto_backfacing_stable_pdf() {
+  const BackfacingErrors e = backfacing_errors({1e-3, 0.5}, {1, 10}, {90.001, 120, 179.9}, 6);
+  return {std::max(e.stable.err, e.samplers.err), e.control.err, kBackfacingTolerance, false};
+}
 
 std::vector<Check> eto_checks() {
   const std::string paper = "Eto & Tokuyoshi 2023 (vs Dupuy & Benyoub 2023)";

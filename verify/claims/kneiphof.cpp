@@ -14,6 +14,7 @@
 #include "core/ndf/ggx.h"
 #include "core/ndf/total_area.h"
 #include "verify/claims/claims.h"
+#include "verify/claims/control_probes.h"
 #include "verify/stats/sphere_cubature.h"
 
 namespace glintlab::verify {
@@ -145,6 +146,16 @@ CheckResult run(Budget b) {
 }
 
 }  // namespace
+
+ControlProbe probe_kneiphof_total_area(bool ggx) {
+  const double a = 0.3, s = 1.02;
+  const double ref = ggx ? excess_by_cubature(GGX<double>{a, a}, a, a).value
+                         : excess_by_cubature(Beckmann<double>{a, a}, a, a).value;
+  auto closed = [&](double x) {
+    return (ggx ? total_area_ggx_eq29(x) : total_area_beckmann_eq30(x)) - 1;
+  };
+  return {rel(closed(a), ref), rel(closed(s * a), ref), kTolerance, false};
+}
 
 std::vector<Check> kneiphof_checks() {
   return {{"kneiphof.total-area", "Kneiphof & Klein 2024", "App. B, Eq. 29–31",

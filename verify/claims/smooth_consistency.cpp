@@ -17,6 +17,7 @@
 #include "core/ndf/ggx.h"
 #include "core/samplers/bounded_vndf.h"
 #include "verify/claims/claims.h"
+#include "verify/claims/control_probes.h"
 #include "verify/claims/sampler_table.h"
 
 namespace glintlab::verify {
@@ -206,6 +207,14 @@ CheckResult run(Budget b) {
 }
 
 }  // namespace
+
+ControlProbe probe_eval_pdf_consistency(std::size_t sampler, int control) {
+  const Config c{sampler, 0.3, 0.15, 75};
+  const Variant v = control == 0 ? Variant::kPdfAlphaOff : Variant::kEvalWithoutG1;
+  auto stat = [&](const Errors& e) { return std::max(e.pdf, e.weight); };
+  return {stat(measure(c, 4096, Variant::kCorrect, check_seed(kId, 3000 + sampler))),
+          stat(measure(c, 4096, v, check_seed(kId, 3000 + sampler))), kTolerance, false};
+}
 
 std::vector<Check> smooth_consistency_checks() {
   return {{kId, "Walter et al. 2007; Heitz 2018; Dupuy & Benyoub 2023; Eto & Tokuyoshi 2023",
