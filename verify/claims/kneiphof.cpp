@@ -119,8 +119,7 @@ CheckResult run(Budget b) {
   r.configurations = int(rows.size()) + n_fit;
   r.statistic =
       "max |Eq. 31 − Eq. 30| on α ∈ (0, 1] (Eq. 29/30 vs cubature: rel. error of D_H − 1)";
-  r.value = printed.abs;
-  r.bound = kTolerance;
+  r.value = printed.abs;  // no tolerance is claimed for the fit: it holds within what is measured
   const double closed_worst = std::max({worst_ggx, worst_beck, worst_aniso});
   if (quad > 0.1 * kTolerance)
     r.verdict = Verdict::kInconclusive;
@@ -129,14 +128,15 @@ CheckResult run(Budget b) {
   else  // the closed forms are exact; the fit holds only within its measured error
     r.verdict = Verdict::kHoldsWithin;
   r.detail = fmt::format(
-      "Eq. 29 = ∫_H D_GGX to {:.2g} (worst α={:.3g}), Eq. 30 = ∫_H D_Beckmann to {:.2g} "
+      "(closed forms held to {:.0e}) Eq. 29 = ∫_H D_GGX to {:.2g} (worst α={:.3g}), Eq. 30 = ∫_H "
+      "D_Beckmann to {:.2g} "
       "(α={:.3g}), "
       "anisotropic extension to {:.2g} (rel. error of D_H − 1, α 1e-3..2, cubature error ≤ "
       "{:.1g}); "
       "Eq. 31 as printed: max abs error {:.4f} at α={:.3f} (rel. {:.2f} % at α={:.3f}); "
       "Eq. 31 evaluated at α²: {:.4f} at α={:.3f} (rel. {:.2f} %)",
-      worst_ggx, at_ggx, worst_beck, at_beck, worst_aniso, quad, printed.abs, printed.at,
-      100 * printed.rel, printed.at_rel, squared.abs, squared.at, 100 * squared.rel);
+      kTolerance, worst_ggx, at_ggx, worst_beck, at_beck, worst_aniso, quad, printed.abs,
+      printed.at, 100 * printed.rel, printed.at_rel, squared.abs, squared.at, 100 * squared.rel);
   r.control_rejected = control_min > kTolerance;
   r.control = fmt::format(
       "closed forms at α × 1.02 vs cubature: smallest rel. error of D_H − 1 {:.3g} over {} "

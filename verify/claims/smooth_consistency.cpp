@@ -138,14 +138,13 @@ Errors measure(const Config& c, std::uint64_t n, Variant variant, std::uint64_t 
 
 std::vector<Config> grid(Budget b) {
   const bool quick = b == Budget::kQuick;
-  const std::vector<double> alphas = quick ? std::vector<double>{0.02, 0.3, 1.0}
-                                           : std::vector<double>{1e-3, 0.02, 0.2, 0.6, 1.0, 2.0};
-  const std::vector<double> ratios =
-      quick ? std::vector<double>{1, 8} : std::vector<double>{1, 10, 100};
+  const std::vector<double> alphas =
+      quick ? std::vector<double>{0.02, 0.3, 1.0} : std::vector<double>{1e-3, 0.05, 0.5, 1.0, 2.0};
+  const std::vector<double> ratios = quick ? std::vector<double>{1, 8} : std::vector<double>{1, 30};
   const std::vector<double> front =
-      quick ? std::vector<double>{0, 45, 85} : std::vector<double>{0, 30, 60, 80, 89, 89.9};
+      quick ? std::vector<double>{0, 45, 85} : std::vector<double>{0, 45, 80, 89.9};
   const std::vector<double> back =
-      quick ? std::vector<double>{120, 175} : std::vector<double>{90.5, 120, 150, 179};
+      quick ? std::vector<double>{120, 175} : std::vector<double>{90.5, 135, 179};
   std::vector<Config> g;
   const auto& table = sampler_table();
   for (std::size_t s = 0; s < table.size(); ++s)
