@@ -11,7 +11,8 @@ namespace glintlab::verify {
 const std::vector<Check>& registered_checks() {
   static const std::vector<Check> checks = [] {
     std::vector<Check> all;
-    for (auto* list : {&smooth_checks, &smooth_sampler_checks, &eto_pdf_checks, &kemppinen_checks}) {
+    for (auto* list : {&smooth_checks, &smooth_sampler_checks, &smooth_consistency_checks,
+                       &eto_pdf_checks, &eto_checks, &kemppinen_checks, &kneiphof_checks}) {
       for (Check& c : list()) all.push_back(std::move(c));
     }
     return all;

@@ -1,0 +1,128 @@
+// Shared pieces of the Eto & Tokuyoshi 2023 checks; see eto_common.h.
+#include "verify/claims/eto_common.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/math/rng.h"
+#include "core/samplers/bounded_vndf.h"
+#include "core/samplers/spherical_caps.h"
+#include "verify/stats/ndf_cubature.h"
+
+namespace glintlab::verify::eto {
+
+using V3 = Vec3<double>;
+
+namespace {
+constexpr double kPhiI = 0.7;  // azimuth of ωi
+}
+
+V3 incidence(double theta_deg) {
+  const double t = theta_deg * std::numbers::pi / 180;
+  return {std::sin(t) * std::cos(kPhiI), std::sin(t) * std::sin(kPhiI), std::cos(t)};
+}
+
+std::string describe(const Config& c) {
+  return fmt::format("αx={:g} αy={:g} θi={:g}°", c.ax, c.ay, c.theta_deg);
+}
+
+std::vector<Config> estimator_grid(Budget b) {
+  const bool quick = b == Budget::kQuick;
+  const std::vector<double> alphas =
+      quick ? std::vector<double>{0.05, 0.2, 0.5, 0.8, 1.0}
+            : std::vector<double>{0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0};
+  const std::vector<double> ratios =
+      quick ? std::vector<double>{1, 4} : std::vector<double>{1, 2, 4, 10};  // αx / αy
+  const std::vector<double> thetas =
+      quick ? std::vector<double>{0, 45, 80} : std::vector<double>{0, 20, 40, 60, 75, 85, 89};
+  std::vector<Config> g;
+  for (double a : alphas)
+    for (double r : ratios)
+      for (double t : thetas) g.push_back({a, a / r, t});
+  return g;
+}
+
+const char* to_string(Technique t) {
+  return t == Technique::kBounded ? "bounded" : "spherical-caps";
+}
+
+MicrofacetSample<double> draw(Technique t, const Config& c, std::uint64_t seed, std::uint64_t i) {
+  const Vec2<double> u{counter_uniform<double>(seed, i, 0), counter_uniform<double>(seed, i, 1)};
+  const V3 wi = incidence(c.theta_deg);
+  return t == Technique::kBounded ? sample_bounded_vndf(c.ggx(), wi, u, BoundedVndfBound::kListing1)
+                                  : sample_spherical_caps(c.ggx(), wi, u);
+}
+
+double weight(Technique t, const Config& c, std::uint64_t seed, std::uint64_t i) {
+  return sample_weight(c.ggx(), incidence(c.theta_deg), draw(t, c, seed, i));
+}
+
+Moments moments_by_cubature(const Config& c, bool second_moments) {
+  const GGX<double> g = c.ggx();
+  const V3 wi = incidence(c.theta_deg);
+  // f·cos over the half vector, with the Jacobian 4 (ωi·h) of ωo = reflect(ωi, h) (Walter Eq. 14).
+  // G2 → 0 as ωo reaches the horizon, so the integrand is continuous where ωo_z = 0.
+  auto integrate = [&](int power, bool bounded) {
+    return integrate_ndf_lobe(
+        [&](const V3& h) {
+          const double ih = dot(wi, h);
+          if (!(ih > 0)) return 0.0;
+          const V3 wo = reflect(wi, h);
+          if (!(wo.z > 0)) return 0.0;
+          const double fc = microfacet_brdf(g, wi, wo, 1.0) * wo.z;
+          if (power == 1) return fc * 4 * ih;
+          const double p = bounded ? pdf_bounded_vndf(g, wi, wo, BoundedVndfBound::kListing1)
+                                   : pdf_spherical_caps(g, wi, wo);
+          return fc * fc / p * 4 * ih;
+        },
+        c.ax, c.ay, true, 1e-10, &wi);
+  };
+  Moments m;
+  const Integral e = integrate(1, false);
+  m.albedo = e.value;
+  m.albedo_error = e.error;
+  if (second_moments) {
+    const Integral mc = integrate(2, false), mb = integrate(2, true);
+    m.m2_caps = mc.value;
+    m.m2_caps_error = mc.error;
+    m.m2_bounded = mb.value;
+    m.m2_bounded_error = mb.error;
+  }
+  return m;
+}
+
+Rate caps_rejection_by_cubature(const Config& c) {
+  const GGX<double> g = c.ggx();
+  const V3 wi = incidence(c.theta_deg);
+  const double pi = std::numbers::pi;
+  SphereCubatureOptions o;
+  // The density's support ends where the half vector reaches the horizon: ωo_z = −ωi_z, a θ line.
+  o.theta_min = pi / 2;
+  o.theta_max = pi - c.theta_deg * pi / 180;
+  if (!(o.theta_max > o.theta_min)) return {};
+  // The lobe's tail is steepest just below the horizon near the mirror azimuth at grazing
+  // incidence, and near the end of the support: split geometrically there.
+  const double a = std::min(c.ax, c.ay);
+  for (int k = -6; k <= 6; ++k) {
+    const double d = std::atan(a * std::ldexp(1.0, k));
+    for (double t : {o.theta_min + d, o.theta_max - d})
+      if (t > o.theta_min && t < o.theta_max) o.theta_breaks.push_back(t);
+    for (double p : {kPhiI + pi + d, kPhiI + pi - d, kPhiI + d, kPhiI - d})
+      o.phi_breaks.push_back(std::fmod(p + 4 * pi, 2 * pi));
+  }
+  o.phi_breaks.push_back(std::fmod(kPhiI + pi, 2 * pi));
+  o.phi_breaks.push_back(kPhiI);
+  if (c.ax != c.ay) {
+    const auto more = anisotropy_phi_breaks(c.ax, c.ay);
+    o.phi_breaks.insert(o.phi_breaks.end(), more.begin(), more.end());
+  }
+  o.rel_tol = 1e-10;
+  const Integral r =
+      integrate_sphere([&](const V3& wo) { return pdf_spherical_caps(g, wi, wo); }, o);
+  return {r.value, r.error};
+}
+
+}  // namespace glintlab::verify::eto

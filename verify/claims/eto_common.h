@@ -1,0 +1,55 @@
+// Shared pieces of the Eto & Tokuyoshi 2023 checks: the configuration grid, the two samplers
+// compared (Dupuy & Benyoub spherical caps and Listing 1's bounded caps), and the exact albedo,
+// second moments and rejection rate by cubature that the Monte Carlo measurements are held to.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/math/vec.h"
+#include "core/ndf/ggx.h"
+#include "core/samplers/sample.h"
+#include "verify/check.h"
+
+namespace glintlab::verify::eto {
+
+struct Config {
+  double ax, ay, theta_deg;
+  GGX<double> ggx() const { return {ax, ay}; }
+};
+
+// Incidence at polar angle θ (degrees) and a generic azimuth (so anisotropy is not axis-aligned).
+Vec3<double> incidence(double theta_deg);
+
+std::string describe(const Config& c);  // "αx=… αy=… θi=…°"
+
+// α ∈ [0.05, 1] × anisotropy αx/αy × incidence θi, for the estimator checks.
+std::vector<Config> estimator_grid(Budget b);
+
+enum class Technique { kSphericalCaps, kBounded };  // Dupuy & Benyoub 2023; Eto Listing 1
+const char* to_string(Technique t);
+
+// Sample i of a technique for the given seed (counter RNG: the value depends on (seed, i) only).
+MicrofacetSample<double> draw(Technique t, const Config& c, std::uint64_t seed, std::uint64_t i);
+// Its Monte Carlo weight f·cos/pdf with F = 1 (0 for a rejected sample).
+double weight(Technique t, const Config& c, std::uint64_t seed, std::uint64_t i);
+
+// Exact quantities by adaptive cubature over the half vector (dωo = 4 (ωi·h) dh), each with its
+// error estimate: the albedo E = ∫ f cos dωo, and the second moments ∫ (f cos)²/p dωo of both
+// techniques' weights (so the exact per-sample variance is M2 − E²).
+struct Moments {
+  double albedo = 0, albedo_error = 0;
+  double m2_caps = 0, m2_caps_error = 0;
+  double m2_bounded = 0, m2_bounded_error = 0;
+};
+Moments moments_by_cubature(const Config& c, bool second_moments);
+
+// Exact probability that the spherical-cap sampler's ωo lies below the surface: ∫ of its
+// density (Eq. 7 × 1/(4|o·m|)) over the lower hemisphere, by cubature; and its error estimate.
+struct Rate {
+  double value = 0, error = 0;
+};
+Rate caps_rejection_by_cubature(const Config& c);
+
+}  // namespace glintlab::verify::eto
