@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <boost/math/distributions/beta.hpp>
+#include <algorithm>
 #include <cmath>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -64,8 +65,12 @@ CalibrationResult calibrate(const std::string& id, const std::function<double(st
   const KsResult ks = ks_test_uniform(finite);
   r.ks_statistic = ks.statistic;
   r.ks_p_value = ks.p_value;
+  r.ks_plus_p_value = ks_one_sided_sf(ks.d_plus, finite.size());
+  const double alpha = 1 - confidence;
   r.calibrated = r.non_finite == 0 && level >= r.rate_low && level <= r.rate_high &&
-                 r.ks_p_value >= 1 - confidence;
+                 r.ks_p_value >= alpha;
+  r.valid = r.calibrated ||
+            (r.non_finite == 0 && level >= r.rate_low && r.ks_plus_p_value >= alpha);
   return r;
 }
 
@@ -79,6 +84,23 @@ CalibrationResult calibrate(const Check& check, std::size_t runs, double level, 
   return calibrate(check.id, check.calibration, runs, level, confidence, on_run);
 }
 
+double ks_one_sided_sf(double d, std::size_t n) {
+  if (n == 0 || d <= 0) return 1;
+  if (d >= 1) return 0;
+  const double nn = double(n);
+  double sum = 0;
+  const auto jmax = std::size_t(std::floor(nn * (1 - d)));
+  for (std::size_t j = 0; j <= jmax; ++j) {
+    const double jj = double(j);
+    const double a = 1 - d - jj / nn;
+    if (a <= 0) continue;
+    const double log_term = std::lgamma(nn + 1) - std::lgamma(jj + 1) - std::lgamma(nn - jj + 1) +
+                            (nn - jj) * std::log(a) + (jj - 1) * std::log(d + jj / nn);
+    sum += std::exp(log_term);
+  }
+  return std::clamp(d * sum, 0.0, 1.0);
+}
+
 std::string to_json(const CalibrationResult& r) {
   const nlohmann::json j = {{"id", r.id},
                             {"runs", r.runs},
@@ -90,7 +112,10 @@ std::string to_json(const CalibrationResult& r) {
                             {"ks_statistic", r.ks_statistic},
                             {"ks_p_value", r.ks_p_value},
                             {"non_finite", r.non_finite},
+                            {"ks_plus_p_value", r.ks_plus_p_value},
                             {"calibrated", r.calibrated},
+                            {"valid", r.valid},
+                            {"status", r.status()},
                             {"p_values", r.p_values},
                             {"seeds", r.seeds}};
   return j.dump(2) + "\n";
@@ -99,12 +124,13 @@ std::string to_json(const CalibrationResult& r) {
 std::string summary(const CalibrationResult& r) {
   return fmt::format(
       "{}: {} runs, false-positive rate at level {:g} = {}/{} = {:.4f}, {:g} % interval [{:.4f}, "
-      "{:.4f}] ({} the nominal rate); KS uniformity of p-values D = {:.4f}, p = {:.3g}{} → {}",
+      "{:.4f}] ({} the nominal rate); KS uniformity of p-values D = {:.4f}, p = {:.3g}; one-sided "
+      "(too many small p) p = {:.3g}{} → {}",
       r.id, r.runs, r.level, r.rejections, r.runs, r.rate, 100 * r.confidence, r.rate_low,
       r.rate_high,
       (r.level >= r.rate_low && r.level <= r.rate_high) ? "contains" : "EXCLUDES", r.ks_statistic,
-      r.ks_p_value, r.non_finite ? fmt::format("; {} non-finite p-values", r.non_finite) : "",
-      r.calibrated ? "calibrated" : "NOT CALIBRATED");
+      r.ks_p_value, r.ks_plus_p_value,
+      r.non_finite ? fmt::format("; {} non-finite p-values", r.non_finite) : "", r.status());
 }
 
 }  // namespace glintlab::verify

@@ -4,10 +4,19 @@
 //
 // Under the null hypothesis a calibrated test's p-value is uniform on [0, 1], so the number of runs
 // with p < level is Binomial(runs, level). The measured rate is reported with its two-sided
-// Clopper–Pearson interval (confidence `confidence`, 99 % by default), and the run passes when the
-// nominal level lies inside that interval and the KS test does not reject uniformity at
-// 1 − confidence. Discrete tests (binomial counts) give slightly conservative p-values; the KS test
-// sees that only at very many runs.
+// Clopper–Pearson interval (confidence `confidence`, 99 % by default).
+//
+// Three outcomes, at significance 1 − confidence each:
+//   * calibrated: the nominal level lies inside the rate's interval and the two-sided KS test does
+//     not reject uniformity of the p-values;
+//   * conservative (valid): the p-values are not uniform, but only because they are too large —
+//     the one-sided KS test for too many small p-values (D+, Smirnov's exact one-sided
+//     distribution, Birnbaum & Tingey 1951) does not reject, nor is the rate above its interval.
+//     A Šidák-combined minimum over positively dependent tests (the two chi-square resolutions) or
+//     a discrete test is conservative by construction: its false-positive rate is below nominal,
+//     its power a little lower than an exact combination's;
+//   * anti-conservative (broken): too many small p-values (D+ rejects, or the nominal level is
+//     below the rate's interval), or a NaN/out-of-range p-value.
 #pragma once
 
 #include <cstdint>
@@ -30,7 +39,12 @@ struct CalibrationResult {
   double ks_statistic = 0;
   double ks_p_value = 1;        // uniformity of the p-values
   std::size_t non_finite = 0;   // runs that returned a NaN/inf p-value (a broken test)
-  bool calibrated = false;      // level inside [rate_low, rate_high], KS p ≥ 1 − confidence, no NaN
+  double ks_plus_p_value = 1;   // one-sided: too many small p-values
+  bool calibrated = false;      // uniform: level inside [rate_low, rate_high], KS p ≥ 1 − confidence
+  bool valid = false;           // calibrated or conservative: the false-positive rate is not above nominal
+  const char* status() const {
+    return calibrated ? "calibrated" : valid ? "conservative" : "ANTI-CONSERVATIVE";
+  }
   std::vector<double> p_values; // in run order
   std::vector<std::uint64_t> seeds;
 };
@@ -54,6 +68,11 @@ CalibrationResult calibrate(const Check& check, std::size_t runs, double level =
 // given confidence.
 void clopper_pearson(std::size_t successes, std::size_t trials, double confidence, double& low,
                      double& high);
+
+// P(D+_n ≥ d) for the one-sided KS statistic D+ = max_i (i/n − F(x_(i))) of n uniform samples:
+// Birnbaum & Tingey (1951), d Σ_{j=0}^{⌊n(1−d)⌋} C(n, j) (1 − d − j/n)^{n−j} (d + j/n)^{j−1},
+// summed in logarithms.
+double ks_one_sided_sf(double d, std::size_t n);
 
 std::string to_json(const CalibrationResult& r);
 std::string summary(const CalibrationResult& r);  // one line

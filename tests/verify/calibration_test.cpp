@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -31,6 +32,8 @@ double z_test_run(std::uint64_t seed, double shift, double spread) {
 TEST(Calibration, CalibratedTestIsCalibrated) {
   const auto r = calibrate("test.calibrated", [](std::uint64_t s) { return z_test_run(s, 0, 1); }, 2000);
   EXPECT_TRUE(r.calibrated) << summary(r);
+  EXPECT_TRUE(r.valid);
+  EXPECT_STREQ(r.status(), "calibrated");
   EXPECT_EQ(r.non_finite, 0u);
   EXPECT_LE(r.rate_low, 0.05);
   EXPECT_GE(r.rate_high, 0.05);
@@ -41,10 +44,36 @@ TEST(Calibration, CalibratedTestIsCalibrated) {
 TEST(Calibration, MiscalibratedTestsAreFlagged) {
   const auto wide = calibrate("test.wide", [](std::uint64_t s) { return z_test_run(s, 0, 1.3); }, 2000);
   EXPECT_FALSE(wide.calibrated) << summary(wide);
+  EXPECT_FALSE(wide.valid);
   EXPECT_GT(wide.rate_low, 0.05);
   const auto narrow = calibrate("test.narrow", [](std::uint64_t s) { return z_test_run(s, 0, 0.7); }, 2000);
   EXPECT_FALSE(narrow.calibrated) << summary(narrow);
+  EXPECT_TRUE(narrow.valid) << "too-large p-values are conservative, not broken";
+  EXPECT_STREQ(narrow.status(), "conservative");
   EXPECT_LT(narrow.rate_high, 0.05);
+}
+
+// A Šidák-combined minimum of two strongly dependent exact tests is conservative, and is classified
+// so; the plain minimum (no correction) is anti-conservative.
+TEST(Calibration, CombinedMinimaAreConservativeUncorrectedMinimaAreNot) {
+  auto two = [](std::uint64_t s, bool correct) {
+    const double p1 = z_test_run(s, 0, 1), p2 = z_test_run(s ^ 0x5555, 0, 1);
+    const double p = std::min(p1, std::min(p2, 0.5 * (p1 + p2)));  // three dependent tests
+    return correct ? 1 - std::pow(1 - p, 3) : p;
+  };
+  const auto sidak = calibrate("test.sidak", [&](std::uint64_t s) { return two(s, true); }, 2000);
+  EXPECT_TRUE(sidak.valid) << summary(sidak);
+  EXPECT_FALSE(sidak.calibrated) << summary(sidak);
+  const auto raw = calibrate("test.rawmin", [&](std::uint64_t s) { return two(s, false); }, 2000);
+  EXPECT_FALSE(raw.valid) << summary(raw);
+}
+
+// Smirnov's one-sided distribution: n = 1 gives P(D+ ≥ d) = 1 − d; large n approaches exp(−2nd²).
+TEST(Calibration, OneSidedKsKnownValues) {
+  EXPECT_NEAR(ks_one_sided_sf(0.3, 1), 0.7, 1e-12);
+  EXPECT_NEAR(ks_one_sided_sf(0.05, 2000), std::exp(-2 * 2000 * 0.05 * 0.05), 0.2 * std::exp(-2 * 2000 * 0.05 * 0.05));
+  EXPECT_EQ(ks_one_sided_sf(0, 10), 1.0);
+  EXPECT_EQ(ks_one_sided_sf(1, 10), 0.0);
 }
 
 TEST(Calibration, NonFinitePValuesAreABrokenTest) {
