@@ -1,6 +1,7 @@
 // Orthonormal shading frame (tangent, bitangent, normal) and the change of basis to and from it.
 #pragma once
 
+#include "core/math/orthonormal_basis.h"
 #include "core/math/vec.h"
 
 namespace glintlab {
@@ -19,11 +20,7 @@ template <class T>
 GLINTLAB_FN Frame<T> frame_from_normal_tangent(Vec3<T> n, Vec3<T> tangent) {
   const Vec3<T> tp = tangent - dot(tangent, n) * n;
   const T l2 = dot(tp, tp);
-  // Duff et al. 2017, "Building an orthonormal basis, revisited": the fallback tangent.
-  const T s = copysign(T(1), n.z);
-  const T a = T(-1) / (s + n.z);
-  const T bb = n.x * n.y * a;
-  const Vec3<T> fallback{T(1) + s * n.x * n.x * a, s * bb, -s * n.x};
+  const Vec3<T> fallback = basis_from_z(n).x;  // Duff et al. 2017 (core/math/orthonormal_basis.h)
   const Mask<T> ok = l2 > T(1e-20);
   const Vec3<T> t = select(ok, rsqrt(select(ok, l2, T(1))) * tp, fallback);
   return {t, cross(n, t), n};
