@@ -183,8 +183,8 @@ def plot(timed, path, metric, machine, date):
                 [max(float(r[key]), ZERO_FLOOR) for r in group], where="post", color="black",
                 lw=0.5, alpha=0.5, zorder=0)
     ax.axhline(ZERO_FLOOR, color="gray", ls=":", lw=0.8)
-    ax.text(ax.get_xlim()[0] if timed else 1, ZERO_FLOOR * 1.5, " error exactly 0 drawn here",
-            fontsize=7, color="gray")
+    ax.text(0.005, ZERO_FLOOR * 1.6, "error exactly 0 drawn here", fontsize=7, color="gray",
+            transform=ax.get_yaxis_transform())
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("time per evaluation [ns] (1 / items per second, one thread, 4096-row batches)")

@@ -208,8 +208,15 @@ int run(const Options& o) {
   }
   if (jobs.empty()) usage_error("--kernel '" + o.filter + "' matches no kernel");
 
-  if (o.out.has_parent_path()) std::filesystem::create_directories(o.out.parent_path());
-  io::AtomicFile file(o.out);
+  // An unwritable --out is bad input (exit 2), checked before any work.
+  std::optional<io::AtomicFile> opened;
+  try {
+    if (o.out.has_parent_path()) std::filesystem::create_directories(o.out.parent_path());
+    opened.emplace(o.out);
+  } catch (const std::exception& e) {
+    usage_error("--out: cannot write '" + o.out.string() + "': " + e.what());
+  }
+  io::AtomicFile& file = *opened;
   auto& csv = file.stream();
   csv << "method,kernel,isa,math,reference,n,compared,nonfinite_mismatch,max_abs_error,"
          "max_rel_error,rms_rel_error,p99_rel_error\n";

@@ -72,6 +72,10 @@ with tempfile.TemporaryDirectory() as d:
     check(p.stderr.startswith("glintlab: error: --n") and p.stderr.count("\n") == 1,
           f"one-line error naming --n: {p.stderr!r}")
     check(not os.path.exists(bad), "no output on bad input")
+    p = subprocess.run([exe, "--n", "64", "--out", "/proc/glintlab/accuracy.csv"],
+                       capture_output=True, text=True)
+    check(p.returncode == 2 and p.stderr.startswith("glintlab: error: --out"),
+          f"unwritable --out: exit 2 naming --out (got {p.returncode}, {p.stderr!r})")
 
 if failures:
     print(f"{len(failures)} failure(s)")
