@@ -101,7 +101,8 @@ int run(const VerifyOptions& o) {
   const auto selected = select_checks(o.claims);
   if (o.list) {
     for (const auto* c : selected)
-      fmt::print("{:<30} {:<16} {} — {}\n", c->id, verify::to_string(c->expected), c->paper, c->source);
+      fmt::print("{:<30} {:<16} {} — {}{}\n", c->id, verify::to_string(c->expected), c->paper, c->source,
+                 c->expected_full ? fmt::format(" (full budget: {})", verify::to_string(*c->expected_full)) : "");
     return 0;
   }
   const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
@@ -120,7 +121,7 @@ int run(const VerifyOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
     verify::CheckResult r = c->run(budget);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    records.push_back({c, std::move(r), s});
+    records.push_back({c, std::move(r), s, budget});
     progress.step(c->id);
   }
   verify::adjust_for_suite(records);
@@ -141,9 +142,9 @@ int run(const VerifyOptions& o) {
                x.value, x.p_value ? fmt::format("{:.3g}", *x.p_value) : "—",
                x.control_p_value ? fmt::format("{:.3g}", *x.control_p_value) : "—",
                x.control_rejected ? "rejected" : "NOT REJECTED (check is broken)",
-               x.verdict == r.check->expected
+               x.verdict == r.check->expected_for(budget)
                    ? ""
-                   : fmt::format("  [recorded verdict: {}]", verify::to_string(r.check->expected)));
+                   : fmt::format("  [recorded verdict: {}]", verify::to_string(r.check->expected_for(budget))));
   }
   fmt::print("{} claims, budget {}, {} thread(s); results in {}/claims.{{json,csv,md}}\n", records.size(),
              o.budget, threads, o.out);

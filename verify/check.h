@@ -42,6 +42,13 @@ struct Check {
   // returning its raw p-value (uniform on [0, 1] when the test is calibrated). Empty for
   // deterministic checks.
   std::function<double(std::uint64_t seed)> calibration = {};
+  // The verdict recorded for the full budget where it differs from `expected` (the quick one):
+  // a denser grid or 100× the samples can see what the quick budget cannot.
+  std::optional<Verdict> expected_full = {};
+
+  Verdict expected_for(Budget b) const {
+    return b == Budget::kFull && expected_full ? *expected_full : expected;
+  }
 };
 
 // Every registered check, in a stable order.

@@ -45,7 +45,7 @@ void adjust_for_suite(std::vector<RunRecord>& records) {
 }
 
 bool as_expected(const RunRecord& r) {
-  return r.result.verdict == r.check->expected && r.result.control_rejected;
+  return r.result.verdict == r.check->expected_for(r.budget) && r.result.control_rejected;
 }
 
 std::string to_json(const std::vector<RunRecord>& records, const RunInfo& info) {
@@ -56,7 +56,7 @@ std::string to_json(const std::vector<RunRecord>& records, const RunInfo& info) 
                     {"paper", r.check->paper},
                     {"source", r.check->source},
                     {"verdict", to_string(x.verdict)},
-                    {"expected_verdict", to_string(r.check->expected)},
+                    {"expected_verdict", to_string(r.check->expected_for(r.budget))},
                     {"detail", x.detail},
                     {"statistic", x.statistic},
                     {"value", x.value},
@@ -84,7 +84,7 @@ std::string to_csv(const std::vector<RunRecord>& records) {
     const CheckResult& x = r.result;
     csv += fmt::format("{},{},{},{},{},{},{},{:.17g},{},{},{},{},{},{},{},{},{:.3f}\n", r.check->id,
                        csv_field(r.check->paper), csv_field(r.check->source), to_string(x.verdict),
-                       to_string(r.check->expected), csv_field(x.detail), csv_field(x.statistic),
+                       to_string(r.check->expected_for(r.budget)), csv_field(x.detail), csv_field(x.statistic),
                        x.value, num(x.bound), num(x.p_value), num(r.suite_adjusted_p), num(x.control_p_value),
                        x.control_rejected ? 1 : 0, csv_field(x.control), csv_field(x.power),
                        x.configurations, r.seconds);
@@ -100,8 +100,8 @@ std::string to_markdown(const std::vector<RunRecord>& records, const RunInfo& in
   for (const RunRecord& r : records) {
     const CheckResult& x = r.result;
     std::string verdict = fmt::format("**{}**", to_string(x.verdict));
-    if (x.verdict != r.check->expected)
-      verdict += fmt::format(" (recorded: {})", to_string(r.check->expected));
+    if (x.verdict != r.check->expected_for(r.budget))
+      verdict += fmt::format(" (recorded: {})", to_string(r.check->expected_for(r.budget)));
     md += fmt::format("| {} | {} | {} | {} | {} = {:.3g} | {} | {} | {} | {} | {:.1f} s |\n", r.check->id,
                       md_cell(r.check->paper), md_cell(r.check->source), verdict,
                       md_cell(x.statistic), x.value, number_or_dash(x.bound),

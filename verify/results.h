@@ -13,6 +13,7 @@ struct RunRecord {
   const Check* check;
   CheckResult result;
   double seconds;
+  Budget budget = Budget::kQuick;
   // Holm–Šidák adjusted p-value over every statistical check of this run (at kFamilyWiseRate);
   // empty for deterministic checks. See adjust_for_suite.
   std::optional<double> suite_adjusted_p = {};

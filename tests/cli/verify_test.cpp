@@ -36,6 +36,17 @@ TEST_F(VerifyTest, ListShowsRecordedVerdicts) {
   EXPECT_EQ(unexpected_files(work(), {}), std::vector<std::string>{});
 }
 
+TEST_F(VerifyTest, CalibrateWritesItsJsonAndExitsZeroForAValidTest) {
+  const RunResult r = run({"verify", "--calibrate", "eto.unbiased", "--runs", "30", "--out", "o"});
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("false-positive rate at level 0.05"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(read_text(path("o/calibration-eto.unbiased.json")));
+  EXPECT_EQ(j["runs"], 30);
+  EXPECT_EQ(j["p_values"].size(), 30u);
+  EXPECT_TRUE(j["valid"].get<bool>());
+  EXPECT_EQ(unexpected_files(work(), {"o", "o/calibration-eto.unbiased.json"}), std::vector<std::string>{});
+}
+
 TEST_F(VerifyTest, BadInputLeavesNothingBehind) {
   expect_input_error(run({"verify", "--budget", "huge", "--out", "o"}), {"--budget", "quick|full"}, {});
   expect_input_error(run({"verify", "--claims", "nosuch.*", "--out", "o"}), {"--claims", "nosuch.*"}, {});
