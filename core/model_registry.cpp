@@ -11,14 +11,42 @@
 
 namespace glintlab {
 
-const std::vector<ModelEntry>& registered_models() {
-  static const std::vector<ModelEntry> kModels = [] {
+namespace {
+
+// The built-in models followed by those added with register_model.
+std::vector<ModelEntry>& model_list() {
+  static std::vector<ModelEntry> kModels = [] {
     std::vector<ModelEntry> m;
+    m.reserve(kMaxModels);  // register_model never reallocates: references stay valid
     m.push_back(make_model_entry<SmoothGGX>());
     m.push_back(make_model_entry<SmoothBeckmann>());
     return m;
   }();
   return kModels;
+}
+
+}  // namespace
+
+const std::vector<ModelEntry>& registered_models() { return model_list(); }
+
+void register_model(ModelEntry entry) {
+  if (entry.name.empty()) throw ModelParamError("register_model: the model has no name");
+  if (!entry.eval || !entry.pdf || !entry.sample) {
+    throw ModelParamError(
+        fmt::format("register_model: model {} lacks eval, pdf or sample", entry.name));
+  }
+  std::vector<ModelEntry>& list = model_list();
+  for (const ModelEntry& e : list) {
+    if (e.name == entry.name) {
+      throw ModelParamError(
+          fmt::format("register_model: a model named {} is already registered", entry.name));
+    }
+  }
+  if (list.size() >= kMaxModels) {
+    throw ModelParamError(
+        fmt::format("register_model: at most {} models can be registered", kMaxModels));
+  }
+  list.push_back(std::move(entry));
 }
 
 const ModelEntry& find_model(std::string_view name) {

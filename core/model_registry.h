@@ -35,12 +35,30 @@ struct ModelEntry {
   std::function<ModelSample<double>(const std::vector<double>& values, const ModelQuery<double>&,
                                     Vec2<double> u)>
       sample;
+  // The same three through the model's float instantiation (inputs rounded to float, results
+  // widened back), for the stability sweeps; empty where the model offers no float instantiation
+  // (its eval/pdf/sample do not accept T = float, or it declares kDoubleOnly = true).
+  std::function<ErasedEval(const std::vector<double>& values, const ModelQuery<double>&)>
+      eval_float;
+  std::function<double(const std::vector<double>& values, const ModelQuery<double>&)> pdf_float;
+  std::function<ModelSample<double>(const std::vector<double>& values, const ModelQuery<double>&,
+                                    Vec2<double> u)>
+      sample_float;
 };
 
 // Every registered model, in registration order.
 const std::vector<ModelEntry>& registered_models();
 // The entry named `name`; throws ModelParamError listing the valid names otherwise.
 const ModelEntry& find_model(std::string_view name);
+// Adds a model at run time (a plug-in, a test's example model) after the built-in ones; every
+// consumer of registered_models() (CLI, claims, figures, sweeps, benchmarks) then sees it. Call it
+// before any concurrent use of the registry (start-up, a test's set-up): it is not thread-safe.
+// The entry's string views must outlive the registry (static strings, as make_model_entry gives).
+// Throws ModelParamError for an empty or already registered name, or an entry without
+// eval/pdf/sample. References to registered entries stay valid (storage is reserved up front for
+// kMaxModels entries; registering more throws).
+inline constexpr std::size_t kMaxModels = 256;
+void register_model(ModelEntry entry);
 
 // The parameter values for `assignments` (name, text) over the defaults; throws ModelParamError
 // for an unknown name, a repeated one, a value that does not parse, or one out of range.
@@ -52,6 +70,35 @@ std::string describe_range(const ParamSpec& p);
 std::string format_param_value(const ParamSpec& p, double value);
 // "needs: footprint, point light" or "needs: directions only".
 std::string describe_needs(unsigned needs);
+
+namespace detail {
+// A float query from a double one (the sweeps' float path).
+inline ModelQuery<float> to_float(const ModelQuery<double>& q) {
+  auto v2 = [](Vec2<double> v) { return Vec2<float>{float(v.x), float(v.y)}; };
+  auto v3 = [](Vec3<double> v) { return Vec3<float>{float(v.x), float(v.y), float(v.z)}; };
+  return {{v2(q.footprint.uv), v2(q.footprint.duv_dx), v2(q.footprint.duv_dy)},
+          v3(q.wi),
+          v3(q.wo),
+          {float(q.light.cos_half_angle), float(q.light.intensity)}};
+}
+
+template <class M>
+concept DoubleOnly = requires {
+  requires M::kDoubleOnly;
+};
+
+// Whether M's kernels are declared for T = float (and M does not opt out with kDoubleOnly).
+template <class M>
+concept HasFloatInstantiation = !DoubleOnly<M> && requires(std::span<const double> v) {
+  {
+    M::template eval<float>(M::template params<float>(v), ModelQuery<float>{})
+    } -> std::same_as<ModelEval<float, M::kIntermediates.size()>>;
+  {M::template pdf<float>(M::template params<float>(v), ModelQuery<float>{})};
+  {
+    M::template sample<float>(M::template params<float>(v), ModelQuery<float>{}, Vec2<float>{})
+    } -> std::same_as<ModelSample<float>>;
+};
+}  // namespace detail
 
 // Builds the entry of a static model (used by the registration lines in model_registry.cpp).
 template <Model M>
@@ -73,6 +120,23 @@ ModelEntry make_model_entry() {
   e.sample = [](const std::vector<double>& v, const ModelQuery<double>& q, Vec2<double> u) {
     return M::template sample<double>(M::template params<double>(v), q, u);
   };
+  if constexpr (detail::HasFloatInstantiation<M>) {
+    e.eval_float = [](const std::vector<double>& v, const ModelQuery<double>& q) {
+      const auto r = M::template eval<float>(M::template params<float>(v), detail::to_float(q));
+      ErasedEval out{r.value, r.pdf, {}};
+      for (float x : r.intermediates) out.intermediates.push_back(x);
+      return out;
+    };
+    e.pdf_float = [](const std::vector<double>& v, const ModelQuery<double>& q) {
+      return double(M::template pdf<float>(M::template params<float>(v), detail::to_float(q)));
+    };
+    e.sample_float = [](const std::vector<double>& v, const ModelQuery<double>& q, Vec2<double> u) {
+      const auto s = M::template sample<float>(M::template params<float>(v), detail::to_float(q),
+                                               Vec2<float>{float(u.x), float(u.y)});
+      return ModelSample<double>{
+          {s.wo.x, s.wo.y, s.wo.z}, s.pdf, s.weight, static_cast<bool>(s.rejected)};
+    };
+  }
   return e;
 }
 

@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "experiments/figures/eto_tokuyoshi2023.h"
+#include "experiments/figures/models_hemisphere.h"
 
 namespace glintlab::experiments {
 
@@ -14,6 +15,7 @@ const std::vector<FigureEntry>& registered_figures() {
   static const std::vector<FigureEntry> kFigures = {
       eto2023_fig4_entry(),
       eto2023_rmse_spp_entry(),
+      models_hemisphere_entry(),
   };
   return kFigures;
 }

@@ -1,0 +1,71 @@
+// `glintlab sweep`: the quick sweep's files and stability.json, identical output for any
+// --threads, and the bad-input errors (one line, exit 2, no output left behind).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "cli/cli_test_util.h"
+
+namespace glintlab::cli_test {
+namespace {
+
+namespace fs = std::filesystem;
+using SweepTest = CliTest;
+
+TEST_F(SweepTest, QuickSweepWritesMapsAndIndex) {
+  const RunResult r =
+      run({"sweep", "--quick", "--models", "smooth_beckmann", "--out", "s", "--threads", "2"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("2 model×sampler targets"), std::string::npos) << r.out;
+  EXPECT_TRUE(r.err.empty()) << r.err;  // progress only on a terminal
+  const auto doc = nlohmann::json::parse(read_text(path("s/stability.json")));
+  EXPECT_EQ(doc["budget"], "quick");
+  EXPECT_TRUE(doc["machine"].is_string());
+  ASSERT_EQ(doc["models"].size(), 2u);
+  for (const auto& m : doc["models"]) {
+    EXPECT_EQ(m["model"], "smooth_beckmann");
+    EXPECT_TRUE(m["failure_region"].is_string());
+    EXPECT_EQ(m["maps"].size(), 2u * 5u);  // alpha, anisotropy × nan, inf, negative, gain, var
+    for (const auto& map : m["maps"]) {
+      for (const char* k : {"quantity", "png", "exr", "csv"}) EXPECT_TRUE(map.contains(k));
+      EXPECT_TRUE(fs::exists(path("s") / map["png"].get<std::string>()));
+    }
+  }
+  EXPECT_EQ(doc["models"][1]["sampler"], "vndf");
+  // Nothing but the model folder and the index (no staging folder left).
+  EXPECT_EQ(std::distance(fs::directory_iterator(path("s")), fs::directory_iterator()), 2);
+}
+
+TEST_F(SweepTest, OutputDoesNotDependOnThreads) {
+  ASSERT_EQ(
+      run({"sweep", "--quick", "--models", "smooth_ggx", "--out", "a", "--threads", "1"}).exit_code,
+      0);
+  ASSERT_EQ(
+      run({"sweep", "--quick", "--models", "smooth_ggx", "--out", "b", "--threads", "2"}).exit_code,
+      0);
+  EXPECT_EQ(read_text(path("a/stability.json")), read_text(path("b/stability.json")));
+  for (const char* f : {"smooth_ggx/ndf/alpha.csv", "smooth_ggx/bounded_caps/anisotropy.csv"})
+    EXPECT_EQ(read_text(path("a") / f), read_text(path("b") / f)) << f;
+}
+
+TEST_F(SweepTest, HelpDocumentsTheOutputs) {
+  const RunResult r = run({"sweep", "--help"});
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* n : {"--out", "--quick", "--models", "--threads", "stability.json", "89.999",
+                        "p_*", "Var(w)/E(w)^2", "float"})
+    EXPECT_NE(r.out.find(n), std::string::npos) << "help lacks " << n;
+}
+
+TEST_F(SweepTest, BadInputIsOneLine) {
+  expect_input_error(run({"sweep", "--quick", "--models", "nope*", "--out", "s"}),
+                     {"--models", "nope*", "smooth_ggx"}, {});
+  expect_input_error(run({"sweep", "--quick", "--threads", "-1", "--out", "s"}),
+                     {"--threads", "[0, 1024]"}, {});
+  write_text(path("file"), "x");
+  expect_input_error(run({"sweep", "--quick", "--models", "smooth_ggx", "--out", "file"}),
+                     {"--out", "file"}, {"file"});
+}
+
+}  // namespace
+}  // namespace glintlab::cli_test

@@ -1,0 +1,176 @@
+// The stability sweep engine (verify/stability/): targets and planes from the registry, the
+// negative control found, defects of each kind detected and placed, and thread-independent maps.
+#include "verify/stability/sweep.h"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <limits>
+
+#include "verify/stability/failure_region.h"
+#include "verify/stability/nan_control.h"
+
+namespace glintlab::verify::stability {
+namespace {
+
+// A copy of smooth_ggx whose results are altered by `f(values, query, eval)` (eval) and
+// `g(values, query, sample)` (sample): the deliberately broken models of these tests.
+template <class F, class G>
+ModelEntry altered(std::string_view name, F f, G g, bool keep_float = false) {
+  ModelEntry e = find_model("smooth_ggx");
+  e.name = name;
+  auto inner = e.eval;
+  e.eval = [inner, f](const std::vector<double>& v, const ModelQuery<double>& q) {
+    ErasedEval r = inner(v, q);
+    f(v, q, r);
+    return r;
+  };
+  auto inner_s = e.sample;
+  e.sample = [inner_s, g](const std::vector<double>& v, const ModelQuery<double>& q,
+                          Vec2<double> u) {
+    ModelSample<double> s = inner_s(v, q, u);
+    g(v, q, s);
+    return s;
+  };
+  if (!keep_float) e.eval_float = {}, e.pdf_float = {}, e.sample_float = {};
+  return e;
+}
+
+auto no_change = [](const std::vector<double>&, const ModelQuery<double>&, auto&) {};
+
+SweepTarget target_of(const ModelEntry& m) { return {&m, std::nullopt, 0, "default"}; }
+
+TEST(StabilitySweep, TargetsEveryRegisteredSamplerChoice) {
+  const auto t = sweep_targets("smooth_*");
+  // smooth_ggx: ndf, vndf, spherical_caps, bounded_caps; smooth_beckmann: ndf, vndf.
+  ASSERT_EQ(t.size(), 6u);
+  EXPECT_EQ(t[0].id(), "smooth_ggx/ndf");
+  EXPECT_EQ(t[5].id(), "smooth_beckmann/vndf");
+  EXPECT_TRUE(sweep_targets("nothing*").empty());
+  EXPECT_EQ(sweep_targets("smooth_beckmann,smooth_ggx").size(), 6u);
+}
+
+TEST(StabilitySweep, PlanesFollowTheParameterSpecs) {
+  const auto planes = sweep_planes(find_model("smooth_ggx"), true);
+  ASSERT_EQ(planes.size(), 2u);  // alpha and anisotropy: no density, footprint or light
+  EXPECT_EQ(planes[0].name, "alpha");
+  EXPECT_DOUBLE_EQ(planes[0].rows.front(), 1e-4);
+  EXPECT_DOUBLE_EQ(planes[0].rows.back(), 4.0);
+  EXPECT_DOUBLE_EQ(planes[0].theta_deg[7], 89.999);
+  EXPECT_GT(planes[0].theta_deg.back(), 90);  // back-facing incidence swept
+  EXPECT_DOUBLE_EQ(planes[1].rows.back(), 1000.0);
+  // A range narrower than 1e-4 … 4 clamps the α axis.
+  ParamSpec p{"alpha_x", 0.5, 0.01, 1.0, false, true, ""};
+  EXPECT_DOUBLE_EQ(clamp_to_range(p, 1e-4), 0.01);
+  EXPECT_LT(clamp_to_range(p, 4.0), 1.0);
+}
+
+TEST(StabilitySweep, TheNanControlIsFoundWhereItIsBroken) {
+  const ModelSweep s = sweep_model(target_of(nan_control_model()), Budget::kQuick);
+  EXPECT_EQ(stability_verdict(s), Verdict::kFails);
+  const std::string region = describe_failure_region(s);
+  // NaN exactly on the α rows below 0.02 (0.0069 is the last quick row below it), every θi.
+  EXPECT_NE(region.find("NaN in value for α ≤ 0.00693 at every θi"), std::string::npos) << region;
+  EXPECT_EQ(region.find("anisotropy sweep"), std::string::npos) << region;  // αx ≥ 0.1 there
+}
+
+TEST(StabilitySweep, SmoothModelsAreClean) {
+  for (const SweepTarget& t : sweep_targets("smooth_ggx")) {
+    if (t.sampler != "vndf") continue;
+    const ModelSweep s = sweep_model(t, Budget::kQuick);
+    EXPECT_TRUE(s.has_float);
+    EXPECT_FALSE(s.has_probability);
+    EXPECT_EQ(stability_verdict(s), Verdict::kHolds) << describe_failure_region(s);
+    EXPECT_EQ(describe_failure_region(s).rfind("none found", 0), 0u);
+  }
+}
+
+TEST(StabilitySweep, BackFacingDefectsHoldInRegime) {
+  const ModelEntry m = altered(
+      "negative_backfacing",
+      [](const std::vector<double>&, const ModelQuery<double>& q, ErasedEval& r) {
+        if (q.wi.z < 0) r.value = -1;
+      },
+      no_change);
+  const ModelSweep s = sweep_model(target_of(m), Budget::kQuick);
+  EXPECT_EQ(stability_verdict(s), Verdict::kHoldsInRegime);
+  const std::string region = describe_failure_region(s);
+  EXPECT_NE(region.find("negative in value for every α at θi ≥ 90"), std::string::npos) << region;
+}
+
+TEST(StabilitySweep, InfNegativeSamplesAndGrazingInfAreDetected) {
+  const ModelEntry m = altered(
+      "inf_grazing",
+      [](const std::vector<double>&, const ModelQuery<double>& q, ErasedEval& r) {
+        if (q.wi.z > 0 && q.wi.z < 1e-3) r.pdf = std::numeric_limits<double>::infinity();
+      },
+      [](const std::vector<double>& v, const ModelQuery<double>&, ModelSample<double>& s) {
+        if (v[0] > 1) s.weight = -s.weight - 1;  // a negative weight for α > 1
+      });
+  const ModelSweep s = sweep_model(target_of(m), Budget::kQuick);
+  EXPECT_EQ(stability_verdict(s), Verdict::kFails);  // α > 1 at θi ≤ 89° is the core domain
+  const std::string region = describe_failure_region(s);
+  EXPECT_NE(region.find("Inf in pdf for every α at θi in [89.99°, 89.999°]"), std::string::npos)
+      << region;
+  EXPECT_NE(region.find("negative in sample for α ≥ 1.39"), std::string::npos) << region;
+}
+
+TEST(StabilitySweep, EnergyGainAndProbabilityAboveOneAreDetected) {
+  ModelEntry m = altered(
+      "gain_and_p",
+      [](const std::vector<double>& v, const ModelQuery<double>&, ErasedEval& r) {
+        r.value *= 3;
+        r.intermediates[0] = v[0] < 0.01 ? 1.5 : 0.5;  // "p_h_x": a probability > 1 for α < 0.01
+      },
+      [](const std::vector<double>&, const ModelQuery<double>&, ModelSample<double>& s) {
+        s.weight *= 3;
+      });
+  m.intermediates[0] = "p_h_x";
+  EXPECT_TRUE(is_probability_name("p"));
+  EXPECT_TRUE(is_probability_name("p_clamped"));
+  EXPECT_FALSE(is_probability_name("pdf"));
+  const ModelSweep s = sweep_model(target_of(m), Budget::kQuick);
+  EXPECT_TRUE(s.has_probability);
+  EXPECT_EQ(stability_verdict(s), Verdict::kHolds);  // neither is a NaN/Inf/negative defect
+  const std::string region = describe_failure_region(s);
+  EXPECT_NE(region.find("energy gain > 1 for"), std::string::npos) << region;
+  EXPECT_NE(region.find("p > 1 for α ≤ 0.00693 at every θi"), std::string::npos) << region;
+}
+
+TEST(StabilitySweep, FloatOnlyDefectsHoldInRegime) {
+  ModelEntry m = find_model("smooth_ggx");
+  m.name = "float_nan";
+  auto inner = m.eval_float;
+  ASSERT_TRUE(inner);
+  m.eval_float = [inner](const std::vector<double>& v, const ModelQuery<double>& q) {
+    ErasedEval r = inner(v, q);
+    r.value = std::numeric_limits<double>::quiet_NaN();
+    return r;
+  };
+  const ModelSweep s = sweep_model({&m, 2, 1, "vndf"}, Budget::kQuick);
+  EXPECT_EQ(stability_verdict(s), Verdict::kHoldsInRegime);
+  EXPECT_NE(describe_failure_region(s).find("NaN in value (float only)"), std::string::npos);
+}
+
+TEST(StabilitySweep, MapsDoNotDependOnTheThreadCount) {
+  const SweepTarget t = sweep_targets("smooth_ggx")[0];  // ndf: heavy-tailed weights
+  auto sweep_with = [&](std::size_t threads) {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, threads);
+    return sweep_model(t, Budget::kQuick);
+  };
+  const ModelSweep a = sweep_with(1), b = sweep_with(2);
+  ASSERT_EQ(a.maps.size(), b.maps.size());
+  for (std::size_t k = 0; k < a.maps.size(); ++k)
+    for (std::size_t i = 0; i < a.maps[k].cells.size(); ++i) {
+      const CellStats &x = a.maps[k].cells[i], &y = b.maps[k].cells[i];
+      EXPECT_EQ(x.albedo, y.albedo);
+      EXPECT_EQ(x.relative_variance, y.relative_variance);
+      EXPECT_EQ(x.albedo_uniform, y.albedo_uniform);
+      EXPECT_EQ(x.accepted, y.accepted);
+    }
+  EXPECT_EQ(describe_failure_region(a), describe_failure_region(b));
+}
+
+}  // namespace
+}  // namespace glintlab::verify::stability

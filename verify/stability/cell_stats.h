@@ -1,0 +1,83 @@
+// One cell of a stability map (claim all.stability): a model evaluated and sampled at one
+// parameter setting and one incidence, and what went wrong there — NaN, Inf and negative values
+// of eval's value and pdf and of sample()'s record (double and float instantiations), the white
+// furnace albedo and its error, probabilities above one, and the relative variance of the weight.
+//
+// Conventions. Probability intermediate: an entry of kIntermediates named `p` or starting with
+// `p_` (p_clamped, p_glint, ...) is a probability; a value above 1 there is counted. Energy gain:
+// the directional albedo ρ(ωi) = ∫ f cos dωo (the white furnace with F = 1) estimated as the mean
+// sample weight (rejected samples count 0) and, independently, as 4π × the mean value at uniform
+// directions; a gain is significant where an estimate exceeds 1 by more than kGainSigmas standard
+// errors plus kGainRounding. Variance blow-up: Var(w)/E(w)² of the weight above kVarianceBlowup
+// (then an estimate to 10 % needs more than 100 × kVarianceBlowup samples).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string_view>
+#include <vector>
+
+#include "verify/stability/sweep_plan.h"
+
+namespace glintlab::verify::stability {
+
+inline constexpr double kGainSigmas = 4;
+inline constexpr double kGainRounding = 1e-9;
+inline constexpr double kVarianceBlowup = 100;
+
+// True for an intermediate name that is a probability (see above).
+bool is_probability_name(std::string_view name);
+
+struct Defects {
+  std::uint64_t nan = 0, inf = 0, negative = 0;
+  void add(double x) {
+    if (x != x)
+      ++nan;
+    else if (x == std::numeric_limits<double>::infinity() ||
+             x == -std::numeric_limits<double>::infinity())
+      ++inf;
+    else if (x < 0)
+      ++negative;
+  }
+  // One record of several numbers: counts once per kind present among them.
+  void add_record(std::initializer_list<double> xs, std::initializer_list<double> signed_free);
+  bool any() const { return nan + inf + negative > 0; }
+};
+
+struct CellStats {
+  std::uint64_t evals = 0;           // eval calls (uniform directions, special ones, sampled ones)
+  std::uint64_t samples = 0;         // sample() calls
+  Defects value, pdf, sample;        // double: eval value; eval pdf and pdf(); sample record
+  Defects value_f, pdf_f, sample_f;  // the float instantiation (zero counts where absent)
+  std::uint64_t evals_f = 0, samples_f = 0;
+  std::uint64_t pdf_calls = 0, pdf_calls_f = 0;  // eval's pdf plus pdf() at sampled directions
+  std::uint64_t p_evals = 0, p_above_one = 0;    // probability intermediates checked / above 1
+  double p_max = 0;                              // largest probability seen (finite ones)
+  std::uint64_t accepted = 0;                    // samples not rejected
+  double albedo = 0, albedo_error = 0;           // mean weight and its standard error
+  double albedo_uniform = 0, albedo_uniform_error = 0;  // 4π mean value at uniform directions
+  double relative_variance = 0;  // Var(w)/E(w)² over the samples (0 where E(w) = 0)
+  double weight_max = 0;
+
+  double gain() const;  // largest significant albedo − 1 of the two estimates, else 0
+  bool energy_gain() const { return gain() > 0; }
+  bool variance_blowup() const { return relative_variance > kVarianceBlowup; }
+  bool double_defect() const { return value.any() || pdf.any() || sample.any(); }
+  bool float_defect() const { return value_f.any() || pdf_f.any() || sample_f.any(); }
+};
+
+struct CellBudget {
+  std::uint64_t uniform_evals;  // eval at uniformly distributed ωo on the sphere
+  std::uint64_t samples;        // sample(), then eval and pdf() at each sampled ωo
+};
+
+// The incidence at polar angle θ (degrees) and a generic azimuth (0.7 rad, off the anisotropy
+// axes).
+Vec3<double> incidence_at(double theta_deg);
+
+// Measures one cell. `values` are the model's parameters; the query's footprint and light follow
+// the plane's axis and `row`. Deterministic: every random number is counter_uniform(seed, i, d).
+CellStats measure_cell(const SweepTarget& target, const SweepPlane& plane, double row,
+                       double theta_deg, const CellBudget& budget, std::uint64_t seed);
+
+}  // namespace glintlab::verify::stability

@@ -1,0 +1,43 @@
+// The stability sweep of one model × sampler (claim all.stability): every plane of sweep_plan.h
+// measured cell by cell (cell_stats.h) into maps, with the failure region derived from them.
+// Cells run in parallel (TBB), each with the seed check_seed("all.stability/<model>/<sampler>/
+// <plane>", cell index) and a serial loop over its samples, so the maps are bit-identical for any
+// thread count.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "verify/check.h"
+#include "verify/stability/cell_stats.h"
+#include "verify/stability/sweep_plan.h"
+
+namespace glintlab::verify::stability {
+
+struct SweepMap {
+  SweepPlane plane;
+  std::vector<CellStats> cells;  // row-major: cells[row * plane.theta_deg.size() + column]
+  const CellStats& at(std::size_t row, std::size_t col) const {
+    return cells[row * plane.theta_deg.size() + col];
+  }
+};
+
+struct ModelSweep {
+  SweepTarget target;
+  bool has_float = false;        // the float instantiation was swept too
+  bool has_probability = false;  // the model exposes a probability intermediate
+  std::vector<SweepMap> maps;
+  double seconds = 0;  // wall time (progress and reports only; never asserted)
+};
+
+// Per-cell sample counts of a budget: quick = 64 uniform evaluations + 64 samples, full = 1024 +
+// 1024 (and finer planes, sweep_planes(quick = false)).
+CellBudget cell_budget(Budget b);
+
+// Sweeps one target. `progress(done, total)` is called after each finished plane (one thread).
+ModelSweep sweep_model(const SweepTarget& target, Budget b,
+                       const std::function<void(long, long)>& progress = {});
+
+}  // namespace glintlab::verify::stability
