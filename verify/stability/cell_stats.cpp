@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "core/math/rng.h"
+#include "verify/claims/gof_family.h"
 
 namespace glintlab::verify::stability {
 namespace {
@@ -56,10 +57,7 @@ double CellStats::gain() const {
   return g;
 }
 
-V3 incidence_at(double theta_deg) {
-  const double t = theta_deg * std::numbers::pi / 180, p = 0.7;
-  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
-}
+V3 incidence_at(double theta_deg) { return incidence(theta_deg); }
 
 CellStats measure_cell(const SweepTarget& target, const SweepPlane& plane, double row,
                        double theta_deg, const CellBudget& budget, std::uint64_t seed) {

@@ -71,8 +71,8 @@ struct CellBudget {
   std::uint64_t samples;        // sample(), then eval and pdf() at each sampled ωo
 };
 
-// The incidence at polar angle θ (degrees) and a generic azimuth (0.7 rad, off the anisotropy
-// axes).
+// The incidence at polar angle θ (degrees) and a generic azimuth off the anisotropy axes: the
+// incidence() of verify/claims/gof_family.h, shared with the chi-square claims.
 Vec3<double> incidence_at(double theta_deg);
 
 // Measures one cell. `values` are the model's parameters; the query's footprint and light follow
