@@ -475,10 +475,10 @@ void ReportRun::run() {
 constexpr const char* kFooter =
     R"(DIR (default out/report) gets index.html (static, no script, relative links only) and its
 Markdown twin report.md, and beside them every input: verify/ (claims.json, .csv, .md),
-figures/<id>/ (EXR, PNG, CSV of each figure), bench/ (bench.json, accuracy.csv,
-speed_accuracy.csv, speed_accuracy.png), stability/ (stability.json and its maps), plots/ (the
-charts drawn by reports/make_report.py), logs/ and run.json (machine, budget, date and status of
-each part). The report is staged in a hidden folder beside DIR and replaces DIR only when it is
+figures/<id>/ (EXR, PNG, CSV of each figure), bench/ (bench.json, accuracy.csv), stability/
+(stability.json and its maps), plots/ (the charts drawn by reports/make_report.py: convergence
+log-log plots, speed_accuracy.png and speed_accuracy.csv), logs/ and run.json (machine, budget,
+date and status of each part). The report is staged in a hidden folder beside DIR and replaces DIR only when it is
 complete: a bad option, a failed part or a malformed cached file leaves DIR as it was.)";
 
 }  // namespace
