@@ -397,7 +397,8 @@ void ReportRun::run() {
     if (skipped) {
       part["status"] = "skipped";
       part["note"] = "left out with --skip";
-    } else if (o_.reuse && fs::is_regular_file(cached / kPartIndex[i])) {
+    } else if (o_.reuse && fs::is_regular_file(cached / kPartIndex[i]) &&
+               !(name == "claims" && !o_.claims_from.empty())) {
       fs::copy(cached, stage_ / kPartDirs[i], fs::copy_options::recursive);
       // Where, when and at which budget the cached part was made, from the cached run.json.
       if (previous.contains("parts") && previous["parts"].contains(name) &&

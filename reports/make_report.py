@@ -53,7 +53,7 @@ class ReportError(Exception):
 
 
 def rel(path, root):
-    return os.path.relpath(path, root).replace(os.sep, "/")
+    return os.path.relpath(os.path.realpath(path), os.path.realpath(root)).replace(os.sep, "/")
 
 
 def url(relpath):
@@ -223,15 +223,17 @@ def load_bench(root):
 
 
 def stability_file(root, relpath, what):
-    """A map file named by stability.json: relative to stability/, inside it, present."""
+    """A map file named by stability.json: relative to stability/ (or to the report folder, or an
+    absolute path), and in either case an existing file inside stability/."""
     if not isinstance(relpath, str) or not relpath:
         raise ReportError(f"stability/stability.json is malformed: {what} is not a file name")
     base = os.path.realpath(os.path.join(root, "stability"))
-    p = os.path.realpath(os.path.join(base, relpath))
-    if os.path.commonpath([base, p]) != base or not os.path.isfile(p):
-        raise ReportError(f"stability/stability.json names {what} '{relpath}', which is not a "
-                          "file in stability/")
-    return p
+    for p in (os.path.join(base, relpath), os.path.join(root, relpath)):
+        p = os.path.realpath(p)
+        if os.path.commonpath([base, p]) == base and os.path.isfile(p):
+            return p
+    raise ReportError(f"stability/stability.json names {what} '{relpath}', which is not a file "
+                      "in stability/")
 
 
 def load_stability(root):
@@ -391,8 +393,10 @@ class Doc:
         self.html.append("\n".join(h))
         self.md.append("\n".join(m) + "\n")
 
-    def image(self, href, alt, caption):
-        self.html.append(f'<figure><a href="{esc(url(href))}"><img src="{esc(url(href))}" '
+    def image(self, href, alt, caption, preview=False):
+        """preview: a small rendered image, drawn enlarged with visible pixels."""
+        cls = ' class="preview"' if preview else ""
+        self.html.append(f'<figure><a href="{esc(url(href))}"><img{cls} src="{esc(url(href))}" '
                          f'alt="{esc(alt)}"></a><figcaption>{esc(caption)}</figcaption></figure>')
         self.md.append(f"![{md_cell(alt)}]({url(href)})\n\n*{caption}*\n")
 
@@ -476,7 +480,8 @@ def write_figures(doc, figures, part, root, plots_tmp, plots_rel, made):
         base = f"figures/{fid}"
         for n in f["files"]:
             if n.endswith(".png"):
-                doc.image(f"{base}/{n}", f"{fid} {n}", f"{fid}: {n} (preview of the EXR data)")
+                doc.image(f"{base}/{n}", f"{fid} {n}", f"{fid}: {n} (preview of the EXR data)",
+                          preview=True)
         doc.links("EXR", [(n, f"{base}/{n}") for n in f["files"] if n.endswith(".exr")])
         doc.links("CSV", [(n, f"{base}/{n}") for n in f["files"] if n.endswith(".csv")])
         doc.links("Other files", [(n, f"{base}/{n}") for n in f["files"]
@@ -545,7 +550,7 @@ def write_stability(doc, st, part, root):
         doc.para("Failure region: " + (m.get("failure_region") or "none found in the sweep"))
         for mp in m["maps"]:
             doc.image(rel(mp["png_path"], root), f"{title} {mp['quantity']}",
-                      f"{title}: {mp['quantity']}")
+                      f"{title}: {mp['quantity']}", preview=True)
             doc.links(mp["quantity"], [("EXR", rel(mp["exr_path"], root)),
                                        ("CSV", rel(mp["csv_path"], root))])
 
@@ -554,7 +559,8 @@ CSS = """body{font-family:sans-serif;max-width:1200px;margin:1em auto;padding:0 
 table{border-collapse:collapse;font-size:12px;margin:0.5em 0}
 td,th{border:1px solid #ccc;padding:3px 6px;vertical-align:top;text-align:left}
 th{background:#eee}img{max-width:100%;border:1px solid #ddd}figure{margin:0.8em 0}
-figcaption{font-size:12px;color:#555}pre{background:#f6f6f6;padding:0.5em;overflow:auto}
+figcaption{font-size:12px;color:#555}
+img.preview{min-width:360px;image-rendering:pixelated}pre{background:#f6f6f6;padding:0.5em;overflow:auto}
 tr.v-holds td:nth-child(4),tr.v-holds-within td:nth-child(4){background:#d9f2d9}
 tr.v-holds-in-regime td:nth-child(4){background:#eef6cc}
 tr.v-fails td:nth-child(4){background:#f6d0d0}tr.v-inconclusive td:nth-child(4){background:#eee}"""
