@@ -355,6 +355,13 @@ void ReportRun::run() {
   out_ = fs::path(o_.out);
   if (out_.filename().empty()) out_ = out_.parent_path();
   std::error_code ec;
+  // The report replaces DIR by a rename, so DIR must be a named folder below its parent.
+  const fs::path full = fs::absolute(out_, ec).lexically_normal();
+  const std::string leaf = full.filename().string();
+  if (ec || leaf.empty() || leaf == "." || leaf == "..")
+    throw InputError(fmt::format(
+        "--out: '{}' does not name a folder the report can replace (give e.g. out/report)",
+        o_.out));
   if (fs::exists(out_, ec) && !fs::is_directory(out_, ec))
     throw InputError(fmt::format("--out: '{}' exists and is not a folder", o_.out));
   const fs::path parent = out_.has_parent_path() ? out_.parent_path() : fs::path(".");

@@ -46,6 +46,11 @@ TEST_F(ReportTest, OutBelowAFileIsAnError) {
                      {"--out", "afile", "cannot create"}, {"afile"});
 }
 
+TEST_F(ReportTest, OutThatIsTheWorkingFolderIsAnError) {
+  expect_input_error(run(with({"report", "--out", "."}, kNoParts)), {"--out", "'.'"}, {});
+  expect_input_error(run(with({"report", "--out", "/"}, kNoParts)), {"--out", "'/'"}, {});
+}
+
 TEST_F(ReportTest, BadOptionsAreErrors) {
   expect_input_error(run({"report", "--out", "r", "--budget", "huge"}),
                      {"--budget", "huge", "quick|full"}, {});
