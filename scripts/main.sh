@@ -23,5 +23,6 @@ for a in "$@"; do
 done
 ./build/release/cli/glintlab report --out "$out/report" --budget "$budget" \
   --claims-from "$out/verify"
-echo "main: report in $out/report/index.html (Markdown twin: $out/report/report.md)"
+echo "main: Markdown twin of the report in $out/report/report.md"
+echo "main: report in $out/report/index.html"
 exit "$verify_rc"
