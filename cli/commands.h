@@ -21,5 +21,6 @@ void add_verify_command(CLI::App& app);  // cli/verify.cpp
 void add_figure_command(CLI::App& app);  // cli/figure.cpp
 void add_models_command(CLI::App& app);  // cli/models.cpp
 void add_sweep_command(CLI::App& app);   // cli/sweep.cpp
+void add_report_command(CLI::App& app);  // cli/report.cpp
 
 }  // namespace glintlab::cli

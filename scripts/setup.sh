@@ -9,6 +9,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev libxsimd-dev libbenchmark-dev libtbb-dev
   python3 python3-matplotlib
   libpng-dev openexr
+  chromium
 )
 
 missing=()

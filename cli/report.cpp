@@ -1,0 +1,526 @@
+// `glintlab report`: runs (or, with --reuse, reads the cached results of) the claim suite, every
+// registered figure, the benchmarks and the stability sweeps, then has reports/make_report.py draw
+// the plots and write DIR/index.html and its Markdown twin DIR/report.md (issue 10 items 1, 5).
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <fnmatch.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli/commands.h"
+#include "cli/progress.h"
+#include "core/io/atomic_file.h"
+#include "experiments/figures/figure_registry.h"
+
+extern char** environ;
+
+namespace glintlab::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct ReportOptions {
+  std::string out = "out/report";
+  std::string budget = "quick";
+  bool reuse = false;
+  std::string claims = "*";
+  std::string figures = "*";
+  std::string claims_from;  // a `glintlab verify --out` folder to read instead of running it
+  std::vector<std::string> skip;
+  int threads = 0;
+};
+
+// The parts of a report, in the order they run; each has its own subfolder of DIR.
+constexpr const char* kParts[] = {"claims", "figures", "bench", "stability"};
+constexpr const char* kPartDirs[] = {"verify", "figures", "bench", "stability"};
+// The file whose presence (and validity, checked by make_report.py) makes a cached part reusable.
+constexpr const char* kPartIndex[] = {"claims.json", "figures.json", "bench.json",
+                                      "stability.json"};
+constexpr int kNumParts = 4;
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) {
+        auto s = line.substr(colon + 1);
+        s.erase(0, s.find_first_not_of(' '));
+        return s;
+      }
+    }
+  }
+  return "unknown CPU";
+}
+
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", &tm);
+  return buf;
+}
+
+json machine_json(int threads) {
+  return {{"cpu_model", cpu_model()},
+          {"cores", std::thread::hardware_concurrency()},
+          {"threads", threads}};
+}
+
+fs::path self_exe() {
+  std::error_code ec;
+  const fs::path p = fs::read_symlink("/proc/self/exe", ec);
+  if (ec)
+    throw std::runtime_error("report: cannot locate the glintlab executable (/proc/self/exe)");
+  return p;
+}
+
+// The folder of the report scripts: $GLINTLAB_REPORTS_DIR, else the source tree's reports/, else
+// <prefix>/share/glintlab/reports beside an installed executable.
+fs::path reports_dir() {
+  if (const char* env = std::getenv("GLINTLAB_REPORTS_DIR"); env && *env) return env;
+  std::error_code ec;
+  const fs::path src = GLINTLAB_REPORTS_SOURCE_DIR;
+  if (fs::exists(src / "make_report.py", ec)) return src;
+  return self_exe().parent_path().parent_path() / "share" / "glintlab" / "reports";
+}
+
+// A benchmark tool of experiments/bench/, found beside glintlab in the build tree (cli/ and
+// experiments/bench/ are siblings) or in the same folder; empty when it was not built.
+fs::path bench_tool(const std::string& name) {
+  const fs::path dir = self_exe().parent_path();
+  std::error_code ec;
+  for (const fs::path& p : {dir.parent_path() / "experiments" / "bench" / name, dir / name}) {
+    if (fs::is_regular_file(p, ec) && ::access(p.c_str(), X_OK) == 0) return p;
+  }
+  return {};
+}
+
+// Runs argv with stdout to `out_file` and stderr to `err_file` (empty: inherited, so a child's
+// progress shows on the terminal); returns its exit status (128 + signal when killed).
+int run_process(const std::vector<std::string>& args, const fs::path& out_file,
+                const fs::path& err_file) {
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, out_file.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (!err_file.empty()) {
+    posix_spawn_file_actions_addopen(&fa, STDERR_FILENO, err_file.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  }
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0) throw std::runtime_error(fmt::format("report: cannot run {}", args[0]));
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0) {
+  }
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The last non-empty line a child wrote to stderr, without a "glintlab: error: " prefix.
+std::string last_error_line(const fs::path& err_file) {
+  std::string last;
+  std::istringstream in(read_text(err_file));
+  for (std::string line; std::getline(in, line);) {
+    const auto cr = line.rfind('\r');
+    if (cr != std::string::npos) line = line.substr(cr + 1);
+    if (!line.empty()) last = line;
+  }
+  const std::string prefix = "glintlab: error: ";
+  if (last.rfind(prefix, 0) == 0) last = last.substr(prefix.size());
+  return last.empty() ? "no message" : last;
+}
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> parts;
+  std::stringstream in(s);
+  for (std::string p; std::getline(in, p, ',');)
+    if (!p.empty()) parts.push_back(p);
+  return parts;
+}
+
+bool matches_any(const std::string& id, const std::string& globs) {
+  for (const std::string& g : split(globs))
+    if (fnmatch(g.c_str(), id.c_str(), 0) == 0) return true;
+  return false;
+}
+
+// Removes a folder on scope exit unless disarmed: the staging folder of a failed run.
+struct RemoveOnExit {
+  fs::path dir;
+  bool armed = true;
+  ~RemoveOnExit() {
+    std::error_code ec;
+    if (armed && !dir.empty()) fs::remove_all(dir, ec);
+  }
+};
+
+class ReportRun {
+ public:
+  ReportRun(const ReportOptions& o, const CLI::App& root) : o_(o), root_(root) {}
+  void run();
+
+ private:
+  void validate();
+  void run_claims(json& part);
+  void run_figures(json& part);
+  void run_bench(json& part);
+  void run_stability(json& part);
+  // Runs a child; stderr goes to the terminal when there is one (its progress), else to a log.
+  int child(const std::vector<std::string>& args, const std::string& log_name);
+  [[noreturn]] void child_failed(const std::string& what, int rc, const std::string& log_name);
+  bool quick() const { return o_.budget == "quick"; }
+
+  const ReportOptions& o_;
+  const CLI::App& root_;
+  fs::path out_, stage_, logs_;
+  bool tty_ = ::isatty(STDERR_FILENO) == 1;
+  int threads_ = 0;
+  std::vector<const experiments::FigureEntry*> figures_;
+  std::unique_ptr<Progress> progress_;
+};
+
+void ReportRun::validate() {
+  if (o_.budget != "quick" && o_.budget != "full")
+    throw InputError(fmt::format("--budget: '{}' is not one of quick|full", o_.budget));
+  if (o_.threads < 0 || o_.threads > 1024)
+    throw InputError(
+        fmt::format("--threads: {} is out of range (0 = all cores, or 1..1024)", o_.threads));
+  for (const std::string& s : o_.skip) {
+    bool known = false;
+    for (const char* p : kParts) known = known || s == p;
+    if (!known)
+      throw InputError(fmt::format(
+          "--skip: '{}' is not a part of the report (valid: claims, figures, bench, stability)",
+          s));
+  }
+  if (split(o_.claims).empty()) throw InputError("--claims: empty pattern (e.g. 'eto.*')");
+  for (const experiments::FigureEntry& e : experiments::registered_figures())
+    if (matches_any(std::string(e.id), o_.figures)) figures_.push_back(&e);
+  if (figures_.empty())
+    throw InputError(
+        fmt::format("--figures: '{}' matches no registered figure id (see glintlab figure --list)",
+                    o_.figures));
+  if (!o_.claims_from.empty() && !fs::is_regular_file(fs::path(o_.claims_from) / "claims.json"))
+    throw InputError(
+        fmt::format("--claims-from: '{}' holds no claims.json (a glintlab verify --out "
+                    "folder is expected)",
+                    o_.claims_from));
+  threads_ = o_.threads > 0 ? o_.threads : int(std::thread::hardware_concurrency());
+}
+
+int ReportRun::child(const std::vector<std::string>& args, const std::string& log_name) {
+  return run_process(args, logs_ / (log_name + ".txt"),
+                     tty_ ? fs::path() : logs_ / (log_name + ".stderr.txt"));
+}
+
+void ReportRun::child_failed(const std::string& what, int rc, const std::string& log_name) {
+  const fs::path err = logs_ / (log_name + ".stderr.txt");
+  throw std::runtime_error(fmt::format("report: {} failed (exit {}){}", what, rc,
+                                       tty_ ? "" : ": " + last_error_line(err)));
+}
+
+void ReportRun::run_claims(json& part) {
+  const auto start = std::chrono::steady_clock::now();
+  if (!o_.claims_from.empty()) {
+    fs::copy(o_.claims_from, stage_ / "verify", fs::copy_options::recursive);
+    part["status"] = "read";
+    part["note"] = fmt::format("read from {} (glintlab verify --out)", o_.claims_from);
+    return;
+  }
+  const std::vector<std::string> args = {self_exe().string(),
+                                         "verify",
+                                         "--claims",
+                                         o_.claims,
+                                         "--budget",
+                                         o_.budget,
+                                         "--threads",
+                                         std::to_string(threads_),
+                                         "--out",
+                                         (stage_ / "verify").string()};
+  const int rc = child(args, "verify");
+  // 1 = a verdict differs from the recorded one: a finding the report shows, not a failure.
+  if (rc != 0 && rc != 1) child_failed("glintlab verify", rc, "verify");
+  part["status"] = "ran";
+  part["exit_code"] = rc;
+  part["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void ReportRun::run_figures(json& part) {
+  json list = json::array();
+  for (const experiments::FigureEntry* e : figures_) {
+    const auto start = std::chrono::steady_clock::now();
+    experiments::FigureContext ctx;
+    ctx.quick = quick();
+    ctx.threads = threads_;
+    try {
+      experiments::run_figure(*e, stage_ / "figures", ctx);
+    } catch (const std::exception& ex) {
+      throw std::runtime_error(fmt::format("report: figure {} failed: {}", e->id, ex.what()));
+    }
+    const double s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    list.push_back({{"id", e->id},
+                    {"paper", e->paper},
+                    {"target", e->target},
+                    {"description", e->description},
+                    {"quick", quick()},
+                    {"seconds", s}});
+    progress_->step(std::string(e->id));
+  }
+  io::write_file_atomic(stage_ / "figures" / "figures.json", list.dump(1) + "\n");
+  part["status"] = "ran";
+}
+
+void ReportRun::run_bench(json& part) {
+  const fs::path bench = bench_tool("glintlab_bench_kernels");
+  const fs::path accuracy = bench_tool("glintlab_accuracy");
+  if (bench.empty() || accuracy.empty()) {
+    part["status"] = "unavailable";
+    part["note"] =
+        "the benchmark tools glintlab_bench_kernels and glintlab_accuracy were not found beside "
+        "glintlab (build the targets of experiments/bench/)";
+    return;
+  }
+  const fs::path dir = stage_ / "bench";
+  fs::create_directories(dir);
+  // quick: one short repetition per benchmark; full: what scripts/bench.sh runs.
+  std::vector<std::string> args = {bench.string(),
+                                   "--benchmark_out=" + (dir / "bench.json").string(),
+                                   "--benchmark_out_format=json"};
+  if (quick()) {
+    args.insert(args.end(), {"--benchmark_min_time=0.01", "--benchmark_repetitions=1"});
+  } else {
+    args.insert(args.end(), {"--benchmark_min_time=0.05", "--benchmark_repetitions=5",
+                             "--benchmark_report_aggregates_only=true"});
+  }
+  int rc = child(args, "bench");
+  if (rc != 0) child_failed("glintlab_bench_kernels", rc, "bench");
+  progress_->step("benchmarks");
+  rc = child({accuracy.string(), "--n", quick() ? "20000" : "200000", "--out",
+              (dir / "accuracy.csv").string()},
+             "accuracy");
+  if (rc != 0) child_failed("glintlab_accuracy", rc, "accuracy");
+  part["status"] = "ran";
+  part["settings"] = quick() ? "1 repetition of >= 0.01 s per benchmark; 20000 accuracy rows"
+                             : "median of 5 repetitions of >= 0.05 s; 200000 accuracy rows";
+}
+
+void ReportRun::run_stability(json& part) {
+  // The sweeps are their own subcommand; a build without it gets a report that says so.
+  const auto sweep =
+      root_.get_subcommands([](const CLI::App* sub) { return sub->get_name() == "sweep"; });
+  if (sweep.empty()) {
+    part["status"] = "unavailable";
+    part["note"] = "this glintlab has no sweep subcommand (stability sweeps not built in)";
+    return;
+  }
+  std::vector<std::string> args = {self_exe().string(), "sweep", "--out",
+                                   (stage_ / "stability").string()};
+  if (quick()) args.push_back("--quick");
+  const int rc = child(args, "sweep");
+  if (rc != 0) child_failed("glintlab sweep", rc, "sweep");
+  part["status"] = "ran";
+}
+
+void ReportRun::run() {
+  validate();
+  out_ = fs::path(o_.out);
+  if (out_.filename().empty()) out_ = out_.parent_path();
+  std::error_code ec;
+  // The report replaces DIR by a rename, so DIR must be a named folder below its parent.
+  const fs::path full = fs::absolute(out_, ec).lexically_normal();
+  const std::string leaf = full.filename().string();
+  if (ec || leaf.empty() || leaf == "." || leaf == "..")
+    throw InputError(fmt::format(
+        "--out: '{}' does not name a folder the report can replace (give e.g. out/report)",
+        o_.out));
+  if (fs::exists(out_, ec) && !fs::is_directory(out_, ec))
+    throw InputError(fmt::format("--out: '{}' exists and is not a folder", o_.out));
+  const fs::path parent = out_.has_parent_path() ? out_.parent_path() : fs::path(".");
+  fs::create_directories(parent, ec);
+  if (ec || !fs::is_directory(parent))
+    throw InputError(fmt::format("--out: cannot create the folder '{}' ({})", parent.string(),
+                                 ec ? ec.message() : "not a folder"));
+  stage_ = parent / fmt::format(".{}.tmp.{}", out_.filename().string(), ::getpid());
+  fs::remove_all(stage_, ec);
+  if (!fs::create_directory(stage_, ec) || ec)
+    throw InputError(fmt::format("--out: the folder '{}' is not writable ({})", parent.string(),
+                                 ec ? ec.message() : "cannot create a folder"));
+  RemoveOnExit cleanup{stage_};
+  logs_ = stage_ / "logs";
+  fs::create_directory(logs_);
+
+  json previous;  // the cached report's run.json: where and how each reused part was made
+  if (o_.reuse && fs::is_regular_file(out_ / "run.json")) {
+    try {
+      previous = json::parse(read_text(out_ / "run.json"));
+    } catch (const json::exception& e) {
+      throw InputError(fmt::format("--reuse: cached {} is malformed ({})",
+                                   (out_ / "run.json").string(), e.what()));
+    }
+    if (!previous.is_object() || !previous.contains("parts") || !previous["parts"].is_object())
+      throw InputError(
+          fmt::format("--reuse: cached {} has no \"parts\" object", (out_ / "run.json").string()));
+  }
+
+  const json machine = machine_json(threads_);
+  const std::string date = utc_now();
+  progress_ = std::make_unique<Progress>("report", long(kNumParts + figures_.size() + 1));
+  json parts = json::object();
+  for (int i = 0; i < kNumParts; ++i) {
+    const std::string name = kParts[i];
+    json part = {{"status", ""}, {"budget", o_.budget}, {"machine", machine}, {"date", date}};
+    const fs::path cached = out_ / kPartDirs[i];
+    bool skipped = false;
+    for (const std::string& s : o_.skip) skipped = skipped || s == name;
+    if (skipped) {
+      part["status"] = "skipped";
+      part["note"] = "left out with --skip";
+    } else if (o_.reuse && fs::is_regular_file(cached / kPartIndex[i]) &&
+               !(name == "claims" && !o_.claims_from.empty())) {
+      fs::copy(cached, stage_ / kPartDirs[i], fs::copy_options::recursive);
+      // Where, when and at which budget the cached part was made, from the cached run.json.
+      if (previous.contains("parts") && previous["parts"].contains(name) &&
+          previous["parts"][name].is_object())
+        part = previous["parts"][name];
+      else
+        part = {{"machine", "unknown (cached without run.json)"}, {"budget", "unknown"}};
+      part["status"] = "reused";
+      part["note"] = fmt::format("cached results reused from {} (--reuse)", cached.string());
+      if (name == "figures") {
+        for (std::size_t k = 0; k < figures_.size(); ++k) progress_->step("cached figure");
+      }
+    } else if (name == "claims") {
+      run_claims(part);
+    } else if (name == "figures") {
+      run_figures(part);
+    } else if (name == "bench") {
+      run_bench(part);
+    } else {
+      run_stability(part);
+    }
+    parts[name] = part;
+    progress_->step(name);
+  }
+  const json run_info = {{"glintlab_version", experiments::glintlab_version()},
+                         {"date", date},
+                         {"budget", o_.budget},
+                         {"machine", machine},
+                         {"parts", parts}};
+  io::write_file_atomic(stage_ / "run.json", run_info.dump(1) + "\n");
+
+  // The HTML report and the Markdown twin; make_report.py validates every input and fails with one
+  // line (exit 2) on a malformed one, which becomes this command's error.
+  const fs::path script = reports_dir() / "make_report.py";
+  if (!fs::is_regular_file(script))
+    throw std::runtime_error(fmt::format(
+        "report: {} not found (set GLINTLAB_REPORTS_DIR to the reports/ folder)", script.string()));
+  const fs::path err = logs_ / "make_report.stderr.txt";
+  const int rc = run_process({"/usr/bin/python3", script.string(), "--dir", stage_.string()},
+                             logs_ / "make_report.txt", err);
+  if (rc != 0) {
+    const std::string msg = last_error_line(err);
+    if (rc == 2) throw InputError(msg);
+    throw std::runtime_error(fmt::format("report: make_report.py failed (exit {}): {}", rc, msg));
+  }
+  progress_->step("html");
+  progress_.reset();
+
+  // Swap the finished report in: the old one (if any) moves aside, then goes.
+  const fs::path old = parent / fmt::format(".{}.old.{}", out_.filename().string(), ::getpid());
+  const bool had_old = fs::exists(out_, ec);
+  if (had_old) {
+    fs::rename(out_, old, ec);
+    if (ec)
+      throw std::runtime_error(
+          fmt::format("--out: cannot move the old report '{}' aside ({})", o_.out, ec.message()));
+  }
+  fs::rename(stage_, out_, ec);
+  if (ec) {
+    std::error_code ec2;
+    if (had_old) fs::rename(old, out_, ec2);
+    throw std::runtime_error(
+        fmt::format("--out: cannot move the report into '{}' ({})", o_.out, ec.message()));
+  }
+  cleanup.armed = false;
+  if (had_old) fs::remove_all(old, ec);
+  for (const auto& [name, part] : parts.items()) {
+    fmt::print("{:<10} {}{}\n", name, part.value("status", ""),
+               part.contains("note") ? " (" + part.value("note", "") + ")" : "");
+  }
+  fmt::print("report: wrote {} and {}\n", (out_ / "index.html").string(),
+             (out_ / "report.md").string());
+}
+
+constexpr const char* kFooter =
+    R"(DIR (default out/report) gets index.html (static, no script, relative links only) and its
+Markdown twin report.md, and beside them every input: verify/ (claims.json, .csv, .md),
+figures/<id>/ (EXR, PNG, CSV of each figure), bench/ (bench.json, accuracy.csv), stability/
+(stability.json and its maps), plots/ (the charts drawn by reports/make_report.py: convergence
+log-log plots, speed_accuracy.png and speed_accuracy.csv), logs/ and run.json (machine, budget,
+date and status of each part). The report is staged in a hidden folder beside DIR and replaces DIR only when it is
+complete: a bad option, a failed part or a malformed cached file leaves DIR as it was.)";
+
+}  // namespace
+
+void add_report_command(CLI::App& app) {
+  auto o = std::make_shared<ReportOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "report",
+      "Run the claim suite, every figure, the benchmarks and the stability sweeps (or reuse their "
+      "cached results) and write a static HTML report with a Markdown twin");
+  cmd->add_option("--out", o->out, "output folder")->capture_default_str();
+  cmd->add_option("--budget", o->budget,
+                  "quick (figures --quick, a short benchmark run, quick claims) or full")
+      ->capture_default_str();
+  cmd->add_flag("--reuse", o->reuse,
+                "reuse the parts whose results are already in --out (verify/claims.json, "
+                "figures/figures.json, bench/bench.json, stability/stability.json) instead of "
+                "running them");
+  cmd->add_option("--claims", o->claims,
+                  "comma-separated globs over claim ids (as glintlab verify)")
+      ->capture_default_str();
+  cmd->add_option("--figures", o->figures, "comma-separated globs over figure ids")
+      ->capture_default_str();
+  cmd->add_option("--claims-from", o->claims_from,
+                  "a glintlab verify --out folder whose claims.json the report shows instead of "
+                  "running the suite");
+  cmd->add_option("--skip", o->skip, "parts to leave out: claims, figures, bench, stability")
+      ->delimiter(',');
+  cmd->add_option("--threads", o->threads,
+                  "worker threads (0 = all cores); results do not depend on it")
+      ->capture_default_str();
+  cmd->footer(kFooter);
+  const CLI::App* root = &app;
+  cmd->callback([o, root] { ReportRun(*o, *root).run(); });
+}
+
+}  // namespace glintlab::cli

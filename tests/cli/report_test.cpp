@@ -1,0 +1,121 @@
+// `glintlab report`: bad --out and options (one line, exit 2, nothing written), --reuse of cached
+// results from the fixtures and a malformed cached claims.json (the old report stays as it was),
+// and one small real run (one claim, one quick figure).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+
+#include "cli/cli_test_util.h"
+
+#ifndef GLINTLAB_REPORT_FIXTURES
+#error "GLINTLAB_REPORT_FIXTURES (tests/reports/fixtures) must be defined by the build"
+#endif
+
+namespace glintlab::cli_test {
+namespace {
+
+namespace fs = std::filesystem;
+using ReportTest = CliTest;
+
+const std::vector<std::string> kNoParts = {"--skip", "claims,figures,bench,stability"};
+
+std::vector<std::string> with(std::vector<std::string> a, const std::vector<std::string>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+std::set<std::string> files_under(const fs::path& dir) {
+  std::set<std::string> out;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    out.insert(fs::relative(e.path(), dir).generic_string());
+  return out;
+}
+
+TEST_F(ReportTest, OutThatIsAFileIsAnError) {
+  write_text(path("afile"), "x");
+  expect_input_error(run(with({"report", "--out", "afile"}, kNoParts)),
+                     {"--out", "afile", "not a folder"}, {"afile"});
+}
+
+TEST_F(ReportTest, OutBelowAFileIsAnError) {
+  write_text(path("afile"), "x");
+  expect_input_error(run(with({"report", "--out", "afile/report"}, kNoParts)),
+                     {"--out", "afile", "cannot create"}, {"afile"});
+}
+
+TEST_F(ReportTest, OutThatIsTheWorkingFolderIsAnError) {
+  expect_input_error(run(with({"report", "--out", "."}, kNoParts)), {"--out", "'.'"}, {});
+  expect_input_error(run(with({"report", "--out", "/"}, kNoParts)), {"--out", "'/'"}, {});
+}
+
+TEST_F(ReportTest, BadOptionsAreErrors) {
+  expect_input_error(run({"report", "--out", "r", "--budget", "huge"}),
+                     {"--budget", "huge", "quick|full"}, {});
+  expect_input_error(run({"report", "--out", "r", "--skip", "claims,pictures"}),
+                     {"--skip", "pictures", "claims, figures, bench, stability"}, {});
+  expect_input_error(run({"report", "--out", "r", "--figures", "nope*"}),
+                     {"--figures", "nope*", "figure --list"}, {});
+  expect_input_error(run({"report", "--out", "r", "--claims-from", "missing"}),
+                     {"--claims-from", "missing", "claims.json"}, {});
+}
+
+TEST_F(ReportTest, ReuseReadsCachedResultsAndAMalformedOneLeavesTheOldReport) {
+  fs::copy(GLINTLAB_REPORT_FIXTURES, path("report"), fs::copy_options::recursive);
+  RunResult r = run({"report", "--out", "report", "--reuse", "--skip", "bench"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = read_text(path("report/index.html"));
+  EXPECT_NE(html.find("fixture.fails"), std::string::npos);
+  EXPECT_NE(html.find("fixture_model_energy_gain.png"), std::string::npos);
+  EXPECT_NE(html.find("NaN for alpha below 1e-3"), std::string::npos);
+  EXPECT_TRUE(fs::exists(path("report/report.md")));
+  const auto info = nlohmann::json::parse(read_text(path("report/run.json")));
+  EXPECT_EQ(info["parts"]["claims"]["status"], "reused");
+  EXPECT_EQ(info["parts"]["figures"]["status"], "reused");
+  EXPECT_EQ(info["parts"]["bench"]["status"], "skipped");
+  // The cached part keeps the machine it was made on, not this one.
+  EXPECT_EQ(info["parts"]["claims"]["machine"]["cpu_model"], "Fixture CPU");
+
+  // Corrupt the cached claims: one line, exit 2, and the previous report is untouched.
+  write_text(path("report/verify/claims.json"), "[{\"id\": ");
+  std::set<std::string> before = files_under(work());
+  r = run({"report", "--out", "report", "--reuse", "--skip", "bench"});
+  expect_input_error(r, {"verify/claims.json", "not valid JSON"}, before);
+  EXPECT_EQ(read_text(path("report/index.html")), html);
+
+  // A malformed cached run.json is an error too.
+  write_text(path("report/run.json"), "{\"parts\": 3}");
+  before = files_under(work());
+  expect_input_error(run({"report", "--out", "report", "--reuse", "--skip", "bench"}),
+                     {"--reuse", "run.json"}, before);
+}
+
+TEST_F(ReportTest, SmallRealRun) {
+  const RunResult r = run({"report", "--out", "r", "--claims", "kneiphof.total-area", "--figures",
+                           "eto2023-fig4", "--skip", "bench,stability", "--threads", "2"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("report: wrote r/index.html and r/report.md"), std::string::npos) << r.out;
+  for (const char* f : {"r/index.html", "r/report.md", "r/run.json", "r/verify/claims.json",
+                        "r/figures/figures.json", "r/figures/eto2023-fig4/fig4.png",
+                        "r/figures/eto2023-fig4/fig4.csv"})
+    EXPECT_TRUE(fs::exists(path(f))) << f;
+  const std::string html = read_text(path("r/index.html"));
+  EXPECT_NE(html.find("<td>kneiphof.total-area</td>"), std::string::npos);
+  EXPECT_NE(html.find("src=\"figures/eto2023-fig4/fig4.png\""), std::string::npos);
+  EXPECT_NE(html.find("href=\"figures/eto2023-fig4/a0.2_reference.exr\""), std::string::npos);
+  const std::string md = read_text(path("r/report.md"));
+  EXPECT_NE(md.find("| kneiphof.total-area |"), std::string::npos);
+  EXPECT_NE(md.find("![eto2023-fig4 fig4.png](figures/eto2023-fig4/fig4.png)"), std::string::npos);
+  const auto info = nlohmann::json::parse(read_text(path("r/run.json")));
+  EXPECT_EQ(info["parts"]["claims"]["status"], "ran");
+  EXPECT_EQ(info["parts"]["stability"]["status"], "skipped");
+  EXPECT_EQ(info["budget"], "quick");
+  // Nothing but the report itself is left in the working folder (no staging folder).
+  for (const auto& e : fs::directory_iterator(work()))
+    EXPECT_EQ(e.path().filename(), "r") << "left behind: " << e.path();
+}
+
+}  // namespace
+}  // namespace glintlab::cli_test

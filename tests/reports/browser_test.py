@@ -1,0 +1,142 @@
+"""The HTML report in a real browser (issue 10 item 4): headless Debian chromium loads a copy of
+index.html with a script that records, after the load event, every <img> that did not decode
+(complete and naturalWidth > 0) and every relative link that a file:// request cannot read; the
+result is read back with --dump-dom. A screenshot of the report is saved. Negative control: the
+same check on a page with one image and one link pointing at missing files must report exactly
+those two.
+
+Usage: browser_test.py SCREENSHOT.png [--report DIR]  (default: a report made from
+tests/reports/fixtures/ by reports/make_report.py). Exit 0 pass, 1 fail, 77 skip (ctest
+SKIP_RETURN_CODE) when /usr/bin/chromium is not installed."""
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import report_check as rc  # noqa: E402
+
+CHROMIUM = "/usr/bin/chromium"
+SCRIPT = os.path.join(HERE, "..", "..", "reports", "make_report.py")
+
+# Runs after load: broken images, and relative links read with synchronous file:// requests
+# (allowed by --allow-file-access-from-files); the verdict goes into a <pre id>.
+PROBE = """<script>
+window.addEventListener('load', function () {
+  var broken = [], dead = [], imgs = document.images, links = document.links;
+  for (var i = 0; i < imgs.length; i++)
+    if (!imgs[i].complete || imgs[i].naturalWidth === 0) broken.push(imgs[i].getAttribute('src'));
+  for (var j = 0; j < links.length; j++) {
+    var h = links[j].getAttribute('href');
+    if (/^[a-z]+:|^\\/|^#/i.test(h)) continue;
+    try {
+      var x = new XMLHttpRequest();
+      x.open('GET', links[j].href, false);
+      x.send();
+      if (x.status !== 0 && x.status !== 200) dead.push(h);
+    } catch (e) { dead.push(h); }
+  }
+  var pre = document.createElement('pre');
+  pre.id = 'glintlab-browser-check';
+  pre.textContent = JSON.stringify({images: imgs.length, links: links.length,
+                                    broken: broken, dead: dead});
+  document.body.appendChild(pre);
+});
+</script>"""
+
+FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars", "--no-first-run",
+         "--allow-file-access-from-files", "--virtual-time-budget=15000"]
+
+
+def chromium(args, profile):
+    return subprocess.run([CHROMIUM, *FLAGS, f"--user-data-dir={profile}", *args],
+                          capture_output=True, text=True, timeout=180)
+
+
+def probe(page_path, profile):
+    """The probe's result for one page (a copy with the script, beside it)."""
+    src = open(page_path, encoding="utf-8").read()
+    probe_path = os.path.join(os.path.dirname(page_path), ".browser_probe.html")
+    with open(probe_path, "w", encoding="utf-8") as f:
+        f.write(src.replace("</body>", PROBE + "</body>"))
+    try:
+        r = chromium(["--dump-dom", "file://" + os.path.abspath(probe_path)], profile)
+    finally:
+        os.unlink(probe_path)
+    m = re.search(r'<pre id="glintlab-browser-check">(.*?)</pre>', r.stdout, re.S)
+    if not m:
+        return None, r.stderr[-2000:]
+    return json.loads(m.group(1).replace("&quot;", '"').replace("&amp;", "&")), ""
+
+
+def main():
+    if len(sys.argv) < 2:
+        print("usage: browser_test.py SCREENSHOT.png [--report DIR]")
+        return 2
+    if not os.path.exists(CHROMIUM):
+        print(f"SKIP: {CHROMIUM} is not installed, so the HTML report was not opened in a browser "
+              "(Debian: apt-get install chromium; scripts/setup.sh installs it)")
+        return 77
+    shot = os.path.abspath(sys.argv[1])
+    failures = []
+    with tempfile.TemporaryDirectory() as tmp:
+        profile = os.path.join(tmp, "profile")
+        if "--report" in sys.argv:
+            report = sys.argv[sys.argv.index("--report") + 1]
+        else:
+            report = os.path.join(tmp, "report")
+            shutil.copytree(os.path.join(HERE, "fixtures"), report)
+            r = subprocess.run([sys.executable, SCRIPT, "--dir", report], capture_output=True,
+                               text=True)
+            if r.returncode != 0:
+                print(f"FAIL: make_report.py on the fixtures: {r.stderr.strip()}")
+                return 1
+        index = os.path.join(report, "index.html")
+        page = rc.parse_html(index)
+        res, err = probe(index, profile)
+        if res is None:
+            print(f"FAIL: chromium did not run the probe: {err}")
+            return 1
+        print(f"chromium: {res['images']} images, {res['links']} links in {index}")
+        if res["images"] != len(page.srcs) or res["images"] == 0:
+            failures.append(f"chromium saw {res['images']} images, the HTML has {len(page.srcs)}")
+        if res["broken"]:
+            failures.append(f"images that did not load: {res['broken']}")
+        if res["dead"]:
+            failures.append(f"links that do not resolve: {res['dead']}")
+        bad = rc.bad_targets(report, page.hrefs + page.srcs)
+        if bad:
+            failures.append(f"absolute or missing targets: {bad}")
+        # Negative control: one image pointed at a missing file must be caught.
+        control = os.path.join(report, ".control.html")
+        text = open(index, encoding="utf-8").read()
+        first = page.srcs[0] if page.srcs else ""
+        with open(control, "w", encoding="utf-8") as f:
+            text = text.replace(f'src="{first}"', 'src="missing-image.png"', 1)
+            f.write(text.replace('href="verify/claims.json"', 'href="missing-file.json"', 1))
+        cres, err = probe(control, profile)
+        os.unlink(control)
+        if cres is None or cres["broken"] != ["missing-image.png"] or \
+                cres["dead"] != ["missing-file.json"]:
+            failures.append(f"negative control: a missing image and a dangling link were not "
+                            f"both reported ({cres}, {err})")
+        r = chromium(["--window-size=1280,3000", f"--screenshot={shot}",
+                      "file://" + os.path.abspath(index)], profile)
+        if not os.path.exists(shot) or not rc.is_png(shot):
+            failures.append(f"no screenshot written to {shot}: {r.stderr[-500:]}")
+        else:
+            print(f"screenshot: {shot}")
+    for f in failures:
+        print(f"FAIL: {f}")
+    if failures:
+        return 1
+    print("browser test passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,156 @@
+"""Tests of reports/make_report.py on the fixture results of tests/reports/fixtures/: the verdict
+table rows, relative links that resolve, images present, the Markdown twin, the absent-part note,
+and that a malformed input is a one-line error (exit 2) leaving no output. The link checker itself
+is shown to reject an absolute and a dangling link. Exit 0 pass, 1 fail, 77 skip (no matplotlib)."""
+import importlib.util
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import report_check as rc  # noqa: E402
+
+SCRIPT = os.path.join(HERE, "..", "..", "reports", "make_report.py")
+FIXTURES = os.path.join(HERE, "fixtures")
+OUTPUTS = {"index.html", "report.md", "plots"}
+failures = []
+
+
+def check(cond, what):
+    if not cond:
+        failures.append(what)
+        print(f"FAIL: {what}")
+
+
+def make(d):
+    return subprocess.run([sys.executable, SCRIPT, "--dir", d], capture_output=True, text=True)
+
+
+def fresh(tmp, name):
+    d = os.path.join(tmp, name)
+    shutil.copytree(FIXTURES, d)
+    return d
+
+
+if importlib.util.find_spec("matplotlib") is None:
+    print(f"SKIP: {sys.executable} lacks matplotlib (Debian: apt-get install python3-matplotlib, "
+          "see scripts/setup.sh)")
+    sys.exit(77)
+
+with tempfile.TemporaryDirectory() as tmp:
+    # --- the whole fixture ---
+    d = fresh(tmp, "full")
+    r = make(d)
+    check(r.returncode == 0, f"fixture report: exit 0 (got {r.returncode}: {r.stderr.strip()})")
+    page = rc.parse_html(os.path.join(d, "index.html"))
+    claims = json.load(open(os.path.join(FIXTURES, "verify", "claims.json")))
+    verdicts = [t for t in page.tables if t and t[0][:4] == ["claim", "paper", "source", "verdict"]]
+    check(len(verdicts) == 1, "one verdict table")
+    if verdicts:
+        t = verdicts[0]
+        check(t[0] == ["claim", "paper", "source", "verdict", "evidence", "p-value", "control"],
+              f"verdict table columns (got {t[0]})")
+        check([row[0] for row in t[1:]] == [c["id"] for c in claims],
+              "one verdict row per claim, in claims.json's order")
+        by_id = {row[0]: row for row in t[1:]}
+        check(by_id["fixture.fails"][3] == "fails" and by_id["fixture.fails"][5] == "1.5e-09",
+              f"fails row: verdict and p-value (got {by_id['fixture.fails']})")
+        check(by_id["fixture.holds"][5] == "—", "a deterministic check shows no p-value")
+        check("recorded: holds" in by_id["fixture.inconclusive"][3],
+              "a verdict that differs from the recorded one says so")
+        check("NOT REJECTED" in by_id["fixture.inconclusive"][6],
+              "a control that was not rejected is flagged")
+        check("<tag> & | pipe" in by_id["fixture.holds"][4], "evidence text kept verbatim")
+    bad = rc.bad_targets(d, page.hrefs + page.srcs)
+    check(not bad, f"every link and image is relative and resolves (bad: {bad})")
+    check(all(rc.is_png(os.path.join(d, s)) for s in page.srcs), "every <img> is a PNG file")
+    for want in ["figures/fixture2026-fig1/fig1.png", "plots/speed_accuracy.png",
+                 "plots/fixture2026-fig1__rmse_spp_convergence.png",
+                 "stability/maps/fixture_model_nan_fraction.png",
+                 "stability/maps/fixture_model_energy_gain.png"]:
+        check(want in page.srcs, f"image {want} shown")
+    for want in ["figures/fixture2026-fig1/fig1.exr", "figures/fixture2026-fig1/rmse_spp.csv",
+                 "stability/maps/fixture_model_energy_gain.exr",
+                 "stability/maps/fixture_model_energy_gain.csv", "verify/claims.json",
+                 "plots/speed_accuracy.csv"]:
+        check(want in page.hrefs, f"link to {want}")
+    text = open(os.path.join(d, "index.html"), encoding="utf-8").read()
+    check("NaN for alpha below 1e-3 at grazing" in text, "the failure region in words")
+    check("Fixture CPU, 2 cores" in text and "budget quick" in text, "machine and budget named")
+    check("&lt;tag&gt;" in text, "text is HTML-escaped")
+    # The Markdown twin: same verdict rows, same images, links resolve.
+    links, images, md = rc.markdown_targets(os.path.join(d, "report.md"))
+    rows = [ln for ln in md.splitlines() if ln.startswith("| fixture.")]
+    check([ln.split(" | ")[0][2:] for ln in rows] == [c["id"] for c in claims],
+          "Markdown twin: one verdict row per claim")
+    check(sorted(images) == sorted(page.srcs), "Markdown twin shows the same images")
+    bad = rc.bad_targets(d, links + images)
+    check(not bad, f"Markdown links resolve (bad: {bad})")
+    check(r"\| pipe" in md, "a | in a Markdown cell is escaped")
+    # The checker can fail: an absolute link, a dangling one, one leaving the report.
+    check(len(rc.bad_targets(d, ["/etc/passwd", "http://x/y.png", "nope.png", "../x.png",
+                                 "#top"])) == 4, "link checker rejects bad targets")
+
+    # --- a part absent: the report says so ---
+    d = fresh(tmp, "no_stability")
+    shutil.rmtree(os.path.join(d, "stability"))
+    run = json.load(open(os.path.join(d, "run.json")))
+    run["parts"]["stability"] = {"status": "unavailable", "note": "no sweep subcommand"}
+    json.dump(run, open(os.path.join(d, "run.json"), "w"))
+    r = make(d)
+    check(r.returncode == 0, "report without stability part: exit 0")
+    text = open(os.path.join(d, "index.html"), encoding="utf-8").read()
+    check("Not in this report" in text and "no sweep subcommand" in text,
+          "an absent part is named with its reason")
+
+    # --- malformed inputs: one line, exit 2, no output ---
+    def corrupt_claims(d):
+        with open(os.path.join(d, "verify", "claims.json"), "w") as f:
+            f.write('[{"id": "x", ')
+
+    def claims_wrong_type(d):
+        c = json.load(open(os.path.join(d, "verify", "claims.json")))
+        c[1]["p_value"] = "small"
+        json.dump(c, open(os.path.join(d, "verify", "claims.json"), "w"))
+
+    def ragged_csv(d):
+        with open(os.path.join(d, "figures", "fixture2026-fig1", "rmse_spp.csv"), "a") as f:
+            f.write("0.2,a,32\n")
+
+    def missing_map(d):
+        os.unlink(os.path.join(d, "stability", "maps", "fixture_model_energy_gain.png"))
+
+    def run_says_ran(d):
+        os.unlink(os.path.join(d, "bench", "bench.json"))
+
+    def bad_accuracy(d):
+        p = os.path.join(d, "bench", "accuracy.csv")
+        s = open(p).read().replace(",1e-07,5e-08,1e-07", ",1e-07,abc,1e-07", 1)
+        open(p, "w").write(s)
+
+    cases = [(corrupt_claims, "verify/claims.json is not valid JSON"),
+             (claims_wrong_type, "non-numeric \"p_value\""),
+             (ragged_csv, "rmse_spp.csv is malformed: line"),
+             (missing_map, "fixture_model_energy_gain.png"),
+             (run_says_ran, "bench/bench.json is missing"),
+             (bad_accuracy, "accuracy.csv is malformed")]
+    for i, (mutate, needle) in enumerate(cases):
+        d = fresh(tmp, f"bad{i}")
+        mutate(d)
+        before = set(os.listdir(d))
+        r = make(d)
+        lines = r.stderr.strip().splitlines()
+        check(r.returncode == 2, f"{mutate.__name__}: exit 2 (got {r.returncode})")
+        check(len(lines) == 1 and lines[0].startswith("glintlab: error: ") and needle in lines[0],
+              f"{mutate.__name__}: one error line naming '{needle}' (got {lines})")
+        check(set(os.listdir(d)) == before and not (OUTPUTS & before),
+              f"{mutate.__name__}: no output written (new: {set(os.listdir(d)) - before})")
+
+if failures:
+    print(f"{len(failures)} failure(s)")
+    sys.exit(1)
+print("report writer tests passed")
