@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/io/csv.h"
+#include "core/models/podee.h"
 #include "core/models/smooth_beckmann.h"
 #include "core/models/smooth_ggx.h"
 
@@ -16,6 +17,7 @@ const std::vector<ModelEntry>& registered_models() {
     std::vector<ModelEntry> m;
     m.push_back(make_model_entry<SmoothGGX>());
     m.push_back(make_model_entry<SmoothBeckmann>());
+    m.push_back(make_model_entry<Podee>());
     return m;
   }();
   return kModels;
@@ -45,6 +47,7 @@ std::string describe_needs(unsigned needs) {
   if (needs & kNeedsFootprint) parts.push_back("footprint");
   if (needs & kNeedsPointLight) parts.push_back("point light");
   if (needs & kNeedsAreaLight) parts.push_back("area light");
+  if (needs & kNeedsPixelCorners) parts.push_back("pixel corner reflection vectors");
   if (parts.empty()) return "needs: directions only";
   return fmt::format("needs: {}", fmt::join(parts, ", "));
 }
