@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "experiments/figures/eto_tokuyoshi2023.h"
+#include "experiments/figures/podee.h"
 
 namespace glintlab::experiments {
 
@@ -14,6 +15,9 @@ const std::vector<FigureEntry>& registered_figures() {
   static const std::vector<FigureEntry> kFigures = {
       eto2023_fig4_entry(),
       eto2023_rmse_spp_entry(),
+      podee_table1_entry(),
+      podee_fig4_distance_entry(),
+      podee_fig4_flicker_entry(),
   };
   return kFigures;
 }
