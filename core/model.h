@@ -34,14 +34,19 @@ enum ModelNeeds : unsigned {
   kNeedsFootprint = 1u << 0,
   kNeedsPointLight = 1u << 1,
   kNeedsAreaLight = 1u << 2,
+  kNeedsPixelCorners = 1u << 3,  // the footprint's four corner reflection vectors (Podee et al.)
 };
 
 // The pixel footprint in texture space: uv at the pixel centre and the Jacobian ∂uv/∂(pixel)
 // (columns duv_dx = ∂(u,v)/∂x, duv_dy = ∂(u,v)/∂y), from ray differentials (core/scene/camera.h).
+// corner_r (kNeedsPixelCorners models only; zero otherwise): the mirror reflections of the view
+// direction at the pixel's four corners, unit, in the local frame of the pixel centre, in the
+// corner order of core/scene/footprint.h.
 template <class T>
 struct FootprintQuery {
   Vec2<T> uv;
   Vec2<T> duv_dx, duv_dy;
+  std::array<Vec3<T>, 4> corner_r{};
 };
 
 // The light seen from the shading point, in the local frame: a cone around the query's ω_o with

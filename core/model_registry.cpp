@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/io/csv.h"
+#include "core/models/podee.h"
 #include "core/models/smooth_beckmann.h"
 #include "core/models/smooth_ggx.h"
 
@@ -20,6 +21,7 @@ std::vector<ModelEntry>& model_list() {
     m.reserve(kMaxModels);  // register_model never reallocates: references stay valid
     m.push_back(make_model_entry<SmoothGGX>());
     m.push_back(make_model_entry<SmoothBeckmann>());
+    m.push_back(make_model_entry<Podee>());
     return m;
   }();
   return kModels;
@@ -73,6 +75,7 @@ std::string describe_needs(unsigned needs) {
   if (needs & kNeedsFootprint) parts.push_back("footprint");
   if (needs & kNeedsPointLight) parts.push_back("point light");
   if (needs & kNeedsAreaLight) parts.push_back("area light");
+  if (needs & kNeedsPixelCorners) parts.push_back("pixel corner reflection vectors");
   if (parts.empty()) return "needs: directions only";
   return fmt::format("needs: {}", fmt::join(parts, ", "));
 }

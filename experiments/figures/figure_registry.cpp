@@ -8,6 +8,7 @@
 
 #include "experiments/figures/eto_tokuyoshi2023.h"
 #include "experiments/figures/models_hemisphere.h"
+#include "experiments/figures/podee.h"
 
 namespace glintlab::experiments {
 
@@ -16,6 +17,9 @@ const std::vector<FigureEntry>& registered_figures() {
       eto2023_fig4_entry(),
       eto2023_rmse_spp_entry(),
       models_hemisphere_entry(),
+      podee_table1_entry(),
+      podee_fig4_distance_entry(),
+      podee_fig4_flicker_entry(),
   };
   return kFigures;
 }

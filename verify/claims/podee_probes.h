@@ -1,0 +1,20 @@
+// Cheap probes of what the podee.* claims (verify/claims/podee.cpp) decide, on small inputs, so
+// tests can assert that the correct input passes and each negative control is rejected.
+#pragma once
+
+#include "verify/claims/control_probes.h"
+
+namespace glintlab::verify {
+
+// podee.brightest-vector on `configs` bilinear reflection spaces: the largest excess of the
+// selected point's distance over the brute-force minimum (in quad sizes); control: the
+// nearest-corner rule. Threshold: the tolerance.
+ControlProbe probe_podee_brightest_vector(int configs);
+// podee.rmse at one distance on a `size`² crop: RMSE(podee) / min(RMSE(centre), RMSE(LEAN))
+// against the 64-spp reference (passes below 1); control: podee without result weighting.
+ControlProbe probe_podee_rmse(double distance, int size);
+// podee.stability: flicker(podee) / flicker(centre) over `frames` frames (passes below 1);
+// control: podee without result weighting.
+ControlProbe probe_podee_stability(int size, int frames);
+
+}  // namespace glintlab::verify
