@@ -208,7 +208,7 @@ void add_eval_command(CLI::App& app) {
       "eval", "Evaluate every microfacet term (D, G1, G2, VNDF, pdfs, BRDF, maps) for CSV queries");
   auto in = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
-  cmd->add_option("--in", *in, "Query CSV file (columns described below)")->required();
+  cmd->add_option("--in", *in, "Query CSV file (columns described below)");
   cmd->add_option("--out", *out,
                   "Result CSV file; written to a temporary file and renamed into place only "
                   "when every row succeeded")
@@ -219,15 +219,26 @@ void add_eval_command(CLI::App& app) {
                   "Evaluate this registered model instead (see glintlab models and below)");
   cmd->add_option("--param", *params, "With --model: name=value, repeatable")
       ->allow_extra_args(false);
-  cmd->footer(std::string(kEvalFooter) + kModelEvalFooter);
-  cmd->callback([in, out, model, params] {
+  auto grid = std::make_shared<std::string>();
+  cmd->add_option("--grid", *grid,
+                  "With --model, instead of --in: 'theta_i=lo:hi:count,...' (degrees; below)");
+  auto batch = std::make_shared<BatchOptionTexts>();
+  add_batch_options(cmd, *batch);
+  cmd->footer(std::string(kEvalFooter) + kModelEvalFooter + kBatchOptionsFooter);
+  cmd->callback([cmd, in, out, model, params, grid, batch] {
     if (model->empty() && !params->empty()) {
       throw InputError("--param: needs --model (see glintlab models)");
     }
+    if (model->empty() && (!grid->empty() || batch_options_given(cmd))) {
+      throw InputError(
+          fmt::format("{}: needs --model (see glintlab models)",
+                      !grid->empty() ? "--grid" : "--isa/--precision/--math/--threads"));
+    }
     if (model->empty()) {
+      if (in->empty()) throw InputError("--in is required");
       run_eval(*in, *out);
     } else {
-      run_model_eval(*model, *params, *in, *out);
+      run_model_eval({*model, *params, *in, *grid, *out, *batch});
     }
   });
 }

@@ -6,88 +6,141 @@
 
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "cli/args.h"
+#include "cli/batch_options.h"
 #include "cli/commands.h"
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/model_registry.h"
+#include "core/simd/model_batch.h"
 
 namespace glintlab::cli {
 namespace {
 
-// Query columns in output order; which are required depends on the model's needs.
-constexpr std::array<std::string_view, 14> kColumns = {"u",
-                                                       "v",
-                                                       "dudx",
-                                                       "dvdx",
-                                                       "dudy",
-                                                       "dvdy",
-                                                       "wi_x",
-                                                       "wi_y",
-                                                       "wi_z",
-                                                       "wo_x",
-                                                       "wo_y",
-                                                       "wo_z",
-                                                       "light_cos_half_angle",
-                                                       "light_intensity"};
+// Query columns in output order (core/simd/model_batch.h); which are required depends on the
+// model's needs.
+constexpr auto kColumns = simd::kQueryColumns;
 constexpr std::size_t kFootprintBegin = 0, kFootprintEnd = 6, kDirBegin = 6, kDirEnd = 12,
                       kLightBegin = 12, kLightEnd = 14;
-constexpr std::array<double, 14> kDefaults = {0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 1, 1, 1};
+constexpr auto kDefaults = simd::kQueryDefaults;
 // The footprint's corner reflection vectors (core/model.h FootprintQuery::corner_r): read and
-// written only for models that need them (kNeedsPixelCorners).
+// written only for models that need them (kNeedsPixelCorners); such models are evaluated row by
+// row through the entry (the SoA batch columns do not carry the corners).
 constexpr std::array<std::string_view, 12> kCornerColumns = {
     "r0_x", "r0_y", "r0_z", "r1_x", "r1_y", "r1_z", "r2_x", "r2_y", "r2_z", "r3_x", "r3_y", "r3_z"};
 
-std::vector<std::pair<std::string, std::string>> split_params(
-    const std::vector<std::string>& texts) {
-  std::vector<std::pair<std::string, std::string>> out;
-  for (const std::string& t : texts) {
-    const std::size_t eq = t.find('=');
-    if (eq == std::string::npos || eq == 0) {
-      throw InputError(
-          fmt::format("--param: '{}' is not of the form name=value (see glintlab models)", t));
+// --grid: a product of angle ranges. Names in row order (outermost first).
+constexpr std::array<std::string_view, 4> kGridNames = {"theta_i", "phi_i", "theta_o", "phi_o"};
+constexpr std::uint64_t kMaxGridRows = 100000000;
+
+struct GridAxis {
+  double lo = 0, hi = 0;
+  std::uint64_t count = 1;
+  double at(std::uint64_t k) const {
+    return count == 1 ? lo : lo + (hi - lo) * double(k) / double(count - 1);
+  }
+};
+
+std::array<GridAxis, 4> parse_grid(const std::string& text) {
+  constexpr const char* kValid =
+      "comma-separated name=lo:hi:count with names theta_i, phi_i, theta_o, phi_o (degrees; "
+      "theta in [0, 180], count in [1, 10000])";
+  std::array<GridAxis, 4> axes{};
+  std::array<bool, 4> seen{};
+  std::size_t pos = 0;
+  while (pos <= text.size()) {
+    const std::size_t end = std::min(text.find(',', pos), text.size());
+    const std::string item = text.substr(pos, end - pos);
+    pos = end + 1;
+    const std::size_t eq = item.find('=');
+    std::size_t a = 0;
+    while (a < kGridNames.size() &&
+           (eq == std::string::npos || item.substr(0, eq) != kGridNames[a]))
+      ++a;
+    if (a == kGridNames.size()) {
+      throw InputError(fmt::format("--grid: '{}' is not a known axis (valid: {})", item, kValid));
     }
-    out.emplace_back(t.substr(0, eq), t.substr(eq + 1));
+    if (seen[a]) throw InputError(fmt::format("--grid {}: given twice", kGridNames[a]));
+    seen[a] = true;
+    const std::string range = item.substr(eq + 1);
+    const std::size_t c1 = range.find(':'),
+                      c2 = range.find(':', c1 == std::string::npos ? 0 : c1 + 1);
+    if (c1 == std::string::npos || c2 == std::string::npos) {
+      throw InputError(fmt::format("--grid {}: '{}' is not lo:hi:count (valid: {})", kGridNames[a],
+                                   range, kValid));
+    }
+    const std::string where = fmt::format("--grid {}", kGridNames[a]);
+    GridAxis& g = axes[a];
+    g.lo = parse_number(range.substr(0, c1), where, kValid);
+    g.hi = parse_number(range.substr(c1 + 1, c2 - c1 - 1), where, kValid);
+    g.count = parse_integer(range.substr(c2 + 1), where, 1, 10000);
+    const bool theta = a == 0 || a == 2;
+    if (theta && !(g.lo >= 0 && g.lo <= 180 && g.hi >= 0 && g.hi <= 180)) {
+      throw InputError(
+          fmt::format("--grid {}: '{}' is out of range (valid: {})", kGridNames[a], range, kValid));
+    }
+    if (end == text.size()) break;
+  }
+  std::uint64_t rows = 1;
+  for (const GridAxis& g : axes) rows *= g.count;
+  if (rows > kMaxGridRows) {
+    throw InputError(fmt::format("--grid: {} rows (valid: at most {})", rows, kMaxGridRows));
+  }
+  return axes;
+}
+
+Vec3<double> direction_deg(double theta, double phi) {
+  const double t = theta * std::numbers::pi / 180, p = phi * std::numbers::pi / 180;
+  // Exact poles (sin(π) is 1.2e-16, not 0): +z at 0°, −z at 180°.
+  const double st = theta == 0 || theta == 180 ? 0.0 : std::sin(t);
+  const double ct = theta == 0 ? 1.0 : theta == 180 ? -1.0 : theta == 90 ? 0.0 : std::cos(t);
+  return {st * std::cos(p), st * std::sin(p), ct};
+}
+
+// Evaluates the model on SoA query columns in chunks (core/simd/model_batch.h).
+std::vector<std::vector<double>> evaluate_columns(const ModelEntry& model,
+                                                  const std::vector<double>& params,
+                                                  const std::vector<std::vector<double>>& query,
+                                                  std::size_t n, const BatchOptions& o) {
+  std::vector<std::vector<double>> out(2 + model.intermediates.size(), std::vector<double>(n));
+  const auto run = [&]<class S>(const std::vector<std::vector<S>>& q) {
+    std::vector<std::vector<S>> res;
+    if constexpr (std::is_same_v<S, float>) res.assign(out.size(), std::vector<float>(n));
+    for_each_chunk(n, o, [&](std::size_t begin, std::size_t count) {
+      std::vector<simd::Column<S>> cols;
+      for (const auto& c : q) cols.push_back({c.data() + begin, 1});
+      std::vector<S*> outs;
+      for (std::size_t k = 0; k < out.size(); ++k) {
+        if constexpr (std::is_same_v<S, float>) {
+          outs.push_back(res[k].data() + begin);
+        } else {
+          outs.push_back(out[k].data() + begin);
+        }
+      }
+      simd::eval_batch(model, params, cols, outs, count, o.isa, o.math);
+    });
+    if constexpr (std::is_same_v<S, float>)
+      for (std::size_t k = 0; k < out.size(); ++k) out[k].assign(res[k].begin(), res[k].end());
+  };
+  if (o.float_precision) {
+    std::vector<std::vector<float>> qf;
+    for (const auto& c : query) qf.emplace_back(c.begin(), c.end());
+    run(qf);
+  } else {
+    run(query);
   }
   return out;
 }
 
-}  // namespace
-
-const char* const kModelEvalFooter =
-    R"(
-WITH --model NAME (any model of 'glintlab models'; --param name=value, repeatable, sets its
-parameters, the others keep their defaults): --in has the columns
-  wi_x, wi_y, wi_z, wo_x, wo_y, wo_z   required; unit directions in the local frame (wi toward
-                                       the viewer, wo toward the light)
-  u, v, dudx, dvdx, dudy, dvdy         the pixel footprint: uv and the Jacobian d(u,v)/d(pixel);
-                                       required when the model needs a footprint, else optional (0)
-  light_cos_half_angle, light_intensity the light around wo: cosine of the cone half-angle in
-                                       [-1, 1] (1 = a delta light) and its intensity (>= 0);
-                                       required when the model needs a light, else optional (1)
-  r0_x, r0_y, r0_z, ..., r3_z          the reflection vectors at the pixel corners (x-,y-),
-                                       (x+,y-), (x-,y+), (x+,y+), unit, local frame; only for
-                                       models that need them (podee: then wo_z > 0, the disk's
-                                       centre above the surface, and light_cos_half_angle < 1,
-                                       a disk of radius > 0)
-and --out has every one of those columns (defaults filled in), then
-  value   f(wi, wo) max(wo.z, 0): the cosine-weighted BRDF
-  pdf     the density of wo (per steradian) under the model's sampler for this wi
-  ...     the model's intermediates, named as 'glintlab models' lists them.)";
-
-void run_model_eval(const std::string& model_name, const std::vector<std::string>& param_texts,
-                    const std::string& in_path, const std::string& out_path) {
-  const ModelEntry* model = nullptr;
-  std::vector<double> params;
-  try {
-    model = &find_model(model_name);
-    params = resolve_params(*model, split_params(param_texts));
-  } catch (const ModelParamError& e) {
-    throw InputError(e.what());
-  }
+// Reads and validates every row of --in into the query columns before anything is written.
+void read_queries(const ModelEntry& model, const std::string& in_path,
+                  std::vector<std::vector<double>>& query, std::vector<std::vector<double>>& corners,
+                  std::size_t& n) {
   io::CsvTable table = [&] {
     try {
       return io::read_csv(in_path);
@@ -96,9 +149,9 @@ void run_model_eval(const std::string& model_name, const std::vector<std::string
     }
   }();
 
-  const bool need_fp = (model->needs & kNeedsFootprint) != 0;
-  const bool need_light = (model->needs & (kNeedsPointLight | kNeedsAreaLight)) != 0;
-  const bool need_corners = (model->needs & kNeedsPixelCorners) != 0;
+  const bool need_fp = (model.needs & kNeedsFootprint) != 0;
+  const bool need_light = (model.needs & (kNeedsPointLight | kNeedsAreaLight)) != 0;
+  const bool need_corners = (model.needs & kNeedsPixelCorners) != 0;
   std::array<std::optional<std::size_t>, kCornerColumns.size()> corner_col;
   std::array<std::optional<std::size_t>, kColumns.size()> col;
   std::string missing;
@@ -128,16 +181,15 @@ void run_model_eval(const std::string& model_name, const std::vector<std::string
   }
   if (!missing.empty()) {
     throw InputError(fmt::format("--in '{}' header row: missing column(s) {} (model {}: {})",
-                                 table.source(), missing, model->name,
-                                 describe_needs(model->needs)));
+                                 table.source(), missing, model.name, describe_needs(model.needs)));
   }
 
   // Read and validate every row before anything is written.
-  std::vector<std::array<double, kColumns.size()>> rows(table.num_rows());
-  std::vector<std::array<double, kCornerColumns.size()>> corner_rows(table.num_rows());
-  std::vector<ModelQuery<double>> queries(table.num_rows());
+  n = table.num_rows();
+  for (auto& c : query) c.assign(n, 0.0);
+  corners.assign(need_corners ? kCornerColumns.size() : 0, std::vector<double>(n, 0.0));
   for (std::size_t r = 0; r < table.num_rows(); ++r) {
-    auto& v = rows[r];
+    std::array<double, kColumns.size()> v;
     for (std::size_t i = 0; i < kColumns.size(); ++i) {
       v[i] = kDefaults[i];
       if (!col[i]) continue;
@@ -147,7 +199,8 @@ void run_model_eval(const std::string& model_name, const std::vector<std::string
         throw InputError(std::string("--in ") + e.what());
       }
     }
-    ModelQuery<double>& q = queries[r];
+    for (std::size_t i = 0; i < kColumns.size(); ++i) query[i][r] = v[i];
+    ModelQuery<double> q;
     q.footprint = {{v[0], v[1]}, {v[2], v[3]}, {v[4], v[5]}};
     q.wi = {v[6], v[7], v[8]};
     q.wo = {v[9], v[10], v[11]};
@@ -163,17 +216,15 @@ void run_model_eval(const std::string& model_name, const std::vector<std::string
                                    table.where(r, *col[13]), v[13]));
     }
     if (!need_corners) continue;
-    auto& cv = corner_rows[r];
     for (std::size_t i = 0; i < kCornerColumns.size(); ++i) {
       try {
-        cv[i] = table.number(r, *corner_col[i]);
+        corners[i][r] = table.number(r, *corner_col[i]);
       } catch (const io::CsvError& e) {
         throw InputError(std::string("--in ") + e.what());
       }
     }
     for (std::size_t c = 0; c < 4; ++c) {
-      q.footprint.corner_r[c] = {cv[3 * c], cv[3 * c + 1], cv[3 * c + 2]};
-      check_unit(q.footprint.corner_r[c],
+      check_unit(Vec3<double>{corners[3 * c][r], corners[3 * c + 1][r], corners[3 * c + 2][r]},
                  fmt::format("--in {}, columns r{}_x,r{}_y,r{}_z (corner reflection vector)",
                              table.where(r), c, c, c));
     }
@@ -188,23 +239,144 @@ void run_model_eval(const std::string& model_name, const std::vector<std::string
           table.where(r, *col[11]), v[11]));
     }
   }
+}
 
-  std::vector<std::string_view> header(kColumns.begin(), kColumns.end());
-  if (need_corners) header.insert(header.end(), kCornerColumns.begin(), kCornerColumns.end());
+// Row-by-row evaluation through the entry for models that need the corner reflection vectors.
+std::vector<std::vector<double>> evaluate_rows_with_corners(
+    const ModelEntry& model, const std::vector<double>& params,
+    const std::vector<std::vector<double>>& query, const std::vector<std::vector<double>>& corners,
+    std::size_t n) {
+  std::vector<std::vector<double>> out(2 + model.intermediates.size(), std::vector<double>(n));
+  for (std::size_t r = 0; r < n; ++r) {
+    ModelQuery<double> q;
+    q.footprint = {{query[0][r], query[1][r]}, {query[2][r], query[3][r]}, {query[4][r], query[5][r]}};
+    for (std::size_t c = 0; c < 4; ++c)
+      q.footprint.corner_r[c] = {corners[3 * c][r], corners[3 * c + 1][r], corners[3 * c + 2][r]};
+    q.wi = {query[6][r], query[7][r], query[8][r]};
+    q.wo = {query[9][r], query[10][r], query[11][r]};
+    q.light = {query[12][r], query[13][r]};
+    const ErasedEval e = model.eval(params, q);
+    out[0][r] = e.value;
+    out[1][r] = e.pdf;
+    for (std::size_t k = 0; k < e.intermediates.size(); ++k) out[2 + k][r] = e.intermediates[k];
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> split_params(
+    const std::vector<std::string>& texts) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const std::string& t : texts) {
+    const std::size_t eq = t.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw InputError(
+          fmt::format("--param: '{}' is not of the form name=value (see glintlab models)", t));
+    }
+    out.emplace_back(t.substr(0, eq), t.substr(eq + 1));
+  }
+  return out;
+}
+
+const char* const kModelEvalFooter =
+    R"(
+WITH --model NAME (any model of 'glintlab models'; --param name=value, repeatable, sets its
+parameters, the others keep their defaults): --in has the columns
+  wi_x, wi_y, wi_z, wo_x, wo_y, wo_z   required; unit directions in the local frame (wi toward
+                                       the viewer, wo toward the light)
+  u, v, dudx, dvdx, dudy, dvdy         the pixel footprint: uv and the Jacobian d(u,v)/d(pixel);
+                                       required when the model needs a footprint, else optional (0)
+  light_cos_half_angle, light_intensity the light around wo: cosine of the cone half-angle in
+                                       [-1, 1] (1 = a delta light) and its intensity (>= 0);
+                                       required when the model needs a light, else optional (1)
+  r0_x, r0_y, r0_z, ..., r3_z          the reflection vectors at the pixel corners (x-,y-),
+                                       (x+,y-), (x-,y+), (x+,y+), unit, local frame; only for
+                                       models that need them (podee: then wo_z > 0, the disk's
+                                       centre above the surface, and light_cos_half_angle < 1,
+                                       a disk of radius > 0); such models need --in, not --grid
+and --out has every one of those columns (defaults filled in), then
+  value   f(wi, wo) max(wo.z, 0): the cosine-weighted BRDF
+  pdf     the density of wo (per steradian) under the model's sampler for this wi
+  ...     the model's intermediates, named as 'glintlab models' lists them.
+Instead of --in, --grid 'theta_i=lo:hi:count,phi_i=...,theta_o=...,phi_o=...' (degrees; theta in
+[0, 180], count in [1, 10000], at most 1e8 rows; an axis left out is 0) evaluates the product of
+the axes, theta_i outermost, phi_o innermost, wi and wo at those polar angles and azimuths;
+--out then starts with the columns theta_i, phi_i, theta_o, phi_o (degrees) and the other query
+columns take their defaults.)";
+
+void run_model_eval(const ModelEvalArgs& a) {
+  const ModelEntry* model = nullptr;
+  std::vector<double> params;
+  try {
+    model = &find_model(a.model);
+    params = resolve_params(*model, split_params(a.params));
+  } catch (const ModelParamError& e) {
+    throw InputError(e.what());
+  }
+  const BatchOptions opts = resolve_batch_options(a.batch);
+  if (!a.grid.empty() && !a.in_path.empty()) {
+    throw InputError("--grid: cannot be combined with --in (valid: one of them)");
+  }
+  if (a.grid.empty() && a.in_path.empty()) throw InputError("--in is required (or --grid)");
+
+  const bool need_corners = (model->needs & kNeedsPixelCorners) != 0;
+  if (need_corners && !a.grid.empty()) {
+    throw InputError(fmt::format(
+        "--grid: model {} needs the pixel-corner reflection vectors (valid: --in with columns "
+        "r0_x..r3_z)",
+        model->name));
+  }
+  // Query columns (SoA), and for --grid the angle columns written first.
+  std::vector<std::vector<double>> query(kColumns.size());
+  std::vector<std::vector<double>> angles, corners;
+  std::size_t n = 0;
+  if (!a.grid.empty()) {
+    const std::array<GridAxis, 4> g = parse_grid(a.grid);
+    n = 1;
+    for (const GridAxis& x : g) n *= std::size_t(x.count);
+    for (std::size_t i = 0; i < kColumns.size(); ++i) query[i].assign(n, kDefaults[i]);
+    angles.assign(4, std::vector<double>(n));
+    std::size_t r = 0;
+    for (std::uint64_t i0 = 0; i0 < g[0].count; ++i0)
+      for (std::uint64_t i1 = 0; i1 < g[1].count; ++i1)
+        for (std::uint64_t i2 = 0; i2 < g[2].count; ++i2)
+          for (std::uint64_t i3 = 0; i3 < g[3].count; ++i3, ++r) {
+            const double v[4] = {g[0].at(i0), g[1].at(i1), g[2].at(i2), g[3].at(i3)};
+            for (int k = 0; k < 4; ++k) angles[std::size_t(k)][r] = v[k];
+            const Vec3<double> wi = direction_deg(v[0], v[1]), wo = direction_deg(v[2], v[3]);
+            query[6][r] = wi.x;
+            query[7][r] = wi.y;
+            query[8][r] = wi.z;
+            query[9][r] = wo.x;
+            query[10][r] = wo.y;
+            query[11][r] = wo.z;
+          }
+  } else {
+    read_queries(*model, a.in_path, query, corners, n);
+  }
+
+  const std::vector<std::vector<double>> results =
+      need_corners ? evaluate_rows_with_corners(*model, params, query, corners, n)
+                   : evaluate_columns(*model, params, query, n, opts);
+
+  std::vector<std::string_view> header;
+  if (!angles.empty()) header.assign(kGridNames.begin(), kGridNames.end());
+  header.insert(header.end(), kColumns.begin(), kColumns.end());
+  header.insert(header.end(), kCornerColumns.begin(),
+                kCornerColumns.begin() + std::ptrdiff_t(corners.size()));
   header.push_back("value");
   header.push_back("pdf");
   header.insert(header.end(), model->intermediates.begin(), model->intermediates.end());
   try {
-    io::AtomicFile file(out_path);
+    io::AtomicFile file(a.out_path);
     {
       io::CsvWriter w(file.stream(), header);
-      for (std::size_t r = 0; r < rows.size(); ++r) {
-        for (double x : rows[r]) w.cell(x);
-        if (need_corners)
-          for (double x : corner_rows[r]) w.cell(x);
-        const ErasedEval e = model->eval(params, queries[r]);
-        w.cell(e.value).cell(e.pdf);
-        for (double x : e.intermediates) w.cell(x);
+      for (std::size_t r = 0; r < n; ++r) {
+        for (const auto& c : angles) w.cell(c[r]);
+        for (const auto& c : query) w.cell(c[r]);
+        for (const auto& c : corners) w.cell(c[r]);
+        for (const auto& c : results) w.cell(c[r]);
         w.end_row();
       }
     }

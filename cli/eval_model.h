@@ -1,14 +1,29 @@
-// `glintlab eval --model NAME [--param k=v ...]`: any registered model on CSV query rows.
+// `glintlab eval --model NAME [--param k=v ...]`: any registered model on CSV query rows or a grid
+// of directions, batched (core/simd/model_batch.h).
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "cli/batch_options.h"
 
 namespace glintlab::cli {
 
-// `params` are the raw "k=v" texts of --param.
-void run_model_eval(const std::string& model, const std::vector<std::string>& params,
-                    const std::string& in_path, const std::string& out_path);
+struct ModelEvalArgs {
+  std::string model;
+  std::vector<std::string> params;  // the raw "k=v" texts of --param
+  std::string in_path;              // --in, or empty with --grid
+  std::string grid;                 // --grid, or empty
+  std::string out_path;
+  BatchOptionTexts batch;
+};
+
+void run_model_eval(const ModelEvalArgs& args);
+
+// The (name, value) pairs of --param texts "name=value"; InputError for any other form.
+std::vector<std::pair<std::string, std::string>> split_params(
+    const std::vector<std::string>& texts);
 
 // The help text of the --model form (appended to eval's footer).
 extern const char* const kModelEvalFooter;

@@ -12,6 +12,7 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/sample_model.h"
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/math/rng.h"
@@ -193,20 +194,18 @@ void add_sample_command(CLI::App& app) {
       "sample",
       "Draw N reflected directions from a microfacet sampler, with pdf and weight, as CSV");
   auto a = std::make_shared<SampleArgs>();
-  cmd->add_option("--ndf", a->ndf, "Normal distribution: ggx or beckmann")->required();
+  cmd->add_option("--ndf", a->ndf, "Normal distribution: ggx or beckmann");
   cmd->add_option("--alpha", a->alpha,
                   "Roughness 'ax,ay' (tangent, bitangent), or one value for isotropic; each "
-                  "finite and > 0")
-      ->required();
+                  "finite and > 0");
   cmd->add_option("--wi", a->wi,
                   "Incident direction 'x,y,z' toward the viewer, unit length within 1e-6 (write "
-                  "--wi=-0.6,0,0.8 when x is negative)")
-      ->required();
-  cmd->add_option("--sampler", a->sampler, "ndf, vndf, caps or bounded (see below)")->required();
+                  "--wi=-0.6,0,0.8 when x is negative)");
+  cmd->add_option("--sampler", a->sampler, "ndf, vndf, caps or bounded (see below)");
   cmd->add_option("--bound", a->bound,
                   "Bound of the bounded sampler: listing1 (Eto & Tokuyoshi 2023 Listing 1) or "
                   "exact-isotropic; only with --sampler bounded (default listing1)");
-  cmd->add_option("--n", a->n, "Number of samples, an integer in [1, 1000000000]")->required();
+  cmd->add_option("--n", a->n, "Number of samples, an integer in [1, 1000000000]");
   cmd->add_option("--seed", a->seed,
                   "Seed of the counter-based generator, an unsigned 64-bit "
                   "integer (default 0)");
@@ -214,8 +213,39 @@ void add_sample_command(CLI::App& app) {
                   "Output CSV file; written to a temporary file and renamed into place only "
                   "when the run succeeded")
       ->required();
-  cmd->footer(kSampleFooter);
-  cmd->callback([a, cmd] {
+  auto m = std::make_shared<ModelSampleArgs>();
+  cmd->add_option("--model", m->model,
+                  "Sample this registered model's sampler instead (see glintlab models and "
+                  "below); --param sets its parameters");
+  cmd->add_option("--param", m->params, "With --model: name=value, repeatable")
+      ->allow_extra_args(false);
+  add_batch_options(cmd, m->batch);
+  cmd->footer(std::string(kSampleFooter) + kModelSampleFooter + kBatchOptionsFooter);
+  cmd->callback([a, m, cmd] {
+    if (!m->model.empty()) {
+      for (const char* o : {"--ndf", "--alpha", "--sampler", "--bound"}) {
+        if (cmd->count(o) > 0) {
+          throw InputError(fmt::format(
+              "{}: does not apply with --model (the model's --param sets it; see glintlab models)",
+              o));
+        }
+      }
+      for (const char* o : {"--wi", "--n"})
+        if (cmd->count(o) == 0) throw InputError(fmt::format("{} is required", o));
+      m->wi = a->wi;
+      m->n = a->n;
+      m->seed = a->seed;
+      m->out = a->out;
+      run_model_sample(*m);
+      return;
+    }
+    if (!m->params.empty()) throw InputError("--param: needs --model (see glintlab models)");
+    if (batch_options_given(cmd)) {
+      throw InputError("--isa/--precision/--math/--threads: need --model (see glintlab models)");
+    }
+    // Required without --model (CLI11 cannot express "required unless --model").
+    for (const char* o : {"--ndf", "--alpha", "--wi", "--sampler", "--n"})
+      if (cmd->count(o) == 0) throw InputError(fmt::format("{} is required", o));
     a->bound_given = cmd->count("--bound") > 0;
     run_sample(*a);
   });

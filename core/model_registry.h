@@ -44,7 +44,19 @@ struct ModelEntry {
   std::function<ModelSample<double>(const std::vector<double>& values, const ModelQuery<double>&,
                                     Vec2<double> u)>
       sample_float;
+  // The static model the entry was made from (static_model_tag<M>(), set by make_model_entry),
+  // so the batch API of core/simd/model_batch.h finds its SIMD instantiations; nullptr for an
+  // entry built by hand (it is then batched as a scalar loop over the thunks above).
+  const void* static_model = nullptr;
 };
+
+// One address per static model type (an inline variable: the same in every translation unit).
+template <class M>
+inline constexpr char kStaticModelTag = 0;
+template <class M>
+constexpr const void* static_model_tag() {
+  return &kStaticModelTag<M>;
+}
 
 // Every registered model, in registration order.
 const std::vector<ModelEntry>& registered_models();
@@ -108,6 +120,7 @@ ModelEntry make_model_entry() {
   e.description = M::kDescription;
   e.source = M::kSource;
   e.needs = M::kNeeds;
+  e.static_model = static_model_tag<M>();
   e.params.assign(M::kParams.begin(), M::kParams.end());
   e.intermediates.assign(M::kIntermediates.begin(), M::kIntermediates.end());
   e.eval = [](const std::vector<double>& v, const ModelQuery<double>& q) {

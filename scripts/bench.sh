@@ -7,13 +7,26 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 export CMAKE_CXX_COMPILER_LAUNCHER="${CMAKE_CXX_COMPILER_LAUNCHER:-}"
 cmake --preset release >/dev/null
-cmake --build --preset release --target glintlab_bench_kernels >/dev/null
+cmake --build --preset release --target glintlab_bench_kernels glintlab_bench_models >/dev/null
 mkdir -p out/bench
 tmp="out/bench/.bench.json.tmp"
 ./build/release/experiments/bench/glintlab_bench_kernels \
   --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
   --benchmark_min_time=0.05 \
   --benchmark_out="$tmp" --benchmark_out_format=json "$@"
+# Every registered model through the registry-level batch API (model/<name>/<isa>/<op>), merged
+# into the same JSON.
+./build/release/experiments/bench/glintlab_bench_models \
+  --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+  --benchmark_min_time=0.05 \
+  --benchmark_out="$tmp.models" --benchmark_out_format=json "$@"
+/usr/bin/python3 - "$tmp" "$tmp.models" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+d["benchmarks"] += json.load(open(sys.argv[2]))["benchmarks"]
+json.dump(d, open(sys.argv[1], "w"), indent=1)
+PY
+rm -f "$tmp.models"
 mv "$tmp" out/bench/bench.json
 /usr/bin/python3 - <<'PY'
 import json, collections
@@ -25,7 +38,7 @@ for b in d["benchmarks"]:
     med[b["run_name"]] = b
 rows = collections.OrderedDict()
 for name, b in med.items():
-    if name.startswith("chi_square"):
+    if name.startswith("chi_square") or name.startswith("model/"):
         continue
     kernel, isa, flavour = name.rsplit("/", 2)
     rows.setdefault(kernel, {})[(isa, flavour)] = b
@@ -54,6 +67,30 @@ for name, b in med.items():
     if name.startswith("chi_square"):
         lines.append(f"- {name}: {b['real_time']:.0f} ms wall for 10^7 samples "
                      f"(sampling + binning + expected counts + statistic)")
+models = collections.OrderedDict()
+for name, b in med.items():
+    if name.startswith("model/"):
+        _, model, isa, op = name.split("/", 3)
+        models.setdefault(model, {})[(isa, op)] = b
+if models:
+    misas = [i for i in ["scalar", "sse4.2", "avx2", "avx512"]
+             if any((i, "eval_double") in r for r in models.values())]
+    lines += ["", "Models (registry-level batch API, 4096 queries, default parameters): "
+              "Mitem/s of the entry's double thunk loop, and speed-up of each ISA's batch over it.", "",
+              "| model | op | entry Mitem/s | " + " | ".join(f"{i} double × | {i} float ×" for i in misas) + " |",
+              "|" + "---|" * (3 + 2 * len(misas))]
+    for model, r in models.items():
+        for op in ["eval", "sample"]:
+            e = r.get(("entry", op))
+            if not e:
+                continue
+            s = e["items_per_second"]
+            cells = []
+            for i in misas:
+                for p in ["double", "float"]:
+                    b = r.get((i, f"{op}_{p}"))
+                    cells.append(f"{b['items_per_second']/s:.1f}" if b else "—")
+            lines.append(f"| {model} | {op} | {s/1e6:.2f} | " + " | ".join(cells) + " |")
 open("out/bench/speedups.md", "w").write("\n".join(lines) + "\n")
 print("\n".join(lines))
 PY

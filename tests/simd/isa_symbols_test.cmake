@@ -1,7 +1,7 @@
 # Each ISA object of core/simd must define no weak (vague-linkage) symbol that another ISA's
 # object could also define: the linker keeps one copy of such a symbol for the whole program, so
 # an AVX-512 copy of a shared inline function would run on CPUs without AVX-512. Allowed: symbols
-# whose names carry the ISA (xsimd arch types, the renamed xsimd helpers), the per-ISA table, and
+# whose names carry the ISA (xsimd arch types, the renamed xsimd helpers), the per-ISA tables, and
 # the C++ personality reference. Run: cmake -DNM=nm -DOBJECTS="a.o|b.o" -P isa_symbols_test.cmake
 string(REPLACE "|" ";" objects "${OBJECTS}")
 set(checked 0)
@@ -22,7 +22,7 @@ foreach(obj IN LISTS objects)
     endif()
     set(sym "${CMAKE_MATCH_1}")
     if(sym MATCHES "xsimd::(sse4_2|fma3<xsimd::avx2>|avx512bw)" OR sym MATCHES "glintlab_[a-z0-9_]+_${isa}\\("
-       OR sym MATCHES "^glintlab::simd::detail::table_${isa}\\(\\)$" OR sym MATCHES "__gxx_personality")
+       OR sym MATCHES "^glintlab::simd::detail::(model_)?table_${isa}\\(\\)$" OR sym MATCHES "__gxx_personality")
       continue()
     endif()
     message(FATAL_ERROR "${name} exports a symbol other ISAs may share: ${sym}")

@@ -55,6 +55,12 @@ ChiSquarePlan plan_gof_case(const GofCase& c, std::uint64_t n, double level,
 ChiSquareResult run_gof_case(const ChiSquarePlan& plan, const GofCase& c, std::uint64_t seed) {
   if (c.domain == SampleDomain::kDisk)
     return run_disk_chi_square(plan, [&](std::uint64_t i) { return c.points(seed, i); });
+  if (c.direction_batch) {
+    return run_direction_chi_square(
+        plan, DirectionBatchSampler([&](std::uint64_t begin, std::size_t count, Vec3<double>* out) {
+          c.direction_batch(seed, begin, count, out);
+        }));
+  }
   return run_direction_chi_square(plan, [&](std::uint64_t i) { return c.directions(seed, i); });
 }
 

@@ -24,6 +24,9 @@ namespace glintlab::verify {
 
 using SeededDirections = std::function<Vec3<double>(std::uint64_t seed, std::uint64_t index)>;
 using SeededPoints = std::function<Vec2<double>(std::uint64_t seed, std::uint64_t index)>;
+// Directions begin .. begin + count − 1 under `seed` at once (a batched sampler, core/simd/).
+using SeededDirectionBatch = std::function<void(std::uint64_t seed, std::uint64_t begin,
+                                                std::size_t count, Vec3<double>* out)>;
 
 // One configuration: samples of directions on the sphere (or points on the disk of
 // core/maps/disk_square.h) and the density they are claimed to follow.
@@ -35,6 +38,7 @@ struct GofCase {
   SeededDirections directions;
   PointPdf point_pdf;
   SeededPoints points;
+  SeededDirectionBatch direction_batch = {};  // where set, used instead of `directions`
 };
 
 // A wrong case of a control. With plan_of ≥ 0 the claimed pdf is configuration plan_of's pdf times

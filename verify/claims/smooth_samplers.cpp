@@ -12,6 +12,7 @@
 #include "core/ndf/beckmann.h"
 #include "core/ndf/ggx.h"
 #include "core/ndf/microfacet.h"
+#include "core/simd/batch.h"
 #include "verify/claims/claims.h"
 #include "verify/claims/gof_family.h"
 #include "verify/claims/sampler_table.h"
@@ -76,6 +77,46 @@ SeededDirections directions(const Config& c, double alpha_scale = 1) {
   };
 }
 
+// The batch kernel (core/simd/kernels.h) of a sampler of sampler_table().
+int batch_kernel(const std::string& name) {
+  static const std::vector<std::pair<std::string, std::string>> kNames = {
+      {"walter/ggx", "sample.walter/ggx"},
+      {"walter/beckmann", "sample.walter/beckmann"},
+      {"heitz-vndf/ggx", "sample.heitz_vndf/ggx"},
+      {"vndf/beckmann", "sample.beckmann_vndf/beckmann"},
+      {"spherical-caps/ggx", "sample.spherical_caps/ggx"},
+      {"bounded-listing1/ggx", "sample.bounded_vndf_listing1/ggx"},
+      {"bounded-exact/ggx", "sample.bounded_vndf_exact_isotropic/ggx"}};
+  for (const auto& [table, kernel] : kNames)
+    if (table == name) return *simd::find_kernel(kernel);
+  throw std::logic_error("sampler " + name + " has no batch kernel");
+}
+
+// The same sampler as directions(c), batched (core/simd/batch.h sample_batch, double, on the ISA
+// of GLINTLAB_ISA or the widest of this CPU): the same uniforms; wo within the equivalence
+// budgets of tests/simd/ of the scalar one (bit-identical with GLINTLAB_ISA=scalar).
+SeededDirectionBatch batched_directions(const Config& c) {
+  const int kernel = batch_kernel(sampler_table()[c.sampler].name);
+  const simd::Isa isa = simd::default_isa();
+  const V3 wi = incidence(c.theta_deg);
+  return [kernel, isa, wi, ax = c.ax, ay = c.ay](std::uint64_t seed, std::uint64_t begin,
+                                                 std::size_t count, V3* out) {
+    std::vector<double> u1(count), u2(count), o(8 * count);
+    for (std::size_t i = 0; i < count; ++i) {
+      const Vec2<double> u = uniform_pair(seed, begin + i);
+      u1[i] = u.x;
+      u2[i] = u.y;
+    }
+    const double w[3] = {wi.x, wi.y, wi.z};
+    double* p = o.data();
+    simd::sample_batch<double>(kernel, ax, ay, w, u1.data(), u2.data(),
+                               {p, p + count, p + 2 * count, p + 3 * count, p + 4 * count,
+                                p + 5 * count, p + 6 * count, p + 7 * count},
+                               count, isa);
+    for (std::size_t i = 0; i < count; ++i) out[i] = {p[i], p[count + i], p[2 * count + i]};
+  };
+}
+
 GofCase make_case(const Config& c) {
   const SamplerEntry& e = sampler_table()[c.sampler];
   const V3 wi = incidence(c.theta_deg);
@@ -99,6 +140,7 @@ GofCase make_case(const Config& c) {
     for (int k = 1; k < 64; ++k) g.options.phi_breaks.push_back(2 * std::numbers::pi * k / 64);
   g.direction_pdf = [&e, wi, ax = c.ax, ay = c.ay](const V3& wo) { return e.pdf(ax, ay, wi, wo); };
   g.directions = directions(c);
+  g.direction_batch = batched_directions(c);
   return g;
 }
 

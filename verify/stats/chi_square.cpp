@@ -505,9 +505,11 @@ Tally tally_samples(const ChiSquarePlan& plan, Classify&& classify) {
     Tally& t = local.local();
     for (std::uint64_t c = r.begin(); c != r.end(); ++c) {
       const std::uint64_t end = std::min(plan.n, (c + 1) * chunk);
+      // The chunk's view of the samples (a batched sampler draws the whole chunk here).
+      decltype(auto) samples = classify.begin_chunk(c * chunk, end);
       for (std::uint64_t i = c * chunk; i < end; ++i) {
         double tc = 0, phi = 0;
-        const Kind k = classify(i, tc, phi);
+        const Kind k = samples(i, tc, phi);
         switch (k) {
           case Kind::kNoSample:
             ++t.no_sample;
@@ -531,7 +533,7 @@ Tally tally_samples(const ChiSquarePlan& plan, Classify&& classify) {
           zero_bin = zero_bin || plan.grids[g].expected[b] == 0;
         }
         if (zero_bin) {
-          const double p = classify.pdf(i);
+          const double p = samples.pdf(i);
           if (p > 0) {
             ++t.missed;
             t.first_missed = std::min(t.first_missed, i);
@@ -787,18 +789,24 @@ ChiSquarePlan plan_disk_chi_square(PointPdf pdf, std::uint64_t n, const ChiSquar
   return make_plan(SampleDomain::kDisk, {}, std::move(pdf), n, options);
 }
 
+// The kind of direction w and, for a binned one, its bin coordinates.
+static Kind classify_direction(const ChiSquarePlan& plan, const Vec3<double>& w, double& t,
+                               double& phi) {
+  if (w.x == 0 && w.y == 0 && w.z == 0) return Kind::kNoSample;
+  const double l2 = w.x * w.x + w.y * w.y + w.z * w.z;
+  if (!std::isfinite(l2) || std::abs(l2 - 1) > 2e-5) return Kind::kMalformed;
+  if (plan.domain == SampleDomain::kHemisphere && w.z < -1e-12) return Kind::kOutside;
+  plan.to_bin_coordinates(w, t, phi);
+  return Kind::kBinned;
+}
+
 ChiSquareResult run_direction_chi_square(const ChiSquarePlan& plan, const DirectionSampler& sample) {
   struct Classify {
     const ChiSquarePlan& plan;
     const DirectionSampler& sample;
+    const Classify& begin_chunk(std::uint64_t, std::uint64_t) const { return *this; }
     Kind operator()(std::uint64_t i, double& t, double& phi) const {
-      const Vec3<double> w = sample(i);
-      if (w.x == 0 && w.y == 0 && w.z == 0) return Kind::kNoSample;
-      const double l2 = w.x * w.x + w.y * w.y + w.z * w.z;
-      if (!std::isfinite(l2) || std::abs(l2 - 1) > 2e-5) return Kind::kMalformed;
-      if (plan.domain == SampleDomain::kHemisphere && w.z < -1e-12) return Kind::kOutside;
-      plan.to_bin_coordinates(w, t, phi);
-      return Kind::kBinned;
+      return classify_direction(plan, sample(i), t, phi);
     }
     double pdf(std::uint64_t i) const {
       const Vec3<double> w = sample(i);
@@ -808,10 +816,35 @@ ChiSquareResult run_direction_chi_square(const ChiSquarePlan& plan, const Direct
   return run_plan(plan, Classify{plan, sample});
 }
 
+ChiSquareResult run_direction_chi_square(const ChiSquarePlan& plan,
+                                         const DirectionBatchSampler& sample) {
+  // One chunk's samples, drawn at once.
+  struct Chunk {
+    const ChiSquarePlan& plan;
+    std::uint64_t begin;
+    std::vector<Vec3<double>> w;
+    Kind operator()(std::uint64_t i, double& t, double& phi) const {
+      return classify_direction(plan, w[i - begin], t, phi);
+    }
+    double pdf(std::uint64_t i) const { return plan.direction_pdf(w[i - begin]); }
+  };
+  struct Classify {
+    const ChiSquarePlan& plan;
+    const DirectionBatchSampler& sample;
+    Chunk begin_chunk(std::uint64_t begin, std::uint64_t end) const {
+      Chunk c{plan, begin, std::vector<Vec3<double>>(end - begin)};
+      sample(begin, end - begin, c.w.data());
+      return c;
+    }
+  };
+  return run_plan(plan, Classify{plan, sample});
+}
+
 ChiSquareResult run_disk_chi_square(const ChiSquarePlan& plan, const PointSampler& sample) {
   struct Classify {
     const ChiSquarePlan& plan;
     const PointSampler& sample;
+    const Classify& begin_chunk(std::uint64_t, std::uint64_t) const { return *this; }
     Kind operator()(std::uint64_t i, double& t, double& phi) const {
       const Vec2<double> p = sample(i);
       if (std::isnan(p.x) || std::isnan(p.y)) return Kind::kNoSample;

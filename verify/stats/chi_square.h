@@ -241,6 +241,12 @@ ChiSquarePlan plan_disk_chi_square(PointPdf pdf, std::uint64_t n,
                                    const ChiSquareOptions& options = {});
 ChiSquareResult run_direction_chi_square(const ChiSquarePlan& plan, const DirectionSampler& sample);
 ChiSquareResult run_disk_chi_square(const ChiSquarePlan& plan, const PointSampler& sample);
+// The same with a batched sampler: sample(begin, count, out) writes samples begin .. begin +
+// count − 1, each a function of its index only (the chunks it is asked for do not change them).
+using DirectionBatchSampler =
+    std::function<void(std::uint64_t begin, std::size_t count, Vec3<double>* out)>;
+ChiSquareResult run_direction_chi_square(const ChiSquarePlan& plan,
+                                         const DirectionBatchSampler& sample);
 
 // Plan and run in one call.
 ChiSquareResult chi_square_sphere(const DirectionSampler& sample, std::uint64_t n,

@@ -1,0 +1,110 @@
+// `glintlab sample --model`: samples of a registered model's own sampler (core/model.h
+// ModelSample) for one ωi, in SIMD batches of fixed chunks (core/simd/model_batch.h).
+#include "cli/sample_model.h"
+
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <type_traits>
+
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "cli/eval_model.h"
+#include "core/io/atomic_file.h"
+#include "core/io/csv.h"
+#include "core/math/rng.h"
+#include "core/model_registry.h"
+#include "core/simd/model_batch.h"
+
+namespace glintlab::cli {
+namespace {
+
+constexpr std::uint64_t kMaxSamples = 1000000000;
+
+}  // namespace
+
+const char* const kModelSampleFooter = R"(
+WITH --model NAME (any model of 'glintlab models'; --param name=value sets its parameters, the
+sampler among them): --wi, --n, --seed and --out as above; --ndf, --alpha, --sampler and --bound
+do not apply. --out has one row per sample i = 0 .. N-1 with the columns
+  wo_x, wo_y, wo_z  the sampled direction (toward the light)
+  pdf               its density per steradian under the model's sampler
+  weight            value / pdf, the Monte Carlo weight of the cosine-weighted BRDF (0 if rejected)
+  rejected          1 if the sampler rejected the sample, else 0
+with the same uniforms u = (counter_uniform(S, i, 0), counter_uniform(S, i, 1)); the other
+query columns (footprint, light) take their defaults.)";
+
+void run_model_sample(const ModelSampleArgs& a) {
+  const ModelEntry* model = nullptr;
+  std::vector<double> params;
+  try {
+    model = &find_model(a.model);
+    params = resolve_params(*model, split_params(a.params));
+  } catch (const ModelParamError& e) {
+    throw InputError(e.what());
+  }
+  const BatchOptions opts = resolve_batch_options(a.batch);
+  const std::vector<double> wi =
+      parse_number_list(a.wi, "--wi", "three comma-separated numbers x,y,z of a unit vector");
+  if (wi.size() != 3) {
+    throw InputError(fmt::format(
+        "--wi: '{}' has {} values (valid: three comma-separated numbers x,y,z of a unit vector)",
+        a.wi, wi.size()));
+  }
+  check_unit({wi[0], wi[1], wi[2]}, "--wi");
+  const std::uint64_t n = parse_integer(a.n, "--n", 1, kMaxSamples);
+  const std::uint64_t seed = parse_integer(a.seed, "--seed", 0, UINT64_MAX);
+
+  std::vector<std::vector<double>> out(simd::kSampleColumns.size(), std::vector<double>(n));
+  const auto run = [&]<class S>(S) {
+    std::array<S, simd::kQueryColumns.size()> q;
+    for (std::size_t j = 0; j < q.size(); ++j) q[j] = S(simd::kQueryDefaults[j]);
+    for (std::size_t j = 0; j < 3; ++j) q[6 + j] = S(wi[j]);
+    std::vector<S> res;
+    if constexpr (std::is_same_v<S, float>) res.resize(out.size() * n);
+    for_each_chunk(n, opts, [&](std::size_t begin, std::size_t count) {
+      std::vector<S> u1(count), u2(count);
+      for (std::size_t i = 0; i < count; ++i) {
+        u1[i] = S(counter_uniform<double>(seed, begin + i, 0));
+        u2[i] = S(counter_uniform<double>(seed, begin + i, 1));
+      }
+      std::vector<simd::Column<S>> cols;
+      for (const S& x : q) cols.push_back({&x, 0});
+      std::vector<S*> outs;
+      for (std::size_t k = 0; k < out.size(); ++k) {
+        if constexpr (std::is_same_v<S, float>) {
+          outs.push_back(res.data() + k * n + begin);
+        } else {
+          outs.push_back(out[k].data() + begin);
+        }
+      }
+      simd::sample_batch(*model, params, cols, {u1.data(), 1}, {u2.data(), 1}, outs, count,
+                         opts.isa, opts.math);
+    });
+    if constexpr (std::is_same_v<S, float>)
+      for (std::size_t k = 0; k < out.size(); ++k)
+        for (std::size_t i = 0; i < n; ++i) out[k][i] = res[k * n + i];
+  };
+  if (opts.float_precision) {
+    run(0.0f);
+  } else {
+    run(0.0);
+  }
+
+  try {
+    io::AtomicFile file(a.out);
+    {
+      io::CsvWriter w(file.stream(), std::span<const std::string_view>(simd::kSampleColumns));
+      for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t k = 0; k + 1 < out.size(); ++k) w.cell(out[k][i]);
+        w.cell_int(out.back()[i] != 0 ? 1 : 0);
+        w.end_row();
+      }
+    }
+    file.commit();
+  } catch (const std::runtime_error& e) {
+    throw InputError(std::string("--out: ") + e.what());
+  }
+}
+
+}  // namespace glintlab::cli

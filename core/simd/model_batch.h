@@ -1,0 +1,67 @@
+// Structure-of-arrays batch evaluation and sampling of a registered model (core/model_registry.h):
+// the model's own eval/pdf/sample templates (core/model.h) instantiated on the SIMD batches of each
+// ISA for the models of core/simd/batched_models.h, a scalar loop over the entry's thunks for any
+// other entry (including one built at run time). No xsimd in this header.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <span>
+#include <string_view>
+
+#include "core/model_registry.h"
+#include "core/simd/batch.h"
+
+namespace glintlab::simd {
+
+// The query columns, in this order (the columns of `glintlab eval --model`): footprint uv and
+// its Jacobian, ω_i, ω_o, the light cone (core/model.h ModelQuery).
+inline constexpr std::array<std::string_view, 14> kQueryColumns = {"u",
+                                                                   "v",
+                                                                   "dudx",
+                                                                   "dvdx",
+                                                                   "dudy",
+                                                                   "dvdy",
+                                                                   "wi_x",
+                                                                   "wi_y",
+                                                                   "wi_z",
+                                                                   "wo_x",
+                                                                   "wo_y",
+                                                                   "wo_z",
+                                                                   "light_cos_half_angle",
+                                                                   "light_intensity"};
+// The default of each query column where a model does not need it.
+inline constexpr std::array<double, 14> kQueryDefaults = {0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 1, 1, 1};
+// eval_batch writes value, pdf, then the model's intermediates (ModelEntry::intermediates).
+// sample_batch writes these (ModelSample: wo, its pdf, the weight value/pdf, rejected as 1 or 0).
+inline constexpr std::array<std::string_view, 6> kSampleColumns = {"wo_x", "wo_y",   "wo_z",
+                                                                   "pdf",  "weight", "rejected"};
+
+// Whether `model` has SIMD instantiations (it is in BatchedModels); otherwise the batch calls
+// below run the entry's double-precision thunks row by row (any ISA argument gives that result).
+bool is_batched(const ModelEntry& model);
+
+// outputs[k][i] for row i < n of the queries (query: kQueryColumns.size() columns, stride 0 or 1),
+// with the parameter values `params` (ModelEntry::params order, as resolve_params returns them)
+// for every row; outputs: 2 + model.intermediates.size() columns. Throws std::invalid_argument
+// on wrong column counts or parameter count, Math::kFast with double, or an ISA this CPU lacks.
+// Row i's result depends only on (its query, params, ISA, math): never on n or its position.
+void eval_batch(const ModelEntry& model, std::span<const double> params,
+                std::span<const Column<float>> query, std::span<float* const> outputs,
+                std::size_t n, Isa isa, Math math = Math::kExact);
+void eval_batch(const ModelEntry& model, std::span<const double> params,
+                std::span<const Column<double>> query, std::span<double* const> outputs,
+                std::size_t n, Isa isa, Math math = Math::kExact);
+
+// One sample per row from the query's ω_i (and footprint, light) and the uniform pair (u1, u2);
+// outputs: the kSampleColumns.size() columns. Same contract as eval_batch.
+void sample_batch(const ModelEntry& model, std::span<const double> params,
+                  std::span<const Column<float>> query, Column<float> u1, Column<float> u2,
+                  std::span<float* const> outputs, std::size_t n, Isa isa,
+                  Math math = Math::kExact);
+void sample_batch(const ModelEntry& model, std::span<const double> params,
+                  std::span<const Column<double>> query, Column<double> u1, Column<double> u2,
+                  std::span<double* const> outputs, std::size_t n, Isa isa,
+                  Math math = Math::kExact);
+
+}  // namespace glintlab::simd

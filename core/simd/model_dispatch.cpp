@@ -1,0 +1,172 @@
+// eval_batch / sample_batch over registered models: the per-ISA model tables for the models of
+// BatchedModels, a scalar loop over the entry's thunks for every other entry.
+#include <fmt/format.h>
+
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "core/simd/batched_models.h"
+#include "core/simd/model_batch.h"
+#include "core/simd/model_table.h"
+
+namespace glintlab::simd {
+namespace {
+
+template <class... Ms>
+constexpr std::array<const void*, sizeof...(Ms)> tags_of(ModelList<Ms...>) {
+  return {static_model_tag<Ms>()...};
+}
+
+// The index of the model in BatchedModels, or -1.
+int batched_index(const ModelEntry& model) {
+  static const auto kTags = tags_of(BatchedModels{});
+  if (model.static_model == nullptr) return -1;
+  for (std::size_t i = 0; i < kTags.size(); ++i)
+    if (kTags[i] == model.static_model) return static_cast<int>(i);
+  return -1;
+}
+
+const detail::ModelFns* model_table(Isa isa) {
+  switch (isa) {
+    case Isa::kSse42:
+      return detail::model_table_sse42();
+    case Isa::kAvx2:
+      return detail::model_table_avx2();
+    case Isa::kAvx512:
+      return detail::model_table_avx512();
+    case Isa::kScalar:
+      break;
+  }
+  return detail::model_table_scalar();
+}
+
+template <class S>
+void check_call(const char* what, const ModelEntry& model, std::size_t n_params,
+                std::span<const Column<S>> query, std::size_t n_out, std::size_t want_out, Isa isa,
+                Math math) {
+  if (n_params != model.params.size()) {
+    throw std::invalid_argument(fmt::format("{}: model {} takes {} parameter values, got {}", what,
+                                            model.name, model.params.size(), n_params));
+  }
+  if (query.size() != kQueryColumns.size() || n_out != want_out) {
+    throw std::invalid_argument(
+        fmt::format("{}: model {} takes {} query and {} output columns, got {} and {}", what,
+                    model.name, kQueryColumns.size(), want_out, query.size(), n_out));
+  }
+  for (std::size_t j = 0; j < query.size(); ++j) {
+    if (query[j].stride > 1) {
+      throw std::invalid_argument(fmt::format("{}: query column {} has stride {} (valid: 0 or 1)",
+                                              what, kQueryColumns[j], query[j].stride));
+    }
+  }
+  if (!isa_supported(isa)) {
+    throw std::invalid_argument(
+        fmt::format("{}: ISA {} is not supported by this CPU", what, isa_name(isa)));
+  }
+  if (std::is_same_v<S, double> && math == Math::kFast) {
+    throw std::invalid_argument(
+        fmt::format("{}: fast math is single precision only (use float)", what));
+  }
+}
+
+template <class S>
+ModelQuery<double> query_row(std::span<const Column<S>> q, std::size_t i) {
+  double v[kQueryColumns.size()];
+  for (std::size_t j = 0; j < kQueryColumns.size(); ++j)
+    v[j] = static_cast<double>(q[j].data[q[j].stride * i]);
+  ModelQuery<double> r;
+  r.footprint = {{v[0], v[1]}, {v[2], v[3]}, {v[4], v[5]}};
+  r.wi = {v[6], v[7], v[8]};
+  r.wo = {v[9], v[10], v[11]};
+  r.light = {v[12], v[13]};
+  return r;
+}
+
+template <class S>
+void eval_any(const ModelEntry& model, std::span<const double> params,
+              std::span<const Column<S>> query, std::span<S* const> outputs, std::size_t n, Isa isa,
+              Math math) {
+  check_call<S>("eval_batch", model, params.size(), query, outputs.size(),
+                2 + model.intermediates.size(), isa, math);
+  const int m = batched_index(model);
+  if (m >= 0) {
+    const detail::ModelFns& f = model_table(isa)[m];
+    if constexpr (std::is_same_v<S, float>) {
+      (math == Math::kFast ? f.eval_fast_float : f.eval_float)(params.data(), query.data(),
+                                                               outputs.data(), n);
+    } else {
+      f.eval_double(params.data(), query.data(), outputs.data(), n);
+    }
+    return;
+  }
+  // Not batched: the entry's double thunks, row by row.
+  const std::vector<double> values(params.begin(), params.end());
+  for (std::size_t i = 0; i < n; ++i) {
+    const ErasedEval e = model.eval(values, query_row(query, i));
+    outputs[0][i] = static_cast<S>(e.value);
+    outputs[1][i] = static_cast<S>(e.pdf);
+    for (std::size_t k = 0; k < model.intermediates.size(); ++k)
+      outputs[2 + k][i] = static_cast<S>(k < e.intermediates.size() ? e.intermediates[k] : 0.0);
+  }
+}
+
+template <class S>
+void sample_any(const ModelEntry& model, std::span<const double> params,
+                std::span<const Column<S>> query, Column<S> u1, Column<S> u2,
+                std::span<S* const> outputs, std::size_t n, Isa isa, Math math) {
+  check_call<S>("sample_batch", model, params.size(), query, outputs.size(), kSampleColumns.size(),
+                isa, math);
+  if (u1.stride > 1 || u2.stride > 1) {
+    throw std::invalid_argument("sample_batch: uniform columns have stride 0 or 1");
+  }
+  const int m = batched_index(model);
+  if (m >= 0) {
+    const detail::ModelFns& f = model_table(isa)[m];
+    const Column<S> u[2] = {u1, u2};
+    if constexpr (std::is_same_v<S, float>) {
+      (math == Math::kFast ? f.sample_fast_float : f.sample_float)(params.data(), query.data(), u,
+                                                                   outputs.data(), n);
+    } else {
+      f.sample_double(params.data(), query.data(), u, outputs.data(), n);
+    }
+    return;
+  }
+  const std::vector<double> values(params.begin(), params.end());
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2<double> u{static_cast<double>(u1.data[u1.stride * i]),
+                         static_cast<double>(u2.data[u2.stride * i])};
+    const ModelSample<double> s = model.sample(values, query_row(query, i), u);
+    const double row[6] = {s.wo.x, s.wo.y, s.wo.z, s.pdf, s.weight, s.rejected ? 1.0 : 0.0};
+    for (std::size_t k = 0; k < 6; ++k) outputs[k][i] = static_cast<S>(row[k]);
+  }
+}
+
+}  // namespace
+
+bool is_batched(const ModelEntry& model) { return batched_index(model) >= 0; }
+
+void eval_batch(const ModelEntry& model, std::span<const double> params,
+                std::span<const Column<float>> query, std::span<float* const> outputs,
+                std::size_t n, Isa isa, Math math) {
+  eval_any<float>(model, params, query, outputs, n, isa, math);
+}
+void eval_batch(const ModelEntry& model, std::span<const double> params,
+                std::span<const Column<double>> query, std::span<double* const> outputs,
+                std::size_t n, Isa isa, Math math) {
+  eval_any<double>(model, params, query, outputs, n, isa, math);
+}
+void sample_batch(const ModelEntry& model, std::span<const double> params,
+                  std::span<const Column<float>> query, Column<float> u1, Column<float> u2,
+                  std::span<float* const> outputs, std::size_t n, Isa isa, Math math) {
+  sample_any<float>(model, params, query, u1, u2, outputs, n, isa, math);
+}
+void sample_batch(const ModelEntry& model, std::span<const double> params,
+                  std::span<const Column<double>> query, Column<double> u1, Column<double> u2,
+                  std::span<double* const> outputs, std::size_t n, Isa isa, Math math) {
+  sample_any<double>(model, params, query, u1, u2, outputs, n, isa, math);
+}
+
+}  // namespace glintlab::simd

@@ -1,0 +1,118 @@
+// Google Benchmark of every registered model (core/model_registry.h) through the registry-level
+// batch API (core/simd/model_batch.h): the entry's scalar double thunk loop against each ISA's
+// batched eval and sample, items (queries) per second. Names: model/<name>/<isa>/<op>_<precision>,
+// model/<name>/entry/<op> for the thunk loop.
+#include <benchmark/benchmark.h>
+
+#include <string>
+#include <vector>
+
+#include "core/model_registry.h"
+#include "core/simd/inputs.h"
+#include "core/simd/kernels.h"
+#include "core/simd/model_batch.h"
+
+namespace glintlab::simd::bench {
+namespace {
+
+constexpr std::size_t kRows = 4096;
+
+// kRows queries over the edge-case generator's wi, wo and uniforms (core/simd/inputs.h).
+struct Queries {
+  std::vector<std::vector<double>> query;  // kQueryColumns.size() columns
+  std::vector<double> u1, u2;
+};
+
+const Queries& queries() {
+  static const Queries q = [] {
+    using D = Domain;
+    const std::vector<int> domains = {int(D::kWiX), int(D::kWiY), int(D::kWiZ), int(D::kWoX),
+                                      int(D::kWoY), int(D::kWoZ), int(D::kU1),  int(D::kU2)};
+    const auto in = make_inputs(domains, kRows, 0x62656e6368ULL);
+    Queries r;
+    for (std::size_t j = 0; j < kQueryColumns.size(); ++j)
+      r.query.emplace_back(kRows, kQueryDefaults[j]);
+    for (std::size_t j = 0; j < 6; ++j) r.query[6 + j] = in[j];
+    r.u1 = in[6];
+    r.u2 = in[7];
+    return r;
+  }();
+  return q;
+}
+
+std::vector<double> defaults(const ModelEntry& m) {
+  std::vector<double> v;
+  for (const ParamSpec& p : m.params) v.push_back(p.default_value);
+  return v;
+}
+
+void bm_entry(benchmark::State& state, const ModelEntry* m, bool sample) {
+  const Queries& q = queries();
+  const std::vector<double> params = defaults(*m);
+  double sink = 0;
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < kRows; ++i) {
+      ModelQuery<double> mq{};
+      mq.wi = {q.query[6][i], q.query[7][i], q.query[8][i]};
+      mq.wo = {q.query[9][i], q.query[10][i], q.query[11][i]};
+      mq.light = {1, 1};
+      sink += sample ? m->sample(params, mq, {q.u1[i], q.u2[i]}).weight : m->eval(params, mq).value;
+    }
+    benchmark::DoNotOptimize(sink);
+  }
+  state.SetItemsProcessed(state.iterations() * std::int64_t(kRows));
+}
+
+template <class S>
+void bm_batch(benchmark::State& state, const ModelEntry* m, Isa isa, bool sample) {
+  const Queries& q = queries();
+  const std::vector<double> params = defaults(*m);
+  std::vector<std::vector<S>> cols_data;
+  for (const auto& c : q.query) cols_data.emplace_back(c.begin(), c.end());
+  const std::vector<S> u1(q.u1.begin(), q.u1.end()), u2(q.u2.begin(), q.u2.end());
+  std::vector<Column<S>> cols;
+  for (const auto& c : cols_data) cols.push_back({c.data(), 1});
+  const std::size_t n_out = sample ? kSampleColumns.size() : 2 + m->intermediates.size();
+  std::vector<std::vector<S>> out(n_out, std::vector<S>(kRows));
+  std::vector<S*> outs;
+  for (auto& c : out) outs.push_back(c.data());
+  for (auto _ : state) {
+    if (sample) {
+      sample_batch(*m, params, cols, {u1.data(), 1}, {u2.data(), 1}, outs, kRows, isa);
+    } else {
+      eval_batch(*m, params, cols, outs, kRows, isa);
+    }
+    benchmark::DoNotOptimize(out[0].data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * std::int64_t(kRows));
+}
+
+void register_all() {
+  for (const ModelEntry& m : registered_models()) {
+    const std::string base = "model/" + std::string(m.name) + "/";
+    for (bool sample : {false, true}) {
+      const std::string op = sample ? "sample" : "eval";
+      benchmark::RegisterBenchmark((base + "entry/" + op).c_str(), bm_entry, &m, sample);
+      for (Isa isa : kAllIsas) {
+        if (!isa_supported(isa)) continue;
+        const std::string name = base + std::string(isa_name(isa)) + "/" + op;
+        benchmark::RegisterBenchmark((name + "_float").c_str(), bm_batch<float>, &m, isa, sample);
+        benchmark::RegisterBenchmark((name + "_double").c_str(), bm_batch<double>, &m, isa, sample);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace glintlab::simd::bench
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  benchmark::AddCustomContext("best_isa",
+                              std::string(glintlab::simd::isa_name(glintlab::simd::best_isa())));
+  glintlab::simd::bench::register_all();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
