@@ -33,6 +33,13 @@ struct LtcCoefficients {
   double m00, m02, m20, m22;
 };
 
+// The fit's variables (core/ltc/ltc_fit.h): M = [X Y Z] [[m11, 0, m13], [0, m22, 0], [m31, 0, 1]]
+// in the frame of the target's mean direction Z. Kept in the tables as each entry's warm start
+// for its neighbour, so that any entry can be refitted on its own.
+struct LtcFitParameters {
+  double m11, m22, m13, m31;
+};
+
 // Host-side tables, entry index i · size + j (i: √α, j: θ_o).
 struct LtcTables {
   int size = 0;
@@ -41,11 +48,13 @@ struct LtcTables {
   std::vector<double> albedo;  // ∫_H ρ⟨n, ω_i⟩ dω_i with F = 1: the BRDF lobe's amplitude
   std::vector<double> fresnel;  // ∫_H ρ⟨n, ω_i⟩ (1 − ⟨ω_i, h⟩)⁵ dω_i: with Schlick's F,
                                 // FG = F0 · (albedo − fresnel) + fresnel (Heitz et al. 2016)
-  std::vector<double> brdf_error;  // the fit's MIS-weighted L3 error (core/ltc/ltc_fit.h)
+  std::vector<double> brdf_error;  // ∫ |f̂ − D_ltc| dω of the fit (core/ltc/ltc_fit.h)
+  std::vector<LtcFitParameters> brdf_params;
   // (b) NDF lobe, target D(h)/(4⟨h, ω_i⟩) over ω_i ∈ H (Kneiphof & Klein Eq. 13), normalized.
   std::vector<LtcCoefficients> ndf;
   std::vector<double> d_pr;  // (c) D_PR = ∫_H D(h)/(4⟨h, ω_i⟩) dω_i (Eq. 19), by cubature
-  std::vector<double> ndf_error;  // the fit's MIS-weighted L3 error
+  std::vector<double> ndf_error;  // ∫ |f̂ − D_ltc| dω of the fit
+  std::vector<LtcFitParameters> ndf_params;
 };
 
 // A flat view of the tables for kernels: per entry, 6 numbers for the BRDF lobe (m00, m02, m20,
