@@ -19,7 +19,7 @@ struct LtcFitCliOptions {
   std::string out = "out/ltc";
   int size = kLtcTableSize;
   int threads = 0;
-  int samples = 32;
+  int samples = 24;
 };
 
 void run(const LtcFitCliOptions& o) {
@@ -76,7 +76,7 @@ void add_ltc_fit_command(CLI::App& app) {
   cmd->add_option("--threads", o->threads,
                   "Worker threads (0 = all cores; the tables are the same)");
   cmd->add_option("--samples", o->samples,
-                  "Per-axis samples of each sampler in the fit's error estimate (default 32)");
+                  "Per-axis samples of each sampler in the fit's error estimate (default 24)");
   cmd->footer(
       "Writes DIR/ggx_brdf.csv (sqrt_alpha, theta_o [rad], m00, m02, m20, m22, albedo, fresnel, "
       "l1_error) and DIR/ggx_ndf.csv (sqrt_alpha, theta_o, m00, m02, m20, m22, d_pr, l1_error), "

@@ -39,7 +39,7 @@ double ggx_d_pr(double alpha, double cos_theta_o, double tolerance = 1e-10);
 // by MIS (balance heuristic) over `samples` × `samples` midpoint points of each of the two
 // samplers (the lobe's and the target's).
 double ltc_fit_objective(LtcTarget target, double alpha, double theta_o, const LtcCoefficients& c,
-                         int samples = 32);
+                         int samples = 24);
 // The reported fit error: ∫ |f̂ − D_ltc| dω ∈ [0, 2] (twice the total-variation distance
 // between the normalized target and the lobe), by the same MIS estimator.
 double ltc_fit_l1_error(LtcTarget target, double alpha, double theta_o, const LtcCoefficients& c,
@@ -57,7 +57,7 @@ struct LtcFitResult {
 // starts where its target is), over (log m11, log m22, m13/m11, m31). At θ_o = 0 the lobe is
 // rotationally symmetric: m11 = m22, m13 = m31 = 0, one variable.
 LtcFitResult fit_ltc_entry(LtcTarget target, double alpha, double theta_o,
-                           const LtcFitParameters& warm_start, int samples = 32);
+                           const LtcFitParameters& warm_start, int samples = 24);
 
 // The node values of the table layout (ltc_table.h): α_i (clamped to kLtcMinAlpha) and θ_j
 // (clamped to cos θ ≥ kLtcMinCosTheta).
@@ -67,7 +67,7 @@ double ltc_node_theta(int j, int size);
 struct LtcFitOptions {
   int size = kLtcTableSize;  // N, 2 ≤ N ≤ kLtcMaxTableSize
   int threads = 0;           // 0: all cores; results are identical for any value
-  int samples = 32;          // per-axis sample count of the objective
+  int samples = 24;          // per-axis sample count of the objective
   // Called after each finished table row (thread-safe calls, any order): done rows, total rows.
   std::function<void(int, int)> progress;
 };
