@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "core/glints/deliot_belcour.h"
+#include "core/glints/kneiphof.h"
 #include "core/io/csv.h"
 #include "core/models/smooth_beckmann.h"
 #include "core/models/smooth_ggx.h"
@@ -16,6 +18,8 @@ const std::vector<ModelEntry>& registered_models() {
     std::vector<ModelEntry> m;
     m.push_back(make_model_entry<SmoothGGX>());
     m.push_back(make_model_entry<SmoothBeckmann>());
+    m.push_back(make_model_entry<DeliotBelcour>());
+    m.push_back(make_model_entry<KneiphofKlein>());
     return m;
   }();
   return kModels;

@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "experiments/figures/eto_tokuyoshi2023.h"
+#include "experiments/figures/kneiphof2024.h"
 
 namespace glintlab::experiments {
 
@@ -14,6 +15,10 @@ const std::vector<FigureEntry>& registered_figures() {
   static const std::vector<FigureEntry> kFigures = {
       eto2023_fig4_entry(),
       eto2023_rmse_spp_entry(),
+      kneiphof2024_fig6_entry(),
+      kneiphof2024_fig9_entry(),
+      kneiphof2024_fig10_entry(),
+      kneiphof2024_table1_entry(),
   };
   return kFigures;
 }
