@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "core/glints/deliot_belcour.h"
+#include "core/glints/kneiphof.h"
 #include "core/io/csv.h"
 #include "core/models/podee.h"
 #include "core/models/smooth_beckmann.h"
@@ -22,6 +24,8 @@ std::vector<ModelEntry>& model_list() {
     m.push_back(make_model_entry<SmoothGGX>());
     m.push_back(make_model_entry<SmoothBeckmann>());
     m.push_back(make_model_entry<Podee>());
+    m.push_back(make_model_entry<DeliotBelcour>());
+    m.push_back(make_model_entry<KneiphofKlein>());
     return m;
   }();
   return kModels;

@@ -78,6 +78,8 @@ GLINTLAB_FN void sincos(double x, double* s, double* c) {
   *s = std::sin(x);
   *c = std::cos(x);
 }
+GLINTLAB_FN float floor(float x) { return std::floor(x); }
+GLINTLAB_FN double floor(double x) { return std::floor(x); }
 GLINTLAB_FN bool isfinite(float x) { return std::isfinite(x); }
 GLINTLAB_FN bool isfinite(double x) { return std::isfinite(x); }
 

@@ -9,6 +9,7 @@
 #include "experiments/figures/eto_tokuyoshi2023.h"
 #include "experiments/figures/models_hemisphere.h"
 #include "experiments/figures/podee.h"
+#include "experiments/figures/kneiphof2024.h"
 
 namespace glintlab::experiments {
 
@@ -20,6 +21,10 @@ const std::vector<FigureEntry>& registered_figures() {
       podee_table1_entry(),
       podee_fig4_distance_entry(),
       podee_fig4_flicker_entry(),
+      kneiphof2024_fig6_entry(),
+      kneiphof2024_fig9_entry(),
+      kneiphof2024_fig10_entry(),
+      kneiphof2024_table1_entry(),
   };
   return kFigures;
 }

@@ -1,0 +1,120 @@
+// Deliot & Belcour 2023 binomial glints as Kneiphof & Klein 2024 (Sec. 3 "Differentiation from
+// previous work", Sec. 5–6) and Kemppinen et al. 2025 (Sec. 2) describe them: the footprint's facet
+// count N_P from a log-density, the ad-hoc probability p = R·D(h)/D(n), a binomial count b and the
+// smooth GGX BRDF scaled by b/(N_P·p) (Kneiphof & Klein Eq. 16 with Deliot & Belcour's p).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <span>
+#include <string_view>
+
+#include "core/glints/binomial.h"
+#include "core/model.h"
+#include "core/ndf/ggx.h"
+#include "core/ndf/microfacet.h"
+#include "core/samplers/heitz_vndf.h"
+
+namespace glintlab {
+
+// Facets in a pixel footprint: N_P = |det ∂uv/∂(x, y)| · 10^density (density = log10 facets per
+// unit uv area), rounded to the nearest integer (the counting model needs whole trials).
+template <class T>
+GLINTLAB_FN T footprint_facet_count(const FootprintQuery<T>& f, T log10_density) {
+  const T area = abs(f.duv_dx.x * f.duv_dy.y - f.duv_dx.y * f.duv_dy.x);
+  return floor(fma(area, exp(log10_density * T(2.30258509299404568402)), T(0.5)));
+}
+
+// The counter-RNG index of a footprint: its centre's uv quantized to 2^-24 (so a pixel's count is
+// the same whatever order pixels are shaded in; nearby footprints get unrelated counts, as Deliot &
+// Belcour's per-cell random numbers do at the finest level).
+template <class T>
+GLINTLAB_FN std::uint64_t footprint_rng_index(const FootprintQuery<T>& f) {
+  const auto q = [](T x) {
+    return static_cast<std::uint64_t>(static_cast<std::int64_t>(double(x) * 16777216.0));
+  };
+  return mix64(q(f.uv.x) * 0x9e3779b97f4a7c15ULL ^ q(f.uv.y));
+}
+
+// b/(N·p): the factor Kneiphof & Klein Eq. 16 applies to the smooth radiance; 0 without facets.
+template <class T>
+GLINTLAB_FN T binomial_radiance_factor(T count, T n, T p) {
+  return safe_div(count, n * p);
+}
+
+struct DeliotBelcour {
+  static constexpr std::string_view kName = "deliot_belcour";
+  static constexpr std::string_view kDescription =
+      "Deliot & Belcour 2023 binomial glints on isotropic/anisotropic GGX: N_P from the footprint "
+      "and a log10 density, p = R D(h)/D(n) clamped to [0, 1], count b ~ Binomial(N_P, p) by the "
+      "chosen sampler, value = smooth GGX (F = 1) x b/(N_P p); no glint sampler in the paper: "
+      "samples the smooth VNDF (Heitz 2018) and returns its pdf";
+  static constexpr std::string_view kSource =
+      "Deliot & Belcour 2023 as described by Kneiphof & Klein 2024 Sec. 3, 6 (p = R D(h)/D(n)) "
+      "and Eq. 16; Kemppinen et al. 2025 Sec. 2";
+  static constexpr unsigned kNeeds = kNeedsFootprint | kNeedsPointLight;
+  static constexpr std::array<ParamSpec, 6> kParams = {{
+      {"alpha_x", 0.25, 1e-4, 4.0, false, false, "GGX roughness along the tangent (x)"},
+      {"alpha_y", 0.25, 1e-4, 4.0, false, false, "GGX roughness along the bitangent (y)"},
+      {"density", 6.0, 0.0, 15.0, false, false,
+       "log10 of the microfacets per unit uv area (N_P = footprint area x 10^density)"},
+      {"r", 1.0, 0.0, 100.0, false, false,
+       "Deliot & Belcour's R in p = R D(h)/D(n) (p is clamped to 1 where R D(h)/D(n) > 1)"},
+      {"binomial", 0.0, 0.0, 2.0, false, false,
+       "binomial sampler: exact, realtime (gated Bernoulli + clamped Gaussian), small_count",
+       kBinomialSamplerNames},
+      {"seed", 0.0, 0.0, 4294967295.0, false, false, "seed of the counter RNG (integer)"},
+  }};
+  static constexpr std::array<std::string_view, 8> kIntermediates = {
+      "N_P", "p_unclamped", "p", "p_clamped", "count", "factor", "smooth", "D"};
+
+  template <class T>
+  struct Params {
+    GGX<T> ggx;
+    T log10_density, r;
+    BinomialSampler sampler;
+    std::uint64_t seed;
+  };
+
+  template <class T>
+  static Params<T> params(std::span<const double> v) {
+    return {GGX<T>{T(v[0]), T(v[1])}, T(v[2]), T(v[3]), static_cast<BinomialSampler>(int(v[4])),
+            static_cast<std::uint64_t>(v[5])};
+  }
+
+  template <class T>
+  GLINTLAB_FN static T pdf(const Params<T>& p, const ModelQuery<T>& q) {
+    return pdf_heitz_vndf(p.ggx, q.wi, q.wo);
+  }
+
+  template <class T>
+  GLINTLAB_FN static ModelEval<T, kIntermediates.size()> eval(const Params<T>& p,
+                                                              const ModelQuery<T>& q) {
+    const Vec3<T> h = half_vector(q.wi, q.wo);
+    const T d = p.ggx.D(h);
+    const T d_n = T(kInvPi<T>) / (p.ggx.alpha_x * p.ggx.alpha_y);  // D(n), the NDF's maximum
+    const T smooth = microfacet_brdf(p.ggx, q.wi, q.wo, T(1)) * max(q.wo.z, T(0));
+    const T n = footprint_facet_count(q.footprint, p.log10_density);
+    const T p_raw = p.r * d / d_n;
+    const T prob = saturate(p_raw);
+    const T count = draw_binomial(p.sampler, n, prob, p.seed, footprint_rng_index(q.footprint));
+    const T factor = binomial_radiance_factor(count, n, prob);
+    return {smooth * factor,
+            pdf(p, q),
+            {n, p_raw, prob, select(p_raw > T(1), T(1), T(0)), count, factor, smooth, d}};
+  }
+
+  template <class T>
+  GLINTLAB_FN static ModelSample<T> sample(const Params<T>& p, const ModelQuery<T>& q, Vec2<T> u) {
+    const MicrofacetSample<T> s = sample_heitz_vndf(p.ggx, q.wi, u);
+    ModelQuery<T> at = q;
+    at.wo = s.wo;
+    const T value = eval(p, at).value;
+    return {s.wo, s.pdf, select(s.rejected, T(0), safe_div(value, s.pdf)), s.rejected};
+  }
+};
+
+static_assert(Model<DeliotBelcour>);
+
+}  // namespace glintlab

@@ -1,0 +1,140 @@
+// Google Benchmark suite of the binomial-counting glints: the cost of one Binomial(n, p) draw per
+// sampler over an (n, p) grid (pairs with experiments/data/binomial_error.csv, speed against
+// accuracy), and Kneiphof & Klein 2024 Table 1's analogue: time per shading evaluation for smooth
+// GGX, Deliot & Belcour, Kneiphof & Klein, under no light, a directional light and a rectangular
+// area light (area: the Monte Carlo terms of core/glints/kneiphof.h with 16 samples; the LTC
+// columns need core/ltc). Scalar double on one core; run scripts/bench.sh or this binary with
+// --benchmark_out=FILE --benchmark_out_format=json.
+#include <benchmark/benchmark.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "core/glints/binomial.h"
+#include "core/glints/deliot_belcour.h"
+#include "core/glints/kneiphof.h"
+#include "core/models/smooth_ggx.h"
+
+namespace glintlab {
+namespace {
+
+// --- Binomial draws: args {log2 n, −log10 p ×10} -------------------------------------------------
+double grid_p(std::int64_t code) { return std::pow(10.0, -double(code) / 10.0); }
+
+void binomial_exact_bm(benchmark::State& s) {
+  const std::uint64_t n = std::uint64_t(1) << s.range(0);
+  const double p = grid_p(s.range(1));
+  std::uint64_t i = 0;
+  for (auto _ : s) benchmark::DoNotOptimize(binomial_exact(n, p, 1, i++));
+  s.SetItemsProcessed(std::int64_t(i));
+}
+void binomial_realtime_bm(benchmark::State& s) {
+  const double n = std::ldexp(1.0, int(s.range(0))), p = grid_p(s.range(1));
+  std::uint64_t i = 0;
+  for (auto _ : s) {
+    benchmark::DoNotOptimize(binomial_realtime(n, p, counter_uniform<double>(1, i, 0),
+                                               counter_uniform<double>(1, i, 1)));
+    ++i;
+  }
+  s.SetItemsProcessed(std::int64_t(i));
+}
+void binomial_small_count_bm(benchmark::State& s) {
+  const double n = std::ldexp(1.0, int(s.range(0))), p = grid_p(s.range(1));
+  std::uint64_t i = 0;
+  for (auto _ : s) {
+    benchmark::DoNotOptimize(binomial_small_count(n, p, counter_uniform<double>(1, i, 0)));
+    ++i;
+  }
+  s.SetItemsProcessed(std::int64_t(i));
+}
+void binomial_args(benchmark::internal::Benchmark* b) {
+  for (int e : {4, 10, 20})
+    for (int pc : {40, 20, 5}) b->Args({e, pc});  // p = 1e-4, 1e-2, 0.316
+}
+BENCHMARK(binomial_exact_bm)->Name("binomial/exact")->Apply(binomial_args);
+BENCHMARK(binomial_realtime_bm)->Name("binomial/realtime")->Apply(binomial_args);
+BENCHMARK(binomial_small_count_bm)->Name("binomial/small_count")->Apply(binomial_args);
+
+// --- Table 1 analogue
+// ------------------------------------------------------------------------------
+constexpr int kQueries = 1024;
+enum Light { kNone = 0, kDirectional = 1, kArea = 2 };
+enum Method { kSmooth = 0, kDeliotBelcour = 1, kKneiphofKlein = 2 };
+
+std::vector<ModelQuery<double>> queries() {
+  std::vector<ModelQuery<double>> q(kQueries);
+  for (int i = 0; i < kQueries; ++i) {
+    const double t = 0.6 * counter_uniform<double>(3, std::uint64_t(i), 0);
+    const double ph = 6.283185307179586 * counter_uniform<double>(3, std::uint64_t(i), 1);
+    auto& x = q[std::size_t(i)];
+    x.wi = {std::sin(t) * std::cos(ph), std::sin(t) * std::sin(ph), std::cos(t)};
+    x.wo = {-0.3 * std::cos(ph), -0.3 * std::sin(ph), std::sqrt(1 - 0.09)};
+    x.footprint.uv = {counter_uniform<double>(3, std::uint64_t(i), 2), 0.5};
+    x.footprint.duv_dx = {1e-3, 0};
+    x.footprint.duv_dy = {0, 1e-3};
+    x.light = {1.0, 1.0};
+  }
+  return q;
+}
+
+const PolygonLight<double>& area_light() {
+  static const PolygonLight<double> l = [] {
+    const std::vector<Vec3<double>> v = {
+        {-0.5, 0.5, 2}, {0.5, 0.5, 2}, {0.5, -0.5, 2}, {-0.5, -0.5, 2}};
+    return make_polygon_light(v, {1, 1, 1});
+  }();
+  return l;
+}
+
+void table1(benchmark::State& s) {
+  const auto method = Method(s.range(0));
+  const auto light = Light(s.range(1));
+  const auto qs = queries();
+  const auto smooth = SmoothGGX::params<double>(std::vector<double>{0.25, 0.25, 1, 0});
+  const auto db = DeliotBelcour::params<double>(std::vector<double>{0.25, 0.25, 8, 0.05, 1, 0});
+  const auto kk = KneiphofKlein::params<double>(std::vector<double>{0.25, 0.25, 8, 0.26, 1, 0});
+  const GGX<double> ggx{0.25, 0.25};
+  const double dh = total_area(ggx);
+  std::size_t i = 0;
+  for (auto _ : s) {
+    const ModelQuery<double>& q = qs[i++ % qs.size()];
+    double v = 0;
+    if (light == kNone) {
+      v = q.wi.z;  // the query itself: the baseline without shading
+    } else if (light == kDirectional) {
+      if (method == kSmooth) v = SmoothGGX::eval(smooth, q).value;
+      if (method == kDeliotBelcour) v = DeliotBelcour::eval(db, q).value;
+      if (method == kKneiphofKlein) v = KneiphofKlein::eval(kk, q).value;
+    } else {
+      const AreaLightTerms t =
+          area_light_terms_mc(ggx, q.wi, area_light(), Vec3<double>{0, 0, 0}, 16, 5, i);
+      if (method == kSmooth) {
+        v = t.lo_over_li;
+      } else {
+        const double n = footprint_facet_count(q.footprint, 8.0);
+        // D&B (as Kneiphof & Klein's Table 1 runs it): glints for the light's mean direction.
+        const double p =
+            method == kDeliotBelcour
+                ? std::min(1.0, 0.05 * ggx.D(half_vector(q.wi, Vec3<double>{0, 0, 1})) /
+                                    ggx.D(Vec3<double>{0, 0, 1}))
+                : std::min(1.0, t.d_omega_h / dh);
+        const double b =
+            draw_binomial(BinomialSampler::kRealTime, n, p, 5, footprint_rng_index(q.footprint));
+        v = t.lo_over_li * binomial_radiance_factor(b, n, p);
+      }
+    }
+    benchmark::DoNotOptimize(v);
+  }
+  s.SetItemsProcessed(std::int64_t(i));
+}
+BENCHMARK(table1)
+    ->Name("table1")
+    ->ArgNames({"method", "light"})
+    ->ArgsProduct({{kSmooth, kDeliotBelcour, kKneiphofKlein}, {kNone, kDirectional, kArea}});
+
+}  // namespace
+}  // namespace glintlab
+
+BENCHMARK_MAIN();

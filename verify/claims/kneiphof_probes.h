@@ -1,0 +1,21 @@
+// Cheap probes of the binomial-counting claims in verify/claims/kneiphof.cpp (as control_probes.h
+// does for the others): each runs one check's statistic on a correct and a deliberately wrong
+// input at a small size, so tests assert that the correct one passes and the control is rejected.
+#pragma once
+
+#include "verify/claims/control_probes.h"
+
+namespace glintlab::verify {
+
+// discrete-ndf-mean at α = 0.81: multinomial p; control: facets from D cos θ.
+ControlProbe probe_kneiphof_discrete_ndf_mean();
+// subdivision: Σ b_k against Binomial(N_P, p); control: b from Binomial(N_P, 1.05 p).
+ControlProbe probe_kneiphof_subdivision_counts();
+// subdivision: shared-lobe radiance difference 1 vs 256 sub-lights; control: independent b_k.
+ControlProbe probe_kneiphof_subdivision_invariance();
+// convergence at p = 0.01: |slope + ½|; control: counts from Binomial(N_P, 1.05 p).
+ControlProbe probe_kneiphof_convergence();
+// cap-probability at α = 0.25, γ = 0.5°: Eq. 20's error; control: the 1/(4⟨h, ω⟩) dropped.
+ControlProbe probe_kneiphof_cap_probability();
+
+}  // namespace glintlab::verify
