@@ -20,5 +20,6 @@ void add_sample_command(CLI::App& app);  // cli/sample.cpp
 void add_verify_command(CLI::App& app);  // cli/verify.cpp
 void add_figure_command(CLI::App& app);  // cli/figure.cpp
 void add_models_command(CLI::App& app);  // cli/models.cpp
+void add_chermain_dictionary_command(CLI::App& app);  // cli/chermain_dictionary.cpp
 
 }  // namespace glintlab::cli

@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
     glintlab::cli::add_verify_command(app);
     glintlab::cli::add_figure_command(app);
     glintlab::cli::add_models_command(app);
+    glintlab::cli::add_chermain_dictionary_command(app);
 
     // No subcommand, or a first argument that is neither an option nor a subcommand: say so and
     // name the valid set.

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/io/csv.h"
+#include "core/glints/chermain.h"
 #include "core/models/smooth_beckmann.h"
 #include "core/models/smooth_ggx.h"
 
@@ -16,6 +17,7 @@ const std::vector<ModelEntry>& registered_models() {
     std::vector<ModelEntry> m;
     m.push_back(make_model_entry<SmoothGGX>());
     m.push_back(make_model_entry<SmoothBeckmann>());
+    m.push_back(make_model_entry<Chermain>());
     return m;
   }();
   return kModels;
