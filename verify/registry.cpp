@@ -12,7 +12,8 @@ const std::vector<Check>& registered_checks() {
   static const std::vector<Check> checks = [] {
     std::vector<Check> all;
     for (auto* list : {&smooth_checks, &smooth_sampler_checks, &smooth_consistency_checks,
-                       &eto_pdf_checks, &eto_checks, &kemppinen_checks, &kneiphof_checks}) {
+                       &eto_pdf_checks, &eto_checks, &kemppinen_checks, &kneiphof_checks,
+                       &chermain_checks}) {
       for (Check& c : list()) all.push_back(std::move(c));
     }
     return all;

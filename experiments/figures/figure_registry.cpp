@@ -6,6 +6,7 @@
 
 #include <system_error>
 
+#include "experiments/figures/chermain2021.h"
 #include "experiments/figures/eto_tokuyoshi2023.h"
 
 namespace glintlab::experiments {
@@ -14,6 +15,11 @@ const std::vector<FigureEntry>& registered_figures() {
   static const std::vector<FigureEntry> kFigures = {
       eto2023_fig4_entry(),
       eto2023_rmse_spp_entry(),
+      chermain2021_fig3_entry(),
+      chermain2021_fig7_entry(),
+      chermain2021_fig8_entry(),
+      chermain2021_fig9_entry(),
+      chermain2021_fig10_entry(),
   };
   return kFigures;
 }

@@ -14,5 +14,6 @@ std::vector<Check> eto_pdf_checks();             // verify/claims/eto_pdf.cpp
 std::vector<Check> eto_checks();                 // verify/claims/eto.cpp
 std::vector<Check> kemppinen_checks();           // verify/claims/kemppinen.cpp
 std::vector<Check> kneiphof_checks();            // verify/claims/kneiphof.cpp
+std::vector<Check> chermain_checks();            // verify/claims/chermain.cpp
 
 }  // namespace glintlab::verify
