@@ -9,6 +9,7 @@
 #include "core/glints/kneiphof.h"
 #include "core/io/csv.h"
 #include "core/models/podee.h"
+#include "core/glints/chermain.h"
 #include "core/models/smooth_beckmann.h"
 #include "core/models/smooth_ggx.h"
 
@@ -26,6 +27,7 @@ std::vector<ModelEntry>& model_list() {
     m.push_back(make_model_entry<Podee>());
     m.push_back(make_model_entry<DeliotBelcour>());
     m.push_back(make_model_entry<KneiphofKlein>());
+    m.push_back(make_model_entry<Chermain>());
     return m;
   }();
   return kModels;

@@ -6,6 +6,7 @@
 
 #include <system_error>
 
+#include "experiments/figures/chermain2021.h"
 #include "experiments/figures/eto_tokuyoshi2023.h"
 #include "experiments/figures/models_hemisphere.h"
 #include "experiments/figures/podee.h"
@@ -25,6 +26,11 @@ const std::vector<FigureEntry>& registered_figures() {
       kneiphof2024_fig9_entry(),
       kneiphof2024_fig10_entry(),
       kneiphof2024_table1_entry(),
+      chermain2021_fig3_entry(),
+      chermain2021_fig7_entry(),
+      chermain2021_fig8_entry(),
+      chermain2021_fig9_entry(),
+      chermain2021_fig10_entry(),
   };
   return kFigures;
 }

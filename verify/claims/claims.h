@@ -14,6 +14,7 @@ std::vector<Check> eto_pdf_checks();             // verify/claims/eto_pdf.cpp
 std::vector<Check> eto_checks();                 // verify/claims/eto.cpp
 std::vector<Check> kemppinen_checks();           // verify/claims/kemppinen.cpp
 std::vector<Check> kneiphof_checks();            // verify/claims/kneiphof.cpp
+std::vector<Check> chermain_checks();            // verify/claims/chermain.cpp
 std::vector<Check> podee_checks();               // verify/claims/podee.cpp
 std::vector<Check> across_checks();              // verify/claims/across.cpp
 

@@ -1,0 +1,61 @@
+// The measurements behind chermain.ggaa-error and chermain.lean-correlation (shared with the
+// figures chermain2021-fig7/8/9) and cheap probes of what each chermain.* check decides, so tests
+// can assert that the correct input passes and the negative control is rejected.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/render/image.h"
+#include "verify/claims/control_probes.h"
+
+namespace glintlab::verify {
+
+// --- chermain.ggaa-error (Figs. 8, 9) ---
+struct GgaaBudget {
+  int width, height;
+  int reference_spp;
+  int frames;   // camera-pan frames for the frame-to-frame variance
+  int threads;  // 0 = all cores
+};
+
+struct GgaaMeasurement {
+  Image reference, none, half05, half1, proj05, proj1;  // 1 spp; half = Eq. 20, proj = Eq. 21
+  std::vector<Image> frames_none, frames05, frames1;    // projected half vector, s_K 0.5 and 1
+};
+
+struct GgaaVerdict {
+  double rmse_none = 0, rmse_half05 = 0, rmse_half1 = 0, rmse_proj05 = 0, rmse_proj1 = 0;
+  double flicker_none = 0, flicker05 = 0, flicker1 = 0;
+  bool ggaa_lowers = false, projected_beats_half = false;
+  bool small_kernel_lower_rmse = false, small_kernel_shimmers_more = false;
+};
+
+GgaaMeasurement measure_ggaa(const GgaaBudget& b, std::uint64_t seed);
+GgaaVerdict judge_ggaa(const GgaaMeasurement& m, const Image& reference);
+
+// --- chermain.lean-correlation (Fig. 7) ---
+struct LeanBudget {
+  int width, height;
+  int reference_spp;
+  int groove_p, groove_q;  // grooves perpendicular to (p, q)
+  int threads;
+};
+
+struct LeanMeasurement {
+  Image reference, no_lean, lean_rho0, lean;
+  double rmse_no_lean = 0, rmse_lean_rho0 = 0, rmse_lean = 0;  // display RMSE %
+};
+
+// LEAN with ρ must beat both others by this factor (fixed before measuring).
+inline constexpr double kLeanMargin = 0.95;
+
+LeanMeasurement measure_lean(const LeanBudget& b, std::uint64_t seed);
+bool lean_holds(const LeanMeasurement& m);
+
+// Probes: correct = the check's statistic on the correct input, control = on its negative control.
+ControlProbe probe_chermain_kernel_normalized();     // |∫−1|; control: clamp-to-edge
+ControlProbe probe_chermain_dictionary_converges();  // last-level L1; control: means × √2
+ControlProbe probe_chermain_correlation();           // |ρ̂ − ρ|; control: the 2020 matrix
+
+}  // namespace glintlab::verify

@@ -1,0 +1,267 @@
+// Curved tubes and an anisotropic normal map rendered with the Chermain et al. 2020/2021 glinty
+// BRDF (2021 Figs. 7–9): methods at 1 spp, references by stratified supersampling.
+#include "verify/claims/chermain_scenes.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/render/supersample.h"
+#include "core/scene/footprint.h"
+#include "core/scene/lean.h"
+#include "core/scene/sine_height_field.h"
+#include "core/scene/slope_moment_map.h"
+
+namespace glintlab::verify {
+namespace {
+
+// Eq. 1 with D from the patch-SDF at slope h̃ − `shift` (Eq. 2 / 8), V-cavity G2, F = 1, times
+// ω_o·n: the cosine-weighted BRDF for light from ω_l.
+double glint_value(const ChermainSdfParams& p, Vec3<double> wi, Vec3<double> wl,
+                   const FootprintQuery<double>& fp, const SlopeDerivatives& d,
+                   Vec2<double> shift = {0, 0}) {
+  if (!(wi.z > 0 && wl.z > 0)) return 0;
+  const Vec3<double> h = half_vector(wi, wl);
+  if (!(h.z > 0)) return 0;
+  const Vec2<double> m{-h.x / h.z - shift.x, -h.y / h.z - shift.y};
+  const double z2 = h.z * h.z;
+  const double D = chermain_patch_sdf(p, m, fp, d) / (z2 * z2);
+  return D * v_cavity_g2(wi, wl, h) / (4 * wi.z);  // f · ω_l.z
+}
+
+// Three tubes (open cylinders) with distinct uv offsets, so that their cells differ.
+struct TubeScene {
+  std::array<Cylinder<double>, 3> tubes;
+  SurfaceHit<double> intersect(const Ray<double>& r) const {
+    SurfaceHit<double> best{};
+    best.hit = false;
+    for (std::size_t i = 0; i < tubes.size(); ++i) {
+      SurfaceHit<double> h = tubes[i].intersect(r);
+      if (h.hit && (!best.hit || h.t < best.t)) {
+        h.uv.x += 3.0 * double(i);
+        best = h;
+      }
+    }
+    return best;
+  }
+};
+
+TubeScene tube_scene() {
+  const auto frame = [](Vec3<double> axis) {
+    const Vec3<double> n = normalize(axis);
+    return frame_from_normal_tangent(n, Vec3<double>{0, 0, 1});
+  };
+  return {{Cylinder<double>{{0, 0.75, 0}, frame({1, 0.1, 0}), 0.32, 2.5},
+           Cylinder<double>{{0, -0.2, -0.3}, frame({1, -0.45, 0}), 0.28, 2.5},
+           Cylinder<double>{{-0.9, -0.9, 0.2}, frame({0.2, 1, 0.3}), 0.22, 1.2}}};
+}
+
+PinholeCamera<double> tube_camera(const TubeSceneOptions& o) {
+  const double fov = 40;
+  const double pixel = 2 * 4.0 * std::tan(fov * kPi<double> / 360) / o.height;  // at the origin
+  const Vec3<double> shift{o.camera_shift * pixel, 0, 0};
+  return PinholeCamera<double>::look_at(Vec3<double>{0, 0, 4} + shift,
+                                        Vec3<double>{0, 0, 0} + shift, {0, 1, 0}, fov, o.width,
+                                        o.height);
+}
+
+constexpr Vec3<double> kTubeLight = {1.5, 2.5, 3.0};
+constexpr double kTubeLightIntensity = 16;
+
+ChermainSdfParams tube_params(const TubeSceneOptions& o, int kernel, double s_k) {
+  const double s = o.alpha / std::sqrt(2.0);
+  return {&default_chermain_dictionary(), s, s, 0.0, std::log2(o.density), kernel, s_k, 11};
+}
+
+void check_size(int w, int h) {
+  if (w < 2 || h < 2 || w > 4096 || h > 4096)
+    throw std::invalid_argument("chermain scene: image size out of range (valid: 2..4096)");
+}
+
+void set_grey(double* out, double v) { out[0] = out[1] = out[2] = v; }
+
+}  // namespace
+
+Image render_tubes(const TubeSceneOptions& o, int kernel, double s_k) {
+  check_size(o.width, o.height);
+  const TubeScene scene = tube_scene();
+  const PinholeCamera<double> cam = tube_camera(o);
+  const LightPoint<double> light{kTubeLight, false};
+  const ChermainSdfParams p = tube_params(o, kernel, s_k);
+  return render_image(
+      o.width, o.height, {"R", "G", "B"}, o.threads, [&](int x, int y, double* out) {
+        const PixelFootprint<double> f = pixel_footprint(cam, scene, x + 0.5, y + 0.5, light);
+        if (!f.surface.hit) return;
+        const Vec3<double> h = half_vector(f.wi, f.wl);
+        const SlopeDerivatives d = chermain_slope_derivatives(h, f.dh_dx, f.dh_dy, kernel);
+        const Vec3<double> to_light = kTubeLight - f.surface.p;
+        const double E = kTubeLightIntensity / dot(to_light, to_light);
+        set_grey(out, E * glint_value(p, f.wi, f.wl, f.footprint, d));
+      });
+}
+
+Image render_tubes_reference(const TubeSceneOptions& o, int spp, std::uint64_t seed) {
+  check_size(o.width, o.height);
+  const TubeScene scene = tube_scene();
+  const PinholeCamera<double> cam = tube_camera(o);
+  const LightPoint<double> light{kTubeLight, false};
+  const ChermainSdfParams p = tube_params(o, kChermainNoGgaa, 0.5);
+  const SlopeDerivatives zero{0, 0, 0, 0};
+  return render_image(
+      o.width, o.height, {"R", "G", "B"}, o.threads, [&](int x, int y, double* out) {
+        const PixelFootprint<double> f = pixel_footprint(cam, scene, x + 0.5, y + 0.5, light);
+        if (!f.surface.hit) return;
+        const std::uint64_t first =
+            (std::uint64_t(y) * std::uint64_t(o.width) + std::uint64_t(x)) * std::uint64_t(spp);
+        double sum = 0;
+        for (int s = 0; s < spp; ++s) {
+          const Vec2<double> off = stratified_offset(seed, first + std::uint64_t(s), s, spp);
+          const SurfaceHit<double> hit = scene.intersect(cam.ray(x + off.x, y + off.y));
+          if (!hit.hit) continue;
+          const Frame<double> fr = hit.frame();
+          const Vec3<double> wi = fr.to_local(normalize(cam.eye - hit.p));
+          const Vec3<double> wl = fr.to_local(normalize(kTubeLight - hit.p));
+          const Vec3<double> to_light = kTubeLight - hit.p;
+          const double E = kTubeLightIntensity / dot(to_light, to_light);
+          sum += E * glint_value(p, wi, wl, f.footprint, zero);
+        }
+        set_grey(out, sum / spp);
+      });
+}
+
+namespace {
+
+constexpr Vec3<double> kMapLightDir = {0.1, 0.85, 0.5};
+
+struct MapScene {
+  Plane<double> plane;
+  PinholeCamera<double> camera;
+  SineHeightField<double> field;
+};
+
+MapScene map_scene(const NormalMapSceneOptions& o) {
+  check_size(o.width, o.height);
+  MapScene s{
+      Plane<double>{{0, 0, 0}, Frame<double>{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, 1.0 / 6, 0},
+      PinholeCamera<double>::look_at({0, -2.2, 1.2}, {0, 0.3, 0}, {0, 0, 1}, 40, o.width, o.height),
+      brushed_grooves(o.slope_rms, o.anisotropy, o.groove_p, o.groove_q)};
+  return s;
+}
+
+ChermainSdfParams map_params(const NormalMapSceneOptions& o, double sx, double sy, double rho) {
+  return {
+      &default_chermain_dictionary(), sx, sy, rho, std::log2(o.density), kChermainNoGgaa, 0.5, 5};
+}
+
+}  // namespace
+
+Image render_normal_map(const NormalMapSceneOptions& o, NormalMapMethod method) {
+  const MapScene s = map_scene(o);
+  const SlopeMomentMap map(
+      [&](double u, double v) {
+        const SurfacePoint<double> q = s.field.eval(u, v);
+        return Vec2<double>{q.slope_u, q.slope_v};
+      },
+      o.map_size, 4);
+  const LightPoint<double> light{kMapLightDir, true};
+  const SlopeDerivatives zero{0, 0, 0, 0};
+  const double base = o.base_alpha / std::sqrt(2.0);
+  return render_image(
+      o.width, o.height, {"R", "G", "B"}, o.threads, [&](int x, int y, double* out) {
+        const PixelFootprint<double> f =
+            pixel_footprint(s.camera, s.plane, x + 0.5, y + 0.5, light);
+        if (!f.surface.hit) return;
+        const SlopeMoments<double> m =
+            map.lookup(f.footprint.uv.x, f.footprint.uv.y, f.footprint.duv_dx, f.footprint.duv_dy);
+        const LeanParameters<double> lp = lean_parameters(m, o.base_alpha);
+        ChermainSdfParams p = map_params(o, base, base, 0);
+        if (method != NormalMapMethod::kNoLean) {
+          p.sigma_x = lp.sigma_x, p.sigma_y = lp.sigma_y;
+          p.rho = method == NormalMapMethod::kLean ? std::clamp(lp.rho, -0.999, 0.999) : 0.0;
+        }
+        set_grey(out, glint_value(p, f.wi, f.wl, f.footprint, zero, {lp.mean_x, lp.mean_y}));
+      });
+}
+
+Image render_normal_map_reference(const NormalMapSceneOptions& o, int spp, std::uint64_t seed) {
+  const MapScene s = map_scene(o);
+  const LightPoint<double> light{kMapLightDir, true};
+  const SlopeDerivatives zero{0, 0, 0, 0};
+  const double base = o.base_alpha / std::sqrt(2.0);
+  const ChermainSdfParams p = map_params(o, base, base, 0);
+  const Vec3<double> wl_world = normalize(kMapLightDir);
+  return render_image(
+      o.width, o.height, {"R", "G", "B"}, o.threads, [&](int x, int y, double* out) {
+        const PixelFootprint<double> f =
+            pixel_footprint(s.camera, s.plane, x + 0.5, y + 0.5, light);
+        if (!f.surface.hit) return;
+        const std::uint64_t first =
+            (std::uint64_t(y) * std::uint64_t(o.width) + std::uint64_t(x)) * std::uint64_t(spp);
+        double sum = 0;
+        for (int k = 0; k < spp; ++k) {
+          const Vec2<double> off = stratified_offset(seed, first + std::uint64_t(k), k, spp);
+          const SurfaceHit<double> hit = s.plane.intersect(s.camera.ray(x + off.x, y + off.y));
+          if (!hit.hit) continue;
+          const Frame<double> fr = hit.frame();
+          const SurfacePoint<double> q = s.field.eval(hit.uv.x, hit.uv.y);
+          sum += glint_value(p, fr.to_local(normalize(s.camera.eye - hit.p)), fr.to_local(wl_world),
+                             f.footprint, zero, {q.slope_u, q.slope_v});
+        }
+        set_grey(out, sum / spp);
+      });
+}
+
+namespace {
+
+double exposure_of(const Image& ref) {
+  double sum = 0;
+  long n = 0;
+  for (int y = 0; y < ref.height; ++y)
+    for (int x = 0; x < ref.width; ++x)
+      if (ref.at(x, y, 0) > 0) sum += ref.at(x, y, 0), ++n;
+  if (n == 0 || !(sum > 0)) throw std::invalid_argument("display metric: reference is black");
+  return 0.18 / (sum / double(n));
+}
+
+void check_same(const Image& a, const Image& b) {
+  if (a.width != b.width || a.height != b.height)
+    throw std::invalid_argument("display metric: image sizes differ");
+}
+
+}  // namespace
+
+double display_rmse_percent(const Image& x, const Image& reference) {
+  check_same(x, reference);
+  const double e = exposure_of(reference);
+  double sum = 0;
+  long n = 0;
+  for (int j = 0; j < x.height; ++j)
+    for (int i = 0; i < x.width; ++i) {
+      if (!(reference.at(i, j, 0) > 0)) continue;
+      const double a = std::clamp(e * x.at(i, j, 0), 0.0, 1.0);
+      const double b = std::clamp(e * reference.at(i, j, 0), 0.0, 1.0);
+      sum += (a - b) * (a - b), ++n;
+    }
+  return 100 * std::sqrt(sum / double(n));
+}
+
+double frame_to_frame_variance(const std::vector<Image>& frames, const Image& reference) {
+  if (frames.size() < 2)
+    throw std::invalid_argument("frame_to_frame_variance: fewer than 2 frames");
+  const double e = exposure_of(reference);
+  double sum = 0;
+  long n = 0;
+  for (std::size_t f = 1; f < frames.size(); ++f) {
+    check_same(frames[f], frames[f - 1]);
+    for (int j = 0; j < reference.height; ++j)
+      for (int i = 0; i < reference.width; ++i) {
+        const double a = std::clamp(e * frames[f].at(i, j, 0), 0.0, 1.0);
+        const double b = std::clamp(e * frames[f - 1].at(i, j, 0), 0.0, 1.0);
+        sum += (a - b) * (a - b), ++n;
+      }
+  }
+  return 1e4 * sum / double(n);
+}
+
+}  // namespace glintlab::verify

@@ -1,0 +1,67 @@
+// The two test scenes of Chermain et al. 2021 that chermain.ggaa-error, chermain.lean-correlation
+// and the figures chermain2021-fig7/8/9 render: curved glinty tubes under a point light (Figs. 8–9)
+// and a plane with an anisotropic normal map under a directional light (Fig. 7). Only the glinty
+// specular component is rendered (as the paper's RMSEs, Sec. 6), one sample per pixel at the pixel
+// centre for the methods, and a stratified N-spp pixel average for the references.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/glints/chermain.h"
+#include "core/render/image.h"
+
+namespace glintlab::verify {
+
+// --- Curved tubes (Figs. 8, 9) ---------------------------------------------------------------
+struct TubeSceneOptions {
+  int width = 96, height = 64;
+  double camera_shift = 0;  // camera moved along its right axis by this many pixel widths
+  double density = 1.6e5;   // microfacets per unit uv area
+  double alpha = 0.35;      // isotropic Beckmann roughness of the glinty SDF
+  int threads = 0;
+};
+
+// One method: kernel = kChermainNoGgaa / kChermainHalfSlope (Eq. 20) / kChermainProjectedHalf
+// (Eq. 21), s_k the kernel scale. 1 spp at pixel centres.
+Image render_tubes(const TubeSceneOptions& o, int kernel, double s_k);
+// The reference: `spp` stratified positions per pixel, each shading with its own view, light and
+// half vector but the pixel's footprint P (so the same patch-SDF), without GGAA: the pixel
+// integral that GGAA approximates (2021 Sec. 4.1, Fig. 4a).
+Image render_tubes_reference(const TubeSceneOptions& o, int spp, std::uint64_t seed);
+
+// --- Anisotropic normal map (Fig. 7) ---------------------------------------------------------
+struct NormalMapSceneOptions {
+  int width = 96, height = 64;
+  int map_size = 256;  // slope moment map texels
+  int groove_p = 1,
+      groove_q = 2;        // grooves perpendicular to (p, q) (core/scene/sine_height_field.h)
+  double slope_rms = 0.2;  // of the normal map
+  double anisotropy = 8;
+  double base_alpha = 0.08;  // roughness of the microsurface ("little roughness", Sec. 6.4)
+  double density = 1e9;
+  int threads = 0;
+};
+
+enum class NormalMapMethod { kNoLean = 0, kLeanRhoZero = 1, kLean = 2 };
+
+// Slope-space normal mapping: the glinty SDF (base roughness) centred on the normal map's slope.
+// kNoLean: centred on the footprint's mean slope, base roughness only; kLeanRhoZero: LEAN σ_x, σ_y
+// (Olano & Baker 2010) with ρ = 0; kLean: with ρ through M of Eq. 18. GGAA off (the kernel from
+// curvature is zero on the plane).
+Image render_normal_map(const NormalMapSceneOptions& o, NormalMapMethod method);
+// The reference: `spp` stratified positions per pixel, each with the finest slope of the height
+// field at its own uv, base roughness, the pixel's footprint P.
+Image render_normal_map_reference(const NormalMapSceneOptions& o, int spp, std::uint64_t seed);
+
+// --- Metrics ---------------------------------------------------------------------------------
+// The RMSE of the paper's figures, in %: both images scaled by one exposure that maps the
+// reference's mean over lit pixels (reference > 0) to 0.18, clamped to [0, 1] (a display image),
+// RMSE over the lit pixels × 100.
+double display_rmse_percent(const Image& x, const Image& reference);
+// Frame-to-frame variance (shimmer): mean over pixels and consecutive frames of (I_{t+1} − I_t)²,
+// on the same display scale as display_rmse_percent (exposure from `reference`), × 10^4.
+double frame_to_frame_variance(const std::vector<Image>& frames, const Image& reference);
+
+}  // namespace glintlab::verify
