@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include "core/io/csv.h"
+#include "core/models/kemppinen_beckmann.h"
+#include "core/models/kemppinen_ggx.h"
 #include "core/models/smooth_beckmann.h"
 #include "core/models/smooth_ggx.h"
 
@@ -16,6 +18,8 @@ const std::vector<ModelEntry>& registered_models() {
     std::vector<ModelEntry> m;
     m.push_back(make_model_entry<SmoothGGX>());
     m.push_back(make_model_entry<SmoothBeckmann>());
+    m.push_back(make_model_entry<KemppinenGGX>());
+    m.push_back(make_model_entry<KemppinenBeckmann>());
     return m;
   }();
   return kModels;
