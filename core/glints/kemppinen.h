@@ -169,7 +169,9 @@ GLINTLAB_FN KemppinenAngular<T> kemppinen_angular(const KemppinenParams<T>& p, c
   const Vec3<T> hs = select(up, h, Vec3<T>{T(0), T(0), T(1)});
   const T d = ndf.D(hs);
   const T j_paper = d / T(kMapDomainArea<T>);  // |J_T| as Eq. 3 prints it
-  const T sigma = p.microroughness * sqrt(j_paper);
+  // Lobe width from D floored at 10⁻¹²: where D underflows to 0 (Beckmann near the horizon) σ = 0
+  // made N(·; Σ_a) 0/0 and D★^f NaN; U_Ω holds less than 10⁻¹² of the points there.
+  const T sigma = p.microroughness * sqrt(max(j_paper, T(1e-12) / T(kMapDomainArea<T>)));
   const T sa = sqrt(p.anisotropy);
   const T prefactor = p.normalization == KemppinenNormalization::kPrinted ? j_paper : d;
   const Mask<T> valid = up && (d > T(0));

@@ -174,6 +174,23 @@ TEST(Kemppinen, PrintedNormalizationIsFourOverPiBrighter) {
   EXPECT_NEAR(pr / c, 4 / std::numbers::pi, 1e-12);
 }
 
+// Found by kemppinen2025-fig2-3: Beckmann's D underflows to 0 near the horizon, where σ = 0 made
+// the angular Gaussian 0/0 and D★^f NaN. It must be finite there (0 where D = 0) for every query.
+TEST(Kemppinen, FiniteWhereTheNdfUnderflows) {
+  const KemppinenParams<double> p = base_params();
+  const Beckmann<double> beckmann{0.5, 0.5};
+  for (double t : {1.45, 1.5, 1.55, 1.57}) {
+    const V3 h{std::sin(t), 0, std::cos(t)};
+    for (double cells : {1.0, 8.0, 1e3}) {
+      const auto r = kemppinen_eval(p, beckmann, footprint({0.5, 0.5}, cells, p), h);
+      EXPECT_TRUE(std::isfinite(r.d.x)) << "theta " << t << " cells " << cells;
+      if (beckmann.D(h) == 0) {
+        EXPECT_EQ(r.d.x, 0.0);
+      }
+    }
+  }
+}
+
 TEST(Kemppinen, ColorsAndExpectedColor) {
   KemppinenParams<double> p = base_params();
   p.colors = KemppinenColors::kRedYellow;
