@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "experiments/figures/eto_tokuyoshi2023.h"
+#include "experiments/figures/kemppinen2025.h"
 
 namespace glintlab::experiments {
 
@@ -14,6 +15,10 @@ const std::vector<FigureEntry>& registered_figures() {
   static const std::vector<FigureEntry> kFigures = {
       eto2023_fig4_entry(),
       eto2023_rmse_spp_entry(),
+      kemppinen2025_fig2_3_entry(),
+      kemppinen2025_fig6_entry(),
+      kemppinen2025_fig14_entry(),
+      kemppinen2025_fig15_entry(),
   };
   return kFigures;
 }
