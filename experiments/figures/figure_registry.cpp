@@ -17,6 +17,7 @@ const std::vector<FigureEntry>& registered_figures() {
       eto2023_rmse_spp_entry(),
       kemppinen2025_fig2_3_entry(),
       kemppinen2025_fig6_entry(),
+      kemppinen2025_fig10_entry(),
       kemppinen2025_fig14_entry(),
       kemppinen2025_fig15_entry(),
   };

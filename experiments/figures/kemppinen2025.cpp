@@ -1,8 +1,9 @@
 // Kemppinen et al. 2025 figures: Fig. 2–3 (D★^f of Eq. 11 on the prior disk U_Ω and on the
 // hemisphere, smooth vs glinty, GGX and Beckmann), Fig. 6 (roulette Eq. 8 vs linear MIP blending
-// across a LOD transition), Fig. 14 (k = 4 vs 16 neighbours; microroughness too high) and Fig. 15
-// (white furnace averaged over surface area, Sec. 5). Every D★^f is Algorithm 1 as the model
-// kemppinen_ggx / kemppinen_beckmann evaluates it (core/glints/kemppinen.h), no further filtering.
+// across a LOD transition), Fig. 10 (one sweep per Table 1 parameter), Fig. 14 (k = 4 vs 16
+// neighbours; microroughness too high) and Fig. 15 (white furnace averaged over surface area,
+// Sec. 5). Every D★^f is Algorithm 1 as the models kemppinen_ggx / kemppinen_beckmann evaluate it
+// (core/glints/kemppinen.h), with no filtering beyond the model's.
 #include "experiments/figures/kemppinen2025.h"
 
 #include <fmt/format.h>
@@ -40,6 +41,7 @@ constexpr std::string_view kFig23Id = "kemppinen2025-fig2-3";
 constexpr std::string_view kFig6Id = "kemppinen2025-fig6";
 constexpr std::string_view kFig14Id = "kemppinen2025-fig14";
 constexpr std::string_view kFig15Id = "kemppinen2025-fig15";
+constexpr std::string_view kFig10Id = "kemppinen2025-fig10";
 
 // Default glint parameters of every figure (the model's defaults, k = 4 as the paper's results).
 P glint_params(int side, double alpha_star, std::uint64_t seed) {
@@ -535,6 +537,101 @@ void run_fig6(const FigureContext& ctx) {
   io::write_png_preview(ctx.dir / "strip.png", montage(tiles, 1));
 }
 
+// ---- Fig. 10: one sweep per parameter ----------------------------------------------------
+
+// A glinty GGX plane z = 0, x, y ∈ [−1, 1] (uv = 4 xy), seen by a pinhole camera at (0, 0, 1.5)
+// and lit by a unit point light at (0.6, 0, 1.5): radiance G2 D★^f / (4 cosθ_o) / r², the pixel
+// footprint from the pixel spacing (no Fresnel). Rows: roughness α, microroughness α★, density
+// K_P, anisotropy a; each varied over five values, the others at α = 0.2, α★ = 0.02, K_P = 10⁴,
+// a = 1, k = 4 (Table 1 parameters).
+struct SweepParam {
+  std::string_view name;
+  std::array<double, 5> values;
+};
+constexpr std::array<SweepParam, 4> kSweeps = {{
+    {"alpha", {0.05, 0.1, 0.2, 0.4, 0.8}},
+    {"microroughness", {0.005, 0.01, 0.02, 0.05, 0.1}},
+    {"density", {1e2, 1e3, 1e4, 1e5, 1e6}},
+    {"anisotropy", {0.25, 0.5, 1, 2, 4}},
+}};
+
+void run_fig10(const FigureContext& ctx) {
+  const int n = ctx.quick ? 48 : 160;
+  constexpr double kUvScale = 4;
+  const std::uint64_t seed = seed_for(kFig10Id, "points");
+  const V3 cam{0, 0, 1.5}, light{0.6, 0, 1.5};
+  struct Row {
+    std::string_view param;
+    double value, mean, smooth_mean, cv, lit_fraction, max;
+  };
+  std::vector<Row> rows;
+  std::vector<Image> tiles;
+  double exposure = 0;
+  for (const SweepParam& sw : kSweeps) {
+    Image strip(5 * n, n, {"R", "G", "B", "radiance_smooth"});
+    for (std::size_t k = 0; k < sw.values.size(); ++k) {
+      const double v = sw.values[k];
+      double alpha = 0.2;
+      P p = glint_params(2, 0.02, seed);
+      if (sw.name == "alpha") alpha = v;
+      if (sw.name == "microroughness") p.microroughness = v;
+      if (sw.name == "density") p.density = v;
+      if (sw.name == "anisotropy") p.anisotropy = v;
+      const GGX<double> ggx{alpha, alpha};
+      double s = 0, s2 = 0, sm = 0, mx = 0, lit = 0;
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+          const V3 pos{2 * (x + 0.5) / n - 1, 1 - 2 * (y + 0.5) / n, 0};
+          const V3 wo = normalize(cam - pos), to_light = light - pos;
+          const double r2 = dot(to_light, to_light);
+          const V3 wi = (1 / std::sqrt(r2)) * to_light;
+          const V3 h = normalize(wi + wo);
+          const double d = 2.0 / n * kUvScale;
+          const FootprintQuery<double> fp{{pos.x * kUvScale, pos.y * kUvScale}, {d, 0}, {0, d}};
+          const KemppinenResult<double> r = kemppinen_eval(p, ggx, fp, h);
+          const double g = smith_g2_height_correlated(ggx, wi, wo, h) / (4 * wo.z * r2);
+          const double rad = g * r.d.x, smooth = g * r.smooth_d;
+          const int ox = static_cast<int>(k) * n;
+          strip.at(ox + x, y, 0) = strip.at(ox + x, y, 1) = strip.at(ox + x, y, 2) = rad;
+          strip.at(ox + x, y, 3) = smooth;
+          s += rad, s2 += rad * rad, sm += smooth, mx = std::max(mx, rad);
+          if (rad > 2 * smooth && rad > 0) lit += 1;
+        }
+      const double np = double(n) * n, mean = s / np;
+      rows.push_back({sw.name, v, mean, sm / np,
+                      mean > 0 ? std::sqrt(std::max(0.0, s2 / np - mean * mean)) / mean : 0,
+                      lit / np, mx});
+      if (sw.name == "alpha" && v == 0.2) {
+        for (int y = 0; y < n; ++y)
+          for (int x = 0; x < n; ++x)
+            exposure = std::max(exposure, strip.at(static_cast<int>(k) * n + x, y, 3));
+      }
+    }
+    io::write_exr(ctx.dir / fmt::format("sweep_{}.exr", sw.name), strip,
+                  attributes(kFig10Id, true,
+                             fmt::format("sweep of {} over {} {} {} {} {}; others: alpha=0.2 "
+                                         "microroughness=0.02 density=1e4 anisotropy=1 k=4 "
+                                         "filter=0.5 seed={}",
+                                         sw.name, sw.values[0], sw.values[1], sw.values[2],
+                                         sw.values[3], sw.values[4], seed),
+                             seed));
+    tiles.push_back(std::move(strip));
+  }
+  write_csv(ctx.dir / "sweeps.csv",
+            {"parameter", "value", "mean_radiance", "mean_radiance_smooth", "glinty_over_smooth",
+             "cv_radiance", "lit_fraction", "max_radiance", "resolution"},
+            [&](io::CsvWriter& w) {
+              for (const Row& r : rows) {
+                w.cell(r.param).cell(r.value).cell(r.mean).cell(r.smooth_mean);
+                w.cell(r.mean / r.smooth_mean).cell(r.cv).cell(r.lit_fraction).cell(r.max);
+                w.cell_int(n).end_row();
+              }
+            });
+  std::vector<Image> rgb;
+  for (const Image& t : tiles) rgb.push_back(grey_tile(t, "R", exposure > 0 ? 0.7 / exposure : 1));
+  io::write_png_preview(ctx.dir / "sweeps.png", montage(rgb, 1));
+}
+
 }  // namespace
 
 FigureEntry kemppinen2025_fig2_3_entry() {
@@ -563,6 +660,13 @@ FigureEntry kemppinen2025_fig15_entry() {
           "white furnace over theta_o averaged over surface area, glinty vs smooth GGX and "
           "Beckmann, alpha 0.1 and 0.5 (CSV + chart)",
           run_fig15};
+}
+
+FigureEntry kemppinen2025_fig10_entry() {
+  return {kFig10Id, "Kemppinen et al. 2025", "Fig. 10",
+          "one sweep per parameter (roughness, microroughness, density, anisotropy; five values "
+          "each) on a glinty GGX plane under a point light: images and radiance statistics",
+          run_fig10};
 }
 
 }  // namespace glintlab::experiments

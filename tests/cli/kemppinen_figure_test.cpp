@@ -41,8 +41,8 @@ io::ExrFile expect_exr(const fs::path& p, const std::string& model) {
 TEST_F(KemppinenFigureTest, ListShowsTheFigures) {
   const RunResult r = run({"figure", "--list"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* id : {"kemppinen2025-fig2-3 ", "kemppinen2025-fig6 ", "kemppinen2025-fig14 ",
-                         "kemppinen2025-fig15 "}) {
+  for (const char* id : {"kemppinen2025-fig2-3 ", "kemppinen2025-fig6 ", "kemppinen2025-fig10 ",
+                         "kemppinen2025-fig14 ", "kemppinen2025-fig15 "}) {
     EXPECT_NE(r.out.find(id), std::string::npos) << id;
   }
 }
@@ -135,6 +135,24 @@ TEST_F(KemppinenFigureTest, Fig6Blending) {
   EXPECT_EQ(t.text(4, t.column("blending")), "roulette");
   EXPECT_NEAR(t.number(4, t.column("lambda")), 3.5, 1e-12);
   EXPECT_LT(t.number(17 + 4, cv), 0.9 * t.number(4, cv));
+}
+
+// Fig. 10: one sweep per parameter; sparser glints (lower density, lower microroughness) raise the
+// pixel variation, and the densest setting converges to the smooth image.
+TEST_F(KemppinenFigureTest, Fig10Sweeps) {
+  const fs::path d = run_quick("kemppinen2025-fig10");
+  for (const char* s : {"alpha", "microroughness", "density", "anisotropy"}) {
+    const io::ExrFile f = expect_exr(d / (std::string("sweep_") + s + ".exr"), "kemppinen_ggx");
+    EXPECT_EQ(f.image.width, 5 * f.image.height);
+  }
+  expect_png(d / "sweeps.png");
+  const io::CsvTable t = io::read_csv(d / "sweeps.csv");
+  ASSERT_EQ(t.num_rows(), 20u);
+  const std::size_t cv = t.column("cv_radiance"), ratio = t.column("glinty_over_smooth");
+  EXPECT_EQ(t.text(10, t.column("parameter")), "density");
+  EXPECT_GT(t.number(10, cv), 2 * t.number(14, cv));  // density 1e2 vs 1e6
+  EXPECT_GT(t.number(5, cv), t.number(9, cv));        // microroughness 0.005 vs 0.1
+  EXPECT_NEAR(t.number(14, ratio), 1.0, 0.05);
 }
 
 }  // namespace
