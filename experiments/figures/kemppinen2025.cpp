@@ -200,7 +200,9 @@ void run_fig2_3(const FigureContext& ctx) {
   for (const NdfChoice& nd : kNdfs) {
     with_ndf(nd.ggx, kFig23Alpha, [&](const auto& ndf) {
       // Prior space: pixel centre p of [0,1]², ratio D★^f/D at ω_h = T⁻¹(p) (uniform 1 for the
-      // smooth NDF); its mean over U_Ω is ∫ D★^f cosθ_h dω_h (T pushes D cosθ to uniform).
+      // smooth NDF); its mean over U_Ω equals ∫ D★^f cosθ_h dω_h only where T pushes D cosθ to
+      // the uniform density: Beckmann, not the GGX map L∘M̃ as printed (it pushes D cosθ to a
+      // non-uniform density: E|q|² = 1/3 instead of ½ on the unit disk; kemppinen.jacobian).
       // Hemisphere: pixel centre (x, y) of the projected disk, ω_h = (x, y, √(1−x²−y²)); the
       // pixel sum of D × pixel area is the same integral (dx dy = cosθ_h dω_h).
       for (std::string_view domain : {"disk", "hemisphere"}) {
@@ -243,7 +245,7 @@ void run_fig2_3(const FigureContext& ctx) {
             c_int += wgt * (disk ? r.compensation_part.x / r.smooth_d : r.compensation_part.x);
           }
         }
-        // The area mean of the same integral over positions (prior-space quadrature at n/2):
+        // The area mean over positions of ∫ D★^f cosθ_h dω_h (hemisphere quadrature at n/2):
         // Eq. 2 asks for 1 (the smooth integral) up to the lobe mass outside U_Ω.
         double a_sum = 0, a_sum2 = 0;
         const int m = n / 2;
@@ -254,11 +256,11 @@ void run_fig2_3(const FigureContext& ctx) {
           double integral = 0;
           for (int y = 0; y < m; ++y)
             for (int x = 0; x < m; ++x) {
-              const double u = (x + 0.5) / m, v = (y + 0.5) / m;
-              if ((u - 0.5) * (u - 0.5) + (v - 0.5) * (v - 0.5) >= 0.25) continue;
-              const V3 h = map_from_square(ndf, V2{u, v});
-              const KemppinenResult<double> r = kemppinen_eval(p, ndf, fk, h);
-              if (r.smooth_d > 0) integral += r.d.x / r.smooth_d / (double(m) * m * (kPiD / 4));
+              const double qx = 2 * (x + 0.5) / m - 1, qy = 2 * (y + 0.5) / m - 1;
+              const double r2 = qx * qx + qy * qy;
+              if (r2 >= 1) continue;
+              const V3 h{qx, qy, std::sqrt(1 - r2)};
+              integral += kemppinen_eval(p, ndf, fk, h).d.x * 4 / (double(m) * m);
             }
           a_sum += integral, a_sum2 += integral * integral;
         }
@@ -282,13 +284,17 @@ void run_fig2_3(const FigureContext& ctx) {
     });
   }
   write_csv(ctx.dir / "integrals.csv",
-            {"ndf", "domain", "alpha", "microroughness", "footprint_cells", "lambda", "resolution",
-             "smooth_integral", "glinty_integral", "glinty_explicit_integral",
+            {"ndf", "domain", "quantity", "alpha", "microroughness", "footprint_cells", "lambda",
+             "resolution", "smooth_integral", "glinty_integral", "glinty_explicit_integral",
              "glinty_compensation_integral", "glinty_over_smooth", "glinty_max",
-             "area_mean_glinty_integral", "area_mean_se", "area_positions"},
+             "area_mean_glinty_hemisphere_integral", "area_mean_se", "area_positions"},
             [&](io::CsvWriter& w) {
               for (const Row& r : rows) {
-                w.cell(r.ndf).cell(r.domain).cell(kFig23Alpha).cell(kFig23AlphaStar);
+                w.cell(r.ndf).cell(r.domain);
+                w.cell(r.domain == "disk"
+                           ? "mean over U_Omega of 1 (smooth) and D_star_f/D (glinty)"
+                           : "integral of D cos and D_star_f cos over the hemisphere");
+                w.cell(kFig23Alpha).cell(kFig23AlphaStar);
                 w.cell(kFig23Cells).cell(r.lambda).cell_int(n).cell(r.smooth_integral);
                 w.cell(r.glinty_integral).cell(r.explicit_integral).cell(r.compensation_integral);
                 w.cell(r.glinty_integral / r.smooth_integral).cell(r.glinty_max);

@@ -47,8 +47,8 @@ TEST_F(KemppinenFigureTest, ListShowsTheFigures) {
   }
 }
 
-// Fig. 2–3: the smooth integral is 1 on both domains; the glinty integral is the same number by
-// the disk and by the hemisphere quadrature; glints concentrate energy (peaks well above D).
+// Fig. 2–3: the smooth integral is 1 on both domains; for Beckmann the glinty integral is the same
+// number by the disk and by the hemisphere quadrature; glints concentrate energy (peaks above D).
 TEST_F(KemppinenFigureTest, Fig2_3DiskAndHemisphere) {
   const fs::path d = run_quick("kemppinen2025-fig2-3");
   for (const char* ndf : {"ggx", "beckmann"}) {
@@ -69,11 +69,12 @@ TEST_F(KemppinenFigureTest, Fig2_3DiskAndHemisphere) {
     EXPECT_GT(t.number(i, t.column("glinty_max")), 1.5);
     EXPECT_GT(t.number(i, t.column("area_mean_se")), 0.0);
   }
-  for (std::size_t i = 0; i < 4; i += 2) {
-    EXPECT_EQ(t.text(i, t.column("domain")), "disk");
-    EXPECT_NEAR(t.number(i, t.column("glinty_integral")),
-                t.number(i + 1, t.column("glinty_integral")), 0.05);
-  }
+  // Beckmann's map pushes D cosθ to the uniform density on U_Ω, so the disk mean of D★^f/D is
+  // the hemisphere integral; the printed GGX map does not (kemppinen.jacobian), so no such check.
+  EXPECT_EQ(t.text(2, t.column("ndf")), "beckmann");
+  EXPECT_EQ(t.text(2, t.column("domain")), "disk");
+  EXPECT_NEAR(t.number(2, t.column("glinty_integral")), t.number(3, t.column("glinty_integral")),
+              0.005);
 }
 
 // Fig. 15: the smooth furnace never exceeds 1; the glinty furnace stays below 1 (the paper: "at
