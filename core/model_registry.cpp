@@ -10,6 +10,8 @@
 #include "core/io/csv.h"
 #include "core/models/podee.h"
 #include "core/glints/chermain.h"
+#include "core/models/kemppinen_beckmann.h"
+#include "core/models/kemppinen_ggx.h"
 #include "core/models/smooth_beckmann.h"
 #include "core/models/smooth_ggx.h"
 
@@ -28,6 +30,8 @@ std::vector<ModelEntry>& model_list() {
     m.push_back(make_model_entry<DeliotBelcour>());
     m.push_back(make_model_entry<KneiphofKlein>());
     m.push_back(make_model_entry<Chermain>());
+    m.push_back(make_model_entry<KemppinenGGX>());
+    m.push_back(make_model_entry<KemppinenBeckmann>());
     return m;
   }();
   return kModels;

@@ -38,6 +38,9 @@ GLINTLAB_FN double copysign(double a, double b) { return std::copysign(a, b); }
 GLINTLAB_FN float sign_not_zero(float x) { return std::copysign(1.0f, x); }
 GLINTLAB_FN double sign_not_zero(double x) { return std::copysign(1.0, x); }
 
+GLINTLAB_FN float floor(float x) { return std::floor(x); }
+GLINTLAB_FN double floor(double x) { return std::floor(x); }
+
 GLINTLAB_FN float sqrt(float x) { return std::sqrt(x); }
 GLINTLAB_FN double sqrt(double x) { return std::sqrt(x); }
 GLINTLAB_FN float rsqrt(float x) { return 1.0f / std::sqrt(x); }
@@ -78,8 +81,6 @@ GLINTLAB_FN void sincos(double x, double* s, double* c) {
   *s = std::sin(x);
   *c = std::cos(x);
 }
-GLINTLAB_FN float floor(float x) { return std::floor(x); }
-GLINTLAB_FN double floor(double x) { return std::floor(x); }
 GLINTLAB_FN bool isfinite(float x) { return std::isfinite(x); }
 GLINTLAB_FN bool isfinite(double x) { return std::isfinite(x); }
 

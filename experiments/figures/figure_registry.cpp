@@ -11,6 +11,7 @@
 #include "experiments/figures/models_hemisphere.h"
 #include "experiments/figures/podee.h"
 #include "experiments/figures/kneiphof2024.h"
+#include "experiments/figures/kemppinen2025.h"
 
 namespace glintlab::experiments {
 
@@ -31,6 +32,11 @@ const std::vector<FigureEntry>& registered_figures() {
       chermain2021_fig8_entry(),
       chermain2021_fig9_entry(),
       chermain2021_fig10_entry(),
+      kemppinen2025_fig2_3_entry(),
+      kemppinen2025_fig6_entry(),
+      kemppinen2025_fig10_entry(),
+      kemppinen2025_fig14_entry(),
+      kemppinen2025_fig15_entry(),
   };
   return kFigures;
 }

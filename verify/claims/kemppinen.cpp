@@ -260,9 +260,12 @@ GofSpec kemppinen_spec(Budget) {
 }
 
 std::vector<Check> kemppinen_checks() {
-  return {{kId, "Kemppinen et al. 2025",
-           "Eq. 3 |J_T| = D/|U_Ω| for T = L∘M̃ (Sec. 3.2.1, Eq. 6–7) and T = B1⁻¹∘B2⁻¹ (Sec. 3.2.2)",
-           Verdict::kFails, run, calibration}};
+  std::vector<Check> out = {
+      {kId, "Kemppinen et al. 2025",
+       "Eq. 3 |J_T| = D/|U_Ω| for T = L∘M̃ (Sec. 3.2.1, Eq. 6–7) and T = B1⁻¹∘B2⁻¹ (Sec. 3.2.2)",
+       Verdict::kFails, run, calibration}};
+  for (Check& c : kemppinen_glint_checks()) out.push_back(std::move(c));
+  return out;
 }
 
 }  // namespace glintlab::verify

@@ -1,0 +1,301 @@
+// Kemppinen et al. 2025 "Evaluating and Sampling Glinty NDFs in Constant Time": the filtered glinty
+// NDF D★^f of Eq. 11 by Algorithm 1 (implicit jittered 4D grid, LOD from the pixel footprint, k
+// neighbours in space and angle, Gaussian pixel filter, roulette MIP blending Eq. 8, compensation
+// Eq. 9–10, anisotropy, per-facet colours, triplanar UV-free mode), for any NDF with a map T of
+// core/maps (GGX: Sec. 3.2.1, Beckmann: Sec. 3.2.2).
+//
+// Conventions (the paper leaves them open or prints them inconsistently; each is a choice here):
+// * Angular space is the unit square of core/maps/disk_square.h; U_Ω the disk of radius ½ in it.
+//   Spatial space is x_s = A★·uv with A★ = diag(√a, 1/√a) (det 1, so `density` stays the number of
+//   points per unit uv area; Algorithm 1 line 1 scales res by det A★⁻¹ instead).
+// * N is the normalised 2D normal density (Eq. 4 prints a 1D normalisation 1/(σ√2π), under which
+//   a lobe does not integrate to a constant). Lobe width σ = α★√|J_T| with |J_T| = D/|U_Ω| as
+//   Eq. 3–4 print it; anisotropic lobes Σ_a = σ² A★⁻² (Algorithm 1 line 12).
+// * Normalisation of Eq. 4/11: kPrinted uses the prefactor |J_T| = D/|U_Ω| of Eq. 3 with K_P the
+//   number of cells, under which the area mean is D/|U_Ω| = 4D/π, not D (Eq. 2 fails);
+//   kCorrected uses the prefactor D, under which the area mean of the explicit points is
+//   D times the lobe's mass inside U_Ω (kemppinen.convergence).
+// * LOD: λ = log2(2 σ_max res), σ_max the larger standard deviation of the spatial filter in
+//   x_s, clamped to [0, kKemppinenMaxLevel]: at ⌊λ⌋ the filter's 2σ spans one to two cells
+//   (Sec. 3.3.2). Both ⌊λ⌋ and ⌊λ⌋+1 are always visited (weight 1 − frac, frac), so the number of
+//   points visited is 2k² for every query (constant time).
+//
+// Cell indices are integers of the query, so the kernel takes scalar T (float, double); the
+// parameters it branches on (k, blending, erf, colours) are uniform, never per-lane values.
+#pragma once
+
+#include <cstdint>
+
+#include "core/glints/kemppinen_compensation.h"
+#include "core/glints/kemppinen_grid.h"
+#include "core/maps/beckmann_map.h"
+#include "core/maps/disk_square.h"
+#include "core/maps/ggx_map.h"
+#include "core/model.h"
+
+namespace glintlab {
+
+enum class KemppinenBlend { kRoulette = 0, kLinear = 1 };
+enum class KemppinenNormalization { kCorrected = 0, kPrinted = 1 };
+enum class KemppinenColors { kWhite = 0, kRedYellow = 1 };
+
+inline constexpr int kKemppinenMaxLevel = 20;
+// ε of Eq. 8 ("We use ε = 0.1 for all of our results").
+inline constexpr double kKemppinenRouletteEpsilon = 0.1;
+
+template <class T>
+struct KemppinenParams {
+  T density;         // K_P, points per unit uv area (Table 1)
+  T microroughness;  // α★ (Eq. 4)
+  T anisotropy;      // a of A★ = diag(√a, 1/√a) (Sec. 3.3.6)
+  T filter;          // f, the pixel filter's standard deviation in pixels (Alg. 1 line 11)
+  int side;          // √k: k = side² neighbours in space and in angle
+  KemppinenBlend blend;
+  KemppinenErf erf;
+  KemppinenNormalization normalization;
+  KemppinenColors colors;
+  std::uint64_t seed;
+  bool compensate = true;  // false: Eq. 11 without C (ablation and negative controls)
+};
+
+// What one evaluation produced (the model's intermediates).
+template <class T>
+struct KemppinenResult {
+  Vec3<T> d;                  // D★^f (Eq. 11), per colour channel
+  Vec3<T> explicit_part;      // the sum over B(k) of Eq. 11, times the prefactor
+  Vec3<T> compensation_part;  // prefactor × Σ_l w_l E[c] C (Eq. 10)
+  T smooth_d;                 // D(ω_h) of the base NDF
+  T lambda, w0, w1;           // LOD λ and the weights of levels ⌊λ⌋ and ⌊λ⌋+1
+  int level0;
+  int points;  // (spatial cell, angular cell) pairs visited
+};
+
+// ---- Pieces of Algorithm 1 -----------------------------------------------------------------
+
+// x_s = A★·uv (Algorithm 1 line 2).
+template <class T>
+GLINTLAB_FN Vec2<T> kemppinen_spatial_position(const KemppinenParams<T>& p, Vec2<T> uv) {
+  const T s = sqrt(p.anisotropy);
+  return {uv.x * s, uv.y / s};
+}
+
+// Symmetric 2×2 matrix (xx, xy, yy).
+template <class T>
+struct Sym2 {
+  T xx, xy, yy;
+};
+
+// Σ_s = f² (A★ J_uv)(A★ J_uv)ᵀ (Algorithm 1 line 11, in x_s), J_uv = [duv_dx duv_dy]; floored at
+// (10⁻³ of a level-0 cell)² so a zero footprint stays a (very narrow) Gaussian.
+template <class T>
+GLINTLAB_FN Sym2<T> kemppinen_spatial_covariance(const KemppinenParams<T>& p,
+                                                 const FootprintQuery<T>& fp, T res) {
+  const T f2 = sqr(p.filter);
+  const T a = p.anisotropy;
+  const T floor2 = sqr(T(1e-3) / res);
+  return {f2 * a * (sqr(fp.duv_dx.x) + sqr(fp.duv_dy.x)) + floor2,
+          f2 * (fp.duv_dx.x * fp.duv_dx.y + fp.duv_dy.x * fp.duv_dy.y),
+          f2 / a * (sqr(fp.duv_dx.y) + sqr(fp.duv_dy.y)) + floor2};
+}
+
+// Implicit grid base resolution (Algorithm 1 line 1): √K_P cells per unit of x_s at level 0.
+template <class T>
+GLINTLAB_FN T kemppinen_base_resolution(const KemppinenParams<T>& p) {
+  return sqrt(p.density);
+}
+
+// LOD λ (Algorithm 1 line 5, Sec. 3.3.2): log2(2 σ_max res), clamped to [0, kKemppinenMaxLevel].
+template <class T>
+GLINTLAB_FN T kemppinen_lod(const Sym2<T>& s, T res) {
+  const T mean = T(0.5) * (s.xx + s.yy);
+  const T dev = sqrt(sqr(T(0.5) * (s.xx - s.yy)) + sqr(s.xy));
+  const T sigma_max = sqrt(mean + dev);
+  const T lambda = log(T(2) * sigma_max * res) * T(1.44269504088896340736);  // / ln 2
+  return clamp(lambda, T(0), T(kKemppinenMaxLevel));
+}
+
+// The normalised 2D normal density N(d; Σ) = exp(−½ dᵀΣ⁻¹d)/(2π√|Σ|).
+template <class T>
+GLINTLAB_FN T normal2(Vec2<T> d, const Sym2<T>& s) {
+  const T det = s.xx * s.yy - sqr(s.xy);
+  const T q = (s.yy * sqr(d.x) - T(2) * s.xy * d.x * d.y + s.xx * sqr(d.y)) / det;
+  return exp(T(-0.5) * q) * (T(0.15915494309189533577) * rsqrt(det));
+}
+
+// Eq. 8: R(r, w) = smoothstep(max(0, r − ε), min(1, r + ε), w), the mollified roulette.
+template <class T>
+GLINTLAB_FN T kemppinen_roulette(T r, T w) {
+  const T eps = T(kKemppinenRouletteEpsilon);
+  const T e0 = max(T(0), r - eps), e1 = min(T(1), r + eps);
+  const T t = saturate((w - e0) / (e1 - e0));
+  return t * t * (T(3) - T(2) * t);
+}
+
+// GlintColor (Algorithm 1 line 17, Sec. 3.3.6 "Colors"): white, or red/yellow with probability ½.
+template <class T>
+GLINTLAB_FN Vec3<T> kemppinen_color(KemppinenColors colors, T r) {
+  const Vec3<T> red{T(1), T(0.08), T(0.03)}, yellow{T(1), T(0.75), T(0.1)};
+  const Vec3<T> c = select(r < T(0.5), red, yellow);
+  return colors == KemppinenColors::kWhite ? Vec3<T>{T(1), T(1), T(1)} : c;
+}
+
+// E[GlintColor], the colour of the compensation term (Algorithm 1 line 20).
+template <class T>
+GLINTLAB_FN Vec3<T> kemppinen_expected_color(KemppinenColors colors) {
+  return colors == KemppinenColors::kWhite ? Vec3<T>{T(1), T(1), T(1)}
+                                           : Vec3<T>{T(1), T(0.415), T(0.065)};
+}
+
+// Rec. 709 luminance (Algorithm 2 line 12 "Luminance(c)").
+template <class T>
+GLINTLAB_FN T kemppinen_luminance(Vec3<T> c) {
+  return T(0.2126) * c.x + T(0.7152) * c.y + T(0.0722) * c.z;
+}
+
+// The angular frame of one query: x_a = T(ω_h) (Alg. 1 line 3), d = D(ω_h) (line 4), the lobe
+// standard deviations of Σ_a (line 12, Eq. 4) and the prefactor of Eq. 11.
+template <class T>
+struct KemppinenAngular {
+  Vec2<T> x_a;
+  Vec2<T> sigma_a;
+  T d, prefactor;
+  Mask<T> valid;  // ω_h in the upper hemisphere with D > 0
+};
+
+template <class Ndf, class T>
+GLINTLAB_FN KemppinenAngular<T> kemppinen_angular(const KemppinenParams<T>& p, const Ndf& ndf,
+                                                  Vec3<T> h) {
+  const Mask<T> up = h.z > T(0);
+  const Vec3<T> hs = select(up, h, Vec3<T>{T(0), T(0), T(1)});
+  const T d = ndf.D(hs);
+  const T j_paper = d / T(kMapDomainArea<T>);  // |J_T| as Eq. 3 prints it
+  // Lobe width from D floored at 10⁻¹²: where D underflows to 0 (Beckmann near the horizon) σ = 0
+  // made N(·; Σ_a) 0/0 and D★^f NaN; U_Ω holds less than 10⁻¹² of the points there.
+  const T sigma = p.microroughness * sqrt(max(j_paper, T(1e-12) / T(kMapDomainArea<T>)));
+  const T sa = sqrt(p.anisotropy);
+  const T prefactor = p.normalization == KemppinenNormalization::kPrinted ? j_paper : d;
+  const Mask<T> valid = up && (d > T(0));
+  return {map_to_square(ndf, hs), {sigma / sa, sigma * sa}, d, prefactor, valid};
+}
+
+// Cell side of the angular grid and of the spatial grid at level l (Alg. 1 lines 9–10).
+template <class T>
+GLINTLAB_FN T kemppinen_angular_resolution(int level) {
+  return T(std::int64_t(1) << level);
+}
+
+// ---- Algorithm 1 -----------------------------------------------------------------------------
+
+// One level l with weight w_l, one point process (`process`, weight `process_w` for the triplanar
+// blend): adds the explicit points of B(k) in space × angle and the compensation (Eq. 10).
+template <class T>
+GLINTLAB_FN void kemppinen_level(const KemppinenParams<T>& p, const KemppinenAngular<T>& ang,
+                                 Vec2<T> x_s, const Sym2<T>& sigma_s, T res, int level, T w_l,
+                                 int process, Vec3<T>& explicit_sum, Vec3<T>& compensation) {
+  const int n = p.side;
+  const T res_a = kemppinen_angular_resolution<T>(level);
+  const T res_s = res / res_a;
+  const T inv_rho = T(1) / sqr(res);  // 1/(res_s² res_a²): one point per 4D cell
+  const std::int64_t n_a = std::int64_t(1) << level;
+  const std::int64_t sx0 = kemppinen_block_start(x_s.x * res_s, n);
+  const std::int64_t sy0 = kemppinen_block_start(x_s.y * res_s, n);
+  const std::int64_t ax0 = kemppinen_block_start(ang.x_a.x * res_a, n);
+  const std::int64_t ay0 = kemppinen_block_start(ang.x_a.y * res_a, n);
+  const Sym2<T> sigma_a2{sqr(ang.sigma_a.x), T(0), sqr(ang.sigma_a.y)};
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) {
+          const KemppinenCell c{sx0 + i, sy0 + j, ax0 + a, ay0 + b, level, process};
+          const std::uint64_t ci = kemppinen_cell_index(c);
+          const bool in_square = c.ax >= 0 && c.ax < n_a && c.ay >= 0 && c.ay < n_a;
+          const Vec2<T> g_s{
+              (T(c.sx) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialX)) / res_s,
+              (T(c.sy) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialY)) / res_s};
+          const Vec2<T> g_a{
+              (T(c.ax) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) / res_a,
+              (T(c.ay) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) / res_a};
+          // Points outside U_Ω are rejected (Sec. 3.3.1).
+          const Mask<T> in_disk = sqr(g_a.x - T(0.5)) + sqr(g_a.y - T(0.5)) <= T(0.25);
+          const T r = kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimRoulette);
+          const T blend = p.blend == KemppinenBlend::kRoulette ? kemppinen_roulette(r, w_l) : w_l;
+          const T w =
+              blend * normal2(x_s - g_s, sigma_s) * normal2(ang.x_a - g_a, sigma_a2) * inv_rho;
+          const Vec3<T> col =
+              kemppinen_color(p.colors, kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimColor));
+          explicit_sum = explicit_sum + select(in_disk && in_square, w, T(0)) * col;
+        }
+  // B(k) clipped to the square: the cells that exist.
+  const Vec2<T> b_lo{T(ax0 < 0 ? 0 : ax0) / res_a, T(ay0 < 0 ? 0 : ay0) / res_a};
+  const Vec2<T> b_hi{T(ax0 + n > n_a ? n_a : ax0 + n) / res_a,
+                     T(ay0 + n > n_a ? n_a : ay0 + n) / res_a};
+  const T cmp =
+      p.compensate ? kemppinen_compensation(ang.x_a, ang.sigma_a, b_lo, b_hi, p.erf) : T(0);
+  compensation = compensation + (w_l * cmp) * kemppinen_expected_color<T>(p.colors);
+}
+
+// D★^f of one point process at footprint `fp` (Algorithm 1), with an extra weight on its levels
+// (1 for plain uv; the triplanar plane weight otherwise, applied inside the roulette).
+template <class Ndf, class T>
+GLINTLAB_FN KemppinenResult<T> kemppinen_eval_process(const KemppinenParams<T>& p, const Ndf& ndf,
+                                                      const FootprintQuery<T>& fp, Vec3<T> h,
+                                                      int process, T process_w) {
+  const KemppinenAngular<T> ang = kemppinen_angular(p, ndf, h);
+  const T res = kemppinen_base_resolution(p);
+  const Vec2<T> x_s = kemppinen_spatial_position(p, fp.uv);
+  const Sym2<T> sigma_s = kemppinen_spatial_covariance(p, fp, res);
+  const T lambda = kemppinen_lod(sigma_s, res);
+  const T fl = min(floor(lambda), T(kKemppinenMaxLevel - 1));
+  const int l0 = static_cast<int>(fl);
+  const T w1 = lambda - fl, w0 = T(1) - w1;
+  Vec3<T> ex{T(0), T(0), T(0)}, cp{T(0), T(0), T(0)};
+  kemppinen_level(p, ang, x_s, sigma_s, res, l0, w0 * process_w, process, ex, cp);
+  kemppinen_level(p, ang, x_s, sigma_s, res, l0 + 1, w1 * process_w, process, ex, cp);
+  const T k = select(ang.valid, ang.prefactor, T(0));
+  KemppinenResult<T> out;
+  out.explicit_part = k * ex;
+  out.compensation_part = k * cp;
+  out.d = out.explicit_part + out.compensation_part;
+  out.smooth_d = select(ang.valid, ang.d, T(0));
+  out.lambda = lambda;
+  out.w0 = w0;
+  out.w1 = w1;
+  out.level0 = l0;
+  out.points = 2 * p.side * p.side * p.side * p.side;
+  return out;
+}
+
+// D★^f(x, ω_h) of Eq. 11 by Algorithm 1, at the footprint's uv.
+template <class Ndf, class T>
+GLINTLAB_FN KemppinenResult<T> kemppinen_eval(const KemppinenParams<T>& p, const Ndf& ndf,
+                                              const FootprintQuery<T>& fp, Vec3<T> h) {
+  return kemppinen_eval_process(p, ndf, fp, h, 0, T(1));
+}
+
+// UV-free rendering by triplanar mapping (Sec. 3.3.6): three point processes on the planes
+// ⊥ x, y, z of object space, at uv = (p.y, p.z), (p.z, p.x), (p.x, p.y) with footprints from the
+// position derivatives, weighted by |n_axis|/Σ|n| through the same roulette. Anisotropy is the
+// caller's to disable (the paper: triplanar "prevents a simple definition of anisotropy").
+template <class Ndf, class T>
+GLINTLAB_FN KemppinenResult<T> kemppinen_eval_triplanar(const KemppinenParams<T>& p, const Ndf& ndf,
+                                                        Vec3<T> pos, Vec3<T> dpos_dx,
+                                                        Vec3<T> dpos_dy, Vec3<T> n_geo, Vec3<T> h) {
+  const T sum = abs(n_geo.x) + abs(n_geo.y) + abs(n_geo.z);
+  const T w[3] = {abs(n_geo.x) / sum, abs(n_geo.y) / sum, abs(n_geo.z) / sum};
+  const FootprintQuery<T> fps[3] = {
+      {{pos.y, pos.z}, {dpos_dx.y, dpos_dx.z}, {dpos_dy.y, dpos_dy.z}},
+      {{pos.z, pos.x}, {dpos_dx.z, dpos_dx.x}, {dpos_dy.z, dpos_dy.x}},
+      {{pos.x, pos.y}, {dpos_dx.x, dpos_dx.y}, {dpos_dy.x, dpos_dy.y}},
+  };
+  KemppinenResult<T> out = kemppinen_eval_process(p, ndf, fps[0], h, 1, w[0]);
+  for (int i = 1; i < 3; ++i) {
+    const KemppinenResult<T> r = kemppinen_eval_process(p, ndf, fps[i], h, i + 1, w[i]);
+    out.explicit_part = out.explicit_part + r.explicit_part;
+    out.compensation_part = out.compensation_part + r.compensation_part;
+    out.points += r.points;
+  }
+  out.d = out.explicit_part + out.compensation_part;
+  return out;
+}
+
+}  // namespace glintlab

@@ -1,0 +1,67 @@
+// The analytic compensation of Kemppinen et al. 2025 Sec. 3.3.4, Eq. 9–10: Gaussian mass over
+// rectangles by erf, with the exact erf or a fast rational approximation (the paper's "simple
+// rational polynomial approximation"), and the square-minus-neighbourhood integral of Eq. 10.
+#pragma once
+
+#include "core/math/vec.h"
+
+namespace glintlab {
+
+enum class KemppinenErf { kExact = 0, kRational = 1 };
+
+// erf by Abramowitz & Stegun 7.1.28, 1 − (1 + a1 x + … + a6 x⁶)^−16 for x ≥ 0 (odd extension):
+// rational, no exp, |error| ≤ 3e-7 (A&S). The ^−16 is four squarings of the reciprocal.
+template <class T>
+GLINTLAB_FN T erf_rational(T x) {
+  const T ax = abs(x);
+  T p = T(0.0000430638);
+  p = fma(p, ax, T(0.0002765672));
+  p = fma(p, ax, T(0.0001520143));
+  p = fma(p, ax, T(0.0092705272));
+  p = fma(p, ax, T(0.0422820123));
+  p = fma(p, ax, T(0.0705230784));
+  p = fma(p, ax, T(1));
+  T r = T(1) / p;
+  r = r * r;
+  r = r * r;
+  r = r * r;
+  r = r * r;
+  return copysign(T(1) - r, x);
+}
+
+template <class T>
+GLINTLAB_FN T kemppinen_erf(T x, KemppinenErf variant) {
+  return variant == KemppinenErf::kExact ? erf(x) : erf_rational(x);
+}
+
+// ∫_{a}^{b} of the 1D normal density centred at m with standard deviation s:
+// ½ (erf((b − m)/(√2 s)) − erf((a − m)/(√2 s))). Returns 0 for an empty interval (b ≤ a).
+template <class T>
+GLINTLAB_FN T gaussian_interval_mass(T a, T b, T m, T s, KemppinenErf variant) {
+  const T k = T(0.70710678118654752440) / s;
+  const T v = T(0.5) * (kemppinen_erf((b - m) * k, variant) - kemppinen_erf((a - m) * k, variant));
+  return select(b > a, max(v, T(0)), T(0));
+}
+
+// Mass of the axis-aligned normal N(m, diag(sx², sy²)) over the rectangle [lo, hi] (separable).
+template <class T>
+GLINTLAB_FN T gaussian_rect_mass(Vec2<T> lo, Vec2<T> hi, Vec2<T> m, Vec2<T> s,
+                                 KemppinenErf variant) {
+  return gaussian_interval_mass(lo.x, hi.x, m.x, s.x, variant) *
+         gaussian_interval_mass(lo.y, hi.y, m.y, s.y, variant);
+}
+
+// Eq. 10: C(ω, α★) ≈ ∫_□ N − ∫_{□∩B(k)} N, the lobe at x_a over the unit square that holds U_Ω
+// minus its part over the angular neighbourhood B(k) = [b_lo, b_hi] (already clipped to □). The
+// printed Eq. 9 integrates over U_Ω \ B(k); Eq. 10 replaces U_Ω by □, which adds the lobe's mass
+// outside the disk (Sec. 5: "considers areas outside of U_Ω", Fig. 14 left).
+template <class T>
+GLINTLAB_FN T kemppinen_compensation(Vec2<T> x_a, Vec2<T> sigma_a, Vec2<T> b_lo, Vec2<T> b_hi,
+                                     KemppinenErf variant) {
+  const T whole =
+      gaussian_rect_mass(Vec2<T>{T(0), T(0)}, Vec2<T>{T(1), T(1)}, x_a, sigma_a, variant);
+  const T near = gaussian_rect_mass(b_lo, b_hi, x_a, sigma_a, variant);
+  return max(whole - near, T(0));
+}
+
+}  // namespace glintlab

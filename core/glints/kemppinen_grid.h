@@ -1,0 +1,65 @@
+// The implicit 4D jittered grid of Kemppinen et al. 2025 Sec. 3.3.1–3.3.2: one point per cell of
+// [0,1)² (space, repeated over the plane) × [0,1)² (the angular square holding U_Ω), its random
+// numbers from a counter hash of the cell index, and the k-neighbouring cells of Algorithm 1.
+//
+// Cell indices are integers per query, so these helpers take scalar T (float, double): a SIMD
+// instantiation would need an integer-batch hash.
+#pragma once
+
+#include <cstdint>
+
+#include "core/math/rng.h"
+#include "core/math/vec.h"
+
+namespace glintlab {
+
+// The cell (i_s, i_a, l) of Algorithm 1 lines 15–17: spatial cell (sx, sy) and angular cell
+// (ax, ay) at MIP level l, plus the triplanar process index (Sec. 3.3.6, 0 for plain uv).
+struct KemppinenCell {
+  std::int64_t sx, sy, ax, ay;
+  int level;
+  int process;
+};
+
+// The random-number dimensions of one cell (Rand2D twice, Rand1D for the roulette, GlintColor).
+enum KemppinenDim : std::uint64_t {
+  kKemppinenDimSpatialX = 0,
+  kKemppinenDimSpatialY = 1,
+  kKemppinenDimAngularX = 2,
+  kKemppinenDimAngularY = 3,
+  kKemppinenDimRoulette = 4,
+  kKemppinenDimColor = 5,
+};
+
+// The counter index of a cell: the paper seeds an RNG with the cell index (Sec. 3.3.1, "a
+// congruential RNG as they are fast to seed"); here the SplitMix64 finalizer of core/math/rng.h
+// chained over the six integers, so neighbouring cells get unrelated streams.
+GLINTLAB_FN std::uint64_t kemppinen_cell_index(const KemppinenCell& c) {
+  std::uint64_t h = mix64(static_cast<std::uint64_t>(c.sx) + 0x9e3779b97f4a7c15ULL);
+  h = mix64(h ^ (static_cast<std::uint64_t>(c.sy) * 0xd1b54a32d192ed03ULL));
+  h = mix64(h ^ (static_cast<std::uint64_t>(c.ax) * 0x8cb92ba72f3d8dd7ULL));
+  h = mix64(h ^ (static_cast<std::uint64_t>(c.ay) * 0xabc98388fb8fac03ULL));
+  return mix64(h ^ (static_cast<std::uint64_t>(c.level) << 8) ^
+               static_cast<std::uint64_t>(c.process));
+}
+
+// The uniform number of dimension `dim` of the point of the cell with index
+// kemppinen_cell_index(c): r ∈ [0,1) (Sec. 3.3.1).
+template <class T>
+GLINTLAB_FN T kemppinen_cell_uniform(std::uint64_t seed, std::uint64_t cell_index,
+                                     std::uint64_t dim) {
+  return counter_uniform<T>(seed, cell_index, dim);
+}
+
+// First cell index of the n consecutive cells closest to coordinate `x` (in cells) along one
+// axis: floor(x − (n − 1)/2). n odd: centred on the cell holding x; n even: the n cells whose
+// centre block is nearest x (the k-NeighbouringCells of Algorithm 1 lines 13–14, k = n²).
+template <class T>
+GLINTLAB_FN std::int64_t kemppinen_block_start(T x_cells, int n) {
+  return static_cast<std::int64_t>(floor(x_cells - T(0.5) * T(n - 1)));
+}
+
+// The valid k of Algorithm 1 (Sec. 3.3.4): 1, 4, 9, 16 neighbours, i.e. blocks of side 1…4.
+inline constexpr int kKemppinenMaxSide = 4;
+
+}  // namespace glintlab

@@ -1,0 +1,137 @@
+// Kemppinen et al. 2025 glinty microfacet reflection as a model (core/model.h), shared by
+// kemppinen_ggx and kemppinen_beckmann: Eq. 1 with D replaced by D★^f of Eq. 11 (Algorithm 1),
+// Smith height-correlated G2 of the base NDF (Sec. 3.2: "the Smith masking-shadowing function"),
+// F = 1, and Algorithm 2 as the sampler.
+#pragma once
+
+#include <array>
+#include <span>
+#include <string_view>
+
+#include "core/glints/kemppinen.h"
+#include "core/glints/kemppinen_sampling.h"
+#include "core/model.h"
+#include "core/ndf/microfacet.h"
+
+namespace glintlab::detail {
+
+inline constexpr std::array<std::string_view, 4> kKemppinenKNames = {"1", "4", "9", "16"};
+inline constexpr std::array<std::string_view, 2> kKemppinenBlendNames = {"roulette", "linear"};
+inline constexpr std::array<std::string_view, 2> kKemppinenErfNames = {"exact", "rational"};
+inline constexpr std::array<std::string_view, 2> kKemppinenNormNames = {"corrected", "printed"};
+inline constexpr std::array<std::string_view, 2> kKemppinenColorNames = {"white", "red_yellow"};
+inline constexpr std::array<std::string_view, 2> kKemppinenPdfNames = {"marginal", "printed"};
+
+inline constexpr std::array<ParamSpec, 13> kKemppinenParams = {{
+    {"alpha_x", 0.3, 0.0, 2.0, true, false, "base roughness along the tangent (x)"},
+    {"alpha_y", 0.3, 0.0, 2.0, true, false, "base roughness along the bitangent (y)"},
+    {"density", 1e4, 0.0, 1e8, true, false, "K_P: glints per unit uv area (Table 1)"},
+    {"microroughness", 0.02, 0.0, 1.0, true, false,
+     "alpha_star: width of one glint's lobe (Eq. 4)"},
+    {"anisotropy", 1.0, 0.05, 20.0, false, false,
+     "a of A_star = diag(sqrt a, 1/sqrt a): uv stretch, inverse angular stretch (Sec. 3.3.6)"},
+    {"filter", 0.5, 0.0, 4.0, true, false,
+     "f: Gaussian pixel filter standard deviation in pixels (Sigma_s = f^2 J J^T)"},
+    {"k", 1.0, 0.0, 3.0, false, false, "neighbouring cells in space and in angle (Sec. 3.3.4)",
+     kKemppinenKNames},
+    {"blending", 0.0, 0.0, 1.0, false, false, "MIP blending: roulette (Eq. 8, eps = 0.1) or linear",
+     kKemppinenBlendNames},
+    {"erf", 0.0, 0.0, 1.0, false, false,
+     "erf of the compensation (Eq. 10): exact or rational (A&S 7.1.28)", kKemppinenErfNames},
+    {"normalization", 0.0, 0.0, 1.0, false, false,
+     "prefactor of Eq. 4/11: corrected (D, area mean -> D) or printed (|J_T| = D/|U|, Eq. 3)",
+     kKemppinenNormNames},
+    {"colors", 0.0, 0.0, 1.0, false, false, "per-glint colours (Sec. 3.3.6): white or red_yellow",
+     kKemppinenColorNames},
+    {"pdf", 0.0, 0.0, 1.0, false, false,
+     "pdf returned by sample(): marginal (density of the samples) or printed (Alg. 2 l. 16-17)",
+     kKemppinenPdfNames},
+    {"seed", 0.0, 0.0, 4294967295.0, false, false, "seed of the implicit point process"},
+}};
+
+inline constexpr std::array<std::string_view, 14> kKemppinenIntermediates = {"D_star_f",
+                                                                             "D_star_explicit",
+                                                                             "D_star_compensation",
+                                                                             "D_smooth",
+                                                                             "lambda",
+                                                                             "w_level0",
+                                                                             "w_level1",
+                                                                             "level0",
+                                                                             "points_visited",
+                                                                             "D_r",
+                                                                             "D_g",
+                                                                             "D_b",
+                                                                             "G2",
+                                                                             "brdf"};
+
+template <class Ndf, class T>
+struct KemppinenModelParams {
+  Ndf ndf;
+  KemppinenParams<T> glint;
+  bool printed_pdf;
+};
+
+template <class Ndf, class T>
+KemppinenModelParams<Ndf, T> kemppinen_model_params(std::span<const double> v) {
+  KemppinenModelParams<Ndf, T> m{Ndf{T(v[0]), T(v[1])}, {}, v[11] != 0.0};
+  KemppinenParams<T>& g = m.glint;
+  g.density = T(v[2]);
+  g.microroughness = T(v[3]);
+  g.anisotropy = T(v[4]);
+  g.filter = T(v[5]);
+  g.side = static_cast<int>(v[6]) + 1;
+  g.blend = static_cast<KemppinenBlend>(static_cast<int>(v[7]));
+  g.erf = static_cast<KemppinenErf>(static_cast<int>(v[8]));
+  g.normalization = static_cast<KemppinenNormalization>(static_cast<int>(v[9]));
+  g.colors = static_cast<KemppinenColors>(static_cast<int>(v[10]));
+  g.seed = static_cast<std::uint64_t>(v[12]);
+  return m;
+}
+
+// Eq. 1 with D★^f: value = G2 D★^f / (4 |ωi·n|) (the cosine-weighted BRDF, F = 1).
+template <class Ndf, class T>
+ModelEval<T, kKemppinenIntermediates.size()> kemppinen_model_eval(
+    const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q, T pdf) {
+  const Vec3<T> h = half_vector(q.wi, q.wo);
+  const KemppinenResult<T> r = kemppinen_eval(p.glint, p.ndf, q.footprint, h);
+  const Mask<T> ok = (q.wi.z > T(0)) && (q.wo.z > T(0)) && (h.z > T(0));
+  const T g2 = select(ok, smith_g2_height_correlated(p.ndf, q.wi, q.wo, h), T(0));
+  const T d = kemppinen_luminance(r.d);
+  const T value = select(ok, g2 * d / (T(4) * select(ok, q.wi.z, T(1))), T(0));
+  const T brdf = select(ok, value / select(ok, q.wo.z, T(1)), T(0));
+  return {
+      value,
+      pdf,
+      {d, kemppinen_luminance(r.explicit_part), kemppinen_luminance(r.compensation_part),
+       r.smooth_d, r.lambda, r.w0, r.w1, T(r.level0), T(r.points), r.d.x, r.d.y, r.d.z, g2, brdf}};
+}
+
+// pdf of ωo = reflect(ωi, ω_h) under Algorithm 2: the marginal density of ω_h / (4 |ωo·ω_h|).
+template <class Ndf, class T>
+T kemppinen_model_pdf(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q) {
+  if (!(q.wi.z > T(0)) || !(q.wo.z > T(0))) return T(0);
+  const Vec3<T> h = half_vector(q.wi, q.wo);
+  if (!(h.z > T(0)) || !(dot(q.wi, h) > T(0))) return T(0);
+  return kemppinen_sample_density_half(p.glint, p.ndf, q.footprint, h) *
+         reflection_jacobian(q.wo, h);
+}
+
+template <class Ndf, class T>
+ModelSample<T> kemppinen_model_sample(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q,
+                                      Vec2<T> u) {
+  const ModelSample<T> none{{T(0), T(0), T(0)}, T(0), T(0), true};
+  if (!(q.wi.z > T(0))) return none;
+  const KemppinenHalfSample<T> s =
+      kemppinen_sample_half(p.glint, p.ndf, q.footprint, kemppinen_key_from_uniforms(u));
+  if (!s.ok || !(dot(q.wi, s.h) > T(0))) return none;
+  const Vec3<T> wo = reflect(q.wi, s.h);
+  if (!(wo.z > T(0))) return none;
+  ModelQuery<T> qo = q;
+  qo.wo = wo;
+  const T pdf =
+      p.printed_pdf ? s.pdf_printed_h * reflection_jacobian(wo, s.h) : kemppinen_model_pdf(p, qo);
+  const T value = kemppinen_model_eval(p, qo, pdf).value;
+  return {wo, pdf, pdf > T(0) ? value / pdf : T(0), false};
+}
+
+}  // namespace glintlab::detail

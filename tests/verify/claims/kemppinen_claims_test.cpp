@@ -1,0 +1,38 @@
+// The Kemppinen glint claims (verify/claims/kemppinen_glints.cpp) at reduced sizes: each correct
+// input passes and its negative control is rejected; the full quick-budget runs are in
+// registry_test.cpp.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "verify/check.h"
+#include "verify/claims/kemppinen_probes.h"
+
+namespace glintlab::verify {
+namespace {
+
+void expect_probe(const ControlProbe& p, const std::string& what) {
+  EXPECT_TRUE(p.correct_passes()) << what << ": correct " << p.correct << " vs " << p.threshold;
+  EXPECT_TRUE(p.control_rejected()) << what << ": control " << p.control << " vs " << p.threshold;
+}
+
+TEST(KemppinenClaims, Convergence) { expect_probe(probe_kemppinen_convergence(), "convergence"); }
+TEST(KemppinenClaims, Compensation) {
+  expect_probe(probe_kemppinen_compensation(), "compensation");
+}
+TEST(KemppinenClaims, Roulette) { expect_probe(probe_kemppinen_roulette(), "roulette"); }
+TEST(KemppinenClaims, Sampling) { expect_probe(probe_kemppinen_sampling(), "sampling"); }
+
+TEST(KemppinenClaims, ConstantTimeAndControl) {
+  for (const Check& c : registered_checks())
+    if (c.id == "kemppinen.constant-time") {
+      const CheckResult r = c.run(Budget::kQuick);
+      EXPECT_EQ(r.verdict, Verdict::kHolds) << r.detail;
+      EXPECT_TRUE(r.control_rejected) << r.control;
+      return;
+    }
+  FAIL() << "kemppinen.constant-time not registered";
+}
+
+}  // namespace
+}  // namespace glintlab::verify

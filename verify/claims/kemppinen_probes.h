@@ -1,0 +1,19 @@
+// Cheap probes of the Kemppinen glint claims (verify/claims/kemppinen_glints.cpp) for
+// tests/verify/claims: each runs one check's statistic on a correct and a deliberately wrong input.
+#pragma once
+
+#include "verify/claims/control_probes.h"
+
+namespace glintlab::verify {
+
+// kemppinen.convergence, one configuration: t-test p of the area mean; control: against 1.05 ×.
+ControlProbe probe_kemppinen_convergence();
+// kemppinen.compensation, one far-field setting: |mean D★^f/D − 1|; control: without C.
+ControlProbe probe_kemppinen_compensation();
+// kemppinen.roulette: paired p of roulette vs linear; control: linear × 1.1.
+ControlProbe probe_kemppinen_roulette();
+// kemppinen.sampling-unbiased, one configuration: Welch p of the marginal-pdf estimate against
+// smooth-NDF sampling; control: the marginal density × 1.2.
+ControlProbe probe_kemppinen_sampling();
+
+}  // namespace glintlab::verify
