@@ -352,6 +352,11 @@ void orthonormal_frame(const Vec3<double>& z, Vec3<double>& x, Vec3<double>& y) 
   y = {b, sign + z.y * z.y * a, -z.y};
 }
 
+// Geometric breaks around each point feature: half-widths kPointFeatureReach·2^−k (rad of arc),
+// k = 1 … kPointFeatureLevels (the finest ≈ 1.2e-4 rad).
+constexpr double kPointFeatureReach = 0.5;
+constexpr int kPointFeatureLevels = 12;
+
 ChiSquarePlan make_plan(SampleDomain domain, DirectionPdf dpdf, PointPdf ppdf, std::uint64_t n,
                         const ChiSquareOptions& o) {
   ChiSquarePlan plan;
@@ -412,8 +417,24 @@ ChiSquarePlan make_plan(SampleDomain domain, DirectionPdf dpdf, PointPdf ppdf, s
     if (pm.disk()) break;
     double t = 0, phi = 0;
     plan.to_bin_coordinates(f, t, phi);
-    if (t > 0 && t < plan.t_max) cs.u_breaks.push_back(pm.u_of_t(t));
-    if (t > 0 && t < plan.t_max && phi > 0 && phi < kTwoPi) cs.phi_breaks.push_back(phi);
+    if (!(t > 0 && t < plan.t_max)) continue;
+    cs.u_breaks.push_back(pm.u_of_t(t));
+    const bool azimuth = phi > 0 && phi < kTwoPi;
+    if (azimuth) cs.phi_breaks.push_back(phi);
+    // Breaks closing in on the feature geometrically in θ' and φ' (≈ equal arc lengths): pieces
+    // shrink towards it, as polar coordinates about it would. Measured need: at a Heaviside
+    // cap edge that excises a small region around −ωi with a large density just outside (Eto &
+    // Tokuyoshi's bounded caps, α = (0.1, 1), θi = 45°), a corner alone lost 1.1e-5 of the mass
+    // with an error estimate of 1.5e-8; with these breaks the mass is 1 ± 1.3e-8.
+    for (int k = 1; k <= kPointFeatureLevels; ++k) {
+      const double d = kPointFeatureReach * std::ldexp(1.0, -k);
+      for (double tb : {t - d, t + d})
+        if (tb > 0 && tb < plan.t_max) cs.u_breaks.push_back(pm.u_of_t(tb));
+      if (!azimuth) continue;
+      const double dphi = d / std::max(std::sin(t), 1e-3);
+      for (double pb : {phi - dphi, phi + dphi})
+        if (pb > 0 && pb < kTwoPi) cs.phi_breaks.push_back(pb);
+    }
   }
   if (!pm.disk() && plan.t_max > 0.5 * kPi) cs.u_breaks.push_back(1.0);
   std::sort(cs.u_breaks.begin(), cs.u_breaks.end());

@@ -157,7 +157,10 @@ struct ChiSquareOptions {
   std::vector<double> phi_breaks;       // extra cubature splits in φ' ∈ (0, 2π), from frame_x
   // Directions where the pdf has a point feature (an integrable singularity, a kink): the cubature
   // is split through each in θ' and φ' of the bin frame, so the feature sits on a corner of the
-  // integration pieces, where adaptive bisection resolves it (directions only).
+  // integration pieces, and at geometrically closing breaks around it (half-widths 0.5·2^−k rad,
+  // k = 1 … 12), so that pieces shrink towards it as polar coordinates about it would; adaptive
+  // bisection then resolves a singularity there and a small excised region around it, whose rim
+  // a single corner can miss (directions only).
   std::vector<Vec3<double>> point_features;
   double inconclusive_shift = 0.1;      // in units of the null standard deviation √(2·dof)
   double level = kFamilyWiseRate;       // significance level for the power report
