@@ -254,6 +254,8 @@ inline double v_cavity_g2(Vec3<double> wi, Vec3<double> wo, Vec3<double> h) {
 
 // The registered model: the BRDF of 2021 Eq. 1 with D from the patch-SDF (Eq. 2 or Eq. 8), F = 1.
 struct Chermain {
+  // The patch-SDF and its dictionary are double-only (host tables); no float instantiation.
+  static constexpr bool kDoubleOnly = true;
   static constexpr std::string_view kName = "chermain";
   static constexpr std::string_view kDescription =
       "procedural glinty BRDF (Chermain et al. 2020) with slope correlation rho and geometric "
