@@ -91,12 +91,15 @@ CheckResult run(Budget b) {
 }  // namespace
 
 std::vector<Check> across_checks() {
-  // Recorded with the models registered today (smooth_ggx, smooth_beckmann: no defect anywhere).
-  // A model that adds a failure region changes the verdict: record it as a finding when it lands.
+  // Recorded 2026-12-01 with the 8 models registered (12 model×sampler targets), quick budget:
+  // holds in regime — kemppinen_beckmann's float instantiation gives NaN for microroughness 1e-9
+  // (8 of 77 cells of that sweep, up to 35 % of calls); no NaN, Inf or negative value elsewhere,
+  // in double everywhere. A model that adds or removes a failure region changes the verdict:
+  // record it as a finding when it lands.
   return {{"all.stability", "every registered model (core/model_registry.cpp)",
            "CLAIMS.md all.stability: sweeps of α, θi, anisotropy, density, microroughness, "
            "footprint and light size",
-           Verdict::kHolds, run}};
+           Verdict::kHoldsInRegime, run}};
 }
 
 }  // namespace glintlab::verify
