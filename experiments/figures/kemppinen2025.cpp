@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/glints/kemppinen.h"
+#include "core/glints/kemppinen_presets.h"
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"
@@ -42,29 +43,6 @@ constexpr std::string_view kFig6Id = "kemppinen2025-fig6";
 constexpr std::string_view kFig14Id = "kemppinen2025-fig14";
 constexpr std::string_view kFig15Id = "kemppinen2025-fig15";
 constexpr std::string_view kFig10Id = "kemppinen2025-fig10";
-
-// Default glint parameters of every figure (the model's defaults, k = 4 as the paper's results).
-P glint_params(int side, double alpha_star, std::uint64_t seed) {
-  P p{};
-  p.density = 1e4;
-  p.microroughness = alpha_star;
-  p.anisotropy = 1;
-  p.filter = 0.5;
-  p.side = side;
-  p.blend = KemppinenBlend::kRoulette;
-  p.erf = KemppinenErf::kExact;
-  p.normalization = KemppinenNormalization::kCorrected;
-  p.colors = KemppinenColors::kWhite;
-  p.seed = seed;
-  return p;
-}
-
-// A footprint whose filter standard deviation is `cells` level-0 cells at uv: LOD λ = log2(2
-// cells).
-FootprintQuery<double> footprint(V2 uv, double cells, const P& p) {
-  const double d = cells / std::sqrt(p.density) / p.filter;
-  return {uv, {d, 0}, {0, d}};
-}
 
 struct NdfChoice {
   std::string_view name;  // "ggx" or "beckmann"
@@ -187,8 +165,8 @@ constexpr int kFig23Positions = 16;
 void run_fig2_3(const FigureContext& ctx) {
   const int n = ctx.quick ? 128 : 512;
   const std::uint64_t seed = seed_for(kFig23Id, "points");
-  const P p = glint_params(2, kFig23AlphaStar, seed);
-  const FootprintQuery<double> fp = footprint({0.5, 0.5}, kFig23Cells, p);
+  const P p = kemppinen_preset_params(2, kFig23AlphaStar, seed);
+  const FootprintQuery<double> fp = kemppinen_footprint_cells({0.5, 0.5}, kFig23Cells, p);
   const std::string ptext = params_text(p, kFig23Alpha, kFig23Cells);
   struct Row {
     std::string_view ndf, domain;
@@ -252,7 +230,7 @@ void run_fig2_3(const FigureContext& ctx) {
         for (int k = 0; k < kFig23Positions; ++k) {
           const V2 uv{1000 * counter_uniform<double>(seed, std::uint64_t(k), 0),
                       1000 * counter_uniform<double>(seed, std::uint64_t(k), 1)};
-          const FootprintQuery<double> fk = footprint(uv, kFig23Cells, p);
+          const FootprintQuery<double> fk = kemppinen_footprint_cells(uv, kFig23Cells, p);
           double integral = 0;
           for (int y = 0; y < m; ++y)
             for (int x = 0; x < m; ++x) {
@@ -317,7 +295,7 @@ struct FurnaceRow {
 
 FurnaceRow furnace(const NdfChoice& nd, double alpha, double alpha_star, double theta_deg,
                    std::uint64_t n, std::uint64_t seed) {
-  const P p = glint_params(2, alpha_star, seed);
+  const P p = kemppinen_preset_params(2, alpha_star, seed);
   const double t = theta_deg * kPiD / 180;
   const V3 wo{std::sin(t) * std::cos(0.3), std::sin(t) * std::sin(0.3), std::cos(t)};
   double sg = 0, sg2 = 0, ss = 0, ss2 = 0;
@@ -331,7 +309,7 @@ FurnaceRow furnace(const NdfChoice& nd, double alpha, double alpha_star, double 
       double g = 0, s = 0;
       if (wi.z > 0 && dot(wo, m) > 0) {
         s = smith_g2_height_correlated(ndf, wo, wi, m) * dot(wo, m) / (wo.z * m.z);
-        g = s * kemppinen_eval(p, ndf, footprint(uv, 16, p), m).d.x / ndf.D(m);
+        g = s * kemppinen_eval(p, ndf, kemppinen_footprint_cells(uv, 16, p), m).d.x / ndf.D(m);
       }
       sg += g, sg2 += g * g, ss += s, ss2 += s * s;
     }
@@ -408,7 +386,7 @@ void run_fig14(const FigureContext& ctx) {
   const double th = std::atan(2.5 * kAlpha);
   const V3 h{std::sin(th), 0, std::cos(th)};
   for (int side : {2, 4}) {
-    const P p = glint_params(side, kAlphaStarHigh, seed);
+    const P p = kemppinen_preset_params(side, kAlphaStarHigh, seed);
     Image img(w, hgt, {"R", "G", "B", "ratio", "error_vs_D"});
     for (int y = 0; y < hgt; ++y) {
       const double cells = std::exp2(9.0 * y / (hgt - 1));
@@ -416,7 +394,8 @@ void run_fig14(const FigureContext& ctx) {
       for (int i = 0; i < std::max(per_row, w); ++i) {
         const V2 uv{1000 * counter_uniform<double>(seed, std::uint64_t(y) * 100000 + i, 0),
                     1000 * counter_uniform<double>(seed, std::uint64_t(y) * 100000 + i, 1)};
-        const KemppinenResult<double> r = kemppinen_eval(p, ggx, footprint(uv, cells, p), h);
+        const KemppinenResult<double> r =
+            kemppinen_eval(p, ggx, kemppinen_footprint_cells(uv, cells, p), h);
         const double ratio = r.d.x / r.smooth_d;
         if (i < w) {
           img.at(i, y, 0) = img.at(i, y, 1) = img.at(i, y, 2) = img.at(i, y, 3) = ratio;
@@ -456,12 +435,12 @@ void run_fig14(const FigureContext& ctx) {
                 const V3 hh{std::sin(a), 0, std::cos(a)};
                 double m_lo = 0, m_hi = 0;
                 for (double as : {0.02, 0.5}) {
-                  const P p = glint_params(2, as, seed);
+                  const P p = kemppinen_preset_params(2, as, seed);
                   double s = 0;
                   for (int i = 0; i < positions; ++i) {
                     const V2 uv{1000 * counter_uniform<double>(seed, std::uint64_t(i), 4),
                                 1000 * counter_uniform<double>(seed, std::uint64_t(i), 5)};
-                    s += kemppinen_eval(p, smooth, footprint(uv, 64, p), hh).d.x;
+                    s += kemppinen_eval(p, smooth, kemppinen_footprint_cells(uv, 64, p), hh).d.x;
                   }
                   (as < 0.1 ? m_lo : m_hi) = s / positions;
                 }
@@ -491,7 +470,7 @@ void run_fig6(const FigureContext& ctx) {
   std::vector<Row> out;
   std::vector<Image> tiles;
   for (KemppinenBlend blend : {KemppinenBlend::kRoulette, KemppinenBlend::kLinear}) {
-    P p = glint_params(2, kAlphaStar, seed);
+    P p = kemppinen_preset_params(2, kAlphaStar, seed);
     p.blend = blend;
     const std::string_view name = blend == KemppinenBlend::kRoulette ? "roulette" : "linear";
     Image img(cols, img_rows, {"R", "G", "B", "D_star_f", "D_star_explicit"});
@@ -504,7 +483,8 @@ void run_fig6(const FigureContext& ctx) {
         // The same positions in every column and for both blends (paired comparison).
         const V2 uv{1000 * counter_uniform<double>(seed, std::uint64_t(i), 0),
                     1000 * counter_uniform<double>(seed, std::uint64_t(i), 1)};
-        const KemppinenResult<double> r = kemppinen_eval(p, ggx, footprint(uv, cells, p), h);
+        const KemppinenResult<double> r =
+            kemppinen_eval(p, ggx, kemppinen_footprint_cells(uv, cells, p), h);
         d[std::size_t(i)] = r.d.x, w1 = r.w1;
         if (i < img_rows) {
           img.at(c, i, 0) = img.at(c, i, 1) = img.at(c, i, 2) = img.at(c, i, 3) = r.d.x;
@@ -578,7 +558,7 @@ void run_fig10(const FigureContext& ctx) {
     for (std::size_t k = 0; k < sw.values.size(); ++k) {
       const double v = sw.values[k];
       double alpha = 0.2;
-      P p = glint_params(2, 0.02, seed);
+      P p = kemppinen_preset_params(2, 0.02, seed);
       if (sw.name == "alpha") alpha = v;
       if (sw.name == "microroughness") p.microroughness = v;
       if (sw.name == "density") p.density = v;

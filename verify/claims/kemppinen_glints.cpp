@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/glints/kemppinen.h"
+#include "core/glints/kemppinen_presets.h"
 #include "core/glints/kemppinen_reference.h"
 #include "core/glints/kemppinen_sampling.h"
 #include "core/ndf/beckmann.h"
@@ -29,27 +30,6 @@ using V2 = Vec2<double>;
 using V3 = Vec3<double>;
 using P = KemppinenParams<double>;
 constexpr double kPi = std::numbers::pi;
-
-P params(int side, double alpha_star, std::uint64_t seed) {
-  P p{};
-  p.density = 1e4;
-  p.microroughness = alpha_star;
-  p.anisotropy = 1;
-  p.filter = 0.5;
-  p.side = side;
-  p.blend = KemppinenBlend::kRoulette;
-  p.erf = KemppinenErf::kExact;
-  p.normalization = KemppinenNormalization::kCorrected;
-  p.colors = KemppinenColors::kWhite;
-  p.seed = seed;
-  return p;
-}
-
-// A footprint whose filter standard deviation is `cells` level-0 cells, at uv.
-FootprintQuery<double> footprint(V2 uv, double cells, const P& p) {
-  const double d = cells / std::sqrt(p.density) / p.filter;
-  return {uv, {d, 0}, {0, d}};
-}
 
 V3 direction(double theta_deg) {
   const double t = theta_deg * kPi / 180;
@@ -119,7 +99,7 @@ ConvSize conv_size(Budget b) {
 
 ConvResult run_conv(const ConvConfig& c, const ConvSize& sz, std::uint64_t seed,
                     KemppinenNormalization norm = KemppinenNormalization::kCorrected) {
-  P p = params(1, c.alpha_star, seed);
+  P p = kemppinen_preset_params(1, c.alpha_star, seed);
   p.normalization = norm;
   const V3 h = direction(c.theta);
   return with_ndf(c.ndf, [&](const auto& ndf) {
@@ -154,7 +134,7 @@ CheckResult run_convergence(Budget b) {
     res[i] = run_conv(cfg[i], sz, check_seed(kConvergence, i));
     printed_ratio[i] = kemppinen_area_mean_expected(
                            [&] {
-                             P p = params(1, cfg[i].alpha_star, 1);
+                             P p = kemppinen_preset_params(1, cfg[i].alpha_star, 1);
                              p.normalization = KemppinenNormalization::kPrinted;
                              return p;
                            }(),
@@ -260,13 +240,13 @@ std::vector<CompConfig> comp_configs(Budget b) {
 
 CompRow run_comp(const CompConfig& c, std::uint64_t n, std::uint64_t seed) {
   CompRow row{c};
-  P p = params(c.side, c.alpha_star, seed);
+  P p = kemppinen_preset_params(c.side, c.alpha_star, seed);
   const V3 h = direction(c.theta);
   with_ndf(c.ndf, [&](const auto& ndf) {
     const double d = ndf.D(h);
     MeanAccumulator a, anc;
     for (std::uint64_t i = 0; i < n; ++i) {
-      const FootprintQuery<double> fp = footprint(position(seed, i), c.cells, p);
+      const FootprintQuery<double> fp = kemppinen_footprint_cells(position(seed, i), c.cells, p);
       const auto r = kemppinen_eval(p, ndf, fp, h);
       a.add(r.d.x / d);
       anc.add(r.explicit_part.x / d);
@@ -365,14 +345,14 @@ struct RouletteStats {
 
 RouletteStats run_roulette_stats(std::uint64_t n, std::uint64_t seed) {
   RouletteStats s;
-  P p = params(2, 0.02, seed);
+  P p = kemppinen_preset_params(2, 0.02, seed);
   const GGX<double> ggx{0.3, 0.3};
   const V3 h = direction(20);
   // The footprint of λ = 2.5: both levels weighted ½.
   const double cells = std::exp2(2.5) / 2;
   MeanAccumulator diff, diff_c;
   for (std::uint64_t i = 0; i < n; ++i) {
-    const FootprintQuery<double> fp = footprint(position(seed, i), cells, p);
+    const FootprintQuery<double> fp = kemppinen_footprint_cells(position(seed, i), cells, p);
     p.blend = KemppinenBlend::kRoulette;
     const double rou = kemppinen_eval(p, ggx, fp, h).explicit_part.x;
     p.blend = KemppinenBlend::kLinear;
@@ -470,7 +450,7 @@ std::vector<FurnConfig> furn_configs(Budget b) {
 // reflection: the weight f cosθ_o / p(ω_o) = G2 (D★^f/D) |ω_i·ω_h| / (cosθ_i cosθ_h).
 FurnRow run_furn(const FurnConfig& c, std::uint64_t n, std::uint64_t seed) {
   FurnRow row{c, {}, {}, {}, {}};
-  P p = params(2, c.alpha_star, seed);
+  P p = kemppinen_preset_params(2, c.alpha_star, seed);
   P pc = p;
   pc.normalization = KemppinenNormalization::kPrinted;
   const V3 wi = direction(c.theta);
@@ -481,7 +461,7 @@ FurnRow run_furn(const FurnConfig& c, std::uint64_t n, std::uint64_t seed) {
       const V3 wo = reflect(wi, m);
       double g = 0, s = 0, gc = 0;
       if (wo.z > 0 && dot(wi, m) > 0) {
-        const FootprintQuery<double> fp = footprint(position(seed, i), 16, p);
+        const FootprintQuery<double> fp = kemppinen_footprint_cells(position(seed, i), 16, p);
         const double w = smith_g2_height_correlated(ndf, wi, wo, m) * dot(wi, m) / (wi.z * m.z);
         s = w;
         g = w * kemppinen_eval(p, ndf, fp, m).d.x / ndf.D(m);
@@ -576,9 +556,9 @@ CheckResult run_constant(Budget b) {
   for (int side : {1, 2, 3, 4})
     for (double cells : {0.01, 1.0, 10.0, 100.0, 1e3, 1e4, 1e6})
       for (double aniso : {0.05, 1.0, 20.0}) {
-        P p = params(side, 0.02, check_seed(kConstant, 0));
+        P p = kemppinen_preset_params(side, 0.02, check_seed(kConstant, 0));
         p.anisotropy = aniso;
-        const FootprintQuery<double> fp = footprint({0.3, 0.4}, cells, p);
+        const FootprintQuery<double> fp = kemppinen_footprint_cells({0.3, 0.4}, cells, p);
         const auto r = kemppinen_eval(p, ggx, fp, direction(30));
         min_pts = std::min(min_pts, r.points);
         max_pts = std::max(max_pts, r.points);
@@ -603,10 +583,11 @@ CheckResult run_constant(Budget b) {
     int lo = 1 << 30, hi = 0;
     for (double cells : {0.01, 1e6})
       for (double aniso : {0.05, 20.0}) {
-        P p = params(side, 0.02, 1);
+        P p = kemppinen_preset_params(side, 0.02, 1);
         p.anisotropy = aniso;
         const int pts =
-            kemppinen_eval(p, ggx, footprint({0.3, 0.4}, cells, p), direction(30)).points;
+            kemppinen_eval(p, ggx, kemppinen_footprint_cells({0.3, 0.4}, cells, p), direction(30))
+                .points;
         lo = std::min(lo, pts);
         hi = std::max(hi, pts);
       }
@@ -646,8 +627,8 @@ std::vector<SampConfig> samp_configs() {
 }
 
 GofCase samp_case(const SampConfig& c, std::uint64_t seed_process, double pdf_scale = 1) {
-  const P p = params(c.side, c.alpha_star, seed_process);
-  const FootprintQuery<double> fp = footprint({0.37, 0.61}, c.cells, p);
+  const P p = kemppinen_preset_params(c.side, c.alpha_star, seed_process);
+  const FootprintQuery<double> fp = kemppinen_footprint_cells({0.37, 0.61}, c.cells, p);
   GofCase g;
   g.label = fmt::format("{} α={:g} α★={:g} footprint {:g} cells k={}", ndf_name(c.ndf), c.ndf.alpha,
                         c.alpha_star, c.cells, c.side * c.side);
@@ -678,8 +659,8 @@ double sky(const V3& w) { return 1 + 0.5 * w.x + w.z * w.z; }
 
 SampEstimate run_estimates(const SampConfig& c, std::uint64_t n, std::uint64_t seed) {
   SampEstimate e;
-  const P p = params(c.side, c.alpha_star, seed);
-  const FootprintQuery<double> fp = footprint({0.37, 0.61}, c.cells, p);
+  const P p = kemppinen_preset_params(c.side, c.alpha_star, seed);
+  const FootprintQuery<double> fp = kemppinen_footprint_cells({0.37, 0.61}, c.cells, p);
   with_ndf(c.ndf, [&](const auto& ndf) {
     for (std::uint64_t i = 0; i < n; ++i) {
       const auto s = kemppinen_sample_half(p, ndf, fp, mix64(seed ^ mix64(i + 7)));
