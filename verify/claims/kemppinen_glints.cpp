@@ -302,6 +302,25 @@ CheckResult run_compensation(Budget b) {
       if (row.c.side == 2) fig14_k4 = std::max(fig14_k4, std::abs(row.bias));
       if (row.c.side == 4) fig14_k16 = std::max(fig14_k16, std::abs(row.bias));
     }
+  // Where it fails: the k = 4 share per footprint size and per α★ (every setting of that value).
+  const auto k4_share_where = [&](auto&& pick) {
+    std::vector<std::pair<double, std::pair<int, int>>> by;  // value → (within, count)
+    for (const CompRow& row : rows) {
+      if (row.c.side != 2) continue;
+      const double v = pick(row.c);
+      auto it = std::find_if(by.begin(), by.end(), [&](const auto& e) { return e.first == v; });
+      if (it == by.end()) it = by.insert(by.end(), {v, {0, 0}});
+      it->second.first += std::abs(row.bias) <= kSuffices;
+      ++it->second.second;
+    }
+    std::string out;
+    for (const auto& [v, wc] : by)
+      out += fmt::format("{}{:g}: {:.0f} %", out.empty() ? "" : ", ", v,
+                         100.0 * wc.first / wc.second);
+    return out;
+  };
+  const std::string by_cells = k4_share_where([](const CompConfig& c) { return c.cells; });
+  const std::string by_star = k4_share_where([](const CompConfig& c) { return c.alpha_star; });
   r.statistic = "share of (NDF, α★, θ, footprint) settings with |mean D★^f / D − 1| ≤ 5 %, k = 4";
   r.value = k4_share;
   r.bound = 0.5;
@@ -314,8 +333,10 @@ CheckResult run_compensation(Budget b) {
   r.detail = fmt::format(
       "mean of D★^f over {} positions per setting vs D: {}. α★ = {:g}: worst |bias| k=4 {:.3g}, "
       "k=16 {:.3g} — the paper says k = 16 mitigates Fig. 14 left; here it is {}. Deviations grow "
-      "near the rim of U_Ω (Eq. 10 integrates over □, the k-block truncates the filter in space)",
-      n, per_k, big_star, fig14_k4, fig14_k16, fig14_k16 < fig14_k4 ? "smaller" : "not smaller");
+      "near the rim of U_Ω (Eq. 10 integrates over □, the k-block truncates the filter in space). "
+      "k = 4 share within 5 % by footprint (level-0 cells) {}; by α★ {}",
+      n, per_k, big_star, fig14_k4, fig14_k16, fig14_k16 < fig14_k4 ? "smaller" : "not smaller",
+      by_cells, by_star);
   return r;
 }
 
@@ -819,7 +840,13 @@ std::vector<Check> kemppinen_glint_checks() {
   return {
       {kConvergence, paper, "Eq. 2 (with Eq. 4)", Verdict::kHoldsWithin, run_convergence,
        calibrate_convergence},
-      {kCompensation, paper, "Eq. 9–11, Fig. 14 left", Verdict::kHoldsInRegime, run_compensation},
+      {kCompensation, paper, "Eq. 9–11, Fig. 14 left", Verdict::kHoldsInRegime, run_compensation,
+       {},
+       // Measured 2026-12-01 at the full budget (4000 positions, footprints 4 … 4096 cells, α★ up
+       // to 0.3): k = 4 within 5 % of D in 46 % of 160 settings — 0 % at 4-cell footprints, 31 %
+       // at 16, 56–75 % from 64 cells on; 0 % at α★ = 0.3, where k = 16 is no better (worst
+       // −0.68). The quick grid (16/256 cells, α★ 0.01/0.1) sits inside the regime where it holds.
+       Verdict::kFails},
       {kRoulette, paper, "Eq. 8, Sec. 3.3.3, Fig. 6", Verdict::kHoldsWithin, run_roulette,
        calibrate_roulette},
       {kFurnace, paper, "Fig. 15, Sec. 5", Verdict::kHolds, run_furnace, calibrate_furnace},
