@@ -843,7 +843,7 @@ std::vector<Check> kemppinen_glint_checks() {
       {kCompensation, paper, "Eq. 9–11, Fig. 14 left", Verdict::kHoldsInRegime, run_compensation,
        {},
        // Measured 2026-12-01 at the full budget (4000 positions, footprints 4 … 4096 cells, α★ up
-       // to 0.3): k = 4 within 5 % of D in 46 % of 160 settings — 0 % at 4-cell footprints, 31 %
+       // to 0.3): k = 4 within 5 % of D in 46 % of its 80 settings — 0 % at 4-cell footprints, 31 %
        // at 16, 56–75 % from 64 cells on; 0 % at α★ = 0.3, where k = 16 is no better (worst
        // −0.68). The quick grid (16/256 cells, α★ 0.01/0.1) sits inside the regime where it holds.
        Verdict::kFails},
