@@ -272,27 +272,58 @@ GLINTLAB_FN KemppinenResult<T> kemppinen_eval(const KemppinenParams<T>& p, const
   return kemppinen_eval_process(p, ndf, fp, h, 0, T(1));
 }
 
+// The triplanar blend weights (Sec. 3.3.6): |n_axis| / Σ|n| for the planes ⊥ x, y, z. The paper
+// prints the weight as |n · plane normal| alone, whose sum runs from 1 (axis-aligned) to √3
+// (diagonal) and would brighten diagonal surfaces by up to √3; normalised here so they sum to 1.
+template <class T>
+GLINTLAB_FN Vec3<T> kemppinen_triplanar_weights(Vec3<T> n_geo) {
+  const Vec3<T> a{abs(n_geo.x), abs(n_geo.y), abs(n_geo.z)};
+  return (T(1) / (a.x + a.y + a.z)) * a;
+}
+
+// The point process of each triplanar plane: ⊥ z is process 0, the uv process, so on a plane
+// ⊥ z at uv = (x, y) the triplanar glints are the uv glints; ⊥ x and ⊥ y are 1 and 2.
+inline constexpr int kKemppinenTriplanarProcess[3] = {1, 2, 0};
+
+// The footprint of triplanar plane `axis` (⊥ x, y, z) at object-space position `pos` with screen
+// derivatives dpos_dx, dpos_dy: uv = (p.y, p.z), (p.z, p.x), (p.x, p.y).
+template <class T>
+GLINTLAB_FN FootprintQuery<T> kemppinen_triplanar_footprint(int axis, Vec3<T> pos, Vec3<T> dpos_dx,
+                                                            Vec3<T> dpos_dy) {
+  const auto pick = [axis](Vec3<T> v) {
+    return axis == 0 ? Vec2<T>{v.y, v.z} : axis == 1 ? Vec2<T>{v.z, v.x} : Vec2<T>{v.x, v.y};
+  };
+  return {pick(pos), pick(dpos_dx), pick(dpos_dy)};
+}
+
 // UV-free rendering by triplanar mapping (Sec. 3.3.6): three point processes on the planes
 // ⊥ x, y, z of object space, at uv = (p.y, p.z), (p.z, p.x), (p.x, p.y) with footprints from the
-// position derivatives, weighted by |n_axis|/Σ|n| through the same roulette. Anisotropy is the
-// caller's to disable (the paper: triplanar "prevents a simple definition of anisotropy").
+// position derivatives, weighted by kemppinen_triplanar_weights through the same roulette. λ, the
+// level weights and level0 are those of the heaviest plane; points counts all three. Anisotropy
+// is the caller's to disable (the paper: triplanar "prevents a simple definition of anisotropy").
 template <class Ndf, class T>
 GLINTLAB_FN KemppinenResult<T> kemppinen_eval_triplanar(const KemppinenParams<T>& p, const Ndf& ndf,
                                                         Vec3<T> pos, Vec3<T> dpos_dx,
                                                         Vec3<T> dpos_dy, Vec3<T> n_geo, Vec3<T> h) {
-  const T sum = abs(n_geo.x) + abs(n_geo.y) + abs(n_geo.z);
-  const T w[3] = {abs(n_geo.x) / sum, abs(n_geo.y) / sum, abs(n_geo.z) / sum};
-  const FootprintQuery<T> fps[3] = {
-      {{pos.y, pos.z}, {dpos_dx.y, dpos_dx.z}, {dpos_dy.y, dpos_dy.z}},
-      {{pos.z, pos.x}, {dpos_dx.z, dpos_dx.x}, {dpos_dy.z, dpos_dy.x}},
-      {{pos.x, pos.y}, {dpos_dx.x, dpos_dx.y}, {dpos_dy.x, dpos_dy.y}},
-  };
-  KemppinenResult<T> out = kemppinen_eval_process(p, ndf, fps[0], h, 1, w[0]);
+  const Vec3<T> wv = kemppinen_triplanar_weights(n_geo);
+  const T w[3] = {wv.x, wv.y, wv.z};
+  KemppinenResult<T> out =
+      kemppinen_eval_process(p, ndf, kemppinen_triplanar_footprint(0, pos, dpos_dx, dpos_dy), h,
+                             kKemppinenTriplanarProcess[0], w[0]);
+  T w_best = w[0];
   for (int i = 1; i < 3; ++i) {
-    const KemppinenResult<T> r = kemppinen_eval_process(p, ndf, fps[i], h, i + 1, w[i]);
+    const KemppinenResult<T> r =
+        kemppinen_eval_process(p, ndf, kemppinen_triplanar_footprint(i, pos, dpos_dx, dpos_dy), h,
+                               kKemppinenTriplanarProcess[i], w[i]);
     out.explicit_part = out.explicit_part + r.explicit_part;
     out.compensation_part = out.compensation_part + r.compensation_part;
     out.points += r.points;
+    const Mask<T> heavier = w[i] > w_best;
+    out.lambda = select(heavier, r.lambda, out.lambda);
+    out.w0 = select(heavier, r.w0, out.w0);
+    out.w1 = select(heavier, r.w1, out.w1);
+    out.level0 = static_cast<int>(select(heavier, T(r.level0), T(out.level0)));
+    w_best = max(w_best, w[i]);
   }
   out.d = out.explicit_part + out.compensation_part;
   return out;

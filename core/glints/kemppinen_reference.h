@@ -16,11 +16,13 @@ inline constexpr double kKemppinenReferenceSigmas = 8.0;
 
 // Eq. 5 at one level with weight w_l (roulette or linear as in the params): every point whose
 // spatial cell lies within kKemppinenReferenceSigmas of the filter and whose angular cell lies
-// within that many lobe widths of x_a (the whole square when `whole_square`).
+// within that many lobe widths of x_a (the whole square when `whole_square`). Adds the number of
+// (spatial cell, angular cell) pairs it visits to *visited when given (the cost measure of
+// kemppinen.constant-time, comparable to KemppinenResult::points).
 template <class T>
 Vec3<T> kemppinen_reference_level(const KemppinenParams<T>& p, const KemppinenAngular<T>& ang,
                                   Vec2<T> x_s, const Sym2<T>& sigma_s, T res, int level, T w_l,
-                                  bool whole_square = false) {
+                                  bool whole_square = false, std::int64_t* visited = nullptr) {
   const T res_a = kemppinen_angular_resolution<T>(level);
   const T res_s = res / res_a;
   const std::int64_t n_a = std::int64_t(1) << level;
@@ -39,6 +41,7 @@ Vec3<T> kemppinen_reference_level(const KemppinenParams<T>& p, const KemppinenAn
   const std::int64_t ay0 = whole_square ? 0 : clip(ang.x_a.y - r * ang.sigma_a.y);
   const std::int64_t ay1 = whole_square ? n_a - 1 : clip(ang.x_a.y + r * ang.sigma_a.y);
   const Sym2<T> sigma_a2{sqr(ang.sigma_a.x), T(0), sqr(ang.sigma_a.y)};
+  if (visited) *visited += (sx1 - sx0 + 1) * (sy1 - sy0 + 1) * (ax1 - ax0 + 1) * (ay1 - ay0 + 1);
   Vec3<T> sum{T(0), T(0), T(0)};
   for (std::int64_t i = sx0; i <= sx1; ++i)
     for (std::int64_t j = sy0; j <= sy1; ++j)
@@ -63,11 +66,12 @@ Vec3<T> kemppinen_reference_level(const KemppinenParams<T>& p, const KemppinenAn
 }
 
 // Eq. 5, D★^f(x, ω_h) = prefactor/K_P Σ_i N(T(ω_h), μ_i, σ) f(x_i − x, Σ_s), over the points of
-// levels ⌊λ⌋ and ⌊λ⌋+1 blended as Algorithm 1 blends them; every contributing point summed.
+// levels ⌊λ⌋ and ⌊λ⌋+1 blended as Algorithm 1 blends them; every contributing point summed
+// (their count added to *visited when given).
 template <class Ndf, class T>
 Vec3<T> kemppinen_reference_filtered(const KemppinenParams<T>& p, const Ndf& ndf,
                                      const FootprintQuery<T>& fp, Vec3<T> h,
-                                     bool whole_square = false) {
+                                     bool whole_square = false, std::int64_t* visited = nullptr) {
   const KemppinenAngular<T> ang = kemppinen_angular(p, ndf, h);
   if (!ang.valid) return {T(0), T(0), T(0)};
   const T res = kemppinen_base_resolution(p);
@@ -78,8 +82,9 @@ Vec3<T> kemppinen_reference_filtered(const KemppinenParams<T>& p, const Ndf& ndf
   const int l0 = static_cast<int>(fl);
   const T w1 = lambda - fl;
   const Vec3<T> s0 =
-      kemppinen_reference_level(p, ang, x_s, sigma_s, res, l0, T(1) - w1, whole_square);
-  const Vec3<T> s1 = kemppinen_reference_level(p, ang, x_s, sigma_s, res, l0 + 1, w1, whole_square);
+      kemppinen_reference_level(p, ang, x_s, sigma_s, res, l0, T(1) - w1, whole_square, visited);
+  const Vec3<T> s1 =
+      kemppinen_reference_level(p, ang, x_s, sigma_s, res, l0 + 1, w1, whole_square, visited);
   return ang.prefactor * (s0 + s1);
 }
 

@@ -84,10 +84,12 @@ Vec2<T> kemppinen_point_sigma(const KemppinenParams<T>& p, const Ndf& ndf, Vec2<
   return {sigma / sa, sigma * sa};
 }
 
-// The candidates of block B with angular start cell (ax0, ay0) at `level` (weight w_l).
+// The candidates of block B with angular start cell (ax0, ay0) at `level` (weight w_l), of point
+// process `process` (0 = uv; the triplanar planes: kKemppinenTriplanarProcess).
 template <class Ndf, class T>
 void kemppinen_block(const KemppinenParams<T>& p, const Ndf& ndf, const KemppinenSpatial<T>& sp,
-                     int level, T w_l, std::int64_t ax0, std::int64_t ay0, KemppinenBlock<T>& out) {
+                     int level, T w_l, std::int64_t ax0, std::int64_t ay0, KemppinenBlock<T>& out,
+                     int process = 0) {
   const int n = p.side;
   const T res_a = kemppinen_angular_resolution<T>(level);
   const T res_s = sp.res / res_a;
@@ -103,7 +105,7 @@ void kemppinen_block(const KemppinenParams<T>& p, const Ndf& ndf, const Kemppine
     for (int j = 0; j < n; ++j)
       for (int a = 0; a < n; ++a)
         for (int b = 0; b < n; ++b) {
-          const KemppinenCell c{sx0 + i, sy0 + j, ax0 + a, ay0 + b, level, 0};
+          const KemppinenCell c{sx0 + i, sy0 + j, ax0 + a, ay0 + b, level, process};
           const std::uint64_t ci = kemppinen_cell_index(c);
           if (c.ax < 0 || c.ax >= n_a || c.ay < 0 || c.ay >= n_a) continue;
           const Vec2<T> g_a{
@@ -165,10 +167,12 @@ T kemppinen_sampler_uniform(std::uint64_t key, std::uint64_t dim) {
   return counter_uniform<T>(key, 0x6b656d70ULL, dim);
 }
 
-// Algorithm 2: one ω_h from D★^f at the footprint, random numbers from `key`.
+// Algorithm 2: one ω_h from D★^f of point process `process` at the footprint, random numbers
+// from `key`.
 template <class Ndf, class T>
 KemppinenHalfSample<T> kemppinen_sample_half(const KemppinenParams<T>& p, const Ndf& ndf,
-                                             const FootprintQuery<T>& fp, std::uint64_t key) {
+                                             const FootprintQuery<T>& fp, std::uint64_t key,
+                                             int process = 0) {
   KemppinenHalfSample<T> out{};
   const KemppinenSpatial<T> sp = kemppinen_spatial(p, fp);
   // Line 2: uniform on the disk of radius ½ at (½, ½).
@@ -182,7 +186,7 @@ KemppinenHalfSample<T> kemppinen_sample_half(const KemppinenParams<T>& p, const 
   const T res_a = kemppinen_angular_resolution<T>(out.level);
   static thread_local KemppinenBlock<T> block;
   kemppinen_block(p, ndf, sp, out.level, w_l, kemppinen_block_start(x_a.x * res_a, p.side),
-                  kemppinen_block_start(x_a.y * res_a, p.side), block);
+                  kemppinen_block_start(x_a.y * res_a, p.side), block, process);
   if (!(block.total > T(0))) return out;
   // Lines 13–15: keep point j with probability w★_j/Σw★.
   const T pick = kemppinen_sampler_uniform<T>(key, 3) * block.total;
@@ -216,7 +220,7 @@ KemppinenHalfSample<T> kemppinen_sample_half(const KemppinenParams<T>& p, const 
 // The marginal density in □ of kemppinen_sample_half's x (defective: rejections excluded).
 template <class Ndf, class T>
 T kemppinen_sample_density_square(const KemppinenParams<T>& p, const Ndf& ndf,
-                                  const FootprintQuery<T>& fp, Vec2<T> x) {
+                                  const FootprintQuery<T>& fp, Vec2<T> x, int process = 0) {
   if (sqr(x.x - T(0.5)) + sqr(x.y - T(0.5)) > T(0.25)) return T(0);
   const KemppinenSpatial<T> sp = kemppinen_spatial(p, fp);
   const int n = p.side;
@@ -237,7 +241,7 @@ T kemppinen_sample_density_square(const KemppinenParams<T>& p, const Ndf& ndf,
             double((T(bx) + half) / res_a), double((T(bx) + half + T(1)) / res_a),
             double((T(by) + half) / res_a), double((T(by) + half + T(1)) / res_a), 0.5, 0.5, 0.5));
         if (!(area > T(0))) continue;
-        kemppinen_block(p, ndf, sp, level, w_l, bx, by, block);
+        kemppinen_block(p, ndf, sp, level, w_l, bx, by, block, process);
         total += w_l * area / T(kMapDomainArea<T>) * kemppinen_block_density(block, x);
       }
   }
@@ -247,9 +251,9 @@ T kemppinen_sample_density_square(const KemppinenParams<T>& p, const Ndf& ndf,
 // The marginal density of ω_h per steradian: the density in □ at T(ω_h) times |det dT/dω|.
 template <class Ndf, class T>
 T kemppinen_sample_density_half(const KemppinenParams<T>& p, const Ndf& ndf,
-                                const FootprintQuery<T>& fp, Vec3<T> h) {
+                                const FootprintQuery<T>& fp, Vec3<T> h, int process = 0) {
   if (!(h.z > T(0))) return T(0);
-  return kemppinen_sample_density_square(p, ndf, fp, map_to_square(ndf, h)) *
+  return kemppinen_sample_density_square(p, ndf, fp, map_to_square(ndf, h), process) *
          map_jacobian_true(ndf, h);
 }
 

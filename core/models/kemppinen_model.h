@@ -10,6 +10,7 @@
 
 #include "core/glints/kemppinen.h"
 #include "core/glints/kemppinen_sampling.h"
+#include "core/glints/kemppinen_triplanar.h"
 #include "core/model.h"
 #include "core/ndf/microfacet.h"
 
@@ -21,8 +22,9 @@ inline constexpr std::array<std::string_view, 2> kKemppinenErfNames = {"exact", 
 inline constexpr std::array<std::string_view, 2> kKemppinenNormNames = {"corrected", "printed"};
 inline constexpr std::array<std::string_view, 2> kKemppinenColorNames = {"white", "red_yellow"};
 inline constexpr std::array<std::string_view, 2> kKemppinenPdfNames = {"marginal", "printed"};
+inline constexpr std::array<std::string_view, 2> kKemppinenMappingNames = {"uv", "triplanar"};
 
-inline constexpr std::array<ParamSpec, 13> kKemppinenParams = {{
+inline constexpr std::array<ParamSpec, 16> kKemppinenParams = {{
     {"alpha_x", 0.3, 0.0, 2.0, true, false, "base roughness along the tangent (x)"},
     {"alpha_y", 0.3, 0.0, 2.0, true, false, "base roughness along the bitangent (y)"},
     {"density", 1e4, 0.0, 1e8, true, false, "K_P: glints per unit uv area (Table 1)"},
@@ -47,6 +49,15 @@ inline constexpr std::array<ParamSpec, 13> kKemppinenParams = {{
      "pdf returned by sample(): marginal (density of the samples) or printed (Alg. 2 l. 16-17)",
      kKemppinenPdfNames},
     {"seed", 0.0, 0.0, 4294967295.0, false, false, "seed of the implicit point process"},
+    {"mapping", 0.0, 0.0, 1.0, false, false,
+     "uv: the footprint's uv (Algorithm 1); triplanar: UV-free, 3 point processes on the "
+     "object-space axis planes (Sec. 3.3.6), the surface the plane through the origin with normal "
+     "(normal_theta, normal_phi) and uv its coordinates",
+     kKemppinenMappingNames},
+    {"normal_theta", 0.0, 0.0, 180.0, false, false,
+     "mapping=triplanar: polar angle (degrees) of the surface normal in object space"},
+    {"normal_phi", 0.0, 0.0, 360.0, false, false,
+     "mapping=triplanar: azimuth (degrees) of the surface normal in object space"},
 }};
 
 inline constexpr std::array<std::string_view, 14> kKemppinenIntermediates = {"D_star_f",
@@ -69,6 +80,8 @@ struct KemppinenModelParams {
   Ndf ndf;
   KemppinenParams<T> glint;
   bool printed_pdf;
+  bool triplanar = false;  // mapping=triplanar (Sec. 3.3.6)
+  Vec3<T> normal{T(0), T(0), T(1)};
 };
 
 template <class Ndf, class T>
@@ -85,6 +98,8 @@ KemppinenModelParams<Ndf, T> kemppinen_model_params(std::span<const double> v) {
   g.normalization = static_cast<KemppinenNormalization>(static_cast<int>(v[9]));
   g.colors = static_cast<KemppinenColors>(static_cast<int>(v[10]));
   g.seed = static_cast<std::uint64_t>(v[12]);
+  m.triplanar = v[13] != 0.0;
+  m.normal = kemppinen_object_normal(T(v[14]), T(v[15]));
   return m;
 }
 
@@ -93,7 +108,10 @@ template <class Ndf, class T>
 ModelEval<T, kKemppinenIntermediates.size()> kemppinen_model_eval(
     const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q, T pdf) {
   const Vec3<T> h = half_vector(q.wi, q.wo);
-  const KemppinenResult<T> r = kemppinen_eval(p.glint, p.ndf, q.footprint, h);
+  const KemppinenResult<T> r =
+      p.triplanar ? kemppinen_eval_triplanar(p.glint, p.ndf,
+                                             kemppinen_triplanar_input(q.footprint, p.normal), h)
+                  : kemppinen_eval(p.glint, p.ndf, q.footprint, h);
   const Mask<T> ok = (q.wi.z > T(0)) && (q.wo.z > T(0)) && (h.z > T(0));
   const T g2 = select(ok, smith_g2_height_correlated(p.ndf, q.wi, q.wo, h), T(0));
   const T d = kemppinen_luminance(r.d);
@@ -112,8 +130,10 @@ T kemppinen_model_pdf(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>
   if (!(q.wi.z > T(0)) || !(q.wo.z > T(0))) return T(0);
   const Vec3<T> h = half_vector(q.wi, q.wo);
   if (!(h.z > T(0)) || !(dot(q.wi, h) > T(0))) return T(0);
-  return kemppinen_sample_density_half(p.glint, p.ndf, q.footprint, h) *
-         reflection_jacobian(q.wo, h);
+  const T d = p.triplanar ? kemppinen_triplanar_density_half(
+                                p.glint, p.ndf, kemppinen_triplanar_input(q.footprint, p.normal), h)
+                          : kemppinen_sample_density_half(p.glint, p.ndf, q.footprint, h);
+  return d * reflection_jacobian(q.wo, h);
 }
 
 template <class Ndf, class T>
@@ -121,8 +141,11 @@ ModelSample<T> kemppinen_model_sample(const KemppinenModelParams<Ndf, T>& p, con
                                       Vec2<T> u) {
   const ModelSample<T> none{{T(0), T(0), T(0)}, T(0), T(0), true};
   if (!(q.wi.z > T(0))) return none;
+  const std::uint64_t key = kemppinen_key_from_uniforms(u);
   const KemppinenHalfSample<T> s =
-      kemppinen_sample_half(p.glint, p.ndf, q.footprint, kemppinen_key_from_uniforms(u));
+      p.triplanar ? kemppinen_triplanar_sample_half(
+                        p.glint, p.ndf, kemppinen_triplanar_input(q.footprint, p.normal), key)
+                  : kemppinen_sample_half(p.glint, p.ndf, q.footprint, key);
   if (!s.ok || !(dot(q.wi, s.h) > T(0))) return none;
   const Vec3<T> wo = reflect(q.wi, s.h);
   if (!(wo.z > T(0))) return none;

@@ -12,6 +12,7 @@
 #include "experiments/figures/podee.h"
 #include "experiments/figures/kneiphof2024.h"
 #include "experiments/figures/kemppinen2025.h"
+#include "experiments/figures/kemppinen2025_table3.h"
 
 namespace glintlab::experiments {
 
@@ -37,6 +38,8 @@ const std::vector<FigureEntry>& registered_figures() {
       kemppinen2025_fig10_entry(),
       kemppinen2025_fig14_entry(),
       kemppinen2025_fig15_entry(),
+      kemppinen2025_table3_entry(),
+      kemppinen2025_speed_accuracy_entry(),
   };
   return kFigures;
 }

@@ -1,0 +1,97 @@
+// The triplanar (UV-free) mode of Kemppinen et al. 2025 Sec. 3.3.6 as the models kemppinen_ggx /
+// kemppinen_beckmann expose it (`mapping=triplanar`): the object-space inputs it needs derived
+// from a model query, and Algorithm 2 extended to the blend of the three point processes.
+//
+// A model query carries a footprint (uv and ∂uv/∂pixel), not a position. In triplanar mode the
+// shaded surface is the plane through the object-space origin with unit normal n(θ_n, φ_n) (the
+// parameters normal_theta, normal_phi), with the tangent frame (t, b) of Duff et al. 2017
+// (core/math/orthonormal_basis.h); the footprint's uv is the position in that frame:
+// p = u t + v b, ∂p/∂x = ∂u/∂x t + ∂v/∂x b (likewise y). For n = +z, t = x and b = y, so p = (u, v,
+// 0): the z plane's process is the uv process (kKemppinenTriplanarProcess) and triplanar D★^f
+// equals the uv path's exactly.
+//
+// Sampling (the paper gives no triplanar sampler): choose plane i with probability w_i (the blend
+// weights), then Algorithm 2 on that plane's process; density Σ_i w_i p_i(ω_h), each p_i the
+// marginal of kemppinen_sampling.h. The "printed" pdf option returns w_i × the chosen plane's
+// Algorithm 2 pdf (lines 16–17), a function of the draw as in the uv case.
+#pragma once
+
+#include <cstdint>
+
+#include "core/glints/kemppinen.h"
+#include "core/glints/kemppinen_sampling.h"
+#include "core/math/orthonormal_basis.h"
+
+namespace glintlab {
+
+// The object-space inputs of kemppinen_eval_triplanar for one query.
+template <class T>
+struct KemppinenTriplanarInput {
+  Vec3<T> pos, dpos_dx, dpos_dy, normal;
+};
+
+// n(θ, φ) from degrees: (sin θ cos φ, sin θ sin φ, cos θ).
+template <class T>
+GLINTLAB_FN Vec3<T> kemppinen_object_normal(T theta_deg, T phi_deg) {
+  const T k = T(kPi<T>) / T(180);
+  const T st = sin(theta_deg * k);
+  return {st * cos(phi_deg * k), st * sin(phi_deg * k), cos(theta_deg * k)};
+}
+
+template <class T>
+GLINTLAB_FN KemppinenTriplanarInput<T> kemppinen_triplanar_input(const FootprintQuery<T>& fp,
+                                                                 Vec3<T> normal) {
+  const OrthonormalBasis<T> f = basis_from_z(normal);
+  const auto on_plane = [&](Vec2<T> a) { return a.x * f.x + a.y * f.y; };
+  return {on_plane(fp.uv), on_plane(fp.duv_dx), on_plane(fp.duv_dy), normal};
+}
+
+template <class Ndf, class T>
+KemppinenResult<T> kemppinen_eval_triplanar(const KemppinenParams<T>& p, const Ndf& ndf,
+                                            const KemppinenTriplanarInput<T>& in, Vec3<T> h) {
+  return kemppinen_eval_triplanar(p, ndf, in.pos, in.dpos_dx, in.dpos_dy, in.normal, h);
+}
+
+// One ω_h: plane i with probability w_i (sampler dimension 6, unused by Algorithm 2's draws),
+// then Algorithm 2 on its process. pdf_printed_h carries the factor w_i.
+template <class Ndf, class T>
+KemppinenHalfSample<T> kemppinen_triplanar_sample_half(const KemppinenParams<T>& p, const Ndf& ndf,
+                                                       const KemppinenTriplanarInput<T>& in,
+                                                       std::uint64_t key) {
+  const Vec3<T> wv = kemppinen_triplanar_weights(in.normal);
+  const T w[3] = {wv.x, wv.y, wv.z};
+  const T u = kemppinen_sampler_uniform<T>(key, 6);
+  int axis = 2;
+  T acc = T(0);
+  for (int i = 0; i < 3; ++i) {
+    acc += w[i];
+    if (u < acc && w[i] > T(0)) {
+      axis = i;
+      break;
+    }
+  }
+  while (axis > 0 && !(w[axis] > T(0))) --axis;  // rounding left u ≥ Σw: the last non-empty
+  KemppinenHalfSample<T> s = kemppinen_sample_half(
+      p, ndf, kemppinen_triplanar_footprint(axis, in.pos, in.dpos_dx, in.dpos_dy), key,
+      kKemppinenTriplanarProcess[axis]);
+  s.pdf_printed_h *= w[axis];
+  return s;
+}
+
+// The density of kemppinen_triplanar_sample_half's ω_h per steradian: Σ_i w_i p_i(ω_h).
+template <class Ndf, class T>
+T kemppinen_triplanar_density_half(const KemppinenParams<T>& p, const Ndf& ndf,
+                                   const KemppinenTriplanarInput<T>& in, Vec3<T> h) {
+  const Vec3<T> wv = kemppinen_triplanar_weights(in.normal);
+  const T w[3] = {wv.x, wv.y, wv.z};
+  T sum = T(0);
+  for (int i = 0; i < 3; ++i) {
+    if (!(w[i] > T(0))) continue;
+    sum += w[i] * kemppinen_sample_density_half(
+                      p, ndf, kemppinen_triplanar_footprint(i, in.pos, in.dpos_dx, in.dpos_dy), h,
+                      kKemppinenTriplanarProcess[i]);
+  }
+  return sum;
+}
+
+}  // namespace glintlab

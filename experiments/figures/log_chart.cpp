@@ -1,0 +1,199 @@
+// The raster log-log chart of log_chart.h and the Pareto front of a point set.
+#include "experiments/figures/log_chart.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace glintlab::experiments {
+namespace {
+
+// 5×7 glyphs, one byte per row (top first), bit 4 the leftmost column; lower case drawn as upper.
+struct Glyph {
+  char c;
+  std::array<std::uint8_t, 7> rows;
+};
+constexpr Glyph kGlyphs[] = {
+    {'0', {0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E}},
+    {'1', {0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E}},
+    {'2', {0x0E, 0x11, 0x01, 0x02, 0x04, 0x08, 0x1F}},
+    {'3', {0x1F, 0x02, 0x04, 0x02, 0x01, 0x11, 0x0E}},
+    {'4', {0x02, 0x06, 0x0A, 0x12, 0x1F, 0x02, 0x02}},
+    {'5', {0x1F, 0x10, 0x1E, 0x01, 0x01, 0x11, 0x0E}},
+    {'6', {0x06, 0x08, 0x10, 0x1E, 0x11, 0x11, 0x0E}},
+    {'7', {0x1F, 0x01, 0x02, 0x04, 0x08, 0x08, 0x08}},
+    {'8', {0x0E, 0x11, 0x11, 0x0E, 0x11, 0x11, 0x0E}},
+    {'9', {0x0E, 0x11, 0x11, 0x0F, 0x01, 0x02, 0x0C}},
+    {'A', {0x0E, 0x11, 0x11, 0x1F, 0x11, 0x11, 0x11}},
+    {'B', {0x1E, 0x11, 0x11, 0x1E, 0x11, 0x11, 0x1E}},
+    {'C', {0x0E, 0x11, 0x10, 0x10, 0x10, 0x11, 0x0E}},
+    {'D', {0x1C, 0x12, 0x11, 0x11, 0x11, 0x12, 0x1C}},
+    {'E', {0x1F, 0x10, 0x10, 0x1E, 0x10, 0x10, 0x1F}},
+    {'F', {0x1F, 0x10, 0x10, 0x1E, 0x10, 0x10, 0x10}},
+    {'G', {0x0E, 0x11, 0x10, 0x17, 0x11, 0x11, 0x0F}},
+    {'H', {0x11, 0x11, 0x11, 0x1F, 0x11, 0x11, 0x11}},
+    {'I', {0x0E, 0x04, 0x04, 0x04, 0x04, 0x04, 0x0E}},
+    {'J', {0x07, 0x02, 0x02, 0x02, 0x02, 0x12, 0x0C}},
+    {'K', {0x11, 0x12, 0x14, 0x18, 0x14, 0x12, 0x11}},
+    {'L', {0x10, 0x10, 0x10, 0x10, 0x10, 0x10, 0x1F}},
+    {'M', {0x11, 0x1B, 0x15, 0x15, 0x11, 0x11, 0x11}},
+    {'N', {0x11, 0x11, 0x19, 0x15, 0x13, 0x11, 0x11}},
+    {'O', {0x0E, 0x11, 0x11, 0x11, 0x11, 0x11, 0x0E}},
+    {'P', {0x1E, 0x11, 0x11, 0x1E, 0x10, 0x10, 0x10}},
+    {'Q', {0x0E, 0x11, 0x11, 0x11, 0x15, 0x12, 0x0D}},
+    {'R', {0x1E, 0x11, 0x11, 0x1E, 0x14, 0x12, 0x11}},
+    {'S', {0x0F, 0x10, 0x10, 0x0E, 0x01, 0x01, 0x1E}},
+    {'T', {0x1F, 0x04, 0x04, 0x04, 0x04, 0x04, 0x04}},
+    {'U', {0x11, 0x11, 0x11, 0x11, 0x11, 0x11, 0x0E}},
+    {'V', {0x11, 0x11, 0x11, 0x11, 0x11, 0x0A, 0x04}},
+    {'W', {0x11, 0x11, 0x11, 0x15, 0x15, 0x15, 0x0A}},
+    {'X', {0x11, 0x11, 0x0A, 0x04, 0x0A, 0x11, 0x11}},
+    {'Y', {0x11, 0x11, 0x11, 0x0A, 0x04, 0x04, 0x04}},
+    {'Z', {0x1F, 0x01, 0x02, 0x04, 0x08, 0x10, 0x1F}},
+    {'=', {0x00, 0x00, 0x1F, 0x00, 0x1F, 0x00, 0x00}},
+    {',', {0x00, 0x00, 0x00, 0x00, 0x0C, 0x04, 0x08}},
+    {'.', {0x00, 0x00, 0x00, 0x00, 0x00, 0x0C, 0x0C}},
+    {'-', {0x00, 0x00, 0x00, 0x1F, 0x00, 0x00, 0x00}},
+    {'+', {0x00, 0x04, 0x04, 0x1F, 0x04, 0x04, 0x00}},
+    {'/', {0x00, 0x01, 0x02, 0x04, 0x08, 0x10, 0x00}},
+    {':', {0x00, 0x0C, 0x0C, 0x00, 0x0C, 0x0C, 0x00}},
+    {'(', {0x02, 0x04, 0x08, 0x08, 0x08, 0x04, 0x02}},
+    {')', {0x08, 0x04, 0x02, 0x02, 0x02, 0x04, 0x08}},
+    {'_', {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x1F}},
+    {'*', {0x00, 0x04, 0x15, 0x0E, 0x15, 0x04, 0x00}},
+    {'%', {0x18, 0x19, 0x02, 0x04, 0x08, 0x13, 0x03}},
+    {'|', {0x04, 0x04, 0x04, 0x04, 0x04, 0x04, 0x04}},
+};
+
+class Canvas {
+ public:
+  Canvas(int w, int h) : img_(w, h, {"R", "G", "B"}) {
+    std::fill(img_.data.begin(), img_.data.end(), 1.0);
+  }
+  void set(int x, int y, Vec3<double> c) {
+    if (x < 0 || y < 0 || x >= img_.width || y >= img_.height) return;
+    img_.at(x, y, 0) = c.x, img_.at(x, y, 1) = c.y, img_.at(x, y, 2) = c.z;
+  }
+  void rect(int x0, int y0, int x1, int y1, Vec3<double> c) {
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) set(x, y, c);
+  }
+  void line(double x0, double y0, double x1, double y1, Vec3<double> c, bool dashed = false) {
+    const int n = int(std::ceil(std::max(std::abs(x1 - x0), std::abs(y1 - y0)))) + 1;
+    for (int i = 0; i <= n; ++i) {
+      if (dashed && (i / 4) % 2 == 1) continue;
+      const double t = double(i) / n;
+      const int x = int(std::lround(x0 + t * (x1 - x0))), y = int(std::lround(y0 + t * (y1 - y0)));
+      set(x, y, c);
+      set(x, y + 1, c);
+    }
+  }
+  // Text with its top-left corner at (x, y); `vertical` runs it bottom to top.
+  void text(int x, int y, const std::string& s, Vec3<double> c, bool vertical = false) {
+    int k = 0;
+    for (char ch : s) {
+      const char u = (ch >= 'a' && ch <= 'z') ? char(ch - 'a' + 'A') : ch;
+      for (const Glyph& g : kGlyphs) {
+        if (g.c != u) continue;
+        for (int r = 0; r < 7; ++r)
+          for (int col = 0; col < 5; ++col) {
+            if (!((g.rows[std::size_t(r)] >> (4 - col)) & 1)) continue;
+            if (vertical)
+              set(x + r, y - 6 * k - col, c);
+            else
+              set(x + 6 * k + col, y + r, c);
+          }
+      }
+      ++k;
+    }
+  }
+  Image take() { return std::move(img_); }
+
+ private:
+  Image img_;
+};
+
+bool usable(double v) { return std::isfinite(v) && v > 0; }
+
+}  // namespace
+
+std::vector<std::size_t> pareto_front(const std::vector<Vec2<double>>& xy) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < xy.size(); ++i) {
+    bool dominated = false;
+    for (std::size_t j = 0; j < xy.size() && !dominated; ++j)
+      dominated =
+          xy[j].x <= xy[i].x && xy[j].y <= xy[i].y && (xy[j].x < xy[i].x || xy[j].y < xy[i].y);
+    if (!dominated) out.push_back(i);
+  }
+  return out;
+}
+
+Image draw_log_chart(const LogChart& chart, int width, int height) {
+  const int left = 64, right = 16, top = 28, bottom = 40;
+  double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
+  for (const ChartSeries& s : chart.series) {
+    for (const ChartPoint& p : s.points)
+      if (usable(p.x) && usable(p.y)) {
+        x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
+        y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+      }
+  }
+  if (!(x0 <= x1)) x0 = 1, x1 = 10, y0 = 1, y1 = 10;  // no data: an empty frame
+  const double lx0 = std::floor(std::log10(x0)), lx1 = std::max(lx0 + 1, std::ceil(std::log10(x1)));
+  const double ly0 = std::floor(std::log10(y0)), ly1 = std::max(ly0 + 1, std::ceil(std::log10(y1)));
+  const auto px = [&](double x) {
+    return left + (std::log10(x) - lx0) / (lx1 - lx0) * (width - left - right);
+  };
+  const auto py = [&](double y) {
+    return height - bottom - (std::log10(y) - ly0) / (ly1 - ly0) * (height - top - bottom);
+  };
+  Canvas c(width, height);
+  const Vec3<double> grid{0.88, 0.88, 0.88}, ink{0, 0, 0};
+  for (double e = lx0; e <= lx1; e += 1) {
+    const double x = px(std::pow(10.0, e));
+    c.line(x, top, x, height - bottom, grid);
+    c.text(int(x) - 9, height - bottom + 5, fmt::format("1e{}", int(e)), ink);
+  }
+  for (double e = ly0; e <= ly1; e += 1) {
+    const double y = py(std::pow(10.0, e));
+    c.line(left, y, width - right, y, grid);
+    c.text(left - 34, int(y) - 3, fmt::format("1e{}", int(e)), ink);
+  }
+  c.line(left, top, left, height - bottom, ink);
+  c.line(left, height - bottom, width - right, height - bottom, ink);
+  c.text(left, 8, chart.title, ink);
+  c.text(left + (width - left - right) / 2 - 3 * int(chart.x_label.size()), height - 16,
+         chart.x_label, ink);
+  c.text(6, top + (height - top - bottom) / 2 + 3 * int(chart.y_label.size()), chart.y_label, ink,
+         true);
+  int legend_y = top + 6;
+  for (const ChartSeries& s : chart.series) {
+    for (std::size_t k = 1; k < s.line.size(); ++k)
+      if (usable(s.line[k - 1].x) && usable(s.line[k - 1].y) && usable(s.line[k].x) &&
+          usable(s.line[k].y))
+        c.line(px(s.line[k - 1].x), py(s.line[k - 1].y), px(s.line[k].x), py(s.line[k].y), s.color,
+               true);
+    const Vec3<double> dark = 0.7 * s.color;
+    for (const ChartPoint& p : s.points) {
+      if (!usable(p.x) || !usable(p.y)) continue;
+      const int x = int(std::lround(px(p.x))), y = int(std::lround(py(p.y)));
+      if (p.ringed) {
+        c.rect(x - 4, y - 4, x + 4, y + 4, ink);
+        c.rect(x - 3, y - 3, x + 3, y + 3, {1, 1, 1});
+      }
+      c.rect(x - 2, y - 2, x + 2, y + 2, s.color);
+      if (!p.label.empty()) c.text(x + 5, y - 9, p.label, dark);
+    }
+    c.rect(width - right - 150, legend_y, width - right - 144, legend_y + 6, s.color);
+    c.text(width - right - 140, legend_y, s.name, ink);
+    legend_y += 11;
+  }
+  return c.take();
+}
+
+}  // namespace glintlab::experiments
