@@ -141,6 +141,24 @@ void time_sdf(benchmark::State& s, const ChermainSdfParams& p, const std::vector
   s.SetItemsProcessed(std::int64_t(s.iterations()));
 }
 
+struct DictKey {
+  int n, levels, resolution;
+  bool operator==(const DictKey&) const = default;
+};
+
+// One P22 row: the setting's dictionary `dict` timed, measured against the reference's `ref`.
+void register_sdf_row(const std::string& method, const std::string& setting,
+                      const std::string& label, std::shared_ptr<const std::vector<SdfQuery>> q,
+                      DictKey dict, DictKey ref, int kernel) {
+  const auto params = [kernel](DictKey k) {
+    return sdf_params(&dictionary(k.n, k.levels, k.resolution), kernel);
+  };
+  bench::register_method(
+      method, setting, label + (dict == ref ? " (reference)" : ""),
+      [=](benchmark::State& s) { time_sdf(s, params(dict), *q); },
+      [=] { return sdf_errors(eval_sdf(params(dict), *q), eval_sdf(params(ref), *q)); });
+}
+
 void register_dictionary_methods() {
   const bool quick = bench::quick_mode();
   const int count = quick ? 256 : 4096;
@@ -160,19 +178,9 @@ void register_dictionary_methods() {
         std::make_shared<const std::vector<SdfQuery>>(sdf_queries(method, count, levels));
     std::vector<int> all = resolutions;
     all.push_back(ref_res);
-    for (int res : all) {
-      bench::register_method(
-          method, fmt::format("res={}", res), label + (res == ref_res ? " (reference)" : ""),
-          [=](benchmark::State& s) {
-            time_sdf(s, sdf_params(&dictionary(n, levels, res), kernel), *queries);
-          },
-          [=] {
-            const auto ref =
-                eval_sdf(sdf_params(&dictionary(n, levels, ref_res), kernel), *queries);
-            return sdf_errors(eval_sdf(sdf_params(&dictionary(n, levels, res), kernel), *queries),
-                              ref);
-          });
-    }
+    for (int res : all)
+      register_sdf_row(method, fmt::format("res={}", res), label, queries, {n, levels, res},
+                       {n, levels, ref_res}, kernel);
   }
   // Levels: 64 texels (the default), footprints reaching k = 15; the reference has L = 16.
   {
@@ -187,19 +195,9 @@ void register_dictionary_methods() {
         std::make_shared<const std::vector<SdfQuery>>(sdf_queries(method, count, ref_levels));
     std::vector<int> all = ls;
     all.push_back(ref_levels);
-    for (int L : all) {
-      bench::register_method(
-          method, fmt::format("L={}", L), label + (L == ref_levels ? " (reference)" : ""),
-          [=](benchmark::State& s) {
-            time_sdf(s, sdf_params(&dictionary(n, L, 64), kChermainProjectedHalf), *queries);
-          },
-          [=] {
-            const auto ref = eval_sdf(
-                sdf_params(&dictionary(n, ref_levels, 64), kChermainProjectedHalf), *queries);
-            return sdf_errors(
-                eval_sdf(sdf_params(&dictionary(n, L, 64), kChermainProjectedHalf), *queries), ref);
-          });
-    }
+    for (int L : all)
+      register_sdf_row(method, fmt::format("L={}", L), label, queries, {n, L, 64},
+                       {n, ref_levels, 64}, kChermainProjectedHalf);
   }
 }
 
@@ -267,9 +265,5 @@ void register_tube_methods() {
 int main(int argc, char** argv) {
   glintlab::register_dictionary_methods();
   glintlab::register_tube_methods();
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return glintlab::bench::run_benchmarks(argc, argv);
 }

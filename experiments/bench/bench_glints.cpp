@@ -212,9 +212,5 @@ BENCHMARK(table1)
 
 int main(int argc, char** argv) {
   glintlab::register_binomial_methods();
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return glintlab::bench::run_benchmarks(argc, argv);
 }

@@ -104,4 +104,13 @@ inline void register_method(const std::string& method, const std::string& settin
   });
 }
 
+// The main() of a benchmark binary whose rows are registered at run time, after registering them.
+inline int run_benchmarks(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
+
 }  // namespace glintlab::bench

@@ -321,9 +321,5 @@ int main(int argc, char** argv) {
   glintlab::register_all();
   glintlab::register_weighting_methods();
   glintlab::register_pixel_methods();
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return glintlab::bench::run_benchmarks(argc, argv);
 }
