@@ -4,7 +4,9 @@
 // GGX, Deliot & Belcour, Kneiphof & Klein, under no light, a directional light and a rectangular
 // area light (area: the Monte Carlo terms of core/glints/kneiphof.h with 16 samples; the LTC
 // columns need core/ltc). Scalar double on one core; run scripts/bench.sh or this binary with
-// --benchmark_out=FILE --benchmark_out_format=json.
+// --benchmark_out=FILE --benchmark_out_format=json. Method rows (METHOD_BENCHMARKS.md):
+// method/binomial.count_vs_exact.<regime>/sampler=..., the distribution error of each sampler
+// (core/glints/binomial_distribution.h, no sampling) beside its time per draw.
 #include <benchmark/benchmark.h>
 
 #include <array>
@@ -13,9 +15,11 @@
 #include <vector>
 
 #include "core/glints/binomial.h"
+#include "core/glints/binomial_distribution.h"
 #include "core/glints/deliot_belcour.h"
 #include "core/glints/kneiphof.h"
 #include "core/models/smooth_ggx.h"
+#include "experiments/bench/method_bench.h"
 
 namespace glintlab {
 namespace {
@@ -56,6 +60,75 @@ void binomial_args(benchmark::internal::Benchmark* b) {
 BENCHMARK(binomial_exact_bm)->Name("binomial/exact")->Apply(binomial_args);
 BENCHMARK(binomial_realtime_bm)->Name("binomial/realtime")->Apply(binomial_args);
 BENCHMARK(binomial_small_count_bm)->Name("binomial/small_count")->Apply(binomial_args);
+
+// --- Method rows: binomial.count_vs_exact.<regime>, one per (n, p) regime ---------------------
+// The error is the Kolmogorov–Smirnov distance sup|F − A| between the sampler's exact
+// distribution and Binomial(n, p) (binomial_distribution.h: computed, not sampled), so err_max =
+// err_rms = err_p99 = that distance and err_n = 1; `tv` (discrete samplers) and `mean_rel_error`
+// are extra counters. The exact sampler is the reference (error 0 by definition).
+struct BinomialRegime {
+  int log2_n;
+  double p;
+  const char* id;  // n and p in the method id (no '/' or spaces)
+};
+constexpr BinomialRegime kRegimes[] = {
+    {4, 1e-1, "n16_p1e-1"},        // np = 1.6: few trials, a handful of facets
+    {10, 1e-3, "n1024_p1e-3"},     // np ≈ 1: the gate dominates
+    {10, 3e-1, "n1024_p3e-1"},     // np ≈ 307: the Gaussian regime
+    {20, 1e-6, "n1048576_p1e-6"},  // np ≈ 1 with many trials
+    {20, 1e-4, "n1048576_p1e-4"},  // np ≈ 105
+};
+
+void register_binomial_methods() {
+  for (const BinomialRegime& r : kRegimes) {
+    const std::string method = std::string("binomial.count_vs_exact.") + r.id;
+    const std::uint64_t n = std::uint64_t(1) << r.log2_n;
+    const double nd = double(n), p = r.p;
+    const std::uint64_t seed = bench::method_seed(method);
+    const std::string label = "exact Binomial(n, p) pmf; KS distance of the sampler's exact CDF";
+    bench::register_method(
+        method, "sampler=exact", label + " (reference)",
+        [n, p, seed](benchmark::State& s) {
+          std::uint64_t i = 0;
+          for (auto _ : s) benchmark::DoNotOptimize(binomial_exact(n, p, seed, i++));
+          s.SetItemsProcessed(std::int64_t(i));
+        },
+        [] {
+          return bench::ErrorStats{0, 0, 0, 1, {{"tv", 0.0}, {"mean_rel_error", 0.0}}};
+        });
+    bench::register_method(
+        method, "sampler=realtime", label,
+        [nd, p, seed](benchmark::State& s) {
+          std::uint64_t i = 0;
+          for (auto _ : s) {
+            benchmark::DoNotOptimize(binomial_realtime(nd, p, counter_uniform<double>(seed, i, 0),
+                                                       counter_uniform<double>(seed, i, 1)));
+            ++i;
+          }
+          s.SetItemsProcessed(std::int64_t(i));
+        },
+        [n, p] {
+          const BinomialError e = realtime_error(n, p);
+          return bench::ErrorStats{e.ks, e.ks, e.ks, 1, {{"mean_rel_error", e.mean_rel}}};
+        });
+    bench::register_method(
+        method, "sampler=small_count", label,
+        [nd, p, seed](benchmark::State& s) {
+          std::uint64_t i = 0;
+          for (auto _ : s) {
+            benchmark::DoNotOptimize(
+                binomial_small_count(nd, p, counter_uniform<double>(seed, i, 0)));
+            ++i;
+          }
+          s.SetItemsProcessed(std::int64_t(i));
+        },
+        [n, p] {
+          const BinomialError e = small_count_error(n, p);
+          return bench::ErrorStats{
+              e.ks, e.ks, e.ks, 1, {{"tv", e.tv}, {"mean_rel_error", e.mean_rel}}};
+        });
+  }
+}
 
 // --- Table 1 analogue
 // ------------------------------------------------------------------------------
@@ -137,4 +210,7 @@ BENCHMARK(table1)
 }  // namespace
 }  // namespace glintlab
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  glintlab::register_binomial_methods();
+  return glintlab::bench::run_benchmarks(argc, argv);
+}

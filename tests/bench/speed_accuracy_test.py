@@ -105,6 +105,94 @@ with tempfile.TemporaryDirectory() as d:
     png = os.path.join(d, "speed_accuracy.png")
     with open(png, "rb") as f:
         check(f.read(8) == b"\x89PNG\r\n\x1a\n", "chart is a PNG")
+    check(all(r["source"] == "kernel" for r in out), "kernel rows have source=kernel")
+    check(not os.path.exists(os.path.join(d, "speed_accuracy_methods.png")),
+          "no methods chart without method rows")
+
+    # --- Method rows (experiments/bench/METHOD_BENCHMARKS.md) joined with the kernel rows ----
+    def entry(name, ns, err, agg=None, label="exact ref; rel. error", counters=True):
+        e = {"name": name + (f"_{agg}" if agg else ""), "run_name": name,
+             "run_type": "aggregate" if agg else "iteration", "items_per_second": 1e9 / ns,
+             "label": label}
+        if agg:
+            e["aggregate_name"] = agg
+        if counters:
+            e.update(err_max=err, err_rms=err / 2, err_p99=err, err_n=100.0)
+        return e
+    # m.a: (ns, err_max): ref (50, 0) front; fast (1, 0.1) front; mid (5, 1e-3) front;
+    # bad (6, 1e-2) dominated by mid. Median aggregate wins over its stddev (whose 'time' is
+    # nonsense). m.b (another family) from repetitions without aggregates: median of runs.
+    ma = [entry("method/fam_a.q_vs_ref/setting=ref", 50, 0.0, "median"),
+          entry("method/fam_a.q_vs_ref/setting=ref", 1e-3, 0.0, "stddev"),
+          entry("method/fam_a.q_vs_ref/setting=fast", 1, 0.1, "median"),
+          entry("method/fam_a.q_vs_ref/setting=mid", 5, 1e-3, "median"),
+          entry("method/fam_a.q_vs_ref/setting=bad", 6, 1e-2, "median"),
+          entry("kernel_row/not/a_method", 1, 0.0)]
+    mb = [entry("method/fam_b.x.n4/k=1,erf=fast", t, 1e-4) for t in (3.0, 1.0, 2.0)] + \
+         [entry("method/fam_b.x.n4/k=2,erf=exact", 4, 1e-4)]
+    paths = {}
+    for name, b in (("bin_a", ma), ("bin_b", mb)):
+        paths[name] = os.path.join(d, f"{name}.json")
+        with open(paths[name], "w") as f:
+            json.dump({"context": {}, "benchmarks": b}, f)
+    empty = os.path.join(d, "bin_empty.json")
+    open(empty, "w").close()  # Google Benchmark 1.7 with no matching row
+    sa.main(["--accuracy", acc, "--bench", bj, "--out-dir", d, "--methods", paths["bin_a"],
+             paths["bin_b"], empty])
+    with open(os.path.join(d, "speed_accuracy.csv"), newline="") as f:
+        out = list(csv.DictReader(f))
+    meth = {(r["method"], r["setting"]): r for r in out if r["source"] == "method"}
+    check(len(meth) == 6, f"6 method rows joined (got {sorted(meth)})")
+    check(len([r for r in out if r["source"] == "kernel"]) == 5, "kernel rows kept beside them")
+    a = lambda s: meth.get(("fam_a.q_vs_ref", f"setting={s}"), {})  # noqa: E731
+    check([a(s).get("on_pareto_front") for s in ("ref", "fast", "mid", "bad")] ==
+          ["1", "1", "1", "0"], "method front: ref, fast, mid on it; bad dominated")
+    check(abs(float(a("ref").get("ns_per_eval", 0)) - 50) < 1e-9, "median aggregate's time")
+    check(a("mid").get("binary") == "bin_a" and a("mid").get("reference") == "exact ref",
+          "binary and reference (label before ';') columns")
+    b1 = meth.get(("fam_b.x.n4", "k=1,erf=fast"), {})
+    check(abs(float(b1.get("ns_per_eval", 0)) - 2.0) < 1e-9, "median of runs without aggregates")
+    check(b1.get("on_pareto_front") == "1" and
+          meth.get(("fam_b.x.n4", "k=2,erf=exact"), {}).get("on_pareto_front") == "0",
+          "equal error, slower: dominated")
+    # Each method's flags are exactly the brute-force front; a flipped flag is rejected.
+    for m in {k[0] for k in meth}:
+        g = [r for r in out if r["source"] == "method" and r["method"] == m]
+        pts = [(float(r["ns_per_eval"]), float(r["rms_rel_error"])) for r in g]
+        flags = [i for i, r in enumerate(g) if r["on_pareto_front"] == "1"]
+        check(sa.is_pareto_front(pts, flags), f"{m}: CSV front is the brute-force front")
+        wrong = sorted(set(flags) ^ {len(g) - 1})
+        check(not sa.is_pareto_front(pts, wrong), f"{m}: a front with one flag flipped rejected")
+    mpng = os.path.join(d, "speed_accuracy_methods.png")
+    with open(mpng, "rb") as f:
+        check(f.read(8) == b"\x89PNG\r\n\x1a\n", "methods chart is a PNG")
+
+    # Bad method JSONs: one-line error, exit 2, CSV untouched.
+    def bad(benchmarks, what):
+        path = os.path.join(d, "bad.json")
+        with open(path, "w") as f:
+            json.dump({"benchmarks": benchmarks}, f)
+        before = open(os.path.join(d, "speed_accuracy.csv")).read()
+        try:
+            sa.main(["--accuracy", acc, "--bench", bj, "--out-dir", d, "--methods", path])
+            check(False, f"{what}: accepted")
+        except SystemExit as e:
+            check(e.code == 2, f"{what}: exit 2 (got {e.code})")
+        check(open(os.path.join(d, "speed_accuracy.csv")).read() == before,
+              f"{what}: no partial output")
+    bad([entry("method/no_setting", 1, 0.1)], "name without a setting")
+    bad([entry("method/a b/k=1", 1, 0.1)], "space in the method id")
+    bad([entry("method/a/k=1", 1, 0.1, counters=False)], "missing err_* counters")
+    bad([entry("method/a/k=1", 1, -0.1)], "negative error")
+    dup = os.path.join(d, "dup.json")
+    with open(dup, "w") as f:
+        json.dump({"benchmarks": [entry("method/fam_a.q_vs_ref/setting=ref", 1, 0.0)]}, f)
+    try:
+        sa.main(["--accuracy", acc, "--bench", bj, "--out-dir", d, "--methods", paths["bin_a"],
+                 dup])
+        check(False, "a row in two binaries accepted")
+    except SystemExit as e:
+        check(e.code == 2, "a row in two binaries: exit 2")
 
 if failures:
     print(f"{len(failures)} failure(s)")

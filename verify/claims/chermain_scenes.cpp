@@ -231,19 +231,25 @@ void check_same(const Image& a, const Image& b) {
 
 }  // namespace
 
-double display_rmse_percent(const Image& x, const Image& reference) {
+std::vector<double> display_abs_errors(const Image& x, const Image& reference) {
   check_same(x, reference);
   const double e = exposure_of(reference);
-  double sum = 0;
-  long n = 0;
+  std::vector<double> d;
   for (int j = 0; j < x.height; ++j)
     for (int i = 0; i < x.width; ++i) {
       if (!(reference.at(i, j, 0) > 0)) continue;
       const double a = std::clamp(e * x.at(i, j, 0), 0.0, 1.0);
       const double b = std::clamp(e * reference.at(i, j, 0), 0.0, 1.0);
-      sum += (a - b) * (a - b), ++n;
+      d.push_back(std::abs(a - b));
     }
-  return 100 * std::sqrt(sum / double(n));
+  return d;
+}
+
+double display_rmse_percent(const Image& x, const Image& reference) {
+  const std::vector<double> d = display_abs_errors(x, reference);
+  double sum = 0;
+  for (double v : d) sum += v * v;
+  return 100 * std::sqrt(sum / double(d.size()));
 }
 
 double frame_to_frame_variance(const std::vector<Image>& frames, const Image& reference) {

@@ -60,6 +60,9 @@ Image render_normal_map_reference(const NormalMapSceneOptions& o, int spp, std::
 // reference's mean over lit pixels (reference > 0) to 0.18, clamped to [0, 1] (a display image),
 // RMSE over the lit pixels × 100.
 double display_rmse_percent(const Image& x, const Image& reference);
+// The per-pixel |x − reference| on that display scale, over the lit pixels in row order (what
+// display_rmse_percent is the RMS of, / 100).
+std::vector<double> display_abs_errors(const Image& x, const Image& reference);
 // Frame-to-frame variance (shimmer): mean over pixels and consecutive frames of (I_{t+1} − I_t)²,
 // on the same display scale as display_rmse_percent (exposure from `reference`), × 10^4.
 double frame_to_frame_variance(const std::vector<Image>& frames, const Image& reference);
