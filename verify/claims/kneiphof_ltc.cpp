@@ -279,8 +279,8 @@ ControlProbe probe_kneiphof_ltc_probability() {
 }
 
 std::vector<Check> kneiphof_ltc_checks() {
-  return {
-      {kLtcProbability, "Kneiphof & Klein 2024", "Sec. 4, Eq. 12–19", Verdict::kHoldsWithin, run}};
+  return {{kLtcProbability, "Kneiphof & Klein 2024", "Sec. 4, Eq. 12–19", Verdict::kHoldsInRegime,
+           run}};
 }
 
 }  // namespace glintlab::verify

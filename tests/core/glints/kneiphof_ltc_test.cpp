@@ -38,7 +38,7 @@ TEST(KneiphofLtc, FacingRectangleIsAValidFrontFacingPolygon) {
     }
 }
 
-TEST(KneiphofLtc, LtcProbabilityIsNearMonteCarloAndTheUnscaledLobeIsNot) {
+TEST(KneiphofLtc, LtcProbabilityAndRadianceAreNearMonteCarlo) {
   const double alpha = 0.25;
   const GGX<double> g{alpha, alpha};
   const Vec3<double> wi = dir(40, 180), mirror = dir(40, 0);
