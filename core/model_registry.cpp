@@ -7,6 +7,7 @@
 
 #include "core/glints/deliot_belcour.h"
 #include "core/glints/kneiphof.h"
+#include "core/glints/kneiphof_ltc.h"
 #include "core/io/csv.h"
 #include "core/models/podee.h"
 #include "core/glints/chermain.h"
@@ -29,6 +30,7 @@ std::vector<ModelEntry>& model_list() {
     m.push_back(make_model_entry<Podee>());
     m.push_back(make_model_entry<DeliotBelcour>());
     m.push_back(make_model_entry<KneiphofKlein>());
+    m.push_back(make_model_entry<KneiphofKleinArea>());
     m.push_back(make_model_entry<Chermain>());
     m.push_back(make_model_entry<KemppinenGGX>());
     m.push_back(make_model_entry<KemppinenBeckmann>());

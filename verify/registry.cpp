@@ -13,6 +13,7 @@ const std::vector<Check>& registered_checks() {
     std::vector<Check> all;
     for (auto* list : {&smooth_checks, &smooth_sampler_checks, &smooth_consistency_checks,
                        &eto_pdf_checks, &eto_checks, &kemppinen_checks, &kneiphof_checks,
+                       &kneiphof_ltc_checks,
                        &chermain_checks, &podee_checks, &across_checks}) {
       for (Check& c : list()) all.push_back(std::move(c));
     }

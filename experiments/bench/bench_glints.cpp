@@ -1,12 +1,14 @@
 // Google Benchmark suite of the binomial-counting glints: the cost of one Binomial(n, p) draw per
 // sampler over an (n, p) grid (pairs with experiments/data/binomial_error.csv, speed against
 // accuracy), and Kneiphof & Klein 2024 Table 1's analogue: time per shading evaluation for smooth
-// GGX, Deliot & Belcour, Kneiphof & Klein, under no light, a directional light and a rectangular
-// area light (area: the Monte Carlo terms of core/glints/kneiphof.h with 16 samples; the LTC
-// columns need core/ltc). Scalar double on one core; run scripts/bench.sh or this binary with
-// --benchmark_out=FILE --benchmark_out_format=json. Method rows (METHOD_BENCHMARKS.md):
-// method/binomial.count_vs_exact.<regime>/sampler=..., the distribution error of each sampler
-// (core/glints/binomial_distribution.h, no sampling) beside its time per draw.
+// GGX, Deliot & Belcour, Kneiphof & Klein and Kneiphof & Klein + NDF LTC, under no light, a
+// directional light and a rectangular area light (area: L_o by the BRDF LTC lobe of core/ltc for
+// every method, p by the same lobe × D_PR for Kneiphof & Klein and by the NDF lobe × D_PR for
+// "+ NDF LTC", core/glints/kneiphof_ltc.h). Scalar double on one core; run scripts/bench.sh or
+// this binary with --benchmark_out=FILE --benchmark_out_format=json. Method rows
+// (METHOD_BENCHMARKS.md): method/binomial.count_vs_exact.<regime>/sampler=..., the distribution
+// error of each sampler (core/glints/binomial_distribution.h, no sampling) beside its time per
+// draw.
 #include <benchmark/benchmark.h>
 
 #include <array>
@@ -18,6 +20,8 @@
 #include "core/glints/binomial_distribution.h"
 #include "core/glints/deliot_belcour.h"
 #include "core/glints/kneiphof.h"
+#include "core/glints/kneiphof_ltc.h"
+#include "core/ltc/ltc_table.h"
 #include "core/models/smooth_ggx.h"
 #include "experiments/bench/method_bench.h"
 
@@ -134,7 +138,7 @@ void register_binomial_methods() {
 // ------------------------------------------------------------------------------
 constexpr int kQueries = 1024;
 enum Light { kNone = 0, kDirectional = 1, kArea = 2 };
-enum Method { kSmooth = 0, kDeliotBelcour = 1, kKneiphofKlein = 2 };
+enum Method { kSmooth = 0, kDeliotBelcour = 1, kKneiphofKlein = 2, kNdfLtc = 3 };
 
 std::vector<ModelQuery<double>> queries() {
   std::vector<ModelQuery<double>> q(kQueries);
@@ -152,13 +156,12 @@ std::vector<ModelQuery<double>> queries() {
   return q;
 }
 
-const PolygonLight<double>& area_light() {
-  static const PolygonLight<double> l = [] {
-    const std::vector<Vec3<double>> v = {
-        {-0.5, 0.5, 2}, {0.5, 0.5, 2}, {0.5, -0.5, 2}, {-0.5, -0.5, 2}};
-    return make_polygon_light(v, {1, 1, 1});
-  }();
-  return l;
+// A unit square at height 2 above the shading point, emitting downward (counter-clockwise seen
+// from below).
+const std::array<Vec3<double>, 4>& area_vertices() {
+  static const std::array<Vec3<double>, 4> v = {
+      Vec3<double>{-0.5, 0.5, 2}, {0.5, 0.5, 2}, {0.5, -0.5, 2}, {-0.5, -0.5, 2}};
+  return v;
 }
 
 void table1(benchmark::State& s) {
@@ -170,6 +173,7 @@ void table1(benchmark::State& s) {
   const auto kk = KneiphofKlein::params<double>(std::vector<double>{0.25, 0.25, 8, 0.26, 1, 0});
   const GGX<double> ggx{0.25, 0.25};
   const double dh = total_area(ggx);
+  const LtcTableView& table = ltc_ggx_table_view();
   std::size_t i = 0;
   for (auto _ : s) {
     const ModelQuery<double>& q = qs[i++ % qs.size()];
@@ -179,10 +183,14 @@ void table1(benchmark::State& s) {
     } else if (light == kDirectional) {
       if (method == kSmooth) v = SmoothGGX::eval(smooth, q).value;
       if (method == kDeliotBelcour) v = DeliotBelcour::eval(db, q).value;
-      if (method == kKneiphofKlein) v = KneiphofKlein::eval(kk, q).value;
+      // + NDF LTC changes nothing for a directional light (Eq. 20's cap, no lobe).
+      if (method == kKneiphofKlein || method == kNdfLtc) v = KneiphofKlein::eval(kk, q).value;
     } else {
-      const AreaLightTerms t =
-          area_light_terms_mc(ggx, q.wi, area_light(), Vec3<double>{0, 0, 0}, 16, 5, i);
+      // Heitz et al. 2016 LTC for L_o; Kneiphof & Klein reuse the BRDF lobe × D_PR for p (Sec. 4),
+      // "+ NDF LTC" integrates the separately fitted NDF lobe as well.
+      const LtcAreaTerms<double> t = area_light_terms_ltc(
+          table, 0.25, q.wi, area_vertices().data(), 4,
+          method == kNdfLtc ? KneiphofAreaP::kNdfLobe : KneiphofAreaP::kBrdfLobe);
       if (method == kSmooth) {
         v = t.lo_over_li;
       } else {
@@ -205,7 +213,8 @@ void table1(benchmark::State& s) {
 BENCHMARK(table1)
     ->Name("table1")
     ->ArgNames({"method", "light"})
-    ->ArgsProduct({{kSmooth, kDeliotBelcour, kKneiphofKlein}, {kNone, kDirectional, kArea}});
+    ->ArgsProduct({{kSmooth, kDeliotBelcour, kKneiphofKlein, kNdfLtc},
+                   {kNone, kDirectional, kArea}});
 
 }  // namespace
 }  // namespace glintlab

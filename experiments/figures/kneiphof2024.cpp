@@ -1,6 +1,6 @@
 // Figure experiments of Kneiphof & Klein 2024 on a glinty GGX plane seen from above: Fig. 6 (the
 // cap probability of Eq. 20 against Deliot & Belcour's R fitted at normal incidence, and the
-// p > 1 region), Fig. 9 (a 2^4 × 2^4 subdivided light: Monte Carlo terms vs the shared lobe),
+// p > 1 region), Fig. 9 (a 2^4 × 2^4 subdivided light: Monte Carlo terms vs the single LTC lobe),
 // Fig. 10 (convergence to the smooth BRDF as N_P quadruples) and a Table 1 analogue (time per
 // evaluation, read from the Google Benchmark JSON of experiments/bench/bench_glints.cpp).
 //
@@ -25,10 +25,12 @@
 #include "core/glints/binomial.h"
 #include "core/glints/deliot_belcour.h"
 #include "core/glints/kneiphof.h"
+#include "core/glints/kneiphof_ltc.h"
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"
 #include "core/io/png.h"
+#include "core/ltc/ltc_table.h"
 #include "core/ndf/total_area.h"
 #include "core/render/image.h"
 
@@ -231,93 +233,122 @@ void run_fig9(const FigureContext& ctx) {
   const double alpha = 0.25, density = 6.0;
   const GGX<double> g{alpha, alpha};
   const double dh = total_area_ggx_eq29(alpha);
+  const LtcTableView& table = ltc_ggx_table_view();
   std::vector<Image> tiles;
   struct Row {
-    double w, mc_rel_rms, shared_max;
+    double w, mc_rel_rms, ltc_max, ltc_vs_mc_rel_rms;
   };
   std::vector<Row> rows;
   for (double w : {0.4, 0.1}) {
     const auto quad = square_light(w);
     const PolygonLight<double> whole = polygon(quad);
+    const auto sub_quads = subdivide_quad(quad, 16, 16);
     std::vector<PolygonLight<double>> parts;
-    for (const auto& q : subdivide_quad(quad, 16, 16)) parts.push_back(polygon(q));
+    for (const auto& q : sub_quads) parts.push_back(polygon(q));
     const std::size_t n = std::size_t(size) * std::size_t(size);
-    std::vector<double> single(n), sub_mc(n), sub_shared(n), smooth(n);
+    std::vector<double> single(n), sub_mc(n), single_ltc(n), sub_ltc(n), smooth(n);
     tbb::parallel_for(0, size, [&](int y) {
-      std::vector<double> pk(parts.size()), lk(parts.size());
+      std::vector<double> pk(parts.size()), lk(parts.size()), qk(parts.size()), lq(parts.size());
       for (int x = 0; x < size; ++x) {
         const Pixel px = pixel(size, x, y);
         const std::size_t i = std::size_t(px.index);
         const std::uint64_t seed = figure_seed(kFig9, 0);
-        double p = 0;
+        // Vertices relative to the shading point (the plane's frame is the shading frame).
+        const auto rel = [&](const std::array<Vec3<double>, 4>& q) {
+          return std::array<Vec3<double>, 4>{q[0] - px.p, q[1] - px.p, q[2] - px.p, q[3] - px.p};
+        };
+        double p = 0, p_ltc = 0;
         for (std::size_t k = 0; k < parts.size(); ++k) {
           const AreaLightTerms t = area_light_terms_mc(g, px.wi, parts[k], px.p, samples, seed,
                                                        px.index * parts.size() + k);
           pk[k] = t.d_omega_h / dh;
           lk[k] = t.lo_over_li;
           p += pk[k];
+          // The single LTC lobe (Sec. 4): the BRDF lobe for L_o and, × D_PR, for D_Ωh.
+          const auto v = rel(sub_quads[k]);
+          const LtcAreaTerms<double> l =
+              area_light_terms_ltc(table, alpha, px.wi, v.data(), 4, KneiphofAreaP::kBrdfLobe);
+          qk[k] = l.d_omega_h / dh;
+          lq[k] = l.lo_over_li;
+          p_ltc += qk[k];
         }
         const AreaLightTerms t =
             area_light_terms_mc(g, px.wi, whole, px.p, samples * 256, seed + 1, px.index);
+        const auto v = rel(quad);
+        const LtcAreaTerms<double> l =
+            area_light_terms_ltc(table, alpha, px.wi, v.data(), 4, KneiphofAreaP::kBrdfLobe);
         const double nf = footprint_facet_count(px.footprint, density);
         const double pc = std::min(1.0, p);
         const std::uint64_t b = binomial_exact(std::uint64_t(nf), pc, seed + 2, px.index);
         const auto bk = multinomial_split(b, pk, seed + 3, px.index);
-        double mc = 0, shared = 0;
+        // The LTC light's own p (its polygon integral), its count, and the split over the parts.
+        const double pl = std::min(1.0, l.d_omega_h / dh);
+        const std::uint64_t bl = binomial_exact(std::uint64_t(nf), pl, seed + 4, px.index);
+        const auto blk = multinomial_split(bl, qk, seed + 5, px.index);
+        double mc = 0, ltc = 0;
         for (std::size_t k = 0; k < parts.size(); ++k) {
-          if (pk[k] <= 0) continue;
-          mc += lk[k] * double(bk[k]) / (nf * pk[k]);
-          shared += t.lo_over_li * (pk[k] / p) * double(bk[k]) / (nf * pk[k]);
+          if (pk[k] > 0) mc += lk[k] * double(bk[k]) / (nf * pk[k]);
+          if (qk[k] > 0) ltc += lq[k] * double(blk[k]) / (nf * qk[k]);
         }
         single[i] = t.lo_over_li * binomial_radiance_factor(double(b), nf, pc);
         sub_mc[i] = mc;
-        sub_shared[i] = shared;
+        single_ltc[i] = l.lo_over_li * binomial_radiance_factor(double(bl), nf, pl);
+        sub_ltc[i] = ltc;
         smooth[i] = t.lo_over_li;
       }
     });
-    double num = 0, den = 0, shared_max = 0;
+    double num = 0, den = 0, ltc_max = 0, lnum = 0, lden = 0;
     for (std::size_t i = 0; i < n; ++i) {
       num += (sub_mc[i] - single[i]) * (sub_mc[i] - single[i]);
       den += single[i] * single[i];
-      shared_max = std::max(shared_max, std::abs(sub_shared[i] - single[i]) / (smooth[i] + 1e-300));
+      ltc_max = std::max(ltc_max, std::abs(sub_ltc[i] - single_ltc[i]) / (smooth[i] + 1e-300));
+      lnum += (single_ltc[i] - single[i]) * (single_ltc[i] - single[i]);
+      lden += single[i] * single[i];
     }
-    rows.push_back({w, std::sqrt(num / std::max(den, 1e-300)), shared_max});
-    Image exr(size, size, {"single", "subdivided_mc", "subdivided_shared_lobe", "smooth"});
+    rows.push_back({w, std::sqrt(num / std::max(den, 1e-300)), ltc_max,
+                    std::sqrt(lnum / std::max(lden, 1e-300))});
+    Image exr(size, size,
+              {"single_mc", "subdivided_mc", "single_ltc", "subdivided_ltc", "smooth_mc"});
     for (int y = 0; y < size; ++y)
       for (int x = 0; x < size; ++x) {
         const std::size_t i = std::size_t(y) * std::size_t(size) + std::size_t(x);
         exr.at(x, y, 0) = single[i], exr.at(x, y, 1) = sub_mc[i];
-        exr.at(x, y, 2) = sub_shared[i], exr.at(x, y, 3) = smooth[i];
+        exr.at(x, y, 2) = single_ltc[i], exr.at(x, y, 3) = sub_ltc[i];
+        exr.at(x, y, 4) = smooth[i];
       }
     io::write_exr(ctx.dir / fmt::format("halfwidth{}.exr", w), exr,
                   attributes(kFig9, fmt::format("light half-width {}, alpha {}", w, alpha)));
     const double sc = scale_to_peak(smooth);
     tiles.push_back(tile(size, single, sc));
     tiles.push_back(tile(size, sub_mc, sc));
-    tiles.push_back(tile(size, sub_shared, sc));
+    tiles.push_back(tile(size, single_ltc, sc));
+    tiles.push_back(tile(size, sub_ltc, sc));
   }
-  io::write_png_preview(ctx.dir / "fig9.png", montage(tiles, 3));
-  write_csv(ctx.dir / "fig9.csv",
-            {"light_half_width", "alpha", "rel_rms_subdivided_mc_vs_single",
-             "max_rel_subdivided_shared_lobe_vs_single"},
-            [&](io::CsvWriter& w) {
-              for (const Row& r : rows) {
-                w.cell(r.w).cell(alpha).cell(r.mc_rel_rms).cell(r.shared_max);
-                w.end_row();
-              }
-            });
+  io::write_png_preview(ctx.dir / "fig9.png", montage(tiles, 4));
+  write_csv(
+      ctx.dir / "fig9.csv",
+      {"light_half_width", "alpha", "rel_rms_subdivided_mc_vs_single_mc",
+       "max_rel_subdivided_ltc_vs_single_ltc", "rel_rms_single_ltc_vs_single_mc"},
+      [&](io::CsvWriter& w) {
+        for (const Row& r : rows) {
+          w.cell(r.w).cell(alpha).cell(r.mc_rel_rms).cell(r.ltc_max).cell(r.ltc_vs_mc_rel_rms);
+          w.end_row();
+        }
+      });
   std::string md =
       "# kneiphof2024-fig9\n\nOne light vs 2^4×2^4 sub-lights, counts split multinomially (App. "
-      "C). Monte Carlo terms differ (the paper: the error grows with the light's size); with "
-      "the shared lobe (L^(k) ∝ D_Ωh^(k), Eq. 32, standing in for the single LTC lobe until "
-      "core/ltc "
-      "exists) the result is invariant up to rounding.\n\n| half-width | rel. RMS (MC terms) | max "
-      "rel. (shared lobe) |\n|---|---|---|\n";
+      "C). Monte Carlo terms (left pair) differ (the paper: the error grows with the light's "
+      "size); with the single LTC lobe (right pair: the BRDF LTC lobe gives L_o and, × D_PR, "
+      "D_Ωh of every part, Sec. 4 / Eq. 32) the result is invariant up to rounding. The last "
+      "column is the LTC image against the Monte Carlo one (different counts: p differs).\n\n| "
+      "half-width | rel. RMS (MC terms) | max rel. (LTC, / smooth) | rel. RMS LTC vs MC "
+      "|\n|---|---|---|---|\n";
   for (const Row& r : rows)
-    md += fmt::format("| {} | {:.4g} | {:.2g} |\n", r.w, r.mc_rel_rms, r.shared_max);
+    md += fmt::format("| {} | {:.4g} | {:.2g} | {:.3g} |\n", r.w, r.mc_rel_rms, r.ltc_max,
+                      r.ltc_vs_mc_rel_rms);
   md +=
-      "\nfig9.png: rows half-width 0.4, 0.1; columns single light, 256 sub-lights (MC terms), "
-      "256 sub-lights (shared lobe).\n";
+      "\nfig9.png: rows half-width 0.4, 0.1; columns single light (MC terms), 256 sub-lights (MC "
+      "terms), single light (LTC), 256 sub-lights (LTC).\n";
   write_text(ctx.dir / "summary.md", md);
 }
 
@@ -439,8 +470,8 @@ constexpr PaperRow kPaper[] = {{"none", 1.4, 1.4, 1.4, 1.4},
 
 // "table1/method:M/light:L ... real_time" rows of the benchmark JSON, without a JSON library:
 // the fields of one benchmark object are "name" then, later, "real_time" and "time_unit".
-std::vector<std::array<double, 3>> read_bench(const std::filesystem::path& path, bool* found) {
-  std::vector<std::array<double, 3>> t(3, {NAN, NAN, NAN});  // [light][method], ns
+std::vector<std::array<double, 4>> read_bench(const std::filesystem::path& path, bool* found) {
+  std::vector<std::array<double, 4>> t(3, {NAN, NAN, NAN, NAN});  // [light][method], ns
   std::ifstream in(path);
   *found = bool(in);
   std::string line;
@@ -458,7 +489,7 @@ std::vector<std::array<double, 3>> read_bench(const std::filesystem::path& path,
       continue;
     }
     const auto rt = line.find("\"real_time\": ");
-    if (rt != std::string::npos && method >= 0 && light >= 0 && method < 3 && light < 3 &&
+    if (rt != std::string::npos && method >= 0 && light >= 0 && method < 4 && light < 3 &&
         !aggregate_other) {
       t[std::size_t(light)][std::size_t(method)] = std::stod(line.substr(rt + 13));
       method = light = -1;
@@ -478,8 +509,7 @@ void run_table1(const FigureContext& ctx) {
       [&](io::CsvWriter& w) {
         for (int l = 0; l < 3; ++l) {
           w.cell(kPaper[l].light);
-          for (int m = 0; m < 3; ++m) w.cell(t[std::size_t(l)][std::size_t(m)]);
-          w.cell(NAN);  // + NDF LTC: needs core/ltc
+          for (int m = 0; m < 4; ++m) w.cell(t[std::size_t(l)][std::size_t(m)]);
           w.cell(kPaper[l].smooth).cell(kPaper[l].db).cell(kPaper[l].ours).cell(kPaper[l].ndf_ltc);
           w.end_row();
         }
@@ -488,11 +518,24 @@ void run_table1(const FigureContext& ctx) {
       "# kneiphof2024-table1\n\nTime per evaluation (ns, scalar double, one core) from the Google "
       "Benchmark JSON {} ({}); produce it with\n`build/release/experiments/bench/glintlab_bench_"
       "glints --benchmark_filter=table1 --benchmark_out=out/bench/glints.json "
-      "--benchmark_out_format=json` from the repository root, then rerun this figure. Area light: "
-      "Monte Carlo terms with 16 samples (the LTC columns need core/ltc: not measured). The "
-      "paper's "
-      "numbers are ms per 4K frame on an RTX 4090: compare ratios, not values.\n",
+      "--benchmark_out_format=json` from the repository root, then rerun this figure. Area light "
+      "(a "
+      "unit square at height 2): L_o by the BRDF LTC lobe (Heitz et al. 2016, our fitted 64 × 64 "
+      "table) for every column; Kneiphof & Klein reuse that lobe × D_PR for p (Sec. 4), + NDF LTC "
+      "integrates the separately fitted NDF lobe × D_PR as well (one more polygon integral); "
+      "Deliot & Belcour take glints for the light's mean direction. Directional: + NDF LTC is "
+      "Kneiphof & Klein (no lobe). The paper's numbers are ms per 4K frame on an RTX 4090: "
+      "compare ratios, not values.\n",
       json.string(), found ? "read" : "NOT FOUND: our columns are empty");
+  md +=
+      "\n| light | smooth ns | D&B ns | K&K ns | + NDF LTC ns | paper ms (smooth / D&B / ours / + "
+      "NDF LTC) |\n|---|---|---|---|---|---|\n";
+  for (int l = 0; l < 3; ++l) {
+    const auto& m = t[std::size_t(l)];
+    md += fmt::format("| {} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {} / {} / {} / {} |\n",
+                      kPaper[l].light, m[0], m[1], m[2], m[3], kPaper[l].smooth, kPaper[l].db,
+                      kPaper[l].ours, kPaper[l].ndf_ltc);
+  }
   write_text(ctx.dir / "summary.md", md);
 }
 
@@ -505,9 +548,10 @@ FigureEntry kneiphof2024_fig6_entry() {
           run_fig6};
 }
 FigureEntry kneiphof2024_fig9_entry() {
-  return {kFig9, "Kneiphof & Klein 2024", "Fig. 9",
-          "2^4 x 2^4 subdivided light: Monte Carlo terms vs shared lobe, multinomial counts",
-          run_fig9};
+  return {
+      kFig9, "Kneiphof & Klein 2024", "Fig. 9",
+      "2^4 x 2^4 subdivided light: Monte Carlo terms vs the single LTC lobe, multinomial counts",
+      run_fig9};
 }
 FigureEntry kneiphof2024_fig10_entry() {
   return {kFig10, "Kneiphof & Klein 2024", "Fig. 10",
@@ -515,9 +559,10 @@ FigureEntry kneiphof2024_fig10_entry() {
           run_fig10};
 }
 FigureEntry kneiphof2024_table1_entry() {
-  return {kTable1, "Kneiphof & Klein 2024", "Table 1",
-          "time per evaluation: smooth, Deliot & Belcour, Kneiphof & Klein (benchmark JSON)",
-          run_table1};
+  return {
+      kTable1, "Kneiphof & Klein 2024", "Table 1",
+      "time per evaluation: smooth, Deliot & Belcour, Kneiphof & Klein, + NDF LTC (benchmark JSON)",
+      run_table1};
 }
 
 }  // namespace glintlab::experiments
