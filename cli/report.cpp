@@ -328,9 +328,33 @@ void ReportRun::run_bench(json& part) {
               (dir / "accuracy.csv").string()},
              "accuracy");
   if (rc != 0) child_failed("glintlab_accuracy", rc, "accuracy");
+  // The method rows (experiments/bench/METHOD_BENCHMARKS.md) of every binary that has them, as
+  // scripts/speed_accuracy.sh runs them; quick = their small query sets (GLINTLAB_BENCH_QUICK).
+  fs::create_directories(dir / "methods");
+  if (quick()) ::setenv("GLINTLAB_BENCH_QUICK", "1", 1);
+  for (const char* name : {"glintlab_bench_glints", "glintlab_bench_chermain",
+                           "glintlab_bench_podee", "glintlab_bench_kemppinen"}) {
+    const fs::path tool = bench_tool(name);
+    if (tool.empty()) continue;
+    std::vector<std::string> margs = {
+        tool.string(), "--benchmark_filter=^method/",
+        "--benchmark_out=" + (dir / "methods" / (std::string(name) + ".json")).string(),
+        "--benchmark_out_format=json"};
+    if (quick())
+      margs.insert(margs.end(), {"--benchmark_min_time=0.01", "--benchmark_repetitions=1"});
+    else
+      margs.insert(margs.end(), {"--benchmark_min_time=0.05", "--benchmark_repetitions=3",
+                                 "--benchmark_report_aggregates_only=true"});
+    rc = child(margs, name);
+    if (rc != 0) child_failed(name, rc, name);
+  }
+  if (quick()) ::unsetenv("GLINTLAB_BENCH_QUICK");
   part["status"] = "ran";
   part["settings"] = quick() ? "1 repetition of >= 0.01 s per benchmark; 20000 accuracy rows"
                              : "median of 5 repetitions of >= 0.05 s; 200000 accuracy rows";
+  part["settings"] = part["settings"].get<std::string>() +
+                     (quick() ? "; method rows: quick query sets, 1 repetition"
+                              : "; method rows: median of 3 repetitions");
 }
 
 void ReportRun::run_stability(json& part) {
@@ -483,9 +507,9 @@ void ReportRun::run() {
 constexpr const char* kFooter =
     R"(DIR (default out/report) gets index.html (static, no script, relative links only) and its
 Markdown twin report.md, and beside them every input: verify/ (claims.json, .csv, .md),
-figures/<id>/ (EXR, PNG, CSV of each figure), bench/ (bench.json, accuracy.csv), stability/
+figures/<id>/ (EXR, PNG, CSV of each figure), bench/ (bench.json, accuracy.csv, methods/*.json), stability/
 (stability.json and its maps), plots/ (the charts drawn by reports/make_report.py: convergence
-log-log plots, speed_accuracy.png and speed_accuracy.csv), logs/ and run.json (machine, budget,
+log-log plots, speed_accuracy.png, speed_accuracy_methods.png and speed_accuracy.csv), logs/ and run.json (machine, budget,
 date and status of each part). The report is staged in a hidden folder beside DIR and replaces DIR only when it is
 complete: a bad option, a failed part or a malformed cached file leaves DIR as it was.)";
 

@@ -26,6 +26,7 @@ Every plot names the machine (CPU model, cores) and the budget its data came fro
 
 import argparse
 import csv
+import glob
 import html
 import json
 import math
@@ -536,6 +537,37 @@ def write_bench(doc, bench, part, root, plots_tmp, plots_rel, made):
                "p99 rel. error"],
               [[r["method"], r["kernel"], r["isa"], r["math"], f"{r['ns_per_eval']:.3g}",
                 r["max_rel_error"], r["p99_rel_error"]] for r in front])
+    write_method_fronts(doc, timed, root, plots_tmp, plots_rel, made, machine, budget,
+                        str(ctx.get("date", ""))[:10])
+
+
+def write_method_fronts(doc, timed, root, plots_tmp, plots_rel, made, machine, budget, date):
+    """The method rows (bench/methods/*.json, METHOD_BENCHMARKS.md): chart and fronts on RMS."""
+    paths = sorted(glob.glob(os.path.join(root, "bench/methods/*.json")))
+    if not paths:
+        doc.para("No method benchmarks (bench/methods/*.json; `bash scripts/speed_accuracy.sh` "
+                 "writes them): no method chart.")
+        return
+    try:
+        rows = sa.load_methods(paths)
+    except SystemExit as e:
+        raise ReportError(f"bench/methods: {e}") from None
+    if not rows:
+        doc.para("The method benchmark JSONs have no method/ rows: no method chart.")
+        return
+    sa.mark_fronts(rows, "rms")
+    sa.plot_methods(timed, rows, os.path.join(plots_tmp, "speed_accuracy_methods.png"), "max",
+                    "rms", machine, date)
+    made += ["speed_accuracy_methods.png"]
+    doc.image(f"{plots_rel}/speed_accuracy_methods.png", "speed vs accuracy of the methods",
+              f"RMS error against each method's reference vs ns per evaluation, one panel per "
+              f"method family, Pareto front per method; {machine}, budget {budget}")
+    front = sorted((r for r in rows if r["on_pareto_front"] == 1),
+                   key=lambda r: (r["method"], r["ns_per_eval"]))
+    doc.para(f"Method fronts ({len(front)} of {len(rows)} settings; RMS error):")
+    doc.table(["method", "setting", "ns per eval", "RMS error", "max error", "reference"],
+              [[r["method"], r["setting"], f"{r['ns_per_eval']:.3g}", r["rms_rel_error"],
+                r["max_rel_error"], r["reference"]] for r in front])
 
 
 def write_stability(doc, st, part, root):
