@@ -26,12 +26,9 @@ inline constexpr int kBinomialBtrsMaxAttempts = 128;
 namespace detail {
 
 // log k! for k = 0..15 as the host's log_factorial computes it there (std::lgamma(k + 1)), so a
-// gather gives the very values.
-inline const std::array<double, 16> kLogFactorialTable = [] {
-  std::array<double, 16> t{};
-  for (std::size_t k = 0; k < t.size(); ++k) t[k] = std::lgamma(double(k) + 1);
-  return t;
-}();
+// gather gives the very values. Defined once in binomial_kernel.cpp (an inline variable with a
+// dynamic initializer would give every ISA object a shared weak guard symbol).
+extern const std::array<double, 16> kLogFactorialTable;
 
 // Stirling's series of log_factorial (A&S 6.1.41), in its operation order.
 template <class D>
