@@ -29,10 +29,9 @@ constexpr std::size_t kFootprintBegin = 0, kFootprintEnd = 6, kDirBegin = 6, kDi
                       kLightBegin = 12, kLightEnd = 14;
 constexpr auto kDefaults = simd::kQueryDefaults;
 // The footprint's corner reflection vectors (core/model.h FootprintQuery::corner_r): read and
-// written only for models that need them (kNeedsPixelCorners); such models are evaluated row by
-// row through the entry (the SoA batch columns do not carry the corners).
-constexpr std::array<std::string_view, 12> kCornerColumns = {
-    "r0_x", "r0_y", "r0_z", "r1_x", "r1_y", "r1_z", "r2_x", "r2_y", "r2_z", "r3_x", "r3_y", "r3_z"};
+// written only for models that need them (kNeedsPixelCorners), passed to the batch API as its
+// optional corner columns.
+constexpr auto kCornerColumns = simd::kCornerColumns;
 
 // --grid: a product of angle ranges. Names in row order (outermost first).
 constexpr std::array<std::string_view, 4> kGridNames = {"theta_i", "phi_i", "theta_o", "phi_o"};
@@ -241,28 +240,6 @@ void read_queries(const ModelEntry& model, const std::string& in_path,
   }
 }
 
-// Row-by-row evaluation through the entry for models that need the corner reflection vectors.
-std::vector<std::vector<double>> evaluate_rows_with_corners(
-    const ModelEntry& model, const std::vector<double>& params,
-    const std::vector<std::vector<double>>& query, const std::vector<std::vector<double>>& corners,
-    std::size_t n) {
-  std::vector<std::vector<double>> out(2 + model.intermediates.size(), std::vector<double>(n));
-  for (std::size_t r = 0; r < n; ++r) {
-    ModelQuery<double> q;
-    q.footprint = {{query[0][r], query[1][r]}, {query[2][r], query[3][r]}, {query[4][r], query[5][r]}};
-    for (std::size_t c = 0; c < 4; ++c)
-      q.footprint.corner_r[c] = {corners[3 * c][r], corners[3 * c + 1][r], corners[3 * c + 2][r]};
-    q.wi = {query[6][r], query[7][r], query[8][r]};
-    q.wo = {query[9][r], query[10][r], query[11][r]};
-    q.light = {query[12][r], query[13][r]};
-    const ErasedEval e = model.eval(params, q);
-    out[0][r] = e.value;
-    out[1][r] = e.pdf;
-    for (std::size_t k = 0; k < e.intermediates.size(); ++k) out[2 + k][r] = e.intermediates[k];
-  }
-  return out;
-}
-
 }  // namespace
 
 std::vector<std::pair<std::string, std::string>> split_params(
@@ -356,9 +333,14 @@ void run_model_eval(const ModelEvalArgs& a) {
     read_queries(*model, a.in_path, query, corners, n);
   }
 
+  const auto with_corners = [&] {
+    std::vector<std::vector<double>> q = query;
+    q.insert(q.end(), corners.begin(), corners.end());
+    return q;
+  };
   const std::vector<std::vector<double>> results =
-      need_corners ? evaluate_rows_with_corners(*model, params, query, corners, n)
-                   : evaluate_columns(*model, params, query, n, opts);
+      corners.empty() ? evaluate_columns(*model, params, query, n, opts)
+                      : evaluate_columns(*model, params, with_corners(), n, opts);
 
   std::vector<std::string_view> header;
   if (!angles.empty()) header.assign(kGridNames.begin(), kGridNames.end());

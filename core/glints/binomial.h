@@ -8,7 +8,10 @@
 #include <cmath>
 #include <cstdint>
 #include <string_view>
+#include <type_traits>
 
+#include "core/glints/binomial_kernel.h"
+#include "core/math/lanes.h"
 #include "core/math/ops.h"
 #include "core/math/rng.h"
 
@@ -164,19 +167,24 @@ GLINTLAB_FN T binomial_small_count(T n, T p, T u) {
 }
 
 // One count drawn with the chosen sampler for n trials of probability p, keyed by (seed, index)
-// (dims 0.. of the counter RNG). The exact sampler is host-side double (a variable number of
-// uniforms); the others are kernels on T.
+// (dims 0.. of the counter RNG; one index per lane on a batch). The exact sampler is double
+// precision with a variable number of uniforms: binomial_exact on scalars, its masked-loop form
+// (core/glints/binomial_kernel.h, the same draw per lane) on batches; the others are kernels on T.
 template <class T>
 GLINTLAB_FN T draw_binomial(BinomialSampler sampler, T n, T p, std::uint64_t seed,
-                            std::uint64_t index) {
+                            RngIndex<T> index) {
   switch (sampler) {
     case BinomialSampler::kExact:
-      return T(binomial_exact(std::uint64_t(n), double(p), seed, index));
+      if constexpr (std::is_floating_point_v<T>) {
+        return T(binomial_exact(std::uint64_t(n), double(p), seed, index));
+      } else {
+        return binomial_exact_lanes(n, p, seed, index);
+      }
     case BinomialSampler::kRealTime:
-      return binomial_realtime(n, p, counter_uniform<T>(seed, index, 0),
-                               counter_uniform<T>(seed, index, 1));
+      return binomial_realtime(n, p, lane_uniform<T>(seed, index, 0),
+                               lane_uniform<T>(seed, index, 1));
     default:
-      return binomial_small_count(n, p, counter_uniform<T>(seed, index, 0));
+      return binomial_small_count(n, p, lane_uniform<T>(seed, index, 0));
   }
 }
 

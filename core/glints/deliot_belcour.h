@@ -5,12 +5,16 @@
 #pragma once
 
 #include <array>
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <span>
 #include <string_view>
+#include <type_traits>
 
 #include "core/glints/binomial.h"
+#include "core/math/lanes.h"
 #include "core/model.h"
 #include "core/ndf/ggx.h"
 #include "core/ndf/microfacet.h"
@@ -19,22 +23,46 @@
 namespace glintlab {
 
 // Facets in a pixel footprint: N_P = |det ∂uv/∂(x, y)| · 10^density (density = log10 facets per
-// unit uv area), rounded to the nearest integer (the counting model needs whole trials).
+// unit uv area), rounded to the nearest integer (the counting model needs whole trials);
+// density_scale = 10^density.
+template <class T>
+GLINTLAB_FN T footprint_facet_count_scaled(const FootprintQuery<T>& f, T density_scale) {
+  const T area = abs(f.duv_dx.x * f.duv_dy.y - f.duv_dx.y * f.duv_dy.x);
+  return floor(fma(area, density_scale, T(0.5)));
+}
 template <class T>
 GLINTLAB_FN T footprint_facet_count(const FootprintQuery<T>& f, T log10_density) {
-  const T area = abs(f.duv_dx.x * f.duv_dy.y - f.duv_dx.y * f.duv_dy.x);
-  return floor(fma(area, exp(log10_density * T(2.30258509299404568402)), T(0.5)));
+  return footprint_facet_count_scaled(f, exp(log10_density * T(2.30258509299404568402)));
+}
+
+// 10^density exactly as footprint_facet_count computes it for T, evaluated once on the host: the
+// density is uniform over a batch, so its lanes share the scalar exp (a batch exp differs from it
+// by an ulp, which moves N_P = floor(area·10^density + ½) across an integer on ~ulp·N_P rows).
+template <class T>
+inline T facet_density_scale(double log10_density) {
+  using S = Scalar<T>;
+  return T(std::exp(S(log10_density) * S(2.30258509299404568402)));
 }
 
 // The counter-RNG index of a footprint: its centre's uv quantized to 2^-24 (so a pixel's count is
 // the same whatever order pixels are shaded in; nearby footprints get unrelated counts, as Deliot &
-// Belcour's per-cell random numbers do at the finest level).
+// Belcour's per-cell random numbers do at the finest level). One index per lane on a batch.
 template <class T>
-GLINTLAB_FN std::uint64_t footprint_rng_index(const FootprintQuery<T>& f) {
-  const auto q = [](T x) {
+GLINTLAB_FN RngIndex<T> footprint_rng_index(const FootprintQuery<T>& f) {
+  const auto q = [](Scalar<T> x) {
     return static_cast<std::uint64_t>(static_cast<std::int64_t>(double(x) * 16777216.0));
   };
-  return mix64(q(f.uv.x) * 0x9e3779b97f4a7c15ULL ^ q(f.uv.y));
+  if constexpr (std::is_floating_point_v<T>) {
+    return mix64(q(f.uv.x) * 0x9e3779b97f4a7c15ULL ^ q(f.uv.y));
+  } else {
+    constexpr std::size_t kL = LaneTraits<T>::kLanes;
+    alignas(64) Scalar<T> u[kL], v[kL];
+    LaneTraits<T>::store(f.uv.x, u);
+    LaneTraits<T>::store(f.uv.y, v);
+    RngIndex<T> r{};
+    for (std::size_t l = 0; l < kL; ++l) r[l] = mix64(q(u[l]) * 0x9e3779b97f4a7c15ULL ^ q(v[l]));
+    return r;
+  }
 }
 
 // b/(N·p): the factor Kneiphof & Klein Eq. 16 applies to the smooth radiance; 0 without facets.
@@ -75,12 +103,17 @@ struct DeliotBelcour {
     T log10_density, r;
     BinomialSampler sampler;
     std::uint64_t seed;
+    T density_scale;  // 10^log10_density (facet_density_scale)
   };
 
   template <class T>
   static Params<T> params(std::span<const double> v) {
-    return {GGX<T>{T(v[0]), T(v[1])}, T(v[2]), T(v[3]), static_cast<BinomialSampler>(int(v[4])),
-            static_cast<std::uint64_t>(v[5])};
+    return {GGX<T>{T(v[0]), T(v[1])},
+            T(v[2]),
+            T(v[3]),
+            static_cast<BinomialSampler>(int(v[4])),
+            static_cast<std::uint64_t>(v[5]),
+            facet_density_scale<T>(v[2])};
   }
 
   template <class T>
@@ -95,7 +128,7 @@ struct DeliotBelcour {
     const T d = p.ggx.D(h);
     const T d_n = T(kInvPi<T>) / (p.ggx.alpha_x * p.ggx.alpha_y);  // D(n), the NDF's maximum
     const T smooth = microfacet_brdf(p.ggx, q.wi, q.wo, T(1)) * max(q.wo.z, T(0));
-    const T n = footprint_facet_count(q.footprint, p.log10_density);
+    const T n = footprint_facet_count_scaled(q.footprint, p.density_scale);
     const T p_raw = p.r * d / d_n;
     const T prob = saturate(p_raw);
     const T count = draw_binomial(p.sampler, n, prob, p.seed, footprint_rng_index(q.footprint));

@@ -199,6 +199,7 @@ struct KneiphofKlein {
     T log10_density, one_minus_cos_gamma, total_area;
     BinomialSampler sampler;
     std::uint64_t seed;
+    T density_scale;  // 10^log10_density (facet_density_scale)
   };
 
   template <class T>
@@ -209,7 +210,8 @@ struct KneiphofKlein {
             T(one_minus_cos(v[3] * std::numbers::pi / 180)),
             T(total_area(g)),
             static_cast<BinomialSampler>(int(v[4])),
-            static_cast<std::uint64_t>(v[5])};
+            static_cast<std::uint64_t>(v[5]),
+            facet_density_scale<T>(v[2])};
   }
 
   template <class T>
@@ -224,7 +226,7 @@ struct KneiphofKlein {
     const T omc =
         select(q.light.cos_half_angle < T(1), T(1) - q.light.cos_half_angle, p.one_minus_cos_gamma);
     const T smooth = microfacet_brdf(p.ggx, q.wi, q.wo, T(1)) * max(q.wo.z, T(0));
-    const T n = footprint_facet_count(q.footprint, p.log10_density);
+    const T n = footprint_facet_count_scaled(q.footprint, p.density_scale);
     const T p_raw = cap_probability_eq20(p.ggx, q.wi, q.wo, omc, p.total_area);
     const T prob = saturate(p_raw);
     const T count = draw_binomial(p.sampler, n, prob, p.seed, footprint_rng_index(q.footprint));

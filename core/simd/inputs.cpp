@@ -2,9 +2,12 @@
 #include "core/simd/inputs.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
+#include "core/math/orthonormal_basis.h"
 #include "core/math/rng.h"
+#include "core/model.h"
 #include "core/samplers/walter.h"
 #include "core/simd/kernels.h"
 
@@ -140,6 +143,66 @@ std::vector<std::vector<double>> make_inputs(std::span<const int> domains, std::
     }
   }
   return cols;
+}
+
+void add_scene_columns(unsigned needs, std::vector<std::vector<double>>& query,
+                       std::uint64_t seed) {
+  const std::size_t n = query.empty() ? 0 : query[0].size();
+  const auto u = [&](std::size_t i, std::uint64_t d) {
+    return counter_uniform<double>(seed, i, d);
+  };
+  const auto sphere = [&](std::size_t i, std::uint64_t d) {
+    const double z = 2 * u(i, d) - 1, phi = 2 * kPiD * u(i, d + 1);
+    const double r = std::sqrt(std::max(0.0, 1 - z * z));
+    return Vec3<double>{r * std::cos(phi), r * std::sin(phi), z};
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    if (needs & kNeedsFootprint) {
+      const bool origin = u(i, 0) < 0.05;
+      query[0][i] = origin ? 0.0 : 4 * u(i, 1);
+      query[1][i] = origin ? 0.0 : 4 * u(i, 2);
+      const double area = u(i, 3) < 0.04 ? 0.0 : std::pow(10.0, -14 + 12 * u(i, 4));
+      const double t = std::pow(10.0, 2 * u(i, 5) - 1);  // aspect 1:10 .. 10:1
+      const double a = 2 * kPiD * u(i, 6), b = a + 0.2 + 2.7 * u(i, 7);
+      const double s2 = area / (t * std::abs(std::sin(b - a)));
+      const double s1 = std::sqrt(s2);
+      query[2][i] = s1 * std::cos(a);
+      query[3][i] = s1 * std::sin(a);
+      query[4][i] = s1 * t * std::cos(b);
+      query[5][i] = s1 * t * std::sin(b);
+    }
+    if (needs & (kNeedsPointLight | kNeedsAreaLight)) {
+      query[12][i] = u(i, 8) < 0.2 ? 1.0 : std::cos(std::pow(10.0, -4 + 3.7 * u(i, 9)));
+    }
+    if (needs & kNeedsPixelCorners) {
+      const Vec3<double> l{query[9][i], query[10][i], query[11][i]};
+      const OrthonormalBasis<double> f = basis_from_z(l);
+      const double kind = u(i, 10);
+      std::array<Vec3<double>, 4> r{};
+      if (kind < 0.8) {
+        const double h = std::pow(10.0, -4 + 3.5 * u(i, 11));
+        const double shift = 3 * h * u(i, 12), phi = 2 * kPiD * u(i, 13);
+        const double sx[4] = {-1, 1, -1, 1}, sy[4] = {-1, -1, 1, 1};
+        for (std::size_t c = 0; c < 4; ++c) {
+          const double x = shift * std::cos(phi) + h * (sx[c] + 0.6 * (u(i, 14 + 2 * c) - 0.5));
+          const double y = shift * std::sin(phi) + h * (sy[c] + 0.6 * (u(i, 15 + 2 * c) - 0.5));
+          r[c] = normalize(l + x * f.x + y * f.y);
+        }
+      } else if (kind < 0.85) {
+        r = {l, l, l, l};
+      } else if (kind < 0.9) {
+        const Vec3<double> d = sphere(i, 22);
+        r = {d, d, d, d};
+      } else {
+        for (std::size_t c = 0; c < 4; ++c) r[c] = sphere(i, 24 + 2 * c);
+      }
+      for (std::size_t c = 0; c < 4; ++c) {
+        query[14 + 3 * c][i] = r[c].x;
+        query[15 + 3 * c][i] = r[c].y;
+        query[16 + 3 * c][i] = r[c].z;
+      }
+    }
+  }
 }
 
 }  // namespace glintlab::simd

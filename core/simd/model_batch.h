@@ -32,6 +32,14 @@ inline constexpr std::array<std::string_view, 14> kQueryColumns = {"u",
                                                                    "light_intensity"};
 // The default of each query column where a model does not need it.
 inline constexpr std::array<double, 14> kQueryDefaults = {0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 1, 1, 1};
+// The footprint's four corner reflection vectors (core/model.h FootprintQuery::corner_r, for the
+// kNeedsPixelCorners models), corner k at columns 3k..3k+2: optional columns after the query
+// columns. A query of kQueryColumns.size() + kCornerColumns.size() columns carries them; one of
+// kQueryColumns.size() columns leaves them zero.
+inline constexpr std::array<std::string_view, 12> kCornerColumns = {
+    "r0_x", "r0_y", "r0_z", "r1_x", "r1_y", "r1_z", "r2_x", "r2_y", "r2_z", "r3_x", "r3_y", "r3_z"};
+inline constexpr std::size_t kQueryColumnsWithCorners =
+    kQueryColumns.size() + kCornerColumns.size();
 // eval_batch writes value, pdf, then the model's intermediates (ModelEntry::intermediates).
 // sample_batch writes these (ModelSample: wo, its pdf, the weight value/pdf, rejected as 1 or 0).
 inline constexpr std::array<std::string_view, 6> kSampleColumns = {"wo_x", "wo_y",   "wo_z",
@@ -41,7 +49,8 @@ inline constexpr std::array<std::string_view, 6> kSampleColumns = {"wo_x", "wo_y
 // below run the entry's double-precision thunks row by row (any ISA argument gives that result).
 bool is_batched(const ModelEntry& model);
 
-// outputs[k][i] for row i < n of the queries (query: kQueryColumns.size() columns, stride 0 or 1),
+// outputs[k][i] for row i < n of the queries (query: kQueryColumns.size() columns, or
+// kQueryColumnsWithCorners with the corner reflection vectors; stride 0 or 1),
 // with the parameter values `params` (ModelEntry::params order, as resolve_params returns them)
 // for every row; outputs: 2 + model.intermediates.size() columns. Throws std::invalid_argument
 // on wrong column counts or parameter count, Math::kFast with double, or an ISA this CPU lacks.

@@ -51,15 +51,20 @@ void check_call(const char* what, const ModelEntry& model, std::size_t n_params,
     throw std::invalid_argument(fmt::format("{}: model {} takes {} parameter values, got {}", what,
                                             model.name, model.params.size(), n_params));
   }
-  if (query.size() != kQueryColumns.size() || n_out != want_out) {
-    throw std::invalid_argument(
-        fmt::format("{}: model {} takes {} query and {} output columns, got {} and {}", what,
-                    model.name, kQueryColumns.size(), want_out, query.size(), n_out));
+  if ((query.size() != kQueryColumns.size() && query.size() != kQueryColumnsWithCorners) ||
+      n_out != want_out) {
+    throw std::invalid_argument(fmt::format(
+        "{}: model {} takes {} (or {} with the corner vectors) query and {} output columns, got {} "
+        "and {}",
+        what, model.name, kQueryColumns.size(), kQueryColumnsWithCorners, want_out, query.size(),
+        n_out));
   }
   for (std::size_t j = 0; j < query.size(); ++j) {
     if (query[j].stride > 1) {
-      throw std::invalid_argument(fmt::format("{}: query column {} has stride {} (valid: 0 or 1)",
-                                              what, kQueryColumns[j], query[j].stride));
+      throw std::invalid_argument(fmt::format(
+          "{}: query column {} has stride {} (valid: 0 or 1)", what,
+          j < kQueryColumns.size() ? kQueryColumns[j] : kCornerColumns[j - kQueryColumns.size()],
+          query[j].stride));
     }
   }
   if (!isa_supported(isa)) {
@@ -72,13 +77,24 @@ void check_call(const char* what, const ModelEntry& model, std::size_t n_params,
   }
 }
 
+// The query padded to kQueryColumnsWithCorners columns (zero corners where the caller gave none).
+template <class S>
+std::array<Column<S>, kQueryColumnsWithCorners> full_query(std::span<const Column<S>> q) {
+  static constexpr S kZero = 0;
+  std::array<Column<S>, kQueryColumnsWithCorners> r;
+  for (std::size_t j = 0; j < r.size(); ++j) r[j] = j < q.size() ? q[j] : Column<S>{&kZero, 0};
+  return r;
+}
+
 template <class S>
 ModelQuery<double> query_row(std::span<const Column<S>> q, std::size_t i) {
-  double v[kQueryColumns.size()];
-  for (std::size_t j = 0; j < kQueryColumns.size(); ++j)
+  double v[kQueryColumnsWithCorners];
+  for (std::size_t j = 0; j < kQueryColumnsWithCorners; ++j)
     v[j] = static_cast<double>(q[j].data[q[j].stride * i]);
   ModelQuery<double> r;
   r.footprint = {{v[0], v[1]}, {v[2], v[3]}, {v[4], v[5]}};
+  for (std::size_t k = 0; k < 4; ++k)
+    r.footprint.corner_r[k] = {v[14 + 3 * k], v[15 + 3 * k], v[16 + 3 * k]};
   r.wi = {v[6], v[7], v[8]};
   r.wo = {v[9], v[10], v[11]};
   r.light = {v[12], v[13]};
@@ -91,21 +107,22 @@ void eval_any(const ModelEntry& model, std::span<const double> params,
               Math math) {
   check_call<S>("eval_batch", model, params.size(), query, outputs.size(),
                 2 + model.intermediates.size(), isa, math);
+  const auto q = full_query(query);
   const int m = batched_index(model);
   if (m >= 0) {
     const detail::ModelFns& f = model_table(isa)[m];
     if constexpr (std::is_same_v<S, float>) {
-      (math == Math::kFast ? f.eval_fast_float : f.eval_float)(params.data(), query.data(),
+      (math == Math::kFast ? f.eval_fast_float : f.eval_float)(params.data(), q.data(),
                                                                outputs.data(), n);
     } else {
-      f.eval_double(params.data(), query.data(), outputs.data(), n);
+      f.eval_double(params.data(), q.data(), outputs.data(), n);
     }
     return;
   }
   // Not batched: the entry's double thunks, row by row.
   const std::vector<double> values(params.begin(), params.end());
   for (std::size_t i = 0; i < n; ++i) {
-    const ErasedEval e = model.eval(values, query_row(query, i));
+    const ErasedEval e = model.eval(values, query_row<S>(q, i));
     outputs[0][i] = static_cast<S>(e.value);
     outputs[1][i] = static_cast<S>(e.pdf);
     for (std::size_t k = 0; k < model.intermediates.size(); ++k)
@@ -122,15 +139,16 @@ void sample_any(const ModelEntry& model, std::span<const double> params,
   if (u1.stride > 1 || u2.stride > 1) {
     throw std::invalid_argument("sample_batch: uniform columns have stride 0 or 1");
   }
+  const auto q = full_query(query);
   const int m = batched_index(model);
   if (m >= 0) {
     const detail::ModelFns& f = model_table(isa)[m];
     const Column<S> u[2] = {u1, u2};
     if constexpr (std::is_same_v<S, float>) {
-      (math == Math::kFast ? f.sample_fast_float : f.sample_float)(params.data(), query.data(), u,
+      (math == Math::kFast ? f.sample_fast_float : f.sample_float)(params.data(), q.data(), u,
                                                                    outputs.data(), n);
     } else {
-      f.sample_double(params.data(), query.data(), u, outputs.data(), n);
+      f.sample_double(params.data(), q.data(), u, outputs.data(), n);
     }
     return;
   }
@@ -138,7 +156,7 @@ void sample_any(const ModelEntry& model, std::span<const double> params,
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2<double> u{static_cast<double>(u1.data[u1.stride * i]),
                          static_cast<double>(u2.data[u2.stride * i])};
-    const ModelSample<double> s = model.sample(values, query_row(query, i), u);
+    const ModelSample<double> s = model.sample(values, query_row<S>(q, i), u);
     const double row[6] = {s.wo.x, s.wo.y, s.wo.z, s.pdf, s.weight, s.rejected ? 1.0 : 0.0};
     for (std::size_t k = 0; k < 6; ++k) outputs[k][i] = static_cast<S>(row[k]);
   }

@@ -27,7 +27,9 @@ GLINTLAB_FN void store_rows(S* out, std::size_t i, std::size_t count, const W& w
   for (std::size_t l = 0; l < count; ++l) out[i + l] = tmp[l];
 }
 
-template <class W, class S>
+// q: kQueryColumnsWithCorners columns (model_dispatch.cpp pads a query without corners with zero
+// columns); the corners are loaded only for the models that read them.
+template <class W, bool kCorners, class S>
 GLINTLAB_FN ModelQuery<W> load_query(const Column<S>* q, std::size_t i, std::size_t count) {
   W c[kQueryColumns.size()];
   for (std::size_t j = 0; j < kQueryColumns.size(); ++j) c[j] = load_column<W>(q[j], i, count);
@@ -36,8 +38,20 @@ GLINTLAB_FN ModelQuery<W> load_query(const Column<S>* q, std::size_t i, std::siz
   r.wi = {c[6], c[7], c[8]};
   r.wo = {c[9], c[10], c[11]};
   r.light = {c[12], c[13]};
+  if constexpr (kCorners) {
+    const Column<S>* rc = q + kQueryColumns.size();
+    for (std::size_t k = 0; k < 4; ++k)
+      r.footprint.corner_r[k] = {load_column<W>(rc[3 * k], i, count),
+                                 load_column<W>(rc[3 * k + 1], i, count),
+                                 load_column<W>(rc[3 * k + 2], i, count)};
+  } else {
+    for (std::size_t k = 0; k < 4; ++k) r.footprint.corner_r[k] = {W(0), W(0), W(0)};
+  }
   return r;
 }
+
+template <class M>
+inline constexpr bool kReadsCorners = (M::kNeeds & kNeedsPixelCorners) != 0;
 
 template <class M, class W, class S>
 void run_model_eval(const double* params, const Column<S>* query, S* const* outputs,
@@ -47,7 +61,7 @@ void run_model_eval(const double* params, const Column<S>* query, S* const* outp
   const auto p = M::template params<W>(std::span<const double>(params, M::kParams.size()));
   for (std::size_t i = 0; i < n; i += kL) {
     const std::size_t count = n - i < kL ? n - i : kL;
-    const auto r = M::template eval<W>(p, load_query<W>(query, i, count));
+    const auto r = M::template eval<W>(p, load_query<W, kReadsCorners<M>>(query, i, count));
     store_rows(outputs[0], i, count, r.value);
     store_rows(outputs[1], i, count, r.pdf);
     for (std::size_t k = 0; k < r.intermediates.size(); ++k)
@@ -63,7 +77,8 @@ void run_model_sample(const double* params, const Column<S>* query, const Column
   for (std::size_t i = 0; i < n; i += kL) {
     const std::size_t count = n - i < kL ? n - i : kL;
     const Vec2<W> uv{load_column<W>(u[0], i, count), load_column<W>(u[1], i, count)};
-    const ModelSample<W> s = M::template sample<W>(p, load_query<W>(query, i, count), uv);
+    const ModelSample<W> s =
+        M::template sample<W>(p, load_query<W, kReadsCorners<M>>(query, i, count), uv);
     store_rows(outputs[0], i, count, s.wo.x);
     store_rows(outputs[1], i, count, s.wo.y);
     store_rows(outputs[2], i, count, s.wo.z);

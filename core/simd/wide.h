@@ -196,6 +196,7 @@ GLINTLAB_RAW_UNARY(tan, tan)
 GLINTLAB_RAW_UNARY(atan, atan)
 GLINTLAB_RAW_UNARY(acos, acos)
 GLINTLAB_RAW_UNARY(acosh, acosh)
+GLINTLAB_RAW_UNARY(floor, floor)
 #undef GLINTLAB_RAW_UNARY
 
 template <class S>
@@ -390,6 +391,7 @@ GLINTLAB_WIDE_UNARY(tan)
 GLINTLAB_WIDE_UNARY(atan)
 GLINTLAB_WIDE_UNARY(acos)
 GLINTLAB_WIDE_UNARY(acosh)
+GLINTLAB_WIDE_UNARY(floor)
 #undef GLINTLAB_WIDE_UNARY
 
 // The ops a policy may replace (see ExactMath/FastMath above).
@@ -424,3 +426,5 @@ GLINTLAB_FN Wide<B, M> rsqrt(Wide<B, M> x) {
 }
 
 }  // namespace glintlab
+
+#include "core/simd/wide_lanes.h"  // per-lane access for the counter RNG and gathers

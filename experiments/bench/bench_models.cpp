@@ -4,6 +4,7 @@
 // model/<name>/entry/<op> for the thunk loop.
 #include <benchmark/benchmark.h>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -17,27 +18,33 @@ namespace {
 
 constexpr std::size_t kRows = 4096;
 
-// kRows queries over the edge-case generator's wi, wo and uniforms (core/simd/inputs.h).
+// kRows queries over the edge-case generator's wi, wo and uniforms, and the scene columns the
+// model reads (footprint, light cone, corner vectors: add_scene_columns, core/simd/inputs.h).
 struct Queries {
-  std::vector<std::vector<double>> query;  // kQueryColumns.size() columns
+  std::vector<std::vector<double>> query;  // kQueryColumnsWithCorners columns
   std::vector<double> u1, u2;
 };
 
-const Queries& queries() {
-  static const Queries q = [] {
-    using D = Domain;
-    const std::vector<int> domains = {int(D::kWiX), int(D::kWiY), int(D::kWiZ), int(D::kWoX),
-                                      int(D::kWoY), int(D::kWoZ), int(D::kU1),  int(D::kU2)};
-    const auto in = make_inputs(domains, kRows, 0x62656e6368ULL);
-    Queries r;
-    for (std::size_t j = 0; j < kQueryColumns.size(); ++j)
-      r.query.emplace_back(kRows, kQueryDefaults[j]);
-    for (std::size_t j = 0; j < 6; ++j) r.query[6 + j] = in[j];
-    r.u1 = in[6];
-    r.u2 = in[7];
-    return r;
-  }();
-  return q;
+Queries make_queries(unsigned needs) {
+  using D = Domain;
+  const std::vector<int> domains = {int(D::kWiX), int(D::kWiY), int(D::kWiZ), int(D::kWoX),
+                                    int(D::kWoY), int(D::kWoZ), int(D::kU1),  int(D::kU2)};
+  const auto in = make_inputs(domains, kRows, 0x62656e6368ULL);
+  Queries r;
+  for (std::size_t j = 0; j < kQueryColumnsWithCorners; ++j)
+    r.query.emplace_back(kRows, j < kQueryColumns.size() ? kQueryDefaults[j] : 0.0);
+  for (std::size_t j = 0; j < 6; ++j) r.query[6 + j] = in[j];
+  r.u1 = in[6];
+  r.u2 = in[7];
+  add_scene_columns(needs, r.query, 0x7363656e65ULL);
+  return r;
+}
+
+const Queries& queries(const ModelEntry& m) {
+  static std::map<unsigned, Queries> cache;
+  auto it = cache.find(m.needs);
+  if (it == cache.end()) it = cache.emplace(m.needs, make_queries(m.needs)).first;
+  return it->second;
 }
 
 std::vector<double> defaults(const ModelEntry& m) {
@@ -47,15 +54,19 @@ std::vector<double> defaults(const ModelEntry& m) {
 }
 
 void bm_entry(benchmark::State& state, const ModelEntry* m, bool sample) {
-  const Queries& q = queries();
+  const Queries& q = queries(*m);
   const std::vector<double> params = defaults(*m);
   double sink = 0;
   for (auto _ : state) {
     for (std::size_t i = 0; i < kRows; ++i) {
       ModelQuery<double> mq{};
-      mq.wi = {q.query[6][i], q.query[7][i], q.query[8][i]};
-      mq.wo = {q.query[9][i], q.query[10][i], q.query[11][i]};
-      mq.light = {1, 1};
+      const auto c = [&](std::size_t j) { return q.query[j][i]; };
+      mq.footprint = {{c(0), c(1)}, {c(2), c(3)}, {c(4), c(5)}};
+      for (std::size_t k = 0; k < 4; ++k)
+        mq.footprint.corner_r[k] = {c(14 + 3 * k), c(15 + 3 * k), c(16 + 3 * k)};
+      mq.wi = {c(6), c(7), c(8)};
+      mq.wo = {c(9), c(10), c(11)};
+      mq.light = {c(12), c(13)};
       sink += sample ? m->sample(params, mq, {q.u1[i], q.u2[i]}).weight : m->eval(params, mq).value;
     }
     benchmark::DoNotOptimize(sink);
@@ -65,7 +76,7 @@ void bm_entry(benchmark::State& state, const ModelEntry* m, bool sample) {
 
 template <class S>
 void bm_batch(benchmark::State& state, const ModelEntry* m, Isa isa, bool sample) {
-  const Queries& q = queries();
+  const Queries& q = queries(*m);
   const std::vector<double> params = defaults(*m);
   std::vector<std::vector<S>> cols_data;
   for (const auto& c : q.query) cols_data.emplace_back(c.begin(), c.end());

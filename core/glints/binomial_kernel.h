@@ -1,0 +1,168 @@
+// The exact Binomial(n, p) draw of core/glints/binomial.h (binomial_exact: inverse CDF for n·p <
+// 10, Hörmann 1993 BTRS otherwise) as a kernel on any float type: masked loops that run while any
+// lane is still drawing, every lane on its own counter-RNG index, so that each lane gets exactly
+// the count binomial_exact draws for it (the same uniforms, the same double-precision steps).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "core/math/lanes.h"
+#include "core/math/ops.h"
+#include "core/math/rng.h"
+
+namespace glintlab {
+
+// Iteration bounds of the masked loops. Inversion: for n·p < 10 (p ≤ ½) the host loop stops by
+// k ≈ n·p + 60 at the latest (the pmf falls below 1e-18 of the CDF there; for p near ½, n < 20),
+// so 256 steps are never the binding limit. BTRS: an attempt is accepted with probability above
+// ~0.8 (Hörmann 1993, Table 1), so 128 attempts are all rejected with probability < 1e-80; a lane
+// that did reach the bound would keep its last in-range candidate.
+inline constexpr int kBinomialInversionMaxSteps = 256;
+inline constexpr int kBinomialBtrsMaxAttempts = 128;
+
+namespace detail {
+
+// log k! for k = 0..15 as the host's log_factorial computes it there (std::lgamma(k + 1)), so a
+// gather gives the very values. Defined once in binomial_kernel.cpp (an inline variable with a
+// dynamic initializer would give every ISA object a shared weak guard symbol).
+extern const std::array<double, 16> kLogFactorialTable;
+
+// Stirling's series of log_factorial (A&S 6.1.41), in its operation order.
+template <class D>
+GLINTLAB_FN D stirling_log_factorial(D k) {
+  const D x = k + D(1), ix = D(1) / x, ix2 = ix * ix;
+  return (x - D(0.5)) * log(x) - x + D(0.91893853320467274178) +
+         ix * (D(1.0 / 12) - ix2 * (D(1.0 / 360) - ix2 * D(1.0 / 1260)));
+}
+
+// log_factorial on lanes: the table below 16, Stirling above (both computed, one selected).
+template <class D>
+GLINTLAB_FN D log_factorial_lanes(D k) {
+  const D small = lane_gather(kLogFactorialTable.data(), clamp(k, D(0), D(15)));
+  return select(k < D(16), small, stirling_log_factorial(k));
+}
+
+template <class D>
+GLINTLAB_FN D stirling_correction(D x) {
+  const D ix = D(1) / x, ix2 = ix * ix;
+  return ix * (D(1.0 / 12) - ix2 * (D(1.0 / 360) - ix2 * D(1.0 / 1260)));
+}
+
+// log_factorial_ratio on lanes (the differenced Stirling form where both are ≥ 16).
+template <class D>
+GLINTLAB_FN D log_factorial_ratio_lanes(D a, D b) {
+  const D xa = a + D(1), xb = b + D(1), d = a - b;
+  const D big = d * log(xa) + (xb - D(0.5)) * log1p(d / xb) - d + stirling_correction(xa) -
+                stirling_correction(xb);
+  return select(a < D(16) || b < D(16), log_factorial_lanes(a) - log_factorial_lanes(b), big);
+}
+
+// detail::binomial_inversion on the lanes of `active` (n·p < 10, p ≤ ½; others keep k = 0).
+template <class D>
+GLINTLAB_FN D binomial_inversion_lanes(D nd, D p, D u, Mask<D> active) {
+  const D q = D(1) - p, r = p / q;
+  D f = exp(nd * log1p(-p));
+  D cdf = f;
+  D k = D(0);
+  Mask<D> running = active;
+  for (int it = 0; it < kBinomialInversionMaxSteps; ++it) {
+    const Mask<D> step = running && (u > cdf) && (k < nd);
+    if (!any_lane<D>(step)) break;  // uniform: no lane is still stepping
+    const D f1 = f * ((nd - k) / (k + D(1)) * r);
+    const D k1 = k + D(1);
+    const D c1 = cdf + f1;
+    f = select(step, f1, f);
+    k = select(step, k1, k);
+    cdf = select(step, c1, cdf);
+    const Mask<D> stop = (k > nd * p + D(1)) && (f < D(1e-18) * cdf);
+    running = step && !stop;
+  }
+  return k;
+}
+
+// detail::binomial_btrs on the lanes of `active` (n·p ≥ 10, p ≤ ½): attempt j reads dims 2j and
+// 2j + 1 of each lane's index, as the host loop does; a lane stops at its first acceptance.
+template <class D>
+GLINTLAB_FN D binomial_btrs_lanes(D nd, D p, std::uint64_t seed, const RngIndex<D>& index,
+                                  Mask<D> active) {
+  const D q = D(1) - p;
+  const D spq = sqrt(nd * p * q);
+  const D b = D(1.15) + D(2.53) * spq;
+  const D a = D(-0.0873) + D(0.0248) * b + D(0.01) * p;
+  const D c = nd * p + D(0.5);
+  const D vr = D(0.92) - D(4.2) / b;
+  const D alpha = (D(2.83) + D(5.1) / b) * spq;
+  const D lpq = log(p / q);
+  const D m = floor((nd + D(1)) * p);
+  D result = m;
+  Mask<D> left = active;
+  for (int j = 0; j < kBinomialBtrsMaxAttempts && any_lane<D>(left); ++j) {
+    const D u = lane_uniform<D>(seed, index, 2 * std::uint64_t(j)) - D(0.5);
+    const D v = lane_uniform<D>(seed, index, 2 * std::uint64_t(j) + 1);
+    const D us = D(0.5) - abs(u);
+    const D kd = floor((D(2) * a / us + b) * u + c);
+    const Mask<D> in_range = !(kd < D(0) || kd > nd);
+    const Mask<D> squeeze = us >= D(0.07) && v <= vr;
+    const D lv = log(v * alpha / (a / (us * us) + b));
+    const D lr = log_factorial_ratio_lanes(m, kd) + log_factorial_ratio_lanes(nd - m, nd - kd) +
+                 (kd - m) * lpq;
+    const Mask<D> accept = left && in_range && (squeeze || lv <= lr);
+    result = select(accept, kd, result);
+    left = left && !accept;
+  }
+  return result;
+}
+
+// binomial_exact(n, p, seed, index) on a double type D: n integer-valued in [0, 2^53).
+template <class D>
+GLINTLAB_FN D binomial_exact_double_lanes(D nd, D p, std::uint64_t seed, const RngIndex<D>& index) {
+  const Mask<D> none = nd == D(0) || !(p > D(0));
+  const Mask<D> all_n = p >= D(1);
+  const Mask<D> live = !none && !all_n;
+  const Mask<D> flip = p > D(0.5);
+  const D pp = select(flip, D(1) - p, p);
+  const Mask<D> small = nd * pp < D(10);
+  const D k_inv = binomial_inversion_lanes(nd, pp, lane_uniform<D>(seed, index, 0), live && small);
+  const D k_btrs = binomial_btrs_lanes(nd, pp, seed, index, live && !small);
+  D k = select(small, k_inv, k_btrs);
+  k = select(flip, nd - k, k);
+  return select(none, D(0), select(all_n, nd, k));
+}
+
+}  // namespace detail
+
+// T(binomial_exact(uint64(n), double(p), seed, index of each lane)) in every lane, n a count
+// (integer-valued, ≥ 0): the lanes converted to double and drawn in the double batches of the
+// same ISA (LaneTraits::Double), parts of as many lanes as those hold.
+template <class T>
+GLINTLAB_FN T binomial_exact_lanes(T n, T p, std::uint64_t seed, const RngIndex<T>& index) {
+  using D = typename LaneTraits<T>::Double;
+  constexpr std::size_t kL = LaneTraits<T>::kLanes, kD = LaneTraits<D>::kLanes;
+  static_assert(kL % kD == 0);
+  alignas(64) Scalar<T> ns[kL], ps[kL], out[kL];
+  LaneTraits<T>::store(n, ns);
+  LaneTraits<T>::store(p, ps);
+  for (std::size_t part = 0; part < kL; part += kD) {
+    alignas(64) double nd[kD], pd[kD], kd[kD];
+    RngIndex<D> idx{};
+    for (std::size_t l = 0; l < kD; ++l) {
+      nd[l] = double(ns[part + l]);
+      pd[l] = double(ps[part + l]);
+      if constexpr (std::is_floating_point_v<D>) {
+        idx = rng_lane<T>(index, part + l);
+      } else {
+        idx[l] = rng_lane<T>(index, part + l);
+      }
+    }
+    const D k = detail::binomial_exact_double_lanes(LaneTraits<D>::load(nd),
+                                                    LaneTraits<D>::load(pd), seed, idx);
+    LaneTraits<D>::store(k, kd);
+    for (std::size_t l = 0; l < kD; ++l) out[part + l] = Scalar<T>(kd[l]);
+  }
+  return LaneTraits<T>::load(out);
+}
+
+}  // namespace glintlab
