@@ -37,6 +37,7 @@ const std::vector<FigureEntry>& registered_figures() {
       kemppinen2025_fig10_entry(),
       kemppinen2025_fig14_entry(),
       kemppinen2025_fig15_entry(),
+      kemppinen2025_fig7_entry(),
   };
   return kFigures;
 }
