@@ -291,7 +291,7 @@ void run_fig7(const FigureContext& ctx) {
                       .end_row();
             });
   io::write_png_preview(ctx.dir / "fig7_rmse_spp.png", loglog_chart(runs, b.max_spp));
-  io::write_png_preview(ctx.dir / "fig7_images.png", preview_montage(runs, 192 / b.size), 0.25);
+  io::write_png_preview(ctx.dir / "fig7_images.png", preview_montage(runs, 192 / b.size), 0.1);
   std::string md = fmt::format(
       "# {} — environment-light convergence (Kemppinen et al. 2025, Fig. 7)\n\n"
       "Glinty plane ({}×{} pixels, one level-0 cell per pixel, θ_v = {}°), α = {}, α★ = {}, "

@@ -983,7 +983,7 @@ ControlProbe probe_kemppinen_sampling() {
 ControlProbe probe_kemppinen_sampling_render(bool printed) {
   // GGX α = 0.2, α★ = 0.02, 1 cell, k = 4 (the quick budget's k = 4 rendered configuration).
   const RenderRow w =
-      run_render({{true, 0.2}, 0.02, 1, 2}, {2, 0, 2048, 128}, check_seed(kSampling, 900));
+      run_render({{true, 0.2}, 0.02, 1, 2}, {4, 0, 2048, 128}, check_seed(kSampling, 900));
   return {w.p_exact, printed ? w.p_printed : w.p_control, sidak_level(check_level(), 14), true};
 }
 
