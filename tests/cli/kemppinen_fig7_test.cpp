@@ -21,8 +21,8 @@ TEST_F(KemppinenFig7Test, ConvergenceUnderEnvironmentLight) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/" + id);
   for (const char* ndf : {"ggx", "beckmann"}) {
-    for (const std::string f : {"reference", "glinty_is_4spp", "glinty_is_printed_pdf_4spp",
-                                "smooth_ndf_is_4spp"}) {
+    for (const std::string f :
+         {"reference", "glinty_is_4spp", "glinty_is_printed_pdf_4spp", "smooth_ndf_is_4spp"}) {
       const io::ExrFile e = io::read_exr(d / (std::string(ndf) + "_" + f + ".exr"));
       EXPECT_EQ(e.attributes.at("glintlab_model"), std::string("kemppinen_") + ndf);
       EXPECT_TRUE(e.attributes.count("glintlab_seed"));
@@ -45,7 +45,7 @@ TEST_F(KemppinenFig7Test, ConvergenceUnderEnvironmentLight) {
   ASSERT_EQ(s.num_rows(), 6u);
   double rmse1[2][3] = {};
   for (std::size_t i = 0; i < s.num_rows(); ++i) {
-    const std::string strategy = s.text(i, s.column("strategy"));
+    const std::string strategy(s.text(i, s.column("strategy")));
     const int n = s.text(i, s.column("ndf")) == "ggx" ? 1 : 0;
     const int k = strategy == "glinty_is" ? 0 : strategy == "smooth_ndf_is" ? 2 : 1;
     rmse1[n][k] = s.number(i, s.column("rmse_at_1spp"));
