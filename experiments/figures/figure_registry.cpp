@@ -40,6 +40,7 @@ const std::vector<FigureEntry>& registered_figures() {
       kemppinen2025_fig15_entry(),
       kemppinen2025_table3_entry(),
       kemppinen2025_speed_accuracy_entry(),
+      kemppinen2025_fig7_entry(),
   };
   return kFigures;
 }

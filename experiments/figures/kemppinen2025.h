@@ -12,5 +12,6 @@ FigureEntry kemppinen2025_fig6_entry();    // Fig. 6: roulette vs linear MIP ble
 FigureEntry kemppinen2025_fig10_entry();   // Fig. 10: one sweep per parameter (Table 1)
 FigureEntry kemppinen2025_fig14_entry();   // Fig. 14: k = 4 vs 16; microroughness too high
 FigureEntry kemppinen2025_fig15_entry();   // Fig. 15: area-averaged white furnace over θo
+FigureEntry kemppinen2025_fig7_entry();    // Fig. 7: env-light convergence (kemppinen2025_fig7.cpp)
 
 }  // namespace glintlab::experiments

@@ -15,5 +15,9 @@ ControlProbe probe_kemppinen_roulette();
 // kemppinen.sampling-unbiased, one configuration: Welch p of the marginal-pdf estimate against
 // smooth-NDF sampling; control: the marginal density × 1.2.
 ControlProbe probe_kemppinen_sampling();
+// kemppinen.sampling-unbiased, the rendered estimate (GGX k = 4, 4 pixels, reduced counts): p of
+// the exact-mixture estimate against the stratified reference; control: the mixture density ×
+// 1.2, or (printed = true) the same samples with Algorithm 2's printed pdf in the mixture.
+ControlProbe probe_kemppinen_sampling_render(bool printed);
 
 }  // namespace glintlab::verify

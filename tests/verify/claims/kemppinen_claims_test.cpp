@@ -22,6 +22,13 @@ TEST(KemppinenClaims, Compensation) {
 }
 TEST(KemppinenClaims, Roulette) { expect_probe(probe_kemppinen_roulette(), "roulette"); }
 TEST(KemppinenClaims, Sampling) { expect_probe(probe_kemppinen_sampling(), "sampling"); }
+TEST(KemppinenClaims, SamplingRendered) {
+  expect_probe(probe_kemppinen_sampling_render(false), "rendered, control mixture pdf x 1.2");
+}
+// The finding, not a control: Algorithm 2's printed pdf biases the rendered estimate (~3x low).
+TEST(KemppinenClaims, SamplingRenderedPrintedPdfBiased) {
+  expect_probe(probe_kemppinen_sampling_render(true), "rendered, printed pdf");
+}
 
 TEST(KemppinenClaims, ConstantTimeAndControl) {
   for (const Check& c : registered_checks())
