@@ -3,6 +3,8 @@
 // instantiate on Wide<>.
 #pragma once
 
+#include "core/models/kemppinen_beckmann.h"
+#include "core/models/kemppinen_ggx.h"
 #include "core/models/smooth_beckmann.h"
 #include "core/models/smooth_ggx.h"
 
@@ -17,6 +19,6 @@ struct ModelList {
 // ISA translation unit then instantiates its eval, pdf and sample on that ISA's batches, and the
 // model equivalence tests (tests/simd/model_equivalence_test.cpp) and bench_models cover it. A
 // registered model that is not listed still works through the batch API, as a scalar loop.
-using BatchedModels = ModelList<SmoothGGX, SmoothBeckmann>;
+using BatchedModels = ModelList<SmoothGGX, SmoothBeckmann, KemppinenGGX, KemppinenBeckmann>;
 
 }  // namespace glintlab::simd
