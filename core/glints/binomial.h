@@ -11,7 +11,7 @@
 #include <type_traits>
 
 #include "core/glints/binomial_kernel.h"
-#include "core/math/lanes.h"
+#include "core/math/lane_rng.h"
 #include "core/math/ops.h"
 #include "core/math/rng.h"
 

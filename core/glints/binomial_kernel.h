@@ -9,7 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/math/lanes.h"
+#include "core/math/lane_rng.h"
 #include "core/math/ops.h"
 #include "core/math/rng.h"
 

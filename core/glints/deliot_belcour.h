@@ -14,7 +14,7 @@
 #include <type_traits>
 
 #include "core/glints/binomial.h"
-#include "core/math/lanes.h"
+#include "core/math/lane_rng.h"
 #include "core/model.h"
 #include "core/ndf/ggx.h"
 #include "core/ndf/microfacet.h"

@@ -20,8 +20,9 @@
 //   (Sec. 3.3.2). Both ⌊λ⌋ and ⌊λ⌋+1 are always visited (weight 1 − frac, frac), so the number of
 //   points visited is 2k² for every query (constant time).
 //
-// Cell indices are integers of the query, so the kernel takes scalar T (float, double); the
-// parameters it branches on (k, blending, erf, colours) are uniform, never per-lane values.
+// The kernel is generic over T (float, double, a SIMD batch): cell indices and MIP levels are
+// per-lane integers (core/math/lanes.h), per-lane choices are selects, and the parameters it
+// branches on (k, blending, erf, colours) are uniform, never per-lane values.
 #pragma once
 
 #include <cstdint>
@@ -66,7 +67,7 @@ struct KemppinenResult {
   Vec3<T> compensation_part;  // prefactor × Σ_l w_l E[c] C (Eq. 10)
   T smooth_d;                 // D(ω_h) of the base NDF
   T lambda, w0, w1;           // LOD λ and the weights of levels ⌊λ⌋ and ⌊λ⌋+1
-  int level0;
+  LaneInt<T, int> level0;
   int points;  // (spatial cell, angular cell) pairs visited
 };
 
@@ -178,10 +179,16 @@ GLINTLAB_FN KemppinenAngular<T> kemppinen_angular(const KemppinenParams<T>& p, c
   return {map_to_square(ndf, hs), {sigma / sa, sigma * sa}, d, prefactor, valid};
 }
 
+// 2^l per lane: the angular cells per axis at level l (Alg. 1 lines 9–10).
+template <class T>
+GLINTLAB_FN LaneInt<T> kemppinen_level_cells(const LaneInt<T, int>& level) {
+  return int_lanes<T>([&](std::size_t l) { return std::int64_t(1) << lane(level, l); });
+}
+
 // Cell side of the angular grid and of the spatial grid at level l (Alg. 1 lines 9–10).
 template <class T>
-GLINTLAB_FN T kemppinen_angular_resolution(int level) {
-  return T(std::int64_t(1) << level);
+GLINTLAB_FN T kemppinen_angular_resolution(const LaneInt<T, int>& level) {
+  return int_to_float<T>(kemppinen_level_cells<T>(level));
 }
 
 // ---- Algorithm 1 -----------------------------------------------------------------------------
@@ -190,31 +197,40 @@ GLINTLAB_FN T kemppinen_angular_resolution(int level) {
 // blend): adds the explicit points of B(k) in space × angle and the compensation (Eq. 10).
 template <class T>
 GLINTLAB_FN void kemppinen_level(const KemppinenParams<T>& p, const KemppinenAngular<T>& ang,
-                                 Vec2<T> x_s, const Sym2<T>& sigma_s, T res, int level, T w_l,
-                                 int process, Vec3<T>& explicit_sum, Vec3<T>& compensation) {
+                                 Vec2<T> x_s, const Sym2<T>& sigma_s, T res,
+                                 const LaneInt<T, int>& level, T w_l, int process,
+                                 Vec3<T>& explicit_sum, Vec3<T>& compensation) {
   const int n = p.side;
   const T res_a = kemppinen_angular_resolution<T>(level);
   const T res_s = res / res_a;
   const T inv_rho = T(1) / sqr(res);  // 1/(res_s² res_a²): one point per 4D cell
-  const std::int64_t n_a = std::int64_t(1) << level;
-  const std::int64_t sx0 = kemppinen_block_start(x_s.x * res_s, n);
-  const std::int64_t sy0 = kemppinen_block_start(x_s.y * res_s, n);
-  const std::int64_t ax0 = kemppinen_block_start(ang.x_a.x * res_a, n);
-  const std::int64_t ay0 = kemppinen_block_start(ang.x_a.y * res_a, n);
+  const LaneInt<T> n_a = kemppinen_level_cells<T>(level);
+  const LaneInt<T> sx0 = kemppinen_block_start(x_s.x * res_s, n);
+  const LaneInt<T> sy0 = kemppinen_block_start(x_s.y * res_s, n);
+  const LaneInt<T> ax0 = kemppinen_block_start(ang.x_a.x * res_a, n);
+  const LaneInt<T> ay0 = kemppinen_block_start(ang.x_a.y * res_a, n);
   const Sym2<T> sigma_a2{sqr(ang.sigma_a.x), T(0), sqr(ang.sigma_a.y)};
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
       for (int a = 0; a < n; ++a)
         for (int b = 0; b < n; ++b) {
-          const KemppinenCell c{sx0 + i, sy0 + j, ax0 + a, ay0 + b, level, process};
-          const std::uint64_t ci = kemppinen_cell_index(c);
-          const bool in_square = c.ax >= 0 && c.ax < n_a && c.ay >= 0 && c.ay < n_a;
+          const LaneInt<T> sx = sx0 + i, sy = sy0 + j, ax = ax0 + a, ay = ay0 + b;
+          const LaneInt<T, std::uint64_t> ci =
+              kemppinen_cell_index_lanes<T>(sx, sy, ax, ay, level, process);
+          const Mask<T> in_square = mask_lanes<T>([&](std::size_t l) {
+            return lane(ax, l) >= 0 && lane(ax, l) < lane(n_a, l) && lane(ay, l) >= 0 &&
+                   lane(ay, l) < lane(n_a, l);
+          });
           const Vec2<T> g_s{
-              (T(c.sx) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialX)) / res_s,
-              (T(c.sy) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialY)) / res_s};
+              (int_to_float<T>(sx) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialX)) /
+                  res_s,
+              (int_to_float<T>(sy) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialY)) /
+                  res_s};
           const Vec2<T> g_a{
-              (T(c.ax) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) / res_a,
-              (T(c.ay) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) / res_a};
+              (int_to_float<T>(ax) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) /
+                  res_a,
+              (int_to_float<T>(ay) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) /
+                  res_a};
           // Points outside U_Ω are rejected (Sec. 3.3.1).
           const Mask<T> in_disk = sqr(g_a.x - T(0.5)) + sqr(g_a.y - T(0.5)) <= T(0.25);
           const T r = kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimRoulette);
@@ -226,9 +242,10 @@ GLINTLAB_FN void kemppinen_level(const KemppinenParams<T>& p, const KemppinenAng
           explicit_sum = explicit_sum + select(in_disk && in_square, w, T(0)) * col;
         }
   // B(k) clipped to the square: the cells that exist.
-  const Vec2<T> b_lo{T(ax0 < 0 ? 0 : ax0) / res_a, T(ay0 < 0 ? 0 : ay0) / res_a};
-  const Vec2<T> b_hi{T(ax0 + n > n_a ? n_a : ax0 + n) / res_a,
-                     T(ay0 + n > n_a ? n_a : ay0 + n) / res_a};
+  const Vec2<T> b_lo{int_to_float<T>(int_max(ax0, std::int64_t(0))) / res_a,
+                     int_to_float<T>(int_max(ay0, std::int64_t(0))) / res_a};
+  const Vec2<T> b_hi{int_to_float<T>(int_min(ax0 + n, n_a)) / res_a,
+                     int_to_float<T>(int_min(ay0 + n, n_a)) / res_a};
   const T cmp =
       p.compensate ? kemppinen_compensation(ang.x_a, ang.sigma_a, b_lo, b_hi, p.erf) : T(0);
   compensation = compensation + (w_l * cmp) * kemppinen_expected_color<T>(p.colors);
@@ -246,7 +263,7 @@ GLINTLAB_FN KemppinenResult<T> kemppinen_eval_process(const KemppinenParams<T>& 
   const Sym2<T> sigma_s = kemppinen_spatial_covariance(p, fp, res);
   const T lambda = kemppinen_lod(sigma_s, res);
   const T fl = min(floor(lambda), T(kKemppinenMaxLevel - 1));
-  const int l0 = static_cast<int>(fl);
+  const LaneInt<T, int> l0 = floor_int<T, int>(fl);
   const T w1 = lambda - fl, w0 = T(1) - w1;
   Vec3<T> ex{T(0), T(0), T(0)}, cp{T(0), T(0), T(0)};
   kemppinen_level(p, ang, x_s, sigma_s, res, l0, w0 * process_w, process, ex, cp);
@@ -283,7 +300,7 @@ GLINTLAB_FN Vec3<T> kemppinen_triplanar_weights(Vec3<T> n_geo) {
 
 // The point process of each triplanar plane: ⊥ z is process 0, the uv process, so on a plane
 // ⊥ z at uv = (x, y) the triplanar glints are the uv glints; ⊥ x and ⊥ y are 1 and 2.
-inline constexpr int kKemppinenTriplanarProcess[3] = {1, 2, 0};
+constexpr int kKemppinenTriplanarProcess[3] = {1, 2, 0};
 
 // The footprint of triplanar plane `axis` (⊥ x, y, z) at object-space position `pos` with screen
 // derivatives dpos_dx, dpos_dy: uv = (p.y, p.z), (p.z, p.x), (p.x, p.y).
@@ -322,7 +339,7 @@ GLINTLAB_FN KemppinenResult<T> kemppinen_eval_triplanar(const KemppinenParams<T>
     out.lambda = select(heavier, r.lambda, out.lambda);
     out.w0 = select(heavier, r.w0, out.w0);
     out.w1 = select(heavier, r.w1, out.w1);
-    out.level0 = static_cast<int>(select(heavier, T(r.level0), T(out.level0)));
+    out.level0 = int_select<T>(heavier, r.level0, out.level0);
     w_best = max(w_best, w[i]);
   }
   out.d = out.explicit_part + out.compensation_part;

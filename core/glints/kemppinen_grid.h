@@ -2,12 +2,14 @@
 // [0,1)² (space, repeated over the plane) × [0,1)² (the angular square holding U_Ω), its random
 // numbers from a counter hash of the cell index, and the k-neighbouring cells of Algorithm 1.
 //
-// Cell indices are integers per query, so these helpers take scalar T (float, double): a SIMD
-// instantiation would need an integer-batch hash.
+// Cell indices are integers per query: on a SIMD batch they are per-lane integers (LaneInt of
+// core/math/lanes.h), hashed lane by lane with the same scalar code.
 #pragma once
 
 #include <cstdint>
 
+#include "core/math/lanes.h"
+#include "core/math/ops.h"
 #include "core/math/rng.h"
 #include "core/math/vec.h"
 
@@ -50,13 +52,31 @@ GLINTLAB_FN T kemppinen_cell_uniform(std::uint64_t seed, std::uint64_t cell_inde
                                      std::uint64_t dim) {
   return counter_uniform<T>(seed, cell_index, dim);
 }
+// The same for a batch: the cell index of each lane.
+template <class T, class I, std::size_t N>
+GLINTLAB_FN T kemppinen_cell_uniform(std::uint64_t seed, const IntLanes<I, N>& cell_index,
+                                     std::uint64_t dim) {
+  return float_lanes<T>(
+      [&](std::size_t l) { return counter_uniform<Scalar<T>>(seed, cell_index.v[l], dim); });
+}
+
+// kemppinen_cell_index of the cell (sx, sy, ax, ay, level, process) in every lane of T.
+template <class T, class C, class L>
+GLINTLAB_FN LaneInt<T, std::uint64_t> kemppinen_cell_index_lanes(const C& sx, const C& sy,
+                                                                 const C& ax, const C& ay,
+                                                                 const L& level, int process) {
+  return int_lanes<T, std::uint64_t>([&](std::size_t l) {
+    return kemppinen_cell_index(
+        KemppinenCell{lane(sx, l), lane(sy, l), lane(ax, l), lane(ay, l), lane(level, l), process});
+  });
+}
 
 // First cell index of the n consecutive cells closest to coordinate `x` (in cells) along one
 // axis: floor(x − (n − 1)/2). n odd: centred on the cell holding x; n even: the n cells whose
 // centre block is nearest x (the k-NeighbouringCells of Algorithm 1 lines 13–14, k = n²).
 template <class T>
-GLINTLAB_FN std::int64_t kemppinen_block_start(T x_cells, int n) {
-  return static_cast<std::int64_t>(floor(x_cells - T(0.5) * T(n - 1)));
+GLINTLAB_FN LaneInt<T> kemppinen_block_start(T x_cells, int n) {
+  return floor_int<T>(x_cells - T(0.5) * T(n - 1));
 }
 
 // The valid k of Algorithm 1 (Sec. 3.3.4): 1, 4, 9, 16 neighbours, i.e. blocks of side 1…4.

@@ -23,6 +23,11 @@
 // with R_B the cell-sized square of x_a that selects B, s_j = w★_j/∫_B N_j and W_B = Σ w★; in ω_h
 // times the true Jacobian of T (core/maps: map_jacobian_true). Samples landing outside U_Ω, or
 // with Σw★ = 0, are rejected (the density is defective by that probability).
+//
+// Generic over T (float, double, a SIMD batch): per-lane levels and cell indices are LaneInt
+// (core/math/lanes.h); a block keeps all k² candidates with a validity mask (the scalar code's
+// skipped cells contribute exact zeros); the reservoir choice is a masked running select; the
+// `if (!any_lane<T>(...))` early-outs are uniform (all lanes), never per-lane branches.
 #pragma once
 
 #include <array>
@@ -39,8 +44,9 @@ namespace glintlab {
 template <class T>
 struct KemppinenCandidate {
   Vec2<T> g_a, sigma;
-  T s;  // R(r, w_λ) N(Σ_s, x_s − g_s) Luminance(c): the weight before the lobe's mass
-  T m;  // ∫_B N_j
+  T s;            // R(r, w_λ) N(Σ_s, x_s − g_s) Luminance(c): the weight before the lobe's mass
+  T m;            // ∫_B N_j
+  Mask<T> valid;  // the cell is inside □ and its point inside U_Ω (else s = m = 0)
 };
 
 template <class T>
@@ -59,7 +65,7 @@ struct KemppinenSpatial {
   Vec2<T> x_s;
   Sym2<T> sigma_s;
   T res, lambda, w1;
-  int l0;
+  LaneInt<T, int> l0;
 };
 
 template <class T>
@@ -70,7 +76,7 @@ KemppinenSpatial<T> kemppinen_spatial(const KemppinenParams<T>& p, const Footpri
   s.sigma_s = kemppinen_spatial_covariance(p, fp, s.res);
   s.lambda = kemppinen_lod(s.sigma_s, s.res);
   const T fl = min(floor(s.lambda), T(kKemppinenMaxLevel - 1));
-  s.l0 = static_cast<int>(fl);
+  s.l0 = floor_int<T, int>(fl);
   s.w1 = s.lambda - fl;
   return s;
 }
@@ -88,43 +94,61 @@ Vec2<T> kemppinen_point_sigma(const KemppinenParams<T>& p, const Ndf& ndf, Vec2<
 // process `process` (0 = uv; the triplanar planes: kKemppinenTriplanarProcess).
 template <class Ndf, class T>
 void kemppinen_block(const KemppinenParams<T>& p, const Ndf& ndf, const KemppinenSpatial<T>& sp,
-                     int level, T w_l, std::int64_t ax0, std::int64_t ay0, KemppinenBlock<T>& out,
-                     int process = 0) {
+                     const LaneInt<T, int>& level, T w_l, const LaneInt<T>& ax0,
+                     const LaneInt<T>& ay0, KemppinenBlock<T>& out, int process = 0) {
   const int n = p.side;
   const T res_a = kemppinen_angular_resolution<T>(level);
   const T res_s = sp.res / res_a;
-  const std::int64_t n_a = std::int64_t(1) << level;
-  const std::int64_t sx0 = kemppinen_block_start(sp.x_s.x * res_s, n);
-  const std::int64_t sy0 = kemppinen_block_start(sp.x_s.y * res_s, n);
-  out.lo = {T(std::max<std::int64_t>(ax0, 0)) / res_a, T(std::max<std::int64_t>(ay0, 0)) / res_a};
-  out.hi = {T(std::min<std::int64_t>(ax0 + n, n_a)) / res_a,
-            T(std::min<std::int64_t>(ay0 + n, n_a)) / res_a};
+  const LaneInt<T> n_a = kemppinen_level_cells<T>(level);
+  const LaneInt<T> sx0 = kemppinen_block_start(sp.x_s.x * res_s, n);
+  const LaneInt<T> sy0 = kemppinen_block_start(sp.x_s.y * res_s, n);
+  out.lo = {int_to_float<T>(int_max(ax0, std::int64_t(0))) / res_a,
+            int_to_float<T>(int_max(ay0, std::int64_t(0))) / res_a};
+  out.hi = {int_to_float<T>(int_min(ax0 + n, n_a)) / res_a,
+            int_to_float<T>(int_min(ay0 + n, n_a)) / res_a};
   out.count = 0;
   out.total = T(0);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
       for (int a = 0; a < n; ++a)
         for (int b = 0; b < n; ++b) {
-          const KemppinenCell c{sx0 + i, sy0 + j, ax0 + a, ay0 + b, level, process};
-          const std::uint64_t ci = kemppinen_cell_index(c);
-          if (c.ax < 0 || c.ax >= n_a || c.ay < 0 || c.ay >= n_a) continue;
-          const Vec2<T> g_a{
-              (T(c.ax) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) / res_a,
-              (T(c.ay) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) / res_a};
-          if (sqr(g_a.x - T(0.5)) + sqr(g_a.y - T(0.5)) > T(0.25)) continue;
-          const Vec2<T> g_s{
-              (T(c.sx) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialX)) / res_s,
-              (T(c.sy) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialY)) / res_s};
-          const T r = kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimRoulette);
-          const T blend = p.blend == KemppinenBlend::kRoulette ? kemppinen_roulette(r, w_l) : w_l;
-          const Vec3<T> col =
-              kemppinen_color(p.colors, kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimColor));
+          const LaneInt<T> sx = sx0 + i, sy = sy0 + j, ax = ax0 + a, ay = ay0 + b;
+          const LaneInt<T, std::uint64_t> ci =
+              kemppinen_cell_index_lanes<T>(sx, sy, ax, ay, level, process);
           KemppinenCandidate<T> k;
-          k.g_a = g_a;
-          k.sigma = kemppinen_point_sigma(p, ndf, g_a);
-          k.s = blend * normal2(sp.x_s - g_s, sp.sigma_s) * kemppinen_luminance(col);
-          k.m = gaussian_rect_mass(out.lo, out.hi, g_a, k.sigma, KemppinenErf::kExact);
-          out.total += k.s * k.m;
+          k.valid = mask_lanes<T>([&](std::size_t l) {
+            return lane(ax, l) >= 0 && lane(ax, l) < lane(n_a, l) && lane(ay, l) >= 0 &&
+                   lane(ay, l) < lane(n_a, l);
+          });
+          k.g_a = {
+              (int_to_float<T>(ax) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) /
+                  res_a,
+              (int_to_float<T>(ay) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) /
+                  res_a};
+          k.valid = k.valid && (sqr(k.g_a.x - T(0.5)) + sqr(k.g_a.y - T(0.5)) <= T(0.25));
+          k.s = T(0);
+          k.m = T(0);
+          k.sigma = {T(0), T(0)};
+          if (any_lane<T>(k.valid)) {  // uniform: some lane has the point
+            const Vec2<T> g_s{(int_to_float<T>(sx) +
+                               kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialX)) /
+                                  res_s,
+                              (int_to_float<T>(sy) +
+                               kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialY)) /
+                                  res_s};
+            const T r = kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimRoulette);
+            const T blend = p.blend == KemppinenBlend::kRoulette ? kemppinen_roulette(r, w_l) : w_l;
+            const Vec3<T> col = kemppinen_color(
+                p.colors, kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimColor));
+            k.sigma = kemppinen_point_sigma(p, ndf, k.g_a);
+            k.s =
+                select(k.valid,
+                       blend * normal2(sp.x_s - g_s, sp.sigma_s) * kemppinen_luminance(col), T(0));
+            k.m = select(k.valid,
+                         gaussian_rect_mass(out.lo, out.hi, k.g_a, k.sigma, KemppinenErf::kExact),
+                         T(0));
+          }
+          out.total += k.s * k.m;  // invalid lanes add +0: the scalar sum is unchanged
           out.c[std::size_t(out.count++)] = k;
         }
 }
@@ -132,14 +156,16 @@ void kemppinen_block(const KemppinenParams<T>& p, const Ndf& ndf, const Kemppine
 // Σ_j s_j N_j(x) / W over a block: the density in the square of the sample given the block.
 template <class T>
 T kemppinen_block_density(const KemppinenBlock<T>& b, Vec2<T> x) {
-  if (!(b.total > T(0))) return T(0);
-  if (x.x < b.lo.x || x.x > b.hi.x || x.y < b.lo.y || x.y > b.hi.y) return T(0);
+  const Mask<T> inside =
+      (b.total > T(0)) && !(x.x < b.lo.x || x.x > b.hi.x || x.y < b.lo.y || x.y > b.hi.y);
+  if (!any_lane<T>(inside)) return T(0);
   T sum = T(0);
   for (int j = 0; j < b.count; ++j) {
     const KemppinenCandidate<T>& k = b.c[std::size_t(j)];
-    sum += k.s * normal2(x - k.g_a, Sym2<T>{sqr(k.sigma.x), T(0), sqr(k.sigma.y)});
+    const T t = k.s * normal2(x - k.g_a, Sym2<T>{sqr(k.sigma.x), T(0), sqr(k.sigma.y)});
+    sum += select(k.valid, t, T(0));
   }
-  return sum / b.total;
+  return select(inside, sum / b.total, T(0));
 }
 
 // One draw of the 1D normal N(m, s²) truncated to [lo, hi] by inverting its CDF with erf/erfinv.
@@ -157,8 +183,8 @@ struct KemppinenHalfSample {
   Vec3<T> h;            // ω_h = T⁻¹(x)
   T pdf_printed_h;      // Algorithm 2's pdf (lines 16–17, as read above), per steradian of ω_h
   T pdf_conditional_x;  // density in □ given x_a and the level
-  int level;
-  bool ok;  // false: Σw★ = 0 or x outside U_Ω (no direction)
+  LaneInt<T, int> level;
+  Mask<T> ok;  // false: Σw★ = 0 or x outside U_Ω (no direction)
 };
 
 // The random number `dim` of one sampler call keyed by `key`.
@@ -166,54 +192,79 @@ template <class T>
 T kemppinen_sampler_uniform(std::uint64_t key, std::uint64_t dim) {
   return counter_uniform<T>(key, 0x6b656d70ULL, dim);
 }
+// The same for a batch: the key of each lane.
+template <class T, class I, std::size_t N>
+T kemppinen_sampler_uniform(const IntLanes<I, N>& key, std::uint64_t dim) {
+  return float_lanes<T>(
+      [&](std::size_t l) { return counter_uniform<Scalar<T>>(key.v[l], 0x6b656d70ULL, dim); });
+}
 
 // Algorithm 2: one ω_h from D★^f of point process `process` at the footprint, random numbers
 // from `key`.
 template <class Ndf, class T>
 KemppinenHalfSample<T> kemppinen_sample_half(const KemppinenParams<T>& p, const Ndf& ndf,
-                                             const FootprintQuery<T>& fp, std::uint64_t key,
+                                             const FootprintQuery<T>& fp,
+                                             const LaneInt<T, std::uint64_t>& key,
                                              int process = 0) {
-  KemppinenHalfSample<T> out{};
+  const Mask<T> kNone = T(0) > T(1);
+  KemppinenHalfSample<T> out;
+  out.x = {T(0), T(0)};
+  out.h = {T(0), T(0), T(0)};
+  out.pdf_printed_h = T(0);
+  out.pdf_conditional_x = T(0);
+  out.ok = kNone;
   const KemppinenSpatial<T> sp = kemppinen_spatial(p, fp);
   // Line 2: uniform on the disk of radius ½ at (½, ½).
   const T ur = sqrt(kemppinen_sampler_uniform<T>(key, 0));
   const T phi = T(2) * T(kPi<T>) * kemppinen_sampler_uniform<T>(key, 1);
   const Vec2<T> x_a{T(0.5) + T(0.5) * ur * cos(phi), T(0.5) + T(0.5) * ur * sin(phi)};
   // Lines 4–6.
-  const bool up = kemppinen_sampler_uniform<T>(key, 2) < sp.w1;
-  out.level = sp.l0 + (up ? 1 : 0);
-  const T w_l = up ? sp.w1 : T(1) - sp.w1;
+  const Mask<T> up = kemppinen_sampler_uniform<T>(key, 2) < sp.w1;
+  out.level = sp.l0 + mask_to_int<T>(up);
+  const T w_l = select(up, sp.w1, T(1) - sp.w1);
   const T res_a = kemppinen_angular_resolution<T>(out.level);
   static thread_local KemppinenBlock<T> block;
   kemppinen_block(p, ndf, sp, out.level, w_l, kemppinen_block_start(x_a.x * res_a, p.side),
                   kemppinen_block_start(x_a.y * res_a, p.side), block, process);
-  if (!(block.total > T(0))) return out;
-  // Lines 13–15: keep point j with probability w★_j/Σw★.
+  const Mask<T> has = block.total > T(0);
+  if (!any_lane<T>(has)) return out;
+  // Lines 13–15: keep point j with probability w★_j/Σw★: the first j whose running sum exceeds
+  // the pick; where rounding leaves none, the last point of positive weight.
+  const auto select2 = [](const Mask<T>& m, Vec2<T> a, Vec2<T> b) {
+    return Vec2<T>{select(m, a.x, b.x), select(m, a.y, b.y)};
+  };
   const T pick = kemppinen_sampler_uniform<T>(key, 3) * block.total;
   T acc = T(0);
-  int chosen = block.count - 1;
+  Mask<T> found = kNone;
+  Vec2<T> hit_g = block.c[0].g_a, hit_sigma = block.c[0].sigma;
+  Vec2<T> last_g = hit_g, last_sigma = hit_sigma;
   for (int j = 0; j < block.count; ++j) {
-    acc += block.c[std::size_t(j)].s * block.c[std::size_t(j)].m;
-    if (pick < acc) {
-      chosen = j;
-      break;
-    }
+    const KemppinenCandidate<T>& c = block.c[std::size_t(j)];
+    acc += c.s * c.m;
+    const Mask<T> hit = !found && (pick < acc);
+    hit_g = select2(hit, c.g_a, hit_g);
+    hit_sigma = select2(hit, c.sigma, hit_sigma);
+    found = found || hit;
+    const Mask<T> positive = c.m * c.s > T(0);
+    last_g = select2(positive, c.g_a, last_g);
+    last_sigma = select2(positive, c.sigma, last_sigma);
   }
-  while (chosen > 0 && !(block.c[std::size_t(chosen)].m * block.c[std::size_t(chosen)].s > T(0)))
-    --chosen;
-  const KemppinenCandidate<T>& k = block.c[std::size_t(chosen)];
+  const Vec2<T> g = select2(found, hit_g, last_g), sigma = select2(found, hit_sigma, last_sigma);
   // Line 14: x ~ 1_B N_j.
-  out.x = {truncated_normal(block.lo.x, block.hi.x, k.g_a.x, k.sigma.x,
-                            kemppinen_sampler_uniform<T>(key, 4)),
-           truncated_normal(block.lo.y, block.hi.y, k.g_a.y, k.sigma.y,
-                            kemppinen_sampler_uniform<T>(key, 5))};
-  if (sqr(out.x.x - T(0.5)) + sqr(out.x.y - T(0.5)) > T(0.25)) return out;
-  out.h = map_from_square(ndf, out.x);
-  out.pdf_conditional_x = kemppinen_block_density(block, out.x);
+  const Vec2<T> x{
+      truncated_normal(block.lo.x, block.hi.x, g.x, sigma.x, kemppinen_sampler_uniform<T>(key, 4)),
+      truncated_normal(block.lo.y, block.hi.y, g.y, sigma.y, kemppinen_sampler_uniform<T>(key, 5))};
+  out.x = select2(has, x, out.x);
+  const Mask<T> in_disk = has && !(sqr(x.x - T(0.5)) + sqr(x.y - T(0.5)) > T(0.25));
+  if (!any_lane<T>(in_disk)) return out;
+  const Vec3<T> h = map_from_square(ndf, x);
+  const T pdf_x = kemppinen_block_density(block, x);
   const T area_b = (block.hi.x - block.lo.x) * (block.hi.y - block.lo.y);
-  out.pdf_printed_h =
-      out.pdf_conditional_x * area_b * map_jacobian_paper(ndf, out.h) * out.h.z * w_l;
-  out.ok = out.h.z > T(0);
+  const T pdf_printed = pdf_x * area_b * map_jacobian_paper(ndf, h) * h.z * w_l;
+  out.h = select(in_disk, h, out.h);
+  out.pdf_conditional_x = select(in_disk, pdf_x, T(0));
+  out.pdf_printed_h = select(in_disk, pdf_printed, T(0));
+  out.ok = in_disk && (h.z > T(0));
   return out;
 }
 
@@ -221,50 +272,67 @@ KemppinenHalfSample<T> kemppinen_sample_half(const KemppinenParams<T>& p, const 
 template <class Ndf, class T>
 T kemppinen_sample_density_square(const KemppinenParams<T>& p, const Ndf& ndf,
                                   const FootprintQuery<T>& fp, Vec2<T> x, int process = 0) {
-  if (sqr(x.x - T(0.5)) + sqr(x.y - T(0.5)) > T(0.25)) return T(0);
+  const Mask<T> in_disk = !(sqr(x.x - T(0.5)) + sqr(x.y - T(0.5)) > T(0.25));
+  if (!any_lane<T>(in_disk)) return T(0);
   const KemppinenSpatial<T> sp = kemppinen_spatial(p, fp);
   const int n = p.side;
   static thread_local KemppinenBlock<T> block;
   T total = T(0);
   for (int up = 0; up < 2; ++up) {
-    const int level = sp.l0 + up;
+    const LaneInt<T, int> level = sp.l0 + up;
     const T w_l = up ? sp.w1 : T(1) - sp.w1;
-    if (!(w_l > T(0))) continue;
+    const Mask<T> w_positive = w_l > T(0);
+    if (!any_lane<T>(w_positive)) continue;
     const T res_a = kemppinen_angular_resolution<T>(level);
-    const std::int64_t cx = static_cast<std::int64_t>(floor(x.x * res_a));
-    const std::int64_t cy = static_cast<std::int64_t>(floor(x.y * res_a));
-    for (std::int64_t bx = cx - n + 1; bx <= cx; ++bx)
-      for (std::int64_t by = cy - n + 1; by <= cy; ++by) {
+    const LaneInt<T> cx = floor_int<T>(x.x * res_a);
+    const LaneInt<T> cy = floor_int<T>(x.y * res_a);
+    for (int dx = 1 - n; dx <= 0; ++dx)
+      for (int dy = 1 - n; dy <= 0; ++dy) {
+        const LaneInt<T> bx = cx + dx, by = cy + dy;
         // x_a selects start b where x_a·res_a ∈ [b + (n−1)/2, b + (n+1)/2).
         const T half = T(0.5) * T(n - 1);
-        const T area = T(disk_rect_area(
-            double((T(bx) + half) / res_a), double((T(bx) + half + T(1)) / res_a),
-            double((T(by) + half) / res_a), double((T(by) + half + T(1)) / res_a), 0.5, 0.5, 0.5));
-        if (!(area > T(0))) continue;
+        const T fx = int_to_float<T>(bx) + half, fy = int_to_float<T>(by) + half;
+        const LanesOf<T> x0(fx / res_a), x1((fx + T(1)) / res_a), y0(fy / res_a),
+            y1((fy + T(1)) / res_a);
+        // The exact disk ∩ rectangle area (host scalar code, core/math/disk_rect_area.h), lane
+        // by lane.
+        const T area = float_lanes<T>([&](std::size_t l) {
+          return Scalar<T>(disk_rect_area(double(x0[l]), double(x1[l]), double(y0[l]),
+                                          double(y1[l]), 0.5, 0.5, 0.5));
+        });
+        const Mask<T> use = w_positive && (area > T(0));
+        if (!any_lane<T>(use)) continue;
         kemppinen_block(p, ndf, sp, level, w_l, bx, by, block, process);
-        total += w_l * area / T(kMapDomainArea<T>) * kemppinen_block_density(block, x);
+        total += select(use, w_l * area / T(kMapDomainArea<T>) * kemppinen_block_density(block, x),
+                        T(0));
       }
   }
-  return total;
+  return select(in_disk, total, T(0));
 }
 
 // The marginal density of ω_h per steradian: the density in □ at T(ω_h) times |det dT/dω|.
 template <class Ndf, class T>
 T kemppinen_sample_density_half(const KemppinenParams<T>& p, const Ndf& ndf,
                                 const FootprintQuery<T>& fp, Vec3<T> h, int process = 0) {
-  if (!(h.z > T(0))) return T(0);
-  return kemppinen_sample_density_square(p, ndf, fp, map_to_square(ndf, h), process) *
-         map_jacobian_true(ndf, h);
+  const Mask<T> up = h.z > T(0);
+  if (!any_lane<T>(up)) return T(0);
+  return select(up,
+                kemppinen_sample_density_square(p, ndf, fp, map_to_square(ndf, h), process) *
+                    map_jacobian_true(ndf, h),
+                T(0));
 }
 
 // A sampler key from the two uniforms of a model's sample(): their bit patterns hashed.
 template <class T>
-std::uint64_t kemppinen_key_from_uniforms(Vec2<T> u) {
-  const double a = double(u.x), b = double(u.y);
-  std::uint64_t ia = 0, ib = 0;
-  std::memcpy(&ia, &a, sizeof ia);
-  std::memcpy(&ib, &b, sizeof ib);
-  return mix64(mix64(ia + 0x9e3779b97f4a7c15ULL) ^ ib);
+LaneInt<T, std::uint64_t> kemppinen_key_from_uniforms(Vec2<T> u) {
+  const LanesOf<T> ux(u.x), uy(u.y);
+  return int_lanes<T, std::uint64_t>([&](std::size_t l) {
+    const double a = double(ux[l]), b = double(uy[l]);
+    std::uint64_t ia = 0, ib = 0;
+    std::memcpy(&ia, &a, sizeof ia);
+    std::memcpy(&ib, &b, sizeof ib);
+    return mix64(mix64(ia + 0x9e3779b97f4a7c15ULL) ^ ib);
+  });
 }
 
 }  // namespace glintlab

@@ -53,29 +53,45 @@ KemppinenResult<T> kemppinen_eval_triplanar(const KemppinenParams<T>& p, const N
 }
 
 // One ω_h: plane i with probability w_i (sampler dimension 6, unused by Algorithm 2's draws),
-// then Algorithm 2 on its process. pdf_printed_h carries the factor w_i.
+// then Algorithm 2 on its process. pdf_printed_h carries the factor w_i. Generic over T: the
+// plane is a mask per lane, and a plane's sampler runs when any lane chose it.
 template <class Ndf, class T>
 KemppinenHalfSample<T> kemppinen_triplanar_sample_half(const KemppinenParams<T>& p, const Ndf& ndf,
                                                        const KemppinenTriplanarInput<T>& in,
-                                                       std::uint64_t key) {
+                                                       const LaneInt<T, std::uint64_t>& key) {
   const Vec3<T> wv = kemppinen_triplanar_weights(in.normal);
   const T w[3] = {wv.x, wv.y, wv.z};
+  const Mask<T> nonempty[3] = {w[0] > T(0), w[1] > T(0), w[2] > T(0)};
   const T u = kemppinen_sampler_uniform<T>(key, 6);
-  int axis = 2;
+  // The first plane whose running sum of weights exceeds u; where rounding leaves u ≥ Σw, the
+  // last non-empty plane.
+  Mask<T> chosen[3];
+  Mask<T> found = T(0) > T(1);
   T acc = T(0);
   for (int i = 0; i < 3; ++i) {
     acc += w[i];
-    if (u < acc && w[i] > T(0)) {
-      axis = i;
-      break;
-    }
+    chosen[i] = !found && (u < acc) && nonempty[i];
+    found = found || chosen[i];
   }
-  while (axis > 0 && !(w[axis] > T(0))) --axis;  // rounding left u ≥ Σw: the last non-empty
-  KemppinenHalfSample<T> s = kemppinen_sample_half(
-      p, ndf, kemppinen_triplanar_footprint(axis, in.pos, in.dpos_dx, in.dpos_dy), key,
-      kKemppinenTriplanarProcess[axis]);
-  s.pdf_printed_h *= w[axis];
-  return s;
+  chosen[2] = chosen[2] || (!found && nonempty[2]);
+  chosen[1] = chosen[1] || (!found && !nonempty[2] && nonempty[1]);
+  chosen[0] = chosen[0] || (!found && !nonempty[2] && !nonempty[1]);
+  KemppinenHalfSample<T> out{};
+  for (int i = 0; i < 3; ++i) {
+    if (!any_lane<T>(chosen[i])) continue;
+    KemppinenHalfSample<T> s = kemppinen_sample_half(
+        p, ndf, kemppinen_triplanar_footprint(i, in.pos, in.dpos_dx, in.dpos_dy), key,
+        kKemppinenTriplanarProcess[i]);
+    s.pdf_printed_h *= w[i];
+    const Mask<T>& m = chosen[i];
+    out.x = {select(m, s.x.x, out.x.x), select(m, s.x.y, out.x.y)};
+    out.h = {select(m, s.h.x, out.h.x), select(m, s.h.y, out.h.y), select(m, s.h.z, out.h.z)};
+    out.pdf_printed_h = select(m, s.pdf_printed_h, out.pdf_printed_h);
+    out.pdf_conditional_x = select(m, s.pdf_conditional_x, out.pdf_conditional_x);
+    out.level = int_select<T>(m, s.level, out.level);
+    out.ok = (m && s.ok) || (!m && out.ok);
+  }
+  return out;
 }
 
 // The density of kemppinen_triplanar_sample_half's ω_h per steradian: Σ_i w_i p_i(ω_h).
@@ -86,10 +102,13 @@ T kemppinen_triplanar_density_half(const KemppinenParams<T>& p, const Ndf& ndf,
   const T w[3] = {wv.x, wv.y, wv.z};
   T sum = T(0);
   for (int i = 0; i < 3; ++i) {
-    if (!(w[i] > T(0))) continue;
-    sum += w[i] * kemppinen_sample_density_half(
-                      p, ndf, kemppinen_triplanar_footprint(i, in.pos, in.dpos_dx, in.dpos_dy), h,
-                      kKemppinenTriplanarProcess[i]);
+    const Mask<T> nonempty = w[i] > T(0);
+    if (!any_lane<T>(nonempty)) continue;
+    sum += select(nonempty,
+                  w[i] * kemppinen_sample_density_half(
+                             p, ndf, kemppinen_triplanar_footprint(i, in.pos, in.dpos_dx, in.dpos_dy),
+                             h, kKemppinenTriplanarProcess[i]),
+                  T(0));
   }
   return sum;
 }

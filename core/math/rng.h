@@ -10,15 +10,17 @@
 
 namespace glintlab {
 
-GLINTLAB_FN std::uint64_t mix64(std::uint64_t z) {
+[[gnu::always_inline]] GLINTLAB_FN std::uint64_t mix64(std::uint64_t z) {
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
   return z ^ (z >> 31);
 }
 
 // 64 random bits for (seed, index, dim); each counter goes through the mixer so that nearby
-// seeds, indices and dimensions give unrelated streams.
-GLINTLAB_FN std::uint64_t counter_bits(std::uint64_t seed, std::uint64_t index,
+// seeds, indices and dimensions give unrelated streams. Always inlined: the per-lane loops of the
+// ISA translation units (core/simd/isa_*.cpp) would otherwise each emit a weak copy compiled for
+// their ISA, and the linker may keep any one of them for every caller.
+[[gnu::always_inline]] GLINTLAB_FN std::uint64_t counter_bits(std::uint64_t seed, std::uint64_t index,
                                        std::uint64_t dim) {
   std::uint64_t h = mix64(seed + 0x9e3779b97f4a7c15ULL);
   h = mix64(h ^ (index + 0x632be59bd9b4e019ULL));
@@ -27,7 +29,7 @@ GLINTLAB_FN std::uint64_t counter_bits(std::uint64_t seed, std::uint64_t index,
 
 // Uniform in [0, 1) with the full mantissa of the type (24 bits for float, 53 for double).
 template <class T>
-GLINTLAB_FN T counter_uniform(std::uint64_t seed, std::uint64_t index, std::uint64_t dim) {
+[[gnu::always_inline]] GLINTLAB_FN T counter_uniform(std::uint64_t seed, std::uint64_t index, std::uint64_t dim) {
   constexpr int kBits = sizeof(T) == 4 ? 24 : 53;
   const std::uint64_t b = counter_bits(seed, index, dim) >> (64 - kBits);
   return T(b) * (T(1) / T(std::uint64_t(1) << kBits));

@@ -117,44 +117,51 @@ ModelEval<T, kKemppinenIntermediates.size()> kemppinen_model_eval(
   const T d = kemppinen_luminance(r.d);
   const T value = select(ok, g2 * d / (T(4) * select(ok, q.wi.z, T(1))), T(0));
   const T brdf = select(ok, value / select(ok, q.wo.z, T(1)), T(0));
-  return {
-      value,
-      pdf,
-      {d, kemppinen_luminance(r.explicit_part), kemppinen_luminance(r.compensation_part),
-       r.smooth_d, r.lambda, r.w0, r.w1, T(r.level0), T(r.points), r.d.x, r.d.y, r.d.z, g2, brdf}};
+  return {value,
+          pdf,
+          {d, kemppinen_luminance(r.explicit_part), kemppinen_luminance(r.compensation_part),
+           r.smooth_d, r.lambda, r.w0, r.w1, int_to_float<T>(r.level0), T(r.points), r.d.x, r.d.y,
+           r.d.z, g2, brdf}};
 }
 
 // pdf of ωo = reflect(ωi, ω_h) under Algorithm 2: the marginal density of ω_h / (4 |ωo·ω_h|).
+// (Generic over T: the early-outs are taken only when no lane needs the rest, and masked after.)
 template <class Ndf, class T>
 T kemppinen_model_pdf(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q) {
-  if (!(q.wi.z > T(0)) || !(q.wo.z > T(0))) return T(0);
+  const Mask<T> lit = (q.wi.z > T(0)) && (q.wo.z > T(0));
+  if (!any_lane<T>(lit)) return T(0);
   const Vec3<T> h = half_vector(q.wi, q.wo);
-  if (!(h.z > T(0)) || !(dot(q.wi, h) > T(0))) return T(0);
+  const Mask<T> ok = lit && (h.z > T(0)) && (dot(q.wi, h) > T(0));
+  if (!any_lane<T>(ok)) return T(0);
   const T d = p.triplanar ? kemppinen_triplanar_density_half(
                                 p.glint, p.ndf, kemppinen_triplanar_input(q.footprint, p.normal), h)
                           : kemppinen_sample_density_half(p.glint, p.ndf, q.footprint, h);
-  return d * reflection_jacobian(q.wo, h);
+  return select(ok, d * reflection_jacobian(q.wo, h), T(0));
 }
 
 template <class Ndf, class T>
 ModelSample<T> kemppinen_model_sample(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q,
                                       Vec2<T> u) {
-  const ModelSample<T> none{{T(0), T(0), T(0)}, T(0), T(0), true};
-  if (!(q.wi.z > T(0))) return none;
-  const std::uint64_t key = kemppinen_key_from_uniforms(u);
+  const ModelSample<T> none{{T(0), T(0), T(0)}, T(0), T(0), Mask<T>(true)};
+  const Mask<T> lit = q.wi.z > T(0);
+  if (!any_lane<T>(lit)) return none;
+  const LaneInt<T, std::uint64_t> key = kemppinen_key_from_uniforms(u);
   const KemppinenHalfSample<T> s =
       p.triplanar ? kemppinen_triplanar_sample_half(
                         p.glint, p.ndf, kemppinen_triplanar_input(q.footprint, p.normal), key)
                   : kemppinen_sample_half(p.glint, p.ndf, q.footprint, key);
-  if (!s.ok || !(dot(q.wi, s.h) > T(0))) return none;
+  const Mask<T> facing = lit && s.ok && (dot(q.wi, s.h) > T(0));
+  if (!any_lane<T>(facing)) return none;
   const Vec3<T> wo = reflect(q.wi, s.h);
-  if (!(wo.z > T(0))) return none;
+  const Mask<T> ok = facing && (wo.z > T(0));
+  if (!any_lane<T>(ok)) return none;
   ModelQuery<T> qo = q;
   qo.wo = wo;
   const T pdf =
       p.printed_pdf ? s.pdf_printed_h * reflection_jacobian(wo, s.h) : kemppinen_model_pdf(p, qo);
   const T value = kemppinen_model_eval(p, qo, pdf).value;
-  return {wo, pdf, pdf > T(0) ? value / pdf : T(0), false};
+  return {select(ok, wo, none.wo), select(ok, pdf, T(0)),
+          select(ok && (pdf > T(0)), value / pdf, T(0)), !ok};
 }
 
 }  // namespace glintlab::detail

@@ -77,7 +77,7 @@ GLINTLAB_FN T total_area_beckmann_eq31(T alpha) {
 // half, i = 0..15), computed by Newton iteration on P₃₂ in long double; tests check that the rule
 // integrates polynomials up to degree 63 exactly. Local tables so device code can use them too.
 inline constexpr int kGaussLegendre32Half = 16;
-GLINTLAB_FN double gauss_legendre32_node(int i) {
+[[gnu::always_inline]] GLINTLAB_FN double gauss_legendre32_node(int i) {
   constexpr double k[kGaussLegendre32Half] = {
       0.997263861849481563534, 0.985611511545268335400, 0.964762255587506430761,
       0.934906075937739689159, 0.896321155766052123971, 0.849367613732569970160,
@@ -87,7 +87,7 @@ GLINTLAB_FN double gauss_legendre32_node(int i) {
       0.048307665687738316236};
   return k[i];
 }
-GLINTLAB_FN double gauss_legendre32_weight(int i) {
+[[gnu::always_inline]] GLINTLAB_FN double gauss_legendre32_weight(int i) {
   constexpr double k[kGaussLegendre32Half] = {
       0.007018610009470096558, 0.016274394730905670577, 0.025392065309262059458,
       0.034273862913021433022, 0.042835898022226680608, 0.050998059262376176206,

@@ -6,6 +6,8 @@
 #include "core/glints/deliot_belcour.h"
 #include "core/glints/kneiphof.h"
 #include "core/models/podee.h"
+#include "core/models/kemppinen_beckmann.h"
+#include "core/models/kemppinen_ggx.h"
 #include "core/models/smooth_beckmann.h"
 #include "core/models/smooth_ggx.h"
 
@@ -20,6 +22,7 @@ struct ModelList {
 // ISA translation unit then instantiates its eval, pdf and sample on that ISA's batches, and the
 // model equivalence tests (tests/simd/model_equivalence_test.cpp) and bench_models cover it. A
 // registered model that is not listed still works through the batch API, as a scalar loop.
-using BatchedModels = ModelList<SmoothGGX, SmoothBeckmann, Podee, DeliotBelcour, KneiphofKlein>;
+using BatchedModels = ModelList<SmoothGGX, SmoothBeckmann, Podee, DeliotBelcour, KneiphofKlein,
+                                   KemppinenGGX, KemppinenBeckmann>;
 
 }  // namespace glintlab::simd

@@ -18,6 +18,7 @@
 #include <type_traits>
 #include <xsimd/xsimd.hpp>
 
+#include "core/math/lanes.h"
 #include "core/math/ops.h"
 
 #if defined(__SSE__)
@@ -184,6 +185,7 @@ GLINTLAB_FN xsimd::batch<float, A> round_nearest(const xsimd::batch<float, A>& x
   }
 GLINTLAB_RAW_UNARY(abs, fabs)
 GLINTLAB_RAW_UNARY(sqrt, sqrt)
+GLINTLAB_RAW_UNARY(floor, floor)
 GLINTLAB_RAW_UNARY(exp, exp)
 GLINTLAB_RAW_UNARY(expm1, expm1)
 GLINTLAB_RAW_UNARY(log, log)
@@ -196,7 +198,6 @@ GLINTLAB_RAW_UNARY(tan, tan)
 GLINTLAB_RAW_UNARY(atan, atan)
 GLINTLAB_RAW_UNARY(acos, acos)
 GLINTLAB_RAW_UNARY(acosh, acosh)
-GLINTLAB_RAW_UNARY(floor, floor)
 #undef GLINTLAB_RAW_UNARY
 
 template <class S>
@@ -317,6 +318,44 @@ struct ScalarOf<Wide<B, M>> {
   using type = typename Wide<B, M>::ScalarType;
 };
 
+// Lane access (core/math/lanes.h) of a Wide: through memory, for the per-lane integer code.
+template <class B, class M>
+struct LaneAccess<Wide<B, M>> {
+  using W = Wide<B, M>;
+  using S = typename W::ScalarType;
+  static constexpr std::size_t kLanes = W::kLanes;
+  static GLINTLAB_FN void store(const W& x, S* out) {
+    if constexpr (std::is_floating_point_v<B>)
+      out[0] = x.v;
+    else
+      x.v.store_unaligned(out);
+  }
+  static GLINTLAB_FN W load(const S* in) {
+    if constexpr (std::is_floating_point_v<B>)
+      return W(in[0]);
+    else
+      return W::wrap(B::load_unaligned(in));
+  }
+  static GLINTLAB_FN void store_mask(const typename W::MaskType& m, bool* out) {
+    if constexpr (std::is_floating_point_v<B>)
+      out[0] = m;
+    else
+      m.store_unaligned(out);
+  }
+  static GLINTLAB_FN typename W::MaskType load_mask(const bool* in) {
+    if constexpr (std::is_floating_point_v<B>)
+      return in[0];
+    else
+      return W::MaskType::load_unaligned(in);
+  }
+  static GLINTLAB_FN bool any(const typename W::MaskType& m) {
+    if constexpr (std::is_floating_point_v<B>)
+      return m;
+    else
+      return xsimd::any(m);
+  }
+};
+
 template <class T>
 inline constexpr bool kIsWide = false;
 template <class B, class M>
@@ -382,6 +421,7 @@ GLINTLAB_FN typename Wide<B, M>::MaskType isfinite(Wide<B, M> x) {
   }
 GLINTLAB_WIDE_UNARY(abs)
 GLINTLAB_WIDE_UNARY(sqrt)
+GLINTLAB_WIDE_UNARY(floor)
 GLINTLAB_WIDE_UNARY(expm1)
 GLINTLAB_WIDE_UNARY(log)
 GLINTLAB_WIDE_UNARY(log1p)
@@ -391,7 +431,6 @@ GLINTLAB_WIDE_UNARY(tan)
 GLINTLAB_WIDE_UNARY(atan)
 GLINTLAB_WIDE_UNARY(acos)
 GLINTLAB_WIDE_UNARY(acosh)
-GLINTLAB_WIDE_UNARY(floor)
 #undef GLINTLAB_WIDE_UNARY
 
 // The ops a policy may replace (see ExactMath/FastMath above).

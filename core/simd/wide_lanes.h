@@ -1,11 +1,11 @@
-// LaneTraits (core/math/lanes.h) for Wide<B, M>: lane stores and loads of the SIMD batches, and
+// LaneTraits (core/math/lane_rng.h) for Wide<B, M>: lane stores and loads of the SIMD batches, and
 // the double batch of the same ISA for the kernels' double-precision steps (the exact binomial).
 #pragma once
 
 #include <type_traits>
 #include <xsimd/xsimd.hpp>
 
-#include "core/math/lanes.h"
+#include "core/math/lane_rng.h"
 #include "core/simd/wide.h"
 
 namespace glintlab {

@@ -1,11 +1,14 @@
 // Google Benchmark of every registered model (core/model_registry.h) through the registry-level
 // batch API (core/simd/model_batch.h): the entry's scalar double thunk loop against each ISA's
 // batched eval and sample, items (queries) per second. Names: model/<name>/<isa>/<op>_<precision>,
-// model/<name>/entry/<op> for the thunk loop.
+// model/<name>/entry/<op> for the thunk loop; a model with a choice parameter `k` (Kemppinen's
+// neighbourhood) also gets model/<name>/k=<choice>/... for k = 1, 4, 16 (the default k is 1).
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/model_registry.h"
@@ -34,6 +37,12 @@ Queries make_queries(unsigned needs) {
   for (std::size_t j = 0; j < kQueryColumnsWithCorners; ++j)
     r.query.emplace_back(kRows, j < kQueryColumns.size() ? kQueryDefaults[j] : 0.0);
   for (std::size_t j = 0; j < 6; ++j) r.query[6 + j] = in[j];
+  // uv over [0, 4)² by a low-discrepancy sequence, so glint models visit different cells
+  // (models that need a footprint get theirs from add_scene_columns).
+  for (std::size_t i = 0; i < kRows; ++i) {
+    r.query[0][i] = 4 * std::fmod(0.7548776662466927 * double(i), 1.0);
+    r.query[1][i] = 4 * std::fmod(0.5698402909980532 * double(i), 1.0);
+  }
   r.u1 = in[6];
   r.u2 = in[7];
   add_scene_columns(needs, r.query, 0x7363656e65ULL);
@@ -53,9 +62,17 @@ std::vector<double> defaults(const ModelEntry& m) {
   return v;
 }
 
-void bm_entry(benchmark::State& state, const ModelEntry* m, bool sample) {
+// The defaults with choice parameter `k` set to choice index `k_choice` (−1: unchanged).
+std::vector<double> with_k(const ModelEntry& m, int k_choice) {
+  std::vector<double> v = defaults(m);
+  for (std::size_t j = 0; j < m.params.size(); ++j)
+    if (k_choice >= 0 && m.params[j].name == "k") v[j] = double(k_choice);
+  return v;
+}
+
+void bm_entry(benchmark::State& state, const ModelEntry* m, bool sample, int k_choice) {
   const Queries& q = queries(*m);
-  const std::vector<double> params = defaults(*m);
+  const std::vector<double> params = with_k(*m, k_choice);
   double sink = 0;
   for (auto _ : state) {
     for (std::size_t i = 0; i < kRows; ++i) {
@@ -75,9 +92,9 @@ void bm_entry(benchmark::State& state, const ModelEntry* m, bool sample) {
 }
 
 template <class S>
-void bm_batch(benchmark::State& state, const ModelEntry* m, Isa isa, bool sample) {
+void bm_batch(benchmark::State& state, const ModelEntry* m, Isa isa, bool sample, int k_choice) {
   const Queries& q = queries(*m);
-  const std::vector<double> params = defaults(*m);
+  const std::vector<double> params = with_k(*m, k_choice);
   std::vector<std::vector<S>> cols_data;
   for (const auto& c : q.query) cols_data.emplace_back(c.begin(), c.end());
   const std::vector<S> u1(q.u1.begin(), q.u1.end()), u2(q.u2.begin(), q.u2.end());
@@ -101,15 +118,27 @@ void bm_batch(benchmark::State& state, const ModelEntry* m, Isa isa, bool sample
 
 void register_all() {
   for (const ModelEntry& m : registered_models()) {
-    const std::string base = "model/" + std::string(m.name) + "/";
-    for (bool sample : {false, true}) {
-      const std::string op = sample ? "sample" : "eval";
-      benchmark::RegisterBenchmark((base + "entry/" + op).c_str(), bm_entry, &m, sample);
-      for (Isa isa : kAllIsas) {
-        if (!isa_supported(isa)) continue;
-        const std::string name = base + std::string(isa_name(isa)) + "/" + op;
-        benchmark::RegisterBenchmark((name + "_float").c_str(), bm_batch<float>, &m, isa, sample);
-        benchmark::RegisterBenchmark((name + "_double").c_str(), bm_batch<double>, &m, isa, sample);
+    // (prefix, k choice index): the defaults, then k = 1, 4, 16 where the model has `k`.
+    std::vector<std::pair<std::string, int>> variants = {{"", -1}};
+    for (const ParamSpec& p : m.params)
+      if (p.name == "k" && !p.choices.empty())
+        for (std::size_t c = 0; c < p.choices.size(); ++c)
+          if (p.choices[c] == "1" || p.choices[c] == "4" || p.choices[c] == "16")
+            variants.emplace_back("k=" + std::string(p.choices[c]) + "/", int(c));
+    for (const auto& [prefix, k_choice] : variants) {
+      const std::string base = "model/" + std::string(m.name) + "/" + prefix;
+      for (bool sample : {false, true}) {
+        const std::string op = sample ? "sample" : "eval";
+        benchmark::RegisterBenchmark((base + "entry/" + op).c_str(), bm_entry, &m, sample,
+                                     k_choice);
+        for (Isa isa : kAllIsas) {
+          if (!isa_supported(isa)) continue;
+          const std::string name = base + std::string(isa_name(isa)) + "/" + op;
+          benchmark::RegisterBenchmark((name + "_float").c_str(), bm_batch<float>, &m, isa, sample,
+                                       k_choice);
+          benchmark::RegisterBenchmark((name + "_double").c_str(), bm_batch<double>, &m, isa,
+                                       sample, k_choice);
+        }
       }
     }
   }
