@@ -2,7 +2,8 @@
 // discrete NDF D̂_P (Eq. 6, 10), the reflection probability p_Ωh = D_Ωh/D_H (Eq. 12–13), its
 // spherical-cap form for point/directional lights (Eq. 20) with the radiance of Eq. 16 / Eq. 22,
 // the Monte Carlo D_Ωh and L_o over a polygonal light, and the multinomial split of a count over a
-// subdivided light (App. C, Eq. 33–39). The LTC form of D_Ωh (Eq. 12–19) is core/glints/kneiphof_ltc.h.
+// subdivided light (App. C, Eq. 33–39). The LTC form of D_Ωh (Eq. 12–19) is in
+// core/glints/kneiphof_ltc.h.
 #pragma once
 
 #include <array>
