@@ -72,6 +72,18 @@ std::vector<double> parse_number_list(std::string_view text, std::string_view wh
   return out;
 }
 
+Vec3<double> parse_unit_direction(std::string_view text, std::string_view where) {
+  constexpr std::string_view kValid = "three comma-separated numbers x,y,z of a unit vector";
+  const std::vector<double> v = parse_number_list(text, where, kValid);
+  if (v.size() != 3) {
+    throw InputError(
+        fmt::format("{}: '{}' has {} values (valid: {})", where, text, v.size(), kValid));
+  }
+  const Vec3<double> w{v[0], v[1], v[2]};
+  check_unit(w, where);
+  return w;
+}
+
 std::uint64_t parse_integer(std::string_view text, std::string_view where, std::uint64_t lo,
                             std::uint64_t hi) {
   std::string_view digits = text;

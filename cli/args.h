@@ -34,6 +34,8 @@ void check_unit(Vec3<double> w, std::string_view where);
 double parse_number(std::string_view text, std::string_view where, std::string_view valid);
 std::vector<double> parse_number_list(std::string_view text, std::string_view where,
                                       std::string_view valid);
+// Parses "x,y,z", three numbers of a unit vector (check_unit); throws naming `where`.
+Vec3<double> parse_unit_direction(std::string_view text, std::string_view where);
 // Parses a non-negative decimal integer in [lo, hi]; throws naming `where` and the range.
 std::uint64_t parse_integer(std::string_view text, std::string_view where, std::uint64_t lo,
                             std::uint64_t hi);

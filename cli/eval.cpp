@@ -12,7 +12,8 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/eval_model.h"
-#include "core/io/atomic_file.h"
+#include "cli/model_options.h"
+#include "cli/out_csv.h"
 #include "core/io/csv.h"
 #include "core/maps/beckmann_map.h"
 #include "core/maps/ggx_map.h"
@@ -141,22 +142,14 @@ void run_eval(const std::string& in_path, const std::string& out_path) {
   std::vector<std::string_view> header(kQueryColumns.begin(), kQueryColumns.end());
   header.insert(header.end(), kResultColumns.begin(), kResultColumns.end());
 
-  try {
-    io::AtomicFile file(out_path);
-    {
-      io::CsvWriter w(file.stream(), header);
-      for (const Query& q : queries) {
-        w.cell(ndf_name(q.ndf)).cell(q.alpha_x).cell(q.alpha_y);
-        w.cell(q.wi.x).cell(q.wi.y).cell(q.wi.z).cell(q.wo.x).cell(q.wo.y).cell(q.wo.z);
-        for (double v : evaluate(q)) w.cell(v);
-        w.end_row();
-      }
+  write_out_csv(out_path, header, [&](io::CsvWriter& w) {
+    for (const Query& q : queries) {
+      w.cell(ndf_name(q.ndf)).cell(q.alpha_x).cell(q.alpha_y);
+      w.cell(q.wi.x).cell(q.wi.y).cell(q.wi.z).cell(q.wo.x).cell(q.wo.y).cell(q.wo.z);
+      for (double v : evaluate(q)) w.cell(v);
+      w.end_row();
     }
-    file.commit();
-  } catch (const std::runtime_error& e) {
-    // AtomicFile reports an unwritable --out as std::runtime_error naming the path.
-    throw InputError(std::string("--out: ") + e.what());
-  }
+  });
 }
 
 constexpr const char* kEvalFooter =
@@ -215,10 +208,8 @@ void add_eval_command(CLI::App& app) {
       ->required();
   auto model = std::make_shared<std::string>();
   auto params = std::make_shared<std::vector<std::string>>();
-  cmd->add_option("--model", *model,
-                  "Evaluate this registered model instead (see glintlab models and below)");
-  cmd->add_option("--param", *params, "With --model: name=value, repeatable")
-      ->allow_extra_args(false);
+  add_model_options(cmd, *model, *params,
+                    "Evaluate this registered model instead (see glintlab models and below)");
   auto grid = std::make_shared<std::string>();
   cmd->add_option("--grid", *grid,
                   "With --model, instead of --in: 'theta_i=lo:hi:count,...' (degrees; below)");

@@ -14,7 +14,8 @@
 #include "cli/args.h"
 #include "cli/batch_options.h"
 #include "cli/commands.h"
-#include "core/io/atomic_file.h"
+#include "cli/model_options.h"
+#include "cli/out_csv.h"
 #include "core/io/csv.h"
 #include "core/model_registry.h"
 #include "core/simd/model_batch.h"
@@ -242,20 +243,6 @@ void read_queries(const ModelEntry& model, const std::string& in_path,
 
 }  // namespace
 
-std::vector<std::pair<std::string, std::string>> split_params(
-    const std::vector<std::string>& texts) {
-  std::vector<std::pair<std::string, std::string>> out;
-  for (const std::string& t : texts) {
-    const std::size_t eq = t.find('=');
-    if (eq == std::string::npos || eq == 0) {
-      throw InputError(
-          fmt::format("--param: '{}' is not of the form name=value (see glintlab models)", t));
-    }
-    out.emplace_back(t.substr(0, eq), t.substr(eq + 1));
-  }
-  return out;
-}
-
 const char* const kModelEvalFooter =
     R"(
 WITH --model NAME (any model of 'glintlab models'; --param name=value, repeatable, sets its
@@ -283,14 +270,9 @@ the axes, theta_i outermost, phi_o innermost, wi and wo at those polar angles an
 columns take their defaults.)";
 
 void run_model_eval(const ModelEvalArgs& a) {
-  const ModelEntry* model = nullptr;
-  std::vector<double> params;
-  try {
-    model = &find_model(a.model);
-    params = resolve_params(*model, split_params(a.params));
-  } catch (const ModelParamError& e) {
-    throw InputError(e.what());
-  }
+  const ResolvedModel resolved = resolve_model(a.model, a.params);
+  const ModelEntry* model = resolved.model;
+  const std::vector<double>& params = resolved.params;
   const BatchOptions opts = resolve_batch_options(a.batch);
   if (!a.grid.empty() && !a.in_path.empty()) {
     throw InputError("--grid: cannot be combined with --in (valid: one of them)");
@@ -350,22 +332,15 @@ void run_model_eval(const ModelEvalArgs& a) {
   header.push_back("value");
   header.push_back("pdf");
   header.insert(header.end(), model->intermediates.begin(), model->intermediates.end());
-  try {
-    io::AtomicFile file(a.out_path);
-    {
-      io::CsvWriter w(file.stream(), header);
-      for (std::size_t r = 0; r < n; ++r) {
-        for (const auto& c : angles) w.cell(c[r]);
-        for (const auto& c : query) w.cell(c[r]);
-        for (const auto& c : corners) w.cell(c[r]);
-        for (const auto& c : results) w.cell(c[r]);
-        w.end_row();
-      }
+  write_out_csv(a.out_path, header, [&](io::CsvWriter& w) {
+    for (std::size_t r = 0; r < n; ++r) {
+      for (const auto& c : angles) w.cell(c[r]);
+      for (const auto& c : query) w.cell(c[r]);
+      for (const auto& c : corners) w.cell(c[r]);
+      for (const auto& c : results) w.cell(c[r]);
+      w.end_row();
     }
-    file.commit();
-  } catch (const std::runtime_error& e) {
-    throw InputError(std::string("--out: ") + e.what());
-  }
+  });
 }
 
 }  // namespace glintlab::cli

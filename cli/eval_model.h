@@ -3,7 +3,6 @@
 #pragma once
 
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "cli/batch_options.h"
@@ -20,10 +19,6 @@ struct ModelEvalArgs {
 };
 
 void run_model_eval(const ModelEvalArgs& args);
-
-// The (name, value) pairs of --param texts "name=value"; InputError for any other form.
-std::vector<std::pair<std::string, std::string>> split_params(
-    const std::vector<std::string>& texts);
 
 // The help text of the --model form (appended to eval's footer).
 extern const char* const kModelEvalFooter;

@@ -12,8 +12,9 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/model_options.h"
+#include "cli/out_csv.h"
 #include "cli/sample_model.h"
-#include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/math/rng.h"
 #include "core/samplers/beckmann_vndf.h"
@@ -60,15 +61,7 @@ SampleJob validate(const SampleArgs& a) {
   check_alpha(job.alpha_x, alpha.size() == 2 ? "--alpha (alpha_x)" : "--alpha");
   check_alpha(job.alpha_y, "--alpha (alpha_y)");
 
-  const std::vector<double> wi =
-      parse_number_list(a.wi, "--wi", "three comma-separated numbers x,y,z of a unit vector");
-  if (wi.size() != 3) {
-    throw InputError(fmt::format(
-        "--wi: '{}' has {} values (valid: three comma-separated numbers x,y,z of a unit vector)",
-        a.wi, wi.size()));
-  }
-  job.wi = {wi[0], wi[1], wi[2]};
-  check_unit(job.wi, "--wi");
+  job.wi = parse_unit_direction(a.wi, "--wi");
 
   if (a.sampler == "ndf") {
     job.sampler = Sampler::kNdf;
@@ -141,27 +134,20 @@ MicrofacetSample<double> draw(const Ndf& ndf, const SampleJob& job, std::uint64_
 
 void run_sample(const SampleArgs& args) {
   const SampleJob job = validate(args);
-  try {
-    io::AtomicFile file(args.out);
-    {
-      io::CsvWriter w(file.stream(),
-                      {"wo_x", "wo_y", "wo_z", "h_x", "h_y", "h_z", "pdf", "weight", "rejected"});
-      with_ndf(job.ndf, job.alpha_x, job.alpha_y, [&](const auto& ndf) {
-        for (std::uint64_t i = 0; i < job.n; ++i) {
-          const MicrofacetSample<double> s = draw(ndf, job, i);
-          const bool rejected = static_cast<bool>(s.rejected);
-          const double weight = rejected ? 0.0 : sample_weight(ndf, job.wi, s);
-          w.cell(s.wo.x).cell(s.wo.y).cell(s.wo.z).cell(s.m.x).cell(s.m.y).cell(s.m.z);
-          w.cell(s.pdf).cell(weight).cell_int(rejected ? 1 : 0);
-          w.end_row();
-        }
-      });
-    }
-    file.commit();
-  } catch (const std::runtime_error& e) {
-    // AtomicFile reports an unwritable --out as std::runtime_error naming the path.
-    throw InputError(std::string("--out: ") + e.what());
-  }
+  write_out_csv(args.out,
+                {"wo_x", "wo_y", "wo_z", "h_x", "h_y", "h_z", "pdf", "weight", "rejected"},
+                [&](io::CsvWriter& w) {
+                  with_ndf(job.ndf, job.alpha_x, job.alpha_y, [&](const auto& ndf) {
+                    for (std::uint64_t i = 0; i < job.n; ++i) {
+                      const MicrofacetSample<double> s = draw(ndf, job, i);
+                      const bool rejected = static_cast<bool>(s.rejected);
+                      const double weight = rejected ? 0.0 : sample_weight(ndf, job.wi, s);
+                      w.cell(s.wo.x).cell(s.wo.y).cell(s.wo.z).cell(s.m.x).cell(s.m.y).cell(s.m.z);
+                      w.cell(s.pdf).cell(weight).cell_int(rejected ? 1 : 0);
+                      w.end_row();
+                    }
+                  });
+                });
 }
 
 constexpr const char* kSampleFooter = R"(SAMPLERS (--sampler):
@@ -214,11 +200,9 @@ void add_sample_command(CLI::App& app) {
                   "when the run succeeded")
       ->required();
   auto m = std::make_shared<ModelSampleArgs>();
-  cmd->add_option("--model", m->model,
-                  "Sample this registered model's sampler instead (see glintlab models and "
-                  "below); --param sets its parameters");
-  cmd->add_option("--param", m->params, "With --model: name=value, repeatable")
-      ->allow_extra_args(false);
+  add_model_options(cmd, m->model, m->params,
+                    "Sample this registered model's sampler instead (see glintlab models and "
+                    "below); --param sets its parameters");
   add_batch_options(cmd, m->batch);
   cmd->footer(std::string(kSampleFooter) + kModelSampleFooter + kBatchOptionsFooter);
   cmd->callback([a, m, cmd] {

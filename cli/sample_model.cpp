@@ -9,8 +9,8 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
-#include "cli/eval_model.h"
-#include "core/io/atomic_file.h"
+#include "cli/model_options.h"
+#include "cli/out_csv.h"
 #include "core/io/csv.h"
 #include "core/math/rng.h"
 #include "core/model_registry.h"
@@ -35,23 +35,11 @@ with the same uniforms u = (counter_uniform(S, i, 0), counter_uniform(S, i, 1));
 query columns (footprint, light) take their defaults.)";
 
 void run_model_sample(const ModelSampleArgs& a) {
-  const ModelEntry* model = nullptr;
-  std::vector<double> params;
-  try {
-    model = &find_model(a.model);
-    params = resolve_params(*model, split_params(a.params));
-  } catch (const ModelParamError& e) {
-    throw InputError(e.what());
-  }
+  const ResolvedModel resolved = resolve_model(a.model, a.params);
+  const ModelEntry* model = resolved.model;
+  const std::vector<double>& params = resolved.params;
   const BatchOptions opts = resolve_batch_options(a.batch);
-  const std::vector<double> wi =
-      parse_number_list(a.wi, "--wi", "three comma-separated numbers x,y,z of a unit vector");
-  if (wi.size() != 3) {
-    throw InputError(fmt::format(
-        "--wi: '{}' has {} values (valid: three comma-separated numbers x,y,z of a unit vector)",
-        a.wi, wi.size()));
-  }
-  check_unit({wi[0], wi[1], wi[2]}, "--wi");
+  const Vec3<double> wi = parse_unit_direction(a.wi, "--wi");
   const std::uint64_t n = parse_integer(a.n, "--n", 1, kMaxSamples);
   const std::uint64_t seed = parse_integer(a.seed, "--seed", 0, UINT64_MAX);
 
@@ -59,7 +47,9 @@ void run_model_sample(const ModelSampleArgs& a) {
   const auto run = [&]<class S>(S) {
     std::array<S, simd::kQueryColumns.size()> q;
     for (std::size_t j = 0; j < q.size(); ++j) q[j] = S(simd::kQueryDefaults[j]);
-    for (std::size_t j = 0; j < 3; ++j) q[6 + j] = S(wi[j]);
+    q[6] = S(wi.x);
+    q[7] = S(wi.y);
+    q[8] = S(wi.z);
     std::vector<S> res;
     if constexpr (std::is_same_v<S, float>) res.resize(out.size() * n);
     for_each_chunk(n, opts, [&](std::size_t begin, std::size_t count) {
@@ -91,20 +81,13 @@ void run_model_sample(const ModelSampleArgs& a) {
     run(0.0);
   }
 
-  try {
-    io::AtomicFile file(a.out);
-    {
-      io::CsvWriter w(file.stream(), std::span<const std::string_view>(simd::kSampleColumns));
-      for (std::size_t i = 0; i < n; ++i) {
-        for (std::size_t k = 0; k + 1 < out.size(); ++k) w.cell(out[k][i]);
-        w.cell_int(out.back()[i] != 0 ? 1 : 0);
-        w.end_row();
-      }
+  write_out_csv(a.out, simd::kSampleColumns, [&](io::CsvWriter& w) {
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t k = 0; k + 1 < out.size(); ++k) w.cell(out[k][i]);
+      w.cell_int(out.back()[i] != 0 ? 1 : 0);
+      w.end_row();
     }
-    file.commit();
-  } catch (const std::runtime_error& e) {
-    throw InputError(std::string("--out: ") + e.what());
-  }
+  });
 }
 
 }  // namespace glintlab::cli

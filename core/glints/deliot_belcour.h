@@ -71,6 +71,72 @@ GLINTLAB_FN T binomial_radiance_factor(T count, T n, T p) {
   return safe_div(count, n * p);
 }
 
+// The counting steps every binomial glint model shares, whatever its reflection probability:
+// N_P from the footprint, p = saturate(p_raw), b ~ Binomial(N_P, p) keyed by the footprint and the
+// factor b/(N_P·p) of Kneiphof & Klein Eq. 16 (Deliot & Belcour 2023's scheme).
+template <class T>
+struct BinomialGlintCount {
+  T n;       // N_P
+  T p;       // the clamped probability
+  T count;   // b
+  T factor;  // b/(N_P·p)
+};
+
+template <class T>
+GLINTLAB_FN BinomialGlintCount<T> binomial_glint_count(const FootprintQuery<T>& f, T density_scale,
+                                                       T p_raw, BinomialSampler sampler,
+                                                       std::uint64_t seed) {
+  const T n = footprint_facet_count_scaled(f, density_scale);
+  const T prob = saturate(p_raw);
+  const T count = draw_binomial(sampler, n, prob, seed, footprint_rng_index(f));
+  return {n, prob, count, binomial_radiance_factor(count, n, prob)};
+}
+
+// Neither paper has a glint sampler: ωo from the smooth GGX VNDF of the model's base roughness
+// (Heitz 2018) with its pdf, weighted by the glinty value there (0 where rejected). M::Params<T>
+// has the GGX as `ggx`.
+template <class M, class T>
+GLINTLAB_FN ModelSample<T> sample_binomial_glints_vndf(const typename M::template Params<T>& p,
+                                                       const ModelQuery<T>& q, Vec2<T> u) {
+  const MicrofacetSample<T> s = sample_heitz_vndf(p.ggx, q.wi, u);
+  ModelQuery<T> at = q;
+  at.wo = s.wo;
+  const T value = M::eval(p, at).value;
+  return {s.wo, s.pdf, select(s.rejected, T(0), safe_div(value, s.pdf)), s.rejected};
+}
+
+// The parameters the binomial glint models share (Kneiphof & Klein's and Deliot & Belcour's).
+inline constexpr ParamSpec kBinomialGlintDensity{
+    "density",
+    6.0,
+    0.0,
+    15.0,
+    false,
+    false,
+    "log10 of the microfacets per unit uv area (N_P = footprint area x 10^density)"};
+inline constexpr ParamSpec kBinomialGlintSampler{
+    "binomial",
+    0.0,
+    0.0,
+    2.0,
+    false,
+    false,
+    "binomial sampler: exact, realtime (gated Bernoulli + clamped Gaussian), small_count",
+    kBinomialSamplerNames};
+inline constexpr ParamSpec kBinomialGlintSeed{
+    "seed", 0.0, 0.0, 4294967295.0, false, false, "seed of the counter RNG (integer)"};
+
+// kParams of a point-light binomial glint model: alpha_x, alpha_y, density, the model's own
+// parameter of its probability p, binomial, seed.
+constexpr std::array<ParamSpec, 6> binomial_glint_params(const ParamSpec& probability_param) {
+  return {{{"alpha_x", 0.25, 1e-4, 4.0, false, false, "GGX roughness along the tangent (x)"},
+           {"alpha_y", 0.25, 1e-4, 4.0, false, false, "GGX roughness along the bitangent (y)"},
+           kBinomialGlintDensity,
+           probability_param,
+           kBinomialGlintSampler,
+           kBinomialGlintSeed}};
+}
+
 struct DeliotBelcour {
   static constexpr std::string_view kName = "deliot_belcour";
   static constexpr std::string_view kDescription =
@@ -82,18 +148,9 @@ struct DeliotBelcour {
       "Deliot & Belcour 2023 as described by Kneiphof & Klein 2024 Sec. 3, 6 (p = R D(h)/D(n)) "
       "and Eq. 16; Kemppinen et al. 2025 Sec. 2";
   static constexpr unsigned kNeeds = kNeedsFootprint | kNeedsPointLight;
-  static constexpr std::array<ParamSpec, 6> kParams = {{
-      {"alpha_x", 0.25, 1e-4, 4.0, false, false, "GGX roughness along the tangent (x)"},
-      {"alpha_y", 0.25, 1e-4, 4.0, false, false, "GGX roughness along the bitangent (y)"},
-      {"density", 6.0, 0.0, 15.0, false, false,
-       "log10 of the microfacets per unit uv area (N_P = footprint area x 10^density)"},
+  static constexpr std::array<ParamSpec, 6> kParams = binomial_glint_params(
       {"r", 1.0, 0.0, 100.0, false, false,
-       "Deliot & Belcour's R in p = R D(h)/D(n) (p is clamped to 1 where R D(h)/D(n) > 1)"},
-      {"binomial", 0.0, 0.0, 2.0, false, false,
-       "binomial sampler: exact, realtime (gated Bernoulli + clamped Gaussian), small_count",
-       kBinomialSamplerNames},
-      {"seed", 0.0, 0.0, 4294967295.0, false, false, "seed of the counter RNG (integer)"},
-  }};
+       "Deliot & Belcour's R in p = R D(h)/D(n) (p is clamped to 1 where R D(h)/D(n) > 1)"});
   static constexpr std::array<std::string_view, 8> kIntermediates = {
       "N_P", "p_unclamped", "p", "p_clamped", "count", "factor", "smooth", "D"};
 
@@ -128,23 +185,17 @@ struct DeliotBelcour {
     const T d = p.ggx.D(h);
     const T d_n = T(kInvPi<T>) / (p.ggx.alpha_x * p.ggx.alpha_y);  // D(n), the NDF's maximum
     const T smooth = microfacet_brdf(p.ggx, q.wi, q.wo, T(1)) * max(q.wo.z, T(0));
-    const T n = footprint_facet_count_scaled(q.footprint, p.density_scale);
     const T p_raw = p.r * d / d_n;
-    const T prob = saturate(p_raw);
-    const T count = draw_binomial(p.sampler, n, prob, p.seed, footprint_rng_index(q.footprint));
-    const T factor = binomial_radiance_factor(count, n, prob);
-    return {smooth * factor,
+    const BinomialGlintCount<T> b =
+        binomial_glint_count(q.footprint, p.density_scale, p_raw, p.sampler, p.seed);
+    return {smooth * b.factor,
             pdf(p, q),
-            {n, p_raw, prob, select(p_raw > T(1), T(1), T(0)), count, factor, smooth, d}};
+            {b.n, p_raw, b.p, select(p_raw > T(1), T(1), T(0)), b.count, b.factor, smooth, d}};
   }
 
   template <class T>
   GLINTLAB_FN static ModelSample<T> sample(const Params<T>& p, const ModelQuery<T>& q, Vec2<T> u) {
-    const MicrofacetSample<T> s = sample_heitz_vndf(p.ggx, q.wi, u);
-    ModelQuery<T> at = q;
-    at.wo = s.wo;
-    const T value = eval(p, at).value;
-    return {s.wo, s.pdf, select(s.rejected, T(0), safe_div(value, s.pdf)), s.rejected};
+    return sample_binomial_glints_vndf<DeliotBelcour>(p, q, u);
   }
 };
 

@@ -179,18 +179,9 @@ struct KneiphofKlein {
       "Kneiphof & Klein 2024 Eq. 6, 11-12, 16, 20-22; D_H by Eq. 29 (anisotropic: its azimuthal "
       "average)";
   static constexpr unsigned kNeeds = kNeedsFootprint | kNeedsPointLight;
-  static constexpr std::array<ParamSpec, 6> kParams = {{
-      {"alpha_x", 0.25, 1e-4, 4.0, false, false, "GGX roughness along the tangent (x)"},
-      {"alpha_y", 0.25, 1e-4, 4.0, false, false, "GGX roughness along the bitangent (y)"},
-      {"density", 6.0, 0.0, 15.0, false, false,
-       "log10 of the microfacets per unit uv area (N_P = footprint area x 10^density)"},
+  static constexpr std::array<ParamSpec, 6> kParams = binomial_glint_params(
       {"gamma_deg", 0.26, 0.0, 90.0, true, true,
-       "half-angle of the cap a delta light is widened to, degrees (Sec. 5)"},
-      {"binomial", 0.0, 0.0, 2.0, false, false,
-       "binomial sampler: exact, realtime (gated Bernoulli + clamped Gaussian), small_count",
-       kBinomialSamplerNames},
-      {"seed", 0.0, 0.0, 4294967295.0, false, false, "seed of the counter RNG (integer)"},
-  }};
+       "half-angle of the cap a delta light is widened to, degrees (Sec. 5)"});
   static constexpr std::array<std::string_view, 10> kIntermediates = {
       "N_P", "p_unclamped", "p", "p_clamped", "count", "factor", "smooth", "D_H", "gamma", "eq22"};
 
@@ -227,25 +218,20 @@ struct KneiphofKlein {
     const T omc =
         select(q.light.cos_half_angle < T(1), T(1) - q.light.cos_half_angle, p.one_minus_cos_gamma);
     const T smooth = microfacet_brdf(p.ggx, q.wi, q.wo, T(1)) * max(q.wo.z, T(0));
-    const T n = footprint_facet_count_scaled(q.footprint, p.density_scale);
     const T p_raw = cap_probability_eq20(p.ggx, q.wi, q.wo, omc, p.total_area);
-    const T prob = saturate(p_raw);
-    const T count = draw_binomial(p.sampler, n, prob, p.seed, footprint_rng_index(q.footprint));
-    const T factor = binomial_radiance_factor(count, n, prob);
+    const BinomialGlintCount<T> b =
+        binomial_glint_count(q.footprint, p.density_scale, p_raw, p.sampler, p.seed);
     const T gamma = T(2) * atan2(sqrt(T(0.5) * omc), safe_sqrt(T(1) - T(0.5) * omc));
-    return {smooth * factor,
-            pdf(p, q),
-            {n, p_raw, prob, select(p_raw > T(1), T(1), T(0)), count, factor, smooth, p.total_area,
-             gamma, cap_radiance_eq22(p.ggx, q.wi, q.wo, omc, p.total_area, count, n)}};
+    return {
+        smooth * b.factor,
+        pdf(p, q),
+        {b.n, p_raw, b.p, select(p_raw > T(1), T(1), T(0)), b.count, b.factor, smooth, p.total_area,
+         gamma, cap_radiance_eq22(p.ggx, q.wi, q.wo, omc, p.total_area, b.count, b.n)}};
   }
 
   template <class T>
   GLINTLAB_FN static ModelSample<T> sample(const Params<T>& p, const ModelQuery<T>& q, Vec2<T> u) {
-    const MicrofacetSample<T> s = sample_heitz_vndf(p.ggx, q.wi, u);
-    ModelQuery<T> at = q;
-    at.wo = s.wo;
-    const T value = eval(p, at).value;
-    return {s.wo, s.pdf, select(s.rejected, T(0), safe_div(value, s.pdf)), s.rejected};
+    return sample_binomial_glints_vndf<KneiphofKlein>(p, q, u);
   }
 };
 

@@ -109,8 +109,7 @@ struct KneiphofKleinArea {
   static constexpr std::array<ParamSpec, 12> kParams = {{
       {"alpha", 0.25, kLtcMinAlpha, 1.0, false, false,
        "isotropic GGX roughness (the LTC tables cover sqrt(alpha) in [0, 1])"},
-      {"density", 6.0, 0.0, 15.0, false, false,
-       "log10 of the microfacets per unit uv area (N_P = footprint area x 10^density)"},
+      kBinomialGlintDensity,
       {"light_distance", 1.0, 0.01, 100.0, false, false,
        "distance from the shading point to the rectangle's centre (along wo)"},
       {"light_width", 0.5, 1e-4, 100.0, false, false, "the rectangle's width (same units)"},
@@ -126,10 +125,8 @@ struct KneiphofKleinArea {
        "L_o/L_i: ltc (BRDF LTC lobe x albedo) or mc (Monte Carlo)", kKneiphofAreaLoNames},
       {"mc_samples", 256.0, 1.0, 1048576.0, false, false,
        "solid-angle samples of the Monte Carlo terms (integer)"},
-      {"binomial", 0.0, 0.0, 2.0, false, false,
-       "binomial sampler: exact, realtime (gated Bernoulli + clamped Gaussian), small_count",
-       kBinomialSamplerNames},
-      {"seed", 0.0, 0.0, 4294967295.0, false, false, "seed of the counter RNG (integer)"},
+      kBinomialGlintSampler,
+      kBinomialGlintSeed,
   }};
   static constexpr std::array<std::string_view, 11> kIntermediates = {
       "N_P",    "p_unclamped", "p",    "p_clamped", "count",      "factor",
@@ -186,14 +183,12 @@ struct KneiphofKleinArea {
         area_light_terms_ltc(*p.table, p.alpha, q.wi, rect.data(), 4, p.area_p);
     const double d_omega_h = p.area_p == KneiphofAreaP::kMonteCarlo ? mc.d_omega_h : ltc.d_omega_h;
     const double smooth = p.lo_mc ? mc.lo_over_li : ltc.lo_over_li;
-    const double n = footprint_facet_count(q.footprint, p.log10_density);
     const double p_raw = q.wi.z > 0 ? d_omega_h / p.total_area : 0.0;
-    const double prob = saturate(p_raw);
-    const double count = draw_binomial(p.sampler, n, prob, p.seed, index);
-    const double factor = binomial_radiance_factor(count, n, prob);
-    return {smooth * factor,
+    const BinomialGlintCount<double> b = binomial_glint_count(
+        q.footprint, facet_density_scale<double>(p.log10_density), p_raw, p.sampler, p.seed);
+    return {smooth * b.factor,
             pdf(p, q),
-            {n, p_raw, prob, p_raw > 1 ? 1.0 : 0.0, count, factor, smooth, d_omega_h, ltc.d_pr,
+            {b.n, p_raw, b.p, p_raw > 1 ? 1.0 : 0.0, b.count, b.factor, smooth, d_omega_h, ltc.d_pr,
              p.total_area, light.solid_angle(origin)}};
   }
 

@@ -13,6 +13,8 @@
 #include <sstream>
 #include <system_error>
 
+#include "core/io/atomic_file.h"
+
 namespace glintlab::io {
 namespace {
 
@@ -244,6 +246,22 @@ void CsvWriter::end_row() {
 void CsvWriter::flush() {
   out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
   buffer_.clear();
+}
+
+void write_csv_atomic(const std::filesystem::path& path, std::span<const std::string_view> header,
+                      const std::function<void(CsvWriter&)>& rows) {
+  AtomicFile file(path);
+  {
+    CsvWriter w(file.stream(), header);
+    rows(w);
+  }  // the writer flushes its buffer here, before the commit
+  file.commit();
+}
+
+void write_csv_atomic(const std::filesystem::path& path,
+                      std::initializer_list<std::string_view> header,
+                      const std::function<void(CsvWriter&)>& rows) {
+  write_csv_atomic(path, std::span<const std::string_view>(header.begin(), header.size()), rows);
 }
 
 }  // namespace glintlab::io

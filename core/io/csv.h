@@ -8,11 +8,12 @@
 // 1-based data row (the first line after the header is data row 1) and the column.
 //
 // Writer: doubles are printed with 17 significant digits ("{:.17g}"), which reads back to the
-// identical double; NaN prints as "nan".
+// identical double; NaN prints as "nan". write_csv_atomic writes a whole file that way.
 #pragma once
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <initializer_list>
 #include <optional>
 #include <ostream>
@@ -99,5 +100,14 @@ class CsvWriter {
   std::size_t cells_in_row_ = 0;
   std::string buffer_;
 };
+
+// Writes a CSV file atomically (core/io/atomic_file.h): the header, then whatever `rows` writes;
+// if anything throws, no file is left behind. Throws std::runtime_error naming the path when the
+// file cannot be written.
+void write_csv_atomic(const std::filesystem::path& path, std::span<const std::string_view> header,
+                      const std::function<void(CsvWriter&)>& rows);
+void write_csv_atomic(const std::filesystem::path& path,
+                      std::initializer_list<std::string_view> header,
+                      const std::function<void(CsvWriter&)>& rows);
 
 }  // namespace glintlab::io

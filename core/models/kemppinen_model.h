@@ -164,4 +164,33 @@ ModelSample<T> kemppinen_model_sample(const KemppinenModelParams<Ndf, T>& p, con
           select(ok && (pdf > T(0)), value / pdf, T(0)), !ok};
 }
 
+// Everything of the model but its name: kemppinen_ggx and kemppinen_beckmann derive from this
+// with their base NDF (Ndf<T>: GGX<T> or Beckmann<T>) and add kName, kDescription and kSource.
+template <template <class> class Ndf>
+struct KemppinenModel {
+  static constexpr unsigned kNeeds = kNeedsFootprint;
+  static constexpr auto kParams = kKemppinenParams;
+  static constexpr auto kIntermediates = kKemppinenIntermediates;
+
+  template <class T>
+  using Params = KemppinenModelParams<Ndf<T>, T>;
+
+  template <class T>
+  static Params<T> params(std::span<const double> v) {
+    return kemppinen_model_params<Ndf<T>, T>(v);
+  }
+  template <class T>
+  static T pdf(const Params<T>& p, const ModelQuery<T>& q) {
+    return kemppinen_model_pdf(p, q);
+  }
+  template <class T>
+  static ModelEval<T, kIntermediates.size()> eval(const Params<T>& p, const ModelQuery<T>& q) {
+    return kemppinen_model_eval(p, q, pdf(p, q));
+  }
+  template <class T>
+  static ModelSample<T> sample(const Params<T>& p, const ModelQuery<T>& q, Vec2<T> u) {
+    return kemppinen_model_sample(p, q, u);
+  }
+};
+
 }  // namespace glintlab::detail

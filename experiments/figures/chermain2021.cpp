@@ -53,21 +53,6 @@ double display_exposure(const Image& ref) {
   return n ? 0.18 / (s / double(n)) : 1.0;
 }
 
-void write_text(const FigureContext& ctx, const std::string& name, const std::string& text) {
-  io::write_file_atomic(ctx.dir / name, text);
-}
-
-template <class Rows>
-void write_csv(const FigureContext& ctx, const std::string& name,
-               std::initializer_list<std::string_view> header, const Rows& rows) {
-  io::AtomicFile file(ctx.dir / name);
-  {
-    io::CsvWriter w(file.stream(), header);
-    rows(w);
-  }
-  file.commit();
-}
-
 void progress(const FigureContext& ctx, const std::string& stage, long done, long total) {
   if (ctx.progress) ctx.progress(stage, done, total);
 }
@@ -81,18 +66,18 @@ void run_fig3(const FigureContext& ctx) {
   // Distributions 0..3 at every level, on a signed slope axis, with the Gaussian of std σ_o.
   const int points = ctx.quick ? 128 : 512;
   const double so = d.sigma_o();
-  write_csv(ctx, "fig3_marginals.csv",
-            {"distribution", "level", "slope", "density", "gaussian_density"},
-            [&](io::CsvWriter& w) {
-              for (int n = 0; n < 4; ++n)
-                for (int k = 0; k < d.levels(); ++k)
-                  for (int i = 0; i < points; ++i) {
-                    const double x = -d.extent() + (i + 0.5) * 2 * d.extent() / points;
-                    w.cell_int(n).cell_int(k).cell(x).cell(d.lookup_lod(n, k, x));
-                    w.cell(std::exp(-0.5 * x * x / (so * so)) / (so * std::sqrt(2 * kPi<double>)));
-                    w.end_row();
-                  }
-            });
+  io::write_csv_atomic(
+      ctx.dir / "fig3_marginals.csv",
+      {"distribution", "level", "slope", "density", "gaussian_density"}, [&](io::CsvWriter& w) {
+        for (int n = 0; n < 4; ++n)
+          for (int k = 0; k < d.levels(); ++k)
+            for (int i = 0; i < points; ++i) {
+              const double x = -d.extent() + (i + 0.5) * 2 * d.extent() / points;
+              w.cell_int(n).cell_int(k).cell(x).cell(d.lookup_lod(n, k, x));
+              w.cell(std::exp(-0.5 * x * x / (so * so)) / (so * std::sqrt(2 * kPi<double>)));
+              w.end_row();
+            }
+      });
   // Mean L1 distance to the Gaussian per level, over every distribution.
   std::vector<double> l1(std::size_t(d.levels()), 0.0);
   const int steps = 2 * d.resolution() * 4;
@@ -106,11 +91,11 @@ void run_fig3(const FigureContext& ctx) {
       }
     l1[std::size_t(k)] /= d.distributions();
   }
-  write_csv(ctx, "fig3_convergence.csv", {"level", "lobes", "mean_l1_to_gaussian"},
-            [&](io::CsvWriter& w) {
-              for (int k = 0; k < d.levels(); ++k)
-                w.cell_int(k).cell_int(1LL << k).cell(l1[std::size_t(k)]).end_row();
-            });
+  io::write_csv_atomic(ctx.dir / "fig3_convergence.csv", {"level", "lobes", "mean_l1_to_gaussian"},
+                       [&](io::CsvWriter& w) {
+                         for (int k = 0; k < d.levels(); ++k)
+                           w.cell_int(k).cell_int(1LL << k).cell(l1[std::size_t(k)]).end_row();
+                       });
   // Preview: distributions 0..3 as rows of bars, level per row band (brightness = density).
   Image plot(d.resolution() * 2, 4 * d.levels(), {"R", "G", "B"});
   for (int n = 0; n < 4; ++n)
@@ -124,8 +109,8 @@ void run_fig3(const FigureContext& ctx) {
   std::string rows;
   for (int k = 0; k < d.levels(); ++k)
     rows += fmt::format("| {} | {} | {:.4f} |\n", k, 1LL << k, l1[std::size_t(k)]);
-  write_text(
-      ctx, "summary.md",
+  io::write_file_atomic(
+      ctx.dir / "summary.md",
       fmt::format("# chermain2021-fig3: dictionary levels converge to the Gaussian\n\n"
                   "N = {}, L = {}, {} texels over |slope| < 4 sigma_o, alpha_dict = {}, "
                   "lobe std {}, seed {}. Paper Fig. 3 shows the curves only (no numbers).\n\n"
@@ -151,13 +136,14 @@ void run_fig7(const FigureContext& ctx) {
                         display_exposure(m.reference));
   const double paper[] = {8.009, 10.378, 4.764};
   const double ours[] = {m.rmse_no_lean, m.rmse_lean_rho0, m.rmse_lean};
-  write_csv(ctx, "fig7.csv", {"method", "rmse_percent", "paper_rmse_percent", "reference_spp"},
-            [&](io::CsvWriter& w) {
-              for (int i = 0; i < 3; ++i)
-                w.cell(names[i]).cell(ours[i]).cell(paper[i]).cell_int(b.reference_spp).end_row();
-            });
-  write_text(
-      ctx, "summary.md",
+  io::write_csv_atomic(
+      ctx.dir / "fig7.csv", {"method", "rmse_percent", "paper_rmse_percent", "reference_spp"},
+      [&](io::CsvWriter& w) {
+        for (int i = 0; i < 3; ++i)
+          w.cell(names[i]).cell(ours[i]).cell(paper[i]).cell_int(b.reference_spp).end_row();
+      });
+  io::write_file_atomic(
+      ctx.dir / "summary.md",
       fmt::format("# chermain2021-fig7: LEAN mapping with the glinty BRDF\n\n"
                   "| method | ours (display RMSE %) | paper Fig. 7 |\n|---|---|---|\n"
                   "| no LEAN | {:.3f} | 8.009 |\n| LEAN, rho = 0 | {:.3f} | 10.378 |\n"
@@ -191,21 +177,22 @@ void run_fig8(const FigureContext& ctx) {
                 attributes(ctx, "chermain2021-fig8", fmt::format("{} spp", b.reference_spp)));
   io::write_png_preview(ctx.dir / "fig8.png", montage({&m.none, &m.proj05, &m.reference}),
                         display_exposure(m.reference));
-  write_csv(
-      ctx, "fig8.csv", {"method", "rmse_percent", "paper_rmse_percent", "reference_spp"},
+  io::write_csv_atomic(
+      ctx.dir / "fig8.csv", {"method", "rmse_percent", "paper_rmse_percent", "reference_spp"},
       [&](io::CsvWriter& w) {
         w.cell("without_ggaa").cell(v.rmse_none).cell(4.815).cell_int(b.reference_spp).end_row();
         w.cell("with_ggaa").cell(v.rmse_proj05).cell(3.661).cell_int(b.reference_spp).end_row();
       });
-  write_text(ctx, "summary.md",
-             fmt::format("# chermain2021-fig8: GGAA on curved tubes\n\n| method | ours (display "
-                         "RMSE %) | paper Fig. 8 |\n|---|---|---|\n| without GGAA | {:.3f} | 4.815 "
-                         "|\n| with GGAA (Eq. 21, s_K 0.5) | {:.3f} | 3.661 |\n\nSetup: three "
-                         "analytic tubes, alpha 0.35, density 1.6e5 per uv area, point light, "
-                         "{}x{} pixels, 1 spp at pixel centres; reference {} spp with the pixel's "
-                         "footprint (the integral GGAA approximates). Paper: metallic tube meshes, "
-                         "OpenGL, 1024 spp.\n",
-                         v.rmse_none, v.rmse_proj05, b.width, b.height, b.reference_spp));
+  io::write_file_atomic(
+      ctx.dir / "summary.md",
+      fmt::format("# chermain2021-fig8: GGAA on curved tubes\n\n| method | ours (display "
+                  "RMSE %) | paper Fig. 8 |\n|---|---|---|\n| without GGAA | {:.3f} | 4.815 "
+                  "|\n| with GGAA (Eq. 21, s_K 0.5) | {:.3f} | 3.661 |\n\nSetup: three "
+                  "analytic tubes, alpha 0.35, density 1.6e5 per uv area, point light, "
+                  "{}x{} pixels, 1 spp at pixel centres; reference {} spp with the pixel's "
+                  "footprint (the integral GGAA approximates). Paper: metallic tube meshes, "
+                  "OpenGL, 1024 spp.\n",
+                  v.rmse_none, v.rmse_proj05, b.width, b.height, b.reference_spp));
 }
 
 void run_fig9(const FigureContext& ctx) {
@@ -228,31 +215,32 @@ void run_fig9(const FigureContext& ctx) {
   const double ours[] = {v.rmse_none, v.rmse_half05, v.rmse_half1, v.rmse_proj05, v.rmse_proj1};
   const double paper[] = {13.484, 7.527, 8.185, 7.425, 7.794};
   const double flicker[] = {v.flicker_none, std::nan(""), std::nan(""), v.flicker05, v.flicker1};
-  write_csv(ctx, "fig9.csv",
-            {"method", "rmse_percent", "paper_rmse_percent", "frame_to_frame_variance_x1e4",
-             "frames", "reference_spp"},
-            [&](io::CsvWriter& w) {
-              for (int i = 0; i < 5; ++i)
-                w.cell(names[i])
-                    .cell(ours[i])
-                    .cell(paper[i])
-                    .cell(flicker[i])
-                    .cell_int(b.frames)
-                    .cell_int(b.reference_spp)
-                    .end_row();
-            });
+  io::write_csv_atomic(ctx.dir / "fig9.csv",
+                       {"method", "rmse_percent", "paper_rmse_percent",
+                        "frame_to_frame_variance_x1e4", "frames", "reference_spp"},
+                       [&](io::CsvWriter& w) {
+                         for (int i = 0; i < 5; ++i)
+                           w.cell(names[i])
+                               .cell(ours[i])
+                               .cell(paper[i])
+                               .cell(flicker[i])
+                               .cell_int(b.frames)
+                               .cell_int(b.reference_spp)
+                               .end_row();
+                       });
   std::string rows;
   for (int i = 0; i < 5; ++i)
     rows +=
         fmt::format("| {} | {:.3f} | {:.3f} | {} |\n", names[i], ours[i], paper[i],
                     std::isnan(flicker[i]) ? std::string("-") : fmt::format("{:.4f}", flicker[i]));
-  write_text(ctx, "summary.md",
-             fmt::format("# chermain2021-fig9: half-slope vs projected-half derivatives, s_K\n\n"
-                         "| method | ours (display RMSE %) | paper Fig. 9 | frame-to-frame "
-                         "variance x1e4 |\n|---|---|---|---|\n{}\nFrames: {} camera positions "
-                         "0.37 px apart. Paper: lion head mesh with a normal map; here the tube "
-                         "scene of Fig. 8 without a normal map.\n",
-                         rows, b.frames));
+  io::write_file_atomic(
+      ctx.dir / "summary.md",
+      fmt::format("# chermain2021-fig9: half-slope vs projected-half derivatives, s_K\n\n"
+                  "| method | ours (display RMSE %) | paper Fig. 9 | frame-to-frame "
+                  "variance x1e4 |\n|---|---|---|---|\n{}\nFrames: {} camera positions "
+                  "0.37 px apart. Paper: lion head mesh with a normal map; here the tube "
+                  "scene of Fig. 8 without a normal map.\n",
+                  rows, b.frames));
 }
 
 // --- Fig. 10 ---
@@ -293,32 +281,33 @@ void run_fig10(const FigureContext& ctx) {
   std::vector<const Image*> all;
   for (const Image& im : panels) all.push_back(&im);
   io::write_png_preview(ctx.dir / "fig10.png", montage(all), 0.5);
-  write_csv(ctx, "fig10.csv",
-            {"rho", "log_density", "sigma_x", "sigma_y", "sigma_x_measured", "sigma_y_measured",
-             "rho_measured", "mass"},
-            [&](io::CsvWriter& w) {
-              for (const Row& r : rows)
-                w.cell(r.rho)
-                    .cell(r.log_density)
-                    .cell(s)
-                    .cell(s)
-                    .cell(r.sx)
-                    .cell(r.sy)
-                    .cell(r.rho_hat)
-                    .cell(r.mass)
-                    .end_row();
-            });
+  io::write_csv_atomic(ctx.dir / "fig10.csv",
+                       {"rho", "log_density", "sigma_x", "sigma_y", "sigma_x_measured",
+                        "sigma_y_measured", "rho_measured", "mass"},
+                       [&](io::CsvWriter& w) {
+                         for (const Row& r : rows)
+                           w.cell(r.rho)
+                               .cell(r.log_density)
+                               .cell(s)
+                               .cell(s)
+                               .cell(r.sx)
+                               .cell(r.sy)
+                               .cell(r.rho_hat)
+                               .cell(r.mass)
+                               .end_row();
+                       });
   std::string table;
   for (const Row& r : rows)
     table += fmt::format("| {} | e^{} | {:.4f} | {:.4f} | {:.4f} | {:.4f} |\n", r.rho,
                          r.log_density, r.sx, r.sy, r.rho_hat, r.mass);
-  write_text(ctx, "summary.md",
-             fmt::format("# chermain2021-fig10: slope correlation rho\n\nPatch-SDF panels (EXR, "
-                         "PNG left to right: e^15 rho 0, 0.5, 0.99; e^50 rho 0, 0.5, 0.99), "
-                         "sigma_x = sigma_y = {}, footprint 1/64 uv; covariance by 2D quadrature. "
-                         "The paper shows images only.\n\n| rho | density | sigma_x | sigma_y | "
-                         "rho measured | mass |\n|---|---|---|---|---|---|\n{}",
-                         s, table));
+  io::write_file_atomic(
+      ctx.dir / "summary.md",
+      fmt::format("# chermain2021-fig10: slope correlation rho\n\nPatch-SDF panels (EXR, "
+                  "PNG left to right: e^15 rho 0, 0.5, 0.99; e^50 rho 0, 0.5, 0.99), "
+                  "sigma_x = sigma_y = {}, footprint 1/64 uv; covariance by 2D quadrature. "
+                  "The paper shows images only.\n\n| rho | density | sigma_x | sigma_y | "
+                  "rho measured | mass |\n|---|---|---|---|---|---|\n{}",
+                  s, table));
 }
 
 }  // namespace

@@ -11,15 +11,14 @@
 #include <string>
 #include <vector>
 
-#include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"
 #include "core/io/png.h"
+#include "core/lights/procedural_sky.h"
 #include "core/math/rng.h"
 #include "core/models/smooth_ggx.h"
 #include "core/render/metrics.h"
 #include "experiments/figures/orb_render.h"
-#include "core/lights/procedural_sky.h"
 
 namespace glintlab::experiments {
 namespace {
@@ -158,16 +157,6 @@ Image montage(const std::vector<const Image*>& images, int columns) {
   return out;
 }
 
-void write_csv(const std::filesystem::path& path, std::initializer_list<std::string_view> header,
-               const std::function<void(io::CsvWriter&)>& rows) {
-  io::AtomicFile file(path);
-  {
-    io::CsvWriter w(file.stream(), header);
-    rows(w);
-  }
-  file.commit();
-}
-
 std::string alpha_tag(double alpha) { return fmt::format("a{}", alpha); }
 
 constexpr std::string_view kFig4Id = "eto2023-fig4";
@@ -202,20 +191,20 @@ void run_fig4(const FigureContext& ctx) {
       previews.push_back(r.image);
     }
   }
-  write_csv(ctx.dir / "fig4.csv",
-            {"alpha", "method", "spp", "reference_spp", "rmse", "rel_mse",
-             "rmse_over_spherical_caps", "rejected_fraction", "seed"},
-            [&](io::CsvWriter& w) {
-              for (const Row& r : rows) {
-                double caps = 0;
-                for (const Row& o : rows) {
-                  if (o.alpha == r.alpha && o.method == "spherical_caps") caps = o.rmse;
-                }
-                w.cell(r.alpha).cell(r.method).cell_int(b.spp).cell_int(b.reference_spp);
-                w.cell(r.rmse).cell(r.rel_mse).cell(r.rmse / caps).cell(r.rejected);
-                w.cell(fmt::format("{}", r.seed)).end_row();
-              }
-            });
+  io::write_csv_atomic(ctx.dir / "fig4.csv",
+                       {"alpha", "method", "spp", "reference_spp", "rmse", "rel_mse",
+                        "rmse_over_spherical_caps", "rejected_fraction", "seed"},
+                       [&](io::CsvWriter& w) {
+                         for (const Row& r : rows) {
+                           double caps = 0;
+                           for (const Row& o : rows) {
+                             if (o.alpha == r.alpha && o.method == "spherical_caps") caps = o.rmse;
+                           }
+                           w.cell(r.alpha).cell(r.method).cell_int(b.spp).cell_int(b.reference_spp);
+                           w.cell(r.rmse).cell(r.rel_mse).cell(r.rmse / caps).cell(r.rejected);
+                           w.cell(fmt::format("{}", r.seed)).end_row();
+                         }
+                       });
   std::vector<const Image*> grid;
   for (const Image& im : previews) grid.push_back(&im);
   io::write_png_preview(ctx.dir / "fig4.png", montage(grid, 3));
@@ -249,7 +238,7 @@ void run_series(const FigureContext& ctx) {
     }
     refs.push_back(ref.image);
   }
-  write_csv(
+  io::write_csv_atomic(
       ctx.dir / "rmse_spp.csv",
       {"alpha", "method", "spp", "reference_spp", "rmse", "rel_mse", "rejected_fraction", "seed"},
       [&](io::CsvWriter& w) {
@@ -261,22 +250,23 @@ void run_series(const FigureContext& ctx) {
       });
   // Least-squares slope of log RMSE against log spp per (alpha, method): −½ for an unbiased
   // estimator whose reference noise is negligible.
-  write_csv(ctx.dir / "loglog_slopes.csv", {"alpha", "method", "slope", "rmse_at_1spp_fit"},
-            [&](io::CsvWriter& w) {
-              for (double alpha : kAlphas) {
-                for (const Method& m : kMethods) {
-                  double sx = 0, sy = 0, sxx = 0, sxy = 0, n = 0;
-                  for (const Row& r : rows) {
-                    if (r.alpha != alpha || r.method != m.name) continue;
-                    const double lx = std::log(r.spp), ly = std::log(r.rmse);
-                    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly, n += 1;
-                  }
-                  const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
-                  w.cell(alpha).cell(m.name).cell(slope).cell(std::exp((sy - slope * sx) / n));
-                  w.end_row();
-                }
-              }
-            });
+  io::write_csv_atomic(
+      ctx.dir / "loglog_slopes.csv", {"alpha", "method", "slope", "rmse_at_1spp_fit"},
+      [&](io::CsvWriter& w) {
+        for (double alpha : kAlphas) {
+          for (const Method& m : kMethods) {
+            double sx = 0, sy = 0, sxx = 0, sxy = 0, n = 0;
+            for (const Row& r : rows) {
+              if (r.alpha != alpha || r.method != m.name) continue;
+              const double lx = std::log(r.spp), ly = std::log(r.rmse);
+              sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly, n += 1;
+            }
+            const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+            w.cell(alpha).cell(m.name).cell(slope).cell(std::exp((sy - slope * sx) / n));
+            w.end_row();
+          }
+        }
+      });
   io::write_png_preview(ctx.dir / "references.png", montage({&refs[0], &refs[1]}, 2));
 }
 

@@ -11,14 +11,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <functional>
 #include <numbers>
 #include <string>
 #include <vector>
 
 #include "core/glints/kemppinen.h"
 #include "core/glints/kemppinen_presets.h"
-#include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"
 #include "core/io/png.h"
@@ -76,16 +74,6 @@ io::ExrAttributes attributes(std::string_view figure, bool ggx, const std::strin
 
 std::uint64_t seed_for(std::string_view figure, std::string_view what) {
   return hash_string(fmt::format("{}/{}", figure, what).c_str()) & 0xffffffffu;
-}
-
-void write_csv(const std::filesystem::path& path, std::initializer_list<std::string_view> header,
-               const std::function<void(io::CsvWriter&)>& rows) {
-  io::AtomicFile file(path);
-  {
-    io::CsvWriter w(file.stream(), header);
-    rows(w);
-  }
-  file.commit();
 }
 
 // One channel of `src` scaled into R, G, B of a preview tile (false colour: grey).
@@ -261,24 +249,24 @@ void run_fig2_3(const FigureContext& ctx) {
       return 0;
     });
   }
-  write_csv(ctx.dir / "integrals.csv",
-            {"ndf", "domain", "quantity", "alpha", "microroughness", "footprint_cells", "lambda",
-             "resolution", "smooth_integral", "glinty_integral", "glinty_explicit_integral",
-             "glinty_compensation_integral", "glinty_over_smooth", "glinty_max",
-             "area_mean_glinty_hemisphere_integral", "area_mean_se", "area_positions"},
-            [&](io::CsvWriter& w) {
-              for (const Row& r : rows) {
-                w.cell(r.ndf).cell(r.domain);
-                w.cell(r.domain == "disk"
-                           ? "mean over U_Omega of 1 (smooth) and D_star_f/D (glinty)"
-                           : "integral of D cos and D_star_f cos over the hemisphere");
-                w.cell(kFig23Alpha).cell(kFig23AlphaStar);
-                w.cell(kFig23Cells).cell(r.lambda).cell_int(n).cell(r.smooth_integral);
-                w.cell(r.glinty_integral).cell(r.explicit_integral).cell(r.compensation_integral);
-                w.cell(r.glinty_integral / r.smooth_integral).cell(r.glinty_max);
-                w.cell(r.area_mean).cell(r.area_mean_se).cell_int(kFig23Positions).end_row();
-              }
-            });
+  io::write_csv_atomic(
+      ctx.dir / "integrals.csv",
+      {"ndf", "domain", "quantity", "alpha", "microroughness", "footprint_cells", "lambda",
+       "resolution", "smooth_integral", "glinty_integral", "glinty_explicit_integral",
+       "glinty_compensation_integral", "glinty_over_smooth", "glinty_max",
+       "area_mean_glinty_hemisphere_integral", "area_mean_se", "area_positions"},
+      [&](io::CsvWriter& w) {
+        for (const Row& r : rows) {
+          w.cell(r.ndf).cell(r.domain);
+          w.cell(r.domain == "disk" ? "mean over U_Omega of 1 (smooth) and D_star_f/D (glinty)"
+                                    : "integral of D cos and D_star_f cos over the hemisphere");
+          w.cell(kFig23Alpha).cell(kFig23AlphaStar);
+          w.cell(kFig23Cells).cell(r.lambda).cell_int(n).cell(r.smooth_integral);
+          w.cell(r.glinty_integral).cell(r.explicit_integral).cell(r.compensation_integral);
+          w.cell(r.glinty_integral / r.smooth_integral).cell(r.glinty_max);
+          w.cell(r.area_mean).cell(r.area_mean_se).cell_int(kFig23Positions).end_row();
+        }
+      });
   io::write_png_preview(ctx.dir / "fig2_3.png", montage(tiles, 4));
 }
 
@@ -337,16 +325,17 @@ void run_fig15(const FigureContext& ctx) {
                                seed_for(kFig15Id, fmt::format("{}/{}/{}", nd.name, a, th))));
         if (ctx.progress) ctx.progress("kemppinen2025-fig15 furnace", ++done, total);
       }
-  write_csv(ctx.dir / "furnace.csv",
-            {"ndf", "alpha", "microroughness", "theta_o_deg", "samples", "energy_glinty",
-             "energy_glinty_se", "energy_smooth", "energy_smooth_se", "glinty_minus_smooth"},
-            [&](io::CsvWriter& w) {
-              for (const FurnaceRow& r : rows) {
-                w.cell(r.ndf).cell(r.alpha).cell(r.alpha_star).cell(r.theta);
-                w.cell_int(static_cast<long long>(n)).cell(r.glint).cell(r.glint_se);
-                w.cell(r.smooth).cell(r.smooth_se).cell(r.glint - r.smooth).end_row();
-              }
-            });
+  io::write_csv_atomic(
+      ctx.dir / "furnace.csv",
+      {"ndf", "alpha", "microroughness", "theta_o_deg", "samples", "energy_glinty",
+       "energy_glinty_se", "energy_smooth", "energy_smooth_se", "glinty_minus_smooth"},
+      [&](io::CsvWriter& w) {
+        for (const FurnaceRow& r : rows) {
+          w.cell(r.ndf).cell(r.alpha).cell(r.alpha_star).cell(r.theta);
+          w.cell_int(static_cast<long long>(n)).cell(r.glint).cell(r.glint_se);
+          w.cell(r.smooth).cell(r.smooth_se).cell(r.glint - r.smooth).end_row();
+        }
+      });
   // Chart: energy over θo; GGX blue, Beckmann red; glinty solid-dark, smooth light.
   std::vector<Series> series;
   for (const NdfChoice& nd : kNdfs)
@@ -409,45 +398,46 @@ void run_fig14(const FigureContext& ctx) {
                   attributes(kFig14Id, true, params_text(p, kAlpha, -1), seed));
     tiles.push_back(grey_tile(img, "ratio", 0.5));
   }
-  write_csv(ctx.dir / "background.csv",
-            {"k", "footprint_cells", "lambda", "alpha", "microroughness", "theta_h_deg",
-             "positions", "mean_ratio_to_D", "mean_abs_error_vs_D"},
-            [&](io::CsvWriter& wr) {
-              for (const Row& r : rows) {
-                wr.cell_int(r.k).cell(r.cells).cell(std::log2(2 * r.cells)).cell(kAlpha);
-                wr.cell(kAlphaStarHigh).cell(th * 180 / kPiD).cell_int(per_row);
-                wr.cell(r.mean_ratio).cell(r.mean_abs_error).end_row();
-              }
-            });
+  io::write_csv_atomic(ctx.dir / "background.csv",
+                       {"k", "footprint_cells", "lambda", "alpha", "microroughness", "theta_h_deg",
+                        "positions", "mean_ratio_to_D", "mean_abs_error_vs_D"},
+                       [&](io::CsvWriter& wr) {
+                         for (const Row& r : rows) {
+                           wr.cell_int(r.k).cell(r.cells).cell(std::log2(2 * r.cells)).cell(kAlpha);
+                           wr.cell(kAlphaStarHigh).cell(th * 180 / kPiD).cell_int(per_row);
+                           wr.cell(r.mean_ratio).cell(r.mean_abs_error).end_row();
+                         }
+                       });
   io::write_png_preview(ctx.dir / "background.png", montage(tiles, 2));
 
   // Right pair: the highlight's shape, area mean of D★^f over θ_h (φ_h = 0), footprint 64 cells.
   constexpr double kSmoothAlpha = 0.05;
   const GGX<double> smooth{kSmoothAlpha, kSmoothAlpha};
   const int n_theta = ctx.quick ? 16 : 48, positions = ctx.quick ? 48 : 400;
-  write_csv(ctx.dir / "highlight_shape.csv",
-            {"theta_h_deg", "alpha", "D_smooth", "mean_D_star_f_microroughness_0.02",
-             "mean_D_star_f_microroughness_0.5", "positions"},
-            [&](io::CsvWriter& wr) {
-              for (int t = 0; t < n_theta; ++t) {
-                const double deg = 12.0 * t / (n_theta - 1);
-                const double a = deg * kPiD / 180;
-                const V3 hh{std::sin(a), 0, std::cos(a)};
-                double m_lo = 0, m_hi = 0;
-                for (double as : {0.02, 0.5}) {
-                  const P p = kemppinen_preset_params(2, as, seed);
-                  double s = 0;
-                  for (int i = 0; i < positions; ++i) {
-                    const V2 uv{1000 * counter_uniform<double>(seed, std::uint64_t(i), 4),
-                                1000 * counter_uniform<double>(seed, std::uint64_t(i), 5)};
-                    s += kemppinen_eval(p, smooth, kemppinen_footprint_cells(uv, 64, p), hh).d.x;
-                  }
-                  (as < 0.1 ? m_lo : m_hi) = s / positions;
-                }
-                wr.cell(deg).cell(kSmoothAlpha).cell(smooth.D(hh)).cell(m_lo).cell(m_hi);
-                wr.cell_int(positions).end_row();
-              }
-            });
+  io::write_csv_atomic(
+      ctx.dir / "highlight_shape.csv",
+      {"theta_h_deg", "alpha", "D_smooth", "mean_D_star_f_microroughness_0.02",
+       "mean_D_star_f_microroughness_0.5", "positions"},
+      [&](io::CsvWriter& wr) {
+        for (int t = 0; t < n_theta; ++t) {
+          const double deg = 12.0 * t / (n_theta - 1);
+          const double a = deg * kPiD / 180;
+          const V3 hh{std::sin(a), 0, std::cos(a)};
+          double m_lo = 0, m_hi = 0;
+          for (double as : {0.02, 0.5}) {
+            const P p = kemppinen_preset_params(2, as, seed);
+            double s = 0;
+            for (int i = 0; i < positions; ++i) {
+              const V2 uv{1000 * counter_uniform<double>(seed, std::uint64_t(i), 4),
+                          1000 * counter_uniform<double>(seed, std::uint64_t(i), 5)};
+              s += kemppinen_eval(p, smooth, kemppinen_footprint_cells(uv, 64, p), hh).d.x;
+            }
+            (as < 0.1 ? m_lo : m_hi) = s / positions;
+          }
+          wr.cell(deg).cell(kSmoothAlpha).cell(smooth.D(hh)).cell(m_lo).cell(m_hi);
+          wr.cell_int(positions).end_row();
+        }
+      });
 }
 
 // ---- Fig. 6: roulette vs linear blending across a LOD transition ----------------------------
@@ -509,17 +499,17 @@ void run_fig6(const FigureContext& ctx) {
                   attributes(kFig6Id, true, params_text(p, kAlpha, -1), seed));
     tiles.push_back(grey_tile(img, "D_star_f", 0.5 / ggx.D(h)));
   }
-  write_csv(ctx.dir / "blending.csv",
-            {"blending", "lambda", "w_level1", "footprint_cells", "positions", "mean_D_star_f",
-             "cv_D_star_f", "lit_fraction", "lit_mean_D_star_f", "p99_D_star_f", "max_D_star_f",
-             "D_smooth"},
-            [&](io::CsvWriter& w) {
-              for (const Row& r : out) {
-                w.cell(r.blend).cell(r.lambda).cell(r.w1).cell(std::exp2(r.lambda) / 2);
-                w.cell_int(rows_n).cell(r.mean).cell(r.cv).cell(r.lit_fraction);
-                w.cell(r.lit_mean).cell(r.p99).cell(r.max).cell(ggx.D(h)).end_row();
-              }
-            });
+  io::write_csv_atomic(ctx.dir / "blending.csv",
+                       {"blending", "lambda", "w_level1", "footprint_cells", "positions",
+                        "mean_D_star_f", "cv_D_star_f", "lit_fraction", "lit_mean_D_star_f",
+                        "p99_D_star_f", "max_D_star_f", "D_smooth"},
+                       [&](io::CsvWriter& w) {
+                         for (const Row& r : out) {
+                           w.cell(r.blend).cell(r.lambda).cell(r.w1).cell(std::exp2(r.lambda) / 2);
+                           w.cell_int(rows_n).cell(r.mean).cell(r.cv).cell(r.lit_fraction);
+                           w.cell(r.lit_mean).cell(r.p99).cell(r.max).cell(ggx.D(h)).end_row();
+                         }
+                       });
   io::write_png_preview(ctx.dir / "strip.png", montage(tiles, 1));
 }
 
@@ -603,16 +593,17 @@ void run_fig10(const FigureContext& ctx) {
                              seed));
     tiles.push_back(std::move(strip));
   }
-  write_csv(ctx.dir / "sweeps.csv",
-            {"parameter", "value", "mean_radiance", "mean_radiance_smooth", "glinty_over_smooth",
-             "cv_radiance", "lit_fraction", "max_radiance", "resolution"},
-            [&](io::CsvWriter& w) {
-              for (const Row& r : rows) {
-                w.cell(r.param).cell(r.value).cell(r.mean).cell(r.smooth_mean);
-                w.cell(r.mean / r.smooth_mean).cell(r.cv).cell(r.lit_fraction).cell(r.max);
-                w.cell_int(n).end_row();
-              }
-            });
+  io::write_csv_atomic(
+      ctx.dir / "sweeps.csv",
+      {"parameter", "value", "mean_radiance", "mean_radiance_smooth", "glinty_over_smooth",
+       "cv_radiance", "lit_fraction", "max_radiance", "resolution"},
+      [&](io::CsvWriter& w) {
+        for (const Row& r : rows) {
+          w.cell(r.param).cell(r.value).cell(r.mean).cell(r.smooth_mean);
+          w.cell(r.mean / r.smooth_mean).cell(r.cv).cell(r.lit_fraction).cell(r.max);
+          w.cell_int(n).end_row();
+        }
+      });
   std::vector<Image> rgb;
   for (const Image& t : tiles) rgb.push_back(grey_tile(t, "R", exposure > 0 ? 0.7 / exposure : 1));
   io::write_png_preview(ctx.dir / "sweeps.png", montage(rgb, 1));

@@ -16,7 +16,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <functional>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -78,16 +77,6 @@ auto with_ndf(bool ggx, F&& f) {
 
 std::uint64_t fig7_seed(std::string_view what) {
   return hash_string(fmt::format("{}/{}", kFig7Id, what).c_str()) & 0xffffffffu;
-}
-
-void write_csv(const std::filesystem::path& path, std::initializer_list<std::string_view> header,
-               const std::function<void(io::CsvWriter&)>& rows) {
-  io::AtomicFile file(path);
-  {
-    io::CsvWriter w(file.stream(), header);
-    rows(w);
-  }
-  file.commit();
 }
 
 void run_ndf(const FigureContext& ctx, const EnvironmentMap& env, const Fig7Budget& b,
@@ -265,31 +254,32 @@ void run_fig7(const FigureContext& ctx) {
           ctx.dir / fmt::format("{}_{}_{}spp.exr", r.name, kStrategies[t].name, b.preview_spp),
           r.preview[t], attrs(kStrategies[t].name, b.preview_spp));
   }
-  write_csv(ctx.dir / "rmse_spp.csv",
-            {"ndf", "strategy", "spp", "rmse", "stderr", "rmse_minus_reference_noise", "batches",
-             "reference_spp"},
-            [&](io::CsvWriter& w) {
-              for (const NdfRun& r : runs)
-                for (int t = 0; t < 3; ++t)
-                  for (const RmseAtSpp& a : r.rmse[t]) {
-                    w.cell(r.name).cell(kStrategies[t].name).cell_int(a.spp).cell(a.rmse);
-                    w.cell(a.std_error)
-                        .cell(std::sqrt(std::max(0.0, a.rmse * a.rmse - r.reference_noise)));
-                    w.cell_int((long long)a.batches).cell_int(b.reference_spp).end_row();
-                  }
-            });
-  write_csv(ctx.dir / "loglog_slopes.csv",
-            {"ndf", "strategy", "slope", "rmse_at_1spp", "mixture_probability_q"},
-            [&](io::CsvWriter& w) {
-              for (const NdfRun& r : runs)
-                for (int t = 0; t < 3; ++t)
-                  w.cell(r.name)
-                      .cell(kStrategies[t].name)
-                      .cell(r.slope[t])
-                      .cell(r.rmse[t][0].rmse)
-                      .cell(r.q)
-                      .end_row();
-            });
+  io::write_csv_atomic(
+      ctx.dir / "rmse_spp.csv",
+      {"ndf", "strategy", "spp", "rmse", "stderr", "rmse_minus_reference_noise", "batches",
+       "reference_spp"},
+      [&](io::CsvWriter& w) {
+        for (const NdfRun& r : runs)
+          for (int t = 0; t < 3; ++t)
+            for (const RmseAtSpp& a : r.rmse[t]) {
+              w.cell(r.name).cell(kStrategies[t].name).cell_int(a.spp).cell(a.rmse);
+              w.cell(a.std_error)
+                  .cell(std::sqrt(std::max(0.0, a.rmse * a.rmse - r.reference_noise)));
+              w.cell_int((long long)a.batches).cell_int(b.reference_spp).end_row();
+            }
+      });
+  io::write_csv_atomic(ctx.dir / "loglog_slopes.csv",
+                       {"ndf", "strategy", "slope", "rmse_at_1spp", "mixture_probability_q"},
+                       [&](io::CsvWriter& w) {
+                         for (const NdfRun& r : runs)
+                           for (int t = 0; t < 3; ++t)
+                             w.cell(r.name)
+                                 .cell(kStrategies[t].name)
+                                 .cell(r.slope[t])
+                                 .cell(r.rmse[t][0].rmse)
+                                 .cell(r.q)
+                                 .end_row();
+                       });
   io::write_png_preview(ctx.dir / "fig7_rmse_spp.png", loglog_chart(runs, b.max_spp));
   io::write_png_preview(ctx.dir / "fig7_images.png", preview_montage(runs, 192 / b.size), 0.1);
   std::string md = fmt::format(
@@ -323,9 +313,7 @@ void run_fig7(const FigureContext& ctx) {
       "\n\nPNG: `fig7_rmse_spp.png` (left Beckmann, right GGX; red glinty IS, orange printed "
       "pdf, blue smooth-NDF IS; decade grid), `fig7_images.png` (rows Beckmann, GGX: reference, "
       "then each strategy at the preview spp).\n";
-  io::AtomicFile f(ctx.dir / "summary.md");
-  f.stream() << md;
-  f.commit();
+  io::write_file_atomic(ctx.dir / "summary.md", md);
 }
 
 }  // namespace

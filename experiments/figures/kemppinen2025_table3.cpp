@@ -20,11 +20,12 @@
 
 #include "core/glints/kemppinen.h"
 #include "core/glints/kemppinen_reference.h"
+#include "core/io/atomic_file.h"
+#include "core/io/csv.h"
 #include "core/io/png.h"
 #include "experiments/bench/kemppinen_speed_accuracy.h"
 #include "experiments/bench/kemppinen_table3_scene.h"
 #include "experiments/figures/bench_json.h"
-#include "experiments/figures/figure_files.h"
 #include "experiments/figures/log_chart.h"
 
 namespace glintlab::experiments {
@@ -152,7 +153,7 @@ void run_table3(const FigureContext& ctx) {
                                           "paper_rtx3090_ms_per_frame",
                                           "paper_ns_per_pixel",
                                           "time_source"};
-  write_figure_csv(ctx.dir / "table3.csv", kHeader, [&](io::CsvWriter& w) {
+  io::write_csv_atomic(ctx.dir / "table3.csv", kHeader, [&](io::CsvWriter& w) {
     for (std::size_t i = 0; i < cells.size(); ++i) {
       const kt3::Cell& c = cells[i];
       if (c.smooth) continue;
@@ -201,7 +202,7 @@ void run_table3(const FigureContext& ctx) {
       "cells differ only by the cost of the footprint and of the exp/erf calls.\n\n";
   md += time_source_note(any_json, any_in_process, min_ms);
   if (!json) md += fmt::format("\n{} NOT FOUND.\n", kJson.string());
-  write_figure_text(ctx.dir / "summary.md", md);
+  io::write_file_atomic(ctx.dir / "summary.md", md);
 }
 
 // ---- Speed vs accuracy -------------------------------------------------------------------
@@ -312,7 +313,7 @@ void run_speed_accuracy(const FigureContext& ctx) {
       "method",          "setting",   "k",          "erf",     "blend",
       "ns_per_eval",     "err_max",   "err_rms",    "err_p99", "err_n",
       "on_pareto_front", "reference", "time_source"};
-  write_figure_csv(ctx.dir / "speed_accuracy.csv", kHeader, [&](io::CsvWriter& w) {
+  io::write_csv_atomic(ctx.dir / "speed_accuracy.csv", kHeader, [&](io::CsvWriter& w) {
     for (const SaRow& r : rows) {
       std::string setting = r.setting;  // the CSV has no quoting: ',' → ';'
       std::replace(setting.begin(), setting.end(), ',', ';');
@@ -416,7 +417,7 @@ void run_speed_accuracy(const FigureContext& ctx) {
   }
   constexpr std::string_view kCostHeader[] = {
       "method", "k", "footprint_cells", "ns_per_eval", "points_visited", "time_source"};
-  write_figure_csv(ctx.dir / "cost_vs_footprint.csv", kCostHeader, [&](io::CsvWriter& w) {
+  io::write_csv_atomic(ctx.dir / "cost_vs_footprint.csv", kCostHeader, [&](io::CsvWriter& w) {
     for (const CostRow& c : cost) {
       w.cell(c.method).cell_int(c.k).cell_int(c.cells).cell(c.ns).cell(c.points);
       w.cell(c.source.empty() ? std::string_view("not_measured") : c.source).end_row();
@@ -466,7 +467,7 @@ void run_speed_accuracy(const FigureContext& ctx) {
                       r.err.n, r.front ? "yes" : "");
   md += "\n" + time_source_note(any_json, any_in_process, min_ms);
   if (!json) md += fmt::format("\n{} NOT FOUND.\n", kJson.string());
-  write_figure_text(ctx.dir / "summary.md", md);
+  io::write_file_atomic(ctx.dir / "summary.md", md);
 }
 
 }  // namespace

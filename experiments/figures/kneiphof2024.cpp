@@ -17,7 +17,6 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <functional>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -44,22 +43,6 @@ std::uint64_t figure_seed(std::string_view id, std::uint64_t k) {
   return mix64(hash_string(std::string(id).c_str()) + k);
 }
 const Vec3<double> kSunDir = normalize(Vec3<double>{0, 1, 1.2});
-
-void write_csv(const std::filesystem::path& path, std::initializer_list<std::string_view> header,
-               const std::function<void(io::CsvWriter&)>& rows) {
-  io::AtomicFile file(path);
-  {
-    io::CsvWriter w(file.stream(), header);
-    rows(w);
-  }
-  file.commit();
-}
-
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  io::AtomicFile file(path);
-  file.stream() << text;
-  file.commit();
-}
 
 io::ExrAttributes attributes(std::string_view id, const std::string& what) {
   return {{"glintlab_figure", std::string(id)},
@@ -182,7 +165,7 @@ void run_fig6(const FigureContext& ctx) {
   }
   // Columns: γ = 0.26° (K&K, D&B), γ = 5° (K&K, D&B); rows √α = 0.1, 0.5, 0.9 — as Fig. 6.
   io::write_png_preview(ctx.dir / "fig6.png", montage(tiles, 4));
-  write_csv(
+  io::write_csv_atomic(
       ctx.dir / "fig6.csv",
       {"sqrt_alpha", "gamma_deg", "R_fitted", "p_normal_incidence", "p_gt_1",
        "clamped_pixel_fraction"},
@@ -195,21 +178,21 @@ void run_fig6(const FigureContext& ctx) {
   // The p > 1 map at normal incidence over (√α, γ).
   const int na = ctx.quick ? 17 : 81, ng = ctx.quick ? 13 : 61;
   Image map(ng, na, {"R", "G", "B"});
-  write_csv(ctx.dir / "p_map.csv", {"sqrt_alpha", "gamma_deg", "p_eq20", "p_gt_1"},
-            [&](io::CsvWriter& w) {
-              for (int i = 0; i < na; ++i)
-                for (int j = 0; j < ng; ++j) {
-                  const double sa = 0.1 + 0.8 * i / (na - 1);
-                  const double gd = 0.1 * std::pow(200.0, double(j) / (ng - 1));
-                  const double p = p_normal(sa * sa, gd);
-                  w.cell(sa).cell(gd).cell(p).cell_int(p > 1);
-                  w.end_row();
-                  const double v = std::min(1.0, p);
-                  map.at(j, na - 1 - i, 0) = p > 1 ? 1.0 : v;
-                  map.at(j, na - 1 - i, 1) = p > 1 ? 0.0 : v;
-                  map.at(j, na - 1 - i, 2) = p > 1 ? 0.0 : v;
-                }
-            });
+  io::write_csv_atomic(ctx.dir / "p_map.csv", {"sqrt_alpha", "gamma_deg", "p_eq20", "p_gt_1"},
+                       [&](io::CsvWriter& w) {
+                         for (int i = 0; i < na; ++i)
+                           for (int j = 0; j < ng; ++j) {
+                             const double sa = 0.1 + 0.8 * i / (na - 1);
+                             const double gd = 0.1 * std::pow(200.0, double(j) / (ng - 1));
+                             const double p = p_normal(sa * sa, gd);
+                             w.cell(sa).cell(gd).cell(p).cell_int(p > 1);
+                             w.end_row();
+                             const double v = std::min(1.0, p);
+                             map.at(j, na - 1 - i, 0) = p > 1 ? 1.0 : v;
+                             map.at(j, na - 1 - i, 1) = p > 1 ? 0.0 : v;
+                             map.at(j, na - 1 - i, 2) = p > 1 ? 0.0 : v;
+                           }
+                       });
   io::write_png_preview(ctx.dir / "p_map.png", map);
   std::string md =
       "# kneiphof2024-fig6\n\nR making Deliot & Belcour equal to Eq. 20 at normal incidence "
@@ -221,7 +204,7 @@ void run_fig6(const FigureContext& ctx) {
       "\nfig6.png: rows √α = 0.1, 0.5, 0.9; columns (γ = 0.26°: K&K, D&B), (γ = 5°: K&K, D&B); "
       "p_map.png: p at normal incidence over γ (x, 0.1°..20° log) and √α (y, 0.1 bottom..0.9 "
       "top), red where p > 1.\n";
-  write_text(ctx.dir / "summary.md", md);
+  io::write_file_atomic(ctx.dir / "summary.md", md);
 }
 
 // ---- Fig. 9 --------------------------------------------------------------------------------
@@ -325,7 +308,7 @@ void run_fig9(const FigureContext& ctx) {
     tiles.push_back(tile(size, sub_ltc, sc));
   }
   io::write_png_preview(ctx.dir / "fig9.png", montage(tiles, 4));
-  write_csv(
+  io::write_csv_atomic(
       ctx.dir / "fig9.csv",
       {"light_half_width", "alpha", "rel_rms_subdivided_mc_vs_single_mc",
        "max_rel_subdivided_ltc_vs_single_ltc", "rel_rms_single_ltc_vs_single_mc"},
@@ -349,7 +332,7 @@ void run_fig9(const FigureContext& ctx) {
   md +=
       "\nfig9.png: rows half-width 0.4, 0.1; columns single light (MC terms), 256 sub-lights (MC "
       "terms), single light (LTC), 256 sub-lights (LTC).\n";
-  write_text(ctx.dir / "summary.md", md);
+  io::write_file_atomic(ctx.dir / "summary.md", md);
 }
 
 // ---- Fig. 10 ----------------------------------------------------------------------------------
@@ -434,7 +417,7 @@ void run_fig10(const FigureContext& ctx) {
     }
   }
   io::write_png_preview(ctx.dir / "fig10.png", montage(tiles, 6));
-  write_csv(
+  io::write_csv_atomic(
       ctx.dir / "fig10.csv",
       {"light", "sqrt_alpha", "strip", "mean_N_P", "rel_rms_vs_smooth", "rel_mean_vs_smooth"},
       [&](io::CsvWriter& w) {
@@ -452,7 +435,7 @@ void run_fig10(const FigureContext& ctx) {
   for (std::size_t k = 0; k + strips - 1 < rows.size(); k += strips)
     md += fmt::format("| {} | {} | {:.3g} | {:.3g} |\n", rows[k].light, rows[k].sa, rows[k].rel_rms,
                       rows[k + strips - 1].rel_rms);
-  write_text(ctx.dir / "summary.md", md);
+  io::write_file_atomic(ctx.dir / "summary.md", md);
 }
 
 // ---- Table 1 analogue
@@ -502,7 +485,7 @@ void run_table1(const FigureContext& ctx) {
   const std::filesystem::path json = "out/bench/glints.json";
   bool found = false;
   const auto t = read_bench(json, &found);
-  write_csv(
+  io::write_csv_atomic(
       ctx.dir / "table1.csv",
       {"light", "smooth_ns", "deliot_belcour_ns", "kneiphof_klein_ns", "ndf_ltc_ns",
        "paper_rtx4090_smooth_ms", "paper_db_ms", "paper_ours_ms", "paper_ndf_ltc_ms"},
@@ -536,7 +519,7 @@ void run_table1(const FigureContext& ctx) {
                       kPaper[l].light, m[0], m[1], m[2], m[3], kPaper[l].smooth, kPaper[l].db,
                       kPaper[l].ours, kPaper[l].ndf_ltc);
   }
-  write_text(ctx.dir / "summary.md", md);
+  io::write_file_atomic(ctx.dir / "summary.md", md);
 }
 
 }  // namespace

@@ -74,16 +74,6 @@ Image montage(const std::vector<Image>& images, int columns, double scale = 1) {
   return out;
 }
 
-void write_csv(const std::filesystem::path& path, std::initializer_list<std::string_view> header,
-               const std::function<void(io::CsvWriter&)>& rows) {
-  io::AtomicFile file(path);
-  {
-    io::CsvWriter w(file.stream(), header);
-    rows(w);
-  }
-  file.commit();
-}
-
 void progress(const FigureContext& ctx, const std::string& stage, long done, long total) {
   if (ctx.progress) ctx.progress(stage, done, total);
 }
@@ -155,22 +145,23 @@ void run_table1(const FigureContext& ctx) {
   for (double d : {kPodeeNear, kPodeeMedium, kPodeeFar})
     runs.push_back(run_distance(ctx, id, d, b));
   for (const DistanceRun& r : runs) write_distance_images(ctx, id, r, b);
-  write_csv(ctx.dir / "table1.csv",
-            {"distance", "method", "rmse_vs_64spp", "rmse_vs_converged", "converged_spp",
-             "paper_rmse", "size_px"},
-            [&](io::CsvWriter& w) {
-              for (const DistanceRun& r : runs) {
-                for (std::size_t m = 0; m < kMethods.size(); ++m) {
-                  w.cell(r.distance).cell(to_string(kMethods[m])).cell(r.vs_paper[m]);
-                  w.cell(r.vs_converged[m]).cell(double(b.converged_spp));
-                  w.cell(m < 3 ? kPaperRmse[m] : std::nan("")).cell(double(b.size));
-                  w.end_row();
-                }
-                w.cell(r.distance).cell("reference64").cell(0.0).cell(r.paper_vs_converged);
-                w.cell(double(b.converged_spp)).cell(std::nan("")).cell(double(b.size));
-                w.end_row();
-              }
-            });
+  io::write_csv_atomic(
+      ctx.dir / "table1.csv",
+      {"distance", "method", "rmse_vs_64spp", "rmse_vs_converged", "converged_spp", "paper_rmse",
+       "size_px"},
+      [&](io::CsvWriter& w) {
+        for (const DistanceRun& r : runs) {
+          for (std::size_t m = 0; m < kMethods.size(); ++m) {
+            w.cell(r.distance).cell(to_string(kMethods[m])).cell(r.vs_paper[m]);
+            w.cell(r.vs_converged[m]).cell(double(b.converged_spp));
+            w.cell(m < 3 ? kPaperRmse[m] : std::nan("")).cell(double(b.size));
+            w.end_row();
+          }
+          w.cell(r.distance).cell("reference64").cell(0.0).cell(r.paper_vs_converged);
+          w.cell(double(b.converged_spp)).cell(std::nan("")).cell(double(b.size));
+          w.end_row();
+        }
+      });
   std::string md = fmt::format(
       "# Podee et al. Table 1 — RMSE against the 64-spp reference\n\n"
       "{}² crop of a 96-pixel, 30° frame; linear radiance for unit light radiance; converged "
@@ -202,21 +193,22 @@ void run_distance_figure(const FigureContext& ctx) {
   const char* id = "podee-fig4-distance";
   std::vector<DistanceRun> runs;
   for (double d : b.distances) runs.push_back(run_distance(ctx, id, d, b));
-  write_csv(ctx.dir / "error_vs_distance.csv",
-            {"distance", "pixel_size_at_sphere", "method", "rmse_vs_64spp", "rmse_vs_converged",
-             "ratio_to_best_baseline"},
-            [&](io::CsvWriter& w) {
-              for (const DistanceRun& r : runs) {
-                const double best = std::min(r.vs_paper[0], r.vs_paper[1]);
-                // Pixel footprint on the sphere's nearest point: (d − 1) · 2 tan(15°) / 96.
-                const double px = (r.distance - 1) * 2 * std::tan(15 * kPi<double> / 180) / 96;
-                for (std::size_t m = 0; m < kMethods.size(); ++m) {
-                  w.cell(r.distance).cell(px).cell(to_string(kMethods[m])).cell(r.vs_paper[m]);
-                  w.cell(r.vs_converged[m]).cell(r.vs_paper[m] / best);
-                  w.end_row();
-                }
-              }
-            });
+  io::write_csv_atomic(
+      ctx.dir / "error_vs_distance.csv",
+      {"distance", "pixel_size_at_sphere", "method", "rmse_vs_64spp", "rmse_vs_converged",
+       "ratio_to_best_baseline"},
+      [&](io::CsvWriter& w) {
+        for (const DistanceRun& r : runs) {
+          const double best = std::min(r.vs_paper[0], r.vs_paper[1]);
+          // Pixel footprint on the sphere's nearest point: (d − 1) · 2 tan(15°) / 96.
+          const double px = (r.distance - 1) * 2 * std::tan(15 * kPi<double> / 180) / 96;
+          for (std::size_t m = 0; m < kMethods.size(); ++m) {
+            w.cell(r.distance).cell(px).cell(to_string(kMethods[m])).cell(r.vs_paper[m]);
+            w.cell(r.vs_converged[m]).cell(r.vs_paper[m] / best);
+            w.end_row();
+          }
+        }
+      });
   std::vector<Image> cells;
   for (const DistanceRun& r : runs) {
     append_row(cells, r);
@@ -268,18 +260,19 @@ void run_flicker(const FigureContext& ctx) {
       cells.push_back(std::move(sd));
     }
   }
-  write_csv(ctx.dir / "flicker.csv",
-            {"distance", "method", "mean_sq_frame_difference", "ratio_to_centre", "frames"},
-            [&](io::CsvWriter& w) {
-              for (const Row& r : rows) {
-                double centre = 0;
-                for (const Row& q : rows)
-                  if (q.distance == r.distance && q.method == "centre") centre = q.flicker;
-                w.cell(r.distance).cell(r.method).cell(r.flicker).cell(r.flicker / centre);
-                w.cell(double(b.frames));
-                w.end_row();
-              }
-            });
+  io::write_csv_atomic(
+      ctx.dir / "flicker.csv",
+      {"distance", "method", "mean_sq_frame_difference", "ratio_to_centre", "frames"},
+      [&](io::CsvWriter& w) {
+        for (const Row& r : rows) {
+          double centre = 0;
+          for (const Row& q : rows)
+            if (q.distance == r.distance && q.method == "centre") centre = q.flicker;
+          w.cell(r.distance).cell(r.method).cell(r.flicker).cell(r.flicker / centre);
+          w.cell(double(b.frames));
+          w.end_row();
+        }
+      });
   io::write_png_preview(ctx.dir / "flicker.png", montage(cells, 3, 2.0));
 }
 
