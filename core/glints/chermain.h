@@ -12,21 +12,31 @@
 // (Eq. 16). Per cell, a counter hash of the cell's lower-left corner (in units of 2^-20, so a
 // coarse cell shares its draws with its lower-left child) picks a rotation θ and the two marginal
 // indices. M_cell = M R(θ) with M of Eq. 18; P_M = P_o(R(−θ) M⁻¹ m̃)/det M (Eq. 4–6). GGAA (Eq. 19):
-// each marginal is read with textureGrad (ChermainDictionary::lookup_grad), the derivatives s_K
+// each marginal is read with textureGrad (core/glints/chermain_lookup.h), the derivatives s_K
 // R(−θ) M⁻¹ dh/dx, s_K R(−θ) M⁻¹ dh/dy, dh the screen-space derivative of the half slope h̃ (Eq. 20)
 // or of the projected half vector h⊥ = (x_h, y_h) (Eq. 21, the default). The smooth fallback is not
-// filtered (its lobe is far wider than any kernel GGAA is meant for). Scalar kernels only: the
-// tables are gathered per cell, which has no Wide<> path yet.
+// filtered (its lobe is far wider than any kernel GGAA is meant for).
+//
+// Kernels generic over the float type (scalar and core/simd Wide<> batches): the 2 LODs × 4 cells
+// are masks (a zero weight adds nothing), the smooth fallback a per-lane select, the cell hash and
+// the texel fetches per-lane integer code and gathers (core/math/lanes.h, lane_rng.h). The scalar
+// double instantiation is the host code this model always had, op for op; the model is offered in
+// double only (kDoubleOnly): cell coordinates at LOD −20 are uv·2^20, whose bilinear weights float
+// would round to 2^−3 at uv ≈ 1 (batched on Wide<double>, core/simd/model_instantiate.h).
 #pragma once
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string_view>
+#include <type_traits>
 
 #include "core/glints/chermain_dictionary.h"
+#include "core/glints/chermain_lookup.h"
+#include "core/math/lane_rng.h"
+#include "core/math/lanes.h"
 #include "core/math/ops.h"
 #include "core/math/rng.h"
 #include "core/model.h"
@@ -40,7 +50,7 @@ enum ChermainKernel { kChermainNoGgaa = 0, kChermainHalfSlope = 1, kChermainProj
 // The 2×2 matrix M of 2021 Eq. 18, stored with its inverse and determinant:
 // M = (1/σ_o) [[σ_x √(1−ρ²), ρ σ_x], [0, σ_y]], so that M Σ_o Mᵀ = Σ (Eq. 16, 17).
 // `with_rho = false` gives the 2020 form diag(σ_x, σ_y)/σ_o (ρ ignored), the control of
-// chermain.correlation.
+// chermain.correlation. Uniform over a batch: host doubles.
 struct ChermainMatrix {
   double m00, m01, m10, m11;
   double i00, i01, i10, i11;
@@ -60,6 +70,7 @@ inline ChermainMatrix chermain_matrix(double sigma_x, double sigma_y, double rho
   return M;
 }
 
+// The model's parameters (uniform over a batch).
 struct ChermainSdfParams {
   const ChermainDictionary* dictionary;
   double sigma_x, sigma_y, rho;  // Σ of Eq. 16 (slope standard deviations and correlation)
@@ -72,145 +83,199 @@ struct ChermainSdfParams {
 };
 
 // What one patch-SDF evaluation used (the model's intermediates).
-struct ChermainSdfInfo {
-  double lod = 0;           // l_P
-  double dict_level = 0;    // k at LOD ⌊l_P⌋ (= L for the smooth fallback)
-  double mip_lambda = 0;    // weighted mean textureGrad level of detail over the lookups
-  double kernel_width = 0;  // s_K max(‖dh/dx‖, ‖dh/dy‖): the kernel extent in h̃ space
+template <class T>
+struct ChermainSdfInfoT {
+  T lod = T(0);           // l_P
+  T dict_level = T(0);    // k at LOD ⌊l_P⌋ (= L for the smooth fallback)
+  T mip_lambda = T(0);    // weighted mean textureGrad level of detail over the lookups
+  T kernel_width = T(0);  // s_K max(‖dh/dx‖, ‖dh/dy‖): the kernel extent in h̃ space
 };
+using ChermainSdfInfo = ChermainSdfInfoT<double>;
 
-// One cell's draws: rotation and the two marginals (2020: "randomly picked", 2021 Sec. 3).
+// One cell's draws: rotation and the two marginals (2020: "randomly picked", 2021 Sec. 3); the
+// marginal indices as integer-valued T.
+template <class T>
 struct ChermainCell {
-  double cos_t, sin_t;
-  int nx, ny;
+  T cos_t, sin_t;
+  T nx, ny;
 };
 
-inline ChermainCell chermain_cell(std::uint64_t seed, std::int64_t ci, std::int64_t cj, int n) {
-  const std::uint64_t key = mix64(std::uint64_t(ci) * 0x9e3779b97f4a7c15ULL) ^ std::uint64_t(cj);
-  const double theta = 2 * kPi<double> * counter_uniform<double>(seed, key, 0);
-  const int nx = int(counter_uniform<double>(seed, key, 1) * n);
-  const int ny = int(counter_uniform<double>(seed, key, 2) * n);
-  return {std::cos(theta), std::sin(theta), std::min(nx, n - 1), std::min(ny, n - 1)};
+// The counter key of the cell with lower-left corner (ci, cj) in units of 2^-20.
+GLINTLAB_FN std::uint64_t chermain_cell_key(std::int64_t ci, std::int64_t cj) {
+  return mix64(std::uint64_t(ci) * 0x9e3779b97f4a7c15ULL) ^ std::uint64_t(cj);
 }
 
-// Dictionary level of a cell at LOD l: it holds density·4^l microfacets, about 4^k lobes in the
-// product of two level-k marginals, so k = ⌊l + ½ log2 density⌋, at least 0.
-inline int chermain_dictionary_level(int l, double log2_density) {
-  return std::max(0, int(std::floor(l + 0.5 * log2_density)));
+// The keys of the cells with corners (cu, cv)·2^l per lane, cu, cv integer-valued and
+// scale = 2^(l+20) (their products are exact), as per-lane counter indices.
+template <class T>
+GLINTLAB_FN RngIndex<T> chermain_cell_keys(const T& cu, const T& cv, const T& scale) {
+  const LanesOf<T> a(cu), b(cv), s(scale);
+  RngIndex<T> r;
+  if constexpr (std::is_floating_point_v<T>) {
+    r = chermain_cell_key(std::int64_t(a[0] * s[0]), std::int64_t(b[0] * s[0]));
+  } else {
+    for (std::size_t l = 0; l < kLaneCount<T>; ++l)
+      r[l] = chermain_cell_key(std::int64_t(a[l] * s[l]), std::int64_t(b[l] * s[l]));
+  }
+  return r;
+}
+
+// θ = 2π u_0 and the marginals ⌊u_d N⌋ (d = 1, 2, at most N − 1) from the cell's counters.
+template <class T>
+GLINTLAB_FN ChermainCell<T> chermain_cell(std::uint64_t seed, const RngIndex<T>& key, int n) {
+  const T theta = T(2 * kPi<double>) * lane_uniform<T>(seed, key, 0);
+  ChermainCell<T> c;
+  sincos(theta, &c.sin_t, &c.cos_t);
+  const T last = T(n - 1);
+  c.nx = std_min(floor(lane_uniform<T>(seed, key, 1) * T(n)), last);
+  c.ny = std_min(floor(lane_uniform<T>(seed, key, 2) * T(n)), last);
+  return c;
+}
+
+// Dictionary level of a cell at LOD l (integer-valued): it holds density·4^l microfacets, about
+// 4^k lobes in the product of two level-k marginals, so k = ⌊l + ½ log2 density⌋, at least 0.
+template <class T>
+GLINTLAB_FN T chermain_dictionary_level(T l, double log2_density) {
+  return std_max(T(0), floor(l + T(0.5 * log2_density)));
 }
 
 // The smooth limit: the centred Gaussian slope density of covariance Σ (Eq. 16), the Beckmann
 // SDF with correlation.
-inline double chermain_gaussian_sdf(double x, double y, double sx, double sy, double rho) {
+template <class T>
+GLINTLAB_FN T chermain_gaussian_sdf(T x, T y, double sx, double sy, double rho) {
   const double c = 1 - rho * rho;
-  const double a = x / sx, b = y / sy;
-  const double q = (a * a - 2 * rho * a * b + b * b) / c;
-  return std::exp(-0.5 * q) / (2 * kPi<double> * sx * sy * std::sqrt(c));
+  const T a = x / T(sx), b = y / T(sy);
+  const T q = (a * a - T(2 * rho) * a * b + b * b) / T(c);
+  return exp(T(-0.5) * q) / T(2 * kPi<double> * sx * sy * std::sqrt(c));
 }
 
 // Screen-space derivatives of the quantity Eq. 20 (h̃) or Eq. 21 (h⊥) filters with, from the half
 // vector h (local frame, h_z > 0) and its derivatives dh/dx, dh/dy (core/scene/footprint.h).
-struct SlopeDerivatives {
-  double dx_x, dx_y, dy_x, dy_y;  // d(·)/dx and d(·)/dy, components x and y
+template <class T>
+struct ChermainSlopeDerivatives {
+  T dx_x, dx_y, dy_x, dy_y;  // d(·)/dx and d(·)/dy, components x and y
 };
+using SlopeDerivatives = ChermainSlopeDerivatives<double>;
 
-inline SlopeDerivatives chermain_slope_derivatives(Vec3<double> h, Vec3<double> dh_dx,
-                                                   Vec3<double> dh_dy, int kernel) {
+template <class T>
+GLINTLAB_FN ChermainSlopeDerivatives<T> chermain_slope_derivatives(Vec3<T> h, Vec3<T> dh_dx,
+                                                                   Vec3<T> dh_dy, int kernel) {
   if (kernel == kChermainProjectedHalf) return {dh_dx.x, dh_dx.y, dh_dy.x, dh_dy.y};
-  if (kernel == kChermainNoGgaa) return {0, 0, 0, 0};
+  if (kernel == kChermainNoGgaa) return {T(0), T(0), T(0), T(0)};
   // h̃ = (−x/z, −y/z): dh̃ = −(dx z − x dz)/z², likewise for y.
-  const double z2 = h.z * h.z;
-  const auto d = [&](Vec3<double> dv, double c, double dc) { return -(dc * h.z - c * dv.z) / z2; };
+  const T z2 = h.z * h.z;
+  const auto d = [&](Vec3<T> dv, T c, T dc) { return -(dc * h.z - c * dv.z) / z2; };
   return {d(dh_dx, h.x, dh_dx.x), d(dh_dx, h.y, dh_dx.y), d(dh_dy, h.x, dh_dy.x),
           d(dh_dy, h.y, dh_dy.y)};
 }
 
 // The footprint's continuous LOD l_P = log2 max(‖∂uv/∂x‖, ‖∂uv/∂y‖), clamped to [−20, 39].
-inline double chermain_lod(const FootprintQuery<double>& fp) {
-  const double foot = std::sqrt(std::max(dot(fp.duv_dx, fp.duv_dx), dot(fp.duv_dy, fp.duv_dy)));
-  return std::clamp(foot > 0 ? std::log2(foot) : -20.0, -20.0, 39.0);
+template <class T>
+GLINTLAB_FN T chermain_lod(const FootprintQuery<T>& fp) {
+  const T foot = sqrt(std_max(dot(fp.duv_dx, fp.duv_dx), dot(fp.duv_dy, fp.duv_dy)));
+  const Mask<T> pos = foot > T(0);
+  return std_clamp(select(pos, chermain_log2(select(pos, foot, T(1))), T(-20)), T(-20), T(39));
 }
 
-// Visits the terms of Eq. 3 / Eq. 10: visit(weight, k, cell) for each of the (up to) two LODs and
-// four cells with w(l) W_P(l, s_0) > 0; weight sums to 1. k ≥ L marks the smooth fallback (one
-// visit per LOD, cell unused).
-template <class Visit>
-void chermain_for_each_cell(const ChermainSdfParams& p, const FootprintQuery<double>& fp,
-                            Visit&& visit) {
+// 2^e per lane for an integer-valued e (exact).
+template <class T>
+GLINTLAB_FN T chermain_exp2_int(const T& e) {
+  const LanesOf<T> el(e);
+  return float_lanes<T>(
+      [&](std::size_t l) { return std::ldexp(Scalar<T>(1), static_cast<int>(el[l])); });
+}
+
+// Visits the terms of Eq. 3 / Eq. 10: visit(active, weight, k, cell) for each of the two LODs and
+// four cells, `active` where w(l) W_P(l, s_0) > 0 (its weights sum to 1 per lane). k ≥ L marks the
+// smooth fallback, visited once per LOD before that LOD's four cells (which are then inactive;
+// cell unused), so each lane sees its terms in the order of the scalar loop.
+template <class T, class Visit>
+GLINTLAB_FN void chermain_for_each_cell(const ChermainSdfParams& p, const FootprintQuery<T>& fp,
+                                        Visit&& visit) {
   const ChermainDictionary& dict = *p.dictionary;
-  const double lod = chermain_lod(fp);
-  const int l0 = int(std::floor(lod));
-  const double frac = lod - l0;
+  const T levels = T(dict.levels());
+  const T lod = chermain_lod(fp);
+  const T l0 = floor(lod);
+  const T frac = lod - l0;
   for (int li = 0; li < 2; ++li) {
-    const int l = l0 + li;
-    const double wl = li == 0 ? 1 - frac : frac;
-    if (wl == 0) continue;
-    const int k = chermain_dictionary_level(l, p.log2_density);
-    if (k >= dict.levels()) {  // past the last level: the smooth Beckmann SDF
-      visit(wl, k, ChermainCell{1, 0, 0, 0});
-      continue;
-    }
-    const double cell = std::ldexp(1.0, l);
-    const double su = fp.uv.x / cell - 0.5, sv = fp.uv.y / cell - 0.5;
-    const double fu = std::floor(su), fv = std::floor(sv);
-    const double tu = su - fu, tv = sv - fv;
+    const T l = l0 + T(li);
+    const T wl = li == 0 ? T(1) - frac : frac;
+    const Mask<T> lod_on = wl != T(0);
+    const T k = chermain_dictionary_level(l, p.log2_density);
+    const Mask<T> smooth = k >= levels;  // past the last level: the smooth Beckmann SDF
+    visit(lod_on && smooth, wl, k, ChermainCell<T>{T(1), T(0), T(0), T(0)});
+    const Mask<T> cells_on = lod_on && !smooth;
+    if (!any_lane<T>(cells_on)) continue;
+    const T cell = chermain_exp2_int(l);
+    const T scale = chermain_exp2_int(l + T(20));  // corners in units of 2^-20
+    const T su = fp.uv.x / cell - T(0.5), sv = fp.uv.y / cell - T(0.5);
+    const T fu = floor(su), fv = floor(sv);
+    const T tu = su - fu, tv = sv - fv;
     for (int c = 0; c < 4; ++c) {
       const int di = c & 1, dj = c >> 1;
-      const double W = (di ? tu : 1 - tu) * (dj ? tv : 1 - tv);
-      if (W == 0) continue;
-      // The cell's corner in units of 2^-20 (exact in double for the clamped LOD range).
-      const auto ci = std::int64_t(std::ldexp(fu + di, l + 20));
-      const auto cj = std::int64_t(std::ldexp(fv + dj, l + 20));
-      visit(wl * W, k, chermain_cell(p.seed, ci, cj, dict.distributions()));
+      const T wu = di ? tu : T(1) - tu, wv = dj ? tv : T(1) - tv;
+      const T W = wu * wv;
+      const RngIndex<T> key = chermain_cell_keys(fu + T(di), fv + T(dj), scale);
+      visit(cells_on && W != T(0), wl * W, k, chermain_cell<T>(p.seed, key, dict.distributions()));
     }
   }
 }
 
 // The (filtered) procedural patch-SDF at slope m̃ (2021 Eq. 3 without GGAA, Eq. 10 and 19 with
 // it), for the footprint `fp` and the slope derivatives `d` (ignored when kernel = 0).
-inline double chermain_patch_sdf(const ChermainSdfParams& p, Vec2<double> m,
-                                 const FootprintQuery<double>& fp, const SlopeDerivatives& d,
-                                 ChermainSdfInfo* info = nullptr) {
+template <class T>
+GLINTLAB_FN T chermain_patch_sdf(const ChermainSdfParams& p, Vec2<T> m, const FootprintQuery<T>& fp,
+                                 const ChermainSlopeDerivatives<T>& d,
+                                 ChermainSdfInfoT<T>* info = nullptr) {
   const ChermainDictionary& dict = *p.dictionary;
+  const ChermainTable table = dict.table();
   const ChermainMatrix M = chermain_matrix(p.sigma_x, p.sigma_y, p.rho, dict.sigma_o(), p.with_rho);
   const double rho_used = p.with_rho ? p.rho : 0.0;
   const bool ggaa = p.kernel != kChermainNoGgaa;
-  const double sk = ggaa ? p.s_k : 0.0;
+  const T sk = T(ggaa ? p.s_k : 0.0);
+  const T last_level = T(dict.levels() - 1);
   // M⁻¹ applied once per pixel (Eq. 20/21); the per-cell rotation below.
-  const double ax = sk * (M.i00 * d.dx_x + M.i01 * d.dx_y), ay = sk * (M.i11 * d.dx_y);
-  const double bx = sk * (M.i00 * d.dy_x + M.i01 * d.dy_y), by = sk * (M.i11 * d.dy_y);
-  const double mx = M.i00 * m.x + M.i01 * m.y, my = M.i11 * m.y;  // M⁻¹ m̃
-  double total = 0, lambda_sum = 0, lambda_weight = 0;
-  chermain_for_each_cell(p, fp, [&](double w, int k, const ChermainCell& s) {
-    if (k >= dict.levels()) {
-      total += w * chermain_gaussian_sdf(m.x, m.y, p.sigma_x, p.sigma_y, rho_used);
-      return;
-    }
+  const T ax = sk * (T(M.i00) * d.dx_x + T(M.i01) * d.dx_y), ay = sk * (T(M.i11) * d.dx_y);
+  const T bx = sk * (T(M.i00) * d.dy_x + T(M.i01) * d.dy_y), by = sk * (T(M.i11) * d.dy_y);
+  const T mx = T(M.i00) * m.x + T(M.i01) * m.y, my = T(M.i11) * m.y;  // M⁻¹ m̃
+  const T gauss = chermain_gaussian_sdf(m.x, m.y, p.sigma_x, p.sigma_y, rho_used);
+  T total = T(0), lambda_sum = T(0), lambda_weight = T(0);
+  chermain_for_each_cell(p, fp, [&](Mask<T> on, T w, T k, const ChermainCell<T>& s) {
+    if (!any_lane<T>(on)) return;
+    const Mask<T> smooth = k > last_level;
+    const Mask<T> cell_on = on && !smooth;
+    total = select(on && smooth, total + w * gauss, total);
+    if (!any_lane<T>(cell_on)) return;
+    const T kc = std_min(k, last_level);  // in range on the smooth lanes too (discarded)
+    const T base_x = chermain_table_base(table, s.nx, kc);
+    const T base_y = chermain_table_base(table, s.ny, kc);
     // R(−θ) applied to M⁻¹ m̃ and to the derivatives.
-    const double xo = s.cos_t * mx + s.sin_t * my, yo = -s.sin_t * mx + s.cos_t * my;
-    double px, py;
+    const T xo = s.cos_t * mx + s.sin_t * my, yo = -s.sin_t * mx + s.cos_t * my;
+    T px, py;
     if (ggaa) {
-      TableFilter fx, fy;
-      px = dict.lookup_grad(s.nx, k, xo, s.cos_t * ax + s.sin_t * ay, s.cos_t * bx + s.sin_t * by,
-                            p.wrap, 16, &fx);
-      py = dict.lookup_grad(s.ny, k, yo, -s.sin_t * ax + s.cos_t * ay, -s.sin_t * bx + s.cos_t * by,
-                            p.wrap, 16, &fy);
-      lambda_sum += w * 0.5 * (fx.lambda + fy.lambda);
-      lambda_weight += w;
+      const ChermainGrad<T> fx = chermain_lookup_grad(
+          table, base_x, xo, s.cos_t * ax + s.sin_t * ay, s.cos_t * bx + s.sin_t * by, p.wrap, 16);
+      const ChermainGrad<T> fy =
+          chermain_lookup_grad(table, base_y, yo, -s.sin_t * ax + s.cos_t * ay,
+                               -s.sin_t * bx + s.cos_t * by, p.wrap, 16);
+      px = fx.value, py = fy.value;
+      lambda_sum = select(cell_on, lambda_sum + w * T(0.5) * (fx.lambda + fy.lambda), lambda_sum);
+      lambda_weight = select(cell_on, lambda_weight + w, lambda_weight);
     } else {
-      px = dict.lookup_lod(s.nx, k, xo, 0, p.wrap);
-      py = dict.lookup_lod(s.ny, k, yo, 0, p.wrap);
+      px = chermain_lookup_lod(table, base_x, xo, 0, p.wrap);
+      py = chermain_lookup_lod(table, base_y, yo, 0, p.wrap);
     }
-    total += w * px * py / M.det;
+    total = select(cell_on, total + w * px * py / T(M.det), total);
   });
   if (info) {
-    const double lod = chermain_lod(fp);
+    const T lod = chermain_lod(fp);
     info->lod = lod;
     info->dict_level =
-        std::min(chermain_dictionary_level(int(std::floor(lod)), p.log2_density), dict.levels());
-    info->mip_lambda = lambda_weight > 0 ? lambda_sum / lambda_weight : 0.0;
-    info->kernel_width = sk * std::sqrt(std::max(d.dx_x * d.dx_x + d.dx_y * d.dx_y,
-                                                 d.dy_x * d.dy_x + d.dy_y * d.dy_y));
+        std_min(chermain_dictionary_level(floor(lod), p.log2_density), T(dict.levels()));
+    const Mask<T> weighted = lambda_weight > T(0);
+    info->mip_lambda = select(weighted, lambda_sum / select(weighted, lambda_weight, T(1)), T(0));
+    info->kernel_width =
+        sk * sqrt(std_max(d.dx_x * d.dx_x + d.dx_y * d.dx_y, d.dy_x * d.dy_x + d.dy_y * d.dy_y));
   }
   return total;
 }
@@ -236,7 +301,7 @@ inline SlopeMoments2 chermain_patch_moments(const ChermainSdfParams& p,
     const double y = -R + (j + 0.5) * h;
     for (int i = 0; i < grid; ++i) {
       const double x = -R + (i + 0.5) * h;
-      const double v = chermain_patch_sdf(p, {x, y}, fp, d);
+      const double v = chermain_patch_sdf(p, Vec2<double>{x, y}, fp, d);
       s0 += v, sx += v * x, sy += v * y, sxx += v * x * x, syy += v * y * y, sxy += v * x * y;
     }
   }
@@ -245,16 +310,20 @@ inline SlopeMoments2 chermain_patch_moments(const ChermainSdfParams& p,
 }
 
 // V-cavity masking-shadowing G2 = min(1, 2(n·h)(n·ωi)/(ωi·h), 2(n·h)(n·ωo)/(ωo·h)) (Heitz 2014
-// Sec. 3.1, the only masking the 2020 BRDF supports; 2021 Sec. 7).
-inline double v_cavity_g2(Vec3<double> wi, Vec3<double> wo, Vec3<double> h) {
-  const double a = dot(wi, h), b = dot(wo, h);
-  if (!(a > 0 && b > 0 && h.z > 0)) return 0;
-  return std::min({1.0, 2 * h.z * wi.z / a, 2 * h.z * wo.z / b});
+// Sec. 3.1, the only masking the 2020 BRDF supports; 2021 Sec. 7); 0 unless ωi·h, ωo·h, h_z > 0.
+template <class T>
+GLINTLAB_FN T v_cavity_g2(Vec3<T> wi, Vec3<T> wo, Vec3<T> h) {
+  const T a = dot(wi, h), b = dot(wo, h);
+  const Mask<T> ok = a > T(0) && b > T(0) && h.z > T(0);
+  const T gi = T(2) * h.z * wi.z / select(ok, a, T(1));
+  const T go = T(2) * h.z * wo.z / select(ok, b, T(1));
+  return select(ok, std_min(std_min(T(1), gi), go), T(0));
 }
 
 // The registered model: the BRDF of 2021 Eq. 1 with D from the patch-SDF (Eq. 2 or Eq. 8), F = 1.
 struct Chermain {
-  // The patch-SDF and its dictionary are double-only (host tables); no float instantiation.
+  // Offered in double only (see the file comment); the batch API runs it on Wide<double>
+  // whatever the column type.
   static constexpr bool kDoubleOnly = true;
   static constexpr std::string_view kName = "chermain";
   static constexpr std::string_view kDescription =
@@ -314,63 +383,82 @@ struct Chermain {
   }
 
   // The smooth correlated Beckmann NDF of covariance Σ in slope space, D = P22/cos⁴θ.
-  static double smooth_d(const ChermainSdfParams& p, Vec3<double> h) {
-    if (!(h.z > 0)) return 0;
-    const double z2 = h.z * h.z;
-    return chermain_gaussian_sdf(-h.x / h.z, -h.y / h.z, p.sigma_x, p.sigma_y,
-                                 p.with_rho ? p.rho : 0.0) /
-           (z2 * z2);
+  template <class T>
+  static GLINTLAB_FN T smooth_d(const ChermainSdfParams& p, Vec3<T> h) {
+    const Mask<T> up = h.z > T(0);
+    const T hz = select(up, h.z, T(1));
+    const T z2 = h.z * h.z;
+    const T g = chermain_gaussian_sdf(-h.x / hz, -h.y / hz, p.sigma_x, p.sigma_y,
+                                      p.with_rho ? p.rho : 0.0) /
+                (z2 * z2);
+    return select(up, g, T(0));
   }
 
   template <class T>
-  static T pdf(const Params<T>& p, const ModelQuery<T>& q) {
-    if (!(q.wi.z > 0 && q.wo.z > 0)) return T(0);
-    const Vec3<double> h = half_vector(q.wi, q.wo);
-    return T(smooth_d(p.sdf, h) * h.z * reflection_jacobian(q.wo, h));
+  static GLINTLAB_FN T pdf(const Params<T>& p, const ModelQuery<T>& q) {
+    const Mask<T> ok = q.wi.z > T(0) && q.wo.z > T(0);
+    const Vec3<T> h = half_vector(q.wi, q.wo);
+    return select(ok, smooth_d(p.sdf, h) * h.z * reflection_jacobian(q.wo, h), T(0));
   }
 
   template <class T>
-  static ModelEval<T, kIntermediates.size()> eval(const Params<T>& p, const ModelQuery<T>& q) {
+  static GLINTLAB_FN ModelEval<T, kIntermediates.size()> eval(const Params<T>& p,
+                                                              const ModelQuery<T>& q) {
     ModelEval<T, kIntermediates.size()> r{};
-    const Vec3<double> h = half_vector(q.wi, q.wo);
-    ChermainSdfInfo info;
-    double P22 = 0, D = 0, G2 = 0, f = 0;
-    if (q.wi.z > 0 && q.wo.z > 0 && h.z > 0) {
-      P22 = chermain_patch_sdf(p.sdf, {-h.x / h.z, -h.y / h.z}, q.footprint, p.d, &info);
-      const double z2 = h.z * h.z;
-      D = P22 / (z2 * z2);  // Eq. 2 / Eq. 8
-      G2 = v_cavity_g2(q.wi, q.wo, h);
-      f = D * G2 / (4 * q.wi.z * q.wo.z);  // Eq. 1, F = 1
+    const Vec3<T> h = half_vector(q.wi, q.wo);
+    const Mask<T> ok = q.wi.z > T(0) && q.wo.z > T(0) && h.z > T(0);
+    ChermainSdfInfoT<T> info;
+    T P22 = T(0), D = T(0), G2 = T(0), f = T(0);
+    if (any_lane<T>(ok)) {
+      const T hz = select(ok, h.z, T(1));
+      const ChermainSlopeDerivatives<T> d{T(p.d.dx_x), T(p.d.dx_y), T(p.d.dy_x), T(p.d.dy_y)};
+      P22 = select(ok,
+                   chermain_patch_sdf(p.sdf, Vec2<T>{-h.x / hz, -h.y / hz}, q.footprint, d, &info),
+                   T(0));
+      info.lod = select(ok, info.lod, T(0));
+      info.dict_level = select(ok, info.dict_level, T(0));
+      info.mip_lambda = select(ok, info.mip_lambda, T(0));
+      info.kernel_width = select(ok, info.kernel_width, T(0));
+      const T z2 = h.z * h.z;
+      D = select(ok, P22 / (z2 * z2), T(0));  // Eq. 2 / Eq. 8
+      G2 = select(ok, v_cavity_g2(q.wi, q.wo, h), T(0));
+      const T den = T(4) * q.wi.z * q.wo.z;
+      f = select(ok, D * G2 / select(ok, den, T(1)), T(0));  // Eq. 1, F = 1
     }
-    r.value = T(f * std::max(q.wo.z, 0.0));
+    r.value = f * std_max(q.wo.z, T(0));
     r.pdf = pdf(p, q);
-    r.intermediates = {
-        T(P22), T(info.lod), T(info.dict_level), T(info.kernel_width), T(info.mip_lambda), T(D),
-        T(G2),  T(f)};
+    r.intermediates = {P22, info.lod, info.dict_level, info.kernel_width, info.mip_lambda, D,
+                       G2,  f};
     return r;
   }
 
   // Slope m̃ = L z, L the Cholesky factor of Σ and z a Box–Muller normal pair; ω_o = reflect(ω_i,
   // h) with h ∝ (−m̃_x, −m̃_y, 1); pdf = D h_z / (4 |ω_o·h|) (Walter et al. 2007 Eq. 14, 24).
   template <class T>
-  static ModelSample<T> sample(const Params<T>& p, const ModelQuery<T>& q, Vec2<T> u) {
-    const double r = std::sqrt(-2 * std::log(std::max(1.0 - double(u.x), 1e-300)));
-    const double phi = 2 * kPi<double> * double(u.y);
-    const double z0 = r * std::cos(phi), z1 = r * std::sin(phi);
+  static GLINTLAB_FN ModelSample<T> sample(const Params<T>& p, const ModelQuery<T>& q, Vec2<T> u) {
+    const T tiny = T(sizeof(Scalar<T>) > 4 ? 1e-300 : 1e-37);  // keeps log finite at u = 1
+    const T r = sqrt(T(-2) * log(std_max(T(1) - u.x, tiny)));
+    const T phi = T(2 * kPi<double>) * u.y;
+    T sp, cp;
+    sincos(phi, &sp, &cp);
+    const T z0 = r * cp, z1 = r * sp;
     const double rho = p.sdf.with_rho ? p.sdf.rho : 0.0;
-    const double mx = p.sdf.sigma_x * z0;
-    const double my = p.sdf.sigma_y * (rho * z0 + std::sqrt(1 - rho * rho) * z1);
-    const Vec3<double> h = normalize(Vec3<double>{-mx, -my, 1.0});
-    const Vec3<double> wo = reflect(Vec3<double>{q.wi.x, q.wi.y, q.wi.z}, h);
+    const T mx = T(p.sdf.sigma_x) * z0;
+    const T my = T(p.sdf.sigma_y) * (T(rho) * z0 + T(std::sqrt(1 - rho * rho)) * z1);
+    const Vec3<T> h = normalize(Vec3<T>{-mx, -my, T(1)});
     ModelSample<T> s{};
-    s.wo = {T(wo.x), T(wo.y), T(wo.z)};
-    s.rejected = !(wo.z > 0 && q.wi.z > 0);
-    if (s.rejected) return s;
+    s.wo = reflect(q.wi, h);
+    s.rejected = !(s.wo.z > T(0) && q.wi.z > T(0));
+    s.pdf = T(0);
+    s.weight = T(0);
+    if (!any_lane<T>(!s.rejected)) return s;
     ModelQuery<T> qq = q;
     qq.wo = s.wo;
-    s.pdf = pdf(p, qq);
-    const double v = double(eval(p, qq).value);
-    s.weight = s.pdf > 0 ? T(v / double(s.pdf)) : T(0);
+    const T pdf_o = pdf(p, qq);
+    const T v = eval(p, qq).value;
+    const Mask<T> pos = pdf_o > T(0);
+    s.pdf = select(s.rejected, T(0), pdf_o);
+    s.weight = select(s.rejected || !pos, T(0), v / select(pos, pdf_o, T(1)));
     return s;
   }
 };

@@ -159,61 +159,19 @@ ChermainDictionary::ChermainDictionary(const ChermainDictionaryConfig& config) :
   });
 }
 
-double ChermainDictionary::fetch(int n, int k, int mip, long i, TableWrap wrap) const {
-  const long size = long(config_.resolution >> mip);
-  if (wrap == TableWrap::kClampToEdge) {
-    i = std::clamp(i, 0L, size - 1);
-  } else {  // mirrored repeat: period 2·size, the second half reversed
-    i = ((i % (2 * size)) + 2 * size) % (2 * size);
-    if (i >= size) i = 2 * size - 1 - i;
-  }
-  return double(texel(n, k, mip, int(i)));
-}
-
 double ChermainDictionary::lookup_lod(int n, int k, double x, double mip, TableWrap wrap) const {
-  if (!(std::abs(x) < extent())) return 0;
-  return trilinear(n, k, x / extent(), mip, wrap);
-}
-
-double ChermainDictionary::trilinear(int n, int k, double u, double lambda, TableWrap wrap) const {
-  const double l = std::clamp(lambda, 0.0, double(mip_levels_ - 1));
-  const int m0 = int(std::floor(l));
-  const int m1 = std::min(m0 + 1, mip_levels_ - 1);
-  const auto linear = [&](int m) {
-    const double s = u * double(config_.resolution >> m) - 0.5;
-    const double f = std::floor(s);
-    const double t = s - f;
-    const long i = long(f);
-    return (1 - t) * fetch(n, k, m, i, wrap) + t * fetch(n, k, m, i + 1, wrap);
-  };
-  const double a = linear(m0);
-  if (m1 == m0) return a;
-  return a + (l - m0) * (linear(m1) - a);
+  const ChermainTable t = table();
+  return chermain_lookup_lod(t, chermain_table_base(t, double(n), double(k)), x, mip, wrap);
 }
 
 double ChermainDictionary::lookup_grad(int n, int k, double x, double dx_dpx, double dx_dpy,
                                        TableWrap wrap, int max_anisotropy,
                                        TableFilter* filter) const {
-  const double scale = double(config_.resolution) / extent();  // texels per slope unit
-  const double px = std::abs(dx_dpx) * scale, py = std::abs(dx_dpy) * scale;
-  const double pmax = std::max(px, py), pmin = std::min(px, py);
-  const double major = px >= py ? dx_dpx : dx_dpy;  // slope units per pixel
-  int probes = 1;
-  if (pmin > 0) {
-    probes = int(std::min(std::ceil(pmax / pmin), double(max_anisotropy)));
-  } else if (pmax > 0) {
-    probes = max_anisotropy;
-  }
-  probes = std::max(probes, 1);
-  const double lambda = pmax > 0 ? std::max(0.0, std::log2(pmax / probes)) : 0.0;
-  if (filter) *filter = {std::min(lambda, double(mip_levels_ - 1)), probes};
-  if (!(std::abs(x) < extent())) return 0;
-  double sum = 0;
-  for (int i = 0; i < probes; ++i) {
-    const double xi = x + ((i + 0.5) / probes - 0.5) * major;
-    sum += trilinear(n, k, xi / extent(), lambda, wrap);
-  }
-  return sum / probes;
+  const ChermainTable t = table();
+  const ChermainGrad<double> g = chermain_lookup_grad(
+      t, chermain_table_base(t, double(n), double(k)), x, dx_dpx, dx_dpy, wrap, max_anisotropy);
+  if (filter) *filter = {g.lambda, int(g.probes)};
+  return g.value;
 }
 
 double ChermainDictionary::table_integral(int n, int k, int mip) const {

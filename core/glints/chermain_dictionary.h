@@ -1,6 +1,7 @@
 // The dictionary of multiscale 1D slope marginals of Chermain et al. 2020 (recapitulated in
-// Chermain et al. 2021 Sec. 3, Fig. 3), the MIP pyramid of every table (2021 Sec. 6.1) and the CPU
-// equivalents of textureLod / textureGrad with mirrored repeat that Eq. 19 filters them with.
+// Chermain et al. 2021 Sec. 3, Fig. 3), the MIP pyramid of every table (2021 Sec. 6.1) and the
+// textureLod / textureGrad with mirrored repeat that Eq. 19 filters them with (host entry points of
+// the generic kernels of core/glints/chermain_lookup.h).
 //
 // Distribution n, level k: a normalized sum of 2^k Gaussian lobes of standard deviation s (the
 // lobe std), symmetrized (a lobe at μ and one at −μ), whose means μ_0, μ_1, … are one fixed
@@ -21,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "core/glints/chermain_lookup.h"
 #include "core/render/image.h"
 
 namespace glintlab {
@@ -40,11 +42,6 @@ struct ChermainDictionaryConfig {
 
 // Throws ParameterError (core/parameter_check.h) naming the first bad field and its valid range.
 void validate(const ChermainDictionaryConfig& c);
-
-// How out-of-range texel indices are resolved (OpenGL 4.6 Sec. 8.14.2): mirrored repeat is what
-// the 2021 paper requires (Sec. 6.1); clamp-to-edge exists only as the negative control of
-// chermain.kernel-normalized.
-enum class TableWrap { kMirroredRepeat, kClampToEdge };
 
 // One textureGrad-style lookup's filter, reported for the intermediates.
 struct TableFilter {
@@ -67,6 +64,10 @@ class ChermainDictionary {
   // Texel t of MIP level m (m = 0: the generated table) of distribution n, level k.
   float texel(int n, int k, int mip, int t) const {
     return mips_[offset(n, k) + mip_offset_[std::size_t(mip)] + std::size_t(t)];
+  }
+  // The texels as the lookup kernels read them (core/glints/chermain_lookup.h).
+  ChermainTable table() const {
+    return {mips_.data(), config_.levels, config_.resolution, mip_levels_, per_table_, extent()};
   }
   // Mean of lobe j of distribution n (before symmetrization), for the tests.
   double lobe_mean(int n, int j) const;
@@ -101,8 +102,6 @@ class ChermainDictionary {
   std::size_t offset(int n, int k) const {
     return (std::size_t(n) * std::size_t(config_.levels) + std::size_t(k)) * per_table_;
   }
-  double fetch(int n, int k, int mip, long i, TableWrap wrap) const;
-  double trilinear(int n, int k, double u, double lambda, TableWrap wrap) const;
 
   ChermainDictionaryConfig config_;
   double sigma_o_ = 0;

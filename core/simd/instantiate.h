@@ -46,9 +46,9 @@ GLINTLAB_FN W load_lanes(const S* p) {
 template <class W, class S>
 GLINTLAB_FN void store_lanes(S* p, const W& w) {
   if constexpr (std::is_floating_point_v<W>) {
-    *p = w;
+    *p = static_cast<S>(w);  // (a double-only model's double result into a float column)
   } else if constexpr (std::is_floating_point_v<typename W::Raw>) {
-    *p = w.v;
+    *p = static_cast<S>(w.v);
   } else {
     w.v.store_unaligned(p);
   }

@@ -90,9 +90,18 @@ void run_model_sample(const double* params, const Column<S>* query, const Column
 
 template <class WF, class WFF, class WD, class M>
 constexpr ModelFns model_fns() {
-  return {&run_model_eval<M, WF, float>,    &run_model_eval<M, WFF, float>,
-          &run_model_eval<M, WD, double>,   &run_model_sample<M, WF, float>,
-          &run_model_sample<M, WFF, float>, &run_model_sample<M, WD, double>};
+  if constexpr (glintlab::detail::DoubleOnly<M>) {
+    // A double-only model (kDoubleOnly) runs on the double batches whatever the column type: float
+    // columns are widened on load and the results rounded on store, as the scalar loop over its
+    // double thunks does; fast math (a float policy) does not apply.
+    return {&run_model_eval<M, WD, float>,   &run_model_eval<M, WD, float>,
+            &run_model_eval<M, WD, double>,  &run_model_sample<M, WD, float>,
+            &run_model_sample<M, WD, float>, &run_model_sample<M, WD, double>};
+  } else {
+    return {&run_model_eval<M, WF, float>,    &run_model_eval<M, WFF, float>,
+            &run_model_eval<M, WD, double>,   &run_model_sample<M, WF, float>,
+            &run_model_sample<M, WFF, float>, &run_model_sample<M, WD, double>};
+  }
 }
 
 template <class WF, class WFF, class WD, class... Ms>

@@ -21,6 +21,7 @@
 #include "core/simd/batched_models.h"
 #include "core/simd/inputs.h"
 #include "core/simd/model_batch.h"
+#include "tests/simd/model_rows.h"
 #include "tests/simd/simd_test_util.h"
 
 namespace glintlab::simd::test {
@@ -143,56 +144,19 @@ Case make_case(const ModelEntry& m, int side, std::size_t n, std::uint64_t seed)
   return k;
 }
 
+// The row drivers of tests/simd/model_rows.h, one parameter vector per kRowsPerSet rows.
 template <class S>
-struct Outputs {
-  std::vector<std::vector<S>> eval, sample;
-};
-
-// Eval and sample of every row of `k` through the callables (params, query columns, u1, u2,
-// outputs, n), one parameter vector per kRowsPerSet rows.
-template <class S, class Eval, class Sample>
-Outputs<S> run_with(const ModelEntry& m, const Case& k, Eval eval, Sample sample) {
-  std::vector<std::vector<S>> q;
-  for (const auto& c : k.query) q.emplace_back(c.begin(), c.end());
-  const std::vector<S> u1(k.u1.begin(), k.u1.end()), u2(k.u2.begin(), k.u2.end());
-  Outputs<S> o;
-  o.eval.assign(2 + m.intermediates.size(), std::vector<S>(k.n));
-  o.sample.assign(kSampleColumns.size(), std::vector<S>(k.n));
-  for (std::size_t s = 0; s * kRowsPerSet < k.n; ++s) {
-    const std::size_t b = s * kRowsPerSet, rows = std::min(kRowsPerSet, k.n - b);
-    std::vector<Column<S>> cols;
-    for (const auto& c : q) cols.push_back({c.data() + b, 1});
-    std::vector<S*> eo, so;
-    for (auto& c : o.eval) eo.push_back(c.data() + b);
-    for (auto& c : o.sample) so.push_back(c.data() + b);
-    eval(k.params[s], cols, eo, rows);
-    sample(k.params[s], cols, Column<S>{u1.data() + b, 1}, Column<S>{u2.data() + b, 1}, so, rows);
-  }
-  return o;
-}
+using Outputs = RowOutputs<S>;
 
 template <class S>
 Outputs<S> run_batch(const ModelEntry& m, const Case& k, Isa isa) {
-  return run_with<S>(
-      m, k,
-      [&](const std::vector<double>& p, const std::vector<Column<S>>& c, const std::vector<S*>& o,
-          std::size_t n) { eval_batch(m, p, c, o, n, isa); },
-      [&](const std::vector<double>& p, const std::vector<Column<S>>& c, Column<S> u1, Column<S> u2,
-          const std::vector<S*>& o, std::size_t n) { sample_batch(m, p, c, u1, u2, o, n, isa); });
+  return run_rows_batch<S>(m, k, kRowsPerSet, isa);
 }
 
 // The model driver of core/simd/model_instantiate.h on W, called directly (perturbed models).
 template <class M, class W, class S>
 Outputs<S> run_driver(const ModelEntry& m, const Case& k) {
-  return run_with<S>(
-      m, k,
-      [](const std::vector<double>& p, const std::vector<Column<S>>& c, const std::vector<S*>& o,
-         std::size_t n) { detail::run_model_eval<M, W, S>(p.data(), c.data(), o.data(), n); },
-      [](const std::vector<double>& p, const std::vector<Column<S>>& c, Column<S> u1, Column<S> u2,
-         const std::vector<S*>& o, std::size_t n) {
-        const Column<S> u[2] = {u1, u2};
-        detail::run_model_sample<M, W, S>(p.data(), c.data(), u, o.data(), n);
-      });
+  return run_rows_driver<M, W, S>(m, k, kRowsPerSet);
 }
 
 // |got − ref| / (|ref| + scale) in machine epsilons of S (0 where both are NaN; ∞ for a NaN

@@ -393,6 +393,9 @@ void check_models(ModelList<Ms...>) {
     // The Kemppinen models' 128 choice combinations at these counts would take hours: they have
     // their own inputs, counts and budgets in tests/simd/kemppinen_equivalence_test.cpp.
     if (m.name.starts_with("kemppinen")) return;
+    // Chermain (double-only, footprints across its LOD range):
+    // tests/simd/chermain_equivalence_test.
+    if (m.name == "chermain") return;
     for (const Case& k : make_cases(m, sizeof(S) == 8)) {
       const ModelBudget b = model_budget(m.name, k.sampler, sizeof(S) == 8);
       // The scalar ISA runs the very same instantiation: bit-identical.

@@ -228,14 +228,15 @@ Cov patch_covariance(const ChermainSdfParams& p, const FootprintQuery<double>& f
     return v * h;
   };
   Cov c{0, 0, 0};
-  chermain_for_each_cell(p, fp, [&](double w, int k, const ChermainCell& s) {
+  chermain_for_each_cell(p, fp, [&](bool on, double w, double k, const ChermainCell<double>& s) {
+    if (!on) return;
     if (k >= d.levels()) {
       const double r = p.with_rho ? p.rho : 0.0;
       c.xx += w * p.sigma_x * p.sigma_x, c.yy += w * p.sigma_y * p.sigma_y;
       c.xy += w * r * p.sigma_x * p.sigma_y;
       return;
     }
-    const double vx = variance(s.nx, k), vy = variance(s.ny, k);
+    const double vx = variance(int(s.nx), int(k)), vy = variance(int(s.ny), int(k));
     // A = M R(θ): columns a = M (cos, sin), b = M (−sin, cos).
     const double a0 = M.m00 * s.cos_t + M.m01 * s.sin_t, a1 = M.m11 * s.sin_t;
     const double b0 = -M.m00 * s.sin_t + M.m01 * s.cos_t, b1 = M.m11 * s.cos_t;

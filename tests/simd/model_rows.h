@@ -1,0 +1,82 @@
+// The row drivers of the per-model SIMD equivalence tests: eval and sample of a case's rows through
+// the batch API (core/simd/model_batch.h) on one ISA, or through the model driver of
+// core/simd/model_instantiate.h on a test's own W (perturbed models), one parameter vector per
+// `rows_per_set` rows. Include after core/simd/model_instantiate.h (the test TU's driver).
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+#include "core/model_registry.h"
+#include "core/simd/model_batch.h"
+
+namespace glintlab::simd::test {
+
+// What the drivers read of a case: params (one vector per rows_per_set rows), query columns
+// (kQueryColumns.size() or kQueryColumnsWithCorners), uniforms u1, u2 and the row count n.
+template <class C>
+concept RowCase = requires(const C& c) {
+  c.params[0][0];
+  c.query[0][0];
+  c.u1[0];
+  c.u2[0];
+  std::size_t(c.n);
+};
+
+// Outputs of eval (2 + intermediates columns) and sample (kSampleColumns) of every row.
+template <class S>
+struct RowOutputs {
+  std::vector<std::vector<S>> eval, sample;
+};
+
+// Eval and sample of every row of `k` through the callables (params, query columns, u1, u2,
+// outputs, n); the last set may be partial.
+template <class S, RowCase C, class Eval, class Sample>
+RowOutputs<S> run_rows_with(const ModelEntry& m, const C& k, std::size_t rows_per_set, Eval eval,
+                            Sample sample) {
+  std::vector<std::vector<S>> q;
+  for (const auto& c : k.query) q.emplace_back(c.begin(), c.end());
+  const std::vector<S> u1(k.u1.begin(), k.u1.end()), u2(k.u2.begin(), k.u2.end());
+  RowOutputs<S> o;
+  o.eval.assign(2 + m.intermediates.size(), std::vector<S>(k.n));
+  o.sample.assign(kSampleColumns.size(), std::vector<S>(k.n));
+  for (std::size_t s = 0; s * rows_per_set < k.n; ++s) {
+    const std::size_t b = s * rows_per_set, rows = std::min(rows_per_set, k.n - b);
+    std::vector<Column<S>> cols;
+    for (const auto& c : q) cols.push_back({c.data() + b, 1});
+    std::vector<S*> eo, so;
+    for (auto& c : o.eval) eo.push_back(c.data() + b);
+    for (auto& c : o.sample) so.push_back(c.data() + b);
+    eval(k.params[s], cols, eo, rows);
+    sample(k.params[s], cols, Column<S>{u1.data() + b, 1}, Column<S>{u2.data() + b, 1}, so, rows);
+  }
+  return o;
+}
+
+// Through the batch API on `isa`.
+template <class S, RowCase C>
+RowOutputs<S> run_rows_batch(const ModelEntry& m, const C& k, std::size_t rows_per_set, Isa isa) {
+  return run_rows_with<S>(
+      m, k, rows_per_set,
+      [&](const std::vector<double>& p, const std::vector<Column<S>>& c, const std::vector<S*>& o,
+          std::size_t n) { eval_batch(m, p, c, o, n, isa); },
+      [&](const std::vector<double>& p, const std::vector<Column<S>>& c, Column<S> u1, Column<S> u2,
+          const std::vector<S*>& o, std::size_t n) { sample_batch(m, p, c, u1, u2, o, n, isa); });
+}
+
+// Through the model driver of core/simd/model_instantiate.h on W (any model M, listed or not).
+template <class M, class W, class S, RowCase C>
+RowOutputs<S> run_rows_driver(const ModelEntry& m, const C& k, std::size_t rows_per_set) {
+  return run_rows_with<S>(
+      m, k, rows_per_set,
+      [](const std::vector<double>& p, const std::vector<Column<S>>& c, const std::vector<S*>& o,
+         std::size_t n) { detail::run_model_eval<M, W, S>(p.data(), c.data(), o.data(), n); },
+      [](const std::vector<double>& p, const std::vector<Column<S>>& c, Column<S> u1, Column<S> u2,
+         const std::vector<S*>& o, std::size_t n) {
+        const Column<S> u[2] = {u1, u2};
+        detail::run_model_sample<M, W, S>(p.data(), c.data(), u, o.data(), n);
+      });
+}
+
+}  // namespace glintlab::simd::test
