@@ -115,12 +115,20 @@ GLINTLAB_FN T kemppinen_lod(const Sym2<T>& s, T res) {
   return clamp(lambda, T(0), T(kKemppinenMaxLevel));
 }
 
-// The normalised 2D normal density N(d; Σ) = exp(−½ dᵀΣ⁻¹d)/(2π√|Σ|).
+// The normalised 2D normal density N(d; Σ) = exp(−½ dᵀΣ⁻¹d)/(2π√|Σ|) (the lobes of Eq. 4/11).
+// Σ is first scaled by c = 2^64 or 2^96 where its trace is below 2^-40 or 2^-104, and c is taken
+// out again: |Σ| of a glint lobe is σ⁴, which underflows float to 0 for σ < 10⁻¹¹ (α★ = 10⁻⁹:
+// σ ≈ 10⁻¹⁵), and made q = x/0 and rsqrt(0) = ∞, so N = 0·∞ = NaN. Multiplying by a power of two
+// is exact, so where nothing underflows (every double input) the result is bit-identical.
 template <class T>
 GLINTLAB_FN T normal2(Vec2<T> d, const Sym2<T>& s) {
-  const T det = s.xx * s.yy - sqr(s.xy);
-  const T q = (s.yy * sqr(d.x) - T(2) * s.xy * d.x * d.y + s.xx * sqr(d.y)) / det;
-  return exp(T(-0.5) * q) * (T(0.15915494309189533577) * rsqrt(det));
+  const T trace = s.xx + s.yy;
+  const T c1 = select(trace < T(0x1p-40), T(0x1p64), T(1));
+  const T c = select(trace < T(0x1p-104), T(0x1p96), c1);
+  const Sym2<T> sc{s.xx * c, s.xy * c, s.yy * c};
+  const T det = sc.xx * sc.yy - sqr(sc.xy);
+  const T q = (sc.yy * sqr(d.x) - T(2) * sc.xy * d.x * d.y + sc.xx * sqr(d.y)) / det * c;
+  return exp(T(-0.5) * q) * (T(0.15915494309189533577) * rsqrt(det) * c);
 }
 
 // Eq. 8: R(r, w) = smoothstep(max(0, r − ε), min(1, r + ε), w), the mollified roulette.

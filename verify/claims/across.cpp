@@ -91,15 +91,15 @@ CheckResult run(Budget b) {
 }  // namespace
 
 std::vector<Check> across_checks() {
-  // Recorded 2026-12-01 with the 8 models registered (12 model×sampler targets), quick budget:
-  // holds in regime — kemppinen_beckmann's float instantiation gives NaN for microroughness 1e-9
-  // (8 of 77 cells of that sweep, up to 35 % of calls); no NaN, Inf or negative value elsewhere,
-  // in double everywhere. A model that adds or removes a failure region changes the verdict:
-  // record it as a finding when it lands.
+  // Recorded 2026-12-01 with the 9 models registered (13 model×sampler targets), quick budget:
+  // holds — no NaN, Inf or negative value anywhere, double or float. (Before, holds in regime:
+  // kemppinen_beckmann's float instantiation gave NaN for microroughness 1e-9, 8 of 77 cells, up
+  // to 35 % of calls: |Σ| = σ⁴ of the glint lobe underflowed float in normal2; fixed there.)
+  // A model that adds or removes a failure region changes the verdict: record it as a finding.
   return {{"all.stability", "every registered model (core/model_registry.cpp)",
            "CLAIMS.md all.stability: sweeps of α, θi, anisotropy, density, microroughness, "
            "footprint and light size",
-           Verdict::kHoldsInRegime, run}};
+           Verdict::kHolds, run}};
 }
 
 }  // namespace glintlab::verify

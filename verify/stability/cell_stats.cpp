@@ -28,6 +28,27 @@ void mean_error(double sum, double sum2, std::uint64_t n, double& mean, double& 
 
 }  // namespace
 
+std::array<Vec3<double>, 4> pixel_corner_reflections(const Vec3<double>& wi, double s) {
+  // Corner order of core/scene/footprint.h: (x−½, y−½), (x+½, y−½), (x−½, y+½), (x+½, y+½).
+  constexpr double kOffset[4][2] = {{-0.5, -0.5}, {0.5, -0.5}, {-0.5, 0.5}, {0.5, 0.5}};
+  std::array<V3, 4> r{};
+  for (std::size_t c = 0; c < 4; ++c)
+    r[c] = reflect(wi, normalize(V3{kOffset[c][0] * s, kOffset[c][1] * s, 1.0}));
+  return r;
+}
+
+double furnace_light_solid_angle(const ModelEntry& m, const std::vector<double>& values,
+                                 const ModelQuery<double>& q) {
+  if (!(m.needs & kNeedsAreaLight)) return 0;
+  for (std::size_t i = 0; i < m.intermediates.size(); ++i)
+    if (m.intermediates[i] == "solid_angle") {
+      ModelQuery<double> up = q;
+      up.wo = {0, 0, 1};
+      return m.eval(values, up).intermediates[i];
+    }
+  return 2 * std::numbers::pi * (1 - q.light.cos_half_angle);
+}
+
 bool is_probability_name(std::string_view name) { return name == "p" || name.substr(0, 2) == "p_"; }
 
 void Defects::add_record(std::initializer_list<double> xs,
@@ -67,6 +88,7 @@ CellStats measure_cell(const SweepTarget& target, const SweepPlane& plane, doubl
   for (std::size_t i = 0; i < m.intermediates.size(); ++i)
     if (is_probability_name(m.intermediates[i])) p_index.push_back(i);
   const bool has_float = static_cast<bool>(m.eval_float);
+  CellStats c;
 
   ModelQuery<double> q{};
   q.wi = incidence_at(theta_deg);
@@ -76,8 +98,13 @@ CellStats measure_cell(const SweepTarget& target, const SweepPlane& plane, doubl
                           : (m.needs & kNeedsAreaLight)  ? kDefaultLightHalfAngleDeg
                                                          : 0.0;
   q.light = {std::cos(half_deg * std::numbers::pi / 180), 1.0};
+  if (m.needs & kNeedsPixelCorners) q.footprint.corner_r = pixel_corner_reflections(q.wi, s);
+  // Area-light models return L_o/L_i, the BRDF integrated over the light: ∫ (L_o/L_i) dωo over
+  // the light's centre is Ω ρ(ωi) exactly, so the furnace divides by Ω (a delta light: Ω = 0, no
+  // normalisation; such a light reflects nothing almost everywhere).
+  c.light_solid_angle = furnace_light_solid_angle(m, values, q);
+  const double furnace = c.light_solid_angle > 0 ? 1 / c.light_solid_angle : 1.0;
 
-  CellStats c;
   auto eval_at = [&](const V3& wo, double u1, double u2, bool uniform, double& sum, double& sum2) {
     q.wo = wo;
     q.footprint.uv = {u1, u2};  // glint models: a different position per evaluation
@@ -93,7 +120,7 @@ CellStats measure_cell(const SweepTarget& target, const SweepPlane& plane, doubl
       if (std::isfinite(p)) c.p_max = std::max(c.p_max, p);
     }
     if (uniform) {
-      const double v = 4 * std::numbers::pi * (std::isfinite(r.value) ? r.value : 0.0);
+      const double v = 4 * std::numbers::pi * furnace * (std::isfinite(r.value) ? r.value : 0.0);
       sum += v;
       sum2 += v * v;
     }
@@ -137,8 +164,8 @@ CellStats measure_cell(const SweepTarget& target, const SweepPlane& plane, doubl
       c.sample_f.add_record({f.pdf, f.weight}, {f.wo.x, f.wo.y, f.wo.z});
     }
     const double w = smp.rejected || !std::isfinite(smp.weight) ? 0.0 : smp.weight;
-    ws += w;
-    ws2 += w * w;
+    ws += furnace * w;
+    ws2 += furnace * furnace * w * w;
     c.weight_max = std::max(c.weight_max, w);
     if (smp.rejected) continue;
     ++c.accepted;

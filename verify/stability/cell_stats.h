@@ -8,10 +8,14 @@
 // the directional albedo ρ(ωi) = ∫ f cos dωo (the white furnace with F = 1) estimated as the mean
 // sample weight (rejected samples count 0) and, independently, as 4π × the mean value at uniform
 // directions; a gain is significant where an estimate exceeds 1 by more than kGainSigmas standard
-// errors plus kGainRounding. Variance blow-up: Var(w)/E(w)² of the weight above kVarianceBlowup
-// (then an estimate to 10 % needs more than 100 × kVarianceBlowup samples).
+// errors plus kGainRounding. Models that need an area light (kNeedsAreaLight) return L_o/L_i, the
+// BRDF integrated over the light's cone of solid angle Ω, not f cos: their two estimates are
+// divided by Ω (furnace_light_solid_angle). Models that need the pixel-corner reflection vectors
+// get those of pixel_corner_reflections. Variance blow-up: Var(w)/E(w)² of the weight above
+// kVarianceBlowup (then an estimate to 10 % needs more than 100 × kVarianceBlowup samples).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <string_view>
@@ -58,6 +62,7 @@ struct CellStats {
   double albedo_uniform = 0, albedo_uniform_error = 0;  // 4π mean value at uniform directions
   double relative_variance = 0;  // Var(w)/E(w)² over the samples (0 where E(w) = 0)
   double weight_max = 0;
+  double light_solid_angle = 0;  // Ω the furnace estimates are divided by (area lights), else 0
 
   double gain() const;  // largest significant albedo − 1 of the two estimates, else 0
   bool energy_gain() const { return gain() > 0; }
@@ -74,6 +79,18 @@ struct CellBudget {
 // The incidence at polar angle θ (degrees) and a generic azimuth off the anisotropy axes: the
 // incidence() of verify/claims/gof_family.h, shared with the chi-square claims.
 Vec3<double> incidence_at(double theta_deg);
+
+// The footprint's corner reflection vectors (core/model.h FootprintQuery::corner_r) the sweep
+// gives kNeedsPixelCorners models: ωi mirrored about the normals at the pixel corners of a mirror
+// of unit curvature whose footprint has side s, normalize(±s/2, ±s/2, 1); the reflection space
+// spans about 2s radians about the mirror direction (a zero s: one direction).
+std::array<Vec3<double>, 4> pixel_corner_reflections(const Vec3<double>& wi, double s);
+
+// Ω of the light an area-light model integrates over: its intermediate `solid_angle` where it has
+// one (a light it builds itself, evaluated at ωo = +z), else the query's cone 2π(1 − cos γ); 0 for
+// models without kNeedsAreaLight.
+double furnace_light_solid_angle(const ModelEntry& m, const std::vector<double>& values,
+                                 const ModelQuery<double>& q);
 
 // Measures one cell. `values` are the model's parameters; the query's footprint and light follow
 // the plane's axis and `row`. Deterministic: every random number is counter_uniform(seed, i, d).
