@@ -7,7 +7,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 export CMAKE_CXX_COMPILER_LAUNCHER="${CMAKE_CXX_COMPILER_LAUNCHER:-}"
 cmake --preset release >/dev/null
-cmake --build --preset release --target glintlab_bench_kernels glintlab_bench_models >/dev/null
+cmake --build --preset release --target glintlab_bench_kernels glintlab_bench_models \
+  glintlab_bench_uarch >/dev/null
 mkdir -p out/bench
 tmp="out/bench/.bench.json.tmp"
 ./build/release/experiments/bench/glintlab_bench_kernels \
@@ -20,13 +21,20 @@ tmp="out/bench/.bench.json.tmp"
   --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
   --benchmark_min_time=0.05 \
   --benchmark_out="$tmp.models" --benchmark_out_format=json "$@"
-/usr/bin/python3 - "$tmp" "$tmp.models" <<'PY'
+# This CPU's division and multiplication throughput per width (uarch/<op>/<width>), the ceilings
+# the kernel speed-ups are read against (bench_uarch.cpp); no filter arguments apply to it.
+./build/release/experiments/bench/glintlab_bench_uarch \
+  --benchmark_repetitions=9 --benchmark_report_aggregates_only=true \
+  --benchmark_min_time=0.05 \
+  --benchmark_out="$tmp.uarch" --benchmark_out_format=json >/dev/null
+/usr/bin/python3 - "$tmp" "$tmp.models" "$tmp.uarch" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1]))
-d["benchmarks"] += json.load(open(sys.argv[2]))["benchmarks"]
+for extra in sys.argv[2:]:
+    d["benchmarks"] += json.load(open(extra))["benchmarks"]
 json.dump(d, open(sys.argv[1], "w"), indent=1)
 PY
-rm -f "$tmp.models"
+rm -f "$tmp.models" "$tmp.uarch"
 mv "$tmp" out/bench/bench.json
 /usr/bin/python3 - <<'PY'
 import json, collections
@@ -38,7 +46,7 @@ for b in d["benchmarks"]:
     med[b["run_name"]] = b
 rows = collections.OrderedDict()
 for name, b in med.items():
-    if name.startswith("chi_square") or name.startswith("model/"):
+    if name.startswith(("chi_square", "model/", "l1/", "stream/", "uarch/")):
         continue
     kernel, isa, flavour = name.rsplit("/", 2)
     rows.setdefault(kernel, {})[(isa, flavour)] = b
@@ -63,6 +71,32 @@ for kernel, r in rows.items():
     lines.append(f"| {kernel} | {s/1e6:.1f} | " + " | ".join(cells) +
                  f" | {base['flops_per_item']:.0f} | {100*best:.1f} % |")
 lines.append("")
+# Working sets (bench_kernels.cpp): the 4096-row chunk above (L2-resident), L1-resident calls,
+# and 4096-row calls streaming through 2^20 rows; speed-ups over scalar float exact of the same set.
+best = ctx.get("best_isa", isas[-1] if isas else "scalar")
+sets = [("", "chunk"), ("l1/", "L1"), ("stream/", "stream")]
+lines += ["Working sets: Mitem/s of scalar float exact, and the speed-up of " + best +
+          " float exact and fast over it, per working set.", "",
+          "| kernel | " + " | ".join(f"scalar {s} Mitem/s" for _, s in sets) + " | " +
+          " | ".join(f"{best} {s} ×" for _, s in sets) + " | " +
+          " | ".join(f"{best} fast {s} ×" for _, s in sets) + " |",
+          "|" + "---|" * (1 + 3 * len(sets))]
+for kernel in rows:
+    got = [[med.get(f"{p}{kernel}/{i}/{f}") for p, _ in sets]
+           for i, f in [("scalar", "float_exact"), (best, "float_exact"), (best, "float_fast")]]
+    if any(b is None for b in got[0] + got[1] + got[2]):
+        continue
+    base = [b["items_per_second"] for b in got[0]]
+    lines.append(f"| {kernel} | " + " | ".join(f"{v/1e6:.1f}" for v in base) + " | " +
+                 " | ".join(f"{b['items_per_second']/v:.1f}" for b, v in zip(got[1], base)) + " | " +
+                 " | ".join(f"{b['items_per_second']/v:.1f}" for b, v in zip(got[2], base)) + " |")
+lines.append("")
+# The ceilings: ns per instruction and per lane of division and multiplication at each width.
+ua = [(n, b) for n, b in med.items() if n.startswith("uarch/")]
+if ua:
+    lines += ["This CPU (bench_uarch.cpp, 8 independent chains, CPU time): "
+              + "; ".join(f"{n[6:]}: {1e9/b['items_per_second']:.2f} ns/instruction, "
+                          f"{1e9/b['lane_ops_per_second']:.3f} ns/lane" for n, b in ua), ""]
 for name, b in med.items():
     if name.startswith("chi_square"):
         lines.append(f"- {name}: {b['real_time']:.0f} ms wall for 10^7 samples "

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <string_view>
+#include <type_traits>
 
 #include "core/maps/beckmann_map.h"
 #include "core/maps/ggx_map.h"
@@ -62,6 +63,18 @@ GLINTLAB_FN void put3(T* y, int i, Vec3<T> v) {
   y[i + 1] = v.y;
   y[i + 2] = v.z;
 }
+// The D kernels: Ndf<T>::D, except where T's math policy has a one-division GGX D (FastMath:
+// core/simd/fast_math.h fast::ggx_d, float only, error documented there). Only the ggx.d kernel
+// takes it; GGX<T>::D itself, and every kernel built on it, stays exact in both policies.
+template <class Ndf, class T>
+GLINTLAB_FN T ndf_d(const Ndf& ndf, Vec3<T> m) {
+  if constexpr (std::is_same_v<Ndf, GGX<T>> &&
+                requires { T::Policy::ggx_d(m.x.v, m.x.v, m.x.v, m.x.v, m.x.v); }) {
+    return T::wrap(T::Policy::ggx_d(ndf.alpha_x.v, ndf.alpha_y.v, m.x.v, m.y.v, m.z.v));
+  } else {
+    return ndf.D(m);
+  }
+}
 template <class T>
 GLINTLAB_FN T from_mask(Mask<T> m) {
   return select(m, T(1), T(0));
@@ -96,7 +109,7 @@ inline constexpr std::array<std::string_view, 8> kOutSample = {"wo_x", "wo_y", "
     static constexpr auto kOut = kOutValue;                                                  \
     template <class T>                                                                       \
     GLINTLAB_FN static void eval(const T* x, T* y) {                                         \
-      y[0] = Ndf<T>{x[0], x[1]}.D(detail::v3(x, 2));                                         \
+      y[0] = detail::ndf_d(Ndf<T>{x[0], x[1]}, detail::v3(x, 2));                            \
     }                                                                                        \
   };                                                                                         \
   struct Prefix##Lambda {                                                                    \

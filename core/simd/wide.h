@@ -241,9 +241,10 @@ GLINTLAB_FN xsimd::batch_bool<S, A> isfinite(const xsimd::batch<S, A>& x) {
 namespace glintlab {
 
 // Math policies. A policy may provide static exp, erf, erfc or rsqrt on the raw type; the Wide
-// ops below use them in place of the exact ones. ExactMath: none, every op as accurate as the
-// scalar ops layer (xsimd's vectorized libm, within a few ulp of glibc). FastMath: the
-// shader-style approximations of core/simd/fast_math.h (errors measured there), float only.
+// ops below use them in place of the exact ones (and ggx_d, which the ggx.d kernel uses).
+// ExactMath: none, every op as accurate as the scalar ops layer (xsimd's vectorized libm, within a
+// few ulp of glibc). FastMath: the shader-style approximations of core/simd/fast_math.h (errors
+// measured there), float only.
 struct ExactMath {};
 struct FastMath {
   template <class B>
@@ -261,6 +262,11 @@ struct FastMath {
   template <class B>
   static GLINTLAB_FN B rsqrt(const B& x) {
     return fast::rsqrt(x);
+  }
+  // Not an op of ops.h: the ggx.d kernel of core/simd/kernels.h calls it in place of GGX<T>::D.
+  template <class B>
+  static GLINTLAB_FN B ggx_d(const B& ax, const B& ay, const B& mx, const B& my, const B& mz) {
+    return fast::ggx_d(ax, ay, mx, my, mz);
   }
 };
 

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "core/math/rng.h"
@@ -75,36 +76,70 @@ const std::vector<double>& flops_per_eval() {
 }
 
 // --- Kernel throughput ----------------------------------------------------------------------
-constexpr std::size_t kN = 4096;  // rows per call: fits L1/L2 with every column
+// Three working sets (README "Benchmarks" has what each measured on this machine):
+//   kernel/isa/flavour       the CLI's chunk: 4096 rows per call on the same 4096 rows, which with
+//                            every column (e.g. ggx.d: 5 + 1 floats = 96 KiB) sit in L2, not L1;
+//   l1/kernel/isa/flavour    rows per call such that every column fits in half of a 32 KiB L1d
+//                            (a power of two, 64 … 4096), reused: the cache-resident bound;
+//   stream/kernel/isa/flavour  4096-row calls walking through 2^20 rows (ggx.d: 24 MiB, above
+//                            the 8 MiB L3), so the columns come from memory: the streaming bound.
+// Rows are make_inputs' 4096 rows (repeated for the streaming set), so the values are the same.
+constexpr std::size_t kN = 4096;  // rows per call (the CLI's chunk)
+constexpr std::size_t kStreamRows = std::size_t(1) << 20;
+constexpr std::size_t kL1Bytes = 16 * 1024;
+
+enum class WorkingSet { kChunk, kL1, kStream };
+
+std::size_t l1_rows(int kernel, std::size_t scalar_bytes) {
+  const KernelInfo info = kernel_info(kernel);
+  const std::size_t row_bytes = scalar_bytes * (info.inputs.size() + info.outputs.size());
+  std::size_t rows = 64;
+  while (rows * 2 * row_bytes <= kL1Bytes && rows * 2 <= kN) rows *= 2;
+  return rows;
+}
 
 template <class S>
 struct Data {
   std::vector<std::vector<S>> in, out;
-  std::vector<Column<S>> cols;
-  std::vector<S*> outs;
 };
+// One data set per (kernel, precision, rows), kept while consecutive benchmarks use it (the
+// streaming sets are tens of MiB; rebuilding them for every run would dominate the suite).
 template <class S>
-Data<S> make_data(int kernel) {
+Data<S>& data_for(int kernel, std::size_t rows) {
+  static int cached_kernel = -1;
+  static std::size_t cached_rows = 0;
+  static Data<S> r;
+  if (cached_kernel == kernel && cached_rows == rows) return r;
   const KernelInfo info = kernel_info(kernel);
   const auto d = make_inputs(info.inputs, kN, hash_string("experiments/bench"));
-  Data<S> r;
-  for (const auto& c : d) r.in.emplace_back(c.begin(), c.end());
-  r.out.assign(info.outputs.size(), std::vector<S>(kN));
-  for (const auto& c : r.in) r.cols.push_back({c.data(), 1});
-  for (auto& c : r.out) r.outs.push_back(c.data());
+  r.in.assign(d.size(), std::vector<S>(rows));
+  for (std::size_t j = 0; j < d.size(); ++j) {
+    for (std::size_t i = 0; i < rows; ++i) r.in[j][i] = static_cast<S>(d[j][i % kN]);
+  }
+  r.out.assign(info.outputs.size(), std::vector<S>(rows));
+  cached_kernel = kernel;
+  cached_rows = rows;
   return r;
 }
 
 template <class S>
-void bm_kernel(benchmark::State& state, int kernel, Isa isa, Math math) {
-  Data<S> d = make_data<S>(kernel);
+void bm_kernel(benchmark::State& state, int kernel, Isa isa, Math math, WorkingSet ws) {
+  const std::size_t call = ws == WorkingSet::kL1 ? l1_rows(kernel, sizeof(S)) : kN;
+  const std::size_t rows = ws == WorkingSet::kStream ? kStreamRows : call;
+  Data<S>& d = data_for<S>(kernel, rows);
+  std::vector<Column<S>> cols(d.in.size());
+  std::vector<S*> outs(d.out.size());
+  std::size_t at = 0;  // first row of this call (advances only in the streaming set)
   for (auto _ : state) {
-    eval_batch(kernel, std::span<const Column<S>>(d.cols), std::span<S* const>(d.outs), kN, isa,
+    for (std::size_t j = 0; j < cols.size(); ++j) cols[j] = {d.in[j].data() + at, 1};
+    for (std::size_t k = 0; k < outs.size(); ++k) outs[k] = d.out[k].data() + at;
+    eval_batch(kernel, std::span<const Column<S>>(cols), std::span<S* const>(outs), call, isa,
                math);
-    benchmark::DoNotOptimize(d.out[0].data());
+    benchmark::DoNotOptimize(outs[0]);
     benchmark::ClobberMemory();
+    at = at + call < rows ? at + call : 0;
   }
-  const double items = double(state.iterations()) * double(kN);
+  const double items = double(state.iterations()) * double(call);
   const double flops = flops_per_eval()[kernel];
   state.SetItemsProcessed(static_cast<std::int64_t>(items));
   state.counters["flops_per_item"] = flops;
@@ -113,6 +148,8 @@ void bm_kernel(benchmark::State& state, int kernel, Isa isa, Math math) {
   state.counters["roofline_fraction"] = benchmark::Counter(
       items * flops / peak_flops(isa, sizeof(S) == 8), benchmark::Counter::kIsRate);
   state.counters["lanes"] = double(lanes(isa, sizeof(S) == 8));
+  state.counters["rows_per_call"] = double(call);
+  state.counters["working_set_bytes"] = double(rows * (d.in.size() + d.out.size()) * sizeof(S));
 }
 
 // --- The chi-square workload: 10^7 samples of one configuration, binned, on 2 threads -------
@@ -214,11 +251,23 @@ void register_all() {
       if (!isa_supported(isa)) continue;
       const std::string i(isa_name(isa));
       benchmark::RegisterBenchmark((name + "/" + i + "/float_exact").c_str(), bm_kernel<float>, k,
-                                   isa, Math::kExact);
+                                   isa, Math::kExact, WorkingSet::kChunk);
       benchmark::RegisterBenchmark((name + "/" + i + "/float_fast").c_str(), bm_kernel<float>, k,
-                                   isa, Math::kFast);
+                                   isa, Math::kFast, WorkingSet::kChunk);
       benchmark::RegisterBenchmark((name + "/" + i + "/double_exact").c_str(), bm_kernel<double>, k,
-                                   isa, Math::kExact);
+                                   isa, Math::kExact, WorkingSet::kChunk);
+    }
+    // The other working sets for the speed-up over scalar float exact only (scalar and the best
+    // ISA, exact and fast): enough to tell compute from memory bounds, at a third of the time.
+    for (const auto& [prefix, ws] :
+         {std::pair{"l1/", WorkingSet::kL1}, std::pair{"stream/", WorkingSet::kStream}}) {
+      const std::string b(isa_name(best_isa()));
+      benchmark::RegisterBenchmark((prefix + name + "/scalar/float_exact").c_str(),
+                                   bm_kernel<float>, k, Isa::kScalar, Math::kExact, ws);
+      benchmark::RegisterBenchmark((prefix + name + "/" + b + "/float_exact").c_str(),
+                                   bm_kernel<float>, k, best_isa(), Math::kExact, ws);
+      benchmark::RegisterBenchmark((prefix + name + "/" + b + "/float_fast").c_str(),
+                                   bm_kernel<float>, k, best_isa(), Math::kFast, ws);
     }
   }
   for (Isa isa : {Isa::kScalar, best_isa()}) {

@@ -3,11 +3,13 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "core/simd/batch.h"
+#include "core/simd/inputs.h"
 
 namespace glintlab::simd {
 namespace {
@@ -118,6 +120,56 @@ TEST(SimdDispatch, RowValueIndependentOfBatchLength) {
     const std::vector<float> part = run(off, kN - off - 3);
     for (std::size_t i = 0; i < part.size(); ++i)
       ASSERT_EQ(part[i], all[off + i]) << off << " " << i;
+  }
+}
+
+// The driver's full-batch loop (all columns unrolled, uniform columns by index mask) and its
+// padded-tail path compute every row bit for bit alike: 67 rows at once (full batches and a
+// tail) against each row alone (n = 1, a padded batch), for every kernel, ISA and flavour, with
+// every column of n values and with the first two (α) as uniform stride-0 columns.
+template <class S>
+void expect_full_batches_equal_single_rows(int k, Isa isa, Math math) {
+  constexpr std::size_t kN = 67;
+  const KernelInfo info = kernel_info(k);
+  const auto d = make_inputs(info.inputs, kN, 4242);
+  std::vector<std::vector<S>> in;
+  for (const auto& c : d) in.emplace_back(c.begin(), c.end());
+  for (const bool uniform : {false, true}) {
+    if (uniform) {
+      for (std::size_t j = 0; j < 2 && j < in.size(); ++j) in[j].assign(kN, in[j][0]);
+    }
+    const auto run = [&](std::size_t first, std::size_t n) {
+      std::vector<std::vector<S>> out(info.outputs.size(), std::vector<S>(n));
+      std::vector<Column<S>> cols;
+      std::vector<S*> outs;
+      for (std::size_t j = 0; j < in.size(); ++j) {
+        cols.push_back({in[j].data() + (uniform && j < 2 ? 0 : first), uniform && j < 2 ? 0u : 1u});
+      }
+      for (auto& o : out) outs.push_back(o.data());
+      eval_batch(k, std::span<const Column<S>>(cols), std::span<S* const>(outs), n, isa, math);
+      return out;
+    };
+    const auto all = run(0, kN);
+    for (std::size_t i = 0; i < kN; ++i) {
+      const auto one = run(i, 1);
+      for (std::size_t o = 0; o < one.size(); ++o) {
+        ASSERT_EQ(std::memcmp(&one[o][0], &all[o][i], sizeof(S)), 0)
+            << info.name << " " << isa_name(isa) << " " << math_name(math) << " row " << i
+            << " output " << o << (uniform ? " (uniform α)" : "") << ": " << one[o][0] << " vs "
+            << all[o][i];
+      }
+    }
+  }
+}
+
+TEST(SimdDispatch, FullBatchesEqualPaddedSingleRowsEveryKernel) {
+  for (int k = 0; k < kernel_count(); ++k) {
+    for (Isa isa : kAllIsas) {
+      if (!isa_supported(isa)) continue;
+      expect_full_batches_equal_single_rows<float>(k, isa, Math::kExact);
+      expect_full_batches_equal_single_rows<float>(k, isa, Math::kFast);
+      expect_full_batches_equal_single_rows<double>(k, isa, Math::kExact);
+    }
   }
 }
 
