@@ -163,7 +163,12 @@ T kemppinen_block_density(const KemppinenBlock<T>& b, Vec2<T> x) {
   for (int j = 0; j < b.count; ++j) {
     const KemppinenCandidate<T>& k = b.c[std::size_t(j)];
     const T t = k.s * normal2(x - k.g_a, Sym2<T>{sqr(k.sigma.x), T(0), sqr(k.sigma.y)});
-    sum += select(k.valid, t, T(0));
+    // A point of zero spatial weight adds nothing, and a point whose lobe collapsed (σ = 0: D
+    // underflowed to 0 at g_a on the rim of U_Ω, in float well before double) is a delta that
+    // adds nothing at any other x; masked, or 0 · N(0/0) made the density NaN (stability sweep,
+    // float pdf at density ≥ 2.1e7). Every result that was finite before is unchanged.
+    const Mask<T> live = k.valid && (k.s > T(0)) && (k.sigma.x > T(0)) && (k.sigma.y > T(0));
+    sum += select(live, t, T(0));
   }
   return select(inside, sum / b.total, T(0));
 }

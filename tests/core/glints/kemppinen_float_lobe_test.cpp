@@ -83,5 +83,30 @@ TEST(KemppinenFloatLobe, BeckmannFloatHasNoNanAtMicroroughness1e9) {
   EXPECT_EQ(nan, 0) << "of " << n;
 }
 
+// Algorithm 2's marginal density in float where a point sits on the rim of U_Ω: its D underflows
+// to 0 there (σ = 0) while its spatial weight is 0, and 0 · N(0/0) made the whole pdf NaN (found
+// by the stability sweep at density 2.14e7, θi 15°, 2 of 400 000 sampled directions). The query
+// is one of those directions; the masked density is finite and positive.
+TEST(KemppinenFloatLobe, CollapsedRimPointLeavesTheSamplerPdfFinite) {
+  using M = KemppinenBeckmann;
+  std::vector<double> v;
+  for (const auto& s : M::kParams) v.push_back(s.default_value);
+  for (std::size_t i = 0; i < M::kParams.size(); ++i)
+    if (M::kParams[i].name == "density") v[i] = 2.14e7;
+  const auto p = M::params<float>(v);
+  const double th = 15 * 3.14159265358979323846 / 180;
+  ModelQuery<float> q{};
+  q.wi = {float(std::sin(th) * std::cos(0.3)), float(std::sin(th) * std::sin(0.3)),
+          float(std::cos(th))};
+  q.footprint.uv = {0.456078231f, 0.308296621f};
+  q.footprint.duv_dx = {1e-3f, 0.0f};
+  q.footprint.duv_dy = {0.0f, 1e-3f};
+  q.light = {1.0f, 1.0f};
+  q.wo = {0.323492527f, 0.190587431f, 0.926838279f};
+  const float pdf = M::pdf(p, q);
+  EXPECT_TRUE(std::isfinite(pdf)) << pdf;
+  EXPECT_GT(pdf, 0.0f);
+}
+
 }  // namespace
 }  // namespace glintlab
