@@ -57,19 +57,7 @@ struct ChermainBudget {
 constexpr ChermainBudget kBudget{256, 16, 64, 32, 512, 1e-4, 1e-4};
 
 // One case: one parameter vector per kRowsPerSet rows.
-struct Case {
-  std::vector<std::vector<double>> params;
-  std::vector<std::vector<double>> query;  // kQueryColumns.size() columns
-  std::vector<double> u1, u2;
-  std::size_t n = 0;
-};
-
-double uniform(std::uint64_t seed, std::uint64_t i, std::uint64_t dim) {
-  return counter_uniform<double>(seed, i, dim);
-}
-double log_uniform(double lo, double hi, double u) {
-  return std::exp(std::log(lo) + u * (std::log(hi) - std::log(lo)));
-}
+using Case = RowsCase;
 
 // Parameter vector s: α from the edge-case generator (α in [1e-3, 2], anisotropy to 1:1000), ρ = 0
 // on every fourth set, else uniform in (−0.99, 0.99); density log-uniform in [1, 1e12]; the GGAA
@@ -91,7 +79,7 @@ Case make_case(std::size_t n, std::uint64_t seed) {
   k.n = n;
   const std::size_t sets = (n + kRowsPerSet - 1) / kRowsPerSet;
   for (std::size_t s = 0; s < sets; ++s) {
-    const auto u = [&](std::uint64_t dim) { return uniform(seed, s, dim); };
+    const auto u = [&](std::uint64_t dim) { return row_uniform(seed, s, dim); };
     std::vector<double> v(11);
     v[0] = in[0][s * kRowsPerSet];
     v[1] = in[1][s * kRowsPerSet];
@@ -112,38 +100,17 @@ Case make_case(std::size_t n, std::uint64_t seed) {
   k.query.assign(kQueryColumns.size(), std::vector<double>(n));
   for (std::size_t i = 0; i < n; ++i) {
     const std::vector<double>& v = k.params[i / kRowsPerSet];
-    const auto u = [&](std::uint64_t dim) { return uniform(seed ^ 0x63686572ULL, i, dim); };
+    const auto u = [&](std::uint64_t dim) { return row_uniform(seed ^ 0x63686572ULL, i, dim); };
     const double sel = u(0);
     const double level = -1.5 + 19 * u(1);
     const double foot = sel < 0.04   ? 0.0
                         : sel < 0.08 ? 0x1p45
                                      : std::exp2(level - 0.5 * std::log2(v[3]) + 0.3 * u(7));
-    const double a = 6.283185307179586 * u(2), shear = u(3) - 0.5,
-                 stretch = log_uniform(0.2, 5, u(4));
-    k.query[0][i] = -4 + 8 * u(5);
-    k.query[1][i] = -4 + 8 * u(6);
-    k.query[2][i] = foot * stretch * std::cos(a);
-    k.query[3][i] = foot * stretch * std::sin(a);
-    k.query[4][i] = foot * (-std::sin(a) + shear * std::cos(a)) / stretch;
-    k.query[5][i] = foot * (std::cos(a) + shear * std::sin(a)) / stretch;
-    for (std::size_t j = 0; j < 6; ++j) k.query[6 + j][i] = in[2 + j][i];
-    k.query[12][i] = 1;
-    k.query[13][i] = 1;
+    fill_footprint_row(k.query, i, foot, u, in);
   }
   k.u1 = in[8];
   k.u2 = in[9];
   return k;
-}
-
-// |got − ref| / (|ref| + scale) in machine epsilons of S (0 where both are NaN or equal; ∞ for a
-// NaN against a number).
-template <class S>
-double scaled_eps(S got, S ref, double scale) {
-  if (std::isnan(got) || std::isnan(ref))
-    return std::isnan(got) && std::isnan(ref) ? 0 : std::numeric_limits<double>::infinity();
-  if (got == ref) return 0;
-  const double d = std::abs(double(got) - double(ref)) / (std::abs(double(ref)) + scale);
-  return d / double(std::numeric_limits<S>::epsilon());
 }
 
 // The pdfs (the smooth Beckmann lobe's exp(−q/2)) are compared relative down to √(smallest

@@ -77,19 +77,7 @@ KemppinenBudget kemppinen_budget(bool dbl) {
 }
 
 // One case: model, k, rows (sets of kRowsPerSet with one parameter vector each).
-struct Case {
-  std::vector<std::vector<double>> params;
-  std::vector<std::vector<double>> query;  // kQueryColumns.size() columns
-  std::vector<double> u1, u2;
-  std::size_t n = 0;
-};
-
-double uniform(std::uint64_t seed, std::uint64_t i, std::uint64_t dim) {
-  return counter_uniform<double>(seed, i, dim);
-}
-double log_uniform(double lo, double hi, double u) {
-  return std::exp(std::log(lo) + u * (std::log(hi) - std::log(lo)));
-}
+using Case = RowsCase;
 
 // Parameter vector s: the choice parameters from the bits of s (every combination of blending,
 // erf, normalization, colours and pdf appears every 32 sets), the real ones log-/uniform over
@@ -108,7 +96,7 @@ Case make_case(const ModelEntry& m, int side, std::size_t n, std::uint64_t seed)
   for (std::size_t s = 0; s < sets; ++s) {
     std::vector<double> v(m.params.size());
     for (std::size_t j = 0; j < m.params.size(); ++j) v[j] = m.params[j].default_value;
-    const auto u = [&](std::uint64_t dim) { return uniform(seed, s, dim); };
+    const auto u = [&](std::uint64_t dim) { return row_uniform(seed, s, dim); };
     v[0] = in[0][s * kRowsPerSet];
     v[1] = in[1][s * kRowsPerSet];
     v[2] = log_uniform(1, 1e7, u(0));                                          // density
@@ -123,21 +111,11 @@ Case make_case(const ModelEntry& m, int side, std::size_t n, std::uint64_t seed)
   k.query.assign(kQueryColumns.size(), std::vector<double>(n));
   for (std::size_t i = 0; i < n; ++i) {
     const std::vector<double>& v = k.params[i / kRowsPerSet];
-    const auto u = [&](std::uint64_t dim) { return uniform(seed ^ 0x66707274ULL, i, dim); };
+    const auto u = [&](std::uint64_t dim) { return row_uniform(seed ^ 0x66707274ULL, i, dim); };
     const double sel = u(0);
     const double cells = sel < 0.1 ? 0 : sel < 0.15 ? 0x1p23 : std::exp2(-8 + 29 * u(1));
     const double d = cells / std::sqrt(v[2]) / v[5];
-    const double a = 6.283185307179586 * u(2), shear = u(3) - 0.5,
-                 stretch = log_uniform(0.2, 5, u(4));
-    k.query[0][i] = -4 + 8 * u(5);
-    k.query[1][i] = -4 + 8 * u(6);
-    k.query[2][i] = d * stretch * std::cos(a);
-    k.query[3][i] = d * stretch * std::sin(a);
-    k.query[4][i] = d * (-std::sin(a) + shear * std::cos(a)) / stretch;
-    k.query[5][i] = d * (std::cos(a) + shear * std::sin(a)) / stretch;
-    for (std::size_t j = 0; j < 6; ++j) k.query[6 + j][i] = in[2 + j][i];
-    k.query[12][i] = 1;
-    k.query[13][i] = 1;
+    fill_footprint_row(k.query, i, d, u, in);
   }
   k.u1 = in[8];
   k.u2 = in[9];
@@ -157,17 +135,6 @@ Outputs<S> run_batch(const ModelEntry& m, const Case& k, Isa isa) {
 template <class M, class W, class S>
 Outputs<S> run_driver(const ModelEntry& m, const Case& k) {
   return run_rows_driver<M, W, S>(m, k, kRowsPerSet);
-}
-
-// |got − ref| / (|ref| + scale) in machine epsilons of S (0 where both are NaN; ∞ for a NaN
-// against a number).
-template <class S>
-double scaled_eps(S got, S ref, double scale) {
-  if (std::isnan(got) || std::isnan(ref))
-    return std::isnan(got) && std::isnan(ref) ? 0 : std::numeric_limits<double>::infinity();
-  if (got == ref) return 0;
-  const double d = std::abs(double(got) - double(ref)) / (std::abs(double(ref)) + scale);
-  return d / double(std::numeric_limits<S>::epsilon());
 }
 
 // Maxima over the rows within the budget, and the rows outside it.

@@ -5,9 +5,13 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <limits>
 #include <vector>
 
+#include "core/math/rng.h"
 #include "core/model_registry.h"
 #include "core/simd/model_batch.h"
 
@@ -23,6 +27,52 @@ concept RowCase = requires(const C& c) {
   c.u2[0];
   std::size_t(c.n);
 };
+
+// A case of the per-model equivalence tests: one parameter vector per rows_per_set rows, the query
+// columns (kQueryColumns.size()), the sampler's uniforms and the row count (a RowCase).
+struct RowsCase {
+  std::vector<std::vector<double>> params;
+  std::vector<std::vector<double>> query;
+  std::vector<double> u1, u2;
+  std::size_t n = 0;
+};
+
+inline double row_uniform(std::uint64_t seed, std::uint64_t i, std::uint64_t dim) {
+  return counter_uniform<double>(seed, i, dim);
+}
+inline double log_uniform(double lo, double hi, double u) {
+  return std::exp(std::log(lo) + u * (std::log(hi) - std::log(lo)));
+}
+
+// Query row i of a footprint model: uv uniform in [−4, 4]², a footprint Jacobian of size `scale`
+// in a random direction u(2) with shear u(3) and stretch u(4) in [0.2, 5], uv from u(5), u(6);
+// ωi, ωo from columns 2…7 of the edge-case inputs `in` (core/simd/inputs.h); a unit light.
+template <class U>
+void fill_footprint_row(std::vector<std::vector<double>>& query, std::size_t i, double scale,
+                        const U& u, const std::vector<std::vector<double>>& in) {
+  const double a = 6.283185307179586 * u(2), shear = u(3) - 0.5,
+               stretch = log_uniform(0.2, 5, u(4));
+  query[0][i] = -4 + 8 * u(5);
+  query[1][i] = -4 + 8 * u(6);
+  query[2][i] = scale * stretch * std::cos(a);
+  query[3][i] = scale * stretch * std::sin(a);
+  query[4][i] = scale * (-std::sin(a) + shear * std::cos(a)) / stretch;
+  query[5][i] = scale * (std::cos(a) + shear * std::sin(a)) / stretch;
+  for (std::size_t j = 0; j < 6; ++j) query[6 + j][i] = in[2 + j][i];
+  query[12][i] = 1;
+  query[13][i] = 1;
+}
+
+// |got − ref| / (|ref| + scale) in machine epsilons of S (0 where both are NaN or equal; ∞ for a
+// NaN against a number).
+template <class S>
+double scaled_eps(S got, S ref, double scale) {
+  if (std::isnan(got) || std::isnan(ref))
+    return std::isnan(got) && std::isnan(ref) ? 0 : std::numeric_limits<double>::infinity();
+  if (got == ref) return 0;
+  const double d = std::abs(double(got) - double(ref)) / (std::abs(double(ref)) + scale);
+  return d / double(std::numeric_limits<S>::epsilon());
+}
 
 // Outputs of eval (2 + intermediates columns) and sample (kSampleColumns) of every row.
 template <class S>
