@@ -17,7 +17,7 @@
 #define GLINTLAB_SIMD_CAT(a, b) GLINTLAB_SIMD_CAT2(a, b)
 #define __ieee754_rem_pio2 GLINTLAB_SIMD_CAT(glintlab_ieee754_rem_pio2_, GLINTLAB_SIMD_TU)
 #define __kernel_rem_pio2 GLINTLAB_SIMD_CAT(glintlab_kernel_rem_pio2_, GLINTLAB_SIMD_TU)
-#include <xsimd/xsimd.hpp>
+#include "core/simd/xsimd.h"
 #undef __ieee754_rem_pio2
 #undef __kernel_rem_pio2
 

@@ -16,10 +16,9 @@
 #include <cmath>
 #include <cstdint>
 #include <type_traits>
-#include <xsimd/xsimd.hpp>
-
 #include "core/math/lanes.h"
 #include "core/math/ops.h"
+#include "core/simd/xsimd.h"
 
 #if defined(__SSE__)
 #include <immintrin.h>
@@ -49,9 +48,9 @@ struct RawTraits<xsimd::batch<S, A>> {
   static constexpr std::size_t kLanes = xsimd::batch<S, A>::size;
 };
 
-// Whether xsimd's fma for architecture A is a fused instruction (FMA3, AVX-512) or the unfused
-// a*b + c it falls back to (SSE4.2): the kernels use fma for error-free products (exp_neg_sqr),
-// which the unfused form silently turns into 0.
+// Whether xsimd's fma for architecture A is a fused instruction (FMA3; AVX-512 through the
+// correction in core/simd/xsimd.h) or the unfused a*b + c it falls back to (SSE4.2): the kernels
+// use fma for error-free products (exp_neg_sqr), which the unfused form silently turns into 0.
 template <class A>
 inline constexpr bool kHasFusedFma = std::is_base_of_v<xsimd::fma3<xsimd::sse4_2>, A> ||
                                      std::is_base_of_v<xsimd::fma3<xsimd::avx>, A> ||
@@ -131,13 +130,16 @@ template <class S>
 requires std::is_floating_point_v<S> GLINTLAB_FN S min(S a, S b) { return std::fmin(a, b); }
 template <class S>
 requires std::is_floating_point_v<S> GLINTLAB_FN S max(S a, S b) { return std::fmax(a, b); }
+// NaN is tested with isnan: xsimd 8.1's != is the ordered comparison on AVX and AVX-512 (NaN != NaN
+// false there). Operands swapped because the min/max instructions return their second operand
+// when both are zero, and glibc's fmin/fmax return the first (min(+0, −0) = +0, as scalar).
 template <class S, class A>
 GLINTLAB_FN xsimd::batch<S, A> min(const xsimd::batch<S, A>& a, const xsimd::batch<S, A>& b) {
-  return xsimd::select(b != b, a, xsimd::select(a != a, b, xsimd::min(a, b)));
+  return xsimd::select(xsimd::isnan(b), a, xsimd::select(xsimd::isnan(a), b, xsimd::min(b, a)));
 }
 template <class S, class A>
 GLINTLAB_FN xsimd::batch<S, A> max(const xsimd::batch<S, A>& a, const xsimd::batch<S, A>& b) {
-  return xsimd::select(b != b, a, xsimd::select(a != a, b, xsimd::max(a, b)));
+  return xsimd::select(xsimd::isnan(b), a, xsimd::select(xsimd::isnan(a), b, xsimd::max(b, a)));
 }
 
 // The hardware reciprocal square-root estimate (12 bits on SSE/AVX, 14 on AVX-512).
@@ -312,7 +314,9 @@ struct Wide {
   friend GLINTLAB_FN MaskType operator>(Wide a, Wide b) { return a.v > b.v; }
   friend GLINTLAB_FN MaskType operator>=(Wide a, Wide b) { return a.v >= b.v; }
   friend GLINTLAB_FN MaskType operator==(Wide a, Wide b) { return a.v == b.v; }
-  friend GLINTLAB_FN MaskType operator!=(Wide a, Wide b) { return a.v != b.v; }
+  // Unordered, as the scalar a != b (true when either is NaN). Not the batch's own !=: xsimd 8.1's
+  // AVX and AVX-512 kernels use the ordered comparison, its SSE kernels the unordered one.
+  friend GLINTLAB_FN MaskType operator!=(Wide a, Wide b) { return !(a.v == b.v); }
 };
 
 template <class B, class M>

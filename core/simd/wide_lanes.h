@@ -3,10 +3,10 @@
 #pragma once
 
 #include <type_traits>
-#include <xsimd/xsimd.hpp>
 
 #include "core/math/lane_rng.h"
 #include "core/simd/wide.h"
+#include "core/simd/xsimd.h"
 
 namespace glintlab {
 
