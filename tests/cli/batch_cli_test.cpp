@@ -3,6 +3,7 @@
 // count, one-line errors.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -59,9 +60,19 @@ TEST_F(BatchCliTest, EvalOutputIsTheSameForAnyThreadCountAndGgxForAnyIsa) {
   ASSERT_EQ(run(with({"--threads", "1", "--out", "t1.csv"})).exit_code, 0);
   ASSERT_EQ(run(with({"--threads", "2", "--out", "t2.csv"})).exit_code, 0);
   EXPECT_EQ(slurp(path("t1.csv")), slurp(path("t2.csv")));
-  // GGX is bit-identical between the scalar kernels and every ISA (IEEE ops only).
+  // GGX is bit-identical between the scalar kernels and every ISA (IEEE ops only): the default
+  // (the best this CPU has) and each ISA by name.
   ASSERT_EQ(run(with({"--isa", "scalar", "--out", "s.csv"})).exit_code, 0);
   EXPECT_EQ(slurp(path("s.csv")), slurp(path("t1.csv")));
+  for (simd::Isa isa : {simd::Isa::kSse42, simd::Isa::kAvx2, simd::Isa::kAvx512}) {
+    const std::string name(simd::isa_name(isa));
+    if (!simd::isa_supported(isa)) {
+      std::printf("%s: this CPU lacks it, its CLI output is not compared\n", name.c_str());
+      continue;
+    }
+    ASSERT_EQ(run(with({"--isa", name, "--out", name + ".csv"})).exit_code, 0);
+    EXPECT_EQ(slurp(path("s.csv")), slurp(path(name + ".csv"))) << name;
+  }
   // A different precision is a different file (the control of the comparisons above).
   ASSERT_EQ(run(with({"--precision", "float", "--out", "f.csv"})).exit_code, 0);
   EXPECT_NE(slurp(path("f.csv")), slurp(path("t1.csv")));
