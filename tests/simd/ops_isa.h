@@ -15,6 +15,8 @@ enum class Op {
   kLess, kLessEqual, kGreater, kGreaterEqual, kEqual, kNotEqual, kIsfinite,
   // xsimd's vectorised libm: within a few ulp of glibc, never bit-identical to it.
   kExp, kExpm1, kLog, kLog1p, kErf, kErfc, kAtan, kAcos, kAcosh, kAtan2, kSin, kCos, kTan,
+  // core/simd/fast_math.h's rsqrt (hardware estimate + one Newton step), float only (0 in double).
+  kFastRsqrt,
   // xsimd 8.1's own AVX-512 behaviour, bypassing core/simd/xsimd.h and wide.h's corrections: the
   // deliberately broken inputs that the comparisons above must catch.
   kUnfusedFma, kNegAsZeroMinus, kXsimdNotEqual,
