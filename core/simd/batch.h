@@ -12,7 +12,7 @@ namespace glintlab::simd {
 
 // Instruction sets, each compiled in its own translation unit with its own flags.
 //   kScalar: the plain float/double kernels (any x86-64); kSse42: 4 floats / 2 doubles;
-//   kAvx2: AVX2 + FMA, 8 / 4; kAvx512: AVX-512 F/CD/DQ/BW + FMA, 16 / 8.
+//   kAvx2: AVX2 + FMA, 8 / 4; kAvx512: AVX-512 F/CD/DQ/BW + FMA, 16 / 8. In order of width.
 enum class Isa { kScalar, kSse42, kAvx2, kAvx512 };
 inline constexpr Isa kAllIsas[] = {Isa::kScalar, Isa::kSse42, Isa::kAvx2, Isa::kAvx512};
 
@@ -24,8 +24,13 @@ std::string_view isa_name(Isa isa);  // "scalar", "sse4.2", "avx2", "avx512"
 std::optional<Isa> parse_isa(std::string_view name);
 std::string_view math_name(Math math);  // "exact", "fast"
 std::optional<Math> parse_math(std::string_view name);
-bool isa_supported(Isa isa);  // this CPU (and OS) can run it
-Isa best_isa();               // the widest supported
+// This CPU (and OS) can run it, and it is not wider than GLINTLAB_MAX_ISA (scalar, sse4.2, avx2,
+// avx512) if that is set: runs an AVX-512 machine as one without AVX-512 would (the tests use it
+// to check the paths of CPUs they do not run on). Throws std::invalid_argument naming
+// GLINTLAB_MAX_ISA and its valid values if it is set to an unknown name.
+bool isa_supported(Isa isa);
+std::optional<Isa> max_isa();  // GLINTLAB_MAX_ISA, if set
+Isa best_isa();                // the widest supported
 // The ISA eval_batch uses by default: GLINTLAB_ISA (scalar, sse4.2, avx2, avx512) if set, else
 // best_isa(). Throws std::invalid_argument naming GLINTLAB_ISA and its valid values if it is
 // unknown or names an ISA this CPU lacks.

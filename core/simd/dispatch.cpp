@@ -103,7 +103,20 @@ std::optional<Math> parse_math(std::string_view name) {
   return std::nullopt;
 }
 
+std::optional<Isa> max_isa() {
+  const char* env = std::getenv("GLINTLAB_MAX_ISA");
+  if (env == nullptr || *env == '\0') return std::nullopt;
+  const std::optional<Isa> isa = parse_isa(env);
+  if (!isa) {
+    throw std::invalid_argument("GLINTLAB_MAX_ISA: unknown ISA '" + std::string(env) +
+                                "' (valid: scalar, sse4.2, avx2, avx512)");
+  }
+  return isa;
+}
+
 bool isa_supported(Isa isa) {
+  // Isa's order is the order of width, so the cap is a comparison.
+  if (const std::optional<Isa> cap = max_isa(); cap && isa > *cap) return false;
   // __builtin_cpu_supports reflects CPUID and, for AVX and AVX-512, the OS's XSAVE state.
   switch (isa) {
     case Isa::kScalar:
@@ -138,7 +151,8 @@ Isa default_isa() {
   if (!isa_supported(*isa)) {
     throw std::invalid_argument(
         "GLINTLAB_ISA: '" + std::string(env) +
-        "' is not supported by this CPU (best here: " + std::string(isa_name(best_isa())) + ")");
+        "' is not supported by this CPU (best here: " + std::string(isa_name(best_isa())) +
+        (max_isa() ? ", capped by GLINTLAB_MAX_ISA" : "") + ")");
   }
   return *isa;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -14,16 +15,59 @@
 namespace glintlab::simd {
 namespace {
 
+// Sets (or, for nullptr, unsets) one environment variable for a scope, restoring its old value.
 struct EnvGuard {
-  explicit EnvGuard(const char* value) {
+  explicit EnvGuard(const char* value, const char* name = "GLINTLAB_ISA") : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
     if (value) {
-      setenv("GLINTLAB_ISA", value, 1);
+      setenv(name, value, 1);
     } else {
-      unsetenv("GLINTLAB_ISA");
+      unsetenv(name);
     }
   }
-  ~EnvGuard() { unsetenv("GLINTLAB_ISA"); }
+  ~EnvGuard() {
+    if (old_)
+      setenv(name_, old_->c_str(), 1);
+    else
+      unsetenv(name_);
+  }
+  const char* name_;
+  std::optional<std::string> old_;
 };
+
+// GLINTLAB_MAX_ISA caps what counts as supported: the machine seen as one without the wider ISAs.
+TEST(SimdDispatch, MaxIsaCapsTheSupportedIsas) {
+  const EnvGuard isa(nullptr);
+  for (Isa cap : kAllIsas) {
+    const EnvGuard max(std::string(isa_name(cap)).c_str(), "GLINTLAB_MAX_ISA");
+    EXPECT_EQ(max_isa(), cap);
+    EXPECT_LE(best_isa(), cap);
+    for (Isa isa : kAllIsas) {
+      if (isa > cap) EXPECT_FALSE(isa_supported(isa)) << isa_name(isa) << " above " << isa_name(cap);
+    }
+    EXPECT_TRUE(isa_supported(Isa::kScalar));
+  }
+  {
+    const EnvGuard max("scalar", "GLINTLAB_MAX_ISA");
+    const EnvGuard forced("sse4.2");
+    try {
+      (void)default_isa();
+      FAIL() << "GLINTLAB_ISA above GLINTLAB_MAX_ISA was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("GLINTLAB_MAX_ISA"), std::string::npos) << e.what();
+    }
+  }
+  const EnvGuard bad("avx9000", "GLINTLAB_MAX_ISA");
+  try {
+    (void)isa_supported(Isa::kAvx2);
+    FAIL() << "no error for an unknown GLINTLAB_MAX_ISA";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("GLINTLAB_MAX_ISA: unknown ISA 'avx9000' (valid: scalar, "
+                                         "sse4.2, avx2, avx512)"),
+              std::string::npos)
+        << e.what();
+  }
+}
 
 TEST(SimdDispatch, BestIsaIsSupportedAndDefault) {
   const EnvGuard env(nullptr);
