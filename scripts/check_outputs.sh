@@ -111,6 +111,12 @@ normalise() {  # file -> stdout
     *.json)
       sed -E 's/"([A-Za-z_]*(seconds|_s|_ns|ns_per[A-Za-z_]*|time[A-Za-z_]*|date|timestamp|elapsed|wall[A-Za-z_]*|per_second|throughput[A-Za-z_]*))": *[^,}]*/"\1": T/g' "$f"
       ;;
+    */verify/claims.csv)  # drop the last column, seconds
+      python3 -c 'import csv,sys; w=csv.writer(sys.stdout); [w.writerow(r[:-1]) for r in csv.reader(open(sys.argv[1]))]' "$f"
+      ;;
+    */verify/claims.md) sed -E 's/[0-9]+(\.[0-9]+)? ?s\b/T/g' "$f" ;;
+    # Figures whose numbers are measured times (ns per evaluation, time per pixel): not comparable.
+    */kemppinen2025-table3/* | */kemppinen2025-speed-accuracy/*) echo timing ;;
     *) cat "$f" ;;
   esac
 }
