@@ -17,22 +17,32 @@
 #include "cli/model_options.h"
 #include "cli/out_csv.h"
 #include "core/io/csv.h"
+#include "core/model_layout.h"
 #include "core/model_registry.h"
 #include "core/simd/model_batch.h"
 
 namespace glintlab::cli {
 namespace {
 
-// Query columns in output order (core/simd/model_batch.h); which are required depends on the
-// model's needs.
+// Query columns in output order (core/model_layout.h); which are required depends on the model's
+// needs. The corner reflection vectors (QueryPart::kCorners) are read and written only for models
+// that need them, as the batch API's optional trailing columns.
 constexpr auto kColumns = simd::kQueryColumns;
-constexpr std::size_t kFootprintBegin = 0, kFootprintEnd = 6, kDirBegin = 6, kDirEnd = 12,
-                      kLightBegin = 12, kLightEnd = 14;
-constexpr auto kDefaults = simd::kQueryDefaults;
-// The footprint's corner reflection vectors (core/model.h FootprintQuery::corner_r): read and
-// written only for models that need them (kNeedsPixelCorners), passed to the batch API as its
-// optional corner columns.
 constexpr auto kCornerColumns = simd::kCornerColumns;
+
+bool part_needed(QueryPart part, unsigned needs) {
+  switch (part) {
+    case QueryPart::kDirections:
+      return true;
+    case QueryPart::kFootprint:
+      return (needs & kNeedsFootprint) != 0;
+    case QueryPart::kLight:
+      return (needs & (kNeedsPointLight | kNeedsAreaLight)) != 0;
+    case QueryPart::kCorners:
+      return (needs & kNeedsPixelCorners) != 0;
+  }
+  return false;
+}
 
 // --grid: a product of angle ranges. Names in row order (outermost first).
 constexpr std::array<std::string_view, 4> kGridNames = {"theta_i", "phi_i", "theta_o", "phi_o"};
@@ -139,8 +149,8 @@ std::vector<std::vector<double>> evaluate_columns(const ModelEntry& model,
 
 // Reads and validates every row of --in into the query columns before anything is written.
 void read_queries(const ModelEntry& model, const std::string& in_path,
-                  std::vector<std::vector<double>>& query, std::vector<std::vector<double>>& corners,
-                  std::size_t& n) {
+                  std::vector<std::vector<double>>& query,
+                  std::vector<std::vector<double>>& corners, std::size_t& n) {
   io::CsvTable table = [&] {
     try {
       return io::read_csv(in_path);
@@ -149,24 +159,16 @@ void read_queries(const ModelEntry& model, const std::string& in_path,
     }
   }();
 
-  const bool need_fp = (model.needs & kNeedsFootprint) != 0;
-  const bool need_light = (model.needs & (kNeedsPointLight | kNeedsAreaLight)) != 0;
-  const bool need_corners = (model.needs & kNeedsPixelCorners) != 0;
-  std::array<std::optional<std::size_t>, kCornerColumns.size()> corner_col;
-  std::array<std::optional<std::size_t>, kColumns.size()> col;
+  const bool need_corners = part_needed(QueryPart::kCorners, model.needs);
+  // Layout columns present in the file (the corners only for models that read them).
+  std::array<std::optional<std::size_t>, kQueryLayout.size()> col;
   std::string missing;
-  for (std::size_t i = 0; i < kColumns.size(); ++i) {
-    col[i] = table.find_column(kColumns[i]);
-    const bool required = (i >= kDirBegin && i < kDirEnd) ||
-                          (need_fp && i >= kFootprintBegin && i < kFootprintEnd) ||
-                          (need_light && i >= kLightBegin && i < kLightEnd);
-    if (required && !col[i])
-      missing += fmt::format("{}{}", missing.empty() ? "" : ", ", kColumns[i]);
-  }
-  for (std::size_t i = 0; i < kCornerColumns.size() && need_corners; ++i) {
-    corner_col[i] = table.find_column(kCornerColumns[i]);
-    if (!corner_col[i])
-      missing += fmt::format("{}{}", missing.empty() ? "" : ", ", kCornerColumns[i]);
+  for (std::size_t i = 0; i < kQueryLayout.size(); ++i) {
+    const QueryColumn& c = kQueryLayout[i];
+    if (c.part == QueryPart::kCorners && !need_corners) continue;
+    col[i] = table.find_column(c.name);
+    if (part_needed(c.part, model.needs) && !col[i])
+      missing += fmt::format("{}{}", missing.empty() ? "" : ", ", c.name);
   }
   for (const std::string& name : table.header()) {
     bool known = false;
@@ -188,55 +190,48 @@ void read_queries(const ModelEntry& model, const std::string& in_path,
   n = table.num_rows();
   for (auto& c : query) c.assign(n, 0.0);
   corners.assign(need_corners ? kCornerColumns.size() : 0, std::vector<double>(n, 0.0));
+  const auto read = [&](std::size_t r, std::size_t i) {
+    if (!col[i]) return kQueryLayout[i].default_value;
+    try {
+      return table.number(r, *col[i]);
+    } catch (const io::CsvError& e) {
+      throw InputError(std::string("--in ") + e.what());
+    }
+  };
+  constexpr std::size_t kCos = query_column_index("light_cos_half_angle"),
+                        kIntensity = query_column_index("light_intensity");
   for (std::size_t r = 0; r < table.num_rows(); ++r) {
-    std::array<double, kColumns.size()> v;
-    for (std::size_t i = 0; i < kColumns.size(); ++i) {
-      v[i] = kDefaults[i];
-      if (!col[i]) continue;
-      try {
-        v[i] = table.number(r, *col[i]);
-      } catch (const io::CsvError& e) {
-        throw InputError(std::string("--in ") + e.what());
-      }
-    }
-    for (std::size_t i = 0; i < kColumns.size(); ++i) query[i][r] = v[i];
-    ModelQuery<double> q;
-    q.footprint = {{v[0], v[1]}, {v[2], v[3]}, {v[4], v[5]}};
-    q.wi = {v[6], v[7], v[8]};
-    q.wo = {v[9], v[10], v[11]};
-    q.light = {v[12], v[13]};
-    check_unit(q.wi, fmt::format("--in {}, columns wi_x,wi_y,wi_z (wi)", table.where(r)));
-    check_unit(q.wo, fmt::format("--in {}, columns wo_x,wo_y,wo_z (wo)", table.where(r)));
-    if (!(v[12] >= -1 && v[12] <= 1)) {
+    QueryRow<double> v{};
+    for (std::size_t i = 0; i < kColumns.size(); ++i) v[i] = query[i][r] = read(r, i);
+    const ModelQuery<double> row_query = from_row(v);
+    check_unit(row_query.wi, fmt::format("--in {}, columns wi_x,wi_y,wi_z (wi)", table.where(r)));
+    check_unit(row_query.wo, fmt::format("--in {}, columns wo_x,wo_y,wo_z (wo)", table.where(r)));
+    if (!(v[kCos] >= -1 && v[kCos] <= 1)) {
       throw InputError(fmt::format("--in {}: {} is out of range (valid: [-1, 1])",
-                                   table.where(r, *col[12]), v[12]));
+                                   table.where(r, *col[kCos]), v[kCos]));
     }
-    if (!(v[13] >= 0)) {
+    if (!(v[kIntensity] >= 0)) {
       throw InputError(fmt::format("--in {}: {} is out of range (valid: >= 0)",
-                                   table.where(r, *col[13]), v[13]));
+                                   table.where(r, *col[kIntensity]), v[kIntensity]));
     }
-    if (!need_corners) continue;
-    for (std::size_t i = 0; i < kCornerColumns.size(); ++i) {
-      try {
-        corners[i][r] = table.number(r, *corner_col[i]);
-      } catch (const io::CsvError& e) {
-        throw InputError(std::string("--in ") + e.what());
+    if (need_corners) {
+      for (std::size_t i = kColumns.size(); i < kQueryLayout.size(); ++i)
+        v[i] = corners[i - kColumns.size()][r] = read(r, i);
+      const ModelQuery<double> q = from_row(v);
+      for (std::size_t c = 0; c < q.footprint.corner_r.size(); ++c) {
+        check_unit(q.footprint.corner_r[c],
+                   fmt::format("--in {}, columns r{}_x,r{}_y,r{}_z (corner reflection vector)",
+                               table.where(r), c, c, c));
       }
     }
-    for (std::size_t c = 0; c < 4; ++c) {
-      check_unit(Vec3<double>{corners[3 * c][r], corners[3 * c + 1][r], corners[3 * c + 2][r]},
-                 fmt::format("--in {}, columns r{}_x,r{}_y,r{}_z (corner reflection vector)",
-                             table.where(r), c, c, c));
-    }
-    if (!(v[12] < 1)) {
-      throw InputError(fmt::format(
-          "--in {}: light_cos_half_angle = {} is out of range (valid: < 1, a disk of radius > 0)",
-          table.where(r, *col[12]), v[12]));
-    }
-    if (!(v[11] > 0)) {
-      throw InputError(fmt::format(
-          "--in {}: wo_z = {} is out of range (valid: > 0, the disk's centre above the surface)",
-          table.where(r, *col[11]), v[11]));
+    if (!model.validate) continue;
+    if (const std::optional<QueryViolation> bad = model.validate(from_row(v))) {
+      std::size_t i = 0;
+      while (i < kQueryLayout.size() && kQueryLayout[i].name != bad->column) ++i;
+      const std::string where =
+          i < kQueryLayout.size() && col[i] ? table.where(r, *col[i]) : table.where(r);
+      throw InputError(fmt::format("--in {}: {} = {} is out of range (valid: {})", where,
+                                   bad->column, i < v.size() ? v[i] : 0.0, bad->valid));
     }
   }
 }
@@ -294,7 +289,8 @@ void run_model_eval(const ModelEvalArgs& a) {
     const std::array<GridAxis, 4> g = parse_grid(a.grid);
     n = 1;
     for (const GridAxis& x : g) n *= std::size_t(x.count);
-    for (std::size_t i = 0; i < kColumns.size(); ++i) query[i].assign(n, kDefaults[i]);
+    for (std::size_t i = 0; i < kColumns.size(); ++i)
+      query[i].assign(n, kQueryLayout[i].default_value);
     angles.assign(4, std::vector<double>(n));
     std::size_t r = 0;
     for (std::uint64_t i0 = 0; i0 < g[0].count; ++i0)
@@ -303,13 +299,12 @@ void run_model_eval(const ModelEvalArgs& a) {
           for (std::uint64_t i3 = 0; i3 < g[3].count; ++i3, ++r) {
             const double v[4] = {g[0].at(i0), g[1].at(i1), g[2].at(i2), g[3].at(i3)};
             for (int k = 0; k < 4; ++k) angles[std::size_t(k)][r] = v[k];
-            const Vec3<double> wi = direction_deg(v[0], v[1]), wo = direction_deg(v[2], v[3]);
-            query[6][r] = wi.x;
-            query[7][r] = wi.y;
-            query[8][r] = wi.z;
-            query[9][r] = wo.x;
-            query[10][r] = wo.y;
-            query[11][r] = wo.z;
+            ModelQuery<double> q{};
+            q.wi = direction_deg(v[0], v[1]);
+            q.wo = direction_deg(v[2], v[3]);
+            const QueryRow<double> row = to_row(q);
+            for (std::size_t c = 0; c < kColumns.size(); ++c)
+              if (kQueryLayout[c].part == QueryPart::kDirections) query[c][r] = row[c];
           }
   } else {
     read_queries(*model, a.in_path, query, corners, n);

@@ -13,6 +13,7 @@
 #include "cli/out_csv.h"
 #include "core/io/csv.h"
 #include "core/math/rng.h"
+#include "core/model_layout.h"
 #include "core/model_registry.h"
 #include "core/simd/model_batch.h"
 
@@ -46,10 +47,10 @@ void run_model_sample(const ModelSampleArgs& a) {
   std::vector<std::vector<double>> out(simd::kSampleColumns.size(), std::vector<double>(n));
   const auto run = [&]<class S>(S) {
     std::array<S, simd::kQueryColumns.size()> q;
-    for (std::size_t j = 0; j < q.size(); ++j) q[j] = S(simd::kQueryDefaults[j]);
-    q[6] = S(wi.x);
-    q[7] = S(wi.y);
-    q[8] = S(wi.z);
+    for (std::size_t j = 0; j < q.size(); ++j) q[j] = S(kQueryLayout[j].default_value);
+    q[query_column_index("wi_x")] = S(wi.x);
+    q[query_column_index("wi_y")] = S(wi.y);
+    q[query_column_index("wi_z")] = S(wi.z);
     std::vector<S> res;
     if constexpr (std::is_same_v<S, float>) res.resize(out.size() * n);
     for_each_chunk(n, opts, [&](std::size_t begin, std::size_t count) {

@@ -11,6 +11,9 @@
 //   eval<T>(Params, ModelQuery)   -> ModelEval<T, M>   value, pdf, intermediates
 //   pdf<T>(Params, ModelQuery)    -> T                 density of wo given wi (per steradian)
 //   sample<T>(Params, ModelQuery, Vec2 u) -> ModelSample<T>   wo from wi
+// and optionally
+//   validate(ModelQuery<double>) -> std::optional<QueryViolation>  the model's own input rules
+// params<T> reads the values by name (values[param_index<M>("seed")]), never by position.
 // core/model_registry.h turns such a struct into a type-erased entry for the CLI, the claims, the
 // figures and the benchmarks; adding a model = its file plus one line in core/model_registry.cpp.
 #pragma once
@@ -18,6 +21,7 @@
 #include <array>
 #include <concepts>
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <string_view>
 
@@ -96,6 +100,33 @@ struct ParamSpec {
   bool lo_open, hi_open;  // whether the bound itself is excluded
   std::string_view description;
   std::span<const std::string_view> choices = {};
+};
+
+// The position of parameter `name` in `params` (a model's kParams); a compile error for a name that
+// is not there.
+void parameter_name_is_not_in_kParams();
+template <std::size_t N>
+consteval std::size_t param_index(const std::array<ParamSpec, N>& params, std::string_view name) {
+  for (std::size_t i = 0; i < N; ++i)
+    if (params[i].name == name) return i;
+  parameter_name_is_not_in_kParams();
+  return N;
+}
+template <class M>
+consteval std::size_t param_index(std::string_view name) {
+  return param_index(M::kParams, name);
+}
+
+// A query value a model does not take (from its optional static validate): the column that breaks
+// the rule (a name of core/model_layout.h) and the valid range, in words.
+struct QueryViolation {
+  std::string_view column;
+  std::string_view valid;
+};
+
+template <class M>
+concept ValidatesQuery = requires(const ModelQuery<double>& q) {
+  { M::validate(q) } -> std::same_as<std::optional<QueryViolation>>;
 };
 
 template <class M>

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "core/model.h"
+#include "core/model_layout.h"
 
 namespace glintlab {
 
@@ -35,6 +37,9 @@ struct ModelEntry {
   std::function<ModelSample<double>(const std::vector<double>& values, const ModelQuery<double>&,
                                     Vec2<double> u)>
       sample;
+  // The model's own rules on an evaluated query (M::validate; empty where it has none): the column
+  // that breaks one and its valid range, or nothing.
+  std::function<std::optional<QueryViolation>(const ModelQuery<double>&)> validate;
   // The same three through the model's float instantiation (inputs rounded to float, results
   // widened back), for the stability sweeps; empty where the model offers no float instantiation
   // (its eval/pdf/sample do not accept T = float, or it declares kDoubleOnly = true).
@@ -84,15 +89,8 @@ std::string format_param_value(const ParamSpec& p, double value);
 std::string describe_needs(unsigned needs);
 
 namespace detail {
-// A float query from a double one (the sweeps' float path).
-inline ModelQuery<float> to_float(const ModelQuery<double>& q) {
-  auto v2 = [](Vec2<double> v) { return Vec2<float>{float(v.x), float(v.y)}; };
-  auto v3 = [](Vec3<double> v) { return Vec3<float>{float(v.x), float(v.y), float(v.z)}; };
-  return {{v2(q.footprint.uv), v2(q.footprint.duv_dx), v2(q.footprint.duv_dy)},
-          v3(q.wi),
-          v3(q.wo),
-          {float(q.light.cos_half_angle), float(q.light.intensity)}};
-}
+// A float query from a double one (the sweeps' float path), every column of core/model_layout.h.
+inline ModelQuery<float> to_float(const ModelQuery<double>& q) { return convert_query<float>(q); }
 
 template <class M>
 concept DoubleOnly = requires {
@@ -133,6 +131,7 @@ ModelEntry make_model_entry() {
   e.sample = [](const std::vector<double>& v, const ModelQuery<double>& q, Vec2<double> u) {
     return M::template sample<double>(M::template params<double>(v), q, u);
   };
+  if constexpr (ValidatesQuery<M>) e.validate = &M::validate;
   if constexpr (detail::HasFloatInstantiation<M>) {
     e.eval_float = [](const std::vector<double>& v, const ModelQuery<double>& q) {
       const auto r = M::template eval<float>(M::template params<float>(v), detail::to_float(q));

@@ -370,15 +370,17 @@ struct Chermain {
   static Params<T> params(std::span<const double> v) {
     const double sqrt_half = 0.70710678118654752440;
     Params<T> p{};
+    using M = Chermain;
     p.sdf = {&default_chermain_dictionary(),
-             v[0] * sqrt_half,
-             v[1] * sqrt_half,
-             v[2],
-             std::log2(v[3]),
-             static_cast<int>(v[4]),
-             v[5],
-             static_cast<std::uint64_t>(v[10])};
-    p.d = {v[6], v[7], v[8], v[9]};
+             v[param_index<M>("alpha_x")] * sqrt_half,
+             v[param_index<M>("alpha_y")] * sqrt_half,
+             v[param_index<M>("rho")],
+             std::log2(v[param_index<M>("density")]),
+             static_cast<int>(v[param_index<M>("ggaa")]),
+             v[param_index<M>("s_k")],
+             static_cast<std::uint64_t>(v[param_index<M>("seed")])};
+    p.d = {v[param_index<M>("dh_dx_x")], v[param_index<M>("dh_dx_y")], v[param_index<M>("dh_dy_x")],
+           v[param_index<M>("dh_dy_y")]};
     return p;
   }
 

@@ -165,12 +165,14 @@ struct DeliotBelcour {
 
   template <class T>
   static Params<T> params(std::span<const double> v) {
-    return {GGX<T>{T(v[0]), T(v[1])},
-            T(v[2]),
-            T(v[3]),
-            static_cast<BinomialSampler>(int(v[4])),
-            static_cast<std::uint64_t>(v[5]),
-            facet_density_scale<T>(v[2])};
+    const double density = v[param_index<DeliotBelcour>("density")];
+    return {GGX<T>{T(v[param_index<DeliotBelcour>("alpha_x")]),
+                   T(v[param_index<DeliotBelcour>("alpha_y")])},
+            T(density),
+            T(v[param_index<DeliotBelcour>("r")]),
+            static_cast<BinomialSampler>(int(v[param_index<DeliotBelcour>("binomial")])),
+            static_cast<std::uint64_t>(v[param_index<DeliotBelcour>("seed")]),
+            facet_density_scale<T>(density)};
   }
 
   template <class T>

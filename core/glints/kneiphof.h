@@ -196,14 +196,16 @@ struct KneiphofKlein {
 
   template <class T>
   static Params<T> params(std::span<const double> v) {
-    const GGX<double> g{v[0], v[1]};
-    return {GGX<T>{T(v[0]), T(v[1])},
-            T(v[2]),
-            T(one_minus_cos(v[3] * std::numbers::pi / 180)),
+    const GGX<double> g{v[param_index<KneiphofKlein>("alpha_x")],
+                        v[param_index<KneiphofKlein>("alpha_y")]};
+    const double density = v[param_index<KneiphofKlein>("density")];
+    return {GGX<T>{T(g.alpha_x), T(g.alpha_y)},
+            T(density),
+            T(one_minus_cos(v[param_index<KneiphofKlein>("gamma_deg")] * std::numbers::pi / 180)),
             T(total_area(g)),
-            static_cast<BinomialSampler>(int(v[4])),
-            static_cast<std::uint64_t>(v[5]),
-            facet_density_scale<T>(v[2])};
+            static_cast<BinomialSampler>(int(v[param_index<KneiphofKlein>("binomial")])),
+            static_cast<std::uint64_t>(v[param_index<KneiphofKlein>("seed")]),
+            facet_density_scale<T>(density)};
   }
 
   template <class T>

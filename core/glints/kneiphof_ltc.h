@@ -146,19 +146,20 @@ struct KneiphofKleinArea {
   template <class T>
   static Params<T> params(std::span<const double> v) {
     const double deg = std::numbers::pi / 180;
-    return {v[0],
-            v[1],
-            v[2],
-            v[3],
-            v[4],
-            v[5] * deg,
-            v[6] * deg,
-            total_area_ggx_eq29(v[0]),
-            static_cast<KneiphofAreaP>(int(v[7])),
-            int(v[8]) == 1,
-            int(v[9]),
-            static_cast<BinomialSampler>(int(v[10])),
-            static_cast<std::uint64_t>(v[11]),
+    using M = KneiphofKleinArea;
+    return {v[param_index<M>("alpha")],
+            v[param_index<M>("density")],
+            v[param_index<M>("light_distance")],
+            v[param_index<M>("light_width")],
+            v[param_index<M>("light_height")],
+            v[param_index<M>("light_rotation_deg")] * deg,
+            v[param_index<M>("light_tilt_deg")] * deg,
+            total_area_ggx_eq29(v[param_index<M>("alpha")]),
+            static_cast<KneiphofAreaP>(int(v[param_index<M>("area_p")])),
+            int(v[param_index<M>("area_lo")]) == 1,
+            int(v[param_index<M>("mc_samples")]),
+            static_cast<BinomialSampler>(int(v[param_index<M>("binomial")])),
+            static_cast<std::uint64_t>(v[param_index<M>("seed")]),
             &ltc_ggx_table_view()};
   }
 

@@ -86,20 +86,27 @@ struct KemppinenModelParams {
 
 template <class Ndf, class T>
 KemppinenModelParams<Ndf, T> kemppinen_model_params(std::span<const double> v) {
-  KemppinenModelParams<Ndf, T> m{Ndf{T(v[0]), T(v[1])}, {}, v[11] != 0.0};
+  constexpr const auto& kParams = kKemppinenParams;
+  const auto choice = [&](std::size_t index) { return static_cast<int>(v[index]); };
+  KemppinenModelParams<Ndf, T> m{
+      Ndf{T(v[param_index(kParams, "alpha_x")]), T(v[param_index(kParams, "alpha_y")])},
+      {},
+      v[param_index(kParams, "pdf")] != 0.0};
   KemppinenParams<T>& g = m.glint;
-  g.density = T(v[2]);
-  g.microroughness = T(v[3]);
-  g.anisotropy = T(v[4]);
-  g.filter = T(v[5]);
-  g.side = static_cast<int>(v[6]) + 1;
-  g.blend = static_cast<KemppinenBlend>(static_cast<int>(v[7]));
-  g.erf = static_cast<KemppinenErf>(static_cast<int>(v[8]));
-  g.normalization = static_cast<KemppinenNormalization>(static_cast<int>(v[9]));
-  g.colors = static_cast<KemppinenColors>(static_cast<int>(v[10]));
-  g.seed = static_cast<std::uint64_t>(v[12]);
-  m.triplanar = v[13] != 0.0;
-  m.normal = kemppinen_object_normal(T(v[14]), T(v[15]));
+  g.density = T(v[param_index(kParams, "density")]);
+  g.microroughness = T(v[param_index(kParams, "microroughness")]);
+  g.anisotropy = T(v[param_index(kParams, "anisotropy")]);
+  g.filter = T(v[param_index(kParams, "filter")]);
+  g.side = choice(param_index(kParams, "k")) + 1;  // k = side² cells
+  g.blend = static_cast<KemppinenBlend>(choice(param_index(kParams, "blending")));
+  g.erf = static_cast<KemppinenErf>(choice(param_index(kParams, "erf")));
+  g.normalization =
+      static_cast<KemppinenNormalization>(choice(param_index(kParams, "normalization")));
+  g.colors = static_cast<KemppinenColors>(choice(param_index(kParams, "colors")));
+  g.seed = static_cast<std::uint64_t>(v[param_index(kParams, "seed")]);
+  m.triplanar = v[param_index(kParams, "mapping")] != 0.0;
+  m.normal = kemppinen_object_normal(T(v[param_index(kParams, "normal_theta")]),
+                                     T(v[param_index(kParams, "normal_phi")]));
   return m;
 }
 

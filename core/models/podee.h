@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <span>
 #include <string_view>
 
@@ -59,8 +60,17 @@ struct Podee {
 
   template <class T>
   static Params<T> params(std::span<const double> v) {
-    return {static_cast<PodeeWeighting>(static_cast<int>(v[0])),
-            static_cast<PodeeSelection>(static_cast<int>(v[1])), GGX<T>{T(v[2]), T(v[3])}};
+    return {static_cast<PodeeWeighting>(static_cast<int>(v[param_index<Podee>("weighting")])),
+            static_cast<PodeeSelection>(static_cast<int>(v[param_index<Podee>("selection")])),
+            GGX<T>{T(v[param_index<Podee>("alpha_x")]), T(v[param_index<Podee>("alpha_y")])}};
+  }
+
+  // The disk light needs a radius (its cone a half-angle > 0) and its centre above the surface.
+  static std::optional<QueryViolation> validate(const ModelQuery<double>& q) {
+    if (!(q.light.cos_half_angle < 1))
+      return QueryViolation{"light_cos_half_angle", "< 1, a disk of radius > 0"};
+    if (!(q.wo.z > 0)) return QueryViolation{"wo_z", "> 0, the disk's centre above the surface"};
+    return std::nullopt;
   }
 
   // value = lit × weight where the light's centre is above the surface (wo.z > 0), else 0.
@@ -96,5 +106,6 @@ struct Podee {
 };
 
 static_assert(Model<Podee>);
+static_assert(ValidatesQuery<Podee>);  // a changed signature would silently drop the rules
 
 }  // namespace glintlab

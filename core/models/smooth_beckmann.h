@@ -41,7 +41,9 @@ struct SmoothBeckmann {
 
   template <class T>
   static Params<T> params(std::span<const double> v) {
-    return {Beckmann<T>{T(v[0]), T(v[1])}, static_cast<int>(v[2])};
+    return {Beckmann<T>{T(v[param_index<SmoothBeckmann>("alpha_x")]),
+                        T(v[param_index<SmoothBeckmann>("alpha_y")])},
+            static_cast<int>(v[param_index<SmoothBeckmann>("sampler")])};
   }
 
   template <class T>

@@ -51,8 +51,11 @@ struct SmoothGGX {
 
   template <class T>
   static Params<T> params(std::span<const double> v) {
-    return {GGX<T>{T(v[0]), T(v[1])}, static_cast<int>(v[2]),
-            v[3] == 0.0 ? BoundedVndfBound::kListing1 : BoundedVndfBound::kExactIsotropic};
+    return {
+        GGX<T>{T(v[param_index<SmoothGGX>("alpha_x")]), T(v[param_index<SmoothGGX>("alpha_y")])},
+        static_cast<int>(v[param_index<SmoothGGX>("sampler")]),
+        v[param_index<SmoothGGX>("bound")] == 0.0 ? BoundedVndfBound::kListing1
+                                                  : BoundedVndfBound::kExactIsotropic};
   }
 
   template <class T>

@@ -8,6 +8,7 @@
 #include "core/math/orthonormal_basis.h"
 #include "core/math/rng.h"
 #include "core/model.h"
+#include "core/model_layout.h"
 #include "core/samplers/walter.h"
 #include "core/simd/kernels.h"
 
@@ -159,23 +160,26 @@ void add_scene_columns(unsigned needs, std::vector<std::vector<double>>& query,
   for (std::size_t i = 0; i < n; ++i) {
     if (needs & kNeedsFootprint) {
       const bool origin = u(i, 0) < 0.05;
-      query[0][i] = origin ? 0.0 : 4 * u(i, 1);
-      query[1][i] = origin ? 0.0 : 4 * u(i, 2);
+      query[query_column_index("u")][i] = origin ? 0.0 : 4 * u(i, 1);
+      query[query_column_index("v")][i] = origin ? 0.0 : 4 * u(i, 2);
       const double area = u(i, 3) < 0.04 ? 0.0 : std::pow(10.0, -14 + 12 * u(i, 4));
       const double t = std::pow(10.0, 2 * u(i, 5) - 1);  // aspect 1:10 .. 10:1
       const double a = 2 * kPiD * u(i, 6), b = a + 0.2 + 2.7 * u(i, 7);
       const double s2 = area / (t * std::abs(std::sin(b - a)));
       const double s1 = std::sqrt(s2);
-      query[2][i] = s1 * std::cos(a);
-      query[3][i] = s1 * std::sin(a);
-      query[4][i] = s1 * t * std::cos(b);
-      query[5][i] = s1 * t * std::sin(b);
+      query[query_column_index("dudx")][i] = s1 * std::cos(a);
+      query[query_column_index("dvdx")][i] = s1 * std::sin(a);
+      query[query_column_index("dudy")][i] = s1 * t * std::cos(b);
+      query[query_column_index("dvdy")][i] = s1 * t * std::sin(b);
     }
     if (needs & (kNeedsPointLight | kNeedsAreaLight)) {
-      query[12][i] = u(i, 8) < 0.2 ? 1.0 : std::cos(std::pow(10.0, -4 + 3.7 * u(i, 9)));
+      query[query_column_index("light_cos_half_angle")][i] =
+          u(i, 8) < 0.2 ? 1.0 : std::cos(std::pow(10.0, -4 + 3.7 * u(i, 9)));
     }
     if (needs & kNeedsPixelCorners) {
-      const Vec3<double> l{query[9][i], query[10][i], query[11][i]};
+      const Vec3<double> l{query[query_column_index("wo_x")][i],
+                           query[query_column_index("wo_y")][i],
+                           query[query_column_index("wo_z")][i]};
       const OrthonormalBasis<double> f = basis_from_z(l);
       const double kind = u(i, 10);
       std::array<Vec3<double>, 4> r{};
@@ -197,9 +201,9 @@ void add_scene_columns(unsigned needs, std::vector<std::vector<double>>& query,
         for (std::size_t c = 0; c < 4; ++c) r[c] = sphere(i, 24 + 2 * c);
       }
       for (std::size_t c = 0; c < 4; ++c) {
-        query[14 + 3 * c][i] = r[c].x;
-        query[15 + 3 * c][i] = r[c].y;
-        query[16 + 3 * c][i] = r[c].z;
+        query[query_column_index("r0_x") + 3 * c][i] = r[c].x;
+        query[query_column_index("r0_y") + 3 * c][i] = r[c].y;
+        query[query_column_index("r0_z") + 3 * c][i] = r[c].z;
       }
     }
   }

@@ -9,37 +9,38 @@
 #include <span>
 #include <string_view>
 
+#include "core/model_layout.h"
 #include "core/model_registry.h"
 #include "core/simd/batch.h"
 
 namespace glintlab::simd {
 
-// The query columns, in this order (the columns of `glintlab eval --model`): footprint uv and
-// its Jacobian, ω_i, ω_o, the light cone (core/model.h ModelQuery).
-inline constexpr std::array<std::string_view, 14> kQueryColumns = {"u",
-                                                                   "v",
-                                                                   "dudx",
-                                                                   "dvdx",
-                                                                   "dudy",
-                                                                   "dvdy",
-                                                                   "wi_x",
-                                                                   "wi_y",
-                                                                   "wi_z",
-                                                                   "wo_x",
-                                                                   "wo_y",
-                                                                   "wo_z",
-                                                                   "light_cos_half_angle",
-                                                                   "light_intensity"};
-// The default of each query column where a model does not need it.
-inline constexpr std::array<double, 14> kQueryDefaults = {0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 1, 1, 1};
-// The footprint's four corner reflection vectors (core/model.h FootprintQuery::corner_r, for the
-// kNeedsPixelCorners models), corner k at columns 3k..3k+2: optional columns after the query
-// columns. A query of kQueryColumns.size() + kCornerColumns.size() columns carries them; one of
-// kQueryColumns.size() columns leaves them zero.
-inline constexpr std::array<std::string_view, 12> kCornerColumns = {
-    "r0_x", "r0_y", "r0_z", "r1_x", "r1_y", "r1_z", "r2_x", "r2_y", "r2_z", "r3_x", "r3_y", "r3_z"};
-inline constexpr std::size_t kQueryColumnsWithCorners =
-    kQueryColumns.size() + kCornerColumns.size();
+// The query columns (core/model_layout.h), in layout order: footprint uv and its Jacobian, ω_i,
+// ω_o, the light cone, then the footprint's four corner reflection vectors (FootprintQuery::
+// corner_r, for the kNeedsPixelCorners models) as optional columns. A query of
+// kQueryColumnsWithCorners columns carries them; one of kQueryColumns.size() leaves them zero.
+inline constexpr std::size_t kQueryColumnsWithCorners = kQueryLayout.size();
+inline constexpr std::size_t kCornerColumnCount = [] {
+  std::size_t n = 0;
+  for (const QueryColumn& c : kQueryLayout) n += c.part == QueryPart::kCorners ? 1 : 0;
+  return n;
+}();
+template <std::size_t N>
+constexpr std::array<std::string_view, N> query_column_names(std::size_t first) {
+  std::array<std::string_view, N> names{};
+  for (std::size_t k = 0; k < N; ++k) names[k] = kQueryLayout[first + k].name;
+  return names;
+}
+// The columns without the corners (the columns of `glintlab eval --model`), and their defaults.
+inline constexpr auto kQueryColumns =
+    query_column_names<kQueryColumnsWithCorners - kCornerColumnCount>(0);
+inline constexpr auto kQueryDefaults = [] {
+  std::array<double, kQueryColumns.size()> defaults{};
+  for (std::size_t k = 0; k < defaults.size(); ++k) defaults[k] = kQueryLayout[k].default_value;
+  return defaults;
+}();
+// The corner columns, corner k at 3k..3k+2.
+inline constexpr auto kCornerColumns = query_column_names<kCornerColumnCount>(kQueryColumns.size());
 // eval_batch writes value, pdf, then the model's intermediates (ModelEntry::intermediates).
 // sample_batch writes these (ModelSample: wo, its pdf, the weight value/pdf, rejected as 1 or 0).
 inline constexpr std::array<std::string_view, 6> kSampleColumns = {"wo_x", "wo_y",   "wo_z",

@@ -8,6 +8,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/model_layout.h"
 #include "core/simd/batched_models.h"
 #include "core/simd/model_batch.h"
 #include "core/simd/model_table.h"
@@ -88,17 +89,10 @@ std::array<Column<S>, kQueryColumnsWithCorners> full_query(std::span<const Colum
 
 template <class S>
 ModelQuery<double> query_row(std::span<const Column<S>> q, std::size_t i) {
-  double v[kQueryColumnsWithCorners];
-  for (std::size_t j = 0; j < kQueryColumnsWithCorners; ++j)
-    v[j] = static_cast<double>(q[j].data[q[j].stride * i]);
-  ModelQuery<double> r;
-  r.footprint = {{v[0], v[1]}, {v[2], v[3]}, {v[4], v[5]}};
-  for (std::size_t k = 0; k < 4; ++k)
-    r.footprint.corner_r[k] = {v[14 + 3 * k], v[15 + 3 * k], v[16 + 3 * k]};
-  r.wi = {v[6], v[7], v[8]};
-  r.wo = {v[9], v[10], v[11]};
-  r.light = {v[12], v[13]};
-  return r;
+  QueryRow<double> row;
+  for (std::size_t j = 0; j < row.size(); ++j)
+    row[j] = static_cast<double>(q[j].data[q[j].stride * i]);
+  return from_row(row);
 }
 
 template <class S>

@@ -27,26 +27,14 @@ GLINTLAB_FN void store_rows(S* out, std::size_t i, std::size_t count, const W& w
   for (std::size_t l = 0; l < count; ++l) out[i + l] = tmp[l];
 }
 
-// q: kQueryColumnsWithCorners columns (model_dispatch.cpp pads a query without corners with zero
-// columns); the corners are loaded only for the models that read them.
+// q: kQueryColumnsWithCorners columns in layout order (model_dispatch.cpp pads a query without
+// corners with zero columns); the corners are loaded only for the models that read them.
 template <class W, bool kCorners, class S>
 GLINTLAB_FN ModelQuery<W> load_query(const Column<S>* q, std::size_t i, std::size_t count) {
-  W c[kQueryColumns.size()];
-  for (std::size_t j = 0; j < kQueryColumns.size(); ++j) c[j] = load_column<W>(q[j], i, count);
   ModelQuery<W> r;
-  r.footprint = {{c[0], c[1]}, {c[2], c[3]}, {c[4], c[5]}};
-  r.wi = {c[6], c[7], c[8]};
-  r.wo = {c[9], c[10], c[11]};
-  r.light = {c[12], c[13]};
-  if constexpr (kCorners) {
-    const Column<S>* rc = q + kQueryColumns.size();
-    for (std::size_t k = 0; k < 4; ++k)
-      r.footprint.corner_r[k] = {load_column<W>(rc[3 * k], i, count),
-                                 load_column<W>(rc[3 * k + 1], i, count),
-                                 load_column<W>(rc[3 * k + 2], i, count)};
-  } else {
-    for (std::size_t k = 0; k < 4; ++k) r.footprint.corner_r[k] = {W(0), W(0), W(0)};
-  }
+  for_each_query_column(r, [&](std::size_t k, const QueryColumn& c, W& member) {
+    member = kCorners || c.part != QueryPart::kCorners ? load_column<W>(q[k], i, count) : W(0);
+  });
   return r;
 }
 

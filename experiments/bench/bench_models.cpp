@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/model_layout.h"
 #include "core/model_registry.h"
 #include "core/simd/inputs.h"
 #include "core/simd/kernels.h"
@@ -34,14 +35,14 @@ Queries make_queries(unsigned needs) {
                                     int(D::kWoY), int(D::kWoZ), int(D::kU1),  int(D::kU2)};
   const auto in = make_inputs(domains, kRows, 0x62656e6368ULL);
   Queries r;
-  for (std::size_t j = 0; j < kQueryColumnsWithCorners; ++j)
-    r.query.emplace_back(kRows, j < kQueryColumns.size() ? kQueryDefaults[j] : 0.0);
-  for (std::size_t j = 0; j < 6; ++j) r.query[6 + j] = in[j];
+  for (const QueryColumn& c : kQueryLayout) r.query.emplace_back(kRows, c.default_value);
+  // wi and wo from the generator, in its domain order wi_x .. wo_z.
+  for (std::size_t j = 0; j < 6; ++j) r.query[query_column_index("wi_x") + j] = in[j];
   // uv over [0, 4)² by a low-discrepancy sequence, so glint models visit different cells
   // (models that need a footprint get theirs from add_scene_columns).
   for (std::size_t i = 0; i < kRows; ++i) {
-    r.query[0][i] = 4 * std::fmod(0.7548776662466927 * double(i), 1.0);
-    r.query[1][i] = 4 * std::fmod(0.5698402909980532 * double(i), 1.0);
+    r.query[query_column_index("u")][i] = 4 * std::fmod(0.7548776662466927 * double(i), 1.0);
+    r.query[query_column_index("v")][i] = 4 * std::fmod(0.5698402909980532 * double(i), 1.0);
   }
   r.u1 = in[6];
   r.u2 = in[7];

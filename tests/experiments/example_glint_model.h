@@ -40,7 +40,9 @@ struct ExampleGlints {
 
   template <class T>
   static Params<T> params(std::span<const double> v) {
-    return {GGX<T>{T(v[0]), T(v[1])}, T(v[2])};
+    return {GGX<T>{T(v[param_index<ExampleGlints>("alpha_x")]),
+                   T(v[param_index<ExampleGlints>("alpha_y")])},
+            T(v[param_index<ExampleGlints>("density")])};
   }
 
   template <class T>

@@ -139,5 +139,27 @@ TEST(ModelRegistry, BadParametersNameTheParameterAndRange) {
   }
 }
 
+// A model's input rules come with its entry (the CLI knows no model): podee needs a disk of
+// radius > 0 with its centre above the surface; a model without rules has no validate.
+TEST(ModelRegistry, ModelsOwnTheirQueryRules) {
+  const ModelEntry& podee = find_model("podee");
+  ASSERT_TRUE(podee.validate);
+  ModelQuery<double> q = query({0, 0, 1}, {0, 0, 1});
+  q.light.cos_half_angle = 0.99;
+  EXPECT_FALSE(podee.validate(q).has_value());
+  q.light.cos_half_angle = 1;
+  std::optional<QueryViolation> bad = podee.validate(q);
+  ASSERT_TRUE(bad.has_value());
+  EXPECT_EQ(bad->column, "light_cos_half_angle");
+  EXPECT_NE(bad->valid.find("< 1"), std::string_view::npos);
+  q.light.cos_half_angle = 0.99;
+  q.wo = {0.6, 0, -0.8};
+  bad = podee.validate(q);
+  ASSERT_TRUE(bad.has_value());
+  EXPECT_EQ(bad->column, "wo_z");
+  EXPECT_NE(bad->valid.find("> 0"), std::string_view::npos);
+  EXPECT_FALSE(find_model("smooth_ggx").validate);
+}
+
 }  // namespace
 }  // namespace glintlab
