@@ -1,0 +1,418 @@
+#!/usr/bin/python3
+"""Writes docs/claims.md: one table of every registered claim of `glintlab verify`.
+
+Usage (Debian's /usr/bin/python3, standard library only):
+
+    /usr/bin/python3 scripts/claims_doc.py [CLAIMS_JSON ...] [--out FILE] [--source-dir DIR]
+
+Each CLAIMS_JSON is the claims.json that `glintlab verify --out DIR [--budget quick|full]`
+writes (a list of records; each record names its budget). Give the quick and the full run's
+files to fill both verdict columns. The recorded verdicts (what `glintlab verify` must
+reproduce for its exit status 0) are read from the check registrations in verify/claims/*.cpp,
+in the order of verify/registry.cpp; with no CLAIMS_JSON the table shows only those, and its
+header says so. Without --out the Markdown goes to stdout. A malformed input is one line on
+stderr, exit status 2, and nothing written.
+"""
+
+import argparse
+import json
+import os
+import re
+import sys
+import tempfile
+import textwrap
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+VERDICTS = {
+    "kHolds": "holds",
+    "kHoldsWithin": "holds-within",
+    "kHoldsInRegime": "holds-in-regime",
+    "kFails": "fails",
+    "kInconclusive": "inconclusive",
+}
+BUDGETS = ("quick", "full")
+
+# One line per registered claim: what the paper says, in this project's words (the ids are those
+# of the project's claims catalogue). A claim missing here is printed with an empty statement.
+STATEMENTS = {
+    "smooth.projected-area": "the projected area of the GGX and Beckmann NDFs is 1",
+    "smooth.vndf-normalized": "the visible-normal distribution integrates to 1 for every ωi",
+    "smooth.sampler-matches-pdf": "every smooth sampler draws from the pdf it reports",
+    "smooth.eval-pdf-consistency": "weight = eval·cos/pdf and pdf(sample()) = pdf(ωo)",
+    "eto.pdf-matches": "the bounded sampler's directions follow its pdf (Eq. 8, Listing 2)",
+    "eto.unbiased": "estimates with the bounded sampler are unbiased",
+    "eto.bound-is-infimum": "the isotropic bound −k·i_z is the infimum of o_z (Eq. 5)",
+    "eto.fewer-rejections": "bounded caps reject fewer samples (half at α = 1, θi = 0 before)",
+    "eto.variance-rough": "lower variance for rough, low-anisotropy surfaces; none at α = 0.2",
+    "eto.backfacing-stable-pdf": "the stable back-facing pdf equals Eq. 7",
+    "kemppinen.jacobian": "|J_T| = D/|U_Ω| for the GGX and Beckmann maps (Eq. 3)",
+    "kemppinen.convergence": "the area mean of D★ converges to D (Eq. 2)",
+    "kemppinen.compensation": "compensated D★^f matches D far away; k = 4 suffices (Eq. 9–11)",
+    "kemppinen.roulette": "roulette MIP blending equals linear blending in expectation (Eq. 8)",
+    "kemppinen.furnace": "averaged over area the glinty NDF gains no energy (Fig. 15)",
+    "kemppinen.constant-time": "evaluation cost does not grow with footprint, LOD or anisotropy",
+    "kemppinen.sampling-unbiased": "Algorithm 2 samples D★^f without bias (Fig. 7)",
+    "kneiphof.total-area": "Eq. 29/30 equal the total microfacet area; Eq. 31 approximates Eq. 30",
+    "kneiphof.discrete-ndf-mean": "the discrete NDF has mean D (App. A)",
+    "kneiphof.subdivision": "splitting the light leaves the counts and radiance unchanged (App. C)",
+    "kneiphof.convergence": "the glint estimate converges to L_o as N_P grows (Fig. 10)",
+    "kneiphof.cap-probability": "the cap probability of Eq. 20 is valid only in a regime",
+    "kneiphof.ltc-probability": "the LTC lobe times D_PR approximates ∫ D over Ω_h (Eq. 12–19)",
+    "chermain.kernel-normalized": "filtered marginals stay normalised, so GGAA keeps energy",
+    "chermain.dictionary-converges": "dictionary levels converge to a Gaussian of std σ_o",
+    "chermain.correlation": "the matrix M of Eq. 18 gives the slope correlation ρ",
+    "chermain.ggaa-error": "GGAA lowers the error on curved surfaces (Figs. 8–9)",
+    "chermain.lean-correlation": "LEAN with ρ beats LEAN with ρ = 0 and no LEAN (Fig. 7)",
+    "podee.brightest-vector": "the chosen reflection vector is the pixel's brightest",
+    "podee.rmse": "lower RMSE than centre sampling and LEAN (Table 1)",
+    "podee.far-failure": "the method fails when a pixel holds much normal variation",
+    "podee.stability": "less flicker than centre sampling under sub-pixel motion",
+    "all.stability": "where each registered model breaks (NaN, Inf, gain, p > 1, variance)",
+}
+
+
+class InputError(Exception):
+    pass
+
+
+# ---- the recorded verdicts, from the check registrations in verify/claims/*.cpp ---------------
+
+def strip_comments(src):
+    """C++ source without // and /* */ comments; string and char literals kept intact."""
+    out, i, n = [], 0, len(src)
+    while i < n:
+        c = src[i]
+        if c in "\"'":
+            j = i + 1
+            while j < n and src[j] != c:
+                j += 2 if src[j] == "\\" else 1
+            out.append(src[i:j + 1])
+            i = j + 1
+        elif src.startswith("//", i):
+            j = src.find("\n", i)
+            i = n if j < 0 else j
+        elif src.startswith("/*", i):
+            j = src.find("*/", i + 2)
+            i = n if j < 0 else j + 2
+        else:
+            out.append(c)
+            i += 1
+    return "".join(out)
+
+
+def matching(src, i):
+    """Index of the bracket closing the one at src[i] (strings skipped)."""
+    pairs = {"{": "}", "(": ")", "[": "]"}
+    stack, n = [], len(src)
+    while i < n:
+        c = src[i]
+        if c in "\"'":
+            j = i + 1
+            while j < n and src[j] != c:
+                j += 2 if src[j] == "\\" else 1
+            i = j + 1
+            continue
+        if c in pairs:
+            stack.append(pairs[c])
+        elif c in ")]}":
+            if not stack or stack.pop() != c:
+                raise InputError(f"unbalanced '{c}' in a check registration")
+            if not stack:
+                return i
+        i += 1
+    raise InputError("unterminated bracket in a check registration")
+
+
+def split_top(s):
+    """Splits s at commas outside brackets and strings."""
+    parts, depth, cur, i, n = [], 0, [], 0, len(s)
+    while i < n:
+        c = s[i]
+        if c in "\"'":
+            j = i + 1
+            while j < n and s[j] != c:
+                j += 2 if s[j] == "\\" else 1
+            cur.append(s[i:j + 1])
+            i = j + 1
+            continue
+        if c in "{([":
+            depth += 1
+        elif c in "})]":
+            depth -= 1
+        if c == "," and depth == 0:
+            parts.append("".join(cur).strip())
+            cur = []
+        else:
+            cur.append(c)
+        i += 1
+    if "".join(cur).strip():
+        parts.append("".join(cur).strip())
+    return parts
+
+
+LITERAL = re.compile(r'"((?:[^"\\]|\\.)*)"')
+
+
+def literal_text(expr):
+    """The text of one or more adjacent C++ string literals, or None if expr is not one."""
+    expr = expr.strip()
+    if not expr.startswith('"'):
+        return None
+    rest = LITERAL.sub("", expr).strip()
+    if rest:
+        return None
+    text = "".join(m.group(1) for m in LITERAL.finditer(expr))
+    return text.replace('\\"', '"').replace("\\\\", "\\")
+
+
+def resolve(expr, scopes):
+    """A string argument: a literal, or a name defined as one in the function or its file."""
+    text = literal_text(expr)
+    if text is not None:
+        return text
+    name = expr.strip()
+    if not re.fullmatch(r"[A-Za-z_]\w*", name):
+        raise InputError(f"cannot read the claim field '{name}' from the source")
+    definition = re.compile(r"\b" + name + r"\s*(?:\[\s*\])?\s*=\s*((?:\"(?:[^\"\\]|\\.)*\"\s*)+);")
+    for scope in scopes:
+        m = definition.search(scope)
+        if m:
+            return literal_text(m.group(1))
+    raise InputError(f"the name '{name}' has no string definition in its source file")
+
+
+def function_body(sources, name):
+    """(body, file text) of `std::vector<Check> name()` in one of the sources."""
+    pattern = re.compile(r"std::vector<Check>\s+" + re.escape(name) + r"\s*\(\s*\)\s*\{")
+    for text in sources.values():
+        m = pattern.search(text)
+        if m:
+            open_brace = m.end() - 1
+            return text[open_brace + 1:matching(text, open_brace)], text
+    raise InputError(f"no definition of {name}() in verify/claims/*.cpp")
+
+
+def checks_of(sources, name):
+    body, file_text = function_body(sources, name)
+    m = re.search(r"(?:return|=)\s*\{", body)
+    if not m:
+        raise InputError(f"{name}() has no list of checks")
+    open_brace = m.end() - 1
+    entries = split_top(body[open_brace + 1:matching(body, open_brace)])
+    checks = []
+    for entry in entries:
+        if not entry.startswith("{"):
+            raise InputError(f"{name}(): unexpected entry '{entry[:40]}'")
+        args = split_top(entry[1:matching(entry, 0)])
+        if len(args) < 5:
+            raise InputError(f"{name}(): a check with fewer than five fields")
+        verdicts = [a for a in args if re.fullmatch(r"Verdict::k\w+", a)]
+        expected = VERDICTS.get(args[3].replace("Verdict::", ""))
+        if expected is None:
+            raise InputError(f"{name}(): '{args[3]}' is not a verdict")
+        full = VERDICTS.get(args[6].replace("Verdict::", "")) if len(args) > 6 else None
+        if len(verdicts) != (2 if full else 1):
+            raise InputError(f"{name}(): cannot place the verdicts of '{args[0]}'")
+        calibration = len(args) > 5 and args[5] not in ("{}", "nullptr")
+        checks.append({
+            "id": resolve(args[0], (body, file_text)),
+            "paper": resolve(args[1], (body, file_text)),
+            "source": resolve(args[2], (body, file_text)),
+            "recorded": {"quick": expected, "full": full or expected},
+            "statistical": calibration,
+        })
+    for extra in re.findall(r"for\s*\(\s*Check\s*&\s*\w+\s*:\s*(\w+)\s*\(\s*\)\s*\)", body):
+        checks.extend(checks_of(sources, extra))
+    return checks
+
+
+def recorded_checks(source_dir):
+    """Every registered check, in the registry's order, with its recorded verdicts."""
+    registry = os.path.join(source_dir, "..", "registry.cpp")
+    try:
+        with open(registry, encoding="utf-8") as f:
+            registry_src = strip_comments(f.read())
+        sources = {}
+        for name in sorted(os.listdir(source_dir)):
+            if name.endswith(".cpp"):
+                with open(os.path.join(source_dir, name), encoding="utf-8") as f:
+                    sources[name] = strip_comments(f.read())
+    except OSError as e:
+        raise InputError(f"--source-dir: {e.strerror}: {e.filename}")
+    m = re.search(r"for\s*\(\s*auto\s*\*\s*\w+\s*:\s*\{([^}]*)\}", registry_src)
+    if not m:
+        raise InputError("verify/registry.cpp: the list of check lists was not found")
+    checks = []
+    for name in re.findall(r"&\s*(\w+)", m.group(1)):
+        checks.extend(checks_of(sources, name))
+    ids = [c["id"] for c in checks]
+    if len(set(ids)) != len(ids):
+        raise InputError("the registry holds a claim id twice")
+    return checks
+
+
+# ---- measured verdicts, from claims.json ---------------------------------------------------
+
+def read_claims_json(path):
+    try:
+        with open(path, encoding="utf-8") as f:
+            records = json.load(f)
+    except OSError as e:
+        raise InputError(f"{path}: {e.strerror}")
+    except (json.JSONDecodeError, UnicodeDecodeError) as e:
+        raise InputError(f"{path}: not JSON ({e})")
+    if not isinstance(records, list) or not records:
+        raise InputError(f"{path}: expected a non-empty list of claim records")
+    runs = {}
+    for i, r in enumerate(records):
+        if not isinstance(r, dict):
+            raise InputError(f"{path}: record {i} is not an object")
+        for key, kind in (("id", str), ("verdict", str), ("budget", str),
+                          ("control_rejected", bool)):
+            if not isinstance(r.get(key), kind):
+                raise InputError(f"{path}: record {i} lacks '{key}' ({kind.__name__})")
+        if r["budget"] not in BUDGETS:
+            raise InputError(f"{path}: record {i}: budget '{r['budget']}' is not quick or full")
+        if r["verdict"] not in VERDICTS.values():
+            raise InputError(f"{path}: record {i}: '{r['verdict']}' is not a verdict")
+        runs.setdefault(r["budget"], {})[r["id"]] = r
+    return runs
+
+
+# ---- the document ----------------------------------------------------------------------------
+
+def cell(text):
+    return str(text).replace("|", "\\|").replace("\n", " ")
+
+
+def verdict_cell(check, measured, budget):
+    recorded = check["recorded"][budget]
+    run = measured.get(budget, {}).get(check["id"])
+    if run is None:
+        if not measured:
+            return recorded
+        return f"{recorded} (recorded)" if measured.get(budget) is None else "not run"
+    if run["verdict"] == recorded:
+        return run["verdict"]
+    return f"**{run['verdict']}** (recorded: {recorded})"
+
+
+def control_cell(check, measured):
+    parts = []
+    for budget in BUDGETS:
+        run = measured.get(budget, {}).get(check["id"])
+        if run is not None:
+            parts.append(f"{budget}: " + ("rejected" if run["control_rejected"] else "**NOT rejected**"))
+    return "; ".join(parts) if parts else "—"
+
+
+def render(checks, measured, command, inputs):
+    lines = [
+        "# Claims and verdicts",
+        "",
+        f"Generated by `{command}`; do not edit by hand.",
+        "",
+    ]
+    if measured:
+        described = ", ".join(f"`{p}` ({b})" for p, b in inputs)
+        lines.append(f"Measured verdicts from {described}.")
+    else:
+        lines.append(
+            "No claims.json was given: every verdict below is the one recorded in "
+            "`verify/claims/*.cpp`, which `glintlab verify` must reproduce (exit status 0), "
+            "not a measurement. The control column needs a claims.json: `glintlab verify` "
+            "exits 1 when a negative control is not rejected.")
+    missing = [b for b in BUDGETS if b not in measured]
+    if measured and missing:
+        lines.append(
+            f"No {' or '.join(missing)}-budget claims.json was given: that column shows the "
+            "verdict recorded in `verify/claims/*.cpp`, marked \"(recorded)\".")
+    statistical = sum(1 for c in checks if c["statistical"])
+    lines += [
+        "",
+        f"{len(checks)} registered claims: {statistical} statistical (a p-value, with a "
+        f"calibration run by `glintlab verify --calibrate ID`) and {len(checks) - statistical} "
+        "deterministic (an error bound or an exact recomputation). Each has a negative control "
+        "it must reject. How the suite works: [verification.md](verification.md); the evidence "
+        "per paper, beside the paper's numbers: [papers/](papers/README.md).",
+        "",
+    ]
+    for budget in BUDGETS:
+        runs = measured.get(budget)
+        if not runs:
+            continue
+        ran = [c for c in checks if c["id"] in runs]
+        same = sum(1 for c in ran if runs[c["id"]]["verdict"] == c["recorded"][budget])
+        rejected = sum(1 for c in ran if runs[c["id"]]["control_rejected"])
+        lines.append(f"- {budget} budget: {len(ran)} of {len(checks)} claims run, {same} as "
+                     f"recorded, {rejected} of {len(ran)} negative controls rejected.")
+        unknown = sorted(set(runs) - {c["id"] for c in checks})
+        if unknown:
+            lines.append(f"  Not in the registry: {', '.join(unknown)}.")
+    if measured:
+        lines.append("")
+    lines += [
+        "| claim | paper | source | statement | kind | quick | full | control |",
+        "| --- | --- | --- | --- | --- | --- | --- | --- |",
+    ]
+    for c in checks:
+        lines.append("| " + " | ".join(cell(x) for x in (
+            f"`{c['id']}`", c["paper"], c["source"], STATEMENTS.get(c["id"], ""),
+            "statistical" if c["statistical"] else "deterministic",
+            verdict_cell(c, measured, "quick"), verdict_cell(c, measured, "full"),
+            control_cell(c, measured))) + " |")
+    lines += [
+        "",
+        "Verdicts: **holds**; **holds-within** (within a stated tolerance); **holds-in-regime** "
+        "(only in part of the parameter space, the detail says where); **fails** (with the "
+        "evidence); **inconclusive** (the test could not decide, e.g. a cubature error too "
+        "large). A verdict that differs from the recorded one is a regression or a finding.",
+        "",
+    ]
+    return "\n".join(wrap(line) for line in lines)
+
+
+def wrap(line):
+    """Prose lines wrapped at 100 characters; table rows and list items left as they are."""
+    if line.startswith(("|", "#", "- ", "  ")) or len(line) <= 100:
+        return line
+    return textwrap.fill(line, width=100, break_long_words=False, break_on_hyphens=False)
+
+
+def main(argv):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("claims_json", nargs="*", help="claims.json of glintlab verify runs")
+    parser.add_argument("--out", help="Markdown file to write (default: stdout)")
+    parser.add_argument("--source-dir", default=os.path.join(REPO, "verify", "claims"),
+                        help="folder of the check registrations (default: verify/claims)")
+    args = parser.parse_args(argv)
+    try:
+        checks = recorded_checks(args.source_dir)
+        measured, inputs = {}, []
+        for path in args.claims_json:
+            for budget, runs in read_claims_json(path).items():
+                if budget in measured:
+                    raise InputError(f"{path}: a second {budget}-budget run was given")
+                measured[budget] = runs
+                inputs.append((path, budget))
+        command = " ".join(["/usr/bin/python3 scripts/claims_doc.py"] + args.claims_json +
+                           (["--out", args.out] if args.out else []))
+        text = render(checks, measured, command, inputs)
+        if args.out:
+            folder = os.path.dirname(os.path.abspath(args.out))
+            if not os.path.isdir(folder):
+                raise InputError(f"--out: no folder '{folder}'")
+            fd, tmp = tempfile.mkstemp(dir=folder, prefix=".claims_doc.")
+            with os.fdopen(fd, "w", encoding="utf-8") as f:
+                f.write(text)
+            os.replace(tmp, args.out)
+        else:
+            sys.stdout.write(text)
+    except InputError as e:
+        print(f"claims_doc: error: {e}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
