@@ -5,7 +5,7 @@
 
 // Errors, measured by tests/simd/fast_math_test.cpp over 4·10^6 evenly spaced points of each
 // range against the double-precision libm (the test fails if an implementation exceeds these
-// documented bounds; README "Fast math" has the table):
+// documented bounds; docs/simd.md "Fast math" has the table):
 //   exp    x in [−87, 88]:   relative ≤ 2.5e-7 (3 ulp); results below 2^−126 flush to 0
 //   erf    x in [−6, 6]:     absolute ≤ 3.5e-7, relative ≤ 6.5e-7 (6 ulp)
 //   erfc   x in [−6, 9.2]:   absolute ≤ 6e-7; relative ≤ 3e-3 for x ≤ 4, ≤ 3e-2 for x ≤ 9.2 (the
@@ -103,7 +103,7 @@ GLINTLAB_FN B rsqrt(const B& x) {
 // GGX D (Heitz 2014 Eq. 85) with one division instead of three: with q = αx αy and
 // e' = (mx αy)² + (my αx)² + (mz q)² = q² (mx²/αx² + my²/αy² + mz²), D = q t² / π, t = q / e'.
 // On this CPU the divider bounds the exact form (three divisions per row; a 256-bit division
-// costs two 128-bit ones, README "Benchmarks"), so this form is ~2× faster. Plain × and + (no
+// costs two 128-bit ones, docs/simd.md "Speed-ups"), so this form is ~2× faster. Plain × and + (no
 // fma): the SSE4.2 build emulates fma through double, which would cost more than the division.
 // Every term of e' is ≥ 0, so there is no cancellation; for α ≥ 1e-3, q² ≥ 1e-12 keeps e' normal.
 template <class B>

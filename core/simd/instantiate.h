@@ -71,7 +71,7 @@ GLINTLAB_FN W load_column(const Column<S>& c, std::size_t i, std::size_t count) 
 // column of n values, 0 for a uniform one (data then points at kL copies of its value), so the
 // loop has no per-column branch. The column and output loops are unrolled at compile time (the
 // index packs), so x[] and y[] stay in registers: a runtime loop over the columns made GCC keep
-// them on the stack, one store and reload per column and batch (README "Benchmarks": 37 % of
+// them on the stack, one store and reload per column and batch (docs/simd.md "Speed-ups": 37 % of
 // ggx.d's AVX2 time). Only loads and stores differ from the tail's path; the kernel is the same
 // instantiation, so every row's value is unchanged (bit for bit).
 template <class K, class W, class S, std::size_t... J, std::size_t... O>

@@ -76,7 +76,7 @@ const std::vector<double>& flops_per_eval() {
 }
 
 // --- Kernel throughput ----------------------------------------------------------------------
-// Three working sets (README "Benchmarks" has what each measured on this machine):
+// Three working sets (docs/simd.md "Speed-ups" has what each measured on this machine):
 //   kernel/isa/flavour       the CLI's chunk: 4096 rows per call on the same 4096 rows, which with
 //                            every column (e.g. ggx.d: 5 + 1 floats = 96 KiB) sit in L2, not L1;
 //   l1/kernel/isa/flavour    rows per call such that every column fits in half of a 32 KiB L1d

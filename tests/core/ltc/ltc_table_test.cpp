@@ -103,7 +103,7 @@ TEST(LtcTable, CommittedTablesAreTheFullSizeFit) {
 
 TEST(LtcTable, FitErrorOverTheTable) {
   // ∫|f̂ − D_ltc| dω ∈ [0, 2] of each committed entry; reported and bounded where the fit is
-  // expected to work (θ_o ≤ 60°: see README "LTC tables" for the measured values at grazing).
+  // expected to work (θ_o ≤ 60°: see docs/ltc.md for the measured values at grazing).
   const LtcTables& t = ltc_ggx_tables();
   const int n = t.size;
   std::vector<double> brdf_all, ndf_all, brdf_60, ndf_60;
