@@ -77,17 +77,23 @@ class InputError(Exception):
 
 # ---- the recorded verdicts, from the check registrations in verify/claims/*.cpp ---------------
 
+def end_of_literal(src, i):
+    """Index just past the string or char literal that opens at src[i]."""
+    j = i + 1
+    while j < len(src) and src[j] != src[i]:
+        j += 2 if src[j] == "\\" else 1
+    return j + 1
+
+
 def strip_comments(src):
     """C++ source without // and /* */ comments; string and char literals kept intact."""
     out, i, n = [], 0, len(src)
     while i < n:
         c = src[i]
         if c in "\"'":
-            j = i + 1
-            while j < n and src[j] != c:
-                j += 2 if src[j] == "\\" else 1
-            out.append(src[i:j + 1])
-            i = j + 1
+            j = end_of_literal(src, i)
+            out.append(src[i:j])
+            i = j
         elif src.startswith("//", i):
             j = src.find("\n", i)
             i = n if j < 0 else j
@@ -107,10 +113,7 @@ def matching(src, i):
     while i < n:
         c = src[i]
         if c in "\"'":
-            j = i + 1
-            while j < n and src[j] != c:
-                j += 2 if src[j] == "\\" else 1
-            i = j + 1
+            i = end_of_literal(src, i)
             continue
         if c in pairs:
             stack.append(pairs[c])
@@ -129,11 +132,9 @@ def split_top(s):
     while i < n:
         c = s[i]
         if c in "\"'":
-            j = i + 1
-            while j < n and s[j] != c:
-                j += 2 if s[j] == "\\" else 1
-            cur.append(s[i:j + 1])
-            i = j + 1
+            j = end_of_literal(s, i)
+            cur.append(s[i:j])
+            i = j
             continue
         if c in "{([":
             depth += 1
