@@ -80,21 +80,21 @@ Case make_case(std::size_t n, std::uint64_t seed) {
   const std::size_t sets = (n + kRowsPerSet - 1) / kRowsPerSet;
   for (std::size_t s = 0; s < sets; ++s) {
     const auto u = [&](std::uint64_t dim) { return row_uniform(seed, s, dim); };
-    std::vector<double> v(11);
-    v[0] = in[0][s * kRowsPerSet];
-    v[1] = in[1][s * kRowsPerSet];
-    v[2] = s % 4 == 0 ? 0.0 : -0.99 + 1.98 * u(0);
-    v[3] = log_uniform(1, 1e12, u(1));
-    v[4] = double(s % 3);
-    v[5] = 0.05 + 3.95 * u(2);
+    std::vector<double> v(Chermain::kParams.size());
+    v[param_index<Chermain>("alpha_x")] = in[0][s * kRowsPerSet];
+    v[param_index<Chermain>("alpha_y")] = in[1][s * kRowsPerSet];
+    v[param_index<Chermain>("rho")] = s % 4 == 0 ? 0.0 : -0.99 + 1.98 * u(0);
+    v[param_index<Chermain>("density")] = log_uniform(1, 1e12, u(1));
+    v[param_index<Chermain>("ggaa")] = double(s % 3);
+    v[param_index<Chermain>("s_k")] = 0.05 + 3.95 * u(2);
     const double g = std::pow(10.0, -5 + 6 * u(3)), a = 6.283185307179586 * u(4);
     const double sel = u(5), t = log_uniform(0.2, 5, u(6)), b = a + 0.3 + 2.5 * u(7);
     const bool zero = sel < 0.1, only_dy = sel >= 0.1 && sel < 0.2;
-    v[6] = zero || only_dy ? 0.0 : g * std::cos(a);
-    v[7] = zero || only_dy ? 0.0 : g * std::sin(a);
-    v[8] = zero ? 0.0 : g * t * std::cos(b);
-    v[9] = zero ? 0.0 : g * t * std::sin(b);
-    v[10] = double(s % 1000);
+    v[param_index<Chermain>("dh_dx_x")] = zero || only_dy ? 0.0 : g * std::cos(a);
+    v[param_index<Chermain>("dh_dx_y")] = zero || only_dy ? 0.0 : g * std::sin(a);
+    v[param_index<Chermain>("dh_dy_x")] = zero ? 0.0 : g * t * std::cos(b);
+    v[param_index<Chermain>("dh_dy_y")] = zero ? 0.0 : g * t * std::sin(b);
+    v[param_index<Chermain>("seed")] = double(s % 1000);
     k.params.push_back(v);
   }
   k.query.assign(kQueryColumns.size(), std::vector<double>(n));
@@ -105,7 +105,8 @@ Case make_case(std::size_t n, std::uint64_t seed) {
     const double level = -1.5 + 19 * u(1);
     const double foot = sel < 0.04   ? 0.0
                         : sel < 0.08 ? 0x1p45
-                                     : std::exp2(level - 0.5 * std::log2(v[3]) + 0.3 * u(7));
+                                     : std::exp2(level - 0.5 * std::log2(v[param_index<Chermain>("density")]) +
+                                                0.3 * u(7));
     fill_footprint_row(k.query, i, foot, u, in);
   }
   k.u1 = in[8];
@@ -157,8 +158,10 @@ struct Measured {
 // The scale of the patch-SDF: the smooth limit's peak 1/(2π σ_x σ_y √(1 − ρ²)) (Eq. 16), carried
 // to D (÷ h_z⁴), the BRDF (÷ 4 ω_i,z ω_o,z, G2 ≤ 1) and the value (× ω_o,z) at direction wo.
 double sdf_scale(const std::vector<double>& v) {
-  const double sx = v[0] * 0.70710678118654752440, sy = v[1] * 0.70710678118654752440;
-  return 1 / (2 * 3.141592653589793 * sx * sy * std::sqrt(1 - v[2] * v[2]));
+  const double sx = v[param_index<Chermain>("alpha_x")] * 0.70710678118654752440,
+               sy = v[param_index<Chermain>("alpha_y")] * 0.70710678118654752440,
+               rho = v[param_index<Chermain>("rho")];
+  return 1 / (2 * 3.141592653589793 * sx * sy * std::sqrt(1 - rho * rho));
 }
 struct Scales {
   double p22, d, brdf, value;
@@ -183,8 +186,8 @@ Measured compare(const Case& k, const RowOutputs<double>& ref, const RowOutputs<
   bool level_seen[17] = {};
   for (std::size_t i = 0; i < k.n; ++i) {
     const std::vector<double>& v = k.params[i / kRowsPerSet];
-    const Vec3<double> wi{k.query[6][i], k.query[7][i], k.query[8][i]};
-    const Vec3<double> wo{k.query[9][i], k.query[10][i], k.query[11][i]};
+    const ModelQuery<double> q = row_query<double>(k, i);
+    const Vec3<double> wi = q.wi, wo = q.wo;
     const Scales sc = scales(v, wi, wo);
     const auto e = [&](int c, double scale) {
       return scaled_eps(got.eval[std::size_t(c)][i], ref.eval[std::size_t(c)][i], scale);
@@ -213,11 +216,7 @@ Measured compare(const Case& k, const RowOutputs<double>& ref, const RowOutputs<
       for (std::size_t c = 0; c < 3; ++c)
         w = std::max(w, std::abs(got.sample[c][i] - ref.sample[c][i]) / eps);
       const auto mp = M::template params<double>(v);
-      ModelQuery<double> qo;
-      qo.footprint = {{k.query[0][i], k.query[1][i]},
-                      {k.query[2][i], k.query[3][i]},
-                      {k.query[4][i], k.query[5][i]}};
-      qo.wi = wi;
+      ModelQuery<double> qo = q;
       qo.wo = {got.sample[0][i], got.sample[1][i], got.sample[2][i]};
       qo.light = {1, 1};
       const double pdf = M::template pdf<double>(mp, qo);

@@ -97,15 +97,20 @@ Case make_case(const ModelEntry& m, int side, std::size_t n, std::uint64_t seed)
     std::vector<double> v(m.params.size());
     for (std::size_t j = 0; j < m.params.size(); ++j) v[j] = m.params[j].default_value;
     const auto u = [&](std::uint64_t dim) { return row_uniform(seed, s, dim); };
-    v[0] = in[0][s * kRowsPerSet];
-    v[1] = in[1][s * kRowsPerSet];
-    v[2] = log_uniform(1, 1e7, u(0));                                          // density
-    v[3] = log_uniform(1e-4, 1, u(1));                                         // microroughness
-    v[4] = log_uniform(0.05, 20, u(2));                                        // anisotropy
-    v[5] = 0.05 + 3.95 * u(3);                                                 // filter
-    v[6] = double(side - 1);                                                   // k
-    for (int b = 0; b < 5; ++b) v[std::size_t(7 + b)] = double((s >> b) & 1);  // choices
-    v[12] = double(s % 1000);                                                  // seed
+    // Both Kemppinen models share one parameter list (detail::KemppinenModel).
+    using P = KemppinenGGX;
+    v[param_index<P>("alpha_x")] = in[0][s * kRowsPerSet];
+    v[param_index<P>("alpha_y")] = in[1][s * kRowsPerSet];
+    v[param_index<P>("density")] = log_uniform(1, 1e7, u(0));
+    v[param_index<P>("microroughness")] = log_uniform(1e-4, 1, u(1));
+    v[param_index<P>("anisotropy")] = log_uniform(0.05, 20, u(2));
+    v[param_index<P>("filter")] = 0.05 + 3.95 * u(3);
+    v[param_index<P>("k")] = double(side - 1);
+    constexpr std::size_t kChoices[] = {param_index<P>("blending"), param_index<P>("erf"),
+                                        param_index<P>("normalization"), param_index<P>("colors"),
+                                        param_index<P>("pdf")};
+    for (std::size_t b = 0; b < std::size(kChoices); ++b) v[kChoices[b]] = double((s >> b) & 1);
+    v[param_index<P>("seed")] = double(s % 1000);
     k.params.push_back(v);
   }
   k.query.assign(kQueryColumns.size(), std::vector<double>(n));
@@ -114,7 +119,8 @@ Case make_case(const ModelEntry& m, int side, std::size_t n, std::uint64_t seed)
     const auto u = [&](std::uint64_t dim) { return row_uniform(seed ^ 0x66707274ULL, i, dim); };
     const double sel = u(0);
     const double cells = sel < 0.1 ? 0 : sel < 0.15 ? 0x1p23 : std::exp2(-8 + 29 * u(1));
-    const double d = cells / std::sqrt(v[2]) / v[5];
+    const double d = cells / std::sqrt(v[param_index<KemppinenGGX>("density")]) /
+                     v[param_index<KemppinenGGX>("filter")];
     fill_footprint_row(k.query, i, d, u, in);
   }
   k.u1 = in[8];
@@ -169,7 +175,7 @@ Measured compare(const Case& k, const Outputs<S>& ref, const Outputs<S>& got,
   std::size_t outliers = 0, flags = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double d_smooth = 2 * std::abs(double(ref.eval[5][i]));
-    const double wi_z = std::max(k.query[8][i], 1e-300);
+    const double wi_z = std::max(k.query[query_column_index("wi_z")][i], 1e-300);
     const double brdf_scale = std::abs(double(ref.eval[14][i])) * d_smooth / (4 * wi_z);
     double v = scaled_eps(got.eval[0][i], ref.eval[0][i], brdf_scale);
     v = std::max(v, scaled_eps(got.eval[2][i], ref.eval[2][i], d_smooth));
@@ -203,12 +209,7 @@ std::size_t scalar_mismatches(const Case& k, const Outputs<S>& ref) {
   std::size_t bad = 0;
   for (std::size_t i = 0; i < k.n; i += 997) {
     const auto p = M::template params<S>(k.params[i / kRowsPerSet]);
-    ModelQuery<S> q;
-    const auto c = [&](std::size_t j) { return S(k.query[j][i]); };
-    q.footprint = {{c(0), c(1)}, {c(2), c(3)}, {c(4), c(5)}};
-    q.wi = {c(6), c(7), c(8)};
-    q.wo = {c(9), c(10), c(11)};
-    q.light = {c(12), c(13)};
+    const ModelQuery<S> q = row_query<S>(k, i);
     const auto e = M::template eval<S>(p, q);
     bad += ulp_distance(e.value, ref.eval[0][i]) != 0 || ulp_distance(e.pdf, ref.eval[1][i]) != 0;
     const ModelSample<S> s = M::template sample<S>(p, q, Vec2<S>{S(k.u1[i]), S(k.u2[i])});

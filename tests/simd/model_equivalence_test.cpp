@@ -21,6 +21,7 @@
 #include "core/simd/batched_models.h"
 #include "core/simd/inputs.h"
 #include "core/simd/model_batch.h"
+#include "tests/simd/model_rows.h"
 #include "tests/simd/simd_test_util.h"
 
 namespace glintlab::simd::test {
@@ -199,7 +200,8 @@ std::vector<Case> make_cases(const ModelEntry& m, bool dbl = false) {
     }
     k.query.assign(kQueryColumnsWithCorners, std::vector<double>(n, 0.0));
     for (std::size_t j = 0; j < kQueryColumns.size(); ++j) k.query[j].assign(n, kQueryDefaults[j]);
-    for (std::size_t j = 0; j < 6; ++j) k.query[6 + j] = in[2 + j];
+    for (std::size_t j = 0; j < kDirectionColumns.size(); ++j)
+      k.query[kDirectionColumns[j]] = in[2 + j];
     k.u1 = in[8];
     k.u2 = in[9];
     add_scene_columns(m.needs, k.query, hash_string("model_equivalence.scene"));
@@ -332,15 +334,7 @@ Measured compare(const ModelEntry& m, const Case& k, const Outputs<S>& got, cons
   for (std::size_t s = 0; s < k.params.size(); ++s) {
     const auto p = M::template params<S>(k.params[s]);
     for (std::size_t i = s * kRowsPerSet; i < (s + 1) * kRowsPerSet; ++i) {
-      double v[kQueryColumnsWithCorners];
-      for (std::size_t j = 0; j < kQueryColumnsWithCorners; ++j) v[j] = k.query[j][i];
-      ModelQuery<S> q;
-      q.footprint = {{S(v[0]), S(v[1])}, {S(v[2]), S(v[3])}, {S(v[4]), S(v[5])}};
-      for (std::size_t c = 0; c < 4; ++c)
-        q.footprint.corner_r[c] = {S(v[14 + 3 * c]), S(v[15 + 3 * c]), S(v[16 + 3 * c])};
-      q.wi = {S(v[6]), S(v[7]), S(v[8])};
-      q.wo = {S(v[9]), S(v[10]), S(v[11])};
-      q.light = {S(v[12]), S(v[13])};
+      const ModelQuery<S> q = row_query<S>(k, i);
       const auto e = M::template eval<S>(p, q);
       std::vector<S> ref = {e.value, e.pdf};
       ref.insert(ref.end(), e.intermediates.begin(), e.intermediates.end());
@@ -605,19 +599,16 @@ void check_fallback(const ModelEntry& e) {
     std::size_t bad = 0;
     for (std::size_t s = 0; s < kParamSets; ++s) {
       for (std::size_t i = s * kRowsPerSet; i < (s + 1) * kRowsPerSet; i += 97) {
-        ModelQuery<double> q;
-        q.footprint = {{k.query[0][i], k.query[1][i]},
-                       {k.query[2][i], k.query[3][i]},
-                       {k.query[4][i], k.query[5][i]}};
-        // The batch saw the query in S: the reference gets the same rounded values (through a
-        // volatile: GCC 12 at -O3 can fold (double)(float)x away).
+        // The batch saw the directions in S: the reference gets the same rounded values (through
+        // a volatile: GCC 12 at -O3 can fold (double)(float)x away).
         const auto r = [](double x) {
           volatile S rounded = S(x);
           return double(rounded);
         };
-        q.wi = {r(k.query[6][i]), r(k.query[7][i]), r(k.query[8][i])};
-        q.wo = {r(k.query[9][i]), r(k.query[10][i]), r(k.query[11][i])};
-        q.light = {k.query[12][i], k.query[13][i]};
+        QueryRow<double> row{};
+        for (std::size_t j = 0; j < kQueryColumns.size(); ++j) row[j] = k.query[j][i];
+        for (std::size_t j : kDirectionColumns) row[j] = r(row[j]);
+        const ModelQuery<double> q = from_row(row);
         const ErasedEval ev = e.eval(k.params[s], q);
         bad += o.eval[0][i] != S(ev.value) || o.eval[1][i] != S(ev.pdf) ? 1 : 0;
         for (std::size_t c = 0; c < ev.intermediates.size(); ++c)

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "core/math/rng.h"
+#include "core/model_layout.h"
 #include "core/model_registry.h"
 #include "core/simd/model_batch.h"
 
@@ -37,6 +39,11 @@ struct RowsCase {
   std::size_t n = 0;
 };
 
+// ωi then ωo, the order of core/simd/inputs.h's direction domains (kWiX … kWoZ).
+inline constexpr std::array<std::size_t, 6> kDirectionColumns = {
+    query_column_index("wi_x"), query_column_index("wi_y"), query_column_index("wi_z"),
+    query_column_index("wo_x"), query_column_index("wo_y"), query_column_index("wo_z")};
+
 inline double row_uniform(std::uint64_t seed, std::uint64_t i, std::uint64_t dim) {
   return counter_uniform<double>(seed, i, dim);
 }
@@ -52,15 +59,24 @@ void fill_footprint_row(std::vector<std::vector<double>>& query, std::size_t i, 
                         const U& u, const std::vector<std::vector<double>>& in) {
   const double a = 6.283185307179586 * u(2), shear = u(3) - 0.5,
                stretch = log_uniform(0.2, 5, u(4));
-  query[0][i] = -4 + 8 * u(5);
-  query[1][i] = -4 + 8 * u(6);
-  query[2][i] = scale * stretch * std::cos(a);
-  query[3][i] = scale * stretch * std::sin(a);
-  query[4][i] = scale * (-std::sin(a) + shear * std::cos(a)) / stretch;
-  query[5][i] = scale * (std::cos(a) + shear * std::sin(a)) / stretch;
-  for (std::size_t j = 0; j < 6; ++j) query[6 + j][i] = in[2 + j][i];
-  query[12][i] = 1;
-  query[13][i] = 1;
+  query[query_column_index("u")][i] = -4 + 8 * u(5);
+  query[query_column_index("v")][i] = -4 + 8 * u(6);
+  query[query_column_index("dudx")][i] = scale * stretch * std::cos(a);
+  query[query_column_index("dvdx")][i] = scale * stretch * std::sin(a);
+  query[query_column_index("dudy")][i] = scale * (-std::sin(a) + shear * std::cos(a)) / stretch;
+  query[query_column_index("dvdy")][i] = scale * (std::cos(a) + shear * std::sin(a)) / stretch;
+  for (std::size_t j = 0; j < kDirectionColumns.size(); ++j)
+    query[kDirectionColumns[j]][i] = in[2 + j][i];
+  query[query_column_index("light_cos_half_angle")][i] = 1;
+  query[query_column_index("light_intensity")][i] = 1;
+}
+
+// Row i of a case's query columns (with or without the corner columns) as a query in S.
+template <class S, class C>
+ModelQuery<S> row_query(const C& k, std::size_t i) {
+  QueryRow<double> row{};
+  for (std::size_t j = 0; j < k.query.size(); ++j) row[j] = k.query[j][i];
+  return convert_query<S>(from_row(row));
 }
 
 // |got − ref| / (|ref| + scale) in machine epsilons of S (0 where both are NaN or equal; ∞ for a
