@@ -46,18 +46,15 @@ GLINTLAB_FN constexpr void for_each_query_column(Query& q, Visit&& visit) {
   column("wo_z", kDirections, 1, q.wo.z);
   column("light_cos_half_angle", kLight, 1, q.light.cos_half_angle);
   column("light_intensity", kLight, 1, q.light.intensity);
-  column("r0_x", kCorners, 0, q.footprint.corner_r[0].x);
-  column("r0_y", kCorners, 0, q.footprint.corner_r[0].y);
-  column("r0_z", kCorners, 0, q.footprint.corner_r[0].z);
-  column("r1_x", kCorners, 0, q.footprint.corner_r[1].x);
-  column("r1_y", kCorners, 0, q.footprint.corner_r[1].y);
-  column("r1_z", kCorners, 0, q.footprint.corner_r[1].z);
-  column("r2_x", kCorners, 0, q.footprint.corner_r[2].x);
-  column("r2_y", kCorners, 0, q.footprint.corner_r[2].y);
-  column("r2_z", kCorners, 0, q.footprint.corner_r[2].z);
-  column("r3_x", kCorners, 0, q.footprint.corner_r[3].x);
-  column("r3_y", kCorners, 0, q.footprint.corner_r[3].y);
-  column("r3_z", kCorners, 0, q.footprint.corner_r[3].z);
+  // Corner k's reflection vector as rk_x, rk_y, rk_z.
+  constexpr std::string_view kCornerNames[4][3] = {
+      {"r0_x", "r0_y", "r0_z"}, {"r1_x", "r1_y", "r1_z"},
+      {"r2_x", "r2_y", "r2_z"}, {"r3_x", "r3_y", "r3_z"}};
+  for (std::size_t k = 0; k < 4; ++k) {
+    column(kCornerNames[k][0], kCorners, 0, q.footprint.corner_r[k].x);
+    column(kCornerNames[k][1], kCorners, 0, q.footprint.corner_r[k].y);
+    column(kCornerNames[k][2], kCorners, 0, q.footprint.corner_r[k].z);
+  }
 }
 
 namespace detail {

@@ -106,46 +106,39 @@ def strip_comments(src):
     return "".join(out)
 
 
+def pieces(src, i=0):
+    """(index, text) of src from i on: a whole string or char literal, or one other character."""
+    while i < len(src):
+        j = end_of_literal(src, i) if src[i] in "\"'" else i + 1
+        yield i, src[i:j]
+        i = j
+
+
 def matching(src, i):
     """Index of the bracket closing the one at src[i] (strings skipped)."""
     pairs = {"{": "}", "(": ")", "[": "]"}
-    stack, n = [], len(src)
-    while i < n:
-        c = src[i]
-        if c in "\"'":
-            i = end_of_literal(src, i)
-            continue
-        if c in pairs:
-            stack.append(pairs[c])
-        elif c in ")]}":
-            if not stack or stack.pop() != c:
-                raise InputError(f"unbalanced '{c}' in a check registration")
+    stack = []
+    for k, t in pieces(src, i):
+        if t in pairs:
+            stack.append(pairs[t])
+        elif t in (")", "]", "}"):
+            if not stack or stack.pop() != t:
+                raise InputError(f"unbalanced '{t}' in a check registration")
             if not stack:
-                return i
-        i += 1
+                return k
     raise InputError("unterminated bracket in a check registration")
 
 
 def split_top(s):
     """Splits s at commas outside brackets and strings."""
-    parts, depth, cur, i, n = [], 0, [], 0, len(s)
-    while i < n:
-        c = s[i]
-        if c in "\"'":
-            j = end_of_literal(s, i)
-            cur.append(s[i:j])
-            i = j
-            continue
-        if c in "{([":
-            depth += 1
-        elif c in "})]":
-            depth -= 1
-        if c == "," and depth == 0:
+    parts, depth, cur = [], 0, []
+    for _, t in pieces(s):
+        depth += (t in ("{", "(", "[")) - (t in ("}", ")", "]"))
+        if t == "," and depth == 0:
             parts.append("".join(cur).strip())
             cur = []
         else:
-            cur.append(c)
-        i += 1
+            cur.append(t)
     if "".join(cur).strip():
         parts.append("".join(cur).strip())
     return parts
