@@ -143,7 +143,8 @@ struct Case {
   std::vector<double> u1, u2;               // uniforms
   std::string label;
   std::string sampler;  // the `sampler` (or `binomial`) choice, where the model has one
-  std::size_t rows() const { return params.size() * kRowsPerSet; }
+  std::size_t n = 0;                        // params.size() × kRowsPerSet
+  std::size_t rows() const { return n; }
 };
 
 bool is_glint(const ModelEntry& m) { return (m.needs & kNeedsFootprint) != 0; }
@@ -205,70 +206,26 @@ std::vector<Case> make_cases(const ModelEntry& m, bool dbl = false) {
     k.u1 = in[8];
     k.u2 = in[9];
     add_scene_columns(m.needs, k.query, hash_string("model_equivalence.scene"));
+    k.n = k.params.size() * kRowsPerSet;
     cases.push_back(std::move(k));
   }
   return cases;
 }
 
-template <class S>
-std::vector<S> as(const std::vector<double>& v) {
-  return std::vector<S>(v.begin(), v.end());
-}
-
 // Outputs of eval (2 + M columns) and sample (6 columns) of one case through the batch API.
 template <class S>
-struct Outputs {
-  std::vector<std::vector<S>> eval, sample;
-};
+using Outputs = RowOutputs<S>;
 
-// Runs eval and sample of one case, kRowsPerSet rows per parameter vector, through `eval` and
-// `sample` (callables taking params, query columns, u1, u2, output pointers, n).
-template <class S, class Eval, class Sample>
-Outputs<S> run_with(const ModelEntry& m, const Case& k, Eval eval, Sample sample) {
-  const std::size_t n = k.rows();
-  std::vector<std::vector<S>> q;
-  for (const auto& c : k.query) q.push_back(as<S>(c));
-  const std::vector<S> u1 = as<S>(k.u1), u2 = as<S>(k.u2);
-  Outputs<S> o;
-  o.eval.assign(2 + m.intermediates.size(), std::vector<S>(n));
-  o.sample.assign(kSampleColumns.size(), std::vector<S>(n));
-  for (std::size_t s = 0; s < k.params.size(); ++s) {
-    const std::size_t b = s * kRowsPerSet;
-    std::vector<Column<S>> cols;
-    for (const auto& c : q) cols.push_back({c.data() + b, 1});
-    std::vector<S*> eo, so;
-    for (auto& c : o.eval) eo.push_back(c.data() + b);
-    for (auto& c : o.sample) so.push_back(c.data() + b);
-    eval(k.params[s], cols, eo, kRowsPerSet);
-    sample(k.params[s], cols, Column<S>{u1.data() + b, 1}, Column<S>{u2.data() + b, 1}, so,
-           kRowsPerSet);
-  }
-  return o;
-}
-
+// Eval and sample of one case, kRowsPerSet rows per parameter vector (tests/simd/model_rows.h):
+// through the batch API on `isa`, or through the model driver of core/simd/model_instantiate.h
+// on W, called directly (for models that are not in BatchedModels: the perturbed controls).
 template <class S>
 Outputs<S> run_batch(const ModelEntry& m, const Case& k, Isa isa) {
-  return run_with<S>(
-      m, k,
-      [&](const std::vector<double>& p, const std::vector<Column<S>>& c, const std::vector<S*>& o,
-          std::size_t n) { eval_batch(m, p, c, o, n, isa); },
-      [&](const std::vector<double>& p, const std::vector<Column<S>>& c, Column<S> u1, Column<S> u2,
-          const std::vector<S*>& o, std::size_t n) { sample_batch(m, p, c, u1, u2, o, n, isa); });
+  return run_rows_batch<S>(m, k, kRowsPerSet, isa);
 }
-
-// The model driver of core/simd/model_instantiate.h on W, called directly (for models that are
-// not in BatchedModels: the perturbed controls).
 template <class M, class W, class S>
 Outputs<S> run_driver(const ModelEntry& m, const Case& k) {
-  return run_with<S>(
-      m, k,
-      [](const std::vector<double>& p, const std::vector<Column<S>>& c, const std::vector<S*>& o,
-         std::size_t n) { detail::run_model_eval<M, W, S>(p.data(), c.data(), o.data(), n); },
-      [](const std::vector<double>& p, const std::vector<Column<S>>& c, Column<S> u1, Column<S> u2,
-         const std::vector<S*>& o, std::size_t n) {
-        const Column<S> u[2] = {u1, u2};
-        detail::run_model_sample<M, W, S>(p.data(), c.data(), u, o.data(), n);
-      });
+  return run_rows_driver<M, W, S>(m, k, kRowsPerSet);
 }
 
 // Error of batched values against a reference: ulps, with both-tiny values equal.
@@ -504,6 +461,7 @@ Case glint_case(std::string_view model, std::string_view label, std::size_t sets
       r.u1.insert(r.u1.end(), c.u1.begin() + std::ptrdiff_t(b), c.u1.begin() + std::ptrdiff_t(e));
       r.u2.insert(r.u2.end(), c.u2.begin() + std::ptrdiff_t(b), c.u2.begin() + std::ptrdiff_t(e));
     }
+    r.n = r.params.size() * kRowsPerSet;
     return r;
   }
   ADD_FAILURE() << "no case " << label << " for " << model;
