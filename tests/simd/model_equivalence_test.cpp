@@ -143,7 +143,7 @@ struct Case {
   std::vector<double> u1, u2;               // uniforms
   std::string label;
   std::string sampler;  // the `sampler` (or `binomial`) choice, where the model has one
-  std::size_t n = 0;                        // params.size() × kRowsPerSet
+  std::size_t n = 0;    // params.size() × kRowsPerSet
   std::size_t rows() const { return n; }
 };
 
@@ -215,18 +215,6 @@ std::vector<Case> make_cases(const ModelEntry& m, bool dbl = false) {
 // Outputs of eval (2 + M columns) and sample (6 columns) of one case through the batch API.
 template <class S>
 using Outputs = RowOutputs<S>;
-
-// Eval and sample of one case, kRowsPerSet rows per parameter vector (tests/simd/model_rows.h):
-// through the batch API on `isa`, or through the model driver of core/simd/model_instantiate.h
-// on W, called directly (for models that are not in BatchedModels: the perturbed controls).
-template <class S>
-Outputs<S> run_batch(const ModelEntry& m, const Case& k, Isa isa) {
-  return run_rows_batch<S>(m, k, kRowsPerSet, isa);
-}
-template <class M, class W, class S>
-Outputs<S> run_driver(const ModelEntry& m, const Case& k) {
-  return run_rows_driver<M, W, S>(m, k, kRowsPerSet);
-}
 
 // Error of batched values against a reference: ulps, with both-tiny values equal.
 template <class S>
@@ -350,12 +338,12 @@ void check_models(ModelList<Ms...>) {
     for (const Case& k : make_cases(m, sizeof(S) == 8)) {
       const ModelBudget b = model_budget(m.name, k.sampler, sizeof(S) == 8);
       // The scalar ISA runs the very same instantiation: bit-identical.
-      const Measured s = compare<M, S>(m, k, run_batch<S>(m, k, Isa::kScalar), b);
+      const Measured s = compare<M, S>(m, k, run_rows_batch<S>(m, k, kRowsPerSet, Isa::kScalar), b);
       EXPECT_EQ(s.eval_ulp + s.pdf_ulp + s.weight_ulp + s.wo_eps + s.flag_fraction, 0.0)
           << s.summary(std::string(m.name) + " " + k.label + " scalar");
       for (Isa isa : kBatchIsas) {
         if (!isa_supported(isa)) continue;
-        const Measured r = compare<M, S>(m, k, run_batch<S>(m, k, isa), b);
+        const Measured r = compare<M, S>(m, k, run_rows_batch<S>(m, k, kRowsPerSet, isa), b);
         const std::string what =
             std::string(m.name) + " " + k.label + " " + std::string(isa_name(isa)) +
             (sizeof(S) == 8 ? " double" : " float") + " (" + std::to_string(k.rows()) + " rows)";
@@ -414,7 +402,8 @@ using LocalWide = Wide<float, ExactMath>;
 TEST(SimdModelNegativeControl, UnperturbedLocalDriverPasses) {
   const ModelEntry& m = find_model("smooth_ggx");
   const Measured r = compare<SmoothGGX, float>(
-      m, ggx_ndf_case(), run_driver<SmoothGGX, LocalWide, float>(m, ggx_ndf_case()),
+      m, ggx_ndf_case(),
+      run_rows_driver<SmoothGGX, LocalWide, float>(m, ggx_ndf_case(), kRowsPerSet),
       model_budget("smooth_ggx", "ndf", false));
   EXPECT_TRUE(r.within(model_budget("smooth_ggx", "ndf", false))) << r.summary("local");
 }
@@ -422,7 +411,8 @@ TEST(SimdModelNegativeControl, UnperturbedLocalDriverPasses) {
 TEST(SimdModelNegativeControl, PerturbedEvalFailsGgxBudget) {
   const ModelEntry& m = find_model("smooth_ggx");
   const Measured r = compare<SmoothGGX, float>(
-      m, ggx_ndf_case(), run_driver<PerturbedEvalGgx, LocalWide, float>(m, ggx_ndf_case()),
+      m, ggx_ndf_case(),
+      run_rows_driver<PerturbedEvalGgx, LocalWide, float>(m, ggx_ndf_case(), kRowsPerSet),
       model_budget("smooth_ggx", "ndf", false));
   std::printf("%s\n", r.summary("perturbed eval").c_str());
   EXPECT_GE(r.eval_ulp, 3.0);
@@ -432,7 +422,8 @@ TEST(SimdModelNegativeControl, PerturbedEvalFailsGgxBudget) {
 TEST(SimdModelNegativeControl, PerturbedSampleFailsGgxBudget) {
   const ModelEntry& m = find_model("smooth_ggx");
   const Measured r = compare<SmoothGGX, float>(
-      m, ggx_ndf_case(), run_driver<PerturbedSampleGgx, LocalWide, float>(m, ggx_ndf_case()),
+      m, ggx_ndf_case(),
+      run_rows_driver<PerturbedSampleGgx, LocalWide, float>(m, ggx_ndf_case(), kRowsPerSet),
       model_budget("smooth_ggx", "ndf", false));
   std::printf("%s\n", r.summary("perturbed sample").c_str());
   EXPECT_GT(r.wo_eps, 16.0);
@@ -484,8 +475,8 @@ TEST(SimdModelNegativeControl, UnperturbedBatchDriverPassesDeliotBudget) {
   const ModelEntry& m = find_model("deliot_belcour");
   const Case k = glint_case("deliot_belcour", "binomial=exact", 64);
   const ModelBudget b = model_budget("deliot_belcour", "exact", false);
-  const Measured r =
-      compare<DeliotBelcour, float>(m, k, run_driver<DeliotBelcour, BatchWide, float>(m, k), b);
+  const Measured r = compare<DeliotBelcour, float>(
+      m, k, run_rows_driver<DeliotBelcour, BatchWide, float>(m, k, kRowsPerSet), b);
   std::printf("%s\n", r.summary("deliot exact, baseline batch").c_str());
   EXPECT_TRUE(r.within(b)) << r.summary("deliot exact, baseline batch");
 }
@@ -495,7 +486,7 @@ TEST(SimdModelNegativeControl, PerturbedStreamFailsDeliotBudget) {
   const Case k = glint_case("deliot_belcour", "binomial=exact", 64);
   const ModelBudget b = model_budget("deliot_belcour", "exact", false);
   const Measured r = compare<DeliotBelcour, float>(
-      m, k, run_driver<PerturbedStreamDeliot, BatchWide, float>(m, k), b);
+      m, k, run_rows_driver<PerturbedStreamDeliot, BatchWide, float>(m, k, kRowsPerSet), b);
   std::printf("%s\n", r.summary("deliot exact, perturbed stream").c_str());
   EXPECT_GT(r.outlier_fraction, 100 * b.outlier_fraction);
   EXPECT_FALSE(r.within(b)) << r.summary("deliot exact, perturbed stream");
@@ -516,11 +507,12 @@ TEST(SimdModelNegativeControl, PodeeBatchDriverPassesAndPerturbedValueFails) {
   const ModelEntry& m = find_model("podee");
   const Case k = glint_case("podee", "weighting=exact,selection=closest_point", 64);
   const ModelBudget b = model_budget("podee", "", false);
-  const Measured ok = compare<Podee, float>(m, k, run_driver<Podee, BatchWide, float>(m, k), b);
+  const Measured ok =
+      compare<Podee, float>(m, k, run_rows_driver<Podee, BatchWide, float>(m, k, kRowsPerSet), b);
   std::printf("%s\n", ok.summary("podee, baseline batch").c_str());
   EXPECT_TRUE(ok.within(b)) << ok.summary("podee, baseline batch");
-  const Measured bad =
-      compare<Podee, float>(m, k, run_driver<PerturbedValuePodee, BatchWide, float>(m, k), b);
+  const Measured bad = compare<Podee, float>(
+      m, k, run_rows_driver<PerturbedValuePodee, BatchWide, float>(m, k, kRowsPerSet), b);
   std::printf("%s\n", bad.summary("podee, perturbed value").c_str());
   EXPECT_GT(bad.outlier_fraction, 100 * b.outlier_fraction);
   EXPECT_FALSE(bad.within(b)) << bad.summary("podee, perturbed value");
@@ -553,7 +545,7 @@ void check_fallback(const ModelEntry& e) {
   const std::vector<double> params = k.params.front();
   for (Isa isa : kAllIsas) {
     if (!isa_supported(isa)) continue;
-    const Outputs<S> o = run_batch<S>(e, k, isa);
+    const Outputs<S> o = run_rows_batch<S>(e, k, kRowsPerSet, isa);
     std::size_t bad = 0;
     for (std::size_t s = 0; s < kParamSets; ++s) {
       for (std::size_t i = s * kRowsPerSet; i < (s + 1) * kRowsPerSet; i += 97) {
