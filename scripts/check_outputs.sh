@@ -10,6 +10,8 @@
 #   CHECK_OUT          where the outputs go: CHECK_OUT/base, CHECK_OUT/head (default /tmp/check_outputs)
 #   GLINTLAB_BASE_BIN  an already built glintlab of BASE_REF (skips that build)
 #   GLINTLAB_HEAD_BIN  an already built glintlab of the working tree (skips that build)
+#   CHECK_BASE_READY   1: CHECK_OUT/base already holds BASE_REF's outputs (from an earlier run or
+#                      from --run); neither build nor rerun the base
 #   GLINTLAB_JOBS      build jobs (default 1)
 #   CHECK_THREADS      --threads of the runs (default 2; the outputs do not depend on it)
 #   CHECK_SKIP         space-separated parts to leave out: eval sample sweep verify figures
@@ -127,7 +129,8 @@ if [[ $1 == --run ]]; then
 fi
 base_ref=$1
 base_bin=${GLINTLAB_BASE_BIN:-}
-if [[ -z $base_bin ]]; then
+base_ready=${CHECK_BASE_READY:-0}
+if [[ $base_ready != 1 && -z $base_bin ]]; then
   base_src=$(mktemp -d /tmp/check_outputs_base.XXXXXX)
   trap 'git -C "$root" worktree remove --force "$base_src" >/dev/null 2>&1 || true' EXIT
   git -C "$root" worktree add --detach "$base_src" "$base_ref" >&2
@@ -135,8 +138,10 @@ if [[ -z $base_bin ]]; then
 fi
 head_bin=${GLINTLAB_HEAD_BIN:-$(build_glintlab "$root")}
 
-echo "== running with base ($base_ref): $base_bin" >&2
-run_commands "$base_bin" "$out/base"
+if [[ $base_ready != 1 ]]; then
+  echo "== running with base ($base_ref): $base_bin" >&2
+  run_commands "$base_bin" "$out/base"
+fi
 echo "== running with head: $head_bin" >&2
 run_commands "$head_bin" "$out/head"
 
