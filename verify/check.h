@@ -19,18 +19,45 @@ const char* to_string(Verdict v);  // "holds", "holds-within", "holds-in-regime"
 
 struct CheckResult {
   Verdict verdict = Verdict::kInconclusive;
-  std::string detail;                 // one line a person reads: where, how much, how many
-  std::string statistic;              // what was measured, e.g. "max |∫ D cos − 1|"
-  double value = 0;                   // the measured statistic
-  std::optional<double> bound;        // error bound / tolerance it is held to, where one applies
-  std::optional<double> p_value;      // combined (corrected) p-value, for statistical checks
-  std::vector<double> raw_p_values;   // every configuration's raw p-value, kept
-  std::string control;                // the negative control and what it measured
+  std::string detail;                // one line a person reads: where, how much, how many
+  std::string statistic;             // what was measured, e.g. "max |∫ D cos − 1|"
+  double value = 0;                  // the measured statistic
+  std::optional<double> bound;       // error bound / tolerance it is held to, where one applies
+  std::optional<double> p_value;     // combined (corrected) p-value, for statistical checks
+  std::vector<double> raw_p_values;  // every configuration's raw p-value, kept
+  std::string control;               // the negative control and what it measured
   std::optional<double> control_p_value;
   bool control_rejected = false;
-  std::string power;                  // smallest effect detected at 90 % power, where computed
+  // The verdict the check's own measure and decide steps give the control's deliberately wrong
+  // input (or, where the paper is wrong, its corrected formula). Set through record_control; empty
+  // for a check whose control is still a separate rule.
+  std::optional<Verdict> control_verdict;
+  // The parameter region a holds-in-regime verdict speaks for, written in the check's code before
+  // anything is measured (e.g. "α★ ≤ 0.01, θh ≤ 20°"); empty for the other verdicts.
+  std::string regime;
+  std::string power;  // smallest effect detected at 90 % power, where computed
   int configurations = 0;
 };
+
+// holds, holds-within or holds-in-regime.
+inline bool is_holding(Verdict v) {
+  return v == Verdict::kHolds || v == Verdict::kHoldsWithin || v == Verdict::kHoldsInRegime;
+}
+
+// A control rejects a check when its verdict is the opposite one: a claim that holds (in any form)
+// has a control that fails; a claim that fails has a control (the corrected input) that holds.
+inline bool control_opposes(Verdict genuine, Verdict control) {
+  if (is_holding(genuine)) return control == Verdict::kFails;
+  if (genuine == Verdict::kFails) return is_holding(control);
+  return false;  // an inconclusive verdict has nothing to oppose
+}
+
+// Records the control's verdict (decided by the same function as the genuine one) and whether it
+// opposes the genuine verdict. Call after r.verdict is set.
+inline void record_control(CheckResult& r, Verdict control) {
+  r.control_verdict = control;
+  r.control_rejected = control_opposes(r.verdict, control);
+}
 
 struct Check {
   std::string id;      // the id in shared/CLAIMS.md

@@ -52,25 +52,29 @@ std::string to_json(const std::vector<RunRecord>& records, const RunInfo& info) 
   nlohmann::json list = nlohmann::json::array();
   for (const RunRecord& r : records) {
     const CheckResult& x = r.result;
-    list.push_back({{"id", r.check->id},
-                    {"paper", r.check->paper},
-                    {"source", r.check->source},
-                    {"verdict", to_string(x.verdict)},
-                    {"expected_verdict", to_string(r.check->expected_for(r.budget))},
-                    {"detail", x.detail},
-                    {"statistic", x.statistic},
-                    {"value", x.value},
-                    {"bound", optional_number(x.bound)},
-                    {"p_value", optional_number(x.p_value)},
-                    {"suite_adjusted_p_value", optional_number(r.suite_adjusted_p)},
-                    {"raw_p_values", x.raw_p_values},
-                    {"control", x.control},
-                    {"control_p_value", optional_number(x.control_p_value)},
-                    {"control_rejected", x.control_rejected},
-                    {"power", x.power},
-                    {"configurations", x.configurations},
-                    {"budget", info.budget},
-                    {"seconds", r.seconds}});
+    list.push_back(
+        {{"id", r.check->id},
+         {"paper", r.check->paper},
+         {"source", r.check->source},
+         {"verdict", to_string(x.verdict)},
+         {"expected_verdict", to_string(r.check->expected_for(r.budget))},
+         {"detail", x.detail},
+         {"statistic", x.statistic},
+         {"value", x.value},
+         {"bound", optional_number(x.bound)},
+         {"p_value", optional_number(x.p_value)},
+         {"suite_adjusted_p_value", optional_number(r.suite_adjusted_p)},
+         {"raw_p_values", x.raw_p_values},
+         {"control", x.control},
+         {"control_p_value", optional_number(x.control_p_value)},
+         {"control_rejected", x.control_rejected},
+         {"control_verdict", x.control_verdict ? nlohmann::json(to_string(*x.control_verdict))
+                                               : nlohmann::json(nullptr)},
+         {"regime", x.regime.empty() ? nlohmann::json(nullptr) : nlohmann::json(x.regime)},
+         {"power", x.power},
+         {"configurations", x.configurations},
+         {"budget", info.budget},
+         {"seconds", r.seconds}});
   }
   return list.dump(2) + "\n";
 }
@@ -78,16 +82,21 @@ std::string to_json(const std::vector<RunRecord>& records, const RunInfo& info) 
 std::string to_csv(const std::vector<RunRecord>& records) {
   std::string csv =
       "id,paper,source,verdict,expected_verdict,detail,statistic,value,bound,p_value,"
-      "suite_adjusted_p_value,control_p_value,control_rejected,control,power,configurations,seconds\n";
-  auto num = [](const std::optional<double>& v) { return v ? fmt::format("{:.17g}", *v) : std::string(); };
+      "suite_adjusted_p_value,control_p_value,control_rejected,control_verdict,control,regime,"
+      "power,"
+      "configurations,seconds\n";
+  auto num = [](const std::optional<double>& v) {
+    return v ? fmt::format("{:.17g}", *v) : std::string();
+  };
   for (const RunRecord& r : records) {
     const CheckResult& x = r.result;
-    csv += fmt::format("{},{},{},{},{},{},{},{:.17g},{},{},{},{},{},{},{},{},{:.3f}\n", r.check->id,
-                       csv_field(r.check->paper), csv_field(r.check->source), to_string(x.verdict),
-                       to_string(r.check->expected_for(r.budget)), csv_field(x.detail), csv_field(x.statistic),
-                       x.value, num(x.bound), num(x.p_value), num(r.suite_adjusted_p), num(x.control_p_value),
-                       x.control_rejected ? 1 : 0, csv_field(x.control), csv_field(x.power),
-                       x.configurations, r.seconds);
+    csv += fmt::format(
+        "{},{},{},{},{},{},{},{:.17g},{},{},{},{},{},{},{},{},{},{},{:.3f}\n", r.check->id,
+        csv_field(r.check->paper), csv_field(r.check->source), to_string(x.verdict),
+        to_string(r.check->expected_for(r.budget)), csv_field(x.detail), csv_field(x.statistic),
+        x.value, num(x.bound), num(x.p_value), num(r.suite_adjusted_p), num(x.control_p_value),
+        x.control_rejected ? 1 : 0, x.control_verdict ? to_string(*x.control_verdict) : "",
+        csv_field(x.control), csv_field(x.regime), csv_field(x.power), x.configurations, r.seconds);
   }
   return csv;
 }
@@ -102,10 +111,14 @@ std::string to_markdown(const std::vector<RunRecord>& records, const RunInfo& in
     std::string verdict = fmt::format("**{}**", to_string(x.verdict));
     if (x.verdict != r.check->expected_for(r.budget))
       verdict += fmt::format(" (recorded: {})", to_string(r.check->expected_for(r.budget)));
-    md += fmt::format("| {} | {} | {} | {} | {} = {:.3g} | {} | {} | {} | {} | {:.1f} s |\n", r.check->id,
-                      md_cell(r.check->paper), md_cell(r.check->source), verdict,
+    if (!x.regime.empty()) verdict += fmt::format(" in {}", x.regime);
+    const std::string control =
+        x.control_verdict ? fmt::format("**{}**: {}", to_string(*x.control_verdict), x.control)
+                          : x.control;
+    md += fmt::format("| {} | {} | {} | {} | {} = {:.3g} | {} | {} | {} | {} | {:.1f} s |\n",
+                      r.check->id, md_cell(r.check->paper), md_cell(r.check->source), verdict,
                       md_cell(x.statistic), x.value, number_or_dash(x.bound),
-                      number_or_dash(x.p_value), md_cell(x.control), md_cell(x.detail), r.seconds);
+                      number_or_dash(x.p_value), md_cell(control), md_cell(x.detail), r.seconds);
   }
   return md;
 }

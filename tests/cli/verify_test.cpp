@@ -20,7 +20,8 @@ TEST_F(VerifyTest, WritesTheThreeResultFilesWithTheRequiredFields) {
   const auto j = nlohmann::json::parse(read_text(path("o/claims.json")));
   ASSERT_EQ(j.size(), 1u);
   for (const char* key : {"id", "paper", "source", "verdict", "detail", "statistic", "p_value",
-                          "control_p_value", "control_rejected", "seconds", "suite_adjusted_p_value"})
+                          "control_p_value", "control_rejected", "control_verdict", "regime", "seconds",
+                          "suite_adjusted_p_value"})
     EXPECT_TRUE(j[0].contains(key)) << key;
   EXPECT_EQ(j[0]["id"], "smooth.projected-area");
   EXPECT_EQ(j[0]["verdict"], "holds");

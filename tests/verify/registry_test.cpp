@@ -23,6 +23,24 @@ TEST(Registry, IdsUniqueAndExpected) {
   }
 }
 
+// The rule that decides whether a control rejects a check: the opposite verdict, in the right
+// direction; it cannot be met by a control that merely agrees or is inconclusive.
+TEST(Registry, ControlMustGetTheOppositeVerdict) {
+  EXPECT_TRUE(control_opposes(Verdict::kHolds, Verdict::kFails));
+  EXPECT_TRUE(control_opposes(Verdict::kHoldsInRegime, Verdict::kFails));
+  EXPECT_TRUE(control_opposes(Verdict::kFails, Verdict::kHoldsWithin));
+  EXPECT_FALSE(control_opposes(Verdict::kHolds, Verdict::kHoldsInRegime));
+  EXPECT_FALSE(control_opposes(Verdict::kHolds, Verdict::kInconclusive));
+  EXPECT_FALSE(control_opposes(Verdict::kFails, Verdict::kFails));
+  EXPECT_FALSE(control_opposes(Verdict::kInconclusive, Verdict::kFails));
+  CheckResult r;
+  r.verdict = Verdict::kHoldsWithin;
+  record_control(r, Verdict::kHoldsWithin);
+  EXPECT_FALSE(r.control_rejected);
+  record_control(r, Verdict::kFails);
+  EXPECT_TRUE(r.control_rejected);
+}
+
 TEST(Registry, SeedsDependOnIdAndConfiguration) {
   EXPECT_NE(check_seed("a.b", 0), check_seed("a.b", 1));
   EXPECT_NE(check_seed("a.b", 0), check_seed("a.c", 0));
@@ -37,6 +55,13 @@ TEST_P(QuickBudget, VerdictAndControl) {
     const CheckResult r = c.run(Budget::kQuick);
     EXPECT_EQ(std::string(to_string(r.verdict)), to_string(c.expected)) << r.detail;
     EXPECT_TRUE(r.control_rejected) << r.control;
+    // The control's verdict, from the same decision, opposes the genuine one.
+    if (r.control_verdict) {
+      EXPECT_TRUE(control_opposes(r.verdict, *r.control_verdict))
+          << "verdict " << to_string(r.verdict) << ", control " << to_string(*r.control_verdict);
+    }
+    // A regime is named exactly when the verdict is holds-in-regime.
+    EXPECT_EQ(r.verdict == Verdict::kHoldsInRegime, !r.regime.empty()) << r.regime;
     EXPECT_GT(r.configurations, 0);
     return;
   }
