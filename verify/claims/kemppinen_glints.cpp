@@ -58,20 +58,31 @@ auto with_ndf(const Ndfs& n, F&& f) {
 const char* ndf_name(const Ndfs& n) { return n.ggx ? "GGX" : "Beckmann"; }
 
 // ---- kemppinen.convergence (Eq. 2) ------------------------------------------------------------
+//
+// Measure: the mean of D★ (Eq. 4, every grid point summed) over square regions of growing area,
+// divided by D(ω_h). Decide: inside the regime, the largest area's mean lies within
+// ±kConvergenceTolerance of D (confidence interval, Šidák over the configurations) and the spread
+// of region means falls as area^−½ (the pooled slope's interval within ±kSlopeTolerance of −½).
+// Control: the same measurement with the prefactor as printed (|J_T| = D/|U_Ω|, Eq. 3–4).
 
 const std::string kConvergence = "kemppinen.convergence";
+constexpr double kConvergenceTolerance = 0.02;  // |area mean / D − 1| at the largest area
+constexpr double kSlopeTolerance = 0.1;         // |slope of spread vs area + ½|
+// The regime, fixed before measuring: Eq. 4's Gaussian lobes are normalised over the whole plane,
+// so their area mean can reach D only where the lobe around T(ω_h) lies inside U_Ω. Inside: T(ω_h)
+// at least this many lobe widths σ_a from the rim (less than 0.14 % of the mass beyond it).
+constexpr double kConvergenceRegimeWidths = 3;
+const char* const kConvergenceRegime = "the lobe inside U_Ω: T(ω_h) at least 3 σ_a from the rim";
 
 struct ConvConfig {
   Ndfs ndf;
   double alpha_star, theta;
 };
 
-std::vector<ConvConfig> conv_configs(Budget b) {
+std::vector<ConvConfig> conv_configs() {
   std::vector<ConvConfig> out;
-  const std::vector<double> stars =
-      b == Budget::kQuick ? std::vector<double>{0.01, 0.05} : std::vector<double>{0.01, 0.05, 0.2};
   for (bool ggx : {true, false})
-    for (double s : stars)
+    for (double s : {0.01, 0.05, 0.2})
       // θ up to 35°: at α = 0.3 Beckmann's D is e^{−5.4} there, past 60° below 1e-14.
       for (double t : {0.0, 20.0, 35.0}) out.push_back({{ggx, 0.3}, s, t});
   return out;
@@ -85,134 +96,218 @@ int conv_level(const P& p, const Ndf& ndf, const V3& h) {
   return std::clamp(int(std::floor(std::log2(1 / s))) - 1, 0, 12);
 }
 
-struct ConvResult {
-  double expected = 0, smooth = 0;  // far-field mean (prefactor × lobe mass in U_Ω) and D
-  std::vector<double> rms;          // per area: RMS over regions of mean/expected − 1
-  MeanTestResult test;              // at the largest area, t test against `expected`
-  MeanTestResult control;           // the same against 1.05 × expected
-};
-
 struct ConvSize {
-  std::vector<int> cells;  // region sides
+  std::vector<int> cells;  // region sides, in cells of the chosen level
   int regions;
 };
 ConvSize conv_size(Budget b) {
-  return b == Budget::kQuick ? ConvSize{{8, 16, 32}, 24} : ConvSize{{8, 16, 32, 64, 128}, 48};
+  return b == Budget::kQuick ? ConvSize{{8, 16, 32}, 96} : ConvSize{{8, 16, 32, 64, 128}, 96};
 }
 
-ConvResult run_conv(const ConvConfig& c, const ConvSize& sz, std::uint64_t seed,
-                    KemppinenNormalization norm = KemppinenNormalization::kCorrected) {
+struct ConvMeasured {
+  double rim_widths = 0;       // distance of T(ω_h) to the rim of U_Ω, in lobe widths
+  MeanAccumulator ratio;       // region mean / D at the largest area, one value per region
+  std::vector<double> spread;  // per area: standard deviation of region mean / D over the regions
+  double slope = 0, slope_se = 0;  // of log spread against log area, and its standard error
+};
+
+bool in_convergence_regime(const ConvMeasured& m) {
+  return m.rim_widths >= kConvergenceRegimeWidths;
+}
+
+// Weighted least squares of log spread on log area; each log standard deviation from n regions
+// has variance ≈ 1/(2(n − 1)) (normal samples).
+void fit_spread_slope(ConvMeasured& m, const ConvSize& sz) {
+  const std::size_t k = sz.cells.size();
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < k; ++i) {
+    mx += std::log(sqr(double(sz.cells[i]))) / double(k);
+    my += std::log(m.spread[i]) / double(k);
+  }
+  double sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < k; ++i) {
+    const double x = std::log(sqr(double(sz.cells[i]))) - mx;
+    sxx += x * x;
+    sxy += x * (std::log(m.spread[i]) - my);
+  }
+  m.slope = sxy / sxx;
+  m.slope_se = std::sqrt(1 / (2.0 * (sz.regions - 1)) / sxx);
+}
+
+ConvMeasured measure_conv(const ConvConfig& c, const ConvSize& sz, std::uint64_t seed,
+                          KemppinenNormalization norm) {
   P p = kemppinen_preset_params(1, c.alpha_star, seed);
   p.normalization = norm;
   const V3 h = direction(c.theta);
   return with_ndf(c.ndf, [&](const auto& ndf) {
-    ConvResult r;
-    r.expected = kemppinen_area_mean_expected(p, ndf, h);
-    r.smooth = ndf.D(h);
+    ConvMeasured m;
+    const auto ang = kemppinen_angular(p, ndf, h);
+    const double to_rim = 0.5 - std::hypot(ang.x_a.x - 0.5, ang.x_a.y - 0.5);
+    m.rim_widths = to_rim / std::max(ang.sigma_a.x, ang.sigma_a.y);
+    const double d = ndf.D(h);
     const int level = conv_level(p, ndf, h);
     for (int cells : sz.cells) {
-      MeanAccumulator acc, rel;
-      for (int k = 0; k < sz.regions; ++k) {
-        const double m =
-            kemppinen_region_mean(p, ndf, h, level, std::int64_t(k) * 100000, 7, cells);
-        acc.add(m);
-        rel.add(sqr(m / r.expected - 1));
-      }
-      r.rms.push_back(std::sqrt(rel.mean));
-      if (cells == sz.cells.back()) {
-        r.test = t_test(acc, r.expected);
-        r.control = t_test(acc, 1.05 * r.expected);
-      }
+      MeanAccumulator acc;
+      for (int k = 0; k < sz.regions; ++k)
+        acc.add(kemppinen_region_mean(p, ndf, h, level, std::int64_t(k) * 100000, 7, cells) / d);
+      m.spread.push_back(std::sqrt(acc.variance()));
+      if (cells == sz.cells.back()) m.ratio = acc;
     }
-    return r;
+    fit_spread_slope(m, sz);
+    return m;
   });
+}
+
+struct ConvDecision {
+  Verdict verdict = Verdict::kInconclusive;
+  double z = 0;         // two-sided normal quantile of the per-configuration level
+  double worst_in = 0;  // largest |bias| + z·SE inside the regime (the interval's far end)
+  double least_in = 0;  // largest |bias| − z·SE inside the regime (the interval's near end)
+  double pooled_slope = 0, pooled_slope_se = 0;  // inside the regime, inverse-variance weighted
+  bool all_within = false;  // every configuration's bias interval inside ±tolerance
+};
+
+double bias_se(const ConvMeasured& m) { return std::sqrt(m.ratio.variance() / double(m.ratio.n)); }
+
+// The far end of one configuration's bias interval: within tolerance when ≤ kConvergenceTolerance.
+double bias_bound(const ConvMeasured& m, double z) {
+  return std::abs(m.ratio.mean - 1) + z * bias_se(m);
+}
+
+// An interval test against a tolerance band: within when the whole interval is inside it, beyond
+// when the whole interval is outside, undecided (inconclusive) otherwise.
+enum class Band { kWithin, kUndecided, kBeyond };
+Band band(double estimate, double half_width, double tolerance) {
+  if (std::abs(estimate) + half_width <= tolerance) return Band::kWithin;
+  if (std::abs(estimate) - half_width > tolerance) return Band::kBeyond;
+  return Band::kUndecided;
+}
+
+ConvDecision decide_convergence(const std::vector<ConvMeasured>& ms) {
+  ConvDecision d;
+  d.z = normal_quantile(1 - sidak_level(check_level(), ms.size()) / 2);
+  double sum_w = 0;
+  int in = 0;
+  Band bias = Band::kWithin;
+  d.all_within = true;
+  for (const ConvMeasured& m : ms) {
+    const Band b = band(m.ratio.mean - 1, d.z * bias_se(m), kConvergenceTolerance);
+    d.all_within = d.all_within && b == Band::kWithin;
+    if (!in_convergence_regime(m)) continue;
+    ++in;
+    bias = std::max(bias, b);
+    d.worst_in = std::max(d.worst_in, bias_bound(m, d.z));
+    d.least_in = std::max(d.least_in, std::abs(m.ratio.mean - 1) - d.z * bias_se(m));
+    const double w = 1 / sqr(m.slope_se);
+    sum_w += w;
+    d.pooled_slope += w * m.slope;
+  }
+  if (in == 0) return d;  // nothing measured inside the regime: inconclusive
+  d.pooled_slope /= sum_w;
+  d.pooled_slope_se = 1 / std::sqrt(sum_w);
+  const Band slope = band(d.pooled_slope + 0.5, d.z * d.pooled_slope_se, kSlopeTolerance);
+  const Band worst = std::max(bias, slope);
+  if (worst == Band::kBeyond)
+    d.verdict = Verdict::kFails;
+  else if (worst == Band::kUndecided)
+    d.verdict = Verdict::kInconclusive;
+  else
+    d.verdict = d.all_within ? Verdict::kHoldsWithin : Verdict::kHoldsInRegime;
+  return d;
+}
+
+std::string describe_convergence(const std::vector<ConvConfig>& cfg,
+                                 const std::vector<ConvMeasured>& ms, const ConvDecision& d,
+                                 const ConvSize& sz) {
+  int in = 0;
+  double worst_out = 0;
+  std::string worst_out_at;
+  for (std::size_t i = 0; i < ms.size(); ++i) {
+    if (in_convergence_regime(ms[i])) {
+      ++in;
+      continue;
+    }
+    const double bias = ms[i].ratio.mean - 1;
+    if (std::abs(bias) > std::abs(worst_out)) {
+      worst_out = bias;
+      worst_out_at =
+          fmt::format("{} α★={:g} θ={:g}°, T(ω_h) {:.2g} σ_a from the rim", ndf_name(cfg[i].ndf),
+                      cfg[i].alpha_star, cfg[i].theta, ms[i].rim_widths);
+    }
+  }
+  std::string outside = in == int(ms.size())
+                            ? std::string("every configuration is inside the regime")
+                            : fmt::format(
+                                  "outside the regime ({} configurations) the mean stays "
+                                  "below D: worst bias {:+.3g} at {}",
+                                  ms.size() - in, worst_out, worst_out_at);
+  return fmt::format(
+      "area mean of D★ / D over {} regions of up to {}² cells, {} configurations, {} inside the "
+      "regime: there |bias| ≤ {:.3g} (bound at z = {:.2f}; tolerance {:g}) and the spread of "
+      "region means falls with area as area^{:.3f} ± {:.3f} (−½ expected, tolerance ±{:g}); {}",
+      sz.regions, sz.cells.back(), ms.size(), in, d.worst_in, d.z, kConvergenceTolerance,
+      d.pooled_slope, d.pooled_slope_se, kSlopeTolerance, outside);
+}
+
+std::vector<ConvMeasured> measure_convergence(Budget b, KemppinenNormalization norm) {
+  const auto cfg = conv_configs();
+  const ConvSize sz = conv_size(b);
+  std::vector<ConvMeasured> ms(cfg.size());
+  tbb::parallel_for(std::size_t(0), cfg.size(), [&](std::size_t i) {
+    ms[i] = measure_conv(cfg[i], sz, check_seed(kConvergence, i), norm);
+  });
+  return ms;
 }
 
 CheckResult run_convergence(Budget b) {
-  const auto cfg = conv_configs(b);
+  const auto cfg = conv_configs();
   const ConvSize sz = conv_size(b);
-  std::vector<ConvResult> res(cfg.size());
-  std::vector<double> printed_ratio(cfg.size());
-  tbb::parallel_for(std::size_t(0), cfg.size(), [&](std::size_t i) {
-    res[i] = run_conv(cfg[i], sz, check_seed(kConvergence, i));
-    printed_ratio[i] = kemppinen_area_mean_expected(
-                           [&] {
-                             P p = kemppinen_preset_params(1, cfg[i].alpha_star, 1);
-                             p.normalization = KemppinenNormalization::kPrinted;
-                             return p;
-                           }(),
-                           GGX<double>{0.3, 0.3}, direction(cfg[i].theta)) /
-                       GGX<double>{0.3, 0.3}.D(direction(cfg[i].theta));
-  });
+  const auto ms = measure_convergence(b, KemppinenNormalization::kCorrected);
+  const ConvDecision d = decide_convergence(ms);
+  const auto printed = measure_convergence(b, KemppinenNormalization::kPrinted);
+  const ConvDecision dc = decide_convergence(printed);
   CheckResult r;
   r.configurations = int(cfg.size());
-  std::vector<double> p;
-  double worst_bias = 0, slope_min = 0, slope_max = -10, control_pmax = 0;
-  std::string worst_at;
-  for (std::size_t i = 0; i < cfg.size(); ++i) {
-    p.push_back(res[i].test.p_value);
-    control_pmax = std::max(control_pmax, res[i].control.p_value);
-    const double bias = res[i].expected / res[i].smooth - 1;
-    if (std::abs(bias) > std::abs(worst_bias)) {
-      worst_bias = bias;
-      worst_at =
-          fmt::format("{} α★={:g} θ={:g}°", ndf_name(cfg[i].ndf), cfg[i].alpha_star, cfg[i].theta);
-    }
-    // Slope of log RMS against log area, first to last area.
-    const double s = std::log(res[i].rms.back() / res[i].rms.front()) /
-                     std::log(sqr(double(sz.cells.back()) / sz.cells.front()));
-    slope_min = std::min(slope_min, s);
-    slope_max = std::max(slope_max, s);
-  }
-  r.raw_p_values = p;
-  const HolmSidakResult hs = holm_sidak(p, check_level());
-  r.p_value = sidak_min(p);
-  r.statistic = "t test of the area mean of Eq. 4 against D × (lobe mass inside U_Ω), largest area";
-  r.value = r.p_value.value_or(1);
-  r.bound = check_level();
-  const double level = sidak_level(check_level(), cfg.size());
+  r.verdict = d.verdict;
+  if (d.verdict == Verdict::kHoldsInRegime) r.regime = kConvergenceRegime;
+  r.statistic = "largest |area mean of D★ / D − 1| + z·SE inside the regime, largest area";
+  r.value = d.worst_in;
+  r.bound = kConvergenceTolerance;
+  double se_max = 0;
+  for (const ConvMeasured& m : ms)
+    if (in_convergence_regime(m)) se_max = std::max(se_max, bias_se(m));
+  r.power = fmt::format(
+      "a remaining bias of {:.3g} (tolerance + (z + 1.28)·SE, largest SE in the regime {:.2g}) is "
+      "detected with 90 % power; a slope off −½ by {:.3g}",
+      kConvergenceTolerance + (d.z + 1.2816) * se_max, se_max,
+      kSlopeTolerance + (d.z + 1.2816) * d.pooled_slope_se);
   r.control = fmt::format(
-      "area mean tested against 1.05 × its far-field value: largest p {:.3g} (level {:.3g})",
-      control_pmax, level);
-  r.control_p_value = control_pmax;
-  r.control_rejected = control_pmax <= level;
-  // Bias of the far-field mean against D, by α★ (the Gaussian lobes blur D; mass lost past the
-  // rim).
-  std::string by_star;
-  for (double s : {0.01, 0.05, 0.2}) {
-    double w = 0;
-    bool any = false;
-    for (std::size_t i = 0; i < cfg.size(); ++i)
-      if (cfg[i].alpha_star == s) {
-        any = true;
-        w = std::max(w, std::abs(res[i].expected / res[i].smooth - 1));
-      }
-    if (any) by_star += fmt::format("{}α★={:g}: {:.2g}", by_star.empty() ? "" : ", ", s, w);
-  }
-  const bool converges = hs.rejections == 0;
-  r.verdict = converges ? Verdict::kHoldsWithin : Verdict::kFails;
-  r.detail = fmt::format(
-      "the area mean of D★ converges to D·m(ω), m = mass of the lobe inside U_Ω ({} "
-      "configurations, "
-      "{} regions of up to {}² cells, smallest p {:.3g}; RMS error vs area slope {:.2f} … {:.2f}, "
-      "−½ for 1/√N); remaining bias |m − 1| max {} (worst {:.3g} at {}), growing with α★ and "
-      "towards the rim of U_Ω; with the prefactor as printed (|J_T| = D/|U_Ω|, Eq. 3–4) the mean "
-      "is "
-      "{:.4f}·D·m = 4/π·D·m (fails by 27 %); Eq. 4's 1D normalisation 1/(σ√2π) is read as the 2D "
-      "normal",
-      cfg.size(), sz.regions, sz.cells.back(), r.p_value.value_or(1), slope_min, slope_max, by_star,
-      worst_bias, worst_at, printed_ratio[0] / (res[0].expected / res[0].smooth));
+      "prefactor as printed (|J_T| = D/|U_Ω|, Eq. 3–4): inside the regime |bias| ≤ {:.3g}, "
+      "slope {:.3f}",
+      dc.worst_in, dc.pooled_slope);
+  record_control(r, dc.verdict);
+  r.detail = describe_convergence(cfg, ms, d, sz);
   return r;
 }
 
-double calibrate_convergence(std::uint64_t seed) {
-  return run_conv({{true, 0.3}, 0.05, 20.0}, conv_size(Budget::kQuick), seed).test.p_value;
-}
-
 // ---- kemppinen.compensation (Eq. 9–11, Fig. 14) -------------------------------------------------
+//
+// Measure: the mean of D★^f / D (Eq. 11, k = 4) over random positions, per setting. Decide: inside
+// the regime every setting's mean lies within ±kSuffices of D (interval at the Šidák-corrected
+// level); outside it, shares are reported. Control: the same with the compensation term C × 0.9.
 
 const std::string kCompensation = "kemppinen.compensation";
-constexpr double kSuffices = 0.05;  // "suffice": far-field mean within 5 % of D
+constexpr double kSuffices = 0.05;            // "suffice": far-field mean within 5 % of D
+constexpr double kCompensationControl = 0.9;  // the control's scale of the compensation term C
+constexpr int kCompensationSide = 2;          // k = side², the paper's k = 4
+// The regime, from the paper's own assumptions (Sec. 3.3.4, Sec. 6): the far field, where many
+// points fall in the footprint (≥ 64 level-0 cells across); highly specular particles (α★ ≤ 0.1);
+// and, as for Eq. 2, the lobe inside U_Ω (T(ω_h) at least 3 σ_a from the rim).
+constexpr double kCompensationRegimeCells = 64;
+constexpr double kCompensationRegimeStar = 0.1;
+const char* const kCompensationRegime =
+    "k = 4, far field (footprint ≥ 64 level-0 cells), α★ ≤ 0.1, T(ω_h) at least 3 σ_a from the "
+    "rim of U_Ω";
 
 struct CompConfig {
   Ndfs ndf;
@@ -220,19 +315,27 @@ struct CompConfig {
   int side;
 };
 
-struct CompRow {
+struct CompMeasured {
   CompConfig c;
-  double bias = 0, se = 0;  // mean(D★^f)/D − 1 and its standard error
-  double bias_nc = 0;       // without the compensation term (control)
+  double rim_widths = 0;          // distance of T(ω_h) to the rim of U_Ω, in lobe widths
+  MeanAccumulator ratio;          // D★^f / D per position
+  MeanAccumulator ratio_control;  // the same with C × kCompensationControl
 };
 
+// The regime's setting (any k).
+bool in_compensation_regime(const CompMeasured& m) {
+  return m.c.cells >= kCompensationRegimeCells && m.c.alpha_star <= kCompensationRegimeStar &&
+         m.rim_widths >= kConvergenceRegimeWidths;
+}
+
+// The quick grid holds the full grid's extremes (4 and 4096 cells, α★ 0.005 and 0.3).
 std::vector<CompConfig> comp_configs(Budget b) {
   std::vector<CompConfig> out;
   const bool q = b == Budget::kQuick;
   const std::vector<double> cells =
-      q ? std::vector<double>{16, 256} : std::vector<double>{4, 16, 64, 256, 4096};
+      q ? std::vector<double>{4, 64, 4096} : std::vector<double>{4, 16, 64, 256, 4096};
   const std::vector<double> stars =
-      q ? std::vector<double>{0.01, 0.1} : std::vector<double>{0.005, 0.02, 0.1, 0.3};
+      q ? std::vector<double>{0.005, 0.1, 0.3} : std::vector<double>{0.005, 0.02, 0.1, 0.3};
   for (bool ggx : {true, false})
     for (double s : stars)
       for (double t : {0.0, 30.0})
@@ -241,105 +344,158 @@ std::vector<CompConfig> comp_configs(Budget b) {
   return out;
 }
 
-CompRow run_comp(const CompConfig& c, std::uint64_t n, std::uint64_t seed) {
-  CompRow row{c};
+CompMeasured measure_comp(const CompConfig& c, std::uint64_t n, std::uint64_t seed) {
+  CompMeasured m{c, 0, {}, {}};
   P p = kemppinen_preset_params(c.side, c.alpha_star, seed);
   const V3 h = direction(c.theta);
   with_ndf(c.ndf, [&](const auto& ndf) {
+    const auto ang = kemppinen_angular(p, ndf, h);
+    m.rim_widths = (0.5 - std::hypot(ang.x_a.x - 0.5, ang.x_a.y - 0.5)) /
+                   std::max(ang.sigma_a.x, ang.sigma_a.y);
     const double d = ndf.D(h);
-    MeanAccumulator a, anc;
     for (std::uint64_t i = 0; i < n; ++i) {
       const FootprintQuery<double> fp = kemppinen_footprint_cells(position(seed, i), c.cells, p);
       const auto r = kemppinen_eval(p, ndf, fp, h);
-      a.add(r.d.x / d);
-      anc.add(r.explicit_part.x / d);
+      m.ratio.add(r.d.x / d);
+      m.ratio_control.add((r.explicit_part.x + kCompensationControl * r.compensation_part.x) / d);
     }
-    row.bias = a.mean - 1;
-    row.se = std::sqrt(a.variance() / double(n));
-    row.bias_nc = anc.mean - 1;
     return 0;
   });
-  return row;
+  return m;
+}
+
+double comp_se(const MeanAccumulator& a) { return std::sqrt(a.variance() / double(a.n)); }
+
+struct CompDecision {
+  Verdict verdict = Verdict::kInconclusive;
+  double z = 0;
+  int in = 0, within = 0, beyond = 0;  // settings inside the regime, and their bands
+  double worst = 0, worst_se = 0;      // the largest |bias| inside the regime, its SE
+  std::string worst_at;
+};
+
+// Which measurement is decided: Eq. 11 with k = 4 as the paper gives it; the control with C scaled
+// (for a claim that holds); or k = 16, the paper's own remedy (Fig. 14), for a claim that fails.
+enum class CompInput { kEq11, kScaledC, kSixteen };
+
+CompDecision decide_compensation(const std::vector<CompMeasured>& ms, CompInput input) {
+  CompDecision d;
+  int k4 = 0;
+  const int side = input == CompInput::kSixteen ? 4 : kCompensationSide;
+  for (const CompMeasured& m : ms) k4 += m.c.side == side;
+  d.z = normal_quantile(1 - sidak_level(check_level(), std::size_t(k4)) / 2);
+  bool all_k4_within = true;
+  for (const CompMeasured& m : ms) {
+    if (m.c.side != side) continue;
+    const bool in = in_compensation_regime(m);
+    const MeanAccumulator& a = input == CompInput::kScaledC ? m.ratio_control : m.ratio;
+    const Band b = band(a.mean - 1, d.z * comp_se(a), kSuffices);
+    all_k4_within = all_k4_within && b == Band::kWithin;
+    if (!in) continue;
+    ++d.in;
+    d.within += b == Band::kWithin;
+    d.beyond += b == Band::kBeyond;
+    if (std::abs(a.mean - 1) > std::abs(d.worst)) {
+      d.worst = a.mean - 1;
+      d.worst_se = comp_se(a);
+      d.worst_at = fmt::format("{} α★={:g} θ={:g}° footprint {:g} cells", ndf_name(m.c.ndf),
+                               m.c.alpha_star, m.c.theta, m.c.cells);
+    }
+  }
+  if (d.in == 0) return d;
+  if (d.beyond > 0)
+    d.verdict = Verdict::kFails;
+  else if (d.within == d.in)
+    d.verdict = all_k4_within ? Verdict::kHoldsWithin : Verdict::kHoldsInRegime;
+  return d;
+}
+
+std::string describe_compensation(const std::vector<CompMeasured>& ms, const CompDecision& d,
+                                  std::uint64_t n) {
+  // Outside the regime: the share of k settings whose interval lies within 5 %, per k; and for
+  // k = 4 per footprint and per α★.
+  const auto share = [&](auto&& keep) {
+    int within = 0, count = 0;
+    for (const CompMeasured& m : ms)
+      if (keep(m)) {
+        ++count;
+        within += band(m.ratio.mean - 1, d.z * comp_se(m.ratio), kSuffices) == Band::kWithin;
+      }
+    return count ? fmt::format("{:.0f} %", 100.0 * within / count) : std::string("—");
+  };
+  std::string per_k, per_cells, per_star;
+  for (int side : {1, 2, 3, 4})
+    per_k += fmt::format("{}k={}: {}", per_k.empty() ? "" : ", ", side * side,
+                         share([&](const CompMeasured& m) { return m.c.side == side; }));
+  std::vector<double> cells, stars;
+  for (const CompMeasured& m : ms) {
+    if (std::find(cells.begin(), cells.end(), m.c.cells) == cells.end()) cells.push_back(m.c.cells);
+    if (std::find(stars.begin(), stars.end(), m.c.alpha_star) == stars.end())
+      stars.push_back(m.c.alpha_star);
+  }
+  for (double c : cells)
+    per_cells += fmt::format("{}{:g}: {}", per_cells.empty() ? "" : ", ", c,
+                             share([&](const CompMeasured& m) {
+                               return m.c.side == kCompensationSide && m.c.cells == c;
+                             }));
+  for (double s : stars)
+    per_star += fmt::format("{}{:g}: {}", per_star.empty() ? "" : ", ", s,
+                            share([&](const CompMeasured& m) {
+                              return m.c.side == kCompensationSide && m.c.alpha_star == s;
+                            }));
+  // k = 16 against k = 4 at the largest α★ (Fig. 14 left: wide lobes), far field.
+  const double big = stars.back();
+  double w4 = 0, w16 = 0;
+  for (const CompMeasured& m : ms)
+    if (m.c.alpha_star == big && m.c.cells >= kCompensationRegimeCells) {
+      if (m.c.side == 2) w4 = std::max(w4, std::abs(m.ratio.mean - 1));
+      if (m.c.side == 4) w16 = std::max(w16, std::abs(m.ratio.mean - 1));
+    }
+  return fmt::format(
+      "mean of D★^f / D over {} positions per setting; inside the regime {} of {} settings within "
+      "±{:g} (interval at z = {:.2f}), {} beyond, worst bias {:+.3g} ± {:.2g} at {}. Everywhere, "
+      "share "
+      "within ±{:g}: {}; k = 4 by footprint (level-0 cells) {}; by α★ {}. At α★ = {:g} far field "
+      "(Fig. 14 left) the worst |bias| is {:.3g} with k = 4 and {:.3g} with k = 16",
+      n, d.within, d.in, kSuffices, d.z, d.beyond, d.worst, d.worst_se, d.worst_at, kSuffices,
+      per_k, per_cells, per_star, big, w4, w16);
 }
 
 CheckResult run_compensation(Budget b) {
   const auto cfg = comp_configs(b);
-  const std::uint64_t n = b == Budget::kQuick ? 300 : 4000;
-  std::vector<CompRow> rows(cfg.size());
+  const std::uint64_t n = b == Budget::kQuick ? 1200 : 4000;
+  std::vector<CompMeasured> ms(cfg.size());
   tbb::parallel_for(std::size_t(0), cfg.size(), [&](std::size_t i) {
-    rows[i] = run_comp(cfg[i], n, check_seed(kCompensation, i));
+    ms[i] = measure_comp(cfg[i], n, check_seed(kCompensation, i));
   });
-  // Per k: share of settings whose far-field mean is within 5 % of D (by its estimate), worst bias.
+  const CompDecision d = decide_compensation(ms, CompInput::kEq11);
+  // A claim that holds must fail with C scaled; a claim that fails must hold with the exact sum.
+  const bool holding = is_holding(d.verdict);
+  const CompDecision dc =
+      decide_compensation(ms, holding ? CompInput::kScaledC : CompInput::kSixteen);
   CheckResult r;
   r.configurations = int(cfg.size());
-  std::string per_k;
-  double k4_share = 0, worst_nc = 0;
-  double worst_any = 0;
-  std::string worst_at;
-  for (int side : {1, 2, 3, 4}) {
-    int within = 0, count = 0;
-    double worst = 0;
-    std::string at;
-    for (const CompRow& row : rows) {
-      if (row.c.side != side) continue;
-      ++count;
-      within += std::abs(row.bias) <= kSuffices;
-      if (std::abs(row.bias) > std::abs(worst)) {
-        worst = row.bias;
-        at = fmt::format("{} α★={:g} θ={:g}° footprint {:g} cells (±{:.2g})", ndf_name(row.c.ndf),
-                         row.c.alpha_star, row.c.theta, row.c.cells, row.se);
-      }
-      worst_nc = std::min(worst_nc, row.bias_nc);
-    }
-    const double share = double(within) / count;
-    if (side == 2) k4_share = share;
-    if (std::abs(worst) > std::abs(worst_any)) worst_any = worst, worst_at = at;
-    per_k += fmt::format("{}k={}: {:.0f} % within 5 %, worst {:+.3g} at {}",
-                         per_k.empty() ? "" : "; ", side * side, 100 * share, worst, at);
-  }
-  // The Fig. 14 (left) regime: wide lobes (largest α★), far field; k = 4 against k = 16.
-  double fig14_k4 = 0, fig14_k16 = 0;
-  const double big_star = cfg.back().alpha_star;
-  for (const CompRow& row : rows)
-    if (row.c.alpha_star == big_star) {
-      if (row.c.side == 2) fig14_k4 = std::max(fig14_k4, std::abs(row.bias));
-      if (row.c.side == 4) fig14_k16 = std::max(fig14_k16, std::abs(row.bias));
-    }
-  // Where it fails: the k = 4 share per footprint size and per α★ (every setting of that value).
-  const auto k4_share_where = [&](auto&& pick) {
-    std::vector<std::pair<double, std::pair<int, int>>> by;  // value → (within, count)
-    for (const CompRow& row : rows) {
-      if (row.c.side != 2) continue;
-      const double v = pick(row.c);
-      auto it = std::find_if(by.begin(), by.end(), [&](const auto& e) { return e.first == v; });
-      if (it == by.end()) it = by.insert(by.end(), {v, {0, 0}});
-      it->second.first += std::abs(row.bias) <= kSuffices;
-      ++it->second.second;
-    }
-    std::string out;
-    for (const auto& [v, wc] : by)
-      out += fmt::format("{}{:g}: {:.0f} %", out.empty() ? "" : ", ", v,
-                         100.0 * wc.first / wc.second);
-    return out;
-  };
-  const std::string by_cells = k4_share_where([](const CompConfig& c) { return c.cells; });
-  const std::string by_star = k4_share_where([](const CompConfig& c) { return c.alpha_star; });
-  r.statistic = "share of (NDF, α★, θ, footprint) settings with |mean D★^f / D − 1| ≤ 5 %, k = 4";
-  r.value = k4_share;
-  r.bound = 0.5;
+  r.verdict = d.verdict;
+  if (d.verdict == Verdict::kHoldsInRegime) r.regime = kCompensationRegime;
+  r.statistic = "largest |mean D★^f / D − 1| inside the regime (k = 4)";
+  r.value = std::abs(d.worst);
+  r.bound = kSuffices;
+  double se_max = 0;
+  for (const CompMeasured& m : ms)
+    if (m.c.side == kCompensationSide && in_compensation_regime(m))
+      se_max = std::max(se_max, comp_se(m.ratio));
+  r.power = fmt::format(
+      "a bias of {:.3g} (tolerance + (z + 1.28)·SE, largest SE in the regime {:.2g}) is detected "
+      "with 90 % power",
+      kSuffices + (d.z + 1.2816) * se_max, se_max);
   r.control = fmt::format(
-      "Eq. 11 without the compensation term C: worst far-field bias {:+.3g} (rejected when below "
-      "−5 %)",
-      worst_nc);
-  r.control_rejected = worst_nc < -kSuffices;
-  r.verdict = k4_share > 0.5 ? Verdict::kHoldsInRegime : Verdict::kFails;
-  r.detail = fmt::format(
-      "mean of D★^f over {} positions per setting vs D: {}. α★ = {:g}: worst |bias| k=4 {:.3g}, "
-      "k=16 {:.3g} — the paper says k = 16 mitigates Fig. 14 left; here it is {}. Deviations grow "
-      "near the rim of U_Ω (Eq. 10 integrates over □, the k-block truncates the filter in space). "
-      "k = 4 share within 5 % by footprint (level-0 cells) {}; by α★ {}",
-      n, per_k, big_star, fig14_k4, fig14_k16, fig14_k16 < fig14_k4 ? "smaller" : "not smaller",
-      by_cells, by_star);
+      "{}: inside the regime {} of {} settings within ±{:g}, {} beyond, worst bias {:+.3g}{}",
+      holding ? fmt::format("compensation term C × {:g}", kCompensationControl)
+              : std::string("k = 16, the paper's remedy (Fig. 14)"),
+      dc.within, dc.in, kSuffices, dc.beyond, dc.worst,
+      dc.worst_at.empty() ? std::string() : " at " + dc.worst_at);
+  record_control(r, dc.verdict);
+  r.detail = describe_compensation(ms, d, n);
   return r;
 }
 
@@ -452,16 +608,11 @@ struct FurnConfig {
   double alpha_star, theta;
 };
 
-struct FurnRow {
-  FurnConfig c;
-  MeanAccumulator glint, smooth, diff;
-  MeanAccumulator diff_control;  // printed normalisation (4/π brighter)
-};
-
+// The quick grid holds the full grid's extremes (θo 0° and 85°).
 std::vector<FurnConfig> furn_configs(Budget b) {
   std::vector<FurnConfig> out;
   const std::vector<double> thetas = b == Budget::kQuick
-                                         ? std::vector<double>{0, 45, 75}
+                                         ? std::vector<double>{0, 45, 85}
                                          : std::vector<double>{0, 20, 40, 60, 75, 85};
   for (bool ggx : {true, false})
     for (double a : {0.1, 0.5})
@@ -470,35 +621,84 @@ std::vector<FurnConfig> furn_configs(Budget b) {
   return out;
 }
 
-// E_x ∫ f★ cosθ dω_o with ω_h ~ D cosθ (Walter et al. 2007 Eq. 28–29, 35–36) and ω_o its
-// reflection: the weight f cosθ_o / p(ω_o) = G2 (D★^f/D) |ω_i·ω_h| / (cosθ_i cosθ_h).
+// Measure: per setting, the area-averaged white furnace of the glinty NDF and of the smooth one
+// on the same sampled directions. Decide: fails when any setting gains energy significantly
+// (glinty − smooth > 0, or glinty > 1; one-sided, Holm–Šidák over the settings), holds otherwise.
+// Control: the same decision on the glinty estimator rescaled to gain kFurnaceControlGain over
+// the smooth NDF in every setting (a near-miss normalisation).
+constexpr double kFurnaceControlGain = 0.03;
+
+struct FurnRow {
+  FurnConfig c;
+  MeanAccumulator glint, smooth, diff;
+  std::vector<double> g, s;  // per sample, to build the control's rescaled differences
+};
+
 FurnRow run_furn(const FurnConfig& c, std::uint64_t n, std::uint64_t seed) {
-  FurnRow row{c, {}, {}, {}, {}};
+  FurnRow row{c, {}, {}, {}, {}, {}};
   P p = kemppinen_preset_params(2, c.alpha_star, seed);
-  P pc = p;
-  pc.normalization = KemppinenNormalization::kPrinted;
   const V3 wi = direction(c.theta);
   with_ndf(c.ndf, [&](const auto& ndf) {
     for (std::uint64_t i = 0; i < n; ++i) {
       const V2 u{counter_uniform<double>(seed, i, 2), counter_uniform<double>(seed, i, 3)};
       const V3 m = sample_normal_walter(ndf, u);
       const V3 wo = reflect(wi, m);
-      double g = 0, s = 0, gc = 0;
+      double g = 0, s = 0;
       if (wo.z > 0 && dot(wi, m) > 0) {
         const FootprintQuery<double> fp = kemppinen_footprint_cells(position(seed, i), 16, p);
         const double w = smith_g2_height_correlated(ndf, wi, wo, m) * dot(wi, m) / (wi.z * m.z);
         s = w;
         g = w * kemppinen_eval(p, ndf, fp, m).d.x / ndf.D(m);
-        gc = w * kemppinen_eval(pc, ndf, fp, m).d.x / ndf.D(m);
       }
       row.glint.add(g);
       row.smooth.add(s);
       row.diff.add(g - s);
-      row.diff_control.add(gc - s);
+      row.g.push_back(g);
+      row.s.push_back(s);
     }
     return 0;
   });
   return row;
+}
+
+// One-sided p of a positive mean.
+double p_positive(const MeanAccumulator& a, double mu0) {
+  const MeanTestResult t = t_test(a, mu0);
+  return t.statistic > 0 ? t.p_value / 2 : 1 - t.p_value / 2;
+}
+
+struct FurnDecision {
+  Verdict verdict = Verdict::kInconclusive;
+  std::vector<double> p_gain;  // per setting: min of the two one-sided p (gain over smooth, > 1)
+  int gains = 0;               // settings that gain significantly (Holm–Šidák)
+};
+
+FurnDecision decide_furnace(const std::vector<MeanAccumulator>& diff,
+                            const std::vector<MeanAccumulator>& glint) {
+  FurnDecision d;
+  for (std::size_t i = 0; i < diff.size(); ++i)
+    d.p_gain.push_back(
+        std::min(1.0, 2 * std::min(p_positive(diff[i], 0), p_positive(glint[i], 1))));
+  d.gains = int(holm_sidak(d.p_gain, check_level()).rejections);
+  d.verdict = d.gains == 0 ? Verdict::kHolds : Verdict::kFails;
+  return d;
+}
+
+// The control's rows: glinty weights rescaled so each setting's mean gains kFurnaceControlGain
+// over the smooth NDF's, the sample noise kept.
+void control_rows(const std::vector<FurnRow>& rows, std::vector<MeanAccumulator>& diff,
+                  std::vector<MeanAccumulator>& glint) {
+  for (const FurnRow& row : rows) {
+    const double k =
+        row.glint.mean > 0 ? (1 + kFurnaceControlGain) * row.smooth.mean / row.glint.mean : 0;
+    MeanAccumulator d, g;
+    for (std::size_t j = 0; j < row.g.size(); ++j) {
+      d.add(k * row.g[j] - row.s[j]);
+      g.add(k * row.g[j]);
+    }
+    diff.push_back(d);
+    glint.push_back(g);
+  }
 }
 
 CheckResult run_furnace(Budget b) {
@@ -507,55 +707,47 @@ CheckResult run_furnace(Budget b) {
   std::vector<FurnRow> rows(cfg.size());
   tbb::parallel_for(std::size_t(0), cfg.size(),
                     [&](std::size_t i) { rows[i] = run_furn(cfg[i], n, check_seed(kFurnace, i)); });
-  const double level = sidak_level(check_level(), cfg.size());
-  // One-sided: a gain is E_glint − E_smooth > 0 and E_glint > 1.
-  std::vector<double> p_gain;
-  double max_e = 0, worst_gain = -1, worst_loss = 0, control_pmax = 0;
+  std::vector<MeanAccumulator> diff, glint, cdiff, cglint;
+  for (const FurnRow& row : rows) diff.push_back(row.diff), glint.push_back(row.glint);
+  control_rows(rows, cdiff, cglint);
+  const FurnDecision d = decide_furnace(diff, glint);
+  const FurnDecision dc = decide_furnace(cdiff, cglint);
+  double max_e = 0, worst_gain = -1, worst_loss = 0, se_max = 0, se_min = 1e300;
   std::string gain_at, loss_at;
   for (const FurnRow& row : rows) {
-    const MeanTestResult t = t_test(row.diff, 0);
-    const double p1 = t.statistic > 0 ? t.p_value / 2 : 1 - t.p_value / 2;
-    p_gain.push_back(p1);
-    const MeanTestResult tc = t_test(row.diff_control, 0);
-    control_pmax = std::max(control_pmax, tc.statistic > 0 ? tc.p_value / 2 : 1.0);
     max_e = std::max(max_e, row.glint.mean);
+    se_max =
+        std::max(se_max, std::sqrt(row.diff.variance() / double(row.diff.n)) / row.smooth.mean);
     const double rel = row.glint.mean / row.smooth.mean - 1;
     const std::string at = fmt::format("{} α={:g} α★={:g} θo={:g}°", ndf_name(row.c.ndf),
                                        row.c.ndf.alpha, row.c.alpha_star, row.c.theta);
     if (rel > worst_gain) worst_gain = rel, gain_at = at;
     if (rel < worst_loss) worst_loss = rel, loss_at = at;
   }
-  // The control must gain in at least one configuration: the max over configurations of the
-  // smallest p is what matters; use the smallest p of the control family.
-  double control_pmin = 1;
-  for (const FurnRow& row : rows) {
-    const MeanTestResult tc = t_test(row.diff_control, 0);
-    control_pmin = std::min(control_pmin, tc.statistic > 0 ? tc.p_value / 2 : 1.0);
-  }
-  (void)control_pmax;
-  const HolmSidakResult hs = holm_sidak(p_gain, check_level());
   CheckResult r;
   r.configurations = int(cfg.size());
-  r.raw_p_values = p_gain;
-  r.p_value = sidak_min(p_gain);
-  r.statistic = "one-sided t test of an energy gain E_glint − E_smooth > 0 (area-averaged furnace)";
+  r.raw_p_values = d.p_gain;
+  r.p_value = sidak_min(d.p_gain);
+  r.statistic = "one-sided t tests of an energy gain: E_glint − E_smooth > 0 or E_glint > 1";
   r.value = r.p_value.value_or(1);
   r.bound = check_level();
+  r.verdict = d.verdict;
   r.control = fmt::format(
-      "prefactor as printed (|J_T| = D/|U_Ω|): smallest one-sided p of a gain {:.3g} (level "
-      "{:.3g})",
-      control_pmin, level);
-  r.control_p_value = control_pmin;
-  r.control_rejected = control_pmin <= level;
-  r.verdict = hs.rejections == 0 && max_e <= 1 + 1e-9 ? Verdict::kHolds : Verdict::kFails;
+      "glinty estimator rescaled to gain {:.0f} % over the smooth NDF in every setting: {} of {} "
+      "settings gain significantly, smallest p {:.3g}",
+      100 * kFurnaceControlGain, dc.gains, cfg.size(), sidak_min(dc.p_gain));
+  r.control_p_value = sidak_min(dc.p_gain);
+  record_control(r, dc.verdict);
+  const double z = normal_quantile(1 - sidak_level(check_level(), cfg.size()));
+  r.power = fmt::format(
+      "a gain over the smooth NDF's energy of {:.2g} (quietest setting) to {:.2g} (noisiest) is "
+      "detected with 90 % power: (z + 1.28)·SE, one-sided",
+      (z + 1.2816) * se_min, (z + 1.2816) * se_max);
   r.detail = fmt::format(
       "white furnace averaged over {} positions × NDF-sampled directions per setting, footprint 16 "
-      "cells, "
-      "k = 4: largest energy {:.4f}; glinty against smooth from {:+.3g} ({}) to {:+.3g} ({}); {} "
-      "of "
-      "{} settings gain significantly. The loss is the lobe mass outside U_Ω for explicit points "
-      "and the spatial truncation of the k-block",
-      n, max_e, worst_loss, loss_at, worst_gain, gain_at, hs.rejections, cfg.size());
+      "cells, k = 4: largest energy {:.4f}; glinty against smooth from {:+.3g} ({}) to {:+.3g} "
+      "({}); {} of {} settings gain significantly",
+      n, max_e, worst_loss, loss_at, worst_gain, gain_at, d.gains, cfg.size());
   return r;
 }
 
@@ -998,13 +1190,34 @@ double calibrate_sampling(std::uint64_t seed) {
 // ---- Probes for tests/verify/claims (reduced sizes) -----------------------------------------
 
 ControlProbe probe_kemppinen_convergence() {
-  const ConvResult r = run_conv({{false, 0.3}, 0.05, 20.0}, {{8, 32}, 16}, 99);
-  return {r.test.p_value, r.control.p_value, sidak_level(check_level(), 12), true};
+  // GGX, α★ = 0.01, normal incidence: inside the regime. Statistic: the bias bound against D.
+  const ConvConfig c{{true, 0.3}, 0.01, 0.0};
+  const ConvSize sz{{8, 32}, 96};
+  const double z = normal_quantile(1 - sidak_level(check_level(), 18) / 2);
+  return {bias_bound(measure_conv(c, sz, 99, KemppinenNormalization::kCorrected), z),
+          bias_bound(measure_conv(c, sz, 99, KemppinenNormalization::kPrinted), z),
+          kConvergenceTolerance, false};
 }
 
 ControlProbe probe_kemppinen_compensation() {
-  const CompRow row = run_comp({{true, 0.3}, 0.01, 30.0, 256, 2}, 200, 5);
-  return {std::abs(row.bias), std::abs(row.bias_nc), kSuffices, false};
+  // GGX α★ = 0.01, θ = 0, 256 cells, k = 4: inside the regime. Statistic: |mean D★^f / D − 1|.
+  const CompMeasured m = measure_comp({{true, 0.3}, 0.01, 0.0, 256, 2}, 200, 5);
+  return {std::abs(m.ratio.mean - 1), std::abs(m.ratio_control.mean - 1), kSuffices, false};
+}
+
+ControlProbe probe_kemppinen_compensation_k4_fails() {
+  const auto bias = [](int side) {
+    return std::abs(measure_comp({{true, 0.3}, 0.005, 30.0, 64, side}, 600, 11).ratio.mean - 1);
+  };
+  return {bias(4), bias(2), kSuffices, false};
+}
+
+ControlProbe probe_kemppinen_furnace() {
+  const std::vector<FurnRow> rows{run_furn({{true, 0.5}, 0.02, 45.0}, 10000, 21)};
+  std::vector<MeanAccumulator> cdiff, cglint;
+  control_rows(rows, cdiff, cglint);
+  return {decide_furnace({rows[0].diff}, {rows[0].glint}).p_gain[0],
+          decide_furnace(cdiff, cglint).p_gain[0], check_level(), true};
 }
 
 ControlProbe probe_kemppinen_roulette() {
@@ -1031,15 +1244,8 @@ ControlProbe probe_kemppinen_sampling_render(bool printed) {
 std::vector<Check> kemppinen_glint_checks() {
   const std::string paper = "Kemppinen et al. 2025";
   return {
-      {kConvergence, paper, "Eq. 2 (with Eq. 4)", Verdict::kHoldsWithin, run_convergence,
-       calibrate_convergence},
-      {kCompensation, paper, "Eq. 9–11, Fig. 14 left", Verdict::kHoldsInRegime, run_compensation,
-       {},
-       // Measured 2026-12-01 at the full budget (4000 positions, footprints 4 … 4096 cells, α★ up
-       // to 0.3): k = 4 within 5 % of D in 46 % of its 80 settings — 0 % at 4-cell footprints, 31 %
-       // at 16, 56–75 % from 64 cells on; 0 % at α★ = 0.3, where k = 16 is no better (worst
-       // −0.68). The quick grid (16/256 cells, α★ 0.01/0.1) sits inside the regime where it holds.
-       Verdict::kFails},
+      {kConvergence, paper, "Eq. 2 (with Eq. 4)", Verdict::kHoldsInRegime, run_convergence},
+      {kCompensation, paper, "Eq. 9–11, Fig. 14 left", Verdict::kFails, run_compensation},
       {kRoulette, paper, "Eq. 8, Sec. 3.3.3, Fig. 6", Verdict::kHoldsWithin, run_roulette,
        calibrate_roulette},
       {kFurnace, paper, "Fig. 15, Sec. 5", Verdict::kHolds, run_furnace, calibrate_furnace},

@@ -6,10 +6,16 @@
 
 namespace glintlab::verify {
 
-// kemppinen.convergence, one configuration: t-test p of the area mean; control: against 1.05 ×.
+// kemppinen.convergence, one configuration inside the regime: the far end of the bias interval of
+// the area mean against D; control: the prefactor as printed.
 ControlProbe probe_kemppinen_convergence();
-// kemppinen.compensation, one far-field setting: |mean D★^f/D − 1|; control: without C.
+// kemppinen.compensation, one far-field setting: |mean D★^f/D − 1|; control: C × 0.9.
 ControlProbe probe_kemppinen_compensation();
+// kemppinen.compensation's finding (GGX α★ = 0.005, θ = 30°, 64 cells): k = 16 within 5 % of D
+// (the "correct" side), k = 4 beyond it (the "control" side).
+ControlProbe probe_kemppinen_compensation_k4_fails();
+// kemppinen.furnace, one setting: one-sided p of a gain; control: rescaled to gain 3 %.
+ControlProbe probe_kemppinen_furnace();
 // kemppinen.roulette: paired p of roulette vs linear; control: linear × 1.1.
 ControlProbe probe_kemppinen_roulette();
 // kemppinen.sampling-unbiased, one configuration: Welch p of the marginal-pdf estimate against

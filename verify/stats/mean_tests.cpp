@@ -121,4 +121,10 @@ MeanTestResult welch_t_test(const MeanAccumulator& a, const MeanAccumulator& b) 
   return finish(a.mean - b.mean, std::sqrt(v), dof);
 }
 
+double normal_quantile(double p) { return boost::math::quantile(boost::math::normal(), p); }
+
+double student_t_quantile(double p, double dof) {
+  return boost::math::quantile(boost::math::students_t(dof), p);
+}
+
 }  // namespace glintlab::verify

@@ -50,4 +50,9 @@ MeanTestResult t_test(const MeanAccumulator& a, double mu0);
 // exactly, ±infinity and p = 0 otherwise; with too few observations p is NaN.
 MeanTestResult welch_t_test(const MeanAccumulator& a, const MeanAccumulator& b);
 
+// Quantiles for confidence intervals: the standard normal's and Student t's (dof > 0) inverse
+// cdf at probability p in (0, 1).
+double normal_quantile(double p);
+double student_t_quantile(double p, double dof);
+
 }  // namespace glintlab::verify

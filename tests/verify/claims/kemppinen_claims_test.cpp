@@ -20,6 +20,11 @@ TEST(KemppinenClaims, Convergence) { expect_probe(probe_kemppinen_convergence(),
 TEST(KemppinenClaims, Compensation) {
   expect_probe(probe_kemppinen_compensation(), "compensation");
 }
+// The finding of kemppinen.compensation: where k = 4 misses D by more than 5 %, k = 16 does not.
+TEST(KemppinenClaims, CompensationKFourFailsWhereSixteenHolds) {
+  expect_probe(probe_kemppinen_compensation_k4_fails(), "compensation k = 16 vs k = 4");
+}
+TEST(KemppinenClaims, Furnace) { expect_probe(probe_kemppinen_furnace(), "furnace"); }
 TEST(KemppinenClaims, Roulette) { expect_probe(probe_kemppinen_roulette(), "roulette"); }
 TEST(KemppinenClaims, Sampling) { expect_probe(probe_kemppinen_sampling(), "sampling"); }
 TEST(KemppinenClaims, SamplingRendered) {
