@@ -1,14 +1,21 @@
-// all.stability (CLAIMS.md, across papers): where each registered model breaks — NaN, Inf and
-// negative values of eval/pdf/sample over sweeps of α (1e-4 … 4), incidence (to 89.999° and
-// back-facing), anisotropy (to 1:1000), density, microroughness, footprint and light size
-// (verify/stability/). Holds where no model shows NaN/Inf/negative anywhere; holds-in-regime where
-// they appear only outside the core domain (α < 1e-3, θi > 89°, back-facing, anisotropy > 100:1,
-// or the float instantiation); fails where one appears inside it. Energy gain, p > 1 and variance
-// blow-up are reported in the detail. Negative control: a copy of smooth_ggx made to return NaN
-// for αx < 0.01 (verify/stability/nan_control.h) must be found and fail.
+// The across-method stability claims (CLAIMS.md all.stability): where each registered model
+// breaks, over sweeps of α (1e-4 … 4), incidence (to 89.999° and back-facing), anisotropy (to
+// 1:1000), density, microroughness, footprint and light size (verify/stability/). One check per
+// kind of breakage, each with its own verdict over the same sweep:
+//   all.stability        NaN, Inf or negative value/pdf/sample;
+//   all.energy-gain      a white-furnace albedo significantly above 1;
+//   all.probability      a probability intermediate (p, p_*) above 1;
+//   all.variance         a sample-weight variance Var(w)/E(w)² above 100.
+// Each: holds where no model shows it, holds-in-regime where it appears only outside the core
+// domain (sweep_plan.h: α ≥ 1e-3, anisotropy ≤ 100:1, front-facing θi ≤ 89°; for NaN/Inf/negative
+// also: double instantiation), fails where it appears inside. Controls (verify/stability/
+// nan_control.h): copies of a model wrong in one way near the truth, run through the same sweep
+// and decision — or, where the genuine verdict is fails, the corrected copy, which must hold.
 #include <fmt/format.h>
 
-#include <algorithm>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -21,85 +28,185 @@ namespace {
 
 using namespace stability;
 
-CheckResult run(Budget b) {
-  CheckResult r;
-  r.statistic = "cells with NaN, Inf or negative value/pdf/sample (double) in the core domain";
-  std::vector<std::string> holds, regime, fails;
-  std::size_t core_cells = 0, cells = 0, gains = 0, blowups = 0, p_over = 0;
-  const auto targets = sweep_targets();
-  for (const SweepTarget& t : targets) {
-    const ModelSweep s = sweep_model(t, b);
-    for (const SweepMap& m : s.maps) cells += m.cells.size();
-    const auto findings = find_failures(s);
-    std::string first;
-    for (const Finding& f : findings) {
-      if (f.breaks && f.in_core && !f.float_only) {
-        // Count the core cells of this plane that break.
-        for (const SweepMap& m : s.maps) {
-          if (m.plane.name != f.plane) continue;
-          for (std::size_t i = 0; i < m.cells.size(); ++i) {
-            const std::size_t cols = m.plane.theta_deg.size();
-            if (m.cells[i].double_defect() &&
-                in_core_domain(m.plane, m.plane.rows[i / cols], m.plane.theta_deg[i % cols]))
-              ++core_cells;
-          }
-        }
-      }
-      if (f.breaks && first.empty()) first = f.text();
-      gains += f.defect == "energy gain > 1";
-      blowups += f.defect == "variance blow-up";
-      p_over += f.defect == "p > 1";
-    }
-    switch (stability_verdict(s)) {
-      case Verdict::kHolds:
-        holds.push_back(t.id());
-        break;
-      case Verdict::kFails:
-        fails.push_back(fmt::format("{} ({})", t.id(), first));
-        break;
-      default:
-        regime.push_back(fmt::format("{} ({})", t.id(), first));
-    }
+const char* const kCoreDomain =
+    "the core domain: α ≥ 1e-3, anisotropy ≤ 100:1, front-facing θi ≤ 89°";
+
+// The sweeps of every registered target at one budget, measured once and shared by the four
+// checks (deterministic, so which check runs first does not matter).
+const std::vector<ModelSweep>& suite_sweeps(Budget b) {
+  static std::mutex mutex;
+  static std::map<Budget, std::unique_ptr<std::vector<ModelSweep>>> cache;
+  const std::lock_guard lock(mutex);
+  auto& slot = cache[b];
+  if (!slot) {
+    slot = std::make_unique<std::vector<ModelSweep>>();
+    for (const SweepTarget& t : sweep_targets()) slot->push_back(sweep_model(t, b));
   }
-  r.configurations = int(cells);
-  r.value = double(core_cells);
-  r.bound = 0;
-  r.verdict = !fails.empty()    ? Verdict::kFails
-              : !regime.empty() ? Verdict::kHoldsInRegime
-                                : Verdict::kHolds;
+  return *slot;
+}
+
+struct KindInfo {
+  DefectClass kind;
+  const char* id;
+  const char* what;  // the defect in words
+};
+
+// Per target: its verdict for the kind and its first finding of that kind.
+struct TargetVerdict {
+  std::string id;
+  Verdict verdict;
+  std::string first;
+};
+
+std::vector<TargetVerdict> judge_targets(const std::vector<ModelSweep>& sweeps, DefectClass kind) {
+  std::vector<TargetVerdict> out;
+  for (const ModelSweep& s : sweeps) {
+    TargetVerdict t{s.target.id(), stability_verdict(s, kind), ""};
+    for (const Finding& f : find_failures(s))
+      if (f.kind == kind) {
+        t.first = f.text();
+        break;
+      }
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
+// The check's verdict from its targets': fails if one fails, holds-in-regime if one holds there.
+Verdict combine(const std::vector<TargetVerdict>& targets) {
+  bool regime = false;
+  for (const TargetVerdict& t : targets) {
+    if (t.verdict == Verdict::kFails) return Verdict::kFails;
+    regime |= t.verdict == Verdict::kHoldsInRegime;
+  }
+  return regime ? Verdict::kHoldsInRegime : Verdict::kHolds;
+}
+
+std::string describe_targets(const std::vector<TargetVerdict>& targets) {
+  std::vector<std::string> holds, regime, fails;
+  for (const TargetVerdict& t : targets) {
+    if (t.verdict == Verdict::kHolds)
+      holds.push_back(t.id);
+    else if (t.verdict == Verdict::kFails)
+      fails.push_back(fmt::format("{} ({})", t.id, t.first));
+    else
+      regime.push_back(fmt::format("{} ({})", t.id, t.first));
+  }
   auto list = [](const std::vector<std::string>& v) {
     return v.empty() ? std::string("none") : fmt::format("{}", fmt::join(v, "; "));
   };
-  r.detail = fmt::format(
-      "{} model×sampler targets, {} cells: fails: {}; holds in regime: {}; holds: {} (also found: "
-      "{} planes with energy gain > 1, {} with variance blow-up, {} with p > 1; maps and regions: "
-      "glintlab sweep)",
-      targets.size(), cells, list(fails), list(regime), list(holds), gains, blowups, p_over);
+  return fmt::format("fails: {}; holds outside the core domain only: {}; holds: {}", list(fails),
+                     list(regime), list(holds));
+}
 
-  // The control: the broken copy of smooth_ggx with its default sampler, at the same budget.
-  const SweepTarget control{&nan_control_model(), std::nullopt, 0, "default"};
-  const ModelSweep cs = sweep_model(control, b);
-  const Verdict cv = stability_verdict(cs);
-  r.control_rejected = cv == Verdict::kFails;
-  r.control =
-      fmt::format("{} (NaN for αx < {:g}): verdict {}, found: {} ({})", nan_control_model().name,
-                  kNanControlAlpha, to_string(cv), describe_failure_region(cs),
-                  r.control_rejected ? "rejected" : "NOT rejected");
+// The control's models: wrong copies for a claim that holds, corrected ones for one that fails.
+std::vector<const ModelEntry*> control_models(DefectClass kind, bool holding) {
+  // A claim that fails: the same sweep and decision on a model known to behave (the corrected
+  // input), which must hold — the failure is the models', not the check's.
+  if (!holding && kind != DefectClass::kProbabilityAboveOne) return {&find_model("smooth_ggx")};
+  switch (kind) {
+    case DefectClass::kBreaks:
+      return {&sparse_nan_control_model()};
+    case DefectClass::kEnergyGain:
+      return {&gain_control_model()};
+    case DefectClass::kHugeVariance:
+      return {&spike_control_model()};
+    case DefectClass::kProbabilityAboveOne: {
+      // Every model with probability intermediates: p × 1.05 when the claim holds, p clamped to
+      // [0, 1] when it fails.
+      static std::map<std::pair<std::string, double>, std::unique_ptr<ModelEntry>> made;
+      static std::mutex mutex;
+      const std::lock_guard lock(mutex);
+      std::vector<const ModelEntry*> out;
+      const double scale = holding ? kProbabilityControlScale : 0.0;
+      for (const ModelEntry& m : registered_models()) {
+        bool has_p = false;
+        for (auto name : m.intermediates) has_p |= is_probability_name(name);
+        if (!has_p) continue;
+        auto& slot = made[{std::string(m.name), scale}];
+        if (!slot) slot = std::make_unique<ModelEntry>(probability_control_model(m.name, scale));
+        out.push_back(slot.get());
+      }
+      return out;
+    }
+  }
+  return {};
+}
+
+std::string control_text(DefectClass kind, bool holding) {
+  if (!holding && kind != DefectClass::kProbabilityAboveOne)
+    return "smooth_ggx, whose values are finite and weights bounded (the corrected input)";
+  switch (kind) {
+    case DefectClass::kBreaks:
+      return fmt::format("smooth_ggx with a NaN value in {:g} % of eval calls",
+                         100 * kSparseNanRate);
+    case DefectClass::kEnergyGain:
+      return fmt::format("smooth_ggx with value and weight × {:g}", kGainControlScale);
+    case DefectClass::kHugeVariance:
+      return fmt::format("smooth_ggx with weights × {:g} in {:g} % of samples (mean kept)",
+                         kSpikeWeight, 100 * kSpikeRate);
+    case DefectClass::kProbabilityAboveOne:
+      return holding ? fmt::format("every model's probabilities × {:g}", kProbabilityControlScale)
+                     : std::string("every model's probabilities clamped to [0, 1]");
+  }
+  return {};
+}
+
+CheckResult run_kind(Budget b, DefectClass kind, const char* what) {
+  const std::vector<ModelSweep>& sweeps = suite_sweeps(b);
+  std::size_t cells = 0;
+  for (const ModelSweep& s : sweeps)
+    for (const SweepMap& m : s.maps) cells += m.cells.size();
+  const auto targets = judge_targets(sweeps, kind);
+  CheckResult r;
+  r.configurations = int(cells);
+  r.verdict = combine(targets);
+  if (r.verdict == Verdict::kHoldsInRegime) r.regime = kCoreDomain;
+  int breaking = 0;
+  for (const TargetVerdict& t : targets) breaking += t.verdict == Verdict::kFails;
+  r.statistic = fmt::format("model×sampler targets with {} in the core domain", what);
+  r.value = breaking;
+  r.bound = 0;
+  r.detail = fmt::format(
+      "{} targets, {} cells ({} samples and {} uniform evaluations per cell): {}", targets.size(),
+      cells, cell_budget(b).samples, cell_budget(b).uniform_evals, describe_targets(targets));
+
+  const bool holding = is_holding(r.verdict);
+  std::vector<ModelSweep> control_sweeps;
+  for (const ModelEntry* m : control_models(kind, holding))
+    control_sweeps.push_back(sweep_model({m, std::nullopt, 0, "default"}, b));
+  const auto control_targets = judge_targets(control_sweeps, kind);
+  const Verdict cv = combine(control_targets);
+  r.control = fmt::format("{}: verdict {}; {}", control_text(kind, holding), to_string(cv),
+                          describe_targets(control_targets));
+  record_control(r, cv);
   return r;
 }
 
 }  // namespace
 
 std::vector<Check> across_checks() {
-  // Recorded 2026-12-01 with the 9 models registered (13 model×sampler targets), quick budget:
-  // holds — no NaN, Inf or negative value anywhere, double or float. (Before, holds in regime:
-  // kemppinen_beckmann's float instantiation gave NaN for microroughness 1e-9, 8 of 77 cells, up
-  // to 35 % of calls: |Σ| = σ⁴ of the glint lobe underflowed float in normal2; fixed there.)
-  // A model that adds or removes a failure region changes the verdict: record it as a finding.
-  return {{"all.stability", "every registered model (core/model_registry.cpp)",
-           "CLAIMS.md all.stability: sweeps of α, θi, anisotropy, density, microroughness, "
-           "footprint and light size",
-           Verdict::kHolds, run}};
+  const std::string who = "every registered model (core/model_registry.cpp)";
+  const std::string how =
+      "CLAIMS.md all.stability: sweeps of α, θi, anisotropy, density, microroughness, footprint "
+      "and light size";
+  auto check = [&](const char* id, DefectClass kind, const char* what, Verdict quick,
+                   std::optional<Verdict> full) {
+    return Check{id, who, how, quick, [kind, what](Budget b) { return run_kind(b, kind, what); },
+                 {}, full};
+  };
+  // Recorded with the 9 models registered (13 model×sampler targets). A model that adds or removes
+  // a failure region changes a verdict: record it as a finding.
+  return {
+      check("all.stability", DefectClass::kBreaks, "NaN, Inf or negative values", Verdict::kHolds,
+            std::nullopt),
+      check("all.energy-gain", DefectClass::kEnergyGain, "a significant energy gain",
+            Verdict::kHolds, std::nullopt),
+      check("all.probability", DefectClass::kProbabilityAboveOne, "a probability above 1",
+            Verdict::kHolds, std::nullopt),
+      check("all.variance", DefectClass::kHugeVariance, "a variance blow-up", Verdict::kFails,
+            std::nullopt),
+  };
 }
 
 }  // namespace glintlab::verify

@@ -49,7 +49,11 @@ double furnace_light_solid_angle(const ModelEntry& m, const std::vector<double>&
   return 2 * std::numbers::pi * (1 - q.light.cos_half_angle);
 }
 
-bool is_probability_name(std::string_view name) { return name == "p" || name.substr(0, 2) == "p_"; }
+bool is_probability_name(std::string_view name) {
+  constexpr std::string_view kRaw = "_unclamped";  // the raw value before clamping, by design
+  const bool raw = name.size() >= kRaw.size() && name.substr(name.size() - kRaw.size()) == kRaw;
+  return (name == "p" || name.substr(0, 2) == "p_") && !raw;
+}
 
 void Defects::add_record(std::initializer_list<double> xs,
                          std::initializer_list<double> signed_free) {

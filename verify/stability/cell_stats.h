@@ -4,7 +4,8 @@
 // furnace albedo and its error, probabilities above one, and the relative variance of the weight.
 //
 // Conventions. Probability intermediate: an entry of kIntermediates named `p` or starting with
-// `p_` (p_clamped, p_glint, ...) is a probability; a value above 1 there is counted. Energy gain:
+// `p_` (p_clamped, p_glint, ...) is a probability, except one ending in `_unclamped` (the raw value
+// a model clamps, which may exceed 1 by design); a value above 1 there is counted. Energy gain:
 // the directional albedo ρ(ωi) = ∫ f cos dωo (the white furnace with F = 1) estimated as the mean
 // sample weight (rejected samples count 0) and, independently, as 4π × the mean value at uniform
 // directions; a gain is significant where an estimate exceeds 1 by more than kGainSigmas standard

@@ -36,6 +36,7 @@ std::string describe_axis(const std::vector<double>& values, const std::vector<b
 
 struct Probe {
   std::string defect;
+  DefectClass kind;
   bool breaks;
   bool is_float;
   bool percent;  // worst is a fraction shown in %
@@ -47,7 +48,12 @@ double frac(std::uint64_t k, std::uint64_t n) { return n ? double(k) / double(n)
 
 // NaN / Inf / negative of one precision, as a fraction of the worst component.
 Probe defect_probe(const std::string& name, std::uint64_t Defects::*field, bool use_float) {
-  return {name, true, use_float, true, [=](const CellStats& c, std::string& comp) {
+  return {name,
+          DefectClass::kBreaks,
+          true,
+          use_float,
+          true,
+          [=](const CellStats& c, std::string& comp) {
             const Defects& v = use_float ? c.value_f : c.value;
             const Defects& p = use_float ? c.pdf_f : c.pdf;
             const Defects& s = use_float ? c.sample_f : c.sample;
@@ -89,12 +95,13 @@ std::vector<Finding> find_failures(const ModelSweep& s) {
     probes.push_back(defect_probe("Inf", &Defects::inf, f));
     probes.push_back(defect_probe("negative", &Defects::negative, f));
   }
-  probes.push_back({"energy gain > 1", false, false, false,
+  probes.push_back({"energy gain > 1", DefectClass::kEnergyGain, false, false, false,
                     [](const CellStats& c, std::string&) { return c.gain(); }});
-  probes.push_back({"p > 1", false, false, true, [](const CellStats& c, std::string&) {
-                      return frac(c.p_above_one, c.p_evals);
-                    }});
-  probes.push_back({"variance blow-up", false, false, false, [](const CellStats& c, std::string&) {
+  probes.push_back(
+      {"p > 1", DefectClass::kProbabilityAboveOne, false, false, true,
+       [](const CellStats& c, std::string&) { return frac(c.p_above_one, c.p_evals); }});
+  probes.push_back({"variance blow-up", DefectClass::kHugeVariance, false, false, false,
+                    [](const CellStats& c, std::string&) {
                       return c.variance_blowup() ? c.relative_variance : 0.0;
                     }});
 
@@ -106,6 +113,7 @@ std::vector<Finding> find_failures(const ModelSweep& s) {
       std::vector<bool> fr(rows, false), fc(cols, false);
       Finding f;
       f.defect = probes[k].defect;
+      f.kind = probes[k].kind;
       f.breaks = probes[k].breaks;
       f.float_only = is_float;
       f.plane = m.plane.name;
@@ -150,10 +158,10 @@ std::string describe_failure_region(const ModelSweep& s) {
   return text;
 }
 
-Verdict stability_verdict(const ModelSweep& s) {
+Verdict stability_verdict(const ModelSweep& s, DefectClass kind) {
   bool any = false, core = false;
   for (const Finding& f : find_failures(s)) {
-    if (!f.breaks) continue;
+    if (f.kind != kind) continue;
     any = true;
     core |= f.in_core && !f.float_only;
   }

@@ -13,8 +13,13 @@
 
 namespace glintlab::verify::stability {
 
+// The four kinds of breakage all.stability tells apart, each with its own verdict: NaN, Inf or
+// negative numbers; a significant energy gain; a probability above one; a variance blow-up.
+enum class DefectClass { kBreaks, kEnergyGain, kProbabilityAboveOne, kHugeVariance };
+
 struct Finding {
-  std::string defect;       // "NaN", "Inf", "negative", "energy gain > 1", "p > 1", ...
+  std::string defect;  // "NaN", "Inf", "negative", "energy gain > 1", "p > 1", ...
+  DefectClass kind = DefectClass::kBreaks;
   std::string components;   // e.g. "value, pdf" or "sample weight" (where it applies)
   bool float_only = false;  // seen in the float instantiation only
   std::string plane;        // the plane's name
@@ -31,7 +36,9 @@ std::vector<Finding> find_failures(const ModelSweep& s);
 // "none: …" or the findings joined by "; ".
 std::string describe_failure_region(const ModelSweep& s);
 
-// holds / holds-in-regime / fails for one swept target (see above).
-Verdict stability_verdict(const ModelSweep& s);
+// holds / holds-in-regime / fails for one swept target and one kind of defect: holds where none
+// is found, holds-in-regime where found only outside the core domain (or, for NaN/Inf/negative,
+// only in the float instantiation), fails where found inside it.
+Verdict stability_verdict(const ModelSweep& s, DefectClass kind = DefectClass::kBreaks);
 
 }  // namespace glintlab::verify::stability

@@ -32,7 +32,7 @@ struct ModelSweep {
   double seconds = 0;  // wall time (progress and reports only; never asserted)
 };
 
-// Per-cell sample counts of a budget: quick = 64 uniform evaluations + 64 samples, full = 1024 +
+// Per-cell sample counts of a budget: quick = 64 uniform evaluations + 256 samples, full = 1024 +
 // 1024 (and finer planes, sweep_planes(quick = false)).
 CellBudget cell_budget(Budget b);
 

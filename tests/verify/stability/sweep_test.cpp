@@ -75,6 +75,30 @@ TEST(StabilitySweep, TheNanControlIsFoundWhereItIsBroken) {
   EXPECT_EQ(region.find("anisotropy sweep"), std::string::npos) << region;  // αx ≥ 0.1 there
 }
 
+// A defect in 0.05 % of calls, the rarity all.stability's control has, is still found.
+TEST(StabilitySweep, ASparseNanIsFound) {
+  const ModelSweep s = sweep_model(target_of(sparse_nan_control_model()), Budget::kQuick);
+  EXPECT_EQ(stability_verdict(s), Verdict::kFails) << describe_failure_region(s);
+  EXPECT_EQ(stability_verdict(s, DefectClass::kEnergyGain), Verdict::kHolds);
+}
+
+// Each kind of breakage has its own verdict: a 3 % gain and weight spikes are found as such.
+TEST(StabilitySweep, GainAndSpikeControlsFailTheirOwnKindOnly) {
+  const ModelSweep g = sweep_model(target_of(gain_control_model()), Budget::kQuick);
+  EXPECT_EQ(stability_verdict(g, DefectClass::kEnergyGain), Verdict::kFails);
+  EXPECT_EQ(stability_verdict(g, DefectClass::kBreaks), Verdict::kHolds);
+  const ModelSweep v = sweep_model(target_of(spike_control_model()), Budget::kQuick);
+  EXPECT_EQ(stability_verdict(v, DefectClass::kHugeVariance), Verdict::kFails);
+  EXPECT_EQ(stability_verdict(v, DefectClass::kBreaks), Verdict::kHolds);
+}
+
+TEST(StabilitySweep, RawUnclampedValuesAreNotProbabilities) {
+  EXPECT_TRUE(is_probability_name("p"));
+  EXPECT_TRUE(is_probability_name("p_glint"));
+  EXPECT_FALSE(is_probability_name("p_unclamped"));
+  EXPECT_FALSE(is_probability_name("pdf"));
+}
+
 TEST(StabilitySweep, SmoothModelsAreClean) {
   for (const SweepTarget& t : sweep_targets("smooth_ggx")) {
     if (t.sampler != "vndf") continue;
