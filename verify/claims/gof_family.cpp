@@ -190,6 +190,9 @@ Verdict summarize_gof(const GofOutcome& o, const std::vector<GofControl>& contro
   r.control =
       fmt::format("rejected at the first Holm level {:.2g}: {}", o.configuration_level, text);
   r.control_p_value = largest;
+  // The family's decision on the wrong inputs: a rejected control case is "fails" there; every
+  // control family rejected makes the control's verdict fails.
+  r.control_verdict = r.control_rejected ? Verdict::kFails : Verdict::kHolds;
 
   if (o.family.rejections > 0 || o.hard_failures > 0) return Verdict::kFails;
   if (o.inconclusive > 0) return Verdict::kInconclusive;

@@ -223,6 +223,17 @@ CheckResult run(Budget b) {
   else
     r.verdict =
         printed_holds && family_verdict == Verdict::kHolds ? Verdict::kHolds : Verdict::kFails;
+  // Eq. 3 as printed fails; the control is the corrected |J_T| = |U_Ω|·p_T through the same
+  // decision: it agrees with the finite differences and its transported samples are uniform.
+  if (r.verdict == Verdict::kFails) {
+    record_control(r,
+                   fd_ok && family_verdict == Verdict::kHolds ? Verdict::kHolds : Verdict::kFails);
+    r.control = fmt::format(
+        "the corrected |J_T| = |U_Ω|·p_T (finite differences to {:.1e}, "
+        "uniformity family {}): {}; sensitivity: {}",
+        std::max(ggx.fd_vs_true, beck.fd_vs_true), to_string(family_verdict),
+        to_string(*r.control_verdict), r.control);
+  }
   r.detail = fmt::format(
       "Eq. 3 as printed is not the Jacobian of either map: J_paper/J_T = 32/(π²‖Mᵀω‖) for GGX "
       "({:.4g} … {:.4g}, formula to {:.1e}) and 16/(π² cosθ) for Beckmann ({:.4g} … {:.4g}, "
