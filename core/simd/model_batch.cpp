@@ -75,6 +75,19 @@ ModelQuery<double> query_row(std::span<const Column<S>> q, std::size_t i) {
   return from_row(row);
 }
 
+// Runs the model's entry (`entry`: its eval or its sample) of isa's table on the padded columns;
+// false when the model is not batched.
+template <class S>
+bool run_batched(const ModelEntry& model, std::size_t (*entry)(std::size_t),
+                 std::span<const double> params, std::span<const Column<S>> q,
+                 std::span<S* const> outputs, std::size_t n, Isa isa, Math math) {
+  const int m = batched_index(model);
+  if (m < 0) return false;
+  detail::run<S>(entry(static_cast<std::size_t>(m)), params.data(), q.data(), outputs.data(), n,
+                 isa, math);
+  return true;
+}
+
 template <class S>
 void eval_any(const ModelEntry& model, std::span<const double> params,
               std::span<const Column<S>> query, std::span<S* const> outputs, std::size_t n, Isa isa,
@@ -82,12 +95,7 @@ void eval_any(const ModelEntry& model, std::span<const double> params,
   check_model<S>("eval_batch", model, params.size(), query, outputs.size(),
                  2 + model.intermediates.size(), isa, math);
   const auto q = full_query(query);
-  const int m = batched_index(model);
-  if (m >= 0) {
-    detail::run<S>(detail::model_eval_entry(m), params.data(), q.data(), outputs.data(), n, isa,
-                   math);
-    return;
-  }
+  if (run_batched<S>(model, &detail::model_eval_entry, params, q, outputs, n, isa, math)) return;
   // Not batched: the entry's double thunks, row by row.
   const std::vector<double> values(params.begin(), params.end());
   for (std::size_t i = 0; i < n; ++i) {
@@ -109,12 +117,7 @@ void sample_any(const ModelEntry& model, std::span<const double> params,
     throw std::invalid_argument("sample_batch: uniform columns have stride 0 or 1");
   }
   const auto q = full_query(query, std::array{u1, u2});
-  const int m = batched_index(model);
-  if (m >= 0) {
-    detail::run<S>(detail::model_sample_entry(m), params.data(), q.data(), outputs.data(), n, isa,
-                   math);
-    return;
-  }
+  if (run_batched<S>(model, &detail::model_sample_entry, params, q, outputs, n, isa, math)) return;
   const std::vector<double> values(params.begin(), params.end());
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2<double> u{static_cast<double>(u1.data[u1.stride * i]),
