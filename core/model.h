@@ -13,9 +13,11 @@
 //   sample<T>(Params, ModelQuery, Vec2 u) -> ModelSample<T>   wo from wi
 // and optionally
 //   validate(ModelQuery<double>) -> std::optional<QueryViolation>  the model's own input rules
+//   kDoubleOnly = true            no float instantiation (SIMD batches run it on double)
+//   kBatched = false              no SIMD instantiation (batches loop over its double thunks)
 // params<T> reads the values by name (values[param_index<M>("seed")]), never by position.
 // core/model_registry.h turns such a struct into a type-erased entry for the CLI, the claims, the
-// figures and the benchmarks; adding a model = its file plus one line in core/model_registry.cpp.
+// figures and the benchmarks; adding a model = its file plus its type in core/model_list.h.
 #pragma once
 
 #include <array>

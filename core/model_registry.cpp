@@ -1,39 +1,29 @@
-// The model registry: one registration line per model, and parameter parsing/validation.
+// The model registry: an entry per built-in model (core/model_list.h) and those added at run
+// time, and parameter parsing/validation.
 #include "core/model_registry.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
 
-#include "core/glints/deliot_belcour.h"
-#include "core/glints/kneiphof.h"
-#include "core/glints/kneiphof_ltc.h"
 #include "core/io/csv.h"
-#include "core/models/podee.h"
-#include "core/glints/chermain.h"
-#include "core/models/kemppinen_beckmann.h"
-#include "core/models/kemppinen_ggx.h"
-#include "core/models/smooth_beckmann.h"
-#include "core/models/smooth_ggx.h"
+#include "core/model_list.h"
 
 namespace glintlab {
 
 namespace {
+
+template <class... Ms>
+void append_entries(std::vector<ModelEntry>& m, ModelList<Ms...>) {
+  (m.push_back(make_model_entry<Ms>()), ...);
+}
 
 // The built-in models followed by those added with register_model.
 std::vector<ModelEntry>& model_list() {
   static std::vector<ModelEntry> kModels = [] {
     std::vector<ModelEntry> m;
     m.reserve(kMaxModels);  // register_model never reallocates: references stay valid
-    m.push_back(make_model_entry<SmoothGGX>());
-    m.push_back(make_model_entry<SmoothBeckmann>());
-    m.push_back(make_model_entry<Podee>());
-    m.push_back(make_model_entry<DeliotBelcour>());
-    m.push_back(make_model_entry<KneiphofKlein>());
-    m.push_back(make_model_entry<KneiphofKleinArea>());
-    m.push_back(make_model_entry<Chermain>());
-    m.push_back(make_model_entry<KemppinenGGX>());
-    m.push_back(make_model_entry<KemppinenBeckmann>());
+    append_entries(m, BuiltinModels{});
     return m;
   }();
   return kModels;

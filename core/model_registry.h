@@ -110,7 +110,7 @@ concept HasFloatInstantiation = !DoubleOnly<M> && requires(std::span<const doubl
 };
 }  // namespace detail
 
-// Builds the entry of a static model (used by the registration lines in model_registry.cpp).
+// Builds the entry of a static model (model_registry.cpp makes one per type of BuiltinModels).
 template <Model M>
 ModelEntry make_model_entry() {
   ModelEntry e;

@@ -22,7 +22,7 @@
 // the texel fetches per-lane integer code and gathers (core/math/lanes.h, lane_rng.h). The scalar
 // double instantiation is the host code this model always had, op for op; the model is offered in
 // double only (kDoubleOnly): cell coordinates at LOD −20 are uv·2^20, whose bilinear weights float
-// would round to 2^−3 at uv ≈ 1 (batched on Wide<double>, core/simd/model_instantiate.h).
+// would round to 2^−3 at uv ≈ 1 (batched on Wide<double>, core/simd/instantiate.h).
 #pragma once
 
 #include <array>

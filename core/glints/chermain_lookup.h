@@ -4,11 +4,11 @@
 // probes of EXT_texture_filter_anisotropic; texels gathered from the dictionary's float table.
 #pragma once
 
-// Why generic: the batched model (core/simd/batched_models.h) runs one lookup per lane, each lane
-// with its own distribution, level, MIP level and probe count; indices are integer-valued T (exact:
-// every index is below 2^24), texel addresses per lane are gathers, and every per-lane choice is a
-// select, so the scalar double instantiation is the host code the dictionary always had, op for
-// op (ChermainDictionary::lookup_lod/lookup_grad call these at T = double).
+// Why generic: the batched model (core/model_list.h, BatchedModels) runs one lookup per lane, each
+// lane with its own distribution, level, MIP level and probe count; indices are integer-valued T
+// (exact: every index is below 2^24), texel addresses per lane are gathers, and every per-lane
+// choice is a select, so the scalar double instantiation is the host code the dictionary always
+// had, op for op (ChermainDictionary::lookup_lod/lookup_grad call these at T = double).
 
 #include <cmath>
 #include <cstddef>

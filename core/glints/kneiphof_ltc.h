@@ -106,6 +106,7 @@ struct KneiphofKleinArea {
       "(core/ltc); D_H by Eq. 29";
   static constexpr unsigned kNeeds = kNeedsFootprint | kNeedsAreaLight;
   static constexpr bool kDoubleOnly = true;  // the LTC table lookup is scalar double
+  static constexpr bool kBatched = false;    // (so the batch API loops over its thunks)
   static constexpr std::array<ParamSpec, 12> kParams = {{
       {"alpha", 0.25, kLtcMinAlpha, 1.0, false, false,
        "isotropic GGX roughness (the LTC tables cover sqrt(alpha) in [0, 1])"},

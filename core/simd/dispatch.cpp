@@ -1,8 +1,12 @@
-// Runtime ISA choice (CPU features, GLINTLAB_ISA) and the eval_batch / sample_batch entry points.
+// Runtime ISA choice (CPU features, GLINTLAB_ISA), the one table switch and argument check behind
+// every batch call, and the kernel eval_batch / sample_batch entry points.
+#include <fmt/format.h>
+
 #include <array>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "core/simd/batch.h"
 #include "core/simd/kernels.h"
@@ -26,7 +30,7 @@ const KernelInfo kInfos[] = {GLINTLAB_SIMD_KERNELS(GLINTLAB_INFO)};
 #undef GLINTLAB_INFO
 constexpr int kCount = static_cast<int>(sizeof(kInfos) / sizeof(kInfos[0]));
 
-const detail::IsaTable& table(Isa isa) {
+const detail::BatchFns* table(Isa isa) {
   switch (isa) {
     case Isa::kSse42:
       return detail::table_sse42();
@@ -40,18 +44,7 @@ const detail::IsaTable& table(Isa isa) {
   return detail::table_scalar();
 }
 
-template <class S>
-void check_strides(std::span<const Column<S>> inputs) {
-  for (std::size_t j = 0; j < inputs.size(); ++j) {
-    if (inputs[j].stride > 1) {
-      throw std::invalid_argument("eval_batch: input column " + std::to_string(j) + " has stride " +
-                                  std::to_string(inputs[j].stride) + " (valid: 0 or 1)");
-    }
-  }
-}
-
-template <class S>
-void check_call(int kernel, std::size_t n_in, std::size_t n_out, Isa isa, Math math) {
+void check_kernel(int kernel, std::size_t n_in, std::size_t n_out) {
   if (kernel < 0 || kernel >= kCount) {
     throw std::invalid_argument("eval_batch: kernel id " + std::to_string(kernel) +
                                 " out of range [0, " + std::to_string(kCount) + ")");
@@ -63,16 +56,62 @@ void check_call(int kernel, std::size_t n_in, std::size_t n_out, Isa isa, Math m
                                 std::to_string(k.outputs.size()) + " output columns, got " +
                                 std::to_string(n_in) + " and " + std::to_string(n_out));
   }
-  if (!isa_supported(isa)) {
-    throw std::invalid_argument("eval_batch: ISA " + std::string(isa_name(isa)) +
-                                " is not supported by this CPU");
-  }
-  if (std::is_same_v<S, double> && math == Math::kFast) {
-    throw std::invalid_argument("eval_batch: fast math is single precision only (use float)");
-  }
+}
+
+std::string input_label(std::size_t j) { return "input column " + std::to_string(j); }
+
+template <class S>
+void eval_kernel(int kernel, std::span<const Column<S>> inputs, std::span<S* const> outputs,
+                 std::size_t n, Isa isa, Math math) {
+  check_kernel(kernel, inputs.size(), outputs.size());
+  detail::check_call("eval_batch", inputs, &input_label, isa, math);
+  detail::run<S>(static_cast<std::size_t>(kernel), nullptr, inputs.data(), outputs.data(), n, isa,
+                 math);
 }
 
 }  // namespace
+
+namespace detail {
+
+template <class S>
+void check_call(const char* what, std::span<const Column<S>> in, std::string (*label)(std::size_t),
+                Isa isa, Math math) {
+  for (std::size_t j = 0; j < in.size(); ++j) {
+    if (in[j].stride > 1) {
+      throw std::invalid_argument(
+          fmt::format("{}: {} has stride {} (valid: 0 or 1)", what, label(j), in[j].stride));
+    }
+  }
+  if (!isa_supported(isa)) {
+    throw std::invalid_argument(
+        fmt::format("{}: ISA {} is not supported by this CPU", what, isa_name(isa)));
+  }
+  if (std::is_same_v<S, double> && math == Math::kFast) {
+    throw std::invalid_argument(
+        fmt::format("{}: fast math is single precision only (use float)", what));
+  }
+}
+template void check_call<float>(const char*, std::span<const Column<float>>,
+                                std::string (*)(std::size_t), Isa, Math);
+template void check_call<double>(const char*, std::span<const Column<double>>,
+                                 std::string (*)(std::size_t), Isa, Math);
+
+template <class S>
+void run(std::size_t entry, const double* params, const Column<S>* in, S* const* out, std::size_t n,
+         Isa isa, Math math) {
+  const BatchFns& f = table(isa)[entry];
+  if constexpr (std::is_same_v<S, float>) {
+    (math == Math::kFast ? f.fast_float : f.exact_float)(params, in, out, n);
+  } else {
+    f.exact_double(params, in, out, n);
+  }
+}
+template void run<float>(std::size_t, const double*, const Column<float>*, float* const*,
+                         std::size_t, Isa, Math);
+template void run<double>(std::size_t, const double*, const Column<double>*, double* const*,
+                          std::size_t, Isa, Math);
+
+}  // namespace detail
 
 std::string_view isa_name(Isa isa) {
   switch (isa) {
@@ -185,17 +224,12 @@ KernelInfo kernel_info(int kernel) {
 
 void eval_batch(int kernel, std::span<const Column<float>> inputs, std::span<float* const> outputs,
                 std::size_t n, Isa isa, Math math) {
-  check_call<float>(kernel, inputs.size(), outputs.size(), isa, math);
-  check_strides(inputs);
-  const detail::IsaTable& t = table(isa);
-  (math == Math::kFast ? t.fast_float : t.exact_float)[kernel](inputs.data(), outputs.data(), n);
+  eval_kernel(kernel, inputs, outputs, n, isa, math);
 }
 
 void eval_batch(int kernel, std::span<const Column<double>> inputs,
                 std::span<double* const> outputs, std::size_t n, Isa isa, Math math) {
-  check_call<double>(kernel, inputs.size(), outputs.size(), isa, math);
-  check_strides(inputs);
-  table(isa).exact_double[kernel](inputs.data(), outputs.data(), n);
+  eval_kernel(kernel, inputs, outputs, n, isa, math);
 }
 
 template <class S>

@@ -1,8 +1,11 @@
-// The batch driver: loads SoA columns into one float type W, runs a kernel functor, stores. Each
-// ISA translation unit includes this once and instantiates it for its own W (include in .cpp only).
+// The batch drivers and the table of one ISA: load SoA columns into one float type W, run a kernel
+// functor or a model's own eval/sample template (core/model.h), store. Each ISA translation unit
+// includes this once and builds its table with make_isa_table or make_xsimd_table (include in .cpp
+// only).
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <type_traits>
 #include <utility>
 
@@ -21,7 +24,9 @@
 #undef __ieee754_rem_pio2
 #undef __kernel_rem_pio2
 
+#include "core/model_list.h"
 #include "core/simd/kernels.h"
+#include "core/simd/model_batch.h"
 #include "core/simd/table.h"
 #include "core/simd/wide.h"  // (any order works: the Wide ops are found by ADL, see wide.h)
 
@@ -88,7 +93,8 @@ GLINTLAB_FN void run_full_batches(const S* const* base, const std::size_t* mask,
 }
 
 template <class K, class W, class S>
-void run_kernel(const Column<S>* inputs, S* const* outputs, std::size_t n) {
+void run_kernel(const double* /*params*/, const Column<S>* inputs, S* const* outputs,
+                std::size_t n) {
   constexpr std::size_t kL = kLanesOf<W>;
   constexpr std::size_t kIn = K::kIn.size();
   constexpr std::size_t kOut = K::kOut.size();
@@ -123,20 +129,112 @@ void run_kernel(const Column<S>* inputs, S* const* outputs, std::size_t n) {
   }
 }
 
-// WF: exact float type, WFF: fast float type, WD: exact double type of one ISA.
-template <class WF, class WFF, class WD>
-const IsaTable& make_table() {
-#define GLINTLAB_ENTRY_F(K) &run_kernel<K, WF, float>,
-#define GLINTLAB_ENTRY_FF(K) &run_kernel<K, WFF, float>,
-#define GLINTLAB_ENTRY_D(K) &run_kernel<K, WD, double>,
-  static constexpr BatchFn<float> kExactF[] = {GLINTLAB_SIMD_KERNELS(GLINTLAB_ENTRY_F)};
-  static constexpr BatchFn<float> kFastF[] = {GLINTLAB_SIMD_KERNELS(GLINTLAB_ENTRY_FF)};
-  static constexpr BatchFn<double> kExactD[] = {GLINTLAB_SIMD_KERNELS(GLINTLAB_ENTRY_D)};
-#undef GLINTLAB_ENTRY_F
-#undef GLINTLAB_ENTRY_FF
-#undef GLINTLAB_ENTRY_D
-  static constexpr IsaTable kTable{kExactF, kFastF, kExactD};
+// Output k of rows [i, i + count): full batches stored directly, a partial one through a buffer.
+template <class W, class S>
+GLINTLAB_FN void store_rows(S* out, std::size_t i, std::size_t count, const W& w) {
+  constexpr std::size_t kL = kLanesOf<W>;
+  if (count == kL) {
+    store_lanes(out + i, w);
+    return;
+  }
+  alignas(64) S tmp[kL];
+  store_lanes(tmp, w);
+  for (std::size_t l = 0; l < count; ++l) out[i + l] = tmp[l];
+}
+
+// q: kQueryColumnsWithCorners columns in layout order (model_batch.cpp pads a query without
+// corners with zero columns); the corners are loaded only for the models that read them.
+template <class W, bool kCorners, class S>
+GLINTLAB_FN ModelQuery<W> load_query(const Column<S>* q, std::size_t i, std::size_t count) {
+  ModelQuery<W> r;
+  for_each_query_column(r, [&](std::size_t k, const QueryColumn& c, W& member) {
+    member = kCorners || c.part != QueryPart::kCorners ? load_column<W>(q[k], i, count) : W(0);
+  });
+  return r;
+}
+
+template <class M>
+inline constexpr bool kReadsCorners = (M::kNeeds & kNeedsPixelCorners) != 0;
+
+template <class M, class W, class S>
+void run_model_eval(const double* params, const Column<S>* query, S* const* outputs,
+                    std::size_t n) {
+  constexpr std::size_t kL = kLanesOf<W>;
+  // Parameters are uniform over the call: converted to W once.
+  const auto p = M::template params<W>(std::span<const double>(params, M::kParams.size()));
+  for (std::size_t i = 0; i < n; i += kL) {
+    const std::size_t count = n - i < kL ? n - i : kL;
+    const auto r = M::template eval<W>(p, load_query<W, kReadsCorners<M>>(query, i, count));
+    store_rows(outputs[0], i, count, r.value);
+    store_rows(outputs[1], i, count, r.pdf);
+    for (std::size_t k = 0; k < r.intermediates.size(); ++k)
+      store_rows(outputs[2 + k], i, count, r.intermediates[k]);
+  }
+}
+
+// query: as for run_model_eval, then the two uniform columns.
+template <class M, class W, class S>
+void run_model_sample(const double* params, const Column<S>* query, S* const* outputs,
+                      std::size_t n) {
+  constexpr std::size_t kL = kLanesOf<W>;
+  const Column<S>* u = query + kQueryColumnsWithCorners;
+  const auto p = M::template params<W>(std::span<const double>(params, M::kParams.size()));
+  for (std::size_t i = 0; i < n; i += kL) {
+    const std::size_t count = n - i < kL ? n - i : kL;
+    const Vec2<W> uv{load_column<W>(u[0], i, count), load_column<W>(u[1], i, count)};
+    const ModelSample<W> s =
+        M::template sample<W>(p, load_query<W, kReadsCorners<M>>(query, i, count), uv);
+    store_rows(outputs[0], i, count, s.wo.x);
+    store_rows(outputs[1], i, count, s.wo.y);
+    store_rows(outputs[2], i, count, s.wo.z);
+    store_rows(outputs[3], i, count, s.pdf);
+    store_rows(outputs[4], i, count, s.weight);
+    store_rows(outputs[5], i, count, from_mask<W>(s.rejected));
+  }
+}
+
+template <class K, class WF, class WFF, class WD>
+constexpr BatchFns kernel_fns() {
+  return {&run_kernel<K, WF, float>, &run_kernel<K, WFF, float>, &run_kernel<K, WD, double>};
+}
+template <class M, class WF, class WFF, class WD>
+constexpr BatchFns model_eval_fns() {
+  return {&run_model_eval<M, WF, float>, &run_model_eval<M, WFF, float>,
+          &run_model_eval<M, WD, double>};
+}
+template <class M, class WF, class WFF, class WD>
+constexpr BatchFns model_sample_fns() {
+  return {&run_model_sample<M, WF, float>, &run_model_sample<M, WFF, float>,
+          &run_model_sample<M, WD, double>};
+}
+
+// A double-only model (kDoubleOnly) runs on the double batches whatever the column type: float
+// columns are widened on load and the results rounded on store, as the scalar loop over its
+// double thunks does; fast math (a float policy) does not apply.
+template <class M, class WF, class WD>
+using FloatBatchOf = std::conditional_t<glintlab::detail::DoubleOnly<M>, WD, WF>;
+
+// The table of one ISA, in the entry order of core/simd/table.h. WF: its exact float type, WFF:
+// its fast float type, WD: its exact double type.
+template <class WF, class WFF, class WD, class... Ms>
+const BatchFns* make_table(ModelList<Ms...>) {
+#define GLINTLAB_KERNEL_ENTRY(K) kernel_fns<K, WF, WFF, WD>(),
+  static constexpr BatchFns kTable[] = {
+      GLINTLAB_SIMD_KERNELS(GLINTLAB_KERNEL_ENTRY)
+          model_eval_fns<Ms, FloatBatchOf<Ms, WF, WD>, FloatBatchOf<Ms, WFF, WD>, WD>()...,
+      model_sample_fns<Ms, FloatBatchOf<Ms, WF, WD>, FloatBatchOf<Ms, WFF, WD>, WD>()...};
+#undef GLINTLAB_KERNEL_ENTRY
   return kTable;
+}
+template <class WF, class WFF, class WD>
+const BatchFns* make_isa_table() {
+  return make_table<WF, WFF, WD>(BatchedModels{});
+}
+// The table of an xsimd architecture A.
+template <class A>
+const BatchFns* make_xsimd_table() {
+  return make_isa_table<Wide<xsimd::batch<float, A>>, Wide<xsimd::batch<float, A>, FastMath>,
+                        Wide<xsimd::batch<double, A>>>();
 }
 
 }  // namespace

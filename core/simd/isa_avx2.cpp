@@ -5,20 +5,9 @@
 #endif
 #define GLINTLAB_SIMD_TU avx2
 #include "core/simd/instantiate.h"
-#include "core/simd/model_instantiate.h"
 
 namespace glintlab::simd::detail {
 
-const IsaTable& table_avx2() {
-  using A = xsimd::fma3<xsimd::avx2>;
-  return make_table<Wide<xsimd::batch<float, A>>, Wide<xsimd::batch<float, A>, FastMath>,
-                    Wide<xsimd::batch<double, A>>>();
-}
-
-const ModelFns* model_table_avx2() {
-  using A = xsimd::fma3<xsimd::avx2>;
-  return make_model_table<Wide<xsimd::batch<float, A>>, Wide<xsimd::batch<float, A>, FastMath>,
-                          Wide<xsimd::batch<double, A>>>(BatchedModels{});
-}
+const BatchFns* table_avx2() { return make_xsimd_table<xsimd::fma3<xsimd::avx2>>(); }
 
 }  // namespace glintlab::simd::detail

@@ -5,20 +5,9 @@
 #endif
 #define GLINTLAB_SIMD_TU avx512
 #include "core/simd/instantiate.h"
-#include "core/simd/model_instantiate.h"
 
 namespace glintlab::simd::detail {
 
-const IsaTable& table_avx512() {
-  using A = xsimd::avx512bw;
-  return make_table<Wide<xsimd::batch<float, A>>, Wide<xsimd::batch<float, A>, FastMath>,
-                    Wide<xsimd::batch<double, A>>>();
-}
-
-const ModelFns* model_table_avx512() {
-  using A = xsimd::avx512bw;
-  return make_model_table<Wide<xsimd::batch<float, A>>, Wide<xsimd::batch<float, A>, FastMath>,
-                          Wide<xsimd::batch<double, A>>>(BatchedModels{});
-}
+const BatchFns* table_avx512() { return make_xsimd_table<xsimd::avx512bw>(); }
 
 }  // namespace glintlab::simd::detail

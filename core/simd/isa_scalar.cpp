@@ -2,14 +2,9 @@
 // Wide<float, FastMath>.
 #define GLINTLAB_SIMD_TU scalar
 #include "core/simd/instantiate.h"
-#include "core/simd/model_instantiate.h"
 
 namespace glintlab::simd::detail {
 
-const IsaTable& table_scalar() { return make_table<float, Wide<float, FastMath>, double>(); }
-
-const ModelFns* model_table_scalar() {
-  return make_model_table<float, Wide<float, FastMath>, double>(BatchedModels{});
-}
+const BatchFns* table_scalar() { return make_isa_table<float, Wide<float, FastMath>, double>(); }
 
 }  // namespace glintlab::simd::detail

@@ -339,25 +339,24 @@ GLINTLAB_ISO_AREA_KERNEL(TotalAreaBeckmannEq31, "beckmann.total_area_eq31_printe
                          total_area_beckmann_eq31)
 #undef GLINTLAB_ISO_AREA_KERNEL
 
-// The list. X(Type) once per kernel; the batch tables, tests and benchmarks expand it.
-#define GLINTLAB_SIMD_KERNELS(X)                                                                  \
-  X(GgxD)                                                                                         \
-  X(GgxLambda)                                                                                    \
-  X(GgxProjectedArea) X(GgxG1) X(GgxG2HeightCorrelated) X(GgxG2Separable) X(GgxVndf) X(           \
-      GgxBrdfSchlick) X(GgxBrdfConductor) X(BeckmannD) X(BeckmannLambda) X(BeckmannProjectedArea) \
-      X(BeckmannG1) X(BeckmannG2HeightCorrelated) X(BeckmannG2Separable) X(BeckmannVndf)          \
-          X(BeckmannBrdfSchlick) X(BeckmannBrdfConductor) X(SampleWalterGgx)                      \
-              X(SampleWalterBeckmann) X(SampleHeitzVndf) X(SampleBeckmannVndf)                    \
-                  X(SampleSphericalCaps) X(SampleBoundedListing1) X(SampleBoundedExactIso)        \
-                      X(PdfWalterGgx) X(PdfWalterBeckmann) X(PdfHeitzVndf) X(PdfBeckmannVndf)     \
-                          X(PdfSphericalCaps) X(PdfBoundedListing1) X(PdfBoundedExactIso)         \
-                              X(PdfBoundedListing2) X(PdfBackfacingEq7) X(PdfBackfacingStable)    \
-                                  X(GgxMapToSquare) X(GgxMapFromSquare) X(GgxMapJacobianPaper)    \
-                                      X(GgxMapJacobianTrue) X(BeckmannMapToSquare)                \
-                                          X(BeckmannMapFromSquare) X(BeckmannMapJacobianPaper)    \
-                                              X(BeckmannMapJacobianTrue) X(TotalAreaGgx)          \
-                                                  X(TotalAreaBeckmann) X(TotalAreaGgxEq29)        \
-                                                      X(TotalAreaBeckmannEq30)                    \
-                                                          X(TotalAreaBeckmannEq31)
+// The list. X(Type) once per kernel; the batch table, tests and benchmarks expand it.
+// clang-format off
+#define GLINTLAB_SIMD_KERNELS(X)                                                                   \
+  X(GgxD) X(GgxLambda) X(GgxProjectedArea) X(GgxG1)                                                \
+  X(GgxG2HeightCorrelated) X(GgxG2Separable) X(GgxVndf) X(GgxBrdfSchlick) X(GgxBrdfConductor)      \
+  X(BeckmannD) X(BeckmannLambda) X(BeckmannProjectedArea) X(BeckmannG1)                            \
+  X(BeckmannG2HeightCorrelated) X(BeckmannG2Separable) X(BeckmannVndf)                             \
+  X(BeckmannBrdfSchlick) X(BeckmannBrdfConductor)                                                  \
+  X(SampleWalterGgx) X(SampleWalterBeckmann) X(SampleHeitzVndf) X(SampleBeckmannVndf)              \
+  X(SampleSphericalCaps) X(SampleBoundedListing1) X(SampleBoundedExactIso)                         \
+  X(PdfWalterGgx) X(PdfWalterBeckmann) X(PdfHeitzVndf) X(PdfBeckmannVndf) X(PdfSphericalCaps)      \
+  X(PdfBoundedListing1) X(PdfBoundedExactIso) X(PdfBoundedListing2)                                \
+  X(PdfBackfacingEq7) X(PdfBackfacingStable)                                                       \
+  X(GgxMapToSquare) X(GgxMapFromSquare) X(GgxMapJacobianPaper) X(GgxMapJacobianTrue)               \
+  X(BeckmannMapToSquare) X(BeckmannMapFromSquare) X(BeckmannMapJacobianPaper)                      \
+  X(BeckmannMapJacobianTrue)                                                                       \
+  X(TotalAreaGgx) X(TotalAreaBeckmann) X(TotalAreaGgxEq29) X(TotalAreaBeckmannEq30)                \
+  X(TotalAreaBeckmannEq31)
+// clang-format on
 
 }  // namespace glintlab::simd

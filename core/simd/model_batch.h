@@ -1,7 +1,7 @@
 // Structure-of-arrays batch evaluation and sampling of a registered model (core/model_registry.h):
 // the model's own eval/pdf/sample templates (core/model.h) instantiated on the SIMD batches of each
-// ISA for the models of core/simd/batched_models.h, a scalar loop over the entry's thunks for any
-// other entry (including one built at run time). No xsimd in this header.
+// ISA for the models of BatchedModels (core/model_list.h), a scalar loop over the entry's thunks
+// for any other entry (including one built at run time). No xsimd in this header.
 #pragma once
 
 #include <array>

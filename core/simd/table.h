@@ -1,25 +1,54 @@
-// The per-ISA dispatch table behind eval_batch: one function pointer per kernel and flavour.
+// The one per-ISA dispatch table behind both batch APIs (core/simd/batch.h for kernels,
+// core/simd/model_batch.h for models): one function signature, so one table, one ISA switch and
+// one argument check serve both.
 #pragma once
 
 #include <cstddef>
+#include <span>
+#include <string>
 
+#include "core/model_list.h"
 #include "core/simd/batch.h"
 
 namespace glintlab::simd::detail {
 
+// params: a model's kParams values (kernels take theirs as stride-0 columns and ignore it);
+// in: a kernel's input columns, or a model's query columns (kQueryLayout order, corners included)
+// followed, for sample, by the two uniform columns.
 template <class S>
-using BatchFn = void (*)(const Column<S>* inputs, S* const* outputs, std::size_t n);
+using BatchFn = void (*)(const double* params, const Column<S>* in, S* const* out, std::size_t n);
 
-struct IsaTable {
-  const BatchFn<float>* exact_float;  // kernel_count() entries each
-  const BatchFn<float>* fast_float;
-  const BatchFn<double>* exact_double;
+// One entry's instantiations; Math::kFast picks fast_float.
+struct BatchFns {
+  BatchFn<float> exact_float, fast_float;
+  BatchFn<double> exact_double;
 };
 
+// The entries of each ISA's table, in this order: every kernel (GLINTLAB_SIMD_KERNELS order),
+// then the eval of each model of BatchedModels (core/model_list.h), then the sample of each.
+inline std::size_t model_eval_entry(std::size_t m) {
+  return static_cast<std::size_t>(kernel_count()) + m;
+}
+inline std::size_t model_sample_entry(std::size_t m) {
+  return model_eval_entry(BatchedModels::kSize + m);
+}
+
 // Defined in isa_scalar.cpp, isa_sse42.cpp, isa_avx2.cpp, isa_avx512.cpp.
-const IsaTable& table_scalar();
-const IsaTable& table_sse42();
-const IsaTable& table_avx2();
-const IsaTable& table_avx512();
+const BatchFns* table_scalar();
+const BatchFns* table_sse42();
+const BatchFns* table_avx2();
+const BatchFns* table_avx512();
+
+// The checks every batch call shares, after its own column counts: each column's stride is 0 or
+// 1 (`label(j)` names column j in the message), the CPU has `isa`, fast math only with float.
+// Messages start with `what` ("eval_batch", "sample_batch").
+template <class S>
+void check_call(const char* what, std::span<const Column<S>> in, std::string (*label)(std::size_t),
+                Isa isa, Math math);
+
+// Runs entry `entry` of isa's table on checked arguments.
+template <class S>
+void run(std::size_t entry, const double* params, const Column<S>* in, S* const* out, std::size_t n,
+         Isa isa, Math math);
 
 }  // namespace glintlab::simd::detail

@@ -5,8 +5,7 @@
 // kernels that must fail them.
 #define GLINTLAB_SIMD_TU chermain_test
 #include "core/simd/instantiate.h"
-#include "core/simd/model_instantiate.h"
-// (the two above give this test the model driver on this TU's baseline batch, for the controls)
+// (it gives this test the model driver on this TU's baseline batch, for the controls)
 
 #include <gtest/gtest.h>
 

@@ -22,7 +22,7 @@ foreach(obj IN LISTS objects)
     endif()
     set(sym "${CMAKE_MATCH_1}")
     if(sym MATCHES "xsimd::(sse4_2|fma3<xsimd::avx2>|avx512bw)" OR sym MATCHES "glintlab_[a-z0-9_]+_${isa}\\("
-       OR sym MATCHES "^glintlab::simd::detail::(model_)?table_${isa}\\(\\)$" OR sym MATCHES "__gxx_personality")
+       OR sym MATCHES "^glintlab::simd::detail::table_${isa}\\(\\)$" OR sym MATCHES "__gxx_personality")
       continue()
     endif()
     message(FATAL_ERROR "${name} exports a symbol other ISAs may share: ${sym}")

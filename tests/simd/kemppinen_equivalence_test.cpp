@@ -4,8 +4,7 @@
 // instantiation, with stated budgets; perturbed batch kernels that must fail them.
 #define GLINTLAB_SIMD_TU kemppinen_test
 #include "core/simd/instantiate.h"
-#include "core/simd/model_instantiate.h"
-// (the two above give this test the model driver on Wide<float>, for the perturbed controls)
+// (it gives this test the model driver on Wide<float>, for the perturbed controls)
 
 #include <gtest/gtest.h>
 
@@ -17,8 +16,8 @@
 #include <vector>
 
 #include "core/math/rng.h"
+#include "core/model_list.h"
 #include "core/model_registry.h"
-#include "core/simd/batched_models.h"
 #include "core/simd/inputs.h"
 #include "core/simd/model_batch.h"
 #include "tests/simd/model_rows.h"
@@ -137,7 +136,7 @@ Outputs<S> run_batch(const ModelEntry& m, const Case& k, Isa isa) {
   return run_rows_batch<S>(m, k, kRowsPerSet, isa);
 }
 
-// The model driver of core/simd/model_instantiate.h on W, called directly (perturbed models).
+// The model driver of core/simd/instantiate.h on W, called directly (perturbed models).
 template <class M, class W, class S>
 Outputs<S> run_driver(const ModelEntry& m, const Case& k) {
   return run_rows_driver<M, W, S>(m, k, kRowsPerSet);

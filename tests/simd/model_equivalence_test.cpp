@@ -3,8 +3,7 @@
 // stated budgets; the scalar-loop fallback for entries that are not batched; perturbed controls.
 #define GLINTLAB_SIMD_TU model_test
 #include "core/simd/instantiate.h"
-#include "core/simd/model_instantiate.h"
-// (the two above give this test the model driver on Wide<float>, for the perturbed controls)
+// (it gives this test the model driver on Wide<float>, for the perturbed controls)
 
 #include <gtest/gtest.h>
 
@@ -17,8 +16,8 @@
 
 #include "core/math/orthonormal_basis.h"
 #include "core/math/rng.h"
+#include "core/model_list.h"
 #include "core/model_registry.h"
-#include "core/simd/batched_models.h"
 #include "core/simd/inputs.h"
 #include "core/simd/model_batch.h"
 #include "tests/simd/model_rows.h"

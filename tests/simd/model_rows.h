@@ -1,7 +1,7 @@
 // The row drivers of the per-model SIMD equivalence tests: eval and sample of a case's rows through
 // the batch API (core/simd/model_batch.h) on one ISA, or through the model driver of
-// core/simd/model_instantiate.h on a test's own W (perturbed models), one parameter vector per
-// `rows_per_set` rows. Include after core/simd/model_instantiate.h (the test TU's driver).
+// core/simd/instantiate.h on a test's own W (perturbed models), one parameter vector per
+// `rows_per_set` rows. Include after core/simd/instantiate.h (the test TU's driver).
 #pragma once
 
 #include <algorithm>
@@ -131,7 +131,7 @@ RowOutputs<S> run_rows_batch(const ModelEntry& m, const C& k, std::size_t rows_p
           const std::vector<S*>& o, std::size_t n) { sample_batch(m, p, c, u1, u2, o, n, isa); });
 }
 
-// Through the model driver of core/simd/model_instantiate.h on W (any model M, listed or not).
+// Through the model driver of core/simd/instantiate.h on W (any model M, listed or not).
 template <class M, class W, class S, RowCase C>
 RowOutputs<S> run_rows_driver(const ModelEntry& m, const C& k, std::size_t rows_per_set) {
   return run_rows_with<S>(
@@ -140,8 +140,12 @@ RowOutputs<S> run_rows_driver(const ModelEntry& m, const C& k, std::size_t rows_
          std::size_t n) { detail::run_model_eval<M, W, S>(p.data(), c.data(), o.data(), n); },
       [](const std::vector<double>& p, const std::vector<Column<S>>& c, Column<S> u1, Column<S> u2,
          const std::vector<S*>& o, std::size_t n) {
-        const Column<S> u[2] = {u1, u2};
-        detail::run_model_sample<M, W, S>(p.data(), c.data(), u, o.data(), n);
+        // The driver reads u after all kQueryColumnsWithCorners query columns.
+        static constexpr S kZero = 0;
+        std::vector<Column<S>> in = c;
+        in.resize(kQueryColumnsWithCorners, Column<S>{&kZero, 0});
+        in.insert(in.end(), {u1, u2});
+        detail::run_model_sample<M, W, S>(p.data(), in.data(), o.data(), n);
       });
 }
 

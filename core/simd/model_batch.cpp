@@ -1,5 +1,7 @@
-// eval_batch / sample_batch over registered models: the per-ISA model tables for the models of
+// eval_batch / sample_batch over registered models: the per-ISA table's entries for the models of
 // BatchedModels, a scalar loop over the entry's thunks for every other entry.
+#include "core/simd/model_batch.h"
+
 #include <fmt/format.h>
 
 #include <array>
@@ -9,9 +11,8 @@
 #include <vector>
 
 #include "core/model_layout.h"
-#include "core/simd/batched_models.h"
-#include "core/simd/model_batch.h"
-#include "core/simd/model_table.h"
+#include "core/model_list.h"
+#include "core/simd/table.h"
 
 namespace glintlab::simd {
 namespace {
@@ -19,6 +20,10 @@ namespace {
 template <class... Ms>
 constexpr std::array<const void*, sizeof...(Ms)> tags_of(ModelList<Ms...>) {
   return {static_model_tag<Ms>()...};
+}
+
+std::string query_label(std::size_t j) {
+  return fmt::format("query column {}", kQueryLayout[j].name);
 }
 
 // The index of the model in BatchedModels, or -1.
@@ -30,24 +35,10 @@ int batched_index(const ModelEntry& model) {
   return -1;
 }
 
-const detail::ModelFns* model_table(Isa isa) {
-  switch (isa) {
-    case Isa::kSse42:
-      return detail::model_table_sse42();
-    case Isa::kAvx2:
-      return detail::model_table_avx2();
-    case Isa::kAvx512:
-      return detail::model_table_avx512();
-    case Isa::kScalar:
-      break;
-  }
-  return detail::model_table_scalar();
-}
-
 template <class S>
-void check_call(const char* what, const ModelEntry& model, std::size_t n_params,
-                std::span<const Column<S>> query, std::size_t n_out, std::size_t want_out, Isa isa,
-                Math math) {
+void check_model(const char* what, const ModelEntry& model, std::size_t n_params,
+                 std::span<const Column<S>> query, std::size_t n_out, std::size_t want_out, Isa isa,
+                 Math math) {
   if (n_params != model.params.size()) {
     throw std::invalid_argument(fmt::format("{}: model {} takes {} parameter values, got {}", what,
                                             model.name, model.params.size(), n_params));
@@ -60,30 +51,19 @@ void check_call(const char* what, const ModelEntry& model, std::size_t n_params,
         what, model.name, kQueryColumns.size(), kQueryColumnsWithCorners, want_out, query.size(),
         n_out));
   }
-  for (std::size_t j = 0; j < query.size(); ++j) {
-    if (query[j].stride > 1) {
-      throw std::invalid_argument(fmt::format(
-          "{}: query column {} has stride {} (valid: 0 or 1)", what,
-          j < kQueryColumns.size() ? kQueryColumns[j] : kCornerColumns[j - kQueryColumns.size()],
-          query[j].stride));
-    }
-  }
-  if (!isa_supported(isa)) {
-    throw std::invalid_argument(
-        fmt::format("{}: ISA {} is not supported by this CPU", what, isa_name(isa)));
-  }
-  if (std::is_same_v<S, double> && math == Math::kFast) {
-    throw std::invalid_argument(
-        fmt::format("{}: fast math is single precision only (use float)", what));
-  }
+  detail::check_call(what, query, &query_label, isa, math);
 }
 
-// The query padded to kQueryColumnsWithCorners columns (zero corners where the caller gave none).
-template <class S>
-std::array<Column<S>, kQueryColumnsWithCorners> full_query(std::span<const Column<S>> q) {
+// The query padded to kQueryColumnsWithCorners columns (zero corners where the caller gave none),
+// then `extra` (sample's uniform columns).
+template <class S, std::size_t N = 0>
+std::array<Column<S>, kQueryColumnsWithCorners + N> full_query(
+    std::span<const Column<S>> q, std::array<Column<S>, N> extra = {}) {
   static constexpr S kZero = 0;
-  std::array<Column<S>, kQueryColumnsWithCorners> r;
-  for (std::size_t j = 0; j < r.size(); ++j) r[j] = j < q.size() ? q[j] : Column<S>{&kZero, 0};
+  std::array<Column<S>, kQueryColumnsWithCorners + N> r;
+  for (std::size_t j = 0; j < kQueryColumnsWithCorners; ++j)
+    r[j] = j < q.size() ? q[j] : Column<S>{&kZero, 0};
+  for (std::size_t j = 0; j < N; ++j) r[kQueryColumnsWithCorners + j] = extra[j];
   return r;
 }
 
@@ -95,24 +75,27 @@ ModelQuery<double> query_row(std::span<const Column<S>> q, std::size_t i) {
   return from_row(row);
 }
 
+// Runs the model's entry (`entry`: its eval or its sample) of isa's table on the padded columns;
+// false when the model is not batched.
+template <class S>
+bool run_batched(const ModelEntry& model, std::size_t (*entry)(std::size_t),
+                 std::span<const double> params, std::span<const Column<S>> q,
+                 std::span<S* const> outputs, std::size_t n, Isa isa, Math math) {
+  const int m = batched_index(model);
+  if (m < 0) return false;
+  detail::run<S>(entry(static_cast<std::size_t>(m)), params.data(), q.data(), outputs.data(), n,
+                 isa, math);
+  return true;
+}
+
 template <class S>
 void eval_any(const ModelEntry& model, std::span<const double> params,
               std::span<const Column<S>> query, std::span<S* const> outputs, std::size_t n, Isa isa,
               Math math) {
-  check_call<S>("eval_batch", model, params.size(), query, outputs.size(),
-                2 + model.intermediates.size(), isa, math);
+  check_model<S>("eval_batch", model, params.size(), query, outputs.size(),
+                 2 + model.intermediates.size(), isa, math);
   const auto q = full_query(query);
-  const int m = batched_index(model);
-  if (m >= 0) {
-    const detail::ModelFns& f = model_table(isa)[m];
-    if constexpr (std::is_same_v<S, float>) {
-      (math == Math::kFast ? f.eval_fast_float : f.eval_float)(params.data(), q.data(),
-                                                               outputs.data(), n);
-    } else {
-      f.eval_double(params.data(), q.data(), outputs.data(), n);
-    }
-    return;
-  }
+  if (run_batched<S>(model, &detail::model_eval_entry, params, q, outputs, n, isa, math)) return;
   // Not batched: the entry's double thunks, row by row.
   const std::vector<double> values(params.begin(), params.end());
   for (std::size_t i = 0; i < n; ++i) {
@@ -128,24 +111,13 @@ template <class S>
 void sample_any(const ModelEntry& model, std::span<const double> params,
                 std::span<const Column<S>> query, Column<S> u1, Column<S> u2,
                 std::span<S* const> outputs, std::size_t n, Isa isa, Math math) {
-  check_call<S>("sample_batch", model, params.size(), query, outputs.size(), kSampleColumns.size(),
-                isa, math);
+  check_model<S>("sample_batch", model, params.size(), query, outputs.size(), kSampleColumns.size(),
+                 isa, math);
   if (u1.stride > 1 || u2.stride > 1) {
     throw std::invalid_argument("sample_batch: uniform columns have stride 0 or 1");
   }
-  const auto q = full_query(query);
-  const int m = batched_index(model);
-  if (m >= 0) {
-    const detail::ModelFns& f = model_table(isa)[m];
-    const Column<S> u[2] = {u1, u2};
-    if constexpr (std::is_same_v<S, float>) {
-      (math == Math::kFast ? f.sample_fast_float : f.sample_float)(params.data(), q.data(), u,
-                                                                   outputs.data(), n);
-    } else {
-      f.sample_double(params.data(), q.data(), u, outputs.data(), n);
-    }
-    return;
-  }
+  const auto q = full_query(query, std::array{u1, u2});
+  if (run_batched<S>(model, &detail::model_sample_entry, params, q, outputs, n, isa, math)) return;
   const std::vector<double> values(params.begin(), params.end());
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2<double> u{static_cast<double>(u1.data[u1.stride * i]),
