@@ -43,7 +43,8 @@ STATEMENTS = {
     "eto.unbiased": "estimates with the bounded sampler are unbiased",
     "eto.bound-is-infimum": "the isotropic bound −k·i_z is the infimum of o_z (Eq. 5)",
     "eto.fewer-rejections": "bounded caps reject fewer samples (half at α = 1, θi = 0 before)",
-    "eto.variance-rough": "lower variance for rough, low-anisotropy surfaces; none at α = 0.2",
+    "eto.variance-rough": "lower RMSE at equal samples for rough, low-anisotropy surfaces",
+    "eto.variance-smooth": "no material RMSE difference at low roughness (α = 0.2)",
     "eto.backfacing-stable-pdf": "the stable back-facing pdf equals Eq. 7",
     "kemppinen.jacobian": "|J_T| = D/|U_Ω| for the GGX and Beckmann maps (Eq. 3)",
     "kemppinen.convergence": "the area mean of D★ converges to D (Eq. 2)",
@@ -62,12 +63,18 @@ STATEMENTS = {
     "chermain.dictionary-converges": "dictionary levels converge to a Gaussian of std σ_o",
     "chermain.correlation": "the matrix M of Eq. 18 gives the slope correlation ρ",
     "chermain.ggaa-error": "GGAA lowers the error on curved surfaces (Figs. 8–9)",
+    "chermain.ggaa-derivatives": "projected-half-vector derivatives beat half-slope ones (Fig. 8)",
+    "chermain.ggaa-sk": "s_K = 0.5 beats s_K = 1 in RMSE (Fig. 9)",
+    "chermain.ggaa-shimmer": "s_K = 0.5 shimmers more than s_K = 1 (Fig. 9)",
     "chermain.lean-correlation": "LEAN with ρ beats LEAN with ρ = 0 and no LEAN (Fig. 7)",
     "podee.brightest-vector": "the chosen reflection vector is the pixel's brightest",
     "podee.rmse": "lower RMSE than centre sampling and LEAN (Table 1)",
     "podee.far-failure": "the method fails when a pixel holds much normal variation",
     "podee.stability": "less flicker than centre sampling under sub-pixel motion",
-    "all.stability": "where each registered model breaks (NaN, Inf, gain, p > 1, variance)",
+    "all.stability": "no registered model gives NaN, Inf or negative values in its core domain",
+    "all.energy-gain": "no registered model gains energy (white furnace) in its core domain",
+    "all.probability": "no registered model's probability exceeds 1 in its core domain",
+    "all.variance": "no registered model's sample weights blow up (Var/E² > 100) in its core domain",
 }
 
 
@@ -292,12 +299,27 @@ def verdict_cell(check, measured, budget):
 
 
 def control_cell(check, measured):
+    """The control's own verdict per budget, and whether it opposes the claim's."""
     parts = []
     for budget in BUDGETS:
         run = measured.get(budget, {}).get(check["id"])
         if run is not None:
-            parts.append(f"{budget}: " + ("rejected" if run["control_rejected"] else "**NOT rejected**"))
+            verdict = run.get("control_verdict")
+            opposed = "opposes" if run["control_rejected"] else "**does NOT oppose**"
+            parts.append(f"{budget}: {verdict} ({opposed})" if verdict else
+                         f"{budget}: " + ("rejected" if run["control_rejected"] else "**NOT rejected**"))
     return "; ".join(parts) if parts else "—"
+
+
+def regime_lines(checks, measured):
+    """The declared regime of every claim that holds only in one, per budget."""
+    lines = []
+    for c in checks:
+        for budget in BUDGETS:
+            run = measured.get(budget, {}).get(c["id"])
+            if run is not None and run.get("regime"):
+                lines.append(f"- `{c['id']}` ({budget}): {run['regime']}")
+    return lines
 
 
 def render(checks, measured, command, inputs):
@@ -355,12 +377,20 @@ def render(checks, measured, command, inputs):
             "statistical" if c["statistical"] else "deterministic",
             verdict_cell(c, measured, "quick"), verdict_cell(c, measured, "full"),
             control_cell(c, measured))) + " |")
+    regimes = regime_lines(checks, measured)
+    if regimes:
+        lines += ["", "Regimes, as each check declares them in its code before measuring:", ""]
+        lines += regimes
     lines += [
         "",
         "Verdicts: **holds**; **holds-within** (within a stated tolerance); **holds-in-regime** "
-        "(only in part of the parameter space, the detail says where); **fails** (with the "
-        "evidence); **inconclusive** (the test could not decide, e.g. a cubature error too "
-        "large). A verdict that differs from the recorded one is a regression or a finding.",
+        "(inside a parameter region the check declares before measuring, listed above; the "
+        "detail says what happens outside); **fails** (with the evidence); **inconclusive** "
+        "(the test could not decide, e.g. an interval straddling the tolerance). The control "
+        "column gives the verdict the same measurement and decision reach on the control's "
+        "input: a deliberately wrong input for a claim that holds (it must fail), the corrected "
+        "formula or input for a claim that fails (it must hold). A verdict that differs from the "
+        "recorded one is a regression or a finding.",
         "",
     ]
     return "\n".join(wrap(line) for line in lines)
