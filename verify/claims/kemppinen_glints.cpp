@@ -928,6 +928,15 @@ constexpr GofSize kSampFull{2'000'000, 2'000'000, 400};
 
 // The estimator configurations (the chi-square runs at the full budget on the k = 1 ones: its
 // cubature of a density with jumps at every cell edge is slow).
+// "GGX α = 0.3, α★ = 0.05, k = 1; …": the configurations in words, for the detail.
+std::string describe_samp_configs(const std::vector<SampConfig>& cs) {
+  std::string out;
+  for (const SampConfig& c : cs)
+    out += fmt::format("{}{} α = {:g}, α★ = {:g}, k = {}", out.empty() ? "" : "; ", ndf_name(c.ndf),
+                       c.ndf.alpha, c.alpha_star, c.side * c.side);
+  return out;
+}
+
 std::vector<SampConfig> est_configs() {
   return {{{true, 0.3}, 0.05, 2.5, 1},
           {{false, 0.3}, 0.05, 2.5, 1},
@@ -1181,8 +1190,8 @@ CheckResult run_sampling(Budget b) {
       "{}) and has {:.3g} … {:.3g}× lower variance; with the pdf of lines 16–17 as legible "
       "(Area(B), |J_T| = D/|U_Ω|, cosθ, w_λ) the estimate is {:.3g} … {:.3g}× the true integral "
       "(smallest Welch p {:.3g}): {}. The compensation term is not sampled (Sec. 3.3.5), so only "
-      "the explicit part is estimated there; {} samples per estimator, 4 configurations (GGX, "
-      "Beckmann α = 0.3, α★ = 0.05, k = 1 and 4). Rendered estimate of the whole D★^f (full BRDF: "
+      "the explicit part is estimated there; {} samples per estimator, {} configurations ({}). "
+      "Rendered estimate of the whole D★^f (full BRDF: "
       "D★^f, height-correlated G2, F = 1) under a 64 × 32 lat-long sky with a soft sun at the "
       "mirror direction, θ_v = 30°, the reference a stratified quadrature over ω_h ({}² "
       "equal-solid-angle strata × 2 jittered points per pixel, no sampler involved): the mixture "
@@ -1190,7 +1199,8 @@ CheckResult run_sampling(Budget b) {
       "{:.3g}), with Algorithm 2's printed pdf in the mixture it is {} (smallest p {:.3g}), D cosθ "
       "alone smallest p {:.3g}{}",
       chi, pm_min, marginal_ok ? "unbiased" : "BIASED", var_lo, var_hi, ratio_lo, ratio_hi, pp_min,
-      printed_ok ? "unbiased" : "biased — the printed pdf does not give the integral", n, rsz.ref_n,
+      printed_ok ? "unbiased" : "biased — the printed pdf does not give the integral", n,
+      est_configs().size(), describe_samp_configs(est_configs()), rsz.ref_n,
       mixture_ok ? "unbiased" : "BIASED", pe_min, printed_render_ok ? "unbiased" : "biased", pr_min,
       ps_min, rtext);
   return r;
