@@ -1,12 +1,14 @@
-// The measurements behind chermain.ggaa-error and chermain.lean-correlation (shared with the
+// The measurements behind chermain.ggaa-* and chermain.lean-correlation (shared with the
 // figures chermain2021-fig7/8/9) and cheap probes of what each chermain.* check decides, so tests
 // can assert that the correct input passes and the negative control is rejected.
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/render/image.h"
+#include "verify/check.h"
 #include "verify/claims/control_probes.h"
 
 namespace glintlab::verify {
@@ -33,6 +35,42 @@ struct GgaaVerdict {
 
 GgaaMeasurement measure_ggaa(const GgaaBudget& b, std::uint64_t seed);
 GgaaVerdict judge_ggaa(const GgaaMeasurement& m, const Image& reference);
+
+// The checks chermain.ggaa-error / -derivatives / -sk / -shimmer: `replicates` independent
+// replicates of the tube scene (glint layout, sub-pixel camera offset and reference seed from
+// check_seed(id, k)), each with every method's display RMSE % and the shimmer of s_K 0.5 and 1.
+struct GgaaReplicateBudget {
+  int width, height;
+  int reference_spp;
+  int frames;
+  int replicates;
+  int threads;  // 0 = all cores
+};
+struct GgaaReplicate {
+  double none = 0, half05 = 0, half1 = 0, proj05 = 0, proj1 = 0;  // display RMSE %
+  double near_truth = 0;  // control: an independent reference × (1 + kGgaaNearTruthBias)
+  double flicker05 = 0, flicker1 = 0;  // frame-to-frame variance × 1e4, projected half vector
+  double flicker1_slow = 0;            // control: s_K 1 under a pan kGgaaSlowPan slower
+};
+// Fixed before measuring: the confidence of each ordering's t interval (Šidák over a claim's
+// parts), the control's near-truth bias and slower pan, the pan per frame (pixels).
+inline constexpr double kGgaaConfidence = 0.99;
+inline constexpr double kGgaaNearTruthBias = 0.03;
+inline constexpr double kGgaaSlowPan = 0.05;
+inline constexpr double kGgaaPan = 0.37;
+
+GgaaReplicate measure_ggaa_replicate(const GgaaReplicateBudget& b, const std::string& id, int k);
+
+struct PairedComparison {
+  int n = 0;
+  double mean = 0, se = 0, t = 0, lo = 0, hi = 0;
+  double detectable = 0;  // (t + 1.28) · SE: the difference detected at 90 % power
+};
+PairedComparison compare_paired(const std::vector<double>& differences, double confidence);
+// Each part: per-replicate differences (claimed higher − claimed lower). holds when every part's
+// Šidák-corrected kGgaaConfidence interval lies above 0, fails when one lies below 0, else
+// inconclusive (a tie within the noise).
+Verdict decide_ggaa(const std::vector<std::vector<double>>& parts);
 
 // --- chermain.lean-correlation (Fig. 7) ---
 struct LeanBudget {

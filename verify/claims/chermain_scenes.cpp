@@ -71,7 +71,7 @@ constexpr double kTubeLightIntensity = 16;
 
 ChermainSdfParams tube_params(const TubeSceneOptions& o, int kernel, double s_k) {
   const double s = o.alpha / std::sqrt(2.0);
-  return {&default_chermain_dictionary(), s, s, 0.0, std::log2(o.density), kernel, s_k, 11};
+  return {&default_chermain_dictionary(), s, s, 0.0, std::log2(o.density), kernel, s_k, o.sdf_seed};
 }
 
 void check_size(int w, int h) {

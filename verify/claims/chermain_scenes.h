@@ -17,9 +17,10 @@ namespace glintlab::verify {
 // --- Curved tubes (Figs. 8, 9) ---------------------------------------------------------------
 struct TubeSceneOptions {
   int width = 96, height = 64;
-  double camera_shift = 0;  // camera moved along its right axis by this many pixel widths
-  double density = 1.6e5;   // microfacets per unit uv area
-  double alpha = 0.35;      // isotropic Beckmann roughness of the glinty SDF
+  double camera_shift = 0;      // camera moved along its right axis by this many pixel widths
+  double density = 1.6e5;       // microfacets per unit uv area
+  double alpha = 0.35;          // isotropic Beckmann roughness of the glinty SDF
+  std::uint64_t sdf_seed = 11;  // seed of the patch-SDF's cell randomization (the glint layout)
   int threads = 0;
 };
 

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "core/glints/kneiphof.h"
@@ -30,6 +32,17 @@ constexpr double kTolerance = 0.1;
 // lobe's tail, where a relative error says little about glints: reported apart.
 constexpr double kTailFraction = 1e-3;
 constexpr int kBatches = 16;  // independent Monte Carlo batches: the reference's standard error
+constexpr double kNearTruthBias = 0.03;
+
+// The regime, declared before measuring: the abstract assigns LTCs to "large light sources"
+// (and spherical caps to small ones, Sec. 5), and the glints that matter sit in the highlight:
+// lights of side ≥ 0.5 at distance 1 (≥ 28° across) centred on the mirror direction, every √α and
+// view angle of the grid, cells outside the lobe's tail.
+constexpr double kRegimeMinSide = 0.5;
+constexpr const char* kRegime =
+    "square light of side ≥ 0.5 at distance 1 (≥ 28° across: the abstract's 'large light "
+    "sources'), centred on the mirror direction, every √α 0.1..0.9 and θv 0..85° of the grid, "
+    "p_MC ≥ 1e-3 D_PR";
 
 struct Config {
   double side, sqrt_alpha, theta_v_deg;
@@ -42,6 +55,7 @@ struct Cell {
   double brdf = 0, ndf = 0;    // D_PR × ∫ D_ltc, BRDF lobe (the paper's) and NDF lobe
   double albedo_scaled = 0;    // control: the BRDF lobe scaled by its albedo FGD (no D_PR)
   double wrong_alpha = 0;      // control: the BRDF lobe looked up at 2α
+  double near_truth = 0;       // control: an independent Monte Carlo D_Ωh × 1.03
   double d_pr = 0;
   bool tail = false;
 };
@@ -59,8 +73,10 @@ std::array<Vec3<double>, 4> light_square(const Config& c) {
   return facing_rectangle(dir, 1.0, c.side, c.side, 0.0, 0.0);
 }
 
-Cell evaluate(const Config& c, int samples, std::uint64_t seed, std::uint64_t index) {
-  Cell r{c};
+// Monte Carlo D_Ωh and its standard error for one cell.
+std::pair<double, double> mc_reference(const Config& c, int samples, std::uint64_t seed,
+                                       std::uint64_t index) {
+  double ref = 0, ref_se = 0;
   const double a = c.sqrt_alpha * c.sqrt_alpha;
   const GGX<double> g{a, a};
   const Vec3<double> wi = view_dir(c.theta_v_deg);
@@ -97,12 +113,21 @@ Cell evaluate(const Config& c, int samples, std::uint64_t seed, std::uint64_t in
   const double vs = std::max(0.0, s2 / kBatches - ms * ms) / (kBatches - 1);
   const double vt = std::max(0.0, t2 / kBatches - mt * mt) / (kBatches - 1);
   if (vs > 0 && vt > 0) {
-    r.ref = (ms / vs + mt / vt) / (1 / vs + 1 / vt);
-    r.ref_se = std::sqrt(1 / (1 / vs + 1 / vt));
+    ref = (ms / vs + mt / vt) / (1 / vs + 1 / vt);
+    ref_se = std::sqrt(1 / (1 / vs + 1 / vt));
   } else {  // one estimator has no spread (e.g. no half vector hit): the light samples alone
-    r.ref = ms;
-    r.ref_se = std::sqrt(vs);
+    ref = ms;
+    ref_se = std::sqrt(vs);
   }
+  return {ref, ref_se};
+}
+
+Cell evaluate(const Config& c, int samples, std::uint64_t seed, std::uint64_t index) {
+  Cell r{c};
+  const double a = c.sqrt_alpha * c.sqrt_alpha;
+  const Vec3<double> wi = view_dir(c.theta_v_deg);
+  const auto quad = light_square(c);
+  std::tie(r.ref, r.ref_se) = mc_reference(c, samples, seed, index);
   const LtcTableView& table = ltc_ggx_table_view();
   const auto brdf = area_light_terms_ltc(table, a, wi, quad.data(), 4, KneiphofAreaP::kBrdfLobe);
   r.brdf = brdf.d_omega_h;
@@ -115,6 +140,11 @@ Cell evaluate(const Config& c, int samples, std::uint64_t seed, std::uint64_t in
                                        KneiphofAreaP::kBrdfLobe)
                       .d_omega_h;
   r.tail = r.ref < kTailFraction * r.d_pr;
+  // The control's near-truth p: the same Monte Carlo estimator, independent seeds, × 1.03.
+  // At most 8192 samples per batch: its own error stays far below the 7 % between 1.03 and the
+  // tolerance, at an eighth of the full budget's cost.
+  r.near_truth =
+      (1 + kNearTruthBias) * mc_reference(c, std::min(samples, 8192), seed + 2, index).first;
   return r;
 }
 
@@ -125,7 +155,7 @@ std::vector<Config> configs(Budget b) {
   const std::vector<double> roughness = quick ? std::vector<double>{0.1, 0.5, 0.9}
                                               : std::vector<double>{0.1, 0.2, 0.3, 0.5, 0.7, 0.9};
   const std::vector<double> views =
-      quick ? std::vector<double>{0, 40, 75} : std::vector<double>{0, 20, 40, 60, 75, 85};
+      quick ? std::vector<double>{0, 40, 85} : std::vector<double>{0, 20, 40, 60, 75, 85};
   std::vector<Config> out;
   for (double s : sides)
     for (double sa : roughness)
@@ -161,8 +191,10 @@ struct LobeSummary {
   std::string out_list;
 };
 
+bool in_regime(const Cell& c) { return !c.tail && c.c.side >= kRegimeMinSide && c.c.position == 0; }
+
 template <class Get>
-LobeSummary summarize(const std::vector<Cell>& cells, Get get) {
+LobeSummary summarize(const std::vector<Cell>& cells, Get get, bool regime_only = false) {
   LobeSummary s;
   std::vector<double> all;
   std::vector<std::pair<std::string, std::vector<double>>> axes;
@@ -172,7 +204,7 @@ LobeSummary summarize(const std::vector<Cell>& cells, Get get) {
     axes.push_back({key, {e}});
   };
   for (const Cell& c : cells) {
-    if (c.tail) continue;
+    if (c.tail || (regime_only && !in_regime(c))) continue;
     const double e = rel_error(get(c), c);
     all.push_back(e);
     if (e > s.max) s.max = e, s.worst = c.c;
@@ -203,17 +235,31 @@ std::string describe(const Config& c) {
                      c.position == 0 ? "mirror" : "overhead");
 }
 
-Verdict verdict_of(const LobeSummary& s) {
-  if (s.in + s.out + s.undecided == 0) return Verdict::kInconclusive;
-  if (s.out == 0 && s.undecided == 0) return Verdict::kHoldsWithin;
-  if (s.in > 0 && s.out > 0) return Verdict::kHoldsInRegime;
-  if (s.in == 0 && s.undecided == 0) return Verdict::kFails;
-  return Verdict::kInconclusive;
+// holds-within: every cell (outside the tail) within the tolerance by 3 SE; holds-in-regime:
+// every cell of the regime within it, some outside not; fails: a cell of the regime beyond it by
+// 3 SE; inconclusive: a regime cell undecided (its MC error straddles the tolerance).
+Verdict verdict_of(const LobeSummary& everywhere, const LobeSummary& regime) {
+  if (regime.in + regime.out + regime.undecided == 0) return Verdict::kInconclusive;
+  if (regime.out > 0) return Verdict::kFails;
+  if (regime.undecided > 0) return Verdict::kInconclusive;
+  if (everywhere.out == 0 && everywhere.undecided == 0) return Verdict::kHoldsWithin;
+  return Verdict::kHoldsInRegime;
+}
+
+template <class Get>
+Verdict decide(const std::vector<Cell>& cells, Get get) {
+  return verdict_of(summarize(cells, get), summarize(cells, get, true));
+}
+
+std::string describe_summary(const LobeSummary& s) {
+  return fmt::format("median {:.3g}, max {:.3g} at {}; within {} / beyond {} / undecided {}", s.med,
+                     s.max, s.in + s.out + s.undecided ? describe(s.worst) : "-", s.in, s.out,
+                     s.undecided);
 }
 
 std::vector<Cell> run_cells(Budget b) {
   const auto cfg = configs(b);
-  const int samples = b == Budget::kQuick ? 4096 : 65536;
+  const int samples = b == Budget::kQuick ? 2048 : 65536;
   std::vector<Cell> cells(cfg.size());
   const std::uint64_t seed = check_seed(kLtcProbability, 0);
   tbb::parallel_for(std::size_t(0), cfg.size(),
@@ -223,50 +269,63 @@ std::vector<Cell> run_cells(Budget b) {
 
 CheckResult run(Budget b) {
   const std::vector<Cell> cells = run_cells(b);
-  const LobeSummary brdf = summarize(cells, [](const Cell& c) { return c.brdf; });
+  const auto get_brdf = [](const Cell& c) { return c.brdf; };
+  const LobeSummary brdf = summarize(cells, get_brdf);
+  const LobeSummary brdf_regime = summarize(cells, get_brdf, true);
   const LobeSummary ndf = summarize(cells, [](const Cell& c) { return c.ndf; });
   const LobeSummary scaled = summarize(cells, [](const Cell& c) { return c.albedo_scaled; });
-  const LobeSummary wrong = summarize(cells, [](const Cell& c) { return c.wrong_alpha; });
-  int tail = 0;
-  double tail_max = 0, worst_se = 0;
+  int tail = 0, regime_cells = 0;
+  double tail_max = 0, worst_se = 0, regime_se = 0;
   for (const Cell& c : cells) {
     if (c.tail) {
       ++tail, tail_max = std::max(tail_max, rel_error(c.brdf, c));
       continue;
     }
     worst_se = std::max(worst_se, c.ref_se / c.ref);
+    if (in_regime(c)) ++regime_cells, regime_se = std::max(regime_se, c.ref_se / c.ref);
   }
   CheckResult r;
   r.statistic =
-      "rel. error |p_LTC/p_MC − 1| of the BRDF LTC lobe × D_PR (the paper's choice) against "
-      "Monte Carlo D_Ωh, over light size × √α × view angle × light position";
+      "max rel. error |p_LTC/p_MC − 1| in the regime of the BRDF LTC lobe × D_PR (the paper's "
+      "choice) against Monte Carlo D_Ωh";
   r.configurations = int(cells.size());
-  r.value = brdf.max;
+  r.value = brdf_regime.max;
   r.bound = kTolerance;
-  r.verdict = verdict_of(brdf);
+  r.verdict = verdict_of(brdf, brdf_regime);
+  if (r.verdict == Verdict::kHoldsInRegime) r.regime = kRegime;
+  const auto& grid = configs(b);
   r.detail = fmt::format(
-      "square light of side s at distance 1 (s 0.05..2), √α 0.1..0.9, θv 0..{}°, centred on the "
+      "square light of side s at distance 1 (s {}..{}), √α {}..{}, θv {}..{}°, centred on the "
       "mirror direction or overhead; {} cells ({} in the tail, p_MC < {:.0e} D_PR/D_H, apart); "
-      "MC {} batches, worst rel. SE {:.2g}; tolerance {:.0f} % (± 3 SE). BRDF lobe × D_PR (the "
-      "paper's): median {:.3g}, max {:.3g} at {}; within {} / beyond {} / undecided {}; median by "
-      "axis: {}. NDF lobe × D_PR ('+ NDF LTC'): median {:.3g}, max {:.3g} at {}; within {} / "
-      "beyond {} / undecided {} ({}); median by axis: {}. Tail cells: max rel. error {:.3g}",
-      cells.empty() ? 0.0 : configs(b).back().theta_v_deg, cells.size(), tail, kTailFraction,
-      kBatches, worst_se, 100 * kTolerance, brdf.med, brdf.max, describe(brdf.worst), brdf.in,
-      brdf.out, brdf.undecided, brdf.by_axis, ndf.med, ndf.max, describe(ndf.worst), ndf.in,
-      ndf.out, ndf.undecided, to_string(verdict_of(ndf)), ndf.by_axis, tail_max);
-  // The control: the lobe looked up at 2α must sit beyond the tolerance in the median over the
-  // sweep. The albedo-scaled lobe is measured beside it (the paper's argument for D_PR, Fig. 5).
-  const bool wrong_rejected = wrong.med > kTolerance;
-  r.control_rejected = wrong_rejected;
+      "MC {} batches, worst rel. SE {:.2g}; tolerance {:.0f} % (± 3 SE). Regime (declared): {}: "
+      "{} cells, BRDF lobe × D_PR (the paper's): {}. Everywhere: {}; median by axis: {}. NDF "
+      "lobe × D_PR ('+ NDF LTC'), everywhere: {}; median by axis: {}. Tail cells: max rel. "
+      "error {:.3g}",
+      grid.front().side, grid.back().side, grid.front().sqrt_alpha, grid.back().sqrt_alpha,
+      grid.front().theta_v_deg, grid.back().theta_v_deg, cells.size(), tail, kTailFraction,
+      kBatches, worst_se, 100 * kTolerance, kRegime, regime_cells, describe_summary(brdf_regime),
+      describe_summary(brdf), brdf.by_axis, describe_summary(ndf), ndf.by_axis, tail_max);
+  r.power = fmt::format(
+      "a cell is decided beyond the tolerance once its error exceeds {:.0f} % + 3 SE; the "
+      "largest rel. SE in the regime is {:.2g}, so an excess of ≥ {:.2g} (3 SE + 1.28 SE) over "
+      "the tolerance is detected at 90 % power in every regime cell",
+      100 * kTolerance, regime_se, (3 + 1.2816) * regime_se);
+  // The control, through the same rule. Where the claim holds: the lobe looked up at 2α (must
+  // fail). Where it does not: the corrected input, an independent Monte Carlo D_Ωh × 1.03 in the
+  // LTC's place (must hold).
+  const bool holding = is_holding(r.verdict);
+  const auto get_ctl = [holding](const Cell& c) { return holding ? c.wrong_alpha : c.near_truth; };
+  const Verdict cv = decide(cells, get_ctl);
+  record_control(r, cv);
   r.control = fmt::format(
-      "the lobe looked up at 2α: median rel. error {:.3g}, beyond tolerance in {} of {} cells "
-      "({}). Measured beside it: the BRDF lobe scaled by its albedo FGD instead of D_PR (Sec. 4 "
-      "'LTC Scale'): median {:.3g}, max {:.3g}, within {} / beyond {} / undecided {} ({} by the "
-      "same rule; median by axis: {})",
-      wrong.med, wrong.out, wrong.in + wrong.out + wrong.undecided,
-      wrong_rejected ? "rejected" : "NOT rejected", scaled.med, scaled.max, scaled.in, scaled.out,
-      scaled.undecided, scaled.med > kTolerance ? "rejected" : "NOT rejected", scaled.by_axis);
+      "{} in the LTC's place: regime {}; everywhere {} → {} ({}). Measured beside it: the BRDF "
+      "lobe scaled by its albedo FGD instead of D_PR (Sec. 4 'LTC Scale'), everywhere: {}, {} by "
+      "the same rule",
+      holding ? "the lobe looked up at 2α" : "an independent Monte Carlo D_Ωh × 1.03 (near truth)",
+      describe_summary(summarize(cells, get_ctl, true)),
+      describe_summary(summarize(cells, get_ctl)), to_string(cv),
+      r.control_rejected ? "rejected" : "NOT rejected", describe_summary(scaled),
+      to_string(decide(cells, [](const Cell& c) { return c.albedo_scaled; })));
   return r;
 }
 
@@ -278,15 +337,28 @@ ControlProbe probe_kneiphof_ltc_probability() {
   return {rel_error(c.brdf, c), rel_error(c.wrong_alpha, c), kTolerance, false};
 }
 
+LtcDecisionProbe probe_kneiphof_ltc_decision() {
+  // Four cells of the regime (side 0.5 and 2, mirror, √α 0.5, θv 0° and 40°), MC at 16 × 2048.
+  std::vector<Cell> cells;
+  const std::uint64_t seed = check_seed(kLtcProbability, 1u << 21);
+  for (double side : {0.5, 2.0})
+    for (double v : {0.0, 40.0})
+      cells.push_back(evaluate({side, 0.5, v, 0}, 2048, seed, cells.size()));
+  const auto scaled = [](double f) { return [f](const Cell& c) { return f * c.ref; }; };
+  return {decide(cells, [](const Cell& c) { return c.near_truth; }), decide(cells, scaled(1.2)),
+          decide(cells, [](const Cell& c) { return c.wrong_alpha; })};
+}
+
 std::vector<Check> kneiphof_ltc_checks() {
-  // Full budget (360 cells) measured holds-in-regime as well: recorded for both budgets.
+  // fails at both budgets: inside the declared regime (large lights on the mirror direction)
+  // cells lie beyond the 10 % tolerance by more than 3 MC standard errors.
   return {{kLtcProbability,
            "Kneiphof & Klein 2024",
            "Sec. 4, Eq. 12–19",
-           Verdict::kHoldsInRegime,
+           Verdict::kFails,
            run,
            {},
-           Verdict::kHoldsInRegime}};
+           Verdict::kFails}};
 }
 
 }  // namespace glintlab::verify

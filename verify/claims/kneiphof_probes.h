@@ -3,6 +3,7 @@
 // input at a small size, so tests assert that the correct one passes and the control is rejected.
 #pragma once
 
+#include "verify/check.h"
 #include "verify/claims/control_probes.h"
 
 namespace glintlab::verify {
@@ -17,5 +18,11 @@ ControlProbe probe_kneiphof_subdivision_invariance();
 ControlProbe probe_kneiphof_convergence();
 // cap-probability at α = 0.25, γ = 0.5°: Eq. 20's error; control: the 1/(4⟨h, ω⟩) dropped.
 ControlProbe probe_kneiphof_cap_probability();
+// cap-probability's decide step on a 5 × 5 (√α, γ) grid: Eq. 20 (holds-in-regime), Eq. 20 without
+// its Jacobian (a broken p: fails) and the exact p × 1.03 (holds in the regime).
+struct CapDecisionProbe {
+  Verdict eq20, no_jacobian, near_truth;
+};
+CapDecisionProbe probe_kneiphof_cap_decision();
 
 }  // namespace glintlab::verify

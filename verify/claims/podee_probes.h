@@ -2,6 +2,7 @@
 // tests can assert that the correct input passes and each negative control is rejected.
 #pragma once
 
+#include "verify/check.h"
 #include "verify/claims/control_probes.h"
 
 namespace glintlab::verify {
@@ -10,9 +11,13 @@ namespace glintlab::verify {
 // selected point's distance over the brute-force minimum (in quad sizes); control: the
 // nearest-corner rule. Threshold: the tolerance.
 ControlProbe probe_podee_brightest_vector(int configs);
-// podee.rmse at one distance on a `size`² crop: RMSE(podee) / min(RMSE(centre), RMSE(LEAN))
-// against the 64-spp reference (passes below 1); control: podee without result weighting.
-ControlProbe probe_podee_rmse(double distance, int size);
+// podee.rmse's measure and decide at one distance on a `size`² crop (the regime then covers it):
+// the genuine verdict; with an independent 64-spp reference × 1.03 in place of both baselines
+// (must fail); with it in place of the method (must hold).
+struct PodeeRmseProbe {
+  Verdict genuine, baselines_near_truth, method_near_truth;
+};
+PodeeRmseProbe probe_podee_rmse(double distance, int size);
 // podee.stability: flicker(podee) / flicker(centre) over `frames` frames (passes below 1);
 // control: podee without result weighting.
 ControlProbe probe_podee_stability(int size, int frames);

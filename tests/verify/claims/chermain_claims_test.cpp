@@ -2,6 +2,8 @@
 // negative control (the full quick-budget runs are in registry_test.cpp).
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "verify/claims/chermain_probes.h"
 
 namespace glintlab::verify {
@@ -22,10 +24,24 @@ TEST(ChermainClaims, Correlation) {
   expect_probe(probe_chermain_correlation(), "chermain.correlation");
 }
 
-TEST(ChermainClaims, GgaaControlRejected) {
-  const GgaaMeasurement m = measure_ggaa({32, 22, 16, 2, 2}, 1);
-  EXPECT_TRUE(judge_ggaa(m, m.reference).ggaa_lowers);
-  EXPECT_FALSE(judge_ggaa(m, m.none).ggaa_lowers);  // the control
+// chermain.ggaa-error's measure and decide on four small replicates: GGAA lowers the RMSE beyond
+// the replicate noise; with a near-truth image (an independent reference × 1.03) in place of the
+// no-GGAA image the same decision fails; a difference that is pure noise (two halves of the same
+// replicates, sign-flipped) is a tie, not a win.
+TEST(ChermainClaims, GgaaDecisionFailsAgainstNearTruth) {
+  std::vector<GgaaReplicate> reps;
+  for (int k = 0; k < 4; ++k)
+    reps.push_back(measure_ggaa_replicate({32, 22, 16, 2, 4, 2}, "chermain.ggaa-test", k));
+  std::vector<double> genuine, control, noise;
+  for (std::size_t k = 0; k < reps.size(); ++k) {
+    genuine.push_back(reps[k].none - reps[k].proj05);
+    control.push_back(reps[k].near_truth - reps[k].proj05);
+    noise.push_back((k % 2 ? 1 : -1) * 0.01 * double(k + 1));
+  }
+  EXPECT_EQ(decide_ggaa({genuine}), Verdict::kHolds);
+  EXPECT_EQ(decide_ggaa({control}), Verdict::kFails);
+  EXPECT_EQ(decide_ggaa({noise}), Verdict::kInconclusive);
+  EXPECT_EQ(decide_ggaa({genuine, control}), Verdict::kFails);  // one part reversed: fails
 }
 
 TEST(ChermainClaims, LeanControlRejected) {

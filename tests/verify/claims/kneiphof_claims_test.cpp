@@ -31,6 +31,13 @@ TEST(KneiphofClaims, Convergence) {
 TEST(KneiphofClaims, CapProbability) {
   expect_probe(probe_kneiphof_cap_probability(), "kneiphof.cap-probability");
 }
+TEST(KneiphofClaims, CapDecisionFailsOnABrokenP) {
+  const CapDecisionProbe p = probe_kneiphof_cap_decision();
+  EXPECT_EQ(p.eq20, Verdict::kHoldsInRegime) << to_string(p.eq20);
+  EXPECT_EQ(p.no_jacobian, Verdict::kFails) << to_string(p.no_jacobian);
+  // The exact p × 1.03 holds in the regime (it exceeds 1 only where the exact p is near 1).
+  EXPECT_TRUE(is_holding(p.near_truth)) << to_string(p.near_truth);
+}
 
 }  // namespace
 }  // namespace glintlab::verify

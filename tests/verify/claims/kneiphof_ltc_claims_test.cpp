@@ -1,5 +1,6 @@
 // kneiphof.ltc-probability: on one cell of the sweep the LTC p is within the tolerance of the
-// Monte Carlo D_Ωh, and the negative control (the lobe looked up at 2α) is rejected.
+// Monte Carlo D_Ωh and the lobe looked up at 2α is not; the check's decide step holds for a
+// near-truth p (an independent Monte Carlo estimate × 1.03) and fails for a broken one (× 1.2).
 #include <gtest/gtest.h>
 
 #include "verify/claims/kneiphof_ltc_probe.h"
@@ -11,6 +12,13 @@ TEST(KneiphofLtcClaims, ControlIsRejected) {
   const ControlProbe p = probe_kneiphof_ltc_probability();
   EXPECT_TRUE(p.correct_passes()) << "correct " << p.correct << " vs " << p.threshold;
   EXPECT_TRUE(p.control_rejected()) << "control " << p.control << " vs " << p.threshold;
+}
+
+TEST(KneiphofLtcClaims, DecisionHoldsNearTruthAndFailsBrokenInput) {
+  const LtcDecisionProbe p = probe_kneiphof_ltc_decision();
+  EXPECT_TRUE(is_holding(p.near_truth)) << to_string(p.near_truth);
+  EXPECT_EQ(p.broken, Verdict::kFails) << to_string(p.broken);
+  EXPECT_EQ(p.wrong_alpha, Verdict::kFails) << to_string(p.wrong_alpha);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // podee.* claims (verify/claims/podee.cpp) at reduced sizes: each statistic passes on the paper's
 // method and rejects its negative control (nearest-corner selection; the selected vector without
-// result weighting), and the registered checks are present with their recorded verdicts.
+// result weighting; near-truth images for podee.rmse), and the registered checks are present.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -20,10 +20,14 @@ TEST(PodeeClaims, BrightestVectorRejectsTheNearestCornerRule) {
   expect_probe(probe_podee_brightest_vector(100), "podee.brightest-vector");
 }
 
-// At the near distance the method beats both baselines (the regime where podee.rmse holds); the
-// unweighted control does not.
-TEST(PodeeClaims, RmseRejectsTheUnweightedControl) {
-  expect_probe(probe_podee_rmse(2, 32), "podee.rmse");
+// podee.rmse's measure and decide at the near distance (32² crop): the method beats both
+// baselines beyond the references' error; with a near-truth image (an independent reference ×
+// 1.03) in place of both baselines the same decision fails, in place of the method it holds.
+TEST(PodeeClaims, RmseDecisionFailsWhenTheBaselinesAreNearTruth) {
+  const PodeeRmseProbe p = probe_podee_rmse(2, 32);
+  EXPECT_EQ(p.genuine, Verdict::kHolds) << to_string(p.genuine);
+  EXPECT_EQ(p.baselines_near_truth, Verdict::kFails) << to_string(p.baselines_near_truth);
+  EXPECT_EQ(p.method_near_truth, Verdict::kHolds) << to_string(p.method_near_truth);
 }
 
 TEST(PodeeClaims, StabilityRejectsTheUnweightedControl) {
