@@ -45,11 +45,13 @@ inline bool is_holding(Verdict v) {
 }
 
 // A control rejects a check when its verdict is the opposite one: a claim that holds (in any form)
-// has a control that fails; a claim that fails has a control (the corrected input) that holds.
+// has a control that fails; a claim that fails has a control (the corrected input) that holds. A
+// claim the check cannot decide at this budget has nothing to oppose; its control must then be
+// decided, which shows the check can decide where the effect is clear.
 inline bool control_opposes(Verdict genuine, Verdict control) {
   if (is_holding(genuine)) return control == Verdict::kFails;
   if (genuine == Verdict::kFails) return is_holding(control);
-  return false;  // an inconclusive verdict has nothing to oppose
+  return control != Verdict::kInconclusive;
 }
 
 // Records the control's verdict (decided by the same function as the genuine one) and whether it

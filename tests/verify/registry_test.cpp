@@ -32,7 +32,8 @@ TEST(Registry, ControlMustGetTheOppositeVerdict) {
   EXPECT_FALSE(control_opposes(Verdict::kHolds, Verdict::kHoldsInRegime));
   EXPECT_FALSE(control_opposes(Verdict::kHolds, Verdict::kInconclusive));
   EXPECT_FALSE(control_opposes(Verdict::kFails, Verdict::kFails));
-  EXPECT_FALSE(control_opposes(Verdict::kInconclusive, Verdict::kFails));
+  EXPECT_TRUE(control_opposes(Verdict::kInconclusive, Verdict::kFails));  // decided
+  EXPECT_FALSE(control_opposes(Verdict::kInconclusive, Verdict::kInconclusive));
   CheckResult r;
   r.verdict = Verdict::kHoldsWithin;
   record_control(r, Verdict::kHoldsWithin);
