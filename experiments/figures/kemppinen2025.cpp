@@ -16,7 +16,6 @@
 #include <vector>
 
 #include "core/glints/kemppinen.h"
-#include "core/glints/kemppinen_presets.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"
 #include "core/io/png.h"
@@ -27,6 +26,7 @@
 #include "core/ndf/ggx.h"
 #include "core/ndf/microfacet.h"
 #include "core/samplers/walter.h"
+#include "verify/scenes/kemppinen_presets.h"
 
 namespace glintlab::experiments {
 namespace {

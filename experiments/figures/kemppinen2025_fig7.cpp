@@ -20,7 +20,6 @@
 #include <string>
 #include <vector>
 
-#include "core/glints/kemppinen_presets.h"
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"
@@ -29,8 +28,9 @@
 #include "core/ndf/beckmann.h"
 #include "core/ndf/ggx.h"
 #include "core/render/convergence.h"
-#include "core/render/kemppinen_env_radiance.h"
 #include "experiments/figures/kemppinen2025.h"
+#include "verify/scenes/kemppinen_env_radiance.h"
+#include "verify/scenes/kemppinen_presets.h"
 
 namespace glintlab::experiments {
 namespace {

@@ -4,7 +4,7 @@
 // the Table 3 analogue (time per pixel, 90° and 25° planes, 3 lights, GGX and Beckmann); and the
 // method benchmarks `method/kemppinen_*.dstar_f_vs_{bruteforce,smooth}/k=K,erf=E[,blend=linear]`
 // (time per evaluation with the error of Eq. 11 against its references as counters;
-// experiments/bench/kemppinen_speed_accuracy.h). Read by the figures kemppinen2025-table3 and
+// experiments/bench/kemppinen2025_speed_accuracy.h). Read by the figures kemppinen2025-table3 and
 // kemppinen2025-speed-accuracy from out/bench/kemppinen.json:
 //   build/release/experiments/bench/glintlab_bench_kemppinen
 //   --benchmark_out=out/bench/kemppinen.json
@@ -22,8 +22,8 @@
 #include "core/glints/kemppinen_reference.h"
 #include "core/ndf/beckmann.h"
 #include "core/ndf/ggx.h"
-#include "experiments/bench/kemppinen_speed_accuracy.h"
-#include "experiments/bench/kemppinen_table3_scene.h"
+#include "experiments/bench/kemppinen2025_speed_accuracy.h"
+#include "experiments/bench/kemppinen2025_table3_scene.h"
 
 namespace {
 
@@ -78,7 +78,7 @@ BENCHMARK(BM_KemppinenBruteForce)
     ->Range(1, sa::kBruteForceMaxCells)
     ->ArgName("footprint_cells");
 
-// ---- Table 3 analogue (experiments/bench/kemppinen_table3_scene.h) -------------------------
+// ---- Table 3 analogue (experiments/bench/kemppinen2025_table3_scene.h) -------------------------
 // ns per pixel on one CPU core, scalar double, 3 lights; iteration n shades pixel_of(n).
 void BM_Table3(benchmark::State& state, kt3::Cell cell) {
   kt3::with_cell(cell, [&](const auto& shade) {

@@ -1,6 +1,6 @@
 // Speed vs accuracy of Kemppinen et al. 2025's constant-time D★^f (Eq. 11, Algorithm 1): the
 // fixed query sets and error measures of the `method/kemppinen_*` benchmarks
-// (experiments/bench/kemppinen_bench.cpp, schema in the method-benchmark notes) and of the
+// (experiments/bench/kemppinen2025_bench.cpp, schema in the method-benchmark notes) and of the
 // kemppinen2025-speed-accuracy figure, which recomputes the errors when no benchmark JSON exists.
 //
 // Two references (issue 5 item 6):
@@ -20,12 +20,12 @@
 #include <vector>
 
 #include "core/glints/kemppinen.h"
-#include "core/glints/kemppinen_presets.h"
 #include "core/glints/kemppinen_reference.h"
 #include "core/math/rng.h"
 #include "core/ndf/beckmann.h"
 #include "core/ndf/ggx.h"
 #include "core/samplers/walter.h"
+#include "verify/scenes/kemppinen_presets.h"
 
 namespace glintlab::kemppinen_sa {
 
