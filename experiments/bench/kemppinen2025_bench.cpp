@@ -22,6 +22,7 @@
 #include "core/glints/kemppinen_reference.h"
 #include "core/ndf/beckmann.h"
 #include "core/ndf/ggx.h"
+#include "core/ndf/ndf_kind.h"
 #include "experiments/bench/kemppinen2025_speed_accuracy.h"
 #include "experiments/bench/kemppinen2025_table3_scene.h"
 
@@ -125,7 +126,7 @@ void BM_Method(benchmark::State& state, bool ggx, sa::Reference r, sa::Setting s
   const RefSet& rs = ref_set(ggx, r, s.blend);
   set_errors(state, sa::errors(sa::eval_all(ggx, s, rs.q), rs.ref, rs.scale));
   const KemppinenParams<double> p = sa::params(s, 1);
-  sa::with_ndf(ggx, [&](const auto& ndf) {
+  with_ndf(ndf_kind(ggx), sa::kAlpha, sa::kAlpha, [&](const auto& ndf) {
     std::size_t i = 0;
     for (auto _ : state) {
       const sa::Query& q = rs.q[i];
@@ -144,7 +145,7 @@ void BM_MethodReference(benchmark::State& state, bool ggx) {
   set_errors(state, {0, 0, 0, int(rs.q.size())});
   const KemppinenParams<double> p =
       sa::params({1, KemppinenErf::kExact, KemppinenBlend::kRoulette}, 1);
-  sa::with_ndf(ggx, [&](const auto& ndf) {
+  with_ndf(ndf_kind(ggx), sa::kAlpha, sa::kAlpha, [&](const auto& ndf) {
     std::size_t i = 0;
     for (auto _ : state) {
       const sa::Query& q = rs.q[i];

@@ -23,6 +23,7 @@
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/io/png.h"
+#include "core/ndf/ndf_kind.h"
 #include "experiments/bench/kemppinen2025_speed_accuracy.h"
 #include "experiments/bench/kemppinen2025_table3_scene.h"
 #include "experiments/figures/bench_json.h"
@@ -230,7 +231,7 @@ void measure_in_process(SaRow& row, const sa::Setting* s, bool quick, double min
   const std::vector<double> ref = sa::reference_all(row.ggx, row.ref, blend, q, &scale);
   const KemppinenParams<double> p =
       sa::params(s ? *s : sa::Setting{1, KemppinenErf::kExact, KemppinenBlend::kRoulette}, 1);
-  sa::with_ndf(row.ggx, [&](const auto& ndf) {
+  with_ndf(ndf_kind(row.ggx), sa::kAlpha, sa::kAlpha, [&](const auto& ndf) {
     const auto at = [&](long i) -> const sa::Query& { return q[std::size_t(i) % q.size()]; };
     if (s) {
       row.err = sa::errors(sa::eval_all(row.ggx, *s, q), ref, scale);
