@@ -21,6 +21,12 @@ inline constexpr double kUnitTolerance = 1e-6;
 NdfKind parse_ndf(std::string_view text, std::string_view where);
 std::string_view ndf_name(NdfKind kind);
 
+// The canonical spelling of `text` given to `option`: an old spelling the CLI still accepts
+// (`--sampler caps`, `--sampler bounded`, `--bound exact-isotropic`) is replaced by its canonical
+// name, with one line on stderr: "glintlab: note: --sampler caps is spelled spherical_caps". Any
+// other text is returned as it is.
+std::string canonical_spelling(std::string_view option, std::string_view text);
+
 // Throws unless α is finite and > 0.
 void check_alpha(double alpha, std::string_view where);
 // Throws unless |‖w‖ − 1| ≤ 1e-6; the message gives the length.
