@@ -1,8 +1,8 @@
 // Google Benchmark of verify's chi-square goodness-of-fit (verify/claims/gof_family.h) with 10^7
 // samples for one configuration of smooth.sampler-matches-pdf: the plan (adaptive cubature of the
 // expected counts) and the run (sampling + binning + statistic), samples drawn by the scalar
-// sampler or by the batched one (core/simd sample_batch) that the claim uses. Issue 9's goal:
-// under 2 s on 2 cores with the batched samplers.
+// sampler or by the batched one (core/simd sample_batch) that the claim uses. Goal: under 2 s on
+// 2 cores with the batched samplers.
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 

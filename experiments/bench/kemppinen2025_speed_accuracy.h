@@ -3,7 +3,7 @@
 // (experiments/bench/kemppinen2025_bench.cpp, schema in the method-benchmark notes) and of the
 // kemppinen2025-speed-accuracy figure, which recomputes the errors when no benchmark JSON exists.
 //
-// Two references (issue 5 item 6):
+// Two references:
 // * dstar_f_vs_bruteforce: Eq. 5 summed over every point (core/glints/kemppinen_reference.h),
 //   footprints of 0.25 … 16 level-0 cells, where the brute force is affordable. The error is
 //   |D★^f − D★_Eq.5| / D(ω_h): the brute force is 0 between glints, so it is scaled by the smooth
