@@ -16,7 +16,6 @@
 #include <vector>
 
 #include "core/glints/kemppinen.h"
-#include "core/glints/kemppinen_presets.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"
 #include "core/io/png.h"
@@ -26,7 +25,9 @@
 #include "core/ndf/beckmann.h"
 #include "core/ndf/ggx.h"
 #include "core/ndf/microfacet.h"
+#include "core/ndf/ndf_kind.h"
 #include "core/samplers/walter.h"
+#include "verify/scenes/kemppinen_presets.h"
 
 namespace glintlab::experiments {
 namespace {
@@ -47,11 +48,6 @@ struct NdfChoice {
   bool ggx;
 };
 constexpr std::array<NdfChoice, 2> kNdfs = {{{"ggx", true}, {"beckmann", false}}};
-
-template <class F>
-auto with_ndf(bool ggx, double alpha, F&& f) {
-  return ggx ? f(GGX<double>{alpha, alpha}) : f(Beckmann<double>{alpha, alpha});
-}
 
 std::string model_name(bool ggx) { return ggx ? "kemppinen_ggx" : "kemppinen_beckmann"; }
 
@@ -164,7 +160,7 @@ void run_fig2_3(const FigureContext& ctx) {
   std::vector<Row> rows;
   std::vector<Image> tiles;
   for (const NdfChoice& nd : kNdfs) {
-    with_ndf(nd.ggx, kFig23Alpha, [&](const auto& ndf) {
+    with_ndf(ndf_kind(nd.ggx), kFig23Alpha, kFig23Alpha, [&](const auto& ndf) {
       // Prior space: pixel centre p of [0,1]², ratio D★^f/D at ω_h = T⁻¹(p) (uniform 1 for the
       // smooth NDF); its mean over U_Ω equals ∫ D★^f cosθ_h dω_h only where T pushes D cosθ to
       // the uniform density: Beckmann, not the GGX map L∘M̃ as printed (it pushes D cosθ to a
@@ -287,7 +283,7 @@ FurnaceRow furnace(const NdfChoice& nd, double alpha, double alpha_star, double 
   const double t = theta_deg * kPiD / 180;
   const V3 wo{std::sin(t) * std::cos(0.3), std::sin(t) * std::sin(0.3), std::cos(t)};
   double sg = 0, sg2 = 0, ss = 0, ss2 = 0;
-  with_ndf(nd.ggx, alpha, [&](const auto& ndf) {
+  with_ndf(ndf_kind(nd.ggx), alpha, alpha, [&](const auto& ndf) {
     for (std::uint64_t i = 0; i < n; ++i) {
       const V2 u{counter_uniform<double>(seed, i, 2), counter_uniform<double>(seed, i, 3)};
       const V2 uv{1000 * counter_uniform<double>(seed, i, 0),

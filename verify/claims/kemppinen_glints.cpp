@@ -12,13 +12,14 @@
 
 #include "core/glints/kemppinen.h"
 #include "core/glints/kemppinen_full_sampling.h"
-#include "core/glints/kemppinen_presets.h"
+#include "verify/scenes/kemppinen_presets.h"
 #include "core/glints/kemppinen_reference.h"
 #include "core/glints/kemppinen_sampling.h"
 #include "core/ndf/beckmann.h"
 #include "core/ndf/ggx.h"
+#include "core/ndf/ndf_kind.h"
 #include "core/render/convergence.h"
-#include "core/render/kemppinen_env_radiance.h"
+#include "verify/scenes/kemppinen_env_radiance.h"
 #include "core/samplers/walter.h"
 #include "verify/claims/claims.h"
 #include "verify/claims/gof_family.h"
@@ -51,8 +52,8 @@ struct Ndfs {
 };
 
 template <class F>
-auto with_ndf(const Ndfs& n, F&& f) {
-  return n.ggx ? f(GGX<double>{n.alpha, n.alpha}) : f(Beckmann<double>{n.alpha, n.alpha});
+decltype(auto) with_ndf(const Ndfs& n, F&& f) {
+  return glintlab::with_ndf(ndf_kind(n.ggx), n.alpha, n.alpha, std::forward<F>(f));
 }
 
 const char* ndf_name(const Ndfs& n) { return n.ggx ? "GGX" : "Beckmann"; }
@@ -843,7 +844,7 @@ CheckResult run_constant(Budget b) {
   r.detail = fmt::format(
       "Algorithm 1 visits 2k² cells for every footprint, LOD and anisotropy ({} … {} over all k; "
       "per k constant); time per evaluation is measured by the Google Benchmark "
-      "experiments/bench/kemppinen_bench.cpp (BM_KemppinenEval: k × footprint), not asserted here",
+      "experiments/bench/kemppinen2025_bench.cpp (BM_KemppinenEval: k × footprint), not asserted here",
       min_pts, max_pts);
   return r;
 }
@@ -950,7 +951,7 @@ std::vector<SampConfig> est_configs() {
 // F = 1) under kemppinen_env_sky(), viewed from θ_v = 30°, over a set of pixels at random uv:
 // (a) the mixture of Algorithm 2 and D cosθ with its exact density, (b) the same samples with
 // Algorithm 2's printed pdf in the mixture, (c) D cosθ alone; each against the stratified
-// quadrature reference of core/render/kemppinen_env_radiance.h (2 n² evaluations per pixel).
+// quadrature reference of verify/scenes/kemppinen_env_radiance.h (2 n² evaluations per pixel).
 
 struct RenderConfig {
   Ndfs ndf;
