@@ -27,6 +27,7 @@
 #include "core/ndf/microfacet.h"
 #include "core/ndf/ndf_kind.h"
 #include "core/samplers/walter.h"
+#include "verify/scenes/kemppinen_furnace.h"
 #include "verify/scenes/kemppinen_presets.h"
 
 namespace glintlab::experiments {
@@ -268,9 +269,8 @@ void run_fig2_3(const FigureContext& ctx) {
 
 // ---- Fig. 15: area-averaged white furnace -----------------------------------------------------
 
-// E(θo) = E_x ∫ f★ cosθ_i dω_i with ω_h ~ D cosθ_h (Walter et al. 2007 Eq. 28–29, 35–36) and ω_i
-// its reflection: weight G2 (D★^f/D) |ω_o·ω_h| / (cosθ_o cosθ_h); the smooth furnace is the same
-// with D★^f/D = 1, on the same samples (as kemppinen.furnace, footprint 16 cells, k = 4).
+// E(θo) = E_x ∫ f★ cosθ_i dω_i, glinty and smooth on the same samples
+// (verify/scenes/kemppinen_furnace.h, as kemppinen.furnace; k = 4).
 struct FurnaceRow {
   std::string_view ndf;
   double alpha, alpha_star, theta;
@@ -288,14 +288,8 @@ FurnaceRow furnace(const NdfChoice& nd, double alpha, double alpha_star, double 
       const V2 u{counter_uniform<double>(seed, i, 2), counter_uniform<double>(seed, i, 3)};
       const V2 uv{1000 * counter_uniform<double>(seed, i, 0),
                   1000 * counter_uniform<double>(seed, i, 1)};
-      const V3 m = sample_normal_walter(ndf, u);
-      const V3 wi = reflect(wo, m);
-      double g = 0, s = 0;
-      if (wi.z > 0 && dot(wo, m) > 0) {
-        s = smith_g2_height_correlated(ndf, wo, wi, m) * dot(wo, m) / (wo.z * m.z);
-        g = s * kemppinen_eval(p, ndf, kemppinen_footprint_cells(uv, 16, p), m).d.x / ndf.D(m);
-      }
-      sg += g, sg2 += g * g, ss += s, ss2 += s * s;
+      const KemppinenFurnaceSample f = kemppinen_furnace_sample(p, ndf, wo, uv, u);
+      sg += f.glint, sg2 += f.glint * f.glint, ss += f.smooth, ss2 += f.smooth * f.smooth;
     }
     return 0;
   });

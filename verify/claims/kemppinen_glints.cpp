@@ -12,18 +12,19 @@
 
 #include "core/glints/kemppinen.h"
 #include "core/glints/kemppinen_full_sampling.h"
-#include "verify/scenes/kemppinen_presets.h"
 #include "core/glints/kemppinen_reference.h"
 #include "core/glints/kemppinen_sampling.h"
 #include "core/ndf/beckmann.h"
 #include "core/ndf/ggx.h"
 #include "core/ndf/ndf_kind.h"
 #include "core/render/convergence.h"
-#include "verify/scenes/kemppinen_env_radiance.h"
 #include "core/samplers/walter.h"
 #include "verify/claims/claims.h"
 #include "verify/claims/gof_family.h"
 #include "verify/claims/kemppinen_probes.h"
+#include "verify/scenes/kemppinen_env_radiance.h"
+#include "verify/scenes/kemppinen_furnace.h"
+#include "verify/scenes/kemppinen_presets.h"
 #include "verify/stats/mean_tests.h"
 #include "verify/stats/multiple_testing.h"
 
@@ -645,15 +646,8 @@ FurnRow run_furn(const FurnConfig& c, std::uint64_t n, std::uint64_t seed) {
   with_ndf(c.ndf, [&](const auto& ndf) {
     for (std::uint64_t i = 0; i < n; ++i) {
       const V2 u{counter_uniform<double>(seed, i, 2), counter_uniform<double>(seed, i, 3)};
-      const V3 m = sample_normal_walter(ndf, u);
-      const V3 wo = reflect(wi, m);
-      double g = 0, s = 0;
-      if (wo.z > 0 && dot(wi, m) > 0) {
-        const FootprintQuery<double> fp = kemppinen_footprint_cells(position(seed, i), 16, p);
-        const double w = smith_g2_height_correlated(ndf, wi, wo, m) * dot(wi, m) / (wi.z * m.z);
-        s = w;
-        g = w * kemppinen_eval(p, ndf, fp, m).d.x / ndf.D(m);
-      }
+      const KemppinenFurnaceSample f = kemppinen_furnace_sample(p, ndf, wi, position(seed, i), u);
+      const double g = f.glint, s = f.smooth;
       row.glint.add(g);
       row.smooth.add(s);
       row.diff.add(g - s);
@@ -766,17 +760,8 @@ double calibrate_furnace(std::uint64_t seed) {
   with_ndf(nd, [&](const auto& ndf) {
     for (std::uint64_t i = 0; i < 1500; ++i) {
       const V2 u{counter_uniform<double>(seed, i, 2), counter_uniform<double>(seed, i, 3)};
-      const V3 m = sample_normal_walter(ndf, u);
-      const V3 wo = reflect(wi, m);
-      double diff = 0;
-      if (wo.z > 0 && dot(wi, m) > 0) {
-        const double w = smith_g2_height_correlated(ndf, wi, wo, m) * dot(wi, m) / (wi.z * m.z);
-        const auto at = [&](const V2& x) {
-          return w * kemppinen_eval(p, ndf, kemppinen_footprint_cells(x, 16, p), m).d.x / ndf.D(m);
-        };
-        diff = at(position(seed, i)) - at(position(mix64(seed ^ 0x5eed), i));
-      }
-      d.add(diff);
+      const auto at = [&](const V2& x) { return kemppinen_furnace_sample(p, ndf, wi, x, u).glint; };
+      d.add(at(position(seed, i)) - at(position(mix64(seed ^ 0x5eed), i)));
     }
     return 0;
   });
@@ -844,7 +829,8 @@ CheckResult run_constant(Budget b) {
   r.detail = fmt::format(
       "Algorithm 1 visits 2k² cells for every footprint, LOD and anisotropy ({} … {} over all k; "
       "per k constant); time per evaluation is measured by the Google Benchmark "
-      "experiments/bench/kemppinen2025_bench.cpp (BM_KemppinenEval: k × footprint), not asserted here",
+      "experiments/bench/kemppinen2025_bench.cpp (BM_KemppinenEval: k × footprint), not asserted "
+      "here",
       min_pts, max_pts);
   return r;
 }
