@@ -5,6 +5,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 
 #include "core/io/csv.h"
 
@@ -32,6 +33,22 @@ NdfKind parse_ndf(std::string_view text, std::string_view where) {
 }
 
 std::string_view ndf_name(NdfKind kind) { return kind == NdfKind::kGGX ? "ggx" : "beckmann"; }
+
+std::string canonical_spelling(std::string_view option, std::string_view text) {
+  struct Alias {
+    std::string_view option, alias, canonical;
+  };
+  static constexpr Alias kAliases[] = {{"--sampler", "caps", "spherical_caps"},
+                                       {"--sampler", "bounded", "bounded_caps"},
+                                       {"--bound", "exact-isotropic", "exact_isotropic"}};
+  for (const Alias& a : kAliases) {
+    if (a.option == option && a.alias == text) {
+      fmt::print(stderr, "glintlab: note: {} {} is spelled {}\n", option, text, a.canonical);
+      return std::string(a.canonical);
+    }
+  }
+  return std::string(text);
+}
 
 void check_alpha(double alpha, std::string_view where) {
   if (!(std::isfinite(alpha) && alpha > 0.0)) {

@@ -1,6 +1,6 @@
-// Validation shared by the subcommands: NDF names, roughness, unit directions and the dispatch
-// from a runtime NDF name to the templated kernels. Every check throws cli::InputError with a
-// one-line message "<where>: <problem> (valid: <range>)".
+// Validation shared by the subcommands: NDF names, roughness and unit directions (the dispatch
+// from a runtime NDF to the templated kernels is with_ndf, core/ndf/ndf_kind.h). Every check throws
+// cli::InputError with a one-line message "<where>: <problem> (valid: <range>)".
 #pragma once
 
 #include <cstdint>
@@ -10,12 +10,9 @@
 
 #include "cli/commands.h"
 #include "core/math/vec.h"
-#include "core/ndf/beckmann.h"
-#include "core/ndf/ggx.h"
+#include "core/ndf/ndf_kind.h"
 
 namespace glintlab::cli {
-
-enum class NdfKind { kGGX, kBeckmann };
 
 inline constexpr std::string_view kNdfNames = "ggx, beckmann";
 inline constexpr double kUnitTolerance = 1e-6;
@@ -23,6 +20,12 @@ inline constexpr double kUnitTolerance = 1e-6;
 // "ggx" or "beckmann"; throws InputError naming `where` otherwise.
 NdfKind parse_ndf(std::string_view text, std::string_view where);
 std::string_view ndf_name(NdfKind kind);
+
+// The canonical spelling of `text` given to `option`: an old spelling the CLI still accepts
+// (`--sampler caps`, `--sampler bounded`, `--bound exact-isotropic`) is replaced by its canonical
+// name, with one line on stderr: "glintlab: note: --sampler caps is spelled spherical_caps". Any
+// other text is returned as it is.
+std::string canonical_spelling(std::string_view option, std::string_view text);
 
 // Throws unless α is finite and > 0.
 void check_alpha(double alpha, std::string_view where);
@@ -39,12 +42,5 @@ Vec3<double> parse_unit_direction(std::string_view text, std::string_view where)
 // Parses a non-negative decimal integer in [lo, hi]; throws naming `where` and the range.
 std::uint64_t parse_integer(std::string_view text, std::string_view where, std::uint64_t lo,
                             std::uint64_t hi);
-
-// Calls f(GGX<double>{ax, ay}) or f(Beckmann<double>{ax, ay}) and returns its result.
-template <class F>
-decltype(auto) with_ndf(NdfKind kind, double alpha_x, double alpha_y, F&& f) {
-  if (kind == NdfKind::kGGX) return f(GGX<double>{alpha_x, alpha_y});
-  return f(Beckmann<double>{alpha_x, alpha_y});
-}
 
 }  // namespace glintlab::cli

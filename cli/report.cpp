@@ -1,6 +1,6 @@
 // `glintlab report`: runs (or, with --reuse, reads the cached results of) the claim suite, every
 // registered figure, the benchmarks and the stability sweeps, then has reports/make_report.py draw
-// the plots and write DIR/index.html and its Markdown twin DIR/report.md (issue 10 items 1, 5).
+// the plots and write DIR/index.html and its Markdown twin DIR/report.md.
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <fnmatch.h>

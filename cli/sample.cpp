@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -17,6 +18,7 @@
 #include "cli/sample_model.h"
 #include "core/io/csv.h"
 #include "core/math/rng.h"
+#include "core/models/smooth_ggx.h"
 #include "core/samplers/beckmann_vndf.h"
 #include "core/samplers/bounded_vndf.h"
 #include "core/samplers/heitz_vndf.h"
@@ -26,7 +28,10 @@
 namespace glintlab::cli {
 namespace {
 
-enum class Sampler { kNdf, kVndf, kCaps, kBounded };
+// The samplers and bounds by the names of the smooth_ggx model's `sampler` and `bound` choices.
+enum class Sampler { kNdf, kVndf, kSphericalCaps, kBoundedCaps };
+static_assert(int(Sampler::kSphericalCaps) == SmoothGGX::kSphericalCaps &&
+              int(Sampler::kBoundedCaps) == SmoothGGX::kBoundedCaps);
 
 constexpr std::uint64_t kMaxSamples = 1000000000;  // 1e9 rows is already ~200 GB of CSV
 
@@ -63,44 +68,41 @@ SampleJob validate(const SampleArgs& a) {
 
   job.wi = parse_unit_direction(a.wi, "--wi");
 
-  if (a.sampler == "ndf") {
-    job.sampler = Sampler::kNdf;
-  } else if (a.sampler == "vndf") {
-    job.sampler = Sampler::kVndf;
-  } else if (a.sampler == "caps") {
-    job.sampler = Sampler::kCaps;
-  } else if (a.sampler == "bounded") {
-    job.sampler = Sampler::kBounded;
-  } else {
-    throw InputError(
-        fmt::format("--sampler: unknown sampler '{}' (valid: ndf, vndf, caps, "
-                    "bounded; caps and bounded with --ndf ggx only)",
-                    a.sampler));
+  const std::string sampler = canonical_spelling("--sampler", a.sampler);
+  const auto& names = SmoothGGX::kSamplerNames;
+  const auto s = std::find(names.begin(), names.end(), sampler);
+  if (s == names.end()) {
+    throw InputError(fmt::format(
+        "--sampler: unknown sampler '{}' (valid: {}; {} and {} with --ndf ggx only)", sampler,
+        fmt::join(names, ", "), names[SmoothGGX::kSphericalCaps], names[SmoothGGX::kBoundedCaps]));
   }
-  const bool ggx_only = job.sampler == Sampler::kCaps || job.sampler == Sampler::kBounded;
+  job.sampler = Sampler(s - names.begin());
+  const bool ggx_only =
+      job.sampler == Sampler::kSphericalCaps || job.sampler == Sampler::kBoundedCaps;
   if (ggx_only && job.ndf != NdfKind::kGGX) {
     throw InputError(fmt::format(
-        "--sampler: '{}' samples GGX only, not --ndf {} (valid for --ndf {}: ndf, vndf)", a.sampler,
+        "--sampler: '{}' samples GGX only, not --ndf {} (valid for --ndf {}: ndf, vndf)", sampler,
         ndf_name(job.ndf), ndf_name(job.ndf)));
   }
   if ((job.sampler == Sampler::kNdf || job.sampler == Sampler::kVndf) && !(job.wi.z > 0.0)) {
     throw InputError(fmt::format(
         "--wi: wi.z = {} is not above the surface, which the {} sampler needs (valid: wi.z > 0; "
-        "the caps and bounded samplers also accept wi.z <= 0)",
-        job.wi.z, a.sampler));
+        "the spherical_caps and bounded_caps samplers also accept wi.z <= 0)",
+        job.wi.z, sampler));
   }
 
-  if (a.bound == "listing1") {
-    job.bound = BoundedVndfBound::kListing1;
-  } else if (a.bound == "exact-isotropic") {
-    job.bound = BoundedVndfBound::kExactIsotropic;
-  } else {
+  const std::string bound = canonical_spelling("--bound", a.bound);
+  const auto& bounds = SmoothGGX::kBoundNames;
+  const auto b = std::find(bounds.begin(), bounds.end(), bound);
+  if (b == bounds.end()) {
     throw InputError(
-        fmt::format("--bound: unknown bound '{}' (valid: listing1, exact-isotropic)", a.bound));
+        fmt::format("--bound: unknown bound '{}' (valid: {})", bound, fmt::join(bounds, ", ")));
   }
-  if (a.bound_given && job.sampler != Sampler::kBounded) {
+  job.bound = b == bounds.begin() ? BoundedVndfBound::kListing1 : BoundedVndfBound::kExactIsotropic;
+  if (a.bound_given && job.sampler != Sampler::kBoundedCaps) {
     throw InputError(fmt::format(
-        "--bound: only applies to --sampler bounded, not '{}' (valid: omit --bound)", a.sampler));
+        "--bound: only applies to --sampler bounded_caps, not '{}' (valid: omit --bound)",
+        sampler));
   }
 
   job.n = parse_integer(a.n, "--n", 1, kMaxSamples);
@@ -119,9 +121,9 @@ MicrofacetSample<double> draw(const Ndf& ndf, const SampleJob& job, std::uint64_
         return sample_walter(ndf, job.wi, u);
       case Sampler::kVndf:
         return sample_heitz_vndf(ndf, job.wi, u);
-      case Sampler::kCaps:
+      case Sampler::kSphericalCaps:
         return sample_spherical_caps(ndf, job.wi, u);
-      case Sampler::kBounded:
+      case Sampler::kBoundedCaps:
         return sample_bounded_vndf(ndf, job.wi, u, job.bound);
     }
     return {};
@@ -150,12 +152,16 @@ void run_sample(const SampleArgs& args) {
                 });
 }
 
-constexpr const char* kSampleFooter = R"(SAMPLERS (--sampler):
-  ndf      Walter et al. 2007: h drawn from D(h) h.z, wo = reflect(wi, h); ggx and beckmann
-  vndf     visible normals D_wi(h): Heitz 2018 for ggx, the Beckmann VNDF sampler for beckmann
-  caps     spherical caps VNDF sampling (Dupuy & Benyoub 2023); ggx only
-  bounded  bounded VNDF sampling (Eto & Tokuyoshi 2023), bound chosen by --bound; ggx only
-ndf and vndf need wi above the surface (wi.z > 0); caps and bounded also accept wi.z <= 0.
+constexpr const char* kSampleFooter =
+    R"(SAMPLERS (--sampler, named as smooth_ggx's sampler parameter names them):
+  ndf             Walter et al. 2007: h drawn from D(h) h.z, wo = reflect(wi, h); ggx and beckmann
+  vndf            visible normals D_wi(h): Heitz 2018 for ggx, the Beckmann VNDF sampler for
+                  beckmann
+  spherical_caps  spherical caps VNDF sampling (Dupuy & Benyoub 2023); ggx only
+  bounded_caps    bounded VNDF sampling (Eto & Tokuyoshi 2023), bound chosen by --bound; ggx only
+ndf and vndf need wi above the surface (wi.z > 0); spherical_caps and bounded_caps also accept
+wi.z <= 0. Old spellings still accepted, with a note on stderr: caps (spherical_caps), bounded
+(bounded_caps), --bound exact-isotropic (exact_isotropic).
 Directions are in the local shading frame: x tangent, y bitangent, z the macrosurface normal.
 
 OUTPUT (--out): a CSV file with one row per sample i = 0 .. N-1, columns
@@ -187,10 +193,10 @@ void add_sample_command(CLI::App& app) {
   cmd->add_option("--wi", a->wi,
                   "Incident direction 'x,y,z' toward the viewer, unit length within 1e-6 (write "
                   "--wi=-0.6,0,0.8 when x is negative)");
-  cmd->add_option("--sampler", a->sampler, "ndf, vndf, caps or bounded (see below)");
+  cmd->add_option("--sampler", a->sampler, "ndf, vndf, spherical_caps or bounded_caps (see below)");
   cmd->add_option("--bound", a->bound,
-                  "Bound of the bounded sampler: listing1 (Eto & Tokuyoshi 2023 Listing 1) or "
-                  "exact-isotropic; only with --sampler bounded (default listing1)");
+                  "Bound of the bounded_caps sampler: listing1 (Eto & Tokuyoshi 2023 Listing 1) "
+                  "or exact_isotropic; only with --sampler bounded_caps (default listing1)");
   cmd->add_option("--n", a->n, "Number of samples, an integer in [1, 1000000000]");
   cmd->add_option("--seed", a->seed,
                   "Seed of the counter-based generator, an unsigned 64-bit "

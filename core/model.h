@@ -1,5 +1,6 @@
-// The interface every NDF or glint model satisfies (ARCHITECTURE.md "model.h"): queries, results,
-// parameter specifications and the Model concept the static kernels are written against.
+// The interface every NDF or glint model satisfies (docs/architecture.md, docs/adding_a_model.md):
+// queries, results, parameter specifications and the Model concept the static kernels are written
+// against.
 //
 // A model is a struct with static members (no state, no virtual calls):
 //   kName, kDescription, kSource            identification (kSource cites the paper/equations)

@@ -1,4 +1,4 @@
-"""The glintlab report (issue 10 items 1, 5): index.html and its Markdown twin report.md from a folder
+"""The glintlab report: index.html and its Markdown twin report.md from a folder
 of results, with the plots drawn here from the results' CSVs.
 
 Run by /usr/bin/python3 (Debian's, with matplotlib); `glintlab report` calls it on its staging

@@ -1,4 +1,4 @@
-"""Speed vs accuracy (issue 9 item 5): joins glintlab_accuracy's CSV with the Google Benchmark JSON
+"""Speed vs accuracy: joins glintlab_accuracy's CSV with the Google Benchmark JSON
 of scripts/bench.sh, marks the Pareto front, writes speed_accuracy.csv and speed_accuracy.png.
 With --methods, also the method rows `method/<method>/<setting>` of the method benchmarks
 (experiments/bench/METHOD_BENCHMARKS.md) into the same CSV (source=method) and a chart of every

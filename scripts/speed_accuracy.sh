@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Speed vs accuracy (issue 9 item 5) of every batched kernel × ISA × math flavour and of every
+# Speed vs accuracy of every batched kernel × ISA × math flavour and of every
 # method and setting: runs glintlab_accuracy into out/bench/accuracy.csv, joins it with
 # out/bench/bench.json (run scripts/bench.sh first, or pass --bench to run it here), runs the
 # method benchmarks of METHOD_BENCHES (experiments/bench/METHOD_BENCHMARKS.md) into

@@ -1,7 +1,7 @@
 // Podee, Max, Iwasaki & Dobashi (micro-specular highlights, Sec. 3.1–3.2) as a model
 // (core/model.h): a mirror pixel under a disk light, shaded with the most intense reflection
 // vector of the reflection space and weighted by area(projected disk ∩ reflection space) /
-// area(reflection space) (core/shading/podee.h).
+// area(reflection space) (core/shading/podee_shade.h).
 #pragma once
 
 #include <array>
@@ -12,7 +12,7 @@
 #include "core/model.h"
 #include "core/ndf/ggx.h"
 #include "core/samplers/heitz_vndf.h"
-#include "core/shading/podee.h"
+#include "core/shading/podee_shade.h"
 
 namespace glintlab {
 

@@ -1,5 +1,5 @@
 // Helpers for the method-level speed-vs-accuracy benchmarks
-// (experiments/bench/METHOD_BENCHMARKS.md, issue 9 item 5): the row name
+// (experiments/bench/METHOD_BENCHMARKS.md): the row name
 // `method/<method>/<setting>`, the query seed hashed from the method id, the error statistics
 // err_max / err_rms / err_p99 / err_n and the quick mode of ctest.
 #pragma once

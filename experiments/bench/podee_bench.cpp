@@ -1,6 +1,6 @@
 // Google Benchmark: time per pixel of Podee et al.'s method (Sec. 3) and of the baselines it is
 // compared with in Table 1 — centre sampling, LEAN mapping, the 64-spp supersampled reference —
-// on the podee scene (core/scene/podee_scene.h) at the near, medium and far distances, single
+// on the podee scene (verify/scenes/podee_scene.h) at the near, medium and far distances, single
 // threaded; and the bare kernel podee_shade (float, double; exact and quad-as-circle weights).
 // items/s = pixels per second. Run: glintlab_bench_podee --benchmark_out=out/bench/podee.json
 // --benchmark_out_format=json. Method rows (experiments/bench/METHOD_BENCHMARKS.md): the kernel's
@@ -17,8 +17,8 @@
 
 #include "core/math/rng.h"
 #include "core/models/podee.h"
-#include "core/scene/podee_scene.h"
 #include "experiments/bench/method_bench.h"
+#include "verify/scenes/podee_scene.h"
 
 namespace glintlab {
 namespace {

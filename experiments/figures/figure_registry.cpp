@@ -7,7 +7,7 @@
 #include <system_error>
 
 #include "experiments/figures/chermain2021.h"
-#include "experiments/figures/eto_tokuyoshi2023.h"
+#include "experiments/figures/eto2023.h"
 #include "experiments/figures/models_hemisphere.h"
 #include "experiments/figures/podee.h"
 #include "experiments/figures/kneiphof2024.h"

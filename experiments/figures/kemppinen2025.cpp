@@ -16,7 +16,6 @@
 #include <vector>
 
 #include "core/glints/kemppinen.h"
-#include "core/glints/kemppinen_presets.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"
 #include "core/io/png.h"
@@ -26,7 +25,10 @@
 #include "core/ndf/beckmann.h"
 #include "core/ndf/ggx.h"
 #include "core/ndf/microfacet.h"
+#include "core/ndf/ndf_kind.h"
 #include "core/samplers/walter.h"
+#include "verify/scenes/kemppinen_furnace.h"
+#include "verify/scenes/kemppinen_presets.h"
 
 namespace glintlab::experiments {
 namespace {
@@ -47,11 +49,6 @@ struct NdfChoice {
   bool ggx;
 };
 constexpr std::array<NdfChoice, 2> kNdfs = {{{"ggx", true}, {"beckmann", false}}};
-
-template <class F>
-auto with_ndf(bool ggx, double alpha, F&& f) {
-  return ggx ? f(GGX<double>{alpha, alpha}) : f(Beckmann<double>{alpha, alpha});
-}
 
 std::string model_name(bool ggx) { return ggx ? "kemppinen_ggx" : "kemppinen_beckmann"; }
 
@@ -164,7 +161,7 @@ void run_fig2_3(const FigureContext& ctx) {
   std::vector<Row> rows;
   std::vector<Image> tiles;
   for (const NdfChoice& nd : kNdfs) {
-    with_ndf(nd.ggx, kFig23Alpha, [&](const auto& ndf) {
+    with_ndf(ndf_kind(nd.ggx), kFig23Alpha, kFig23Alpha, [&](const auto& ndf) {
       // Prior space: pixel centre p of [0,1]², ratio D★^f/D at ω_h = T⁻¹(p) (uniform 1 for the
       // smooth NDF); its mean over U_Ω equals ∫ D★^f cosθ_h dω_h only where T pushes D cosθ to
       // the uniform density: Beckmann, not the GGX map L∘M̃ as printed (it pushes D cosθ to a
@@ -272,9 +269,8 @@ void run_fig2_3(const FigureContext& ctx) {
 
 // ---- Fig. 15: area-averaged white furnace -----------------------------------------------------
 
-// E(θo) = E_x ∫ f★ cosθ_i dω_i with ω_h ~ D cosθ_h (Walter et al. 2007 Eq. 28–29, 35–36) and ω_i
-// its reflection: weight G2 (D★^f/D) |ω_o·ω_h| / (cosθ_o cosθ_h); the smooth furnace is the same
-// with D★^f/D = 1, on the same samples (as kemppinen.furnace, footprint 16 cells, k = 4).
+// E(θo) = E_x ∫ f★ cosθ_i dω_i, glinty and smooth on the same samples
+// (verify/scenes/kemppinen_furnace.h, as kemppinen.furnace; k = 4).
 struct FurnaceRow {
   std::string_view ndf;
   double alpha, alpha_star, theta;
@@ -287,19 +283,13 @@ FurnaceRow furnace(const NdfChoice& nd, double alpha, double alpha_star, double 
   const double t = theta_deg * kPiD / 180;
   const V3 wo{std::sin(t) * std::cos(0.3), std::sin(t) * std::sin(0.3), std::cos(t)};
   double sg = 0, sg2 = 0, ss = 0, ss2 = 0;
-  with_ndf(nd.ggx, alpha, [&](const auto& ndf) {
+  with_ndf(ndf_kind(nd.ggx), alpha, alpha, [&](const auto& ndf) {
     for (std::uint64_t i = 0; i < n; ++i) {
       const V2 u{counter_uniform<double>(seed, i, 2), counter_uniform<double>(seed, i, 3)};
       const V2 uv{1000 * counter_uniform<double>(seed, i, 0),
                   1000 * counter_uniform<double>(seed, i, 1)};
-      const V3 m = sample_normal_walter(ndf, u);
-      const V3 wi = reflect(wo, m);
-      double g = 0, s = 0;
-      if (wi.z > 0 && dot(wo, m) > 0) {
-        s = smith_g2_height_correlated(ndf, wo, wi, m) * dot(wo, m) / (wo.z * m.z);
-        g = s * kemppinen_eval(p, ndf, kemppinen_footprint_cells(uv, 16, p), m).d.x / ndf.D(m);
-      }
-      sg += g, sg2 += g * g, ss += s, ss2 += s * s;
+      const KemppinenFurnaceSample f = kemppinen_furnace_sample(p, ndf, wo, uv, u);
+      sg += f.glint, sg2 += f.glint * f.glint, ss += f.smooth, ss2 += f.smooth * f.smooth;
     }
     return 0;
   });

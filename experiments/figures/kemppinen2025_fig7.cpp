@@ -20,7 +20,6 @@
 #include <string>
 #include <vector>
 
-#include "core/glints/kemppinen_presets.h"
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"
@@ -28,9 +27,11 @@
 #include "core/math/rng.h"
 #include "core/ndf/beckmann.h"
 #include "core/ndf/ggx.h"
+#include "core/ndf/ndf_kind.h"
 #include "core/render/convergence.h"
-#include "core/render/kemppinen_env_radiance.h"
 #include "experiments/figures/kemppinen2025.h"
+#include "verify/scenes/kemppinen_env_radiance.h"
+#include "verify/scenes/kemppinen_presets.h"
 
 namespace glintlab::experiments {
 namespace {
@@ -70,11 +71,6 @@ struct NdfRun {
   std::uint64_t seed = 0;      // the series seed
 };
 
-template <class F>
-auto with_ndf(bool ggx, F&& f) {
-  return ggx ? f(GGX<double>{kAlpha, kAlpha}) : f(Beckmann<double>{kAlpha, kAlpha});
-}
-
 std::uint64_t fig7_seed(std::string_view what) {
   return hash_string(fmt::format("{}/{}", kFig7Id, what).c_str()) & 0xffffffffu;
 }
@@ -98,7 +94,7 @@ void run_ndf(const FigureContext& ctx, const EnvironmentMap& env, const Fig7Budg
   tbb::parallel_for(0, n, [&](int k) {
     const int x = k % b.size, y = k / b.size;
     const FootprintQuery<double> fp = view.pixel(x, y);
-    with_ndf(out.ggx, [&](const auto& ndf) {
+    with_ndf(ndf_kind(out.ggx), kAlpha, kAlpha, [&](const auto& ndf) {
       const std::uint64_t ks = std::uint64_t(k);
       const KemppinenEnvSamples s = kemppinen_env_samples(
           p, ndf, fp, env, v, std::uint64_t(b.max_spp), mix64(series_seed ^ mix64(ks)));

@@ -1,10 +1,10 @@
 // Kemppinen et al. 2025 timing figures: kemppinen2025-table3 (Table 3 analogue: time per pixel on
 // a 90° and a 25° plane, low and high roughness, 3 lights, Beckmann and GGX; the scene of
-// experiments/bench/kemppinen_table3_scene.h) and kemppinen2025-speed-accuracy (error of the
+// experiments/bench/kemppinen2025_table3_scene.h) and kemppinen2025-speed-accuracy (error of the
 // constant-time D★^f of Eq. 11 against the brute-force Eq. 5 and against the smooth D, per k and
 // erf of Eq. 10, against ns per evaluation; and the cost against footprint size, the constant-time
 // claim). Both read the Google Benchmark JSON out/bench/kemppinen.json of
-// experiments/bench/kemppinen_bench.cpp; rows it lacks are measured in process (the CPU time
+// experiments/bench/kemppinen2025_bench.cpp; rows it lacks are measured in process (the CPU time
 // of one thread over a small query set) and marked so in their time_source column.
 #include "experiments/figures/kemppinen2025_table3.h"
 
@@ -23,8 +23,9 @@
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/io/png.h"
-#include "experiments/bench/kemppinen_speed_accuracy.h"
-#include "experiments/bench/kemppinen_table3_scene.h"
+#include "core/ndf/ndf_kind.h"
+#include "experiments/bench/kemppinen2025_speed_accuracy.h"
+#include "experiments/bench/kemppinen2025_table3_scene.h"
 #include "experiments/figures/bench_json.h"
 #include "experiments/figures/log_chart.h"
 
@@ -180,7 +181,7 @@ void run_table3(const FigureContext& ctx) {
       "kemppinen_beckmann/kemppinen_ggx toward 3 point lights; k = 4, fast rational erf, "
       "roulette) times 1920x1080 = ms per frame on one core. Compare ratios between cells, not "
       "values. Low roughness alpha = {}, high alpha = {}, plane, camera and lights: see "
-      "experiments/bench/kemppinen_table3_scene.h (the paper does not give them).\n\n"
+      "experiments/bench/kemppinen2025_table3_scene.h (the paper does not give them).\n\n"
       "| method | 90° low | 90° high | 25° low | 25° high |\n|---|---|---|---|---|\n",
       kTable3Id, kt3::kLowAlpha, kt3::kHighAlpha);
   for (const PaperRow& p : kPaper) {
@@ -230,7 +231,7 @@ void measure_in_process(SaRow& row, const sa::Setting* s, bool quick, double min
   const std::vector<double> ref = sa::reference_all(row.ggx, row.ref, blend, q, &scale);
   const KemppinenParams<double> p =
       sa::params(s ? *s : sa::Setting{1, KemppinenErf::kExact, KemppinenBlend::kRoulette}, 1);
-  sa::with_ndf(row.ggx, [&](const auto& ndf) {
+  with_ndf(ndf_kind(row.ggx), sa::kAlpha, sa::kAlpha, [&](const auto& ndf) {
     const auto at = [&](long i) -> const sa::Query& { return q[std::size_t(i) % q.size()]; };
     if (s) {
       row.err = sa::errors(sa::eval_all(row.ggx, *s, q), ref, scale);

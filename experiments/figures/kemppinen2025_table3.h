@@ -1,5 +1,5 @@
 // Kemppinen et al. 2025 timing figures read from the Google Benchmark JSON of
-// experiments/bench/kemppinen_bench.cpp: the Table 3 analogue (time per pixel) and speed vs
+// experiments/bench/kemppinen2025_bench.cpp: the Table 3 analogue (time per pixel) and speed vs
 // accuracy of D★^f (Eq. 11) against its references, with the cost against footprint size.
 #pragma once
 

@@ -1,7 +1,7 @@
 // Podee et al. (micro-specular highlights) Table 1, the Fig. 4 comparison over camera distance and
 // the stability (flicker) comparison: centre sampling, LEAN mapping and the paper's method
 // (Sec. 3) against the paper's 64-spp supersampled reference and a converged one, on the scene of
-// core/scene/podee_scene.h (normal-mapped mirror sphere, one disk light). Paper: an OpenGL scene
+// verify/scenes/podee_scene.h (normal-mapped mirror sphere, one disk light). Paper: an OpenGL scene
 // (not published) of unknown distance and normal map, 8-bit images; here an analytic sphere,
 // procedural sine-bump normal map, linear radiance for unit light radiance on a black background.
 #include "experiments/figures/podee.h"
@@ -19,7 +19,7 @@
 #include "core/io/png.h"
 #include "core/math/rng.h"
 #include "core/render/metrics.h"
-#include "core/scene/podee_scene.h"
+#include "verify/scenes/podee_scene.h"
 
 namespace glintlab::experiments {
 namespace {
@@ -180,7 +180,7 @@ void run_table1(const FigureContext& ctx) {
       "units); ours is an analytic unit sphere with a procedural sine-bump normal map (rms slope "
       "0.15), one disk light (radius 0.3 at distance 6), black background, linear radiance. "
       "Absolute RMSEs are therefore not comparable, only the ordering of the three methods. Our "
-      "LEAN lights with the disk as a Gaussian convolved with LEAN's lobe (core/scene/"
+      "LEAN lights with the disk as a Gaussian convolved with LEAN's lobe (verify/scenes/"
       "podee_scene.h), the paper does not say how its LEAN lit the disk.\n";
   io::write_file_atomic(ctx.dir / "summary.md", md);
   std::vector<Image> cells;

@@ -220,13 +220,13 @@ TEST_F(ErrorTest, SampleBadArguments) {
       {"unknown ndf", {"--ndf=phong"}, {"--ndf", "'phong'", "valid: ggx, beckmann"}},
       {"unknown sampler",
        {"--sampler=importance"},
-       {"--sampler", "'importance'", "valid: ndf, vndf, caps, bounded"}},
-      {"caps on beckmann",
-       {"--ndf=beckmann", "--sampler=caps"},
-       {"--sampler", "'caps'", "GGX only", "valid for --ndf beckmann: ndf, vndf"}},
-      {"bounded on beckmann",
-       {"--ndf=beckmann", "--sampler=bounded"},
-       {"--sampler", "'bounded'", "valid for --ndf beckmann: ndf, vndf"}},
+       {"--sampler", "'importance'", "valid: ndf, vndf, spherical_caps, bounded_caps"}},
+      {"spherical_caps on beckmann",
+       {"--ndf=beckmann", "--sampler=spherical_caps"},
+       {"--sampler", "'spherical_caps'", "GGX only", "valid for --ndf beckmann: ndf, vndf"}},
+      {"bounded_caps on beckmann",
+       {"--ndf=beckmann", "--sampler=bounded_caps"},
+       {"--sampler", "'bounded_caps'", "valid for --ndf beckmann: ndf, vndf"}},
       {"alpha zero", {"--alpha=0"}, {"--alpha", "finite and > 0"}},
       {"alpha_y negative", {"--alpha=0.3,-0.1"}, {"--alpha (alpha_y)", "-0.1", "finite and > 0"}},
       {"alpha inf", {"--alpha=inf"}, {"--alpha", "'inf'", "finite"}},
@@ -249,9 +249,9 @@ TEST_F(ErrorTest, SampleBadArguments) {
       {"seed not integer", {"--seed=abc"}, {"--seed", "'abc'", "not an integer"}},
       {"seed negative", {"--seed=-1"}, {"--seed", "out of range"}},
       {"unknown bound",
-       {"--sampler=bounded", "--bound=loose"},
-       {"--bound", "'loose'", "valid: listing1, exact-isotropic"}},
-      {"bound without bounded", {"--bound=listing1"}, {"--bound", "--sampler bounded"}},
+       {"--sampler=bounded_caps", "--bound=loose"},
+       {"--bound", "'loose'", "valid: listing1, exact_isotropic"}},
+      {"bound without bounded_caps", {"--bound=listing1"}, {"--bound", "--sampler bounded_caps"}},
       {"missing ndf", {"--ndf"}, {"--ndf", "required"}},
       {"missing n", {"--n"}, {"--n", "required"}},
       {"unknown option", {"--bogus=1"}, {"--bogus"}},
@@ -269,7 +269,7 @@ TEST_F(ErrorTest, SampleOutputIsADirectoryLeavesNoTemporaryFile) {
 }
 
 TEST_F(ErrorTest, SampleBelowSurfaceIsValidForCapsAndBounded) {
-  for (const std::string sampler : {"caps", "bounded"}) {
+  for (const std::string sampler : {"spherical_caps", "bounded_caps"}) {
     SCOPED_TRACE(sampler);
     const RunResult r = run(sample_args({"--sampler=" + sampler, "--wi=0,0.6,-0.8"}));
     EXPECT_EQ(r.exit_code, 0) << r.err;

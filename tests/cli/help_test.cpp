@@ -59,7 +59,7 @@ TEST_F(HelpTest, SampleDocumentsOptionsAndColumns) {
   EXPECT_EQ(r.err, "");
   expect_contains(r.out, {"--ndf", "--alpha", "--wi", "--sampler", "--bound", "--n", "--seed",
                           "--out", "wo_x, wo_y, wo_z", "h_x, h_y, h_z", "pdf", "weight", "rejected",
-                          "wi.z > 0", "listing1", "exact-isotropic"});
+                          "wi.z > 0", "spherical_caps", "bounded_caps", "exact_isotropic"});
 }
 
 TEST_F(HelpTest, VerifyHasHelp) {

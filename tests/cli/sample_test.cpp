@@ -52,11 +52,11 @@ std::vector<Case> cases() {
   return {
       {"ggx", "0.3", vec_arg(up), "ndf", "", 0.3, 0.3, up},
       {"ggx", "0.2,0.5", vec_arg(up), "vndf", "", 0.2, 0.5, up},
-      {"ggx", "0.6,0.1", vec_arg(grazing), "caps", "", 0.6, 0.1, grazing},
-      {"ggx", "0.4", vec_arg(below), "caps", "", 0.4, 0.4, below},
-      {"ggx", "0.3,0.6", vec_arg(up), "bounded", "", 0.3, 0.6, up},
-      {"ggx", "0.5", vec_arg(grazing), "bounded", "exact-isotropic", 0.5, 0.5, grazing},
-      {"ggx", "0.5", vec_arg(below), "bounded", "listing1", 0.5, 0.5, below},
+      {"ggx", "0.6,0.1", vec_arg(grazing), "spherical_caps", "", 0.6, 0.1, grazing},
+      {"ggx", "0.4", vec_arg(below), "spherical_caps", "", 0.4, 0.4, below},
+      {"ggx", "0.3,0.6", vec_arg(up), "bounded_caps", "", 0.3, 0.6, up},
+      {"ggx", "0.5", vec_arg(grazing), "bounded_caps", "exact_isotropic", 0.5, 0.5, grazing},
+      {"ggx", "0.5", vec_arg(below), "bounded_caps", "listing1", 0.5, 0.5, below},
       {"beckmann", "0.3", vec_arg(up), "ndf", "", 0.3, 0.3, up},
       {"beckmann", "0.7,0.2", vec_arg(grazing), "vndf", "", 0.7, 0.2, grazing},
   };
@@ -78,13 +78,13 @@ std::vector<std::string> args_for(const Case& c, int n, const std::string& seed,
 // The library's sample i and its standalone pdf for a case.
 Sample library_sample(const Case& c, std::uint64_t seed, std::uint64_t i) {
   const Vec2<double> u{counter_uniform<double>(seed, i, 0), counter_uniform<double>(seed, i, 1)};
-  const BoundedVndfBound bound = c.bound == "exact-isotropic" ? BoundedVndfBound::kExactIsotropic
+  const BoundedVndfBound bound = c.bound == "exact_isotropic" ? BoundedVndfBound::kExactIsotropic
                                                               : BoundedVndfBound::kListing1;
   if (c.ndf == "ggx") {
     const GGX<double> g{c.ax, c.ay};
     if (c.sampler == "ndf") return sample_walter(g, c.wi_v, u);
     if (c.sampler == "vndf") return sample_heitz_vndf(g, c.wi_v, u);
-    if (c.sampler == "caps") return sample_spherical_caps(g, c.wi_v, u);
+    if (c.sampler == "spherical_caps") return sample_spherical_caps(g, c.wi_v, u);
     return sample_bounded_vndf(g, c.wi_v, u, bound);
   }
   const Beckmann<double> b{c.ax, c.ay};
@@ -93,13 +93,13 @@ Sample library_sample(const Case& c, std::uint64_t seed, std::uint64_t i) {
 }
 
 double standalone_pdf(const Case& c, V3 wo) {
-  const BoundedVndfBound bound = c.bound == "exact-isotropic" ? BoundedVndfBound::kExactIsotropic
+  const BoundedVndfBound bound = c.bound == "exact_isotropic" ? BoundedVndfBound::kExactIsotropic
                                                               : BoundedVndfBound::kListing1;
   if (c.ndf == "ggx") {
     const GGX<double> g{c.ax, c.ay};
     if (c.sampler == "ndf") return pdf_walter(g, c.wi_v, wo);
     if (c.sampler == "vndf") return pdf_heitz_vndf(g, c.wi_v, wo);
-    if (c.sampler == "caps") return pdf_spherical_caps(g, c.wi_v, wo);
+    if (c.sampler == "spherical_caps") return pdf_spherical_caps(g, c.wi_v, wo);
     return pdf_bounded_vndf(g, c.wi_v, wo, bound);
   }
   const Beckmann<double> b{c.ax, c.ay};
@@ -188,7 +188,7 @@ TEST_F(SampleTest, OutputDoesNotDependOnN) {
 }
 
 TEST_F(SampleTest, DefaultSeedIsZeroAndDefaultBoundIsListing1) {
-  const Case c = cases()[4];  // bounded, no --bound
+  const Case c = cases()[4];  // bounded_caps, no --bound
   std::vector<std::string> a = args_for(c, 20, "0", "explicit.csv");
   a.push_back("--bound");
   a.push_back("listing1");
@@ -198,6 +198,50 @@ TEST_F(SampleTest, DefaultSeedIsZeroAndDefaultBoundIsListing1) {
   const RunResult r = run(d);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(read_text(path("explicit.csv")), read_text(path("default.csv")));
+}
+
+// Each canonical name runs without a note; each old spelling prints one line naming the canonical
+// spelling and writes the same file as it.
+TEST_F(SampleTest, OldSpellingsNoteTheCanonicalNameAndSampleTheSame) {
+  struct Alias {
+    std::string option, old_name, canonical;
+    std::vector<std::string> extra;  // the rest of the arguments
+  };
+  const std::vector<Alias> aliases = {
+      {"--sampler", "caps", "spherical_caps", {}},
+      {"--sampler", "bounded", "bounded_caps", {}},
+      {"--bound", "exact-isotropic", "exact_isotropic", {"--sampler", "bounded_caps"}},
+  };
+  for (const Alias& a : aliases) {
+    SCOPED_TRACE(a.option + " " + a.old_name);
+    const auto args = [&](const std::string& name, const std::string& out) {
+      std::vector<std::string> v = {"sample",         "--ndf", "ggx", "--alpha", "0.4,0.6",
+                                    "--wi=0.6,0,0.8", "--n",   "50",  "--out",   out,
+                                    a.option,         name};
+      v.insert(v.end(), a.extra.begin(), a.extra.end());
+      return v;
+    };
+    const RunResult canonical = run(args(a.canonical, "canonical.csv"));
+    ASSERT_EQ(canonical.exit_code, 0) << canonical.err;
+    EXPECT_EQ(canonical.err, "");
+    const RunResult old = run(args(a.old_name, "old.csv"));
+    ASSERT_EQ(old.exit_code, 0) << old.err;
+    EXPECT_EQ(old.err, "glintlab: note: " + a.option + " " + a.old_name + " is spelled " +
+                           a.canonical + "\n");
+    EXPECT_EQ(read_text(path("old.csv")), read_text(path("canonical.csv")));
+  }
+  for (const std::string name : {"ndf", "vndf", "spherical_caps", "bounded_caps"}) {
+    SCOPED_TRACE(name);
+    const RunResult r = run({"sample", "--ndf", "ggx", "--alpha", "0.4", "--wi=0.6,0,0.8",
+                             "--sampler", name, "--n", "5", "--out", "s.csv"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+  }
+  const RunResult listing1 =
+      run({"sample", "--ndf", "ggx", "--alpha", "0.4", "--wi=0.6,0,0.8", "--sampler",
+           "bounded_caps", "--bound", "listing1", "--n", "5", "--out", "s.csv"});
+  EXPECT_EQ(listing1.exit_code, 0) << listing1.err;
+  EXPECT_EQ(listing1.err, "");
 }
 
 }  // namespace

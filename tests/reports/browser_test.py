@@ -1,4 +1,4 @@
-"""The HTML report in a real browser (issue 10 item 4): headless Debian chromium loads a copy of
+"""The HTML report in a real browser: headless Debian chromium loads a copy of
 index.html with a script that records, after the load event, every <img> that did not decode
 (complete and naturalWidth > 0) and every relative link that a file:// request cannot read; the
 result is read back with --dump-dom. A screenshot of the report is saved. Negative control: the

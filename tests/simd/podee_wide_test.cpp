@@ -1,5 +1,5 @@
-// podee_shade (Podee et al. Sec. 3, core/shading/podee.h) instantiates on the SIMD float types:
-// Wide<float, ExactMath> gives the scalar float result bit for bit, and an xsimd batch (the
+// podee_shade (Podee et al. Sec. 3, core/shading/podee_shade.h) instantiates on the SIMD float
+// types: Wide<float, ExactMath> gives the scalar float result bit for bit, and an xsimd batch (the
 // baseline ISA of this build) gives every lane's scalar result to rounding.
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <cstdint>
 
 #include "core/math/rng.h"
-#include "core/shading/podee.h"
+#include "core/shading/podee_shade.h"
 #include "core/simd/wide.h"
 
 namespace glintlab {

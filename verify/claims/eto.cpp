@@ -450,7 +450,7 @@ double rejections_calibration(std::uint64_t seed) {
 // Measure: per configuration, the second moments of both estimators. Decide: a "material" gain is
 // an RMSE reduction of at least kMaterialGain; a configuration is within/beyond by its interval
 // (Šidák over the configurations). Control: the same measurement and decision with the bounded
-// sampler's bound switched off (k = 1, i.e. the spherical-caps sampler again) for the gain, and
+// sampler's bound switched off (k = 1, i.e. the spherical_caps sampler again) for the gain, and
 // with the bounded weights' second moment lowered by 15 % for the absence of gain.
 
 constexpr const char* kVariance = "eto.variance-rough";
@@ -646,7 +646,7 @@ CheckResult gain_check(Budget b, bool rough) {
       rough ? kMaterialGain - (z + 1.2816) * se / 2 : kMaterialGain + (z + 1.2816) * se / 2, se);
   r.control = fmt::format(
       "{}: {} of {} regime configurations {}, {} {}; nearest {:.1f} % [{:.1f}, {:.1f}] at {}",
-      rough ? "bound switched off (k = 1: the spherical-caps sampler again)"
+      rough ? "bound switched off (k = 1: the spherical_caps sampler again)"
             : "bounded weights with a 15 % lower second moment",
       dc.yes, dc.in, rough ? "show a material gain" : "exclude one", dc.no,
       rough ? "exclude one" : "show one", 100 * dc.worst.mid, 100 * dc.worst.lo, 100 * dc.worst.hi,

@@ -46,7 +46,7 @@ std::vector<Config> estimator_grid(Budget b) {
 }
 
 const char* to_string(Technique t) {
-  return t == Technique::kBounded ? "bounded" : "spherical-caps";
+  return t == Technique::kBounded ? "bounded_caps" : "spherical_caps";
 }
 
 MicrofacetSample<double> draw(Technique t, const Config& c, std::uint64_t seed, std::uint64_t i) {

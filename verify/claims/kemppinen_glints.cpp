@@ -12,17 +12,19 @@
 
 #include "core/glints/kemppinen.h"
 #include "core/glints/kemppinen_full_sampling.h"
-#include "core/glints/kemppinen_presets.h"
 #include "core/glints/kemppinen_reference.h"
 #include "core/glints/kemppinen_sampling.h"
 #include "core/ndf/beckmann.h"
 #include "core/ndf/ggx.h"
+#include "core/ndf/ndf_kind.h"
 #include "core/render/convergence.h"
-#include "core/render/kemppinen_env_radiance.h"
 #include "core/samplers/walter.h"
 #include "verify/claims/claims.h"
 #include "verify/claims/gof_family.h"
 #include "verify/claims/kemppinen_probes.h"
+#include "verify/scenes/kemppinen_env_radiance.h"
+#include "verify/scenes/kemppinen_furnace.h"
+#include "verify/scenes/kemppinen_presets.h"
 #include "verify/stats/mean_tests.h"
 #include "verify/stats/multiple_testing.h"
 
@@ -51,8 +53,8 @@ struct Ndfs {
 };
 
 template <class F>
-auto with_ndf(const Ndfs& n, F&& f) {
-  return n.ggx ? f(GGX<double>{n.alpha, n.alpha}) : f(Beckmann<double>{n.alpha, n.alpha});
+decltype(auto) with_ndf(const Ndfs& n, F&& f) {
+  return glintlab::with_ndf(ndf_kind(n.ggx), n.alpha, n.alpha, std::forward<F>(f));
 }
 
 const char* ndf_name(const Ndfs& n) { return n.ggx ? "GGX" : "Beckmann"; }
@@ -644,15 +646,8 @@ FurnRow run_furn(const FurnConfig& c, std::uint64_t n, std::uint64_t seed) {
   with_ndf(c.ndf, [&](const auto& ndf) {
     for (std::uint64_t i = 0; i < n; ++i) {
       const V2 u{counter_uniform<double>(seed, i, 2), counter_uniform<double>(seed, i, 3)};
-      const V3 m = sample_normal_walter(ndf, u);
-      const V3 wo = reflect(wi, m);
-      double g = 0, s = 0;
-      if (wo.z > 0 && dot(wi, m) > 0) {
-        const FootprintQuery<double> fp = kemppinen_footprint_cells(position(seed, i), 16, p);
-        const double w = smith_g2_height_correlated(ndf, wi, wo, m) * dot(wi, m) / (wi.z * m.z);
-        s = w;
-        g = w * kemppinen_eval(p, ndf, fp, m).d.x / ndf.D(m);
-      }
+      const KemppinenFurnaceSample f = kemppinen_furnace_sample(p, ndf, wi, position(seed, i), u);
+      const double g = f.glint, s = f.smooth;
       row.glint.add(g);
       row.smooth.add(s);
       row.diff.add(g - s);
@@ -765,17 +760,8 @@ double calibrate_furnace(std::uint64_t seed) {
   with_ndf(nd, [&](const auto& ndf) {
     for (std::uint64_t i = 0; i < 1500; ++i) {
       const V2 u{counter_uniform<double>(seed, i, 2), counter_uniform<double>(seed, i, 3)};
-      const V3 m = sample_normal_walter(ndf, u);
-      const V3 wo = reflect(wi, m);
-      double diff = 0;
-      if (wo.z > 0 && dot(wi, m) > 0) {
-        const double w = smith_g2_height_correlated(ndf, wi, wo, m) * dot(wi, m) / (wi.z * m.z);
-        const auto at = [&](const V2& x) {
-          return w * kemppinen_eval(p, ndf, kemppinen_footprint_cells(x, 16, p), m).d.x / ndf.D(m);
-        };
-        diff = at(position(seed, i)) - at(position(mix64(seed ^ 0x5eed), i));
-      }
-      d.add(diff);
+      const auto at = [&](const V2& x) { return kemppinen_furnace_sample(p, ndf, wi, x, u).glint; };
+      d.add(at(position(seed, i)) - at(position(mix64(seed ^ 0x5eed), i)));
     }
     return 0;
   });
@@ -843,7 +829,8 @@ CheckResult run_constant(Budget b) {
   r.detail = fmt::format(
       "Algorithm 1 visits 2k² cells for every footprint, LOD and anisotropy ({} … {} over all k; "
       "per k constant); time per evaluation is measured by the Google Benchmark "
-      "experiments/bench/kemppinen_bench.cpp (BM_KemppinenEval: k × footprint), not asserted here",
+      "experiments/bench/kemppinen2025_bench.cpp (BM_KemppinenEval: k × footprint), not asserted "
+      "here",
       min_pts, max_pts);
   return r;
 }
@@ -950,7 +937,7 @@ std::vector<SampConfig> est_configs() {
 // F = 1) under kemppinen_env_sky(), viewed from θ_v = 30°, over a set of pixels at random uv:
 // (a) the mixture of Algorithm 2 and D cosθ with its exact density, (b) the same samples with
 // Algorithm 2's printed pdf in the mixture, (c) D cosθ alone; each against the stratified
-// quadrature reference of core/render/kemppinen_env_radiance.h (2 n² evaluations per pixel).
+// quadrature reference of verify/scenes/kemppinen_env_radiance.h (2 n² evaluations per pixel).
 
 struct RenderConfig {
   Ndfs ndf;

@@ -17,7 +17,7 @@
 
 #include "core/math/rng.h"
 #include "core/render/metrics.h"
-#include "core/scene/podee_scene.h"
+#include "verify/scenes/podee_scene.h"
 #include "verify/claims/claims.h"
 #include "verify/claims/podee_probes.h"
 #include "verify/stats/mean_tests.h"

@@ -43,7 +43,7 @@ const std::vector<SamplerEntry>& sampler_table() {
          return pdf_walter(B{ax, ay}, wi, wo);
        },
        brdf_of<B>},
-      {"heitz-vndf/ggx", true, false,
+      {"heitz_vndf/ggx", true, false,
        [](double ax, double ay, V3 wi, V2 u) {
          return sample_heitz_vndf(G{ax, ay}, wi, u);
        },
@@ -51,7 +51,7 @@ const std::vector<SamplerEntry>& sampler_table() {
          return pdf_heitz_vndf(G{ax, ay}, wi, wo);
        },
        brdf_of<G>},
-      {"vndf/beckmann", false, false,
+      {"beckmann_vndf/beckmann", false, false,
        [](double ax, double ay, V3 wi, V2 u) {
          return sample_beckmann_vndf(B{ax, ay}, wi, u);
        },
@@ -59,7 +59,7 @@ const std::vector<SamplerEntry>& sampler_table() {
          return pdf_beckmann_vndf(B{ax, ay}, wi, wo);
        },
        brdf_of<B>},
-      {"spherical-caps/ggx", true, true,
+      {"spherical_caps/ggx", true, true,
        [](double ax, double ay, V3 wi, V2 u) {
          return sample_spherical_caps(G{ax, ay}, wi, u);
        },
@@ -67,7 +67,7 @@ const std::vector<SamplerEntry>& sampler_table() {
          return pdf_spherical_caps(G{ax, ay}, wi, wo);
        },
        brdf_of<G>},
-      {"bounded-listing1/ggx", true, true,
+      {"bounded_vndf_listing1/ggx", true, true,
        [](double ax, double ay, V3 wi, V2 u) {
          return sample_bounded_vndf(G{ax, ay}, wi, u, BoundedVndfBound::kListing1);
        },
@@ -75,7 +75,7 @@ const std::vector<SamplerEntry>& sampler_table() {
          return pdf_bounded_vndf(G{ax, ay}, wi, wo, BoundedVndfBound::kListing1);
        },
        brdf_of<G>},
-      {"bounded-exact/ggx", true, true,
+      {"bounded_vndf_exact_isotropic/ggx", true, true,
        [](double ax, double ay, V3 wi, V2 u) {
          return sample_bounded_vndf(G{ax, ay}, wi, u, BoundedVndfBound::kExactIsotropic);
        },

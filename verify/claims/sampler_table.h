@@ -11,7 +11,7 @@
 namespace glintlab::verify {
 
 struct SamplerEntry {
-  std::string name;         // e.g. "heitz-vndf/ggx"
+  std::string name;         // e.g. "heitz_vndf/ggx"
   bool ggx;                 // NDF: GGX (true) or Beckmann
   bool allows_backfacing;   // accepts ωi.z ≤ 0 (a back-facing shading normal)
   std::function<MicrofacetSample<double>(double ax, double ay, Vec3<double> wi, Vec2<double> u)> sample;

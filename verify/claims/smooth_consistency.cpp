@@ -45,8 +45,8 @@ enum class WeightForm { kWalter, kVndf, kBoundedListing1, kBoundedExact };
 
 WeightForm weight_form(const std::string& name) {
   if (name.rfind("walter", 0) == 0) return WeightForm::kWalter;
-  if (name == "bounded-listing1/ggx") return WeightForm::kBoundedListing1;
-  if (name == "bounded-exact/ggx") return WeightForm::kBoundedExact;
+  if (name == "bounded_vndf_listing1/ggx") return WeightForm::kBoundedListing1;
+  if (name == "bounded_vndf_exact_isotropic/ggx") return WeightForm::kBoundedExact;
   return WeightForm::kVndf;
 }
 

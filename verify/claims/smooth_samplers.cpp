@@ -45,7 +45,7 @@ std::vector<Config> grid(Budget b) {
   const auto& table = sampler_table();
   std::vector<Config> out;
   for (std::size_t s = 0; s < table.size(); ++s) {
-    const bool quick_grid = b == Budget::kQuick || table[s].name == "vndf/beckmann";
+    const bool quick_grid = b == Budget::kQuick || table[s].name == "beckmann_vndf/beckmann";
     if (!quick_grid) {
       for (std::size_t a : {0, 2, 3, 4})
         for (double t : {0.0, 60.0, 89.0}) out.push_back({s, alphas[a].first, alphas[a].second, t});
@@ -77,18 +77,10 @@ SeededDirections directions(const Config& c, double alpha_scale = 1) {
   };
 }
 
-// The batch kernel (core/simd/kernels.h) of a sampler of sampler_table().
+// The batch kernel (core/simd/kernels.h) of a sampler of sampler_table(): the table names
+// samplers as the kernels do, "sample.<function>/<ndf>".
 int batch_kernel(const std::string& name) {
-  static const std::vector<std::pair<std::string, std::string>> kNames = {
-      {"walter/ggx", "sample.walter/ggx"},
-      {"walter/beckmann", "sample.walter/beckmann"},
-      {"heitz-vndf/ggx", "sample.heitz_vndf/ggx"},
-      {"vndf/beckmann", "sample.beckmann_vndf/beckmann"},
-      {"spherical-caps/ggx", "sample.spherical_caps/ggx"},
-      {"bounded-listing1/ggx", "sample.bounded_vndf_listing1/ggx"},
-      {"bounded-exact/ggx", "sample.bounded_vndf_exact_isotropic/ggx"}};
-  for (const auto& [table, kernel] : kNames)
-    if (table == name) return *simd::find_kernel(kernel);
+  if (const auto k = simd::find_kernel("sample." + name)) return *k;
   throw std::logic_error("sampler " + name + " has no batch kernel");
 }
 
@@ -136,7 +128,7 @@ GofCase make_case(const Config& c) {
   // far from any parallel of the bin frame: near its extreme polar angle the support is a thin
   // sliver in azimuth that 15 Kronrod nodes over a whole ring step over (measured: ~1e-3 of the
   // mass placed in bins of zero expectation). Uniform azimuth breaks resolve it.
-  if (e.name.starts_with("bounded-") && c.ax != c.ay)
+  if (e.name.starts_with("bounded_vndf_") && c.ax != c.ay)
     for (int k = 1; k < 64; ++k) g.options.phi_breaks.push_back(2 * std::numbers::pi * k / 64);
   g.direction_pdf = [&e, wi, ax = c.ax, ay = c.ay](const V3& wo) { return e.pdf(ax, ay, wi, wo); };
   g.directions = directions(c);
@@ -153,7 +145,7 @@ int find(const std::vector<Config>& g, const std::string& name, double ax, doubl
   return -1;
 }
 
-// The negative controls (shared/CLAIMS.md, issue 3): each a wrong pdf or a wrong sampler on a few
+// The negative controls (shared/CLAIMS.md): each a wrong pdf or a wrong sampler on a few
 // configurations of the grid, all present in both budgets' grids.
 std::vector<GofControl> controls(const std::vector<Config>& g) {
   std::vector<GofControl> out;
@@ -164,8 +156,8 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
   };
   // A claimed pdf 2 % too large everywhere: the plan's expectations × 1.02.
   GofControl scaled{"pdf × 1.02", {}};
-  for (int i : {cfg("heitz-vndf/ggx", 1, 1, 89), cfg("walter/beckmann", 0.02, 0.2, 0),
-                cfg("bounded-listing1/ggx", 1, 1, 89)})
+  for (int i : {cfg("heitz_vndf/ggx", 1, 1, 89), cfg("walter/beckmann", 0.02, 0.2, 0),
+                cfg("bounded_vndf_listing1/ggx", 1, 1, 89)})
     scaled.cases.push_back({{label(g[std::size_t(i)]) + " pdf×1.02",
                              {},
                              {},
@@ -178,7 +170,7 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
   out.push_back(scaled);
   // The sampler run with α 2 % too large, against the true pdf.
   GofControl alpha{"sampler α × 1.02", {}};
-  for (int i : {cfg("spherical-caps/ggx", 0.02, 0.2, 0), cfg("heitz-vndf/ggx", 0.02, 0.02, 0),
+  for (int i : {cfg("spherical_caps/ggx", 0.02, 0.2, 0), cfg("heitz_vndf/ggx", 0.02, 0.02, 0),
                 cfg("walter/beckmann", 1, 1, 89)})
     alpha.cases.push_back({{label(g[std::size_t(i)]) + " α×1.02",
                             {},
@@ -193,7 +185,7 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
   // The reflection Jacobian 1/(4|ωo·h|) (Walter Eq. 14) dropped from the pdf: p(h) as if it were
   // the density of ωo. |ωo·h| = |ωi + ωo|/2 for the half vector.
   GofControl jacobian{"1/(4|ωo·h|) dropped from the pdf", {}};
-  for (int i : {cfg("heitz-vndf/ggx", 1, 1, 89), cfg("spherical-caps/ggx", 0.02, 0.2, 0)}) {
+  for (int i : {cfg("heitz_vndf/ggx", 1, 1, 89), cfg("spherical_caps/ggx", 0.02, 0.2, 0)}) {
     GofCase w = make_case(g[std::size_t(i)]);
     const V3 wi = incidence(g[std::size_t(i)].theta_deg);
     w.label += " without 1/(4|ωo·h|)";
@@ -207,7 +199,7 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
   // G1 dropped from the VNDF D_ωi = G1(ωi) max(0, ωi·m) D(m)/ωi_z (Heitz 2018 Eq. 1): the claimed
   // density is divided by the constant G1(ωi) = ωi_z/A(ωi).
   GofControl g1{"G1(ωi) dropped from the VNDF", {}};
-  for (int i : {cfg("heitz-vndf/ggx", 1, 1, 89), cfg("vndf/beckmann", 1, 1, 89)}) {
+  for (int i : {cfg("heitz_vndf/ggx", 1, 1, 89), cfg("beckmann_vndf/beckmann", 1, 1, 89)}) {
     const Config& c = g[std::size_t(i)];
     const V3 wi = incidence(c.theta_deg);
     const double a = sampler_table()[c.sampler].ggx
@@ -220,7 +212,7 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
   out.push_back(g1);
   // ωi and ωo exchanged in the pdf (Walter's density is symmetric in them, so it is not used).
   GofControl swapped{"ωi and ωo swapped in the pdf", {}};
-  for (int i : {cfg("heitz-vndf/ggx", 1, 1, 89), cfg("bounded-exact/ggx", 0.02, 0.2, 0)}) {
+  for (int i : {cfg("heitz_vndf/ggx", 1, 1, 89), cfg("bounded_vndf_exact_isotropic/ggx", 0.02, 0.2, 0)}) {
     const Config& c = g[std::size_t(i)];
     GofCase w = make_case(c);
     const SamplerEntry& e = sampler_table()[c.sampler];
@@ -236,7 +228,7 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
   // of i_z flipped, D(h)(t + i_z)/(2σ²).
   GofControl sign{"sign of ωi_z flipped in the back-facing pdf", {}};
   for (int i :
-       {cfg("spherical-caps/ggx", 0.3, 0.3, 120), cfg("bounded-listing1/ggx", 0.3, 0.3, 120)}) {
+       {cfg("spherical_caps/ggx", 0.3, 0.3, 120), cfg("bounded_vndf_listing1/ggx", 0.3, 0.3, 120)}) {
     const Config& c = g[std::size_t(i)];
     GofCase w = make_case(c);
     w.label += " with (t + i_z)";
@@ -281,7 +273,7 @@ CheckResult run(Budget b) {
 double calibration(std::uint64_t seed) {
   static const GofCase c = [] {
     std::size_t caps = 0;
-    while (sampler_table()[caps].name != "spherical-caps/ggx") ++caps;
+    while (sampler_table()[caps].name != "spherical_caps/ggx") ++caps;
     return make_case({caps, 0.3, 0.3, 45});
   }();
   static const ChiSquarePlan plan = plan_gof_case(

@@ -4,7 +4,7 @@
 // the Table 3 analogue (time per pixel, 90° and 25° planes, 3 lights, GGX and Beckmann); and the
 // method benchmarks `method/kemppinen_*.dstar_f_vs_{bruteforce,smooth}/k=K,erf=E[,blend=linear]`
 // (time per evaluation with the error of Eq. 11 against its references as counters;
-// experiments/bench/kemppinen_speed_accuracy.h). Read by the figures kemppinen2025-table3 and
+// experiments/bench/kemppinen2025_speed_accuracy.h). Read by the figures kemppinen2025-table3 and
 // kemppinen2025-speed-accuracy from out/bench/kemppinen.json:
 //   build/release/experiments/bench/glintlab_bench_kemppinen
 //   --benchmark_out=out/bench/kemppinen.json
@@ -22,8 +22,9 @@
 #include "core/glints/kemppinen_reference.h"
 #include "core/ndf/beckmann.h"
 #include "core/ndf/ggx.h"
-#include "experiments/bench/kemppinen_speed_accuracy.h"
-#include "experiments/bench/kemppinen_table3_scene.h"
+#include "core/ndf/ndf_kind.h"
+#include "experiments/bench/kemppinen2025_speed_accuracy.h"
+#include "experiments/bench/kemppinen2025_table3_scene.h"
 
 namespace {
 
@@ -78,7 +79,7 @@ BENCHMARK(BM_KemppinenBruteForce)
     ->Range(1, sa::kBruteForceMaxCells)
     ->ArgName("footprint_cells");
 
-// ---- Table 3 analogue (experiments/bench/kemppinen_table3_scene.h) -------------------------
+// ---- Table 3 analogue (experiments/bench/kemppinen2025_table3_scene.h) -------------------------
 // ns per pixel on one CPU core, scalar double, 3 lights; iteration n shades pixel_of(n).
 void BM_Table3(benchmark::State& state, kt3::Cell cell) {
   kt3::with_cell(cell, [&](const auto& shade) {
@@ -125,7 +126,7 @@ void BM_Method(benchmark::State& state, bool ggx, sa::Reference r, sa::Setting s
   const RefSet& rs = ref_set(ggx, r, s.blend);
   set_errors(state, sa::errors(sa::eval_all(ggx, s, rs.q), rs.ref, rs.scale));
   const KemppinenParams<double> p = sa::params(s, 1);
-  sa::with_ndf(ggx, [&](const auto& ndf) {
+  with_ndf(ndf_kind(ggx), sa::kAlpha, sa::kAlpha, [&](const auto& ndf) {
     std::size_t i = 0;
     for (auto _ : state) {
       const sa::Query& q = rs.q[i];
@@ -144,7 +145,7 @@ void BM_MethodReference(benchmark::State& state, bool ggx) {
   set_errors(state, {0, 0, 0, int(rs.q.size())});
   const KemppinenParams<double> p =
       sa::params({1, KemppinenErf::kExact, KemppinenBlend::kRoulette}, 1);
-  sa::with_ndf(ggx, [&](const auto& ndf) {
+  with_ndf(ndf_kind(ggx), sa::kAlpha, sa::kAlpha, [&](const auto& ndf) {
     std::size_t i = 0;
     for (auto _ : state) {
       const sa::Query& q = rs.q[i];

@@ -1,7 +1,7 @@
 // The Table 3 scene of Kemppinen et al. 2025 ("ms per frame ... at full HD resolution with 3
 // lights", a plane orthogonal to the camera and one seen at 25°, low and high roughness, Beckmann
-// and GGX), as timed per pixel by experiments/bench/kemppinen_bench.cpp and, without a benchmark
-// JSON, by the kemppinen2025-table3 figure.
+// and GGX), as timed per pixel by experiments/bench/kemppinen2025_bench.cpp and, without a
+// benchmark JSON, by the kemppinen2025-table3 figure.
 //
 // Per pixel: the footprint from ray differentials (core/scene/footprint.h) and the cosine-weighted
 // BRDF of kemppinen_ggx / kemppinen_beckmann toward 3 point lights (D★^f by Algorithm 1, Smith

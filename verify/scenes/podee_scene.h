@@ -2,7 +2,7 @@
 // sphere under one small disk light, seen from near, medium and far, and the four ways of shading
 // it the paper compares — the supersampled reference (Sec. 4: 64 samples per pixel, 8 × 8), the
 // conventional pixel-centre sample, LEAN mapping (Olano & Baker 2010) and the paper's method
-// (Sec. 3, core/shading/podee.h).
+// (Sec. 3, core/shading/podee_shade.h).
 //
 // Radiance at one surface point: the normal map perturbs the shading normal (slope form of Olano
 // & Baker Sec. 3: n' ∝ −s_u t − s_v b + n), the view ray is mirrored about n', and the pixel sees
@@ -24,7 +24,7 @@
 #include "core/scene/shapes.h"
 #include "core/scene/sine_height_field.h"
 #include "core/scene/slope_moment_map.h"
-#include "core/shading/podee.h"
+#include "core/shading/podee_shade.h"
 
 namespace glintlab {
 

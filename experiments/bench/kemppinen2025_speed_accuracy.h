@@ -1,9 +1,9 @@
 // Speed vs accuracy of Kemppinen et al. 2025's constant-time D★^f (Eq. 11, Algorithm 1): the
 // fixed query sets and error measures of the `method/kemppinen_*` benchmarks
-// (experiments/bench/kemppinen_bench.cpp, schema in the method-benchmark notes) and of the
+// (experiments/bench/kemppinen2025_bench.cpp, schema in the method-benchmark notes) and of the
 // kemppinen2025-speed-accuracy figure, which recomputes the errors when no benchmark JSON exists.
 //
-// Two references (issue 5 item 6):
+// Two references:
 // * dstar_f_vs_bruteforce: Eq. 5 summed over every point (core/glints/kemppinen_reference.h),
 //   footprints of 0.25 … 16 level-0 cells, where the brute force is affordable. The error is
 //   |D★^f − D★_Eq.5| / D(ω_h): the brute force is 0 between glints, so it is scaled by the smooth
@@ -20,12 +20,13 @@
 #include <vector>
 
 #include "core/glints/kemppinen.h"
-#include "core/glints/kemppinen_presets.h"
 #include "core/glints/kemppinen_reference.h"
 #include "core/math/rng.h"
 #include "core/ndf/beckmann.h"
 #include "core/ndf/ggx.h"
+#include "core/ndf/ndf_kind.h"
 #include "core/samplers/walter.h"
+#include "verify/scenes/kemppinen_presets.h"
 
 namespace glintlab::kemppinen_sa {
 
@@ -104,16 +105,11 @@ inline std::vector<Query> queries(bool ggx, Reference r, int n) {
   return out;
 }
 
-template <class F>
-auto with_ndf(bool ggx, F&& f) {
-  return ggx ? f(GGX<double>{kAlpha, kAlpha}) : f(Beckmann<double>{kAlpha, kAlpha});
-}
-
 // D★^f (white facets: the x channel) of Algorithm 1 for every query.
 inline std::vector<double> eval_all(bool ggx, const Setting& s, const std::vector<Query>& q) {
   const KemppinenParams<double> p = params(s, 1);
   std::vector<double> v(q.size());
-  with_ndf(ggx, [&](const auto& ndf) {
+  with_ndf(ndf_kind(ggx), kAlpha, kAlpha, [&](const auto& ndf) {
     for (std::size_t i = 0; i < q.size(); ++i) v[i] = kemppinen_eval(p, ndf, q[i].fp, q[i].h).d.x;
     return 0;
   });
@@ -127,7 +123,7 @@ inline std::vector<double> reference_all(bool ggx, Reference r, KemppinenBlend b
   const KemppinenParams<double> p = params({1, KemppinenErf::kExact, blend}, 1);
   std::vector<double> v(q.size());
   scale->assign(q.size(), 0.0);
-  with_ndf(ggx, [&](const auto& ndf) {
+  with_ndf(ndf_kind(ggx), kAlpha, kAlpha, [&](const auto& ndf) {
     for (std::size_t i = 0; i < q.size(); ++i) {
       (*scale)[i] = ndf.D(q[i].h);
       v[i] = r == Reference::kBruteForce ? kemppinen_reference_filtered(p, ndf, q[i].fp, q[i].h).x

@@ -1,7 +1,7 @@
 // Podee et al. Sec. 3 kernels: the circle–polygon and circle–circle areas against closed forms and
 // a dense grid count, the selected point against a brute-force search of the reflection space,
 // the weights' range, float/double agreement, and the host-side light check.
-#include "core/shading/podee.h"
+#include "core/shading/podee_shade.h"
 
 #include <gtest/gtest.h>
 
@@ -128,7 +128,8 @@ TEST(PodeeShade, SelectsTheClosestPointOfTheReflectionSpace) {
     EXPECT_NEAR(length(res.r), 1.0, 1e-14);
     EXPECT_GE(res.weight, 0.0);
     EXPECT_LE(res.weight, 1.0);
-    // mirror + uniform disk (podee.h header); the sectors of a missed circle cancel to rounding
+    // mirror + uniform disk (podee_shade.h header); the sectors of a missed circle cancel to
+    // rounding
     EXPECT_EQ(res.lit > 0, res.weight > 1e-12) << t << " " << res.weight;
     // The wrong rules never select a closer point, and are farther on some quads.
     EXPECT_GE(podee_shade(r, l, tan_radius, PodeeWeighting::kExact, PodeeSelection::kNearestCorner)

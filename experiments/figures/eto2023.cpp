@@ -2,7 +2,7 @@
 // vs bounded caps [Eq. 5–8, Listing 1] at equal spp, RMSE against a converged reference) and the
 // RMSE-vs-spp series of the same scene. Paper: 1024² pixels, 16 spp, orb meshes under HDR
 // environments; here an analytic sphere under a procedural sky (sky.h), same estimator.
-#include "experiments/figures/eto_tokuyoshi2023.h"
+#include "experiments/figures/eto2023.h"
 
 #include <fmt/format.h>
 
@@ -38,7 +38,8 @@ SkyParameters eto_sky() {
   return s;
 }
 constexpr std::string_view kSkyName =
-    "procedural sky 512x256 (core/lights/procedural_sky.h; sun 5 deg half-angle, radiance 40, 40 deg elevation)";
+    "procedural sky 512x256 (core/lights/procedural_sky.h; sun 5 deg half-angle, radiance 40, 40 "
+    "deg elevation)";
 
 const EnvironmentMap& default_environment() {
   static const EnvironmentMap kSky(make_procedural_sky(eto_sky(), 512, 256));
@@ -85,8 +86,9 @@ std::uint64_t seed_for(std::string_view figure, std::string_view method, double 
   return hash_string(fmt::format("{}/{}/alpha={}/spp={}", figure, method, alpha, spp).c_str());
 }
 
-io::ExrAttributes attributes(const FigureContext& ctx, std::string_view figure, double alpha, std::string_view sampler,
-                             std::uint64_t seed, int spp, int reference_spp) {
+io::ExrAttributes attributes(const FigureContext& ctx, std::string_view figure, double alpha,
+                             std::string_view sampler, std::uint64_t seed, int spp,
+                             int reference_spp) {
   return {{"glintlab_figure", std::string(figure)},
           {"glintlab_model", std::string(SmoothGGX::kName)},
           {"glintlab_parameters", params_text(alpha, sampler)},
@@ -109,8 +111,8 @@ Render render(const FigureContext& ctx, std::string_view figure, const OrbScene&
   const std::string stage = fmt::format("{} alpha={} {} {} spp", figure, alpha, m.name, spp);
   RowProgress progress;
   if (ctx.progress) progress = [&](long d, long t) { ctx.progress(stage, d, t); };
-  return {render_orb<SmoothGGX>(scene, ggx_params(alpha, m.sampler), eto_environment(ctx), spp, seed,
-                                ctx.threads, progress),
+  return {render_orb<SmoothGGX>(scene, ggx_params(alpha, m.sampler), eto_environment(ctx), spp,
+                                seed, ctx.threads, progress),
           seed};
 }
 
@@ -178,9 +180,9 @@ void run_fig4(const FigureContext& ctx) {
     const Render ref = render(ctx, kFig4Id, scene, alpha, kReference, b.reference_spp);
     const std::vector<std::uint8_t> mask = orb_mask(ref.image);
     const MetricOptions metric{{"R", "G", "B"}, &mask};
-    io::write_exr(
-        ctx.dir / fmt::format("{}_reference.exr", alpha_tag(alpha)), ref.image,
-        attributes(ctx, kFig4Id, alpha, kReference.name, ref.seed, b.reference_spp, b.reference_spp));
+    io::write_exr(ctx.dir / fmt::format("{}_reference.exr", alpha_tag(alpha)), ref.image,
+                  attributes(ctx, kFig4Id, alpha, kReference.name, ref.seed, b.reference_spp,
+                             b.reference_spp));
     previews.push_back(ref.image);
     for (const Method& m : kMethods) {
       const Render r = render(ctx, kFig4Id, scene, alpha, m, b.spp);
@@ -226,9 +228,9 @@ void run_series(const FigureContext& ctx) {
     const Render ref = render(ctx, kSeriesId, scene, alpha, kReference, b.reference_spp);
     const std::vector<std::uint8_t> mask = orb_mask(ref.image);
     const MetricOptions metric{{"R", "G", "B"}, &mask};
-    io::write_exr(
-        ctx.dir / fmt::format("{}_reference.exr", alpha_tag(alpha)), ref.image,
-        attributes(ctx, kSeriesId, alpha, kReference.name, ref.seed, b.reference_spp, b.reference_spp));
+    io::write_exr(ctx.dir / fmt::format("{}_reference.exr", alpha_tag(alpha)), ref.image,
+                  attributes(ctx, kSeriesId, alpha, kReference.name, ref.seed, b.reference_spp,
+                             b.reference_spp));
     for (const Method& m : kMethods) {
       for (int spp : b.series_spp) {
         const Render r = render(ctx, kSeriesId, scene, alpha, m, spp);
