@@ -67,20 +67,29 @@ const ModelEntry& sparse_nan_control_model() {
   return kEntry;
 }
 
+// `e` with every sample's weight multiplied by scale(u) (also the float instantiation's).
+template <class F>
+ModelEntry scale_sample_weight(ModelEntry e, F&& scale) {
+  auto wrap = [scale](auto inner) {
+    return
+        [inner, scale](const std::vector<double>& v, const ModelQuery<double>& q, Vec2<double> u) {
+          ModelSample<double> s = inner(v, q, u);
+          s.weight *= scale(u);
+          return s;
+        };
+  };
+  e.sample = wrap(e.sample);
+  if (e.sample_float) e.sample_float = wrap(e.sample_float);
+  e.static_model = nullptr;
+  return e;
+}
+
 const ModelEntry& gain_control_model() {
   static const ModelEntry kEntry = [] {
     ModelEntry e = wrap_eval(find_model("smooth_ggx"),
                              [](const std::vector<double>&, const ModelQuery<double>&,
                                 ErasedEval& r) { r.value *= kGainControlScale; });
-    auto scale_weight = [](auto inner) {
-      return [inner](const std::vector<double>& v, const ModelQuery<double>& q, Vec2<double> u) {
-        ModelSample<double> s = inner(v, q, u);
-        s.weight *= kGainControlScale;
-        return s;
-      };
-    };
-    e.sample = scale_weight(e.sample);
-    if (e.sample_float) e.sample_float = scale_weight(e.sample_float);
+    e = scale_sample_weight(e, [](Vec2<double>) { return kGainControlScale; });
     e.name = "gain_control_ggx";
     e.description = "smooth_ggx with value and sample weight × 1.03: a 3 % energy gain";
     return e;
@@ -90,23 +99,15 @@ const ModelEntry& gain_control_model() {
 
 const ModelEntry& spike_control_model() {
   static const ModelEntry kEntry = [] {
-    ModelEntry e = find_model("smooth_ggx");
-    e.static_model = nullptr;
-    auto spike = [](auto inner) {
-      return [inner](const std::vector<double>& v, const ModelQuery<double>& q, Vec2<double> u) {
-        ModelSample<double> s = inner(v, q, u);
-        const double h = double(mix64(std::bit_cast<std::uint64_t>(u.x) ^
-                                      mix64(std::bit_cast<std::uint64_t>(u.y))) >>
-                                11) *
-                         0x1.0p-53;
-        // Mean kept: (1 − r)·a + r·kSpikeWeight = 1 with a the weight scale off the spikes.
-        const double off = (1 - kSpikeRate * kSpikeWeight) / (1 - kSpikeRate);
-        s.weight *= h < kSpikeRate ? kSpikeWeight : off;
-        return s;
-      };
-    };
-    e.sample = spike(e.sample);
-    if (e.sample_float) e.sample_float = spike(e.sample_float);
+    ModelEntry e = scale_sample_weight(find_model("smooth_ggx"), [](Vec2<double> u) {
+      const double h = double(mix64(std::bit_cast<std::uint64_t>(u.x) ^
+                                    mix64(std::bit_cast<std::uint64_t>(u.y))) >>
+                              11) *
+                       0x1.0p-53;
+      // Mean kept: (1 − r)·a + r·kSpikeWeight = 1 with a the weight scale off the spikes.
+      const double off = (1 - kSpikeRate * kSpikeWeight) / (1 - kSpikeRate);
+      return h < kSpikeRate ? kSpikeWeight : off;
+    });
     e.name = "spike_control_ggx";
     e.description = "smooth_ggx with sample weights × 300 in about 0.2 % of samples";
     return e;
