@@ -13,6 +13,8 @@
 // and decision — or, where the genuine verdict is fails, the corrected copy, which must hold.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -152,6 +154,49 @@ std::string control_text(DefectClass kind, bool holding) {
   return {};
 }
 
+// What each kind of check can see at this budget: a rare defect's smallest share of calls found
+// with 90 % power over the fewest calls a target gets; the energy gain's standard errors; the
+// variance ratio's ceiling n − 1.
+std::string power_of(const std::vector<ModelSweep>& sweeps, DefectClass kind, Budget b) {
+  std::uint64_t fewest = ~std::uint64_t(0);
+  std::vector<double> se;  // the albedo's standard error per cell (cells with noise)
+  for (const ModelSweep& s : sweeps) {
+    std::uint64_t calls = 0;
+    for (const SweepMap& m : s.maps)
+      for (const CellStats& c : m.cells) {
+        calls += c.evals + c.samples;
+        if (c.albedo_error > 1e-12) se.push_back(c.albedo_error);
+      }
+    fewest = std::min(fewest, calls);
+  }
+  std::sort(se.begin(), se.end());
+  const double se_median = se.empty() ? 0 : se[se.size() / 2];
+  const double se_p90 = se.empty() ? 0 : se[se.size() * 9 / 10];
+  switch (kind) {
+    case DefectClass::kBreaks:
+      return fmt::format(
+          "a defect in a share {:.2g} of calls (ln 10 / N, N = {} calls of the least-swept "
+          "target) is found with 90 % power; the control's 0.05 % is found",
+          std::log(10.0) / double(fewest), fewest);
+    case DefectClass::kEnergyGain:
+      return fmt::format(
+          "an albedo above 1 by {:g} standard errors is flagged: with the median per-cell SE "
+          "{:.2g} (90th percentile {:.2g}) a gain of {:.2g} ({:.2g}) is seen with 90 % power",
+          kGainSigmas, se_median, se_p90, (kGainSigmas + 1.2816) * se_median,
+          (kGainSigmas + 1.2816) * se_p90);
+    case DefectClass::kProbabilityAboveOne:
+      return "every probability intermediate evaluated is compared with 1: any value above 1 is "
+             "found (deterministic)";
+    case DefectClass::kHugeVariance:
+      return fmt::format(
+          "Var(w)/E(w)² is measured from {} samples per cell (at most {} can be seen), so a "
+          "blow-up "
+          "above {:g} is visible; the control's 0.2 % weight spikes are found",
+          cell_budget(b).samples, cell_budget(b).samples - 1, kVarianceBlowup);
+  }
+  return {};
+}
+
 CheckResult run_kind(Budget b, DefectClass kind, const char* what) {
   const std::vector<ModelSweep>& sweeps = suite_sweeps(b);
   std::size_t cells = 0;
@@ -170,6 +215,7 @@ CheckResult run_kind(Budget b, DefectClass kind, const char* what) {
   r.detail = fmt::format(
       "{} targets, {} cells ({} samples and {} uniform evaluations per cell): {}", targets.size(),
       cells, cell_budget(b).samples, cell_budget(b).uniform_evals, describe_targets(targets));
+  r.power = power_of(sweeps, kind, b);
 
   const bool holding = is_holding(r.verdict);
   std::vector<ModelSweep> control_sweeps;

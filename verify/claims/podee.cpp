@@ -17,9 +17,9 @@
 
 #include "core/math/rng.h"
 #include "core/render/metrics.h"
-#include "verify/scenes/podee_scene.h"
 #include "verify/claims/claims.h"
 #include "verify/claims/podee_probes.h"
+#include "verify/scenes/podee_scene.h"
 #include "verify/stats/mean_tests.h"
 #include "verify/stats/multiple_testing.h"
 
@@ -186,6 +186,11 @@ CheckResult run_brightest(Budget budget) {
       100 * medium.beaten_fraction, medium.pixels, kPodeeMedium, 100 * far.beaten_fraction,
       far.pixels, kPodeeFar);
   record_control(r, corner.worst_excess <= kSelectionTolerance ? Verdict::kHolds : Verdict::kFails);
+  r.power = fmt::format(
+      "deterministic brute force over every sub-pixel position: a selected vector farther than "
+      "{:g} "
+      "quad sizes from the brightest is detected",
+      kSelectionTolerance);
   r.control = fmt::format(
       "nearest-corner rule: max excess over the brute force {:.3g} quad sizes → {} ({})",
       corner.worst_excess, to_string(*r.control_verdict),
@@ -448,6 +453,7 @@ CheckResult run_far_failure(Budget budget) {
       sweep, first_fail, kPodeeFar, far.distance, far.vs_paper[kCentre], far.vs_paper[kLean],
       far.vs_paper[kMethod]);
   record_control(r, decide(rows.front(), control));
+  r.power = "not computed: one rendering per distance and a 64-spp reference, no noise estimate";
   r.control = fmt::format(
       "same decision with the far row at d={} rendered with an 8× lower-frequency normal map (few "
       "normals per pixel): ratio {:.2f} → {} ({})",
@@ -479,6 +485,7 @@ CheckResult run_stability(Budget budget) {
       "{:.3g}, LEAN {:.3g}, method {:.3g} ({:.2f}× centre), 64-spp reference {:.3g}",
       z.frames, kPodeeMedium, z.size, centre, lean, method, method / centre, reference);
   record_control(r, unweighted < centre ? Verdict::kHolds : Verdict::kFails);
+  r.power = "not computed: one pan per method, no noise estimate of the flicker ratio";
   r.control =
       fmt::format("the selected vector without result weighting: {:.3g} ({:.2f}× centre) → {} ({})",
                   unweighted, unweighted / centre, to_string(*r.control_verdict),

@@ -99,6 +99,10 @@ CheckResult normalization_verdict(const std::vector<Config>& grid, Measure&& mea
   for (std::size_t i : {std::size_t(0), grid.size() / 2, grid.size() - 1})
     control_min = std::min(control_min, measure(grid[i], 1.02).error);
   record_control(r, control_min <= kTolerance ? Verdict::kHolds : Verdict::kFails);
+  r.power = fmt::format(
+      "deterministic (cubature, error estimate ≤ {:.1e}): any normalisation error above {:g} is "
+      "detected, every time",
+      quad, kTolerance);
   r.control = fmt::format("D scaled by 1.02: smallest error {:.3g} on 3 configurations ({})",
                           control_min, r.control_rejected ? "rejected" : "NOT rejected");
   return r;

@@ -198,6 +198,10 @@ CheckResult run(Budget b) {
                       measure(c, 4096, Variant::kEvalWithoutG1, check_seed(kId, 2000 + s)).weight);
   }
   // Each control through the same tolerance: both must fail.
+  r.power = fmt::format(
+      "deterministic per sample: a relative error above {:g} in any one of the {} samples per "
+      "configuration is detected",
+      kTolerance, n);
   record_control(r,
                  min_pdf > kTolerance && min_g1 > kTolerance ? Verdict::kFails : Verdict::kHolds);
   r.control = fmt::format(

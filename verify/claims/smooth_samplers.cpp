@@ -212,7 +212,8 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
   out.push_back(g1);
   // ωi and ωo exchanged in the pdf (Walter's density is symmetric in them, so it is not used).
   GofControl swapped{"ωi and ωo swapped in the pdf", {}};
-  for (int i : {cfg("heitz_vndf/ggx", 1, 1, 89), cfg("bounded_vndf_exact_isotropic/ggx", 0.02, 0.2, 0)}) {
+  for (int i :
+       {cfg("heitz_vndf/ggx", 1, 1, 89), cfg("bounded_vndf_exact_isotropic/ggx", 0.02, 0.2, 0)}) {
     const Config& c = g[std::size_t(i)];
     GofCase w = make_case(c);
     const SamplerEntry& e = sampler_table()[c.sampler];
@@ -227,8 +228,8 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
   // Back-facing ωi: the stable form D(h)(t − i_z)/(2σ²) of Eto & Tokuyoshi Listing 2 with the sign
   // of i_z flipped, D(h)(t + i_z)/(2σ²).
   GofControl sign{"sign of ωi_z flipped in the back-facing pdf", {}};
-  for (int i :
-       {cfg("spherical_caps/ggx", 0.3, 0.3, 120), cfg("bounded_vndf_listing1/ggx", 0.3, 0.3, 120)}) {
+  for (int i : {cfg("spherical_caps/ggx", 0.3, 0.3, 120),
+                cfg("bounded_vndf_listing1/ggx", 0.3, 0.3, 120)}) {
     const Config& c = g[std::size_t(i)];
     GofCase w = make_case(c);
     w.label += " with (t + i_z)";
