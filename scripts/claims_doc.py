@@ -49,6 +49,7 @@ STATEMENTS = {
     "kemppinen.jacobian": "|J_T| = D/|U_Ω| for the GGX and Beckmann maps (Eq. 3)",
     "kemppinen.convergence": "the area mean of D★ converges to D (Eq. 2)",
     "kemppinen.compensation": "compensated D★^f matches D far away; k = 4 suffices (Eq. 9–11)",
+    "kemppinen.compensation-k16": "where k = 4 errs at high microroughness, k = 16 mitigates (Fig. 14)",
     "kemppinen.roulette": "roulette MIP blending equals linear blending in expectation (Eq. 8)",
     "kemppinen.furnace": "averaged over area the glinty NDF gains no energy (Fig. 15)",
     "kemppinen.constant-time": "evaluation cost does not grow with footprint, LOD or anisotropy",
