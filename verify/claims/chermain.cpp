@@ -636,36 +636,58 @@ bool lean_holds(const LeanMeasurement& m) {
 
 namespace {
 
+// Per replicate (an independent reference: the renders of the three methods are deterministic),
+// the two margins the claim needs: margin × RMSE(other) − RMSE(LEAN with ρ), ρ = 0 and no LEAN.
+std::vector<std::vector<double>> lean_margins(const LeanBudget& budget, int replicates,
+                                              std::uint64_t first_seed_index,
+                                              std::vector<LeanMeasurement>* kept = nullptr) {
+  std::vector<std::vector<double>> parts(2);
+  for (int k = 0; k < replicates; ++k) {
+    const LeanMeasurement m =
+        measure_lean(budget, check_seed("chermain.lean-correlation", first_seed_index + k));
+    parts[0].push_back(kLeanMargin * m.rmse_lean_rho0 - m.rmse_lean);
+    parts[1].push_back(kLeanMargin * m.rmse_no_lean - m.rmse_lean);
+    if (kept) kept->push_back(m);
+  }
+  return parts;
+}
+
 CheckResult lean_correlation(Budget b) {
   const bool quick = b == Budget::kQuick;
-  LeanBudget budget = quick ? LeanBudget{64, 44, 64, 1, 2, 0} : LeanBudget{192, 128, 1024, 1, 2, 0};
-  const LeanMeasurement m = measure_lean(budget, check_seed("chermain.lean-correlation", 0));
+  const LeanBudget budget =
+      quick ? LeanBudget{64, 44, 64, 1, 2, 0} : LeanBudget{192, 128, 1024, 1, 2, 0};
+  constexpr int kReplicates = 4;
+  std::vector<LeanMeasurement> ms;
+  const auto parts = lean_margins(budget, kReplicates, 0, &ms);
   CheckResult res;
   res.configurations = 3;
-  res.statistic = "display RMSE % of LEAN with rho";
-  res.value = m.rmse_lean;
-  res.verdict = lean_holds(m) ? Verdict::kHolds : Verdict::kFails;
+  res.statistic = "display RMSE % of LEAN with rho (first replicate)";
+  res.value = ms[0].rmse_lean;
+  res.verdict = decide_ggaa(parts);
+  const double conf = std::pow(kGgaaConfidence, 0.5);
+  const PairedComparison c0 = compare_paired(parts[0], conf), c1 = compare_paired(parts[1], conf);
   res.detail = fmt::format(
-      "grooves across (1, 2), plane {}x{}, reference {} spp (finest slopes per sample): RMSE no "
-      "LEAN {:.3f} %, LEAN rho = 0 {:.3f} %, LEAN with rho {:.3f} % (paper Fig. 7: 8.009 / 10.378 "
-      "/ "
-      "4.764 %); held to LEAN with rho below {} x each other",
-      budget.width, budget.height, budget.reference_spp, m.rmse_no_lean, m.rmse_lean_rho0,
-      m.rmse_lean, kLeanMargin);
+      "grooves across (1, 2), plane {}x{}, {} independent references of {} spp: RMSE no LEAN "
+      "{:.3f} %, LEAN rho = 0 {:.3f} %, LEAN with rho {:.3f} % (first replicate; paper Fig. 7: "
+      "8.009 / 10.378 / 4.764 %); held to LEAN with rho below {} x each other: margin over rho = 0 "
+      "{:.3f} [{:.3f}, {:.3f}], over no LEAN {:.3f} [{:.3f}, {:.3f}] RMSE points (paired t, {:.1f} "
+      "% each)",
+      budget.width, budget.height, kReplicates, budget.reference_spp, ms[0].rmse_no_lean,
+      ms[0].rmse_lean_rho0, ms[0].rmse_lean, kLeanMargin, c0.mean, c0.lo, c0.hi, c1.mean, c1.lo,
+      c1.hi, 100 * conf);
   // Control: grooves along the u axis (ρ = 0 in the map): ρ cannot help there.
   LeanBudget cb = budget;
   cb.groove_p = 1, cb.groove_q = 0;
   cb.width = 48, cb.height = 32, cb.reference_spp = 16;
-  const LeanMeasurement c = measure_lean(cb, check_seed("chermain.lean-correlation", 1));
-  record_control(res, lean_holds(c) ? Verdict::kHolds : Verdict::kFails);
-  res.power =
-      "not computed: one rendering per method, no noise estimate (the orderings are "
-      "several RMSE points apart; see the detail)";
+  std::vector<LeanMeasurement> cm;
+  record_control(res, decide_ggaa(lean_margins(cb, kReplicates, 100, &cm)));
+  res.power = fmt::format(
+      "a margin of {:.2g} RMSE points beyond LEAN's {}× line is detected with 90 % power "
+      "(paired t over {} references)",
+      std::max(c0.detectable, c1.detectable), kLeanMargin, kReplicates);
   res.control = fmt::format(
-      "axis-aligned grooves (true rho = 0): RMSE LEAN rho = 0 {:.3f} %, with rho {:.3f} % → {} "
-      "({})",
-      c.rmse_lean_rho0, c.rmse_lean, to_string(*res.control_verdict),
-      res.control_rejected ? "rejected" : "NOT rejected");
+      "axis-aligned grooves (true rho = 0): RMSE LEAN rho = 0 {:.3f} %, with rho {:.3f} % → {}",
+      cm[0].rmse_lean_rho0, cm[0].rmse_lean, to_string(*res.control_verdict));
   return res;
 }
 
