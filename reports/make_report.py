@@ -36,6 +36,7 @@ import sys
 import urllib.parse
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import charts  # noqa: E402
 import speed_accuracy as sa  # noqa: E402
 
 PARTS = ["claims", "figures", "bench", "stability"]
@@ -158,6 +159,10 @@ def load_claims(root):
         if c["verdict"] not in VERDICTS:
             raise ReportError(f"{relpath} is malformed: entry {i} ({c['id']}) has verdict "
                               f"'{c['verdict']}' (valid: {', '.join(sorted(VERDICTS))})")
+        for k in ("control_verdict", "regime", "expected_verdict"):
+            if c.get(k) is not None and not isinstance(c[k], str):
+                raise ReportError(f"{relpath} is malformed: entry {i} ({c['id']}) has a "
+                                  f"non-text \"{k}\"")
         for k in ("p_value", "control_p_value"):
             v = c.get(k)
             if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float))):
@@ -254,7 +259,16 @@ def load_stability(root):
             for k in ("png", "exr", "csv"):
                 where = f"model {m['model']} map {mp['quantity']} {k}"
                 mp[k + "_path"] = stability_file(root, mp.get(k), where)
-            load_csv(root, rel(mp["csv_path"], root))
+            header, rows = load_csv(root, rel(mp["csv_path"], root))
+            plane = mp.get("axis")
+            if plane is None:  # older stability.json: the plane is the CSV's name
+                plane = os.path.splitext(os.path.basename(mp["csv_path"]))[0]
+            missing = [c for c in (*charts.STABILITY_NEEDED, plane) if c not in header]
+            if missing:
+                raise ReportError(f"{rel(mp['csv_path'], root)} is malformed: missing column(s) "
+                                  f"{', '.join(missing)} (model {m['model']} map {mp['quantity']})")
+            mp["plane"] = plane
+            mp["table"] = (header, rows)
     return data
 
 
@@ -309,7 +323,7 @@ def series_of(header, rows):
     return out
 
 
-def convergence_plot(fig_id, csv_name, header, rows, path, machine, budget):
+def convergence_plot(fig_id, csv_name, header, rows, path, machine, budget, relpath, manifest):
     """Log-log RMSE vs spp; returns False when no series has two spp values."""
     series = {k: sorted(v) for k, v in series_of(header, rows).items()
               if len({s for s, _ in v}) >= 2}
@@ -332,36 +346,84 @@ def convergence_plot(fig_id, csv_name, header, rows, path, machine, budget):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(path, dpi=110, format="png")
-    plt.close(fig)
+    charts.save(fig, path, relpath, manifest)
     return True
 
 
-def speed_accuracy_plot(bench, plots, machine, budget):
-    """speed_accuracy.csv and .png (reports/speed_accuracy.py's join, fronts and chart)."""
+def speed_accuracy_plot(bench, plots, machine, budget, manifest):
+    """speed_accuracy.csv and .png: reports/speed_accuracy.py's join and fronts, drawn as one
+    small panel per kernel family."""
     rows = [dict(r) for r in bench["accuracy"]]
     timed = sa.join(rows, bench["speeds"], "max")
     if not timed:
         return None
     sa.write_csv(rows, os.path.join(plots, "speed_accuracy.csv"))
     date = str(bench["context"].get("date", ""))[:10]
-    sa.plot(timed, os.path.join(plots, "speed_accuracy.png"), "max", f"{machine}; budget {budget}",
-            date)
+    sa.plot_families(timed, os.path.join(plots, "speed_accuracy.png"), "max",
+                     f"{machine}; budget {budget}", date,
+                     record=lambda fig: manifest.append({**charts.describe(fig),
+                                                         "file": "plots/speed_accuracy.png"}))
     return timed
 
 
 # ----------------------------------------------------------------------------------------------
 # Writing
 
+class Raw:
+    """A table cell given as HTML and Markdown."""
+
+    def __init__(self, html_text, md_text):
+        self.html, self.md = html_text, md_text
+
+
+def folded(summary, body, md_body=None):
+    """Long text folded: the first words visible, the rest in <details>."""
+    return Raw(f"<details><summary>{esc(summary)}</summary>{esc(body)}</details>",
+               md_body if md_body is not None else body)
+
+
+def short(text, n=90):
+    text = " ".join(str(text).split())
+    return text if len(text) <= n else text[:n].rsplit(" ", 1)[0] + " …"
+
+
 class Doc:
-    """The HTML body and the Markdown twin, built side by side."""
+    """The HTML body and the Markdown twin, built side by side; headings are kept for the table of
+    contents, which goes where toc_here() was called."""
 
     def __init__(self):
         self.html, self.md = [], []
+        self.headings = []
+        self.toc_at = None
 
     def heading(self, level, text, anchor):
+        self.headings.append((level, text, anchor))
         self.html.append(f'<h{level} id="{esc(anchor)}">{esc(text)}</h{level}>')
         self.md.append(f"{'#' * level} {text}\n")
+
+    def toc_here(self):
+        self.toc_at = (len(self.html), len(self.md))
+
+    def toc(self):
+        """(html, md) of the table of contents: level 2 and 3 headings after the placeholder."""
+        h, m = ['<nav id="contents"><h2>Contents</h2><ul class="toc">'], ["## Contents\n"]
+        open_sub = False
+        for level, text, anchor in self.headings:
+            if level == 2:
+                if open_sub:
+                    h.append("</ul></li>")
+                    open_sub = False
+                h.append(f'<li><a href="#{esc(anchor)}">{esc(text)}</a>')
+                m.append(f"- [{md_cell(text)}](#{anchor})")
+                h.append('<ul class="sub">')
+                open_sub = True
+            elif level == 3:
+                h.append(f'<li><a href="#{esc(anchor)}">{esc(text)}</a></li>')
+                m.append(f"  - [{md_cell(text)}](#{anchor})")
+        if open_sub:
+            h.append("</ul></li>")
+        h.append("</ul></nav>")
+        return "".join(h).replace('<ul class="sub"></ul>', ""), "\n".join(m) + "\n"
 
     def para(self, text, md=None):
         self.html.append(f"<p>{esc(text)}</p>")
@@ -371,16 +433,22 @@ class Doc:
         self.html.append(html_text)
         self.md.append(md_text)
 
-    def table(self, header, rows, classes=None):
-        """rows: lists of (text, href or None) or plain text cells."""
-        h = ["<table><thead><tr>" + "".join(f"<th>{esc(c)}</th>" for c in header) +
+    def table(self, header, rows, classes=None, ids=None, cls=None):
+        """rows: lists of Raw, (text, href or None) or plain text cells."""
+        tcls = f' class="{esc(cls)}"' if cls else ""
+        h = [f"<table{tcls}><thead><tr>" + "".join(f"<th>{esc(c)}</th>" for c in header) +
              "</tr></thead><tbody>"]
         m = ["| " + " | ".join(md_cell(c) for c in header) + " |",
              "|" + "---|" * len(header)]
         for i, r in enumerate(rows):
-            cls = f' class="{esc(classes[i])}"' if classes and classes[i] else ""
+            attr = f' class="{esc(classes[i])}"' if classes and classes[i] else ""
+            attr += f' id="{esc(ids[i])}"' if ids and ids[i] else ""
             hc, mc = [], []
             for c in r:
+                if isinstance(c, Raw):
+                    hc.append(f"<td>{c.html}</td>")
+                    mc.append(md_cell(c.md))
+                    continue
                 text, href = c if isinstance(c, tuple) else (c, None)
                 if href:
                     hc.append(f'<td><a href="{esc(url(href))}">{esc(text)}</a></td>')
@@ -388,18 +456,29 @@ class Doc:
                 else:
                     hc.append(f"<td>{esc(text)}</td>")
                     mc.append(md_cell(text))
-            h.append(f"<tr{cls}>" + "".join(hc) + "</tr>")
+            h.append(f"<tr{attr}>" + "".join(hc) + "</tr>")
             m.append("| " + " | ".join(mc) + " |")
         h.append("</tbody></table>")
         self.html.append("\n".join(h))
         self.md.append("\n".join(m) + "\n")
 
-    def image(self, href, alt, caption, preview=False):
-        """preview: a small rendered image, drawn enlarged with visible pixels."""
-        cls = ' class="preview"' if preview else ""
-        self.html.append(f'<figure><a href="{esc(url(href))}"><img{cls} src="{esc(url(href))}" '
-                         f'alt="{esc(alt)}"></a><figcaption>{esc(caption)}</figcaption></figure>')
+    def image(self, href, alt, caption, kind="render"):
+        """kind: "chart" (drawn by the report, in plots/plots.json) or "render" (a rendered
+        image of a figure, small ones drawn enlarged with visible pixels)."""
+        self.html.append(f'<figure class="{kind}"><a href="{esc(url(href))}"><img class="{kind}" '
+                         f'src="{esc(url(href))}" alt="{esc(alt)}"></a>'
+                         f'<figcaption>{esc(caption)}</figcaption></figure>')
         self.md.append(f"![{md_cell(alt)}]({url(href)})\n\n*{caption}*\n")
+
+    def gallery(self, summary, items):
+        """Rendered images side by side, folded: items [(href, alt, caption)]."""
+        if not items:
+            return
+        self.html.append(f'<details class="gallery"><summary>{esc(summary)}</summary>'
+                         '<div class="grid">')
+        for href, alt, caption in items:
+            self.image(href, alt, caption, "render")
+        self.html.append("</div></details>")
 
     def links(self, label, items):
         """items: [(text, href)]."""
@@ -410,8 +489,11 @@ class Doc:
         self.md.append(f"{label}: " + ", ".join(f"[{md_cell(t)}]({url(h)})" for t, h in items) +
                        "\n")
 
-    def pre(self, text):
-        self.html.append(f"<pre>{esc(text)}</pre>")
+    def pre(self, text, summary=None):
+        body = f"<pre>{esc(text)}</pre>"
+        if summary:
+            body = f"<details><summary>{esc(summary)}</summary>{body}</details>"
+        self.html.append(body)
         self.md.append("\n".join("    " + line for line in text.splitlines()) + "\n")
 
 
@@ -438,38 +520,149 @@ def part_line(name, part):
     return s
 
 
+def claim_anchor(c):
+    return "claim-" + c["id"]
+
+
+def as_recorded(c):
+    exp = c.get("expected_verdict")
+    return not isinstance(exp, str) or exp == c["verdict"]
+
+
+def control_text(c):
+    """(short, long) of the control column: the control's own verdict and whether it opposes the
+    claim's (control_rejected), then what the control input is."""
+    cv = c.get("control_verdict")
+    own = f"control {cv}" if cv else "control"
+    if c["control_rejected"]:
+        head = f"{own}: rejected" + (" (opposes)" if cv else "")
+    else:
+        head = f"{own}: NOT REJECTED" + (" (does not oppose)" if cv else "") + " — check broken"
+    body = c["control"]
+    if c.get("control_p_value") is not None:
+        body += f" (control p {fmt_p(c['control_p_value'])})"
+    return head, body
+
+
+def write_summary(doc, claims, run, got):
+    """What a reader needs first: the counts, the failures and whether they are the recorded
+    findings, regressions, the controls."""
+    doc.heading(2, "Summary", "summary")
+    items_h, items_m = [], []
+
+    def item(h, m=None):
+        items_h.append(f"<li>{h}</li>")
+        items_m.append(f"- {m if m is not None else h}")
+
+    def claim_links(cs, extra=lambda c: ""):
+        return (", ".join(f'<a href="#{esc(claim_anchor(c))}">{esc(c["id"])}</a>{esc(extra(c))}'
+                          for c in cs),
+                ", ".join(f"[{md_cell(c['id'])}](#{claim_anchor(c)}){extra(c)}" for c in cs))
+
+    if claims is not None:
+        n = len(claims)
+        counts = {v: sum(c["verdict"] == v for c in claims) for v in sorted(VERDICTS)}
+        text = ", ".join(f"{k} {v}" for k, v in counts.items() if v)
+        item(esc(f"{n} claims: {text}."))
+        same = [c for c in claims if as_recorded(c)]
+        differ = [c for c in claims if not as_recorded(c)]
+        item(esc(f"{len(same)} of {n} as recorded (the verdict equals the one recorded in the "
+                 "repository)."))
+        findings = [c for c in claims if c["verdict"] == "fails" and as_recorded(c)]
+        if findings:
+            h, m = claim_links(findings)
+            item(f"<b>Fails, as recorded (a finding: the paper's claim was found wrong)</b>, "
+                 f"{len(findings)}: {h}",
+                 f"**Fails, as recorded (a finding: the paper's claim was found wrong)**, "
+                 f"{len(findings)}: {m}")
+        else:
+            item("No claim fails as recorded.")
+        if differ:
+            h, m = claim_links(differ, lambda c: f" ({c['verdict']}, recorded "
+                                                 f"{c.get('expected_verdict')})")
+            item(f'<b class="bad">Differs from recorded (a regression)</b>, {len(differ)}: {h}',
+                 f"**Differs from recorded (a regression)**, {len(differ)}: {m}")
+        else:
+            item("No verdict differs from the recorded one (no regression).")
+        loose = [c for c in claims if not c["control_rejected"]]
+        if loose:
+            h, m = claim_links(loose)
+            item(f'<b class="bad">{len(loose)} of {n} negative controls NOT rejected</b> (those '
+                 f"checks cannot tell a wrong input): {h}",
+                 f"**{len(loose)} of {n} negative controls NOT rejected**: {m}")
+        else:
+            item(esc(f"Every negative control rejected ({n} of {n}): each check tells its "
+                     "deliberately wrong input apart."))
+    else:
+        item("No claims in this report.")
+    if "stability" in got:
+        ms = got["stability"]["models"]
+        bad = [m for m in ms if m.get("verdict") not in (None, "holds")]
+        item(esc(f"Stability: {len(ms)} model/sampler pairs swept, "
+                 f"{len(ms) - len(bad)} with no failure region" +
+                 (f"; failure regions: {', '.join(m['model'] for m in bad)}" if bad else "") + "."))
+    if "figures" in got:
+        item(esc(f"Figures: {len(got['figures'])} run."))
+    doc.raw('<ul class="summary">' + "".join(items_h) + "</ul>", "\n".join(items_m) + "\n")
+
+
 def write_claims(doc, claims, part, root):
     doc.heading(2, "Verdicts", "verdicts")
     doc.para(f"{len(claims)} claims. Budget {part.get('budget', '?')}, "
              f"{machine_text(part.get('machine'))}. Verdicts: holds, holds-within, "
-             "holds-in-regime, fails, inconclusive; each check's negative control (a "
-             "deliberately wrong input) must be rejected for the verdict to count.")
+             "holds-in-regime (in the parameter region the check declares), fails, inconclusive; "
+             "each check's negative control (a deliberately wrong input) must get the opposite "
+             "verdict from the check's own decision (rejected) for the verdict to count. Click a "
+             "row's evidence or control to unfold it.")
     doc.links("Files", [("claims.json", "verify/claims.json"), ("claims.csv", "verify/claims.csv"),
                         ("claims.md", "verify/claims.md")])
-    rows, classes = [], []
+    rows, classes, ids = [], [], []
     for c in claims:
         verdict = c["verdict"]
+        if c.get("regime"):
+            vcell = Raw(f"<b>{esc(verdict)}</b><details><summary>regime</summary>"
+                        f"{esc(c['regime'])}</details>", f"{verdict} (regime: {c['regime']})")
+        else:
+            vcell = Raw(f"<b>{esc(verdict)}</b>", verdict)
         exp = c.get("expected_verdict")
-        if isinstance(exp, str) and exp != verdict:
-            verdict += f" (recorded: {exp})"
+        if as_recorded(c):
+            rec = "yes — a finding" if verdict == "fails" else "yes"
+        else:
+            rec = f"NO (recorded: {exp}) — a regression"
+        head, body = control_text(c)
+        ctrl = Raw(f"<details><summary>{esc(head)}</summary>{esc(body)}</details>",
+                   f"{head}: {body}")
         evidence = c["detail"]
-        control = c["control"] + (" — rejected" if c["control_rejected"]
-                                  else " — NOT REJECTED (the check is broken)")
-        if c.get("control_p_value") is not None:
-            control += f" (p {fmt_p(c['control_p_value'])})"
-        rows.append([c["id"], c["paper"], c["source"], verdict, evidence, fmt_p(c.get("p_value")),
-                     control])
-        classes.append("v-" + c["verdict"])
-    doc.table(["claim", "paper", "source", "verdict", "evidence", "p-value", "control"], rows,
-              classes)
+        extra = []
+        if c.get("statistic"):
+            extra.append(f"statistic: {c['statistic']}")
+        if c.get("power"):
+            extra.append(f"power: {c['power']}")
+        full = evidence + ("\n" + "\n".join(extra) if extra else "")
+        ev = Raw(f"<details><summary>{esc(short(evidence))}</summary>"
+                 f"<div class=\"long\">{esc(full)}</div></details>", " ".join(full.split("\n")))
+        rows.append([Raw(f'<a href="#{esc(claim_anchor(c))}">{esc(c["id"])}</a>', c["id"]),
+                     f"{c['paper']}, {c['source']}", vcell, rec, fmt_p(c.get("p_value")), ctrl,
+                     ev])
+        classes.append("v-" + c["verdict"] + ("" if as_recorded(c) else " regress") +
+                       ("" if c["control_rejected"] else " loose"))
+        ids.append(claim_anchor(c))
+    doc.table(["claim", "paper, source", "verdict", "as recorded", "p-value", "control",
+               "evidence"], rows, classes, ids, cls="verdicts")
 
 
-def write_figures(doc, figures, part, root, plots_tmp, plots_rel, made):
+def figure_chart_for(fid, name):
+    return charts.FIGURE_CHARTS.get(fid, {}).get(name)
+
+
+def write_figures(doc, figures, part, root, plots_tmp, plots_rel, made, manifest):
     doc.heading(2, "Figures", "figures")
     doc.para(f"{len(figures)} figures. Budget {part.get('budget', '?')} "
              f"({'quick: --quick images and sample counts' if part.get('budget') == 'quick' else 'full'}), "
-             f"{machine_text(part.get('machine'))}. Each PNG is a tonemapped preview of the EXR "
-             "beside it (32-bit float, linear radiance); the CSVs hold every number plotted.")
+             f"{machine_text(part.get('machine'))}. Each rendered PNG is a tonemapped preview of "
+             "the EXR beside it (32-bit float, linear radiance), folded under its figure and "
+             "shown enlarged with visible pixels; the CSVs hold every number plotted, and the "
+             "charts here are drawn from them.")
     machine, budget = machine_text(part.get("machine")), part.get("budget", "?")
     for f in figures:
         fid = f["id"]
@@ -479,32 +672,51 @@ def write_figures(doc, figures, part, root, plots_tmp, plots_rel, made):
         if f.get("seconds") is not None:
             doc.para(f"Ran in {float(f['seconds']):.1f} s.")
         base = f"figures/{fid}"
-        for n in f["files"]:
-            if n.endswith(".png"):
-                doc.image(f"{base}/{n}", f"{fid} {n}", f"{fid}: {n} (preview of the EXR data)",
-                          preview=True)
+        replaced = set()
+        for name, (header, rows) in f["csvs"].items():
+            spec = figure_chart_for(fid, name)
+            if not spec:
+                continue
+            draw, png_name = spec
+            out = f"{fid}__{name[:-4]}_chart.png"
+            if draw(header, rows, os.path.join(plots_tmp, out), f"{plots_rel}/{out}", manifest,
+                    f"{machine}; budget {budget}"):
+                made.append(out)
+                replaced.add(png_name)
+                doc.image(f"{plots_rel}/{out}", f"{fid} {name} chart",
+                          f"{fid}: drawn from {name} (replaces the experiment's {png_name}, "
+                          "linked below)", "chart")
+        pngs = [n for n in f["files"] if n.endswith(".png") and n not in replaced]
+        doc.gallery(f"{len(pngs)} rendered image(s) of {fid} (click to unfold)",
+                    [(f"{base}/{n}", f"{fid} {n}", f"{n} (preview of the EXR data)")
+                     for n in pngs])
         doc.links("EXR", [(n, f"{base}/{n}") for n in f["files"] if n.endswith(".exr")])
         doc.links("CSV", [(n, f"{base}/{n}") for n in f["files"] if n.endswith(".csv")])
         doc.links("Other files", [(n, f"{base}/{n}") for n in f["files"]
-                                  if not n.endswith((".png", ".exr", ".csv"))])
+                                  if not n.endswith((".exr", ".csv")) and
+                                  (not n.endswith(".png") or n in replaced)])
         if f["summary"]:
-            doc.pre(f["summary"].strip())
+            doc.pre(f["summary"].strip(), "summary.md")
         for name, (header, rows) in f["csvs"].items():
             if "spp" not in header or "rmse" not in header:
                 continue
             stem = name[:-4]
             png = f"{fid}__{stem}_convergence.png"
             if convergence_plot(fid, name, header, rows, os.path.join(plots_tmp, png), machine,
-                                budget):
+                                budget, f"{plots_rel}/{png}", manifest):
                 made.append(png)
                 doc.image(f"{plots_rel}/{png}", f"{fid} {stem} convergence",
-                          f"{fid}: RMSE vs spp from {name} (log-log), {machine}, budget {budget}")
-            doc.para(f"RMSE table ({name}" + (f", first {TABLE_ROW_LIMIT} of {len(rows)} rows"
-                                              if len(rows) > TABLE_ROW_LIMIT else "") + "):")
+                          f"{fid}: RMSE vs spp from {name} (log-log), {machine}, budget {budget}",
+                          "chart")
+            doc.html.append(f"<details><summary>RMSE table ({esc(name)}, {len(rows)} rows"
+                            + (f", first {TABLE_ROW_LIMIT} shown" if len(rows) > TABLE_ROW_LIMIT
+                               else "") + ")</summary>")
+            doc.md.append(f"RMSE table ({name}):\n")
             doc.table(header, [[tidy(c) for c in r] for r in rows[:TABLE_ROW_LIMIT]])
+            doc.html.append("</details>")
 
 
-def write_bench(doc, bench, part, root, plots_tmp, plots_rel, made):
+def write_bench(doc, bench, part, root, plots_tmp, plots_rel, made, manifest):
     doc.heading(2, "Speed vs accuracy", "speed")
     machine, budget = machine_text(part.get("machine")), part.get("budget", "?")
     ctx = bench["context"]
@@ -521,27 +733,32 @@ def write_bench(doc, bench, part, root, plots_tmp, plots_rel, made):
     if not bench["accuracy"]:
         doc.para("No accuracy CSV (bench/accuracy.csv): no speed-vs-accuracy chart.")
         return
-    timed = speed_accuracy_plot(bench, plots_tmp, machine, budget)
+    timed = speed_accuracy_plot(bench, plots_tmp, machine, budget, manifest)
     if timed is None:
         doc.para("No benchmark matches a row of the accuracy CSV: no speed-vs-accuracy chart.")
         return
     made += ["speed_accuracy.png", "speed_accuracy.csv"]
     doc.image(f"{plots_rel}/speed_accuracy.png", "speed vs accuracy",
-              f"Max relative error vs ns per evaluation, every kernel × ISA × math, per-method "
-              f"Pareto fronts; {machine}, budget {budget}")
+              f"Max relative error vs ns per evaluation, one panel per kernel family, every "
+              f"kernel × ISA × math, per-method Pareto fronts; {machine}, budget {budget}",
+              "chart")
     doc.links("Data", [("speed_accuracy.csv", f"{plots_rel}/speed_accuracy.csv")])
     front = sorted((r for r in timed if r["on_pareto_front"] == 1),
                    key=lambda r: (r["method"], r["ns_per_eval"]))
-    doc.para(f"Pareto fronts ({len(front)} of {len(timed)} timed points):")
+    doc.html.append(f"<details><summary>Pareto fronts ({len(front)} of {len(timed)} timed "
+                    "points)</summary>")
+    doc.md.append(f"Pareto fronts ({len(front)} of {len(timed)} timed points):\n")
     doc.table(["method", "kernel", "isa", "math", "ns per eval", "max rel. error",
                "p99 rel. error"],
               [[r["method"], r["kernel"], r["isa"], r["math"], f"{r['ns_per_eval']:.3g}",
                 r["max_rel_error"], r["p99_rel_error"]] for r in front])
+    doc.html.append("</details>")
     write_method_fronts(doc, timed, root, plots_tmp, plots_rel, made, machine, budget,
-                        str(ctx.get("date", ""))[:10])
+                        str(ctx.get("date", ""))[:10], manifest)
 
 
-def write_method_fronts(doc, timed, root, plots_tmp, plots_rel, made, machine, budget, date):
+def write_method_fronts(doc, timed, root, plots_tmp, plots_rel, made, machine, budget, date,
+                        manifest):
     """The method rows (bench/methods/*.json, METHOD_BENCHMARKS.md): chart and fronts on RMS."""
     paths = sorted(glob.glob(os.path.join(root, "bench/methods/*.json")))
     if not paths:
@@ -557,45 +774,83 @@ def write_method_fronts(doc, timed, root, plots_tmp, plots_rel, made, machine, b
         return
     sa.mark_fronts(rows, "rms")
     sa.plot_methods(timed, rows, os.path.join(plots_tmp, "speed_accuracy_methods.png"), "max",
-                    "rms", machine, date)
+                    "rms", machine, date,
+                    record=lambda fig: manifest.append(
+                        {**charts.describe(fig), "file": f"{plots_rel}/speed_accuracy_methods.png"}))
     made += ["speed_accuracy_methods.png"]
     doc.image(f"{plots_rel}/speed_accuracy_methods.png", "speed vs accuracy of the methods",
               f"RMS error against each method's reference vs ns per evaluation, one panel per "
-              f"method family, Pareto front per method; {machine}, budget {budget}")
+              f"method family, Pareto front per method; {machine}, budget {budget}", "chart")
     front = sorted((r for r in rows if r["on_pareto_front"] == 1),
                    key=lambda r: (r["method"], r["ns_per_eval"]))
-    doc.para(f"Method fronts ({len(front)} of {len(rows)} settings; RMS error):")
+    doc.html.append(f"<details><summary>Method fronts ({len(front)} of {len(rows)} settings; "
+                    "RMS error)</summary>")
+    doc.md.append(f"Method fronts ({len(front)} of {len(rows)} settings; RMS error):\n")
     doc.table(["method", "setting", "ns per eval", "RMS error", "max error", "reference"],
               [[r["method"], r["setting"], f"{r['ns_per_eval']:.3g}", r["rms_rel_error"],
                 r["max_rel_error"], r["reference"]] for r in front])
+    doc.html.append("</details>")
 
 
-def write_stability(doc, st, part, root):
+def slug(text):
+    return "".join(ch if ch.isalnum() or ch in "-_" else "-" for ch in text)
+
+
+def write_stability(doc, st, part, root, plots_tmp, plots_rel, made, manifest):
     doc.heading(2, "Stability maps", "stability")
-    doc.para(f"Budget {st.get('budget', part.get('budget', '?'))}, "
-             f"{machine_text(st.get('machine', part.get('machine')))}. {len(st['models'])} "
-             "model/sampler pairs.")
+    machine = machine_text(st.get('machine', part.get('machine')))
+    budget = st.get('budget', part.get('budget', '?'))
+    doc.para(f"Budget {budget}, {machine}. {len(st['models'])} model/sampler pairs. Each chart is "
+             "one plane (a swept parameter × the incidence angle θ_i) of one model and sampler, a "
+             "heatmap per quantity drawn from the plane's CSV, with the cells the sweep flags "
+             "outlined and hatched in red (the failure region); the raw maps (EXR, PNG) are "
+             "linked under each chart.")
     doc.links("Files", [("stability.json", "stability/stability.json")])
     for m in st["models"]:
         title = m["model"] + (f" / {m['sampler']}" if m.get("sampler") else "")
-        doc.heading(3, title, "st-" + title.replace(" ", "").replace("/", "-"))
+        doc.heading(3, title, "st-" + slug(title.replace(" ", "").replace("/", "-")))
         doc.para("Failure region: " + (m.get("failure_region") or "none found in the sweep"))
+        planes = {}
         for mp in m["maps"]:
-            doc.image(rel(mp["png_path"], root), f"{title} {mp['quantity']}",
-                      f"{title}: {mp['quantity']}", preview=True)
-            doc.links(mp["quantity"], [("EXR", rel(mp["exr_path"], root)),
-                                       ("CSV", rel(mp["csv_path"], root))])
+            planes.setdefault(mp["plane"], []).append(mp)
+        for plane, maps in planes.items():
+            header, rows = maps[0]["table"]
+            png = slug(f"stability__{m['model']}__{m.get('sampler', '')}__{plane}") + ".png"
+            failing = charts.stability_chart(title, plane, header, rows,
+                                             [mp["quantity"] for mp in maps],
+                                             os.path.join(plots_tmp, png), f"{plots_rel}/{png}",
+                                             manifest, f"{machine}; budget {budget}")
+            made.append(png)
+            worst = ", ".join(f"{q} {n} cells" for q, n in failing.items() if n) or \
+                "no failing cell"
+            doc.image(f"{plots_rel}/{png}", f"{title} plane {plane}",
+                      f"{title}, plane {plane} × θ_i: {worst} (from {os.path.basename(rel(maps[0]['csv_path'], root))})",
+                      "chart")
+            items = []
+            for mp in maps:
+                items += [(f"{mp['quantity']} EXR", rel(mp["exr_path"], root)),
+                          (f"{mp['quantity']} PNG", rel(mp["png_path"], root))]
+            doc.links(f"{plane}: CSV", [("CSV", rel(maps[0]["csv_path"], root))] + items)
 
 
-CSS = """body{font-family:sans-serif;max-width:1200px;margin:1em auto;padding:0 1em;color:#222}
+CSS = """body{font-family:sans-serif;max-width:1250px;margin:1em auto;padding:0 1em;color:#222}
 table{border-collapse:collapse;font-size:12px;margin:0.5em 0}
-td,th{border:1px solid #ccc;padding:3px 6px;vertical-align:top;text-align:left}
-th{background:#eee}img{max-width:100%;border:1px solid #ddd}figure{margin:0.8em 0}
+td,th{border:1px solid #ccc;padding:2px 5px;vertical-align:top;text-align:left}
+th{background:#eee}img{max-width:100%;border:1px solid #ddd}figure{margin:0.6em 0}
 figcaption{font-size:12px;color:#555}
-img.preview{min-width:360px;image-rendering:pixelated}pre{background:#f6f6f6;padding:0.5em;overflow:auto}
-tr.v-holds td:nth-child(4),tr.v-holds-within td:nth-child(4){background:#d9f2d9}
-tr.v-holds-in-regime td:nth-child(4){background:#eef6cc}
-tr.v-fails td:nth-child(4){background:#f6d0d0}tr.v-inconclusive td:nth-child(4){background:#eee}"""
+img.render{width:100%;min-width:200px;image-rendering:pixelated}
+.grid{display:grid;grid-template-columns:repeat(auto-fill,minmax(230px,1fr));gap:6px}
+.grid figure{margin:0}pre{background:#f6f6f6;padding:0.5em;overflow:auto;font-size:12px}
+details>summary{cursor:pointer;color:#245}details.gallery{margin:0.4em 0}
+table.verdicts{width:100%}table.verdicts td:first-child{white-space:nowrap}
+table.verdicts td:nth-child(7){max-width:420px}table.verdicts details{max-width:420px}
+.long{white-space:pre-wrap}
+tr.v-holds td:nth-child(3),tr.v-holds-within td:nth-child(3){background:#d9f2d9}
+tr.v-holds-in-regime td:nth-child(3){background:#eef6cc}
+tr.v-fails td:nth-child(3){background:#f6d0d0}tr.v-inconclusive td:nth-child(3){background:#eee}
+tr.regress td:nth-child(4),tr.loose td:nth-child(6){background:#f3a0a0;font-weight:bold}
+.bad{color:#a00}ul.summary li{margin:0.2em 0}
+nav ul.toc{columns:2;font-size:14px}nav ul.sub{font-size:12px}"""
 
 
 def build(root, run, got, plots_tmp):
@@ -605,27 +860,41 @@ def build(root, run, got, plots_tmp):
     doc.heading(1, title, "top")
     doc.para(f"glintlab {run.get('glintlab_version', '?')}, {run.get('date', '')}, budget "
              f"{run.get('budget', '?')}, {machine_text(run.get('machine'))}.")
+    write_summary(doc, got.get("claims"), run, got)
+    doc.toc_here()
+    doc.heading(2, "Run", "run")
     doc.raw("<ul>" + "".join(f"<li>{esc(part_line(n, parts.get(n)))}</li>" for n in PARTS) +
             "</ul>", "\n".join(f"- {part_line(n, parts.get(n))}" for n in PARTS) + "\n")
     logs = os.path.join(root, "logs")
     doc.links("Run record", [("run.json", "run.json")] +
               [(n, f"logs/{n}") for n in (sorted(os.listdir(logs)) if os.path.isdir(logs) else [])
                if not n.startswith(".") and not n.startswith("make_report")])
-    made = []
+    made, manifest = [], []
     plots_rel = "plots"
     if "claims" in got:
         write_claims(doc, got["claims"], parts.get("claims", {}), root)
     if "figures" in got:
         write_figures(doc, got["figures"], parts.get("figures", {}), root, plots_tmp, plots_rel,
-                      made)
+                      made, manifest)
     if "bench" in got:
-        write_bench(doc, got["bench"], parts.get("bench", {}), root, plots_tmp, plots_rel, made)
+        write_bench(doc, got["bench"], parts.get("bench", {}), root, plots_tmp, plots_rel, made,
+                    manifest)
     if "stability" in got:
-        write_stability(doc, got["stability"], parts.get("stability", {}), root)
+        write_stability(doc, got["stability"], parts.get("stability", {}), root, plots_tmp,
+                        plots_rel, made, manifest)
     for n in PARTS:
         if n not in got:
             doc.heading(2, PART_TITLES[n], "absent-" + n)
             doc.para("Not in this report: " + part_line(n, parts.get(n)))
+    # The table of contents, now that every heading is known, after the summary.
+    doc.headings = [h for h in doc.headings if h[2] != "top"]
+    toc_h, toc_m = doc.toc()
+    hi, mi = doc.toc_at
+    doc.html.insert(hi, toc_h)
+    doc.md.insert(mi, toc_m)
+    with open(os.path.join(plots_tmp, "plots.json"), "w", encoding="utf-8") as f:
+        json.dump({"plots": manifest}, f, indent=1, sort_keys=True)
+    made.append("plots.json")
     page = ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
             f"<title>{esc(title)}</title><style>{CSS}</style></head><body>\n" +
             "\n".join(doc.html) + "\n</body></html>\n")

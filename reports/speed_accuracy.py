@@ -302,7 +302,8 @@ def family(method):
     return method.split(".", 1)[0]
 
 
-def plot_methods(kernel_rows, method_rows, path, metric, method_metric, machine, date):
+def plot_methods(kernel_rows, method_rows, path, metric, method_metric, machine, date,
+                 record=None):
     """One panel per method family (the method id's first dotted part) and one for the kernels'
     exact vs fast math; colour per method, its front as filled points joined by a staircase with
     the settings written beside them; dominated settings hollow."""
@@ -388,7 +389,78 @@ def plot_methods(kernel_rows, method_rows, path, metric, method_metric, machine,
                  f"method ({len(method_rows)} method rows, {len(kernel_rows)} kernel rows)\n"
                  f"{machine}, {date}", fontsize=10)
     fig.tight_layout(rect=(0, 0, 1, 0.97))
+    if record:
+        record(fig)
     write_atomic(path, lambda tmp: fig.savefig(tmp, dpi=120, format="png"))
+    plt.close(fig)
+
+
+def kernel_family(method):
+    """The quantity a kernel method computes, grouped: d, g1, g2, lambda, brdf, map, area, vndf,
+    pdf, sample (the model, ggx or beckmann, is drawn in the colour)."""
+    head, _, rest = method.partition(".")
+    if head in ("pdf", "sample") or not rest:
+        return head
+    name = rest.split("/", 1)[0]
+    for prefix, fam in (("brdf", "brdf"), ("map_", "map"), ("projected_area", "area"),
+                        ("total_area", "area"), ("g2", "g2")):
+        if name.startswith(prefix):
+            return fam
+    return name
+
+
+def plot_families(timed, path, metric, machine, date, record=None):
+    """One small panel per kernel family (kernel_family): every kernel x ISA x math point of the
+    family, colour per method, marker per math flavour, each method's Pareto front a staircase.
+    record(fig), when given, is called before the figure is saved (the report's manifest)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
+
+    key = "max_rel_error" if metric == "max" else "rms_rel_error"
+    markers = {"float_exact": "o", "float_fast": "^", "double_exact": "s"}
+    fams = sorted({kernel_family(r["method"]) for r in timed})
+    cols = min(4, len(fams))
+    nrows = (len(fams) + cols - 1) // cols
+    fig, axes = plt.subplots(nrows, cols, figsize=(4.4 * cols, 3.9 * nrows), squeeze=False)
+    for ax in axes.flat[len(fams):]:
+        ax.set_visible(False)
+    cmap = plt.get_cmap("tab10")
+    for ax, fam in zip(axes.flat, fams):
+        mine = [r for r in timed if kernel_family(r["method"]) == fam]
+        methods = sorted({r["method"] for r in mine})
+        handles = []
+        for mi, m in enumerate(methods):
+            c = cmap(mi % 10)
+            group = [r for r in mine if r["method"] == m]
+            for r in group:
+                front = r["on_pareto_front"] == 1
+                ax.scatter(r["ns_per_eval"], max(float(r[key]), ZERO_FLOOR), s=14 if front else 6,
+                           marker=markers.get(r["math"], "x"), c=[c], alpha=0.95 if front else 0.3,
+                           linewidths=0)
+            fr = sorted((r for r in group if r["on_pareto_front"] == 1),
+                        key=lambda r: r["ns_per_eval"])
+            ax.step([r["ns_per_eval"] for r in fr], [max(float(r[key]), ZERO_FLOOR) for r in fr],
+                    where="post", color=c, lw=0.8, alpha=0.8)
+            handles.append(Line2D([], [], color=c, lw=0.8, label=m[:40]))
+        handles += [Line2D([], [], ls="", marker=mk, color="gray", label=f)
+                    for f, mk in markers.items()]
+        ax.legend(handles=handles, fontsize=5, loc="best", ncol=1 if len(handles) < 9 else 2)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_title(f"{fam}: {len(methods)} method(s), {len(mine)} points", fontsize=8)
+        ax.set_xlabel("time per evaluation [ns], one thread", fontsize=7)
+        ax.set_ylabel(f"{metric} relative error [1] (0 drawn at {ZERO_FLOOR:g})", fontsize=7)
+        ax.tick_params(labelsize=6)
+        ax.grid(True, which="major", alpha=0.3)
+    fig.suptitle(f"speed vs accuracy per kernel family ({len(timed)} kernel x ISA x math points; "
+                 f"line: each method's Pareto front, faint: dominated)\n{machine}, {date}",
+                 fontsize=9)
+    fig.tight_layout(rect=(0, 0, 1, 0.95))
+    if record:
+        record(fig)
+    write_atomic(path, lambda tmp: fig.savefig(tmp, dpi=100, format="png"))
     plt.close(fig)
 
 

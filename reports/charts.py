@@ -1,0 +1,226 @@
+"""Charts the report draws itself with matplotlib, and the manifest of every chart it drew.
+
+Every chart is saved through `save`, which reads back from the matplotlib figure what a reader
+needs (figure and axes titles, axis labels, legend, colour scale of a map) into a manifest entry;
+make_report.py writes the entries to plots/plots.json and the browser test
+(tests/reports/browser_test.py) fails on a chart whose axes lack labels, title, legend or, for a
+map, its colour scale.
+
+Stability maps: one chart per model / sampler / plane (a swept parameter x the incidence angle),
+one heatmap panel per quantity drawn from the plane's CSV (every number per cell, written by
+`glintlab sweep`), its cells flagged as failing outlined in red, a colour bar per panel and the
+parameter values on both axes.
+"""
+
+import math
+
+ZERO = 1e-300
+
+
+def pyplot():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def describe(fig):
+    """The manifest's view of a figure: its title and, per visible data axes, title, labels,
+    whether it has a legend (its own or the figure's) and, for a map, a colour bar."""
+    suptitle = fig._suptitle.get_text() if getattr(fig, "_suptitle", None) else ""
+    colorbars = [a for a in fig.axes if a.get_label() == "<colorbar>"]
+    axes = []
+    for ax in fig.axes:
+        if not ax.get_visible() or ax.get_label() == "<colorbar>":
+            continue
+        is_map = bool(ax.images) or any(type(c).__name__ == "QuadMesh" for c in ax.collections)
+        axes.append({"title": ax.get_title() or suptitle, "xlabel": ax.get_xlabel(),
+                     "ylabel": ax.get_ylabel(),
+                     "legend": ax.get_legend() is not None or bool(fig.legends),
+                     "map": is_map,
+                     # a colour bar beside this map (matplotlib makes it an axes of its own)
+                     "colorbar": is_map and any(getattr(c, "_colorbar_of", None) is ax
+                                                for c in colorbars)})
+    return {"title": suptitle or (axes[0]["title"] if axes else ""), "axes": axes}
+
+
+def colorbar(fig, mappable, ax, label):
+    cb = fig.colorbar(mappable, ax=ax, fraction=0.05, pad=0.02)
+    cb.set_label(label, fontsize=7)
+    cb.ax.tick_params(labelsize=6)
+    cb.ax._colorbar_of = ax
+    return cb
+
+
+def save(fig, path, relpath, manifest, dpi=110):
+    """Saves a chart, records it in the manifest (relpath: its path in the report)."""
+    entry = describe(fig)
+    entry["file"] = relpath
+    fig.savefig(path, dpi=dpi, format="png", metadata={"Software": None})
+    pyplot().close(fig)
+    manifest.append(entry)
+
+
+# ----------------------------------------------------------------------------------------------
+# Stability maps
+
+# quantity -> (label of the colour, value of a cell from its CSV row, whether the cell fails,
+#              logarithmic colour scale)
+def _max_prefixed(prefix):
+    def get(row):
+        vals = [v for k, v in row.items() if k.startswith(prefix) and k.endswith("_fraction")]
+        return max(vals) if vals else 0.0
+    return get
+
+
+STABILITY_QUANTITIES = {
+    "nan": ("NaN fraction of calls (max over value, pdf, sample; double, float) [1]",
+            _max_prefixed("nan_"), lambda r: _max_prefixed("nan_")(r) > 0, False),
+    "inf": ("Inf fraction of calls (max over value, pdf, sample; double, float) [1]",
+            _max_prefixed("inf_"), lambda r: _max_prefixed("inf_")(r) > 0, False),
+    "negative": ("negative fraction of calls (max over value, pdf, sample) [1]",
+                 _max_prefixed("negative_"), lambda r: _max_prefixed("negative_")(r) > 0, False),
+    "energy_gain": ("white-furnace albedo [1] (fails: gain > 1 beyond 4 s.e.)",
+                    lambda r: r.get("albedo", math.nan), lambda r: r.get("energy_gain", 0) > 0,
+                    False),
+    "p_gt_1": ("largest probability p seen [1] (fails: p > 1)", lambda r: r.get("p_max", math.nan),
+               lambda r: r.get("p_gt_1_fraction", 0) > 0, False),
+    "variance": ("Var(w)/E(w)^2 of the sample weight [1] (fails: > 100)",
+                 lambda r: r.get("relative_variance", math.nan),
+                 lambda r: r.get("variance_blowup", 0) > 0, True),
+}
+STABILITY_NEEDED = ("row_index", "column_index", "theta_i_deg")
+AXIS_UNITS = {"alpha": "alpha (GGX/Beckmann roughness) [1]",
+              "anisotropy": "anisotropy alpha_x / alpha_y [1]",
+              "density": "glint density [1]", "microroughness": "microroughness [1]",
+              "footprint": "footprint size [1]", "light_size": "light half-angle [deg]"}
+
+
+def _num(cell):
+    try:
+        return float(cell)
+    except ValueError:
+        return math.nan
+
+
+def _ticks(values, n=6):
+    """Tick positions (cell indices) and labels (the parameter values) of one axis."""
+    if len(values) <= n:
+        idx = list(range(len(values)))
+    else:
+        idx = sorted({round(k * (len(values) - 1) / (n - 1)) for k in range(n)})
+    return idx, [f"{values[i]:.3g}" for i in idx]
+
+
+def stability_chart(title, plane, header, rows, quantities, path, relpath, manifest, subtitle):
+    """One panel per quantity of one plane: heatmap of the CSV's cells with the parameter values
+    on the axes, a colour bar and the failing cells outlined. Returns the failing cell count per
+    quantity."""
+    import numpy as np
+    from matplotlib.colors import LogNorm, Normalize
+    from matplotlib.patches import Patch, Rectangle
+
+    plt = pyplot()
+    recs = [{h: _num(c) for h, c in zip(header, r)} for r in rows]
+    nrow = int(max(r["row_index"] for r in recs)) + 1
+    ncol = int(max(r["column_index"] for r in recs)) + 1
+    row_vals, col_vals = [math.nan] * nrow, [math.nan] * ncol
+    for r in recs:
+        row_vals[int(r["row_index"])] = r.get(plane, math.nan)
+        col_vals[int(r["column_index"])] = r["theta_i_deg"]
+    qs = [q for q in quantities if q in STABILITY_QUANTITIES]
+    cols = min(3, len(qs)) or 1
+    nrows = (len(qs) + cols - 1) // cols or 1
+    fig, axes = plt.subplots(nrows, cols, figsize=(4.6 * cols, 3.3 * nrows + 0.8), squeeze=False)
+    for ax in axes.flat[len(qs):]:
+        ax.set_visible(False)
+    failing = {}
+    for ax, q in zip(axes.flat, qs):
+        label, get, fails, log = STABILITY_QUANTITIES[q]
+        grid = np.full((nrow, ncol), np.nan)
+        bad = np.zeros((nrow, ncol), dtype=bool)
+        for r in recs:
+            i, j = int(r["row_index"]), int(r["column_index"])
+            grid[i, j] = get(r)
+            bad[i, j] = fails(r)
+        finite = grid[np.isfinite(grid)]
+        if log:
+            pos = finite[finite > 0]
+            lo = pos.min() if pos.size else 1e-3
+            hi = max(pos.max() if pos.size else 1.0, lo * 10)
+            norm = LogNorm(vmin=lo, vmax=hi)
+            grid = np.where(grid > 0, grid, lo)
+        else:
+            lo = float(finite.min()) if finite.size else 0.0
+            hi = float(finite.max()) if finite.size else 1.0
+            if hi <= lo:
+                lo, hi = lo - 0.5 if lo else 0.0, hi + 0.5 if hi else 1.0
+            norm = Normalize(vmin=lo, vmax=hi)
+        mesh = ax.pcolormesh(np.arange(ncol + 1) - 0.5, np.arange(nrow + 1) - 0.5,
+                             np.ma.masked_invalid(grid), cmap="viridis", norm=norm,
+                             shading="flat")
+        for i, j in zip(*np.nonzero(bad)):
+            ax.add_patch(Rectangle((j - 0.5, i - 0.5), 1, 1, fill=False, edgecolor="red",
+                                   lw=1.4, hatch="///"))
+        failing[q] = int(bad.sum())
+        colorbar(fig, mesh, ax, label.split(" (")[0] if len(label) > 40 else label)
+        xi, xl = _ticks(col_vals)
+        yi, yl = _ticks(row_vals)
+        ax.set_xticks(xi)
+        ax.set_xticklabels(xl, fontsize=6)
+        ax.set_yticks(yi)
+        ax.set_yticklabels(yl, fontsize=6)
+        ax.set_xlabel("incidence angle theta_i [deg]", fontsize=7)
+        ax.set_ylabel(AXIS_UNITS.get(plane, f"{plane} [1]"), fontsize=7)
+        ax.set_title(f"{q}: {label}\n{failing[q]} of {nrow * ncol} cells fail", fontsize=7)
+    fig.suptitle(f"{title}, plane {plane} x theta_i\n{subtitle}", fontsize=9)
+    fig.legend(handles=[Patch(facecolor="none", edgecolor="red", hatch="///",
+                              label="failure region (cells flagged by the sweep)")],
+               loc="lower center", fontsize=7, frameon=False)
+    fig.tight_layout(rect=(0, 0.04, 1, 0.95))
+    save(fig, path, relpath, manifest, dpi=100)
+    return failing
+
+
+# ----------------------------------------------------------------------------------------------
+# Charts drawn from figure CSVs (in place of a chart PNG rendered by the C++ experiment)
+
+def furnace_chart(header, rows, path, relpath, manifest, subtitle):
+    """kemppinen2025-fig15 furnace.csv: energy over theta_o, glinty vs smooth, per NDF and alpha,
+    with +-2 standard errors."""
+    need = {"ndf", "alpha", "theta_o_deg", "energy_glinty", "energy_glinty_se", "energy_smooth",
+            "energy_smooth_se"}
+    if not need <= set(header):
+        return False
+    recs = [dict(zip(header, r)) for r in rows]
+    ndfs = sorted({r["ndf"] for r in recs})
+    plt = pyplot()
+    fig, axes = plt.subplots(1, len(ndfs), figsize=(5.2 * len(ndfs), 4.2), squeeze=False)
+    cmap = plt.get_cmap("tab10")
+    for ax, ndf in zip(axes.flat, ndfs):
+        mine = [r for r in recs if r["ndf"] == ndf]
+        for k, a in enumerate(sorted({r["alpha"] for r in mine}, key=float)):
+            pts = sorted((r for r in mine if r["alpha"] == a), key=lambda r: float(r["theta_o_deg"]))
+            x = [float(r["theta_o_deg"]) for r in pts]
+            for kind, ls in (("glinty", "-"), ("smooth", "--")):
+                y = [float(r[f"energy_{kind}"]) for r in pts]
+                e = [2 * float(r[f"energy_{kind}_se"]) for r in pts]
+                ax.errorbar(x, y, yerr=e, color=cmap(k), ls=ls, marker="o", ms=3, lw=1,
+                            capsize=2, label=f"alpha {float(a):.3g}, {kind}")
+        ax.axhline(1.0, color="gray", lw=0.6, ls=":")
+        ax.set_xlabel("outgoing angle theta_o [deg]", fontsize=8)
+        ax.set_ylabel("white-furnace energy (reflected / incident) [1]", fontsize=8)
+        ax.set_title(f"{ndf.upper()}: glinty (solid) vs smooth (dashed), +-2 s.e.", fontsize=8)
+        ax.legend(fontsize=6)
+        ax.grid(True, alpha=0.3)
+        ax.tick_params(labelsize=7)
+    fig.suptitle(f"kemppinen2025-fig15: white furnace over theta_o (from furnace.csv)\n{subtitle}",
+                 fontsize=9)
+    fig.tight_layout(rect=(0, 0, 1, 0.92))
+    save(fig, path, relpath, manifest)
+    return True
+
+
+# figure id -> {csv name: function(header, rows, path, relpath, manifest, subtitle) -> bool,
+#               and the C++ chart PNG it replaces}
+FIGURE_CHARTS = {"kemppinen2025-fig15": {"furnace.csv": (furnace_chart, "furnace.png")}}
