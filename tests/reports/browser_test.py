@@ -73,6 +73,34 @@ def probe(page_path, profile):
     return json.loads(m.group(1).replace("&quot;", '"').replace("&amp;", "&")), ""
 
 
+def broken_plots(broken, page):
+    """Breaks a copy of the report three ways (a chart's y label removed from plots.json, a raw
+    stability PNG and a one-colour PNG shown as images); True when plot_problems names each."""
+    mpath = os.path.join(broken, "plots", "plots.json")
+    manifest = json.load(open(mpath, encoding="utf-8"))
+    charts = [s for s, c in page.imgs if c == "chart"]
+    if not manifest["plots"] or not charts:
+        return "the report has no chart to break"
+    victim = manifest["plots"][0]
+    victim["axes"][0]["ylabel"] = ""
+    json.dump(manifest, open(mpath, "w", encoding="utf-8"))
+    raw = [os.path.relpath(p, broken) for p in
+           sorted(__import__("glob").glob(os.path.join(broken, "stability", "**", "*.png"),
+                                          recursive=True))]
+    import matplotlib.image
+    import numpy as np
+    matplotlib.image.imsave(os.path.join(broken, "figures", "block.png"),
+                            np.zeros((64, 64, 3)) + 0.4)
+    extra = [("figures/block.png", "render")] + [(r, "render") for r in raw[:1]]
+    page.imgs = list(page.imgs) + extra
+    got = rc.plot_problems(broken, page)
+    page.imgs = page.imgs[:-len(extra)]
+    want = [f"{victim['file']}: axes 0 has no ylabel", "figures/block.png: a bare block"]
+    want += [f"{r}: shown as a rendered image but not a figure's render" for r in raw[:1]]
+    missing = [w for w in want if not any(g.startswith(w) for g in got)]
+    return True if not missing and len(got) == len(want) else f"wanted {want}, got {got}"
+
+
 def main():
     if len(sys.argv) < 2:
         print("usage: browser_test.py SCREENSHOT.png [--report DIR]")
@@ -124,6 +152,18 @@ def main():
                 cres["dead"] != ["missing-file.json"]:
             failures.append(f"negative control: a missing image and a dangling link were not "
                             f"both reported ({cres}, {err})")
+        # Every picture is readable: charts with title, labelled axes, legend, colour scale.
+        problems = rc.plot_problems(report, page)
+        if problems:
+            failures.append(f"unreadable pictures: {problems[:10]}" +
+                            (f" and {len(problems) - 10} more" if len(problems) > 10 else ""))
+        # Negative control: a chart whose axis label is gone, a raw data map shown as an image
+        # and a one-colour block must all be caught.
+        broken = os.path.join(tmp, "broken")
+        shutil.copytree(report, broken, symlinks=True)
+        caught = broken_plots(broken, page)
+        if caught is not True:
+            failures.append(f"negative control: broken pictures not all reported ({caught})")
         r = chromium(["--window-size=1280,3000", f"--screenshot={shot}",
                       "file://" + os.path.abspath(index)], profile)
         if not os.path.exists(shot) or not rc.is_png(shot):

@@ -1,6 +1,7 @@
 """Checks shared by the report tests: parse index.html / report.md, and find links and images that
 are absolute or do not resolve to a file inside the report folder."""
 import html.parser
+import json
 import os
 import re
 import urllib.parse
@@ -12,6 +13,7 @@ class Page(html.parser.HTMLParser):
     def __init__(self):
         super().__init__()
         self.hrefs, self.srcs, self.tables = [], [], []
+        self.imgs = []  # (src, class) of every <img>
         self._cell = None
         self._row = None
 
@@ -21,6 +23,7 @@ class Page(html.parser.HTMLParser):
             self.hrefs.append(a["href"])
         if tag == "img":
             self.srcs.append(a.get("src", ""))
+            self.imgs.append((a.get("src", ""), a.get("class", "") or ""))
         if tag == "table":
             self.tables.append([])
         if tag == "tr":
@@ -84,3 +87,56 @@ def bad_targets(root, targets):
 def is_png(path):
     with open(path, "rb") as f:
         return f.read(8) == b"\x89PNG\r\n\x1a\n"
+
+
+def distinct_colours(path, limit=64):
+    """How many distinct RGB(A) colours a PNG has (counting stops at limit)."""
+    import matplotlib.image
+    import numpy as np
+    img = matplotlib.image.imread(path)
+    flat = img.reshape(-1, img.shape[-1]) if img.ndim == 3 else img.reshape(-1, 1)
+    step = max(1, flat.shape[0] // 200000)
+    return min(limit, len(np.unique(flat[::step], axis=0)))
+
+
+def plot_problems(root, page):
+    """What makes a picture of the report unreadable: a chart (<img class="chart">) without an
+    entry in plots/plots.json, or whose source data (that manifest, read back from the matplotlib
+    figure) lacks a title, an axis label, a legend or, for a map, its colour scale; an image that
+    is neither a chart nor a rendered figure image (<img class="render"> under figures/), i.e. a
+    data map shown raw; an image that is a bare block (fewer than 4 distinct colours)."""
+    problems = []
+    try:
+        with open(os.path.join(root, "plots", "plots.json"), encoding="utf-8") as f:
+            manifest = {p["file"]: p for p in json.load(f)["plots"]}
+    except (OSError, ValueError, KeyError) as e:
+        return [f"plots/plots.json unreadable ({e})"]
+    for src, cls in page.imgs:
+        path = urllib.parse.unquote(src)
+        if "chart" in cls.split():
+            entry = manifest.get(path)
+            if entry is None:
+                problems.append(f"{src}: a chart not in plots/plots.json")
+                continue
+            if not entry.get("title"):
+                problems.append(f"{src}: chart without a title")
+            if not entry.get("axes"):
+                problems.append(f"{src}: chart without axes")
+            for i, ax in enumerate(entry.get("axes", [])):
+                for k in ("xlabel", "ylabel", "title"):
+                    if not str(ax.get(k, "")).strip():
+                        problems.append(f"{src}: axes {i} has no {k}")
+                if not ax.get("legend"):
+                    problems.append(f"{src}: axes {i} has no legend")
+                if ax.get("map") and not ax.get("colorbar"):
+                    problems.append(f"{src}: map {i} has no colour scale")
+        elif "render" in cls.split():
+            if not path.startswith("figures/"):
+                problems.append(f"{src}: shown as a rendered image but not a figure's render "
+                                "(a data map must be a chart with axes and colour scale)")
+        else:
+            problems.append(f"{src}: neither a chart nor a rendered figure image")
+        full = os.path.join(root, path)
+        if os.path.isfile(full) and is_png(full) and distinct_colours(full) < 4:
+            problems.append(f"{src}: a bare block (fewer than 4 colours)")
+    return problems

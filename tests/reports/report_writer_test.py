@@ -48,37 +48,75 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 0, f"fixture report: exit 0 (got {r.returncode}: {r.stderr.strip()})")
     page = rc.parse_html(os.path.join(d, "index.html"))
     claims = json.load(open(os.path.join(FIXTURES, "verify", "claims.json")))
-    verdicts = [t for t in page.tables if t and t[0][:4] == ["claim", "paper", "source", "verdict"]]
-    check(len(verdicts) == 1, "one verdict table")
+    header = ["claim", "paper, source", "verdict", "as recorded", "p-value", "control", "evidence"]
+    verdicts = [t for t in page.tables if t and t[0] == header]
+    check(len(verdicts) == 1, "one verdict table with the compact columns")
     if verdicts:
         t = verdicts[0]
-        check(t[0] == ["claim", "paper", "source", "verdict", "evidence", "p-value", "control"],
-              f"verdict table columns (got {t[0]})")
         check([row[0] for row in t[1:]] == [c["id"] for c in claims],
               "one verdict row per claim, in claims.json's order")
         by_id = {row[0]: row for row in t[1:]}
-        check(by_id["fixture.fails"][3] == "fails" and by_id["fixture.fails"][5] == "1.5e-09",
+        check(by_id["fixture.fails"][2] == "fails" and by_id["fixture.fails"][4] == "1.5e-09",
               f"fails row: verdict and p-value (got {by_id['fixture.fails']})")
-        check(by_id["fixture.holds"][5] == "—", "a deterministic check shows no p-value")
-        check("recorded: holds" in by_id["fixture.inconclusive"][3],
-              "a verdict that differs from the recorded one says so")
-        check("NOT REJECTED" in by_id["fixture.inconclusive"][6],
+        check("a finding" in by_id["fixture.fails"][3], "a recorded failure is called a finding")
+        check(by_id["fixture.holds"][4] == "—", "a deterministic check shows no p-value")
+        check("recorded: holds" in by_id["fixture.inconclusive"][3] and
+              "regression" in by_id["fixture.inconclusive"][3],
+              "a verdict that differs from the recorded one says so (a regression)")
+        check("NOT REJECTED" in by_id["fixture.inconclusive"][5],
               "a control that was not rejected is flagged")
-        check("<tag> & | pipe" in by_id["fixture.holds"][4], "evidence text kept verbatim")
+        check("control fails: rejected" in by_id["fixture.holds"][5],
+              f"the control's own verdict is shown (got {by_id['fixture.holds'][5]})")
+        check("control holds: NOT REJECTED" in by_id["fixture.inconclusive"][5],
+              "the control's verdict that does not oppose the claim's is shown")
+        check("<tag> & | pipe" in by_id["fixture.holds"][6], "evidence text kept verbatim")
+        check("regime" in by_id["fixture.regime"][2] and "alpha >= 0.1" in by_id["fixture.regime"][2],
+              "a holds-in-regime verdict shows its regime")
+    text = open(os.path.join(d, "index.html"), encoding="utf-8").read()
+    check(text.count("<details>") >= len(claims) * 2, "evidence and controls folded in <details>")
+    # The summary comes first and names findings, regressions and loose controls.
+    summary = text[text.index('id="summary"'):text.index('id="contents"')]
+    check("4 claims" in summary, "summary: the number of claims")
+    check("3 of 4 as recorded" in summary, "summary: how many as recorded")
+    check("a finding" in summary and 'href="#claim-fixture.fails"' in summary,
+          "summary: the recorded failure as a finding, linked")
+    check("a regression" in summary and 'href="#claim-fixture.inconclusive"' in summary,
+          "summary: the differing verdict as a regression, linked")
+    check("1 of 4 negative controls NOT rejected" in summary, "summary: the control not rejected")
+    check(text.index('id="summary"') < text.index('id="contents"') < text.index('id="verdicts"'),
+          "summary, then contents, then the verdicts")
+    anchors = {h[1:] for h in page.hrefs if h.startswith("#")}
+    for want in ["summary", "verdicts", "figures", "speed", "stability", "fig-fixture2026-fig1",
+                 "claim-fixture.fails"]:
+        check(want in anchors, f"in-page link to #{want}")
+    missing = [a for a in anchors if f'id="{a}"' not in text]
+    check(not missing, f"every in-page link has its target (missing: {missing})")
+    # The plot manifest: every chart with title, axis labels, legend, and colour scale for maps.
+    manifest = json.load(open(os.path.join(d, "plots", "plots.json")))["plots"]
+    charts = {p["file"] for p in manifest}
+    check(charts == {s for s in page.srcs if s.startswith("plots/")},
+          "every chart shown is in plots/plots.json")
+    for p in manifest:
+        for ax in p["axes"]:
+            check(ax["xlabel"] and ax["ylabel"] and ax["title"] and ax["legend"],
+                  f"{p['file']}: title, axis labels and legend ({ax})")
+            check(not ax["map"] or ax["colorbar"], f"{p['file']}: a map has a colour scale")
+    st = [p for p in manifest if p["file"] == "plots/stability__fixture_model__vndf__alpha.png"]
+    check(len(st) == 1 and len(st[0]["axes"]) == 2 and all(a["map"] for a in st[0]["axes"]),
+          "the stability plane is one chart with a heatmap per quantity")
     bad = rc.bad_targets(d, page.hrefs + page.srcs)
     check(not bad, f"every link and image is relative and resolves (bad: {bad})")
     check(all(rc.is_png(os.path.join(d, s)) for s in page.srcs), "every <img> is a PNG file")
     for want in ["figures/fixture2026-fig1/fig1.png", "plots/speed_accuracy.png",
                  "plots/fixture2026-fig1__rmse_spp_convergence.png",
-                 "stability/maps/fixture_model_nan_fraction.png",
-                 "stability/maps/fixture_model_energy_gain.png"]:
+                 "plots/stability__fixture_model__vndf__alpha.png"]:
         check(want in page.srcs, f"image {want} shown")
     for want in ["figures/fixture2026-fig1/fig1.exr", "figures/fixture2026-fig1/rmse_spp.csv",
                  "stability/maps/fixture_model_energy_gain.exr",
-                 "stability/maps/fixture_model_energy_gain.csv", "verify/claims.json",
+                 "stability/maps/fixture_model_nan_fraction.png",
+                 "stability/maps/fixture_model_alpha.csv", "verify/claims.json",
                  "plots/speed_accuracy.csv"]:
         check(want in page.hrefs, f"link to {want}")
-    text = open(os.path.join(d, "index.html"), encoding="utf-8").read()
     check("NaN for alpha below 1e-3 at grazing" in text, "the failure region in words")
     check("Fixture CPU, 2 cores" in text and "budget quick" in text, "machine and budget named")
     check("&lt;tag&gt;" in text, "text is HTML-escaped")
@@ -88,6 +126,7 @@ with tempfile.TemporaryDirectory() as tmp:
     check([ln.split(" | ")[0][2:] for ln in rows] == [c["id"] for c in claims],
           "Markdown twin: one verdict row per claim")
     check(sorted(images) == sorted(page.srcs), "Markdown twin shows the same images")
+    check("## Summary" in md and "## Contents" in md, "Markdown twin: summary and contents")
     bad = rc.bad_targets(d, links + images)
     check(not bad, f"Markdown links resolve (bad: {bad})")
     check(r"\| pipe" in md, "a | in a Markdown cell is escaped")
@@ -121,6 +160,16 @@ with tempfile.TemporaryDirectory() as tmp:
         with open(os.path.join(d, "figures", "fixture2026-fig1", "rmse_spp.csv"), "a") as f:
             f.write("0.2,a,32\n")
 
+    def stability_csv_columns(d):
+        p = os.path.join(d, "stability", "maps", "fixture_model_alpha.csv")
+        s = open(p).read().replace("theta_i_deg", "theta", 1)
+        open(p, "w").write(s)
+
+    def control_verdict_number(d):
+        c = json.load(open(os.path.join(d, "verify", "claims.json")))
+        c[0]["control_verdict"] = 3
+        json.dump(c, open(os.path.join(d, "verify", "claims.json"), "w"))
+
     def missing_map(d):
         os.unlink(os.path.join(d, "stability", "maps", "fixture_model_energy_gain.png"))
 
@@ -137,7 +186,9 @@ with tempfile.TemporaryDirectory() as tmp:
              (ragged_csv, "rmse_spp.csv is malformed: line"),
              (missing_map, "fixture_model_energy_gain.png"),
              (run_says_ran, "bench/bench.json is missing"),
-             (bad_accuracy, "accuracy.csv is malformed")]
+             (bad_accuracy, "accuracy.csv is malformed"),
+             (stability_csv_columns, "missing column(s) theta_i_deg"),
+             (control_verdict_number, "non-text \"control_verdict\"")]
     for i, (mutate, needle) in enumerate(cases):
         d = fresh(tmp, f"bad{i}")
         mutate(d)
