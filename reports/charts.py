@@ -109,7 +109,7 @@ def _ticks(values, n=6):
         idx = list(range(len(values)))
     else:
         idx = sorted({round(k * (len(values) - 1) / (n - 1)) for k in range(n)})
-    return idx, [f"{values[i]:.3g}" for i in idx]
+    return idx, [f"{values[i]:.5g}" for i in idx]
 
 
 def stability_chart(title, plane, header, rows, quantities, path, relpath, manifest, subtitle):

@@ -16,6 +16,12 @@ is validated before anything is written; a malformed one is a one-line error
 ("glintlab: error: ..."), exit 2, and no output. Outputs (plots/, index.html, report.md) are written
 to temporary names and renamed into place last.
 
+The page: a summary first (claims, findings vs regressions, controls), a table of contents, the
+compact verdict table (evidence, control and regime folded in <details>), the figures (renders
+folded in a grid), speed vs accuracy, the stability planes. Every chart is drawn with matplotlib
+and listed in plots/plots.json (charts.py: title, axis labels, legend, colour scale read back from
+the figure); tests/reports/browser_test.py fails on a chart that lacks them.
+
 Plots: for every figure CSV with an `spp` and an `rmse` column, an RMSE table, and where a series
 has two or more spp values, a log-log convergence plot (RMSE vs spp, one line per series, with the
 slope -1/2 of an unbiased Monte Carlo estimator for reference). Series are the rows sharing the
@@ -597,10 +603,14 @@ def write_summary(doc, claims, run, got):
         item("No claims in this report.")
     if "stability" in got:
         ms = got["stability"]["models"]
-        bad = [m for m in ms if m.get("verdict") not in (None, "holds")]
-        item(esc(f"Stability: {len(ms)} model/sampler pairs swept, "
-                 f"{len(ms) - len(bad)} with no failure region" +
-                 (f"; failure regions: {', '.join(m['model'] for m in bad)}" if bad else "") + "."))
+        name = lambda m: m["model"] + (f"/{m['sampler']}" if m.get("sampler") else "")  # noqa
+        region = [name(m) for m in ms
+                  if m.get("failure_region") and not m["failure_region"].startswith("none")]
+        failing = [name(m) for m in ms if m.get("verdict") not in (None, "holds")]
+        item(esc(f"Stability: {len(ms)} model/sampler pairs swept; cells flagged somewhere in "
+                 f"the sweep for {len(region)}" + (f" ({', '.join(region)})" if region else "") +
+                 "; the sweep's verdict fails for " +
+                 (", ".join(failing) if failing else "none") + "."))
     if "figures" in got:
         item(esc(f"Figures: {len(got['figures'])} run."))
     doc.raw('<ul class="summary">' + "".join(items_h) + "</ul>", "\n".join(items_m) + "\n")
