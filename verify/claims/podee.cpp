@@ -26,9 +26,6 @@
 namespace glintlab::verify {
 namespace {
 
-constexpr PodeeMethod kCompared[] = {PodeeMethod::kCentre, PodeeMethod::kLean, PodeeMethod::kPodee,
-                                     PodeeMethod::kPodeeQuadAsCircle,
-                                     PodeeMethod::kPodeeUnweighted};
 constexpr int kPaperSpp = 64;  // Sec. 4: "tiling 64x supersampling"
 
 struct Sizes {
@@ -46,42 +43,6 @@ Sizes sizes(Budget b) {
 
 // RMSE of every compared method at one distance against the paper's reference and the converged
 // one, and of the paper's reference against the converged one. Memoized: several checks share it.
-struct DistanceRow {
-  double distance;
-  std::array<double, std::size(kCompared)> vs_paper{}, vs_converged{};
-  double paper_vs_converged = 0, mean = 0;
-};
-
-DistanceRow distance_row(double distance, int size, int converged_spp, int tiles_u) {
-  static std::mutex mutex;
-  static std::map<std::tuple<double, int, int, int>, DistanceRow> cache;
-  const auto key = std::make_tuple(distance, size, converged_spp, tiles_u);
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    if (auto it = cache.find(key); it != cache.end()) return it->second;
-  }
-  const PodeeScene scene(podee_config(distance, size), podee_normal_map(tiles_u));
-  const std::string id = fmt::format("podee.rmse/d={}/n={}/t={}", distance, size, tiles_u);
-  const Image paper = render_podee_reference(scene, kPaperSpp, check_seed(id, 0), 0);
-  const Image converged = converged_spp > 0
-                              ? render_podee_reference(scene, converged_spp, check_seed(id, 1), 0)
-                              : paper;
-  MetricOptions o;
-  o.channels = {"Y"};
-  DistanceRow row{distance};
-  for (std::size_t m = 0; m < std::size(kCompared); ++m) {
-    const Image im = render_podee(scene, kCompared[m], 0);
-    row.vs_paper[m] = rmse(im, paper, o);
-    row.vs_converged[m] = rmse(im, converged, o);
-  }
-  row.paper_vs_converged = rmse(paper, converged, o);
-  for (double v : converged.data) row.mean += v;
-  row.mean /= double(converged.data.size());
-  std::lock_guard<std::mutex> lock(mutex);
-  cache.emplace(key, row);
-  return row;
-}
-constexpr std::size_t kCentre = 0, kLean = 1, kMethod = 2, kQuadAsCircle = 3, kUnweighted = 4;
 
 // ---------------------------------------------------------------- podee.brightest-vector
 // Random bilinear reflection spaces: corner vectors whose light-plane projections form a jittered
@@ -231,9 +192,11 @@ struct RmsePixels {  // luminance per pixel of every image at one distance
 // the full one. The control's near-truth image is one 64-spp reference.
 int rmse_reference_spp(Budget b) { return b == Budget::kQuick ? 4 * kPaperSpp : 8 * kPaperSpp; }
 
-RmsePixels rmse_pixels(double distance, int size, int spp) {
-  const PodeeScene scene(podee_config(distance, size), podee_normal_map(8));
-  const std::string id = fmt::format("podee.rmse/references/d={}/n={}", distance, size);
+RmsePixels rmse_pixels(double distance, int size, int spp, int tiles_u = 8) {
+  const PodeeScene scene(podee_config(distance, size), podee_normal_map(tiles_u));
+  const std::string id =
+      tiles_u == 8 ? fmt::format("podee.rmse/references/d={}/n={}", distance, size)
+                   : fmt::format("podee.rmse/references/d={}/n={}/t={}", distance, size, tiles_u);
   const auto lum = [](const Image& im) {
     const std::size_t c = im.channel("Y");
     std::vector<double> v;
@@ -417,85 +380,141 @@ CheckResult run_rmse(Budget budget) {
 }
 
 // ---------------------------------------------------------------- podee.far-failure
-// The method fails at a distance where its RMSE is not below LEAN's (the filtering baseline that
-// is built for many normals per pixel) nor centre sampling's.
-bool fails_at(const DistanceRow& d) {
-  return d.vs_paper[kMethod] >= std::min(d.vs_paper[kCentre], d.vs_paper[kLean]);
+// The method fails at a distance where its MSE against the pixel integral is above the better
+// baseline's (LEAN, built for many normals per pixel, or centre sampling) beyond the two
+// independent references' noise (the estimator and its SE of podee.rmse).
+struct FarRow {
+  double distance = 0;
+  double d_mse = 0, se = 0;  // MSE(method) − MSE(better baseline), and its standard error
+  int sign = 0;              // +1 the method fails there, −1 it wins, 0 a tie within the noise
+};
+
+FarRow far_row(const RmsePixels& px, double z) {
+  const Ordering vc = order(px.method, px.centre, px), vl = order(px.method, px.lean, px);
+  const Ordering& best = mse_vs_truth(px.centre, px) < mse_vs_truth(px.lean, px) ? vc : vl;
+  FarRow r{px.distance, best.d_mse, best.se, 0};
+  if (best.d_mse - z * best.se > 0) r.sign = 1;
+  if (best.d_mse + z * best.se < 0) r.sign = -1;
+  return r;
+}
+
+// Holds when the method does not fail at the nearest distance and fails at the farthest; a tie at
+// the farthest is undecided.
+Verdict decide_far(const FarRow& near, const FarRow& far) {
+  if (near.sign > 0 || far.sign < 0) return Verdict::kFails;
+  return far.sign > 0 ? Verdict::kHolds : Verdict::kInconclusive;
 }
 
 CheckResult run_far_failure(Budget budget) {
   const Sizes z = sizes(budget);
-  std::vector<DistanceRow> rows;
-  for (double d : z.distances) rows.push_back(distance_row(d, z.size, 0, 8));
-  const DistanceRow control = distance_row(kPodeeFar, z.size, 0, 1);
-  double first_fail = 0;
-  for (const DistanceRow& d : rows)
-    if (fails_at(d) && first_fail == 0) first_fail = d.distance;
-  const DistanceRow& far = rows.back();
+  const int spp = rmse_reference_spp(budget);
+  const double zc = normal_quantile(1 - 0.5 * sidak_level(check_level(), z.distances.size() + 1));
+  std::vector<FarRow> rows;
+  for (double d : z.distances) rows.push_back(far_row(rmse_pixels(d, z.size, spp), zc));
+  // Control: the far distance with an 8× lower-frequency normal map (few normals per pixel).
+  const FarRow control = far_row(rmse_pixels(kPodeeFar, z.size, spp, 1), zc);
   CheckResult r;
   r.configurations = int(rows.size()) + 1;
-  r.statistic = "RMSE(method) / min(RMSE(centre), RMSE(LEAN)) at the far distance";
-  r.value = far.vs_paper[kMethod] / std::min(far.vs_paper[kCentre], far.vs_paper[kLean]);
-  r.bound = 1.0;
-  // holds when the method does not fail at the nearest distance and fails at the farthest.
-  const auto decide = [](const DistanceRow& near, const DistanceRow& far_row) {
-    return !fails_at(near) && fails_at(far_row) ? Verdict::kHolds : Verdict::kFails;
-  };
-  r.verdict = decide(rows.front(), far);
+  r.statistic = "MSE(method) − MSE(better baseline) at the far distance, two-reference estimate";
+  r.value = rows.back().d_mse;
+  r.bound = 0;
+  r.verdict = decide_far(rows.front(), rows.back());
   std::string sweep;
-  for (const DistanceRow& d : rows)
-    sweep += fmt::format("{}d={}: {:.2f}", sweep.empty() ? "" : ", ", d.distance,
-                         d.vs_paper[kMethod] / std::min(d.vs_paper[kCentre], d.vs_paper[kLean]));
+  for (const FarRow& d : rows)
+    sweep += fmt::format("{}d={}: {:+.2g} ± {:.1g}{}", sweep.empty() ? "" : ", ", d.distance,
+                         d.d_mse, d.se,
+                         d.sign > 0   ? " (fails)"
+                         : d.sign < 0 ? " (wins)"
+                                      : " (tie)");
   r.detail = fmt::format(
-      "RMSE ratio method / best baseline vs 64-spp reference over distance ({}); first failure "
-      "at d={} (bump wavelength ≈ 1 pixel at d={}); at d={}: centre {:.4f}, LEAN {:.4f}, method "
-      "{:.4f}",
-      sweep, first_fail, kPodeeFar, far.distance, far.vs_paper[kCentre], far.vs_paper[kLean],
-      far.vs_paper[kMethod]);
-  record_control(r, decide(rows.front(), control));
-  r.power =
-      "not computed: the methods render deterministically, the 64-spp reference is one "
-      "rendering, so the reference's own error (0.0008–0.0015 against 4096 spp, docs/papers/"
-      "podee.md) is not estimated per run";
+      "MSE of the method minus the better baseline's against the pixel integral, from two "
+      "independent {}-spp references (noise only from them), interval at z = {:.2f}: {}",
+      spp, zc, sweep);
+  record_control(r, decide_far(rows.front(), control));
+  r.power = fmt::format(
+      "an MSE excess of {:.2g} at the far distance is detected with 90 % power (SE {:.2g})",
+      (zc + 1.2816) * rows.back().se, rows.back().se);
   r.control = fmt::format(
-      "same decision with the far row at d={} rendered with an 8× lower-frequency normal map (few "
-      "normals per pixel): ratio {:.2f} → {} ({})",
-      kPodeeFar,
-      control.vs_paper[kMethod] / std::min(control.vs_paper[kCentre], control.vs_paper[kLean]),
-      to_string(*r.control_verdict), r.control_rejected ? "rejected" : "NOT rejected");
+      "the far distance with an 8× lower-frequency normal map (few normals per pixel): {:+.2g} ± "
+      "{:.1g} → {}",
+      control.d_mse, control.se, to_string(*r.control_verdict));
   return r;
 }
 
 // ---------------------------------------------------------------- podee.stability
+// The renders are deterministic, so the flicker of one pan has no sampling noise; what varies is
+// the pan's phase against the normal map. Measure: log(flicker(method) / flicker(centre)) over
+// kStabilityPhases pans starting at different sub-pixel offsets. Decide: a t interval (99 %) below
+// 0 holds, above 0 fails, across 0 is a tie.
+constexpr int kStabilityPhases = 4;
+
+Vec2<double> pan_start(int k) {
+  return {0.37 * k - std::floor(0.37 * k), 0.61 * k - std::floor(0.61 * k)};
+}
+
+std::vector<double> log_flicker_ratios(const PodeeSceneConfig& c,
+                                       const std::shared_ptr<const PodeeNormalMap>& map,
+                                       PodeeMethod m, int frames) {
+  std::vector<double> out;
+  for (int k = 0; k < kStabilityPhases; ++k)
+    out.push_back(
+        std::log(podee_flicker(c, map, m, frames, 0, 0, 0, pan_start(k)) /
+                 podee_flicker(c, map, PodeeMethod::kCentre, frames, 0, 0, 0, pan_start(k))));
+  return out;
+}
+
+struct TInterval {
+  double mean = 0, se = 0, t = 0, lo = 0, hi = 0;
+};
+TInterval t_interval(const std::vector<double>& x, double confidence) {
+  TInterval r;
+  for (double v : x) r.mean += v / double(x.size());
+  double ss = 0;
+  for (double v : x) ss += sqr(v - r.mean);
+  r.se = std::sqrt(ss / double(x.size() - 1) / double(x.size()));
+  r.t = student_t_quantile(0.5 + 0.5 * confidence, double(x.size() - 1));
+  r.lo = r.mean - r.t * r.se, r.hi = r.mean + r.t * r.se;
+  return r;
+}
+
+Verdict decide_stability(const TInterval& i) {
+  if (i.hi < 0) return Verdict::kHolds;
+  if (i.lo > 0) return Verdict::kFails;
+  return Verdict::kInconclusive;
+}
+
 CheckResult run_stability(Budget budget) {
   const Sizes z = sizes(budget);
   const PodeeSceneConfig c = podee_config(kPodeeMedium, z.size);
   const auto map = podee_normal_map();
+  const TInterval method =
+      t_interval(log_flicker_ratios(c, map, PodeeMethod::kPodee, z.frames), 0.99);
+  const TInterval lean = t_interval(log_flicker_ratios(c, map, PodeeMethod::kLean, z.frames), 0.99);
+  const TInterval unweighted =
+      t_interval(log_flicker_ratios(c, map, PodeeMethod::kPodeeUnweighted, z.frames), 0.99);
   const double centre = podee_flicker(c, map, PodeeMethod::kCentre, z.frames, 0);
-  const double lean = podee_flicker(c, map, PodeeMethod::kLean, z.frames, 0);
-  const double method = podee_flicker(c, map, PodeeMethod::kPodee, z.frames, 0);
-  const double unweighted = podee_flicker(c, map, PodeeMethod::kPodeeUnweighted, z.frames, 0);
   const double reference = podee_flicker(c, map, PodeeMethod::kCentre, z.frames, 0, kPaperSpp,
                                          check_seed("podee.stability", 0));
   CheckResult r;
-  r.configurations = 5;
-  r.statistic = "flicker(method) / flicker(centre): mean squared frame-to-frame difference";
-  r.value = method / centre;
+  r.configurations = 3 * kStabilityPhases;
+  r.statistic = "flicker(method) / flicker(centre), geometric mean over pan phases";
+  r.value = std::exp(method.mean);
   r.bound = 1.0;
-  r.verdict = method < centre ? Verdict::kHolds : Verdict::kFails;
+  r.verdict = decide_stability(method);
   r.detail = fmt::format(
-      "{} frames of a one-pixel diagonal pan at d={} ({}² crop): mean (I_f+1 − I_f)² centre "
-      "{:.3g}, LEAN {:.3g}, method {:.3g} ({:.2f}× centre), 64-spp reference {:.3g}",
-      z.frames, kPodeeMedium, z.size, centre, lean, method, method / centre, reference);
-  record_control(r, unweighted < centre ? Verdict::kHolds : Verdict::kFails);
-  r.power =
-      "no sampling noise to estimate: the methods render deterministically (one evaluation per "
-      "pixel), so the flicker ratio is exact for this pan; how it varies with the pan's phase is "
-      "not measured";
-  r.control =
-      fmt::format("the selected vector without result weighting: {:.3g} ({:.2f}× centre) → {} ({})",
-                  unweighted, unweighted / centre, to_string(*r.control_verdict),
-                  r.control_rejected ? "rejected" : "NOT rejected");
+      "{} pans of {} frames (one-pixel diagonal, {} sub-pixel start phases) at d={} ({}² crop): "
+      "flicker relative to centre sampling: method {:.2f}× [{:.2f}, {:.2f}], LEAN {:.2f}× (99 % t "
+      "interval over the phases); centre's mean (I_f+1 − I_f)² {:.3g}, 64-spp reference {:.3g}",
+      kStabilityPhases, z.frames, kStabilityPhases, kPodeeMedium, z.size, std::exp(method.mean),
+      std::exp(method.lo), std::exp(method.hi), std::exp(lean.mean), centre, reference);
+  record_control(r, decide_stability(unweighted));
+  r.power = fmt::format(
+      "a flicker ratio of {:.2f}× (or its inverse) is told from 1 with 90 % power over {} phases",
+      std::exp((method.t + 1.2816) * method.se), kStabilityPhases);
+  r.control = fmt::format(
+      "the selected vector without result weighting: {:.2f}× [{:.2f}, {:.2f}] centre → {}",
+      std::exp(unweighted.mean), std::exp(unweighted.lo), std::exp(unweighted.hi),
+      to_string(*r.control_verdict));
   return r;
 }
 

@@ -335,14 +335,15 @@ inline std::shared_ptr<const PodeeNormalMap> podee_normal_map(int tiles_u = 8) {
 // Frame-to-frame variation under sub-pixel camera motion: `frames` frames with the film moved by
 // (f, f/2) / frames pixels (a one-pixel diagonal pan), the mean over pixels and consecutive frame
 // pairs of (I_{f+1} − I_f)². `spp` > 0: the supersampled reference at that many samples instead.
+// `pan_start`: where the pan starts, in pixels (its phase against the normal map).
 inline double podee_flicker(PodeeSceneConfig c, std::shared_ptr<const PodeeNormalMap> map,
                             PodeeMethod m, int frames, int threads, int spp = 0,
-                            std::uint64_t seed = 0) {
+                            std::uint64_t seed = 0, Vec2<double> pan_start = {0, 0}) {
   Image previous;
   double sum = 0;
   long count = 0;
   for (int f = 0; f < frames; ++f) {
-    c.film_shift = {double(f) / frames, 0.5 * f / frames};
+    c.film_shift = {pan_start.x + double(f) / frames, pan_start.y + 0.5 * f / frames};
     const PodeeScene scene(c, map);
     Image im = spp > 0 ? render_podee_reference(scene, spp, seed, threads)
                        : render_podee(scene, m, threads);
