@@ -349,8 +349,9 @@ def render(checks, measured, command, inputs):
         "",
         f"{len(checks)} registered claims: {statistical} statistical (a p-value, with a "
         f"calibration run by `glintlab verify --calibrate ID`) and {len(checks) - statistical} "
-        "deterministic (an error bound or an exact recomputation). Each has a negative control "
-        "it must reject. How the suite works: [verification.md](verification.md); the evidence "
+        "decided otherwise (an error bound, an interval against a tolerance, or an exact "
+        "recomputation). Each has a control that its own decision must give the opposite "
+        "verdict. How the suite works: [verification.md](verification.md); the evidence "
         "per paper, beside the paper's numbers: [papers/](papers/README.md).",
         "",
     ]
@@ -375,7 +376,7 @@ def render(checks, measured, command, inputs):
     for c in checks:
         lines.append("| " + " | ".join(cell(x) for x in (
             f"`{c['id']}`", c["paper"], c["source"], STATEMENTS.get(c["id"], ""),
-            "statistical" if c["statistical"] else "deterministic",
+            "statistical" if c["statistical"] else "bound or interval",
             verdict_cell(c, measured, "quick"), verdict_cell(c, measured, "full"),
             control_cell(c, measured))) + " |")
     regimes = regime_lines(checks, measured)
