@@ -102,7 +102,9 @@ TEST_F(ReportTest, SmallRealRun) {
                         "r/figures/eto2023-fig4/fig4.csv"})
     EXPECT_TRUE(fs::exists(path(f))) << f;
   const std::string html = read_text(path("r/index.html"));
-  EXPECT_NE(html.find("<td>kneiphof.total-area</td>"), std::string::npos);
+  // The claim's row, anchored so the summary can link to it.
+  EXPECT_NE(html.find("id=\"claim-kneiphof.total-area\""), std::string::npos);
+  EXPECT_NE(html.find(">kneiphof.total-area</a></td>"), std::string::npos);
   EXPECT_NE(html.find("src=\"figures/eto2023-fig4/fig4.png\""), std::string::npos);
   EXPECT_NE(html.find("href=\"figures/eto2023-fig4/a0.2_reference.exr\""), std::string::npos);
   const std::string md = read_text(path("r/report.md"));
