@@ -176,10 +176,13 @@ void run_eval(const std::string& in_path, const std::string& out_path,
     for (std::size_t c = 0; c < kResultColumns.size(); ++c) {
       if (c == kPdfBounded && queries[r].ndf == NdfKind::kBeckmann) continue;
       if (!std::isfinite(results[r][c])) {
-        throw InputError(fmt::format(
-            "--in {}: the query gives {} = {} (valid: queries whose every term is finite; a "
-            "smaller or larger roughness)",
-            table.where(r), kResultColumns[c], results[r][c]));
+        const Query& q = queries[r];
+        const bool opposite = q.wi.x + q.wo.x == 0 && q.wi.y + q.wo.y == 0 && q.wi.z + q.wo.z == 0;
+        throw InputError(
+            fmt::format("--in {}: the query gives {} = {} (valid: a query whose every "
+                        "term is finite{})",
+                        table.where(r), kResultColumns[c], results[r][c],
+                        opposite ? "; wo = -wi has no half vector" : ""));
       }
     }
   }
@@ -215,7 +218,7 @@ Numbers are decimal (std::from_chars) and must be finite; fields may not be empt
 
 OUTPUT (--out): a CSV file, one row per query, in input order. Columns: the query columns (in
 the order above; the same values, reprinted), then
-  h_x, h_y, h_z  half vector h = normalize(wi + wo); (0, 0, 0) when wo = -wi
+  h_x, h_y, h_z  half vector h = normalize(wi + wo) (a row with wo = -wi has none: refused)
   D              the NDF D(h), per steradian of microfacet normal
   lambda_wi      Smith Lambda(wi) (Heitz 2014), with Lambda(-w) = 1 + Lambda(w) below the surface
   G1_wi, G1_wo   Smith masking G1(wi, h) and G1(wo, h)

@@ -30,6 +30,10 @@ const std::vector<std::pair<std::string, std::string>> kFixture = {
      "ndf,alpha_x,alpha_y,wi_x,wi_y,wi_z,wo_x,wo_y,wo_z\nggx,1e308,0.3,0,0.6,0.8,0.6,0,0.8\n"},
     {"q_alpha_zero.csv",
      "ndf,alpha_x,alpha_y,wi_x,wi_y,wi_z,wo_x,wo_y,wo_z\nggx,0,0.3,0,0.6,0.8,0.6,0,0.8\n"},
+    {"q_opposite.csv",
+     "ndf,alpha_x,alpha_y,wi_x,wi_y,wi_z,wo_x,wo_y,wo_z\nggx,0.3,0.3,0,0.6,0.8,0,-0.6,-0.8\n"},
+    {"q_alpha_tiny.csv",
+     "ndf,alpha_x,alpha_y,wi_x,wi_y,wi_z,wo_x,wo_y,wo_z\nggx,1e-300,1e-300,0,0.6,0.8,0.6,0,0.8\n"},
     {"q_nan.csv",
      "ndf,alpha_x,alpha_y,wi_x,wi_y,wi_z,wo_x,wo_y,wo_z\nggx,0.3,0.3,nan,0.6,0.8,0.6,0,0.8\n"},
     {"q_missing.csv",
@@ -88,6 +92,9 @@ std::vector<Case> cases() {
   add("eval_param_without_model", join(ev, {"--param", "alpha_x=1"}), "--param");
   add("eval_alpha_huge", {"eval", "--in", "q_alpha_huge.csv", "--out", "r.csv"}, "alpha_x");
   add("eval_alpha_zero", {"eval", "--in", "q_alpha_zero.csv", "--out", "r.csv"}, "alpha_x");
+  add("eval_opposite_directions", {"eval", "--in", "q_opposite.csv", "--out", "r.csv"}, "wo = -wi");
+  add("eval_alpha_tiny_gives_nan", {"eval", "--in", "q_alpha_tiny.csv", "--out", "r.csv"},
+      "is finite");
   add("eval_nan", {"eval", "--in", "q_nan.csv", "--out", "r.csv"}, "wi_x");
   add("eval_missing_column", {"eval", "--in", "q_missing.csv", "--out", "r.csv"}, "wo_z");
   add("eval_empty_file", {"eval", "--in", "q_empty.csv", "--out", "r.csv"}, "q_empty.csv");
