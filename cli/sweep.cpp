@@ -4,7 +4,9 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
+#include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -51,6 +53,13 @@ void run(const CLI::App* cmd, const SweepOptions& o) {
   try {
     const auto s = experiments::run_sweeps(o.out, r);
     bar.reset();
+    // Each target's verdict and failure region, as stability.json records them.
+    const nlohmann::json doc = nlohmann::json::parse(std::ifstream(s.json));
+    for (const auto& m : doc.at("models")) {
+      fmt::print("{:<32} {:<16} {}\n",
+                 m.value("model", std::string()) + "/" + m.value("sampler", std::string()),
+                 m.value("verdict", std::string()), m.value("failure_region", std::string()));
+    }
     fmt::print("sweep: {} model×sampler targets; wrote {}\n", s.targets, s.json.string());
   } catch (const experiments::SweepError& e) {
     throw InputError(e.what());

@@ -18,6 +18,9 @@ TEST_F(SweepTest, QuickSweepWritesMapsAndIndex) {
                            "s", "--threads", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("2 model×sampler targets"), std::string::npos) << r.out;
+  // One line per target with its verdict (as stability.json records it).
+  EXPECT_NE(r.out.find("smooth_beckmann/ndf"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("smooth_beckmann/vndf"), std::string::npos) << r.out;
   EXPECT_TRUE(r.err.empty()) << r.err;  // progress only on a terminal
   const auto doc = nlohmann::json::parse(read_text(path("s/stability.json")));
   EXPECT_EQ(doc["budget"], "quick");
@@ -26,6 +29,7 @@ TEST_F(SweepTest, QuickSweepWritesMapsAndIndex) {
   for (const auto& m : doc["models"]) {
     EXPECT_EQ(m["model"], "smooth_beckmann");
     EXPECT_TRUE(m["failure_region"].is_string());
+    EXPECT_NE(r.out.find(m["verdict"].get<std::string>()), std::string::npos) << r.out;
     EXPECT_EQ(m["maps"].size(), 2u * 5u);  // alpha, anisotropy × nan, inf, negative, gain, var
     for (const auto& map : m["maps"]) {
       for (const char* k : {"quantity", "png", "exr", "csv"}) EXPECT_TRUE(map.contains(k));
