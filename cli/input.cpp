@@ -27,6 +27,9 @@ CLI::Option* add_text_option(CLI::App* cmd, const std::string& name, std::string
                              const std::string& description, const std::string& type) {
   CLI::Option* o = cmd->add_option(name, var, description)->type_name(type);
   if (!var.empty()) o->default_str(var);
+  // An explicit empty value is never a choice (it would silently mean "not given").
+  o->check(CLI::Validator(
+      [](std::string& v) { return v.empty() ? std::string("'' is empty") : std::string(); }, ""));
   return o;
 }
 

@@ -92,6 +92,7 @@ std::string translate(const CLI::App* sub, const CLI::ParseError& e) {
                        sub ? sub->get_name() : "glintlab", extras,
                        options.empty() ? "no arguments" : "the options " + options, see);
   }
+  if (type == "ValidationError") return fmt::format("{} (valid: {})", msg, valid(name));
   if (type == "RequiredError" && msg.size() > 12 &&
       msg.compare(msg.size() - 12, 12, " is required") == 0) {
     const std::string opt = msg.substr(0, msg.size() - 12);

@@ -299,6 +299,8 @@ std::vector<Case> cases() {
       "--out");
   add("figure_env_missing", join(fi, {"--budget", "quick", "--env", "missing.exr"}), "--env");
   add("figure_env_not_exr", join(fi, {"--budget", "quick", "--env", "bad.exr"}), "--env");
+  add("figure_env_empty", join(fi, {"--budget", "quick", "--env", ""}), "--env");
+  add("figure_out_empty", {"figure", "eto2023-fig4", "--budget", "quick", "--out", ""}, "--out");
   add("figure_extra_argument", join(fi, {"extra"}), "extra");
   add("figure_unknown_option", join(fi, {"--bogus"}), "--bogus");
 
@@ -337,6 +339,7 @@ std::vector<Case> cases() {
   add("report_reuse_new_folder", {"report", "--reuse", "--out", "new"}, "--reuse");
   add("report_reuse_with_value", {"report", "--reuse=2", "--out", "r"}, "--reuse");
   add("report_claims_from_nowhere", join(re, {"--claims-from", "nowhere"}), "--claims-from");
+  add("report_claims_from_empty", join(re, {"--claims-from", ""}), "--claims-from");
   add("report_out_under_file", {"report", "--out", "blocker/r"}, "--out");
   add("report_out_unwritable", {"report", "--out", "/proc/x"}, "--out");
   add("report_out_dot", {"report", "--out", "."}, "--out");
