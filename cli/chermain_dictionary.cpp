@@ -4,6 +4,7 @@
 #include "core/glints/chermain_dictionary.h"
 
 #include <fmt/format.h>
+#include <tbb/global_control.h>
 
 #include <cstdint>
 #include <filesystem>
@@ -29,7 +30,7 @@ void add_chermain_dictionary_command(CLI::App& app) {
                 levels = std::to_string(config.levels),
                 resolution = std::to_string(config.resolution),
                 alpha_dict = fmt::format("{}", config.alpha_dict),
-                lobe_std = fmt::format("{}", config.lobe_std);
+                lobe_std = fmt::format("{}", config.lobe_std), threads;
   };
   auto opt = std::make_shared<Options>();
   Options& o = *opt;
@@ -51,8 +52,10 @@ void add_chermain_dictionary_command(CLI::App& app) {
                   "Beckmann alpha of the limit: a number in (0, 2]", "NUMBER");
   add_text_option(cmd, "--lobe-std", o.lobe_std,
                   "lobe standard deviation: a number in (0, alpha/sqrt 2)", "NUMBER");
+  add_threads_option(cmd, o.threads);
   cmd->callback([opt] {
     Options& c = *opt;
+    const int threads = resolve_threads(c.threads);
     constexpr auto kIntMax = std::uint64_t(std::numeric_limits<int>::max());
     c.config.seed = integer_option(c.seed, "--seed", 0, UINT64_MAX);
     c.config.distributions = int(integer_option(c.distributions, "--distributions", 1, kIntMax));
@@ -69,6 +72,9 @@ void add_chermain_dictionary_command(CLI::App& app) {
     register_staging_parent(std::filesystem::path(c.out).has_parent_path()
                                 ? std::filesystem::path(c.out).parent_path()
                                 : std::filesystem::path("."));
+    // The distributions are built in parallel; the file is the same for any thread count.
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                    std::size_t(threads));
     const ChermainDictionary d(c.config);
     try {
       write_chermain_dictionary_exr(c.out, d);

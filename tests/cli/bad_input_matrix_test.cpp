@@ -378,6 +378,7 @@ std::vector<Case> cases() {
   add("chermain_alpha_word", join(ch, {"--alpha-dict", "x"}), "--alpha-dict");
   add("chermain_lobe_std_zero", join(ch, {"--lobe-std", "0"}), "lobe");
   add("chermain_lobe_std_inf", join(ch, {"--lobe-std", "inf"}), "--lobe-std");
+  add("chermain_threads_word", join(ch, {"--threads", "x"}), "--threads");
   add("chermain_out_unwritable", {"chermain-dictionary", "--out", "/proc/x.exr"}, "--out");
   add("chermain_out_under_file", {"chermain-dictionary", "--out", "blocker/d.exr"}, "--out");
   add("chermain_out_is_folder", {"chermain-dictionary", "--out", "emptydir"}, "--out");
