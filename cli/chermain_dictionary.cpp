@@ -24,7 +24,7 @@ void add_chermain_dictionary_command(CLI::App& app) {
   // are the config's.
   struct Options {
     std::string out;
-    ChermainDictionaryConfig config;
+    chermain2021::DictionaryConfig config;
     std::string seed = std::to_string(config.seed),
                 distributions = std::to_string(config.distributions),
                 levels = std::to_string(config.levels),
@@ -75,9 +75,9 @@ void add_chermain_dictionary_command(CLI::App& app) {
     // The distributions are built in parallel; the file is the same for any thread count.
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                     std::size_t(threads));
-    const ChermainDictionary d(c.config);
+    const chermain2021::Dictionary d(c.config);
     try {
-      write_chermain_dictionary_exr(c.out, d);
+      chermain2021::write_chermain_dictionary_exr(c.out, d);
     } catch (const std::exception& e) {
       throw InputError(fmt::format("--out: {}", e.what()));
     }

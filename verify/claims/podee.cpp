@@ -37,8 +37,9 @@ struct Sizes {
   int budget_grid() const { return brute_grid / 8; }  // sub-pixel grid on the real surface
 };
 Sizes sizes(Budget b) {
-  if (b == Budget::kQuick) return {64, 256, 8, 400, 64, {kPodeeNear, kPodeeMedium, kPodeeFar}};
-  return {128, 4096, 32, 5000, 256, {2, 3, kPodeeMedium, 6, 8, kPodeeFar, 14}};
+  if (b == Budget::kQuick)
+    return {64, 256, 8, 400, 64, {podee::kNear, podee::kMedium, podee::kFar}};
+  return {128, 4096, 32, 5000, 256, {2, 3, podee::kMedium, 6, 8, podee::kFar, 14}};
 }
 
 // RMSE of every compared method at one distance against the paper's reference and the converged
@@ -52,7 +53,7 @@ struct Brute {
   double worst_excess = 0;   // max (d_selected − d_brute) / quad size
   double worst_deficit = 0;  // max (d_brute − d_selected) / quad size (grid resolution)
 };
-Brute brute_force(int configs, int grid, PodeeSelection rule) {
+Brute brute_force(int configs, int grid, podee::Selection rule) {
   std::vector<Brute> per(static_cast<std::size_t>(configs));
   const std::uint64_t seed = check_seed("podee.brightest-vector", 0);
   tbb::parallel_for(0, configs, [&](int t) {
@@ -70,7 +71,7 @@ Brute brute_force(int configs, int grid, PodeeSelection rule) {
       const double py = shift.y + s * (oy[k] + 0.4 * (u(6 + 2 * k) - 0.5));
       r[std::size_t(k)] = normalize(l + px * b.x + py * b.y);
     }
-    const PodeeResult<double> res = podee_shade(r, l, 0.05, PodeeWeighting::kExact, rule);
+    const podee::Result<double> res = podee::shade(r, l, 0.05, podee::Weighting::kExact, rule);
     double best = 1e300;
     for (int j = 0; j <= grid; ++j)
       for (int i = 0; i <= grid; ++i) {
@@ -99,11 +100,11 @@ struct RealSurface {
   long pixels = 0;
 };
 RealSurface real_surface(double distance, int size, int grid) {
-  const PodeeScene scene(podee_config(distance, size), podee_normal_map());
+  const podee::Scene scene(podee::config(distance, size), podee::normal_map());
   std::vector<std::array<long, 2>> rows(std::size_t(size), {0, 0});
   tbb::parallel_for(0, size, [&](int j) {
     for (int i = 0; i < size; ++i) {
-      const PodeePixel px = scene.podee(i, j);
+      const podee::Pixel px = scene.podee(i, j);
       if (!px.hit || px.value <= 0) continue;
       double best = 1e300;
       for (int b = 0; b < grid; ++b)
@@ -125,10 +126,10 @@ RealSurface real_surface(double distance, int size, int grid) {
 
 CheckResult run_brightest(Budget budget) {
   const Sizes z = sizes(budget);
-  const Brute ok = brute_force(z.brute_configs, z.brute_grid, PodeeSelection::kClosestPoint);
-  const Brute corner = brute_force(z.brute_configs, z.brute_grid, PodeeSelection::kNearestCorner);
-  const RealSurface medium = real_surface(kPodeeMedium, z.size, z.budget_grid());
-  const RealSurface far = real_surface(kPodeeFar, z.size, z.budget_grid());
+  const Brute ok = brute_force(z.brute_configs, z.brute_grid, podee::Selection::kClosestPoint);
+  const Brute corner = brute_force(z.brute_configs, z.brute_grid, podee::Selection::kNearestCorner);
+  const RealSurface medium = real_surface(podee::kMedium, z.size, z.budget_grid());
+  const RealSurface far = real_surface(podee::kFar, z.size, z.budget_grid());
   CheckResult r;
   r.configurations = 2 * z.brute_configs;
   r.statistic = "max (d_selected − d_brute-force) / quad size over bilinear reflection spaces";
@@ -144,8 +145,8 @@ CheckResult run_brightest(Budget budget) {
       "its "
       "radius in {:.1f} % of {} lit pixels at d = {} and {:.1f} % of {} at d = {}",
       z.brute_configs, z.brute_grid + 1, ok.worst_excess, ok.worst_deficit, z.budget_grid(),
-      100 * medium.beaten_fraction, medium.pixels, kPodeeMedium, 100 * far.beaten_fraction,
-      far.pixels, kPodeeFar);
+      100 * medium.beaten_fraction, medium.pixels, podee::kMedium, 100 * far.beaten_fraction,
+      far.pixels, podee::kFar);
   record_control(r, corner.worst_excess <= kSelectionTolerance ? Verdict::kHolds : Verdict::kFails);
   r.power = fmt::format(
       "deterministic brute force over every sub-pixel position: a selected vector farther than "
@@ -170,7 +171,7 @@ CheckResult run_brightest(Budget budget) {
 //
 // The regime, declared before measuring: the paper itself expects the method to fail far away
 // (Sec. 4, podee.far-failure), so the claim is held at the near and medium distances.
-constexpr double kRmseRegimeMaxDistance = kPodeeMedium;
+constexpr double kRmseRegimeMaxDistance = podee::kMedium;
 constexpr const char* kRmseRegime =
     "camera distance d ≤ 4 (near and medium; the paper expects failure far away, Sec. 4)";
 constexpr double kRmseFamilyRate = 0.01;
@@ -178,8 +179,8 @@ constexpr double kNearTruthBias = 0.03;  // the control's near-truth image: a re
 
 std::vector<double> rmse_distances(Budget b) {
   // The quick grid keeps the full grid's extremes (2 and 14) and the regime's edge (4).
-  return b == Budget::kQuick ? std::vector<double>{kPodeeNear, kPodeeMedium, 14}
-                             : std::vector<double>{2, 3, kPodeeMedium, 6, 8, kPodeeFar, 14};
+  return b == Budget::kQuick ? std::vector<double>{podee::kNear, podee::kMedium, 14}
+                             : std::vector<double>{2, 3, podee::kMedium, 6, 8, podee::kFar, 14};
 }
 
 struct RmsePixels {  // luminance per pixel of every image at one distance
@@ -193,7 +194,7 @@ struct RmsePixels {  // luminance per pixel of every image at one distance
 int rmse_reference_spp(Budget b) { return b == Budget::kQuick ? 4 * kPaperSpp : 8 * kPaperSpp; }
 
 RmsePixels rmse_pixels(double distance, int size, int spp, int tiles_u = 8) {
-  const PodeeScene scene(podee_config(distance, size), podee_normal_map(tiles_u));
+  const podee::Scene scene(podee::config(distance, size), podee::normal_map(tiles_u));
   const std::string id =
       tiles_u == 8 ? fmt::format("podee.rmse/references/d={}/n={}", distance, size)
                    : fmt::format("podee.rmse/references/d={}/n={}/t={}", distance, size, tiles_u);
@@ -206,13 +207,13 @@ RmsePixels rmse_pixels(double distance, int size, int spp, int tiles_u = 8) {
   };
   RmsePixels p;
   p.distance = distance;
-  p.r1 = lum(render_podee_reference(scene, spp, check_seed(id, 0), 0));
-  p.r2 = lum(render_podee_reference(scene, spp, check_seed(id, 1), 0));
-  p.near_truth = lum(render_podee_reference(scene, kPaperSpp, check_seed(id, 2), 0));
+  p.r1 = lum(podee::render_podee_reference(scene, spp, check_seed(id, 0), 0));
+  p.r2 = lum(podee::render_podee_reference(scene, spp, check_seed(id, 1), 0));
+  p.near_truth = lum(podee::render_podee_reference(scene, kPaperSpp, check_seed(id, 2), 0));
   for (double& v : p.near_truth) v *= 1 + kNearTruthBias;
-  p.centre = lum(render_podee(scene, PodeeMethod::kCentre, 0));
-  p.lean = lum(render_podee(scene, PodeeMethod::kLean, 0));
-  p.method = lum(render_podee(scene, PodeeMethod::kPodee, 0));
+  p.centre = lum(podee::render_podee(scene, podee::Method::kCentre, 0));
+  p.lean = lum(podee::render_podee(scene, podee::Method::kLean, 0));
+  p.method = lum(podee::render_podee(scene, podee::Method::kPodee, 0));
   return p;
 }
 
@@ -344,7 +345,7 @@ CheckResult run_rmse(Budget budget) {
       "MSE(method) − min over baselines of MSE, against the pixel integral (two 64-spp "
       "references), at the medium distance";
   for (const RmseRow& row : m.rows)
-    if (row.distance == kPodeeMedium) r.value = std::max(row.vs_centre.d_mse, row.vs_lean.d_mse);
+    if (row.distance == podee::kMedium) r.value = std::max(row.vs_centre.d_mse, row.vs_lean.d_mse);
   r.verdict = decide_rmse(m);
   if (r.verdict == Verdict::kHoldsInRegime) r.regime = kRmseRegime;
   r.detail = fmt::format(
@@ -412,7 +413,7 @@ CheckResult run_far_failure(Budget budget) {
   std::vector<FarRow> rows;
   for (double d : z.distances) rows.push_back(far_row(rmse_pixels(d, z.size, spp), zc));
   // Control: the far distance with an 8× lower-frequency normal map (few normals per pixel).
-  const FarRow control = far_row(rmse_pixels(kPodeeFar, z.size, spp, 1), zc);
+  const FarRow control = far_row(rmse_pixels(podee::kFar, z.size, spp, 1), zc);
   CheckResult r;
   r.configurations = int(rows.size()) + 1;
   r.statistic = "MSE(method) − MSE(better baseline) at the far distance, two-reference estimate";
@@ -452,14 +453,14 @@ Vec2<double> pan_start(int k) {
   return {0.37 * k - std::floor(0.37 * k), 0.61 * k - std::floor(0.61 * k)};
 }
 
-std::vector<double> log_flicker_ratios(const PodeeSceneConfig& c,
-                                       const std::shared_ptr<const PodeeNormalMap>& map,
-                                       PodeeMethod m, int frames) {
+std::vector<double> log_flicker_ratios(const podee::SceneConfig& c,
+                                       const std::shared_ptr<const podee::NormalMap>& map,
+                                       podee::Method m, int frames) {
   std::vector<double> out;
   for (int k = 0; k < kStabilityPhases; ++k)
     out.push_back(
-        std::log(podee_flicker(c, map, m, frames, 0, 0, 0, pan_start(k)) /
-                 podee_flicker(c, map, PodeeMethod::kCentre, frames, 0, 0, 0, pan_start(k))));
+        std::log(podee::flicker(c, map, m, frames, 0, 0, 0, pan_start(k)) /
+                 podee::flicker(c, map, podee::Method::kCentre, frames, 0, 0, 0, pan_start(k))));
   return out;
 }
 
@@ -485,16 +486,17 @@ Verdict decide_stability(const TInterval& i) {
 
 CheckResult run_stability(Budget budget) {
   const Sizes z = sizes(budget);
-  const PodeeSceneConfig c = podee_config(kPodeeMedium, z.size);
-  const auto map = podee_normal_map();
+  const podee::SceneConfig c = podee::config(podee::kMedium, z.size);
+  const auto map = podee::normal_map();
   const TInterval method =
-      t_interval(log_flicker_ratios(c, map, PodeeMethod::kPodee, z.frames), 0.99);
-  const TInterval lean = t_interval(log_flicker_ratios(c, map, PodeeMethod::kLean, z.frames), 0.99);
+      t_interval(log_flicker_ratios(c, map, podee::Method::kPodee, z.frames), 0.99);
+  const TInterval lean =
+      t_interval(log_flicker_ratios(c, map, podee::Method::kLean, z.frames), 0.99);
   const TInterval unweighted =
-      t_interval(log_flicker_ratios(c, map, PodeeMethod::kPodeeUnweighted, z.frames), 0.99);
-  const double centre = podee_flicker(c, map, PodeeMethod::kCentre, z.frames, 0);
-  const double reference = podee_flicker(c, map, PodeeMethod::kCentre, z.frames, 0, kPaperSpp,
-                                         check_seed("podee.stability", 0));
+      t_interval(log_flicker_ratios(c, map, podee::Method::kPodeeUnweighted, z.frames), 0.99);
+  const double centre = podee::flicker(c, map, podee::Method::kCentre, z.frames, 0);
+  const double reference = podee::flicker(c, map, podee::Method::kCentre, z.frames, 0, kPaperSpp,
+                                          check_seed("podee.stability", 0));
   CheckResult r;
   r.configurations = 3 * kStabilityPhases;
   r.statistic = "flicker(method) / flicker(centre), geometric mean over pan phases";
@@ -505,7 +507,7 @@ CheckResult run_stability(Budget budget) {
       "{} pans of {} frames (one-pixel diagonal, {} sub-pixel start phases) at d={} ({}² crop): "
       "flicker relative to centre sampling: method {:.2f}× [{:.2f}, {:.2f}], LEAN {:.2f}× (99 % t "
       "interval over the phases); centre's mean (I_f+1 − I_f)² {:.3g}, 64-spp reference {:.3g}",
-      kStabilityPhases, z.frames, kStabilityPhases, kPodeeMedium, z.size, std::exp(method.mean),
+      kStabilityPhases, z.frames, kStabilityPhases, podee::kMedium, z.size, std::exp(method.mean),
       std::exp(method.lo), std::exp(method.hi), std::exp(lean.mean), centre, reference);
   record_control(r, decide_stability(unweighted));
   r.power = fmt::format(
@@ -521,8 +523,8 @@ CheckResult run_stability(Budget budget) {
 }  // namespace
 
 ControlProbe probe_podee_brightest_vector(int configs) {
-  return {brute_force(configs, 32, PodeeSelection::kClosestPoint).worst_excess,
-          brute_force(configs, 32, PodeeSelection::kNearestCorner).worst_excess,
+  return {brute_force(configs, 32, podee::Selection::kClosestPoint).worst_excess,
+          brute_force(configs, 32, podee::Selection::kNearestCorner).worst_excess,
           kSelectionTolerance, false};
 }
 
@@ -533,11 +535,11 @@ PodeeRmseProbe probe_podee_rmse(double distance, int size) {
 }
 
 ControlProbe probe_podee_stability(int size, int frames) {
-  const PodeeSceneConfig c = podee_config(kPodeeMedium, size);
-  const auto map = podee_normal_map();
-  const double centre = podee_flicker(c, map, PodeeMethod::kCentre, frames, 0);
-  return {podee_flicker(c, map, PodeeMethod::kPodee, frames, 0) / centre,
-          podee_flicker(c, map, PodeeMethod::kPodeeUnweighted, frames, 0) / centre, 1.0 - 1e-12,
+  const podee::SceneConfig c = podee::config(podee::kMedium, size);
+  const auto map = podee::normal_map();
+  const double centre = podee::flicker(c, map, podee::Method::kCentre, frames, 0);
+  return {podee::flicker(c, map, podee::Method::kPodee, frames, 0) / centre,
+          podee::flicker(c, map, podee::Method::kPodeeUnweighted, frames, 0) / centre, 1.0 - 1e-12,
           false};
 }
 
