@@ -9,35 +9,33 @@
 #include <stdexcept>
 
 #include "cli/commands.h"
+#include "cli/input.h"
 
 namespace glintlab::cli {
 
 const char* const kBatchOptionsFooter = R"(
 BATCHED EVALUATION (with --model): rows run in structure-of-arrays batches on SIMD instructions
 (core/simd/model_batch.h) for the models built for it (smooth_ggx, smooth_beckmann; any other
-model runs row by row in double precision).
-  --isa NAME         scalar, sse4.2, avx2 or avx512 (default: GLINTLAB_ISA if set, else the
-                     widest this CPU has)
-  --precision P      double (default) or float: the float type the model is evaluated in
-  --math M           exact (default) or fast (core/simd/fast_math.h exp/erf/erfc/rsqrt; needs
-                     --precision float)
-  --threads N        worker threads, 0 = all cores (default); the output is the same for any N
+model runs row by row in double precision). --isa picks the instruction set (unset: GLINTLAB_ISA
+if set, else the widest this CPU has), --precision the float type the model is evaluated in,
+--math exact or fast (core/simd/fast_math.h exp/erf/erfc/rsqrt; float only). --threads sets the
+worker threads with or without --model; the output is the same for any thread count.
 The results of one ISA and precision do not depend on the row's position, the number of rows or
 the thread count; between ISAs they agree within the budgets of tests/simd/.)";
 
 void add_batch_options(CLI::App* cmd, BatchOptionTexts& t) {
-  cmd->add_option("--isa", t.isa,
-                  "With --model: scalar, sse4.2, avx2 or avx512 (default GLINTLAB_ISA, else the "
-                  "best of this CPU)");
-  cmd->add_option("--precision", t.precision, "With --model: double (default) or float");
-  cmd->add_option("--math", t.math,
-                  "With --model: exact (default) or fast (needs --precision float)");
-  cmd->add_option("--threads", t.threads,
-                  "With --model: worker threads (0 = all cores; the output is the same)");
+  add_text_option(cmd, "--isa", t.isa,
+                  "with --model: scalar, sse4.2, avx2 or avx512 (unset: GLINTLAB_ISA, else the "
+                  "best of this CPU)",
+                  "NAME");
+  add_text_option(cmd, "--precision", t.precision, "with --model: double or float", "NAME");
+  add_text_option(cmd, "--math", t.math, "with --model: exact, or fast (needs --precision float)",
+                  "NAME");
+  add_threads_option(cmd, t.threads);
 }
 
 bool batch_options_given(const CLI::App* cmd) {
-  for (const char* name : {"--isa", "--precision", "--math", "--threads"})
+  for (const char* name : {"--isa", "--precision", "--math"})
     if (cmd->count(name) > 0) return true;
   return false;
 }
@@ -75,12 +73,7 @@ BatchOptions resolve_batch_options(const BatchOptionTexts& t) {
     throw InputError("--math: fast needs --precision float (valid with double: exact)");
   }
   o.math = *math;
-  if (t.threads < 0 || t.threads > 1024) {
-    throw InputError(
-        fmt::format("--threads: {} is out of range (valid: an integer in [0, 1024], 0 = all cores)",
-                    t.threads));
-  }
-  o.threads = t.threads > 0 ? t.threads : tbb::info::default_concurrency();
+  o.threads = resolve_threads(t.threads);
   return o;
 }
 

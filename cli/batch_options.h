@@ -13,7 +13,7 @@ namespace glintlab::cli {
 
 struct BatchOptionTexts {
   std::string isa, precision = "double", math = "exact";
-  int threads = 0;
+  std::string threads = "0";
 };
 
 struct BatchOptions {
@@ -23,12 +23,13 @@ struct BatchOptions {
   int threads;  // > 0
 };
 
-// Adds --isa, --precision, --math and --threads to `cmd`, stored in `t`.
+// Adds --isa, --precision, --math (they need --model) and --threads (parallel rows, with or
+// without --model) to `cmd`, stored in `t`.
 void add_batch_options(CLI::App* cmd, BatchOptionTexts& t);
 // Validates them (InputError naming the option and its valid values). --isa defaults to
 // GLINTLAB_ISA, else the widest ISA of this CPU.
 BatchOptions resolve_batch_options(const BatchOptionTexts& t);
-// Whether any batch option was given on the command line (they need --model).
+// Whether --isa, --precision or --math was given on the command line (they need --model).
 bool batch_options_given(const CLI::App* cmd);
 
 // Rows [0, n) in fixed chunks of kBatchChunk rows, on o.threads worker threads; f(begin, count).

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -10,13 +11,16 @@
 #include <vector>
 
 #include "cli/args.h"
+#include "cli/batch_options.h"
 #include "cli/commands.h"
 #include "cli/eval_model.h"
+#include "cli/input.h"
 #include "cli/model_options.h"
 #include "cli/out_csv.h"
 #include "core/io/csv.h"
 #include "core/maps/beckmann_map.h"
 #include "core/maps/ggx_map.h"
+#include "core/model_registry.h"
 #include "core/ndf/microfacet.h"
 #include "core/ndf/total_area.h"
 #include "core/samplers/beckmann_vndf.h"
@@ -40,6 +44,22 @@ struct Query {
   double alpha_x, alpha_y;
   Vec3<double> wi, wo;
 };
+
+// The roughness range the registered smooth model of `ndf` takes (its alpha_x parameter): eval
+// accepts what the model accepts.
+void check_alpha_range(NdfKind ndf, double alpha, const std::string& where) {
+  check_alpha(alpha, where);
+  const ModelEntry& m = find_model(ndf == NdfKind::kGGX ? "smooth_ggx" : "smooth_beckmann");
+  for (const ParamSpec& p : m.params) {
+    if (p.name != "alpha_x") continue;
+    const bool ok =
+        (p.lo_open ? alpha > p.lo : alpha >= p.lo) && (p.hi_open ? alpha < p.hi : alpha <= p.hi);
+    if (!ok) {
+      throw InputError(fmt::format("{}: roughness {} is out of range (valid: {}, as model {})",
+                                   where, alpha, describe_range(p), m.name));
+    }
+  }
+}
 
 // Reads and validates every row before anything is computed or written.
 std::vector<Query> read_queries(const io::CsvTable& table) {
@@ -80,9 +100,9 @@ std::vector<Query> read_queries(const io::CsvTable& table) {
     Query q{};
     q.ndf = parse_ndf(table.text(r, col[0]), where(0));
     q.alpha_x = num(1);
-    check_alpha(q.alpha_x, where(1));
+    check_alpha_range(q.ndf, q.alpha_x, where(1));
     q.alpha_y = num(2);
-    check_alpha(q.alpha_y, where(2));
+    check_alpha_range(q.ndf, q.alpha_y, where(2));
     q.wi = {num(3), num(4), num(5)};
     q.wo = {num(6), num(7), num(8)};
     check_unit(q.wi, fmt::format("--in {}, columns wi_x,wi_y,wi_z (wi)", table.where(r)));
@@ -129,7 +149,11 @@ std::array<double, kResultColumns.size()> evaluate(const Query& q) {
   });
 }
 
-void run_eval(const std::string& in_path, const std::string& out_path) {
+void run_eval(const std::string& in_path, const std::string& out_path,
+              const std::string& threads_text) {
+  BatchOptions threads{};
+  threads.threads = resolve_threads(threads_text);
+  check_output_file(out_path, "--out");
   io::CsvTable table = [&] {
     try {
       return io::read_csv(in_path);
@@ -139,14 +163,40 @@ void run_eval(const std::string& in_path, const std::string& out_path) {
   }();
   const std::vector<Query> queries = read_queries(table);
 
+  // Rows are independent: computed in parallel chunks, checked, then written in order.
+  std::vector<std::array<double, kResultColumns.size()>> results(queries.size());
+  for_each_chunk(queries.size(), threads, [&](std::size_t begin, std::size_t count) {
+    for (std::size_t i = begin; i < begin + count; ++i) results[i] = evaluate(queries[i]);
+  });
+  // An accepted query never yields NaN or Inf in an output column (pdf_bounded is 'nan' for
+  // beckmann by definition: the bounded sampler is GGX-only).
+  constexpr std::size_t kPdfBounded = 11;
+  static_assert(kResultColumns[kPdfBounded] == "pdf_bounded");
+  for (std::size_t r = 0; r < queries.size(); ++r) {
+    for (std::size_t c = 0; c < kResultColumns.size(); ++c) {
+      if (c == kPdfBounded && queries[r].ndf == NdfKind::kBeckmann) continue;
+      if (!std::isfinite(results[r][c])) {
+        const Query& q = queries[r];
+        const bool opposite = q.wi.x + q.wo.x == 0 && q.wi.y + q.wo.y == 0 && q.wi.z + q.wo.z == 0;
+        throw InputError(
+            fmt::format("--in {}: the query gives {} = {} (valid: a query whose every "
+                        "term is finite{})",
+                        table.where(r), kResultColumns[c], results[r][c],
+                        opposite ? "; wo = -wi has no half vector" : ""));
+      }
+    }
+  }
+  check_free_space(out_path, std::uint64_t(queries.size()) * 27 * 20, "--out");
+
   std::vector<std::string_view> header(kQueryColumns.begin(), kQueryColumns.end());
   header.insert(header.end(), kResultColumns.begin(), kResultColumns.end());
 
   write_out_csv(out_path, header, [&](io::CsvWriter& w) {
-    for (const Query& q : queries) {
+    for (std::size_t r = 0; r < queries.size(); ++r) {
+      const Query& q = queries[r];
       w.cell(ndf_name(q.ndf)).cell(q.alpha_x).cell(q.alpha_y);
       w.cell(q.wi.x).cell(q.wi.y).cell(q.wi.z).cell(q.wo.x).cell(q.wo.y).cell(q.wo.z);
-      for (double v : evaluate(q)) w.cell(v);
+      for (double v : results[r]) w.cell(v);
       w.end_row();
     }
   });
@@ -156,7 +206,8 @@ constexpr const char* kEvalFooter =
     R"(INPUT (--in): a CSV file, a header row then one query per data row. Columns, in any order, and
 no others:
   ndf               ggx or beckmann
-  alpha_x, alpha_y  roughness along the tangent (x) and bitangent (y) axes; finite, > 0
+  alpha_x, alpha_y  roughness along the tangent (x) and bitangent (y) axes; in (0, 100] (the
+                    range of the smooth_ggx and smooth_beckmann models)
   wi_x, wi_y, wi_z  the given direction wi, pointing toward the viewer; unit length (within 1e-6)
   wo_x, wo_y, wo_z  the other direction wo; unit length (within 1e-6)
 Directions are in the local shading frame: x tangent, y bitangent, z the macrosurface normal.
@@ -167,7 +218,7 @@ Numbers are decimal (std::from_chars) and must be finite; fields may not be empt
 
 OUTPUT (--out): a CSV file, one row per query, in input order. Columns: the query columns (in
 the order above; the same values, reprinted), then
-  h_x, h_y, h_z  half vector h = normalize(wi + wo); (0, 0, 0) when wo = -wi
+  h_x, h_y, h_z  half vector h = normalize(wi + wo) (a row with wo = -wi has none: refused)
   D              the NDF D(h), per steradian of microfacet normal
   lambda_wi      Smith Lambda(wi) (Heitz 2014), with Lambda(-w) = 1 + Lambda(w) below the surface
   G1_wi, G1_wo   Smith masking G1(wi, h) and G1(wo, h)
@@ -191,8 +242,9 @@ the order above; the same values, reprinted), then
                  square units)
   JT_true        the actual Jacobian |det dT/dh| of map_to_square, per steradian of h
 Every number is a double printed with 17 significant digits (reads back to the same double).
-Any invalid row stops the run with an error naming the file, the 1-based data row and the
-column; no output file is written then.)";
+Any invalid row, or a row whose terms are not all finite (pdf_bounded for beckmann aside), stops
+the run with an error naming the file, the 1-based data row and the column; no output file is
+written then.)";
 
 }  // namespace
 
@@ -201,18 +253,20 @@ void add_eval_command(CLI::App& app) {
       "eval", "Evaluate every microfacet term (D, G1, G2, VNDF, pdfs, BRDF, maps) for CSV queries");
   auto in = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
-  cmd->add_option("--in", *in, "Query CSV file (columns described below)");
-  cmd->add_option("--out", *out,
-                  "Result CSV file; written to a temporary file and renamed into place only "
-                  "when every row succeeded")
+  add_text_option(cmd, "--in", *in, "query CSV file (columns described below)", "FILE");
+  add_text_option(cmd, "--out", *out,
+                  "result CSV file; written to a temporary file and renamed into place only "
+                  "when every row succeeded",
+                  "FILE")
       ->required();
   auto model = std::make_shared<std::string>();
   auto params = std::make_shared<std::vector<std::string>>();
   add_model_options(cmd, *model, *params,
                     "Evaluate this registered model instead (see glintlab models and below)");
   auto grid = std::make_shared<std::string>();
-  cmd->add_option("--grid", *grid,
-                  "With --model, instead of --in: 'theta_i=lo:hi:count,...' (degrees; below)");
+  add_text_option(cmd, "--grid", *grid,
+                  "with --model, instead of --in: 'theta_i=lo:hi:count,...' (degrees; below)",
+                  "AXES");
   auto batch = std::make_shared<BatchOptionTexts>();
   add_batch_options(cmd, *batch);
   cmd->footer(std::string(kEvalFooter) + kModelEvalFooter + kBatchOptionsFooter);
@@ -220,14 +274,23 @@ void add_eval_command(CLI::App& app) {
     if (model->empty() && !params->empty()) {
       throw InputError("--param: needs --model (see glintlab models)");
     }
-    if (model->empty() && (!grid->empty() || batch_options_given(cmd))) {
+    if (model->empty() && (cmd->count("--grid") > 0 || batch_options_given(cmd))) {
       throw InputError(
-          fmt::format("{}: needs --model (see glintlab models)",
-                      !grid->empty() ? "--grid" : "--isa/--precision/--math/--threads"));
+          fmt::format("{}: needs --model (valid: a model of glintlab models)",
+                      cmd->count("--grid") > 0 ? "--grid" : "--isa/--precision/--math"));
     }
+    for (const char* o : {"--in", "--grid", "--model"}) {
+      if (cmd->count(o) > 0 && (o == std::string("--in")     ? in->empty()
+                                : o == std::string("--grid") ? grid->empty()
+                                                             : model->empty()))
+        throw InputError(fmt::format("{}: '' is empty (valid: see glintlab eval --help)", o));
+    }
+    register_staging_parent(std::filesystem::path(*out).has_parent_path()
+                                ? std::filesystem::path(*out).parent_path()
+                                : std::filesystem::path("."));
     if (model->empty()) {
-      if (in->empty()) throw InputError("--in is required");
-      run_eval(*in, *out);
+      if (in->empty()) throw InputError("--in is required (valid: a query CSV file)");
+      run_eval(*in, *out, batch->threads);
     } else {
       run_model_eval({*model, *params, *in, *grid, *out, *batch});
     }

@@ -14,6 +14,7 @@
 #include "cli/args.h"
 #include "cli/batch_options.h"
 #include "cli/commands.h"
+#include "cli/input.h"
 #include "cli/model_options.h"
 #include "cli/out_csv.h"
 #include "core/io/csv.h"
@@ -62,11 +63,7 @@ std::array<GridAxis, 4> parse_grid(const std::string& text) {
       "theta in [0, 180], count in [1, 10000])";
   std::array<GridAxis, 4> axes{};
   std::array<bool, 4> seen{};
-  std::size_t pos = 0;
-  while (pos <= text.size()) {
-    const std::size_t end = std::min(text.find(',', pos), text.size());
-    const std::string item = text.substr(pos, end - pos);
-    pos = end + 1;
+  for (const std::string& item : split_list(text, "--grid", kValid)) {
     const std::size_t eq = item.find('=');
     std::size_t a = 0;
     while (a < kGridNames.size() &&
@@ -75,7 +72,9 @@ std::array<GridAxis, 4> parse_grid(const std::string& text) {
     if (a == kGridNames.size()) {
       throw InputError(fmt::format("--grid: '{}' is not a known axis (valid: {})", item, kValid));
     }
-    if (seen[a]) throw InputError(fmt::format("--grid {}: given twice", kGridNames[a]));
+    if (seen[a])
+      throw InputError(
+          fmt::format("--grid {}: given twice (valid: each axis once)", kGridNames[a]));
     seen[a] = true;
     const std::string range = item.substr(eq + 1);
     const std::size_t c1 = range.find(':'),
@@ -94,7 +93,6 @@ std::array<GridAxis, 4> parse_grid(const std::string& text) {
       throw InputError(
           fmt::format("--grid {}: '{}' is out of range (valid: {})", kGridNames[a], range, kValid));
     }
-    if (end == text.size()) break;
   }
   std::uint64_t rows = 1;
   for (const GridAxis& g : axes) rows *= g.count;
@@ -198,45 +196,70 @@ void read_queries(const ModelEntry& model, const std::string& in_path,
       throw InputError(std::string("--in ") + e.what());
     }
   };
-  constexpr std::size_t kCos = query_column_index("light_cos_half_angle"),
-                        kIntensity = query_column_index("light_intensity");
   for (std::size_t r = 0; r < table.num_rows(); ++r) {
     QueryRow<double> v{};
     for (std::size_t i = 0; i < kColumns.size(); ++i) v[i] = query[i][r] = read(r, i);
-    const ModelQuery<double> row_query = from_row(v);
-    check_unit(row_query.wi, fmt::format("--in {}, columns wi_x,wi_y,wi_z (wi)", table.where(r)));
-    check_unit(row_query.wo, fmt::format("--in {}, columns wo_x,wo_y,wo_z (wo)", table.where(r)));
-    if (!(v[kCos] >= -1 && v[kCos] <= 1)) {
-      throw InputError(fmt::format("--in {}: {} is out of range (valid: [-1, 1])",
-                                   table.where(r, *col[kCos]), v[kCos]));
-    }
-    if (!(v[kIntensity] >= 0)) {
-      throw InputError(fmt::format("--in {}: {} is out of range (valid: >= 0)",
-                                   table.where(r, *col[kIntensity]), v[kIntensity]));
-    }
     if (need_corners) {
       for (std::size_t i = kColumns.size(); i < kQueryLayout.size(); ++i)
         v[i] = corners[i - kColumns.size()][r] = read(r, i);
-      const ModelQuery<double> q = from_row(v);
-      for (std::size_t c = 0; c < q.footprint.corner_r.size(); ++c) {
-        check_unit(q.footprint.corner_r[c],
-                   fmt::format("--in {}, columns r{}_x,r{}_y,r{}_z (corner reflection vector)",
-                               table.where(r), c, c, c));
-      }
     }
-    if (!model.validate) continue;
-    if (const std::optional<QueryViolation> bad = model.validate(from_row(v))) {
+    check_query_row(model, v, [&](std::string_view column) {
       std::size_t i = 0;
-      while (i < kQueryLayout.size() && kQueryLayout[i].name != bad->column) ++i;
-      const std::string where =
-          i < kQueryLayout.size() && col[i] ? table.where(r, *col[i]) : table.where(r);
-      throw InputError(fmt::format("--in {}: {} = {} is out of range (valid: {})", where,
-                                   bad->column, i < v.size() ? v[i] : 0.0, bad->valid));
-    }
+      while (i < kQueryLayout.size() && kQueryLayout[i].name != column) ++i;
+      return "--in " +
+             (i < kQueryLayout.size() && col[i] ? table.where(r, *col[i]) : table.where(r));
+    });
   }
 }
 
 }  // namespace
+
+void check_query_row(const ModelEntry& model, const QueryRow<double>& v,
+                     const std::function<std::string(std::string_view column)>& at) {
+  constexpr std::size_t kCos = query_column_index("light_cos_half_angle"),
+                        kIntensity = query_column_index("light_intensity");
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (kQueryLayout[i].part == QueryPart::kCorners &&
+        !part_needed(QueryPart::kCorners, model.needs))
+      continue;
+    if (!std::isfinite(v[i])) {
+      throw InputError(fmt::format("{}: {} = {} is not finite (valid: a finite number)",
+                                   at(kQueryLayout[i].name), kQueryLayout[i].name, v[i]));
+    }
+  }
+  const ModelQuery<double> row_query = from_row(v);
+  check_unit(row_query.wi, at("") + ", columns wi_x,wi_y,wi_z (wi)");
+  check_unit(row_query.wo, at("") + ", columns wo_x,wo_y,wo_z (wo)");
+  if (!(v[kCos] >= -1 && v[kCos] <= 1)) {
+    throw InputError(fmt::format("{}: {} is out of range (valid: [-1, 1])",
+                                 at("light_cos_half_angle"), v[kCos]));
+  }
+  if (!(v[kIntensity] >= 0)) {
+    throw InputError(
+        fmt::format("{}: {} is out of range (valid: >= 0)", at("light_intensity"), v[kIntensity]));
+  }
+  if (part_needed(QueryPart::kCorners, model.needs)) {
+    for (std::size_t c = 0; c < row_query.footprint.corner_r.size(); ++c) {
+      check_unit(
+          row_query.footprint.corner_r[c],
+          fmt::format("{}, columns r{}_x,r{}_y,r{}_z (corner reflection vector)", at(""), c, c, c));
+    }
+  }
+  if (!model.validate) return;
+  if (const std::optional<QueryViolation> bad = model.validate(row_query)) {
+    std::size_t i = 0;
+    while (i < kQueryLayout.size() && kQueryLayout[i].name != bad->column) ++i;
+    throw InputError(fmt::format("{}: {} = {} is out of range (valid: {})", at(bad->column),
+                                 bad->column, i < v.size() ? v[i] : 0.0, bad->valid));
+  }
+}
+
+std::vector<std::string_view> needed_query_columns(const ModelEntry& model) {
+  std::vector<std::string_view> out;
+  for (const QueryColumn& c : kQueryLayout)
+    if (c.part != QueryPart::kDirections && part_needed(c.part, model.needs)) out.push_back(c.name);
+  return out;
+}
 
 const char* const kModelEvalFooter =
     R"(
@@ -285,10 +308,15 @@ void run_model_eval(const ModelEvalArgs& a) {
   std::vector<std::vector<double>> query(kColumns.size());
   std::vector<std::vector<double>> angles, corners;
   std::size_t n = 0;
+  const std::array<GridAxis, 4> g = a.grid.empty() ? std::array<GridAxis, 4>{} : parse_grid(a.grid);
+  check_output_file(a.out_path, "--out");
   if (!a.grid.empty()) {
-    const std::array<GridAxis, 4> g = parse_grid(a.grid);
     n = 1;
     for (const GridAxis& x : g) n *= std::size_t(x.count);
+    // About 20 bytes per number written (17 significant digits, sign, exponent, comma).
+    check_free_space(
+        a.out_path, std::uint64_t(n) * (4 + kColumns.size() + 2 + model->intermediates.size()) * 20,
+        "--out");
     for (std::size_t i = 0; i < kColumns.size(); ++i)
       query[i].assign(n, kQueryLayout[i].default_value);
     angles.assign(4, std::vector<double>(n));

@@ -2,10 +2,14 @@
 // of directions, batched (core/simd/model_batch.h).
 #pragma once
 
+#include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cli/batch_options.h"
+#include "core/model_layout.h"
+#include "core/model_registry.h"
 
 namespace glintlab::cli {
 
@@ -19,6 +23,16 @@ struct ModelEvalArgs {
 };
 
 void run_model_eval(const ModelEvalArgs& args);
+
+// The checks eval --model makes on every query row before evaluating it, shared with sample
+// --model: each value finite, unit wi and wo (and the corner vectors where the model reads them),
+// the light's range, and the model's own rules (its static validate, core/model.h).
+// `at(column)` names where a column's value came from ("" = the row) for the message.
+void check_query_row(const ModelEntry& model, const QueryRow<double>& row,
+                     const std::function<std::string(std::string_view column)>& at);
+// The query columns besides wi and wo that `model` needs (footprint, light, corners), in layout
+// order.
+std::vector<std::string_view> needed_query_columns(const ModelEntry& model);
 
 // The help text of the --model form (appended to eval's footer).
 extern const char* const kModelEvalFooter;

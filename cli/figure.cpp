@@ -1,11 +1,12 @@
-// `glintlab figure ID [--out DIR] [--quick] [--threads N]` and `glintlab figure --list`: runs a
-// registered figure experiment (experiments/figures/).
+// `glintlab figure ID [--out DIR] [--budget quick|full] [--threads N]` and `glintlab figure
+// --list`: runs a registered figure experiment (experiments/figures/).
 #include <fmt/format.h>
 
 #include <memory>
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/input.h"
 #include "cli/progress.h"
 #include "core/io/environment_exr.h"
 #include "experiments/figures/figure_registry.h"
@@ -16,9 +17,9 @@ namespace {
 struct FigureOptions {
   std::string id;
   std::string out = "out/figures";
-  bool quick = false;
+  BudgetOption budget;
   bool list = false;
-  int threads = 0;
+  std::string threads;
   std::string env;  // lat-long EXR environment map; empty = the experiment's procedural sky
 };
 
@@ -28,26 +29,27 @@ void list_figures() {
   }
 }
 
-void run(const FigureOptions& o) {
+void run(const CLI::App* cmd, const FigureOptions& o) {
   if (o.list) {
-    if (!o.id.empty()) throw InputError("figure: give either --list or a figure id, not both");
+    if (!o.id.empty())
+      throw InputError(fmt::format(
+          "figure: '{}' given with --list (valid: either --list or a figure id)", o.id));
     list_figures();
     return;
   }
   if (o.id.empty()) {
-    throw InputError("figure: a figure id is required (see glintlab figure --list)");
+    throw InputError("figure: a figure id is required (valid: an id of glintlab figure --list)");
   }
-  if (o.threads < 0 || o.threads > 1024) {
-    throw InputError(
-        fmt::format("--threads: {} is out of range (valid: an integer in [0, 1024], "
-                    "0 = all cores)",
-                    o.threads));
-  }
+  const bool quick = resolve_budget(cmd, o.budget) == "quick";
+  // 0 = all cores is passed on as 0: the experiments size their own pools.
+  const int threads = int(integer_option(o.threads, "--threads", 0, 1024));
   try {
     const experiments::FigureEntry& entry = experiments::find_figure(o.id);
+    check_output_dir(o.out, "--out");
+    register_staging_parent(o.out);
     experiments::FigureContext ctx;
-    ctx.quick = o.quick;
-    ctx.threads = o.threads;
+    ctx.quick = quick;
+    ctx.threads = threads;
     if (!o.env.empty()) {
       // Loaded before anything is written, so a missing or malformed map leaves no output.
       try {
@@ -88,19 +90,21 @@ only when the whole experiment succeeded. Output is identical for any --threads.
 void add_figure_command(CLI::App& app) {
   auto o = std::make_shared<FigureOptions>();
   CLI::App* cmd = app.add_subcommand("figure", "Run a registered paper-figure experiment");
-  cmd->add_option("id", o->id, "Figure id (see --list)");
-  cmd->add_flag("--list", o->list,
-                "List the registered experiments and the figure each reproduces");
-  cmd->add_option("--out", o->out, "Output folder (default out/figures)");
-  cmd->add_flag("--quick", o->quick, "Smaller images and sample budgets (seconds)");
-  cmd->add_option("--threads", o->threads,
-                  "Worker threads (0 = all cores; the output is the same)");
-  cmd->add_option("--env", o->env,
-                  "Lat-long EXR environment map (R, G, B radiance; width = 2 x height; row 0 at "
+  o->budget.budget = "full";
+  add_text_option(cmd, "id", o->id, "figure id: one of glintlab figure --list", "ID");
+  add_bool_flag(cmd, "--list", o->list,
+                "list the registered experiments and the figure each reproduces");
+  add_text_option(cmd, "--out", o->out, "output folder", "DIR");
+  add_budget_option(cmd, o->budget,
+                    "quick = smaller images and sample budgets (seconds), full = the paper's");
+  add_threads_option(cmd, o->threads);
+  add_text_option(cmd, "--env", o->env,
+                  "lat-long EXR environment map (R, G, B radiance; width = 2 x height; row 0 at "
                   "the zenith, z up) lighting the experiments that use one, instead of their "
-                  "procedural sky");
+                  "procedural sky",
+                  "FILE");
   cmd->footer(kFooter);
-  cmd->callback([o] { run(*o); });
+  cmd->callback([cmd, o] { run(cmd, *o); });
 }
 
 }  // namespace glintlab::cli

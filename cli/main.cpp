@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "cli/commands.h"
+#include "cli/input.h"
 
 namespace {
 
@@ -29,14 +30,82 @@ std::string one_line(std::string_view msg) {
 }
 
 int fail(std::string_view msg) {
+  // A failure caused by a signal's cleanup: let the watcher end the process with the signal.
+  glintlab::cli::wait_if_signalled();
   fmt::print(stderr, "glintlab: error: {}\n", one_line(msg));
   std::fflush(stderr);
   return 2;
 }
 
+std::string_view after(std::string_view s, std::string_view mark) {
+  const std::size_t at = s.find(mark);
+  return at == std::string_view::npos ? std::string_view() : s.substr(at + mark.size());
+}
+
+// CLI11's own parse errors in the house form: the option, the value and the valid values (the
+// option's description, which names them).
+std::string translate(const CLI::App* sub, const CLI::ParseError& e) {
+  const std::string msg = e.what();
+  const std::string see =
+      sub ? fmt::format("see glintlab {} --help", sub->get_name()) : "see glintlab --help";
+  const auto valid = [&](const std::string& name) -> std::string {
+    const CLI::Option* o = sub ? sub->get_option_no_throw(name) : nullptr;
+    if (o == nullptr || o->get_description().empty()) return see;
+    return o->get_description();
+  };
+  std::string name = msg.substr(0, std::min(msg.find(':'), msg.find(' ')));
+  // Flag errors name the flag without its dashes.
+  if (!name.empty() && name[0] != '-' && sub && sub->get_option_no_throw("--" + name))
+    name = "--" + name;
+  const std::string type = e.get_name();
+  if (type == "ConversionError" && msg.rfind("Could not convert: ", 0) == 0) {
+    const std::string_view rest = after(msg, "Could not convert: ");
+    const std::size_t eq = rest.find(" = ");
+    const std::string opt(rest.substr(0, eq));
+    const std::string value(eq == std::string_view::npos ? "" : rest.substr(eq + 3));
+    return fmt::format("{}: '{}' is not a valid value (valid: {})", opt, value, valid(opt));
+  }
+  if (msg.find("too many inputs for a flag") != std::string::npos ||
+      msg.find("Should be true/false") != std::string::npos ||
+      msg.find("disallowed flag override") != std::string::npos) {
+    return fmt::format("{}: takes no value (valid: {} alone: {})", name, name, valid(name));
+  }
+  if (type == "ArgumentMismatch") {
+    if (msg.find("At Most") != std::string::npos) {
+      return fmt::format("{}: given {} times (valid: once; {})", name,
+                         after(msg, "required but received "), valid(name));
+    }
+    if (msg.find("missing") != std::string::npos)
+      return fmt::format("{}: needs a value (valid: {})", name, valid(name));
+    return fmt::format("{} (valid: {})", msg, valid(name));
+  }
+  if (msg.find(" not expected: ") != std::string::npos) {
+    std::string extras(after(msg, "expected: "));
+    std::string options;
+    if (sub) {
+      for (const CLI::Option* o : sub->get_options()) {
+        if (o->get_name() == "--help" || o->get_name().empty()) continue;
+        options += fmt::format("{}{}", options.empty() ? "" : ", ", o->get_name());
+      }
+    }
+    return fmt::format("{}: unexpected argument '{}' (valid: {}; {})",
+                       sub ? sub->get_name() : "glintlab", extras,
+                       options.empty() ? "no arguments" : "the options " + options, see);
+  }
+  if (type == "ValidationError") return fmt::format("{} (valid: {})", msg, valid(name));
+  if (type == "RequiredError" && msg.size() > 12 &&
+      msg.compare(msg.size() - 12, 12, " is required") == 0) {
+    const std::string opt = msg.substr(0, msg.size() - 12);
+    return fmt::format("{} is required (valid: {})", opt, valid(opt));
+  }
+  return fmt::format("{} ({})", msg, see);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Before any thread starts: SIGINT/SIGTERM remove staging folders, then end the process.
+  glintlab::cli::install_signal_cleanup();
   CLI::App app{
       "glintlab: microfacet and glint models from the papers, with statistical checks of their "
       "claims.\nDirections are in the local shading frame: x tangent, y bitangent, z the normal.",
@@ -89,11 +158,15 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     // --help (and --help-all) are ParseErrors with exit code 0: print the help and succeed.
     if (e.get_exit_code() == 0) return app.exit(e);
-    return fail(e.what());
+    const CLI::App* sub = nullptr;
+    for (const CLI::App* s : app.get_subcommands([](const CLI::App*) { return true; }))
+      if (argc > 1 && s->get_name() == argv[1]) sub = s;
+    return fail(translate(sub, e));
   } catch (const glintlab::cli::InputError& e) {
     return fail(e.what());
   } catch (const std::exception& e) {
     return fail(e.what());
   }
+  glintlab::cli::wait_if_signalled();
   return 0;
 }

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <ctime>
@@ -21,9 +22,11 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/input.h"
 #include "cli/progress.h"
 #include "core/io/atomic_file.h"
 #include "experiments/figures/figure_registry.h"
+#include "verify/check.h"
 
 extern char** environ;
 
@@ -35,13 +38,12 @@ using nlohmann::json;
 
 struct ReportOptions {
   std::string out = "out/report";
-  std::string budget = "quick";
+  BudgetOption budget;
   bool reuse = false;
   std::string claims = "*";
   std::string figures = "*";
   std::string claims_from;  // a `glintlab verify --out` folder to read instead of running it
-  std::vector<std::string> skip;
-  int threads = 0;
+  std::string skip;         // comma-separated parts
 };
 
 // The parts of a report, in the order they run; each has its own subfolder of DIR.
@@ -126,13 +128,23 @@ int run_process(const std::vector<std::string>& args, const fs::path& out_file,
   std::vector<char*> argv;
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
+  // The child gets SIGINT and SIGTERM unblocked (this process blocks them for its watcher).
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  sigset_t none;
+  sigemptyset(&none);
+  posix_spawnattr_setsigmask(&attr, &none);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK);
   pid_t pid = 0;
-  const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+  const int rc = posix_spawn(&pid, argv[0], &fa, &attr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&fa);
+  posix_spawnattr_destroy(&attr);
   if (rc != 0) throw std::runtime_error(fmt::format("report: cannot run {}", args[0]));
+  set_signal_child(pid);
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0) {
   }
+  set_signal_child(0);
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
 }
@@ -158,20 +170,6 @@ std::string last_error_line(const fs::path& err_file) {
   return last.empty() ? "no message" : last;
 }
 
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> parts;
-  std::stringstream in(s);
-  for (std::string p; std::getline(in, p, ',');)
-    if (!p.empty()) parts.push_back(p);
-  return parts;
-}
-
-bool matches_any(const std::string& id, const std::string& globs) {
-  for (const std::string& g : split(globs))
-    if (fnmatch(g.c_str(), id.c_str(), 0) == 0) return true;
-  return false;
-}
-
 // Removes a folder on scope exit unless disarmed: the staging folder of a failed run.
 struct RemoveOnExit {
   fs::path dir;
@@ -184,7 +182,8 @@ struct RemoveOnExit {
 
 class ReportRun {
  public:
-  ReportRun(const ReportOptions& o, const CLI::App& root) : o_(o), root_(root) {}
+  ReportRun(const ReportOptions& o, const CLI::App& root, const CLI::App* cmd, std::string threads)
+      : o_(o), root_(root), cmd_(cmd), threads_text_(std::move(threads)) {}
   void run();
 
  private:
@@ -196,44 +195,52 @@ class ReportRun {
   // Runs a child; stderr goes to the terminal when there is one (its progress), else to a log.
   int child(const std::vector<std::string>& args, const std::string& log_name);
   [[noreturn]] void child_failed(const std::string& what, int rc, const std::string& log_name);
-  bool quick() const { return o_.budget == "quick"; }
+  bool quick() const { return budget_ == "quick"; }
 
   const ReportOptions& o_;
   const CLI::App& root_;
+  const CLI::App* cmd_;
+  std::string threads_text_;
   fs::path out_, stage_, logs_;
   bool tty_ = ::isatty(STDERR_FILENO) == 1;
   int threads_ = 0;
+  std::string budget_;
+  std::vector<std::string> skip_;
   std::vector<const experiments::FigureEntry*> figures_;
   std::unique_ptr<Progress> progress_;
 };
 
 void ReportRun::validate() {
-  if (o_.budget != "quick" && o_.budget != "full")
-    throw InputError(fmt::format("--budget: '{}' is not one of quick|full", o_.budget));
-  if (o_.threads < 0 || o_.threads > 1024)
-    throw InputError(
-        fmt::format("--threads: {} is out of range (0 = all cores, or 1..1024)", o_.threads));
-  for (const std::string& s : o_.skip) {
-    bool known = false;
-    for (const char* p : kParts) known = known || s == p;
-    if (!known)
-      throw InputError(fmt::format(
-          "--skip: '{}' is not a part of the report (valid: claims, figures, bench, stability)",
-          s));
+  budget_ = resolve_budget(cmd_, o_.budget);
+  threads_ = resolve_threads(threads_text_);
+  if (cmd_->count("--skip") > 0) {
+    skip_ =
+        split_list(o_.skip, "--skip", "comma-separated parts: claims, figures, bench, stability");
+    for (const std::string& s : skip_) {
+      bool known = false;
+      for (const char* p : kParts) known = known || s == p;
+      if (!known)
+        throw InputError(fmt::format(
+            "--skip: '{}' is not a part of the report (valid: claims, figures, bench, stability)",
+            s));
+    }
   }
-  if (split(o_.claims).empty()) throw InputError("--claims: empty pattern (e.g. 'eto.*')");
+  std::vector<std::string> ids;
+  for (const auto& c : verify::registered_checks()) ids.push_back(c.id);
+  (void)select_by_globs(o_.claims, "--claims", ids, "claim ids (see glintlab verify --list)");
+  ids.clear();
   for (const experiments::FigureEntry& e : experiments::registered_figures())
-    if (matches_any(std::string(e.id), o_.figures)) figures_.push_back(&e);
-  if (figures_.empty())
-    throw InputError(
-        fmt::format("--figures: '{}' matches no registered figure id (see glintlab figure --list)",
-                    o_.figures));
+    ids.emplace_back(e.id);
+  const std::vector<std::string> chosen =
+      select_by_globs(o_.figures, "--figures", ids, "figure ids (see glintlab figure --list)");
+  for (const experiments::FigureEntry& e : experiments::registered_figures())
+    if (std::find(chosen.begin(), chosen.end(), std::string(e.id)) != chosen.end())
+      figures_.push_back(&e);
   if (!o_.claims_from.empty() && !fs::is_regular_file(fs::path(o_.claims_from) / "claims.json"))
     throw InputError(
         fmt::format("--claims-from: '{}' holds no claims.json (a glintlab verify --out "
                     "folder is expected)",
                     o_.claims_from));
-  threads_ = o_.threads > 0 ? o_.threads : int(std::thread::hardware_concurrency());
 }
 
 int ReportRun::child(const std::vector<std::string>& args, const std::string& log_name) {
@@ -260,7 +267,7 @@ void ReportRun::run_claims(json& part) {
                                          "--claims",
                                          o_.claims,
                                          "--budget",
-                                         o_.budget,
+                                         budget_,
                                          "--threads",
                                          std::to_string(threads_),
                                          "--out",
@@ -368,7 +375,7 @@ void ReportRun::run_stability(json& part) {
   }
   std::vector<std::string> args = {self_exe().string(), "sweep", "--out",
                                    (stage_ / "stability").string()};
-  if (quick()) args.push_back("--quick");
+  args.insert(args.end(), {"--budget", budget_, "--threads", std::to_string(threads_)});
   const int rc = child(args, "sweep");
   if (rc != 0) child_failed("glintlab sweep", rc, "sweep");
   part["status"] = "ran";
@@ -389,10 +396,24 @@ void ReportRun::run() {
   if (fs::exists(out_, ec) && !fs::is_directory(out_, ec))
     throw InputError(fmt::format("--out: '{}' exists and is not a folder", o_.out));
   const fs::path parent = out_.has_parent_path() ? out_.parent_path() : fs::path(".");
+  // --reuse needs something to reuse: at least one part that is not skipped has its results.
+  if (o_.reuse) {
+    bool any = false;
+    std::string looked;
+    for (int i = 0; i < kNumParts; ++i) {
+      if (std::find(skip_.begin(), skip_.end(), kParts[i]) != skip_.end()) continue;
+      const fs::path index = out_ / kPartDirs[i] / kPartIndex[i];
+      any = any || fs::is_regular_file(index, ec);
+      looked += fmt::format("{}{}", looked.empty() ? "" : ", ", index.string());
+    }
+    if (!any)
+      throw InputError(fmt::format(
+          "--reuse: '{}' holds no results to reuse (valid: a report folder with one of {})", o_.out,
+          looked));
+  }
+  check_output_dir(parent, "--out");
   fs::create_directories(parent, ec);
-  if (ec || !fs::is_directory(parent))
-    throw InputError(fmt::format("--out: cannot create the folder '{}' ({})", parent.string(),
-                                 ec ? ec.message() : "not a folder"));
+  register_staging_parent(parent);
   stage_ = parent / fmt::format(".{}.tmp.{}", out_.filename().string(), ::getpid());
   fs::remove_all(stage_, ec);
   if (!fs::create_directory(stage_, ec) || ec)
@@ -421,10 +442,10 @@ void ReportRun::run() {
   json parts = json::object();
   for (int i = 0; i < kNumParts; ++i) {
     const std::string name = kParts[i];
-    json part = {{"status", ""}, {"budget", o_.budget}, {"machine", machine}, {"date", date}};
+    json part = {{"status", ""}, {"budget", budget_}, {"machine", machine}, {"date", date}};
     const fs::path cached = out_ / kPartDirs[i];
     bool skipped = false;
-    for (const std::string& s : o_.skip) skipped = skipped || s == name;
+    for (const std::string& s : skip_) skipped = skipped || s == name;
     if (skipped) {
       part["status"] = "skipped";
       part["note"] = "left out with --skip";
@@ -456,7 +477,7 @@ void ReportRun::run() {
   }
   const json run_info = {{"glintlab_version", experiments::glintlab_version()},
                          {"date", date},
-                         {"budget", o_.budget},
+                         {"budget", budget_},
                          {"machine", machine},
                          {"parts", parts}};
   io::write_file_atomic(stage_ / "run.json", run_info.dump(1) + "\n");
@@ -521,30 +542,28 @@ void add_report_command(CLI::App& app) {
       "report",
       "Run the claim suite, every figure, the benchmarks and the stability sweeps (or reuse their "
       "cached results) and write a static HTML report with a Markdown twin");
-  cmd->add_option("--out", o->out, "output folder")->capture_default_str();
-  cmd->add_option("--budget", o->budget,
-                  "quick (figures --quick, a short benchmark run, quick claims) or full")
-      ->capture_default_str();
-  cmd->add_flag("--reuse", o->reuse,
+  add_text_option(cmd, "--out", o->out, "output folder", "DIR");
+  add_budget_option(cmd, o->budget,
+                    "quick = quick figures, a short benchmark run, quick claims; full = all full");
+  add_bool_flag(cmd, "--reuse", o->reuse,
                 "reuse the parts whose results are already in --out (verify/claims.json, "
                 "figures/figures.json, bench/bench.json, stability/stability.json) instead of "
                 "running them");
-  cmd->add_option("--claims", o->claims,
-                  "comma-separated globs over claim ids (as glintlab verify)")
-      ->capture_default_str();
-  cmd->add_option("--figures", o->figures, "comma-separated globs over figure ids")
-      ->capture_default_str();
-  cmd->add_option("--claims-from", o->claims_from,
+  add_text_option(cmd, "--claims", o->claims,
+                  "comma-separated globs over claim ids (see glintlab verify --list)", "LIST");
+  add_text_option(cmd, "--figures", o->figures,
+                  "comma-separated globs over figure ids (see glintlab figure --list)", "LIST");
+  add_text_option(cmd, "--claims-from", o->claims_from,
                   "a glintlab verify --out folder whose claims.json the report shows instead of "
-                  "running the suite");
-  cmd->add_option("--skip", o->skip, "parts to leave out: claims, figures, bench, stability")
-      ->delimiter(',');
-  cmd->add_option("--threads", o->threads,
-                  "worker threads (0 = all cores); results do not depend on it")
-      ->capture_default_str();
+                  "running the suite",
+                  "DIR");
+  add_text_option(cmd, "--skip", o->skip,
+                  "comma-separated parts to leave out: claims, figures, bench, stability", "LIST");
+  auto threads = std::make_shared<std::string>();
+  add_threads_option(cmd, *threads);
   cmd->footer(kFooter);
   const CLI::App* root = &app;
-  cmd->callback([o, root] { ReportRun(*o, *root).run(); });
+  cmd->callback([o, root, cmd, threads] { ReportRun(*o, *root, cmd, *threads).run(); });
 }
 
 }  // namespace glintlab::cli

@@ -5,19 +5,24 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <type_traits>
 #include <vector>
 
 #include "cli/args.h"
+#include "cli/batch_options.h"
 #include "cli/commands.h"
+#include "cli/input.h"
 #include "cli/model_options.h"
 #include "cli/out_csv.h"
 #include "cli/sample_model.h"
 #include "core/io/csv.h"
 #include "core/math/rng.h"
+#include "core/model_registry.h"
 #include "core/models/smooth_ggx.h"
 #include "core/samplers/beckmann_vndf.h"
 #include "core/samplers/bounded_vndf.h"
@@ -38,6 +43,7 @@ constexpr std::uint64_t kMaxSamples = 1000000000;  // 1e9 rows is already ~200 G
 struct SampleArgs {
   std::string ndf, alpha, wi, sampler, n, seed = "0", bound = "listing1", out;
   bool bound_given = false;
+  std::string threads = "0";
 };
 
 struct SampleJob {
@@ -63,8 +69,20 @@ SampleJob validate(const SampleArgs& a) {
   }
   job.alpha_x = alpha[0];
   job.alpha_y = alpha.size() == 2 ? alpha[1] : alpha[0];
-  check_alpha(job.alpha_x, alpha.size() == 2 ? "--alpha (alpha_x)" : "--alpha");
-  check_alpha(job.alpha_y, "--alpha (alpha_y)");
+  // The range of the registered smooth model of this NDF: sample accepts what the model accepts.
+  const ModelEntry& model = find_model(job.ndf == NdfKind::kGGX ? "smooth_ggx" : "smooth_beckmann");
+  for (const auto& [value, name, param] :
+       {std::tuple{job.alpha_x, alpha.size() == 2 ? "--alpha (alpha_x)" : "--alpha", "alpha_x"},
+        std::tuple{job.alpha_y, "--alpha (alpha_y)", "alpha_y"}}) {
+    check_alpha(value, name);
+    for (const ParamSpec& p : model.params) {
+      if (p.name != param) continue;
+      if (!((p.lo_open ? value > p.lo : value >= p.lo) &&
+            (p.hi_open ? value < p.hi : value <= p.hi)))
+        throw InputError(fmt::format("{}: roughness {} is out of range (valid: {}, as model {})",
+                                     name, value, describe_range(p), model.name));
+    }
+  }
 
   job.wi = parse_unit_direction(a.wi, "--wi");
 
@@ -136,17 +154,38 @@ MicrofacetSample<double> draw(const Ndf& ndf, const SampleJob& job, std::uint64_
 
 void run_sample(const SampleArgs& args) {
   const SampleJob job = validate(args);
+  BatchOptions threads{};
+  threads.threads = resolve_threads(args.threads);
+  check_output_file(args.out, "--out");
+  // About 20 bytes per number (17 significant digits, sign, exponent, comma), 8 per row.
+  check_free_space(args.out, job.n * (8 * 20 + 2), "--out");
+  // Blocks of rows drawn in parallel (each row depends only on (seed, i)), written in order.
+  struct Row {
+    MicrofacetSample<double> s;
+    double weight;
+  };
+  constexpr std::uint64_t kBlock = std::uint64_t(1) << 18;
+  std::vector<Row> block;
   write_out_csv(args.out,
                 {"wo_x", "wo_y", "wo_z", "h_x", "h_y", "h_z", "pdf", "weight", "rejected"},
                 [&](io::CsvWriter& w) {
                   with_ndf(job.ndf, job.alpha_x, job.alpha_y, [&](const auto& ndf) {
-                    for (std::uint64_t i = 0; i < job.n; ++i) {
-                      const MicrofacetSample<double> s = draw(ndf, job, i);
-                      const bool rejected = static_cast<bool>(s.rejected);
-                      const double weight = rejected ? 0.0 : sample_weight(ndf, job.wi, s);
-                      w.cell(s.wo.x).cell(s.wo.y).cell(s.wo.z).cell(s.m.x).cell(s.m.y).cell(s.m.z);
-                      w.cell(s.pdf).cell(weight).cell_int(rejected ? 1 : 0);
-                      w.end_row();
+                    for (std::uint64_t b = 0; b < job.n; b += kBlock) {
+                      const std::uint64_t count = std::min(kBlock, job.n - b);
+                      block.resize(count);
+                      for_each_chunk(count, threads, [&](std::size_t begin, std::size_t k) {
+                        for (std::size_t i = begin; i < begin + k; ++i) {
+                          const MicrofacetSample<double> s = draw(ndf, job, b + i);
+                          block[i] = {s, s.rejected ? 0.0 : sample_weight(ndf, job.wi, s)};
+                        }
+                      });
+                      for (const Row& r : block) {
+                        const MicrofacetSample<double>& s = r.s;
+                        w.cell(s.wo.x).cell(s.wo.y).cell(s.wo.z);
+                        w.cell(s.m.x).cell(s.m.y).cell(s.m.z);
+                        w.cell(s.pdf).cell(r.weight).cell_int(s.rejected ? 1 : 0);
+                        w.end_row();
+                      }
                     }
                   });
                 });
@@ -186,24 +225,30 @@ void add_sample_command(CLI::App& app) {
       "sample",
       "Draw N reflected directions from a microfacet sampler, with pdf and weight, as CSV");
   auto a = std::make_shared<SampleArgs>();
-  cmd->add_option("--ndf", a->ndf, "Normal distribution: ggx or beckmann");
-  cmd->add_option("--alpha", a->alpha,
-                  "Roughness 'ax,ay' (tangent, bitangent), or one value for isotropic; each "
-                  "finite and > 0");
-  cmd->add_option("--wi", a->wi,
-                  "Incident direction 'x,y,z' toward the viewer, unit length within 1e-6 (write "
-                  "--wi=-0.6,0,0.8 when x is negative)");
-  cmd->add_option("--sampler", a->sampler, "ndf, vndf, spherical_caps or bounded_caps (see below)");
-  cmd->add_option("--bound", a->bound,
-                  "Bound of the bounded_caps sampler: listing1 (Eto & Tokuyoshi 2023 Listing 1) "
-                  "or exact_isotropic; only with --sampler bounded_caps (default listing1)");
-  cmd->add_option("--n", a->n, "Number of samples, an integer in [1, 1000000000]");
-  cmd->add_option("--seed", a->seed,
-                  "Seed of the counter-based generator, an unsigned 64-bit "
-                  "integer (default 0)");
-  cmd->add_option("--out", a->out,
-                  "Output CSV file; written to a temporary file and renamed into place only "
-                  "when the run succeeded")
+  add_text_option(cmd, "--ndf", a->ndf, "normal distribution: ggx or beckmann", "NAME");
+  add_text_option(cmd, "--alpha", a->alpha,
+                  "roughness 'ax,ay' (tangent, bitangent), or one value for isotropic; each in "
+                  "(0, 100], the range of the smooth_ggx and smooth_beckmann models",
+                  "LIST");
+  add_text_option(cmd, "--wi", a->wi,
+                  "incident direction 'x,y,z' toward the viewer, unit length within 1e-6 (write "
+                  "--wi=-0.6,0,0.8 when x is negative)",
+                  "LIST");
+  add_text_option(cmd, "--sampler", a->sampler,
+                  "ndf, vndf, spherical_caps or bounded_caps (see below)", "NAME");
+  add_text_option(cmd, "--bound", a->bound,
+                  "bound of the bounded_caps sampler: listing1 (Eto & Tokuyoshi 2023 Listing 1) "
+                  "or exact_isotropic; only with --sampler bounded_caps",
+                  "NAME");
+  add_text_option(cmd, "--n", a->n, "number of samples: an integer in [1, 1000000000]", "INT");
+  add_text_option(cmd, "--seed", a->seed,
+                  "seed of the counter-based generator: an integer in [0, "
+                  "18446744073709551615]",
+                  "INT");
+  add_text_option(cmd, "--out", a->out,
+                  "output CSV file; written to a temporary file and renamed into place only "
+                  "when the run succeeded",
+                  "FILE")
       ->required();
   auto m = std::make_shared<ModelSampleArgs>();
   add_model_options(cmd, m->model, m->params,
@@ -211,7 +256,17 @@ void add_sample_command(CLI::App& app) {
                     "below); --param sets its parameters");
   add_batch_options(cmd, m->batch);
   cmd->footer(std::string(kSampleFooter) + kModelSampleFooter + kBatchOptionsFooter);
+  add_text_option(cmd, "--query", m->query,
+                  "with --model: the query columns the model needs besides wi, 'name=value,...' "
+                  "(footprint u, v, dudx, dvdx, dudy, dvdy; light light_cos_half_angle, "
+                  "light_intensity; corners r0_x..r3_z), as eval --model reads them",
+                  "LIST");
   cmd->callback([a, m, cmd] {
+    register_staging_parent(std::filesystem::path(a->out).has_parent_path()
+                                ? std::filesystem::path(a->out).parent_path()
+                                : std::filesystem::path("."));
+    if (cmd->count("--model") > 0 && m->model.empty())
+      throw InputError("--model: '' is empty (valid: a model of glintlab models)");
     if (!m->model.empty()) {
       for (const char* o : {"--ndf", "--alpha", "--sampler", "--bound"}) {
         if (cmd->count(o) > 0) {
@@ -221,7 +276,9 @@ void add_sample_command(CLI::App& app) {
         }
       }
       for (const char* o : {"--wi", "--n"})
-        if (cmd->count(o) == 0) throw InputError(fmt::format("{} is required", o));
+        if (cmd->count(o) == 0)
+          throw InputError(fmt::format("{} is required (valid: see glintlab sample --help)", o));
+      m->query_given = cmd->count("--query") > 0;
       m->wi = a->wi;
       m->n = a->n;
       m->seed = a->seed;
@@ -229,14 +286,20 @@ void add_sample_command(CLI::App& app) {
       run_model_sample(*m);
       return;
     }
-    if (!m->params.empty()) throw InputError("--param: needs --model (see glintlab models)");
+    if (!m->params.empty())
+      throw InputError("--param: needs --model (valid: a model of glintlab models)");
+    if (cmd->count("--query") > 0)
+      throw InputError("--query: needs --model (valid: a model of glintlab models)");
     if (batch_options_given(cmd)) {
-      throw InputError("--isa/--precision/--math/--threads: need --model (see glintlab models)");
+      throw InputError(
+          "--isa/--precision/--math: need --model (valid: a model of glintlab models)");
     }
     // Required without --model (CLI11 cannot express "required unless --model").
     for (const char* o : {"--ndf", "--alpha", "--wi", "--sampler", "--n"})
-      if (cmd->count(o) == 0) throw InputError(fmt::format("{} is required", o));
+      if (cmd->count(o) == 0)
+        throw InputError(fmt::format("{} is required (valid: see glintlab sample --help)", o));
     a->bound_given = cmd->count("--bound") > 0;
+    a->threads = m->batch.threads;
     run_sample(*a);
   });
 }

@@ -5,10 +5,14 @@
 #include <fmt/format.h>
 
 #include <cstdint>
+#include <string>
 #include <type_traits>
+#include <vector>
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/eval_model.h"
+#include "cli/input.h"
 #include "cli/model_options.h"
 #include "cli/out_csv.h"
 #include "core/io/csv.h"
@@ -22,6 +26,54 @@ namespace {
 
 constexpr std::uint64_t kMaxSamples = 1000000000;
 
+// The query row of --wi and --query: every column the model needs besides wi and wo given once,
+// no other; the rest take the layout's defaults; then eval --model's checks.
+QueryRow<double> query_row(const ModelEntry& model, const Vec3<double>& wi, const std::string& text,
+                           bool given) {
+  const std::vector<std::string_view> needed = needed_query_columns(model);
+  const std::string valid = needed.empty()
+                                ? std::string("no --query: the model needs only the directions")
+                                : fmt::format("name=value for each of {}", fmt::join(needed, ", "));
+  QueryRow<double> v{};
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = kQueryLayout[i].default_value;
+  v[query_column_index("wi_x")] = wi.x;
+  v[query_column_index("wi_y")] = wi.y;
+  v[query_column_index("wi_z")] = wi.z;
+  std::vector<bool> set(needed.size(), false);
+  if (given) {
+    for (const std::string& item : split_list(text, "--query", valid)) {
+      const std::size_t eq = item.find('=');
+      const std::string name = item.substr(0, std::min(eq, item.size()));
+      std::size_t k = 0;
+      while (k < needed.size() && needed[k] != name) ++k;
+      if (eq == std::string::npos || k == needed.size()) {
+        throw InputError(
+            fmt::format("--query: '{}' is not a query column model {} needs (valid: {})", item,
+                        model.name, valid));
+      }
+      if (set[k]) throw InputError(fmt::format("--query {}: given twice (valid: {})", name, valid));
+      set[k] = true;
+      std::string_view value(item);
+      value.remove_prefix(eq + 1);
+      while (!value.empty() && value.front() == ' ') value.remove_prefix(1);
+      std::size_t i = 0;
+      while (kQueryLayout[i].name != name) ++i;
+      v[i] = parse_number(value, "--query " + name, "a finite number");
+    }
+  }
+  std::string missing;
+  for (std::size_t k = 0; k < needed.size(); ++k)
+    if (!set[k]) missing += fmt::format("{}{}", missing.empty() ? "" : ", ", needed[k]);
+  if (!missing.empty()) {
+    throw InputError(fmt::format("--query: model {} needs {} ({}; valid: {})", model.name, missing,
+                                 describe_needs(model.needs), valid));
+  }
+  check_query_row(model, v, [](std::string_view column) {
+    return column.empty() ? std::string("--wi/--query") : "--query " + std::string(column);
+  });
+  return v;
+}
+
 }  // namespace
 
 const char* const kModelSampleFooter = R"(
@@ -32,8 +84,11 @@ do not apply. --out has one row per sample i = 0 .. N-1 with the columns
   pdf               its density per steradian under the model's sampler
   weight            value / pdf, the Monte Carlo weight of the cosine-weighted BRDF (0 if rejected)
   rejected          1 if the sampler rejected the sample, else 0
-with the same uniforms u = (counter_uniform(S, i, 0), counter_uniform(S, i, 1)); the other
-query columns (footprint, light) take their defaults.)";
+with the same uniforms u = (counter_uniform(S, i, 0), counter_uniform(S, i, 1)). The query
+columns the model needs besides the directions (the footprint, the light, the corner vectors: see
+eval's WITH --model) are required, as eval --model requires them, in --query
+'name=value,...' (e.g. --query u=0.5,v=0.5,dudx=1e-3,dvdx=0,dudy=0,dvdy=1e-3), and checked as
+eval checks them; a model that needs only the directions takes no --query.)";
 
 void run_model_sample(const ModelSampleArgs& a) {
   const ResolvedModel resolved = resolve_model(a.model, a.params);
@@ -43,14 +98,19 @@ void run_model_sample(const ModelSampleArgs& a) {
   const Vec3<double> wi = parse_unit_direction(a.wi, "--wi");
   const std::uint64_t n = parse_integer(a.n, "--n", 1, kMaxSamples);
   const std::uint64_t seed = parse_integer(a.seed, "--seed", 0, UINT64_MAX);
+  const QueryRow<double> row = query_row(*model, wi, a.query, a.query_given);
+  check_output_file(a.out, "--out");
+  // About 20 bytes per number written (17 significant digits, sign, exponent, comma), and the
+  // samples are held in memory (8 bytes per number) before they are written.
+  check_free_space(a.out, n * (simd::kSampleColumns.size() * 20), "--out");
 
   std::vector<std::vector<double>> out(simd::kSampleColumns.size(), std::vector<double>(n));
   const auto run = [&]<class S>(S) {
-    std::array<S, simd::kQueryColumns.size()> q;
-    for (std::size_t j = 0; j < q.size(); ++j) q[j] = S(kQueryLayout[j].default_value);
-    q[query_column_index("wi_x")] = S(wi.x);
-    q[query_column_index("wi_y")] = S(wi.y);
-    q[query_column_index("wi_z")] = S(wi.z);
+    // The query columns, and the corner vectors as the optional trailing columns for the models
+    // that read them (as eval --model passes them).
+    const bool corners = (model->needs & kNeedsPixelCorners) != 0;
+    std::vector<S> q(corners ? row.size() : simd::kQueryColumns.size());
+    for (std::size_t j = 0; j < q.size(); ++j) q[j] = S(row[j]);
     std::vector<S> res;
     if constexpr (std::is_same_v<S, float>) res.resize(out.size() * n);
     for_each_chunk(n, opts, [&](std::size_t begin, std::size_t count) {

@@ -13,6 +13,8 @@ struct ModelSampleArgs {
   std::string model;
   std::vector<std::string> params;
   std::string wi, n, seed = "0", out;
+  std::string query;  // --query: name=value,... of the query columns the model needs
+  bool query_given = false;
   BatchOptionTexts batch;
 };
 

@@ -1,14 +1,19 @@
-// `glintlab sweep [--out DIR] [--quick] [--models GLOB] [--threads N]`: the stability maps of every
-// registered model × sampler (claim all.stability; experiments/sweeps/).
+// `glintlab sweep [--out DIR] [--budget quick|full] [--models GLOBS] [--threads N]`: the stability
+// maps of every registered model × sampler (claim all.stability; experiments/sweeps/).
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
+#include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "cli/commands.h"
+#include "cli/input.h"
 #include "cli/progress.h"
+#include "core/model_registry.h"
 #include "experiments/sweeps/stability_run.h"
 
 namespace glintlab::cli {
@@ -16,22 +21,26 @@ namespace {
 
 struct SweepOptions {
   std::string out = "out/sweeps";
-  bool quick = false;
-  std::string models;
-  int threads = 0;
+  BudgetOption budget;
+  std::string models = "*";
+  std::string threads;
 };
 
-void run(const SweepOptions& o) {
-  if (o.threads < 0 || o.threads > 1024) {
-    throw InputError(
-        fmt::format("--threads: {} is out of range (valid: an integer in [0, 1024], 0 = all cores)",
-                    o.threads));
-  }
-  const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+void run(const CLI::App* cmd, const SweepOptions& o) {
+  const bool quick = resolve_budget(cmd, o.budget) == "quick";
+  std::vector<std::string> names;
+  for (const ModelEntry& m : registered_models()) names.emplace_back(m.name);
+  // Every glob must name a model; the sweep gets the trimmed list.
+  (void)select_by_globs(o.models, "--models", names,
+                        fmt::format("model names: {}", fmt::join(names, ", ")));
+  const std::vector<std::string> globs = split_list(o.models, "--models", "");
+  const int threads = resolve_threads(o.threads);
+  check_output_dir(o.out, "--out");
+  register_staging_parent(o.out);
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   experiments::SweepRunOptions r;
-  r.budget = o.quick ? verify::Budget::kQuick : verify::Budget::kFull;
-  r.models = o.models;
+  r.budget = quick ? verify::Budget::kQuick : verify::Budget::kFull;
+  r.models = fmt::format("{}", fmt::join(globs, ","));
   std::unique_ptr<Progress> bar;
   std::string current;
   r.progress = [&](const std::string& target, long, long total) {
@@ -44,6 +53,13 @@ void run(const SweepOptions& o) {
   try {
     const auto s = experiments::run_sweeps(o.out, r);
     bar.reset();
+    // Each target's verdict and failure region, as stability.json records them.
+    const nlohmann::json doc = nlohmann::json::parse(std::ifstream(s.json));
+    for (const auto& m : doc.at("models")) {
+      fmt::print("{:<32} {:<16} {}\n",
+                 m.value("model", std::string()) + "/" + m.value("sampler", std::string()),
+                 m.value("verdict", std::string()), m.value("failure_region", std::string()));
+    }
     fmt::print("sweep: {} model×sampler targets; wrote {}\n", s.targets, s.json.string());
   } catch (const experiments::SweepError& e) {
     throw InputError(e.what());
@@ -70,14 +86,15 @@ void add_sweep_command(CLI::App& app) {
   auto o = std::make_shared<SweepOptions>();
   CLI::App* cmd =
       app.add_subcommand("sweep", "Stability maps of every registered model (all.stability)");
-  cmd->add_option("--out", o->out, "Output folder (default out/sweeps)");
-  cmd->add_flag("--quick", o->quick, "Coarser grids and 64 + 64 calls per cell (seconds)");
-  cmd->add_option("--models", o->models,
-                  "Comma-separated globs over model names (default: every registered model)");
-  cmd->add_option("--threads", o->threads,
-                  "Worker threads (0 = all cores; the output is the same)");
+  o->budget.budget = "full";
+  add_text_option(cmd, "--out", o->out, "output folder", "DIR");
+  add_budget_option(cmd, o->budget,
+                    "quick = coarser grids and 64 + 64 calls per cell (seconds), full = finer");
+  add_text_option(cmd, "--models", o->models,
+                  "comma-separated globs over model names (see glintlab models)", "LIST");
+  add_threads_option(cmd, o->threads);
   cmd->footer(kFooter);
-  cmd->callback([o] { run(*o); });
+  cmd->callback([cmd, o] { run(cmd, *o); });
 }
 
 }  // namespace glintlab::cli

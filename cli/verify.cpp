@@ -1,20 +1,23 @@
 // `glintlab verify`: runs the registered checks of the papers' claims, prints a verdict table and
 // writes claims.json, claims.csv and claims.md. Exit 0 when every verdict equals the one recorded
 // in the repository and every negative control was rejected; 1 otherwise; 2 on bad input.
-#include <fnmatch.h>
 #include <fmt/format.h>
+#include <fnmatch.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <memory>
 #include <sstream>
-#include <thread>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/input.h"
 #include "cli/progress.h"
 #include "core/io/atomic_file.h"
 #include "verify/calibration.h"
@@ -25,41 +28,30 @@ namespace glintlab::cli {
 namespace {
 
 struct VerifyOptions {
-  std::string budget = "quick";
+  BudgetOption budget;
   std::string out = "out/verify";
   std::string claims = "*";
-  int threads = 0;
+  std::string threads;
   bool list = false;
   std::string calibrate;  // a check id: run its calibration instead of the suite
-  int runs = 100;
-  double level = 0.05;
+  std::string runs = "100";
+  std::string level = "0.05";
 };
 
-std::vector<std::string> split_globs(const std::string& s) {
-  std::vector<std::string> globs;
-  std::stringstream in(s);
-  for (std::string g; std::getline(in, g, ',');)
-    if (!g.empty()) globs.push_back(g);
-  return globs;
-}
-
 std::vector<const verify::Check*> select_checks(const std::string& pattern) {
-  const auto globs = split_globs(pattern);
-  if (globs.empty()) throw InputError("--claims: empty pattern (e.g. 'smooth.*' or 'eto.*,kneiphof.*')");
+  std::vector<std::string> ids;
+  for (const auto& c : verify::registered_checks()) ids.push_back(c.id);
+  const std::vector<std::string> chosen =
+      select_by_globs(pattern, "--claims", ids, "claim ids (see glintlab verify --list)");
   std::vector<const verify::Check*> out;
   for (const auto& c : verify::registered_checks())
-    for (const auto& g : globs)
-      if (fnmatch(g.c_str(), c.id.c_str(), 0) == 0) {
-        out.push_back(&c);
-        break;
-      }
-  if (out.empty())
-    throw InputError(fmt::format("--claims: '{}' matches no registered claim id (see --list)", pattern));
+    if (std::find(chosen.begin(), chosen.end(), c.id) != chosen.end()) out.push_back(&c);
   return out;
 }
 
 std::string machine_description(int threads) {
-  return fmt::format("{} hardware thread(s), {} used", std::thread::hardware_concurrency(), threads);
+  return fmt::format("{} hardware thread(s), {} used", std::thread::hardware_concurrency(),
+                     threads);
 }
 
 // The check `--calibrate ID` names; it must exist and be statistical.
@@ -67,65 +59,75 @@ const verify::Check& calibration_check(const std::string& id) {
   for (const auto& c : verify::registered_checks())
     if (c.id == id) {
       if (!verify::is_statistical(c))
-        throw InputError(fmt::format(
-            "--calibrate: '{}' is a deterministic check (an error bound, no p-value); calibrate one "
-            "of the statistical checks (see --list)",
-            id));
+        throw InputError(
+            fmt::format("--calibrate: '{}' is a deterministic check (an error bound, no p-value); "
+                        "calibrate one "
+                        "of the statistical checks (see --list)",
+                        id));
       return c;
     }
   throw InputError(fmt::format("--calibrate: '{}' is not a registered claim id (see --list)", id));
 }
 
-// `--calibrate ID`: the check's test on a known-correct input over `runs` derived seeds; exit 0 when
-// the test is valid (calibrated, or conservative: p-values too large, never too small), 1 when it is
-// anti-conservative or returned a non-finite p-value.
-int run_calibration(const verify::Check& check, const VerifyOptions& o, const std::filesystem::path& dir) {
-  Progress progress("calibrate " + check.id, o.runs);
+// `--calibrate ID`: the check's test on a known-correct input over `runs` derived seeds; exit 0
+// when the test is valid (calibrated, or conservative: p-values too large, never too small), 1 when
+// it is anti-conservative or returned a non-finite p-value.
+int run_calibration(const verify::Check& check, std::uint64_t runs, double level,
+                    const std::filesystem::path& dir) {
+  Progress progress("calibrate " + check.id, long(runs));
   const verify::CalibrationResult r =
-      verify::calibrate(check, std::size_t(o.runs), o.level, 0.99, [&] { progress.step(""); });
+      verify::calibrate(check, std::size_t(runs), level, 0.99, [&] { progress.step(""); });
   io::write_file_atomic(dir / fmt::format("calibration-{}.json", check.id), verify::to_json(r));
   fmt::print("{}\n", verify::summary(r));
   return r.valid ? 0 : 1;
 }
 
-int run(const VerifyOptions& o) {
-  if (o.budget != "quick" && o.budget != "full")
-    throw InputError(fmt::format("--budget: '{}' is not one of quick|full", o.budget));
-  if (o.threads < 0 || o.threads > 1024)
-    throw InputError(fmt::format("--threads: {} is out of range (0 = all cores, or 1..1024)", o.threads));
-  if (o.runs < 2 || o.runs > 1000000)
-    throw InputError(fmt::format("--runs: {} is out of range (2..1000000)", o.runs));
-  if (!(o.level > 0 && o.level < 1))
-    throw InputError(fmt::format("--level: {} is out of range (0 < level < 1)", o.level));
-  const verify::Check* to_calibrate = o.calibrate.empty() ? nullptr : &calibration_check(o.calibrate);
+int run(const CLI::App* cmd, const VerifyOptions& o) {
+  const std::string budget_name = resolve_budget(cmd, o.budget);
+  const int threads = resolve_threads(o.threads);
+  const std::uint64_t runs = integer_option(o.runs, "--runs", 2, 1000000);
+  const double level = number_option(o.level, "--level", 0, 1, true, true);
+  if (cmd->count("--calibrate") > 0 && o.calibrate.empty())
+    throw InputError(
+        "--calibrate: '' is not a claim id (valid: a statistical check's id, see --list)");
+  const verify::Check* to_calibrate =
+      o.calibrate.empty() ? nullptr : &calibration_check(o.calibrate);
   const auto selected = select_checks(o.claims);
   if (o.list) {
     for (const auto* c : selected)
-      fmt::print("{:<30} {:<16} {} — {}{}\n", c->id, verify::to_string(c->expected), c->paper, c->source,
-                 c->expected_full ? fmt::format(" (full budget: {})", verify::to_string(*c->expected_full)) : "");
+      fmt::print(
+          "{:<30} {:<16} {} — {}{}\n", c->id, verify::to_string(c->expected), c->paper, c->source,
+          c->expected_full ? fmt::format(" (full budget: {})", verify::to_string(*c->expected_full))
+                           : "");
     return 0;
   }
-  const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-  const verify::Budget budget = o.budget == "full" ? verify::Budget::kFull : verify::Budget::kQuick;
+  const verify::Budget budget =
+      budget_name == "full" ? verify::Budget::kFull : verify::Budget::kQuick;
 
+  check_output_dir(o.out, "--out");
   std::error_code ec;
   std::filesystem::create_directories(o.out, ec);
-  if (ec) throw InputError(fmt::format("--out: cannot create directory '{}': {}", o.out, ec.message()));
+  if (ec)
+    throw InputError(fmt::format("--out: cannot create directory '{}': {}", o.out, ec.message()));
+  register_staging_parent(o.out);
 
-  if (to_calibrate) return run_calibration(*to_calibrate, o, o.out);
+  if (to_calibrate) return run_calibration(*to_calibrate, runs, level, o.out);
 
   std::vector<verify::RunRecord> records;
-  Progress progress("verify", long(selected.size()));
-  for (const auto* c : selected) {
-    const auto t0 = std::chrono::steady_clock::now();
-    verify::CheckResult r = c->run(budget);
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    records.push_back({c, std::move(r), s, budget});
-    progress.step(c->id);
+  {
+    // Scoped so that its line is ended before the table is printed.
+    Progress progress("verify", long(selected.size()));
+    for (const auto* c : selected) {
+      const auto t0 = std::chrono::steady_clock::now();
+      verify::CheckResult r = c->run(budget);
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      records.push_back({c, std::move(r), s, budget});
+      progress.step(c->id);
+    }
   }
   verify::adjust_for_suite(records);
-  const verify::RunInfo info{o.budget, threads, machine_description(threads)};
+  const verify::RunInfo info{budget_name, threads, machine_description(threads)};
   const std::filesystem::path dir(o.out);
   io::write_file_atomic(dir / "claims.json", verify::to_json(records, info));
   io::write_file_atomic(dir / "claims.csv", verify::to_csv(records));
@@ -138,16 +140,18 @@ int run(const VerifyOptions& o) {
     const auto& x = r.result;
     const bool ok = verify::as_expected(r);
     unexpected += ok ? 0 : 1;
-    fmt::print("{:<30} {:<16} {:>10.3g} {:>10} {:>10}  {}{}\n", r.check->id, verify::to_string(x.verdict),
-               x.value, x.p_value ? fmt::format("{:.3g}", *x.p_value) : "—",
+    fmt::print("{:<30} {:<16} {:>10.3g} {:>10} {:>10}  {}{}\n", r.check->id,
+               verify::to_string(x.verdict), x.value,
+               x.p_value ? fmt::format("{:.3g}", *x.p_value) : "—",
                x.control_p_value ? fmt::format("{:.3g}", *x.control_p_value) : "—",
                x.control_rejected ? "rejected" : "NOT REJECTED (check is broken)",
                x.verdict == r.check->expected_for(budget)
                    ? ""
-                   : fmt::format("  [recorded verdict: {}]", verify::to_string(r.check->expected_for(budget))));
+                   : fmt::format("  [recorded verdict: {}]",
+                                 verify::to_string(r.check->expected_for(budget))));
   }
-  fmt::print("{} claims, budget {}, {} thread(s); results in {}/claims.{{json,csv,md}}\n", records.size(),
-             o.budget, threads, o.out);
+  fmt::print("{} claims, budget {}, {} thread(s); results in {}/claims.{{json,csv,md}}\n",
+             records.size(), budget_name, threads, o.out);
   if (unexpected) {
     fmt::print(stderr,
                "glintlab: error: {} claim(s) differ from their recorded verdict or did not reject "
@@ -170,25 +174,27 @@ void add_verify_command(CLI::App& app) {
       "wrong input) was rejected. Writes <out>/claims.json, claims.csv and claims.md. Exit 0 when "
       "every verdict equals the verdict recorded in the repository, 1 when one differs, 2 on bad "
       "input.");
-  sub->add_option("--claims", opts->claims, "comma-separated globs over claim ids, e.g. 'eto.*'")
-      ->capture_default_str();
-  sub->add_option("--budget", opts->budget, "quick (CI: minutes) or full (>= 1e7 samples per chi-square)")
-      ->capture_default_str();
-  sub->add_option("--out", opts->out, "output directory")->capture_default_str();
-  sub->add_option("--threads", opts->threads, "worker threads (0 = all cores); results do not depend on it")
-      ->capture_default_str();
-  sub->add_flag("--list", opts->list, "list the matching claims with their recorded verdicts and exit");
-  sub->add_option("--calibrate", opts->calibrate,
-                  "a statistical check's id: run its test on a known-correct input over --runs "
-                  "derived seeds, test the p-values for uniformity (KS) and print the measured "
-                  "false-positive rate at --level with its 99 % interval; writes "
-                  "<out>/calibration-ID.json; exit 0 when the test is calibrated or conservative, 1 "
-                  "when anti-conservative (too many small p-values)");
-  sub->add_option("--runs", opts->runs, "calibration runs (2..1000000)")->capture_default_str();
-  sub->add_option("--level", opts->level, "nominal level for the calibration's false-positive rate")
-      ->capture_default_str();
-  sub->callback([opts] {
-    const int rc = run(*opts);
+  add_text_option(sub, "--claims", opts->claims,
+                  "comma-separated globs over claim ids (see --list), e.g. 'eto.*'", "LIST");
+  add_budget_option(sub, opts->budget, "quick = CI, minutes; full = >= 1e7 samples per chi-square");
+  add_text_option(sub, "--out", opts->out, "output folder", "DIR");
+  add_threads_option(sub, opts->threads);
+  add_bool_flag(sub, "--list", opts->list,
+                "list the matching claims with their recorded verdicts and exit");
+  add_text_option(
+      sub, "--calibrate", opts->calibrate,
+      "a statistical check's id: run its test on a known-correct input over --runs "
+      "derived seeds, test the p-values for uniformity (KS) and print the measured "
+      "false-positive rate at --level with its 99 % interval; writes "
+      "<out>/calibration-ID.json; exit 0 when the test is calibrated or conservative, 1 "
+      "when anti-conservative (too many small p-values)",
+      "ID");
+  add_text_option(sub, "--runs", opts->runs, "calibration runs: an integer in [2, 1000000]", "INT");
+  add_text_option(sub, "--level", opts->level,
+                  "nominal level for the calibration's false-positive rate: a number in (0, 1)",
+                  "NUMBER");
+  sub->callback([sub, opts] {
+    const int rc = run(sub, *opts);
     if (rc != 0) throw CLI::RuntimeError(rc);
   });
 }

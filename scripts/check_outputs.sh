@@ -89,7 +89,7 @@ run_commands() {  # binary, output dir
     done
   done
   if [[ $skip != *" sweep "* ]]; then
-    "$bin" sweep --quick --threads "$threads" --out "$dir/sweep" >"$dir/sweep.log" 2>&1
+    "$bin" sweep --budget quick --threads "$threads" --out "$dir/sweep" >"$dir/sweep.log" 2>&1
   fi
   if [[ $skip != *" verify "* ]]; then
     # Exit 1 (a verdict differs from the recorded one) is an output to compare, not a failure.
@@ -99,7 +99,7 @@ run_commands() {  # binary, output dir
   if [[ $skip != *" figures "* ]]; then
     local id
     for id in $("$bin" figure --list | awk '{print $1}'); do
-      "$bin" figure "$id" --quick --threads "$threads" --out "$dir/figures" >"$dir/figure.$id.log" 2>&1
+      "$bin" figure "$id" --budget quick --threads "$threads" --out "$dir/figures" >"$dir/figure.$id.log" 2>&1
     done
   fi
   rm -f "$dir"/*.log  # progress and timings

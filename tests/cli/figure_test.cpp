@@ -42,7 +42,8 @@ void expect_png(const fs::path& p) {
 }
 
 TEST_F(FigureTest, Fig4QuickWritesExrPngAndCsv) {
-  const RunResult r = run({"figure", "eto2023-fig4", "--quick", "--out", "out", "--threads", "2"});
+  const RunResult r =
+      run({"figure", "eto2023-fig4", "--budget", "quick", "--out", "out", "--threads", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/eto2023-fig4");
   for (const char* a : {"a0.2", "a0.8"}) {
@@ -72,8 +73,8 @@ TEST_F(FigureTest, Fig4QuickWritesExrPngAndCsv) {
 }
 
 TEST_F(FigureTest, RmseSppQuickWritesExrPngAndCsv) {
-  const RunResult r =
-      run({"figure", "eto2023-fig4-rmse-spp", "--quick", "--out", "out", "--threads", "2"});
+  const RunResult r = run(
+      {"figure", "eto2023-fig4-rmse-spp", "--budget", "quick", "--out", "out", "--threads", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/eto2023-fig4-rmse-spp");
   expect_exr(d / "a0.2_reference.exr", "1024");
@@ -105,7 +106,7 @@ TEST_F(FigureTest, BadInputGetsOneLineAndNoOutput) {
                      {"unknown figure id 'fig99'", "eto2023-fig4"}, {});
   expect_input_error(run({"figure"}), {"figure id is required"}, {});
   write_text(path("blocker"), "x");
-  expect_input_error(run({"figure", "eto2023-fig4", "--quick", "--out", "blocker/sub"}),
+  expect_input_error(run({"figure", "eto2023-fig4", "--budget", "quick", "--out", "blocker/sub"}),
                      {"--out", "blocker/sub"}, {"blocker"});
   expect_input_error(run({"figure", "eto2023-fig4", "--threads", "-1"}), {"--threads", "valid"},
                      {"blocker"});
@@ -121,7 +122,8 @@ TEST_F(FigureTest, EnvironmentMapFromExr) {
     return im;
   };
   io::write_exr(path("sky.exr"), env_image(16, 8, {"R", "G", "B"}, 0.5), {});
-  const RunResult r = run({"figure", "eto2023-fig4", "--quick", "--env", "sky.exr", "--out", "out"});
+  const RunResult r =
+      run({"figure", "eto2023-fig4", "--budget", "quick", "--env", "sky.exr", "--out", "out"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const io::ExrFile f = io::read_exr(path("out/eto2023-fig4/a0.8_reference.exr"));
   EXPECT_NE(f.attributes.at("glintlab_environment").find("sky.exr (16x8)"), std::string::npos);
@@ -133,10 +135,12 @@ TEST_F(FigureTest, EnvironmentMapFromExr) {
   io::write_exr(path("gray.exr"), env_image(16, 8, {"Y"}, 1), {});
   io::write_exr(path("negative.exr"), env_image(16, 8, {"R", "G", "B"}, -1), {});
   write_text(path("garbage.exr"), "not an exr file");
-  const std::set<std::string> files = {"sky.exr", "square.exr", "gray.exr", "negative.exr", "garbage.exr"};
+  const std::set<std::string> files = {"sky.exr", "square.exr", "gray.exr", "negative.exr",
+                                       "garbage.exr"};
   auto bad = [&](const std::string& file, const std::vector<std::string>& needles) {
-    expect_input_error(run({"figure", "eto2023-fig4", "--quick", "--env", file, "--out", "out"}),
-                       needles, files);
+    expect_input_error(
+        run({"figure", "eto2023-fig4", "--budget", "quick", "--env", file, "--out", "out"}),
+        needles, files);
   };
   bad("missing.exr", {"--env", "missing.exr"});
   bad("garbage.exr", {"--env", "garbage.exr"});

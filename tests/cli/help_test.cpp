@@ -77,5 +77,48 @@ TEST_F(HelpTest, HelpWinsOverOtherArguments) {
   EXPECT_EQ(unexpected_files(work(), {}), std::vector<std::string>{});
 }
 
+// One vocabulary: every subcommand's --help shows a default as TYPE=DEFAULT in the option column
+// (never again in the description), --threads wherever work is parallel, and --budget quick|full
+// wherever there are budgets.
+TEST_F(HelpTest, DefaultsThreadsAndBudgetsShownTheSameWayEverywhere) {
+  struct Sub {
+    std::string name;
+    bool threads, budget;
+  };
+  const std::vector<Sub> subs = {
+      {"eval", true, false},  {"sample", true, false},  {"verify", true, true},
+      {"figure", true, true}, {"models", false, false}, {"sweep", true, true},
+      {"report", true, true}, {"ltc-fit", true, false}, {"chermain-dictionary", true, false}};
+  for (const Sub& s : subs) {
+    const RunResult r = run({s.name, "--help"});
+    ASSERT_EQ(r.exit_code, 0) << s.name;
+    bool threads = false, budget = false;
+    for (const std::string& line : lines_of(r.out)) {
+      if (line.rfind("  --", 0) != 0) continue;  // option lines only, not the footers
+      EXPECT_EQ(line.find("(default"), std::string::npos) << s.name << ": " << line;
+      EXPECT_EQ(line.find("default "), std::string::npos) << s.name << ": " << line;
+      if (line.rfind("  --threads ", 0) == 0) {
+        threads = true;
+        EXPECT_NE(line.find("INT=0"), std::string::npos) << s.name << ": " << line;
+      }
+      if (line.rfind("  --budget ", 0) == 0) {
+        budget = true;
+        EXPECT_NE(line.find("NAME="), std::string::npos) << s.name << ": " << line;
+        EXPECT_NE(line.find("quick or full"), std::string::npos) << s.name << ": " << line;
+      }
+    }
+    EXPECT_EQ(threads, s.threads) << s.name << " --threads";
+    EXPECT_EQ(budget, s.budget) << s.name << " --budget";
+  }
+}
+
+// The old flag --quick still works, as --budget quick, with one note naming the new spelling.
+TEST_F(HelpTest, QuickIsAnAliasOfBudgetQuickWithANote) {
+  const RunResult r = run({"verify", "--quick", "--list", "--claims", "eto.bound-is-infimum"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "glintlab: note: --quick is spelled --budget quick\n");
+  EXPECT_NE(r.out.find("eto.bound-is-infimum"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace glintlab::cli_test

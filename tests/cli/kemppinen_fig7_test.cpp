@@ -17,7 +17,7 @@ class KemppinenFig7Test : public CliTest {};
 
 TEST_F(KemppinenFig7Test, ConvergenceUnderEnvironmentLight) {
   const std::string id = "kemppinen2025-fig7";
-  const RunResult r = run({"figure", id, "--quick", "--out", "out", "--threads", "2"});
+  const RunResult r = run({"figure", id, "--budget", "quick", "--out", "out", "--threads", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/" + id);
   for (const char* ndf : {"ggx", "beckmann"}) {

@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 class KemppinenFigureTest : public CliTest {
  protected:
   fs::path run_quick(const std::string& id) const {
-    const RunResult r = run({"figure", id, "--quick", "--out", "out", "--threads", "2"});
+    const RunResult r = run({"figure", id, "--budget", "quick", "--out", "out", "--threads", "2"});
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return path("out/" + id);
   }

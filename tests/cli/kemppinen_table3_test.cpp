@@ -22,7 +22,7 @@ bool png(const fs::path& p) {
 }
 
 TEST_F(KemppinenTimingTest, Table3WithoutJsonMeasuresInProcess) {
-  const RunResult r = run({"figure", "kemppinen2025-table3", "--quick", "--out", "out"});
+  const RunResult r = run({"figure", "kemppinen2025-table3", "--budget", "quick", "--out", "out"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const io::CsvTable t = io::read_csv(path("out/kemppinen2025-table3/table3.csv"));
   ASSERT_EQ(t.num_rows(), 8u);  // 2 NDFs × 2 planes × 2 roughnesses
@@ -52,7 +52,8 @@ TEST_F(KemppinenTimingTest, FiguresReadTheBenchmarkJson) {
   "iterations": 10, "real_time": 900, "cpu_time": 900, "time_unit": "ns",
   "items_per_second": 2.0e6, "err_max": 0.5, "err_rms": 0.125, "err_p99": 0.25, "err_n": 1024,
   "label": "x"}]})");
-  ASSERT_EQ(run({"figure", "kemppinen2025-table3", "--quick", "--out", "out"}).exit_code, 0);
+  ASSERT_EQ(run({"figure", "kemppinen2025-table3", "--budget", "quick", "--out", "out"}).exit_code,
+            0);
   const io::CsvTable t = io::read_csv(path("out/kemppinen2025-table3/table3.csv"));
   int from_json = 0;
   for (std::size_t i = 0; i < t.num_rows(); ++i) {
@@ -64,7 +65,8 @@ TEST_F(KemppinenTimingTest, FiguresReadTheBenchmarkJson) {
   }
   EXPECT_EQ(from_json, 1);
 
-  const RunResult r = run({"figure", "kemppinen2025-speed-accuracy", "--quick", "--out", "out"});
+  const RunResult r =
+      run({"figure", "kemppinen2025-speed-accuracy", "--budget", "quick", "--out", "out"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/kemppinen2025-speed-accuracy");
   const io::CsvTable s = io::read_csv(d / "speed_accuracy.csv");
@@ -93,7 +95,8 @@ TEST_F(KemppinenTimingTest, FiguresReadTheBenchmarkJson) {
 // The constant-time claim's picture: Algorithm 1 visits 2k² cell pairs at every footprint, the
 // brute force more as the footprint grows; far-field error of k = 16 no worse than k = 1.
 TEST_F(KemppinenTimingTest, SpeedAccuracyWithoutJson) {
-  ASSERT_EQ(run({"figure", "kemppinen2025-speed-accuracy", "--quick", "--out", "out"}).exit_code,
+  ASSERT_EQ(run({"figure", "kemppinen2025-speed-accuracy", "--budget", "quick", "--out", "out"})
+                .exit_code,
             0);
   const fs::path d = path("out/kemppinen2025-speed-accuracy");
   const io::CsvTable c = io::read_csv(d / "cost_vs_footprint.csv");

@@ -24,7 +24,7 @@ void expect_png(const fs::path& p) {
 }
 
 TEST_F(KneiphofFigureTest, Fig6) {
-  const RunResult r = run({"figure", "kneiphof2024-fig6", "--quick", "--out", "out"});
+  const RunResult r = run({"figure", "kneiphof2024-fig6", "--budget", "quick", "--out", "out"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/kneiphof2024-fig6");
   expect_png(d / "fig6.png");
@@ -42,7 +42,7 @@ TEST_F(KneiphofFigureTest, Fig6) {
 }
 
 TEST_F(KneiphofFigureTest, Fig9) {
-  const RunResult r = run({"figure", "kneiphof2024-fig9", "--quick", "--out", "out"});
+  const RunResult r = run({"figure", "kneiphof2024-fig9", "--budget", "quick", "--out", "out"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/kneiphof2024-fig9");
   expect_png(d / "fig9.png");
@@ -59,7 +59,7 @@ TEST_F(KneiphofFigureTest, Fig9) {
 }
 
 TEST_F(KneiphofFigureTest, Fig10) {
-  const RunResult r = run({"figure", "kneiphof2024-fig10", "--quick", "--out", "out"});
+  const RunResult r = run({"figure", "kneiphof2024-fig10", "--budget", "quick", "--out", "out"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/kneiphof2024-fig10");
   expect_png(d / "fig10.png");
@@ -78,7 +78,7 @@ TEST_F(KneiphofFigureTest, Fig10) {
 }
 
 TEST_F(KneiphofFigureTest, Table1WithoutBenchmarkJson) {
-  const RunResult r = run({"figure", "kneiphof2024-table1", "--quick", "--out", "out"});
+  const RunResult r = run({"figure", "kneiphof2024-table1", "--budget", "quick", "--out", "out"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const io::CsvTable t = io::read_csv(path("out/kneiphof2024-table1/table1.csv"));
   ASSERT_EQ(t.num_rows(), 3u);

@@ -83,7 +83,8 @@ void expect_png(const fs::path& p) {
 }
 
 TEST_F(PodeeCliTest, Table1Quick) {
-  const RunResult r = run({"figure", "podee-table1", "--quick", "--out", "out", "--threads", "2"});
+  const RunResult r =
+      run({"figure", "podee-table1", "--budget", "quick", "--out", "out", "--threads", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/podee-table1");
   for (const char* m : {"reference64", "converged", "centre", "lean", "podee"})
@@ -97,13 +98,14 @@ TEST_F(PodeeCliTest, Table1Quick) {
 }
 
 TEST_F(PodeeCliTest, DistanceAndFlickerQuick) {
-  RunResult r = run({"figure", "podee-fig4-distance", "--quick", "--out", "out", "--threads", "2"});
+  RunResult r =
+      run({"figure", "podee-fig4-distance", "--budget", "quick", "--out", "out", "--threads", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/podee-fig4-distance");
   expect_exr(d / "d10_podee.exr", 48);
   expect_png(d / "error_vs_distance.png");
   EXPECT_EQ(io::read_csv(d / "error_vs_distance.csv").num_rows(), 12u);
-  r = run({"figure", "podee-fig4-flicker", "--quick", "--out", "out", "--threads", "2"});
+  r = run({"figure", "podee-fig4-flicker", "--budget", "quick", "--out", "out", "--threads", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path f = path("out/podee-fig4-flicker");
   expect_exr(f / "d4_podee_temporal_sd.exr", 48);

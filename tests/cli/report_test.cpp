@@ -53,7 +53,7 @@ TEST_F(ReportTest, OutThatIsTheWorkingFolderIsAnError) {
 
 TEST_F(ReportTest, BadOptionsAreErrors) {
   expect_input_error(run({"report", "--out", "r", "--budget", "huge"}),
-                     {"--budget", "huge", "quick|full"}, {});
+                     {"--budget", "huge", "valid: quick, full"}, {});
   expect_input_error(run({"report", "--out", "r", "--skip", "claims,pictures"}),
                      {"--skip", "pictures", "claims, figures, bench, stability"}, {});
   expect_input_error(run({"report", "--out", "r", "--figures", "nope*"}),

@@ -14,10 +14,13 @@ namespace fs = std::filesystem;
 using SweepTest = CliTest;
 
 TEST_F(SweepTest, QuickSweepWritesMapsAndIndex) {
-  const RunResult r =
-      run({"sweep", "--quick", "--models", "smooth_beckmann", "--out", "s", "--threads", "2"});
+  const RunResult r = run({"sweep", "--budget", "quick", "--models", "smooth_beckmann", "--out",
+                           "s", "--threads", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("2 model×sampler targets"), std::string::npos) << r.out;
+  // One line per target with its verdict (as stability.json records it).
+  EXPECT_NE(r.out.find("smooth_beckmann/ndf"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("smooth_beckmann/vndf"), std::string::npos) << r.out;
   EXPECT_TRUE(r.err.empty()) << r.err;  // progress only on a terminal
   const auto doc = nlohmann::json::parse(read_text(path("s/stability.json")));
   EXPECT_EQ(doc["budget"], "quick");
@@ -26,6 +29,7 @@ TEST_F(SweepTest, QuickSweepWritesMapsAndIndex) {
   for (const auto& m : doc["models"]) {
     EXPECT_EQ(m["model"], "smooth_beckmann");
     EXPECT_TRUE(m["failure_region"].is_string());
+    EXPECT_NE(r.out.find(m["verdict"].get<std::string>()), std::string::npos) << r.out;
     EXPECT_EQ(m["maps"].size(), 2u * 5u);  // alpha, anisotropy × nan, inf, negative, gain, var
     for (const auto& map : m["maps"]) {
       for (const char* k : {"quantity", "png", "exr", "csv"}) EXPECT_TRUE(map.contains(k));
@@ -39,10 +43,12 @@ TEST_F(SweepTest, QuickSweepWritesMapsAndIndex) {
 
 TEST_F(SweepTest, OutputDoesNotDependOnThreads) {
   ASSERT_EQ(
-      run({"sweep", "--quick", "--models", "smooth_ggx", "--out", "a", "--threads", "1"}).exit_code,
+      run({"sweep", "--budget", "quick", "--models", "smooth_ggx", "--out", "a", "--threads", "1"})
+          .exit_code,
       0);
   ASSERT_EQ(
-      run({"sweep", "--quick", "--models", "smooth_ggx", "--out", "b", "--threads", "2"}).exit_code,
+      run({"sweep", "--budget", "quick", "--models", "smooth_ggx", "--out", "b", "--threads", "2"})
+          .exit_code,
       0);
   EXPECT_EQ(read_text(path("a/stability.json")), read_text(path("b/stability.json")));
   for (const char* f : {"smooth_ggx/ndf/alpha.csv", "smooth_ggx/bounded_caps/anisotropy.csv"})
@@ -52,18 +58,18 @@ TEST_F(SweepTest, OutputDoesNotDependOnThreads) {
 TEST_F(SweepTest, HelpDocumentsTheOutputs) {
   const RunResult r = run({"sweep", "--help"});
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* n : {"--out", "--quick", "--models", "--threads", "stability.json", "89.999",
-                        "p_*", "Var(w)/E(w)^2", "float"})
+  for (const char* n : {"--out", "--budget", "quick", "--models", "--threads", "stability.json",
+                        "89.999", "p_*", "Var(w)/E(w)^2", "float"})
     EXPECT_NE(r.out.find(n), std::string::npos) << "help lacks " << n;
 }
 
 TEST_F(SweepTest, BadInputIsOneLine) {
-  expect_input_error(run({"sweep", "--quick", "--models", "nope*", "--out", "s"}),
+  expect_input_error(run({"sweep", "--budget", "quick", "--models", "nope*", "--out", "s"}),
                      {"--models", "nope*", "smooth_ggx"}, {});
-  expect_input_error(run({"sweep", "--quick", "--threads", "-1", "--out", "s"}),
+  expect_input_error(run({"sweep", "--budget", "quick", "--threads", "-1", "--out", "s"}),
                      {"--threads", "[0, 1024]"}, {});
   write_text(path("file"), "x");
-  expect_input_error(run({"sweep", "--quick", "--models", "smooth_ggx", "--out", "file"}),
+  expect_input_error(run({"sweep", "--budget", "quick", "--models", "smooth_ggx", "--out", "file"}),
                      {"--out", "file"}, {"file"});
 }
 

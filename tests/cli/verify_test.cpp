@@ -49,16 +49,16 @@ TEST_F(VerifyTest, CalibrateWritesItsJsonAndExitsZeroForAValidTest) {
 }
 
 TEST_F(VerifyTest, BadInputLeavesNothingBehind) {
-  expect_input_error(run({"verify", "--budget", "huge", "--out", "o"}), {"--budget", "quick|full"}, {});
+  expect_input_error(run({"verify", "--budget", "huge", "--out", "o"}), {"--budget", "valid: quick, full"}, {});
   expect_input_error(run({"verify", "--claims", "nosuch.*", "--out", "o"}), {"--claims", "nosuch.*"}, {});
-  expect_input_error(run({"verify", "--threads", "-3", "--out", "o"}), {"--threads", "1..1024"}, {});
+  expect_input_error(run({"verify", "--threads", "-3", "--out", "o"}), {"--threads", "[0, 1024]"}, {});
   expect_input_error(run({"verify", "--calibrate", "nosuch.claim", "--out", "o"}),
                      {"--calibrate", "not a registered claim id"}, {});
   expect_input_error(run({"verify", "--calibrate", "smooth.projected-area", "--out", "o"}),
                      {"--calibrate", "deterministic"}, {});
   expect_input_error(run({"verify", "--calibrate", "smooth.projected-area", "--runs", "1", "--out", "o"}),
-                     {"--runs", "2..1000000"}, {});
-  expect_input_error(run({"verify", "--level", "1.5", "--out", "o"}), {"--level", "0 < level < 1"}, {});
+                     {"--runs", "[2, 1000000]"}, {});
+  expect_input_error(run({"verify", "--level", "1.5", "--out", "o"}), {"--level", "(0, 1)"}, {});
 }
 
 }  // namespace
