@@ -668,7 +668,7 @@ def figure_chart_for(fid, name):
 def write_figures(doc, figures, part, root, plots_tmp, plots_rel, made, manifest):
     doc.heading(2, "Figures", "figures")
     doc.para(f"{len(figures)} figures. Budget {part.get('budget', '?')} "
-             f"({'quick: --quick images and sample counts' if part.get('budget') == 'quick' else 'full'}), "
+             f"({'quick: --budget quick images and sample counts' if part.get('budget') == 'quick' else 'full'}), "
              f"{machine_text(part.get('machine'))}. Each rendered PNG is a tonemapped preview of "
              "the EXR beside it (32-bit float, linear radiance), folded under its figure and "
              "shown enlarged with visible pixels; the CSVs hold every number plotted, and the "

@@ -277,15 +277,16 @@ void run_series(const FigureContext& ctx) {
 FigureEntry eto2023_fig4_entry() {
   return {kFig4Id, "Eto & Tokuyoshi 2023", "Fig. 4",
           "rough orbs alpha 0.2, 0.8: spherical caps vs bounded caps at 16 spp, RMSE against a "
-          "converged reference (4096 spp; 1024 with --quick)",
+          "converged reference (4096 spp; 1024 at --budget quick)",
           run_fig4};
 }
 
 FigureEntry eto2023_rmse_spp_entry() {
-  return {kSeriesId, "Eto & Tokuyoshi 2023", "Fig. 4 (RMSE vs spp)",
-          "RMSE vs spp (log-log) of the Fig. 4 orbs, spherical vs bounded caps, spp 1..256 "
-          "(1..32 with --quick), against a converged reference (4096 spp; 1024 with --quick)",
-          run_series};
+  return {
+      kSeriesId, "Eto & Tokuyoshi 2023", "Fig. 4 (RMSE vs spp)",
+      "RMSE vs spp (log-log) of the Fig. 4 orbs, spherical vs bounded caps, spp 1..256 "
+      "(1..32 at --budget quick), against a converged reference (4096 spp; 1024 at --budget quick)",
+      run_series};
 }
 
 }  // namespace glintlab::experiments
