@@ -990,9 +990,10 @@ std::string describe_counts(const ConstantMeasured& m) {
 
 std::string describe_constant(const ConstantMeasured& m) {
   return fmt::format(
-      "cells visited per evaluation over {} settings (footprints {:g} … {:g} level-0 cells, LOD up "
-      "to {:.3g}, anisotropy {:g} … {:g}): {}; the largest growth over the sweep within one k is "
-      "×{:.3g}. Time per evaluation is measured by the Google Benchmark "
+      "cells visited per evaluation (Algorithm 1's result.points) over {} settings (footprints "
+      "{:g} … {:g} level-0 cells, LOD up to {:.3g}, anisotropy {:g} … {:g}): {}; the largest "
+      "growth over the sweep within one k is ×{:.3g}. Time per evaluation is measured by the "
+      "Google Benchmark "
       "experiments/bench/kemppinen2025_bench.cpp (BM_KemppinenEval: k × footprint), not asserted "
       "here",
       m.settings, kConstantCells.front(), kConstantCells.back(), m.lod_max, kConstantAniso.front(),
