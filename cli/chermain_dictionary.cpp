@@ -16,7 +16,7 @@ namespace glintlab::cli {
 void add_chermain_dictionary_command(CLI::App& app) {
   struct Options {
     std::string out;
-    ChermainDictionaryConfig config;
+    chermain2021::DictionaryConfig config;
   };
   auto opt = std::make_shared<Options>();
   Options& o = *opt;
@@ -45,8 +45,8 @@ void add_chermain_dictionary_command(CLI::App& app) {
     } catch (const ParameterError& e) {
       throw InputError(fmt::format("chermain-dictionary: {}", e.what()));
     }
-    const ChermainDictionary d(c.config);
-    write_chermain_dictionary_exr(c.out, d);
+    const chermain2021::Dictionary d(c.config);
+    chermain2021::write_chermain_dictionary_exr(c.out, d);
     fmt::print("wrote {} ({} distributions x {} levels x {} texels, seed {})\n", c.out,
                c.config.distributions, c.config.levels, c.config.resolution, c.config.seed);
   });

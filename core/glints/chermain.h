@@ -42,26 +42,26 @@
 #include "core/model.h"
 #include "core/ndf/microfacet.h"
 
-namespace glintlab {
+namespace glintlab::chermain2021 {
 
 // Which screen-space derivative sets the GGAA kernel (2021 Sec. 6.1).
-enum ChermainKernel { kChermainNoGgaa = 0, kChermainHalfSlope = 1, kChermainProjectedHalf = 2 };
+enum Kernel { kNoGgaa = 0, kHalfSlope = 1, kProjectedHalf = 2 };
 
 // The 2×2 matrix M of 2021 Eq. 18, stored with its inverse and determinant:
 // M = (1/σ_o) [[σ_x √(1−ρ²), ρ σ_x], [0, σ_y]], so that M Σ_o Mᵀ = Σ (Eq. 16, 17).
 // `with_rho = false` gives the 2020 form diag(σ_x, σ_y)/σ_o (ρ ignored), the control of
 // chermain.correlation. Uniform over a batch: host doubles.
-struct ChermainMatrix {
+struct Matrix {
   double m00, m01, m10, m11;
   double i00, i01, i10, i11;
   double det;
 };
 
-inline ChermainMatrix chermain_matrix(double sigma_x, double sigma_y, double rho, double sigma_o,
-                                      bool with_rho = true) {
+inline Matrix matrix(double sigma_x, double sigma_y, double rho, double sigma_o,
+                     bool with_rho = true) {
   const double r = with_rho ? rho : 0.0;
   const double c = std::sqrt(1 - r * r);
-  ChermainMatrix M{};
+  Matrix M{};
   M.m00 = sigma_x * c / sigma_o, M.m01 = r * sigma_x / sigma_o;
   M.m10 = 0, M.m11 = sigma_y / sigma_o;
   M.det = M.m00 * M.m11;
@@ -71,11 +71,11 @@ inline ChermainMatrix chermain_matrix(double sigma_x, double sigma_y, double rho
 }
 
 // The model's parameters (uniform over a batch).
-struct ChermainSdfParams {
-  const ChermainDictionary* dictionary;
+struct SdfParams {
+  const Dictionary* dictionary;
   double sigma_x, sigma_y, rho;  // Σ of Eq. 16 (slope standard deviations and correlation)
   double log2_density;           // log2 of microfacets per unit uv area
-  int kernel;                    // ChermainKernel
+  int kernel;                    // Kernel
   double s_k;                    // kernel scale s_K (Eq. 19)
   std::uint64_t seed;            // of the per-cell draws
   bool with_rho = true;          // false: the 2020 matrix (control)
@@ -84,47 +84,47 @@ struct ChermainSdfParams {
 
 // What one patch-SDF evaluation used (the model's intermediates).
 template <class T>
-struct ChermainSdfInfoT {
+struct SdfInfoT {
   T lod = T(0);           // l_P
   T dict_level = T(0);    // k at LOD ⌊l_P⌋ (= L for the smooth fallback)
   T mip_lambda = T(0);    // weighted mean textureGrad level of detail over the lookups
   T kernel_width = T(0);  // s_K max(‖dh/dx‖, ‖dh/dy‖): the kernel extent in h̃ space
 };
-using ChermainSdfInfo = ChermainSdfInfoT<double>;
+using SdfInfo = SdfInfoT<double>;
 
 // One cell's draws: rotation and the two marginals (2020: "randomly picked", 2021 Sec. 3); the
 // marginal indices as integer-valued T.
 template <class T>
-struct ChermainCell {
+struct Cell {
   T cos_t, sin_t;
   T nx, ny;
 };
 
 // The counter key of the cell with lower-left corner (ci, cj) in units of 2^-20.
-GLINTLAB_FN std::uint64_t chermain_cell_key(std::int64_t ci, std::int64_t cj) {
+GLINTLAB_FN std::uint64_t cell_key(std::int64_t ci, std::int64_t cj) {
   return mix64(std::uint64_t(ci) * 0x9e3779b97f4a7c15ULL) ^ std::uint64_t(cj);
 }
 
 // The keys of the cells with corners (cu, cv)·2^l per lane, cu, cv integer-valued and
 // scale = 2^(l+20) (their products are exact), as per-lane counter indices.
 template <class T>
-GLINTLAB_FN RngIndex<T> chermain_cell_keys(const T& cu, const T& cv, const T& scale) {
+GLINTLAB_FN RngIndex<T> cell_keys(const T& cu, const T& cv, const T& scale) {
   const LanesOf<T> a(cu), b(cv), s(scale);
   RngIndex<T> r;
   if constexpr (std::is_floating_point_v<T>) {
-    r = chermain_cell_key(std::int64_t(a[0] * s[0]), std::int64_t(b[0] * s[0]));
+    r = cell_key(std::int64_t(a[0] * s[0]), std::int64_t(b[0] * s[0]));
   } else {
     for (std::size_t l = 0; l < kLaneCount<T>; ++l)
-      r[l] = chermain_cell_key(std::int64_t(a[l] * s[l]), std::int64_t(b[l] * s[l]));
+      r[l] = cell_key(std::int64_t(a[l] * s[l]), std::int64_t(b[l] * s[l]));
   }
   return r;
 }
 
 // θ = 2π u_0 and the marginals ⌊u_d N⌋ (d = 1, 2, at most N − 1) from the cell's counters.
 template <class T>
-GLINTLAB_FN ChermainCell<T> chermain_cell(std::uint64_t seed, const RngIndex<T>& key, int n) {
+GLINTLAB_FN Cell<T> cell(std::uint64_t seed, const RngIndex<T>& key, int n) {
   const T theta = T(2 * kPi<double>) * lane_uniform<T>(seed, key, 0);
-  ChermainCell<T> c;
+  Cell<T> c;
   sincos(theta, &c.sin_t, &c.cos_t);
   const T last = T(n - 1);
   c.nx = std_min(floor(lane_uniform<T>(seed, key, 1) * T(n)), last);
@@ -135,14 +135,14 @@ GLINTLAB_FN ChermainCell<T> chermain_cell(std::uint64_t seed, const RngIndex<T>&
 // Dictionary level of a cell at LOD l (integer-valued): it holds density·4^l microfacets, about
 // 4^k lobes in the product of two level-k marginals, so k = ⌊l + ½ log2 density⌋, at least 0.
 template <class T>
-GLINTLAB_FN T chermain_dictionary_level(T l, double log2_density) {
+GLINTLAB_FN T dictionary_level(T l, double log2_density) {
   return std_max(T(0), floor(l + T(0.5 * log2_density)));
 }
 
 // The smooth limit: the centred Gaussian slope density of covariance Σ (Eq. 16), the Beckmann
 // SDF with correlation.
 template <class T>
-GLINTLAB_FN T chermain_gaussian_sdf(T x, T y, double sx, double sy, double rho) {
+GLINTLAB_FN T gaussian_sdf(T x, T y, double sx, double sy, double rho) {
   const double c = 1 - rho * rho;
   const T a = x / T(sx), b = y / T(sy);
   const T q = (a * a - T(2 * rho) * a * b + b * b) / T(c);
@@ -152,16 +152,16 @@ GLINTLAB_FN T chermain_gaussian_sdf(T x, T y, double sx, double sy, double rho) 
 // Screen-space derivatives of the quantity Eq. 20 (h̃) or Eq. 21 (h⊥) filters with, from the half
 // vector h (local frame, h_z > 0) and its derivatives dh/dx, dh/dy (core/scene/footprint.h).
 template <class T>
-struct ChermainSlopeDerivatives {
+struct SlopeDerivativesT {
   T dx_x, dx_y, dy_x, dy_y;  // d(·)/dx and d(·)/dy, components x and y
 };
-using SlopeDerivatives = ChermainSlopeDerivatives<double>;
+using SlopeDerivatives = SlopeDerivativesT<double>;
 
 template <class T>
-GLINTLAB_FN ChermainSlopeDerivatives<T> chermain_slope_derivatives(Vec3<T> h, Vec3<T> dh_dx,
-                                                                   Vec3<T> dh_dy, int kernel) {
-  if (kernel == kChermainProjectedHalf) return {dh_dx.x, dh_dx.y, dh_dy.x, dh_dy.y};
-  if (kernel == kChermainNoGgaa) return {T(0), T(0), T(0), T(0)};
+GLINTLAB_FN SlopeDerivativesT<T> slope_derivatives(Vec3<T> h, Vec3<T> dh_dx, Vec3<T> dh_dy,
+                                                   int kernel) {
+  if (kernel == kProjectedHalf) return {dh_dx.x, dh_dx.y, dh_dy.x, dh_dy.y};
+  if (kernel == kNoGgaa) return {T(0), T(0), T(0), T(0)};
   // h̃ = (−x/z, −y/z): dh̃ = −(dx z − x dz)/z², likewise for y.
   const T z2 = h.z * h.z;
   const auto d = [&](Vec3<T> dv, T c, T dc) { return -(dc * h.z - c * dv.z) / z2; };
@@ -171,15 +171,15 @@ GLINTLAB_FN ChermainSlopeDerivatives<T> chermain_slope_derivatives(Vec3<T> h, Ve
 
 // The footprint's continuous LOD l_P = log2 max(‖∂uv/∂x‖, ‖∂uv/∂y‖), clamped to [−20, 39].
 template <class T>
-GLINTLAB_FN T chermain_lod(const FootprintQuery<T>& fp) {
+GLINTLAB_FN T lod(const FootprintQuery<T>& fp) {
   const T foot = sqrt(std_max(dot(fp.duv_dx, fp.duv_dx), dot(fp.duv_dy, fp.duv_dy)));
   const Mask<T> pos = foot > T(0);
-  return std_clamp(select(pos, chermain_log2(select(pos, foot, T(1))), T(-20)), T(-20), T(39));
+  return std_clamp(select(pos, log2(select(pos, foot, T(1))), T(-20)), T(-20), T(39));
 }
 
 // 2^e per lane for an integer-valued e (exact).
 template <class T>
-GLINTLAB_FN T chermain_exp2_int(const T& e) {
+GLINTLAB_FN T exp2_int(const T& e) {
   const LanesOf<T> el(e);
   return float_lanes<T>(
       [&](std::size_t l) { return std::ldexp(Scalar<T>(1), static_cast<int>(el[l])); });
@@ -190,24 +190,23 @@ GLINTLAB_FN T chermain_exp2_int(const T& e) {
 // smooth fallback, visited once per LOD before that LOD's four cells (which are then inactive;
 // cell unused), so each lane sees its terms in the order of the scalar loop.
 template <class T, class Visit>
-GLINTLAB_FN void chermain_for_each_cell(const ChermainSdfParams& p, const FootprintQuery<T>& fp,
-                                        Visit&& visit) {
-  const ChermainDictionary& dict = *p.dictionary;
+GLINTLAB_FN void for_each_cell(const SdfParams& p, const FootprintQuery<T>& fp, Visit&& visit) {
+  const Dictionary& dict = *p.dictionary;
   const T levels = T(dict.levels());
-  const T lod = chermain_lod(fp);
+  const T lod = chermain2021::lod(fp);
   const T l0 = floor(lod);
   const T frac = lod - l0;
   for (int li = 0; li < 2; ++li) {
     const T l = l0 + T(li);
     const T wl = li == 0 ? T(1) - frac : frac;
     const Mask<T> lod_on = wl != T(0);
-    const T k = chermain_dictionary_level(l, p.log2_density);
+    const T k = dictionary_level(l, p.log2_density);
     const Mask<T> smooth = k >= levels;  // past the last level: the smooth Beckmann SDF
-    visit(lod_on && smooth, wl, k, ChermainCell<T>{T(1), T(0), T(0), T(0)});
+    visit(lod_on && smooth, wl, k, Cell<T>{T(1), T(0), T(0), T(0)});
     const Mask<T> cells_on = lod_on && !smooth;
     if (!any_lane<T>(cells_on)) continue;
-    const T cell = chermain_exp2_int(l);
-    const T scale = chermain_exp2_int(l + T(20));  // corners in units of 2^-20
+    const T cell = exp2_int(l);
+    const T scale = exp2_int(l + T(20));  // corners in units of 2^-20
     const T su = fp.uv.x / cell - T(0.5), sv = fp.uv.y / cell - T(0.5);
     const T fu = floor(su), fv = floor(sv);
     const T tu = su - fu, tv = sv - fv;
@@ -215,8 +214,9 @@ GLINTLAB_FN void chermain_for_each_cell(const ChermainSdfParams& p, const Footpr
       const int di = c & 1, dj = c >> 1;
       const T wu = di ? tu : T(1) - tu, wv = dj ? tv : T(1) - tv;
       const T W = wu * wv;
-      const RngIndex<T> key = chermain_cell_keys(fu + T(di), fv + T(dj), scale);
-      visit(cells_on && W != T(0), wl * W, k, chermain_cell<T>(p.seed, key, dict.distributions()));
+      const RngIndex<T> key = cell_keys(fu + T(di), fv + T(dj), scale);
+      visit(cells_on && W != T(0), wl * W, k,
+            chermain2021::cell<T>(p.seed, key, dict.distributions()));
     }
   }
 }
@@ -224,54 +224,51 @@ GLINTLAB_FN void chermain_for_each_cell(const ChermainSdfParams& p, const Footpr
 // The (filtered) procedural patch-SDF at slope m̃ (2021 Eq. 3 without GGAA, Eq. 10 and 19 with
 // it), for the footprint `fp` and the slope derivatives `d` (ignored when kernel = 0).
 template <class T>
-GLINTLAB_FN T chermain_patch_sdf(const ChermainSdfParams& p, Vec2<T> m, const FootprintQuery<T>& fp,
-                                 const ChermainSlopeDerivatives<T>& d,
-                                 ChermainSdfInfoT<T>* info = nullptr) {
-  const ChermainDictionary& dict = *p.dictionary;
-  const ChermainTable table = dict.table();
-  const ChermainMatrix M = chermain_matrix(p.sigma_x, p.sigma_y, p.rho, dict.sigma_o(), p.with_rho);
+GLINTLAB_FN T patch_sdf(const SdfParams& p, Vec2<T> m, const FootprintQuery<T>& fp,
+                        const SlopeDerivativesT<T>& d, SdfInfoT<T>* info = nullptr) {
+  const Dictionary& dict = *p.dictionary;
+  const Table table = dict.table();
+  const Matrix M = matrix(p.sigma_x, p.sigma_y, p.rho, dict.sigma_o(), p.with_rho);
   const double rho_used = p.with_rho ? p.rho : 0.0;
-  const bool ggaa = p.kernel != kChermainNoGgaa;
+  const bool ggaa = p.kernel != kNoGgaa;
   const T sk = T(ggaa ? p.s_k : 0.0);
   const T last_level = T(dict.levels() - 1);
   // M⁻¹ applied once per pixel (Eq. 20/21); the per-cell rotation below.
   const T ax = sk * (T(M.i00) * d.dx_x + T(M.i01) * d.dx_y), ay = sk * (T(M.i11) * d.dx_y);
   const T bx = sk * (T(M.i00) * d.dy_x + T(M.i01) * d.dy_y), by = sk * (T(M.i11) * d.dy_y);
   const T mx = T(M.i00) * m.x + T(M.i01) * m.y, my = T(M.i11) * m.y;  // M⁻¹ m̃
-  const T gauss = chermain_gaussian_sdf(m.x, m.y, p.sigma_x, p.sigma_y, rho_used);
+  const T gauss = gaussian_sdf(m.x, m.y, p.sigma_x, p.sigma_y, rho_used);
   T total = T(0), lambda_sum = T(0), lambda_weight = T(0);
-  chermain_for_each_cell(p, fp, [&](Mask<T> on, T w, T k, const ChermainCell<T>& s) {
+  for_each_cell(p, fp, [&](Mask<T> on, T w, T k, const Cell<T>& s) {
     if (!any_lane<T>(on)) return;
     const Mask<T> smooth = k > last_level;
     const Mask<T> cell_on = on && !smooth;
     total = select(on && smooth, total + w * gauss, total);
     if (!any_lane<T>(cell_on)) return;
     const T kc = std_min(k, last_level);  // in range on the smooth lanes too (discarded)
-    const T base_x = chermain_table_base(table, s.nx, kc);
-    const T base_y = chermain_table_base(table, s.ny, kc);
+    const T base_x = table_base(table, s.nx, kc);
+    const T base_y = table_base(table, s.ny, kc);
     // R(−θ) applied to M⁻¹ m̃ and to the derivatives.
     const T xo = s.cos_t * mx + s.sin_t * my, yo = -s.sin_t * mx + s.cos_t * my;
     T px, py;
     if (ggaa) {
-      const ChermainGrad<T> fx = chermain_lookup_grad(
-          table, base_x, xo, s.cos_t * ax + s.sin_t * ay, s.cos_t * bx + s.sin_t * by, p.wrap, 16);
-      const ChermainGrad<T> fy =
-          chermain_lookup_grad(table, base_y, yo, -s.sin_t * ax + s.cos_t * ay,
-                               -s.sin_t * bx + s.cos_t * by, p.wrap, 16);
+      const Grad<T> fx = chermain2021::lookup_grad(table, base_x, xo, s.cos_t * ax + s.sin_t * ay,
+                                                   s.cos_t * bx + s.sin_t * by, p.wrap, 16);
+      const Grad<T> fy = chermain2021::lookup_grad(table, base_y, yo, -s.sin_t * ax + s.cos_t * ay,
+                                                   -s.sin_t * bx + s.cos_t * by, p.wrap, 16);
       px = fx.value, py = fy.value;
       lambda_sum = select(cell_on, lambda_sum + w * T(0.5) * (fx.lambda + fy.lambda), lambda_sum);
       lambda_weight = select(cell_on, lambda_weight + w, lambda_weight);
     } else {
-      px = chermain_lookup_lod(table, base_x, xo, 0, p.wrap);
-      py = chermain_lookup_lod(table, base_y, yo, 0, p.wrap);
+      px = chermain2021::lookup_lod(table, base_x, xo, 0, p.wrap);
+      py = chermain2021::lookup_lod(table, base_y, yo, 0, p.wrap);
     }
     total = select(cell_on, total + w * px * py / T(M.det), total);
   });
   if (info) {
-    const T lod = chermain_lod(fp);
+    const T lod = chermain2021::lod(fp);
     info->lod = lod;
-    info->dict_level =
-        std_min(chermain_dictionary_level(floor(lod), p.log2_density), T(dict.levels()));
+    info->dict_level = std_min(dictionary_level(floor(lod), p.log2_density), T(dict.levels()));
     const Mask<T> weighted = lambda_weight > T(0);
     info->mip_lambda = select(weighted, lambda_sum / select(weighted, lambda_weight, T(1)), T(0));
     info->kernel_width =
@@ -288,11 +285,10 @@ struct SlopeMoments2 {
   double mass, mean_x, mean_y, xx, yy, xy;  // xx, yy, xy: central second moments / mass
 };
 
-inline SlopeMoments2 chermain_patch_moments(const ChermainSdfParams& p,
-                                            const FootprintQuery<double>& fp,
-                                            const SlopeDerivatives& d, int grid) {
+inline SlopeMoments2 patch_moments(const SdfParams& p, const FootprintQuery<double>& fp,
+                                   const SlopeDerivatives& d, int grid) {
   const double so = p.dictionary->sigma_o();
-  const ChermainMatrix M = chermain_matrix(p.sigma_x, p.sigma_y, p.rho, so, p.with_rho);
+  const Matrix M = matrix(p.sigma_x, p.sigma_y, p.rho, so, p.with_rho);
   const double R =
       4 * std::sqrt(2.0) * so * std::sqrt(M.m00 * M.m00 + M.m01 * M.m01 + M.m11 * M.m11);
   const double h = 2 * R / grid;
@@ -301,7 +297,7 @@ inline SlopeMoments2 chermain_patch_moments(const ChermainSdfParams& p,
     const double y = -R + (j + 0.5) * h;
     for (int i = 0; i < grid; ++i) {
       const double x = -R + (i + 0.5) * h;
-      const double v = chermain_patch_sdf(p, Vec2<double>{x, y}, fp, d);
+      const double v = patch_sdf(p, Vec2<double>{x, y}, fp, d);
       s0 += v, sx += v * x, sy += v * y, sxx += v * x * x, syy += v * y * y, sxy += v * x * y;
     }
   }
@@ -362,7 +358,7 @@ struct Chermain {
 
   template <class T>
   struct Params {
-    ChermainSdfParams sdf;
+    SdfParams sdf;
     SlopeDerivatives d;  // of h~ or h_perp as the `ggaa` choice reads them
   };
 
@@ -386,12 +382,11 @@ struct Chermain {
 
   // The smooth correlated Beckmann NDF of covariance Σ in slope space, D = P22/cos⁴θ.
   template <class T>
-  static GLINTLAB_FN T smooth_d(const ChermainSdfParams& p, Vec3<T> h) {
+  static GLINTLAB_FN T smooth_d(const SdfParams& p, Vec3<T> h) {
     const Mask<T> up = h.z > T(0);
     const T hz = select(up, h.z, T(1));
     const T z2 = h.z * h.z;
-    const T g = chermain_gaussian_sdf(-h.x / hz, -h.y / hz, p.sigma_x, p.sigma_y,
-                                      p.with_rho ? p.rho : 0.0) /
+    const T g = gaussian_sdf(-h.x / hz, -h.y / hz, p.sigma_x, p.sigma_y, p.with_rho ? p.rho : 0.0) /
                 (z2 * z2);
     return select(up, g, T(0));
   }
@@ -409,14 +404,13 @@ struct Chermain {
     ModelEval<T, kIntermediates.size()> r{};
     const Vec3<T> h = half_vector(q.wi, q.wo);
     const Mask<T> ok = q.wi.z > T(0) && q.wo.z > T(0) && h.z > T(0);
-    ChermainSdfInfoT<T> info;
+    SdfInfoT<T> info;
     T P22 = T(0), D = T(0), G2 = T(0), f = T(0);
     if (any_lane<T>(ok)) {
       const T hz = select(ok, h.z, T(1));
-      const ChermainSlopeDerivatives<T> d{T(p.d.dx_x), T(p.d.dx_y), T(p.d.dy_x), T(p.d.dy_y)};
-      P22 = select(ok,
-                   chermain_patch_sdf(p.sdf, Vec2<T>{-h.x / hz, -h.y / hz}, q.footprint, d, &info),
-                   T(0));
+      const SlopeDerivativesT<T> d{T(p.d.dx_x), T(p.d.dx_y), T(p.d.dy_x), T(p.d.dy_y)};
+      P22 =
+          select(ok, patch_sdf(p.sdf, Vec2<T>{-h.x / hz, -h.y / hz}, q.footprint, d, &info), T(0));
       info.lod = select(ok, info.lod, T(0));
       info.dict_level = select(ok, info.dict_level, T(0));
       info.mip_lambda = select(ok, info.mip_lambda, T(0));
@@ -467,4 +461,9 @@ struct Chermain {
 
 static_assert(Model<Chermain>);
 
+}  // namespace glintlab::chermain2021
+
+namespace glintlab {
+// Registered models are named in namespace glintlab, like every other model (core/model_list.h).
+using chermain2021::Chermain;
 }  // namespace glintlab

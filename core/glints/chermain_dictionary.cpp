@@ -14,9 +14,9 @@
 #include "core/math/rng.h"
 #include "core/parameter_check.h"
 
-namespace glintlab {
+namespace glintlab::chermain2021 {
 
-void validate(const ChermainDictionaryConfig& c) {
+void validate(const DictionaryConfig& c) {
   const char* what = "chermain dictionary";
   detail::require(c.distributions >= 3 && c.distributions <= 3 * 4096 && c.distributions % 3 == 0,
                   what, "distributions (N)", c.distributions,
@@ -80,7 +80,7 @@ class NormalMass {
 // outside the table (|μ| ≥ 4σ_o, probability 6e-5 per draw): a lobe wholly outside the table would
 // leave a level empty. The limit is therefore the Gaussian truncated at 4σ_o, whose variance is
 // 0.9989 σ_o² before the lobe width is added back.
-double ChermainDictionary::lobe_mean(int n, int j) const {
+double Dictionary::lobe_mean(int n, int j) const {
   const double sd =
       config_.mean_scale * std::sqrt(sigma_o_ * sigma_o_ - config_.lobe_std * config_.lobe_std);
   double mu = 0;
@@ -95,7 +95,7 @@ double ChermainDictionary::lobe_mean(int n, int j) const {
   return std::clamp(mu, -0.999 * extent(), 0.999 * extent());
 }
 
-ChermainDictionary::ChermainDictionary(const ChermainDictionaryConfig& config) : config_(config) {
+Dictionary::Dictionary(const DictionaryConfig& config) : config_(config) {
   validate(config_);
   sigma_o_ = config_.alpha_dict / std::sqrt(2.0);
   const int res = config_.resolution;
@@ -159,29 +159,28 @@ ChermainDictionary::ChermainDictionary(const ChermainDictionaryConfig& config) :
   });
 }
 
-double ChermainDictionary::lookup_lod(int n, int k, double x, double mip, TableWrap wrap) const {
-  const ChermainTable t = table();
-  return chermain_lookup_lod(t, chermain_table_base(t, double(n), double(k)), x, mip, wrap);
+double Dictionary::lookup_lod(int n, int k, double x, double mip, TableWrap wrap) const {
+  const Table t = table();
+  return chermain2021::lookup_lod(t, table_base(t, double(n), double(k)), x, mip, wrap);
 }
 
-double ChermainDictionary::lookup_grad(int n, int k, double x, double dx_dpx, double dx_dpy,
-                                       TableWrap wrap, int max_anisotropy,
-                                       TableFilter* filter) const {
-  const ChermainTable t = table();
-  const ChermainGrad<double> g = chermain_lookup_grad(
-      t, chermain_table_base(t, double(n), double(k)), x, dx_dpx, dx_dpy, wrap, max_anisotropy);
+double Dictionary::lookup_grad(int n, int k, double x, double dx_dpx, double dx_dpy, TableWrap wrap,
+                               int max_anisotropy, TableFilter* filter) const {
+  const Table t = table();
+  const Grad<double> g = chermain2021::lookup_grad(t, table_base(t, double(n), double(k)), x,
+                                                   dx_dpx, dx_dpy, wrap, max_anisotropy);
   if (filter) *filter = {g.lambda, int(g.probes)};
   return g.value;
 }
 
-double ChermainDictionary::table_integral(int n, int k, int mip) const {
+double Dictionary::table_integral(int n, int k, int mip) const {
   double s = 0;
   const int size = config_.resolution >> mip;
   for (int t = 0; t < size; ++t) s += double(texel(n, k, mip, t));
   return 2 * (extent() / size) * s;
 }
 
-Image ChermainDictionary::image() const {
+Image Dictionary::image() const {
   const int rows = config_.distributions / 3 * config_.levels;
   Image img(config_.resolution, rows, {"R", "G", "B"});
   for (int g = 0; g < config_.distributions / 3; ++g)
@@ -192,7 +191,7 @@ Image ChermainDictionary::image() const {
   return img;
 }
 
-double lookup_grad_integral(const ChermainDictionary& d, int n, int k, double dx_dpx, double dx_dpy,
+double lookup_grad_integral(const Dictionary& d, int n, int k, double dx_dpx, double dx_dpy,
                             TableWrap wrap, int per_texel) {
   const int steps = 2 * d.resolution() * per_texel;
   const double h = 2 * d.extent() / steps;
@@ -202,13 +201,13 @@ double lookup_grad_integral(const ChermainDictionary& d, int n, int k, double dx
   return s * h;
 }
 
-const ChermainDictionary& default_chermain_dictionary() {
-  static const ChermainDictionary kDictionary{ChermainDictionaryConfig{}};
+const Dictionary& default_chermain_dictionary() {
+  static const Dictionary kDictionary{DictionaryConfig{}};
   return kDictionary;
 }
 
-void write_chermain_dictionary_exr(const std::string& path, const ChermainDictionary& d) {
-  const ChermainDictionaryConfig& c = d.config();
+void write_chermain_dictionary_exr(const std::string& path, const Dictionary& d) {
+  const DictionaryConfig& c = d.config();
   io::write_exr(path, d.image(),
                 {{"glintlab.chermain.distributions", fmt::format("{}", c.distributions)},
                  {"glintlab.chermain.levels", fmt::format("{}", c.levels)},
@@ -221,4 +220,4 @@ void write_chermain_dictionary_exr(const std::string& path, const ChermainDictio
                   "texel t covers |slope| in [t, t+1) * 4 sigma_o / resolution"}});
 }
 
-}  // namespace glintlab
+}  // namespace glintlab::chermain2021

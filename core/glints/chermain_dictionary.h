@@ -25,9 +25,9 @@
 #include "core/glints/chermain_lookup.h"
 #include "core/render/image.h"
 
-namespace glintlab {
+namespace glintlab::chermain2021 {
 
-struct ChermainDictionaryConfig {
+struct DictionaryConfig {
   int distributions = 192;  // N: a positive multiple of 3 (three marginals per RGB texel)
   int levels = 16;          // L: levels 0 … L−1, level k with 2^k lobes; 1 … 20
   int resolution = 64;      // texels over |x| ∈ [0, 4σ_o); a power of two, 4 … 4096
@@ -41,7 +41,7 @@ struct ChermainDictionaryConfig {
 };
 
 // Throws ParameterError (core/parameter_check.h) naming the first bad field and its valid range.
-void validate(const ChermainDictionaryConfig& c);
+void validate(const DictionaryConfig& c);
 
 // One textureGrad-style lookup's filter, reported for the intermediates.
 struct TableFilter {
@@ -49,11 +49,11 @@ struct TableFilter {
   int probes = 1;     // anisotropic probes averaged
 };
 
-class ChermainDictionary {
+class Dictionary {
  public:
-  explicit ChermainDictionary(const ChermainDictionaryConfig& config);
+  explicit Dictionary(const DictionaryConfig& config);
 
-  const ChermainDictionaryConfig& config() const { return config_; }
+  const DictionaryConfig& config() const { return config_; }
   int distributions() const { return config_.distributions; }
   int levels() const { return config_.levels; }
   int resolution() const { return config_.resolution; }
@@ -66,7 +66,7 @@ class ChermainDictionary {
     return mips_[offset(n, k) + mip_offset_[std::size_t(mip)] + std::size_t(t)];
   }
   // The texels as the lookup kernels read them (core/glints/chermain_lookup.h).
-  ChermainTable table() const {
+  Table table() const {
     return {mips_.data(), config_.levels, config_.resolution, mip_levels_, per_table_, extent()};
   }
   // Mean of lobe j of distribution n (before symmetrization), for the tests.
@@ -103,7 +103,7 @@ class ChermainDictionary {
     return (std::size_t(n) * std::size_t(config_.levels) + std::size_t(k)) * per_table_;
   }
 
-  ChermainDictionaryConfig config_;
+  DictionaryConfig config_;
   double sigma_o_ = 0;
   int mip_levels_ = 0;
   std::size_t per_table_ = 0;  // floats of one table with its whole MIP chain
@@ -114,13 +114,13 @@ class ChermainDictionary {
 // ∫ lookup_grad(n, k, x, dx_dpx, dx_dpy) dx over x ∈ (−4σ_o, 4σ_o) by the midpoint rule with
 // `per_texel` points per level-0 texel (the integrand is piecewise linear on a grid no coarser
 // than that, so the rule converges fast): 1 up to float rounding where Eq. 15 holds.
-double lookup_grad_integral(const ChermainDictionary& d, int n, int k, double dx_dpx, double dx_dpy,
+double lookup_grad_integral(const Dictionary& d, int n, int k, double dx_dpx, double dx_dpy,
                             TableWrap wrap, int per_texel = 16);
 
-// The default dictionary (ChermainDictionaryConfig{}), generated on first use.
-const ChermainDictionary& default_chermain_dictionary();
+// The default dictionary (DictionaryConfig{}), generated on first use.
+const Dictionary& default_chermain_dictionary();
 
 // Writes `d.image()` as an EXR with the configuration in the header (atomic).
-void write_chermain_dictionary_exr(const std::string& path, const ChermainDictionary& d);
+void write_chermain_dictionary_exr(const std::string& path, const Dictionary& d);
 
-}  // namespace glintlab
+}  // namespace glintlab::chermain2021

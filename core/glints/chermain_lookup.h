@@ -8,7 +8,7 @@
 // lane with its own distribution, level, MIP level and probe count; indices are integer-valued T
 // (exact: every index is below 2^24), texel addresses per lane are gathers, and every per-lane
 // choice is a select, so the scalar double instantiation is the host code the dictionary always
-// had, op for op (ChermainDictionary::lookup_lod/lookup_grad call these at T = double).
+// had, op for op (Dictionary::lookup_lod/lookup_grad call these at T = double).
 
 #include <cmath>
 #include <cstddef>
@@ -17,17 +17,17 @@
 #include "core/math/lanes.h"
 #include "core/math/ops.h"
 
-namespace glintlab {
+namespace glintlab::chermain2021 {
 
 // How out-of-range texel indices are resolved (OpenGL 4.6 Sec. 8.14.2): mirrored repeat is what
 // the 2021 paper requires (Sec. 6.1); clamp-to-edge exists only as the negative control of
 // chermain.kernel-normalized.
 enum class TableWrap { kMirroredRepeat, kClampToEdge };
 
-// A plain view of the dictionary's texels for the kernels (ChermainDictionary::table()): table
+// A plain view of the dictionary's texels for the kernels (Dictionary::table()): table
 // (n, k) starts at (n·levels + k)·per_table, its MIP level m (size resolution/2^m) at
 // 2·resolution − 2·(resolution/2^m) within it.
-struct ChermainTable {
+struct Table {
   const float* texels;
   int levels;             // L
   int resolution;         // texels of MIP level 0
@@ -55,7 +55,7 @@ GLINTLAB_FN T std_clamp(T v, T lo, T hi) {
 // log2 per lane (std::log2 of each lane: the ops layer has no log2; the two uses, the footprint's
 // LOD and textureGrad's λ, are a few per lookup, and each lane is then the scalar value exactly).
 template <class T>
-GLINTLAB_FN T chermain_log2(const T& x) {
+GLINTLAB_FN T log2(const T& x) {
   const LanesOf<T> xl(x);
   return float_lanes<T>([&](std::size_t l) { return std::log2(xl[l]); });
 }
@@ -63,7 +63,7 @@ GLINTLAB_FN T chermain_log2(const T& x) {
 // table.texels[i] as T in every lane, i the lane's integer-valued index (in range: the callers
 // wrap or clamp it); a gather.
 template <class T>
-GLINTLAB_FN T chermain_gather(const float* texels, const T& index) {
+GLINTLAB_FN T gather(const float* texels, const T& index) {
   const LanesOf<T> at(index);
   return float_lanes<T>(
       [&](std::size_t l) { return Scalar<T>(texels[static_cast<std::size_t>(at[l])]); });
@@ -71,7 +71,7 @@ GLINTLAB_FN T chermain_gather(const float* texels, const T& index) {
 
 // First texel of table (n, k) (n, k integer-valued, k < levels).
 template <class T>
-GLINTLAB_FN T chermain_table_base(const ChermainTable& t, T n, T k) {
+GLINTLAB_FN T table_base(const Table& t, T n, T k) {
   return (n * T(t.levels) + k) * T(double(t.per_table));
 }
 
@@ -79,7 +79,7 @@ GLINTLAB_FN T chermain_table_base(const ChermainTable& t, T n, T k) {
 // Mirrored repeat: period 2·size, the second half reversed; the residue i − P⌊i/P⌋ is exact (P a
 // power of two).
 template <class T>
-GLINTLAB_FN T chermain_fetch(const ChermainTable& t, T level_base, T size, T i, TableWrap wrap) {
+GLINTLAB_FN T fetch(const Table& t, T level_base, T size, T i, TableWrap wrap) {
   T j;
   if (wrap == TableWrap::kClampToEdge) {
     j = std_clamp(i, T(0), size - T(1));
@@ -88,24 +88,24 @@ GLINTLAB_FN T chermain_fetch(const ChermainTable& t, T level_base, T size, T i, 
     const T r = i - period * floor(i / period);
     j = select(r >= size, period - T(1) - r, r);
   }
-  return chermain_gather(t.texels, level_base + j);
+  return gather(t.texels, level_base + j);
 }
 
 // textureLod at MIP level m (integer-valued, size = resolution/2^m texels): linear interpolation
 // between texel centres, u = x / extent the normalized coordinate.
 template <class T>
-GLINTLAB_FN T chermain_linear(const ChermainTable& t, T base, T size, T u, TableWrap wrap) {
+GLINTLAB_FN T linear(const Table& t, T base, T size, T u, TableWrap wrap) {
   const T s = u * size - T(0.5);
   const T f = floor(s);
   const T w = s - f;
   const T level_base = base + T(2 * t.resolution) - T(2) * size;
-  return (T(1) - w) * chermain_fetch(t, level_base, size, f, wrap) +
-         w * chermain_fetch(t, level_base, size, f + T(1), wrap);
+  return (T(1) - w) * fetch(t, level_base, size, f, wrap) +
+         w * fetch(t, level_base, size, f + T(1), wrap);
 }
 
 // resolution / 2^m per lane (m integer-valued in [0, mip_levels)).
 template <class T>
-GLINTLAB_FN T chermain_level_size(const ChermainTable& t, T m) {
+GLINTLAB_FN T level_size(const Table& t, T m) {
   const LanesOf<T> ml(m);
   return float_lanes<T>(
       [&](std::size_t l) { return Scalar<T>(t.resolution >> static_cast<int>(ml[l])); });
@@ -115,29 +115,29 @@ GLINTLAB_FN T chermain_level_size(const ChermainTable& t, T m) {
 // ⌊λ⌋ + 1, linear between them. Where every lane sits exactly on a level (λ = ⌊λ⌋, e.g. λ = 0), the
 // second level is not read: a + 0·(b − a) = a for the finite, non-negative a here.
 template <class T>
-GLINTLAB_FN T chermain_trilinear(const ChermainTable& t, T base, T u, T lambda, TableWrap wrap) {
+GLINTLAB_FN T trilinear(const Table& t, T base, T u, T lambda, TableWrap wrap) {
   const T top = T(t.mip_levels - 1);
   const T l = std_clamp(lambda, T(0), top);
   const T m0 = floor(l);
   const T m1 = std_min(m0 + T(1), top);
-  const T a = chermain_linear(t, base, chermain_level_size(t, m0), u, wrap);
+  const T a = linear(t, base, level_size(t, m0), u, wrap);
   if (!any_lane<T>(m1 != m0 && l != m0)) return a;
-  const T b = chermain_linear(t, base, chermain_level_size(t, m1), u, wrap);
+  const T b = linear(t, base, level_size(t, m1), u, wrap);
   return select(m1 == m0, a, a + (l - m0) * (b - a));
 }
 
 // textureLod(P_o(n, k), x, mip) with a uniform MIP level: 0 for |x| ≥ extent (the table domain,
 // outside of which the marginal vanishes).
 template <class T>
-GLINTLAB_FN T chermain_lookup_lod(const ChermainTable& t, T base, T x, double mip, TableWrap wrap) {
+GLINTLAB_FN T lookup_lod(const Table& t, T base, T x, double mip, TableWrap wrap) {
   const Mask<T> inside = abs(x) < T(t.extent);
-  return select(inside, chermain_trilinear(t, base, x / T(t.extent), T(mip), wrap), T(0));
+  return select(inside, trilinear(t, base, x / T(t.extent), T(mip), wrap), T(0));
 }
 
 // One textureGrad lookup: the value, the MIP level of detail it used (clamped to the pyramid) and
 // the number of probes.
 template <class T>
-struct ChermainGrad {
+struct Grad {
   T value, lambda, probes;
 };
 
@@ -147,8 +147,8 @@ struct ChermainGrad {
 // λ = max(0, log2(P_max/N)); the mean of N trilinear lookups at x + ((i + ½)/N − ½)·d, d the
 // major-axis derivative. The probe loop runs to the largest N over the lanes, masked.
 template <class T>
-GLINTLAB_FN ChermainGrad<T> chermain_lookup_grad(const ChermainTable& t, T base, T x, T dx_dpx,
-                                                 T dx_dpy, TableWrap wrap, int max_anisotropy) {
+GLINTLAB_FN Grad<T> lookup_grad(const Table& t, T base, T x, T dx_dpx, T dx_dpy, TableWrap wrap,
+                                int max_anisotropy) {
   const T scale = T(double(t.resolution) / t.extent);  // texels per slope unit
   const T px = abs(dx_dpx) * scale, py = abs(dx_dpy) * scale;
   const T pmax = std_max(px, py), pmin = std_min(px, py);
@@ -159,9 +159,8 @@ GLINTLAB_FN ChermainGrad<T> chermain_lookup_grad(const ChermainTable& t, T base,
   const T ceil_ratio = -floor(-ratio);
   T probes = select(has_min, std_min(ceil_ratio, aniso), select(has_max, aniso, T(1)));
   probes = std_max(probes, T(1));
-  const T lambda =
-      select(has_max, std_max(T(0), chermain_log2(select(has_max, pmax, T(1)) / probes)), T(0));
-  ChermainGrad<T> r;
+  const T lambda = select(has_max, std_max(T(0), log2(select(has_max, pmax, T(1)) / probes)), T(0));
+  Grad<T> r;
   r.lambda = std_min(lambda, T(t.mip_levels - 1));
   r.probes = probes;
   const Mask<T> inside = abs(x) < T(t.extent);
@@ -173,11 +172,11 @@ GLINTLAB_FN ChermainGrad<T> chermain_lookup_grad(const ChermainTable& t, T base,
   T sum = T(0);
   for (int i = 0; i < count; ++i) {
     const T xi = x + ((T(i) + T(0.5)) / probes - T(0.5)) * major;
-    const T v = chermain_trilinear(t, base, xi / T(t.extent), lambda, wrap);
+    const T v = trilinear(t, base, xi / T(t.extent), lambda, wrap);
     sum = select(T(i) < probes, sum + v, sum);
   }
   r.value = select(inside, sum / probes, T(0));
   return r;
 }
 
-}  // namespace glintlab
+}  // namespace glintlab::chermain2021

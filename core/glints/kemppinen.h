@@ -16,7 +16,7 @@
 //   kCorrected uses the prefactor D, under which the area mean of the explicit points is
 //   D times the lobe's mass inside U_Ω (kemppinen.convergence).
 // * LOD: λ = log2(2 σ_max res), σ_max the larger standard deviation of the spatial filter in
-//   x_s, clamped to [0, kKemppinenMaxLevel]: at ⌊λ⌋ the filter's 2σ spans one to two cells
+//   x_s, clamped to [0, kMaxLevel]: at ⌊λ⌋ the filter's 2σ spans one to two cells
 //   (Sec. 3.3.2). Both ⌊λ⌋ and ⌊λ⌋+1 are always visited (weight 1 − frac, frac), so the number of
 //   points visited is 2k² for every query (constant time).
 //
@@ -34,34 +34,34 @@
 #include "core/maps/ggx_map.h"
 #include "core/model.h"
 
-namespace glintlab {
+namespace glintlab::kemppinen2025 {
 
-enum class KemppinenBlend { kRoulette = 0, kLinear = 1 };
-enum class KemppinenNormalization { kCorrected = 0, kPrinted = 1 };
-enum class KemppinenColors { kWhite = 0, kRedYellow = 1 };
+enum class Blend { kRoulette = 0, kLinear = 1 };
+enum class Normalization { kCorrected = 0, kPrinted = 1 };
+enum class Colors { kWhite = 0, kRedYellow = 1 };
 
-inline constexpr int kKemppinenMaxLevel = 20;
+inline constexpr int kMaxLevel = 20;
 // ε of Eq. 8 ("We use ε = 0.1 for all of our results").
-inline constexpr double kKemppinenRouletteEpsilon = 0.1;
+inline constexpr double kRouletteEpsilon = 0.1;
 
 template <class T>
-struct KemppinenParams {
+struct Params {
   T density;         // K_P, points per unit uv area (Table 1)
   T microroughness;  // α★ (Eq. 4)
   T anisotropy;      // a of A★ = diag(√a, 1/√a) (Sec. 3.3.6)
   T filter;          // f, the pixel filter's standard deviation in pixels (Alg. 1 line 11)
   int side;          // √k: k = side² neighbours in space and in angle
-  KemppinenBlend blend;
-  KemppinenErf erf;
-  KemppinenNormalization normalization;
-  KemppinenColors colors;
+  Blend blend;
+  Erf erf;
+  Normalization normalization;
+  Colors colors;
   std::uint64_t seed;
   bool compensate = true;  // false: Eq. 11 without C (ablation and negative controls)
 };
 
 // What one evaluation produced (the model's intermediates).
 template <class T>
-struct KemppinenResult {
+struct Result {
   Vec3<T> d;                  // D★^f (Eq. 11), per colour channel
   Vec3<T> explicit_part;      // the sum over B(k) of Eq. 11, times the prefactor
   Vec3<T> compensation_part;  // prefactor × Σ_l w_l E[c] C (Eq. 10)
@@ -75,7 +75,7 @@ struct KemppinenResult {
 
 // x_s = A★·uv (Algorithm 1 line 2).
 template <class T>
-GLINTLAB_FN Vec2<T> kemppinen_spatial_position(const KemppinenParams<T>& p, Vec2<T> uv) {
+GLINTLAB_FN Vec2<T> spatial_position(const Params<T>& p, Vec2<T> uv) {
   const T s = sqrt(p.anisotropy);
   return {uv.x * s, uv.y / s};
 }
@@ -89,8 +89,7 @@ struct Sym2 {
 // Σ_s = f² (A★ J_uv)(A★ J_uv)ᵀ (Algorithm 1 line 11, in x_s), J_uv = [duv_dx duv_dy]; floored at
 // (10⁻³ of a level-0 cell)² so a zero footprint stays a (very narrow) Gaussian.
 template <class T>
-GLINTLAB_FN Sym2<T> kemppinen_spatial_covariance(const KemppinenParams<T>& p,
-                                                 const FootprintQuery<T>& fp, T res) {
+GLINTLAB_FN Sym2<T> spatial_covariance(const Params<T>& p, const FootprintQuery<T>& fp, T res) {
   const T f2 = sqr(p.filter);
   const T a = p.anisotropy;
   const T floor2 = sqr(T(1e-3) / res);
@@ -101,18 +100,18 @@ GLINTLAB_FN Sym2<T> kemppinen_spatial_covariance(const KemppinenParams<T>& p,
 
 // Implicit grid base resolution (Algorithm 1 line 1): √K_P cells per unit of x_s at level 0.
 template <class T>
-GLINTLAB_FN T kemppinen_base_resolution(const KemppinenParams<T>& p) {
+GLINTLAB_FN T base_resolution(const Params<T>& p) {
   return sqrt(p.density);
 }
 
-// LOD λ (Algorithm 1 line 5, Sec. 3.3.2): log2(2 σ_max res), clamped to [0, kKemppinenMaxLevel].
+// LOD λ (Algorithm 1 line 5, Sec. 3.3.2): log2(2 σ_max res), clamped to [0, kMaxLevel].
 template <class T>
-GLINTLAB_FN T kemppinen_lod(const Sym2<T>& s, T res) {
+GLINTLAB_FN T lod(const Sym2<T>& s, T res) {
   const T mean = T(0.5) * (s.xx + s.yy);
   const T dev = sqrt(sqr(T(0.5) * (s.xx - s.yy)) + sqr(s.xy));
   const T sigma_max = sqrt(mean + dev);
   const T lambda = log(T(2) * sigma_max * res) * T(1.44269504088896340736);  // / ln 2
-  return clamp(lambda, T(0), T(kKemppinenMaxLevel));
+  return clamp(lambda, T(0), T(kMaxLevel));
 }
 
 // The normalised 2D normal density N(d; Σ) = exp(−½ dᵀΣ⁻¹d)/(2π√|Σ|) (the lobes of Eq. 4/11).
@@ -133,8 +132,8 @@ GLINTLAB_FN T normal2(Vec2<T> d, const Sym2<T>& s) {
 
 // Eq. 8: R(r, w) = smoothstep(max(0, r − ε), min(1, r + ε), w), the mollified roulette.
 template <class T>
-GLINTLAB_FN T kemppinen_roulette(T r, T w) {
-  const T eps = T(kKemppinenRouletteEpsilon);
+GLINTLAB_FN T roulette(T r, T w) {
+  const T eps = T(kRouletteEpsilon);
   const T e0 = max(T(0), r - eps), e1 = min(T(1), r + eps);
   const T t = saturate((w - e0) / (e1 - e0));
   return t * t * (T(3) - T(2) * t);
@@ -142,29 +141,28 @@ GLINTLAB_FN T kemppinen_roulette(T r, T w) {
 
 // GlintColor (Algorithm 1 line 17, Sec. 3.3.6 "Colors"): white, or red/yellow with probability ½.
 template <class T>
-GLINTLAB_FN Vec3<T> kemppinen_color(KemppinenColors colors, T r) {
+GLINTLAB_FN Vec3<T> color(Colors colors, T r) {
   const Vec3<T> red{T(1), T(0.08), T(0.03)}, yellow{T(1), T(0.75), T(0.1)};
   const Vec3<T> c = select(r < T(0.5), red, yellow);
-  return colors == KemppinenColors::kWhite ? Vec3<T>{T(1), T(1), T(1)} : c;
+  return colors == Colors::kWhite ? Vec3<T>{T(1), T(1), T(1)} : c;
 }
 
 // E[GlintColor], the colour of the compensation term (Algorithm 1 line 20).
 template <class T>
-GLINTLAB_FN Vec3<T> kemppinen_expected_color(KemppinenColors colors) {
-  return colors == KemppinenColors::kWhite ? Vec3<T>{T(1), T(1), T(1)}
-                                           : Vec3<T>{T(1), T(0.415), T(0.065)};
+GLINTLAB_FN Vec3<T> expected_color(Colors colors) {
+  return colors == Colors::kWhite ? Vec3<T>{T(1), T(1), T(1)} : Vec3<T>{T(1), T(0.415), T(0.065)};
 }
 
 // Rec. 709 luminance (Algorithm 2 line 12 "Luminance(c)").
 template <class T>
-GLINTLAB_FN T kemppinen_luminance(Vec3<T> c) {
+GLINTLAB_FN T luminance(Vec3<T> c) {
   return T(0.2126) * c.x + T(0.7152) * c.y + T(0.0722) * c.z;
 }
 
 // The angular frame of one query: x_a = T(ω_h) (Alg. 1 line 3), d = D(ω_h) (line 4), the lobe
 // standard deviations of Σ_a (line 12, Eq. 4) and the prefactor of Eq. 11.
 template <class T>
-struct KemppinenAngular {
+struct Angular {
   Vec2<T> x_a;
   Vec2<T> sigma_a;
   T d, prefactor;
@@ -172,8 +170,7 @@ struct KemppinenAngular {
 };
 
 template <class Ndf, class T>
-GLINTLAB_FN KemppinenAngular<T> kemppinen_angular(const KemppinenParams<T>& p, const Ndf& ndf,
-                                                  Vec3<T> h) {
+GLINTLAB_FN Angular<T> angular(const Params<T>& p, const Ndf& ndf, Vec3<T> h) {
   const Mask<T> up = h.z > T(0);
   const Vec3<T> hs = select(up, h, Vec3<T>{T(0), T(0), T(1)});
   const T d = ndf.D(hs);
@@ -182,21 +179,21 @@ GLINTLAB_FN KemppinenAngular<T> kemppinen_angular(const KemppinenParams<T>& p, c
   // made N(·; Σ_a) 0/0 and D★^f NaN; U_Ω holds less than 10⁻¹² of the points there.
   const T sigma = p.microroughness * sqrt(max(j_paper, T(1e-12) / T(kMapDomainArea<T>)));
   const T sa = sqrt(p.anisotropy);
-  const T prefactor = p.normalization == KemppinenNormalization::kPrinted ? j_paper : d;
+  const T prefactor = p.normalization == Normalization::kPrinted ? j_paper : d;
   const Mask<T> valid = up && (d > T(0));
   return {map_to_square(ndf, hs), {sigma / sa, sigma * sa}, d, prefactor, valid};
 }
 
 // 2^l per lane: the angular cells per axis at level l (Alg. 1 lines 9–10).
 template <class T>
-GLINTLAB_FN LaneInt<T> kemppinen_level_cells(const LaneInt<T, int>& level) {
+GLINTLAB_FN LaneInt<T> level_cells(const LaneInt<T, int>& level) {
   return int_lanes<T>([&](std::size_t l) { return std::int64_t(1) << lane(level, l); });
 }
 
 // Cell side of the angular grid and of the spatial grid at level l (Alg. 1 lines 9–10).
 template <class T>
-GLINTLAB_FN T kemppinen_angular_resolution(const LaneInt<T, int>& level) {
-  return int_to_float<T>(kemppinen_level_cells<T>(level));
+GLINTLAB_FN T angular_resolution(const LaneInt<T, int>& level) {
+  return int_to_float<T>(level_cells<T>(level));
 }
 
 // ---- Algorithm 1 -----------------------------------------------------------------------------
@@ -204,49 +201,42 @@ GLINTLAB_FN T kemppinen_angular_resolution(const LaneInt<T, int>& level) {
 // One level l with weight w_l, one point process (`process`, weight `process_w` for the triplanar
 // blend): adds the explicit points of B(k) in space × angle and the compensation (Eq. 10).
 template <class T>
-GLINTLAB_FN void kemppinen_level(const KemppinenParams<T>& p, const KemppinenAngular<T>& ang,
-                                 Vec2<T> x_s, const Sym2<T>& sigma_s, T res,
-                                 const LaneInt<T, int>& level, T w_l, int process,
-                                 Vec3<T>& explicit_sum, Vec3<T>& compensation) {
+GLINTLAB_FN void level(const Params<T>& p, const Angular<T>& ang, Vec2<T> x_s,
+                       const Sym2<T>& sigma_s, T res, const LaneInt<T, int>& level, T w_l,
+                       int process, Vec3<T>& explicit_sum, Vec3<T>& compensation) {
   const int n = p.side;
-  const T res_a = kemppinen_angular_resolution<T>(level);
+  const T res_a = angular_resolution<T>(level);
   const T res_s = res / res_a;
   const T inv_rho = T(1) / sqr(res);  // 1/(res_s² res_a²): one point per 4D cell
-  const LaneInt<T> n_a = kemppinen_level_cells<T>(level);
-  const LaneInt<T> sx0 = kemppinen_block_start(x_s.x * res_s, n);
-  const LaneInt<T> sy0 = kemppinen_block_start(x_s.y * res_s, n);
-  const LaneInt<T> ax0 = kemppinen_block_start(ang.x_a.x * res_a, n);
-  const LaneInt<T> ay0 = kemppinen_block_start(ang.x_a.y * res_a, n);
+  const LaneInt<T> n_a = level_cells<T>(level);
+  const LaneInt<T> sx0 = block_start(x_s.x * res_s, n);
+  const LaneInt<T> sy0 = block_start(x_s.y * res_s, n);
+  const LaneInt<T> ax0 = block_start(ang.x_a.x * res_a, n);
+  const LaneInt<T> ay0 = block_start(ang.x_a.y * res_a, n);
   const Sym2<T> sigma_a2{sqr(ang.sigma_a.x), T(0), sqr(ang.sigma_a.y)};
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
       for (int a = 0; a < n; ++a)
         for (int b = 0; b < n; ++b) {
           const LaneInt<T> sx = sx0 + i, sy = sy0 + j, ax = ax0 + a, ay = ay0 + b;
-          const LaneInt<T, std::uint64_t> ci =
-              kemppinen_cell_index_lanes<T>(sx, sy, ax, ay, level, process);
+          const LaneInt<T, std::uint64_t> ci = cell_index_lanes<T>(sx, sy, ax, ay, level, process);
           const Mask<T> in_square = mask_lanes<T>([&](std::size_t l) {
             return lane(ax, l) >= 0 && lane(ax, l) < lane(n_a, l) && lane(ay, l) >= 0 &&
                    lane(ay, l) < lane(n_a, l);
           });
           const Vec2<T> g_s{
-              (int_to_float<T>(sx) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialX)) /
-                  res_s,
-              (int_to_float<T>(sy) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialY)) /
-                  res_s};
+              (int_to_float<T>(sx) + cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialX)) / res_s,
+              (int_to_float<T>(sy) + cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialY)) / res_s};
           const Vec2<T> g_a{
-              (int_to_float<T>(ax) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) /
-                  res_a,
-              (int_to_float<T>(ay) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) /
-                  res_a};
+              (int_to_float<T>(ax) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) / res_a,
+              (int_to_float<T>(ay) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) / res_a};
           // Points outside U_Ω are rejected (Sec. 3.3.1).
           const Mask<T> in_disk = sqr(g_a.x - T(0.5)) + sqr(g_a.y - T(0.5)) <= T(0.25);
-          const T r = kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimRoulette);
-          const T blend = p.blend == KemppinenBlend::kRoulette ? kemppinen_roulette(r, w_l) : w_l;
+          const T r = cell_uniform<T>(p.seed, ci, kKemppinenDimRoulette);
+          const T blend = p.blend == Blend::kRoulette ? roulette(r, w_l) : w_l;
           const T w =
               blend * normal2(x_s - g_s, sigma_s) * normal2(ang.x_a - g_a, sigma_a2) * inv_rho;
-          const Vec3<T> col =
-              kemppinen_color(p.colors, kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimColor));
+          const Vec3<T> col = color(p.colors, cell_uniform<T>(p.seed, ci, kKemppinenDimColor));
           explicit_sum = explicit_sum + select(in_disk && in_square, w, T(0)) * col;
         }
   // B(k) clipped to the square: the cells that exist.
@@ -255,29 +245,28 @@ GLINTLAB_FN void kemppinen_level(const KemppinenParams<T>& p, const KemppinenAng
   const Vec2<T> b_hi{int_to_float<T>(int_min(ax0 + n, n_a)) / res_a,
                      int_to_float<T>(int_min(ay0 + n, n_a)) / res_a};
   const T cmp =
-      p.compensate ? kemppinen_compensation(ang.x_a, ang.sigma_a, b_lo, b_hi, p.erf) : T(0);
-  compensation = compensation + (w_l * cmp) * kemppinen_expected_color<T>(p.colors);
+      p.compensate ? kemppinen2025::compensation(ang.x_a, ang.sigma_a, b_lo, b_hi, p.erf) : T(0);
+  compensation = compensation + (w_l * cmp) * expected_color<T>(p.colors);
 }
 
 // D★^f of one point process at footprint `fp` (Algorithm 1), with an extra weight on its levels
 // (1 for plain uv; the triplanar plane weight otherwise, applied inside the roulette).
 template <class Ndf, class T>
-GLINTLAB_FN KemppinenResult<T> kemppinen_eval_process(const KemppinenParams<T>& p, const Ndf& ndf,
-                                                      const FootprintQuery<T>& fp, Vec3<T> h,
-                                                      int process, T process_w) {
-  const KemppinenAngular<T> ang = kemppinen_angular(p, ndf, h);
-  const T res = kemppinen_base_resolution(p);
-  const Vec2<T> x_s = kemppinen_spatial_position(p, fp.uv);
-  const Sym2<T> sigma_s = kemppinen_spatial_covariance(p, fp, res);
-  const T lambda = kemppinen_lod(sigma_s, res);
-  const T fl = min(floor(lambda), T(kKemppinenMaxLevel - 1));
+GLINTLAB_FN Result<T> eval_process(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp,
+                                   Vec3<T> h, int process, T process_w) {
+  const Angular<T> ang = angular(p, ndf, h);
+  const T res = base_resolution(p);
+  const Vec2<T> x_s = spatial_position(p, fp.uv);
+  const Sym2<T> sigma_s = spatial_covariance(p, fp, res);
+  const T lambda = lod(sigma_s, res);
+  const T fl = min(floor(lambda), T(kMaxLevel - 1));
   const LaneInt<T, int> l0 = floor_int<T, int>(fl);
   const T w1 = lambda - fl, w0 = T(1) - w1;
   Vec3<T> ex{T(0), T(0), T(0)}, cp{T(0), T(0), T(0)};
-  kemppinen_level(p, ang, x_s, sigma_s, res, l0, w0 * process_w, process, ex, cp);
-  kemppinen_level(p, ang, x_s, sigma_s, res, l0 + 1, w1 * process_w, process, ex, cp);
+  kemppinen2025::level(p, ang, x_s, sigma_s, res, l0, w0 * process_w, process, ex, cp);
+  kemppinen2025::level(p, ang, x_s, sigma_s, res, l0 + 1, w1 * process_w, process, ex, cp);
   const T k = select(ang.valid, ang.prefactor, T(0));
-  KemppinenResult<T> out;
+  Result<T> out;
   out.explicit_part = k * ex;
   out.compensation_part = k * cp;
   out.d = out.explicit_part + out.compensation_part;
@@ -292,29 +281,29 @@ GLINTLAB_FN KemppinenResult<T> kemppinen_eval_process(const KemppinenParams<T>& 
 
 // D★^f(x, ω_h) of Eq. 11 by Algorithm 1, at the footprint's uv.
 template <class Ndf, class T>
-GLINTLAB_FN KemppinenResult<T> kemppinen_eval(const KemppinenParams<T>& p, const Ndf& ndf,
-                                              const FootprintQuery<T>& fp, Vec3<T> h) {
-  return kemppinen_eval_process(p, ndf, fp, h, 0, T(1));
+GLINTLAB_FN Result<T> eval(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp,
+                           Vec3<T> h) {
+  return eval_process(p, ndf, fp, h, 0, T(1));
 }
 
 // The triplanar blend weights (Sec. 3.3.6): |n_axis| / Σ|n| for the planes ⊥ x, y, z. The paper
 // prints the weight as |n · plane normal| alone, whose sum runs from 1 (axis-aligned) to √3
 // (diagonal) and would brighten diagonal surfaces by up to √3; normalised here so they sum to 1.
 template <class T>
-GLINTLAB_FN Vec3<T> kemppinen_triplanar_weights(Vec3<T> n_geo) {
+GLINTLAB_FN Vec3<T> triplanar_weights(Vec3<T> n_geo) {
   const Vec3<T> a{abs(n_geo.x), abs(n_geo.y), abs(n_geo.z)};
   return (T(1) / (a.x + a.y + a.z)) * a;
 }
 
 // The point process of each triplanar plane: ⊥ z is process 0, the uv process, so on a plane
 // ⊥ z at uv = (x, y) the triplanar glints are the uv glints; ⊥ x and ⊥ y are 1 and 2.
-constexpr int kKemppinenTriplanarProcess[3] = {1, 2, 0};
+constexpr int kTriplanarProcess[3] = {1, 2, 0};
 
 // The footprint of triplanar plane `axis` (⊥ x, y, z) at object-space position `pos` with screen
 // derivatives dpos_dx, dpos_dy: uv = (p.y, p.z), (p.z, p.x), (p.x, p.y).
 template <class T>
-GLINTLAB_FN FootprintQuery<T> kemppinen_triplanar_footprint(int axis, Vec3<T> pos, Vec3<T> dpos_dx,
-                                                            Vec3<T> dpos_dy) {
+GLINTLAB_FN FootprintQuery<T> triplanar_footprint(int axis, Vec3<T> pos, Vec3<T> dpos_dx,
+                                                  Vec3<T> dpos_dy) {
   const auto pick = [axis](Vec3<T> v) {
     return axis == 0 ? Vec2<T>{v.y, v.z} : axis == 1 ? Vec2<T>{v.z, v.x} : Vec2<T>{v.x, v.y};
   };
@@ -323,23 +312,20 @@ GLINTLAB_FN FootprintQuery<T> kemppinen_triplanar_footprint(int axis, Vec3<T> po
 
 // UV-free rendering by triplanar mapping (Sec. 3.3.6): three point processes on the planes
 // ⊥ x, y, z of object space, at uv = (p.y, p.z), (p.z, p.x), (p.x, p.y) with footprints from the
-// position derivatives, weighted by kemppinen_triplanar_weights through the same roulette. λ, the
+// position derivatives, weighted by triplanar_weights through the same roulette. λ, the
 // level weights and level0 are those of the heaviest plane; points counts all three. Anisotropy
 // is the caller's to disable (the paper: triplanar "prevents a simple definition of anisotropy").
 template <class Ndf, class T>
-GLINTLAB_FN KemppinenResult<T> kemppinen_eval_triplanar(const KemppinenParams<T>& p, const Ndf& ndf,
-                                                        Vec3<T> pos, Vec3<T> dpos_dx,
-                                                        Vec3<T> dpos_dy, Vec3<T> n_geo, Vec3<T> h) {
-  const Vec3<T> wv = kemppinen_triplanar_weights(n_geo);
+GLINTLAB_FN Result<T> eval_triplanar(const Params<T>& p, const Ndf& ndf, Vec3<T> pos,
+                                     Vec3<T> dpos_dx, Vec3<T> dpos_dy, Vec3<T> n_geo, Vec3<T> h) {
+  const Vec3<T> wv = triplanar_weights(n_geo);
   const T w[3] = {wv.x, wv.y, wv.z};
-  KemppinenResult<T> out =
-      kemppinen_eval_process(p, ndf, kemppinen_triplanar_footprint(0, pos, dpos_dx, dpos_dy), h,
-                             kKemppinenTriplanarProcess[0], w[0]);
+  Result<T> out = eval_process(p, ndf, triplanar_footprint(0, pos, dpos_dx, dpos_dy), h,
+                               kTriplanarProcess[0], w[0]);
   T w_best = w[0];
   for (int i = 1; i < 3; ++i) {
-    const KemppinenResult<T> r =
-        kemppinen_eval_process(p, ndf, kemppinen_triplanar_footprint(i, pos, dpos_dx, dpos_dy), h,
-                               kKemppinenTriplanarProcess[i], w[i]);
+    const Result<T> r = eval_process(p, ndf, triplanar_footprint(i, pos, dpos_dx, dpos_dy), h,
+                                     kTriplanarProcess[i], w[i]);
     out.explicit_part = out.explicit_part + r.explicit_part;
     out.compensation_part = out.compensation_part + r.compensation_part;
     out.points += r.points;
@@ -354,4 +340,4 @@ GLINTLAB_FN KemppinenResult<T> kemppinen_eval_triplanar(const KemppinenParams<T>
   return out;
 }
 
-}  // namespace glintlab
+}  // namespace glintlab::kemppinen2025

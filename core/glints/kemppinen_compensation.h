@@ -5,9 +5,9 @@
 
 #include "core/math/vec.h"
 
-namespace glintlab {
+namespace glintlab::kemppinen2025 {
 
-enum class KemppinenErf { kExact = 0, kRational = 1 };
+enum class Erf { kExact = 0, kRational = 1 };
 
 // erf by Abramowitz & Stegun 7.1.28, 1 − (1 + a1 x + … + a6 x⁶)^−16 for x ≥ 0 (odd extension):
 // rational, no exp, |error| ≤ 3e-7 (A&S). The ^−16 is four squarings of the reciprocal.
@@ -30,23 +30,22 @@ GLINTLAB_FN T erf_rational(T x) {
 }
 
 template <class T>
-GLINTLAB_FN T kemppinen_erf(T x, KemppinenErf variant) {
-  return variant == KemppinenErf::kExact ? erf(x) : erf_rational(x);
+GLINTLAB_FN T erf_variant(T x, Erf variant) {
+  return variant == Erf::kExact ? erf(x) : erf_rational(x);
 }
 
 // ∫_{a}^{b} of the 1D normal density centred at m with standard deviation s:
 // ½ (erf((b − m)/(√2 s)) − erf((a − m)/(√2 s))). Returns 0 for an empty interval (b ≤ a).
 template <class T>
-GLINTLAB_FN T gaussian_interval_mass(T a, T b, T m, T s, KemppinenErf variant) {
+GLINTLAB_FN T gaussian_interval_mass(T a, T b, T m, T s, Erf variant) {
   const T k = T(0.70710678118654752440) / s;
-  const T v = T(0.5) * (kemppinen_erf((b - m) * k, variant) - kemppinen_erf((a - m) * k, variant));
+  const T v = T(0.5) * (erf_variant((b - m) * k, variant) - erf_variant((a - m) * k, variant));
   return select(b > a, max(v, T(0)), T(0));
 }
 
 // Mass of the axis-aligned normal N(m, diag(sx², sy²)) over the rectangle [lo, hi] (separable).
 template <class T>
-GLINTLAB_FN T gaussian_rect_mass(Vec2<T> lo, Vec2<T> hi, Vec2<T> m, Vec2<T> s,
-                                 KemppinenErf variant) {
+GLINTLAB_FN T gaussian_rect_mass(Vec2<T> lo, Vec2<T> hi, Vec2<T> m, Vec2<T> s, Erf variant) {
   return gaussian_interval_mass(lo.x, hi.x, m.x, s.x, variant) *
          gaussian_interval_mass(lo.y, hi.y, m.y, s.y, variant);
 }
@@ -56,12 +55,11 @@ GLINTLAB_FN T gaussian_rect_mass(Vec2<T> lo, Vec2<T> hi, Vec2<T> m, Vec2<T> s,
 // printed Eq. 9 integrates over U_Ω \ B(k); Eq. 10 replaces U_Ω by □, which adds the lobe's mass
 // outside the disk (Sec. 5: "considers areas outside of U_Ω", Fig. 14 left).
 template <class T>
-GLINTLAB_FN T kemppinen_compensation(Vec2<T> x_a, Vec2<T> sigma_a, Vec2<T> b_lo, Vec2<T> b_hi,
-                                     KemppinenErf variant) {
+GLINTLAB_FN T compensation(Vec2<T> x_a, Vec2<T> sigma_a, Vec2<T> b_lo, Vec2<T> b_hi, Erf variant) {
   const T whole =
       gaussian_rect_mass(Vec2<T>{T(0), T(0)}, Vec2<T>{T(1), T(1)}, x_a, sigma_a, variant);
   const T near = gaussian_rect_mass(b_lo, b_hi, x_a, sigma_a, variant);
   return max(whole - near, T(0));
 }
 
-}  // namespace glintlab
+}  // namespace glintlab::kemppinen2025

@@ -13,18 +13,18 @@
 #include "core/math/rng.h"
 #include "core/math/vec.h"
 
-namespace glintlab {
+namespace glintlab::kemppinen2025 {
 
 // The cell (i_s, i_a, l) of Algorithm 1 lines 15–17: spatial cell (sx, sy) and angular cell
 // (ax, ay) at MIP level l, plus the triplanar process index (Sec. 3.3.6, 0 for plain uv).
-struct KemppinenCell {
+struct Cell {
   std::int64_t sx, sy, ax, ay;
   int level;
   int process;
 };
 
 // The random-number dimensions of one cell (Rand2D twice, Rand1D for the roulette, GlintColor).
-enum KemppinenDim : std::uint64_t {
+enum Dim : std::uint64_t {
   kKemppinenDimSpatialX = 0,
   kKemppinenDimSpatialY = 1,
   kKemppinenDimAngularX = 2,
@@ -36,7 +36,7 @@ enum KemppinenDim : std::uint64_t {
 // The counter index of a cell: the paper seeds an RNG with the cell index (Sec. 3.3.1, "a
 // congruential RNG as they are fast to seed"); here the SplitMix64 finalizer of core/math/rng.h
 // chained over the six integers, so neighbouring cells get unrelated streams.
-GLINTLAB_FN std::uint64_t kemppinen_cell_index(const KemppinenCell& c) {
+GLINTLAB_FN std::uint64_t cell_index(const Cell& c) {
   std::uint64_t h = mix64(static_cast<std::uint64_t>(c.sx) + 0x9e3779b97f4a7c15ULL);
   h = mix64(h ^ (static_cast<std::uint64_t>(c.sy) * 0xd1b54a32d192ed03ULL));
   h = mix64(h ^ (static_cast<std::uint64_t>(c.ax) * 0x8cb92ba72f3d8dd7ULL));
@@ -46,28 +46,26 @@ GLINTLAB_FN std::uint64_t kemppinen_cell_index(const KemppinenCell& c) {
 }
 
 // The uniform number of dimension `dim` of the point of the cell with index
-// kemppinen_cell_index(c): r ∈ [0,1) (Sec. 3.3.1).
+// kemppinen2025::cell_index(c): r ∈ [0,1) (Sec. 3.3.1).
 template <class T>
-GLINTLAB_FN T kemppinen_cell_uniform(std::uint64_t seed, std::uint64_t cell_index,
-                                     std::uint64_t dim) {
+GLINTLAB_FN T cell_uniform(std::uint64_t seed, std::uint64_t cell_index, std::uint64_t dim) {
   return counter_uniform<T>(seed, cell_index, dim);
 }
 // The same for a batch: the cell index of each lane.
 template <class T, class I, std::size_t N>
-GLINTLAB_FN T kemppinen_cell_uniform(std::uint64_t seed, const IntLanes<I, N>& cell_index,
-                                     std::uint64_t dim) {
+GLINTLAB_FN T cell_uniform(std::uint64_t seed, const IntLanes<I, N>& cell_index,
+                           std::uint64_t dim) {
   return float_lanes<T>(
       [&](std::size_t l) { return counter_uniform<Scalar<T>>(seed, cell_index.v[l], dim); });
 }
 
-// kemppinen_cell_index of the cell (sx, sy, ax, ay, level, process) in every lane of T.
+// kemppinen2025::cell_index of the cell (sx, sy, ax, ay, level, process) in every lane of T.
 template <class T, class C, class L>
-GLINTLAB_FN LaneInt<T, std::uint64_t> kemppinen_cell_index_lanes(const C& sx, const C& sy,
-                                                                 const C& ax, const C& ay,
-                                                                 const L& level, int process) {
+GLINTLAB_FN LaneInt<T, std::uint64_t> cell_index_lanes(const C& sx, const C& sy, const C& ax,
+                                                       const C& ay, const L& level, int process) {
   return int_lanes<T, std::uint64_t>([&](std::size_t l) {
-    return kemppinen_cell_index(
-        KemppinenCell{lane(sx, l), lane(sy, l), lane(ax, l), lane(ay, l), lane(level, l), process});
+    return kemppinen2025::cell_index(
+        Cell{lane(sx, l), lane(sy, l), lane(ax, l), lane(ay, l), lane(level, l), process});
   });
 }
 
@@ -75,11 +73,11 @@ GLINTLAB_FN LaneInt<T, std::uint64_t> kemppinen_cell_index_lanes(const C& sx, co
 // axis: floor(x − (n − 1)/2). n odd: centred on the cell holding x; n even: the n cells whose
 // centre block is nearest x (the k-NeighbouringCells of Algorithm 1 lines 13–14, k = n²).
 template <class T>
-GLINTLAB_FN LaneInt<T> kemppinen_block_start(T x_cells, int n) {
+GLINTLAB_FN LaneInt<T> block_start(T x_cells, int n) {
   return floor_int<T>(x_cells - T(0.5) * T(n - 1));
 }
 
 // The valid k of Algorithm 1 (Sec. 3.3.4): 1, 4, 9, 16 neighbours, i.e. blocks of side 1…4.
-inline constexpr int kKemppinenMaxSide = 4;
+inline constexpr int kMaxSide = 4;
 
-}  // namespace glintlab
+}  // namespace glintlab::kemppinen2025

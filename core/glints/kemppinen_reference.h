@@ -8,25 +8,25 @@
 
 #include "core/glints/kemppinen.h"
 
-namespace glintlab {
+namespace glintlab::kemppinen2025 {
 
 // Points farther than this many standard deviations (of the lobe or of the pixel filter) are
 // skipped: their weight is below exp(−kKemppinenReferenceSigmas²/2) = e^{−32} of the peak.
-inline constexpr double kKemppinenReferenceSigmas = 8.0;
+inline constexpr double kReferenceSigmas = 8.0;
 
 // Eq. 5 at one level with weight w_l (roulette or linear as in the params): every point whose
-// spatial cell lies within kKemppinenReferenceSigmas of the filter and whose angular cell lies
+// spatial cell lies within kReferenceSigmas of the filter and whose angular cell lies
 // within that many lobe widths of x_a (the whole square when `whole_square`). Adds the number of
 // (spatial cell, angular cell) pairs it visits to *visited when given (the cost measure of
-// kemppinen.constant-time, comparable to KemppinenResult::points).
+// kemppinen.constant-time, comparable to Result::points).
 template <class T>
-Vec3<T> kemppinen_reference_level(const KemppinenParams<T>& p, const KemppinenAngular<T>& ang,
-                                  Vec2<T> x_s, const Sym2<T>& sigma_s, T res, int level, T w_l,
-                                  bool whole_square = false, std::int64_t* visited = nullptr) {
-  const T res_a = kemppinen_angular_resolution<T>(level);
+Vec3<T> reference_level(const Params<T>& p, const Angular<T>& ang, Vec2<T> x_s,
+                        const Sym2<T>& sigma_s, T res, int level, T w_l, bool whole_square = false,
+                        std::int64_t* visited = nullptr) {
+  const T res_a = angular_resolution<T>(level);
   const T res_s = res / res_a;
   const std::int64_t n_a = std::int64_t(1) << level;
-  const T r = T(kKemppinenReferenceSigmas);
+  const T r = T(kReferenceSigmas);
   const T sx = sqrt(sigma_s.xx) * r, sy = sqrt(sigma_s.yy) * r;
   const std::int64_t sx0 = std::int64_t(floor((x_s.x - sx) * res_s));
   const std::int64_t sx1 = std::int64_t(floor((x_s.x + sx) * res_s));
@@ -47,20 +47,17 @@ Vec3<T> kemppinen_reference_level(const KemppinenParams<T>& p, const KemppinenAn
     for (std::int64_t j = sy0; j <= sy1; ++j)
       for (std::int64_t a = ax0; a <= ax1; ++a)
         for (std::int64_t b = ay0; b <= ay1; ++b) {
-          const KemppinenCell c{i, j, a, b, level, 0};
-          const std::uint64_t ci = kemppinen_cell_index(c);
-          const Vec2<T> g_a{
-              (T(a) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) / res_a,
-              (T(b) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) / res_a};
+          const Cell c{i, j, a, b, level, 0};
+          const std::uint64_t ci = kemppinen2025::cell_index(c);
+          const Vec2<T> g_a{(T(a) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) / res_a,
+                            (T(b) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) / res_a};
           if (sqr(g_a.x - T(0.5)) + sqr(g_a.y - T(0.5)) > T(0.25)) continue;
-          const Vec2<T> g_s{
-              (T(i) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialX)) / res_s,
-              (T(j) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialY)) / res_s};
-          const T rr = kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimRoulette);
-          const T blend = p.blend == KemppinenBlend::kRoulette ? kemppinen_roulette(rr, w_l) : w_l;
+          const Vec2<T> g_s{(T(i) + cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialX)) / res_s,
+                            (T(j) + cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialY)) / res_s};
+          const T rr = cell_uniform<T>(p.seed, ci, kKemppinenDimRoulette);
+          const T blend = p.blend == Blend::kRoulette ? roulette(rr, w_l) : w_l;
           const T w = blend * normal2(x_s - g_s, sigma_s) * normal2(ang.x_a - g_a, sigma_a2);
-          sum = sum + w * kemppinen_color(
-                              p.colors, kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimColor));
+          sum = sum + w * color(p.colors, cell_uniform<T>(p.seed, ci, kKemppinenDimColor));
         }
   return (T(1) / sqr(res)) * sum;
 }
@@ -69,37 +66,35 @@ Vec3<T> kemppinen_reference_level(const KemppinenParams<T>& p, const KemppinenAn
 // levels ⌊λ⌋ and ⌊λ⌋+1 blended as Algorithm 1 blends them; every contributing point summed
 // (their count added to *visited when given).
 template <class Ndf, class T>
-Vec3<T> kemppinen_reference_filtered(const KemppinenParams<T>& p, const Ndf& ndf,
-                                     const FootprintQuery<T>& fp, Vec3<T> h,
-                                     bool whole_square = false, std::int64_t* visited = nullptr) {
-  const KemppinenAngular<T> ang = kemppinen_angular(p, ndf, h);
+Vec3<T> reference_filtered(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp,
+                           Vec3<T> h, bool whole_square = false, std::int64_t* visited = nullptr) {
+  const Angular<T> ang = angular(p, ndf, h);
   if (!ang.valid) return {T(0), T(0), T(0)};
-  const T res = kemppinen_base_resolution(p);
-  const Vec2<T> x_s = kemppinen_spatial_position(p, fp.uv);
-  const Sym2<T> sigma_s = kemppinen_spatial_covariance(p, fp, res);
-  const T lambda = kemppinen_lod(sigma_s, res);
-  const T fl = min(floor(lambda), T(kKemppinenMaxLevel - 1));
+  const T res = base_resolution(p);
+  const Vec2<T> x_s = spatial_position(p, fp.uv);
+  const Sym2<T> sigma_s = spatial_covariance(p, fp, res);
+  const T lambda = lod(sigma_s, res);
+  const T fl = min(floor(lambda), T(kMaxLevel - 1));
   const int l0 = static_cast<int>(fl);
   const T w1 = lambda - fl;
   const Vec3<T> s0 =
-      kemppinen_reference_level(p, ang, x_s, sigma_s, res, l0, T(1) - w1, whole_square, visited);
-  const Vec3<T> s1 =
-      kemppinen_reference_level(p, ang, x_s, sigma_s, res, l0 + 1, w1, whole_square, visited);
+      reference_level(p, ang, x_s, sigma_s, res, l0, T(1) - w1, whole_square, visited);
+  const Vec3<T> s1 = reference_level(p, ang, x_s, sigma_s, res, l0 + 1, w1, whole_square, visited);
   return ang.prefactor * (s0 + s1);
 }
 
 // Eq. 4 averaged over the region of `cells` × `cells` spatial cells of level `level` starting at
 // cell (cx, cy): (1/|X|) ∫_X D★(x, ω_h) dx = prefactor/(K_P |X|) Σ_{x_i ∈ X} N(T(ω_h), μ_i, σ),
-// every point of the region whose angular cell lies within kKemppinenReferenceSigmas lobe widths
+// every point of the region whose angular cell lies within kReferenceSigmas lobe widths
 // of x_a. The lobes' normalisation gives the far-field mean prefactor × (lobe mass inside U_Ω).
 template <class Ndf, class T>
-T kemppinen_region_mean(const KemppinenParams<T>& p, const Ndf& ndf, Vec3<T> h, int level,
-                        std::int64_t cx, std::int64_t cy, std::int64_t cells) {
-  const KemppinenAngular<T> ang = kemppinen_angular(p, ndf, h);
+T region_mean(const Params<T>& p, const Ndf& ndf, Vec3<T> h, int level, std::int64_t cx,
+              std::int64_t cy, std::int64_t cells) {
+  const Angular<T> ang = angular(p, ndf, h);
   if (!ang.valid) return T(0);
-  const T res_a = kemppinen_angular_resolution<T>(level);
+  const T res_a = angular_resolution<T>(level);
   const std::int64_t n_a = std::int64_t(1) << level;
-  const T r = T(kKemppinenReferenceSigmas);
+  const T r = T(kReferenceSigmas);
   auto clip = [&](T v) { return std::int64_t(clamp(floor(v * res_a), T(0), T(n_a - 1))); };
   const std::int64_t ax0 = clip(ang.x_a.x - r * ang.sigma_a.x);
   const std::int64_t ax1 = clip(ang.x_a.x + r * ang.sigma_a.x);
@@ -111,11 +106,10 @@ T kemppinen_region_mean(const KemppinenParams<T>& p, const Ndf& ndf, Vec3<T> h, 
     for (std::int64_t j = cy; j < cy + cells; ++j)
       for (std::int64_t a = ax0; a <= ax1; ++a)
         for (std::int64_t b = ay0; b <= ay1; ++b) {
-          const KemppinenCell c{i, j, a, b, level, 0};
-          const std::uint64_t ci = kemppinen_cell_index(c);
-          const Vec2<T> g_a{
-              (T(a) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) / res_a,
-              (T(b) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) / res_a};
+          const Cell c{i, j, a, b, level, 0};
+          const std::uint64_t ci = kemppinen2025::cell_index(c);
+          const Vec2<T> g_a{(T(a) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) / res_a,
+                            (T(b) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) / res_a};
           if (sqr(g_a.x - T(0.5)) + sqr(g_a.y - T(0.5)) > T(0.25)) continue;
           sum += normal2(ang.x_a - g_a, sigma_a2);
         }
@@ -123,14 +117,14 @@ T kemppinen_region_mean(const KemppinenParams<T>& p, const Ndf& ndf, Vec3<T> h, 
   return ang.prefactor * sum / (T(cells * cells) * sqr(res_a));
 }
 
-// The far-field value of kemppinen_region_mean: prefactor × ∫_{U_Ω} N(μ; x_a, Σ_a) dμ, the lobe's
+// The far-field value of region_mean: prefactor × ∫_{U_Ω} N(μ; x_a, Σ_a) dμ, the lobe's
 // mass inside the disk: rows of the lobe's ±8σ box (clipped to □), each row's x-extent the disk's
 // chord at the row's middle, integrated exactly by erf (error O(row height²) at the rim).
 template <class Ndf, class T>
-T kemppinen_area_mean_expected(const KemppinenParams<T>& p, const Ndf& ndf, Vec3<T> h) {
-  const KemppinenAngular<T> ang = kemppinen_angular(p, ndf, h);
+T area_mean_expected(const Params<T>& p, const Ndf& ndf, Vec3<T> h) {
+  const Angular<T> ang = angular(p, ndf, h);
   if (!ang.valid) return T(0);
-  const T r = T(kKemppinenReferenceSigmas);
+  const T r = T(kReferenceSigmas);
   const T y0 = max(T(0), ang.x_a.y - r * ang.sigma_a.y),
           y1 = min(T(1), ang.x_a.y + r * ang.sigma_a.y);
   constexpr int kRows = 512;
@@ -139,11 +133,11 @@ T kemppinen_area_mean_expected(const KemppinenParams<T>& p, const Ndf& ndf, Vec3
     const T ya = y0 + (y1 - y0) * T(k) / T(kRows), yb = y0 + (y1 - y0) * T(k + 1) / T(kRows);
     const T ym = T(0.5) * (ya + yb);
     const T half = safe_sqrt(T(0.25) - sqr(ym - T(0.5)));
-    const T mx = gaussian_interval_mass(T(0.5) - half, T(0.5) + half, ang.x_a.x, ang.sigma_a.x,
-                                        KemppinenErf::kExact);
-    mass += mx * gaussian_interval_mass(ya, yb, ang.x_a.y, ang.sigma_a.y, KemppinenErf::kExact);
+    const T mx =
+        gaussian_interval_mass(T(0.5) - half, T(0.5) + half, ang.x_a.x, ang.sigma_a.x, Erf::kExact);
+    mass += mx * gaussian_interval_mass(ya, yb, ang.x_a.y, ang.sigma_a.y, Erf::kExact);
   }
   return ang.prefactor * mass;
 }
 
-}  // namespace glintlab
+}  // namespace glintlab::kemppinen2025

@@ -38,11 +38,11 @@
 #include "core/math/disk_rect_area.h"
 #include "core/ndf/microfacet.h"
 
-namespace glintlab {
+namespace glintlab::kemppinen2025 {
 
 // One candidate point of a block B(k) (Algorithm 2 lines 11–12).
 template <class T>
-struct KemppinenCandidate {
+struct Candidate {
   Vec2<T> g_a, sigma;
   T s;            // R(r, w_λ) N(Σ_s, x_s − g_s) Luminance(c): the weight before the lobe's mass
   T m;            // ∫_B N_j
@@ -50,10 +50,8 @@ struct KemppinenCandidate {
 };
 
 template <class T>
-struct KemppinenBlock {
-  std::array<KemppinenCandidate<T>,
-             kKemppinenMaxSide * kKemppinenMaxSide * kKemppinenMaxSide * kKemppinenMaxSide>
-      c;
+struct Block {
+  std::array<Candidate<T>, kMaxSide * kMaxSide * kMaxSide * kMaxSide> c;
   int count = 0;
   Vec2<T> lo, hi;  // B(k) clipped to □
   T total = T(0);  // Σ w★ = Σ s_j m_j
@@ -61,7 +59,7 @@ struct KemppinenBlock {
 
 // The spatial frame of a query, as Algorithm 1 lines 1–5 compute it.
 template <class T>
-struct KemppinenSpatial {
+struct Spatial {
   Vec2<T> x_s;
   Sym2<T> sigma_s;
   T res, lambda, w1;
@@ -69,13 +67,13 @@ struct KemppinenSpatial {
 };
 
 template <class T>
-KemppinenSpatial<T> kemppinen_spatial(const KemppinenParams<T>& p, const FootprintQuery<T>& fp) {
-  KemppinenSpatial<T> s;
-  s.res = kemppinen_base_resolution(p);
-  s.x_s = kemppinen_spatial_position(p, fp.uv);
-  s.sigma_s = kemppinen_spatial_covariance(p, fp, s.res);
-  s.lambda = kemppinen_lod(s.sigma_s, s.res);
-  const T fl = min(floor(s.lambda), T(kKemppinenMaxLevel - 1));
+Spatial<T> spatial(const Params<T>& p, const FootprintQuery<T>& fp) {
+  Spatial<T> s;
+  s.res = base_resolution(p);
+  s.x_s = spatial_position(p, fp.uv);
+  s.sigma_s = spatial_covariance(p, fp, s.res);
+  s.lambda = lod(s.sigma_s, s.res);
+  const T fl = min(floor(s.lambda), T(kMaxLevel - 1));
   s.l0 = floor_int<T, int>(fl);
   s.w1 = s.lambda - fl;
   return s;
@@ -83,7 +81,7 @@ KemppinenSpatial<T> kemppinen_spatial(const KemppinenParams<T>& p, const Footpri
 
 // Lobe standard deviations of a point at g_a (Σ_a of Algorithm 1 line 12 at ω = T⁻¹(g_a)).
 template <class Ndf, class T>
-Vec2<T> kemppinen_point_sigma(const KemppinenParams<T>& p, const Ndf& ndf, Vec2<T> g_a) {
+Vec2<T> point_sigma(const Params<T>& p, const Ndf& ndf, Vec2<T> g_a) {
   const Vec3<T> w = map_from_square(ndf, g_a);
   const T sigma = p.microroughness * sqrt(ndf.D(w) / T(kMapDomainArea<T>));
   const T sa = sqrt(p.anisotropy);
@@ -91,17 +89,16 @@ Vec2<T> kemppinen_point_sigma(const KemppinenParams<T>& p, const Ndf& ndf, Vec2<
 }
 
 // The candidates of block B with angular start cell (ax0, ay0) at `level` (weight w_l), of point
-// process `process` (0 = uv; the triplanar planes: kKemppinenTriplanarProcess).
+// process `process` (0 = uv; the triplanar planes: kTriplanarProcess).
 template <class Ndf, class T>
-void kemppinen_block(const KemppinenParams<T>& p, const Ndf& ndf, const KemppinenSpatial<T>& sp,
-                     const LaneInt<T, int>& level, T w_l, const LaneInt<T>& ax0,
-                     const LaneInt<T>& ay0, KemppinenBlock<T>& out, int process = 0) {
+void block(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp, const LaneInt<T, int>& level,
+           T w_l, const LaneInt<T>& ax0, const LaneInt<T>& ay0, Block<T>& out, int process = 0) {
   const int n = p.side;
-  const T res_a = kemppinen_angular_resolution<T>(level);
+  const T res_a = angular_resolution<T>(level);
   const T res_s = sp.res / res_a;
-  const LaneInt<T> n_a = kemppinen_level_cells<T>(level);
-  const LaneInt<T> sx0 = kemppinen_block_start(sp.x_s.x * res_s, n);
-  const LaneInt<T> sy0 = kemppinen_block_start(sp.x_s.y * res_s, n);
+  const LaneInt<T> n_a = level_cells<T>(level);
+  const LaneInt<T> sx0 = block_start(sp.x_s.x * res_s, n);
+  const LaneInt<T> sy0 = block_start(sp.x_s.y * res_s, n);
   out.lo = {int_to_float<T>(int_max(ax0, std::int64_t(0))) / res_a,
             int_to_float<T>(int_max(ay0, std::int64_t(0))) / res_a};
   out.hi = {int_to_float<T>(int_min(ax0 + n, n_a)) / res_a,
@@ -113,39 +110,29 @@ void kemppinen_block(const KemppinenParams<T>& p, const Ndf& ndf, const Kemppine
       for (int a = 0; a < n; ++a)
         for (int b = 0; b < n; ++b) {
           const LaneInt<T> sx = sx0 + i, sy = sy0 + j, ax = ax0 + a, ay = ay0 + b;
-          const LaneInt<T, std::uint64_t> ci =
-              kemppinen_cell_index_lanes<T>(sx, sy, ax, ay, level, process);
-          KemppinenCandidate<T> k;
+          const LaneInt<T, std::uint64_t> ci = cell_index_lanes<T>(sx, sy, ax, ay, level, process);
+          Candidate<T> k;
           k.valid = mask_lanes<T>([&](std::size_t l) {
             return lane(ax, l) >= 0 && lane(ax, l) < lane(n_a, l) && lane(ay, l) >= 0 &&
                    lane(ay, l) < lane(n_a, l);
           });
           k.g_a = {
-              (int_to_float<T>(ax) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) /
-                  res_a,
-              (int_to_float<T>(ay) + kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) /
-                  res_a};
+              (int_to_float<T>(ax) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) / res_a,
+              (int_to_float<T>(ay) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) / res_a};
           k.valid = k.valid && (sqr(k.g_a.x - T(0.5)) + sqr(k.g_a.y - T(0.5)) <= T(0.25));
           k.s = T(0);
           k.m = T(0);
           k.sigma = {T(0), T(0)};
           if (any_lane<T>(k.valid)) {  // uniform: some lane has the point
-            const Vec2<T> g_s{(int_to_float<T>(sx) +
-                               kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialX)) /
-                                  res_s,
-                              (int_to_float<T>(sy) +
-                               kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialY)) /
-                                  res_s};
-            const T r = kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimRoulette);
-            const T blend = p.blend == KemppinenBlend::kRoulette ? kemppinen_roulette(r, w_l) : w_l;
-            const Vec3<T> col = kemppinen_color(
-                p.colors, kemppinen_cell_uniform<T>(p.seed, ci, kKemppinenDimColor));
-            k.sigma = kemppinen_point_sigma(p, ndf, k.g_a);
-            k.s =
-                select(k.valid,
-                       blend * normal2(sp.x_s - g_s, sp.sigma_s) * kemppinen_luminance(col), T(0));
-            k.m = select(k.valid,
-                         gaussian_rect_mass(out.lo, out.hi, k.g_a, k.sigma, KemppinenErf::kExact),
+            const Vec2<T> g_s{
+                (int_to_float<T>(sx) + cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialX)) / res_s,
+                (int_to_float<T>(sy) + cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialY)) / res_s};
+            const T r = cell_uniform<T>(p.seed, ci, kKemppinenDimRoulette);
+            const T blend = p.blend == Blend::kRoulette ? roulette(r, w_l) : w_l;
+            const Vec3<T> col = color(p.colors, cell_uniform<T>(p.seed, ci, kKemppinenDimColor));
+            k.sigma = point_sigma(p, ndf, k.g_a);
+            k.s = select(k.valid, blend * normal2(sp.x_s - g_s, sp.sigma_s) * luminance(col), T(0));
+            k.m = select(k.valid, gaussian_rect_mass(out.lo, out.hi, k.g_a, k.sigma, Erf::kExact),
                          T(0));
           }
           out.total += k.s * k.m;  // invalid lanes add +0: the scalar sum is unchanged
@@ -155,13 +142,13 @@ void kemppinen_block(const KemppinenParams<T>& p, const Ndf& ndf, const Kemppine
 
 // Σ_j s_j N_j(x) / W over a block: the density in the square of the sample given the block.
 template <class T>
-T kemppinen_block_density(const KemppinenBlock<T>& b, Vec2<T> x) {
+T block_density(const Block<T>& b, Vec2<T> x) {
   const Mask<T> inside =
       (b.total > T(0)) && !(x.x < b.lo.x || x.x > b.hi.x || x.y < b.lo.y || x.y > b.hi.y);
   if (!any_lane<T>(inside)) return T(0);
   T sum = T(0);
   for (int j = 0; j < b.count; ++j) {
-    const KemppinenCandidate<T>& k = b.c[std::size_t(j)];
+    const Candidate<T>& k = b.c[std::size_t(j)];
     const T t = k.s * normal2(x - k.g_a, Sym2<T>{sqr(k.sigma.x), T(0), sqr(k.sigma.y)});
     // A point of zero spatial weight adds nothing, and a point whose lobe collapsed (σ = 0: D
     // underflowed to 0 at g_a on the rim of U_Ω, in float well before double) is a delta that
@@ -183,7 +170,7 @@ T truncated_normal(T lo, T hi, T m, T s, T u) {
 }
 
 template <class T>
-struct KemppinenHalfSample {
+struct HalfSample {
   Vec2<T> x;            // the point in □ (T(ω_h))
   Vec3<T> h;            // ω_h = T⁻¹(x)
   T pdf_printed_h;      // Algorithm 2's pdf (lines 16–17, as read above), per steradian of ω_h
@@ -194,12 +181,12 @@ struct KemppinenHalfSample {
 
 // The random number `dim` of one sampler call keyed by `key`.
 template <class T>
-T kemppinen_sampler_uniform(std::uint64_t key, std::uint64_t dim) {
+T sampler_uniform(std::uint64_t key, std::uint64_t dim) {
   return counter_uniform<T>(key, 0x6b656d70ULL, dim);
 }
 // The same for a batch: the key of each lane.
 template <class T, class I, std::size_t N>
-T kemppinen_sampler_uniform(const IntLanes<I, N>& key, std::uint64_t dim) {
+T sampler_uniform(const IntLanes<I, N>& key, std::uint64_t dim) {
   return float_lanes<T>(
       [&](std::size_t l) { return counter_uniform<Scalar<T>>(key.v[l], 0x6b656d70ULL, dim); });
 }
@@ -207,30 +194,28 @@ T kemppinen_sampler_uniform(const IntLanes<I, N>& key, std::uint64_t dim) {
 // Algorithm 2: one ω_h from D★^f of point process `process` at the footprint, random numbers
 // from `key`.
 template <class Ndf, class T>
-KemppinenHalfSample<T> kemppinen_sample_half(const KemppinenParams<T>& p, const Ndf& ndf,
-                                             const FootprintQuery<T>& fp,
-                                             const LaneInt<T, std::uint64_t>& key,
-                                             int process = 0) {
+HalfSample<T> sample_half(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp,
+                          const LaneInt<T, std::uint64_t>& key, int process = 0) {
   const Mask<T> kNone = T(0) > T(1);
-  KemppinenHalfSample<T> out;
+  HalfSample<T> out;
   out.x = {T(0), T(0)};
   out.h = {T(0), T(0), T(0)};
   out.pdf_printed_h = T(0);
   out.pdf_conditional_x = T(0);
   out.ok = kNone;
-  const KemppinenSpatial<T> sp = kemppinen_spatial(p, fp);
+  const Spatial<T> sp = spatial(p, fp);
   // Line 2: uniform on the disk of radius ½ at (½, ½).
-  const T ur = sqrt(kemppinen_sampler_uniform<T>(key, 0));
-  const T phi = T(2) * T(kPi<T>) * kemppinen_sampler_uniform<T>(key, 1);
+  const T ur = sqrt(sampler_uniform<T>(key, 0));
+  const T phi = T(2) * T(kPi<T>) * sampler_uniform<T>(key, 1);
   const Vec2<T> x_a{T(0.5) + T(0.5) * ur * cos(phi), T(0.5) + T(0.5) * ur * sin(phi)};
   // Lines 4–6.
-  const Mask<T> up = kemppinen_sampler_uniform<T>(key, 2) < sp.w1;
+  const Mask<T> up = sampler_uniform<T>(key, 2) < sp.w1;
   out.level = sp.l0 + mask_to_int<T>(up);
   const T w_l = select(up, sp.w1, T(1) - sp.w1);
-  const T res_a = kemppinen_angular_resolution<T>(out.level);
-  static thread_local KemppinenBlock<T> block;
-  kemppinen_block(p, ndf, sp, out.level, w_l, kemppinen_block_start(x_a.x * res_a, p.side),
-                  kemppinen_block_start(x_a.y * res_a, p.side), block, process);
+  const T res_a = angular_resolution<T>(out.level);
+  static thread_local Block<T> block;
+  kemppinen2025::block(p, ndf, sp, out.level, w_l, block_start(x_a.x * res_a, p.side),
+                       block_start(x_a.y * res_a, p.side), block, process);
   const Mask<T> has = block.total > T(0);
   if (!any_lane<T>(has)) return out;
   // Lines 13–15: keep point j with probability w★_j/Σw★: the first j whose running sum exceeds
@@ -238,13 +223,13 @@ KemppinenHalfSample<T> kemppinen_sample_half(const KemppinenParams<T>& p, const 
   const auto select2 = [](const Mask<T>& m, Vec2<T> a, Vec2<T> b) {
     return Vec2<T>{select(m, a.x, b.x), select(m, a.y, b.y)};
   };
-  const T pick = kemppinen_sampler_uniform<T>(key, 3) * block.total;
+  const T pick = sampler_uniform<T>(key, 3) * block.total;
   T acc = T(0);
   Mask<T> found = kNone;
   Vec2<T> hit_g = block.c[0].g_a, hit_sigma = block.c[0].sigma;
   Vec2<T> last_g = hit_g, last_sigma = hit_sigma;
   for (int j = 0; j < block.count; ++j) {
-    const KemppinenCandidate<T>& c = block.c[std::size_t(j)];
+    const Candidate<T>& c = block.c[std::size_t(j)];
     acc += c.s * c.m;
     const Mask<T> hit = !found && (pick < acc);
     hit_g = select2(hit, c.g_a, hit_g);
@@ -257,13 +242,13 @@ KemppinenHalfSample<T> kemppinen_sample_half(const KemppinenParams<T>& p, const 
   const Vec2<T> g = select2(found, hit_g, last_g), sigma = select2(found, hit_sigma, last_sigma);
   // Line 14: x ~ 1_B N_j.
   const Vec2<T> x{
-      truncated_normal(block.lo.x, block.hi.x, g.x, sigma.x, kemppinen_sampler_uniform<T>(key, 4)),
-      truncated_normal(block.lo.y, block.hi.y, g.y, sigma.y, kemppinen_sampler_uniform<T>(key, 5))};
+      truncated_normal(block.lo.x, block.hi.x, g.x, sigma.x, sampler_uniform<T>(key, 4)),
+      truncated_normal(block.lo.y, block.hi.y, g.y, sigma.y, sampler_uniform<T>(key, 5))};
   out.x = select2(has, x, out.x);
   const Mask<T> in_disk = has && !(sqr(x.x - T(0.5)) + sqr(x.y - T(0.5)) > T(0.25));
   if (!any_lane<T>(in_disk)) return out;
   const Vec3<T> h = map_from_square(ndf, x);
-  const T pdf_x = kemppinen_block_density(block, x);
+  const T pdf_x = block_density(block, x);
   const T area_b = (block.hi.x - block.lo.x) * (block.hi.y - block.lo.y);
   const T pdf_printed = pdf_x * area_b * map_jacobian_paper(ndf, h) * h.z * w_l;
   out.h = select(in_disk, h, out.h);
@@ -273,22 +258,22 @@ KemppinenHalfSample<T> kemppinen_sample_half(const KemppinenParams<T>& p, const 
   return out;
 }
 
-// The marginal density in □ of kemppinen_sample_half's x (defective: rejections excluded).
+// The marginal density in □ of sample_half's x (defective: rejections excluded).
 template <class Ndf, class T>
-T kemppinen_sample_density_square(const KemppinenParams<T>& p, const Ndf& ndf,
-                                  const FootprintQuery<T>& fp, Vec2<T> x, int process = 0) {
+T sample_density_square(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp, Vec2<T> x,
+                        int process = 0) {
   const Mask<T> in_disk = !(sqr(x.x - T(0.5)) + sqr(x.y - T(0.5)) > T(0.25));
   if (!any_lane<T>(in_disk)) return T(0);
-  const KemppinenSpatial<T> sp = kemppinen_spatial(p, fp);
+  const Spatial<T> sp = spatial(p, fp);
   const int n = p.side;
-  static thread_local KemppinenBlock<T> block;
+  static thread_local Block<T> block;
   T total = T(0);
   for (int up = 0; up < 2; ++up) {
     const LaneInt<T, int> level = sp.l0 + up;
     const T w_l = up ? sp.w1 : T(1) - sp.w1;
     const Mask<T> w_positive = w_l > T(0);
     if (!any_lane<T>(w_positive)) continue;
-    const T res_a = kemppinen_angular_resolution<T>(level);
+    const T res_a = angular_resolution<T>(level);
     const LaneInt<T> cx = floor_int<T>(x.x * res_a);
     const LaneInt<T> cy = floor_int<T>(x.y * res_a);
     for (int dx = 1 - n; dx <= 0; ++dx)
@@ -307,9 +292,8 @@ T kemppinen_sample_density_square(const KemppinenParams<T>& p, const Ndf& ndf,
         });
         const Mask<T> use = w_positive && (area > T(0));
         if (!any_lane<T>(use)) continue;
-        kemppinen_block(p, ndf, sp, level, w_l, bx, by, block, process);
-        total += select(use, w_l * area / T(kMapDomainArea<T>) * kemppinen_block_density(block, x),
-                        T(0));
+        kemppinen2025::block(p, ndf, sp, level, w_l, bx, by, block, process);
+        total += select(use, w_l * area / T(kMapDomainArea<T>) * block_density(block, x), T(0));
       }
   }
   return select(in_disk, total, T(0));
@@ -317,19 +301,19 @@ T kemppinen_sample_density_square(const KemppinenParams<T>& p, const Ndf& ndf,
 
 // The marginal density of ω_h per steradian: the density in □ at T(ω_h) times |det dT/dω|.
 template <class Ndf, class T>
-T kemppinen_sample_density_half(const KemppinenParams<T>& p, const Ndf& ndf,
-                                const FootprintQuery<T>& fp, Vec3<T> h, int process = 0) {
+T sample_density_half(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp, Vec3<T> h,
+                      int process = 0) {
   const Mask<T> up = h.z > T(0);
   if (!any_lane<T>(up)) return T(0);
-  return select(up,
-                kemppinen_sample_density_square(p, ndf, fp, map_to_square(ndf, h), process) *
-                    map_jacobian_true(ndf, h),
-                T(0));
+  return select(
+      up,
+      sample_density_square(p, ndf, fp, map_to_square(ndf, h), process) * map_jacobian_true(ndf, h),
+      T(0));
 }
 
 // A sampler key from the two uniforms of a model's sample(): their bit patterns hashed.
 template <class T>
-LaneInt<T, std::uint64_t> kemppinen_key_from_uniforms(Vec2<T> u) {
+LaneInt<T, std::uint64_t> key_from_uniforms(Vec2<T> u) {
   const LanesOf<T> ux(u.x), uy(u.y);
   return int_lanes<T, std::uint64_t>([&](std::size_t l) {
     const double a = double(ux[l]), b = double(uy[l]);
@@ -340,4 +324,4 @@ LaneInt<T, std::uint64_t> kemppinen_key_from_uniforms(Vec2<T> u) {
   });
 }
 
-}  // namespace glintlab
+}  // namespace glintlab::kemppinen2025

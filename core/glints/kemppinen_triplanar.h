@@ -7,7 +7,7 @@
 // parameters normal_theta, normal_phi), with the tangent frame (t, b) of Duff et al. 2017
 // (core/math/orthonormal_basis.h); the footprint's uv is the position in that frame:
 // p = u t + v b, ∂p/∂x = ∂u/∂x t + ∂v/∂x b (likewise y). For n = +z, t = x and b = y, so p = (u, v,
-// 0): the z plane's process is the uv process (kKemppinenTriplanarProcess) and triplanar D★^f
+// 0): the z plane's process is the uv process (kTriplanarProcess) and triplanar D★^f
 // equals the uv path's exactly.
 //
 // Sampling (the paper gives no triplanar sampler): choose plane i with probability w_i (the blend
@@ -22,47 +22,45 @@
 #include "core/glints/kemppinen_sampling.h"
 #include "core/math/orthonormal_basis.h"
 
-namespace glintlab {
+namespace glintlab::kemppinen2025 {
 
-// The object-space inputs of kemppinen_eval_triplanar for one query.
+// The object-space inputs of eval_triplanar for one query.
 template <class T>
-struct KemppinenTriplanarInput {
+struct TriplanarInput {
   Vec3<T> pos, dpos_dx, dpos_dy, normal;
 };
 
 // n(θ, φ) from degrees: (sin θ cos φ, sin θ sin φ, cos θ).
 template <class T>
-GLINTLAB_FN Vec3<T> kemppinen_object_normal(T theta_deg, T phi_deg) {
+GLINTLAB_FN Vec3<T> object_normal(T theta_deg, T phi_deg) {
   const T k = T(kPi<T>) / T(180);
   const T st = sin(theta_deg * k);
   return {st * cos(phi_deg * k), st * sin(phi_deg * k), cos(theta_deg * k)};
 }
 
 template <class T>
-GLINTLAB_FN KemppinenTriplanarInput<T> kemppinen_triplanar_input(const FootprintQuery<T>& fp,
-                                                                 Vec3<T> normal) {
+GLINTLAB_FN TriplanarInput<T> triplanar_input(const FootprintQuery<T>& fp, Vec3<T> normal) {
   const OrthonormalBasis<T> f = basis_from_z(normal);
   const auto on_plane = [&](Vec2<T> a) { return a.x * f.x + a.y * f.y; };
   return {on_plane(fp.uv), on_plane(fp.duv_dx), on_plane(fp.duv_dy), normal};
 }
 
 template <class Ndf, class T>
-KemppinenResult<T> kemppinen_eval_triplanar(const KemppinenParams<T>& p, const Ndf& ndf,
-                                            const KemppinenTriplanarInput<T>& in, Vec3<T> h) {
-  return kemppinen_eval_triplanar(p, ndf, in.pos, in.dpos_dx, in.dpos_dy, in.normal, h);
+Result<T> eval_triplanar(const Params<T>& p, const Ndf& ndf, const TriplanarInput<T>& in,
+                         Vec3<T> h) {
+  return eval_triplanar(p, ndf, in.pos, in.dpos_dx, in.dpos_dy, in.normal, h);
 }
 
 // One ω_h: plane i with probability w_i (sampler dimension 6, unused by Algorithm 2's draws),
 // then Algorithm 2 on its process. pdf_printed_h carries the factor w_i. Generic over T: the
 // plane is a mask per lane, and a plane's sampler runs when any lane chose it.
 template <class Ndf, class T>
-KemppinenHalfSample<T> kemppinen_triplanar_sample_half(const KemppinenParams<T>& p, const Ndf& ndf,
-                                                       const KemppinenTriplanarInput<T>& in,
-                                                       const LaneInt<T, std::uint64_t>& key) {
-  const Vec3<T> wv = kemppinen_triplanar_weights(in.normal);
+HalfSample<T> triplanar_sample_half(const Params<T>& p, const Ndf& ndf, const TriplanarInput<T>& in,
+                                    const LaneInt<T, std::uint64_t>& key) {
+  const Vec3<T> wv = triplanar_weights(in.normal);
   const T w[3] = {wv.x, wv.y, wv.z};
   const Mask<T> nonempty[3] = {w[0] > T(0), w[1] > T(0), w[2] > T(0)};
-  const T u = kemppinen_sampler_uniform<T>(key, 6);
+  const T u = sampler_uniform<T>(key, 6);
   // The first plane whose running sum of weights exceeds u; where rounding leaves u ≥ Σw, the
   // last non-empty plane.
   Mask<T> chosen[3];
@@ -76,12 +74,11 @@ KemppinenHalfSample<T> kemppinen_triplanar_sample_half(const KemppinenParams<T>&
   chosen[2] = chosen[2] || (!found && nonempty[2]);
   chosen[1] = chosen[1] || (!found && !nonempty[2] && nonempty[1]);
   chosen[0] = chosen[0] || (!found && !nonempty[2] && !nonempty[1]);
-  KemppinenHalfSample<T> out{};
+  HalfSample<T> out{};
   for (int i = 0; i < 3; ++i) {
     if (!any_lane<T>(chosen[i])) continue;
-    KemppinenHalfSample<T> s = kemppinen_sample_half(
-        p, ndf, kemppinen_triplanar_footprint(i, in.pos, in.dpos_dx, in.dpos_dy), key,
-        kKemppinenTriplanarProcess[i]);
+    HalfSample<T> s = sample_half(p, ndf, triplanar_footprint(i, in.pos, in.dpos_dx, in.dpos_dy),
+                                  key, kTriplanarProcess[i]);
     s.pdf_printed_h *= w[i];
     const Mask<T>& m = chosen[i];
     out.x = {select(m, s.x.x, out.x.x), select(m, s.x.y, out.x.y)};
@@ -94,23 +91,23 @@ KemppinenHalfSample<T> kemppinen_triplanar_sample_half(const KemppinenParams<T>&
   return out;
 }
 
-// The density of kemppinen_triplanar_sample_half's ω_h per steradian: Σ_i w_i p_i(ω_h).
+// The density of triplanar_sample_half's ω_h per steradian: Σ_i w_i p_i(ω_h).
 template <class Ndf, class T>
-T kemppinen_triplanar_density_half(const KemppinenParams<T>& p, const Ndf& ndf,
-                                   const KemppinenTriplanarInput<T>& in, Vec3<T> h) {
-  const Vec3<T> wv = kemppinen_triplanar_weights(in.normal);
+T triplanar_density_half(const Params<T>& p, const Ndf& ndf, const TriplanarInput<T>& in,
+                         Vec3<T> h) {
+  const Vec3<T> wv = triplanar_weights(in.normal);
   const T w[3] = {wv.x, wv.y, wv.z};
   T sum = T(0);
   for (int i = 0; i < 3; ++i) {
     const Mask<T> nonempty = w[i] > T(0);
     if (!any_lane<T>(nonempty)) continue;
-    sum += select(nonempty,
-                  w[i] * kemppinen_sample_density_half(
-                             p, ndf, kemppinen_triplanar_footprint(i, in.pos, in.dpos_dx, in.dpos_dy),
-                             h, kKemppinenTriplanarProcess[i]),
-                  T(0));
+    sum += select(
+        nonempty,
+        w[i] * sample_density_half(p, ndf, triplanar_footprint(i, in.pos, in.dpos_dx, in.dpos_dy),
+                                   h, kTriplanarProcess[i]),
+        T(0));
   }
   return sum;
 }
 
-}  // namespace glintlab
+}  // namespace glintlab::kemppinen2025

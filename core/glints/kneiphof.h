@@ -24,7 +24,7 @@
 #include "core/ndf/total_area.h"
 #include "core/samplers/heitz_vndf.h"
 
-namespace glintlab {
+namespace glintlab::kneiphof2024 {
 
 // --- Discrete NDF (Eq. 6): N_P facets drawn from D/D_H
 // --------------------------------------------
@@ -239,4 +239,9 @@ struct KneiphofKlein {
 
 static_assert(Model<KneiphofKlein>);
 
+}  // namespace glintlab::kneiphof2024
+
+namespace glintlab {
+// Registered models are named in namespace glintlab, like every other model (core/model_list.h).
+using kneiphof2024::KneiphofKlein;
 }  // namespace glintlab

@@ -15,16 +15,16 @@
 #include "core/ltc/ltc.h"
 #include "core/ltc/ltc_table.h"
 
-namespace glintlab {
+namespace glintlab::kneiphof2024 {
 
 // How D_Ωh (Eq. 13) is obtained over a polygon. kBrdfLobe: the BRDF·cos LTC lobe, the same one
 // that gives L_o, scaled by D_PR (the paper's choice, Sec. 4 and Eq. 17: it makes the model
 // invariant under subdivision, App. C). kNdfLobe: the separately fitted NDF lobe scaled by D_PR
 // ("+ NDF LTC" of Table 1, Fig. 8). kMonteCarlo: area_light_terms_mc, the reference.
-enum class KneiphofAreaP : int { kBrdfLobe = 0, kNdfLobe = 1, kMonteCarlo = 2 };
-inline constexpr std::array<std::string_view, 3> kKneiphofAreaPNames = {"ltc", "ltc_ndf", "mc"};
+enum class AreaP : int { kBrdfLobe = 0, kNdfLobe = 1, kMonteCarlo = 2 };
+inline constexpr std::array<std::string_view, 3> kAreaPNames = {"ltc", "ltc_ndf", "mc"};
 // How L_o/L_i = ∫_Ωi ρ̃ dω (Eq. 3, 15) is obtained: the BRDF LTC lobe × albedo, or Monte Carlo.
-inline constexpr std::array<std::string_view, 2> kKneiphofAreaLoNames = {"ltc", "mc"};
+inline constexpr std::array<std::string_view, 2> kAreaLoNames = {"ltc", "mc"};
 
 template <class T>
 struct LtcAreaTerms {
@@ -41,13 +41,13 @@ struct LtcAreaTerms {
 // negative control: the unscaled or albedo-scaled lobe). Scalar T: the table lookup is per lane.
 template <class T>
 LtcAreaTerms<T> area_light_terms_ltc(const LtcTableView& table, T alpha, Vec3<T> wi,
-                                     const Vec3<T>* vertices, int n, KneiphofAreaP lobe,
+                                     const Vec3<T>* vertices, int n, AreaP lobe,
                                      T amplitude_override = T(0)) {
   LtcAreaTerms<T> t;
   if (!(wi.z > T(0))) return t;
   const LtcGgxLookup<T> l = ltc_ggx_lookup(table, alpha, wi);
   const T brdf = ltc_polygon_integral(l.brdf, vertices, n);
-  const T shape = lobe == KneiphofAreaP::kNdfLobe ? ltc_polygon_integral(l.ndf, vertices, n) : brdf;
+  const T shape = lobe == AreaP::kNdfLobe ? ltc_polygon_integral(l.ndf, vertices, n) : brdf;
   t.d_pr = l.ndf.amplitude;
   t.albedo = l.brdf.amplitude;
   t.d_omega_h = (amplitude_override > T(0) ? amplitude_override : t.d_pr) * shape;
@@ -121,9 +121,9 @@ struct KneiphofKleinArea {
        "tilt of the rectangle about its width axis away from facing the point, degrees"},
       {"area_p", 0.0, 0.0, 2.0, false, false,
        "D_Omega_h: ltc (BRDF LTC lobe x D_PR, the paper's), ltc_ndf (NDF LTC lobe x D_PR), mc",
-       kKneiphofAreaPNames},
+       kAreaPNames},
       {"area_lo", 0.0, 0.0, 1.0, false, false,
-       "L_o/L_i: ltc (BRDF LTC lobe x albedo) or mc (Monte Carlo)", kKneiphofAreaLoNames},
+       "L_o/L_i: ltc (BRDF LTC lobe x albedo) or mc (Monte Carlo)", kAreaLoNames},
       {"mc_samples", 256.0, 1.0, 1048576.0, false, false,
        "solid-angle samples of the Monte Carlo terms (integer)"},
       kBinomialGlintSampler,
@@ -136,7 +136,7 @@ struct KneiphofKleinArea {
   template <class T>
   struct Params {
     double alpha, log10_density, distance, width, height, rotation, tilt, total_area;
-    KneiphofAreaP area_p;
+    AreaP area_p;
     bool lo_mc;
     int mc_samples;
     BinomialSampler sampler;
@@ -156,7 +156,7 @@ struct KneiphofKleinArea {
             v[param_index<M>("light_rotation_deg")] * deg,
             v[param_index<M>("light_tilt_deg")] * deg,
             total_area_ggx_eq29(v[param_index<M>("alpha")]),
-            static_cast<KneiphofAreaP>(int(v[param_index<M>("area_p")])),
+            static_cast<AreaP>(int(v[param_index<M>("area_p")])),
             int(v[param_index<M>("area_lo")]) == 1,
             int(v[param_index<M>("mc_samples")]),
             static_cast<BinomialSampler>(int(v[param_index<M>("binomial")])),
@@ -177,13 +177,13 @@ struct KneiphofKleinArea {
     const PolygonLight<double> light = rectangle_polygon_light(rect);
     const Vec3<double> origin{0, 0, 0};
     const std::uint64_t index = footprint_rng_index(q.footprint);
-    const bool need_mc = p.area_p == KneiphofAreaP::kMonteCarlo || p.lo_mc;
+    const bool need_mc = p.area_p == AreaP::kMonteCarlo || p.lo_mc;
     const AreaLightTerms mc =
         need_mc ? area_light_terms_mc(ggx, q.wi, light, origin, p.mc_samples, p.seed + 1, index)
                 : AreaLightTerms{};
     const LtcAreaTerms<double> ltc =
         area_light_terms_ltc(*p.table, p.alpha, q.wi, rect.data(), 4, p.area_p);
-    const double d_omega_h = p.area_p == KneiphofAreaP::kMonteCarlo ? mc.d_omega_h : ltc.d_omega_h;
+    const double d_omega_h = p.area_p == AreaP::kMonteCarlo ? mc.d_omega_h : ltc.d_omega_h;
     const double smooth = p.lo_mc ? mc.lo_over_li : ltc.lo_over_li;
     const double p_raw = q.wi.z > 0 ? d_omega_h / p.total_area : 0.0;
     const BinomialGlintCount<double> b = binomial_glint_count(
@@ -206,4 +206,9 @@ struct KneiphofKleinArea {
 
 static_assert(Model<KneiphofKleinArea>);
 
+}  // namespace glintlab::kneiphof2024
+
+namespace glintlab {
+// Registered models are named in namespace glintlab, like every other model (core/model_list.h).
+using kneiphof2024::KneiphofKleinArea;
 }  // namespace glintlab

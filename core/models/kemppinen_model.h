@@ -78,7 +78,7 @@ inline constexpr std::array<std::string_view, 14> kKemppinenIntermediates = {"D_
 template <class Ndf, class T>
 struct KemppinenModelParams {
   Ndf ndf;
-  KemppinenParams<T> glint;
+  kemppinen2025::Params<T> glint;
   bool printed_pdf;
   bool triplanar = false;  // mapping=triplanar (Sec. 3.3.6)
   Vec3<T> normal{T(0), T(0), T(1)};
@@ -92,21 +92,21 @@ KemppinenModelParams<Ndf, T> kemppinen_model_params(std::span<const double> v) {
       Ndf{T(v[param_index(kParams, "alpha_x")]), T(v[param_index(kParams, "alpha_y")])},
       {},
       v[param_index(kParams, "pdf")] != 0.0};
-  KemppinenParams<T>& g = m.glint;
+  kemppinen2025::Params<T>& g = m.glint;
   g.density = T(v[param_index(kParams, "density")]);
   g.microroughness = T(v[param_index(kParams, "microroughness")]);
   g.anisotropy = T(v[param_index(kParams, "anisotropy")]);
   g.filter = T(v[param_index(kParams, "filter")]);
   g.side = choice(param_index(kParams, "k")) + 1;  // k = side² cells
-  g.blend = static_cast<KemppinenBlend>(choice(param_index(kParams, "blending")));
-  g.erf = static_cast<KemppinenErf>(choice(param_index(kParams, "erf")));
+  g.blend = static_cast<kemppinen2025::Blend>(choice(param_index(kParams, "blending")));
+  g.erf = static_cast<kemppinen2025::Erf>(choice(param_index(kParams, "erf")));
   g.normalization =
-      static_cast<KemppinenNormalization>(choice(param_index(kParams, "normalization")));
-  g.colors = static_cast<KemppinenColors>(choice(param_index(kParams, "colors")));
+      static_cast<kemppinen2025::Normalization>(choice(param_index(kParams, "normalization")));
+  g.colors = static_cast<kemppinen2025::Colors>(choice(param_index(kParams, "colors")));
   g.seed = static_cast<std::uint64_t>(v[param_index(kParams, "seed")]);
   m.triplanar = v[param_index(kParams, "mapping")] != 0.0;
-  m.normal = kemppinen_object_normal(T(v[param_index(kParams, "normal_theta")]),
-                                     T(v[param_index(kParams, "normal_phi")]));
+  m.normal = kemppinen2025::object_normal(T(v[param_index(kParams, "normal_theta")]),
+                                          T(v[param_index(kParams, "normal_phi")]));
   return m;
 }
 
@@ -115,20 +115,20 @@ template <class Ndf, class T>
 ModelEval<T, kKemppinenIntermediates.size()> kemppinen_model_eval(
     const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q, T pdf) {
   const Vec3<T> h = half_vector(q.wi, q.wo);
-  const KemppinenResult<T> r =
-      p.triplanar ? kemppinen_eval_triplanar(p.glint, p.ndf,
-                                             kemppinen_triplanar_input(q.footprint, p.normal), h)
-                  : kemppinen_eval(p.glint, p.ndf, q.footprint, h);
+  const kemppinen2025::Result<T> r =
+      p.triplanar ? kemppinen2025::eval_triplanar(
+                        p.glint, p.ndf, kemppinen2025::triplanar_input(q.footprint, p.normal), h)
+                  : kemppinen2025::eval(p.glint, p.ndf, q.footprint, h);
   const Mask<T> ok = (q.wi.z > T(0)) && (q.wo.z > T(0)) && (h.z > T(0));
   const T g2 = select(ok, smith_g2_height_correlated(p.ndf, q.wi, q.wo, h), T(0));
-  const T d = kemppinen_luminance(r.d);
+  const T d = kemppinen2025::luminance(r.d);
   const T value = select(ok, g2 * d / (T(4) * select(ok, q.wi.z, T(1))), T(0));
   const T brdf = select(ok, value / select(ok, q.wo.z, T(1)), T(0));
   return {value,
           pdf,
-          {d, kemppinen_luminance(r.explicit_part), kemppinen_luminance(r.compensation_part),
-           r.smooth_d, r.lambda, r.w0, r.w1, int_to_float<T>(r.level0), T(r.points), r.d.x, r.d.y,
-           r.d.z, g2, brdf}};
+          {d, kemppinen2025::luminance(r.explicit_part),
+           kemppinen2025::luminance(r.compensation_part), r.smooth_d, r.lambda, r.w0, r.w1,
+           int_to_float<T>(r.level0), T(r.points), r.d.x, r.d.y, r.d.z, g2, brdf}};
 }
 
 // pdf of ωo = reflect(ωi, ω_h) under Algorithm 2: the marginal density of ω_h / (4 |ωo·ω_h|).
@@ -140,9 +140,10 @@ T kemppinen_model_pdf(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>
   const Vec3<T> h = half_vector(q.wi, q.wo);
   const Mask<T> ok = lit && (h.z > T(0)) && (dot(q.wi, h) > T(0));
   if (!any_lane<T>(ok)) return T(0);
-  const T d = p.triplanar ? kemppinen_triplanar_density_half(
-                                p.glint, p.ndf, kemppinen_triplanar_input(q.footprint, p.normal), h)
-                          : kemppinen_sample_density_half(p.glint, p.ndf, q.footprint, h);
+  const T d = p.triplanar
+                  ? kemppinen2025::triplanar_density_half(
+                        p.glint, p.ndf, kemppinen2025::triplanar_input(q.footprint, p.normal), h)
+                  : kemppinen2025::sample_density_half(p.glint, p.ndf, q.footprint, h);
   return select(ok, d * reflection_jacobian(q.wo, h), T(0));
 }
 
@@ -152,11 +153,11 @@ ModelSample<T> kemppinen_model_sample(const KemppinenModelParams<Ndf, T>& p, con
   const ModelSample<T> none{{T(0), T(0), T(0)}, T(0), T(0), Mask<T>(true)};
   const Mask<T> lit = q.wi.z > T(0);
   if (!any_lane<T>(lit)) return none;
-  const LaneInt<T, std::uint64_t> key = kemppinen_key_from_uniforms(u);
-  const KemppinenHalfSample<T> s =
-      p.triplanar ? kemppinen_triplanar_sample_half(
-                        p.glint, p.ndf, kemppinen_triplanar_input(q.footprint, p.normal), key)
-                  : kemppinen_sample_half(p.glint, p.ndf, q.footprint, key);
+  const LaneInt<T, std::uint64_t> key = kemppinen2025::key_from_uniforms(u);
+  const kemppinen2025::HalfSample<T> s =
+      p.triplanar ? kemppinen2025::triplanar_sample_half(
+                        p.glint, p.ndf, kemppinen2025::triplanar_input(q.footprint, p.normal), key)
+                  : kemppinen2025::sample_half(p.glint, p.ndf, q.footprint, key);
   const Mask<T> facing = lit && s.ok && (dot(q.wi, s.h) > T(0));
   if (!any_lane<T>(facing)) return none;
   const Vec3<T> wo = reflect(q.wi, s.h);

@@ -53,15 +53,15 @@ struct Podee {
 
   template <class T>
   struct Params {
-    PodeeWeighting weighting;  // uniform choices (not per lane)
-    PodeeSelection selection;
+    podee::Weighting weighting;  // uniform choices (not per lane)
+    podee::Selection selection;
     GGX<T> sampling;
   };
 
   template <class T>
   static Params<T> params(std::span<const double> v) {
-    return {static_cast<PodeeWeighting>(static_cast<int>(v[param_index<Podee>("weighting")])),
-            static_cast<PodeeSelection>(static_cast<int>(v[param_index<Podee>("selection")])),
+    return {static_cast<podee::Weighting>(static_cast<int>(v[param_index<Podee>("weighting")])),
+            static_cast<podee::Selection>(static_cast<int>(v[param_index<Podee>("selection")])),
             GGX<T>{T(v[param_index<Podee>("alpha_x")]), T(v[param_index<Podee>("alpha_y")])}};
   }
 
@@ -77,9 +77,9 @@ struct Podee {
   template <class T>
   GLINTLAB_FN static ModelEval<T, kIntermediates.size()> eval(const Params<T>& p,
                                                               const ModelQuery<T>& q) {
-    const PodeeResult<T> r =
-        podee_shade(q.footprint.corner_r, q.wo, podee_tan_radius(q.light.cos_half_angle),
-                    p.weighting, p.selection);
+    const podee::Result<T> r =
+        podee::shade(q.footprint.corner_r, q.wo, podee::tan_radius(q.light.cos_half_angle),
+                     p.weighting, p.selection);
     const Mask<T> above = q.wo.z > T(0);
     return {select(above, r.value, T(0)),
             pdf(p, q),

@@ -27,21 +27,21 @@
 #include "core/parameter_check.h"
 #include "core/shading/circle_intersection_area.h"
 
-namespace glintlab {
+namespace glintlab::podee {
 
 // How area(circle ∩ reflection space) is computed (Sec. 3.2). kExact: the exact area of the
 // circle ∩ the quad; kQuadAsCircle: the quad replaced by the circle of equal area about its area
 // centroid, a closed-form lens (the cheaper approximation); kNone: weight 1 (selection only, an
 // ablation: brightest-sample shading without result weighting).
-enum class PodeeWeighting : int { kExact = 0, kQuadAsCircle = 1, kNone = 2 };
+enum class Weighting : int { kExact = 0, kQuadAsCircle = 1, kNone = 2 };
 
 // Which point of the reflection space is lit (Sec. 3.1). kClosestPoint is the paper's; the other
 // two are plausible-looking wrong rules kept as negative controls: the corner nearest the
 // projected centre, and the quad's vertex average.
-enum class PodeeSelection : int { kClosestPoint = 0, kNearestCorner = 1, kCentroid = 2 };
+enum class Selection : int { kClosestPoint = 0, kNearestCorner = 1, kCentroid = 2 };
 
 template <class T>
-struct PodeeResult {
+struct Result {
   Vec3<T> r;       // the selected (most intense) reflection vector, unit
   Vec2<T> point;   // its projection on the light plane (light-plane coordinates)
   T distance;      // |point − projected disk centre| on the light plane
@@ -55,14 +55,12 @@ struct PodeeResult {
 // Reflection vectors with r·l below this are projected as if r·l were this: they point away from
 // the light plane (the projection is at infinity), and a far point in the right direction keeps
 // the quad's shape on the light's side.
-inline constexpr double kPodeeMinCosine = 1e-6;
-
-namespace detail {
+inline constexpr double kMinCosine = 1e-6;
 
 // A point's coordinates on the light plane: (r·e1, r·e2) / (r·l).
 template <class T>
-GLINTLAB_FN Vec2<T> podee_project(Vec3<T> r, const OrthonormalBasis<T>& plane) {
-  const T inv = T(1) / max(dot(r, plane.z), T(kPodeeMinCosine));
+GLINTLAB_FN Vec2<T> project_to_plane(Vec3<T> r, const OrthonormalBasis<T>& plane) {
+  const T inv = T(1) / max(dot(r, plane.z), T(kMinCosine));
   return {dot(r, plane.x) * inv, dot(r, plane.y) * inv};
 }
 
@@ -75,30 +73,27 @@ GLINTLAB_FN Vec2<T> closest_on_segment(Vec2<T> a, Vec2<T> b) {
   return a + t * d;
 }
 
-}  // namespace detail
-
 // The projected reflection space: the four corners in polygon order. Corners come in the order of
 // core/scene/footprint.h ((x−½, y−½), (x+½, y−½), (x−½, y+½), (x+½, y+½)), so the quad's boundary
 // runs 0, 1, 3, 2.
 template <class T>
-GLINTLAB_FN void podee_reflection_space(const std::array<Vec3<T>, 4>& corner_r,
-                                        const OrthonormalBasis<T>& plane, Vec2<T> (&q)[4]) {
-  q[0] = detail::podee_project(corner_r[0], plane);
-  q[1] = detail::podee_project(corner_r[1], plane);
-  q[2] = detail::podee_project(corner_r[3], plane);
-  q[3] = detail::podee_project(corner_r[2], plane);
+GLINTLAB_FN void reflection_space(const std::array<Vec3<T>, 4>& corner_r,
+                                  const OrthonormalBasis<T>& plane, Vec2<T> (&q)[4]) {
+  q[0] = project_to_plane(corner_r[0], plane);
+  q[1] = project_to_plane(corner_r[1], plane);
+  q[2] = project_to_plane(corner_r[3], plane);
+  q[3] = project_to_plane(corner_r[2], plane);
 }
 
 // Sec. 3.1 and 3.2 for one pixel and one disk light: `l` the unit direction toward the disk's
 // centre, `tan_radius` = tan γ of its angular radius γ (the projected circle's radius).
 template <class T>
-GLINTLAB_FN PodeeResult<T> podee_shade(const std::array<Vec3<T>, 4>& corner_r, Vec3<T> l,
-                                       T tan_radius,
-                                       PodeeWeighting weighting = PodeeWeighting::kExact,
-                                       PodeeSelection selection = PodeeSelection::kClosestPoint) {
+GLINTLAB_FN Result<T> shade(const std::array<Vec3<T>, 4>& corner_r, Vec3<T> l, T tan_radius,
+                            Weighting weighting = Weighting::kExact,
+                            Selection selection = Selection::kClosestPoint) {
   const OrthonormalBasis<T> plane = basis_from_z(l);
   Vec2<T> q[4];
-  podee_reflection_space(corner_r, plane, q);
+  reflection_space(corner_r, plane, q);
 
   // Inside test by the winding number about the centre (any simple polygon, either orientation).
   T winding = T(0);
@@ -110,7 +105,7 @@ GLINTLAB_FN PodeeResult<T> podee_shade(const std::array<Vec3<T>, 4>& corner_r, V
   for (int i = 0; i < 4; ++i) {
     const Vec2<T> a = q[i], b = q[(i + 1) % 4];
     winding = winding + atan2(perp_dot(a, b), dot(a, b));
-    const Vec2<T> c = detail::closest_on_segment(a, b);
+    const Vec2<T> c = closest_on_segment(a, b);
     const T d2 = dot(c, c);
     const Mask<T> closer = d2 < nearest_d2;
     nearest = {select(closer, c.x, nearest.x), select(closer, c.y, nearest.y)};
@@ -124,10 +119,10 @@ GLINTLAB_FN PodeeResult<T> podee_shade(const std::array<Vec3<T>, 4>& corner_r, V
   const Mask<T> inside = abs(winding) > T(kPi<T>);
 
   Vec2<T> point{select(inside, T(0), nearest.x), select(inside, T(0), nearest.y)};
-  if (selection == PodeeSelection::kNearestCorner) point = corner;  // uniform choice, not per lane
-  if (selection == PodeeSelection::kCentroid) point = centroid;
+  if (selection == Selection::kNearestCorner) point = corner;  // uniform choice, not per lane
+  if (selection == Selection::kCentroid) point = centroid;
 
-  PodeeResult<T> res;
+  Result<T> res;
   res.point = point;
   res.distance = sqrt(dot(point, point));
   res.r = normalize(plane.z + point.x * plane.x + point.y * plane.y);
@@ -142,9 +137,9 @@ GLINTLAB_FN PodeeResult<T> podee_shade(const std::array<Vec3<T>, 4>& corner_r, V
   const Mask<T> degenerate = !(area > T(1e-12) * max(tan_radius * tan_radius, T(1e-12)));
   const T safe_area = select(degenerate, T(1), area);
   T covered;
-  if (weighting == PodeeWeighting::kExact) {
+  if (weighting == Weighting::kExact) {
     covered = circle_polygon_area(q, Vec2<T>{T(0), T(0)}, tan_radius);
-  } else if (weighting == PodeeWeighting::kQuadAsCircle) {
+  } else if (weighting == Weighting::kQuadAsCircle) {
     // Area centroid of the quad (shoelace-weighted), the vertex average where the area vanishes.
     Vec2<T> c{T(0), T(0)};
     for (int i = 0; i < 4; ++i) {
@@ -166,7 +161,7 @@ GLINTLAB_FN PodeeResult<T> podee_shade(const std::array<Vec3<T>, 4>& corner_r, V
 
 // tan γ of a cone of half-angle γ given its cosine (the projected circle's radius, Sec. 3.1).
 template <class T>
-GLINTLAB_FN T podee_tan_radius(T cos_half_angle) {
+GLINTLAB_FN T tan_radius(T cos_half_angle) {
   const T c = clamp(cos_half_angle, T(-1), T(1));
   return safe_sqrt(T(1) - c * c) / max(c, T(1e-30));
 }
@@ -174,12 +169,12 @@ GLINTLAB_FN T podee_tan_radius(T cos_half_angle) {
 // Host-side check of the method's assumptions about its light (one-line ParameterError): a disk
 // of positive radius whose centre lies above the shaded surface (the light plane at p + l faces
 // the surface's side, Sec. 3.1).
-inline void podee_require_light(const std::string& what, double radius, double centre_height) {
-  detail::require(std::isfinite(radius) && radius > 0, what, "disk radius", radius,
-                  "a finite radius > 0");
-  detail::require(std::isfinite(centre_height) && centre_height > 0, what,
-                  "light height above the surface", centre_height,
-                  "> 0: the disk's centre above the surface");
+inline void require_light(const std::string& what, double radius, double centre_height) {
+  glintlab::detail::require(std::isfinite(radius) && radius > 0, what, "disk radius", radius,
+                            "a finite radius > 0");
+  glintlab::detail::require(std::isfinite(centre_height) && centre_height > 0, what,
+                            "light height above the surface", centre_height,
+                            "> 0: the disk's centre above the surface");
 }
 
-}  // namespace glintlab
+}  // namespace glintlab::podee

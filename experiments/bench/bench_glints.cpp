@@ -188,9 +188,9 @@ void table1(benchmark::State& s) {
     } else {
       // Heitz et al. 2016 LTC for L_o; Kneiphof & Klein reuse the BRDF lobe × D_PR for p (Sec. 4),
       // "+ NDF LTC" integrates the separately fitted NDF lobe as well.
-      const LtcAreaTerms<double> t = area_light_terms_ltc(
+      const kneiphof2024::LtcAreaTerms<double> t = kneiphof2024::area_light_terms_ltc(
           table, 0.25, q.wi, area_vertices().data(), 4,
-          method == kNdfLtc ? KneiphofAreaP::kNdfLobe : KneiphofAreaP::kBrdfLobe);
+          method == kNdfLtc ? kneiphof2024::AreaP::kNdfLobe : kneiphof2024::AreaP::kBrdfLobe);
       if (method == kSmooth) {
         v = t.lo_over_li;
       } else {

@@ -28,7 +28,7 @@ namespace {
 struct Input {
   Vec2<double> m;
   FootprintQuery<double> fp;
-  SlopeDerivatives d;
+  chermain2021::SlopeDerivatives d;
 };
 
 std::vector<Input> inputs() {
@@ -46,10 +46,11 @@ std::vector<Input> inputs() {
 
 void patch_sdf(benchmark::State& state, int kernel) {
   const std::vector<Input> in = inputs();
-  const ChermainSdfParams p{&default_chermain_dictionary(), 0.25, 0.25, 0.3, 30, kernel, 0.5, 1};
+  const chermain2021::SdfParams p{
+      &chermain2021::default_chermain_dictionary(), 0.25, 0.25, 0.3, 30, kernel, 0.5, 1};
   for (auto _ : state) {
     double s = 0;
-    for (const Input& x : in) s += chermain_patch_sdf(p, x.m, x.fp, x.d);
+    for (const Input& x : in) s += chermain2021::patch_sdf(p, x.m, x.fp, x.d);
     benchmark::DoNotOptimize(s);
   }
   state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(in.size()));
@@ -58,15 +59,15 @@ void patch_sdf(benchmark::State& state, int kernel) {
 void tube_frame(benchmark::State& state, int kernel) {
   verify::TubeSceneOptions o;
   o.width = 128, o.height = 86, o.threads = 1;
-  default_chermain_dictionary();
+  chermain2021::default_chermain_dictionary();
   for (auto _ : state) benchmark::DoNotOptimize(verify::render_tubes(o, kernel, 0.5));
   state.SetItemsProcessed(std::int64_t(state.iterations()) * o.width * o.height);
 }
 
-BENCHMARK_CAPTURE(patch_sdf, no_ggaa, kChermainNoGgaa);
-BENCHMARK_CAPTURE(patch_sdf, ggaa, kChermainProjectedHalf);
-BENCHMARK_CAPTURE(tube_frame, no_ggaa, kChermainNoGgaa)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(tube_frame, ggaa, kChermainProjectedHalf)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(patch_sdf, no_ggaa, chermain2021::kNoGgaa);
+BENCHMARK_CAPTURE(patch_sdf, ggaa, chermain2021::kProjectedHalf);
+BENCHMARK_CAPTURE(tube_frame, no_ggaa, chermain2021::kNoGgaa)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(tube_frame, ggaa, chermain2021::kProjectedHalf)->Unit(benchmark::kMillisecond);
 
 // --- Method rows: P22 against the dictionary's resolution and levels -------------------------
 // Queries: slopes m̃ drawn from the smooth SDF N(0, Σ) (α = 0.5, where P22 has its mass),
@@ -76,7 +77,7 @@ BENCHMARK_CAPTURE(tube_frame, ggaa, kChermainProjectedHalf)->Unit(benchmark::kMi
 struct SdfQuery {
   Vec2<double> m;
   FootprintQuery<double> fp;
-  SlopeDerivatives d;
+  chermain2021::SlopeDerivatives d;
 };
 
 constexpr double kQueryAlpha = 0.5, kLog2Density = 10;
@@ -98,15 +99,15 @@ std::vector<SdfQuery> sdf_queries(const std::string& method, int count, int k_ma
   return q;
 }
 
-ChermainSdfParams sdf_params(const ChermainDictionary* d, int kernel) {
+chermain2021::SdfParams sdf_params(const chermain2021::Dictionary* d, int kernel) {
   const double sigma = kQueryAlpha / std::sqrt(2.0);
   return {d, sigma, sigma, 0.0, kLog2Density, kernel, 0.5, 1};
 }
 
-std::vector<double> eval_sdf(const ChermainSdfParams& p, const std::vector<SdfQuery>& q) {
+std::vector<double> eval_sdf(const chermain2021::SdfParams& p, const std::vector<SdfQuery>& q) {
   std::vector<double> v;
   v.reserve(q.size());
-  for (const SdfQuery& x : q) v.push_back(chermain_patch_sdf(p, x.m, x.fp, x.d));
+  for (const SdfQuery& x : q) v.push_back(chermain2021::patch_sdf(p, x.m, x.fp, x.d));
   return v;
 }
 
@@ -120,22 +121,23 @@ bench::ErrorStats sdf_errors(const std::vector<double>& v, const std::vector<dou
 }
 
 // Dictionaries are generated on first use and kept for the run (a 4096-texel one is ~20 MB).
-const ChermainDictionary& dictionary(int n, int levels, int resolution) {
-  static std::map<std::tuple<int, int, int>, std::unique_ptr<ChermainDictionary>> cache;
+const chermain2021::Dictionary& dictionary(int n, int levels, int resolution) {
+  static std::map<std::tuple<int, int, int>, std::unique_ptr<chermain2021::Dictionary>> cache;
   auto& d = cache[{n, levels, resolution}];
   if (!d) {
-    ChermainDictionaryConfig c;
+    chermain2021::DictionaryConfig c;
     c.distributions = n, c.levels = levels, c.resolution = resolution;
-    d = std::make_unique<ChermainDictionary>(c);
+    d = std::make_unique<chermain2021::Dictionary>(c);
   }
   return *d;
 }
 
-void time_sdf(benchmark::State& s, const ChermainSdfParams& p, const std::vector<SdfQuery>& q) {
+void time_sdf(benchmark::State& s, const chermain2021::SdfParams& p,
+              const std::vector<SdfQuery>& q) {
   std::size_t k = 0;
   for (auto _ : s) {
     const SdfQuery& x = q[k];
-    benchmark::DoNotOptimize(chermain_patch_sdf(p, x.m, x.fp, x.d));
+    benchmark::DoNotOptimize(chermain2021::patch_sdf(p, x.m, x.fp, x.d));
     k = k + 1 == q.size() ? 0 : k + 1;
   }
   s.SetItemsProcessed(std::int64_t(s.iterations()));
@@ -167,13 +169,14 @@ void register_dictionary_methods() {
   const int levels = quick ? 8 : 12, ref_res = quick ? 512 : 4096;
   const std::vector<int> resolutions =
       quick ? std::vector<int>{16, 64} : std::vector<int>{16, 32, 64, 128, 256, 1024};
-  for (int kernel : {int(kChermainProjectedHalf), int(kChermainNoGgaa)}) {
-    const std::string method = std::string("chermain.p22_vs_dict_ref.") +
-                               (kernel == kChermainNoGgaa ? "ggaa_off" : "ggaa_projected_half");
+  for (int kernel : {int(chermain2021::kProjectedHalf), int(chermain2021::kNoGgaa)}) {
+    const std::string method =
+        std::string("chermain.p22_vs_dict_ref.") +
+        (kernel == chermain2021::kNoGgaa ? "ggaa_off" : "ggaa_projected_half");
     const std::string label = fmt::format(
         "P22 ({}) from a {}-texel dictionary (N {}, L {}); rel. error, floor 1e-3 of the smooth "
         "peak",
-        kernel == kChermainNoGgaa ? "no GGAA" : "GGAA Eq. 21, s_K 0.5", ref_res, n, levels);
+        kernel == chermain2021::kNoGgaa ? "no GGAA" : "GGAA Eq. 21, s_K 0.5", ref_res, n, levels);
     auto queries =
         std::make_shared<const std::vector<SdfQuery>>(sdf_queries(method, count, levels));
     std::vector<int> all = resolutions;
@@ -197,7 +200,7 @@ void register_dictionary_methods() {
     all.push_back(ref_levels);
     for (int L : all)
       register_sdf_row(method, fmt::format("L={}", L), label, queries, {n, L, 64},
-                       {n, ref_levels, 64}, kChermainProjectedHalf);
+                       {n, ref_levels, 64}, chermain2021::kProjectedHalf);
   }
 }
 
@@ -231,13 +234,14 @@ void register_tube_methods() {
     double s_k;
     int spp;  // > 0: plain supersampling at that rate instead of the 1-spp GGAA frame
   };
-  std::vector<Setting> settings = {{"ggaa=off", kChermainNoGgaa, 0.5, 0},
-                                   {"ggaa=half_slope,s_k=0.5", kChermainHalfSlope, 0.5, 0},
-                                   {"ggaa=half_slope,s_k=1", kChermainHalfSlope, 1.0, 0},
-                                   {"ggaa=projected_half,s_k=0.5", kChermainProjectedHalf, 0.5, 0},
-                                   {"ggaa=projected_half,s_k=1", kChermainProjectedHalf, 1.0, 0}};
+  std::vector<Setting> settings = {
+      {"ggaa=off", chermain2021::kNoGgaa, 0.5, 0},
+      {"ggaa=half_slope,s_k=0.5", chermain2021::kHalfSlope, 0.5, 0},
+      {"ggaa=half_slope,s_k=1", chermain2021::kHalfSlope, 1.0, 0},
+      {"ggaa=projected_half,s_k=0.5", chermain2021::kProjectedHalf, 0.5, 0},
+      {"ggaa=projected_half,s_k=1", chermain2021::kProjectedHalf, 1.0, 0}};
   for (int spp : quick ? std::vector<int>{4} : std::vector<int>{4, 16, 64})
-    settings.push_back({fmt::format("ggaa=off,spp={}", spp), kChermainNoGgaa, 0.5, spp});
+    settings.push_back({fmt::format("ggaa=off,spp={}", spp), chermain2021::kNoGgaa, 0.5, spp});
   for (const Setting& st : settings) {
     const std::uint64_t ss_seed = bench::method_seed(method + "/" + st.name);
     const auto render = [o, st, ss_seed](int threads) {
@@ -249,7 +253,7 @@ void register_tube_methods() {
     bench::register_method(
         method, st.name, label,
         [o, render](benchmark::State& s) {
-          default_chermain_dictionary();
+          chermain2021::default_chermain_dictionary();
           for (auto _ : s) benchmark::DoNotOptimize(render(1));
           s.SetItemsProcessed(std::int64_t(s.iterations()) * o.width * o.height);
         },

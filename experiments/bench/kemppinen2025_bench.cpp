@@ -34,14 +34,15 @@ namespace kt3 = glintlab::kemppinen_table3;
 
 // Args: side (√k), footprint in level-0 cells, erf (0 exact, 1 rational).
 void BM_KemppinenEval(benchmark::State& state) {
-  KemppinenParams<double> p = sa::params(
-      {int(state.range(0)), static_cast<KemppinenErf>(state.range(2)), KemppinenBlend::kRoulette},
-      1);
+  kemppinen2025::Params<double> p =
+      sa::params({int(state.range(0)), static_cast<kemppinen2025::Erf>(state.range(2)),
+                  kemppinen2025::Blend::kRoulette},
+                 1);
   const GGX<double> ggx{0.3, 0.3};
   std::uint64_t i = 0;
   for (auto _ : state) {
     const sa::Query q = sa::cost_query(i, double(state.range(1)));
-    benchmark::DoNotOptimize(kemppinen_eval(p, ggx, q.fp, q.h).d.x);
+    benchmark::DoNotOptimize(kemppinen2025::eval(p, ggx, q.fp, q.h).d.x);
     ++i;
   }
   state.SetItemsProcessed(state.iterations());
@@ -56,19 +57,19 @@ BENCHMARK(BM_KemppinenEval)
 // The brute-force Eq. 5 over the same footprints: cost grows with the footprint's area.
 // points_visited: the mean number of (spatial, angular) cell pairs it visits, over 64 queries.
 void BM_KemppinenBruteForce(benchmark::State& state) {
-  const KemppinenParams<double> p =
-      sa::params({1, KemppinenErf::kExact, KemppinenBlend::kRoulette}, 1);
+  const kemppinen2025::Params<double> p =
+      sa::params({1, kemppinen2025::Erf::kExact, kemppinen2025::Blend::kRoulette}, 1);
   const GGX<double> ggx{0.3, 0.3};
   const double cells = double(state.range(0));
   std::int64_t visited = 0;
   for (std::uint64_t k = 0; k < 64; ++k) {
     const sa::Query q = sa::cost_query(k, cells);
-    kemppinen_reference_filtered(p, ggx, q.fp, q.h, false, &visited);
+    kemppinen2025::reference_filtered(p, ggx, q.fp, q.h, false, &visited);
   }
   std::uint64_t i = 0;
   for (auto _ : state) {
     const sa::Query q = sa::cost_query(i, cells);
-    benchmark::DoNotOptimize(kemppinen_reference_filtered(p, ggx, q.fp, q.h).x);
+    benchmark::DoNotOptimize(kemppinen2025::reference_filtered(p, ggx, q.fp, q.h).x);
     ++i;
   }
   state.SetItemsProcessed(state.iterations());
@@ -102,7 +103,7 @@ struct RefSet {
   std::vector<sa::Query> q;
   std::vector<double> ref, scale;
 };
-const RefSet& ref_set(bool ggx, sa::Reference r, KemppinenBlend blend) {
+const RefSet& ref_set(bool ggx, sa::Reference r, kemppinen2025::Blend blend) {
   static std::map<int, RefSet> cache;
   const int key = int(ggx) * 4 + int(r) * 2 + int(blend);
   auto it = cache.find(key);
@@ -125,12 +126,12 @@ void set_errors(benchmark::State& state, const sa::Errors& e) {
 void BM_Method(benchmark::State& state, bool ggx, sa::Reference r, sa::Setting s) {
   const RefSet& rs = ref_set(ggx, r, s.blend);
   set_errors(state, sa::errors(sa::eval_all(ggx, s, rs.q), rs.ref, rs.scale));
-  const KemppinenParams<double> p = sa::params(s, 1);
+  const kemppinen2025::Params<double> p = sa::params(s, 1);
   with_ndf(ndf_kind(ggx), sa::kAlpha, sa::kAlpha, [&](const auto& ndf) {
     std::size_t i = 0;
     for (auto _ : state) {
       const sa::Query& q = rs.q[i];
-      benchmark::DoNotOptimize(kemppinen_eval(p, ndf, q.fp, q.h).d.x);
+      benchmark::DoNotOptimize(kemppinen2025::eval(p, ndf, q.fp, q.h).d.x);
       i = i + 1 == rs.q.size() ? 0 : i + 1;
     }
     return 0;
@@ -141,15 +142,15 @@ void BM_Method(benchmark::State& state, bool ggx, sa::Reference r, sa::Setting s
 
 // The brute-force reference itself (errors 0 by definition) over the same queries.
 void BM_MethodReference(benchmark::State& state, bool ggx) {
-  const RefSet& rs = ref_set(ggx, sa::Reference::kBruteForce, KemppinenBlend::kRoulette);
+  const RefSet& rs = ref_set(ggx, sa::Reference::kBruteForce, kemppinen2025::Blend::kRoulette);
   set_errors(state, {0, 0, 0, int(rs.q.size())});
-  const KemppinenParams<double> p =
-      sa::params({1, KemppinenErf::kExact, KemppinenBlend::kRoulette}, 1);
+  const kemppinen2025::Params<double> p =
+      sa::params({1, kemppinen2025::Erf::kExact, kemppinen2025::Blend::kRoulette}, 1);
   with_ndf(ndf_kind(ggx), sa::kAlpha, sa::kAlpha, [&](const auto& ndf) {
     std::size_t i = 0;
     for (auto _ : state) {
       const sa::Query& q = rs.q[i];
-      benchmark::DoNotOptimize(kemppinen_reference_filtered(p, ndf, q.fp, q.h).x);
+      benchmark::DoNotOptimize(kemppinen2025::reference_filtered(p, ndf, q.fp, q.h).x);
       i = i + 1 == rs.q.size() ? 0 : i + 1;
     }
     return 0;

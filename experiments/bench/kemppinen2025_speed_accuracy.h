@@ -58,19 +58,19 @@ inline const char* reference_label(Reference r) {
 // One setting of Algorithm 1: k = side², erf of Eq. 10, MIP blending.
 struct Setting {
   int side;
-  KemppinenErf erf;
-  KemppinenBlend blend;
+  kemppinen2025::Erf erf;
+  kemppinen2025::Blend blend;
 };
 // "k=4,erf=fast" (roulette, the paper's choice) or "k=4,erf=fast,blend=linear".
 inline std::string setting_name(const Setting& s) {
   std::string n = "k=" + std::to_string(s.side * s.side) +
-                  (s.erf == KemppinenErf::kExact ? ",erf=exact" : ",erf=fast");
-  if (s.blend == KemppinenBlend::kLinear) n += ",blend=linear";
+                  (s.erf == kemppinen2025::Erf::kExact ? ",erf=exact" : ",erf=fast");
+  if (s.blend == kemppinen2025::Blend::kLinear) n += ",blend=linear";
   return n;
 }
 
-inline KemppinenParams<double> params(const Setting& s, std::uint64_t seed) {
-  KemppinenParams<double> p = kemppinen_preset_params(s.side, kMicroroughness, seed);
+inline kemppinen2025::Params<double> params(const Setting& s, std::uint64_t seed) {
+  kemppinen2025::Params<double> p = kemppinen2025::preset_params(s.side, kMicroroughness, seed);
   p.erf = s.erf;
   p.blend = s.blend;
   return p;
@@ -86,7 +86,8 @@ struct Query {
 // footprint log-uniform over the reference's range, ω_h ~ D cosθ.
 inline std::vector<Query> queries(bool ggx, Reference r, int n) {
   const std::uint64_t seed = hash_string(method_id(ggx, r).c_str());
-  const KemppinenParams<double> p = params({1, KemppinenErf::kExact, KemppinenBlend::kRoulette}, 1);
+  const kemppinen2025::Params<double> p =
+      params({1, kemppinen2025::Erf::kExact, kemppinen2025::Blend::kRoulette}, 1);
   const double lo = r == Reference::kBruteForce ? 0.25 : 256,
                hi = r == Reference::kBruteForce ? 16 : 16384;
   std::vector<Query> out;
@@ -100,17 +101,18 @@ inline std::vector<Query> queries(bool ggx, Reference r, int n) {
     const Vec2<double> w{u(3), u(4)};
     const Vec3<double> h = ggx ? sample_normal_walter(GGX<double>{kAlpha, kAlpha}, w)
                                : sample_normal_walter(Beckmann<double>{kAlpha, kAlpha}, w);
-    out.push_back({kemppinen_footprint_cells(uv, cells, p), h, cells});
+    out.push_back({kemppinen2025::footprint_cells(uv, cells, p), h, cells});
   }
   return out;
 }
 
 // D★^f (white facets: the x channel) of Algorithm 1 for every query.
 inline std::vector<double> eval_all(bool ggx, const Setting& s, const std::vector<Query>& q) {
-  const KemppinenParams<double> p = params(s, 1);
+  const kemppinen2025::Params<double> p = params(s, 1);
   std::vector<double> v(q.size());
   with_ndf(ndf_kind(ggx), kAlpha, kAlpha, [&](const auto& ndf) {
-    for (std::size_t i = 0; i < q.size(); ++i) v[i] = kemppinen_eval(p, ndf, q[i].fp, q[i].h).d.x;
+    for (std::size_t i = 0; i < q.size(); ++i)
+      v[i] = kemppinen2025::eval(p, ndf, q[i].fp, q[i].h).d.x;
     return 0;
   });
   return v;
@@ -118,16 +120,17 @@ inline std::vector<double> eval_all(bool ggx, const Setting& s, const std::vecto
 
 // The reference value of every query: Eq. 5 by brute force (which depends on the blending, not
 // on k or erf) or the smooth D; `scale` receives D(ω_h), the error's denominator.
-inline std::vector<double> reference_all(bool ggx, Reference r, KemppinenBlend blend,
+inline std::vector<double> reference_all(bool ggx, Reference r, kemppinen2025::Blend blend,
                                          const std::vector<Query>& q, std::vector<double>* scale) {
-  const KemppinenParams<double> p = params({1, KemppinenErf::kExact, blend}, 1);
+  const kemppinen2025::Params<double> p = params({1, kemppinen2025::Erf::kExact, blend}, 1);
   std::vector<double> v(q.size());
   scale->assign(q.size(), 0.0);
   with_ndf(ndf_kind(ggx), kAlpha, kAlpha, [&](const auto& ndf) {
     for (std::size_t i = 0; i < q.size(); ++i) {
       (*scale)[i] = ndf.D(q[i].h);
-      v[i] = r == Reference::kBruteForce ? kemppinen_reference_filtered(p, ndf, q[i].fp, q[i].h).x
-                                         : (*scale)[i];
+      v[i] = r == Reference::kBruteForce
+                 ? kemppinen2025::reference_filtered(p, ndf, q[i].fp, q[i].h).x
+                 : (*scale)[i];
     }
     return 0;
   });
@@ -165,9 +168,9 @@ inline std::vector<Setting> settings(Reference r) {
   std::vector<Setting> out;
   const int blends = r == Reference::kBruteForce ? 2 : 1;
   for (int b = 0; b < blends; ++b)
-    for (int side = 1; side <= kKemppinenMaxSide; ++side)
-      for (KemppinenErf e : {KemppinenErf::kExact, KemppinenErf::kRational})
-        out.push_back({side, e, static_cast<KemppinenBlend>(b)});
+    for (int side = 1; side <= kemppinen2025::kMaxSide; ++side)
+      for (kemppinen2025::Erf e : {kemppinen2025::Erf::kExact, kemppinen2025::Erf::kRational})
+        out.push_back({side, e, static_cast<kemppinen2025::Blend>(b)});
   return out;
 }
 
@@ -178,11 +181,12 @@ inline constexpr int kBruteForceMaxCells = 32;
 
 // The query of cost row i at `cells` (uv and ω_h vary; the footprint is fixed).
 inline Query cost_query(std::uint64_t i, double cells) {
-  const KemppinenParams<double> p = params({1, KemppinenErf::kExact, KemppinenBlend::kRoulette}, 1);
+  const kemppinen2025::Params<double> p =
+      params({1, kemppinen2025::Erf::kExact, kemppinen2025::Blend::kRoulette}, 1);
   const Vec2<double> uv{counter_uniform<double>(9, i, 0) * 100,
                         counter_uniform<double>(9, i, 1) * 100};
   const Vec3<double> h = normalize(Vec3<double>{0.1 * counter_uniform<double>(9, i, 2), 0.05, 1});
-  return {kemppinen_footprint_cells(uv, cells, p), h, cells};
+  return {kemppinen2025::footprint_cells(uv, cells, p), h, cells};
 }
 
 }  // namespace glintlab::kemppinen_sa

@@ -1,7 +1,7 @@
 // Google Benchmark: time per pixel of Podee et al.'s method (Sec. 3) and of the baselines it is
 // compared with in Table 1 — centre sampling, LEAN mapping, the 64-spp supersampled reference —
 // on the podee scene (verify/scenes/podee_scene.h) at the near, medium and far distances, single
-// threaded; and the bare kernel podee_shade (float, double; exact and quad-as-circle weights).
+// threaded; and the bare kernel podee::shade (float, double; exact and quad-as-circle weights).
 // items/s = pixels per second. Run: glintlab_bench_podee --benchmark_out=out/bench/podee.json
 // --benchmark_out_format=json. Method rows (experiments/bench/METHOD_BENCHMARKS.md): the kernel's
 // weightings (Sec. 3.2: exact circle ∩ quad, quad as circle, none) in double and float against
@@ -25,18 +25,18 @@ namespace {
 
 constexpr int kSize = 64;
 
-const PodeeScene& scene(double distance) {
-  static const auto map = podee_normal_map();
-  static const PodeeScene near(podee_config(kPodeeNear, kSize), map);
-  static const PodeeScene medium(podee_config(kPodeeMedium, kSize), map);
-  static const PodeeScene far(podee_config(kPodeeFar, kSize), map);
-  return distance == kPodeeNear ? near : distance == kPodeeMedium ? medium : far;
+const podee::Scene& scene(double distance) {
+  static const auto map = podee::normal_map();
+  static const podee::Scene near(podee::config(podee::kNear, kSize), map);
+  static const podee::Scene medium(podee::config(podee::kMedium, kSize), map);
+  static const podee::Scene far(podee::config(podee::kFar, kSize), map);
+  return distance == podee::kNear ? near : distance == podee::kMedium ? medium : far;
 }
 
 // Pixels of the crop that hit the sphere: where every method does its work.
 const std::vector<std::array<int, 2>>& sphere_pixels(double distance) {
   static std::vector<std::array<int, 2>> cache[3];
-  const int k = distance == kPodeeNear ? 0 : distance == kPodeeMedium ? 1 : 2;
+  const int k = distance == podee::kNear ? 0 : distance == podee::kMedium ? 1 : 2;
   if (cache[k].empty())
     for (int j = 0; j < kSize; ++j)
       for (int i = 0; i < kSize; ++i)
@@ -44,13 +44,13 @@ const std::vector<std::array<int, 2>>& sphere_pixels(double distance) {
   return cache[k];
 }
 
-void per_pixel(benchmark::State& state, PodeeMethod m, double distance) {
-  const PodeeScene& s = scene(distance);
+void per_pixel(benchmark::State& state, podee::Method m, double distance) {
+  const podee::Scene& s = scene(distance);
   const auto& px = sphere_pixels(distance);
   std::size_t k = 0;
   for (auto _ : state) {
     const auto& p = px[k];
-    benchmark::DoNotOptimize(podee_pixel(s, m, p[0], p[1]));
+    benchmark::DoNotOptimize(podee::pixel(s, m, p[0], p[1]));
     k = k + 1 == px.size() ? 0 : k + 1;
   }
   state.SetItemsProcessed(state.iterations());
@@ -58,7 +58,7 @@ void per_pixel(benchmark::State& state, PodeeMethod m, double distance) {
 }
 
 void reference_pixel(benchmark::State& state, double distance) {
-  const PodeeScene& s = scene(distance);
+  const podee::Scene& s = scene(distance);
   const auto& px = sphere_pixels(distance);
   std::size_t k = 0;
   std::uint64_t index = 0;
@@ -78,7 +78,7 @@ void reference_pixel(benchmark::State& state, double distance) {
 }
 
 template <class T>
-void shade_kernel(benchmark::State& state, PodeeWeighting w) {
+void shade_kernel(benchmark::State& state, podee::Weighting w) {
   std::vector<std::array<Vec3<T>, 4>> corners(1024);
   std::vector<Vec3<T>> lights(1024);
   for (std::size_t i = 0; i < corners.size(); ++i) {
@@ -94,16 +94,16 @@ void shade_kernel(benchmark::State& state, PodeeWeighting w) {
   }
   std::size_t k = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(podee_shade(corners[k], lights[k], T(0.05), w).value);
+    benchmark::DoNotOptimize(podee::shade(corners[k], lights[k], T(0.05), w).value);
     k = (k + 1) & 1023;
   }
   state.SetItemsProcessed(state.iterations());
 }
 
 void register_all() {
-  for (double d : {kPodeeNear, kPodeeMedium, kPodeeFar}) {
-    for (PodeeMethod m : {PodeeMethod::kCentre, PodeeMethod::kLean, PodeeMethod::kPodee,
-                          PodeeMethod::kPodeeQuadAsCircle}) {
+  for (double d : {podee::kNear, podee::kMedium, podee::kFar}) {
+    for (podee::Method m : {podee::Method::kCentre, podee::Method::kLean, podee::Method::kPodee,
+                            podee::Method::kPodeeQuadAsCircle}) {
       benchmark::RegisterBenchmark(
           (std::string("podee_pixel/") + to_string(m) + "/d" + std::to_string(int(d))).c_str(),
           [m, d](benchmark::State& s) { per_pixel(s, m, d); });
@@ -112,16 +112,16 @@ void register_all() {
                                  [d](benchmark::State& s) { reference_pixel(s, d); });
   }
   benchmark::RegisterBenchmark("podee_shade/double/exact", [](benchmark::State& s) {
-    shade_kernel<double>(s, PodeeWeighting::kExact);
+    shade_kernel<double>(s, podee::Weighting::kExact);
   });
   benchmark::RegisterBenchmark("podee_shade/double/quad_as_circle", [](benchmark::State& s) {
-    shade_kernel<double>(s, PodeeWeighting::kQuadAsCircle);
+    shade_kernel<double>(s, podee::Weighting::kQuadAsCircle);
   });
   benchmark::RegisterBenchmark("podee_shade/float/exact", [](benchmark::State& s) {
-    shade_kernel<float>(s, PodeeWeighting::kExact);
+    shade_kernel<float>(s, podee::Weighting::kExact);
   });
   benchmark::RegisterBenchmark("podee_shade/float/quad_as_circle", [](benchmark::State& s) {
-    shade_kernel<float>(s, PodeeWeighting::kQuadAsCircle);
+    shade_kernel<float>(s, podee::Weighting::kQuadAsCircle);
   });
 }
 
@@ -136,7 +136,7 @@ namespace {
 // rotation, shear) with each corner jittered by up to 15 % of its size, centred within 0.15 of
 // the light's direction, corners in footprint order ((−,−), (+,−), (−,+), (+,+)); projected
 // radii tan γ uniform in [0.01, 0.2], so that the circle and the quad overlap in every way.
-// Error: |value − value_ref| (value = lit × weight ∈ [0, 1], absolute), reference podee_shade in
+// Error: |value − value_ref| (value = lit × weight ∈ [0, 1], absolute), reference podee::shade in
 // double with the exact circle ∩ quad area.
 struct ShadeQuery {
   std::array<Vec3<double>, 4> corners;
@@ -170,18 +170,18 @@ std::vector<ShadeQuery> shade_queries(const std::string& method, int count) {
 }
 
 template <class T>
-T shade_value(const ShadeQuery& x, PodeeWeighting w) {
+T shade_value(const ShadeQuery& x, podee::Weighting w) {
   std::array<Vec3<T>, 4> c;
   for (std::size_t k = 0; k < 4; ++k)
     c[k] = {T(x.corners[k].x), T(x.corners[k].y), T(x.corners[k].z)};
-  return podee_shade(c, Vec3<T>{T(x.light.x), T(x.light.y), T(x.light.z)}, T(x.tan_radius), w)
+  return podee::shade(c, Vec3<T>{T(x.light.x), T(x.light.y), T(x.light.z)}, T(x.tan_radius), w)
       .value;
 }
 
 template <class T>
 void register_weighting(const std::string& method, const std::string& label,
-                        std::shared_ptr<const std::vector<ShadeQuery>> q, PodeeWeighting w) {
-  const bool is_ref = std::is_same_v<T, double> && w == PodeeWeighting::kExact;
+                        std::shared_ptr<const std::vector<ShadeQuery>> q, podee::Weighting w) {
+  const bool is_ref = std::is_same_v<T, double> && w == podee::Weighting::kExact;
   const std::string setting =
       fmt::format("precision={},weighting={}", std::is_same_v<T, double> ? "double" : "float",
                   Podee::kWeightingNames[std::size_t(w)]);
@@ -206,7 +206,7 @@ void register_weighting(const std::string& method, const std::string& label,
         std::size_t k = 0;
         for (auto _ : s) {
           const In& v = (*in)[k];
-          benchmark::DoNotOptimize(podee_shade(v.c, v.l, v.r, w).value);
+          benchmark::DoNotOptimize(podee::shade(v.c, v.l, v.r, w).value);
           k = k + 1 == in->size() ? 0 : k + 1;
         }
         s.SetItemsProcessed(std::int64_t(s.iterations()));
@@ -215,7 +215,7 @@ void register_weighting(const std::string& method, const std::string& label,
         std::vector<double> e;
         for (const ShadeQuery& x : *q)
           e.push_back(std::abs(double(shade_value<T>(x, w)) -
-                               shade_value<double>(x, PodeeWeighting::kExact)));
+                               shade_value<double>(x, podee::Weighting::kExact)));
         return bench::error_stats(e);
       });
 }
@@ -226,28 +226,28 @@ void register_weighting_methods() {
       "podee_shade double with the exact circle-quad area; abs. error of lit x weight";
   const auto q = std::make_shared<const std::vector<ShadeQuery>>(
       shade_queries(method, bench::quick_mode() ? 512 : 65536));
-  for (PodeeWeighting w :
-       {PodeeWeighting::kExact, PodeeWeighting::kQuadAsCircle, PodeeWeighting::kNone}) {
+  for (podee::Weighting w :
+       {podee::Weighting::kExact, podee::Weighting::kQuadAsCircle, podee::Weighting::kNone}) {
     register_weighting<double>(method, label, q, w);
     register_weighting<float>(method, label, q, w);
   }
 }
 
 // --- Method rows: podee.pixel_vs_supersampled.d<distance> -------------------------------------
-// Reference: the stratified `ref_spp`-sample pixel average of render_podee_reference. Error:
+// Reference: the stratified `ref_spp`-sample pixel average of podee::render_podee_reference. Error:
 // |pixel − reference| over the pixels whose centre hits the sphere (radiance for unit light
 // radiance, absolute); time per such pixel, single thread. Plain supersampling (another seed) is
 // timed and measured the same way.
 void register_pixel_methods() {
   const bool quick = bench::quick_mode();
   const int size = quick ? 24 : kSize, ref_spp = quick ? 64 : 1024;
-  static const auto map = podee_normal_map();
-  for (double d : {kPodeeNear, kPodeeMedium, kPodeeFar}) {
+  static const auto map = podee::normal_map();
+  for (double d : {podee::kNear, podee::kMedium, podee::kFar}) {
     const std::string method = fmt::format("podee.pixel_vs_supersampled.d{}", int(d));
     const std::string label = fmt::format(
         "{}-spp stratified pixel integral ({}x{} crop); abs. pixel error on sphere pixels", ref_spp,
         size, size);
-    const auto scene = std::make_shared<const PodeeScene>(podee_config(d, size), map);
+    const auto scene = std::make_shared<const podee::Scene>(podee::config(d, size), map);
     auto px = std::make_shared<std::vector<std::array<int, 2>>>();
     for (int j = 0; j < size; ++j)
       for (int i = 0; i < size; ++i)
@@ -255,7 +255,8 @@ void register_pixel_methods() {
     const std::uint64_t seed = bench::method_seed(method);
     auto reference = std::make_shared<Image>();
     const auto ref = [scene, ref_spp, seed, reference]() -> const Image& {
-      if (reference->data.empty()) *reference = render_podee_reference(*scene, ref_spp, seed, 0);
+      if (reference->data.empty())
+        *reference = podee::render_podee_reference(*scene, ref_spp, seed, 0);
       return *reference;
     };
     const auto errors = [px, ref](const Image& im) {
@@ -266,26 +267,26 @@ void register_pixel_methods() {
     };
     struct Row {
       std::string setting;
-      PodeeMethod m;
+      podee::Method m;
     };
     for (const Row& r :
-         {Row{"method=centre", PodeeMethod::kCentre}, Row{"method=lean", PodeeMethod::kLean},
-          Row{"method=podee,weighting=exact", PodeeMethod::kPodee},
-          Row{"method=podee,weighting=quad_as_circle", PodeeMethod::kPodeeQuadAsCircle},
-          Row{"method=podee,weighting=none", PodeeMethod::kPodeeUnweighted}}) {
-      const PodeeMethod m = r.m;
+         {Row{"method=centre", podee::Method::kCentre}, Row{"method=lean", podee::Method::kLean},
+          Row{"method=podee,weighting=exact", podee::Method::kPodee},
+          Row{"method=podee,weighting=quad_as_circle", podee::Method::kPodeeQuadAsCircle},
+          Row{"method=podee,weighting=none", podee::Method::kPodeeUnweighted}}) {
+      const podee::Method m = r.m;
       bench::register_method(
           method, r.setting, label,
           [scene, px, m](benchmark::State& s) {
             std::size_t k = 0;
             for (auto _ : s) {
               const auto& p = (*px)[k];
-              benchmark::DoNotOptimize(podee_pixel(*scene, m, p[0], p[1]));
+              benchmark::DoNotOptimize(podee::pixel(*scene, m, p[0], p[1]));
               k = k + 1 == px->size() ? 0 : k + 1;
             }
             s.SetItemsProcessed(std::int64_t(s.iterations()));
           },
-          [scene, m, errors] { return errors(render_podee(*scene, m, 0)); });
+          [scene, m, errors] { return errors(podee::render_podee(*scene, m, 0)); });
     }
     for (int spp : quick ? std::vector<int>{4} : std::vector<int>{4, 16, 64}) {
       const std::string setting = fmt::format("method=supersampled,spp={}", spp);
@@ -298,7 +299,7 @@ void register_pixel_methods() {
             for (auto _ : s) {
               const auto& p = (*px)[k];
               double acc = 0;
-              for (int n = 0; n < spp; ++n, ++index) {  // as render_podee_reference samples
+              for (int n = 0; n < spp; ++n, ++index) {  // as podee::render_podee_reference samples
                 const Vec2<double> o = stratified_offset(ss_seed, index, n, spp);
                 acc += scene->radiance(p[0] + o.x, p[1] + o.y);
               }
@@ -308,7 +309,7 @@ void register_pixel_methods() {
             s.SetItemsProcessed(std::int64_t(s.iterations()));
           },
           [scene, spp, ss_seed, errors] {
-            return errors(render_podee_reference(*scene, spp, ss_seed, 0));
+            return errors(podee::render_podee_reference(*scene, spp, ss_seed, 0));
           });
     }
   }

@@ -59,7 +59,7 @@ void progress(const FigureContext& ctx, const std::string& stage, long done, lon
 
 // --- Fig. 3 ---
 void run_fig3(const FigureContext& ctx) {
-  const ChermainDictionary& d = default_chermain_dictionary();
+  const chermain2021::Dictionary& d = chermain2021::default_chermain_dictionary();
   progress(ctx, "dictionary", 1, 1);
   io::write_exr(ctx.dir / "dictionary.exr", d.image(),
                 attributes(ctx, "chermain2021-fig3", "the whole dictionary (rows (n/3)*L + k)"));
@@ -257,17 +257,24 @@ void run_fig10(const FigureContext& ctx) {
   std::vector<Row> rows;
   for (double ld : log_densities)
     for (double rho : rhos) {
-      const ChermainSdfParams p{
-          &default_chermain_dictionary(), s, s, rho, ld / std::log(2.0), kChermainNoGgaa, 0.5, 1};
+      const chermain2021::SdfParams p{&chermain2021::default_chermain_dictionary(),
+                                      s,
+                                      s,
+                                      rho,
+                                      ld / std::log(2.0),
+                                      chermain2021::kNoGgaa,
+                                      0.5,
+                                      1};
       Image img(size, size, {"R", "G", "B"});
       const double R = 1.2;
       for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
           const Vec2<double> m{-R + (x + 0.5) * 2 * R / size, R - (y + 0.5) * 2 * R / size};
-          const double v = chermain_patch_sdf(p, m, fp, {0, 0, 0, 0});
+          const double v = chermain2021::patch_sdf(p, m, fp, {0, 0, 0, 0});
           for (std::size_t c = 0; c < 3; ++c) img.at(x, y, c) = v;
         }
-      const SlopeMoments2 mo = chermain_patch_moments(p, fp, {0, 0, 0, 0}, ctx.quick ? 300 : 800);
+      const chermain2021::SlopeMoments2 mo =
+          chermain2021::patch_moments(p, fp, {0, 0, 0, 0}, ctx.quick ? 300 : 800);
       rows.push_back(
           {rho, ld, std::sqrt(mo.xx), std::sqrt(mo.yy), mo.xy / std::sqrt(mo.xx * mo.yy), mo.mass});
       io::write_exr(

@@ -35,7 +35,7 @@ namespace {
 
 using V2 = Vec2<double>;
 using V3 = Vec3<double>;
-using P = KemppinenParams<double>;
+using P = kemppinen2025::Params<double>;
 constexpr double kPiD = std::numbers::pi;
 
 constexpr std::string_view kFig23Id = "kemppinen2025-fig2-3";
@@ -57,7 +57,7 @@ std::string params_text(const P& p, double alpha, double cells) {
       "alpha_x={0} alpha_y={0} density={1} microroughness={2} anisotropy={3} filter={4} k={5} "
       "blending={6} erf=exact normalization=corrected colors=white seed={7} footprint_cells={8}",
       alpha, p.density, p.microroughness, p.anisotropy, p.filter, p.side * p.side,
-      p.blend == KemppinenBlend::kRoulette ? "roulette" : "linear", p.seed, cells);
+      p.blend == kemppinen2025::Blend::kRoulette ? "roulette" : "linear", p.seed, cells);
 }
 
 io::ExrAttributes attributes(std::string_view figure, bool ggx, const std::string& params,
@@ -150,8 +150,8 @@ constexpr int kFig23Positions = 16;
 void run_fig2_3(const FigureContext& ctx) {
   const int n = ctx.quick ? 128 : 512;
   const std::uint64_t seed = seed_for(kFig23Id, "points");
-  const P p = kemppinen_preset_params(2, kFig23AlphaStar, seed);
-  const FootprintQuery<double> fp = kemppinen_footprint_cells({0.5, 0.5}, kFig23Cells, p);
+  const P p = kemppinen2025::preset_params(2, kFig23AlphaStar, seed);
+  const FootprintQuery<double> fp = kemppinen2025::footprint_cells({0.5, 0.5}, kFig23Cells, p);
   const std::string ptext = params_text(p, kFig23Alpha, kFig23Cells);
   struct Row {
     std::string_view ndf, domain;
@@ -188,7 +188,7 @@ void run_fig2_3(const FigureContext& ctx) {
               h = {qx, qy, std::sqrt(std::max(0.0, 1 - r2))};
             }
             if (!inside || !(h.z > 0)) continue;
-            const KemppinenResult<double> r = kemppinen_eval(p, ndf, fp, h);
+            const kemppinen2025::Result<double> r = kemppinen2025::eval(p, ndf, fp, h);
             const double ratio = r.smooth_d > 0 ? r.d.x / r.smooth_d : 0.0;
             const double shown = disk ? ratio : r.d.x;
             img.at(x, y, 0) = img.at(x, y, 1) = img.at(x, y, 2) = shown;
@@ -215,7 +215,7 @@ void run_fig2_3(const FigureContext& ctx) {
         for (int k = 0; k < kFig23Positions; ++k) {
           const V2 uv{1000 * counter_uniform<double>(seed, std::uint64_t(k), 0),
                       1000 * counter_uniform<double>(seed, std::uint64_t(k), 1)};
-          const FootprintQuery<double> fk = kemppinen_footprint_cells(uv, kFig23Cells, p);
+          const FootprintQuery<double> fk = kemppinen2025::footprint_cells(uv, kFig23Cells, p);
           double integral = 0;
           for (int y = 0; y < m; ++y)
             for (int x = 0; x < m; ++x) {
@@ -223,7 +223,7 @@ void run_fig2_3(const FigureContext& ctx) {
               const double r2 = qx * qx + qy * qy;
               if (r2 >= 1) continue;
               const V3 h{qx, qy, std::sqrt(1 - r2)};
-              integral += kemppinen_eval(p, ndf, fk, h).d.x * 4 / (double(m) * m);
+              integral += kemppinen2025::eval(p, ndf, fk, h).d.x * 4 / (double(m) * m);
             }
           a_sum += integral, a_sum2 += integral * integral;
         }
@@ -279,7 +279,7 @@ struct FurnaceRow {
 
 FurnaceRow furnace(const NdfChoice& nd, double alpha, double alpha_star, double theta_deg,
                    std::uint64_t n, std::uint64_t seed) {
-  const P p = kemppinen_preset_params(2, alpha_star, seed);
+  const P p = kemppinen2025::preset_params(2, alpha_star, seed);
   const double t = theta_deg * kPiD / 180;
   const V3 wo{std::sin(t) * std::cos(0.3), std::sin(t) * std::sin(0.3), std::cos(t)};
   double sg = 0, sg2 = 0, ss = 0, ss2 = 0;
@@ -288,7 +288,7 @@ FurnaceRow furnace(const NdfChoice& nd, double alpha, double alpha_star, double 
       const V2 u{counter_uniform<double>(seed, i, 2), counter_uniform<double>(seed, i, 3)};
       const V2 uv{1000 * counter_uniform<double>(seed, i, 0),
                   1000 * counter_uniform<double>(seed, i, 1)};
-      const KemppinenFurnaceSample f = kemppinen_furnace_sample(p, ndf, wo, uv, u);
+      const kemppinen2025::FurnaceSample f = kemppinen2025::furnace_sample(p, ndf, wo, uv, u);
       sg += f.glint, sg2 += f.glint * f.glint, ss += f.smooth, ss2 += f.smooth * f.smooth;
     }
     return 0;
@@ -365,7 +365,7 @@ void run_fig14(const FigureContext& ctx) {
   const double th = std::atan(2.5 * kAlpha);
   const V3 h{std::sin(th), 0, std::cos(th)};
   for (int side : {2, 4}) {
-    const P p = kemppinen_preset_params(side, kAlphaStarHigh, seed);
+    const P p = kemppinen2025::preset_params(side, kAlphaStarHigh, seed);
     Image img(w, hgt, {"R", "G", "B", "ratio", "error_vs_D"});
     for (int y = 0; y < hgt; ++y) {
       const double cells = std::exp2(9.0 * y / (hgt - 1));
@@ -373,8 +373,8 @@ void run_fig14(const FigureContext& ctx) {
       for (int i = 0; i < std::max(per_row, w); ++i) {
         const V2 uv{1000 * counter_uniform<double>(seed, std::uint64_t(y) * 100000 + i, 0),
                     1000 * counter_uniform<double>(seed, std::uint64_t(y) * 100000 + i, 1)};
-        const KemppinenResult<double> r =
-            kemppinen_eval(p, ggx, kemppinen_footprint_cells(uv, cells, p), h);
+        const kemppinen2025::Result<double> r =
+            kemppinen2025::eval(p, ggx, kemppinen2025::footprint_cells(uv, cells, p), h);
         const double ratio = r.d.x / r.smooth_d;
         if (i < w) {
           img.at(i, y, 0) = img.at(i, y, 1) = img.at(i, y, 2) = img.at(i, y, 3) = ratio;
@@ -415,12 +415,13 @@ void run_fig14(const FigureContext& ctx) {
           const V3 hh{std::sin(a), 0, std::cos(a)};
           double m_lo = 0, m_hi = 0;
           for (double as : {0.02, 0.5}) {
-            const P p = kemppinen_preset_params(2, as, seed);
+            const P p = kemppinen2025::preset_params(2, as, seed);
             double s = 0;
             for (int i = 0; i < positions; ++i) {
               const V2 uv{1000 * counter_uniform<double>(seed, std::uint64_t(i), 4),
                           1000 * counter_uniform<double>(seed, std::uint64_t(i), 5)};
-              s += kemppinen_eval(p, smooth, kemppinen_footprint_cells(uv, 64, p), hh).d.x;
+              s +=
+                  kemppinen2025::eval(p, smooth, kemppinen2025::footprint_cells(uv, 64, p), hh).d.x;
             }
             (as < 0.1 ? m_lo : m_hi) = s / positions;
           }
@@ -449,10 +450,11 @@ void run_fig6(const FigureContext& ctx) {
   };
   std::vector<Row> out;
   std::vector<Image> tiles;
-  for (KemppinenBlend blend : {KemppinenBlend::kRoulette, KemppinenBlend::kLinear}) {
-    P p = kemppinen_preset_params(2, kAlphaStar, seed);
+  for (kemppinen2025::Blend blend :
+       {kemppinen2025::Blend::kRoulette, kemppinen2025::Blend::kLinear}) {
+    P p = kemppinen2025::preset_params(2, kAlphaStar, seed);
     p.blend = blend;
-    const std::string_view name = blend == KemppinenBlend::kRoulette ? "roulette" : "linear";
+    const std::string_view name = blend == kemppinen2025::Blend::kRoulette ? "roulette" : "linear";
     Image img(cols, img_rows, {"R", "G", "B", "D_star_f", "D_star_explicit"});
     for (int c = 0; c < cols; ++c) {
       const double lambda = 3.0 + 2.0 * c / (cols - 1);
@@ -463,8 +465,8 @@ void run_fig6(const FigureContext& ctx) {
         // The same positions in every column and for both blends (paired comparison).
         const V2 uv{1000 * counter_uniform<double>(seed, std::uint64_t(i), 0),
                     1000 * counter_uniform<double>(seed, std::uint64_t(i), 1)};
-        const KemppinenResult<double> r =
-            kemppinen_eval(p, ggx, kemppinen_footprint_cells(uv, cells, p), h);
+        const kemppinen2025::Result<double> r =
+            kemppinen2025::eval(p, ggx, kemppinen2025::footprint_cells(uv, cells, p), h);
         d[std::size_t(i)] = r.d.x, w1 = r.w1;
         if (i < img_rows) {
           img.at(c, i, 0) = img.at(c, i, 1) = img.at(c, i, 2) = img.at(c, i, 3) = r.d.x;
@@ -538,7 +540,7 @@ void run_fig10(const FigureContext& ctx) {
     for (std::size_t k = 0; k < sw.values.size(); ++k) {
       const double v = sw.values[k];
       double alpha = 0.2;
-      P p = kemppinen_preset_params(2, 0.02, seed);
+      P p = kemppinen2025::preset_params(2, 0.02, seed);
       if (sw.name == "alpha") alpha = v;
       if (sw.name == "microroughness") p.microroughness = v;
       if (sw.name == "density") p.density = v;
@@ -554,7 +556,7 @@ void run_fig10(const FigureContext& ctx) {
           const V3 h = normalize(wi + wo);
           const double d = 2.0 / n * kUvScale;
           const FootprintQuery<double> fp{{pos.x * kUvScale, pos.y * kUvScale}, {d, 0}, {0, d}};
-          const KemppinenResult<double> r = kemppinen_eval(p, ggx, fp, h);
+          const kemppinen2025::Result<double> r = kemppinen2025::eval(p, ggx, fp, h);
           const double g = smith_g2_height_correlated(ggx, wi, wo, h) / (4 * wo.z * r2);
           const double rad = g * r.d.x, smooth = g * r.smooth_d;
           const int ox = static_cast<int>(k) * n;

@@ -5,7 +5,7 @@
 //
 // Setting (the paper gives no parameters for Fig. 7): α = 0.2, α★ = 0.02, k = 4 (the paper's k,
 // Sec. 3.3.4), density 10⁴, filter 0.5, a pixel of one level-0 cell (λ = 1), θ_v = 30° looking at
-// the mirror direction of the default environment's sun (kemppinen_env_sky), or `--env FILE`.
+// the mirror direction of the default environment's sun (kemppinen2025::env_sky), or `--env FILE`.
 // Reference: smooth-NDF sampling at `reference_spp` with seeds independent of the series (the
 // paper: "references computed with 8192 samples per pixel"); RMSE over the luminance of every
 // pixel. The printed-pdf variant of the mixture is plotted as well: its error stops falling where
@@ -77,9 +77,10 @@ std::uint64_t fig7_seed(std::string_view what) {
 
 void run_ndf(const FigureContext& ctx, const EnvironmentMap& env, const Fig7Budget& b,
              NdfRun& out) {
-  const KemppinenParams<double> p = kemppinen_preset_params(kSide, kAlphaStar, fig7_seed("points"));
+  const kemppinen2025::Params<double> p =
+      kemppinen2025::preset_params(kSide, kAlphaStar, fig7_seed("points"));
   const double pixel_uv = 1 / std::sqrt(p.density) / p.filter;  // one level-0 cell per pixel
-  const KemppinenPlaneView view{kThetaV * std::numbers::pi / 180, {0.25, 0.5}, pixel_uv};
+  const kemppinen2025::PlaneView view{kThetaV * std::numbers::pi / 180, {0.25, 0.5}, pixel_uv};
   const V3 v = view.view();
   const int n = b.size * b.size;
   const std::uint64_t series_seed = fig7_seed(fmt::format("{}/series", out.name));
@@ -96,7 +97,7 @@ void run_ndf(const FigureContext& ctx, const EnvironmentMap& env, const Fig7Budg
     const FootprintQuery<double> fp = view.pixel(x, y);
     with_ndf(ndf_kind(out.ggx), kAlpha, kAlpha, [&](const auto& ndf) {
       const std::uint64_t ks = std::uint64_t(k);
-      const KemppinenEnvSamples s = kemppinen_env_samples(
+      const kemppinen2025::EnvSamples s = kemppinen2025::env_samples(
           p, ndf, fp, env, v, std::uint64_t(b.max_spp), mix64(series_seed ^ mix64(ks)));
       qs[std::size_t(k)] = s.q;
       const std::vector<V3>* src[3] = {&s.exact, &s.printed, &s.smooth};
@@ -104,7 +105,7 @@ void run_ndf(const FigureContext& ctx, const EnvironmentMap& env, const Fig7Budg
         V3 sum{0, 0, 0};
         for (int i = 0; i < b.max_spp; ++i) {
           const V3& e = (*src[t])[std::size_t(i)];
-          lum[t][std::size_t(k)].push_back(kemppinen_luminance(e));
+          lum[t][std::size_t(k)].push_back(kemppinen2025::luminance(e));
           if (i < b.preview_spp) sum = sum + e;
         }
         const V3 m = (1.0 / b.preview_spp) * sum;
@@ -117,11 +118,11 @@ void run_ndf(const FigureContext& ctx, const EnvironmentMap& env, const Fig7Budg
       const std::uint64_t rs = mix64(ref_seed ^ mix64(ks));
       for (int i = 0; i < b.reference_spp; ++i) {
         const std::uint64_t is = std::uint64_t(i);
-        const V3 e = kemppinen_env_estimate_smooth(
+        const V3 e = kemppinen2025::env_estimate_smooth(
             p, ndf, fp, env, v,
             Vec2<double>{counter_uniform<double>(rs, is, 0), counter_uniform<double>(rs, is, 1)});
         sum = sum + e;
-        const double yv = kemppinen_luminance(e);
+        const double yv = kemppinen2025::luminance(e);
         sy += yv;
         syy += yv * yv;
       }
@@ -217,7 +218,7 @@ Image preview_montage(const std::vector<NdfRun>& runs, int scale) {
 
 void run_fig7(const FigureContext& ctx) {
   const Fig7Budget b = fig7_budget(ctx.quick);
-  const EnvironmentMap default_env(kemppinen_env_sky());
+  const EnvironmentMap default_env(kemppinen2025::env_sky());
   const EnvironmentMap& env = ctx.environment ? *ctx.environment : default_env;
   const std::string env_name =
       ctx.environment ? ctx.environment_name

@@ -227,21 +227,21 @@ void measure_in_process(SaRow& row, const sa::Setting* s, bool quick, double min
                     : sa::kSmoothQueries;
   const std::vector<sa::Query> q = sa::queries(row.ggx, row.ref, n);
   std::vector<double> scale;
-  const KemppinenBlend blend = s ? s->blend : KemppinenBlend::kRoulette;
+  const kemppinen2025::Blend blend = s ? s->blend : kemppinen2025::Blend::kRoulette;
   const std::vector<double> ref = sa::reference_all(row.ggx, row.ref, blend, q, &scale);
-  const KemppinenParams<double> p =
-      sa::params(s ? *s : sa::Setting{1, KemppinenErf::kExact, KemppinenBlend::kRoulette}, 1);
+  const kemppinen2025::Params<double> p = sa::params(
+      s ? *s : sa::Setting{1, kemppinen2025::Erf::kExact, kemppinen2025::Blend::kRoulette}, 1);
   with_ndf(ndf_kind(row.ggx), sa::kAlpha, sa::kAlpha, [&](const auto& ndf) {
     const auto at = [&](long i) -> const sa::Query& { return q[std::size_t(i) % q.size()]; };
     if (s) {
       row.err = sa::errors(sa::eval_all(row.ggx, *s, q), ref, scale);
-      row.ns = time_ns([&](long i) { return kemppinen_eval(p, ndf, at(i).fp, at(i).h).d.x; },
+      row.ns = time_ns([&](long i) { return kemppinen2025::eval(p, ndf, at(i).fp, at(i).h).d.x; },
                        long(q.size()), min_ms);
     } else {
       row.err = {0, 0, 0, int(q.size())};
-      row.ns =
-          time_ns([&](long i) { return kemppinen_reference_filtered(p, ndf, at(i).fp, at(i).h).x; },
-                  std::min<long>(long(q.size()), quick ? 4 : 64), min_ms);
+      row.ns = time_ns(
+          [&](long i) { return kemppinen2025::reference_filtered(p, ndf, at(i).fp, at(i).h).x; },
+          std::min<long>(long(q.size()), quick ? 4 : 64), min_ms);
     }
     return 0;
   });
@@ -272,15 +272,16 @@ void run_speed_accuracy(const FigureContext& ctx) {
       const std::size_t n = settings.size() + (ref == sa::Reference::kBruteForce ? 1 : 0);
       for (std::size_t i = 0; i < n; ++i) {
         const sa::Setting* s = i < settings.size() ? &settings[i] : nullptr;
-        SaRow row{ggx,
-                  ref,
-                  s ? sa::setting_name(*s) : "method=bruteforce",
-                  s ? s->side * s->side : 0,
-                  s ? (s->erf == KemppinenErf::kExact ? "exact" : "fast") : "none",
-                  s ? (s->blend == KemppinenBlend::kRoulette ? "roulette" : "linear") : "roulette",
-                  NAN,
-                  {},
-                  {}};
+        SaRow row{
+            ggx,
+            ref,
+            s ? sa::setting_name(*s) : "method=bruteforce",
+            s ? s->side * s->side : 0,
+            s ? (s->erf == kemppinen2025::Erf::kExact ? "exact" : "fast") : "none",
+            s ? (s->blend == kemppinen2025::Blend::kRoulette ? "roulette" : "linear") : "roulette",
+            NAN,
+            {},
+            {}};
         if (ctx.progress) ctx.progress("speed vs accuracy", long(rows.size()), 50);
         const std::string name = "method/" + sa::method_id(ggx, ref) + "/" + row.setting;
         const BenchRow* b = json ? find_bench_row(*json, name) : nullptr;
@@ -368,7 +369,7 @@ void run_speed_accuracy(const FigureContext& ctx) {
 
   // Cost against footprint: Algorithm 1 for each k (exact erf) and the brute-force Eq. 5.
   std::vector<CostRow> cost;
-  for (int side = 1; side <= kKemppinenMaxSide; ++side)
+  for (int side = 1; side <= kemppinen2025::kMaxSide; ++side)
     for (int cells : sa::kCostCells)
       cost.push_back({"constant_time", side * side, cells, NAN, 2.0 * std::pow(side, 4), {}});
   for (int cells = 1; cells <= sa::kBruteForceMaxCells; cells *= 2)
@@ -388,13 +389,13 @@ void run_speed_accuracy(const FigureContext& ctx) {
       continue;
     }
     const int side = c.k ? int(std::lround(std::sqrt(c.k))) : 1;
-    const KemppinenParams<double> p =
-        sa::params({side, KemppinenErf::kExact, KemppinenBlend::kRoulette}, 1);
+    const kemppinen2025::Params<double> p =
+        sa::params({side, kemppinen2025::Erf::kExact, kemppinen2025::Blend::kRoulette}, 1);
     if (c.k) {
       c.ns = time_ns(
           [&](long i) {
             const sa::Query q = sa::cost_query(std::uint64_t(i), c.cells);
-            return kemppinen_eval(p, ggx, q.fp, q.h).d.x;
+            return kemppinen2025::eval(p, ggx, q.fp, q.h).d.x;
           },
           64, min_ms);
     } else {
@@ -403,13 +404,13 @@ void run_speed_accuracy(const FigureContext& ctx) {
       std::int64_t visited = 0;
       for (int i = 0; i < 64; ++i) {
         const sa::Query q = sa::cost_query(std::uint64_t(i), c.cells);
-        kemppinen_reference_filtered(p, ggx, q.fp, q.h, false, &visited);
+        kemppinen2025::reference_filtered(p, ggx, q.fp, q.h, false, &visited);
       }
       c.points = double(visited) / 64.0;
       c.ns = time_ns(
           [&](long i) {
             const sa::Query q = sa::cost_query(std::uint64_t(i), c.cells);
-            return kemppinen_reference_filtered(p, ggx, q.fp, q.h).x;
+            return kemppinen2025::reference_filtered(p, ggx, q.fp, q.h).x;
           },
           n, min_ms);
     }
@@ -432,8 +433,8 @@ void run_speed_accuracy(const FigureContext& ctx) {
                    "footprint (level-0 cells)",
                    points ? "points visited" : "ns per evaluation",
                    {}};
-    for (int s = 0; s <= kKemppinenMaxSide; ++s) {
-      const int k = s == kKemppinenMaxSide ? 0 : (s + 1) * (s + 1);
+    for (int s = 0; s <= kemppinen2025::kMaxSide; ++s) {
+      const int k = s == kemppinen2025::kMaxSide ? 0 : (s + 1) * (s + 1);
       ChartSeries cs{
           k ? fmt::format("constant time k={}", k) : "brute force Eq. 5", kColors[s], {}, {}};
       for (const CostRow& c : cost)

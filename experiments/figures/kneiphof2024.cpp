@@ -112,8 +112,8 @@ constexpr std::string_view kFig6 = "kneiphof2024-fig6";
 double p_normal(double alpha, double gamma_deg) {
   const GGX<double> g{alpha, alpha};
   const Vec3<double> n{0, 0, 1};
-  return cap_probability_eq20(g, n, n, one_minus_cos(gamma_deg * std::numbers::pi / 180),
-                              total_area_ggx_eq29(alpha));
+  return kneiphof2024::cap_probability_eq20(
+      g, n, n, one_minus_cos(gamma_deg * std::numbers::pi / 180), total_area_ggx_eq29(alpha));
 }
 
 void run_fig6(const FigureContext& ctx) {
@@ -225,7 +225,7 @@ void run_fig9(const FigureContext& ctx) {
   for (double w : {0.4, 0.1}) {
     const auto quad = square_light(w);
     const PolygonLight<double> whole = polygon(quad);
-    const auto sub_quads = subdivide_quad(quad, 16, 16);
+    const auto sub_quads = kneiphof2024::subdivide_quad(quad, 16, 16);
     std::vector<PolygonLight<double>> parts;
     for (const auto& q : sub_quads) parts.push_back(polygon(q));
     const std::size_t n = std::size_t(size) * std::size_t(size);
@@ -242,32 +242,32 @@ void run_fig9(const FigureContext& ctx) {
         };
         double p = 0, p_ltc = 0;
         for (std::size_t k = 0; k < parts.size(); ++k) {
-          const AreaLightTerms t = area_light_terms_mc(g, px.wi, parts[k], px.p, samples, seed,
-                                                       px.index * parts.size() + k);
+          const kneiphof2024::AreaLightTerms t = kneiphof2024::area_light_terms_mc(
+              g, px.wi, parts[k], px.p, samples, seed, px.index * parts.size() + k);
           pk[k] = t.d_omega_h / dh;
           lk[k] = t.lo_over_li;
           p += pk[k];
           // The single LTC lobe (Sec. 4): the BRDF lobe for L_o and, × D_PR, for D_Ωh.
           const auto v = rel(sub_quads[k]);
-          const LtcAreaTerms<double> l =
-              area_light_terms_ltc(table, alpha, px.wi, v.data(), 4, KneiphofAreaP::kBrdfLobe);
+          const kneiphof2024::LtcAreaTerms<double> l = kneiphof2024::area_light_terms_ltc(
+              table, alpha, px.wi, v.data(), 4, kneiphof2024::AreaP::kBrdfLobe);
           qk[k] = l.d_omega_h / dh;
           lq[k] = l.lo_over_li;
           p_ltc += qk[k];
         }
-        const AreaLightTerms t =
-            area_light_terms_mc(g, px.wi, whole, px.p, samples * 256, seed + 1, px.index);
+        const kneiphof2024::AreaLightTerms t = kneiphof2024::area_light_terms_mc(
+            g, px.wi, whole, px.p, samples * 256, seed + 1, px.index);
         const auto v = rel(quad);
-        const LtcAreaTerms<double> l =
-            area_light_terms_ltc(table, alpha, px.wi, v.data(), 4, KneiphofAreaP::kBrdfLobe);
+        const kneiphof2024::LtcAreaTerms<double> l = kneiphof2024::area_light_terms_ltc(
+            table, alpha, px.wi, v.data(), 4, kneiphof2024::AreaP::kBrdfLobe);
         const double nf = footprint_facet_count(px.footprint, density);
         const double pc = std::min(1.0, p);
         const std::uint64_t b = binomial_exact(std::uint64_t(nf), pc, seed + 2, px.index);
-        const auto bk = multinomial_split(b, pk, seed + 3, px.index);
+        const auto bk = kneiphof2024::multinomial_split(b, pk, seed + 3, px.index);
         // The LTC light's own p (its polygon integral), its count, and the split over the parts.
         const double pl = std::min(1.0, l.d_omega_h / dh);
         const std::uint64_t bl = binomial_exact(std::uint64_t(nf), pl, seed + 4, px.index);
-        const auto blk = multinomial_split(bl, qk, seed + 5, px.index);
+        const auto blk = kneiphof2024::multinomial_split(bl, qk, seed + 5, px.index);
         double mc = 0, ltc = 0;
         for (std::size_t k = 0; k < parts.size(); ++k) {
           if (pk[k] > 0) mc += lk[k] * double(bk[k]) / (nf * pk[k]);
@@ -368,12 +368,12 @@ void run_fig10(const FigureContext& ctx) {
           const double dens = d0 + strip * std::log10(4.0);
           double p, lo;
           if (dir) {
-            p = cap_probability_eq20(g, px.wi, kSunDir,
-                                     one_minus_cos(0.26 * std::numbers::pi / 180), dh);
+            p = kneiphof2024::cap_probability_eq20(
+                g, px.wi, kSunDir, one_minus_cos(0.26 * std::numbers::pi / 180), dh);
             lo = microfacet_brdf(g, px.wi, kSunDir, 1.0) * kSunDir.z;
           } else {
-            const AreaLightTerms t =
-                area_light_terms_mc(g, px.wi, pl, px.p, samples, figure_seed(kFig10, 0), px.index);
+            const kneiphof2024::AreaLightTerms t = kneiphof2024::area_light_terms_mc(
+                g, px.wi, pl, px.p, samples, figure_seed(kFig10, 0), px.index);
             p = t.d_omega_h / dh;
             lo = t.lo_over_li;
           }

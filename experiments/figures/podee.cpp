@@ -25,8 +25,9 @@ namespace glintlab::experiments {
 namespace {
 
 constexpr int kPaperSpp = 64;
-constexpr std::array<PodeeMethod, 4> kMethods = {
-    PodeeMethod::kCentre, PodeeMethod::kLean, PodeeMethod::kPodee, PodeeMethod::kPodeeQuadAsCircle};
+constexpr std::array<podee::Method, 4> kMethods = {podee::Method::kCentre, podee::Method::kLean,
+                                                   podee::Method::kPodee,
+                                                   podee::Method::kPodeeQuadAsCircle};
 // Table 1 of the paper, in the order centre, LEAN, method.
 constexpr std::array<double, 3> kPaperRmse = {0.0845, 0.0977, 0.0826};
 
@@ -37,7 +38,7 @@ struct Budget {
   std::vector<double> distances;
 };
 Budget budget(const FigureContext& ctx) {
-  if (ctx.quick) return {48, 256, 6, {kPodeeNear, kPodeeMedium, kPodeeFar}};
+  if (ctx.quick) return {48, 256, 6, {podee::kNear, podee::kMedium, podee::kFar}};
   return {128, 4096, 32, {2, 2.5, 3, 4, 5, 6, 8, 10, 12, 14}};
 }
 
@@ -90,7 +91,7 @@ struct DistanceRun {
 
 DistanceRun run_distance(const FigureContext& ctx, std::string_view figure, double distance,
                          const Budget& b) {
-  const PodeeScene scene(podee_config(distance, b.size), podee_normal_map());
+  const podee::Scene scene(podee::config(distance, b.size), podee::normal_map());
   DistanceRun r{distance,
                 {},
                 {},
@@ -101,16 +102,17 @@ DistanceRun run_distance(const FigureContext& ctx, std::string_view figure, doub
                 {},
                 0};
   const std::string stage = fmt::format("{} d={}", figure, distance);
-  r.paper = render_podee_reference(scene, kPaperSpp, r.paper_seed, ctx.threads,
-                                   [&](long d, long t) { progress(ctx, stage + " 64 spp", d, t); });
-  r.converged = render_podee_reference(
+  r.paper = podee::render_podee_reference(
+      scene, kPaperSpp, r.paper_seed, ctx.threads,
+      [&](long d, long t) { progress(ctx, stage + " 64 spp", d, t); });
+  r.converged = podee::render_podee_reference(
       scene, b.converged_spp, r.converged_seed, ctx.threads, [&](long d, long t) {
         progress(ctx, fmt::format("{} {} spp", stage, b.converged_spp), d, t);
       });
   MetricOptions o;
   o.channels = {"Y"};
-  for (PodeeMethod m : kMethods) {
-    r.method.push_back(render_podee(scene, m, ctx.threads));
+  for (podee::Method m : kMethods) {
+    r.method.push_back(podee::render_podee(scene, m, ctx.threads));
     r.vs_paper.push_back(rmse(r.method.back(), r.paper, o));
     r.vs_converged.push_back(rmse(r.method.back(), r.converged, o));
   }
@@ -142,7 +144,7 @@ void run_table1(const FigureContext& ctx) {
   const Budget b = budget(ctx);
   const char* id = "podee-table1";
   std::vector<DistanceRun> runs;
-  for (double d : {kPodeeNear, kPodeeMedium, kPodeeFar})
+  for (double d : {podee::kNear, podee::kMedium, podee::kFar})
     runs.push_back(run_distance(ctx, id, d, b));
   for (const DistanceRun& r : runs) write_distance_images(ctx, id, r, b);
   io::write_csv_atomic(
@@ -223,28 +225,28 @@ void run_distance_figure(const FigureContext& ctx) {
 void run_flicker(const FigureContext& ctx) {
   const Budget b = budget(ctx);
   const char* id = "podee-fig4-flicker";
-  const auto map = podee_normal_map();
+  const auto map = podee::normal_map();
   struct Row {
     std::string method;
     double distance, flicker;
   };
   std::vector<Row> rows;
   std::vector<Image> cells;
-  for (double d : {kPodeeNear, kPodeeMedium, kPodeeFar}) {
-    const PodeeSceneConfig c = podee_config(d, b.size);
+  for (double d : {podee::kNear, podee::kMedium, podee::kFar}) {
+    const podee::SceneConfig c = podee::config(d, b.size);
     progress(ctx, fmt::format("{} d={}", id, d), 0, 1);
-    for (PodeeMethod m : {PodeeMethod::kCentre, PodeeMethod::kLean, PodeeMethod::kPodee})
-      rows.push_back({to_string(m), d, podee_flicker(c, map, m, b.frames, ctx.threads)});
+    for (podee::Method m : {podee::Method::kCentre, podee::Method::kLean, podee::Method::kPodee})
+      rows.push_back({to_string(m), d, podee::flicker(c, map, m, b.frames, ctx.threads)});
     rows.push_back({"reference64", d,
-                    podee_flicker(c, map, PodeeMethod::kCentre, b.frames, ctx.threads, kPaperSpp,
-                                  seed_for(id, "reference", d, kPaperSpp))});
+                    podee::flicker(c, map, podee::Method::kCentre, b.frames, ctx.threads, kPaperSpp,
+                                   seed_for(id, "reference", d, kPaperSpp))});
     // Per-pixel temporal standard deviation images of the three methods at this distance.
-    for (PodeeMethod m : {PodeeMethod::kCentre, PodeeMethod::kLean, PodeeMethod::kPodee}) {
+    for (podee::Method m : {podee::Method::kCentre, podee::Method::kLean, podee::Method::kPodee}) {
       Image sum(b.size, b.size, {"Y"}), sum2(b.size, b.size, {"Y"});
       for (int f = 0; f < b.frames; ++f) {
-        PodeeSceneConfig cf = c;
+        podee::SceneConfig cf = c;
         cf.film_shift = {double(f) / b.frames, 0.5 * f / b.frames};
-        const Image im = render_podee(PodeeScene(cf, map), m, ctx.threads);
+        const Image im = podee::render_podee(podee::Scene(cf, map), m, ctx.threads);
         for (std::size_t k = 0; k < im.data.size(); ++k) {
           sum.data[k] += im.data[k];
           sum2.data[k] += im.data[k] * im.data[k];

@@ -102,10 +102,11 @@ Case make_case(std::size_t n, std::uint64_t seed) {
     const auto u = [&](std::uint64_t dim) { return row_uniform(seed ^ 0x63686572ULL, i, dim); };
     const double sel = u(0);
     const double level = -1.5 + 19 * u(1);
-    const double foot = sel < 0.04   ? 0.0
-                        : sel < 0.08 ? 0x1p45
-                                     : std::exp2(level - 0.5 * std::log2(v[param_index<Chermain>("density")]) +
-                                                0.3 * u(7));
+    const double foot =
+        sel < 0.04 ? 0.0
+        : sel < 0.08
+            ? 0x1p45
+            : std::exp2(level - 0.5 * std::log2(v[param_index<Chermain>("density")]) + 0.3 * u(7));
     fill_footprint_row(k.query, i, foot, u, in);
   }
   k.u1 = in[8];
@@ -330,7 +331,7 @@ struct ChermainClamp : Chermain {
   template <class T>
   static Params<T> params(std::span<const double> v) {
     Params<T> p = Chermain::params<T>(v);
-    p.sdf.wrap = TableWrap::kClampToEdge;
+    p.sdf.wrap = chermain2021::TableWrap::kClampToEdge;
     return p;
   }
 };

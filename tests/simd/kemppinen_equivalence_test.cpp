@@ -52,12 +52,12 @@ std::size_t rows_for_side(int side, bool full) {
 // cell boundary of the block start floor(x·2^l − (n−1)/2), the reservoir's running-sum
 // comparison, the level draw u < λ − ⌊λ⌋, the truncated Gaussian landing on U_Ω's rim), the
 // output jumps: such rows may exceed the budgets on at most outlier_fraction of the rows.
-// Sources of the errors: xsimd's exp (normal2), log (λ), erf (compensation, lobe masses),
-// sin/cos (Alg. 2 line 2) and, for Beckmann, the map T's exp/erf, against glibc, a few ulps each;
-// sums of up to 2k² lobes keep them relative, but the compensation max(∫_□N − ∫_B N, 0) cancels
-// when B(k) holds the lobe (hence D★^f and the value are measured against a scale), and the lobe
-// masses ∫_B N_j cancel for lobes far outside B (erf(b) − erf(a), both near ±1), so Σw★ and the
-// pdf of a few rows are ill-conditioned in the scalar code itself. At high levels the angular
+// Sources of the errors: xsimd's exp (kemppinen2025::normal2), log (λ), erf (compensation, lobe
+// masses), sin/cos (Alg. 2 line 2) and, for Beckmann, the map T's exp/erf, against glibc, a few
+// ulps each; sums of up to 2k² lobes keep them relative, but the compensation max(∫_□N − ∫_B N, 0)
+// cancels when B(k) holds the lobe (hence D★^f and the value are measured against a scale), and the
+// lobe masses ∫_B N_j cancel for lobes far outside B (erf(b) − erf(a), both near ±1), so Σw★ and
+// the pdf of a few rows are ill-conditioned in the scalar code itself. At high levels the angular
 // cells are 2^−20 wide, 1–16 float ulps of x_a: a few-ulp difference of x_a (Alg. 2 line 2's
 // sin/cos, Beckmann's T) changes the block, hence the sample and its flag. Measured on this
 // machine (SSE4.2 and AVX2, 2^16 rows, k = 1…16, float / double): value, D★^f, λ ≤ 17 / 20 eps

@@ -1,4 +1,4 @@
-// podee_shade (Podee et al. Sec. 3, core/shading/podee_shade.h) instantiates on the SIMD float
+// podee::shade (Podee et al. Sec. 3, core/shading/podee_shade.h) instantiates on the SIMD float
 // types: Wide<float, ExactMath> gives the scalar float result bit for bit, and an xsimd batch (the
 // baseline ISA of this build) gives every lane's scalar result to rounding.
 #include <gtest/gtest.h>
@@ -38,13 +38,13 @@ TEST(PodeeWide, ExactWideFloatMatchesScalarBitForBit) {
   for (std::uint64_t i = 0; i < 500; ++i) {
     const Case c = make_case(i);
     for (int w = 0; w < 3; ++w) {
-      const PodeeResult<float> s = podee_shade(c.r, c.l, 0.05f, PodeeWeighting(w));
+      const podee::Result<float> s = podee::shade(c.r, c.l, 0.05f, podee::Weighting(w));
       std::array<Vec3<W>, 4> rw{};
       for (int k = 0; k < 4; ++k)
         rw[std::size_t(k)] = {W(c.r[std::size_t(k)].x), W(c.r[std::size_t(k)].y),
                               W(c.r[std::size_t(k)].z)};
-      const PodeeResult<W> v =
-          podee_shade(rw, Vec3<W>{W(c.l.x), W(c.l.y), W(c.l.z)}, W(0.05f), PodeeWeighting(w));
+      const podee::Result<W> v =
+          podee::shade(rw, Vec3<W>{W(c.l.x), W(c.l.y), W(c.l.z)}, W(0.05f), podee::Weighting(w));
       EXPECT_EQ(std::bit_cast<std::uint32_t>(s.weight), std::bit_cast<std::uint32_t>(v.weight.v));
       EXPECT_EQ(std::bit_cast<std::uint32_t>(s.r.x), std::bit_cast<std::uint32_t>(v.r.x.v));
     }
@@ -71,13 +71,13 @@ TEST(PodeeWide, BatchLanesMatchScalar) {
     std::array<Vec3<W>, 4> rw{};
     for (int k = 0; k < 4; ++k)
       rw[std::size_t(k)] = {load(lane[3 * k]), load(lane[3 * k + 1]), load(lane[3 * k + 2])};
-    const PodeeResult<W> v =
-        podee_shade(rw, Vec3<W>{load(light[0]), load(light[1]), load(light[2])}, W(0.05f));
+    const podee::Result<W> v =
+        podee::shade(rw, Vec3<W>{load(light[0]), load(light[1]), load(light[2])}, W(0.05f));
     alignas(64) float weight[n], dist[n];
     v.weight.v.store_aligned(weight);
     v.distance.v.store_aligned(dist);
     for (std::size_t j = 0; j < n; ++j) {
-      const PodeeResult<float> s = podee_shade(cases[j].r, cases[j].l, 0.05f);
+      const podee::Result<float> s = podee::shade(cases[j].r, cases[j].l, 0.05f);
       EXPECT_NEAR(weight[j], s.weight, 2e-5f) << g << " " << j;
       EXPECT_NEAR(dist[j], s.distance, 1e-5f) << g << " " << j;
     }

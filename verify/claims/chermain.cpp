@@ -31,12 +31,12 @@ constexpr double kTableTolerance = 1e-5;
 // 2D midpoint quadrature of the patch-SDF mass (and albedo) on the grids below.
 constexpr double kPatchTolerance = 5e-3;
 
-// Albedo ∫ f cos dω_o of the glinty BRDF for ω_i, on the slope grid of chermain_patch_moments:
+// Albedo ∫ f cos dω_o of the glinty BRDF for ω_i, on the slope grid of chermain2021::patch_moments:
 // dω_o = 4 (ω_o·h) dω_h and dω_h = h_z³ dm̃, so the integrand is P22 G2 (ω_i·h)/(ω_i.z h_z).
-double albedo(const ChermainSdfParams& p, const FootprintQuery<double>& fp,
-              const SlopeDerivatives& d, Vec3<double> wi, int grid) {
+double albedo(const chermain2021::SdfParams& p, const FootprintQuery<double>& fp,
+              const chermain2021::SlopeDerivatives& d, Vec3<double> wi, int grid) {
   const double so = p.dictionary->sigma_o();
-  const ChermainMatrix M = chermain_matrix(p.sigma_x, p.sigma_y, p.rho, so, p.with_rho);
+  const chermain2021::Matrix M = chermain2021::matrix(p.sigma_x, p.sigma_y, p.rho, so, p.with_rho);
   const double R =
       4 * std::sqrt(2.0) * so * std::sqrt(M.m00 * M.m00 + M.m01 * M.m01 + M.m11 * M.m11);
   const double h = 2 * R / grid;
@@ -47,9 +47,9 @@ double albedo(const ChermainSdfParams& p, const FootprintQuery<double>& fp,
       const Vec3<double> n = normalize(Vec3<double>{-m.x, -m.y, 1});
       const Vec3<double> wo = reflect(wi, n);
       if (!(wo.z > 0)) continue;
-      const double P = chermain_patch_sdf(p, m, fp, d);
+      const double P = chermain2021::patch_sdf(p, m, fp, d);
       if (P == 0) continue;
-      sum += P * v_cavity_g2(wi, wo, n) * dot(wi, n) / (wi.z * n.z);
+      sum += P * chermain2021::v_cavity_g2(wi, wo, n) * dot(wi, n) / (wi.z * n.z);
     }
   return sum * h * h;
 }
@@ -67,8 +67,8 @@ constexpr double kTexelBias = 0.02;
 // dictionary's × texel_scale exactly. with_patch: also the patch-SDF mass and albedo (2D
 // quadrature; the genuine dictionary only).
 NormalizationResult normalization(bool quick, double texel_scale, bool with_patch) {
-  const ChermainDictionary& d = default_chermain_dictionary();
-  const TableWrap wrap = TableWrap::kMirroredRepeat;
+  const chermain2021::Dictionary& d = chermain2021::default_chermain_dictionary();
+  const chermain2021::TableWrap wrap = chermain2021::TableWrap::kMirroredRepeat;
   NormalizationResult r;
   for (int n = 0; n < d.distributions(); ++n)
     for (int k = 0; k < d.levels(); ++k)
@@ -81,22 +81,24 @@ NormalizationResult normalization(bool quick, double texel_scale, bool with_patc
   for (int n = 0; n < d.distributions(); n += stride)
     for (int k = 0; k < d.levels(); k += quick ? 3 : 1)
       for (auto [gx, gy] : grads) {
-        r.filtered = std::max(
-            r.filtered,
-            std::abs(texel_scale * lookup_grad_integral(d, n, k, gx, gy, wrap, quick ? 4 : 8) - 1));
+        r.filtered =
+            std::max(r.filtered, std::abs(texel_scale * chermain2021::lookup_grad_integral(
+                                                            d, n, k, gx, gy, wrap, quick ? 4 : 8) -
+                                          1));
         ++r.configurations;
       }
   if (!with_patch) return r;
   const int grid = quick ? 200 : 600;
   const FootprintQuery<double> fp{{0.3, 0.7}, {0.004, 0.001}, {-0.001, 0.003}};
-  const SlopeDerivatives der{0.06, -0.02, 0.01, 0.04};
-  for (int kernel : {kChermainNoGgaa, kChermainProjectedHalf})
+  const chermain2021::SlopeDerivatives der{0.06, -0.02, 0.01, 0.04};
+  for (int kernel : {chermain2021::kNoGgaa, chermain2021::kProjectedHalf})
     for (double rho : quick ? std::vector<double>{0.6} : std::vector<double>{0.0, 0.6, -0.9})
       for (double log2_density :
            quick ? std::vector<double>{22} : std::vector<double>{14, 22, 30}) {
-        ChermainSdfParams p{&d, 0.3, 0.2, rho, log2_density, kernel, 0.5, 17};
+        chermain2021::SdfParams p{&d, 0.3, 0.2, rho, log2_density, kernel, 0.5, 17};
         p.wrap = wrap;
-        r.patch = std::max(r.patch, std::abs(chermain_patch_moments(p, fp, der, grid).mass - 1));
+        r.patch =
+            std::max(r.patch, std::abs(chermain2021::patch_moments(p, fp, der, grid).mass - 1));
         r.albedo_max =
             std::max(r.albedo_max, albedo(p, fp, der, normalize(Vec3<double>{0.4, 0.2, 1}), grid));
         ++r.configurations;
@@ -158,7 +160,7 @@ struct Convergence {
   double std_ratio = 0;    // √(mean variance at the last level) / σ_o
 };
 
-Convergence convergence(const ChermainDictionary& d, int stride) {
+Convergence convergence(const chermain2021::Dictionary& d, int stride) {
   Convergence c;
   const double so = d.sigma_o();
   const int per_texel = 4;
@@ -212,8 +214,8 @@ std::string describe_convergence(const Convergence& c) {
 // the one quantity the limit's standard deviation depends on).
 constexpr double kControlMeanScale = 1.02;
 
-ChermainDictionaryConfig control_dictionary_config() {
-  ChermainDictionaryConfig c;
+chermain2021::DictionaryConfig control_dictionary_config() {
+  chermain2021::DictionaryConfig c;
   c.mean_scale = kControlMeanScale;
   return c;
 }
@@ -221,12 +223,13 @@ ChermainDictionaryConfig control_dictionary_config() {
 CheckResult dictionary_converges(Budget b) {
   const bool quick = b == Budget::kQuick;
   const int stride = quick ? 4 : 1;
-  std::vector<Convergence> runs = {convergence(default_chermain_dictionary(), stride)};
+  std::vector<Convergence> runs = {
+      convergence(chermain2021::default_chermain_dictionary(), stride)};
   if (!quick)
     for (std::uint64_t seed : {1, 2}) {
-      ChermainDictionaryConfig c;
+      chermain2021::DictionaryConfig c;
       c.seed = seed;
-      runs.push_back(convergence(ChermainDictionary(c), 1));
+      runs.push_back(convergence(chermain2021::Dictionary(c), 1));
     }
   const Convergence& c = runs.front();
   CheckResult res;
@@ -243,7 +246,8 @@ CheckResult dictionary_converges(Budget b) {
       runs.size(), runs.size() > 1 ? "ies (seeds 2020, 1, 2)" : "y (seed 2020)",
       describe_convergence(c), worst, kL1Tolerance, kStdTolerance);
   // Control: the seed-2020 dictionary with its lobe means × 1.02, measured the same way.
-  const Convergence ctl = convergence(ChermainDictionary(control_dictionary_config()), stride);
+  const Convergence ctl =
+      convergence(chermain2021::Dictionary(control_dictionary_config()), stride);
   record_control(res, decide_converges({ctl}));
   res.power = fmt::format(
       "deterministic per dictionary (no sampling noise): a last level farther than L1 {} from the "
@@ -267,9 +271,10 @@ struct Cov {
   double xx, yy, xy;
 };
 
-Cov patch_covariance(const ChermainSdfParams& p, const FootprintQuery<double>& fp) {
-  const ChermainDictionary& d = *p.dictionary;
-  const ChermainMatrix M = chermain_matrix(p.sigma_x, p.sigma_y, p.rho, d.sigma_o(), p.with_rho);
+Cov patch_covariance(const chermain2021::SdfParams& p, const FootprintQuery<double>& fp) {
+  const chermain2021::Dictionary& d = *p.dictionary;
+  const chermain2021::Matrix M =
+      chermain2021::matrix(p.sigma_x, p.sigma_y, p.rho, d.sigma_o(), p.with_rho);
   const auto variance = [&](int n, int k) {
     const int steps = 2 * d.resolution() * 8;
     const double h = 2 * d.extent() / steps;
@@ -281,22 +286,23 @@ Cov patch_covariance(const ChermainSdfParams& p, const FootprintQuery<double>& f
     return v * h;
   };
   Cov c{0, 0, 0};
-  chermain_for_each_cell(p, fp, [&](bool on, double w, double k, const ChermainCell<double>& s) {
-    if (!on) return;
-    if (k >= d.levels()) {
-      const double r = p.with_rho ? p.rho : 0.0;
-      c.xx += w * p.sigma_x * p.sigma_x, c.yy += w * p.sigma_y * p.sigma_y;
-      c.xy += w * r * p.sigma_x * p.sigma_y;
-      return;
-    }
-    const double vx = variance(int(s.nx), int(k)), vy = variance(int(s.ny), int(k));
-    // A = M R(θ): columns a = M (cos, sin), b = M (−sin, cos).
-    const double a0 = M.m00 * s.cos_t + M.m01 * s.sin_t, a1 = M.m11 * s.sin_t;
-    const double b0 = -M.m00 * s.sin_t + M.m01 * s.cos_t, b1 = M.m11 * s.cos_t;
-    c.xx += w * (vx * a0 * a0 + vy * b0 * b0);
-    c.yy += w * (vx * a1 * a1 + vy * b1 * b1);
-    c.xy += w * (vx * a0 * a1 + vy * b0 * b1);
-  });
+  chermain2021::for_each_cell(
+      p, fp, [&](bool on, double w, double k, const chermain2021::Cell<double>& s) {
+        if (!on) return;
+        if (k >= d.levels()) {
+          const double r = p.with_rho ? p.rho : 0.0;
+          c.xx += w * p.sigma_x * p.sigma_x, c.yy += w * p.sigma_y * p.sigma_y;
+          c.xy += w * r * p.sigma_x * p.sigma_y;
+          return;
+        }
+        const double vx = variance(int(s.nx), int(k)), vy = variance(int(s.ny), int(k));
+        // A = M R(θ): columns a = M (cos, sin), b = M (−sin, cos).
+        const double a0 = M.m00 * s.cos_t + M.m01 * s.sin_t, a1 = M.m11 * s.sin_t;
+        const double b0 = -M.m00 * s.sin_t + M.m01 * s.cos_t, b1 = M.m11 * s.cos_t;
+        c.xx += w * (vx * a0 * a0 + vy * b0 * b0);
+        c.yy += w * (vx * a1 * a1 + vy * b1 * b1);
+        c.xy += w * (vx * a0 * a1 + vy * b0 * b1);
+      });
   return c;
 }
 
@@ -320,19 +326,19 @@ CorrelationResult correlation(bool quick, double rho_offset) {
   // Footprint 2^-7.5 and density 2^45: LODs −8, −7 use dictionary levels 14 and 15 (the last).
   const double foot = std::ldexp(1.0, -8) * std::sqrt(2.0);
   const int n_uv = quick ? 4 : 32;
-  const double so = default_chermain_dictionary().sigma_o();
+  const double so = chermain2021::default_chermain_dictionary().sigma_o();
   for (double rho : {0.0, 0.5, 0.99})
     for (auto [sx, sy] : {std::pair{so, so}, std::pair{0.3, 0.12}})
       for (int i = 0; i < n_uv; ++i) {
         const FootprintQuery<double> fp{{0.137 * i + 0.01, 0.291 * i + 0.02}, {foot, 0}, {0, foot}};
-        ChermainSdfParams p{&default_chermain_dictionary(),
-                            sx,
-                            sy,
-                            built(rho),
-                            45,
-                            kChermainNoGgaa,
-                            0.5,
-                            std::uint64_t(i)};
+        chermain2021::SdfParams p{&chermain2021::default_chermain_dictionary(),
+                                  sx,
+                                  sy,
+                                  built(rho),
+                                  45,
+                                  chermain2021::kNoGgaa,
+                                  0.5,
+                                  std::uint64_t(i)};
         const Cov c = patch_covariance(p, fp);
         const double es =
             std::max(std::abs(std::sqrt(c.xx) / sx - 1), std::abs(std::sqrt(c.yy) / sy - 1));
@@ -346,9 +352,15 @@ CorrelationResult correlation(bool quick, double rho_offset) {
       }
   if (!quick) {  // end to end through the patch-SDF evaluation (2D quadrature), ρ = 0.5
     const FootprintQuery<double> fp{{0.41, 0.77}, {foot, 0}, {0, foot}};
-    ChermainSdfParams p{
-        &default_chermain_dictionary(), so, so, built(0.5), 45, kChermainNoGgaa, 0.5, 3};
-    const SlopeMoments2 m = chermain_patch_moments(p, fp, {0, 0, 0, 0}, 1000);
+    chermain2021::SdfParams p{&chermain2021::default_chermain_dictionary(),
+                              so,
+                              so,
+                              built(0.5),
+                              45,
+                              chermain2021::kNoGgaa,
+                              0.5,
+                              3};
+    const chermain2021::SlopeMoments2 m = chermain2021::patch_moments(p, fp, {0, 0, 0, 0}, 1000);
     r.e2e_rho_err = std::abs(m.xy / std::sqrt(m.xx * m.yy) - 0.5);
     ++r.configurations;
   }
@@ -406,17 +418,17 @@ GgaaMeasurement measure_ggaa(const GgaaBudget& b, std::uint64_t seed) {
   o.width = b.width, o.height = b.height, o.threads = b.threads;
   GgaaMeasurement m;
   m.reference = render_tubes_reference(o, b.reference_spp, seed);
-  m.none = render_tubes(o, kChermainNoGgaa, 0.5);
-  m.half05 = render_tubes(o, kChermainHalfSlope, 0.5);
-  m.half1 = render_tubes(o, kChermainHalfSlope, 1.0);
-  m.proj05 = render_tubes(o, kChermainProjectedHalf, 0.5);
-  m.proj1 = render_tubes(o, kChermainProjectedHalf, 1.0);
+  m.none = render_tubes(o, chermain2021::kNoGgaa, 0.5);
+  m.half05 = render_tubes(o, chermain2021::kHalfSlope, 0.5);
+  m.half1 = render_tubes(o, chermain2021::kHalfSlope, 1.0);
+  m.proj05 = render_tubes(o, chermain2021::kProjectedHalf, 0.5);
+  m.proj1 = render_tubes(o, chermain2021::kProjectedHalf, 1.0);
   for (int f = 0; f < b.frames; ++f) {
     TubeSceneOptions of = o;
     of.camera_shift = 0.37 * f;  // a slow pan: 0.37 pixel per frame
-    m.frames_none.push_back(render_tubes(of, kChermainNoGgaa, 0.5));
-    m.frames05.push_back(render_tubes(of, kChermainProjectedHalf, 0.5));
-    m.frames1.push_back(render_tubes(of, kChermainProjectedHalf, 1.0));
+    m.frames_none.push_back(render_tubes(of, chermain2021::kNoGgaa, 0.5));
+    m.frames05.push_back(render_tubes(of, chermain2021::kProjectedHalf, 0.5));
+    m.frames1.push_back(render_tubes(of, chermain2021::kProjectedHalf, 1.0));
   }
   return m;
 }
@@ -454,20 +466,20 @@ GgaaReplicate measure_ggaa_replicate(const GgaaReplicateBudget& b, const std::st
   Image near_truth = render_tubes_reference(o, b.reference_spp, check_seed(id, 2000 + k));
   for (double& v : near_truth.data) v *= 1 + kGgaaNearTruthBias;
   GgaaReplicate r;
-  r.none = display_rmse_percent(render_tubes(o, kChermainNoGgaa, 0.5), ref);
-  r.half05 = display_rmse_percent(render_tubes(o, kChermainHalfSlope, 0.5), ref);
-  r.half1 = display_rmse_percent(render_tubes(o, kChermainHalfSlope, 1.0), ref);
-  r.proj05 = display_rmse_percent(render_tubes(o, kChermainProjectedHalf, 0.5), ref);
-  r.proj1 = display_rmse_percent(render_tubes(o, kChermainProjectedHalf, 1.0), ref);
+  r.none = display_rmse_percent(render_tubes(o, chermain2021::kNoGgaa, 0.5), ref);
+  r.half05 = display_rmse_percent(render_tubes(o, chermain2021::kHalfSlope, 0.5), ref);
+  r.half1 = display_rmse_percent(render_tubes(o, chermain2021::kHalfSlope, 1.0), ref);
+  r.proj05 = display_rmse_percent(render_tubes(o, chermain2021::kProjectedHalf, 0.5), ref);
+  r.proj1 = display_rmse_percent(render_tubes(o, chermain2021::kProjectedHalf, 1.0), ref);
   r.near_truth = display_rmse_percent(near_truth, ref);
   std::vector<Image> f05, f1, slow1;
   for (int f = 0; f < b.frames; ++f) {
     TubeSceneOptions of = o;
     of.camera_shift = o.camera_shift + kGgaaPan * f;
-    f05.push_back(render_tubes(of, kChermainProjectedHalf, 0.5));
-    f1.push_back(render_tubes(of, kChermainProjectedHalf, 1.0));
+    f05.push_back(render_tubes(of, chermain2021::kProjectedHalf, 0.5));
+    f1.push_back(render_tubes(of, chermain2021::kProjectedHalf, 1.0));
     of.camera_shift = o.camera_shift + (1 - kGgaaSlowPan) * kGgaaPan * f;
-    slow1.push_back(render_tubes(of, kChermainProjectedHalf, 1.0));
+    slow1.push_back(render_tubes(of, chermain2021::kProjectedHalf, 1.0));
   }
   r.flicker05 = frame_to_frame_variance(f05, ref);
   r.flicker1 = frame_to_frame_variance(f1, ref);
@@ -795,14 +807,15 @@ CheckResult lean_correlation(Budget b) {
 }  // namespace
 
 ControlProbe probe_chermain_kernel_normalized() {
-  const ChermainDictionary& d = default_chermain_dictionary();
-  const double f = lookup_grad_integral(d, 5, 6, 0.1, 0.01, TableWrap::kMirroredRepeat, 4);
+  const chermain2021::Dictionary& d = chermain2021::default_chermain_dictionary();
+  const double f = chermain2021::lookup_grad_integral(d, 5, 6, 0.1, 0.01,
+                                                      chermain2021::TableWrap::kMirroredRepeat, 4);
   return {std::abs(f - 1), std::abs((1 + kTexelBias) * f - 1), kTableTolerance, false};
 }
 
 ControlProbe probe_chermain_dictionary_converges() {
-  const Convergence ok = convergence(default_chermain_dictionary(), 16);
-  const Convergence bad = convergence(ChermainDictionary(control_dictionary_config()), 16);
+  const Convergence ok = convergence(chermain2021::default_chermain_dictionary(), 16);
+  const Convergence bad = convergence(chermain2021::Dictionary(control_dictionary_config()), 16);
   // Statistic: the last level's L1 when the sequence converges, else +inf.
   const auto stat = [](const Convergence& c) { return converges(c) ? c.l1.back() : 1e300; };
   return {stat(ok), stat(bad), kL1Tolerance, false};

@@ -18,16 +18,16 @@ namespace {
 
 // Eq. 1 with D from the patch-SDF at slope h̃ − `shift` (Eq. 2 / 8), V-cavity G2, F = 1, times
 // ω_o·n: the cosine-weighted BRDF for light from ω_l.
-double glint_value(const ChermainSdfParams& p, Vec3<double> wi, Vec3<double> wl,
-                   const FootprintQuery<double>& fp, const SlopeDerivatives& d,
+double glint_value(const chermain2021::SdfParams& p, Vec3<double> wi, Vec3<double> wl,
+                   const FootprintQuery<double>& fp, const chermain2021::SlopeDerivatives& d,
                    Vec2<double> shift = {0, 0}) {
   if (!(wi.z > 0 && wl.z > 0)) return 0;
   const Vec3<double> h = half_vector(wi, wl);
   if (!(h.z > 0)) return 0;
   const Vec2<double> m{-h.x / h.z - shift.x, -h.y / h.z - shift.y};
   const double z2 = h.z * h.z;
-  const double D = chermain_patch_sdf(p, m, fp, d) / (z2 * z2);
-  return D * v_cavity_g2(wi, wl, h) / (4 * wi.z);  // f · ω_l.z
+  const double D = chermain2021::patch_sdf(p, m, fp, d) / (z2 * z2);
+  return D * chermain2021::v_cavity_g2(wi, wl, h) / (4 * wi.z);  // f · ω_l.z
 }
 
 // Three tubes (open cylinders) with distinct uv offsets, so that their cells differ.
@@ -69,9 +69,16 @@ PinholeCamera<double> tube_camera(const TubeSceneOptions& o) {
 constexpr Vec3<double> kTubeLight = {1.5, 2.5, 3.0};
 constexpr double kTubeLightIntensity = 16;
 
-ChermainSdfParams tube_params(const TubeSceneOptions& o, int kernel, double s_k) {
+chermain2021::SdfParams tube_params(const TubeSceneOptions& o, int kernel, double s_k) {
   const double s = o.alpha / std::sqrt(2.0);
-  return {&default_chermain_dictionary(), s, s, 0.0, std::log2(o.density), kernel, s_k, o.sdf_seed};
+  return {&chermain2021::default_chermain_dictionary(),
+          s,
+          s,
+          0.0,
+          std::log2(o.density),
+          kernel,
+          s_k,
+          o.sdf_seed};
 }
 
 void check_size(int w, int h) {
@@ -88,13 +95,14 @@ Image render_tubes(const TubeSceneOptions& o, int kernel, double s_k) {
   const TubeScene scene = tube_scene();
   const PinholeCamera<double> cam = tube_camera(o);
   const LightPoint<double> light{kTubeLight, false};
-  const ChermainSdfParams p = tube_params(o, kernel, s_k);
+  const chermain2021::SdfParams p = tube_params(o, kernel, s_k);
   return render_image(
       o.width, o.height, {"R", "G", "B"}, o.threads, [&](int x, int y, double* out) {
         const PixelFootprint<double> f = pixel_footprint(cam, scene, x + 0.5, y + 0.5, light);
         if (!f.surface.hit) return;
         const Vec3<double> h = half_vector(f.wi, f.wl);
-        const SlopeDerivatives d = chermain_slope_derivatives(h, f.dh_dx, f.dh_dy, kernel);
+        const chermain2021::SlopeDerivatives d =
+            chermain2021::slope_derivatives(h, f.dh_dx, f.dh_dy, kernel);
         const Vec3<double> to_light = kTubeLight - f.surface.p;
         const double E = kTubeLightIntensity / dot(to_light, to_light);
         set_grey(out, E * glint_value(p, f.wi, f.wl, f.footprint, d));
@@ -106,8 +114,8 @@ Image render_tubes_reference(const TubeSceneOptions& o, int spp, std::uint64_t s
   const TubeScene scene = tube_scene();
   const PinholeCamera<double> cam = tube_camera(o);
   const LightPoint<double> light{kTubeLight, false};
-  const ChermainSdfParams p = tube_params(o, kChermainNoGgaa, 0.5);
-  const SlopeDerivatives zero{0, 0, 0, 0};
+  const chermain2021::SdfParams p = tube_params(o, chermain2021::kNoGgaa, 0.5);
+  const chermain2021::SlopeDerivatives zero{0, 0, 0, 0};
   return render_image(
       o.width, o.height, {"R", "G", "B"}, o.threads, [&](int x, int y, double* out) {
         const PixelFootprint<double> f = pixel_footprint(cam, scene, x + 0.5, y + 0.5, light);
@@ -149,9 +157,16 @@ MapScene map_scene(const NormalMapSceneOptions& o) {
   return s;
 }
 
-ChermainSdfParams map_params(const NormalMapSceneOptions& o, double sx, double sy, double rho) {
-  return {
-      &default_chermain_dictionary(), sx, sy, rho, std::log2(o.density), kChermainNoGgaa, 0.5, 5};
+chermain2021::SdfParams map_params(const NormalMapSceneOptions& o, double sx, double sy,
+                                   double rho) {
+  return {&chermain2021::default_chermain_dictionary(),
+          sx,
+          sy,
+          rho,
+          std::log2(o.density),
+          chermain2021::kNoGgaa,
+          0.5,
+          5};
 }
 
 }  // namespace
@@ -165,7 +180,7 @@ Image render_normal_map(const NormalMapSceneOptions& o, NormalMapMethod method) 
       },
       o.map_size, 4);
   const LightPoint<double> light{kMapLightDir, true};
-  const SlopeDerivatives zero{0, 0, 0, 0};
+  const chermain2021::SlopeDerivatives zero{0, 0, 0, 0};
   const double base = o.base_alpha / std::sqrt(2.0);
   return render_image(
       o.width, o.height, {"R", "G", "B"}, o.threads, [&](int x, int y, double* out) {
@@ -175,7 +190,7 @@ Image render_normal_map(const NormalMapSceneOptions& o, NormalMapMethod method) 
         const SlopeMoments<double> m =
             map.lookup(f.footprint.uv.x, f.footprint.uv.y, f.footprint.duv_dx, f.footprint.duv_dy);
         const LeanParameters<double> lp = lean_parameters(m, o.base_alpha);
-        ChermainSdfParams p = map_params(o, base, base, 0);
+        chermain2021::SdfParams p = map_params(o, base, base, 0);
         if (method != NormalMapMethod::kNoLean) {
           p.sigma_x = lp.sigma_x, p.sigma_y = lp.sigma_y;
           p.rho = method == NormalMapMethod::kLean ? std::clamp(lp.rho, -0.999, 0.999) : 0.0;
@@ -187,9 +202,9 @@ Image render_normal_map(const NormalMapSceneOptions& o, NormalMapMethod method) 
 Image render_normal_map_reference(const NormalMapSceneOptions& o, int spp, std::uint64_t seed) {
   const MapScene s = map_scene(o);
   const LightPoint<double> light{kMapLightDir, true};
-  const SlopeDerivatives zero{0, 0, 0, 0};
+  const chermain2021::SlopeDerivatives zero{0, 0, 0, 0};
   const double base = o.base_alpha / std::sqrt(2.0);
-  const ChermainSdfParams p = map_params(o, base, base, 0);
+  const chermain2021::SdfParams p = map_params(o, base, base, 0);
   const Vec3<double> wl_world = normalize(kMapLightDir);
   return render_image(
       o.width, o.height, {"R", "G", "B"}, o.threads, [&](int x, int y, double* out) {

@@ -24,8 +24,8 @@ struct TubeSceneOptions {
   int threads = 0;
 };
 
-// One method: kernel = kChermainNoGgaa / kChermainHalfSlope (Eq. 20) / kChermainProjectedHalf
-// (Eq. 21), s_k the kernel scale. 1 spp at pixel centres.
+// One method: kernel = chermain2021::kNoGgaa / chermain2021::kHalfSlope (Eq. 20) /
+// chermain2021::kProjectedHalf (Eq. 21), s_k the kernel scale. 1 spp at pixel centres.
 Image render_tubes(const TubeSceneOptions& o, int kernel, double s_k);
 // The reference: `spp` stratified positions per pixel, each shading with its own view, light and
 // half vector but the pixel's footprint P (so the same patch-SDF), without GGAA: the pixel

@@ -35,7 +35,7 @@ namespace {
 
 using V2 = Vec2<double>;
 using V3 = Vec3<double>;
-using P = KemppinenParams<double>;
+using P = kemppinen2025::Params<double>;
 constexpr double kPi = std::numbers::pi;
 
 V3 direction(double theta_deg) {
@@ -95,7 +95,7 @@ std::vector<ConvConfig> conv_configs() {
 // The level whose angular cells are about one lobe width: res_a σ ∈ [½, 1).
 template <class Ndf>
 int conv_level(const P& p, const Ndf& ndf, const V3& h) {
-  const auto a = kemppinen_angular(p, ndf, h);
+  const auto a = kemppinen2025::angular(p, ndf, h);
   const double s = std::min(a.sigma_a.x, a.sigma_a.y);
   return std::clamp(int(std::floor(std::log2(1 / s))) - 1, 0, 12);
 }
@@ -139,13 +139,13 @@ void fit_spread_slope(ConvMeasured& m, const ConvSize& sz) {
 }
 
 ConvMeasured measure_conv(const ConvConfig& c, const ConvSize& sz, std::uint64_t seed,
-                          KemppinenNormalization norm) {
-  P p = kemppinen_preset_params(1, c.alpha_star, seed);
+                          kemppinen2025::Normalization norm) {
+  P p = kemppinen2025::preset_params(1, c.alpha_star, seed);
   p.normalization = norm;
   const V3 h = direction(c.theta);
   return with_ndf(c.ndf, [&](const auto& ndf) {
     ConvMeasured m;
-    const auto ang = kemppinen_angular(p, ndf, h);
+    const auto ang = kemppinen2025::angular(p, ndf, h);
     const double to_rim = 0.5 - std::hypot(ang.x_a.x - 0.5, ang.x_a.y - 0.5);
     m.rim_widths = to_rim / std::max(ang.sigma_a.x, ang.sigma_a.y);
     const double d = ndf.D(h);
@@ -153,7 +153,8 @@ ConvMeasured measure_conv(const ConvConfig& c, const ConvSize& sz, std::uint64_t
     for (int cells : sz.cells) {
       MeanAccumulator acc;
       for (int k = 0; k < sz.regions; ++k)
-        acc.add(kemppinen_region_mean(p, ndf, h, level, std::int64_t(k) * 100000, 7, cells) / d);
+        acc.add(kemppinen2025::region_mean(p, ndf, h, level, std::int64_t(k) * 100000, 7, cells) /
+                d);
       m.spread.push_back(std::sqrt(acc.variance()));
       if (cells == sz.cells.back()) m.ratio = acc;
     }
@@ -253,7 +254,7 @@ std::string describe_convergence(const std::vector<ConvConfig>& cfg,
       d.pooled_slope, d.pooled_slope_se, kSlopeTolerance, outside);
 }
 
-std::vector<ConvMeasured> measure_convergence(Budget b, KemppinenNormalization norm) {
+std::vector<ConvMeasured> measure_convergence(Budget b, kemppinen2025::Normalization norm) {
   const auto cfg = conv_configs();
   const ConvSize sz = conv_size(b);
   std::vector<ConvMeasured> ms(cfg.size());
@@ -266,9 +267,9 @@ std::vector<ConvMeasured> measure_convergence(Budget b, KemppinenNormalization n
 CheckResult run_convergence(Budget b) {
   const auto cfg = conv_configs();
   const ConvSize sz = conv_size(b);
-  const auto ms = measure_convergence(b, KemppinenNormalization::kCorrected);
+  const auto ms = measure_convergence(b, kemppinen2025::Normalization::kCorrected);
   const ConvDecision d = decide_convergence(ms);
-  const auto printed = measure_convergence(b, KemppinenNormalization::kPrinted);
+  const auto printed = measure_convergence(b, kemppinen2025::Normalization::kPrinted);
   const ConvDecision dc = decide_convergence(printed);
   CheckResult r;
   r.configurations = int(cfg.size());
@@ -350,16 +351,17 @@ std::vector<CompConfig> comp_configs(Budget b) {
 
 CompMeasured measure_comp(const CompConfig& c, std::uint64_t n, std::uint64_t seed) {
   CompMeasured m{c, 0, {}, {}};
-  P p = kemppinen_preset_params(c.side, c.alpha_star, seed);
+  P p = kemppinen2025::preset_params(c.side, c.alpha_star, seed);
   const V3 h = direction(c.theta);
   with_ndf(c.ndf, [&](const auto& ndf) {
-    const auto ang = kemppinen_angular(p, ndf, h);
+    const auto ang = kemppinen2025::angular(p, ndf, h);
     m.rim_widths = (0.5 - std::hypot(ang.x_a.x - 0.5, ang.x_a.y - 0.5)) /
                    std::max(ang.sigma_a.x, ang.sigma_a.y);
     const double d = ndf.D(h);
     for (std::uint64_t i = 0; i < n; ++i) {
-      const FootprintQuery<double> fp = kemppinen_footprint_cells(position(seed, i), c.cells, p);
-      const auto r = kemppinen_eval(p, ndf, fp, h);
+      const FootprintQuery<double> fp =
+          kemppinen2025::footprint_cells(position(seed, i), c.cells, p);
+      const auto r = kemppinen2025::eval(p, ndf, fp, h);
       m.ratio.add(r.d.x / d);
       m.ratio_control.add((r.explicit_part.x + kCompensationControl * r.compensation_part.x) / d);
     }
@@ -630,7 +632,7 @@ double roulette_expectation_error(double scale, double w_lo, double w_hi) {
     const double w = w_lo + (w_hi - w_lo) * i / 100;
     double m = 0;
     const int n = 20000;
-    for (int j = 0; j < n; ++j) m += scale * kemppinen_roulette((j + 0.5) / n, w);
+    for (int j = 0; j < n; ++j) m += scale * kemppinen2025::roulette((j + 0.5) / n, w);
     worst = std::max(worst, std::abs(m / n - w));
   }
   return worst;
@@ -648,17 +650,17 @@ struct RouletteStats {
 RouletteStats run_roulette_stats(std::uint64_t n, std::uint64_t seed) {
   RouletteStats s;
   s.n = n;
-  P p = kemppinen_preset_params(2, 0.02, seed);
+  P p = kemppinen2025::preset_params(2, 0.02, seed);
   const GGX<double> ggx{0.3, 0.3};
   const V3 h = direction(20);
   const double cells = std::exp2(kRouletteLambda) / 2;
   MeanAccumulator diff, diff_c, lin_acc;
   for (std::uint64_t i = 0; i < n; ++i) {
-    const FootprintQuery<double> fp = kemppinen_footprint_cells(position(seed, i), cells, p);
-    p.blend = KemppinenBlend::kRoulette;
-    const double rou = kemppinen_eval(p, ggx, fp, h).explicit_part.x;
-    p.blend = KemppinenBlend::kLinear;
-    const double lin = kemppinen_eval(p, ggx, fp, h).explicit_part.x;
+    const FootprintQuery<double> fp = kemppinen2025::footprint_cells(position(seed, i), cells, p);
+    p.blend = kemppinen2025::Blend::kRoulette;
+    const double rou = kemppinen2025::eval(p, ggx, fp, h).explicit_part.x;
+    p.blend = kemppinen2025::Blend::kLinear;
+    const double lin = kemppinen2025::eval(p, ggx, fp, h).explicit_part.x;
     diff.add(rou - lin);
     diff_c.add((1 + kRouletteControl) * rou - lin);
     lin_acc.add(lin);
@@ -671,7 +673,8 @@ RouletteStats run_roulette_stats(std::uint64_t n, std::uint64_t seed) {
   double sum_r = 0, sum_l = 0;
   const int m = 100000;
   for (int j = 0; j < m; ++j) {
-    const double w = kemppinen_roulette(counter_uniform<double>(seed, std::uint64_t(j), 7), 0.5);
+    const double w =
+        kemppinen2025::roulette(counter_uniform<double>(seed, std::uint64_t(j), 7), 0.5);
     mid_r += w > 0.1 && w < 0.9;
     if (w > 0.01) ++vis_r, sum_r += w;
     const double wl = 0.5;  // linear blending gives every point the level's weight
@@ -692,7 +695,7 @@ struct RouletteMeasured {
 };
 
 RouletteMeasured roulette_measured(const RouletteStats& s, double scale) {
-  const double lo = 2 * kKemppinenRouletteEpsilon;
+  const double lo = 2 * kemppinen2025::kRouletteEpsilon;
   return {roulette_expectation_error(scale, lo, 1 - lo), roulette_expectation_error(scale, 0, 1),
           scale == 1 ? s.paired : s.paired_control};
 }
@@ -745,7 +748,7 @@ CheckResult run_roulette(Budget b) {
       (normal_quantile(1 - level / 2) + 1.2816) * m.paired.std_error,
       (normal_quantile(1 - level / 2) + 1.2816) * m.paired.std_error / s.linear_mean,
       m.paired.std_error, kRouletteExact,
-      100 * kRouletteExact / (1 - 2 * kKemppinenRouletteEpsilon));
+      100 * kRouletteExact / (1 - 2 * kemppinen2025::kRouletteEpsilon));
   r.detail = describe_roulette(m, s);
   return r;
 }
@@ -791,12 +794,13 @@ struct FurnRow {
 
 FurnRow run_furn(const FurnConfig& c, std::uint64_t n, std::uint64_t seed) {
   FurnRow row{c, {}, {}, {}, {}, {}};
-  P p = kemppinen_preset_params(2, c.alpha_star, seed);
+  P p = kemppinen2025::preset_params(2, c.alpha_star, seed);
   const V3 wi = direction(c.theta);
   with_ndf(c.ndf, [&](const auto& ndf) {
     for (std::uint64_t i = 0; i < n; ++i) {
       const V2 u{counter_uniform<double>(seed, i, 2), counter_uniform<double>(seed, i, 3)};
-      const KemppinenFurnaceSample f = kemppinen_furnace_sample(p, ndf, wi, position(seed, i), u);
+      const kemppinen2025::FurnaceSample f =
+          kemppinen2025::furnace_sample(p, ndf, wi, position(seed, i), u);
       const double g = f.glint, s = f.smooth;
       row.glint.add(g);
       row.smooth.add(s);
@@ -904,13 +908,15 @@ double calibrate_furnace(std::uint64_t seed) {
   // furnace weight at two independent positions has a difference of mean exactly 0 (the check's
   // own difference glinty − smooth has a negative mean at every setting, so it cannot serve).
   const Ndfs nd{true, 0.5};
-  const P p = kemppinen_preset_params(2, 0.02, seed);
+  const P p = kemppinen2025::preset_params(2, 0.02, seed);
   const V3 wi = direction(0.0);
   MeanAccumulator d;
   with_ndf(nd, [&](const auto& ndf) {
     for (std::uint64_t i = 0; i < 1500; ++i) {
       const V2 u{counter_uniform<double>(seed, i, 2), counter_uniform<double>(seed, i, 3)};
-      const auto at = [&](const V2& x) { return kemppinen_furnace_sample(p, ndf, wi, x, u).glint; };
+      const auto at = [&](const V2& x) {
+        return kemppinen2025::furnace_sample(p, ndf, wi, x, u).glint;
+      };
       d.add(at(position(seed, i)) - at(position(mix64(seed ^ 0x5eed), i)));
     }
     return 0;
@@ -949,15 +955,15 @@ ConstantMeasured measure_constant(const VisitCount& count) {
     int lo = 1 << 30, hi = 0;
     for (double cells : kConstantCells)
       for (double aniso : kConstantAniso) {
-        P p = kemppinen_preset_params(side, 0.02, check_seed(kConstant, 0));
+        P p = kemppinen2025::preset_params(side, 0.02, check_seed(kConstant, 0));
         p.anisotropy = aniso;
-        const FootprintQuery<double> fp = kemppinen_footprint_cells({0.3, 0.4}, cells, p);
+        const FootprintQuery<double> fp = kemppinen2025::footprint_cells({0.3, 0.4}, cells, p);
         const int c = count(p, fp);
         lo = std::min(lo, c);
         hi = std::max(hi, c);
-        const double res = kemppinen_base_resolution(p);
-        m.lod_max =
-            std::max(m.lod_max, kemppinen_lod(kemppinen_spatial_covariance(p, fp, res), res));
+        const double res = kemppinen2025::base_resolution(p);
+        m.lod_max = std::max(
+            m.lod_max, kemppinen2025::lod(kemppinen2025::spatial_covariance(p, fp, res), res));
         ++m.settings;
       }
     m.lo.push_back(lo);
@@ -1004,11 +1010,11 @@ CheckResult run_constant(Budget) {
   const GGX<double> ggx{0.3, 0.3};
   const V3 h = direction(30);
   const ConstantMeasured m = measure_constant([&](const P& p, const FootprintQuery<double>& fp) {
-    return kemppinen_eval(p, ggx, fp, h).points;
+    return kemppinen2025::eval(p, ggx, fp, h).points;
   });
   const ConstantMeasured mc = measure_constant([](const P& p, const FootprintQuery<double>& fp) {
-    const double res = kemppinen_base_resolution(p);
-    const double lambda = kemppinen_lod(kemppinen_spatial_covariance(p, fp, res), res);
+    const double res = kemppinen2025::base_resolution(p);
+    const double lambda = kemppinen2025::lod(kemppinen2025::spatial_covariance(p, fp, res), res);
     const double finer = kConstantLodDrift * lambda;  // λ − λ'
     const int side = int(std::ceil(p.side * std::exp2(finer)));
     return 2 * side * side * p.side * p.side;  // two levels, side² spatial × k angular cells
@@ -1061,8 +1067,8 @@ std::vector<SampConfig> samp_configs() {
 }
 
 GofCase samp_case(const SampConfig& c, std::uint64_t seed_process, double pdf_scale = 1) {
-  const P p = kemppinen_preset_params(c.side, c.alpha_star, seed_process);
-  const FootprintQuery<double> fp = kemppinen_footprint_cells({0.37, 0.61}, c.cells, p);
+  const P p = kemppinen2025::preset_params(c.side, c.alpha_star, seed_process);
+  const FootprintQuery<double> fp = kemppinen2025::footprint_cells({0.37, 0.61}, c.cells, p);
   GofCase g;
   g.label = fmt::format("{} α={:g} α★={:g} footprint {:g} cells k={}", ndf_name(c.ndf), c.ndf.alpha,
                         c.alpha_star, c.cells, c.side * c.side);
@@ -1070,12 +1076,12 @@ GofCase samp_case(const SampConfig& c, std::uint64_t seed_process, double pdf_sc
   const Ndfs nd = c.ndf;
   g.point_pdf = [p, fp, nd, pdf_scale](const V2& x) {
     return pdf_scale * with_ndf(nd, [&](const auto& ndf) {
-             return kemppinen_sample_density_square(p, ndf, fp, x);
+             return kemppinen2025::sample_density_square(p, ndf, fp, x);
            });
   };
   g.points = [p, fp, nd](std::uint64_t seed, std::uint64_t i) {
     return with_ndf(nd, [&](const auto& ndf) {
-      const auto s = kemppinen_sample_half(p, ndf, fp, mix64(seed ^ mix64(i + 1)));
+      const auto s = kemppinen2025::sample_half(p, ndf, fp, mix64(seed ^ mix64(i + 1)));
       return s.ok ? s.x : V2{std::nan(""), std::nan("")};
     });
   };
@@ -1093,15 +1099,15 @@ double sky(const V3& w) { return 1 + 0.5 * w.x + w.z * w.z; }
 
 SampEstimate run_estimates(const SampConfig& c, std::uint64_t n, std::uint64_t seed) {
   SampEstimate e;
-  const P p = kemppinen_preset_params(c.side, c.alpha_star, seed);
-  const FootprintQuery<double> fp = kemppinen_footprint_cells({0.37, 0.61}, c.cells, p);
+  const P p = kemppinen2025::preset_params(c.side, c.alpha_star, seed);
+  const FootprintQuery<double> fp = kemppinen2025::footprint_cells({0.37, 0.61}, c.cells, p);
   with_ndf(c.ndf, [&](const auto& ndf) {
     for (std::uint64_t i = 0; i < n; ++i) {
-      const auto s = kemppinen_sample_half(p, ndf, fp, mix64(seed ^ mix64(i + 7)));
+      const auto s = kemppinen2025::sample_half(p, ndf, fp, mix64(seed ^ mix64(i + 7)));
       double m = 0, pr = 0;
       if (s.ok) {
-        const double g = kemppinen_eval(p, ndf, fp, s.h).explicit_part.x * sky(s.h);
-        const double pm = kemppinen_sample_density_half(p, ndf, fp, s.h);
+        const double g = kemppinen2025::eval(p, ndf, fp, s.h).explicit_part.x * sky(s.h);
+        const double pm = kemppinen2025::sample_density_half(p, ndf, fp, s.h);
         m = pm > 0 ? g / pm : 0;
         pr = s.pdf_printed_h > 0 ? g / s.pdf_printed_h : 0;
       }
@@ -1111,7 +1117,7 @@ SampEstimate run_estimates(const SampConfig& c, std::uint64_t n, std::uint64_t s
       const V2 u{counter_uniform<double>(seed, i, 11), counter_uniform<double>(seed, i, 12)};
       const V3 h = sample_normal_walter(ndf, u);
       const double pdf = ndf.D(h) * h.z;
-      e.smooth.add(pdf > 0 ? kemppinen_eval(p, ndf, fp, h).explicit_part.x * sky(h) / pdf : 0);
+      e.smooth.add(pdf > 0 ? kemppinen2025::eval(p, ndf, fp, h).explicit_part.x * sky(h) / pdf : 0);
     }
     return 0;
   });
@@ -1141,7 +1147,7 @@ std::vector<SampConfig> est_configs() {
 // ---- The rendered estimate under an environment light (Fig. 7) -------------------------------
 //
 // Reflected radiance (luminance) of a glinty plane with the full BRDF of the models (D★^f, G2,
-// F = 1) under kemppinen_env_sky(), viewed from θ_v = 30°, over a set of pixels at random uv:
+// F = 1) under kemppinen2025::env_sky(), viewed from θ_v = 30°, over a set of pixels at random uv:
 // (a) the mixture of Algorithm 2 and D cosθ with its exact density, (b) the same samples with
 // Algorithm 2's printed pdf in the mixture, (c) D cosθ alone; each against the stratified
 // quadrature reference of verify/scenes/kemppinen_env_radiance.h (2 n² evaluations per pixel).
@@ -1196,21 +1202,22 @@ RenderRow run_render(const RenderConfig& c, const RenderSize& sz, std::uint64_t 
   RenderRow row;
   row.c = c;
   row.n = c.side == 1 ? sz.n_k1 : sz.n_k4;
-  const P p = kemppinen_preset_params(c.side, c.alpha_star, seed);
-  const EnvironmentMap env(kemppinen_env_sky());
-  const KemppinenPlaneView view{30 * kPi / 180, {0, 0}, 0};
+  const P p = kemppinen2025::preset_params(c.side, c.alpha_star, seed);
+  const EnvironmentMap env(kemppinen2025::env_sky());
+  const kemppinen2025::PlaneView view{30 * kPi / 180, {0, 0}, 0};
   const V3 v = view.view();
   const std::size_t np = std::size_t(sz.pixels);
-  std::vector<KemppinenEnvReference> refs(np);
-  std::vector<KemppinenEnvSamples> smp(np);
+  std::vector<kemppinen2025::EnvReference> refs(np);
+  std::vector<kemppinen2025::EnvSamples> smp(np);
   tbb::parallel_for(std::size_t(0), 2 * np, [&](std::size_t t) {
     const std::size_t i = t % np;
-    const FootprintQuery<double> fp = kemppinen_footprint_cells(position(seed, i), c.cells, p);
+    const FootprintQuery<double> fp = kemppinen2025::footprint_cells(position(seed, i), c.cells, p);
     with_ndf(c.ndf, [&](const auto& ndf) {
       if (t < np)
-        refs[i] = kemppinen_env_reference(p, ndf, fp, env, v, sz.ref_n, mix64(seed ^ (i + 17)));
+        refs[i] =
+            kemppinen2025::env_reference(p, ndf, fp, env, v, sz.ref_n, mix64(seed ^ (i + 17)));
       else
-        smp[i] = kemppinen_env_samples(p, ndf, fp, env, v, row.n, mix64(seed ^ (i + 29)));
+        smp[i] = kemppinen2025::env_samples(p, ndf, fp, env, v, row.n, mix64(seed ^ (i + 29)));
       return 0;
     });
   });
@@ -1220,7 +1227,7 @@ RenderRow run_render(const RenderConfig& c, const RenderSize& sz, std::uint64_t 
   std::uint64_t explicit_count = 0;
   for (std::size_t i = 0; i < np; ++i) {
     const double inv = 1.0 / double(np);
-    ref_pixels.push_back(kemppinen_luminance(refs[i].mean));
+    ref_pixels.push_back(kemppinen2025::luminance(refs[i].mean));
     row.ref += inv * ref_pixels.back();
     row.ref_var += inv * inv * refs[i].luminance_variance;
     const std::vector<Vec3<double>>* src[3] = {&smp[i].exact, &smp[i].printed, &smp[i].smooth};
@@ -1228,7 +1235,7 @@ RenderRow run_render(const RenderConfig& c, const RenderSize& sz, std::uint64_t 
       MeanAccumulator acc;
       std::vector<double> y;
       for (const Vec3<double>& e : *src[k]) {
-        y.push_back(kemppinen_luminance(e));
+        y.push_back(kemppinen2025::luminance(e));
         acc.add(y.back());
       }
       mom[k]->mean += inv * acc.mean;
@@ -1523,8 +1530,8 @@ ControlProbe probe_kemppinen_convergence() {
   const ConvConfig c{{true, 0.3}, 0.01, 0.0};
   const ConvSize sz{{8, 32}, 96};
   const double z = normal_quantile(1 - sidak_level(check_level(), 18) / 2);
-  return {bias_bound(measure_conv(c, sz, 99, KemppinenNormalization::kCorrected), z),
-          bias_bound(measure_conv(c, sz, 99, KemppinenNormalization::kPrinted), z),
+  return {bias_bound(measure_conv(c, sz, 99, kemppinen2025::Normalization::kCorrected), z),
+          bias_bound(measure_conv(c, sz, 99, kemppinen2025::Normalization::kPrinted), z),
           kConvergenceTolerance, false};
 }
 
@@ -1551,7 +1558,7 @@ ControlProbe probe_kemppinen_furnace() {
 
 ControlProbe probe_kemppinen_roulette() {
   // The deterministic half of the decision, which carries the control at every budget.
-  const double lo = 2 * kKemppinenRouletteEpsilon;
+  const double lo = 2 * kemppinen2025::kRouletteEpsilon;
   return {roulette_expectation_error(1, lo, 1 - lo),
           roulette_expectation_error(1 + kRouletteControl, lo, 1 - lo), kRouletteExact, false};
 }

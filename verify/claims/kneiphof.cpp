@@ -242,7 +242,8 @@ NdfMeanRun ndf_mean_run(double alpha, std::uint64_t seed, std::uint64_t footprin
       const std::uint64_t i = f * kFacets + k;
       const Vec2<double> u{counter_uniform<double>(seed, i, 0),
                            counter_uniform<double>(seed, i, 1)};
-      ++counts[std::size_t(ndf_cell(alpha, sample_discrete_ndf_facet(alpha * sampler_scale, u)))];
+      ++counts[std::size_t(
+          ndf_cell(alpha, kneiphof2024::sample_discrete_ndf_facet(alpha * sampler_scale, u)))];
     }
   NdfMeanRun r;
   std::vector<double> prob(mass.size());
@@ -252,7 +253,8 @@ NdfMeanRun ndf_mean_run(double alpha, std::uint64_t seed, std::uint64_t footprin
   for (std::size_t c = 0; c < mass.size(); ++c) {
     if (prob[c] * n < 100) continue;
     // E over footprints of Eq. 10's (D_H/N_P)·count = D_H·(total count in A)/(N_P·footprints).
-    const double mean = discrete_ndf_integral(dh, std::uint64_t(n), std::uint64_t(counts[c]));
+    const double mean =
+        kneiphof2024::discrete_ndf_integral(dh, std::uint64_t(n), std::uint64_t(counts[c]));
     r.worst_rel = std::max(r.worst_rel, std::abs(mean / mass[c] - 1));
   }
   return r;
@@ -390,20 +392,20 @@ SubdivisionScene subdivision_scene(double alpha, double w, std::uint64_t n, int 
   const GGX<double> g{alpha, alpha};
   const double dh = total_area_ggx_eq29(alpha);
   const auto quad = quad_above(w);
-  const auto parts = subdivide_quad(quad, 16, 16);
+  const auto parts = kneiphof2024::subdivide_quad(quad, 16, 16);
   for (std::size_t k = 0; k < parts.size(); ++k) {
     const auto light = make_polygon_light(std::span<const Vec3<double>>(parts[k]), {1, 1, 1});
-    const AreaLightTerms t =
-        area_light_terms_mc(g, view_30(), light, Vec3<double>{0, 0, 0}, samples, seed, k);
+    const kneiphof2024::AreaLightTerms t = kneiphof2024::area_light_terms_mc(
+        g, view_30(), light, Vec3<double>{0, 0, 0}, samples, seed, k);
     s.p_k.push_back(t.d_omega_h / dh);
     s.lo_k.push_back(t.lo_over_li);
     s.p += t.d_omega_h / dh;
     s.d_omega_h += t.d_omega_h;
   }
   const auto whole = make_polygon_light(std::span<const Vec3<double>>(quad), {1, 1, 1});
-  s.lo =
-      area_light_terms_mc(g, view_30(), whole, Vec3<double>{0, 0, 0}, samples * 64, seed, 1u << 20)
-          .lo_over_li;
+  s.lo = kneiphof2024::area_light_terms_mc(g, view_30(), whole, Vec3<double>{0, 0, 0}, samples * 64,
+                                           seed, 1u << 20)
+             .lo_over_li;
   return s;
 }
 
@@ -435,7 +437,7 @@ SubdivisionRun subdivision_run(const SubdivisionScene& s, std::uint64_t seed, in
   for (int d = 0; d < draws; ++d) {
     const std::uint64_t b =
         binomial_exact(s.n, std::min(1.0, control ? 1.05 * s.p : s.p), seed, std::uint64_t(d));
-    const auto bk = multinomial_split(b, s.p_k, seed + 1, std::uint64_t(d));
+    const auto bk = kneiphof2024::multinomial_split(b, s.p_k, seed + 1, std::uint64_t(d));
     std::uint64_t sum = 0;
     double shared = 0, mc = 0, lobe_control = 0;
     for (std::size_t k = 0; k < bk.size(); ++k) {
@@ -570,8 +572,8 @@ double cap_p_normalish(double alpha) {
   // Directional light of half-angle 0.26° (the sun), viewer at 30°, mirror light direction.
   const GGX<double> g{alpha, alpha};
   const Vec3<double> wi = view_30(), wl{0.5, 0, std::sqrt(0.75)};
-  return cap_probability_eq20(g, wi, wl, one_minus_cos(0.26 * std::numbers::pi / 180),
-                              total_area_ggx_eq29(alpha));
+  return kneiphof2024::cap_probability_eq20(g, wi, wl, one_minus_cos(0.26 * std::numbers::pi / 180),
+                                            total_area_ggx_eq29(alpha));
 }
 
 std::vector<ConvergenceConfig> convergence_configs(int samples, std::uint64_t seed) {
@@ -582,8 +584,8 @@ std::vector<ConvergenceConfig> convergence_configs(int samples, std::uint64_t se
     for (double w : {0.5, 0.05}) {
       const auto quad = quad_above(w);
       const auto light = make_polygon_light(std::span<const Vec3<double>>(quad), {1, 1, 1});
-      const AreaLightTerms t =
-          area_light_terms_mc(g, view_30(), light, Vec3<double>{0, 0, 0}, samples, seed, c.size());
+      const kneiphof2024::AreaLightTerms t = kneiphof2024::area_light_terms_mc(
+          g, view_30(), light, Vec3<double>{0, 0, 0}, samples, seed, c.size());
       c.push_back({w > 0.1 ? "large area" : "small area", a, std::min(1.0, t.d_omega_h / dh)});
     }
     c.push_back({"directional", a, std::min(1.0, cap_p_normalish(a))});
@@ -701,8 +703,9 @@ double cap_p_exact(double alpha, double gamma) {
 
 double cap_p_eq20(double alpha, double gamma, bool drop_jacobian) {
   const GGX<double> g{alpha, alpha};
-  const double p = cap_probability_eq20(g, Vec3<double>{0, 0, 1}, Vec3<double>{0, 0, 1},
-                                        one_minus_cos(gamma), total_area_ggx_eq29(alpha));
+  const double p =
+      kneiphof2024::cap_probability_eq20(g, Vec3<double>{0, 0, 1}, Vec3<double>{0, 0, 1},
+                                         one_minus_cos(gamma), total_area_ggx_eq29(alpha));
   return drop_jacobian ? 4 * p : p;  // ⟨h, ω⟩ = 1 here: the control drops the 1/4 of Eq. 13
 }
 

@@ -70,7 +70,7 @@ std::array<Vec3<double>, 4> light_square(const Config& c) {
   const Vec3<double> wi = view_dir(c.theta_v_deg);
   const Vec3<double> dir =
       c.position == 0 ? Vec3<double>{-wi.x, -wi.y, wi.z} : Vec3<double>{0, 0, 1};
-  return facing_rectangle(dir, 1.0, c.side, c.side, 0.0, 0.0);
+  return kneiphof2024::facing_rectangle(dir, 1.0, c.side, c.side, 0.0, 0.0);
 }
 
 // Monte Carlo D_Ωh and its standard error for one cell.
@@ -81,7 +81,7 @@ std::pair<double, double> mc_reference(const Config& c, int samples, std::uint64
   const GGX<double> g{a, a};
   const Vec3<double> wi = view_dir(c.theta_v_deg);
   const auto quad = light_square(c);
-  const PolygonLight<double> light = rectangle_polygon_light(quad);
+  const PolygonLight<double> light = kneiphof2024::rectangle_polygon_light(quad);
   // Two independent unbiased estimates of D_Ωh, combined by inverse variance: uniform solid-angle
   // samples of the light (efficient for a light small against the lobe) and half vectors drawn
   // from D cos θ_h (Walter et al. 2007 Eq. 35) counted where their reflection of ω_v hits the
@@ -90,7 +90,8 @@ std::pair<double, double> mc_reference(const Config& c, int samples, std::uint64
   for (int k = 0; k < kBatches; ++k) {
     const std::uint64_t batch = index * kBatches + std::uint64_t(k);
     const double d =
-        area_light_terms_mc(g, wi, light, Vec3<double>{0, 0, 0}, samples, seed, batch).d_omega_h;
+        kneiphof2024::area_light_terms_mc(g, wi, light, Vec3<double>{0, 0, 0}, samples, seed, batch)
+            .d_omega_h;
     s += d, s2 += d * d;
     double e = 0;
     for (int j = 0; j < samples; ++j) {
@@ -129,15 +130,18 @@ Cell evaluate(const Config& c, int samples, std::uint64_t seed, std::uint64_t in
   const auto quad = light_square(c);
   std::tie(r.ref, r.ref_se) = mc_reference(c, samples, seed, index);
   const LtcTableView& table = ltc_ggx_table_view();
-  const auto brdf = area_light_terms_ltc(table, a, wi, quad.data(), 4, KneiphofAreaP::kBrdfLobe);
+  const auto brdf = kneiphof2024::area_light_terms_ltc(table, a, wi, quad.data(), 4,
+                                                       kneiphof2024::AreaP::kBrdfLobe);
   r.brdf = brdf.d_omega_h;
   r.d_pr = brdf.d_pr;
-  r.ndf = area_light_terms_ltc(table, a, wi, quad.data(), 4, KneiphofAreaP::kNdfLobe).d_omega_h;
-  r.albedo_scaled =
-      area_light_terms_ltc(table, a, wi, quad.data(), 4, KneiphofAreaP::kBrdfLobe, brdf.albedo)
-          .d_omega_h;
-  r.wrong_alpha = area_light_terms_ltc(table, std::min(1.0, 2 * a), wi, quad.data(), 4,
-                                       KneiphofAreaP::kBrdfLobe)
+  r.ndf = kneiphof2024::area_light_terms_ltc(table, a, wi, quad.data(), 4,
+                                             kneiphof2024::AreaP::kNdfLobe)
+              .d_omega_h;
+  r.albedo_scaled = kneiphof2024::area_light_terms_ltc(table, a, wi, quad.data(), 4,
+                                                       kneiphof2024::AreaP::kBrdfLobe, brdf.albedo)
+                        .d_omega_h;
+  r.wrong_alpha = kneiphof2024::area_light_terms_ltc(table, std::min(1.0, 2 * a), wi, quad.data(),
+                                                     4, kneiphof2024::AreaP::kBrdfLobe)
                       .d_omega_h;
   r.tail = r.ref < kTailFraction * r.d_pr;
   // The control's near-truth p: the same Monte Carlo estimator, independent seeds, × 1.03.

@@ -37,8 +37,9 @@ struct Sizes {
   int budget_grid() const { return brute_grid / 8; }  // sub-pixel grid on the real surface
 };
 Sizes sizes(Budget b) {
-  if (b == Budget::kQuick) return {64, 256, 8, 400, 64, {kPodeeNear, kPodeeMedium, kPodeeFar}};
-  return {128, 4096, 32, 5000, 256, {2, 3, kPodeeMedium, 6, 8, kPodeeFar, 14}};
+  if (b == Budget::kQuick)
+    return {64, 256, 8, 400, 64, {podee::kNear, podee::kMedium, podee::kFar}};
+  return {128, 4096, 32, 5000, 256, {2, 3, podee::kMedium, 6, 8, podee::kFar, 14}};
 }
 
 // RMSE of every compared method at one distance against the paper's reference and the converged
@@ -72,8 +73,8 @@ Brute brute_force(int configs, int grid, double control_offset = 0) {
       const double py = shift.y + s * (oy[k] + 0.4 * (u(6 + 2 * k) - 0.5));
       r[std::size_t(k)] = normalize(l + px * b.x + py * b.y);
     }
-    const PodeeResult<double> res =
-        podee_shade(r, l, 0.05, PodeeWeighting::kExact, PodeeSelection::kClosestPoint);
+    const podee::Result<double> res =
+        podee::shade(r, l, 0.05, podee::Weighting::kExact, podee::Selection::kClosestPoint);
     const auto project = [&](const Vec3<double>& v) {
       return Vec2<double>{dot(v, b.x) / dot(v, b.z), dot(v, b.y) / dot(v, b.z)};
     };
@@ -121,11 +122,11 @@ struct RealSurface {
   long pixels = 0;
 };
 RealSurface real_surface(double distance, int size, int grid) {
-  const PodeeScene scene(podee_config(distance, size), podee_normal_map());
+  const podee::Scene scene(podee::config(distance, size), podee::normal_map());
   std::vector<std::array<long, 2>> rows(std::size_t(size), {0, 0});
   tbb::parallel_for(0, size, [&](int j) {
     for (int i = 0; i < size; ++i) {
-      const PodeePixel px = scene.podee(i, j);
+      const podee::Pixel px = scene.podee(i, j);
       if (!px.hit || px.value <= 0) continue;
       double best = 1e300;
       for (int b = 0; b < grid; ++b)
@@ -149,8 +150,8 @@ CheckResult run_brightest(Budget budget) {
   const Sizes z = sizes(budget);
   const Brute ok = brute_force(z.brute_configs, z.brute_grid);
   const Brute moved = brute_force(z.brute_configs, z.brute_grid, kSelectionControlOffset);
-  const RealSurface medium = real_surface(kPodeeMedium, z.size, z.budget_grid());
-  const RealSurface far = real_surface(kPodeeFar, z.size, z.budget_grid());
+  const RealSurface medium = real_surface(podee::kMedium, z.size, z.budget_grid());
+  const RealSurface far = real_surface(podee::kFar, z.size, z.budget_grid());
   CheckResult r;
   r.configurations = z.brute_configs;
   r.statistic = "max (d_selected − d_brute-force) / quad size over bilinear reflection spaces";
@@ -164,8 +165,8 @@ CheckResult run_brightest(Budget budget) {
       "assumption, {}² sub-pixel positions) a sub-pixel reflection vector is closer to the light "
       "by > 5 % of its radius in {:.1f} % of {} lit pixels at d = {} and {:.1f} % of {} at d = {}",
       z.brute_configs, z.brute_grid + 1, ok.worst_excess, ok.worst_deficit, z.budget_grid(),
-      100 * medium.beaten_fraction, medium.pixels, kPodeeMedium, 100 * far.beaten_fraction,
-      far.pixels, kPodeeFar);
+      100 * medium.beaten_fraction, medium.pixels, podee::kMedium, 100 * far.beaten_fraction,
+      far.pixels, podee::kFar);
   record_control(r, decide_brightest(moved));
   r.power = fmt::format(
       "deterministic brute force over every sub-pixel position: a selected vector farther than "
@@ -191,7 +192,7 @@ CheckResult run_brightest(Budget budget) {
 //
 // The regime, declared before measuring: the paper itself expects the method to fail far away
 // (Sec. 4, podee.far-failure), so the claim is held at the near and medium distances.
-constexpr double kRmseRegimeMaxDistance = kPodeeMedium;
+constexpr double kRmseRegimeMaxDistance = podee::kMedium;
 constexpr const char* kRmseRegime =
     "camera distance d ≤ 4 (near and medium; the paper expects failure far away, Sec. 4)";
 constexpr double kRmseFamilyRate = 0.01;
@@ -199,8 +200,8 @@ constexpr double kNearTruthBias = 0.03;  // the control's near-truth image: a re
 
 std::vector<double> rmse_distances(Budget b) {
   // The quick grid keeps the full grid's extremes (2 and 14) and the regime's edge (4).
-  return b == Budget::kQuick ? std::vector<double>{kPodeeNear, kPodeeMedium, 14}
-                             : std::vector<double>{2, 3, kPodeeMedium, 6, 8, kPodeeFar, 14};
+  return b == Budget::kQuick ? std::vector<double>{podee::kNear, podee::kMedium, 14}
+                             : std::vector<double>{2, 3, podee::kMedium, 6, 8, podee::kFar, 14};
 }
 
 struct RmsePixels {  // luminance per pixel of every image at one distance
@@ -214,7 +215,7 @@ struct RmsePixels {  // luminance per pixel of every image at one distance
 int rmse_reference_spp(Budget b) { return b == Budget::kQuick ? 4 * kPaperSpp : 8 * kPaperSpp; }
 
 RmsePixels rmse_pixels(double distance, int size, int spp, int tiles_u = 8) {
-  const PodeeScene scene(podee_config(distance, size), podee_normal_map(tiles_u));
+  const podee::Scene scene(podee::config(distance, size), podee::normal_map(tiles_u));
   const std::string id =
       tiles_u == 8 ? fmt::format("podee.rmse/references/d={}/n={}", distance, size)
                    : fmt::format("podee.rmse/references/d={}/n={}/t={}", distance, size, tiles_u);
@@ -227,13 +228,13 @@ RmsePixels rmse_pixels(double distance, int size, int spp, int tiles_u = 8) {
   };
   RmsePixels p;
   p.distance = distance;
-  p.r1 = lum(render_podee_reference(scene, spp, check_seed(id, 0), 0));
-  p.r2 = lum(render_podee_reference(scene, spp, check_seed(id, 1), 0));
-  p.near_truth = lum(render_podee_reference(scene, kPaperSpp, check_seed(id, 2), 0));
+  p.r1 = lum(podee::render_podee_reference(scene, spp, check_seed(id, 0), 0));
+  p.r2 = lum(podee::render_podee_reference(scene, spp, check_seed(id, 1), 0));
+  p.near_truth = lum(podee::render_podee_reference(scene, kPaperSpp, check_seed(id, 2), 0));
   for (double& v : p.near_truth) v *= 1 + kNearTruthBias;
-  p.centre = lum(render_podee(scene, PodeeMethod::kCentre, 0));
-  p.lean = lum(render_podee(scene, PodeeMethod::kLean, 0));
-  p.method = lum(render_podee(scene, PodeeMethod::kPodee, 0));
+  p.centre = lum(podee::render_podee(scene, podee::Method::kCentre, 0));
+  p.lean = lum(podee::render_podee(scene, podee::Method::kLean, 0));
+  p.method = lum(podee::render_podee(scene, podee::Method::kPodee, 0));
   return p;
 }
 
@@ -365,7 +366,7 @@ CheckResult run_rmse(Budget budget) {
       "MSE(method) − min over baselines of MSE, against the pixel integral (two 64-spp "
       "references), at the medium distance";
   for (const RmseRow& row : m.rows)
-    if (row.distance == kPodeeMedium) r.value = std::max(row.vs_centre.d_mse, row.vs_lean.d_mse);
+    if (row.distance == podee::kMedium) r.value = std::max(row.vs_centre.d_mse, row.vs_lean.d_mse);
   r.verdict = decide_rmse(m);
   if (r.verdict == Verdict::kHoldsInRegime) r.regime = kRmseRegime;
   r.detail = fmt::format(
@@ -489,18 +490,18 @@ struct StabilityMeasurement {  // flicker per pan phase
   std::vector<double> centre, method, lean, near_truth;
 };
 
-StabilityMeasurement measure_stability(const PodeeSceneConfig& c,
-                                       const std::shared_ptr<const PodeeNormalMap>& map,
+StabilityMeasurement measure_stability(const podee::SceneConfig& c,
+                                       const std::shared_ptr<const podee::NormalMap>& map,
                                        int frames) {
   StabilityMeasurement m;
   for (int k = 0; k < kStabilityPhases; ++k) {
     const Vec2<double> s = pan_start(k);
-    m.centre.push_back(podee_flicker(c, map, PodeeMethod::kCentre, frames, 0, 0, 0, s));
-    m.method.push_back(podee_flicker(c, map, PodeeMethod::kPodee, frames, 0, 0, 0, s));
-    m.lean.push_back(podee_flicker(c, map, PodeeMethod::kLean, frames, 0, 0, 0, s));
+    m.centre.push_back(podee::flicker(c, map, podee::Method::kCentre, frames, 0, 0, 0, s));
+    m.method.push_back(podee::flicker(c, map, podee::Method::kPodee, frames, 0, 0, 0, s));
+    m.lean.push_back(podee::flicker(c, map, podee::Method::kLean, frames, 0, 0, 0, s));
     m.near_truth.push_back(sqr(1 + kNearTruthBias) *
-                           podee_flicker(c, map, PodeeMethod::kCentre, frames, 0, kPaperSpp,
-                                         check_seed("podee.stability", std::uint64_t(k)), s));
+                           podee::flicker(c, map, podee::Method::kCentre, frames, 0, kPaperSpp,
+                                          check_seed("podee.stability", std::uint64_t(k)), s));
   }
   return m;
 }
@@ -544,8 +545,8 @@ double mean_of(const std::vector<double>& x) {
 
 CheckResult run_stability(Budget budget) {
   const Sizes z = sizes(budget);
-  const PodeeSceneConfig c = podee_config(kPodeeMedium, z.size);
-  const StabilityMeasurement m = measure_stability(c, podee_normal_map(), z.frames);
+  const podee::SceneConfig c = podee::config(podee::kMedium, z.size);
+  const StabilityMeasurement m = measure_stability(c, podee::normal_map(), z.frames);
   const TInterval method = log_ratio_interval(m.method, m.centre);
   const TInterval lean = log_ratio_interval(m.lean, m.centre);
   const TInterval control = log_ratio_interval(m.method, m.near_truth);
@@ -560,7 +561,7 @@ CheckResult run_stability(Budget budget) {
       "flicker relative to centre sampling: method {}, LEAN {:.2f}× ({:.0f} % t interval over "
       "the phases); mean (I_f+1 − I_f)² over the phases: centre {:.3g}, method {:.3g}, {}-spp "
       "reference {:.3g}",
-      kStabilityPhases, z.frames, kStabilityPhases, kPodeeMedium, z.size, describe_ratio(method),
+      kStabilityPhases, z.frames, kStabilityPhases, podee::kMedium, z.size, describe_ratio(method),
       std::exp(lean.mean), 100 * kStabilityConfidence, mean_of(m.centre), mean_of(m.method),
       kPaperSpp, mean_of(m.near_truth) / sqr(1 + kNearTruthBias));
   record_control(r, decide_stability(control));
@@ -594,13 +595,13 @@ PodeeRmseProbe probe_podee_rmse(double distance, int size) {
 }
 
 ControlProbe probe_podee_stability(int size, int frames) {
-  const PodeeSceneConfig c = podee_config(kPodeeMedium, size);
-  const auto map = podee_normal_map();
-  const double method = podee_flicker(c, map, PodeeMethod::kPodee, frames, 0);
+  const podee::SceneConfig c = podee::config(podee::kMedium, size);
+  const auto map = podee::normal_map();
+  const double method = podee::flicker(c, map, podee::Method::kPodee, frames, 0);
   const double near_truth =
-      sqr(1 + kNearTruthBias) * podee_flicker(c, map, PodeeMethod::kCentre, frames, 0, kPaperSpp,
-                                              check_seed("podee.stability", 1u << 20));
-  return {method / podee_flicker(c, map, PodeeMethod::kCentre, frames, 0), method / near_truth,
+      sqr(1 + kNearTruthBias) * podee::flicker(c, map, podee::Method::kCentre, frames, 0, kPaperSpp,
+                                               check_seed("podee.stability", 1u << 20));
+  return {method / podee::flicker(c, map, podee::Method::kCentre, frames, 0), method / near_truth,
           1.0 - 1e-12, false};
 }
 

@@ -21,39 +21,39 @@
 #include "core/math/rng.h"
 #include "core/ndf/microfacet.h"
 
-namespace glintlab {
+namespace glintlab::kemppinen2025 {
 
 // The integrand above at ω_h, and D★^f's luminance there (0 where l or ω_h is below the surface).
 template <class Ndf>
-Vec3<double> kemppinen_env_integrand(const KemppinenParams<double>& p, const Ndf& ndf,
-                                     const FootprintQuery<double>& fp, const EnvironmentMap& env,
-                                     Vec3<double> v, Vec3<double> h) {
+Vec3<double> env_integrand(const Params<double>& p, const Ndf& ndf,
+                           const FootprintQuery<double>& fp, const EnvironmentMap& env,
+                           Vec3<double> v, Vec3<double> h) {
   const Vec3<double> zero{0, 0, 0};
   if (!(h.z > 0) || !(v.z > 0)) return zero;
   const double vh = dot(v, h);
   if (!(vh > 0)) return zero;
   const Vec3<double> l = reflect(v, h);
   if (!(l.z > 0)) return zero;
-  const double d = kemppinen_luminance(kemppinen_eval(p, ndf, fp, h).d);
+  const double d = luminance(eval(p, ndf, fp, h).d);
   const double g2 = smith_g2_height_correlated(ndf, v, l, h);
   return (d * g2 * vh / v.z) * env.radiance(Vec3<double>{0, 0, 0}, l);
 }
 
-struct KemppinenEnvMixtureEstimate {
+struct EnvMixtureEstimate {
   Vec3<double> exact, printed;  // f L cos / p with the exact and with the printed mixture density
   bool from_explicit;
 };
 
 // One sample of the mixture (probability q of Algorithm 2), both densities on the same direction.
 template <class Ndf>
-KemppinenEnvMixtureEstimate kemppinen_env_estimate_mixture(
-    const KemppinenParams<double>& p, const Ndf& ndf, const FootprintQuery<double>& fp,
-    const EnvironmentMap& env, Vec3<double> v, std::uint64_t key, double q) {
-  KemppinenEnvMixtureEstimate e{{0, 0, 0}, {0, 0, 0}, false};
-  const KemppinenFullSample<double> s = kemppinen_sample_full(p, ndf, fp, key, q);
+EnvMixtureEstimate env_estimate_mixture(const Params<double>& p, const Ndf& ndf,
+                                        const FootprintQuery<double>& fp, const EnvironmentMap& env,
+                                        Vec3<double> v, std::uint64_t key, double q) {
+  EnvMixtureEstimate e{{0, 0, 0}, {0, 0, 0}, false};
+  const FullSample<double> s = sample_full(p, ndf, fp, key, q);
   e.from_explicit = s.from_explicit;
   if (!s.ok) return e;
-  const Vec3<double> g = kemppinen_env_integrand(p, ndf, fp, env, v, s.h);
+  const Vec3<double> g = env_integrand(p, ndf, fp, env, v, s.h);
   e.exact = (1 / s.pdf_h) * g;
   if (s.pdf_printed_h > 0) e.printed = (1 / s.pdf_printed_h) * g;
   return e;
@@ -61,14 +61,13 @@ KemppinenEnvMixtureEstimate kemppinen_env_estimate_mixture(
 
 // One sample of the smooth NDF's sampler, ω_h ~ D cosθ (Walter et al. 2007 Eq. 28–29, 35–36).
 template <class Ndf>
-Vec3<double> kemppinen_env_estimate_smooth(const KemppinenParams<double>& p, const Ndf& ndf,
-                                           const FootprintQuery<double>& fp,
-                                           const EnvironmentMap& env, Vec3<double> v,
-                                           Vec2<double> u) {
+Vec3<double> env_estimate_smooth(const Params<double>& p, const Ndf& ndf,
+                                 const FootprintQuery<double>& fp, const EnvironmentMap& env,
+                                 Vec3<double> v, Vec2<double> u) {
   const Vec3<double> h = sample_normal_walter(ndf, u);
   const double pdf = ndf.D(h) * h.z;
   if (!(pdf > 0)) return {0, 0, 0};
-  return (1 / pdf) * kemppinen_env_integrand(p, ndf, fp, env, v, h);
+  return (1 / pdf) * env_integrand(p, ndf, fp, env, v, h);
 }
 
 // Equal-area square → hemisphere: Shirley & Chiu's concentric map onto the unit disk, then
@@ -93,7 +92,7 @@ inline Vec3<double> equal_area_hemisphere(Vec2<double> u) {
 // n × n equal-solid-angle strata (2π/n² sr each, equal_area_hemisphere), two jittered points per
 // stratum, so that the estimate is unbiased and its variance is estimated per stratum:
 // Var = Σ_s (Ω_s (g₁ − g₂)/2)². Uses no sampler and no map of the glint model.
-struct KemppinenEnvReference {
+struct EnvReference {
   Vec3<double> mean{0, 0, 0};
   Vec3<double> variance{0, 0, 0};  // of `mean`, per channel
   double luminance_variance = 0;   // of the luminance of `mean`
@@ -101,11 +100,10 @@ struct KemppinenEnvReference {
 };
 
 template <class Ndf>
-KemppinenEnvReference kemppinen_env_reference(const KemppinenParams<double>& p, const Ndf& ndf,
-                                              const FootprintQuery<double>& fp,
-                                              const EnvironmentMap& env, Vec3<double> v, int n,
-                                              std::uint64_t seed) {
-  KemppinenEnvReference r;
+EnvReference env_reference(const Params<double>& p, const Ndf& ndf,
+                           const FootprintQuery<double>& fp, const EnvironmentMap& env,
+                           Vec3<double> v, int n, std::uint64_t seed) {
+  EnvReference r;
   const double omega = 6.28318530717958647692 / (double(n) * double(n));
   for (int a = 0; a < n; ++a)
     for (int b = 0; b < n; ++b) {
@@ -114,13 +112,13 @@ KemppinenEnvReference kemppinen_env_reference(const KemppinenParams<double>& p, 
       for (int k = 0; k < 2; ++k) {
         const Vec2<double> u{(a + counter_uniform<double>(seed, s, 2 * std::uint64_t(k))) / n,
                              (b + counter_uniform<double>(seed, s, 2 * std::uint64_t(k) + 1)) / n};
-        g[k] = kemppinen_env_integrand(p, ndf, fp, env, v, equal_area_hemisphere(u));
+        g[k] = env_integrand(p, ndf, fp, env, v, equal_area_hemisphere(u));
       }
       const Vec3<double> m = (0.5 * omega) * (g[0] + g[1]);
       const Vec3<double> d = (0.5 * omega) * (g[0] - g[1]);
       r.mean = r.mean + m;
       r.variance = r.variance + Vec3<double>{d.x * d.x, d.y * d.y, d.z * d.z};
-      r.luminance_variance += sqr(kemppinen_luminance(d));
+      r.luminance_variance += sqr(luminance(d));
     }
   r.evaluations = 2 * std::uint64_t(n) * std::uint64_t(n);
   return r;
@@ -128,9 +126,9 @@ KemppinenEnvReference kemppinen_env_reference(const KemppinenParams<double>& p, 
 
 // The environment of the kemppinen.sampling-unbiased claim and the kemppinen2025-fig7 figure:
 // the procedural sky (core/lights/procedural_sky.h) with a soft sun (half angle 0.2 rad, radiance
-// 10) 30° from the zenith at azimuth 0, the mirror direction of KemppinenPlaneView's camera, as a
+// 10) 30° from the zenith at azimuth 0, the mirror direction of PlaneView's camera, as a
 // 64 × 32 lat-long map (piecewise constant: the reference integrates the map, not the sky).
-inline LatLongImage kemppinen_env_sky() {
+inline LatLongImage env_sky() {
   SkyParameters sky;
   sky.sun_half_angle = 0.2;
   sky.sun_radiance = {10, 10, 10};
@@ -138,31 +136,30 @@ inline LatLongImage kemppinen_env_sky() {
 }
 
 // The per-sample estimates of one pixel: n samples of the mixture (both densities on the same
-// directions, q = kemppinen_mixture_probability) and n independent samples of D cosθ, all from
+// directions, q = mixture_probability) and n independent samples of D cosθ, all from
 // `seed` (sample i: mixture key mix64(seed ^ mix64(i + 1)), smooth uniforms (seed, i, 0..1)).
-struct KemppinenEnvSamples {
+struct EnvSamples {
   std::vector<Vec3<double>> exact, printed, smooth;
   double q = 0;
   std::uint64_t from_explicit = 0;  // mixture samples drawn by Algorithm 2
 };
 
 template <class Ndf>
-KemppinenEnvSamples kemppinen_env_samples(const KemppinenParams<double>& p, const Ndf& ndf,
-                                          const FootprintQuery<double>& fp,
-                                          const EnvironmentMap& env, Vec3<double> v,
-                                          std::uint64_t n, std::uint64_t seed) {
-  KemppinenEnvSamples out;
-  out.q = kemppinen_mixture_probability(p, ndf, fp);
+EnvSamples env_samples(const Params<double>& p, const Ndf& ndf, const FootprintQuery<double>& fp,
+                       const EnvironmentMap& env, Vec3<double> v, std::uint64_t n,
+                       std::uint64_t seed) {
+  EnvSamples out;
+  out.q = mixture_probability(p, ndf, fp);
   out.exact.resize(n);
   out.printed.resize(n);
   out.smooth.resize(n);
   for (std::uint64_t i = 0; i < n; ++i) {
-    const KemppinenEnvMixtureEstimate e =
-        kemppinen_env_estimate_mixture(p, ndf, fp, env, v, mix64(seed ^ mix64(i + 1)), out.q);
+    const EnvMixtureEstimate e =
+        env_estimate_mixture(p, ndf, fp, env, v, mix64(seed ^ mix64(i + 1)), out.q);
     out.exact[i] = e.exact;
     out.printed[i] = e.printed;
     out.from_explicit += e.from_explicit ? 1 : 0;
-    out.smooth[i] = kemppinen_env_estimate_smooth(
+    out.smooth[i] = env_estimate_smooth(
         p, ndf, fp, env, v,
         Vec2<double>{counter_uniform<double>(seed, i, 0), counter_uniform<double>(seed, i, 1)});
   }
@@ -172,7 +169,7 @@ KemppinenEnvSamples kemppinen_env_samples(const KemppinenParams<double>& p, cons
 // A glinty plane z = 0 under an orthographic camera at polar angle θ_v and azimuth π (so that its
 // mirror direction is at azimuth 0, where the procedural sky has its sun): pixel (i, j) looks at
 // uv = origin + ((i + ½) d / cos θ_v, (j + ½) d) with footprint J_uv = diag(d / cos θ_v, d).
-struct KemppinenPlaneView {
+struct PlaneView {
   double theta_v;       // rad
   Vec2<double> origin;  // uv of the image corner
   double pixel_uv;      // d: a pixel's side in uv across the view direction
@@ -183,4 +180,4 @@ struct KemppinenPlaneView {
   }
 };
 
-}  // namespace glintlab
+}  // namespace glintlab::kemppinen2025

@@ -11,22 +11,21 @@
 #include "core/samplers/walter.h"
 #include "verify/scenes/kemppinen_presets.h"
 
-namespace glintlab {
+namespace glintlab::kemppinen2025 {
 
-struct KemppinenFurnaceSample {
+struct FurnaceSample {
   double glint = 0, smooth = 0;
 };
 
 template <class Ndf>
-KemppinenFurnaceSample kemppinen_furnace_sample(const KemppinenParams<double>& p, const Ndf& ndf,
-                                                const Vec3<double>& wo, Vec2<double> x,
-                                                Vec2<double> u) {
+FurnaceSample furnace_sample(const Params<double>& p, const Ndf& ndf, const Vec3<double>& wo,
+                             Vec2<double> x, Vec2<double> u) {
   const Vec3<double> m = sample_normal_walter(ndf, u);
   const Vec3<double> wi = reflect(wo, m);
   if (!(wi.z > 0 && dot(wo, m) > 0)) return {};
   const double s = smith_g2_height_correlated(ndf, wo, wi, m) * dot(wo, m) / (wo.z * m.z);
-  const FootprintQuery<double> fp = kemppinen_footprint_cells(x, 16, p);
-  return {s * kemppinen_eval(p, ndf, fp, m).d.x / ndf.D(m), s};
+  const FootprintQuery<double> fp = footprint_cells(x, 16, p);
+  return {s * eval(p, ndf, fp, m).d.x / ndf.D(m), s};
 }
 
-}  // namespace glintlab
+}  // namespace glintlab::kemppinen2025

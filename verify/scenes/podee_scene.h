@@ -2,7 +2,7 @@
 // sphere under one small disk light, seen from near, medium and far, and the four ways of shading
 // it the paper compares — the supersampled reference (Sec. 4: 64 samples per pixel, 8 × 8), the
 // conventional pixel-centre sample, LEAN mapping (Olano & Baker 2010) and the paper's method
-// (Sec. 3, core/shading/podee_shade.h).
+// (Sec. 3, core/shading/shade.h).
 //
 // Radiance at one surface point: the normal map perturbs the shading normal (slope form of Olano
 // & Baker Sec. 3: n' ∝ −s_u t − s_v b + n), the view ray is mirrored about n', and the pixel sees
@@ -26,16 +26,16 @@
 #include "core/scene/slope_moment_map.h"
 #include "core/shading/podee_shade.h"
 
-namespace glintlab {
+namespace glintlab::podee {
 
 // The normal map: isotropic sine bumps (core/scene/sine_height_field.h) tiled `tiles_u` × `tiles_v`
 // times over the sphere's uv square, with its mip-mapped LEAN moments.
-struct PodeeNormalMap {
+struct NormalMap {
   SineHeightField<double> field;
   int tiles_u, tiles_v;
   SlopeMomentMap moments;
 
-  PodeeNormalMap(double slope_rms, int tu, int tv, int map_size)
+  NormalMap(double slope_rms, int tu, int tv, int map_size)
       : field(isotropic_sine_bumps<double>(slope_rms)),
         tiles_u(tu),
         tiles_v(tv),
@@ -56,7 +56,7 @@ struct PodeeNormalMap {
   }
 };
 
-struct PodeeSceneConfig {
+struct SceneConfig {
   double distance = 5;        // camera distance from the sphere's centre (radius 1)
   int size = 96;              // image width = height, pixels
   double fov_degrees = 30;    // vertical field of view
@@ -67,17 +67,17 @@ struct PodeeSceneConfig {
 };
 
 // The shading of one pixel by the paper's method, with what it selected.
-struct PodeePixel {
+struct Pixel {
   double value;
-  PodeeResult<double> result;
+  Result<double> result;
   bool hit;
   double tan_radius;  // the projected disk's radius on the light plane
   Vec3<double> l;     // unit, from the centre hit toward the disk's centre
 };
 
-class PodeeScene {
+class Scene {
  public:
-  PodeeScene(const PodeeSceneConfig& c, std::shared_ptr<const PodeeNormalMap> map)
+  Scene(const SceneConfig& c, std::shared_ptr<const NormalMap> map)
       : config_(c), map_(std::move(map)) {
     const char* what = "podee scene";
     detail::require(std::isfinite(c.distance) && c.distance > 1.05, what, "distance", c.distance,
@@ -85,7 +85,7 @@ class PodeeScene {
     detail::require(c.size >= 4 && c.size <= 8192, what, "size", c.size, "4 to 8192");
     // The light's centre must lie above the sphere's surface (height over the tangent plane of the
     // nearest surface point).
-    podee_require_light(what, c.light_radius, c.light_distance - 1);
+    require_light(what, c.light_radius, c.light_distance - 1);
     camera_ = PinholeCamera<double>::look_at({c.distance, 0, 0}, {0, 0, 0}, {0, 0, 1},
                                              c.fov_degrees, c.size, c.size);
     sphere_ = Sphere<double>{{0, 0, 0}, 1.0};
@@ -98,9 +98,9 @@ class PodeeScene {
     light_.emitted = {1, 1, 1};
   }
 
-  const PodeeSceneConfig& config() const { return config_; }
+  const SceneConfig& config() const { return config_; }
   const PinholeCamera<double>& camera() const { return camera_; }
-  const PodeeNormalMap& normal_map() const { return *map_; }
+  const NormalMap& normal_map() const { return *map_; }
   const DiskLight<double>& light() const { return light_; }
 
   // Radiance along the primary ray through film position (x, y) (pixel (i, j) covers
@@ -119,8 +119,8 @@ class PodeeScene {
 
   // The paper's method (Sec. 3): corner reflection vectors → reflection space → selected vector
   // and weight.
-  PodeePixel podee(int i, int j, PodeeWeighting w = PodeeWeighting::kExact,
-                   PodeeSelection sel = PodeeSelection::kClosestPoint) const {
+  Pixel podee(int i, int j, Weighting w = Weighting::kExact,
+              Selection sel = Selection::kClosestPoint) const {
     const Corners c = corners(i, j);
     if (!c.hit) return {0, {}, false, 0, {0, 0, 1}};
     const Vec3<double> to_light = light_.center - c.p;
@@ -130,7 +130,7 @@ class PodeeScene {
     // The projected disk is an ellipse of semi-axes R/d and R cos θ_L / d on the light plane
     // (small-disk limit); the paper lights with a circle: the one of equal area.
     const double tan_radius = light_.radius / dist * std::sqrt(std::max(cos_light, 0.0));
-    const PodeeResult<double> r = podee_shade(c.r, l, tan_radius, w, sel);
+    const Result<double> r = shade(c.r, l, tan_radius, w, sel);
     const bool facing = cos_light > 0 && dot(c.n, l) > 0;
     return {facing ? r.value : 0.0, r, true, tan_radius, l};
   }
@@ -164,7 +164,7 @@ class PodeeScene {
         uv_on_tangent_plane(s, x + 0.5, y) - uv_on_tangent_plane(s, x - 0.5, y);
     const Vec2<double> uv_y =
         uv_on_tangent_plane(s, x, y + 0.5) - uv_on_tangent_plane(s, x, y - 0.5);
-    const PodeeNormalMap& m = *map_;
+    const NormalMap& m = *map_;
     const Vec2<double> scale{double(m.tiles_u), double(m.tiles_v)};
     const auto tile = [&](Vec2<double> a) { return Vec2<double>{a.x * scale.x, a.y * scale.y}; };
     const Vec2<double> uvt = tile(s.uv);
@@ -242,14 +242,14 @@ class PodeeScene {
     return s.uv + uv_offset(s, plane_point(s, camera_.ray(x, y)) - s.p);
   }
 
-  PodeeSceneConfig config_;
-  std::shared_ptr<const PodeeNormalMap> map_;
+  SceneConfig config_;
+  std::shared_ptr<const NormalMap> map_;
   PinholeCamera<double> camera_;
   Sphere<double> sphere_;
   DiskLight<double> light_;
 };
 
-enum class PodeeMethod {
+enum class Method {
   kCentre,
   kLean,
   kPodee,
@@ -258,17 +258,17 @@ enum class PodeeMethod {
   kPodeeCentroidRule
 };
 
-inline const char* to_string(PodeeMethod m) {
+inline const char* to_string(Method m) {
   switch (m) {
-    case PodeeMethod::kCentre:
+    case Method::kCentre:
       return "centre";
-    case PodeeMethod::kLean:
+    case Method::kLean:
       return "lean";
-    case PodeeMethod::kPodee:
+    case Method::kPodee:
       return "podee";
-    case PodeeMethod::kPodeeQuadAsCircle:
+    case Method::kPodeeQuadAsCircle:
       return "podee_quad_as_circle";
-    case PodeeMethod::kPodeeUnweighted:
+    case Method::kPodeeUnweighted:
       return "podee_unweighted";
     default:
       return "podee_centroid_rule";
@@ -276,32 +276,32 @@ inline const char* to_string(PodeeMethod m) {
 }
 
 // One pixel of one method.
-inline double podee_pixel(const PodeeScene& s, PodeeMethod m, int i, int j) {
+inline double pixel(const Scene& s, Method m, int i, int j) {
   switch (m) {
-    case PodeeMethod::kCentre:
+    case Method::kCentre:
       return s.centre(i, j);
-    case PodeeMethod::kLean:
+    case Method::kLean:
       return s.lean(i, j);
-    case PodeeMethod::kPodee:
+    case Method::kPodee:
       return s.podee(i, j).value;
-    case PodeeMethod::kPodeeQuadAsCircle:
-      return s.podee(i, j, PodeeWeighting::kQuadAsCircle).value;
-    case PodeeMethod::kPodeeUnweighted:
-      return s.podee(i, j, PodeeWeighting::kNone).value;
+    case Method::kPodeeQuadAsCircle:
+      return s.podee(i, j, Weighting::kQuadAsCircle).value;
+    case Method::kPodeeUnweighted:
+      return s.podee(i, j, Weighting::kNone).value;
     default:
-      return s.podee(i, j, PodeeWeighting::kExact, PodeeSelection::kCentroid).value;
+      return s.podee(i, j, Weighting::kExact, Selection::kCentroid).value;
   }
 }
 
 // The image of one method (channel "Y": reflected radiance for unit light radiance).
-inline Image render_podee(const PodeeScene& s, PodeeMethod m, int threads) {
+inline Image render_podee(const Scene& s, Method m, int threads) {
   const int n = s.config().size;
   return render_image(n, n, {"Y"}, threads,
-                      [&](int i, int j, double* out) { out[0] = podee_pixel(s, m, i, j); });
+                      [&](int i, int j, double* out) { out[0] = pixel(s, m, i, j); });
 }
 
 // The supersampled reference: `spp` stratified samples per pixel (64 = the paper's 8 × 8).
-inline Image render_podee_reference(const PodeeScene& s, int spp, std::uint64_t seed, int threads,
+inline Image render_podee_reference(const Scene& s, int spp, std::uint64_t seed, int threads,
                                     const RowProgress& progress = {}) {
   const int n = s.config().size;
   return render_supersampled(
@@ -313,10 +313,10 @@ inline Image render_podee_reference(const PodeeScene& s, int spp, std::uint64_t 
 // The experiments' settings. Pixel size is fixed by the 96-pixel frame of 30° (vertical field of
 // view), so a smaller `size` crops the same view around its centre and keeps the pixel footprint
 // (what the method's accuracy depends on) the same for every budget.
-inline constexpr double kPodeeNear = 2, kPodeeMedium = 4, kPodeeFar = 10;
+inline constexpr double kNear = 2, kMedium = 4, kFar = 10;
 
-inline PodeeSceneConfig podee_config(double distance, int size) {
-  PodeeSceneConfig c;
+inline SceneConfig config(double distance, int size) {
+  SceneConfig c;
   c.distance = distance;
   c.size = size;
   const double t = std::tan(15 * kPi<double> / 180) * size / 96.0;
@@ -328,23 +328,23 @@ inline PodeeSceneConfig podee_config(double distance, int size) {
 // The normal map: isotropic bumps of rms slope 0.15 per axis, 8 × 4 tiles over the sphere (about
 // 100 bump wavelengths around the equator: several pixels per bump at the near distance, about one
 // per pixel at the far one). `tiles_u` = 1 gives the low-frequency control map.
-inline std::shared_ptr<const PodeeNormalMap> podee_normal_map(int tiles_u = 8) {
-  return std::make_shared<const PodeeNormalMap>(0.15, tiles_u, std::max(tiles_u / 2, 1), 256);
+inline std::shared_ptr<const NormalMap> normal_map(int tiles_u = 8) {
+  return std::make_shared<const NormalMap>(0.15, tiles_u, std::max(tiles_u / 2, 1), 256);
 }
 
 // Frame-to-frame variation under sub-pixel camera motion: `frames` frames with the film moved by
 // (f, f/2) / frames pixels (a one-pixel diagonal pan), the mean over pixels and consecutive frame
 // pairs of (I_{f+1} − I_f)². `spp` > 0: the supersampled reference at that many samples instead.
 // `pan_start`: where the pan starts, in pixels (its phase against the normal map).
-inline double podee_flicker(PodeeSceneConfig c, std::shared_ptr<const PodeeNormalMap> map,
-                            PodeeMethod m, int frames, int threads, int spp = 0,
-                            std::uint64_t seed = 0, Vec2<double> pan_start = {0, 0}) {
+inline double flicker(SceneConfig c, std::shared_ptr<const NormalMap> map, Method m, int frames,
+                      int threads, int spp = 0, std::uint64_t seed = 0,
+                      Vec2<double> pan_start = {0, 0}) {
   Image previous;
   double sum = 0;
   long count = 0;
   for (int f = 0; f < frames; ++f) {
     c.film_shift = {pan_start.x + double(f) / frames, pan_start.y + 0.5 * f / frames};
-    const PodeeScene scene(c, map);
+    const Scene scene(c, map);
     Image im = spp > 0 ? render_podee_reference(scene, spp, seed, threads)
                        : render_podee(scene, m, threads);
     if (f > 0) {
@@ -356,4 +356,4 @@ inline double podee_flicker(PodeeSceneConfig c, std::shared_ptr<const PodeeNorma
   return count > 0 ? sum / double(count) : 0.0;
 }
 
-}  // namespace glintlab
+}  // namespace glintlab::podee

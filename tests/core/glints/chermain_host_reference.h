@@ -16,10 +16,10 @@ struct HostInfo {
   double lod = 0, dict_level = 0, mip_lambda = 0, kernel_width = 0;
 };
 
-inline double host_fetch(const ChermainDictionary& d, int n, int k, int mip, long i,
-                         TableWrap wrap) {
+inline double host_fetch(const chermain2021::Dictionary& d, int n, int k, int mip, long i,
+                         chermain2021::TableWrap wrap) {
   const long size = long(d.resolution() >> mip);
-  if (wrap == TableWrap::kClampToEdge) {
+  if (wrap == chermain2021::TableWrap::kClampToEdge) {
     i = std::clamp(i, 0L, size - 1);
   } else {  // mirrored repeat: period 2·size, the second half reversed
     i = ((i % (2 * size)) + 2 * size) % (2 * size);
@@ -28,16 +28,17 @@ inline double host_fetch(const ChermainDictionary& d, int n, int k, int mip, lon
   return double(d.texel(n, k, mip, int(i)));
 }
 
-inline double host_trilinear(const ChermainDictionary& d, int n, int k, double u, double lambda,
-                             TableWrap wrap);
-inline double host_lookup_lod(const ChermainDictionary& d, int n, int k, double x, double mip = 0,
-                              TableWrap wrap = TableWrap::kMirroredRepeat) {
+inline double host_trilinear(const chermain2021::Dictionary& d, int n, int k, double u,
+                             double lambda, chermain2021::TableWrap wrap);
+inline double host_lookup_lod(
+    const chermain2021::Dictionary& d, int n, int k, double x, double mip = 0,
+    chermain2021::TableWrap wrap = chermain2021::TableWrap::kMirroredRepeat) {
   if (!(std::abs(x) < d.extent())) return 0;
   return host_trilinear(d, n, k, x / d.extent(), mip, wrap);
 }
 
-inline double host_trilinear(const ChermainDictionary& d, int n, int k, double u, double lambda,
-                             TableWrap wrap) {
+inline double host_trilinear(const chermain2021::Dictionary& d, int n, int k, double u,
+                             double lambda, chermain2021::TableWrap wrap) {
   const double l = std::clamp(lambda, 0.0, double(d.mip_levels() - 1));
   const int m0 = int(std::floor(l));
   const int m1 = std::min(m0 + 1, d.mip_levels() - 1);
@@ -53,9 +54,10 @@ inline double host_trilinear(const ChermainDictionary& d, int n, int k, double u
   return a + (l - m0) * (linear(m1) - a);
 }
 
-inline double host_lookup_grad(const ChermainDictionary& d, int n, int k, double x, double dx_dpx,
-                               double dx_dpy, TableWrap wrap = TableWrap::kMirroredRepeat,
-                               int max_anisotropy = 16, TableFilter* filter = nullptr) {
+inline double host_lookup_grad(
+    const chermain2021::Dictionary& d, int n, int k, double x, double dx_dpx, double dx_dpy,
+    chermain2021::TableWrap wrap = chermain2021::TableWrap::kMirroredRepeat,
+    int max_anisotropy = 16, chermain2021::TableFilter* filter = nullptr) {
   const double scale = double(d.resolution()) / d.extent();  // texels per slope unit
   const double px = std::abs(dx_dpx) * scale, py = std::abs(dx_dpy) * scale;
   const double pmax = std::max(px, py), pmin = std::min(px, py);
@@ -116,9 +118,9 @@ inline double host_lod(const FootprintQuery<double>& fp) {
 // four cells with w(l) W_P(l, s_0) > 0; weight sums to 1. k ≥ L marks the smooth fallback (one
 // visit per LOD, cell unused).
 template <class Visit>
-void host_for_each_cell(const ChermainSdfParams& p, const FootprintQuery<double>& fp,
+void host_for_each_cell(const chermain2021::SdfParams& p, const FootprintQuery<double>& fp,
                         Visit&& visit) {
-  const ChermainDictionary& dict = *p.dictionary;
+  const chermain2021::Dictionary& dict = *p.dictionary;
   const double lod = host_lod(fp);
   const int l0 = int(std::floor(lod));
   const double frac = lod - l0;
@@ -149,13 +151,14 @@ void host_for_each_cell(const ChermainSdfParams& p, const FootprintQuery<double>
 
 // The (filtered) procedural patch-SDF at slope m̃ (2021 Eq. 3 without GGAA, Eq. 10 and 19 with
 // it), for the footprint `fp` and the slope derivatives `d` (ignored when kernel = 0).
-inline double host_patch_sdf(const ChermainSdfParams& p, Vec2<double> m,
-                             const FootprintQuery<double>& fp, const SlopeDerivatives& d,
-                             HostInfo* info = nullptr) {
-  const ChermainDictionary& dict = *p.dictionary;
-  const ChermainMatrix M = chermain_matrix(p.sigma_x, p.sigma_y, p.rho, dict.sigma_o(), p.with_rho);
+inline double host_patch_sdf(const chermain2021::SdfParams& p, Vec2<double> m,
+                             const FootprintQuery<double>& fp,
+                             const chermain2021::SlopeDerivatives& d, HostInfo* info = nullptr) {
+  const chermain2021::Dictionary& dict = *p.dictionary;
+  const chermain2021::Matrix M =
+      chermain2021::matrix(p.sigma_x, p.sigma_y, p.rho, dict.sigma_o(), p.with_rho);
   const double rho_used = p.with_rho ? p.rho : 0.0;
-  const bool ggaa = p.kernel != kChermainNoGgaa;
+  const bool ggaa = p.kernel != chermain2021::kNoGgaa;
   const double sk = ggaa ? p.s_k : 0.0;
   // M⁻¹ applied once per pixel (Eq. 20/21); the per-cell rotation below.
   const double ax = sk * (M.i00 * d.dx_x + M.i01 * d.dx_y), ay = sk * (M.i11 * d.dx_y);
@@ -171,7 +174,7 @@ inline double host_patch_sdf(const ChermainSdfParams& p, Vec2<double> m,
     const double xo = s.cos_t * mx + s.sin_t * my, yo = -s.sin_t * mx + s.cos_t * my;
     double px, py;
     if (ggaa) {
-      TableFilter fx, fy;
+      chermain2021::TableFilter fx, fy;
       px = host_lookup_grad(dict, s.nx, k, xo, s.cos_t * ax + s.sin_t * ay,
                             s.cos_t * bx + s.sin_t * by, p.wrap, 16, &fx);
       py = host_lookup_grad(dict, s.ny, k, yo, -s.sin_t * ax + s.cos_t * ay,
@@ -203,7 +206,7 @@ inline double host_v_cavity_g2(Vec3<double> wi, Vec3<double> wo, Vec3<double> h)
 }
 
 // The smooth correlated Beckmann NDF of covariance Σ in slope space, D = P22/cos⁴θ.
-inline double host_smooth_d(const ChermainSdfParams& p, Vec3<double> h) {
+inline double host_smooth_d(const chermain2021::SdfParams& p, Vec3<double> h) {
   if (!(h.z > 0)) return 0;
   const double z2 = h.z * h.z;
   return host_gaussian_sdf(-h.x / h.z, -h.y / h.z, p.sigma_x, p.sigma_y, p.with_rho ? p.rho : 0.0) /

@@ -36,7 +36,7 @@ Vec3<double> direction(std::uint64_t i, std::uint64_t dim) {
 }
 
 TEST(ChermainScalarIdentity, LookupsMatchTheHostCode) {
-  const ChermainDictionary& d = default_chermain_dictionary();
+  const chermain2021::Dictionary& d = chermain2021::default_chermain_dictionary();
   std::size_t bad = 0;
   for (std::uint64_t i = 0; i < 200000; ++i) {
     const int n = int(u01(i, 0) * d.distributions()), k = int(u01(i, 1) * d.levels());
@@ -44,10 +44,11 @@ TEST(ChermainScalarIdentity, LookupsMatchTheHostCode) {
     const double g = std::pow(10.0, -6 + 7 * u01(i, 3));
     const double gx = u01(i, 4) < 0.1 ? 0.0 : g * (u01(i, 5) - 0.5);
     const double gy = u01(i, 6) < 0.1 ? 0.0 : g * (u01(i, 7) - 0.5);
-    const TableWrap wrap = i % 2 ? TableWrap::kClampToEdge : TableWrap::kMirroredRepeat;
+    const chermain2021::TableWrap wrap =
+        i % 2 ? chermain2021::TableWrap::kClampToEdge : chermain2021::TableWrap::kMirroredRepeat;
     const double mip = i % 7 == 0 ? 0.0 : 7 * u01(i, 8);
     bad += !same(d.lookup_lod(n, k, x, mip, wrap), host::host_lookup_lod(d, n, k, x, mip, wrap));
-    TableFilter a, b;
+    chermain2021::TableFilter a, b;
     bad += !same(d.lookup_grad(n, k, x, gx, gy, wrap, 16, &a),
                  host::host_lookup_grad(d, n, k, x, gx, gy, wrap, 16, &b));
     bad += !same(a.lambda, b.lambda) || a.probes != b.probes;
@@ -75,7 +76,7 @@ TEST(ChermainScalarIdentity, ModelMatchesTheHostCode) {
                                    g * (us(9) - 0.5),
                                    double(s)};
     auto p = Chermain::params<double>(v);
-    if (s % 7 == 3) p.sdf.wrap = TableWrap::kClampToEdge;
+    if (s % 7 == 3) p.sdf.wrap = chermain2021::TableWrap::kClampToEdge;
     if (s % 11 == 5) p.sdf.with_rho = false;
     ModelQuery<double> q{};
     const double level = -2 + 20 * u01(i, 10);

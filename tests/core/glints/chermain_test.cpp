@@ -14,21 +14,21 @@
 namespace glintlab {
 namespace {
 
-ChermainDictionaryConfig small_config() {
-  ChermainDictionaryConfig c;
+chermain2021::DictionaryConfig small_config() {
+  chermain2021::DictionaryConfig c;
   c.distributions = 12;
   c.levels = 8;
   c.seed = 7;
   return c;
 }
 
-const ChermainDictionary& small_dictionary() {
-  static const ChermainDictionary d(small_config());
+const chermain2021::Dictionary& small_dictionary() {
+  static const chermain2021::Dictionary d(small_config());
   return d;
 }
 
 TEST(ChermainDictionary, RejectsBadConfiguration) {
-  const auto message = [](ChermainDictionaryConfig c) -> std::string {
+  const auto message = [](chermain2021::DictionaryConfig c) -> std::string {
     try {
       validate(c);
     } catch (const ParameterError& e) {
@@ -36,7 +36,7 @@ TEST(ChermainDictionary, RejectsBadConfiguration) {
     }
     return "";
   };
-  ChermainDictionaryConfig c = small_config();
+  chermain2021::DictionaryConfig c = small_config();
   c.distributions = 10;
   EXPECT_NE(message(c).find("distributions (N) = 10"), std::string::npos) << message(c);
   c = small_config(), c.levels = 0;
@@ -53,10 +53,10 @@ TEST(ChermainDictionary, RejectsBadConfiguration) {
 }
 
 TEST(ChermainDictionary, DeterministicFromSeed) {
-  const ChermainDictionary a(small_config()), b(small_config());
-  ChermainDictionaryConfig other = small_config();
+  const chermain2021::Dictionary a(small_config()), b(small_config());
+  chermain2021::DictionaryConfig other = small_config();
   other.seed = 8;
-  const ChermainDictionary c(other);
+  const chermain2021::Dictionary c(other);
   int differ = 0;
   for (int n = 0; n < a.distributions(); ++n)
     for (int k = 0; k < a.levels(); ++k)
@@ -68,13 +68,13 @@ TEST(ChermainDictionary, DeterministicFromSeed) {
 }
 
 TEST(ChermainDictionary, LevelsArePrefixesSymmetricAndNormalized) {
-  const ChermainDictionary& d = small_dictionary();
+  const chermain2021::Dictionary& d = small_dictionary();
   const int L = d.levels();
   // Prefix: level k is level 0's lobe plus 2^k − 1 further lobes of the same fixed sequence, so a
   // dictionary with fewer levels has bit-identical tables at the levels it has.
-  ChermainDictionaryConfig fewer = small_config();
+  chermain2021::DictionaryConfig fewer = small_config();
   fewer.levels = 4;
-  const ChermainDictionary f(fewer);
+  const chermain2021::Dictionary f(fewer);
   for (int n = 0; n < d.distributions(); ++n)
     for (int k = 0; k < 4; ++k)
       for (int t = 0; t < d.resolution(); ++t) ASSERT_EQ(d.texel(n, k, 0, t), f.texel(n, k, 0, t));
@@ -91,20 +91,24 @@ TEST(ChermainDictionary, LevelsArePrefixesSymmetricAndNormalized) {
 }
 
 TEST(ChermainDictionary, TextureGradKeepsUnitIntegralOnlyWithMirroredRepeat) {
-  const ChermainDictionary& d = small_dictionary();
+  const chermain2021::Dictionary& d = small_dictionary();
   for (int k : {0, 3, 7})
     for (double dx : {0.0, 0.01, 0.05, 0.3, 2.0}) {
-      EXPECT_NEAR(lookup_grad_integral(d, 1, k, dx, 0.3 * dx, TableWrap::kMirroredRepeat), 1.0,
-                  1e-5)
+      EXPECT_NEAR(chermain2021::lookup_grad_integral(d, 1, k, dx, 0.3 * dx,
+                                                     chermain2021::TableWrap::kMirroredRepeat),
+                  1.0, 1e-5)
           << "k=" << k << " dx=" << dx;
     }
   // Zero derivatives: the level-0 lookup exactly.
   for (double x : {0.0, 0.1, -0.33, 0.9})
     EXPECT_EQ(d.lookup_grad(2, 5, x, 0, 0), d.lookup_lod(2, 5, x));
   // Clamp-to-edge breaks the symmetry of the mirrored table: far from normalized.
-  EXPECT_GT(std::abs(lookup_grad_integral(d, 1, 3, 0.05, 0.01, TableWrap::kClampToEdge) - 1), 0.05);
-  TableFilter f;
-  d.lookup_grad(0, 0, 0.1, 0.2, 0.05, TableWrap::kMirroredRepeat, 16, &f);
+  EXPECT_GT(std::abs(chermain2021::lookup_grad_integral(d, 1, 3, 0.05, 0.01,
+                                                        chermain2021::TableWrap::kClampToEdge) -
+                     1),
+            0.05);
+  chermain2021::TableFilter f;
+  d.lookup_grad(0, 0, 0.1, 0.2, 0.05, chermain2021::TableWrap::kMirroredRepeat, 16, &f);
   EXPECT_EQ(f.probes, 4);
   EXPECT_NEAR(f.lambda, std::log2(0.2 * d.resolution() / d.extent() / 4), 1e-12);
 }
@@ -112,7 +116,7 @@ TEST(ChermainDictionary, TextureGradKeepsUnitIntegralOnlyWithMirroredRepeat) {
 TEST(ChermainMatrix, CovarianceIsSigma) {
   for (double rho : {0.0, 0.5, 0.99, -0.7}) {
     const double sx = 0.3, sy = 0.12, so = 0.35;
-    const ChermainMatrix M = chermain_matrix(sx, sy, rho, so);
+    const chermain2021::Matrix M = chermain2021::matrix(sx, sy, rho, so);
     // M Σ_o Mᵀ with Σ_o = σ_o² I (Eq. 17).
     const double c00 = so * so * (M.m00 * M.m00 + M.m01 * M.m01);
     const double c01 = so * so * (M.m00 * M.m10 + M.m01 * M.m11);
@@ -125,19 +129,21 @@ TEST(ChermainMatrix, CovarianceIsSigma) {
   }
 }
 
-ChermainSdfParams sdf_params(double log2_density, int kernel, double rho = 0.5) {
+chermain2021::SdfParams sdf_params(double log2_density, int kernel, double rho = 0.5) {
   return {&small_dictionary(), 0.25, 0.18, rho, log2_density, kernel, 0.5, 3};
 }
 
 TEST(ChermainPatchSdf, NormalizedWithAndWithoutGgaa) {
   const FootprintQuery<double> fp{{0.3, 0.7}, {0.01, 0.002}, {-0.003, 0.008}};
-  const SlopeDerivatives d{0.08, -0.02, 0.01, 0.05};
-  for (int kernel : {kChermainNoGgaa, kChermainProjectedHalf}) {
-    const SlopeMoments2 m = chermain_patch_moments(sdf_params(14, kernel), fp, d, 500);
+  const chermain2021::SlopeDerivatives d{0.08, -0.02, 0.01, 0.05};
+  for (int kernel : {chermain2021::kNoGgaa, chermain2021::kProjectedHalf}) {
+    const chermain2021::SlopeMoments2 m =
+        chermain2021::patch_moments(sdf_params(14, kernel), fp, d, 500);
     EXPECT_NEAR(m.mass, 1.0, 2e-3) << "kernel " << kernel;
   }
   // The smooth fallback (dictionary level ≥ L) is the Gaussian of covariance Σ exactly.
-  const SlopeMoments2 s = chermain_patch_moments(sdf_params(60, kChermainNoGgaa), fp, d, 400);
+  const chermain2021::SlopeMoments2 s =
+      chermain2021::patch_moments(sdf_params(60, chermain2021::kNoGgaa), fp, d, 400);
   EXPECT_NEAR(s.mass, 1.0, 1e-6);
   EXPECT_NEAR(std::sqrt(s.xx), 0.25, 1e-4);
   EXPECT_NEAR(std::sqrt(s.yy), 0.18, 1e-4);
@@ -146,12 +152,12 @@ TEST(ChermainPatchSdf, NormalizedWithAndWithoutGgaa) {
 
 TEST(ChermainPatchSdf, LodAndLevelFromFootprint) {
   const FootprintQuery<double> fp{{0.3, 0.7}, {1.0 / 256, 0}, {0, 1.0 / 512}};
-  ChermainSdfInfo info;
-  const SlopeDerivatives d{0, 0, 0, 0};
-  chermain_patch_sdf(sdf_params(20, kChermainNoGgaa), {0.1, 0.0}, fp, d, &info);
+  chermain2021::SdfInfo info;
+  const chermain2021::SlopeDerivatives d{0, 0, 0, 0};
+  chermain2021::patch_sdf(sdf_params(20, chermain2021::kNoGgaa), {0.1, 0.0}, fp, d, &info);
   EXPECT_DOUBLE_EQ(info.lod, -8);
   EXPECT_DOUBLE_EQ(info.dict_level, 2);  // ⌊−8 + 10⌋
-  chermain_patch_sdf(sdf_params(40, kChermainNoGgaa), {0.1, 0.0}, fp, d, &info);
+  chermain2021::patch_sdf(sdf_params(40, chermain2021::kNoGgaa), {0.1, 0.0}, fp, d, &info);
   EXPECT_DOUBLE_EQ(info.dict_level, small_dictionary().levels());  // smooth fallback
 }
 

@@ -105,7 +105,7 @@ TEST(Kneiphof, MultinomialSplitSumsAndMarginals) {
   double mean1 = 0;
   const int m = 20000;
   for (int i = 0; i < m; ++i) {
-    const auto c = multinomial_split(1000, parts, 7, std::uint64_t(i));
+    const auto c = kneiphof2024::multinomial_split(1000, parts, 7, std::uint64_t(i));
     std::uint64_t s = 0;
     for (auto x : c) s += x;
     ASSERT_EQ(s, 1000u);
@@ -125,7 +125,8 @@ TEST(Kneiphof, AreaTermsOfATinyLightMatchTheCap) {
   const auto light = make_polygon_light(v, {1, 1, 1});
   const GGX<double> ggx{0.3, 0.3};
   const Vec3<double> wi = dir(0.2, 3.0);
-  const AreaLightTerms t = area_light_terms_mc(ggx, wi, light, Vec3<double>{0, 0, 0}, 4096, 11, 0);
+  const kneiphof2024::AreaLightTerms t =
+      kneiphof2024::area_light_terms_mc(ggx, wi, light, Vec3<double>{0, 0, 0}, 4096, 11, 0);
   const Vec3<double> h = half_vector(wi, c);
   EXPECT_NEAR(t.solid_angle, 4 * w * w, 4e-6);
   EXPECT_NEAR(t.d_omega_h / (t.solid_angle * ggx.D(h) / (4 * dot(h, c))), 1, 2e-3);

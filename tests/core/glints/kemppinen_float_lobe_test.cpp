@@ -15,8 +15,8 @@
 namespace glintlab {
 namespace {
 
-// The normal density exactly as normal2 computed it before the power-of-two scaling.
-double normal2_unscaled(Vec2<double> d, const Sym2<double>& s) {
+// The normal density exactly as kemppinen2025::normal2 computed it before the power-of-two scaling.
+double normal2_unscaled(Vec2<double> d, const kemppinen2025::Sym2<double>& s) {
   const double det = s.xx * s.yy - sqr(s.xy);
   const double q = (s.yy * sqr(d.x) - 2.0 * s.xy * d.x * d.y + s.xx * sqr(d.y)) / det;
   return std::exp(-0.5 * q) * (0.15915494309189533577 * (1.0 / std::sqrt(det)));
@@ -28,11 +28,11 @@ TEST(KemppinenFloatLobe, DoubleIsBitIdenticalToThePrintedFormula) {
     const double sx = std::pow(10.0, -16 + 18 * counter_uniform<double>(11, i, 0));
     const double sy = sx * std::pow(10.0, -1 + 2 * counter_uniform<double>(11, i, 1));
     const double rho = 0.9 * (2 * counter_uniform<double>(11, i, 2) - 1);
-    const Sym2<double> s{sx * sx, rho * sx * sy, sy * sy};
+    const kemppinen2025::Sym2<double> s{sx * sx, rho * sx * sy, sy * sy};
     const double r = std::pow(10.0, -3 + 3 * counter_uniform<double>(11, i, 3));
     const Vec2<double> d{r * sx * (2 * counter_uniform<double>(11, i, 4) - 1),
                          r * sy * (2 * counter_uniform<double>(11, i, 5) - 1)};
-    const double a = normal2(d, s), b = normal2_unscaled(d, s);
+    const double a = kemppinen2025::normal2(d, s), b = normal2_unscaled(d, s);
     ASSERT_EQ(std::bit_cast<std::uint64_t>(a), std::bit_cast<std::uint64_t>(b))
         << "sigma " << sx << ", " << sy << " rho " << rho << ": " << a << " vs " << b;
   }
@@ -40,14 +40,15 @@ TEST(KemppinenFloatLobe, DoubleIsBitIdenticalToThePrintedFormula) {
 
 TEST(KemppinenFloatLobe, TinyLobesAreFiniteInFloat) {
   const float sigma = 1.12838e-15f;  // α★ = 1e-9 at the floored D (measured in the sweep's NaN)
-  const Sym2<float> s{sigma * sigma, 0.0f, sigma * sigma};
-  EXPECT_EQ(normal2(Vec2<float>{0.1f, 0.2f}, s), 0.0f);  // far outside the lobe: 0, not 0·∞
+  const kemppinen2025::Sym2<float> s{sigma * sigma, 0.0f, sigma * sigma};
+  EXPECT_EQ(kemppinen2025::normal2(Vec2<float>{0.1f, 0.2f}, s),
+            0.0f);  // far outside the lobe: 0, not 0·∞
   // At the lobe's centre: 1/(2π σ²) ≈ 1.25e29, representable in float.
-  const float peak = normal2(Vec2<float>{0.0f, 0.0f}, s);
+  const float peak = kemppinen2025::normal2(Vec2<float>{0.0f, 0.0f}, s);
   EXPECT_TRUE(std::isfinite(peak));
   EXPECT_NEAR(peak / (1.0f / (2.0f * 3.14159265f * sigma * sigma)), 1.0f, 1e-5f);
   // One σ off-centre in x: exp(−½) of the peak.
-  EXPECT_NEAR(normal2(Vec2<float>{sigma, 0.0f}, s) / peak, std::exp(-0.5f), 1e-5f);
+  EXPECT_NEAR(kemppinen2025::normal2(Vec2<float>{sigma, 0.0f}, s) / peak, std::exp(-0.5f), 1e-5f);
 }
 
 // The sweep's cell (microroughness 1e-9, α = 0.1, footprint 1e-3): the float instantiation gave

@@ -20,23 +20,23 @@ namespace {
 using V2 = Vec2<double>;
 using V3 = Vec3<double>;
 
-KemppinenParams<double> base_params(int side = 2) {
-  KemppinenParams<double> p{};
+kemppinen2025::Params<double> base_params(int side = 2) {
+  kemppinen2025::Params<double> p{};
   p.density = 1e4;
   p.microroughness = 0.02;
   p.anisotropy = 1;
   p.filter = 0.5;
   p.side = side;
-  p.blend = KemppinenBlend::kRoulette;
-  p.erf = KemppinenErf::kExact;
-  p.normalization = KemppinenNormalization::kCorrected;
-  p.colors = KemppinenColors::kWhite;
+  p.blend = kemppinen2025::Blend::kRoulette;
+  p.erf = kemppinen2025::Erf::kExact;
+  p.normalization = kemppinen2025::Normalization::kCorrected;
+  p.colors = kemppinen2025::Colors::kWhite;
   p.seed = 7;
   return p;
 }
 
 // A footprint whose filter standard deviation is `cells` level-0 cells at uv.
-FootprintQuery<double> footprint(V2 uv, double cells, const KemppinenParams<double>& p) {
+FootprintQuery<double> footprint(V2 uv, double cells, const kemppinen2025::Params<double>& p) {
   const double d = cells / std::sqrt(p.density) / p.filter;
   return {uv, {d, 0}, {0, d}};
 }
@@ -44,7 +44,7 @@ FootprintQuery<double> footprint(V2 uv, double cells, const KemppinenParams<doub
 TEST(KemppinenErf, RationalWithinAbramowitzStegunBound) {
   double worst = 0;
   for (double x = -6; x <= 6; x += 1e-3)
-    worst = std::max(worst, std::abs(erf_rational(x) - std::erf(x)));
+    worst = std::max(worst, std::abs(kemppinen2025::erf_rational(x) - std::erf(x)));
   EXPECT_LT(worst, 3e-7);
   EXPECT_GT(worst, 1e-9);  // it is an approximation, not std::erf
 }
@@ -53,20 +53,20 @@ TEST(KemppinenRoulette, ExpectationIsTheWeightAwayFromTheEnds) {
   for (double w : {0.2, 0.25, 0.5, 0.75, 0.8}) {  // [2ε, 1 − 2ε]: the window is never clipped
     double mean = 0;
     const int n = 200000;
-    for (int i = 0; i < n; ++i) mean += kemppinen_roulette((i + 0.5) / n, w);
+    for (int i = 0; i < n; ++i) mean += kemppinen2025::roulette((i + 0.5) / n, w);
     EXPECT_NEAR(mean / n, w, 1e-6) << w;
   }
-  EXPECT_EQ(kemppinen_roulette(0.5, 1.0), 1.0);
-  EXPECT_EQ(kemppinen_roulette(0.5, 0.0), 0.0);
+  EXPECT_EQ(kemppinen2025::roulette(0.5, 1.0), 1.0);
+  EXPECT_EQ(kemppinen2025::roulette(0.5, 0.0), 0.0);
 }
 
 TEST(KemppinenGrid, BlockStartCoversTheNearestCells) {
-  EXPECT_EQ(kemppinen_block_start(3.7, 1), 3);
-  EXPECT_EQ(kemppinen_block_start(3.7, 2), 3);
-  EXPECT_EQ(kemppinen_block_start(3.2, 2), 2);
-  EXPECT_EQ(kemppinen_block_start(3.2, 3), 2);
-  EXPECT_EQ(kemppinen_block_start(3.7, 4), 2);
-  EXPECT_EQ(kemppinen_block_start(-0.2, 1), -1);
+  EXPECT_EQ(kemppinen2025::block_start(3.7, 1), 3);
+  EXPECT_EQ(kemppinen2025::block_start(3.7, 2), 3);
+  EXPECT_EQ(kemppinen2025::block_start(3.2, 2), 2);
+  EXPECT_EQ(kemppinen2025::block_start(3.2, 3), 2);
+  EXPECT_EQ(kemppinen2025::block_start(3.7, 4), 2);
+  EXPECT_EQ(kemppinen2025::block_start(-0.2, 1), -1);
 }
 
 TEST(DiskRectArea, KnownAreas) {
@@ -89,11 +89,11 @@ TEST(DiskRectArea, KnownAreas) {
 }
 
 TEST(Kemppinen, LodPutsTheFilterOnOneToTwoCells) {
-  const KemppinenParams<double> p = base_params();
+  const kemppinen2025::Params<double> p = base_params();
   const double res = std::sqrt(p.density);
   for (double cells : {1.0, 3.0, 17.0, 100.0}) {
     const FootprintQuery<double> fp = footprint({0.3, 0.6}, cells, p);
-    const double lambda = kemppinen_lod(kemppinen_spatial_covariance(p, fp, res), res);
+    const double lambda = kemppinen2025::lod(kemppinen2025::spatial_covariance(p, fp, res), res);
     const double cell = std::exp2(std::floor(lambda)) / res;  // cell size at ⌊λ⌋
     const double two_sigma = 2 * cells / res;
     EXPECT_GE(two_sigma / cell, 1 - 1e-9) << cells;
@@ -103,10 +103,10 @@ TEST(Kemppinen, LodPutsTheFilterOnOneToTwoCells) {
 
 TEST(Kemppinen, ConstantPointsVisitedAndLevelWeights) {
   for (int side : {1, 2, 3, 4}) {
-    const KemppinenParams<double> p = base_params(side);
+    const kemppinen2025::Params<double> p = base_params(side);
     for (double cells : {0.1, 1.0, 30.0, 1e4}) {
-      const auto r = kemppinen_eval(p, GGX<double>{0.3, 0.3}, footprint({0.2, 0.1}, cells, p),
-                                    V3{0.1, 0.05, 0.99});
+      const auto r = kemppinen2025::eval(p, GGX<double>{0.3, 0.3}, footprint({0.2, 0.1}, cells, p),
+                                         V3{0.1, 0.05, 0.99});
       EXPECT_EQ(r.points, 2 * side * side * side * side);
       EXPECT_NEAR(r.w0 + r.w1, 1, 1e-15);
       EXPECT_GE(r.w1, 0);
@@ -117,7 +117,7 @@ TEST(Kemppinen, ConstantPointsVisitedAndLevelWeights) {
 // Close up (λ = 0: one angular cell holds the whole square, so B(k) = □ and C = 0) with k = 16
 // the 4×4 spatial block holds the filter: Eq. 11 equals the brute-force Eq. 5.
 TEST(Kemppinen, MatchesBruteForceEq5CloseUp) {
-  const KemppinenParams<double> p = base_params(4);
+  const kemppinen2025::Params<double> p = base_params(4);
   const GGX<double> ggx{0.2, 0.2};
   double worst = 0, peak = 0;
   for (int i = 0; i < 40; ++i) {
@@ -125,8 +125,8 @@ TEST(Kemppinen, MatchesBruteForceEq5CloseUp) {
     const FootprintQuery<double> fp = footprint(uv, 0.3, p);
     for (double t : {0.0, 0.05, 0.1}) {
       const V3 h = normalize(V3{t, 0.5 * t, 1});
-      const auto r = kemppinen_eval(p, ggx, fp, h);
-      const V3 ref = kemppinen_reference_filtered(p, ggx, fp, h);
+      const auto r = kemppinen2025::eval(p, ggx, fp, h);
+      const V3 ref = kemppinen2025::reference_filtered(p, ggx, fp, h);
       EXPECT_EQ(r.lambda, 0.0);
       EXPECT_NEAR(r.compensation_part.x, 0, 1e-12);
       worst = std::max(worst, std::abs(r.d.x - ref.x));
@@ -141,7 +141,7 @@ TEST(Kemppinen, MatchesBruteForceEq5CloseUp) {
 // D★^f over positions approaches D (corrected normalisation), and without C it does not.
 TEST(Kemppinen, FarFieldMeanOverPositionsApproachesD) {
   for (int side : {2, 4}) {
-    KemppinenParams<double> p = base_params(side);
+    kemppinen2025::Params<double> p = base_params(side);
     const GGX<double> ggx{0.3, 0.3};
     const V3 h = normalize(V3{0.2, -0.1, 1});
     double mean = 0, mean_nc = 0;
@@ -151,9 +151,9 @@ TEST(Kemppinen, FarFieldMeanOverPositionsApproachesD) {
                   counter_uniform<double>(3, std::uint64_t(i), 1) * 50};
       const FootprintQuery<double> fp = footprint(uv, 300, p);
       p.compensate = true;
-      mean += kemppinen_eval(p, ggx, fp, h).d.x;
+      mean += kemppinen2025::eval(p, ggx, fp, h).d.x;
       p.compensate = false;
-      mean_nc += kemppinen_eval(p, ggx, fp, h).d.x;
+      mean_nc += kemppinen2025::eval(p, ggx, fp, h).d.x;
     }
     mean /= n;
     mean_nc /= n;
@@ -164,25 +164,25 @@ TEST(Kemppinen, FarFieldMeanOverPositionsApproachesD) {
 }
 
 TEST(Kemppinen, PrintedNormalizationIsFourOverPiBrighter) {
-  KemppinenParams<double> p = base_params();
+  kemppinen2025::Params<double> p = base_params();
   const GGX<double> ggx{0.3, 0.3};
   const FootprintQuery<double> fp = footprint({0.4, 0.4}, 2, p);
   const V3 h = normalize(V3{0.1, 0.1, 1});
-  const double c = kemppinen_eval(p, ggx, fp, h).d.x;
-  p.normalization = KemppinenNormalization::kPrinted;
-  const double pr = kemppinen_eval(p, ggx, fp, h).d.x;
+  const double c = kemppinen2025::eval(p, ggx, fp, h).d.x;
+  p.normalization = kemppinen2025::Normalization::kPrinted;
+  const double pr = kemppinen2025::eval(p, ggx, fp, h).d.x;
   EXPECT_NEAR(pr / c, 4 / std::numbers::pi, 1e-12);
 }
 
 // Found by kemppinen2025-fig2-3: Beckmann's D underflows to 0 near the horizon, where σ = 0 made
 // the angular Gaussian 0/0 and D★^f NaN. It must be finite there (0 where D = 0) for every query.
 TEST(Kemppinen, FiniteWhereTheNdfUnderflows) {
-  const KemppinenParams<double> p = base_params();
+  const kemppinen2025::Params<double> p = base_params();
   const Beckmann<double> beckmann{0.5, 0.5};
   for (double t : {1.45, 1.5, 1.55, 1.57}) {
     const V3 h{std::sin(t), 0, std::cos(t)};
     for (double cells : {1.0, 8.0, 1e3}) {
-      const auto r = kemppinen_eval(p, beckmann, footprint({0.5, 0.5}, cells, p), h);
+      const auto r = kemppinen2025::eval(p, beckmann, footprint({0.5, 0.5}, cells, p), h);
       EXPECT_TRUE(std::isfinite(r.d.x)) << "theta " << t << " cells " << cells;
       if (beckmann.D(h) == 0) {
         EXPECT_EQ(r.d.x, 0.0);
@@ -192,36 +192,36 @@ TEST(Kemppinen, FiniteWhereTheNdfUnderflows) {
 }
 
 TEST(Kemppinen, ColorsAndExpectedColor) {
-  KemppinenParams<double> p = base_params();
-  p.colors = KemppinenColors::kRedYellow;
+  kemppinen2025::Params<double> p = base_params();
+  p.colors = kemppinen2025::Colors::kRedYellow;
   V3 mean{0, 0, 0};
   const int n = 100000;
   for (int i = 0; i < n; ++i)
-    mean = mean + kemppinen_color(p.colors, counter_uniform<double>(1, std::uint64_t(i), 0));
-  const V3 e = kemppinen_expected_color<double>(p.colors);
+    mean = mean + kemppinen2025::color(p.colors, counter_uniform<double>(1, std::uint64_t(i), 0));
+  const V3 e = kemppinen2025::expected_color<double>(p.colors);
   EXPECT_NEAR(mean.x / n, e.x, 1e-12);
   EXPECT_NEAR(mean.y / n, e.y, 0.005);
   EXPECT_NEAR(mean.z / n, e.z, 0.001);
   // Far field: the colour of D★^f is the expected colour.
-  const auto r =
-      kemppinen_eval(p, Beckmann<double>{0.3, 0.3}, footprint({0.3, 0.3}, 1e4, p), V3{0, 0, 1});
+  const auto r = kemppinen2025::eval(p, Beckmann<double>{0.3, 0.3}, footprint({0.3, 0.3}, 1e4, p),
+                                     V3{0, 0, 1});
   EXPECT_NEAR(r.d.y / r.d.x, e.y, 0.02);
 }
 
 TEST(Kemppinen, TriplanarOnAnAxisPlaneIsOneProcess) {
-  const KemppinenParams<double> p = base_params();
+  const kemppinen2025::Params<double> p = base_params();
   const GGX<double> ggx{0.3, 0.3};
   const V3 pos{0.3, 0.7, 0.2}, dx{1e-3, 0, 0}, dy{0, 1e-3, 0};
-  const auto r = kemppinen_eval_triplanar(p, ggx, pos, dx, dy, V3{0, 0, 1}, V3{0, 0, 1});
+  const auto r = kemppinen2025::eval_triplanar(p, ggx, pos, dx, dy, V3{0, 0, 1}, V3{0, 0, 1});
   EXPECT_EQ(r.points, 3 * 2 * 16);
   // Only the z plane has weight: its value is the uv process (process 0) at uv = (x, y).
-  const auto one = kemppinen_eval_process(p, ggx, {{pos.x, pos.y}, {dx.x, dx.y}, {dy.x, dy.y}},
-                                          V3{0, 0, 1}, 0, 1.0);
+  const auto one = kemppinen2025::eval_process(p, ggx, {{pos.x, pos.y}, {dx.x, dx.y}, {dy.x, dy.y}},
+                                               V3{0, 0, 1}, 0, 1.0);
   EXPECT_EQ(r.d.x, one.d.x);
 }
 
 TEST(KemppinenSampling, MarginalDensityIntegratesToAcceptanceRate) {
-  KemppinenParams<double> p = base_params(1);
+  kemppinen2025::Params<double> p = base_params(1);
   p.microroughness = 0.05;
   const GGX<double> ggx{0.4, 0.4};
   const FootprintQuery<double> fp = footprint({0.41, 0.37}, 2.5, p);
@@ -230,12 +230,13 @@ TEST(KemppinenSampling, MarginalDensityIntegratesToAcceptanceRate) {
   double integral = 0;
   for (int i = 0; i < m; ++i)
     for (int j = 0; j < m; ++j)
-      integral += kemppinen_sample_density_square(p, ggx, fp, V2{(i + 0.5) / m, (j + 0.5) / m});
+      integral +=
+          kemppinen2025::sample_density_square(p, ggx, fp, V2{(i + 0.5) / m, (j + 0.5) / m});
   integral /= double(m) * m;
   int ok = 0;
   const int n = 20000;
   for (int i = 0; i < n; ++i)
-    ok += kemppinen_sample_half(p, ggx, fp, mix64(std::uint64_t(i) + 1)).ok;
+    ok += kemppinen2025::sample_half(p, ggx, fp, mix64(std::uint64_t(i) + 1)).ok;
   EXPECT_GT(integral, 0.5);
   EXPECT_LE(integral, 1 + 1e-3);
   EXPECT_NEAR(integral, double(ok) / n, 0.02);

@@ -91,13 +91,14 @@ TEST(KemppinenTriplanar, PlaneNormalToXIsProcessOne) {
   const auto tri = KemppinenGGX::params<double>(values(1, 90, 0));
   for (std::uint64_t i = 0; i < 20; ++i) {
     const ModelQuery<double> q = query(i, 1.5);
-    const KemppinenTriplanarInput<double> in = kemppinen_triplanar_input(q.footprint, tri.normal);
+    const kemppinen2025::TriplanarInput<double> in =
+        kemppinen2025::triplanar_input(q.footprint, tri.normal);
     EXPECT_NEAR(in.pos.x, 0, 1e-15);
     const V3 h = half_vector(q.wi, q.wo);
-    const auto r = kemppinen_eval_triplanar(tri.glint, tri.ndf, in, h);
-    const auto one = kemppinen_eval_process(
-        tri.glint, tri.ndf, kemppinen_triplanar_footprint(0, in.pos, in.dpos_dx, in.dpos_dy), h,
-        kKemppinenTriplanarProcess[0], 1.0);
+    const auto r = kemppinen2025::eval_triplanar(tri.glint, tri.ndf, in, h);
+    const auto one = kemppinen2025::eval_process(
+        tri.glint, tri.ndf, kemppinen2025::triplanar_footprint(0, in.pos, in.dpos_dx, in.dpos_dy),
+        h, kemppinen2025::kTriplanarProcess[0], 1.0);
     EXPECT_NEAR(r.d.x, one.d.x, 1e-9 * (1 + one.d.x)) << i;
     EXPECT_EQ(r.lambda, one.lambda);
   }
@@ -105,18 +106,18 @@ TEST(KemppinenTriplanar, PlaneNormalToXIsProcessOne) {
 
 TEST(KemppinenTriplanar, BlendWeightsSumToOne) {
   for (std::uint64_t i = 0; i < 1000; ++i) {
-    const V3 n = kemppinen_object_normal(180 * counter_uniform<double>(13, i, 0),
-                                         360 * counter_uniform<double>(13, i, 1));
-    const V3 w = kemppinen_triplanar_weights(n);
+    const V3 n = kemppinen2025::object_normal(180 * counter_uniform<double>(13, i, 0),
+                                              360 * counter_uniform<double>(13, i, 1));
+    const V3 w = kemppinen2025::triplanar_weights(n);
     EXPECT_NEAR(w.x + w.y + w.z, 1.0, 1e-15);
     EXPECT_GE(w.x, 0);
     EXPECT_GE(w.y, 0);
     EXPECT_GE(w.z, 0);
-    const V3 wm = kemppinen_triplanar_weights(-1.0 * n);  // the back side blends alike
+    const V3 wm = kemppinen2025::triplanar_weights(-1.0 * n);  // the back side blends alike
     EXPECT_EQ(w.x, wm.x);
     EXPECT_EQ(w.z, wm.z);
   }
-  const V3 z = kemppinen_triplanar_weights(V3{0, 0, 1});
+  const V3 z = kemppinen2025::triplanar_weights(V3{0, 0, 1});
   EXPECT_EQ(z.x, 0);
   EXPECT_EQ(z.z, 1);
 }
@@ -129,8 +130,9 @@ TEST(KemppinenTriplanar, MixtureDensityIntegratesToAcceptanceRate) {
   m.glint.side = 1;
   m.glint.microroughness = 0.05;
   const ModelQuery<double> q = query(3, 2.5);
-  const KemppinenTriplanarInput<double> in = kemppinen_triplanar_input(q.footprint, m.normal);
-  const V3 w = kemppinen_triplanar_weights(in.normal);
+  const kemppinen2025::TriplanarInput<double> in =
+      kemppinen2025::triplanar_input(q.footprint, m.normal);
+  const V3 w = kemppinen2025::triplanar_weights(in.normal);
   EXPECT_NEAR(w.x, 1.0 / 3, 1e-5);
   const int g = 120;
   double integral = 0;
@@ -139,16 +141,17 @@ TEST(KemppinenTriplanar, MixtureDensityIntegratesToAcceptanceRate) {
       const V2 x{(i + 0.5) / g, (j + 0.5) / g};
       const double wa[3] = {w.x, w.y, w.z};
       for (int a = 0; a < 3; ++a)
-        integral += wa[a] * kemppinen_sample_density_square(
-                                m.glint, m.ndf,
-                                kemppinen_triplanar_footprint(a, in.pos, in.dpos_dx, in.dpos_dy), x,
-                                kKemppinenTriplanarProcess[a]);
+        integral +=
+            wa[a] * kemppinen2025::sample_density_square(
+                        m.glint, m.ndf,
+                        kemppinen2025::triplanar_footprint(a, in.pos, in.dpos_dx, in.dpos_dy), x,
+                        kemppinen2025::kTriplanarProcess[a]);
     }
   integral /= double(g) * g;
   int ok = 0;
   const int n = 20000;
   for (int i = 0; i < n; ++i)
-    ok += kemppinen_triplanar_sample_half(m.glint, m.ndf, in, mix64(std::uint64_t(i) + 1)).ok;
+    ok += kemppinen2025::triplanar_sample_half(m.glint, m.ndf, in, mix64(std::uint64_t(i) + 1)).ok;
   EXPECT_GT(integral, 0.2);  // not trivially empty
   EXPECT_NEAR(integral, double(ok) / n, 0.02);
 }

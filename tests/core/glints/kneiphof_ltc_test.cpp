@@ -25,11 +25,12 @@ Vec3<double> dir(double theta_deg, double phi_deg) {
 TEST(KneiphofLtc, FacingRectangleIsAValidFrontFacingPolygon) {
   for (double theta : {0.0, 30.0, 80.0})
     for (double tilt : {-60.0, 0.0, 45.0}) {
-      const auto v = facing_rectangle(dir(theta, 20), 2.0, 0.5, 0.2, 0.3, tilt * 0.0174533);
+      const auto v =
+          kneiphof2024::facing_rectangle(dir(theta, 20), 2.0, 0.5, 0.2, 0.3, tilt * 0.0174533);
       const PolygonLight<double> checked =
           make_polygon_light(std::span<const Vec3<double>>(v), {1, 1, 1});
       EXPECT_NO_THROW(check_ltc_polygon(v));
-      const PolygonLight<double> fast = rectangle_polygon_light(v);
+      const PolygonLight<double> fast = kneiphof2024::rectangle_polygon_light(v);
       EXPECT_TRUE(static_cast<bool>(fast.in_front({0, 0, 0})));
       EXPECT_NEAR(fast.area, 0.1, 1e-12);
       EXPECT_NEAR(length(fast.normal - checked.normal), 0, 1e-12);
@@ -42,19 +43,22 @@ TEST(KneiphofLtc, LtcProbabilityAndRadianceAreNearMonteCarlo) {
   const double alpha = 0.25;
   const GGX<double> g{alpha, alpha};
   const Vec3<double> wi = dir(40, 180), mirror = dir(40, 0);
-  const auto v = facing_rectangle(mirror, 1.0, 0.5, 0.5, 0, 0);
-  const AreaLightTerms mc =
-      area_light_terms_mc(g, wi, rectangle_polygon_light(v), {0, 0, 0}, 1 << 16, 11, 0);
+  const auto v = kneiphof2024::facing_rectangle(mirror, 1.0, 0.5, 0.5, 0, 0);
+  const kneiphof2024::AreaLightTerms mc = kneiphof2024::area_light_terms_mc(
+      g, wi, kneiphof2024::rectangle_polygon_light(v), {0, 0, 0}, 1 << 16, 11, 0);
   const LtcTableView& t = ltc_ggx_table_view();
-  const auto brdf = area_light_terms_ltc(t, alpha, wi, v.data(), 4, KneiphofAreaP::kBrdfLobe);
-  const auto ndf = area_light_terms_ltc(t, alpha, wi, v.data(), 4, KneiphofAreaP::kNdfLobe);
+  const auto brdf =
+      kneiphof2024::area_light_terms_ltc(t, alpha, wi, v.data(), 4, kneiphof2024::AreaP::kBrdfLobe);
+  const auto ndf =
+      kneiphof2024::area_light_terms_ltc(t, alpha, wi, v.data(), 4, kneiphof2024::AreaP::kNdfLobe);
   EXPECT_NEAR(brdf.d_omega_h / mc.d_omega_h, 1, 0.1);
   EXPECT_NEAR(ndf.d_omega_h / mc.d_omega_h, 1, 0.1);
   EXPECT_NEAR(brdf.lo_over_li / mc.lo_over_li, 1, 0.1);
   // Below the horizon the view sees nothing.
-  EXPECT_EQ(
-      area_light_terms_ltc(t, alpha, dir(95, 0), v.data(), 4, KneiphofAreaP::kBrdfLobe).d_omega_h,
-      0.0);
+  EXPECT_EQ(kneiphof2024::area_light_terms_ltc(t, alpha, dir(95, 0), v.data(), 4,
+                                               kneiphof2024::AreaP::kBrdfLobe)
+                .d_omega_h,
+            0.0);
 }
 
 TEST(KneiphofKleinArea, IntermediatesFollowEq16) {

@@ -109,7 +109,7 @@ TEST(PodeeShade, SelectsTheClosestPointOfTheReflectionSpace) {
               shift.y + s * (oy[k] + 0.3 * (counter_uniform<double>(23, t, k) - 0.5))};
     const auto r = corners_from_plane(l, p);
     const double tan_radius = 0.02 + 0.1 * counter_uniform<double>(21, t, 3);
-    const PodeeResult<double> res = podee_shade(r, l, tan_radius);
+    const podee::Result<double> res = podee::shade(r, l, tan_radius);
     // Brute force: bilinear combinations of the corner vectors, projected.
     const OrthonormalBasis<double> b = basis_from_z(l);
     double best = 1e300;
@@ -132,9 +132,10 @@ TEST(PodeeShade, SelectsTheClosestPointOfTheReflectionSpace) {
     // rounding
     EXPECT_EQ(res.lit > 0, res.weight > 1e-12) << t << " " << res.weight;
     // The wrong rules never select a closer point, and are farther on some quads.
-    EXPECT_GE(podee_shade(r, l, tan_radius, PodeeWeighting::kExact, PodeeSelection::kNearestCorner)
-                  .distance,
-              res.distance - 1e-15);
+    EXPECT_GE(
+        podee::shade(r, l, tan_radius, podee::Weighting::kExact, podee::Selection::kNearestCorner)
+            .distance,
+        res.distance - 1e-15);
   }
 }
 
@@ -143,16 +144,16 @@ TEST(PodeeShade, WeightsAreAreaFractions) {
   const Vec2<double> p[4] = {{-0.1, -0.1}, {0.1, -0.1}, {-0.1, 0.1}, {0.1, 0.1}};
   const auto r = corners_from_plane(l, p);
   // A circle of radius 0.05 fully inside the 0.2 × 0.2 quad: weight = π 0.05² / 0.04.
-  const PodeeResult<double> in = podee_shade(r, l, 0.05);
+  const podee::Result<double> in = podee::shade(r, l, 0.05);
   EXPECT_TRUE(in.inside);
   EXPECT_NEAR(in.weight, kPiD * 0.0025 / 0.04, 1e-9);
-  EXPECT_NEAR(podee_shade(r, l, 0.05, PodeeWeighting::kQuadAsCircle).weight, in.weight, 1e-9);
-  EXPECT_EQ(podee_shade(r, l, 0.05, PodeeWeighting::kNone).weight, 1.0);
+  EXPECT_NEAR(podee::shade(r, l, 0.05, podee::Weighting::kQuadAsCircle).weight, in.weight, 1e-9);
+  EXPECT_EQ(podee::shade(r, l, 0.05, podee::Weighting::kNone).weight, 1.0);
   // A circle covering the quad: weight 1.
-  EXPECT_NEAR(podee_shade(r, l, 0.5).weight, 1.0, 1e-12);
+  EXPECT_NEAR(podee::shade(r, l, 0.5).weight, 1.0, 1e-12);
   // Light off to the side: not lit, weight 0.
   const Vec3<double> l2 = normalize(Vec3<double>{0.5, 0, 1});
-  const PodeeResult<double> off = podee_shade(r, l2, 0.05);
+  const podee::Result<double> off = podee::shade(r, l2, 0.05);
   EXPECT_FALSE(off.inside);
   EXPECT_EQ(off.lit, 0.0);
   EXPECT_EQ(off.value, 0.0);
@@ -166,25 +167,25 @@ TEST(PodeeShade, FloatAgreesWithDouble) {
   for (int k = 0; k < 4; ++k) rf[k] = {float(r[k].x), float(r[k].y), float(r[k].z)};
   const Vec3<float> lf{float(l.x), float(l.y), float(l.z)};
   for (int w = 0; w < 3; ++w) {
-    const auto d = podee_shade(r, l, 0.07, PodeeWeighting(w));
-    const auto f = podee_shade(rf, lf, 0.07f, PodeeWeighting(w));
+    const auto d = podee::shade(r, l, 0.07, podee::Weighting(w));
+    const auto f = podee::shade(rf, lf, 0.07f, podee::Weighting(w));
     EXPECT_NEAR(f.weight, d.weight, 2e-4) << w;
     EXPECT_NEAR(f.distance, d.distance, 1e-5) << w;
   }
 }
 
 TEST(PodeeShade, HostCheckRejectsBadLights) {
-  EXPECT_THROW(podee_require_light("podee", 0.0, 1.0), ParameterError);
-  EXPECT_THROW(podee_require_light("podee", -1.0, 1.0), ParameterError);
-  EXPECT_THROW(podee_require_light("podee", 0.1, -0.5), ParameterError);
-  EXPECT_NO_THROW(podee_require_light("podee", 0.1, 0.5));
+  EXPECT_THROW(podee::require_light("podee", 0.0, 1.0), ParameterError);
+  EXPECT_THROW(podee::require_light("podee", -1.0, 1.0), ParameterError);
+  EXPECT_THROW(podee::require_light("podee", 0.1, -0.5), ParameterError);
+  EXPECT_NO_THROW(podee::require_light("podee", 0.1, 0.5));
   try {
-    podee_require_light("podee scene", 0.0, 1.0);
+    podee::require_light("podee scene", 0.0, 1.0);
   } catch (const ParameterError& e) {
     EXPECT_EQ(std::string(e.what()),
               "podee scene: disk radius = 0 is out of range (valid: a finite radius > 0)");
   }
-  EXPECT_NEAR(podee_tan_radius(std::cos(0.1)), std::tan(0.1), 1e-14);
+  EXPECT_NEAR(podee::tan_radius(std::cos(0.1)), std::tan(0.1), 1e-14);
 }
 
 }  // namespace
