@@ -90,10 +90,20 @@ inline constexpr double kLeanMargin = 0.95;
 
 LeanMeasurement measure_lean(const LeanBudget& b, std::uint64_t seed);
 bool lean_holds(const LeanMeasurement& m);
+// chermain.lean-correlation's measure and decide on `replicates` replicates of budget `b`: the
+// genuine verdict and the control's (a near-truth image, an independent reference of at least 256
+// spp × 1.03, in place of both other methods), with the control's mean margin (negative: LEAN with
+// rho is not below 0.95 × the near-truth image's RMSE).
+struct LeanDecisionProbe {
+  Verdict genuine, near_truth;
+  double control_margin = 0;
+  std::string control;  // what the control measured
+};
+LeanDecisionProbe probe_chermain_lean(const LeanBudget& b, int replicates);
 
 // Probes: correct = the check's statistic on the correct input, control = on its negative control.
-ControlProbe probe_chermain_kernel_normalized();     // |∫−1|; control: clamp-to-edge
-ControlProbe probe_chermain_dictionary_converges();  // last-level L1; control: means × √2
-ControlProbe probe_chermain_correlation();           // |ρ̂ − ρ|; control: the 2020 matrix
+ControlProbe probe_chermain_kernel_normalized();     // |∫−1|; control: every texel × 1.02
+ControlProbe probe_chermain_dictionary_converges();  // last-level L1; control: means × 1.02
+ControlProbe probe_chermain_correlation();           // |ρ̂ − ρ|; control: ρ off by 0.03
 
 }  // namespace glintlab::verify

@@ -10,6 +10,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <stdexcept>
 
 #include "core/math/rng.h"
 
@@ -142,12 +143,14 @@ GofOutcome run_gof_family(const std::string& id, const std::vector<GofCase>& cas
   return out;
 }
 
-Verdict summarize_gof(const GofOutcome& o, const std::vector<GofControl>& controls, CheckResult& r,
-                      std::size_t& worst) {
+namespace {
+
+// The family's p-values and power into r; returns the configuration with the smallest raw p.
+std::size_t record_family(const GofOutcome& o, CheckResult& r) {
   const std::size_t m = o.results.size();
   r.configurations = int(m);
   r.raw_p_values.clear();
-  worst = 0;
+  std::size_t worst = 0;
   double min_adjusted = 1;
   double coarse_global = 0, fine_cell = 0;
   for (std::size_t i = 0; i < m; ++i) {
@@ -170,33 +173,113 @@ Verdict summarize_gof(const GofOutcome& o, const std::vector<GofControl>& contro
       "over the whole domain (coarse bins), or ≥ {:.3g} confined to one fine cell (worst "
       "configuration)",
       n, o.configuration_level, coarse_global, fine_cell);
+  return worst;
+}
 
+// Each control's largest p over its cases and whether it was rejected, as one line; sets
+// r.control_p_value to the largest p over all controls.
+// caught(c, k): whether case k of control c was caught.
+template <class Caught>
+std::string control_text(const GofOutcome& o, const std::vector<GofControl>& controls,
+                         const std::vector<bool>& rejected, Caught&& caught, CheckResult& r) {
   std::string text;
-  r.control_rejected = !controls.empty();
   double largest = 0;
   for (std::size_t c = 0; c < controls.size(); ++c) {
     largest = std::max(largest, o.control_p[c]);
-    r.control_rejected = r.control_rejected && o.control_rejected[c];
     std::string where;
-    if (!o.control_rejected[c])
+    if (!rejected[c])
       for (std::size_t k = 0; k < o.control_results[c].size(); ++k)
-        if (!o.control_results[c][k].rejects(o.configuration_level))
+        if (!caught(c, k))
           where = fmt::format(" (kept: {}: {})", controls[c].cases[k].wrong.label,
                               o.control_results[c][k].summary());
     text += fmt::format("{}{}: largest p {:.3g} over {} case(s), {}{}", text.empty() ? "" : "; ",
                         controls[c].name, o.control_p[c], controls[c].cases.size(),
-                        o.control_rejected[c] ? "rejected" : "NOT rejected", where);
+                        rejected[c] ? "rejected" : "NOT rejected", where);
   }
-  r.control =
-      fmt::format("rejected at the first Holm level {:.2g}: {}", o.configuration_level, text);
   r.control_p_value = largest;
+  return text;
+}
+
+}  // namespace
+
+Verdict decide_gof(const std::vector<ChiSquareResult>& results) {
+  std::vector<double> p;
+  bool hard = false, inconclusive = false;
+  for (const ChiSquareResult& x : results) {
+    p.push_back(family_p(x));
+    hard = hard || x.hard_fail;
+    inconclusive = inconclusive || (x.inconclusive && !x.hard_fail);
+  }
+  if (holm_sidak(p, check_level()).rejections > 0 || hard) return Verdict::kFails;
+  return inconclusive ? Verdict::kInconclusive : Verdict::kHolds;
+}
+
+bool GofControlVerdicts::rejected(std::size_t control) const {
+  return std::all_of(cases[control].begin(), cases[control].end(),
+                     [](Verdict v) { return v == Verdict::kFails; });
+}
+
+GofControlVerdicts decide_gof_controls(const GofOutcome& o,
+                                       const std::vector<GofControl>& controls) {
+  GofControlVerdicts out;
+  std::vector<Verdict> all;
+  for (std::size_t c = 0; c < controls.size(); ++c) {
+    out.cases.emplace_back();
+    for (std::size_t k = 0; k < controls[c].cases.size(); ++k) {
+      const int at = controls[c].cases[k].position();
+      if (at < 0 || std::size_t(at) >= o.results.size())
+        throw std::logic_error("control case " + controls[c].cases[k].wrong.label +
+                               " replaces no configuration of the family");
+      std::vector<ChiSquareResult> family = o.results;
+      family[std::size_t(at)] = o.control_results[c][k];
+      out.cases.back().push_back(decide_gof(family));
+      all.push_back(out.cases.back().back());
+    }
+  }
+  out.verdict = control_verdict_of_cases(all);
+  return out;
+}
+
+std::size_t describe_gof(const GofOutcome& o, const std::vector<GofControl>& controls,
+                         const GofControlVerdicts& cv, CheckResult& r) {
+  const std::size_t worst = record_family(o, r);
+  std::vector<bool> rejected;
+  for (std::size_t c = 0; c < controls.size(); ++c) rejected.push_back(cv.rejected(c));
+  const std::string text = control_text(
+      o, controls, rejected,
+      [&](std::size_t c, std::size_t k) { return cv.cases[c][k] == Verdict::kFails; }, r);
+  record_control(r, cv.verdict);
+  r.control = fmt::format(
+      "each wrong case in place of its configuration, decided as the family (a case alone is "
+      "caught at the first Holm level {:.2g}): {} → {} ({})",
+      o.configuration_level, text, to_string(cv.verdict),
+      r.control_rejected ? "rejected" : "NOT rejected");
+  return worst;
+}
+
+Verdict summarize_gof(const GofOutcome& o, const std::vector<GofControl>& controls, CheckResult& r,
+                      std::size_t& worst) {
+  worst = record_family(o, r);
+  r.control_rejected = !controls.empty();
+  for (std::size_t c = 0; c < controls.size(); ++c)
+    r.control_rejected = r.control_rejected && o.control_rejected[c];
+  r.control = fmt::format("rejected at the first Holm level {:.2g}: {}", o.configuration_level,
+                          control_text(
+                              o, controls, o.control_rejected,
+                              [&](std::size_t c, std::size_t k) {
+                                return o.control_results[c][k].rejects(o.configuration_level);
+                              },
+                              r));
   // The family's decision on the wrong inputs: a rejected control case is "fails" there; every
   // control family rejected makes the control's verdict fails.
   r.control_verdict = r.control_rejected ? Verdict::kFails : Verdict::kHolds;
+  return decide_gof(o.results);
+}
 
-  if (o.family.rejections > 0 || o.hard_failures > 0) return Verdict::kFails;
-  if (o.inconclusive > 0) return Verdict::kInconclusive;
-  return Verdict::kHolds;
+Verdict control_verdict_of_cases(const std::vector<Verdict>& cases) {
+  for (Verdict v : cases)
+    if (v != Verdict::kFails) return v;
+  return cases.empty() ? Verdict::kInconclusive : Verdict::kFails;
 }
 
 Vec3<double> incidence(double theta_deg) {

@@ -49,6 +49,10 @@ struct GofControlCase {
   GofCase wrong;
   int plan_of = -1;
   double pdf_scale = 1;
+  // The configuration whose place the case takes when the control is decided as the family
+  // (decide_gof_controls); plan_of where that is ≥ 0.
+  int replaces = -1;
+  int position() const { return plan_of >= 0 ? plan_of : replaces; }
 };
 
 struct GofControl {
@@ -86,12 +90,39 @@ ChiSquareResult run_gof_case(const ChiSquarePlan& plan, const GofCase& c, std::u
 GofOutcome run_gof_family(const std::string& id, const std::vector<GofCase>& cases,
                           const std::vector<GofControl>& controls, const GofSize& size);
 
-// Fills raw_p_values, p_value, configurations, power and the control fields of r from the outcome,
-// and returns the family's verdict: fails where Holm–Šidák rejects a configuration or one fails
-// hard, inconclusive where none does but the cubature could not decide one, holds otherwise.
-// `worst` receives the index of the configuration with the smallest raw p.
+// Decide: the family's verdict from its configurations' results alone: fails where Holm–Šidák at
+// check_level() rejects a configuration or one fails hard, inconclusive where none does but the
+// cubature could not decide one, holds otherwise.
+Verdict decide_gof(const std::vector<ChiSquareResult>& results);
+
+// The controls decided by the same decision: each wrong case in place of the configuration it is
+// built on (GofControlCase::position), the family with it decided by decide_gof. A case that fails
+// there is one the check would catch; a control counts as rejected when every case fails.
+struct GofControlVerdicts {
+  std::vector<std::vector<Verdict>> cases;   // per control, per case
+  Verdict verdict = Verdict::kInconclusive;  // control_verdict_of_cases over every case
+  bool rejected(std::size_t control) const;  // every case of that control fails
+};
+GofControlVerdicts decide_gof_controls(const GofOutcome& o,
+                                       const std::vector<GofControl>& controls);
+
+// Describe: fills raw_p_values, p_value, configurations and power of r from the outcome, and the
+// control's text and largest p; records the control's verdict (record_control, so r.verdict must be
+// set). Returns the index of the configuration with the smallest raw p.
+std::size_t describe_gof(const GofOutcome& o, const std::vector<GofControl>& controls,
+                         const GofControlVerdicts& cv, CheckResult& r);
+
+// The older single step, kept for the Kemppinen checks: fills the fields describe_gof fills, with
+// each control case judged at the first Holm level (run_gof_family's control_rejected) and the
+// control's verdict set without record_control; returns decide_gof's verdict. `worst` receives the
+// index of the configuration with the smallest raw p.
 Verdict summarize_gof(const GofOutcome& o, const std::vector<GofControl>& controls, CheckResult& r,
                       std::size_t& worst);
+
+// The verdict of a control made of several wrong cases, each decided alone by the check's own
+// decision: fails only where every case fails (each alone would make the check fail); otherwise
+// the verdict of the first case that does not. Shared by the checks whose controls have cases.
+Verdict control_verdict_of_cases(const std::vector<Verdict>& cases);
 
 // A chi-square claim's configurations and controls at one budget, as its check runs them (exposed
 // for the tests in tests/verify/claims/, which run the controls at reduced sample counts).

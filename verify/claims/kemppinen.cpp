@@ -180,75 +180,115 @@ constexpr GofSize kQuick{100'000, 500'000, 600};
 constexpr GofSize kFull{10'000'000, 10'000'000, 4096};
 constexpr double kTolerance = 1e-6;  // on |log J ratios|; the measured FD error is ~1e-9
 
-CheckResult run(Budget b) {
+// Measure: (a) the printed factor and the analytic Jacobian against finite differences, per NDF;
+// (b) the chi-square family of what T transports (filled in by summarize_gof); (c) Eq. 3's reading
+// with the NDF's own distribution of normals, GGX D·cosθ against uniform (evidence, not decided).
+struct JacobianMeasured {
   JacobianReport ggx, beck;
+  std::vector<GofCase> cases;
+  std::vector<GofControl> controls;
+  GofOutcome outcome;
+  GofSize size;
+  Verdict family = Verdict::kInconclusive;  // the chi-square family's own verdict
+  std::size_t worst = 0;                    // its configuration with the smallest raw p
+  double family_p = 1, worst_p = 1;         // corrected p; raw p at `worst`
+  std::vector<double> evidence_p;           // (c), per α
+};
+
+JacobianMeasured measure_jacobian_claim(Budget b) {
+  JacobianMeasured m;
   for (const Alpha& a : kAlphas) {
-    measure_jacobian(GGX<double>{a.x, a.y}, true, ggx);
-    measure_jacobian(Beckmann<double>{a.x, a.y}, false, beck);
+    measure_jacobian(GGX<double>{a.x, a.y}, true, m.ggx);
+    measure_jacobian(Beckmann<double>{a.x, a.y}, false, m.beck);
   }
-  const std::vector<Config> g = family();
-  const auto [cases, ctl] = kemppinen_spec(b);
-  const GofSize size = b == Budget::kQuick ? kQuick : kFull;
-  const GofOutcome o = run_gof_family(kId, cases, ctl, size);
-
-  // Eq. 3's reading with the NDF's own distribution of normals (D·cosθ): GGX, against uniform.
-  std::vector<double> evidence_p;
+  auto [cases, ctl] = kemppinen_spec(b);
+  m.cases = std::move(cases);
+  m.controls = std::move(ctl);
+  m.size = b == Budget::kQuick ? kQuick : kFull;
+  m.outcome = run_gof_family(kId, m.cases, m.controls, m.size);
   for (std::size_t k = 0; k < kAlphas.size(); ++k) {
-    const Config c{true, kAlphas[k], Kind::kProjectedGgxUniform};
-    const GofCase gc = make_case(c);
-    const ChiSquarePlan plan = plan_gof_case(gc, size.n, o.configuration_level, size.fine_max_bins);
+    const GofCase gc = make_case({true, kAlphas[k], Kind::kProjectedGgxUniform});
+    const ChiSquarePlan plan =
+        plan_gof_case(gc, m.size.n, m.outcome.configuration_level, m.size.fine_max_bins);
     const ChiSquareResult r = run_gof_case(plan, gc, check_seed(kId, 1000 + k));
-    evidence_p.push_back(r.hard_fail ? 0.0 : r.p_value);
+    m.evidence_p.push_back(r.hard_fail ? 0.0 : r.p_value);
   }
-  const double evidence_max = *std::max_element(evidence_p.begin(), evidence_p.end());
+  return m;
+}
 
+double fd_error(const JacobianMeasured& m) { return std::max(m.ggx.fd_vs_true, m.beck.fd_vs_true); }
+double printed_error(const JacobianMeasured& m) {
+  return std::max(m.ggx.paper_vs_fd, m.beck.paper_vs_fd);
+}
+// The sensitivity of (a): the smallest |log| between the finite differences and J_T × 1.02.
+double fd_control_min(const JacobianMeasured& m) {
+  return std::min(m.ggx.control_min, m.beck.control_min);
+}
+
+// Decide, for a formula of |J_T| whose largest |log(J_formula / J_fd)| is `formula_vs_fd`: holds
+// when it agrees with the map's finite differences and the transported samples are uniform;
+// inconclusive when the finite differences or the family cannot decide.
+Verdict decide_jacobian(const JacobianMeasured& m, double formula_vs_fd) {
+  if (fd_error(m) > kTolerance || m.family == Verdict::kInconclusive) return Verdict::kInconclusive;
+  return formula_vs_fd <= kTolerance && m.family == Verdict::kHolds ? Verdict::kHolds
+                                                                    : Verdict::kFails;
+}
+
+std::string describe_jacobian(const JacobianMeasured& m) {
+  const JacobianReport& w = m.ggx.paper_vs_fd >= m.beck.paper_vs_fd ? m.ggx : m.beck;
+  const double evidence_max = *std::max_element(m.evidence_p.begin(), m.evidence_p.end());
+  const bool evidence_rejects = evidence_max <= m.outcome.configuration_level;
+  std::string out = fmt::format(
+      "Eq. 3 as printed {} the Jacobian of {} map (largest |log(J_paper/J_T)| {:.3g}, tolerance "
+      "{:g}): J_paper/J_T = 32/(π²‖Mᵀω‖) for GGX ({:.4g} … {:.4g}, formula to {:.1e}) and "
+      "16/(π² cosθ) for Beckmann ({:.4g} … {:.4g}, formula to {:.1e}), worst {}; J_T from finite "
+      "differences agrees with core/maps' analytic Jacobian to {:.1e}. Corrected: |J_T| = "
+      "|U_Ω|·p_T with p_T = D·cosθ (Beckmann) and D·‖Mᵀω‖/2 (GGX): samples of p_T pushed through "
+      "T {} on the disk ({} of {} chi-square configurations rejected, corrected p {:.3g}, {} "
+      "samples each); GGX normals of density D·cosθ pushed through T {} (largest p {:.3g} over {} "
+      "α, level {:.2g}){}",
+      printed_error(m) <= kTolerance ? "is" : "is not",
+      printed_error(m) <= kTolerance ? "each" : "either", printed_error(m), kTolerance,
+      m.ggx.ratio_min, m.ggx.ratio_max, m.ggx.formula_error, m.beck.ratio_min, m.beck.ratio_max,
+      m.beck.formula_error, w.worst, fd_error(m),
+      m.family == Verdict::kHolds ? "are uniform" : "are not shown uniform",
+      m.outcome.family.rejections, m.outcome.results.size(), m.family_p, m.size.n,
+      evidence_rejects ? "are not uniform" : "are not shown non-uniform", evidence_max,
+      m.evidence_p.size(), m.outcome.configuration_level,
+      evidence_rejects ? ", so for GGX not even D·cosθ is the transported density" : "");
+  if (m.family != Verdict::kHolds)
+    out += fmt::format("; family: smallest raw p {:.3g} at {} ({})", m.worst_p,
+                       m.cases[m.worst].label, m.outcome.results[m.worst].summary());
+  return out;
+}
+
+CheckResult run(Budget b) {
+  JacobianMeasured m = measure_jacobian_claim(b);
   CheckResult r;
-  std::size_t worst = 0;
-  const Verdict family_verdict = summarize_gof(o, ctl, r, worst);
-  const JacobianReport& w = ggx.paper_vs_fd >= beck.paper_vs_fd ? ggx : beck;
+  // summarize_gof fills the family's p-values, power and controls into r.
+  m.family = summarize_gof(m.outcome, m.controls, r, m.worst);
+  m.family_p = r.p_value.value_or(1);
+  m.worst_p = r.raw_p_values.empty() ? 1.0 : r.raw_p_values[m.worst];
   r.statistic = "max |log(J_paper / J_T)|, J_paper = D/|U_Ω| (Eq. 3), J_T the map's Jacobian";
-  r.value = std::max(ggx.paper_vs_fd, beck.paper_vs_fd);
+  r.value = printed_error(m);
   r.bound = kTolerance;
-  const bool printed_holds = r.value <= kTolerance;
-  const bool fd_ok = std::max(ggx.fd_vs_true, beck.fd_vs_true) <= kTolerance;
-  const bool fd_control = std::min(ggx.control_min, beck.control_min) > kTolerance;
+  r.verdict = decide_jacobian(m, printed_error(m));
+  const bool fd_control = fd_control_min(m) > kTolerance;
   r.control +=
       fmt::format("; finite differences against J_T × 1.02: smallest |log| {:.3g} > {:g} ({})",
-                  std::min(ggx.control_min, beck.control_min), kTolerance,
-                  fd_control ? "rejected" : "NOT rejected");
+                  fd_control_min(m), kTolerance, fd_control ? "rejected" : "NOT rejected");
   r.control_rejected = r.control_rejected && fd_control;
-
-  if (!fd_ok || family_verdict == Verdict::kInconclusive)
-    r.verdict = Verdict::kInconclusive;
-  else
-    r.verdict =
-        printed_holds && family_verdict == Verdict::kHolds ? Verdict::kHolds : Verdict::kFails;
-  // Eq. 3 as printed fails; the control is the corrected |J_T| = |U_Ω|·p_T through the same
-  // decision: it agrees with the finite differences and its transported samples are uniform.
+  // Eq. 3 as printed fails; the control is the corrected |J_T| = |U_Ω|·p_T (the analytic Jacobian
+  // of core/maps) through the same decision: it agrees with the finite differences and its
+  // transported samples are uniform.
   if (r.verdict == Verdict::kFails) {
-    record_control(r,
-                   fd_ok && family_verdict == Verdict::kHolds ? Verdict::kHolds : Verdict::kFails);
+    record_control(r, decide_jacobian(m, fd_error(m)));
     r.control = fmt::format(
         "the corrected |J_T| = |U_Ω|·p_T (finite differences to {:.1e}, "
         "uniformity family {}): {}; sensitivity: {}",
-        std::max(ggx.fd_vs_true, beck.fd_vs_true), to_string(family_verdict),
-        to_string(*r.control_verdict), r.control);
+        fd_error(m), to_string(m.family), to_string(*r.control_verdict), r.control);
   }
-  r.detail = fmt::format(
-      "Eq. 3 as printed is not the Jacobian of either map: J_paper/J_T = 32/(π²‖Mᵀω‖) for GGX "
-      "({:.4g} … {:.4g}, formula to {:.1e}) and 16/(π² cosθ) for Beckmann ({:.4g} … {:.4g}, "
-      "formula to {:.1e}), worst {}; J_T from finite differences agrees with core/maps' analytic "
-      "Jacobian to {:.1e}. Corrected: |J_T| = |U_Ω|·p_T with p_T = D·cosθ (Beckmann) and "
-      "D·‖Mᵀω‖/2 (GGX): samples of p_T pushed through T are uniform on the disk ({} of {} "
-      "chi-square configurations rejected, corrected p {:.3g}, {} samples each); GGX normals of "
-      "density D·cosθ pushed through T are not uniform (largest p {:.3g} over {} α), so for GGX "
-      "not even D·cosθ is the transported density",
-      ggx.ratio_min, ggx.ratio_max, ggx.formula_error, beck.ratio_min, beck.ratio_max,
-      beck.formula_error, w.worst, std::max(ggx.fd_vs_true, beck.fd_vs_true), o.family.rejections,
-      g.size(), r.p_value.value_or(1), size.n, evidence_max, kAlphas.size());
-  if (family_verdict != Verdict::kHolds)
-    r.detail += fmt::format("; family: smallest raw p {:.3g} at {} ({})", r.raw_p_values[worst],
-                            cases[worst].label, o.results[worst].summary());
+  r.detail = describe_jacobian(m);
   return r;
 }
 

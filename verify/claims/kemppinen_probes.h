@@ -16,10 +16,13 @@ ControlProbe probe_kemppinen_compensation();
 ControlProbe probe_kemppinen_compensation_k4_fails();
 // kemppinen.furnace, one setting: one-sided p of a gain; control: rescaled to gain 3 %.
 ControlProbe probe_kemppinen_furnace();
-// kemppinen.roulette: paired p of roulette vs linear; control: linear × 1.1.
+// kemppinen.roulette: max |E_r[R(r, w)] − w| on [2ε, 1 − 2ε]; control: the roulette weight × 1.02.
 ControlProbe probe_kemppinen_roulette();
+// kemppinen.roulette at reduced size: paired p of roulette vs linear, and of the roulette weight ×
+// 1.02 vs linear (the control, which 1500 positions do not resolve: only `correct` is asserted).
+ControlProbe probe_kemppinen_roulette_paired();
 // kemppinen.sampling-unbiased, one configuration: Welch p of the marginal-pdf estimate against
-// smooth-NDF sampling; control: the marginal density × 1.2.
+// smooth-NDF sampling; control: the marginal density × 1.05.
 ControlProbe probe_kemppinen_sampling();
 // kemppinen.sampling-unbiased, the rendered estimate (GGX k = 4, 4 pixels, reduced counts): p of
 // the exact-mixture estimate against the stratified reference; control: the mixture density ×

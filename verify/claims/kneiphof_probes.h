@@ -8,11 +8,12 @@
 
 namespace glintlab::verify {
 
-// discrete-ndf-mean at α = 0.81: multinomial p; control: facets from D cos θ.
+// discrete-ndf-mean at α = 0.81: multinomial p; control: facets drawn at α × 1.03.
 ControlProbe probe_kneiphof_discrete_ndf_mean();
 // subdivision: Σ b_k against Binomial(N_P, p); control: b from Binomial(N_P, 1.05 p).
 ControlProbe probe_kneiphof_subdivision_counts();
-// subdivision: shared-lobe radiance difference 1 vs 256 sub-lights; control: independent b_k.
+// subdivision: shared-lobe radiance difference 1 vs 256 sub-lights; control: each sub-light's
+// share of the lobe 2 % off (alternating in sign).
 ControlProbe probe_kneiphof_subdivision_invariance();
 // convergence at p = 0.01: |slope + ½|; control: counts from Binomial(N_P, 1.05 p).
 ControlProbe probe_kneiphof_convergence();

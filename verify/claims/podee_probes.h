@@ -8,8 +8,8 @@
 namespace glintlab::verify {
 
 // podee.brightest-vector on `configs` bilinear reflection spaces: the largest excess of the
-// selected point's distance over the brute-force minimum (in quad sizes); control: the
-// nearest-corner rule. Threshold: the tolerance.
+// selected point's distance over the brute-force minimum (in quad sizes); control: the selected
+// point moved 2 % of the quad size towards the quad's centroid. Threshold: the tolerance.
 ControlProbe probe_podee_brightest_vector(int configs);
 // podee.rmse's measure and decide at one distance on a `size`² crop (the regime then covers it):
 // the genuine verdict; with an independent 64-spp reference × 1.03 in place of both baselines
@@ -19,7 +19,7 @@ struct PodeeRmseProbe {
 };
 PodeeRmseProbe probe_podee_rmse(double distance, int size);
 // podee.stability: flicker(podee) / flicker(centre) over `frames` frames (passes below 1);
-// control: podee without result weighting.
+// control: flicker(podee) / the flicker of a near-truth pan (a 64-spp reference × 1.03).
 ControlProbe probe_podee_stability(int size, int frames);
 
 }  // namespace glintlab::verify

@@ -3,6 +3,7 @@
 // & Tokuyoshi 2023 Eq. 8), by chi-square on the whole sphere: rejected samples are directions too.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -192,7 +193,7 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
     w.direction_pdf = [f = w.direction_pdf, wi](const V3& wo) {
       return f(wo) * 2 * length(wi + wo);
     };
-    jacobian.cases.push_back({w, -1, 1});
+    jacobian.cases.push_back({w, -1, 1, i});
   }
   jacobian.gross = true;
   out.push_back(jacobian);
@@ -221,7 +222,7 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
     w.direction_pdf = [&e, wi = incidence(c.theta_deg), ax = c.ax, ay = c.ay](const V3& wo) {
       return e.pdf(ax, ay, wo, wi);
     };
-    swapped.cases.push_back({w, -1, 1});
+    swapped.cases.push_back({w, -1, 1, i});
   }
   swapped.gross = true;
   out.push_back(swapped);
@@ -238,7 +239,7 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
       const double s2 = ggx.sigma2(wi), t = std::sqrt(s2 + wi.z * wi.z);
       return ggx.D(half_vector(wi, wo)) * (t + wi.z) / (2 * s2);
     };
-    sign.cases.push_back({w, -1, 1});
+    sign.cases.push_back({w, -1, 1, i});
   }
   sign.gross = true;
   out.push_back(sign);
@@ -250,22 +251,35 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
 constexpr GofSize kQuick{100'000, 500'000, 600};
 constexpr GofSize kFull{10'000'000, 10'000'000, 4096};
 
+// The detail line, from the grid and the family's outcome alone.
+std::string describe(const std::vector<Config>& g, const std::vector<GofCase>& cases,
+                     const GofOutcome& o, const CheckResult& r, std::size_t worst) {
+  std::vector<std::size_t> samplers;
+  for (const Config& c : g)
+    if (std::find(samplers.begin(), samplers.end(), c.sampler) == samplers.end())
+      samplers.push_back(c.sampler);
+  return fmt::format(
+      "{} configurations ({} samplers), {} samples each on the sphere: {} rejected at family rate "
+      "{:.2g}, {} inconclusive, {} hard failures; smallest raw p {:.3g} at {} ({})",
+      g.size(), samplers.size(), o.results.empty() ? 0 : o.results[0].n, o.family.rejections,
+      o.family.alpha, o.inconclusive, o.hard_failures, r.raw_p_values[worst], cases[worst].label,
+      o.results[worst].summary());
+}
+
 CheckResult run(Budget b) {
   const std::vector<Config> g = grid(b);
   const auto [cases, ctl] = smooth_sampler_spec(b);
-  const GofSize size = b == Budget::kQuick ? kQuick : kFull;
-  const std::uint64_t n = size.n;
-  const GofOutcome o = run_gof_family(kId, cases, ctl, size);
+  // Measure: every configuration and control case by chi-square.
+  const GofOutcome o = run_gof_family(kId, cases, ctl, b == Budget::kQuick ? kQuick : kFull);
   CheckResult r;
-  std::size_t worst = 0;
-  r.verdict = summarize_gof(o, ctl, r, worst);
+  // Decide: the family, and each control case in its configuration's place.
+  r.verdict = decide_gof(o.results);
+  const GofControlVerdicts cv = decide_gof_controls(o, ctl);
+  // Describe.
+  const std::size_t worst = describe_gof(o, ctl, cv, r);
   r.statistic = "Holm–Šidák-corrected p of the chi-square of sampled ωo against the sampler's pdf";
   r.value = r.p_value.value_or(1);
-  r.detail = fmt::format(
-      "{} configurations ({} samplers), {} samples each on the sphere: {} rejected at family rate "
-      "{:.2g}, {} inconclusive, {} hard failures; smallest raw p {:.3g} at {} ({})",
-      g.size(), sampler_table().size(), n, o.family.rejections, check_level(), o.inconclusive,
-      o.hard_failures, r.raw_p_values[worst], cases[worst].label, o.results[worst].summary());
+  r.detail = describe(g, cases, o, r, worst);
   return r;
 }
 

@@ -7,7 +7,9 @@
 
 #include <cmath>
 #include <map>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "verify/check.h"
 #include "verify/claims/gof_family.h"
@@ -82,6 +84,62 @@ TEST(ChiSquareClaims, ControlsReferToTheirGrid) {
           }
         }
       }
+}
+
+// The controls of smooth.sampler-matches-pdf and eto.pdf-matches are decided as their family, each
+// case in place of a configuration of the grid: every case names one.
+TEST(ChiSquareClaims, ControlCasesTakeAConfigurationsPlace) {
+  for (Budget b : {Budget::kQuick, Budget::kFull})
+    for (const GofSpec& s : {smooth_sampler_spec(b), eto_pdf_spec(b)})
+      for (const GofControl& c : s.controls)
+        for (const GofControlCase& cc : c.cases) {
+          EXPECT_GE(cc.position(), 0) << cc.wrong.label;
+          EXPECT_LT(cc.position(), int(s.cases.size())) << cc.wrong.label;
+        }
+}
+
+ChiSquareResult result_with_p(double p) {
+  ChiSquareResult r;
+  r.p_value = p;
+  return r;
+}
+
+// decide_gof: Holm–Šidák over the configurations at check_level(); a hard failure fails, an
+// undecided configuration makes the family inconclusive. decide_gof_controls: a case fails only
+// where, in its configuration's place, it makes the family fail.
+TEST(ChiSquareClaims, FamilyAndControlsDecidedAlike) {
+  const double level = check_level();
+  std::vector<ChiSquareResult> family(10, result_with_p(0.5));
+  EXPECT_EQ(decide_gof(family), Verdict::kHolds);
+  family[3] = result_with_p(0.5 * sidak_level(level, 10));
+  EXPECT_EQ(decide_gof(family), Verdict::kFails);
+  family[3] = result_with_p(0.5);
+  family[3].inconclusive = true;
+  EXPECT_EQ(decide_gof(family), Verdict::kInconclusive);
+  family[3].hard_fail = true;
+  EXPECT_EQ(decide_gof(family), Verdict::kFails);
+
+  GofOutcome o;
+  o.results.assign(10, result_with_p(0.5));
+  // One control with a case caught and one not: only the first control is rejected.
+  o.control_results = {{result_with_p(0.1 * sidak_level(level, 10))},
+                       {result_with_p(2 * sidak_level(level, 10))}};
+  o.control_p = {0, 0};
+  std::vector<GofControl> controls(2);
+  controls[0].cases.push_back({{}, 2, 1.02});
+  controls[1].cases.push_back({{}, -1, 1, 7});
+  const GofControlVerdicts cv = decide_gof_controls(o, controls);
+  EXPECT_EQ(cv.cases[0][0], Verdict::kFails);
+  EXPECT_EQ(cv.cases[1][0], Verdict::kHolds);
+  EXPECT_TRUE(cv.rejected(0));
+  EXPECT_FALSE(cv.rejected(1));
+  EXPECT_EQ(cv.verdict, Verdict::kHolds);
+  // A case that replaces no configuration is a mistake in the check.
+  controls[1].cases[0].replaces = -1;
+  EXPECT_THROW(decide_gof_controls(o, controls), std::logic_error);
+  EXPECT_EQ(control_verdict_of_cases({Verdict::kFails, Verdict::kFails}), Verdict::kFails);
+  EXPECT_EQ(control_verdict_of_cases({Verdict::kFails, Verdict::kInconclusive}),
+            Verdict::kInconclusive);
 }
 
 // A small family with its controls gives bit-identical p-values with 1 and 2 threads.

@@ -26,6 +26,10 @@ TEST(KemppinenClaims, CompensationKFourFailsWhereSixteenHolds) {
 }
 TEST(KemppinenClaims, Furnace) { expect_probe(probe_kemppinen_furnace(), "furnace"); }
 TEST(KemppinenClaims, Roulette) { expect_probe(probe_kemppinen_roulette(), "roulette"); }
+TEST(KemppinenClaims, RoulettePairedUnbiased) {
+  const ControlProbe p = probe_kemppinen_roulette_paired();
+  EXPECT_TRUE(p.correct_passes()) << "roulette vs linear: p " << p.correct << " vs " << p.threshold;
+}
 TEST(KemppinenClaims, Sampling) { expect_probe(probe_kemppinen_sampling(), "sampling"); }
 TEST(KemppinenClaims, SamplingRendered) {
   expect_probe(probe_kemppinen_sampling_render(false), "rendered, control mixture pdf x 1.2");
@@ -35,12 +39,14 @@ TEST(KemppinenClaims, SamplingRenderedPrintedPdfBiased) {
   expect_probe(probe_kemppinen_sampling_render(true), "rendered, printed pdf");
 }
 
+// Holds, and its control (a LOD 2 % of λ too fine, the block widened to cover the footprint) fails.
 TEST(KemppinenClaims, ConstantTimeAndControl) {
   for (const Check& c : registered_checks())
     if (c.id == "kemppinen.constant-time") {
       const CheckResult r = c.run(Budget::kQuick);
       EXPECT_EQ(r.verdict, Verdict::kHolds) << r.detail;
       EXPECT_TRUE(r.control_rejected) << r.control;
+      EXPECT_EQ(r.control_verdict, Verdict::kFails) << r.control;
       return;
     }
   FAIL() << "kemppinen.constant-time not registered";

@@ -1,6 +1,6 @@
 // podee.* claims (verify/claims/podee.cpp) at reduced sizes: each statistic passes on the paper's
-// method and rejects its negative control (nearest-corner selection; the selected vector without
-// result weighting; near-truth images for podee.rmse), and the registered checks are present.
+// method and rejects its negative control (a selection 2 % of the quad size off the closest point;
+// near-truth images for podee.rmse and podee.stability), and the registered checks are present.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -16,7 +16,7 @@ void expect_probe(const ControlProbe& p, const std::string& what) {
   EXPECT_TRUE(p.control_rejected()) << what << ": control " << p.control << " vs " << p.threshold;
 }
 
-TEST(PodeeClaims, BrightestVectorRejectsTheNearestCornerRule) {
+TEST(PodeeClaims, BrightestVectorRejectsASelectionTwoPercentOff) {
   expect_probe(probe_podee_brightest_vector(100), "podee.brightest-vector");
 }
 
@@ -30,7 +30,7 @@ TEST(PodeeClaims, RmseDecisionFailsWhenTheBaselinesAreNearTruth) {
   EXPECT_EQ(p.method_near_truth, Verdict::kHolds) << to_string(p.method_near_truth);
 }
 
-TEST(PodeeClaims, StabilityRejectsTheUnweightedControl) {
+TEST(PodeeClaims, StabilityRejectsANearTruthPan) {
   expect_probe(probe_podee_stability(32, 4), "podee.stability");
 }
 
