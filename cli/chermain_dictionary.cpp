@@ -25,6 +25,12 @@ void add_chermain_dictionary_command(CLI::App& app) {
   struct Options {
     std::string out;
     chermain2021::DictionaryConfig config;
+    std::string seed = std::to_string(config.seed),
+                distributions = std::to_string(config.distributions),
+                levels = std::to_string(config.levels),
+                resolution = std::to_string(config.resolution),
+                alpha_dict = fmt::format("{}", config.alpha_dict),
+                lobe_std = fmt::format("{}", config.lobe_std), threads;
   };
   auto opt = std::make_shared<Options>();
   Options& o = *opt;
@@ -62,8 +68,19 @@ void add_chermain_dictionary_command(CLI::App& app) {
     } catch (const ParameterError& e) {
       throw InputError(fmt::format("chermain-dictionary: {}", e.what()));
     }
+    check_output_file(c.out, "--out");
+    register_staging_parent(std::filesystem::path(c.out).has_parent_path()
+                                ? std::filesystem::path(c.out).parent_path()
+                                : std::filesystem::path("."));
+    // The distributions are built in parallel; the file is the same for any thread count.
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                    std::size_t(threads));
     const chermain2021::Dictionary d(c.config);
-    chermain2021::write_chermain_dictionary_exr(c.out, d);
+    try {
+      chermain2021::write_chermain_dictionary_exr(c.out, d);
+    } catch (const std::exception& e) {
+      throw InputError(fmt::format("--out: {}", e.what()));
+    }
     fmt::print("wrote {} ({} distributions x {} levels x {} texels, seed {})\n", c.out,
                c.config.distributions, c.config.levels, c.config.resolution, c.config.seed);
   });
