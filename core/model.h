@@ -103,6 +103,7 @@ struct ParamSpec {
   bool lo_open, hi_open;  // whether the bound itself is excluded
   std::string_view description;
   std::span<const std::string_view> choices = {};
+  bool integral = false;  // a seed or a count: only whole numbers in [lo, hi] are valid
 };
 
 // The position of parameter `name` in `params` (a model's kParams); a compile error for a name that

@@ -64,7 +64,9 @@ const ModelEntry& find_model(std::string_view name) {
 
 std::string describe_range(const ParamSpec& p) {
   if (!p.choices.empty()) return fmt::format("one of: {}", fmt::join(p.choices, ", "));
-  return fmt::format("{}{}, {}{}", p.lo_open ? '(' : '[', p.lo, p.hi, p.hi_open ? ')' : ']');
+  const std::string range =
+      fmt::format("{}{}, {}{}", p.lo_open ? '(' : '[', p.lo, p.hi, p.hi_open ? ')' : ']');
+  return p.integral ? "an integer in " + range : range;
 }
 
 std::string format_param_value(const ParamSpec& p, double value) {
@@ -114,9 +116,12 @@ std::vector<double> resolve_params(
     const auto v = io::parse_finite_double(text);
     const bool in_range =
         v && (p.lo_open ? *v > p.lo : *v >= p.lo) && (p.hi_open ? *v < p.hi : *v <= p.hi);
-    if (!in_range) {
-      throw ModelParamError(fmt::format("--param {}: '{}' is {} (valid: {})", p.name, text,
-                                        v ? "out of range" : io::number_problem(text),
+    const bool whole = v && (!p.integral || std::floor(*v) == *v);
+    if (!in_range || !whole) {
+      const std::string_view problem = !v          ? io::number_problem(text)
+                                       : !in_range ? "out of range"
+                                                   : "not an integer";
+      throw ModelParamError(fmt::format("--param {}: '{}' is {} (valid: {})", p.name, text, problem,
                                         describe_range(p)));
     }
     values[i] = *v;

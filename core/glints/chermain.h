@@ -351,7 +351,7 @@ struct Chermain {
       {"dh_dx_y", 0.0, -100.0, 100.0, false, false, "y component of the d/dx derivative"},
       {"dh_dy_x", 0.0, -100.0, 100.0, false, false, "x component of the d/dy derivative"},
       {"dh_dy_y", 0.0, -100.0, 100.0, false, false, "y component of the d/dy derivative"},
-      {"seed", 0.0, 0.0, 1e9, false, false, "seed of the per-cell draws (integer part)"},
+      {"seed", 0.0, 0.0, 1e9, false, false, "seed of the per-cell draws (integer)", {}, true},
   }};
   static constexpr std::array<std::string_view, 8> kIntermediates = {
       "P22", "lod", "dict_level", "kernel_width", "mip_lambda", "D", "G2", "brdf"};

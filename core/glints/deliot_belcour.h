@@ -124,7 +124,7 @@ inline constexpr ParamSpec kBinomialGlintSampler{
     "binomial sampler: exact, realtime (gated Bernoulli + clamped Gaussian), small_count",
     kBinomialSamplerNames};
 inline constexpr ParamSpec kBinomialGlintSeed{
-    "seed", 0.0, 0.0, 4294967295.0, false, false, "seed of the counter RNG (integer)"};
+    "seed", 0.0, 0.0, 4294967295.0, false, false, "seed of the counter RNG (integer)", {}, true};
 
 // kParams of a point-light binomial glint model: alpha_x, alpha_y, density, the model's own
 // parameter of its probability p, binomial, seed.

@@ -48,7 +48,15 @@ inline constexpr std::array<ParamSpec, 16> kKemppinenParams = {{
     {"pdf", 0.0, 0.0, 1.0, false, false,
      "pdf returned by sample(): marginal (density of the samples) or printed (Alg. 2 l. 16-17)",
      kKemppinenPdfNames},
-    {"seed", 0.0, 0.0, 4294967295.0, false, false, "seed of the implicit point process"},
+    {"seed",
+     0.0,
+     0.0,
+     4294967295.0,
+     false,
+     false,
+     "seed of the implicit point process (integer)",
+     {},
+     true},
     {"mapping", 0.0, 0.0, 1.0, false, false,
      "uv: the footprint's uv (Algorithm 1); triplanar: UV-free, 3 point processes on the "
      "object-space axis planes (Sec. 3.3.6), the surface the plane through the origin with normal "

@@ -239,6 +239,8 @@ std::vector<Case> cases() {
   add("sample_model_with_ndf", join(sm, {"smooth_ggx", "--ndf", "ggx"}), "--ndf");
   add("sample_model_unknown", join(sm, {"nosuch"}), "nosuch");
   add("sample_model_param_huge", join(sm, {"smooth_ggx", "--param", "alpha_x=1e300"}), "alpha_x");
+  add("sample_model_param_fractional_seed", join(sm, {"kemppinen_ggx", "--param", "seed=1.9"}),
+      "seed");
   add("sample_model_seed_negative", join(sm, {"smooth_ggx", "--seed", "-1"}), "--seed");
   add("sample_model_math_unknown", join(sm, {"smooth_ggx", "--precision", "float", "--math", "x"}),
       "--math");

@@ -131,6 +131,15 @@ TEST(ModelRegistry, BadParametersNameTheParameterAndRange) {
   EXPECT_NE(error_of(m, {{"alpha_x", "1"}, {"alpha_x", "2"}}).find("given twice"),
             std::string::npos);
   EXPECT_EQ(error_of(m, {{"alpha_x", "100"}}), "");
+  // A seed is a whole number: 1.9 is refused, not truncated to 1.
+  const ModelEntry& kemppinen = find_model("kemppinen_ggx");
+  const std::string fraction = error_of(kemppinen, {{"seed", "1.9"}});
+  EXPECT_NE(fraction.find("not an integer"), std::string::npos) << fraction;
+  EXPECT_NE(fraction.find("an integer in [0, 4294967295]"), std::string::npos) << fraction;
+  EXPECT_EQ(error_of(kemppinen, {{"seed", "2"}}), "");
+  for (const char* model : {"deliot_belcour", "kneiphof_klein", "chermain"})
+    EXPECT_NE(error_of(find_model(model), {{"seed", "0.5"}}), "") << model;
+  EXPECT_NE(error_of(find_model("kneiphof_klein_area"), {{"mc_samples", "10.5"}}), "");
   for (const ModelEntry& e : registered_models()) {
     for (const ParamSpec& p : e.params) {
       // Every default is valid.
