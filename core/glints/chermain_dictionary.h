@@ -35,8 +35,8 @@ struct DictionaryConfig {
   double lobe_std = 0.02;   // s, standard deviation of each lobe; (0, σ_o)
   std::uint64_t seed = 2020;
   // Spread of the lobe means relative to the dictionary's (1 = as described above). Only for the
-  // negative control of chermain.dictionary-converges (√2: means drawn as if α_dict were the slope
-  // standard deviation); (0, 4].
+  // negative control of chermain.dictionary-converges (1.02: lobe means spread 2 % too wide);
+  // (0, 4].
   double mean_scale = 1.0;
 };
 

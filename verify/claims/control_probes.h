@@ -27,10 +27,11 @@ ControlProbe probe_eto_bound_is_infimum();
 // eto.fewer-rejections at α = 1, θi = 0: binomial p against ½; control: against 0.52.
 ControlProbe probe_eto_fewer_rejections();
 // eto.variance-rough at α = 1, θi = 0: minus the lower end of the measured RMSE-reduction
-// interval against −5 %; control: the bound switched off (the caps sampler against itself).
+// interval against −5 %; control: a 2 % RMSE reduction (the caps sampler against an independent
+// run of itself with its RMSE × 0.98).
 ControlProbe probe_eto_variance_rough();
 // eto.backfacing-stable-pdf on a small grid: max relative error of the stable form; control: the
-// sign error (t + i_z).
+// stable form × 1.02.
 ControlProbe probe_eto_backfacing_stable_pdf();
 // kneiphof.total-area at one α: relative error of Eq. 29 (ggx) or Eq. 30 against cubature;
 // control: the closed form at α × 1.02.
