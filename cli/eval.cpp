@@ -206,7 +206,7 @@ constexpr const char* kEvalFooter =
     R"(INPUT (--in): a CSV file, a header row then one query per data row. Columns, in any order, and
 no others:
   ndf               ggx or beckmann
-  alpha_x, alpha_y  roughness along the tangent (x) and bitangent (y) axes; in (0, 100] (the
+  alpha_x, alpha_y  roughness along the tangent (x) and bitangent (y) axes; in [0.0001, 100] (the
                     range of the smooth_ggx and smooth_beckmann models)
   wi_x, wi_y, wi_z  the given direction wi, pointing toward the viewer; unit length (within 1e-6)
   wo_x, wo_y, wo_z  the other direction wo; unit length (within 1e-6)

@@ -228,7 +228,7 @@ void add_sample_command(CLI::App& app) {
   add_text_option(cmd, "--ndf", a->ndf, "normal distribution: ggx or beckmann", "NAME");
   add_text_option(cmd, "--alpha", a->alpha,
                   "roughness 'ax,ay' (tangent, bitangent), or one value for isotropic; each in "
-                  "(0, 100], the range of the smooth_ggx and smooth_beckmann models",
+                  "[0.0001, 100], the range of the smooth_ggx and smooth_beckmann models",
                   "LIST");
   add_text_option(cmd, "--wi", a->wi,
                   "incident direction 'x,y,z' toward the viewer, unit length within 1e-6 (write "

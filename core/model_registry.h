@@ -81,7 +81,7 @@ void register_model(ModelEntry entry);
 // for an unknown name, a repeated one, a value that does not parse, or one out of range.
 std::vector<double> resolve_params(
     const ModelEntry& model, const std::vector<std::pair<std::string, std::string>>& assignments);
-// "(0, 100]" or "one of: a, b, c" for a parameter.
+// "[0.0001, 100]" or "one of: a, b, c" for a parameter.
 std::string describe_range(const ParamSpec& p);
 // The text of a value: the number, or the name of the choice.
 std::string format_param_value(const ParamSpec& p, double value);

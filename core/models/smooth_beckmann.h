@@ -26,8 +26,10 @@ struct SmoothBeckmann {
   enum Sampler { kNdf = 0, kVndf = 1 };
   static constexpr std::array<std::string_view, 2> kSamplerNames = {"ndf", "vndf"};
   static constexpr std::array<ParamSpec, 3> kParams = {{
-      {"alpha_x", 0.5, 0.0, 100.0, true, false, "roughness along the tangent (x)"},
-      {"alpha_y", 0.5, 0.0, 100.0, true, false, "roughness along the bitangent (y)"},
+      // α ≥ 1e-4, the smallest roughness all.stability sweeps; at α = 1e-20 (float) or 1e-100
+      // (double) D and the pdf are already NaN.
+      {"alpha_x", 0.5, 1e-4, 100.0, false, false, "roughness along the tangent (x)"},
+      {"alpha_y", 0.5, 1e-4, 100.0, false, false, "roughness along the bitangent (y)"},
       {"sampler", 1.0, 0.0, 1.0, false, false,
        "sampler of wo: ndf (Walter 2007), vndf (Heitz & d'Eon 2014)", kSamplerNames},
   }};

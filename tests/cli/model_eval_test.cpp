@@ -14,7 +14,7 @@ using ModelEvalTest = CliTest;
 TEST_F(ModelEvalTest, ModelsListsParametersDefaultsAndRanges) {
   const RunResult r = run({"models"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  for (const char* s : {"smooth_ggx", "smooth_beckmann", "alpha_x=0.5", "(0, 100]",
+  for (const char* s : {"smooth_ggx", "smooth_beckmann", "alpha_x=0.5", "[0.0001, 100]",
                         "one of: ndf, vndf, spherical_caps, bounded_caps", "intermediates: h_x",
                         "needs: directions only"}) {
     EXPECT_NE(r.out.find(s), std::string::npos) << s;
@@ -45,7 +45,7 @@ TEST_F(ModelEvalTest, BadModelParameterOrColumnIsOneLine) {
                      {"--model", "'phong'", "smooth_ggx"}, {"q.csv"});
   expect_input_error(run({"eval", "--model", "smooth_ggx", "--param", "alpha_x=-1", "--in", "q.csv",
                           "--out", "r.csv"}),
-                     {"--param alpha_x", "(0, 100]"}, {"q.csv"});
+                     {"--param alpha_x", "[0.0001, 100]"}, {"q.csv"});
   expect_input_error(
       run({"eval", "--model", "smooth_ggx", "--param", "alpha", "--in", "q.csv", "--out", "r.csv"}),
       {"--param", "name=value"}, {"q.csv"});

@@ -123,7 +123,7 @@ TEST(ModelRegistry, BadParametersNameTheParameterAndRange) {
   const ModelEntry& m = find_model("smooth_ggx");
   const std::string range = error_of(m, {{"alpha_x", "0"}});
   EXPECT_NE(range.find("alpha_x"), std::string::npos);
-  EXPECT_NE(range.find("(0, 100]"), std::string::npos);
+  EXPECT_NE(range.find("[0.0001, 100]"), std::string::npos) << range;
   EXPECT_NE(error_of(m, {{"alpha_y", "abc"}}).find("is not a number"), std::string::npos);
   EXPECT_NE(error_of(m, {{"sampler", "heitz"}}).find("one of: ndf, vndf"), std::string::npos);
   EXPECT_NE(error_of(m, {{"eta", "1.5"}}).find("valid: alpha_x, alpha_y, sampler, bound"),
