@@ -35,17 +35,6 @@ using eto::Config;
 using eto::Technique;
 using V3 = Vec3<double>;
 
-// The Holm–Šidák summary every statistical check reports.
-struct Family {
-  HolmSidakResult hs;
-  double min_adjusted = 1;
-};
-Family correct(const std::vector<double>& p) {
-  Family f{holm_sidak(p, check_level())};
-  for (double a : f.hs.adjusted) f.min_adjusted = std::min(f.min_adjusted, a);
-  return f;
-}
-
 // ---------------------------------------------------------------------------------------------
 // eto.unbiased: E[f cos / p_our] = ∫ f cos dωo (Sec. 3.3, Eq. 8) — Welch's test against the
 // spherical-cap sampler and a one-sample t test against cubature, per configuration.
@@ -114,7 +103,7 @@ UnbiasedTests tests_of(const UnbiasedMeasurement& m) {
     t.p.push_back(t.one.back().p_value);
     if (r.albedo_error > 0.01 * t.one.back().std_error) t.quadrature_ok = false;
   }
-  t.family = correct(t.p);
+  t.family = correct_family(t.p);
   return t;
 }
 
@@ -152,8 +141,7 @@ CheckResult unbiased(Budget b) {
   CheckResult res;
   res.statistic = "Holm–Šidák adjusted p (Welch vs spherical caps; t vs cubature albedo)";
   res.configurations = int(m.rows.size());
-  res.raw_p_values = t.family.hs.raw;
-  res.p_value = t.family.min_adjusted;
+  record_p_values(res, t.family);
   res.value = t.family.min_adjusted;
   res.verdict = decide_unbiased(m);
   res.detail = describe_unbiased(m);
@@ -480,7 +468,7 @@ RejectionTests tests_of(const RejectionMeasurement& m) {
       if (red < t.min_reduction) t.min_reduction = red, t.at_min = i;
     }
   }
-  t.family = correct(t.p);
+  t.family = correct_family(t.p);
   t.half_error = std::abs(m.rows[0].caps.value - m.claimed);
   return t;
 }
@@ -529,8 +517,7 @@ CheckResult fewer_rejections(Budget b) {
   res.statistic =
       "Holm–Šidák adjusted p (binomial: measured vs exact rates, and r_caps = ½ at α=1, θi=0)";
   res.configurations = int(m.rows.size());
-  res.raw_p_values = t.family.hs.raw;
-  res.p_value = t.family.min_adjusted;
+  record_p_values(res, t.family);
   res.value = t.family.min_adjusted;
   res.verdict = decide_rejections(m);
   res.detail = describe_rejections(m);

@@ -15,6 +15,17 @@
 #include "core/math/rng.h"
 
 namespace glintlab::verify {
+
+Family correct_family(const std::vector<double>& p) {
+  Family f{holm_sidak(p, check_level())};
+  for (double a : f.hs.adjusted) f.min_adjusted = std::min(f.min_adjusted, a);
+  return f;
+}
+
+void record_p_values(CheckResult& r, const Family& f) {
+  r.raw_p_values = f.hs.raw;
+  r.p_value = f.min_adjusted;
+}
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();

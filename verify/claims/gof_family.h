@@ -22,6 +22,17 @@
 
 namespace glintlab::verify {
 
+// A statistical check's configurations as one Holm–Šidák family at check_level().
+struct Family {
+  HolmSidakResult hs;
+  double min_adjusted = 1;
+};
+Family correct_family(const std::vector<double>& p);
+
+// The family as the check's p-values: every configuration's raw p, and the smallest adjusted p as
+// the check's p-value.
+void record_p_values(CheckResult& r, const Family& f);
+
 using SeededDirections = std::function<Vec3<double>(std::uint64_t seed, std::uint64_t index)>;
 using SeededPoints = std::function<Vec2<double>(std::uint64_t seed, std::uint64_t index)>;
 // Directions begin .. begin + count − 1 under `seed` at once (a batched sampler, core/simd/).

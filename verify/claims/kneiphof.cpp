@@ -19,6 +19,7 @@
 #include "core/ndf/total_area.h"
 #include "verify/claims/claims.h"
 #include "verify/claims/control_probes.h"
+#include "verify/claims/gof_family.h"
 #include "verify/claims/kneiphof_probes.h"
 #include "verify/stats/chi_square.h"
 #include "verify/stats/count_tests.h"
@@ -182,16 +183,6 @@ const char* const kSubdivision = "kneiphof.subdivision";
 const char* const kConvergence = "kneiphof.convergence";
 const char* const kCapProbability = "kneiphof.cap-probability";
 
-struct Family {
-  HolmSidakResult hs;
-  double min_adjusted = 1;
-};
-Family correct_family(const std::vector<double>& p) {
-  Family f{holm_sidak(p, check_level())};
-  for (double a : f.hs.adjusted) f.min_adjusted = std::min(f.min_adjusted, a);
-  return f;
-}
-
 // ---- kneiphof.discrete-ndf-mean ----------------------------------------------------------------
 // Cells of the hemisphere: rings at θ = atan(α s) for the s below (then θ = π/2), × 4 azimuth
 // sectors. Expected mass of a cell: ∫_cell D dω by cubature (the isotropic D: ring/4) over D_H of
@@ -326,8 +317,7 @@ CheckResult run_discrete_ndf_mean(Budget b) {
   r.statistic =
       "Holm–Šidák adjusted p of the multinomial test of facet counts per cell vs ∫_cell D/D_H";
   r.configurations = int(m.alphas.size());
-  r.raw_p_values = f.hs.raw;
-  r.p_value = f.min_adjusted;
+  record_p_values(r, f);
   r.value = f.min_adjusted;
   r.verdict = decide_ndf_mean(m);
   r.detail = fmt::format(
@@ -510,8 +500,7 @@ CheckResult run_subdivision(Budget b) {
       "Holm–Šidák adjusted p (Σ b_k and three marginals b_k vs Binomial); max rel. radiance "
       "difference 1 vs 256 sub-lights with the shared lobe";
   r.configurations = int(cfg.size());
-  r.raw_p_values = f.hs.raw;
-  r.p_value = f.min_adjusted;
+  record_p_values(r, f);
   r.value = shared;
   r.bound = kSharedLobeTolerance;
   const auto decide = [](const std::vector<double>& pv, double shared_error) {
