@@ -150,6 +150,9 @@ int run(const CLI::App* cmd, const VerifyOptions& o) {
                    : fmt::format("  [recorded verdict: {}]",
                                  verify::to_string(r.check->expected_for(budget))));
   }
+  for (const auto& r : records)
+    if (!r.check->budget_note.empty())
+      fmt::print("note: {}: {}\n", r.check->id, verify::budget_note(*r.check));
   fmt::print("{} claims, budget {}, {} thread(s); results in {}/claims.{{json,csv,md}}\n",
              records.size(), budget_name, threads, o.out);
   if (unexpected) {

@@ -165,7 +165,7 @@ def load_claims(root):
         if c["verdict"] not in VERDICTS:
             raise ReportError(f"{relpath} is malformed: entry {i} ({c['id']}) has verdict "
                               f"'{c['verdict']}' (valid: {', '.join(sorted(VERDICTS))})")
-        for k in ("control_verdict", "regime", "expected_verdict"):
+        for k in ("control_verdict", "regime", "expected_verdict", "budget_note"):
             if c.get(k) is not None and not isinstance(c[k], str):
                 raise ReportError(f"{relpath} is malformed: entry {i} ({c['id']}) has a "
                                   f"non-text \"{k}\"")
@@ -648,6 +648,8 @@ def write_claims(doc, claims, part, root):
             extra.append(f"statistic: {c['statistic']}")
         if c.get("power"):
             extra.append(f"power: {c['power']}")
+        if c.get("budget_note"):
+            extra.append(f"budgets: {c['budget_note']}")
         full = evidence + ("\n" + "\n".join(extra) if extra else "")
         ev = Raw(f"<details><summary>{esc(short(evidence))}</summary>"
                  f"<div class=\"long\">{esc(full)}</div></details>", " ".join(full.split("\n")))

@@ -323,6 +323,18 @@ def regime_lines(checks, measured):
     return lines
 
 
+def budget_note_lines(checks, measured):
+    """Why a claim's quick and full recorded verdicts differ, as its check's run says."""
+    lines = []
+    for c in checks:
+        for budget in BUDGETS:
+            run = measured.get(budget, {}).get(c["id"])
+            if run is not None and run.get("budget_note"):
+                lines.append(f"- `{c['id']}`: {run['budget_note']}")
+                break
+    return lines
+
+
 def render(checks, measured, command, inputs):
     lines = [
         "# Claims and verdicts",
@@ -383,6 +395,10 @@ def render(checks, measured, command, inputs):
     if regimes:
         lines += ["", "Regimes, as each check declares them in its code before measuring:", ""]
         lines += regimes
+    notes = budget_note_lines(checks, measured)
+    if notes:
+        lines += ["", "Where the two budgets record different verdicts, and why:", ""]
+        lines += notes
     lines += [
         "",
         "Verdicts: **holds**; **holds-within** (within a stated tolerance); **holds-in-regime** "

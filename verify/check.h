@@ -74,6 +74,10 @@ struct Check {
   // The verdict recorded for the full budget where it differs from `expected` (the quick one):
   // a denser grid or 100× the samples can see what the quick budget cannot.
   std::optional<Verdict> expected_full = {};
+  // Why the two budgets record different verdicts (with expected_full): which grid points or
+  // sample counts only one of them has. Printed with every run of the check, so a quick run says
+  // what the full budget sees and why this run cannot.
+  std::string budget_note = {};
 
   Verdict expected_for(Budget b) const {
     return b == Budget::kFull && expected_full ? *expected_full : expected;

@@ -44,6 +44,12 @@ void adjust_for_suite(std::vector<RunRecord>& records) {
   for (std::size_t j = 0; j < index.size(); ++j) records[index[j]].suite_adjusted_p = h.adjusted[j];
 }
 
+std::string budget_note(const Check& c) {
+  return fmt::format("recorded {} at the quick budget and {} at the full budget: {}",
+                     to_string(c.expected_for(Budget::kQuick)),
+                     to_string(c.expected_for(Budget::kFull)), c.budget_note);
+}
+
 bool as_expected(const RunRecord& r) {
   return r.result.verdict == r.check->expected_for(r.budget) && r.result.control_rejected;
 }
@@ -58,6 +64,8 @@ std::string to_json(const std::vector<RunRecord>& records, const RunInfo& info) 
          {"source", r.check->source},
          {"verdict", to_string(x.verdict)},
          {"expected_verdict", to_string(r.check->expected_for(r.budget))},
+         {"budget_note", r.check->budget_note.empty() ? nlohmann::json(nullptr)
+                                                      : nlohmann::json(budget_note(*r.check))},
          {"detail", x.detail},
          {"statistic", x.statistic},
          {"value", x.value},
@@ -112,6 +120,7 @@ std::string to_markdown(const std::vector<RunRecord>& records, const RunInfo& in
     if (x.verdict != r.check->expected_for(r.budget))
       verdict += fmt::format(" (recorded: {})", to_string(r.check->expected_for(r.budget)));
     if (!x.regime.empty()) verdict += fmt::format(" in {}", x.regime);
+    if (!r.check->budget_note.empty()) verdict += fmt::format(" ({})", budget_note(*r.check));
     const std::string control =
         x.control_verdict ? fmt::format("**{}**: {}", to_string(*x.control_verdict), x.control)
                           : x.control;

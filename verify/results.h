@@ -35,6 +35,10 @@ std::string to_markdown(const std::vector<RunRecord>& records, const RunInfo& in
 // the suite's threshold.
 void adjust_for_suite(std::vector<RunRecord>& records);
 
+// "recorded <quick> at the quick budget and <full> at the full budget: <why>" for a check whose
+// budgets record different verdicts (Check::budget_note).
+std::string budget_note(const Check& c);
+
 // True when the verdict is the one recorded for the check and its control was rejected.
 bool as_expected(const RunRecord& r);
 

@@ -95,10 +95,10 @@ TEST(ExampleModel, GetsTheStabilitySweepAndItsMaps) {
       EXPECT_TRUE(fs::exists(dir / map[k].get<std::string>())) << map[k];
   }
   const io::ExrFile p = io::read_exr(dir / "example_glints/default/density_p_gt_1.exr");
-  EXPECT_EQ(p.image.width, 11);  // θi columns
+  EXPECT_EQ(p.image.width, 12);  // θi columns
   EXPECT_EQ(p.attributes.at("glintlab_quantity"), "p_gt_1");
   const io::CsvTable t = io::read_csv(dir / "example_glints/default/footprint.csv");
-  EXPECT_EQ(t.num_rows(), 7u * 11u);
+  EXPECT_EQ(t.num_rows(), 7u * 12u);
   EXPECT_TRUE(t.find_column("footprint"));
   EXPECT_TRUE(t.find_column("nan_value_float_fraction"));
   fs::remove_all(dir);

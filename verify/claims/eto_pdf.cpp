@@ -294,13 +294,16 @@ GofSpec eto_pdf_spec(Budget b) {
 std::vector<Check> eto_pdf_checks() {
   return {{kId, "Eto & Tokuyoshi 2023", "Eq. 8 (with χ⁺), Eq. 7 for i_z ≤ 0, Listing 2",
            Verdict::kHolds, run, calibration,
-           // Measured 2026-12-01 at the full budget (10^7 samples per configuration): 0 of 90
-           // rejected, 1 inconclusive (Listing-1 k at α = (1.5, 1.5), θi = 45°: k = 0, and one
-           // sample of 10^7 fell in a bin where the cubature found no support: the cap edge is a
-           // curve of which the cubature misses a sliver, 5.5e-7 of the mass). The earlier
-           // rejection at α = (0.1, 1), θi = 45° was the cubature's: it missed 1.1e-5 of the mass
-           // beside −ωi (fixed by the closing breaks around point features, verify/stats).
-           Verdict::kInconclusive}};
+           // An earlier full-budget rejection at α = (0.1, 1), θi = 45° was the cubature's: it
+           // missed 1.1e-5 of the mass beside −ωi (fixed by the closing breaks around point
+           // features, verify/stats).
+           Verdict::kInconclusive,
+           "the full budget's 10^7 samples per configuration put a sample, in one of its 90 "
+           "configurations (Listing-1 k at α = (1.5, 1.5), θi = 45°, where k = 0), in a bin "
+           "where the cubature finds no support: the cap's edge is a curve of which the cubature "
+           "misses a sliver of about 5.5e-7 of the mass, and such a configuration is undecided "
+           "rather than rejected; the quick budget's 10^5 samples and 21 configurations do not "
+           "reach it"}};
 }
 
 }  // namespace glintlab::verify

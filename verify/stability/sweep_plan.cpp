@@ -75,8 +75,9 @@ std::vector<SweepTarget> sweep_targets(const std::string& globs) {
 
 std::vector<SweepPlane> sweep_planes(const ModelEntry& m, bool quick) {
   // Incidence: dense towards grazing (89.999° is the brief's limit) and a few back-facing angles.
+  // The quick grid keeps the full grid's extremes and every grazing angle from 89.9° up.
   const std::vector<double> theta =
-      quick ? std::vector<double>{0, 45, 75, 85, 89, 89.9, 89.99, 89.999, 90.001, 120, 179}
+      quick ? std::vector<double>{0, 45, 75, 85, 89, 89.9, 89.95, 89.99, 89.999, 90.001, 120, 179.9}
             : std::vector<double>{0,      15,   30, 45,   60,   70,    75,    80,
                                   85,     88,   89, 89.5, 89.9, 89.95, 89.99, 89.999,
                                   90.001, 90.5, 95, 120,  150,  179.9};
@@ -132,7 +133,7 @@ std::vector<SweepPlane> sweep_planes(const ModelEntry& m, bool quick) {
                  {},
                  theta,
                  0};
-    p.rows = quick ? std::vector<double>{0, 1e-3, 0.01, 0.1, 1, 10, 60}
+    p.rows = quick ? std::vector<double>{0, 1e-3, 0.01, 0.1, 1, 10, 90}
                    : std::vector<double>{0,   1e-4, 1e-3, 3e-3, 0.01, 0.03, 0.1,
                                          0.3, 1,    3,    10,   30,   60,   90};
     planes.push_back(std::move(p));
