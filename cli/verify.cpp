@@ -134,17 +134,18 @@ int run(const CLI::App* cmd, const VerifyOptions& o) {
   io::write_file_atomic(dir / "claims.md", verify::to_markdown(records, info));
 
   int unexpected = 0;
-  fmt::print("{:<30} {:<16} {:>10} {:>10} {:>10}  {}\n", "claim", "verdict", "measured", "p",
-             "control p", "control");
+  // The measured value is printed with what it measures (its statistic names the unit).
+  fmt::print("{:<30} {:<16} {:>10} {:>10}  {:<8}  {}\n", "claim", "verdict", "p", "control p",
+             "control", "measured");
   for (const auto& r : records) {
     const auto& x = r.result;
     const bool ok = verify::as_expected(r);
     unexpected += ok ? 0 : 1;
-    fmt::print("{:<30} {:<16} {:>10.3g} {:>10} {:>10}  {}{}\n", r.check->id,
-               verify::to_string(x.verdict), x.value,
-               x.p_value ? fmt::format("{:.3g}", *x.p_value) : "—",
+    fmt::print("{:<30} {:<16} {:>10} {:>10}  {:<8}  {:.3g} = {}{}\n", r.check->id,
+               verify::to_string(x.verdict), x.p_value ? fmt::format("{:.3g}", *x.p_value) : "—",
                x.control_p_value ? fmt::format("{:.3g}", *x.control_p_value) : "—",
-               x.control_rejected ? "rejected" : "NOT REJECTED (check is broken)",
+               x.control_rejected ? "rejected" : "NOT REJECTED (check is broken)", x.value,
+               x.statistic,
                x.verdict == r.check->expected_for(budget)
                    ? ""
                    : fmt::format("  [recorded verdict: {}]",
