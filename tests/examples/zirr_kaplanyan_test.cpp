@@ -5,6 +5,7 @@
 // limit), its sampler against its pdf, float against double and the SIMD instantiations. Each
 // statistical comparison is also run on a deliberately wrong expectation, which it must reject.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -24,6 +25,8 @@
 #include "core/simd/wide_lanes.h"
 #include "verify/check.h"
 #include "verify/generic/model_sampler_gof.h"
+#include "verify/stability/failure_region.h"
+#include "verify/stability/sweep_plan.h"
 #include "verify/stats/multiple_testing.h"
 #include "zirr_kaplanyan.h"
 
@@ -459,6 +462,38 @@ TEST(ZirrKaplanyan, InstantiatesOnWideTypes) {
     }
   }
   EXPECT_EQ(batch_off, 0);
+}
+
+// The stability sweep every registered model gets (glintlab sweep --models zirr_kaplanyan, the
+// claim all.stability): α from 1e-4, θi to grazing and back-facing, anisotropy, density,
+// microroughness and footprint over their ranges, double and float. Each defect class prints its
+// verdict and region. NaN, Inf or negative values must not occur anywhere, nor p > 1 (p is
+// saturated). The energy gain must be found: it is the paper's clamped normal approximation at
+// N_P p ≪ 1 (mean factor ≈ 0.4/√(N_P p)), the reason the model declares "energy" not claimed.
+TEST(ZirrKaplanyan, StabilitySweep) {
+  model();
+  const auto targets = verify::stability::sweep_targets("zirr_kaplanyan");
+  ASSERT_EQ(targets.size(), 1u);
+  const auto s = verify::stability::sweep_model(targets[0], verify::Budget::kQuick);
+  std::vector<std::string> planes;
+  for (const auto& m : s.maps) planes.push_back(m.plane.name);
+  fmt::print("planes: {}\n", fmt::join(planes, ", "));
+  fmt::print("{}\n", verify::stability::describe_failure_region(s));
+  using verify::stability::DefectClass;
+  for (auto kind : {DefectClass::kBreaks, DefectClass::kEnergyGain,
+                    DefectClass::kProbabilityAboveOne, DefectClass::kHugeVariance})
+    fmt::print("defect class {}: {}\n", int(kind),
+               verify::to_string(verify::stability::stability_verdict(s, kind)));
+  EXPECT_TRUE(s.has_float);
+  EXPECT_TRUE(s.has_probability);
+  EXPECT_EQ(verify::stability::stability_verdict(s, DefectClass::kBreaks), verify::Verdict::kHolds)
+      << verify::stability::describe_failure_region(s);
+  EXPECT_EQ(verify::stability::stability_verdict(s, DefectClass::kProbabilityAboveOne),
+            verify::Verdict::kHolds);
+  EXPECT_EQ(verify::stability::stability_verdict(s, DefectClass::kEnergyGain),
+            verify::Verdict::kFails);
+  EXPECT_TRUE(std::any_of(ZirrKaplanyan::kNotClaimed.begin(), ZirrKaplanyan::kNotClaimed.end(),
+                          [](const auto& nc) { return nc.property == "energy"; }));
 }
 
 // What `glintlab eval --model zirr_kaplanyan --param …` prints, through the in-process registry:
