@@ -517,21 +517,34 @@ TEST(ZirrKaplanyan, EvalRowsThroughTheRegistry) {
   EXPECT_GT(e.value, 0);
 }
 
-// Not a test: the cost per evaluation for the report (run with --gtest_also_run_disabled_tests).
+// Not a test: the cost per evaluation for the report (run with --gtest_also_run_disabled_tests),
+// through the registry's double thunk like every consumer, next to deliot_belcour (one binomial
+// draw per footprint) and smooth_ggx on the same queries.
 TEST(ZirrKaplanyan, DISABLED_CostPerEvaluation) {
-  for (const char* approx : {"normal", "small_count"}) {
-    const auto p = ZirrKaplanyan::params<double>(values({{"binomial", approx}}));
-    const int n = 1 << 20;
+  const int n = 1 << 18;
+  std::vector<ModelQuery<double>> qs(n);
+  for (int i = 0; i < n; ++i) {
+    const double t = double(i) / n;
+    qs[std::size_t(i)] = query(direction(40, 0), direction(10 + 50 * t, 170), 1e-8 + 1e-6 * t,
+                               {t, 1 - t});
+  }
+  const auto time = [&](const ModelEntry& m, const std::vector<double>& v) {
     double sink = 0;
     const auto start = std::chrono::steady_clock::now();
-    for (int i = 0; i < n; ++i) {
-      const double t = double(i) / n;
-      ModelQuery<double> q = query(direction(40, 0), direction(10 + 50 * t, 170), 1e-8 + 1e-6 * t);
-      sink += ZirrKaplanyan::eval(p, q).value;
-    }
+    for (const auto& q : qs) sink += m.eval(v, q).value;
     const double ns =
         std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
-    fmt::print("{}: {:.1f} ns per eval (double, scalar; checksum {:.3g})\n", approx, ns / n, sink);
+    return std::pair{ns / n, sink};
+  };
+  for (const char* approx : {"normal", "small_count"}) {
+    const auto [ns, sink] = time(model(), values({{"binomial", approx}}));
+    fmt::print("zirr_kaplanyan binomial={}: {:.0f} ns per eval (checksum {:.3g})\n", approx, ns,
+               sink);
+  }
+  for (const char* other : {"deliot_belcour", "smooth_ggx"}) {
+    const ModelEntry& m = find_model(other);
+    const auto [ns, sink] = time(m, resolve_params(m, {}));
+    fmt::print("{}: {:.0f} ns per eval (checksum {:.3g})\n", other, ns, sink);
   }
 }
 
