@@ -248,6 +248,9 @@ struct ZirrKaplanyan {
     // Angular grid: microdetails whose lobes do not overlap reflect independently, so the
     // uniforms are also keyed by h's cell on a slope grid of pitch 2β (choice: one lobe diameter)
     // and blended bilinearly over the four cells around s_h, keeping the glints continuous in h.
+    // Blending independent counts keeps the binomial's mean but scales its variance by Σ w²
+    // (reported as variance_factor): the incorrect statistics of interpolated counts that Deliot
+    // & Belcour 2023 (abstract) set out to correct.
     const T inv_pitch = T(0.5) / p.microroughness;
     const T safe_hz = max(hz, T(1e-30));
     const T gx = clamp(-h.x / safe_hz * inv_pitch - T(0.5), T(-1e15), T(1e15));
