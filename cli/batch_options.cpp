@@ -15,7 +15,8 @@ namespace glintlab::cli {
 
 const char* const kBatchOptionsFooter = R"(
 BATCHED EVALUATION (with --model): rows run in structure-of-arrays batches on SIMD instructions
-(core/simd/model_batch.h) for the models built for it (smooth_ggx, smooth_beckmann; any other
+(core/simd/model_batch.h) for the models built for it (every built-in model but
+kneiphof_klein_area, and the models of a plug-in built with glintlab_add_model_plugin; any other
 model runs row by row in double precision). --isa picks the instruction set (unset: GLINTLAB_ISA
 if set, else the widest this CPU has), --precision the float type the model is evaluated in,
 --math exact or fast (core/simd/fast_math.h exp/erf/erfc/rsqrt; float only). --threads sets the

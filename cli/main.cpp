@@ -10,6 +10,7 @@
 
 #include "cli/commands.h"
 #include "cli/input.h"
+#include "core/plugin_loader.h"
 
 namespace {
 
@@ -112,11 +113,18 @@ int main(int argc, char** argv) {
       "glintlab"};
   app.require_subcommand(1);
   app.footer(
+      "Model plug-ins (docs/adding_a_model.md): 'glintlab --plugin PATH <subcommand> ...' "
+      "(repeatable, before the subcommand) and GLINTLAB_PLUGINS=PATH[:PATH...] load modules built "
+      "with glintlab_add_model_plugin; their models then work like the built-in ones.\n"
       "Run 'glintlab <subcommand> --help' for the options and output columns of each.\n"
       "Errors print one line, 'glintlab: error: <message>', and exit with code 2; a failed "
       "run writes no output file.");
 
   try {
+    // Plug-ins register their models before any subcommand is set up or run, so every command
+    // (and its --help) sees them; the --plugin options leave argv here.
+    glintlab::load_plugins(argc, argv, /*leading_only=*/true);
+
     glintlab::cli::add_eval_command(app);
     glintlab::cli::add_sample_command(app);
     glintlab::cli::add_verify_command(app);
@@ -146,8 +154,9 @@ int main(int argc, char** argv) {
     }
     if (first[0] == '-' && first != "-h" && first != "--help") {
       return fail(fmt::format(
-          "unknown option '{}' before the subcommand (valid: --help, or a subcommand: {})", first,
-          names));
+          "unknown option '{}' before the subcommand (valid: --help, --plugin PATH, or a "
+          "subcommand: {})",
+          first, names));
     }
 
     app.parse(argc, argv);

@@ -16,6 +16,10 @@
 
 namespace glintlab {
 
+namespace simd::detail {
+struct ModelBatchFns;  // core/simd/table.h
+}  // namespace simd::detail
+
 // A bad model name or parameter; the message is one line naming the parameter and its range.
 struct ModelParamError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
@@ -53,6 +57,10 @@ struct ModelEntry {
   // so the batch API of core/simd/model_batch.h finds its SIMD instantiations; nullptr for an
   // entry built by hand (it is then batched as a scalar loop over the thunks above).
   const void* static_model = nullptr;
+  // A plug-in model's SIMD batches, compiled in the plug-in per ISA (glintlab/plugin.h sets it;
+  // make_model_entry does not): the batch API runs them where static_model finds no built-in
+  // instantiation. nullptr: none (a scalar loop over the thunks).
+  const simd::detail::ModelBatchFns* plugin_batches = nullptr;
 };
 
 // One address per static model type (an inline variable: the same in every translation unit).

@@ -75,16 +75,34 @@ ModelQuery<double> query_row(std::span<const Column<S>> q, std::size_t i) {
   return from_row(row);
 }
 
-// Runs the model's entry (`entry`: its eval or its sample) of isa's table on the padded columns;
-// false when the model is not batched.
+// A plug-in model's instantiation for isa (eval or sample), or nullptr.
+const detail::BatchFns* plugin_fns(const ModelEntry& model, bool sample, Isa isa) {
+  if (model.plugin_batches == nullptr) return nullptr;
+  const auto& fns = sample ? model.plugin_batches->sample : model.plugin_batches->eval;
+  return fns[static_cast<std::size_t>(isa)];
+}
+
+// Runs the model's entry (`entry`: its eval or its sample) of isa's table on the padded columns,
+// or, for a plug-in model, the plug-in's instantiation for isa; false when there is neither.
 template <class S>
-bool run_batched(const ModelEntry& model, std::size_t (*entry)(std::size_t),
-                 std::span<const double> params, std::span<const Column<S>> q,
-                 std::span<S* const> outputs, std::size_t n, Isa isa, Math math) {
+bool run_batched(const ModelEntry& model, bool sample, std::span<const double> params,
+                 std::span<const Column<S>> q, std::span<S* const> outputs, std::size_t n, Isa isa,
+                 Math math) {
   const int m = batched_index(model);
-  if (m < 0) return false;
-  detail::run<S>(entry(static_cast<std::size_t>(m)), params.data(), q.data(), outputs.data(), n,
-                 isa, math);
+  if (m >= 0) {
+    const std::size_t index = static_cast<std::size_t>(m);
+    detail::run<S>(sample ? detail::model_sample_entry(index) : detail::model_eval_entry(index),
+                   params.data(), q.data(), outputs.data(), n, isa, math);
+    return true;
+  }
+  const detail::BatchFns* f = plugin_fns(model, sample, isa);
+  if (f == nullptr) return false;
+  if constexpr (std::is_same_v<S, float>) {
+    (math == Math::kFast ? f->fast_float : f->exact_float)(params.data(), q.data(), outputs.data(),
+                                                           n);
+  } else {
+    f->exact_double(params.data(), q.data(), outputs.data(), n);
+  }
   return true;
 }
 
@@ -95,7 +113,7 @@ void eval_any(const ModelEntry& model, std::span<const double> params,
   check_model<S>("eval_batch", model, params.size(), query, outputs.size(),
                  2 + model.intermediates.size(), isa, math);
   const auto q = full_query(query);
-  if (run_batched<S>(model, &detail::model_eval_entry, params, q, outputs, n, isa, math)) return;
+  if (run_batched<S>(model, false, params, q, outputs, n, isa, math)) return;
   // Not batched: the entry's double thunks, row by row.
   const std::vector<double> values(params.begin(), params.end());
   for (std::size_t i = 0; i < n; ++i) {
@@ -117,7 +135,7 @@ void sample_any(const ModelEntry& model, std::span<const double> params,
     throw std::invalid_argument("sample_batch: uniform columns have stride 0 or 1");
   }
   const auto q = full_query(query, std::array{u1, u2});
-  if (run_batched<S>(model, &detail::model_sample_entry, params, q, outputs, n, isa, math)) return;
+  if (run_batched<S>(model, true, params, q, outputs, n, isa, math)) return;
   const std::vector<double> values(params.begin(), params.end());
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2<double> u{static_cast<double>(u1.data[u1.stride * i]),
@@ -130,7 +148,12 @@ void sample_any(const ModelEntry& model, std::span<const double> params,
 
 }  // namespace
 
-bool is_batched(const ModelEntry& model) { return batched_index(model) >= 0; }
+bool is_batched(const ModelEntry& model) {
+  if (batched_index(model) >= 0) return true;
+  for (Isa isa : kAllIsas)
+    if (plugin_fns(model, false, isa) != nullptr) return true;
+  return false;
+}
 
 void eval_batch(const ModelEntry& model, std::span<const double> params,
                 std::span<const Column<float>> query, std::span<float* const> outputs,

@@ -46,7 +46,8 @@ inline constexpr auto kCornerColumns = query_column_names<kCornerColumnCount>(kQ
 inline constexpr std::array<std::string_view, 6> kSampleColumns = {"wo_x", "wo_y",   "wo_z",
                                                                    "pdf",  "weight", "rejected"};
 
-// Whether `model` has SIMD instantiations (it is in BatchedModels); otherwise the batch calls
+// Whether `model` has SIMD instantiations (it is in BatchedModels, or a plug-in compiled its
+// batches: ModelEntry::plugin_batches, for the ISAs it was built with); otherwise the batch calls
 // below run the entry's double-precision thunks row by row (any ISA argument gives that result).
 bool is_batched(const ModelEntry& model);
 

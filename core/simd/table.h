@@ -3,6 +3,7 @@
 // one argument check serve both.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <span>
 #include <string>
@@ -22,6 +23,13 @@ using BatchFn = void (*)(const double* params, const Column<S>* in, S* const* ou
 struct BatchFns {
   BatchFn<float> exact_float, fast_float;
   BatchFn<double> exact_double;
+};
+
+// One plug-in model's instantiations (ModelEntry::plugin_batches), compiled in the plug-in
+// (glintlab/plugin.h), indexed by Isa; nullptr for an ISA the plug-in was built without, which
+// then runs the entry's double thunks row by row.
+struct ModelBatchFns {
+  std::array<const BatchFns*, 4> eval, sample;
 };
 
 // The entries of each ISA's table, in this order: every kernel (GLINTLAB_SIMD_KERNELS order),

@@ -3,9 +3,14 @@
 // batched eval and sample, items (queries) per second. Names: model/<name>/<isa>/<op>_<precision>,
 // model/<name>/entry/<op> for the thunk loop; a model with a choice parameter `k` (Kemppinen's
 // neighbourhood) also gets model/<name>/k=<choice>/... for k = 1, 4, 16 (the default k is 1).
+// Model plug-ins join like in `glintlab`: --plugin PATH (repeatable, anywhere) and
+// GLINTLAB_PLUGINS.
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 
 #include <cmath>
+#include <cstdio>
+#include <exception>
 #include <map>
 #include <string>
 #include <utility>
@@ -13,6 +18,7 @@
 
 #include "core/model_layout.h"
 #include "core/model_registry.h"
+#include "core/plugin_loader.h"
 #include "core/simd/inputs.h"
 #include "core/simd/kernels.h"
 #include "core/simd/model_batch.h"
@@ -157,6 +163,13 @@ void register_all() {
 }  // namespace glintlab::simd::bench
 
 int main(int argc, char** argv) {
+  // Before Initialize, which would reject --plugin as an unknown flag's value.
+  try {
+    glintlab::load_plugins(argc, argv, /*leading_only=*/false);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "glintlab_bench_models: error: {}\n", e.what());
+    return 2;
+  }
   benchmark::Initialize(&argc, argv);
   benchmark::AddCustomContext("best_isa",
                               std::string(glintlab::simd::isa_name(glintlab::simd::best_isa())));

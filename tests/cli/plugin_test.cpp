@@ -1,0 +1,200 @@
+// Model plug-ins (glintlab/plugin.h, core/plugin_loader.h) through the CLI: the example model
+// built as a plug-in (tests/plugin/example_plugin.cpp) is listed, evaluates and samples with the
+// same numbers as the same model registered in this process, and reaches the sweeps, the generic
+// claims and the registry-driven figure; each kind of bad plug-in is refused with one line.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli/cli_test_util.h"
+#include "core/model_registry.h"
+#include "experiments/example_glint_model.h"
+
+#if !defined(GLINTLAB_TEST_PLUGIN) || !defined(GLINTLAB_TEST_PLUGIN_WRONG_VERSION) ||       \
+    !defined(GLINTLAB_TEST_PLUGIN_BUILTIN_CLASH) || !defined(GLINTLAB_TEST_NOT_A_PLUGIN) || \
+    !defined(GLINTLAB_TEST_VERSION)
+#error "the test plug-in paths must be defined by the build (tests/CMakeLists.txt)"
+#endif
+
+namespace glintlab::cli_test {
+namespace {
+
+using PluginTest = CliTest;
+
+// The same model, registered in this process as a built-in model would be: the reference the
+// plug-in's numbers must equal.
+const ModelEntry& in_process_example() {
+  static const ModelEntry entry = make_model_entry<example::ExampleGlints>();
+  return entry;
+}
+
+// Sets an environment variable for the runs of one test (the children inherit it).
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const std::string& value) : name_(name) {
+    setenv(name, value.c_str(), 1);
+  }
+  ~ScopedEnv() { unsetenv(name_); }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  const char* name_;
+};
+
+ModelQuery<double> query_of(const io::CsvTable& t, std::size_t row) {
+  const auto c = [&](const char* name) { return cell_value(t, row, t.column(name)); };
+  ModelQuery<double> q{};
+  q.footprint.uv = {c("u"), c("v")};
+  q.footprint.duv_dx = {c("dudx"), c("dvdx")};
+  q.footprint.duv_dy = {c("dudy"), c("dvdy")};
+  q.wi = {c("wi_x"), c("wi_y"), c("wi_z")};
+  q.wo = {c("wo_x"), c("wo_y"), c("wo_z")};
+  q.light = {c("light_cos_half_angle"), c("light_intensity")};
+  return q;
+}
+
+const char* const kQueries =
+    "wi_x,wi_y,wi_z,wo_x,wo_y,wo_z,u,v,dudx,dvdx,dudy,dvdy\n"
+    "0.6,0,0.8,-0.36,0.48,0.8,0.1,0.2,0.001,0,0,0.002\n"
+    "0,0,1,0.6,0,0.8,0.5,0.5,0.01,0.002,0,0.01\n"
+    "0.8,0,0.6,0,0.6,0.8,0.3,0.7,0.0001,0.00002,0.00001,0.0003\n";
+
+TEST_F(PluginTest, ListedByModelsWithItsParameters) {
+  const RunResult r = run({"--plugin", GLINTLAB_TEST_PLUGIN, "models"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* s : {"example_glints:", "needs: footprint", "--param density=10000",
+                        "intermediates: expected_facets, p_hit", "smooth_ggx:"}) {
+    EXPECT_NE(r.out.find(s), std::string::npos) << s;
+  }
+  // Without the plug-in the model is not there: the listing above came from loading it.
+  EXPECT_EQ(run({"models"}).out.find("example_glints"), std::string::npos);
+}
+
+TEST_F(PluginTest, EnvironmentVariableLoadsColonSeparatedPaths) {
+  const ScopedEnv env("GLINTLAB_PLUGINS", std::string("::") + GLINTLAB_TEST_PLUGIN + ":");
+  const RunResult r = run({"models"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("example_glints:"), std::string::npos);
+}
+
+TEST_F(PluginTest, EvalGivesTheNumbersOfTheInProcessModel) {
+  write_text(path("q.csv"), kQueries);
+  // --isa scalar: the plug-in's scalar batches are the thunks' code, bit for bit; the other ISAs
+  // agree within the budgets of tests/simd (tests/simd/plugin_batch_test.cpp).
+  const RunResult r =
+      run({"--plugin", GLINTLAB_TEST_PLUGIN, "eval", "--model", "example_glints", "--param",
+           "density=1e6", "--isa", "scalar", "--in", "q.csv", "--out", "r.csv"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const io::CsvTable t = io::read_csv(path("r.csv"));
+  ASSERT_EQ(t.num_rows(), 3u);
+  const ModelEntry& m = in_process_example();
+  const std::vector<double> values = resolve_params(m, {{"density", "1e6"}});
+  for (std::size_t i = 0; i < t.num_rows(); ++i) {
+    const ErasedEval e = m.eval(values, query_of(t, i));
+    // Bit for bit: the same kernels, compiled in the plug-in, reached through its thunks.
+    EXPECT_EQ(cell_value(t, i, t.column("value")), e.value) << "row " << i;
+    EXPECT_EQ(cell_value(t, i, t.column("pdf")), e.pdf) << "row " << i;
+    EXPECT_EQ(cell_value(t, i, t.column("expected_facets")), e.intermediates[0]) << "row " << i;
+    EXPECT_EQ(cell_value(t, i, t.column("p_hit")), e.intermediates[1]) << "row " << i;
+  }
+  EXPECT_GT(cell_value(t, 0, t.column("value")), 0.0);
+}
+
+TEST_F(PluginTest, SampleWeightsAndPdfsMatchTheInProcessModel) {
+  const RunResult r = run({"--plugin", GLINTLAB_TEST_PLUGIN, "sample", "--model", "example_glints",
+                           "--wi", "0.6,0,0.8", "--n", "200", "--query",
+                           "u=0.1,v=0.2,dudx=0.001,dvdx=0,dudy=0,dvdy=0.002", "--out", "s.csv"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const io::CsvTable t = io::read_csv(path("s.csv"));
+  ASSERT_EQ(t.num_rows(), 200u);
+  const ModelEntry& m = in_process_example();
+  const std::vector<double> values = resolve_params(m, {});
+  ModelQuery<double> q{};
+  q.footprint.uv = {0.1, 0.2};
+  q.footprint.duv_dx = {0.001, 0.0};
+  q.footprint.duv_dy = {0.0, 0.002};
+  q.wi = {0.6, 0.0, 0.8};
+  q.light = {1.0, 1.0};
+  std::size_t accepted = 0;
+  for (std::size_t i = 0; i < t.num_rows(); ++i) {
+    if (cell_value(t, i, t.column("rejected")) != 0.0) continue;
+    ++accepted;
+    q.wo = {cell_value(t, i, t.column("wo_x")), cell_value(t, i, t.column("wo_y")),
+            cell_value(t, i, t.column("wo_z"))};
+    const ErasedEval e = m.eval(values, q);
+    const double pdf = cell_value(t, i, t.column("pdf"));
+    const double weight = cell_value(t, i, t.column("weight"));
+    // The sampler computes its pdf and weight from its own ωo before it is printed and re-read:
+    // equal to rounding.
+    EXPECT_NEAR(pdf, e.pdf, 1e-9 * e.pdf) << "row " << i;
+    EXPECT_NEAR(weight, e.value / e.pdf, 1e-9 * weight) << "row " << i;
+  }
+  EXPECT_GT(accepted, 150u);
+}
+
+TEST_F(PluginTest, SweepFigureAndGenericClaimCoverThePluginModel) {
+  const RunResult sweep = run({"--plugin", GLINTLAB_TEST_PLUGIN, "sweep", "--models",
+                               "example_glints", "--budget", "quick", "--out", "sweeps"});
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  const auto stability = nlohmann::json::parse(read_text(path("sweeps/stability.json")));
+  ASSERT_EQ(stability["models"].size(), 1u);
+  EXPECT_EQ(stability["models"][0]["model"], "example_glints");
+
+  const RunResult figure = run({"--plugin", GLINTLAB_TEST_PLUGIN, "figure", "models-hemisphere",
+                                "--budget", "quick", "--out", "figures"});
+  ASSERT_EQ(figure.exit_code, 0) << figure.err;
+  EXPECT_TRUE(std::filesystem::exists(path("figures/models-hemisphere/example_glints.exr")));
+  EXPECT_NE(
+      read_text(path("figures/models-hemisphere/models_hemisphere.csv")).find("example_glints"),
+      std::string::npos);
+
+  const RunResult verify = run({"--plugin", GLINTLAB_TEST_PLUGIN, "verify", "--claims",
+                                "all.stability", "--budget", "quick", "--out", "verify"});
+  ASSERT_EQ(verify.exit_code, 0) << verify.err;
+  EXPECT_NE(read_text(path("verify/claims.json")).find("example_glints/default"),
+            std::string::npos);
+}
+
+TEST_F(PluginTest, MissingFileIsRefused) {
+  expect_input_error(run({"--plugin", "no_such_plugin.so", "models"}),
+                     {"--plugin no_such_plugin.so:", "no such file"}, {});
+  const ScopedEnv env("GLINTLAB_PLUGINS", "no_such_plugin.so");
+  expect_input_error(run({"models"}), {"GLINTLAB_PLUGINS: no_such_plugin.so:", "no such file"}, {});
+}
+
+TEST_F(PluginTest, FileThatIsNotALoadableModuleIsRefused) {
+  write_text(path("text.so"), "not an ELF file\n");
+  expect_input_error(run({"--plugin", "text.so", "models"}),
+                     {"--plugin text.so:", "cannot be loaded"}, {"text.so"});
+}
+
+TEST_F(PluginTest, ModuleWithoutTheEntryPointIsRefused) {
+  expect_input_error(run({"--plugin", GLINTLAB_TEST_NOT_A_PLUGIN, "models"}),
+                     {"--plugin", "not a glintlab plug-in", "glintlab_plugin_v1"}, {});
+}
+
+TEST_F(PluginTest, PluginBuiltAgainstAnotherVersionIsRefused) {
+  expect_input_error(run({"--plugin", GLINTLAB_TEST_PLUGIN_WRONG_VERSION, "models"}),
+                     {"--plugin", "built against glintlab 0.0.1",
+                      std::string("this is glintlab ") + GLINTLAB_TEST_VERSION},
+                     {});
+}
+
+TEST_F(PluginTest, NameClashesAreRefused) {
+  expect_input_error(run({"--plugin", GLINTLAB_TEST_PLUGIN_BUILTIN_CLASH, "models"}),
+                     {"--plugin", "model 'smooth_ggx' clashes"}, {});
+  expect_input_error(
+      run({"--plugin", GLINTLAB_TEST_PLUGIN, "--plugin", GLINTLAB_TEST_PLUGIN, "models"}),
+      {"--plugin", "model 'example_glints' clashes"}, {});
+}
+
+TEST_F(PluginTest, PluginWithoutAPathIsRefused) {
+  expect_input_error(run({"--plugin"}), {"--plugin: needs a value"}, {});
+}
+
+}  // namespace
+}  // namespace glintlab::cli_test
