@@ -4,4 +4,4 @@
 
 #include "zirr_kaplanyan.h"
 
-GLINTLAB_PLUGIN(glintlab::zk16::ZirrKaplanyan)
+GLINTLAB_PLUGIN(glintlab::zk16::ZirrKaplanyan);

@@ -1,0 +1,67 @@
+# ctest script: the example plug-in project examples/zirr_kaplanyan, as a researcher outside the
+# project builds it. Install glintlab into a scratch prefix, configure and build the example
+# against that install only (CMAKE_PREFIX_PATH, no path into the source or build tree), then run
+# the INSTALLED glintlab with it: `models` lists it, `eval --model` gives a finite value for every
+# query row, and its conformance claims run at the quick budget (CONFORMANCE=ON).
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
+execute_process(COMMAND "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${WORK}/prefix"
+                RESULT_VARIABLE r OUTPUT_QUIET)
+if(r)
+  message(FATAL_ERROR "install failed: ${r}")
+endif()
+execute_process(COMMAND "${CMAKE_COMMAND}" -S "${EXAMPLE}" -B "${WORK}/build" -G Ninja
+                        -DCMAKE_PREFIX_PATH=${WORK}/prefix
+                RESULT_VARIABLE r OUTPUT_QUIET)
+if(r)
+  message(FATAL_ERROR "example configure failed: ${r}")
+endif()
+execute_process(COMMAND "${CMAKE_COMMAND}" --build "${WORK}/build" RESULT_VARIABLE r)
+if(r)
+  message(FATAL_ERROR "example build failed: ${r}")
+endif()
+
+set(glintlab "${WORK}/prefix/bin/glintlab")
+set(plugin "${WORK}/build/zirr_kaplanyan.so")
+
+execute_process(COMMAND "${glintlab}" --plugin "${plugin}" models
+                RESULT_VARIABLE r OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(r OR NOT out MATCHES "\nzirr_kaplanyan: ")
+  message(FATAL_ERROR "zirr_kaplanyan not listed (exit ${r}):\n${out}\n${err}")
+endif()
+
+# Three queries: normal incidence on the specular peak, oblique, and a tiny footprint.
+file(WRITE "${WORK}/q.csv"
+  "wi_x,wi_y,wi_z,wo_x,wo_y,wo_z,u,v,dudx,dvdx,dudy,dvdy,light_cos_half_angle,light_intensity\n"
+  "0,0,1,0,0,1,0.5,0.5,0.01,0,0,0.01,0.99999,1\n"
+  "0.6,0,0.8,-0.36,0.48,0.8,0.1,0.2,0.001,0,0,0.002,0.99999,1\n"
+  "0.8,0,0.6,-0.8,0,0.6,0.3,0.7,0.00001,0,0,0.00001,1,1\n")
+execute_process(COMMAND "${glintlab}" --plugin "${plugin}" eval --model zirr_kaplanyan
+                        --in "${WORK}/q.csv" --out "${WORK}/r.csv"
+                RESULT_VARIABLE r ERROR_VARIABLE err)
+if(r)
+  message(FATAL_ERROR "eval --model zirr_kaplanyan failed (${r}): ${err}")
+endif()
+file(STRINGS "${WORK}/r.csv" lines)
+list(LENGTH lines n)
+if(NOT n EQUAL 4)
+  message(FATAL_ERROR "eval wrote ${n} lines, expected a header and 3 rows")
+endif()
+foreach(line IN LISTS lines)
+  if(line MATCHES "nan|inf")
+    message(FATAL_ERROR "eval wrote a non-finite value: ${line}")
+  endif()
+endforeach()
+
+if(CONFORMANCE)
+  execute_process(COMMAND "${glintlab}" --plugin "${plugin}" verify
+                          --claims "model.zirr_kaplanyan.*" --budget quick --out "${WORK}/verify"
+                  RESULT_VARIABLE r OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  # Exit 1 means a verdict differs from the recorded one: a plug-in model has no recorded verdicts
+  # other than what it declares, so only a run that could not complete (exit 2) or a control
+  # that was not rejected fails this test.
+  if(r EQUAL 2 OR NOT EXISTS "${WORK}/verify/claims.json" OR out MATCHES "NOT REJECTED")
+    message(FATAL_ERROR "conformance claims of zirr_kaplanyan (exit ${r}):\n${out}\n${err}")
+  endif()
+  message(STATUS "${out}")
+endif()
