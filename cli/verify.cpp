@@ -144,7 +144,9 @@ int run(const CLI::App* cmd, const VerifyOptions& o) {
                verify::to_string(x.verdict), x.value,
                x.p_value ? fmt::format("{:.3g}", *x.p_value) : "—",
                x.control_p_value ? fmt::format("{:.3g}", *x.control_p_value) : "—",
-               x.control_rejected ? "rejected" : "NOT REJECTED (check is broken)",
+               x.verdict == verify::Verdict::kNotClaimed ? "none (not claimed)"
+               : x.control_rejected                      ? "rejected"
+                                                         : "NOT REJECTED (check is broken)",
                x.verdict == r.check->expected_for(budget)
                    ? ""
                    : fmt::format("  [recorded verdict: {}]",
