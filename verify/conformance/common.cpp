@@ -308,7 +308,9 @@ ModelEntry with_cost_per_area(const ModelEntry& m, double base_side, int max_par
                                               const ModelQuery<double>& q) {
     const double side = std::max(std::hypot(q.footprint.duv_dx.x, q.footprint.duv_dx.y),
                                  std::hypot(q.footprint.duv_dy.x, q.footprint.duv_dy.y));
-    const int k = std::clamp(int(std::ceil(side / base_side)), 1, max_parts);
+    // One part up to 1.5 × the base side (the small footprint of the timing), max_parts per axis
+    // beyond.
+    const int k = side <= 1.5 * base_side ? 1 : max_parts;
     ErasedEval sum = f(v, q);
     for (int i = 1; i < k * k; ++i) {
       ModelQuery<double> sub = q;

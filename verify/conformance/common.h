@@ -99,8 +99,8 @@ ModelEntry with_consistent_sample(const ModelEntry& m);
 ModelEntry with_float_as_double(const ModelEntry& m);
 // NaN, Inf and negative outputs of eval and sample replaced by 0.
 ModelEntry with_outputs_sanitized(const ModelEntry& m);
-// eval on the footprint split into up to `max_parts` sub-footprints of the smallest side
-// `base_side` per axis, averaged: a cost that grows with the footprint's area.
+// eval at footprints wider than 1.5 × `base_side` repeated at max_parts² positions across it and
+// averaged: a cost that grows with the footprint (max_parts² × at the large end).
 ModelEntry with_cost_per_area(const ModelEntry& m, double base_side, int max_parts);
 // eval with the footprint's Jacobian clamped to side `side` (constant cost, the corrected input).
 ModelEntry with_footprint_clamped(const ModelEntry& m, double side);

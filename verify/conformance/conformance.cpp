@@ -143,7 +143,7 @@ Control make_control(std::string_view property, const ModelEntry& m, const Asses
                              fmt::format("corrected: value × {:.4g}, the measured bias removed",
                                          1 / (1 + genuine.value))};
   // constant-time
-  return holding ? Control{with_cost_per_area(m, 1e-3, 8),
+  return holding ? Control{with_cost_per_area(m, 0.01, 8),
                            "eval averaged over up to 8 × 8 sub-footprints (cost ∝ area)"}
                  : Control{with_footprint_clamped(m, 0.01),
                            "corrected: footprint clamped to side 0.01"};
@@ -183,10 +183,24 @@ std::optional<Recorded> recorded_verdict(std::string_view model, std::string_vie
   using V = Verdict;
   // Measured at the quick budget (and full where noted); see docs/data/claims-quick.json.
   static const std::map<std::pair<std::string_view, std::string_view>, Recorded> table = {
+      // Binomial counts drawn from float and double disagree on 54 % of random queries (the
+      // count's inputs, rounded to float, land on other sides of the gates; the float path is
+      // not a rounding of the double one).
+      {{"deliot_belcour", "float-vs-double"}, {V::kFails}},
+      // The same for Kneiphof & Klein's counts (4.9 % of queries) and Kemppinen's glint sums
+      // (1.3 % GGX, 2.8 % Beckmann: glints at the threshold of the cell and LOD decisions).
+      {{"kneiphof_klein", "float-vs-double"}, {V::kFails}},
+      {{"kemppinen_ggx", "float-vs-double"}, {V::kFails}},
+      {{"kemppinen_beckmann", "float-vs-double"}, {V::kFails}},
+      // 15 of 20000 random rows (7.5e-4, allowed 1e-4) differ by up to 100 % between the AVX-512
+      // batch and the scalar eval: a discrete decision flipped by an erf ulp.
+      {{"kemppinen_beckmann", "simd-equivalence"}, {V::kFails}},
+      // pdf() is 0 below the horizon, where the sampler's rejected samples land (27 % at
+      // θi = 70°): the sampler's density and pdf() disagree there (mass 0.67 of 1).
+      {{"chermain", "sampler-matches-pdf"}, {V::kFails}},
   };
   const auto it = table.find({model, property});
   if (it == table.end()) return std::nullopt;
-  (void)V::kHolds;
   return it->second;
 }
 

@@ -13,6 +13,7 @@
 #include "experiments/example_glint_model.h"
 #include "verify/conformance/common.h"
 #include "verify/conformance/conformance.h"
+#include "verify/stats/multiple_testing.h"
 
 namespace glintlab::verify::conformance {
 namespace {
@@ -39,7 +40,9 @@ TEST(ConformanceGenerator, EveryModelGetsEveryProperty) {
       EXPECT_EQ(c.family, "model." + std::string(m.name)) << c.id;
       // Declared not-claimed properties are recorded as such, never as holding.
       const std::string property = c.id.substr(7 + m.name.size());
-      if (not_claimed_reason(property, m)) EXPECT_EQ(c.expected, Verdict::kNotClaimed) << c.id;
+      if (not_claimed_reason(property, m)) {
+        EXPECT_EQ(c.expected, Verdict::kNotClaimed) << c.id;
+      }
       EXPECT_EQ(is_statistical(c), is_statistical_property(property) && !not_claimed_reason(property, m))
           << c.id;
     }
@@ -116,8 +119,8 @@ INSTANTIATE_TEST_SUITE_P(
                       std::pair{"smooth_ggx", "stability"},
                       std::pair{"deliot_belcour", "converges-to-smooth"},
                       std::pair{"deliot_belcour", "constant-time"}),
-    [](const auto& info) {
-      std::string n = info.param.first + "_" + info.param.second;
+    [](const auto& param_info) {
+      std::string n = param_info.param.first + "_" + param_info.param.second;
       for (char& ch : n)
         if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
       return n;
