@@ -144,8 +144,10 @@ int run(const CLI::App* cmd, const VerifyOptions& o) {
     fmt::print("{:<30} {:<16} {:>10} {:>10}  {:<8}  {:.3g} = {}{}\n", r.check->id,
                verify::to_string(x.verdict), x.p_value ? fmt::format("{:.3g}", *x.p_value) : "—",
                x.control_p_value ? fmt::format("{:.3g}", *x.control_p_value) : "—",
-               x.control_rejected ? "rejected" : "NOT REJECTED (check is broken)", x.value,
-               x.statistic,
+               x.verdict == verify::Verdict::kNotClaimed ? "none (not claimed)"
+               : x.control_rejected                      ? "rejected"
+                                                         : "NOT REJECTED (check is broken)",
+               x.value, x.statistic,
                x.verdict == r.check->expected_for(budget)
                    ? ""
                    : fmt::format("  [recorded verdict: {}]",

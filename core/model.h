@@ -16,6 +16,11 @@
 //   validate(ModelQuery<double>) -> std::optional<QueryViolation>  the model's own input rules
 //   kDoubleOnly = true            no float instantiation (SIMD batches run it on double)
 //   kBatched = false              no SIMD instantiation (batches loop over its double thunks)
+//   kSmoothLimit = "smooth_ggx"   the registered model a footprint model tends to as its footprint
+//                                 grows (parameters of the same name are passed on; the
+//                                 conformance suite's converges-to-smooth, verify/conformance/)
+//   kNotClaimed = {{{"constant-time", "why"}}}  conformance properties the model does not claim,
+//                                 each with its reason (reported as "not-claimed", never as holds)
 // params<T> reads the values by name (values[param_index<M>("seed")]), never by position.
 // core/model_registry.h turns such a struct into a type-erased entry for the CLI, the claims, the
 // figures and the benchmarks; adding a model = its file plus its type in core/model_list.h.
@@ -120,6 +125,12 @@ template <class M>
 consteval std::size_t param_index(std::string_view name) {
   return param_index(M::kParams, name);
 }
+
+// A conformance property (verify/conformance/) a model does not claim, and why: the suite reports
+// it as "not-claimed" with the reason instead of running it.
+struct NotClaimed {
+  std::string_view property, reason;
+};
 
 // A query value a model does not take (from its optional static validate): the column that breaks
 // the rule (a name of core/model_layout.h) and the valid range, in words.

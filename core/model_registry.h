@@ -61,6 +61,10 @@ struct ModelEntry {
   // make_model_entry does not): the batch API runs them where static_model finds no built-in
   // instantiation. nullptr: none (a scalar loop over the thunks).
   const simd::detail::ModelBatchFns* plugin_batches = nullptr;
+  // The registered model this one tends to as its footprint grows (M::kSmoothLimit), empty where
+  // none is declared; and the conformance properties it does not claim (M::kNotClaimed).
+  std::string_view smooth_limit;
+  std::vector<NotClaimed> not_claimed;
 };
 
 // One address per static model type (an inline variable: the same in every translation unit).
@@ -99,6 +103,16 @@ std::string describe_needs(unsigned needs);
 namespace detail {
 // A float query from a double one (the sweeps' float path), every column of core/model_layout.h.
 inline ModelQuery<float> to_float(const ModelQuery<double>& q) { return convert_query<float>(q); }
+
+template <class M>
+concept DeclaresSmoothLimit = requires {
+  { M::kSmoothLimit } -> std::convertible_to<std::string_view>;
+};
+template <class M>
+concept DeclaresNotClaimed = requires {
+  M::kNotClaimed.size();
+  { M::kNotClaimed[0].property } -> std::convertible_to<std::string_view>;
+};
 
 template <class M>
 concept DoubleOnly = requires {
@@ -140,6 +154,9 @@ ModelEntry make_model_entry() {
     return M::template sample<double>(M::template params<double>(v), q, u);
   };
   if constexpr (ValidatesQuery<M>) e.validate = &M::validate;
+  if constexpr (detail::DeclaresSmoothLimit<M>) e.smooth_limit = M::kSmoothLimit;
+  if constexpr (detail::DeclaresNotClaimed<M>)
+    e.not_claimed.assign(M::kNotClaimed.begin(), M::kNotClaimed.end());
   if constexpr (detail::HasFloatInstantiation<M>) {
     e.eval_float = [](const std::vector<double>& v, const ModelQuery<double>& q) {
       const auto r = M::template eval<float>(M::template params<float>(v), detail::to_float(q));

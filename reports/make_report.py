@@ -51,7 +51,7 @@ PART_TITLES = {"claims": "Claims (glintlab verify)", "figures": "Figures (glintl
                "stability": "Stability maps (glintlab sweep)"}
 CLAIM_KEYS = {"id": str, "paper": str, "source": str, "verdict": str, "detail": str,
               "control": str, "control_rejected": bool}
-VERDICTS = {"holds", "holds-within", "holds-in-regime", "fails", "inconclusive"}
+VERDICTS = {"holds", "holds-within", "holds-in-regime", "fails", "inconclusive", "not-claimed"}
 PARAM_COLUMNS = {"density", "microroughness", "reference_spp", "model", "sampler", "light"}
 TABLE_ROW_LIMIT = 80
 

@@ -29,6 +29,7 @@ VERDICTS = {
     "kHoldsInRegime": "holds-in-regime",
     "kFails": "fails",
     "kInconclusive": "inconclusive",
+    "kNotClaimed": "not-claimed",
 }
 BUDGETS = ("quick", "full")
 
@@ -281,6 +282,26 @@ def read_claims_json(path):
     return runs
 
 
+def conformance_checks(measured):
+    """The model conformance checks (model.<name>.<property>) of the runs: generated from the
+    model registry at run time, so they are not in verify/claims/*.cpp; each run reports its
+    recorded verdict (verify/conformance/conformance.cpp) as expected_verdict."""
+    checks = {}
+    for budget in BUDGETS:
+        for cid, r in measured.get(budget, {}).items():
+            if not cid.startswith("model."):
+                continue
+            c = checks.setdefault(cid, {
+                "id": cid, "paper": r.get("paper", ""), "source": r.get("source", ""),
+                "recorded": {}, "statistical": bool(r.get("raw_p_values"))})
+            c["recorded"][budget] = r.get("expected_verdict", r["verdict"])
+    for c in checks.values():
+        for budget in BUDGETS:
+            c["recorded"].setdefault(budget, c["recorded"].get("quick") or
+                                     c["recorded"].get("full"))
+    return sorted(checks.values(), key=lambda c: c["id"])
+
+
 # ---- the document ----------------------------------------------------------------------------
 
 def cell(text):
@@ -304,7 +325,9 @@ def control_cell(check, measured):
     parts = []
     for budget in BUDGETS:
         run = measured.get(budget, {}).get(check["id"])
-        if run is not None:
+        if run is not None and run["verdict"] == "not-claimed":
+            parts.append(f"{budget}: none (not claimed)")
+        elif run is not None:
             verdict = run.get("control_verdict")
             opposed = "opposes" if run["control_rejected"] else "**does NOT oppose**"
             parts.append(f"{budget}: {verdict} ({opposed})" if verdict else
@@ -373,7 +396,8 @@ def render(checks, measured, command, inputs):
             continue
         ran = [c for c in checks if c["id"] in runs]
         same = sum(1 for c in ran if runs[c["id"]]["verdict"] == c["recorded"][budget])
-        rejected = sum(1 for c in ran if runs[c["id"]]["control_rejected"])
+        rejected = sum(1 for c in ran if runs[c["id"]]["control_rejected"] or
+                       runs[c["id"]]["verdict"] == "not-claimed")
         lines.append(f"- {budget} budget: {len(ran)} of {len(checks)} claims run, {same} as "
                      f"recorded, {rejected} of {len(ran)} negative controls rejected.")
         unknown = sorted(set(runs) - {c["id"] for c in checks})
@@ -404,7 +428,9 @@ def render(checks, measured, command, inputs):
         "Verdicts: **holds**; **holds-within** (within a stated tolerance); **holds-in-regime** "
         "(inside a parameter region the check declares before measuring, listed above; the "
         "detail says what happens outside); **fails** (with the evidence); **inconclusive** "
-        "(the test could not decide, e.g. an interval straddling the tolerance). The control "
+        "(the test could not decide, e.g. an interval straddling the tolerance); **not-claimed** "
+        "(model conformance only: a property the model declares it does not claim, with the "
+        "reason; nothing is measured). The control "
         "column gives the verdict the same measurement and decision reach on the control's "
         "input: a deliberately wrong input for a claim that holds (it must fail), the corrected "
         "formula or input for a claim that fails (it must hold). A verdict that differs from the "
@@ -437,6 +463,7 @@ def main(argv):
                     raise InputError(f"{path}: a second {budget}-budget run was given")
                 measured[budget] = runs
                 inputs.append((path, budget))
+        checks += conformance_checks(measured)
         command = " ".join(["/usr/bin/python3 scripts/claims_doc.py"] + args.claims_json +
                            (["--out", args.out] if args.out else []))
         text = render(checks, measured, command, inputs)

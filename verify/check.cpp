@@ -12,6 +12,7 @@ const char* to_string(Verdict v) {
     case Verdict::kHoldsInRegime: return "holds-in-regime";
     case Verdict::kFails: return "fails";
     case Verdict::kInconclusive: return "inconclusive";
+    case Verdict::kNotClaimed: return "not-claimed";
   }
   return "inconclusive";
 }

@@ -13,9 +13,12 @@ namespace glintlab::verify {
 
 enum class Budget { kQuick, kFull };
 
-// Verdicts as shared/CLAIMS.md defines them.
-enum class Verdict { kHolds, kHoldsWithin, kHoldsInRegime, kFails, kInconclusive };
-const char* to_string(Verdict v);  // "holds", "holds-within", "holds-in-regime", "fails", ...
+// Verdicts as shared/CLAIMS.md defines them. kNotClaimed: a conformance property the model
+// declares it does not claim (core/model.h NotClaimed); nothing is measured, the detail gives the
+// model's reason, and it never counts as holding.
+enum class Verdict { kHolds, kHoldsWithin, kHoldsInRegime, kFails, kInconclusive, kNotClaimed };
+const char* to_string(Verdict v);  // "holds", "holds-within", "holds-in-regime", "fails", ...,
+                                   // "not-claimed"
 
 struct CheckResult {
   Verdict verdict = Verdict::kInconclusive;
@@ -78,6 +81,10 @@ struct Check {
   // sample counts only one of them has. Printed with every run of the check, so a quick run says
   // what the full budget sees and why this run cannot.
   std::string budget_note = {};
+  // The false-positive family the check belongs to: empty for the papers' claims (one family,
+  // check_level()); "model.<name>" for a model's conformance checks (verify/conformance/), each
+  // model's its own family, so adding a model or a plug-in changes no other check's level.
+  std::string family = {};
 
   Verdict expected_for(Budget b) const {
     return b == Budget::kFull && expected_full ? *expected_full : expected;
@@ -91,12 +98,18 @@ const std::vector<Check>& registered_checks();
 std::uint64_t check_seed(const std::string& id, std::uint64_t configuration);
 
 // True for a check that tests a hypothesis (it has a calibration function): it takes a share of
-// the suite's family-wise false-positive rate.
+// its family's false-positive rate.
 inline bool is_statistical(const Check& c) { return static_cast<bool>(c.calibration); }
+
+// Whether a run of the check gave what is recorded for it: its recorded verdict, and a control
+// that opposes it (a not-claimed property runs nothing, so it has no control to reject).
+inline bool control_ok(const CheckResult& r) {
+  return r.verdict == Verdict::kNotClaimed || r.control_rejected;
+}
 
 // The significance level one statistical check holds its configuration-corrected p-value to: the
 // suite's family-wise rate kFamilyWiseRate (verify/stats/multiple_testing.h) split by Šidák over
-// every statistical check registered, so that a run of the whole suite rejects any true claim with
+// every statistical check of the papers' claims registered (Check::family empty), so that a run of the whole suite rejects any true claim with
 // probability at most kFamilyWiseRate. Inside a check, its configurations are corrected by
 // Holm–Šidák at this level. The level does not depend on which claims a run selects.
 double check_level();

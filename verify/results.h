@@ -29,7 +29,8 @@ std::string to_json(const std::vector<RunRecord>& records, const RunInfo& info);
 std::string to_csv(const std::vector<RunRecord>& records);
 std::string to_markdown(const std::vector<RunRecord>& records, const RunInfo& info);
 
-// Fills suite_adjusted_p: Holm–Šidák over the p-values of the run's statistical checks. Each check
+// Fills suite_adjusted_p: Holm–Šidák over the p-values of the run's statistical checks, family by
+// family (Check::family). Each check
 // already holds its own p-value to check_level(), the single-step Šidák share of the suite's rate,
 // which Holm–Šidák never rejects less than; the adjusted values show how far each result is from
 // the suite's threshold.

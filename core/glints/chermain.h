@@ -322,6 +322,16 @@ struct Chermain {
   // whatever the column type.
   static constexpr bool kDoubleOnly = true;
   static constexpr std::string_view kName = "chermain";
+  // Conformance (verify/conformance/): what the model does not claim.
+  static constexpr std::array<NotClaimed, 2> kNotClaimed = {{
+      {"float-vs-double",
+       "double only (kDoubleOnly): cell coordinates at LOD -20 are uv 2^20, beyond float's "
+       "precision"},
+      {"converges-to-smooth",
+       "its smooth limit is the correlated Beckmann NDF (rho) with the V-cavity G2 of Chermain et "
+       "al. 2020, which no registered model evaluates: smooth_beckmann has Smith's "
+       "height-correlated G2 and no correlation"},
+  }};
   static constexpr std::string_view kDescription =
       "procedural glinty BRDF (Chermain et al. 2020) with slope correlation rho and geometric "
       "glint anti-aliasing (Chermain et al. 2021), V-cavity G2, F = 1; the GGAA kernel is given "

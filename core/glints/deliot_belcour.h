@@ -139,6 +139,8 @@ constexpr std::array<ParamSpec, 6> binomial_glint_params(const ParamSpec& probab
 
 struct DeliotBelcour {
   static constexpr std::string_view kName = "deliot_belcour";
+  // The smooth model its footprint average tends to (conformance: converges-to-smooth).
+  static constexpr std::string_view kSmoothLimit = "smooth_ggx";
   static constexpr std::string_view kDescription =
       "Deliot & Belcour 2023 binomial glints on isotropic/anisotropic GGX: N_P from the footprint "
       "and a log10 density, p = R D(h)/D(n) clamped to [0, 1], count b ~ Binomial(N_P, p) by the "

@@ -169,6 +169,8 @@ inline std::vector<std::uint64_t> multinomial_split(std::uint64_t b, std::span<c
 
 struct KneiphofKlein {
   static constexpr std::string_view kName = "kneiphof_klein";
+  // The smooth model its footprint average tends to (conformance: converges-to-smooth).
+  static constexpr std::string_view kSmoothLimit = "smooth_ggx";
   static constexpr std::string_view kDescription =
       "Kneiphof & Klein 2024 binomial glints for point/directional lights as spherical caps: "
       "p = |Omega| D(h)/(D_H 4 <h, wl>) (Eq. 20), clamped to [0, 1], b ~ Binomial(N_P, p), value = "

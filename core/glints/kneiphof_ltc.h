@@ -91,6 +91,16 @@ inline PolygonLight<double> rectangle_polygon_light(const std::array<Vec3<double
 
 struct KneiphofKleinArea {
   static constexpr std::string_view kName = "kneiphof_klein_area";
+  // Conformance (verify/conformance/): what the model does not claim.
+  static constexpr std::array<NotClaimed, 3> kNotClaimed = {{
+      {"float-vs-double", "double only (kDoubleOnly): the LTC table lookup is scalar double"},
+      {"simd-equivalence",
+       "not batched (kBatched = false): its batches are a loop over the double thunks, so there is "
+       "no SIMD instantiation to compare"},
+      {"converges-to-smooth",
+       "its smooth limit is GGX integrated over the rectangle light (the LTC polygon integral), "
+       "which no registered model evaluates; smooth_ggx is a point-light model"},
+  }};
   static constexpr std::string_view kDescription =
       "Kneiphof & Klein 2024 binomial glints under a rectangular area light (Sec. 4): the "
       "rectangle is centred along the query's wo at light_distance, facing the shading point "

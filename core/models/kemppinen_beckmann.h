@@ -11,6 +11,8 @@ namespace glintlab {
 
 struct KemppinenBeckmann : detail::KemppinenModel<Beckmann> {
   static constexpr std::string_view kName = "kemppinen_beckmann";
+  // The smooth model its footprint average tends to (conformance: converges-to-smooth).
+  static constexpr std::string_view kSmoothLimit = "smooth_beckmann";
   static constexpr std::string_view kDescription =
       "glinty Beckmann NDF in constant time (Algorithm 1), Smith G2, F = 1; sampler: Algorithm 2 "
       "(pdf=marginal: its exact density; pdf=printed: lines 16-17)";

@@ -11,6 +11,8 @@ namespace glintlab {
 
 struct KemppinenGGX : detail::KemppinenModel<GGX> {
   static constexpr std::string_view kName = "kemppinen_ggx";
+  // The smooth model its footprint average tends to (conformance: converges-to-smooth).
+  static constexpr std::string_view kSmoothLimit = "smooth_ggx";
   static constexpr std::string_view kDescription =
       "glinty GGX NDF in constant time (Algorithm 1), Smith G2, F = 1; sampler: Algorithm 2 "
       "(pdf=marginal: its exact density; pdf=printed: lines 16-17)";

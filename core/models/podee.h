@@ -18,6 +18,13 @@ namespace glintlab {
 
 struct Podee {
   static constexpr std::string_view kName = "podee";
+  // Conformance (verify/conformance/): what the model does not claim.
+  static constexpr std::array<NotClaimed, 1> kNotClaimed = {{
+      {"converges-to-smooth",
+       "a mirror pixel's highlight under a disk light: the footprint enters only through its four "
+       "corner reflection vectors and the model defines no smooth NDF it tends to; its GGX "
+       "(alpha_x, alpha_y) only drives the sampler"},
+  }};
   static constexpr std::string_view kDescription =
       "micro-specular highlight of a mirror pixel under a disk light: the reflection vector of the "
       "pixel's reflection space closest to the light's centre, times the covered fraction of the "

@@ -1,0 +1,209 @@
+// The conformance suite's generator (every model gets every property, a model registered at run
+// time too), its controls (each rejected by the property's own measure and decide steps), and
+// deliberately broken toy models that fail the property they break.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <numbers>
+#include <set>
+#include <string>
+
+#include "core/model_registry.h"
+#include "experiments/example_glint_model.h"
+#include "verify/conformance/common.h"
+#include "verify/conformance/conformance.h"
+#include "verify/stats/multiple_testing.h"
+
+namespace glintlab::verify::conformance {
+namespace {
+
+using V3 = Vec3<double>;
+
+std::set<std::string> ids_of(const std::vector<Check>& checks) {
+  std::set<std::string> ids;
+  for (const Check& c : checks) ids.insert(c.id);
+  return ids;
+}
+
+TEST(ConformanceGenerator, EveryModelGetsEveryProperty) {
+  const std::set<std::string> registered = ids_of(registered_checks());
+  for (const ModelEntry& m : registered_models()) {
+    const auto checks = conformance_checks(m);
+    for (std::string_view p : kProperties) {
+      const std::string id = "model." + std::string(m.name) + "." + std::string(p);
+      const bool expected = applies(p, m);
+      EXPECT_EQ(ids_of(checks).count(id), expected ? 1u : 0u) << id;
+      EXPECT_EQ(registered.count(id), expected ? 1u : 0u) << id;
+    }
+    for (const Check& c : checks) {
+      EXPECT_EQ(c.family, "model." + std::string(m.name)) << c.id;
+      // Declared not-claimed properties are recorded as such, never as holding.
+      const std::string property = c.id.substr(7 + m.name.size());
+      if (not_claimed_reason(property, m)) {
+        EXPECT_EQ(c.expected, Verdict::kNotClaimed) << c.id;
+      }
+      EXPECT_EQ(is_statistical(c), is_statistical_property(property) && !not_claimed_reason(property, m))
+          << c.id;
+    }
+  }
+  // Footprint properties only for footprint models.
+  EXPECT_EQ(ids_of(conformance_checks(find_model("smooth_ggx"))).count("model.smooth_ggx.constant-time"), 0u);
+}
+
+// The papers' claims keep the level they had without the conformance suite, and a model's family
+// level depends on that model alone.
+TEST(ConformanceGenerator, FamiliesAreSeparate) {
+  std::size_t paper_statistical = 0;
+  for (const Check& c : registered_checks())
+    if (c.family.empty() && is_statistical(c)) ++paper_statistical;
+  EXPECT_DOUBLE_EQ(check_level(), sidak_level(kFamilyWiseRate, paper_statistical));
+  const ModelEntry& ggx = find_model("smooth_ggx");
+  // smooth_ggx claims all five statistical properties that apply to it (no footprint).
+  EXPECT_DOUBLE_EQ(model_level(ggx), sidak_level(kFamilyWiseRate, 4));
+}
+
+// A model registered at run time (a plug-in) gets its checks from the registry, and its
+// declarations reach them; in a child process, so the registry of the other tests is unchanged.
+TEST(ConformanceGenerator, RuntimeModelGetsChecks) {
+  EXPECT_EXIT(
+      {
+        register_model(make_model_entry<example::ExampleGlints>());
+        const auto ids = ids_of(conformance_checks());
+        bool ok = true;
+        for (std::string_view p : kProperties)
+          ok &= ids.count("model.example_glints." + std::string(p)) == 1;
+        // No smooth limit declared: converges-to-smooth is not claimed, with the reason.
+        for (const Check& c : conformance_checks())
+          if (c.id == "model.example_glints.converges-to-smooth")
+            ok &= c.expected == Verdict::kNotClaimed;
+        std::exit(ok ? 0 : 1);
+      },
+      ::testing::ExitedWithCode(0), "");
+}
+
+TEST(ConformanceGenerator, DeclarationsReachTheEntry) {
+  const ModelEntry& k = find_model("kemppinen_ggx");
+  EXPECT_EQ(k.smooth_limit, "smooth_ggx");
+  const ModelEntry& c = find_model("chermain");
+  EXPECT_TRUE(not_claimed_reason("float-vs-double", c));
+  EXPECT_TRUE(not_claimed_reason("converges-to-smooth", c));
+  const CheckResult r = run_property("converges-to-smooth", c, Budget::kQuick);
+  EXPECT_EQ(r.verdict, Verdict::kNotClaimed);
+  EXPECT_NE(r.detail.find("V-cavity"), std::string::npos) << r.detail;
+  EXPECT_FALSE(is_holding(r.verdict));
+}
+
+// Every control of a model that conforms is rejected: the genuine input holds, the control
+// (about 3 % wrong) fails through the same measure and decide steps.
+class ControlRejected : public ::testing::TestWithParam<std::pair<std::string, std::string>> {};
+
+TEST_P(ControlRejected, ByTheSameDecision) {
+  const auto& [model, property] = GetParam();
+  const CheckResult r = run_property(property, find_model(model), Budget::kQuick);
+  EXPECT_TRUE(is_holding(r.verdict)) << r.detail;
+  ASSERT_TRUE(r.control_verdict.has_value());
+  EXPECT_EQ(*r.control_verdict, Verdict::kFails) << r.control;
+  EXPECT_TRUE(r.control_rejected);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Properties, ControlRejected,
+    ::testing::Values(std::pair{"smooth_ggx", "eval-pdf-consistency"},
+                      std::pair{"smooth_ggx", "sampler-matches-pdf"},
+                      std::pair{"smooth_ggx", "sampler-covers-value"},
+                      std::pair{"smooth_ggx", "pdf-normalized"},
+                      std::pair{"smooth_ggx", "energy"},
+                      std::pair{"smooth_ggx", "float-vs-double"},
+                      std::pair{"smooth_ggx", "simd-equivalence"},
+                      std::pair{"smooth_ggx", "stability"},
+                      std::pair{"deliot_belcour", "converges-to-smooth"},
+                      std::pair{"deliot_belcour", "constant-time"}),
+    [](const auto& param_info) {
+      std::string n = param_info.param.first + "_" + param_info.param.second;
+      for (char& ch : n)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      return n;
+    });
+
+// ---- Broken toy models ---------------------------------------------------------------------------
+
+// A Lambertian toy: value = ρ cos θo / π, cosine sampling. `pdf_power` ≠ 1 claims a wrong pdf
+// (cos^k θo (k + 1)/2π); `half` samples only the half-space wo_y ≥ 0 (reporting that sampler's
+// true pdf, 2 cos θo/π there).
+ModelEntry lambert_toy(double rho, double pdf_power = 1, bool half = false) {
+  ModelEntry e;
+  e.name = "toy_lambert";
+  e.description = "test toy";
+  e.source = "test";
+  e.needs = kNeedsDirections;
+  auto true_pdf = [half](const V3& wo) {
+    if (!(wo.z > 0) || (half && wo.y < 0)) return 0.0;
+    return (half ? 2.0 : 1.0) * wo.z / std::numbers::pi;
+  };
+  auto claimed_pdf = [true_pdf, pdf_power](const V3& wo) {
+    if (pdf_power == 1) return true_pdf(wo);
+    return wo.z > 0 ? std::pow(wo.z, pdf_power) * (pdf_power + 1) / (2 * std::numbers::pi) : 0.0;
+  };
+  e.eval = [rho, claimed_pdf](const std::vector<double>&, const ModelQuery<double>& q) {
+    return ErasedEval{q.wo.z > 0 ? rho * q.wo.z / std::numbers::pi : 0.0, claimed_pdf(q.wo), {}};
+  };
+  e.pdf = [claimed_pdf](const std::vector<double>&, const ModelQuery<double>& q) {
+    return claimed_pdf(q.wo);
+  };
+  e.sample = [rho, half, claimed_pdf](const std::vector<double>&, const ModelQuery<double>&,
+                                      Vec2<double> u) {
+    const double r = std::sqrt(u.x), phi = (half ? 1.0 : 2.0) * std::numbers::pi * u.y;
+    const V3 wo{r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1 - u.x))};
+    const double pdf = claimed_pdf(wo);
+    const double value = rho * wo.z / std::numbers::pi;
+    return ModelSample<double>{wo, pdf, pdf > 0 ? value / pdf : 0.0, false};
+  };
+  return e;
+}
+
+Verdict verdict_of(const ModelEntry& m, std::string_view property) {
+  return assess(property, m, Budget::kQuick, "test." + std::string(property), model_level(m)).verdict;
+}
+
+TEST(ConformanceToys, CorrectToyHolds) {
+  const ModelEntry toy = lambert_toy(0.9);
+  for (std::string_view p : {"eval-pdf-consistency", "sampler-matches-pdf", "sampler-covers-value",
+                             "pdf-normalized", "energy"})
+    EXPECT_EQ(verdict_of(toy, p), Verdict::kHolds) << p;
+}
+
+TEST(ConformanceToys, WrongPdfFailsSamplerMatchesPdf) {
+  const ModelEntry toy = lambert_toy(0.9, 1.1);
+  EXPECT_EQ(verdict_of(toy, "sampler-matches-pdf"), Verdict::kFails);
+  // Still normalized (cos^1.1 · 2.1/2π integrates to 1): the defect is the shape.
+  EXPECT_EQ(verdict_of(toy, "pdf-normalized"), Verdict::kHolds);
+}
+
+TEST(ConformanceToys, AlbedoAboveOneFailsEnergy) {
+  EXPECT_EQ(verdict_of(lambert_toy(1.2), "energy"), Verdict::kFails);
+  EXPECT_EQ(verdict_of(lambert_toy(1.0), "energy"), Verdict::kHolds);
+}
+
+// The sampler covers half the support and reports its own pdf truthfully: it matches its pdf,
+// yet its estimates miss half the value.
+TEST(ConformanceToys, HalfSupportSamplerFailsCoversValue) {
+  const ModelEntry toy = lambert_toy(0.9, 1, true);
+  EXPECT_EQ(verdict_of(toy, "sampler-matches-pdf"), Verdict::kHolds);
+  EXPECT_EQ(verdict_of(toy, "sampler-covers-value"), Verdict::kFails);
+}
+
+// smooth_ggx with NaN values at grazing incidence (θi > 80°, inside the sweep's core domain).
+TEST(ConformanceToys, NanFailsStability) {
+  ModelEntry toy = find_model("smooth_ggx");
+  toy.eval = [f = toy.eval](const std::vector<double>& v, const ModelQuery<double>& q) {
+    ErasedEval r = f(v, q);
+    if (q.wi.z > 0 && q.wi.z < std::cos(80 * std::numbers::pi / 180)) r.value = std::nan("");
+    return r;
+  };
+  EXPECT_EQ(verdict_of(toy, "stability"), Verdict::kFails);
+  EXPECT_EQ(verdict_of(find_model("smooth_ggx"), "stability"), Verdict::kHolds);
+}
+
+}  // namespace
+}  // namespace glintlab::verify::conformance

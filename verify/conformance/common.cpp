@@ -1,0 +1,339 @@
+// Settings, queries, cubature and the altered copies of an entry shared by the conformance
+// properties.
+#include "verify/conformance/common.h"
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <numbers>
+
+#include "core/math/rng.h"
+#include "verify/claims/gof_family.h"
+#include "verify/stability/cell_stats.h"
+#include "verify/stability/sweep_plan.h"
+#include "verify/stats/mean_tests.h"
+#include "verify/stats/multiple_testing.h"
+#include "verify/stats/sphere_cubature.h"
+
+namespace glintlab::verify::conformance {
+
+using V3 = Vec3<double>;
+
+ModelQuery<double> make_query(const ModelEntry& m, double theta_deg, double footprint) {
+  ModelQuery<double> q{};
+  q.wi = stability::incidence_at(theta_deg);
+  q.wo = {-q.wi.x, -q.wi.y, q.wi.z};
+  q.footprint = {{0.5, 0.5}, {footprint, 0}, {0, footprint}};
+  const double half_deg = (m.needs & kNeedsAreaLight) ? stability::kDefaultLightHalfAngleDeg : 0.0;
+  q.light = {std::cos(half_deg * std::numbers::pi / 180), 1.0};
+  if (m.needs & kNeedsPixelCorners)
+    q.footprint.corner_r = stability::pixel_corner_reflections(q.wi, footprint);
+  return q;
+}
+
+std::vector<Setting> settings(const ModelEntry& m, Budget b) {
+  const std::vector<double> values = resolve_params(m, {});
+  const std::vector<double> thetas =
+      b == Budget::kQuick ? std::vector<double>{30, 70} : std::vector<double>{0, 30, 60, 80};
+  std::vector<Setting> out;
+  for (double t : thetas)
+    out.push_back({values, make_query(m, t, kFootprint), t,
+                   fmt::format("defaults, θi={:g}°", t)});
+  return out;
+}
+
+double value_at(const ModelEntry& m, const std::vector<double>& values, ModelQuery<double> q,
+                const V3& wo) {
+  if (!(wo.z > 0)) return 0;
+  q.wo = wo;
+  if (m.validate && m.validate(q)) return 0;
+  return m.eval(values, q).value;
+}
+
+double roughness_hint(const ModelEntry& m, const std::vector<double>& values) {
+  for (std::string_view name : {"alpha_x", "alpha"})
+    for (std::size_t i = 0; i < m.params.size(); ++i)
+      if (m.params[i].name == name && m.params[i].choices.empty()) return values[i];
+  return 0.3;
+}
+
+Cubature integrate_about_mirror(const std::function<double(const V3&)>& f, const V3& wi,
+                                double width, Budget b) {
+  // Frame with its pole at the mirror direction r = (−wi_x, −wi_y, wi_z).
+  const V3 r = normalize(V3{-wi.x, -wi.y, std::max(wi.z, 1e-6)});
+  const V3 helper = std::abs(r.z) < 0.9 ? V3{0, 0, 1} : V3{1, 0, 0};
+  const V3 t = normalize(cross(helper, r)), s = cross(r, t);
+  auto to_world = [=](const V3& w) { return t * w.x + s * w.y + r * w.z; };
+  const V3 up_local{dot(V3{0, 0, 1}, t), dot(V3{0, 0, 1}, s), dot(V3{0, 0, 1}, r)};
+  SphereCubatureOptions o;
+  o.theta_breaks = lobe_theta_breaks(std::clamp(width, 1e-3, 1.0), 0, std::numbers::pi);
+  o.theta_breaks_at_phi = [up_local](double phi, std::vector<double>& breaks) {
+    breaks.push_back(plane_crossing_theta(up_local, phi));  // the horizon
+  };
+  o.rel_tol = b == Budget::kQuick ? 1e-4 : 1e-6;
+  o.max_depth = b == Budget::kQuick ? 10 : 16;
+  const Integral i = integrate_sphere([&](const V3& w) { return f(to_world(w)); }, o);
+  return {i.value, i.error};
+}
+
+Vec2<double> pair_at(std::uint64_t seed, std::uint64_t i) { return uniform_pair(seed, i); }
+
+HemisphereIntegral integrate_hemisphere(const ModelEntry& m, const std::function<double(const V3&)>& f,
+                                        const V3& wi, double width, Budget b, std::uint64_t seed) {
+  if (!(m.needs & kNeedsFootprint)) {
+    const Cubature c = integrate_about_mirror([&](const V3& w) { return w.z > 0 ? f(w) : 0.0; },
+                                              wi, width, b);
+    return {c.value, c.error, false};
+  }
+  const std::uint64_t n = b == Budget::kQuick ? 100'000 : 2'000'000;
+  const MeanAccumulator acc = accumulate_mean(
+      [&](std::uint64_t i) {
+        const Vec2<double> u = uniform_pair(seed, i);
+        const double z = u.x, r = std::sqrt(std::max(0.0, 1 - z * z));
+        const double phi = 2 * std::numbers::pi * u.y;
+        return 2 * std::numbers::pi * f(V3{r * std::cos(phi), r * std::sin(phi), z});
+      },
+      n);
+  return {acc.mean, std::sqrt(acc.variance() / double(n)), true};
+}
+
+FamilyOutcome family_at(const std::vector<double>& raw_p, double level) {
+  FamilyOutcome f;
+  if (raw_p.empty()) return f;
+  const HolmSidakResult h = holm_sidak(raw_p, level);
+  f.any_rejected = h.rejections > 0;
+  f.rejections = h.rejections;
+  f.min_adjusted = *std::min_element(h.adjusted.begin(), h.adjusted.end());
+  return f;
+}
+
+namespace {
+constexpr std::uint64_t kChunk = 4096;
+}
+
+std::size_t chunk_count(std::uint64_t n) { return std::size_t((n + kChunk - 1) / kChunk); }
+
+void for_chunks(std::uint64_t n,
+                const std::function<void(std::uint64_t, std::uint64_t, std::size_t)>& f) {
+  tbb::parallel_for(std::size_t(0), chunk_count(n), [&](std::size_t c) {
+    const std::uint64_t begin = c * kChunk, end = std::min<std::uint64_t>(n, begin + kChunk);
+    f(begin, end, c);
+  });
+}
+
+// ---- Altered copies ------------------------------------------------------------------------------
+
+ModelEntry with_pdf_scaled(const ModelEntry& m, double scale) {
+  ModelEntry e = m;
+  e.pdf = [f = m.pdf, scale](const std::vector<double>& v, const ModelQuery<double>& q) {
+    return scale * f(v, q);
+  };
+  if (m.pdf_float)
+    e.pdf_float = [f = m.pdf_float, scale](const std::vector<double>& v,
+                                           const ModelQuery<double>& q) { return scale * f(v, q); };
+  return e;
+}
+
+ModelEntry with_value_scaled(const ModelEntry& m, double scale) {
+  ModelEntry e = m;
+  e.eval = [f = m.eval, scale](const std::vector<double>& v, const ModelQuery<double>& q) {
+    ErasedEval r = f(v, q);
+    r.value *= scale;
+    return r;
+  };
+  if (m.eval_float)
+    e.eval_float = [f = m.eval_float, scale](const std::vector<double>& v,
+                                             const ModelQuery<double>& q) {
+      ErasedEval r = f(v, q);
+      r.value *= scale;
+      return r;
+    };
+  return with_weight_scaled(e, scale);
+}
+
+ModelEntry with_weight_scaled(const ModelEntry& m, double scale) {
+  ModelEntry e = m;
+  e.sample = [f = m.sample, scale](const std::vector<double>& v, const ModelQuery<double>& q,
+                                   Vec2<double> u) {
+    ModelSample<double> s = f(v, q, u);
+    s.weight *= scale;
+    return s;
+  };
+  return e;
+}
+
+ModelEntry with_sampler_restricted(const ModelEntry& m, double share) {
+  ModelEntry e = m;
+  e.sample = [f = m.sample, share](const std::vector<double>& v, const ModelQuery<double>& q,
+                                   Vec2<double> u) {
+    ModelSample<double> s = f(v, q, u);
+    std::uint64_t bx, by;
+    std::memcpy(&bx, &u.x, sizeof bx);
+    std::memcpy(&by, &u.y, sizeof by);
+    if (double(mix64(mix64(bx) ^ by) >> 11) * 0x1p-53 < share) {
+      s.weight = 0;
+      s.rejected = true;
+    }
+    return s;
+  };
+  return e;
+}
+
+ModelEntry with_sparse_nan(const ModelEntry& m, double rate) {
+  ModelEntry e = m;
+  auto broken = [rate](const ModelQuery<double>& q) {
+    std::uint64_t h = 0;
+    for (double x : {q.wi.x, q.wi.y, q.wi.z, q.wo.x, q.wo.y, q.wo.z, q.footprint.uv.x}) {
+      std::uint64_t bits;
+      std::memcpy(&bits, &x, sizeof bits);
+      h = mix64(h ^ bits);
+    }
+    return double(h >> 11) * 0x1p-53 < rate;
+  };
+  e.eval = [f = m.eval, broken](const std::vector<double>& v, const ModelQuery<double>& q) {
+    ErasedEval r = f(v, q);
+    if (broken(q)) r.value = std::numeric_limits<double>::quiet_NaN();
+    return r;
+  };
+  if (m.eval_float)
+    e.eval_float = [f = m.eval_float, broken](const std::vector<double>& v,
+                                              const ModelQuery<double>& q) {
+      ErasedEval r = f(v, q);
+      if (broken(q)) r.value = std::numeric_limits<double>::quiet_NaN();
+      return r;
+    };
+  return e;
+}
+
+ModelEntry with_uniform_sampler(const ModelEntry& m) {
+  ModelEntry e = m;
+  constexpr double kPdf = 1 / (4 * std::numbers::pi);
+  e.pdf = [](const std::vector<double>&, const ModelQuery<double>&) { return kPdf; };
+  e.eval = [f = m.eval](const std::vector<double>& v, const ModelQuery<double>& q) {
+    ErasedEval r = f(v, q);
+    r.pdf = kPdf;
+    return r;
+  };
+  e.sample = [m](const std::vector<double>& v, const ModelQuery<double>& q, Vec2<double> u) {
+    const double z = 1 - 2 * u.x, r = std::sqrt(std::max(0.0, 1 - z * z));
+    const double phi = 2 * std::numbers::pi * u.y;
+    const V3 wo{r * std::cos(phi), r * std::sin(phi), z};
+    const bool below = !(wo.z > 0);
+    const double value = below ? 0.0 : value_at(m, v, q, wo);
+    return ModelSample<double>{wo, kPdf, value / kPdf, below};
+  };
+  e.eval_float = {};
+  e.pdf_float = {};
+  e.sample_float = {};
+  e.static_model = nullptr;
+  return e;
+}
+
+ModelEntry with_consistent_sample(const ModelEntry& m) {
+  ModelEntry e = m;
+  e.eval = [m](const std::vector<double>& v, const ModelQuery<double>& q) {
+    ErasedEval r = m.eval(v, q);
+    r.pdf = m.pdf(v, q);
+    return r;
+  };
+  e.sample = [m](const std::vector<double>& v, const ModelQuery<double>& q, Vec2<double> u) {
+    ModelSample<double> s = m.sample(v, q, u);
+    ModelQuery<double> at = q;
+    at.wo = s.wo;
+    s.pdf = m.pdf(v, at);
+    s.weight = s.rejected || !(s.pdf > 0) ? 0.0 : m.eval(v, at).value / s.pdf;
+    return s;
+  };
+  return e;
+}
+
+ModelEntry with_float_as_double(const ModelEntry& m) {
+  ModelEntry e = m;
+  e.eval_float = m.eval;
+  e.pdf_float = m.pdf;
+  e.sample_float = m.sample;
+  return e;
+}
+
+ModelEntry with_outputs_sanitized(const ModelEntry& m) {
+  auto clean = [](double x) { return std::isfinite(x) && x > 0 ? x : 0.0; };
+  auto clean_eval = [clean](ErasedEval r) {
+    r.value = clean(r.value);
+    r.pdf = clean(r.pdf);
+    for (double& x : r.intermediates) x = std::isfinite(x) ? x : 0.0;
+    return r;
+  };
+  auto clean_sample = [clean](ModelSample<double> s) {
+    s.pdf = clean(s.pdf);
+    s.weight = clean(s.weight);
+    if (!(std::isfinite(s.wo.x) && std::isfinite(s.wo.y) && std::isfinite(s.wo.z))) {
+      s.wo = {0, 0, 0};
+      s.rejected = true;
+    }
+    return s;
+  };
+  ModelEntry e = m;
+  e.eval = [f = m.eval, clean_eval](const std::vector<double>& v, const ModelQuery<double>& q) {
+    return clean_eval(f(v, q));
+  };
+  e.pdf = [f = m.pdf, clean](const std::vector<double>& v, const ModelQuery<double>& q) {
+    return clean(f(v, q));
+  };
+  e.sample = [f = m.sample, clean_sample](const std::vector<double>& v,
+                                          const ModelQuery<double>& q,
+                                          Vec2<double> u) { return clean_sample(f(v, q, u)); };
+  if (m.eval_float) {
+    e.eval_float = [f = m.eval_float, clean_eval](const std::vector<double>& v,
+                                                  const ModelQuery<double>& q) {
+      return clean_eval(f(v, q));
+    };
+    e.pdf_float = [f = m.pdf_float, clean](const std::vector<double>& v,
+                                           const ModelQuery<double>& q) { return clean(f(v, q)); };
+    e.sample_float = [f = m.sample_float, clean_sample](const std::vector<double>& v,
+                                                        const ModelQuery<double>& q,
+                                                        Vec2<double> u) {
+      return clean_sample(f(v, q, u));
+    };
+  }
+  return e;
+}
+
+ModelEntry with_cost_per_area(const ModelEntry& m, double base_side, int max_parts) {
+  ModelEntry e = m;
+  e.eval = [f = m.eval, base_side, max_parts](const std::vector<double>& v,
+                                              const ModelQuery<double>& q) {
+    const double side = std::max(std::hypot(q.footprint.duv_dx.x, q.footprint.duv_dx.y),
+                                 std::hypot(q.footprint.duv_dy.x, q.footprint.duv_dy.y));
+    // One part up to 1.5 × the base side (the small footprint of the timing), max_parts per axis
+    // beyond.
+    const int k = side <= 1.5 * base_side ? 1 : max_parts;
+    ErasedEval sum = f(v, q);
+    for (int i = 1; i < k * k; ++i) {
+      ModelQuery<double> sub = q;
+      sub.footprint.uv =
+          q.footprint.uv + side * Vec2<double>{double(i % k) / k - 0.5, double(i / k) / k - 0.5};
+      const ErasedEval r = f(v, sub);
+      sum.value += r.value;
+    }
+    sum.value /= double(k * k);
+    return sum;
+  };
+  return e;
+}
+
+ModelEntry with_footprint_clamped(const ModelEntry& m, double side) {
+  ModelEntry e = m;
+  e.eval = [f = m.eval, side](const std::vector<double>& v, const ModelQuery<double>& q) {
+    ModelQuery<double> c = q;
+    c.footprint.duv_dx = {side, 0};
+    c.footprint.duv_dy = {0, side};
+    return f(v, c);
+  };
+  return e;
+}
+
+}  // namespace glintlab::verify::conformance

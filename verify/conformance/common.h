@@ -1,0 +1,127 @@
+// Shared parts of the conformance properties (verify/conformance/conformance.h): the settings a
+// model is checked at, queries, copies of an entry made wrong (the controls), deterministic
+// parallel loops.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/model_registry.h"
+#include "verify/conformance/conformance.h"
+
+namespace glintlab::verify::conformance {
+
+// One parameter setting and query: the model's defaults, ωi at θi (the generic azimuth of
+// incidence_at), the footprint at uv (0.5, 0.5) with side `footprint`, the light the stability
+// sweep gives the model (a 1° cone for area lights, a delta otherwise), the corner reflections for
+// kNeedsPixelCorners models.
+struct Setting {
+  std::vector<double> values;
+  ModelQuery<double> query;
+  double theta_deg = 0;
+  std::string label;
+};
+ModelQuery<double> make_query(const ModelEntry& m, double theta_deg, double footprint);
+// The footprint side of the settings and the precision comparisons: 0.1 in uv, where the glint
+// models' default densities put tens to thousands of glints in a footprint (at the sweep's 1e-3
+// most footprints hold none and every value is ~0, which tests nothing).
+inline constexpr double kFootprint = 0.1;
+// Quick: θi ∈ {30°, 70°}; full: θi ∈ {0°, 30°, 60°, 80°}; the model's default parameters.
+std::vector<Setting> settings(const ModelEntry& m, Budget b);
+
+// value of eval at ωo, 0 where the model's own validate rejects the query (podee: ωo below the
+// horizon, outside its domain) and below the horizon (the value is cosine-weighted).
+double value_at(const ModelEntry& m, const std::vector<double>& values, ModelQuery<double> q,
+                const Vec3<double>& wo);
+
+// A roughness scale for cubature breakpoints: the model's alpha_x (or alpha), else 0.3.
+double roughness_hint(const ModelEntry& m, const std::vector<double>& values);
+
+// ∫ f(ωo) dωo over the sphere in a frame whose pole is the mirror direction of ωi (where glossy
+// lobes sit), with breakpoints at the lobe's width and along the horizon.
+struct Cubature {
+  double value = 0, error = 0;
+};
+Cubature integrate_about_mirror(const std::function<double(const Vec3<double>&)>& f,
+                                const Vec3<double>& wi, double width, Budget b);
+
+// ∫ f(ωo) dωo over the upper hemisphere, by cubature about the mirror direction for models
+// without a footprint, and by n uniform hemisphere samples for footprint models: a glint model's
+// value and pdf hold thousands of peaks of the microroughness' width at the settings' footprint,
+// which the adaptive cubature resolved only after minutes per setting; the Monte Carlo estimate
+// is unbiased with a standard error that the test takes in (returned as `error`, one σ).
+struct HemisphereIntegral {
+  double value = 0, error = 0;
+  bool monte_carlo = false;
+};
+HemisphereIntegral integrate_hemisphere(const ModelEntry& m,
+                                        const std::function<double(const Vec3<double>&)>& f,
+                                        const Vec3<double>& wi, double width, Budget b,
+                                        std::uint64_t seed);
+
+// The uniform pair of sample i under seed (gof_family.h's uniform_pair).
+Vec2<double> pair_at(std::uint64_t seed, std::uint64_t i);
+
+// Holm–Šidák over a property's configurations at `level`: whether any is rejected, and the
+// smallest adjusted p.
+struct FamilyOutcome {
+  bool any_rejected = false;
+  double min_adjusted = 1;
+  std::size_t rejections = 0;
+};
+FamilyOutcome family_at(const std::vector<double>& raw_p, double level);
+
+// for_chunks(n, f): f(begin, end, chunk) over fixed chunks of 4096 indices in parallel; results
+// written per chunk and combined in chunk order by the caller (thread-count independent).
+std::size_t chunk_count(std::uint64_t n);
+void for_chunks(std::uint64_t n, const std::function<void(std::uint64_t, std::uint64_t,
+                                                          std::size_t)>& f);
+
+// Copies of an entry changed in one way (the controls and the tests' broken models).
+ModelEntry with_pdf_scaled(const ModelEntry& m, double scale);
+ModelEntry with_value_scaled(const ModelEntry& m, double scale);   // eval value and sample weight
+ModelEntry with_weight_scaled(const ModelEntry& m, double scale);  // sample weight only
+// The sampler never reaches a part of its primary sample space of measure `share` (the pairs u
+// whose hash falls below it, spread over the whole square, so the missing part carries its share
+// of the value wherever the sampler puts the value's mass): those samples get weight 0 (counted
+// as rejected), while pdf and eval are unchanged.
+ModelEntry with_sampler_restricted(const ModelEntry& m, double share);
+// eval's value is NaN in about `rate` of calls (a hash of the query's directions).
+ModelEntry with_sparse_nan(const ModelEntry& m, double rate);
+// The sampler replaced by uniform sampling of the sphere (pdf 1/4π, weight value·4π): a sampler
+// that covers every value, the corrected input where a model's own sampler misses part of it.
+ModelEntry with_uniform_sampler(const ModelEntry& m);
+// sample's pdf and weight recomputed from pdf() and eval() at the sampled ωo, eval's pdf from pdf().
+ModelEntry with_consistent_sample(const ModelEntry& m);
+// float thunks replaced by the double ones (the corrected input of float-vs-double).
+ModelEntry with_float_as_double(const ModelEntry& m);
+// NaN, Inf and negative outputs of eval and sample replaced by 0.
+ModelEntry with_outputs_sanitized(const ModelEntry& m);
+// eval at footprints wider than 1.5 × `base_side` repeated at max_parts² positions across it and
+// averaged: a cost that grows with the footprint (max_parts² × at the large end).
+ModelEntry with_cost_per_area(const ModelEntry& m, double base_side, int max_parts);
+// eval with the footprint's Jacobian clamped to side `side` (constant cost, the corrected input).
+ModelEntry with_footprint_clamped(const ModelEntry& m, double side);
+
+// Per-property measure + decide (assess dispatches to these).
+Assessment assess_eval_pdf(const ModelEntry& m, Budget b, const std::string& id, double level);
+Assessment assess_sampler_gof(const ModelEntry& m, Budget b, const std::string& id, double level);
+Assessment assess_covers_value(const ModelEntry& m, Budget b, const std::string& id,
+                               double level);
+Assessment assess_pdf_normalized(const ModelEntry& m, Budget b, const std::string& id,
+                                 double level);
+Assessment assess_energy(const ModelEntry& m, Budget b, const std::string& id, double level);
+Assessment assess_float_double(const ModelEntry& m, Budget b, const std::string& id,
+                               double level);
+Assessment assess_simd(const ModelEntry& m, Budget b, const std::string& id, double level);
+Assessment assess_stability(const ModelEntry& m, Budget b, const std::string& id, double level);
+Assessment assess_converges(const ModelEntry& m, Budget b, const std::string& id, double level);
+Assessment assess_constant_time(const ModelEntry& m, Budget b, const std::string& id,
+                                double level);
+
+// The largest albedo energy's assessment measured (its value), for the control's scale.
+inline constexpr double kControlOffset = 1.03;  // near-truth perturbations: 3 %
+
+}  // namespace glintlab::verify::conformance

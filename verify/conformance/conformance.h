@@ -1,0 +1,90 @@
+// The conformance suite every registered model gets (built-in or plug-in): one check per model and
+// property, id "model.<name>.<property>", generated from the registry (core/model_registry.h)
+// through the type-erased ModelEntry only. Each property is a measure → decide step that runs the
+// same way on the model and on its control (a copy of the entry made deliberately wrong, about
+// 3 % off, or, where the model fails, corrected), so the control gets its own verdict.
+//
+// False positives: a model's statistical properties are one family of their own, family-wise rate
+// kFamilyWiseRate split by Šidák over them (model_level); inside a property its configurations are
+// corrected by Holm–Šidák at that level. Adding models or plug-ins therefore changes neither the
+// papers' claims' level (check_level counts only Check::family == "") nor another model's.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/model_registry.h"
+#include "verify/check.h"
+
+namespace glintlab::verify::conformance {
+
+inline constexpr std::array<std::string_view, 10> kProperties = {
+    "eval-pdf-consistency", "sampler-matches-pdf", "sampler-covers-value", "pdf-normalized",
+    "energy",               "float-vs-double",     "simd-equivalence",     "stability",
+    "converges-to-smooth",  "constant-time"};
+
+// Whether a property is generated for a model at all: converges-to-smooth and constant-time only
+// for footprint models (kNeedsFootprint); every other property for every model.
+bool applies(std::string_view property, const ModelEntry& model);
+// Whether the property tests a hypothesis (p-values; a share of the model's family rate).
+bool is_statistical_property(std::string_view property);
+// The model's reason for not claiming the property (ModelEntry::not_claimed), or, where the entry
+// cannot have it (float-vs-double without a float instantiation, simd-equivalence without SIMD
+// batches, converges-to-smooth without a declared smooth limit), the generated reason; nothing
+// where the property is claimed.
+std::optional<std::string> not_claimed_reason(std::string_view property, const ModelEntry& model);
+// The per-property level of a model's family: Šidák share of kFamilyWiseRate over the model's
+// claimed statistical properties.
+double model_level(const ModelEntry& model);
+
+// The result of one property's measure and decide steps on one entry (the model or a control).
+struct Assessment {
+  Verdict verdict = Verdict::kInconclusive;
+  std::string detail, statistic;
+  double value = 0;
+  std::optional<double> bound, p_value;
+  std::vector<double> raw_p_values;
+  int configurations = 0;
+  std::string power;
+};
+
+// Measure and decide `property` for `model` at budget b, seeds from check id `id`, configurations
+// corrected at `level`. `model` may be any entry (a registered one, a control, a test's toy).
+Assessment assess(std::string_view property, const ModelEntry& model, Budget b,
+                  const std::string& id, double level);
+
+// The control of a property: a copy of `model` deliberately wrong (when `genuine` holds) or
+// corrected from what was measured (when it fails), and its name. Its verdict comes from assess.
+struct Control {
+  ModelEntry model;
+  std::string name;
+};
+Control make_control(std::string_view property, const ModelEntry& model, const Assessment& genuine,
+                     Budget b);
+
+// The whole check of one property of one model: assess, the control's assessment, described;
+// a not-claimed property gives Verdict::kNotClaimed with the reason and measures nothing.
+CheckResult run_property(std::string_view property, const ModelEntry& model, Budget b);
+
+// The recorded verdicts of the built-in models (quick, and full where it differs): the generator
+// sets Check::expected from them; a model without a record (a plug-in) is expected to hold
+// (holds, or not-claimed where declared).
+struct Recorded {
+  Verdict quick;
+  std::optional<Verdict> full = {};
+};
+std::optional<Recorded> recorded_verdict(std::string_view model, std::string_view property);
+
+// The checks of one model, and of every registered model (registration order, kProperties order).
+std::vector<Check> conformance_checks(const ModelEntry& model);
+std::vector<Check> conformance_checks();
+
+}  // namespace glintlab::verify::conformance
+
+namespace glintlab::verify {
+using conformance::conformance_checks;
+}
