@@ -5,7 +5,9 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -31,8 +33,8 @@ constexpr double kMinExpectedCount = 1;
 std::vector<Cell> prediction_cells() {
   std::vector<Cell> cells;
   for (double n : {1.0, 10.0, 100.0, 1e3, 1e4, 1e6, 1e8}) {
-    cells.push_back({"deliot_belcour", n, 0.1, 0, 30, std::atan(0.2) * 180 / M_PI, 2});
-    cells.push_back({"kneiphof_klein", n, 0.1, 1, 30, std::atan(0.1) * 180 / M_PI, 1});
+    cells.push_back({"deliot_belcour", n, 0.1, 0, 30, std::atan(0.2) * 180 / std::numbers::pi, 2});
+    cells.push_back({"kneiphof_klein", n, 0.1, 1, 30, std::atan(0.1) * 180 / std::numbers::pi, 1});
   }
   return cells;
 }
@@ -141,7 +143,8 @@ CheckResult run_prediction(Budget b) {
   const PredictionMeasured m = measure_prediction(b);
   r.verdict = decide_prediction(m.genuine);
   r.detail = describe_prediction(m);
-  r.statistic = "Holm–Šidák-adjusted min p-value of CV and P(no glint) against the closed forms";
+  r.statistic = "max |CV_measured / CV_predicted − 1| where N_P p ≥ 1, exact counting (the p-value: "
+                "Holm–Šidák over CV and P(no glint) tests)";
   r.p_value = m.genuine.raw.empty()
                   ? 1.0
                   : *std::min_element(m.genuine.adjusted.begin(), m.genuine.adjusted.end());
@@ -158,7 +161,7 @@ CheckResult run_prediction(Budget b) {
 
 // One run on a known-correct input: a mid-size footprint's CV against its prediction.
 double calibrate_prediction(std::uint64_t seed) {
-  const Cell c{"deliot_belcour", 1000, 0.1, 0, 30, std::atan(0.2) * 180 / M_PI, 2};
+  const Cell c{"deliot_belcour", 1000, 0.1, 0, 30, std::atan(0.2) * 180 / std::numbers::pi, 2};
   return measure_row(c, 20000, seed).p_cv;
 }
 

@@ -6,21 +6,31 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "core/math/rng.h"
 
 namespace glintlab {
 namespace {
 
-// Mean and second moment of binomial_realtime(n, p) over `draws` counter-RNG uniforms.
-CountMoments<double> drawn_realtime_moments(double n, double p, int draws, std::uint64_t seed) {
+// Mean, second moment and fourth central moment of binomial_realtime(n, p) over `draws`
+// counter-RNG uniforms.
+struct Drawn {
+  double mean, second, m4;
+};
+Drawn drawn_realtime_moments(double n, double p, int draws, std::uint64_t seed) {
+  std::vector<double> x(std::size_t(draws), 0.0);
   double s = 0, s2 = 0;
   for (int i = 0; i < draws; ++i) {
-    const double x = binomial_realtime(n, p, counter_uniform<double>(seed, std::uint64_t(i), 0),
-                                       counter_uniform<double>(seed, std::uint64_t(i), 1));
-    s += x, s2 += x * x;
+    x[std::size_t(i)] =
+        binomial_realtime(n, p, counter_uniform<double>(seed, std::uint64_t(i), 0),
+                          counter_uniform<double>(seed, std::uint64_t(i), 1));
+    s += x[std::size_t(i)], s2 += x[std::size_t(i)] * x[std::size_t(i)];
   }
-  return {s / draws, s2 / draws};
+  const double mean = s / draws;
+  double m4 = 0;
+  for (double v : x) m4 += std::pow(v - mean, 4);
+  return {mean, s2 / draws, m4 / draws};
 }
 
 TEST(AdequacyClosedForms, RealtimeMomentsMatchItsDraws) {
@@ -29,11 +39,12 @@ TEST(AdequacyClosedForms, RealtimeMomentsMatchItsDraws) {
   for (double n : {1.0, 2.0, 5.0, 30.0, 1000.0}) {
     for (double p : {0.001, 0.05, 0.3, 0.9}) {
       const CountMoments<double> c = realtime_count_moments(n, p);
-      const CountMoments<double> d = drawn_realtime_moments(n, p, draws, seed++);
-      // Five standard errors of the drawn mean (the count's sd / √draws).
-      const double sd = std::sqrt(std::max(c.second - c.mean * c.mean, 1e-12));
-      EXPECT_NEAR(d.mean, c.mean, 5 * sd / std::sqrt(draws) + 1e-12) << n << " " << p;
-      EXPECT_NEAR(std::sqrt(std::max(d.second - d.mean * d.mean, 0.0)), sd, 0.02 * sd + 1e-9)
+      const Drawn d = drawn_realtime_moments(n, p, draws, seed++);
+      // Five standard errors of the drawn mean and of the drawn variance ((μ4 − σ⁴)/draws).
+      const double var = std::max(c.second - c.mean * c.mean, 0.0);
+      EXPECT_NEAR(d.mean, c.mean, 5 * std::sqrt(var / draws) + 1e-12) << n << " " << p;
+      EXPECT_NEAR(d.second - d.mean * d.mean, var,
+                  5 * std::sqrt(std::max(d.m4 - var * var, 0.0) / draws) + 1e-12)
           << n << " " << p;
     }
   }
@@ -42,7 +53,7 @@ TEST(AdequacyClosedForms, RealtimeMomentsMatchItsDraws) {
 TEST(AdequacyClosedForms, RealtimeMomentsTellAWrongCountApart) {
   // The check above can fail: the moments of n + 1 trials are far outside its tolerance.
   const CountMoments<double> c = realtime_count_moments(6.0, 0.3);
-  const CountMoments<double> d = drawn_realtime_moments(5.0, 0.3, 400000, 3);
+  const Drawn d = drawn_realtime_moments(5.0, 0.3, 400000, 3);
   const double sd = std::sqrt(c.second - c.mean * c.mean);
   EXPECT_GT(std::abs(d.mean - c.mean), 5 * sd / std::sqrt(400000.0));
 }
