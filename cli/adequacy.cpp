@@ -77,7 +77,9 @@ Per cell of a grid (footprint size N_P = 1 .. 1e8 expected facets, roughness, li
 evaluated at the same surface positions (quick: 8000, full: 32000); a level is adequate when
 |mean/mean_exact - 1| and |CV - CV_exact| both have upper confidence bounds below TAU (default
 0.02: luminance differences under about 1-2 % are not seen). The bounds' level splits the
-suite's family-wise rate over every decision. Writes DIR/adequacy.csv and adequacy.json (the
+suite's family-wise rate over every decision; a cell whose exact level is lit at fewer than 100
+positions is undecided and keeps exact. `chosen` takes the levels in the order above (the GPU-lane
+cost order); `cheapest_measured` is the adequate level timed fastest in this run. Writes DIR/adequacy.csv and adequacy.json (the
 table, with each level's measured ns per evaluation: the only numbers that vary run to run) and
 per model x light x incidence an EXR and a labelled PNG map of the cheapest adequate level, with
 the predicted boundary CV = sqrt((1 - p)/(N_P p)) = TAU drawn over it.)";
