@@ -24,5 +24,6 @@ void add_sweep_command(CLI::App& app);   // cli/sweep.cpp
 void add_report_command(CLI::App& app);  // cli/report.cpp
 void add_ltc_fit_command(CLI::App& app);  // cli/ltc_fit.cpp
 void add_chermain_dictionary_command(CLI::App& app);  // cli/chermain_dictionary.cpp
+void add_adequacy_command(CLI::App& app);             // cli/adequacy.cpp
 
 }  // namespace glintlab::cli

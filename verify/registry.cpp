@@ -15,7 +15,7 @@ const std::vector<Check>& registered_checks() {
     for (auto* list : {&smooth_checks, &smooth_sampler_checks, &smooth_consistency_checks,
                        &eto_pdf_checks, &eto_checks, &kemppinen_checks, &kneiphof_checks,
                        &kneiphof_ltc_checks,
-                       &chermain_checks, &podee_checks, &across_checks}) {
+                       &chermain_checks, &podee_checks, &across_checks, &adequacy_checks}) {
       for (Check& c : list()) all.push_back(std::move(c));
     }
     // Every registered model's conformance checks, generated from the registry as it stands now

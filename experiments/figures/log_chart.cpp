@@ -196,4 +196,56 @@ Image draw_log_chart(const LogChart& chart, int width, int height) {
   return c.take();
 }
 
+Image draw_category_map(const CategoryMap& map, int cell_width, int cell_height) {
+  const int cols = int(map.column_labels.size()), rows = int(map.row_labels.size());
+  std::size_t row_label_chars = 0;
+  for (const std::string& l : map.row_labels) row_label_chars = std::max(row_label_chars, l.size());
+  const int left = 24 + 6 * int(row_label_chars), top = 28, legend_w = 170, bottom = 44;
+  const int width = left + cols * cell_width + 16 + legend_w;
+  const int height = top + std::max(rows * cell_height, 14 * int(map.category_names.size()) + 30) +
+                     bottom;
+  Canvas c(width, height);
+  const Vec3<double> ink{0, 0, 0}, none{0.8, 0.8, 0.8};
+  const int plot_bottom = top + rows * cell_height;
+  for (int r = 0; r < rows; ++r) {
+    const int y1 = plot_bottom - r * cell_height - 1, y0 = y1 - cell_height + 2;
+    for (int k = 0; k < cols; ++k) {
+      const int cat = map.cells[std::size_t(r)][std::size_t(k)];
+      const Vec3<double> col =
+          cat >= 0 && cat < int(map.category_colors.size()) ? map.category_colors[std::size_t(cat)]
+                                                            : none;
+      c.rect(left + k * cell_width + 1, y0, left + (k + 1) * cell_width - 1, y1, col);
+    }
+    c.text(left - 6 * int(map.row_labels[std::size_t(r)].size()) - 4, y0 + cell_height / 2 - 4,
+           map.row_labels[std::size_t(r)], ink);
+    if (std::size_t(r) < map.marker_column.size() && std::isfinite(map.marker_column[std::size_t(r)])) {
+      const double x = left + (map.marker_column[std::size_t(r)] + 0.5) * cell_width;
+      if (x >= left && x <= left + cols * cell_width) {
+        c.rect(int(x) - 1, y0 - 1, int(x) + 1, y1 + 1, ink);
+      }
+    }
+  }
+  for (int k = 0; k < cols; ++k)
+    c.text(left + k * cell_width + cell_width / 2 - 3 * int(map.column_labels[std::size_t(k)].size()),
+           plot_bottom + 5, map.column_labels[std::size_t(k)], ink);
+  c.line(left, top, left, plot_bottom, ink);
+  c.line(left, plot_bottom, left + cols * cell_width, plot_bottom, ink);
+  c.text(8, 8, map.title, ink);
+  c.text(left + cols * cell_width / 2 - 3 * int(map.x_label.size()), plot_bottom + 22, map.x_label,
+         ink);
+  c.text(4, top + rows * cell_height / 2 + 3 * int(map.y_label.size()), map.y_label, ink, true);
+  int ly = top + 4;
+  const int lx = left + cols * cell_width + 16;
+  for (std::size_t k = 0; k < map.category_names.size(); ++k) {
+    c.rect(lx, ly, lx + 10, ly + 8, map.category_colors[k]);
+    c.text(lx + 16, ly + 1, map.category_names[k], ink);
+    ly += 14;
+  }
+  if (!map.marker_name.empty()) {
+    c.rect(lx + 4, ly - 1, lx + 6, ly + 9, ink);
+    c.text(lx + 16, ly + 1, map.marker_name, ink);
+  }
+  return c.take();
+}
+
 }  // namespace glintlab::experiments

@@ -19,5 +19,6 @@ std::vector<Check> kneiphof_ltc_checks();        // verify/claims/kneiphof_ltc.c
 std::vector<Check> chermain_checks();            // verify/claims/chermain.cpp
 std::vector<Check> podee_checks();               // verify/claims/podee.cpp
 std::vector<Check> across_checks();              // verify/claims/across.cpp
+std::vector<Check> adequacy_checks();            // verify/claims/adequacy.cpp
 
 }  // namespace glintlab::verify

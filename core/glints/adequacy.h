@@ -1,0 +1,155 @@
+// Which level of the binomial glint family a pixel needs: the cheapest of smooth, real-time count,
+// small-count count and exact count whose pixel value no one could tell from the exact count's
+// (mean and coefficient of variation over surface positions within TAU). The closed forms below
+// predict each level's count distribution; the measured table (`glintlab adequacy`,
+// verify/adequacy/) checks them. docs/adequacy.md explains the criterion and the default TAU.
+//
+// The pixel value of deliot_belcour and kneiphof_klein is smooth · b/(N_P p): all levels share the
+// smooth factor, so the distribution over surface positions is that of the count b (Kneiphof &
+// Klein 2024 Eq. 16). Exact: b ~ Binomial(N_P, p), mean N_P p, CV √((1 − p)/(N_P p)), P(b = 0) =
+// (1 − p)^N_P. Smooth: b/(N_P p) = 1, CV 0.
+#pragma once
+
+#include <cstdint>
+
+#include "core/glints/binomial.h"
+#include "core/glints/deliot_belcour.h"
+#include "core/glints/kneiphof.h"
+#include "core/math/ops.h"
+
+namespace glintlab {
+
+// The levels, cheapest first (the order of the measured cost per evaluation; docs/adequacy.md).
+// The values are stored as a float in the chooser's lanes.
+enum class BinomialLevel : int { kSmooth = 0, kRealTime = 1, kSmallCount = 2, kExact = 3 };
+inline constexpr int kBinomialLevels = 4;
+inline constexpr std::array<std::string_view, 4> kBinomialLevelNames = {"smooth", "realtime",
+                                                                        "small_count", "exact"};
+
+// The chooser takes a level only where its predicted difference is at most this fraction of TAU:
+// the closed forms are exact for the exact and smooth levels but the real-time one neglects the
+// quantile clamp at 1e-12, and the measured table decides with a confidence bound, so a predicted
+// difference right at TAU could be measured above it.
+inline constexpr double kChooserMargin = 0.5;
+
+// Standard normal density and distribution function.
+template <class T>
+GLINTLAB_FN T standard_normal_pdf(T x) {
+  return T(0.39894228040143267794) * exp(T(-0.5) * x * x);
+}
+template <class T>
+GLINTLAB_FN T standard_normal_cdf(T x) {
+  return T(0.5) * erfc(T(-0.70710678118654752440) * x);
+}
+
+// Mean and second moment of a count.
+template <class T>
+struct CountMoments {
+  T mean, second;
+};
+
+// The exact count's CV √((1 − p)/(N_P p)) (0 where N_P p = 0).
+template <class T>
+GLINTLAB_FN T binomial_count_cv(T n, T p) {
+  return safe_sqrt(safe_div(T(1) - p, n * p));
+}
+
+// P(b = 0) = (1 − p)^N_P.
+template <class T>
+GLINTLAB_FN T binomial_zero_probability(T n, T p) {
+  return exp(n * log(max(T(1) - p, T(1e-300))));
+}
+
+// The moments of binomial_realtime's X = G·(1 + clamp(Y, 0, m)), G ~ Bernoulli(1 − (1 − p)^n)
+// independent of Y ~ N(m p, m p (1 − p)), m = n − 1 (the clamped normal's moments in closed form:
+// E C = μ(Φ(b) − Φ(a)) + σ(φ(a) − φ(b)) + m(1 − Φ(b)), E C² = (μ² + σ²)(Φ(b) − Φ(a)) +
+// 2μσ(φ(a) − φ(b)) + σ²(a φ(a) − b φ(b)) + m²(1 − Φ(b)), a = −μ/σ, b = (m − μ)/σ).
+template <class T>
+GLINTLAB_FN CountMoments<T> realtime_count_moments(T n, T p) {
+  const T q = max(T(1) - p, T(0));
+  const T p_any = -expm1(n * log(max(q, T(1e-300))));
+  const T m = max(n - T(1), T(0));
+  const T mu = m * p, sigma = sqrt(m * p * q);
+  const Mask<T> spread = sigma > T(0);
+  const T s = select(spread, sigma, T(1));
+  const T a = -mu / s, b = (m - mu) / s;
+  const T pa = standard_normal_cdf(a), pb = standard_normal_cdf(b);
+  const T fa = standard_normal_pdf(a), fb = standard_normal_pdf(b);
+  const T inside = pb - pa, above = T(1) - pb;
+  const T ec_spread = mu * inside + s * (fa - fb) + m * above;
+  const T ec2_spread = (mu * mu + s * s) * inside + T(2) * mu * s * (fa - fb) +
+                       s * s * (a * fa - b * fb) + m * m * above;
+  const T ec = select(spread, ec_spread, mu);  // σ = 0: C = μ exactly
+  const T ec2 = select(spread, ec2_spread, mu * mu);
+  const Mask<T> any = n >= T(1);
+  return {select(any, p_any * (T(1) + ec), T(0)),
+          select(any, p_any * (T(1) + T(2) * ec + ec2), T(0))};
+}
+
+// CV of a count from its moments (0 where the mean is 0).
+template <class T>
+GLINTLAB_FN T count_cv(const CountMoments<T>& c) {
+  return safe_div(safe_sqrt(c.second - c.mean * c.mean), c.mean);
+}
+
+// The level for a footprint of N_P facets and reflection probability p (clamped to [0, 1], as the
+// models clamp it), at threshold tau. A level is taken where its predicted relative difference of
+// the means and its difference of the CVs from the exact count's are both at most
+// kChooserMargin · tau:
+//   smooth       mean exact; CV difference = the exact CV.
+//   real-time    realtime_count_moments against N_P p and N_P p (1 − p).
+//   small-count  identical to the exact count where its 16-term inversion covers the count
+//                (N_P p + 6σ ≤ 15.5: the rest has probability < 1e-9), and a rounded normal where the
+//                count starts beyond it (N_P p − 6σ ≥ 16; rounding adds 1/12 to the variance); in
+//                between it is not taken (the mixture has no closed form here).
+// N_P = 0 or p = 0: every count is 0; the smooth value is then 0 too where p = 0 (D(h) = 0), and
+// the real-time level returns 0 where N_P = 0. Returns the level's BinomialLevel value as T.
+template <class T>
+GLINTLAB_FN T choose_binomial_level(T n, T p_raw, T tau) {
+  const T p = saturate(p_raw);
+  const T limit = T(kChooserMargin) * tau;
+  const T np = n * p, var = np * (T(1) - p);
+  const T cv_exact = binomial_count_cv(n, p);
+  const Mask<T> smooth_ok = cv_exact <= limit;
+  const CountMoments<T> rt = realtime_count_moments(n, p);
+  const T rt_mean_diff = abs(safe_div(rt.mean, np) - T(1));
+  const T rt_cv_diff = abs(count_cv(rt) - cv_exact);
+  const Mask<T> realtime_ok = rt_mean_diff <= limit && rt_cv_diff <= limit;
+  const T sd = sqrt(var);
+  const T cv_rounded = safe_div(sqrt(var + T(1.0 / 12)), np);
+  const Mask<T> small_ok =
+      np + T(6) * sd <= T(kSmallCountTerms - 0.5) ||
+      (np - T(6) * sd >= T(kSmallCountTerms) && abs(cv_rounded - cv_exact) <= limit);
+  T level = T(int(BinomialLevel::kExact));
+  level = select(small_ok, T(int(BinomialLevel::kSmallCount)), level);
+  level = select(realtime_ok, T(int(BinomialLevel::kRealTime)), level);
+  level = select(smooth_ok, T(int(BinomialLevel::kSmooth)), level);
+  // No facets: every count is 0, the real-time gate included; no probability: D(h) = 0, so the
+  // smooth value is 0 as well.
+  level = select(n < T(1), T(int(BinomialLevel::kRealTime)), level);
+  return select(p <= T(0), T(int(BinomialLevel::kSmooth)), level);
+}
+
+// The chooser on what a shader of deliot_belcour has: its parameters and the query (footprint,
+// directions). N_P and p exactly as DeliotBelcour::eval computes them.
+template <class T>
+GLINTLAB_FN T choose_deliot_belcour_level(const DeliotBelcour::Params<T>& params,
+                                          const ModelQuery<T>& q, T tau) {
+  const Vec3<T> h = half_vector(q.wi, q.wo);
+  const T d_n = T(kInvPi<T>) / (params.ggx.alpha_x * params.ggx.alpha_y);
+  const T n = footprint_facet_count_scaled(q.footprint, params.density_scale);
+  return choose_binomial_level(n, params.r * params.ggx.D(h) / d_n, tau);
+}
+
+// The same for kneiphof_klein: the light's cap (the query's cone, else the model's gamma).
+template <class T>
+GLINTLAB_FN T choose_kneiphof_klein_level(const kneiphof2024::KneiphofKlein::Params<T>& params,
+                                          const ModelQuery<T>& q, T tau) {
+  const T omc = select(q.light.cos_half_angle < T(1), T(1) - q.light.cos_half_angle,
+                       params.one_minus_cos_gamma);
+  const T n = footprint_facet_count_scaled(q.footprint, params.density_scale);
+  return choose_binomial_level(
+      n, kneiphof2024::cap_probability_eq20(params.ggx, q.wi, q.wo, omc, params.total_area), tau);
+}
+
+}  // namespace glintlab

@@ -1,0 +1,223 @@
+#include "experiments/adequacy/adequacy_outputs.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string_view>
+
+#include "core/io/atomic_file.h"
+#include "core/io/csv.h"
+#include "core/io/exr.h"
+#include "core/io/png.h"
+#include "experiments/figures/log_chart.h"
+#include "verify/stats/multiple_testing.h"
+
+namespace glintlab::experiments {
+namespace {
+
+using verify::adequacy::CellResult;
+using verify::adequacy::LevelStats;
+
+const std::array<Vec3<double>, 4> kLevelColors = {
+    Vec3<double>{0.35, 0.75, 0.35}, Vec3<double>{0.35, 0.55, 0.9}, Vec3<double>{0.95, 0.65, 0.2},
+    Vec3<double>{0.85, 0.25, 0.25}};
+
+std::string short_number(double x) {
+  if (x >= 1000) return fmt::format("1e{}", int(std::lround(std::log10(x))));
+  return fmt::format("{:g}", x);
+}
+
+void write_csv(const std::filesystem::path& path, const std::vector<CellResult>& rows) {
+  std::vector<std::string> names = {"model",        "facets",           "alpha",
+                                    "light_half_angle_deg", "theta_i_deg", "theta_h_deg",
+                                    "p",            "smooth",           "cv_predicted",
+                                    "p_zero_predicted", "chosen",       "chooser",
+                                    "chooser_refuted"};
+  const std::array<std::string_view, 8> per_level = {
+      "mean", "cv", "p_zero", "mean_diff", "mean_diff_ucb", "cv_diff", "cv_diff_ucb", "adequate"};
+  for (std::string_view l : kBinomialLevelNames)
+    for (std::string_view q : per_level) names.push_back(fmt::format("{}_{}", l, q));
+  // Timing last: the only columns that change from run to run.
+  for (std::string_view l : kBinomialLevelNames) names.push_back(fmt::format("{}_ns", l));
+  names.push_back("cheapest_measured");
+  names.push_back("time_saved_ns");
+  std::vector<std::string_view> header(names.begin(), names.end());
+  io::write_csv_atomic(path, header, [&](io::CsvWriter& w) {
+    for (const CellResult& r : rows) {
+      w.cell(r.cell.model).cell(r.cell.facets).cell(r.cell.alpha);
+      w.cell(r.cell.light_half_angle_deg).cell(r.cell.theta_i_deg).cell(r.cell.theta_h_deg);
+      w.cell(r.p).cell(r.smooth).cell(r.cv_predicted).cell(r.p_zero_predicted);
+      w.cell(kBinomialLevelNames[std::size_t(r.chosen)]);
+      w.cell(kBinomialLevelNames[std::size_t(r.chooser)]);
+      w.cell_int(r.chooser_refuted ? 1 : 0);
+      for (const LevelStats& s : r.levels) {
+        w.cell(s.mean).cell(s.cv).cell(s.p_zero).cell(s.mean_diff).cell(s.mean_diff_ucb);
+        w.cell(s.cv_diff).cell(s.cv_diff_ucb).cell_int(s.adequate ? 1 : 0);
+      }
+      for (const LevelStats& s : r.levels) w.cell(s.ns_per_eval);
+      w.cell(kBinomialLevelNames[std::size_t(r.cheapest_measured)]);
+      w.cell(r.levels[3].ns_per_eval - r.levels[std::size_t(r.cheapest_measured)].ns_per_eval);
+      w.end_row();
+    }
+  });
+}
+
+nlohmann::json level_json(const LevelStats& s) {
+  return {{"mean", s.mean},
+          {"cv", s.cv},
+          {"p_zero", s.p_zero},
+          {"mean_diff", s.mean_diff},
+          {"mean_diff_ucb", s.mean_diff_ucb},
+          {"cv_diff", s.cv_diff},
+          {"cv_diff_ucb", s.cv_diff_ucb},
+          {"adequate", s.adequate},
+          {"undecided", s.undecided},
+          {"ns_per_eval", s.ns_per_eval}};
+}
+
+}  // namespace
+
+std::vector<CellResult> measure_adequacy(const AdequacyOptions& o) {
+  const verify::adequacy::GridAxes axes = verify::adequacy::grid_axes(o.budget);
+  const auto cells = verify::adequacy::make_grid(o.models, axes);
+  const auto decision = verify::adequacy::decision_for(cells.size(), o.threshold);
+  return verify::adequacy::measure_grid(cells, axes.samples, decision, o.progress);
+}
+
+AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOptions& o) {
+  const verify::adequacy::GridAxes axes = verify::adequacy::grid_axes(o.budget);
+  const auto cells = verify::adequacy::make_grid(o.models, axes);
+  const auto decision = verify::adequacy::decision_for(cells.size(), o.threshold);
+  const std::vector<CellResult> rows =
+      verify::adequacy::measure_grid(cells, axes.samples, decision, o.progress);
+
+  AdequacySummary sum;
+  sum.cells = rows.size();
+  for (const CellResult& r : rows) {
+    ++sum.chosen[std::size_t(r.chosen)];
+    sum.chooser_refuted += r.chooser_refuted ? 1 : 0;
+    sum.chooser_matches += r.chooser == r.chosen ? 1 : 0;
+    sum.exact_ns += r.levels[3].ns_per_eval;
+    sum.chosen_ns += r.levels[std::size_t(r.chosen)].ns_per_eval;
+    sum.cheapest_ns += r.levels[std::size_t(r.cheapest_measured)].ns_per_eval;
+    ++sum.cheapest_measured[std::size_t(r.cheapest_measured)];
+    sum.undecided += r.levels[0].undecided ? 1 : 0;
+  }
+  std::filesystem::create_directories(out);
+  sum.csv = out / "adequacy.csv";
+  sum.json = out / "adequacy.json";
+  write_csv(sum.csv, rows);
+
+  // Maps: per model × light × incidence, rows (α, θ_h) bottom to top, columns N_P.
+  const std::size_t n_cols = axes.facets.size();
+  const std::size_t n_rows = axes.alpha.size() * std::size_t(axes.theta_h_count);
+  const std::size_t per_map = n_cols * n_rows;
+  nlohmann::json maps = nlohmann::json::array();
+  for (std::size_t start = 0; start + per_map <= rows.size(); start += per_map) {
+    const CellResult& first = rows[start];
+    const std::string stem =
+        fmt::format("adequacy_{}_light{:g}_theta{:g}", first.cell.model,
+                    first.cell.light_half_angle_deg, first.cell.theta_i_deg);
+    CategoryMap map;
+    map.title = fmt::format("{}: cheapest level within TAU = {:g} (light {:g} deg, theta_i {:g} deg)",
+                            first.cell.model, o.threshold, first.cell.light_half_angle_deg,
+                            first.cell.theta_i_deg);
+    map.x_label = "footprint size N_P (expected facets)";
+    map.y_label = "alpha, theta_h (deg)";
+    for (double n : axes.facets) map.column_labels.push_back(short_number(n));
+    for (std::string_view l : kBinomialLevelNames) map.category_names.emplace_back(l);
+    map.category_colors.assign(kLevelColors.begin(), kLevelColors.end());
+    map.marker_name = "predicted: CV = TAU";
+    Image exr(int(n_cols), int(n_rows),
+              {"chosen", "chooser", "cv_exact", "cv_predicted", "p_zero", "p_zero_predicted"});
+    for (std::size_t r = 0; r < n_rows; ++r) {
+      const CellResult& row0 = rows[start + r * n_cols];
+      map.row_labels.push_back(
+          fmt::format("a={:g} th={:.1f}", row0.cell.alpha, row0.cell.theta_h_deg));
+      std::vector<int> cats;
+      for (std::size_t k = 0; k < n_cols; ++k) {
+        const CellResult& c = rows[start + r * n_cols + k];
+        cats.push_back(c.chosen);
+        const double v[] = {double(c.chosen), double(c.chooser),        c.levels[3].cv,
+                            c.cv_predicted,   c.levels[3].p_zero,       c.p_zero_predicted};
+        for (std::size_t ch = 0; ch < 6; ++ch) exr.at(int(k), int(r), ch) = v[ch];
+      }
+      map.cells.push_back(cats);
+      // The predicted boundary: CV_pred = TAU at N* = (1 − p)/(p TAU²), in column units (the
+      // columns are evenly spaced in log N_P).
+      const double p = row0.p;
+      double marker = NAN;
+      if (p > 0 && p < 1 && n_cols > 1) {
+        const double star = (1 - p) / (p * o.threshold * o.threshold);
+        const double l0 = std::log10(axes.facets.front()), l1 = std::log10(axes.facets.back());
+        marker = (std::log10(star) - l0) / (l1 - l0) * double(n_cols - 1);
+      }
+      map.marker_column.push_back(marker);
+    }
+    // EXR rows: row 0 = the first (α, θ_h) row, as the PNG's bottom row.
+    io::write_exr(out / (stem + ".exr"), exr,
+                  {{"glintlab_columns", "N_P: " + fmt::format("{}", fmt::join(axes.facets, ", "))},
+                   {"glintlab_rows", fmt::format("{}", fmt::join(map.row_labels, "; "))},
+                   {"glintlab_levels", "0 smooth, 1 realtime, 2 small_count, 3 exact"}});
+    io::write_png_preview(out / (stem + ".png"), draw_category_map(map));
+    sum.maps.push_back(stem + ".png");
+    maps.push_back({{"model", first.cell.model},
+                    {"light_half_angle_deg", first.cell.light_half_angle_deg},
+                    {"theta_i_deg", first.cell.theta_i_deg},
+                    {"png", stem + ".png"},
+                    {"exr", stem + ".exr"}});
+  }
+
+  nlohmann::json doc;
+  doc["budget"] = o.budget == verify::Budget::kQuick ? "quick" : "full";
+  doc["threshold"] = o.threshold;
+  doc["levels"] = kBinomialLevelNames;
+  doc["models"] = o.models;
+  doc["samples_per_cell"] = axes.samples;
+  doc["bound"] = {{"family_wise_rate", verify::kFamilyWiseRate},
+                  {"z", decision.z},
+                  {"method", "delta method on paired positions, one-sided, Sidak over every "
+                             "(cell, cheaper level)"}};
+  doc["difference"] = {
+      {"mean", "|mean_level / mean_exact - 1|"},
+      {"cv", "|CV_level - CV_exact| (absolute: the smooth level's CV is 0)"}};
+  doc["summary"] = {{"cells", sum.cells},
+                    {"chosen", {{"smooth", sum.chosen[0]},
+                                {"realtime", sum.chosen[1]},
+                                {"small_count", sum.chosen[2]},
+                                {"exact", sum.chosen[3]}}},
+                    {"chooser_matches", sum.chooser_matches},
+                    {"chooser_refuted", sum.chooser_refuted},
+                    {"exact_ns_total", sum.exact_ns},
+                    {"chosen_ns_total", sum.chosen_ns},
+                    {"cheapest_measured_ns_total", sum.cheapest_ns},
+                    {"undecided", sum.undecided},
+                    {"timing_note", "ns columns are measured in-process and vary run to run"}};
+  doc["maps"] = maps;
+  nlohmann::json table = nlohmann::json::array();
+  for (const CellResult& r : rows) {
+    nlohmann::json levels = nlohmann::json::object();
+    for (std::size_t l = 0; l < 4; ++l)
+      levels[std::string(kBinomialLevelNames[l])] = level_json(r.levels[l]);
+    table.push_back({{"model", r.cell.model},
+                     {"facets", r.cell.facets},
+                     {"alpha", r.cell.alpha},
+                     {"light_half_angle_deg", r.cell.light_half_angle_deg},
+                     {"theta_i_deg", r.cell.theta_i_deg},
+                     {"theta_h_deg", r.cell.theta_h_deg},
+                     {"p", r.p},
+                     {"cv_predicted", r.cv_predicted},
+                     {"p_zero_predicted", r.p_zero_predicted},
+                     {"chosen", kBinomialLevelNames[std::size_t(r.chosen)]},
+                     {"chooser", kBinomialLevelNames[std::size_t(r.chooser)]},
+                     {"chooser_refuted", r.chooser_refuted},
+                     {"cheapest_measured", kBinomialLevelNames[std::size_t(r.cheapest_measured)]},
+                     {"levels", levels}});
+  }
+  doc["cells"] = table;
+  io::write_file_atomic(sum.json, doc.dump(1) + "\n");
+  return sum;
+}
+
+}  // namespace glintlab::experiments

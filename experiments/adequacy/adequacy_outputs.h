@@ -1,0 +1,46 @@
+// `glintlab adequacy` as files: the measured table of verify/adequacy/ (adequacy.csv, one row per
+// cell; adequacy.json, the same with the decision's settings and a cost summary) and per model ×
+// light × incidence one map of the chosen level over footprint size × (roughness, half-vector
+// angle): EXR (chosen level, chooser, measured and predicted CV and P(no glint)) and a labelled PNG
+// with the predicted boundary CV_pred = TAU drawn over the measured levels.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "verify/adequacy/binomial_adequacy.h"
+
+namespace glintlab::experiments {
+
+struct AdequacyOptions {
+  std::vector<std::string> models;  // names of the binomial family
+  double threshold = verify::adequacy::kDefaultThreshold;
+  verify::Budget budget = verify::Budget::kQuick;
+  std::function<void()> progress;  // once per measured cell, from any thread
+};
+
+struct AdequacySummary {
+  std::filesystem::path json, csv;
+  std::vector<std::string> maps;  // PNG paths relative to the output folder
+  std::size_t cells = 0;
+  std::array<std::size_t, 4> chosen{};  // cells per cheapest adequate level
+  std::size_t chooser_refuted = 0;      // cells where the chooser's level is surely over TAU
+  std::size_t chooser_matches = 0;      // cells where the chooser picks the measured level
+  std::size_t undecided = 0;            // cells too dark at the exact level to bound
+  // Σ over cells of the time per evaluation: the exact level everywhere, the chosen level, and the
+  // adequate level measured cheapest in each cell (on a CPU the exact count is often cheaper than
+  // the approximations; docs/benchmarks.md), with how many cells each level is that for.
+  double exact_ns = 0, chosen_ns = 0, cheapest_ns = 0;
+  std::array<std::size_t, 4> cheapest_measured{};
+};
+
+// Measures every cell and writes the files into `out` (created), each atomically.
+AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOptions& o);
+
+// The table alone (for the tests): the cells of the budget's grid for `models`, measured.
+std::vector<verify::adequacy::CellResult> measure_adequacy(const AdequacyOptions& o);
+
+}  // namespace glintlab::experiments
