@@ -37,12 +37,6 @@
 
 namespace glintlab::zk16 {
 
-// The properties the conformance suite would otherwise hold this model to. Local definition until
-// core/model.h declares glintlab::NotClaimed with the same two members; then delete this one.
-struct NotClaimed {
-  std::string_view property, reason;
-};
-
 // How the footprint's reflecting count is drawn from its cell's uniforms.
 enum class CountApproximation : int {
   kNormal = 0,      // ZK16: the normal approximation N(N p, N p (1 − p)), clamped to [0, N]

@@ -3,15 +3,14 @@
 // a discovery; either way this test makes a person look.
 #include <gtest/gtest.h>
 
-#include <set>
 #include <cctype>
+#include <set>
 #include <string>
 
 #include "verify/check.h"
 
 namespace glintlab::verify {
 namespace {
-
 
 TEST(Registry, IdsUniqueAndExpected) {
   std::set<std::string> seen;
@@ -69,9 +68,14 @@ TEST_P(QuickBudget, VerdictAndControl) {
   FAIL() << "not registered: " << GetParam();
 }
 
+// Every paper claim, and the conformance checks of the two smooth models (seconds); the other
+// models' conformance checks take minutes each at the quick budget and are tested by
+// tests/verify/conformance (their generator, controls and broken models).
 std::vector<std::string> all_ids() {
   std::vector<std::string> ids;
-  for (const Check& c : registered_checks()) ids.push_back(c.id);
+  for (const Check& c : registered_checks())
+    if (c.family.empty() || c.family == "model.smooth_ggx" || c.family == "model.smooth_beckmann")
+      ids.push_back(c.id);
   return ids;
 }
 
