@@ -3,23 +3,8 @@
 # against that install only (CMAKE_PREFIX_PATH, no path into the source or build tree), then run
 # the INSTALLED glintlab with it: `models` lists it, `eval --model` gives a finite value for every
 # query row, and its conformance claims run at the quick budget (CONFORMANCE=ON).
-file(REMOVE_RECURSE "${WORK}")
-file(MAKE_DIRECTORY "${WORK}")
-execute_process(COMMAND "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${WORK}/prefix"
-                RESULT_VARIABLE r OUTPUT_QUIET)
-if(r)
-  message(FATAL_ERROR "install failed: ${r}")
-endif()
-execute_process(COMMAND "${CMAKE_COMMAND}" -S "${EXAMPLE}" -B "${WORK}/build" -G Ninja
-                        -DCMAKE_PREFIX_PATH=${WORK}/prefix
-                RESULT_VARIABLE r OUTPUT_QUIET)
-if(r)
-  message(FATAL_ERROR "example configure failed: ${r}")
-endif()
-execute_process(COMMAND "${CMAKE_COMMAND}" --build "${WORK}/build" RESULT_VARIABLE r)
-if(r)
-  message(FATAL_ERROR "example build failed: ${r}")
-endif()
+include("${CMAKE_CURRENT_LIST_DIR}/install_and_build.cmake")
+install_and_build("${EXAMPLE}" "example")
 
 set(glintlab "${WORK}/prefix/bin/glintlab")
 set(plugin "${WORK}/build/zirr_kaplanyan.so")

@@ -5,23 +5,8 @@
 # perturbed value), the plug-in defines no registry of its own, and a missing file, a module
 # without the entry point, a plug-in built against another version and a name clash are each
 # refused with one line and exit 2.
-file(REMOVE_RECURSE "${WORK}")
-file(MAKE_DIRECTORY "${WORK}")
-execute_process(COMMAND "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${WORK}/prefix"
-                RESULT_VARIABLE r OUTPUT_QUIET)
-if(r)
-  message(FATAL_ERROR "install failed: ${r}")
-endif()
-execute_process(COMMAND "${CMAKE_COMMAND}" -S "${SOURCE}" -B "${WORK}/build" -G Ninja
-                        -DCMAKE_PREFIX_PATH=${WORK}/prefix -DGLINTLAB_TESTS_DIR=${TESTS_DIR}
-                RESULT_VARIABLE r OUTPUT_QUIET)
-if(r)
-  message(FATAL_ERROR "plug-in project configure failed: ${r}")
-endif()
-execute_process(COMMAND "${CMAKE_COMMAND}" --build "${WORK}/build" RESULT_VARIABLE r)
-if(r)
-  message(FATAL_ERROR "plug-in project build failed: ${r}")
-endif()
+include("${CMAKE_CURRENT_LIST_DIR}/install_and_build.cmake")
+install_and_build("${SOURCE}" "plug-in project" -DGLINTLAB_TESTS_DIR=${TESTS_DIR})
 
 set(glintlab "${WORK}/prefix/bin/glintlab")
 set(plugin "${WORK}/build/example_glints.so")

@@ -1,0 +1,22 @@
+# Shared by the install tests: install glintlab from BUILD_DIR into WORK/prefix (WORK emptied first),
+# then configure and build the project at `source` into WORK/build against that install only
+# (CMAKE_PREFIX_PATH), with any extra cache arguments. Stops the test with `what` named on failure.
+function(install_and_build source what)
+  file(REMOVE_RECURSE "${WORK}")
+  file(MAKE_DIRECTORY "${WORK}")
+  execute_process(COMMAND "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${WORK}/prefix"
+                  RESULT_VARIABLE r OUTPUT_QUIET)
+  if(r)
+    message(FATAL_ERROR "install failed: ${r}")
+  endif()
+  execute_process(COMMAND "${CMAKE_COMMAND}" -S "${source}" -B "${WORK}/build" -G Ninja
+                          -DCMAKE_PREFIX_PATH=${WORK}/prefix ${ARGN}
+                  RESULT_VARIABLE r OUTPUT_QUIET)
+  if(r)
+    message(FATAL_ERROR "${what} configure failed: ${r}")
+  endif()
+  execute_process(COMMAND "${CMAKE_COMMAND}" --build "${WORK}/build" RESULT_VARIABLE r)
+  if(r)
+    message(FATAL_ERROR "${what} build failed: ${r}")
+  endif()
+endfunction()
