@@ -1,7 +1,7 @@
 // Deterministic mutation fuzzing of what reads user input: the CSV reader, the environment-map EXR
 // reader, --grid and --param, and the claim and model globs. Mutations come from a fixed seed, so
-// a failure reproduces; each target stops after a fixed number of inputs or a few seconds,
-// whichever comes first. Every input must end in a clean outcome: accepted with every number
+// a failure reproduces; each target runs a fixed number of inputs (never a time budget, so what is
+// tested does not depend on the machine's load). Every input must end in a clean outcome: accepted with every number
 // finite, or rejected with the one-line error (in process: the reader's own exception type) and
 // no file left behind. A crash fails the test.
 #include <fnmatch.h>
@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -32,10 +31,6 @@ namespace glintlab::cli_test {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
-constexpr auto kTimeBudget = std::chrono::seconds(4);
-
 // Tokens that break parsers: non-finite and huge numbers, separators, quotes, control bytes.
 const std::vector<std::string> kTokens = {
     "nan", "-nan", "inf", "-inf", "1e308", "1e400", "-0",   "0",  "1e-400", "99999999999999999999",
@@ -94,13 +89,10 @@ class Mutator {
   std::mt19937_64 rng_;
 };
 
-// Runs `body(i)` for i = 0 .. max_inputs-1 or until the time budget is spent.
+// Runs `body(i)` for i = 0 .. max_inputs-1, stopping at the first failure.
 template <class F>
-int fuzz_loop(int max_inputs, F body) {
-  const auto stop = Clock::now() + kTimeBudget;
-  int i = 0;
-  for (; i < max_inputs && Clock::now() < stop && !::testing::Test::HasFailure(); ++i) body(i);
-  return i;
+void fuzz_loop(int max_inputs, F body) {
+  for (int i = 0; i < max_inputs && !::testing::Test::HasFailure(); ++i) body(i);
 }
 
 // The input for a failure message, bytes outside printable ASCII as \xNN.
@@ -127,7 +119,7 @@ TEST(FuzzCsvReader, MutatedTablesParseOrFailCleanlyAndNeverYieldNonFiniteNumbers
       "\xEF\xBB\xBF"
       "a,b\n1,2\n3,4\n"};
   Mutator m(0x5eed0001);
-  const int n = fuzz_loop(4000, [&](int i) {
+  fuzz_loop(4000, [&](int i) {
     const std::string text = m.mutate(seeds[std::size_t(i) % seeds.size()]);
     try {
       const io::CsvTable t = io::parse_csv(text, "fuzz.csv");
@@ -145,7 +137,6 @@ TEST(FuzzCsvReader, MutatedTablesParseOrFailCleanlyAndNeverYieldNonFiniteNumbers
       ASSERT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
     }
   });
-  EXPECT_GT(n, 100) << "too few inputs in the time budget";
 }
 
 // --- The environment-map EXR reader, in process ------------------------------------------------
@@ -160,7 +151,7 @@ TEST(FuzzEnvironmentExr, MutatedFilesLoadWithFiniteRadianceOrFailWithExrError) {
   const std::string seed = read_text(dir / "seed.exr");
   ASSERT_GT(seed.size(), 100u);
   Mutator m(0x5eed0002);
-  const int n = fuzz_loop(600, [&](int) {
+  fuzz_loop(600, [&](int) {
     std::string bytes = seed;
     // Mostly small corruptions anywhere (header and data), sometimes the generic mutations.
     if (m.pick(4) == 0) {
@@ -182,7 +173,6 @@ TEST(FuzzEnvironmentExr, MutatedFilesLoadWithFiniteRadianceOrFailWithExrError) {
   });
   std::error_code ec;
   fs::remove_all(dir, ec);
-  EXPECT_GT(n, 50) << "too few inputs in the time budget";
 }
 
 // --- --grid and --param through the executable, against an independent statement of the rules --
@@ -265,7 +255,7 @@ TEST_F(FuzzCli, GridTextIsAcceptedExactlyWhenValid) {
                                           "phi_i=0:1:10000,theta_i=0:180:10000"};
   Mutator m(0x5eed0003);
   int accepted = 0;
-  const int n = fuzz_loop(150, [&](int i) {
+  fuzz_loop(150, [&](int i) {
     std::string g = m.mutate(seeds[std::size_t(i) % seeds.size()]);
     g.erase(std::remove(g.begin(), g.end(), '\0'), g.end());
     if (!g.empty() && g[0] == '-') g.insert(0, "x");  // an argument, not an option
@@ -282,7 +272,6 @@ TEST_F(FuzzCli, GridTextIsAcceptedExactlyWhenValid) {
     }
     EXPECT_EQ(unexpected_files(work(), {"blocker"}), std::vector<std::string>{});
   });
-  EXPECT_GT(n, 20);
   EXPECT_GT(accepted, 0) << "no mutated grid was valid: the mutations are too coarse";
 }
 
@@ -291,7 +280,7 @@ TEST_F(FuzzCli, ParamTextIsAcceptedExactlyWhenValid) {
   const std::vector<std::string> seeds = {"alpha_x=0.3", "alpha_y=100", "alpha_x=1e-3"};
   Mutator m(0x5eed0004);
   int accepted = 0;
-  const int n = fuzz_loop(150, [&](int i) {
+  fuzz_loop(150, [&](int i) {
     std::string p = m.mutate(seeds[std::size_t(i) % seeds.size()]);
     p.erase(std::remove(p.begin(), p.end(), '\0'), p.end());
     if (!p.empty() && p[0] == '-') p.insert(0, "x");
@@ -314,7 +303,6 @@ TEST_F(FuzzCli, ParamTextIsAcceptedExactlyWhenValid) {
       EXPECT_EQ(msg.rfind("--param", 0), 0u) << "invalid param " << printable(p) << ": " << msg;
     }
   });
-  EXPECT_GT(n, 20);
   EXPECT_GT(accepted, 0);
 }
 
@@ -326,7 +314,7 @@ TEST_F(FuzzCli, EvalOnMutatedCsvWritesOnlyFiniteNumbersOrNothing) {
       "ggx,0.3,0.3,0,0.6,0.8,0.6,0,0.8\nbeckmann,0.5,0.2,0.6,0,0.8,0,0,1\n";
   Mutator m(0x5eed0005);
   int accepted = 0;
-  const int n = fuzz_loop(120, [&](int) {
+  fuzz_loop(120, [&](int) {
     write_text(path("q.csv"), m.mutate(seed));
     const RunResult r = run({"eval", "--in", "q.csv", "--out", "r.csv"});
     if (r.exit_code == 0) {
@@ -346,7 +334,6 @@ TEST_F(FuzzCli, EvalOnMutatedCsvWritesOnlyFiniteNumbersOrNothing) {
       EXPECT_EQ(unexpected_files(work(), {"q.csv"}), std::vector<std::string>{});
     }
   });
-  EXPECT_GT(n, 20);
   EXPECT_GT(accepted, 0);
 }
 
@@ -391,7 +378,7 @@ TEST_F(FuzzCli, ClaimGlobsSelectExactlyTheMatchingClaimsOrFailNamingThem) {
                                           "kneiphof.*, podee.*", "[ek]*"};
   Mutator m(0x5eed0006);
   int accepted = 0;
-  const int n = fuzz_loop(150, [&](int i) {
+  fuzz_loop(150, [&](int i) {
     std::string g = m.mutate(seeds[std::size_t(i) % seeds.size()]);
     g.erase(std::remove(g.begin(), g.end(), '\0'), g.end());
     if (!g.empty() && g[0] == '-') g.insert(0, "x");
@@ -405,7 +392,6 @@ TEST_F(FuzzCli, ClaimGlobsSelectExactlyTheMatchingClaimsOrFailNamingThem) {
       EXPECT_EQ(one_error(r).rfind("--claims", 0), 0u) << "globs " << printable(g) << ": " << r.err;
     }
   });
-  EXPECT_GT(n, 20);
   EXPECT_GT(accepted, 0);
 }
 
@@ -418,7 +404,7 @@ TEST_F(FuzzCli, ModelGlobsAreCheckedBeforeAnySweep) {
   const std::vector<std::string> seeds = {"smooth_*", "smooth_ggx,podee", "*glints*", "[sp]*"};
   Mutator m(0x5eed0007);
   int accepted = 0;
-  const int n = fuzz_loop(150, [&](int i) {
+  fuzz_loop(150, [&](int i) {
     std::string g = m.mutate(seeds[std::size_t(i) % seeds.size()]);
     g.erase(std::remove(g.begin(), g.end(), '\0'), g.end());
     if (!g.empty() && g[0] == '-') g.insert(0, "x");
@@ -436,7 +422,6 @@ TEST_F(FuzzCli, ModelGlobsAreCheckedBeforeAnySweep) {
     }
     EXPECT_EQ(unexpected_files(work(), {"blocker"}), std::vector<std::string>{});
   });
-  EXPECT_GT(n, 20);
   EXPECT_GT(accepted, 0);
 }
 
