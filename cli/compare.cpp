@@ -81,9 +81,13 @@ void run(const CLI::App* cmd, const CompareCliOptions& o) {
   c.sweeps_from = o.sweeps_from;
   const fs::path out(o.out);
   check_output_dir(out, "--out");
-  fs::create_directories(out);
-  register_staging_parent(out);
-  const StagingFolder stage{out / fmt::format(".compare.tmp.{}", ::getpid())};
+  // Staged beside DIR, so a failed run leaves no DIR behind.
+  const fs::path absolute = fs::absolute(out).lexically_normal();
+  const fs::path parent = absolute.has_filename() ? absolute.parent_path()
+                                                  : absolute.parent_path().parent_path();
+  fs::create_directories(parent);
+  register_staging_parent(parent);
+  const StagingFolder stage{parent / fmt::format(".compare.tmp.{}", ::getpid())};
   fs::remove_all(stage.dir);
   fs::create_directory(stage.dir);
 
@@ -97,6 +101,7 @@ void run(const CLI::App* cmd, const CompareCliOptions& o) {
                                  e.what()));
   }
   draw_page(stage.dir);
+  fs::create_directories(out);
   for (const char* f : kPageFiles) fs::rename(stage.dir / f, out / f);
   fmt::print("compare: {} models; wrote {}\n", c.models.size(), (out / "index.html").string());
 }

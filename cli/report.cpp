@@ -3,6 +3,7 @@
 // the plots and write DIR/index.html and its Markdown twin DIR/report.md.
 #include <fmt/format.h>
 #include <fnmatch.h>
+#include <tbb/global_control.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -23,6 +24,8 @@
 #include "cli/input.h"
 #include "cli/progress.h"
 #include "core/io/atomic_file.h"
+#include "core/model_registry.h"
+#include "experiments/compare/compare.h"
 #include "experiments/figures/figure_registry.h"
 #include "verify/check.h"
 
@@ -43,12 +46,12 @@ struct ReportOptions {
 };
 
 // The parts of a report, in the order they run; each has its own subfolder of DIR.
-constexpr const char* kParts[] = {"claims", "figures", "bench", "stability"};
-constexpr const char* kPartDirs[] = {"verify", "figures", "bench", "stability"};
+constexpr const char* kParts[] = {"claims", "figures", "bench", "stability", "compare"};
+constexpr const char* kPartDirs[] = {"verify", "figures", "bench", "stability", "compare"};
 // The file whose presence (and validity, checked by make_report.py) makes a cached part reusable.
 constexpr const char* kPartIndex[] = {"claims.json", "figures.json", "bench.json",
-                                      "stability.json"};
-constexpr int kNumParts = 4;
+                                      "stability.json", "compare.json"};
+constexpr int kNumParts = 5;
 
 std::string cpu_model() {
   std::ifstream in("/proc/cpuinfo");
@@ -120,6 +123,7 @@ class ReportRun {
   void run_figures(json& part);
   void run_bench(json& part);
   void run_stability(json& part);
+  void run_compare(json& part);
   // Runs a child; stderr goes to the terminal when there is one (its progress), else to a log.
   int child(const std::vector<std::string>& args, const std::string& log_name);
   [[noreturn]] void child_failed(const std::string& what, int rc, const std::string& log_name);
@@ -143,13 +147,15 @@ void ReportRun::validate() {
   threads_ = resolve_threads(threads_text_);
   if (cmd_->count("--skip") > 0) {
     skip_ =
-        split_list(o_.skip, "--skip", "comma-separated parts: claims, figures, bench, stability");
+        split_list(o_.skip, "--skip",
+                   "comma-separated parts: claims, figures, bench, stability, compare");
     for (const std::string& s : skip_) {
       bool known = false;
       for (const char* p : kParts) known = known || s == p;
       if (!known)
         throw InputError(fmt::format(
-            "--skip: '{}' is not a part of the report (valid: claims, figures, bench, stability)",
+            "--skip: '{}' is not a part of the report (valid: claims, figures, bench, stability, "
+            "compare)",
             s));
     }
   }
@@ -309,6 +315,30 @@ void ReportRun::run_stability(json& part) {
   part["status"] = "ran";
 }
 
+// Every registered model side by side, in this process (plug-ins loaded here are included). It
+// reads the conformance verdicts and failure regions the report's verify and sweep parts wrote and
+// never runs a conformance suite: a verdict the report did not measure shows as recorded.
+void ReportRun::run_compare(json& part) {
+  const auto start = std::chrono::steady_clock::now();
+  experiments::compare::CompareOptions c;
+  c.budget = quick() ? verify::Budget::kQuick : verify::Budget::kFull;
+  for (const ModelEntry& m : registered_models()) c.models.emplace_back(m.name);
+  c.measure_missing = false;
+  if (fs::is_regular_file(stage_ / "verify" / "claims.json")) c.claims_from = stage_ / "verify";
+  if (fs::is_regular_file(stage_ / "stability" / "stability.json"))
+    c.sweeps_from = stage_ / "stability";
+  fs::create_directories(stage_ / "compare");
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads_));
+  try {
+    experiments::compare::run_compare(stage_ / "compare", c);
+  } catch (const json::exception& e) {
+    throw InputError(fmt::format("report: compare cannot read a verify or sweep output ({})",
+                                 e.what()));
+  }
+  part["status"] = "ran";
+  part["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 void ReportRun::run() {
   validate();
   out_ = fs::path(o_.out);
@@ -397,8 +427,10 @@ void ReportRun::run() {
       run_figures(part);
     } else if (name == "bench") {
       run_bench(part);
-    } else {
+    } else if (name == "stability") {
       run_stability(part);
+    } else {
+      run_compare(part);
     }
     parts[name] = part;
     progress_->step(name);
@@ -457,7 +489,8 @@ constexpr const char* kFooter =
     R"(DIR (default out/report) gets index.html (static, no script, relative links only) and its
 Markdown twin report.md, and beside them every input: verify/ (claims.json, .csv, .md),
 figures/<id>/ (EXR, PNG, CSV of each figure), bench/ (bench.json, accuracy.csv, methods/*.json), stability/
-(stability.json and its maps), plots/ (the charts drawn by reports/make_report.py: convergence
+(stability.json and its maps), compare/ (glintlab compare of every registered model, from the verify and
+stability parts' outputs: compare.json, compare.csv, equal_time.csv), plots/ (the charts drawn by reports/make_report.py: convergence
 log-log plots, speed_accuracy.png, speed_accuracy_methods.png and speed_accuracy.csv), logs/ and run.json (machine, budget,
 date and status of each part). The report is staged in a hidden folder beside DIR and replaces DIR only when it is
 complete: a bad option, a failed part or a malformed cached file leaves DIR as it was.)";
@@ -475,8 +508,8 @@ void add_report_command(CLI::App& app) {
                     "quick = quick figures, a short benchmark run, quick claims; full = all full");
   add_bool_flag(cmd, "--reuse", o->reuse,
                 "reuse the parts whose results are already in --out (verify/claims.json, "
-                "figures/figures.json, bench/bench.json, stability/stability.json) instead of "
-                "running them");
+                "figures/figures.json, bench/bench.json, stability/stability.json, "
+                "compare/compare.json) instead of running them");
   add_text_option(cmd, "--claims", o->claims,
                   "comma-separated globs over claim ids (see glintlab verify --list)", "LIST");
   add_text_option(cmd, "--figures", o->figures,
@@ -486,7 +519,8 @@ void add_report_command(CLI::App& app) {
                   "running the suite",
                   "DIR");
   add_text_option(cmd, "--skip", o->skip,
-                  "comma-separated parts to leave out: claims, figures, bench, stability", "LIST");
+                  "comma-separated parts to leave out: claims, figures, bench, stability, compare",
+                  "LIST");
   auto threads = std::make_shared<std::string>();
   add_threads_option(cmd, *threads);
   cmd->footer(kFooter);

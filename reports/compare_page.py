@@ -89,8 +89,22 @@ def stability_cell(m):
         f"{html.escape(s['failure_region'])}" for s in m["stability"])
 
 
-def section_html(data, png_rel, heading="h2"):
+def intro_html(data):
     s = data["settings"]
+    scenes = ", ".join(f"{t:g}°" for t in s["theta_deg"])
+    return f"""<p>Every model at its default parameters on the same scenes: θi ∈ {{{scenes}}}, a
+footprint of side {s['footprint_side_uv']:g} in uv, a 1° light cone for area-light models and a
+delta light otherwise. Quantity: {html.escape(s['quantity'])}. Reference: cubature for models
+without a footprint, {s['reference_samples_monte_carlo']} uniform-direction samples for footprint
+models; a reference whose relative error exceeds {s['cubature_converged_relative_error']:g}
+(cubature) or {s['monte_carlo_converged_relative_error']:g} (Monte Carlo, one standard error) is
+flagged as not converged and not used. Times are measurements of this run's machine
+({html.escape(data['machine'])}). Verdicts marked "read" come from
+{html.escape(str(s['claims_from']))}; "recorded" ones are the verdicts recorded for this budget,
+not measured in this run; "declared" ones are properties the model does not claim.</p>"""
+
+
+def table_html(data):
     rows = []
     for m in data["models"]:
         t = m["timing"]
@@ -101,31 +115,20 @@ def section_html(data, png_rel, heading="h2"):
                 f"{fmt(t['scalar_ns_per_eval'], '.1f')} → {fmt(t['best_ns_per_eval'], '.1f')} "
                 f"({html.escape(t['best_isa'])}{'' if t['batched'] else ', not batched'})",
                 reference_cell(m), error_cell(m), stability_cell(m)]) + "</tr>")
-    scenes = ", ".join(f"{t:g}°" for t in s["theta_deg"])
-    return f"""<{heading}>Models compared ({html.escape(s['budget'])} budget)</{heading}>
-<p>Every model at its default parameters on the same scenes: θi ∈ {{{scenes}}}, a footprint of side
-{s['footprint_side_uv']:g} in uv, a 1° light cone for area-light models and a delta light
-otherwise. Quantity: {html.escape(s['quantity'])}. Reference: cubature for models without a
-footprint, {s['reference_samples_monte_carlo']} uniform-direction samples for footprint models;
-a reference whose relative error exceeds {s['cubature_converged_relative_error']:g} (cubature) or
-{s['monte_carlo_converged_relative_error']:g} (Monte Carlo, one standard error) is flagged as not
-converged and not used.
-Times are measurements of this run's machine ({html.escape(data['machine'])}). Verdicts marked
-"read" come from {html.escape(str(s['claims_from']))}, "recorded" ones are the registry's recorded
-verdicts, not measured in this run.</p>
-<p><img src="{html.escape(png_rel)}" alt="equal-time error curves" width="680"></p>
-<table border="1" cellspacing="0" cellpadding="3">
-<tr><th>model</th><th>conformance</th><th>ns/eval scalar → best ISA</th>
-<th>reference albedo per scene</th><th>sampler error against it</th><th>stability</th></tr>
-{chr(10).join(rows)}
-</table>
-"""
+    return ("<table><thead><tr><th>model</th><th>conformance</th>"
+            "<th>ns/eval scalar → best ISA</th><th>reference albedo per scene</th>"
+            "<th>sampler error against it</th><th>stability</th></tr></thead><tbody>\n" +
+            "\n".join(rows) + "\n</tbody></table>\n")
 
 
-def section_markdown(data, png_rel):
-    lines = [f"## Models compared ({data['settings']['budget']} budget)", "",
-             f"![equal-time error curves]({png_rel})", "",
-             "| model | conformance | ns/eval scalar → best | sampler error | stability |",
+def section_html(data, png_rel):
+    return (f"<h1>Models compared ({html.escape(data['settings']['budget'])} budget)</h1>\n" +
+            intro_html(data) + f'\n<p><img src="{html.escape(png_rel)}" '
+            'alt="equal-time error curves" width="680"></p>\n' + table_html(data))
+
+
+def table_markdown(data):
+    lines = ["| model | conformance | ns/eval scalar → best | sampler error | stability |",
              "|---|---|---|---|---|"]
     for m in data["models"]:
         counts = {}
@@ -155,7 +158,7 @@ def main():
         return 2
     draw_equal_time(data, os.path.join(a.dir, "equal_time.png"))
     page = ("<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>glintlab compare"
-            "</title></head><body>\n" + section_html(data, "equal_time.png", "h1") +
+            "</title></head><body>\n" + section_html(data, "equal_time.png") +
             "<p>Data: <a href=\"compare.json\">compare.json</a>, <a href=\"compare.csv\">"
             "compare.csv</a>, <a href=\"equal_time.csv\">equal_time.csv</a>.</p>\n</body></html>\n")
     tmp = os.path.join(a.dir, f".index.html.tmp.{os.getpid()}")

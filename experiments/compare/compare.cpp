@@ -44,7 +44,7 @@ json model_json(const ModelEntry& m, const CompareOptions& o, const CompareBudge
 
   step("conformance");
   json verdicts = json::array();
-  for (const PropertyVerdict& v : conformance_verdicts(m, o.budget, o.claims_from))
+  for (const PropertyVerdict& v : conformance_verdicts(m, o.budget, o.claims_from, o.measure_missing))
     verdicts.push_back({{"property", v.property},
                         {"verdict", v.verdict},
                         {"origin", v.origin},
@@ -90,7 +90,7 @@ json model_json(const ModelEntry& m, const CompareOptions& o, const CompareBudge
 
   step("stability");
   json stability = json::array();
-  for (const StabilityFinding& s : stability_findings(m, o.budget, o.sweeps_from))
+  for (const StabilityFinding& s : stability_findings(m, o.budget, o.sweeps_from, o.measure_missing))
     stability.push_back({{"sampler", s.sampler},
                          {"verdict", s.verdict},
                          {"origin", s.origin},

@@ -19,8 +19,12 @@ namespace glintlab::experiments::compare {
 struct CompareOptions {
   verify::Budget budget = verify::Budget::kQuick;
   std::vector<std::string> models;        // registered model names, in the order shown
-  std::filesystem::path claims_from;      // a `glintlab verify --out` folder; empty: measure here
-  std::filesystem::path sweeps_from;      // a `glintlab sweep --out` folder; empty: sweep here
+  std::filesystem::path claims_from;      // a `glintlab verify --out` folder; empty: see below
+  std::filesystem::path sweeps_from;      // a `glintlab sweep --out` folder; empty: see below
+  // Without claims_from / sweeps_from: run each model's conformance checks (minutes per glint
+  // model) and sweeps here; when false, show the recorded verdicts only and no failure region
+  // (the report: it never runs a suite it did not run itself).
+  bool measure_missing = true;
   std::function<void(const std::string& step)> progress;  // called from one thread
 };
 

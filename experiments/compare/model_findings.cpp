@@ -39,14 +39,15 @@ std::string check_id(const ModelEntry& m, std::string_view property) {
 }  // namespace
 
 std::vector<PropertyVerdict> conformance_verdicts(const ModelEntry& m, verify::Budget b,
-                                                  const fs::path& claims_from) {
+                                                  const fs::path& claims_from, bool measure) {
   std::map<std::string, json> read;
   if (!claims_from.empty())
     for (const json& row : read_json(claims_from / "claims.json"))
       read[row.value("id", std::string())] = row;
   std::vector<PropertyVerdict> out;
   std::vector<verify::Check> checks;
-  if (claims_from.empty()) checks = verify::conformance_checks(m);
+  const bool run_here = claims_from.empty() && measure;
+  if (run_here) checks = verify::conformance_checks(m);
   for (std::string_view property : verify::conformance::kProperties) {
     if (!verify::conformance::applies(property, m)) continue;
     const std::string id = check_id(m, property);
@@ -56,7 +57,7 @@ std::vector<PropertyVerdict> conformance_verdicts(const ModelEntry& m, verify::B
       v.origin = kRead;
       v.detail = it->second.value("detail", std::string());
       v.control_rejected = it->second.value("control_rejected", false);
-    } else if (claims_from.empty()) {
+    } else if (run_here) {
       for (const verify::Check& c : checks) {
         if (c.id != id) continue;
         const verify::CheckResult r = c.run(b);
@@ -73,14 +74,16 @@ std::vector<PropertyVerdict> conformance_verdicts(const ModelEntry& m, verify::B
       for (const verify::Check& c : verify::conformance_checks(m))
         if (c.id == id) v.verdict = verify::to_string(c.expected_for(b));
       v.origin = kRecorded;
-      v.detail = fmt::format("the verdict recorded for this budget; {} has no row {}",
-                             (claims_from / "claims.json").string(), id);
+      v.detail = claims_from.empty()
+                     ? std::string("the verdict recorded for this budget; not measured here")
+                     : fmt::format("the verdict recorded for this budget; {} has no row {}",
+                                   (claims_from / "claims.json").string(), id);
     } else {
       v.verdict = "-";
       v.origin = kNotMeasured;
-      v.detail = fmt::format("no row {} in {} and no recorded verdict (run glintlab verify "
+      v.detail = fmt::format("not measured here and no recorded verdict (run glintlab verify "
                              "--claims 'model.{}.*')",
-                             id, (claims_from / "claims.json").string(), m.name);
+                             m.name);
     }
     out.push_back(std::move(v));
   }
@@ -88,10 +91,13 @@ std::vector<PropertyVerdict> conformance_verdicts(const ModelEntry& m, verify::B
 }
 
 std::vector<StabilityFinding> stability_findings(const ModelEntry& m, verify::Budget b,
-                                                 const fs::path& sweeps_from) {
+                                                 const fs::path& sweeps_from, bool measure) {
   std::vector<StabilityFinding> out;
+  if (sweeps_from.empty() && !measure)
+    return {{"-", "-", "no stability sweep in this run", kNotMeasured}};
   if (!sweeps_from.empty()) {
-    for (const json& e : read_json(sweeps_from / "stability.json").at("models"))
+    const json doc = read_json(sweeps_from / "stability.json");
+    for (const json& e : doc.at("models"))
       if (e.value("model", std::string()) == m.name)
         out.push_back({e.value("sampler", std::string()), e.value("verdict", std::string()),
                        e.value("failure_region", std::string()), kRead});

@@ -26,18 +26,21 @@ struct PropertyVerdict {
 };
 
 // Every conformance property of `m` (kProperties order, those that apply): the rows of
-// claims.json in `claims_from` where it has them; otherwise, without claims_from, measured here by
-// the model's own conformance checks; otherwise "not-claimed" where the model declares so, the
+// claims.json in `claims_from` where it has them; otherwise, without claims_from and with
+// `measure`, measured here by the model's own conformance checks; otherwise "not-claimed" where the model declares so, the
 // verdict recorded for budget b for a built-in model, and nothing for a plug-in.
 std::vector<PropertyVerdict> conformance_verdicts(const ModelEntry& m, verify::Budget b,
-                                                  const std::filesystem::path& claims_from);
+                                                  const std::filesystem::path& claims_from,
+                                                  bool measure);
 
 struct StabilityFinding {
   std::string sampler, verdict, failure_region, origin;
 };
 
-// Per sampler of `m`: the entries of stability.json in `sweeps_from`, else the sweep run here.
+// Per sampler of `m`: the entries of stability.json in `sweeps_from`, else (with `measure`) the
+// sweep run here, else one "not measured" row.
 std::vector<StabilityFinding> stability_findings(const ModelEntry& m, verify::Budget b,
-                                                 const std::filesystem::path& sweeps_from);
+                                                 const std::filesystem::path& sweeps_from,
+                                                 bool measure);
 
 }  // namespace glintlab::experiments::compare
