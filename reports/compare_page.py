@@ -38,8 +38,8 @@ def draw_equal_time(data, path, relpath="equal_time.png", manifest=None):
                   marker="o", markersize=3, label=m["name"])
         drawn += 1
     s = data["settings"]
-    ax.set_title("Equal-time error: albedo estimate with each model's sampler "
-                 f"({s['budget']} budget)", fontsize=9)
+    ax.set_title("Equal-time error: albedo estimate with each model's sampler\n"
+                 f"{data['machine']}; budget {s['budget']}", fontsize=9)
     ax.set_xlabel("wall time per estimate (µs, this machine)")
     ax.set_ylabel("relative RMS error against the model's reference")
     ax.grid(True, which="both", alpha=0.3)
