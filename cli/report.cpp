@@ -1,11 +1,9 @@
 // `glintlab report`: runs (or, with --reuse, reads the cached results of) the claim suite, every
 // registered figure, the benchmarks and the stability sweeps, then has reports/make_report.py draw
 // the plots and write DIR/index.html and its Markdown twin DIR/report.md.
-#include <fcntl.h>
 #include <fmt/format.h>
 #include <fnmatch.h>
-#include <spawn.h>
-#include <sys/wait.h>
+#include <tbb/global_control.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -21,14 +19,15 @@
 #include <thread>
 #include <vector>
 
+#include "cli/child_process.h"
 #include "cli/commands.h"
 #include "cli/input.h"
 #include "cli/progress.h"
 #include "core/io/atomic_file.h"
+#include "core/model_registry.h"
+#include "experiments/compare/compare.h"
 #include "experiments/figures/figure_registry.h"
 #include "verify/check.h"
-
-extern char** environ;
 
 namespace glintlab::cli {
 namespace {
@@ -47,12 +46,12 @@ struct ReportOptions {
 };
 
 // The parts of a report, in the order they run; each has its own subfolder of DIR.
-constexpr const char* kParts[] = {"claims", "figures", "bench", "stability"};
-constexpr const char* kPartDirs[] = {"verify", "figures", "bench", "stability"};
+constexpr const char* kParts[] = {"claims", "figures", "bench", "stability", "compare"};
+constexpr const char* kPartDirs[] = {"verify", "figures", "bench", "stability", "compare"};
 // The file whose presence (and validity, checked by make_report.py) makes a cached part reusable.
 constexpr const char* kPartIndex[] = {"claims.json", "figures.json", "bench.json",
-                                      "stability.json"};
-constexpr int kNumParts = 4;
+                                      "stability.json", "compare.json"};
+constexpr int kNumParts = 5;
 
 std::string cpu_model() {
   std::ifstream in("/proc/cpuinfo");
@@ -84,24 +83,6 @@ json machine_json(int threads) {
           {"threads", threads}};
 }
 
-fs::path self_exe() {
-  std::error_code ec;
-  const fs::path p = fs::read_symlink("/proc/self/exe", ec);
-  if (ec)
-    throw std::runtime_error("report: cannot locate the glintlab executable (/proc/self/exe)");
-  return p;
-}
-
-// The folder of the report scripts: $GLINTLAB_REPORTS_DIR, else the source tree's reports/, else
-// <prefix>/share/glintlab/reports beside an installed executable.
-fs::path reports_dir() {
-  if (const char* env = std::getenv("GLINTLAB_REPORTS_DIR"); env && *env) return env;
-  std::error_code ec;
-  const fs::path src = GLINTLAB_REPORTS_SOURCE_DIR;
-  if (fs::exists(src / "make_report.py", ec)) return src;
-  return self_exe().parent_path().parent_path() / "share" / "glintlab" / "reports";
-}
-
 // A benchmark tool of experiments/bench/, found beside glintlab in the build tree (cli/ and
 // experiments/bench/ are siblings) or in the same folder; empty when it was not built.
 fs::path bench_tool(const std::string& name) {
@@ -113,61 +94,11 @@ fs::path bench_tool(const std::string& name) {
   return {};
 }
 
-// Runs argv with stdout to `out_file` and stderr to `err_file` (empty: inherited, so a child's
-// progress shows on the terminal); returns its exit status (128 + signal when killed).
-int run_process(const std::vector<std::string>& args, const fs::path& out_file,
-                const fs::path& err_file) {
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, out_file.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (!err_file.empty()) {
-    posix_spawn_file_actions_addopen(&fa, STDERR_FILENO, err_file.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  }
-  std::vector<char*> argv;
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  // The child gets SIGINT and SIGTERM unblocked (this process blocks them for its watcher).
-  posix_spawnattr_t attr;
-  posix_spawnattr_init(&attr);
-  sigset_t none;
-  sigemptyset(&none);
-  posix_spawnattr_setsigmask(&attr, &none);
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, argv[0], &fa, &attr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  posix_spawnattr_destroy(&attr);
-  if (rc != 0) throw std::runtime_error(fmt::format("report: cannot run {}", args[0]));
-  set_signal_child(pid);
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0) {
-  }
-  set_signal_child(0);
-  if (WIFEXITED(status)) return WEXITSTATUS(status);
-  return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-}
-
 std::string read_text(const fs::path& p) {
   std::ifstream in(p);
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-// The last non-empty line a child wrote to stderr, without a "glintlab: error: " prefix.
-std::string last_error_line(const fs::path& err_file) {
-  std::string last;
-  std::istringstream in(read_text(err_file));
-  for (std::string line; std::getline(in, line);) {
-    const auto cr = line.rfind('\r');
-    if (cr != std::string::npos) line = line.substr(cr + 1);
-    if (!line.empty()) last = line;
-  }
-  const std::string prefix = "glintlab: error: ";
-  if (last.rfind(prefix, 0) == 0) last = last.substr(prefix.size());
-  return last.empty() ? "no message" : last;
 }
 
 // Removes a folder on scope exit unless disarmed: the staging folder of a failed run.
@@ -192,6 +123,7 @@ class ReportRun {
   void run_figures(json& part);
   void run_bench(json& part);
   void run_stability(json& part);
+  void run_compare(json& part);
   // Runs a child; stderr goes to the terminal when there is one (its progress), else to a log.
   int child(const std::vector<std::string>& args, const std::string& log_name);
   [[noreturn]] void child_failed(const std::string& what, int rc, const std::string& log_name);
@@ -215,13 +147,15 @@ void ReportRun::validate() {
   threads_ = resolve_threads(threads_text_);
   if (cmd_->count("--skip") > 0) {
     skip_ =
-        split_list(o_.skip, "--skip", "comma-separated parts: claims, figures, bench, stability");
+        split_list(o_.skip, "--skip",
+                   "comma-separated parts: claims, figures, bench, stability, compare");
     for (const std::string& s : skip_) {
       bool known = false;
       for (const char* p : kParts) known = known || s == p;
       if (!known)
         throw InputError(fmt::format(
-            "--skip: '{}' is not a part of the report (valid: claims, figures, bench, stability)",
+            "--skip: '{}' is not a part of the report (valid: claims, figures, bench, stability, "
+            "compare)",
             s));
     }
   }
@@ -381,6 +315,30 @@ void ReportRun::run_stability(json& part) {
   part["status"] = "ran";
 }
 
+// Every registered model side by side, in this process (plug-ins loaded here are included). It
+// reads the conformance verdicts and failure regions the report's verify and sweep parts wrote and
+// never runs a conformance suite: a verdict the report did not measure shows as recorded.
+void ReportRun::run_compare(json& part) {
+  const auto start = std::chrono::steady_clock::now();
+  experiments::compare::CompareOptions c;
+  c.budget = quick() ? verify::Budget::kQuick : verify::Budget::kFull;
+  for (const ModelEntry& m : registered_models()) c.models.emplace_back(m.name);
+  c.measure_missing = false;
+  if (fs::is_regular_file(stage_ / "verify" / "claims.json")) c.claims_from = stage_ / "verify";
+  if (fs::is_regular_file(stage_ / "stability" / "stability.json"))
+    c.sweeps_from = stage_ / "stability";
+  fs::create_directories(stage_ / "compare");
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads_));
+  try {
+    experiments::compare::run_compare(stage_ / "compare", c);
+  } catch (const json::exception& e) {
+    throw InputError(fmt::format("report: compare cannot read a verify or sweep output ({})",
+                                 e.what()));
+  }
+  part["status"] = "ran";
+  part["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 void ReportRun::run() {
   validate();
   out_ = fs::path(o_.out);
@@ -469,8 +427,10 @@ void ReportRun::run() {
       run_figures(part);
     } else if (name == "bench") {
       run_bench(part);
-    } else {
+    } else if (name == "stability") {
       run_stability(part);
+    } else {
+      run_compare(part);
     }
     parts[name] = part;
     progress_->step(name);
@@ -529,7 +489,8 @@ constexpr const char* kFooter =
     R"(DIR (default out/report) gets index.html (static, no script, relative links only) and its
 Markdown twin report.md, and beside them every input: verify/ (claims.json, .csv, .md),
 figures/<id>/ (EXR, PNG, CSV of each figure), bench/ (bench.json, accuracy.csv, methods/*.json), stability/
-(stability.json and its maps), plots/ (the charts drawn by reports/make_report.py: convergence
+(stability.json and its maps), compare/ (glintlab compare of every registered model, from the verify and
+stability parts' outputs: compare.json, compare.csv, equal_time.csv), plots/ (the charts drawn by reports/make_report.py: convergence
 log-log plots, speed_accuracy.png, speed_accuracy_methods.png and speed_accuracy.csv), logs/ and run.json (machine, budget,
 date and status of each part). The report is staged in a hidden folder beside DIR and replaces DIR only when it is
 complete: a bad option, a failed part or a malformed cached file leaves DIR as it was.)";
@@ -547,8 +508,8 @@ void add_report_command(CLI::App& app) {
                     "quick = quick figures, a short benchmark run, quick claims; full = all full");
   add_bool_flag(cmd, "--reuse", o->reuse,
                 "reuse the parts whose results are already in --out (verify/claims.json, "
-                "figures/figures.json, bench/bench.json, stability/stability.json) instead of "
-                "running them");
+                "figures/figures.json, bench/bench.json, stability/stability.json, "
+                "compare/compare.json) instead of running them");
   add_text_option(cmd, "--claims", o->claims,
                   "comma-separated globs over claim ids (see glintlab verify --list)", "LIST");
   add_text_option(cmd, "--figures", o->figures,
@@ -558,7 +519,8 @@ void add_report_command(CLI::App& app) {
                   "running the suite",
                   "DIR");
   add_text_option(cmd, "--skip", o->skip,
-                  "comma-separated parts to leave out: claims, figures, bench, stability", "LIST");
+                  "comma-separated parts to leave out: claims, figures, bench, stability, compare",
+                  "LIST");
   auto threads = std::make_shared<std::string>();
   add_threads_option(cmd, *threads);
   cmd->footer(kFooter);

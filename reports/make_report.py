@@ -44,11 +44,13 @@ import urllib.parse
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import charts  # noqa: E402
 import speed_accuracy as sa  # noqa: E402
+import compare_page  # noqa: E402
 
-PARTS = ["claims", "figures", "bench", "stability"]
+PARTS = ["claims", "figures", "bench", "stability", "compare"]
 PART_TITLES = {"claims": "Claims (glintlab verify)", "figures": "Figures (glintlab figure)",
                "bench": "Benchmarks (glintlab_bench_kernels, glintlab_accuracy)",
-               "stability": "Stability maps (glintlab sweep)"}
+               "stability": "Stability maps (glintlab sweep)",
+               "compare": "Models compared (glintlab compare)"}
 CLAIM_KEYS = {"id": str, "paper": str, "source": str, "verdict": str, "detail": str,
               "control": str, "control_rejected": bool}
 VERDICTS = {"holds", "holds-within", "holds-in-regime", "fails", "inconclusive", "not-claimed"}
@@ -278,6 +280,13 @@ def load_stability(root):
     return data
 
 
+def load_compare(root):
+    data = load_json(root, "compare/compare.json")
+    if not isinstance(data, dict) or not isinstance(data.get("models"), list):
+        raise ReportError("compare/compare.json is malformed: no \"models\" list")
+    return data
+
+
 def load_all(root):
     run = load_run(root)
     parts = run.get("parts", {})
@@ -285,7 +294,8 @@ def load_all(root):
     loaders = {"claims": ("verify/claims.json", load_claims),
                "figures": ("figures/figures.json", load_figures),
                "bench": ("bench/bench.json", load_bench),
-               "stability": ("stability/stability.json", load_stability)}
+               "stability": ("stability/stability.json", load_stability),
+               "compare": ("compare/compare.json", load_compare)}
     for name, (index, loader) in loaders.items():
         if os.path.exists(os.path.join(root, index)):
             got[name] = loader(root)
@@ -865,6 +875,24 @@ tr.regress td:nth-child(4),tr.loose td:nth-child(6){background:#f3a0a0;font-weig
 nav ul.toc{columns:2;font-size:14px}nav ul.sub{font-size:12px}"""
 
 
+def write_compare(doc, data, plots_tmp, plots_rel, made, manifest):
+    """The comparison of every registered model (glintlab compare, reports/compare_page.py)."""
+    doc.heading(2, PART_TITLES["compare"], "compare")
+    doc.raw(compare_page.intro_html(data), "Every model at its default parameters on the same "
+            "scenes; verdicts marked recorded or declared were not measured in this run.\n")
+    png = "compare_equal_time.png"
+    compare_page.draw_equal_time(data, os.path.join(plots_tmp, png), f"{plots_rel}/{png}",
+                                 manifest)
+    made.append(png)
+    doc.image(f"{plots_rel}/{png}", "equal-time error curves",
+              "Relative RMS error of each model's sampler estimate of the albedo against wall "
+              "time (this machine).", "chart")
+    doc.raw(compare_page.table_html(data), compare_page.table_markdown(data))
+    doc.links("Files", [("compare.json", "compare/compare.json"),
+                        ("compare.csv", "compare/compare.csv"),
+                        ("equal_time.csv", "compare/equal_time.csv")])
+
+
 def build(root, run, got, plots_tmp):
     parts = run.get("parts", {})
     doc = Doc()
@@ -894,6 +922,8 @@ def build(root, run, got, plots_tmp):
     if "stability" in got:
         write_stability(doc, got["stability"], parts.get("stability", {}), root, plots_tmp,
                         plots_rel, made, manifest)
+    if "compare" in got:
+        write_compare(doc, got["compare"], plots_tmp, plots_rel, made, manifest)
     for n in PARTS:
         if n not in got:
             doc.heading(2, PART_TITLES[n], "absent-" + n)

@@ -307,6 +307,20 @@ std::vector<Case> cases() {
   add("figure_extra_argument", join(fi, {"extra"}), "extra");
   add("figure_unknown_option", join(fi, {"--bogus"}), "--bogus");
 
+  // --- compare (every case fails before a model is measured)
+  const std::vector<std::string> co = {"compare", "--budget", "quick", "--out", "c"};
+  add("compare_models_empty", join(co, {"--models", ""}), "--models");
+  add("compare_models_nosuch", join(co, {"--models", "nosuch"}), "nosuch");
+  add("compare_models_one_unmatched", join(co, {"--models", "smooth_ggx,nosuch"}), "nosuch");
+  add("compare_models_trailing_comma", join(co, {"--models", "smooth_ggx,"}), "--models");
+  add("compare_budget_unknown", {"compare", "--budget", "x", "--out", "c"}, "--budget");
+  add("compare_threads_word", join(co, {"--threads", "x"}), "--threads");
+  add("compare_claims_from_missing", join(co, {"--claims-from", "missing"}), "--claims-from");
+  add("compare_sweeps_from_missing", join(co, {"--sweeps-from", "missing"}), "--sweeps-from");
+  add("compare_out_under_file", {"compare", "--budget", "quick", "--out", "blocker/c"}, "--out");
+  add("compare_out_unwritable", {"compare", "--budget", "quick", "--out", "/proc/x"}, "--out");
+  add("compare_extra_argument", join(co, {"extra"}), "extra");
+
   // --- models
   add("models_extra_argument", {"models", "extra"}, "extra");
   add("models_unknown_option", {"models", "--bogus"}, "--bogus");
@@ -439,7 +453,7 @@ TEST(BadInputMatrixSize, AtLeast150CasesOverEverySubcommand) {
     EXPECT_TRUE(names.insert(c.name).second) << "duplicate case name " << c.name;
   }
   for (const std::string sub : {"eval", "sample", "verify", "figure", "models", "sweep", "report",
-                                "ltc-fit", "chermain-dictionary"}) {
+                                "ltc-fit", "chermain-dictionary", "compare"}) {
     bool seen = false;
     for (const Case& c : all) seen = seen || (!c.args.empty() && c.args[0] == sub);
     EXPECT_TRUE(seen) << "no malformed invocation of " << sub;

@@ -1,0 +1,100 @@
+#include "cli/child_process.h"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "cli/input.h"
+
+extern char** environ;
+
+namespace glintlab::cli {
+namespace {
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+fs::path self_exe() {
+  std::error_code ec;
+  const fs::path p = fs::read_symlink("/proc/self/exe", ec);
+  if (ec)
+    throw std::runtime_error("cannot locate the glintlab executable (/proc/self/exe)");
+  return p;
+}
+
+// The folder of the report scripts: $GLINTLAB_REPORTS_DIR, else the source tree's reports/, else
+// <prefix>/share/glintlab/reports beside an installed executable.
+fs::path reports_dir() {
+  if (const char* env = std::getenv("GLINTLAB_REPORTS_DIR"); env && *env) return env;
+  std::error_code ec;
+  const fs::path src = GLINTLAB_REPORTS_SOURCE_DIR;
+  if (fs::exists(src / "make_report.py", ec)) return src;
+  return self_exe().parent_path().parent_path() / "share" / "glintlab" / "reports";
+}
+
+// Runs argv with stdout to `out_file` and stderr to `err_file` (empty: inherited, so a child's
+// progress shows on the terminal); returns its exit status (128 + signal when killed).
+int run_process(const std::vector<std::string>& args, const fs::path& out_file,
+                const fs::path& err_file) {
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, out_file.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (!err_file.empty()) {
+    posix_spawn_file_actions_addopen(&fa, STDERR_FILENO, err_file.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  }
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  // The child gets SIGINT and SIGTERM unblocked (this process blocks them for its watcher).
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  sigset_t none;
+  sigemptyset(&none);
+  posix_spawnattr_setsigmask(&attr, &none);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, argv[0], &fa, &attr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  posix_spawnattr_destroy(&attr);
+  if (rc != 0) throw std::runtime_error(fmt::format("cannot run {}", args[0]));
+  set_signal_child(pid);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0) {
+  }
+  set_signal_child(0);
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+
+// The last non-empty line a child wrote to stderr, without a "glintlab: error: " prefix.
+std::string last_error_line(const fs::path& err_file) {
+  std::string last;
+  std::istringstream in(read_text(err_file));
+  for (std::string line; std::getline(in, line);) {
+    const auto cr = line.rfind('\r');
+    if (cr != std::string::npos) line = line.substr(cr + 1);
+    if (!line.empty()) last = line;
+  }
+  const std::string prefix = "glintlab: error: ";
+  if (last.rfind(prefix, 0) == 0) last = last.substr(prefix.size());
+  return last.empty() ? "no message" : last;
+}
+
+}  // namespace glintlab::cli

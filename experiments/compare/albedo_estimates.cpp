@@ -1,0 +1,163 @@
+#include "experiments/compare/albedo_estimates.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "core/math/rng.h"
+#include "core/model_layout.h"
+#include "core/simd/model_batch.h"
+#include "verify/conformance/common.h"
+#include "verify/stats/mean_tests.h"
+
+namespace glintlab::experiments::compare {
+namespace {
+
+namespace cf = verify::conformance;
+using V3 = Vec3<double>;
+
+ModelQuery<double> scene_query(const ModelEntry& m, double theta_deg) {
+  return cf::make_query(m, theta_deg, cf::kFootprint);
+}
+
+AlbedoReference by_cubature(const ModelEntry& m, const std::vector<double>& values,
+                            const ModelQuery<double>& q, const CompareBudget& b) {
+  const cf::Cubature c = cf::integrate_about_mirror(
+      [&](const V3& w) { return cf::value_at(m, values, q, w); }, q.wi,
+      cf::roughness_hint(m, values), b.budget);
+  AlbedoReference ref;
+  ref.method = "cubature";
+  ref.value = c.value;
+  ref.error = c.error;
+  ref.converged = std::isfinite(c.value) &&
+                  c.error <= b.cubature_converged_rel * std::max(std::abs(c.value), 1e-12);
+  return ref;
+}
+
+AlbedoReference by_monte_carlo(const ModelEntry& m, const std::vector<double>& values,
+                               const ModelQuery<double>& q, const CompareBudget& b,
+                               std::uint64_t seed) {
+  const std::uint64_t n = b.reference_samples;
+  const verify::MeanAccumulator acc = verify::accumulate_mean(
+      [&](std::uint64_t i) {
+        const Vec2<double> u = cf::pair_at(seed, i);
+        const double z = u.x, rho = std::sqrt(std::max(0.0, 1 - z * z));
+        const double phi = 2 * std::numbers::pi * u.y;
+        return 2 * std::numbers::pi *
+               cf::value_at(m, values, q, V3{rho * std::cos(phi), rho * std::sin(phi), z});
+      },
+      n);
+  AlbedoReference ref;
+  ref.method = "monte-carlo";
+  ref.value = acc.mean;
+  ref.error = std::sqrt(acc.variance() / double(n));
+  ref.converged = std::isfinite(acc.mean) &&
+                  ref.error <= b.monte_carlo_converged_rel * std::abs(acc.mean) && acc.mean != 0;
+  return ref;
+}
+
+// N samples of the model's own sampler at query q through the batch dispatch; the estimate is the
+// mean weight, a sample counting 0 where it is rejected, below the horizon or outside the model's
+// domain (the reference integrates the same). Returns the estimate; adds the time to `seconds`.
+struct SampleBuffers {
+  std::vector<double> u1, u2;
+  std::vector<std::vector<double>> out;
+};
+double sampler_estimate(const ModelEntry& m, const std::vector<double>& values,
+                        const ModelQuery<double>& q, std::uint64_t n, std::uint64_t seed,
+                        simd::Isa isa, SampleBuffers& buf, double& seconds) {
+  buf.u1.resize(n);
+  buf.u2.resize(n);
+  for (std::uint64_t i = 0; i < n; ++i) {
+    const Vec2<double> u = cf::pair_at(seed, i);
+    buf.u1[i] = u.x;
+    buf.u2[i] = u.y;
+  }
+  const QueryRow<double> row = to_row(q);
+  std::vector<simd::Column<double>> query;
+  for (const double& c : row) query.push_back({&c, 0});
+  buf.out.assign(simd::kSampleColumns.size(), std::vector<double>(n));
+  std::vector<double*> outputs;
+  for (auto& o : buf.out) outputs.push_back(o.data());
+  const auto start = std::chrono::steady_clock::now();
+  simd::sample_batch(m, values, query, {buf.u1.data(), 1}, {buf.u2.data(), 1}, outputs, n, isa);
+  seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  double sum = 0;
+  for (std::uint64_t i = 0; i < n; ++i) {
+    const V3 wo{buf.out[0][i], buf.out[1][i], buf.out[2][i]};
+    ModelQuery<double> at = q;
+    at.wo = wo;
+    const bool counted = buf.out[5][i] == 0 && wo.z > 0 && !(m.validate && m.validate(at));
+    sum += counted ? buf.out[4][i] : 0.0;
+  }
+  return sum / double(n);
+}
+
+}  // namespace
+
+AlbedoReference reference_albedo(const ModelEntry& m, double theta_deg, const CompareBudget& b,
+                                 std::uint64_t seed) {
+  const std::vector<double> values = resolve_params(m, {});
+  const ModelQuery<double> q = scene_query(m, theta_deg);
+  AlbedoReference ref = (m.needs & kNeedsFootprint) ? by_monte_carlo(m, values, q, b, seed)
+                                                     : by_cubature(m, values, q, b);
+  ref.theta_deg = theta_deg;
+  return ref;
+}
+
+EqualTimeCurve equal_time_curve(const ModelEntry& m, const std::vector<AlbedoReference>& refs,
+                                const CompareBudget& b, std::uint64_t seed) {
+  EqualTimeCurve curve;
+  const simd::Isa isa = simd::default_isa();
+  curve.isa = std::string(simd::isa_name(isa));
+  for (const AlbedoReference& r : refs) {
+    if (!r.converged) {
+      curve.reason = fmt::format("the reference at θi = {:g}° did not converge", r.theta_deg);
+      return curve;
+    }
+    if (!(std::abs(r.value) > 0)) {
+      curve.reason = fmt::format("the reference albedo at θi = {:g}° is 0", r.theta_deg);
+      return curve;
+    }
+  }
+  const std::vector<double> values = resolve_params(m, {});
+  SampleBuffers buf;
+  const std::vector<std::uint64_t> ladder = sample_ladder(b);
+  // One untimed call first, so the first timed estimate does not pay for cold caches.
+  double warm_up = 0;
+  (void)sampler_estimate(m, values, scene_query(m, refs.front().theta_deg), ladder.back(), seed,
+                         isa, buf, warm_up);
+  for (std::uint64_t n : ladder) {
+    double seconds = 0, squares = 0;
+    verify::MeanAccumulator bias;
+    for (std::size_t s = 0; s < refs.size(); ++s) {
+      const ModelQuery<double> q = scene_query(m, refs[s].theta_deg);
+      double scene_squares = 0;
+      for (int rep = 0; rep < b.repetitions; ++rep) {
+        const std::uint64_t stream = counter_bits(seed, (n << 20) ^ (s << 10) ^ std::uint64_t(rep), 0);
+        const double e = sampler_estimate(m, values, q, n, stream, isa, buf, seconds);
+        const double rel = (e - refs[s].value) / std::abs(refs[s].value);
+        scene_squares += rel * rel;
+        if (n == ladder.back()) bias.add(rel);
+      }
+      squares += scene_squares / b.repetitions;
+    }
+    const double estimates = double(refs.size()) * b.repetitions;
+    curve.points.push_back({n, seconds / estimates, std::sqrt(squares / double(refs.size()))});
+    if (n == ladder.back()) {
+      // The references' own errors (one σ for Monte Carlo) enter the bias's standard error.
+      double reference_variance = 0;
+      for (const AlbedoReference& r : refs)
+        reference_variance += std::pow(r.error / std::abs(r.value), 2);
+      reference_variance /= double(refs.size() * refs.size());
+      curve.relative_bias = bias.mean;
+      curve.relative_bias_se = std::sqrt(bias.variance() / double(bias.n) + reference_variance);
+    }
+  }
+  return curve;
+}
+
+}  // namespace glintlab::experiments::compare

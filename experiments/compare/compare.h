@@ -1,0 +1,44 @@
+// `glintlab compare`: the registered models side by side on the same scenes, footprints and
+// lights (compare_budget.h): conformance verdicts, time per evaluation (scalar and best ISA), the
+// albedo reference and the sampler's error against it, equal-time error curves, and the
+// stability failure regions. Written as compare.json (everything), compare.csv (one row per
+// model) and equal_time.csv (one row per model and sample count); reports/compare_page.py draws
+// the chart and the HTML page from them.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "verify/check.h"
+
+namespace glintlab::experiments::compare {
+
+struct CompareOptions {
+  verify::Budget budget = verify::Budget::kQuick;
+  std::vector<std::string> models;        // registered model names, in the order shown
+  std::filesystem::path claims_from;      // a `glintlab verify --out` folder; empty: see below
+  std::filesystem::path sweeps_from;      // a `glintlab sweep --out` folder; empty: see below
+  // Without claims_from / sweeps_from: run each model's conformance checks (minutes per glint
+  // model) and sweeps here; when false, show the recorded verdicts only and no failure region
+  // (the report: it never runs a suite it did not run itself).
+  bool measure_missing = true;
+  std::function<void(const std::string& step)> progress;  // called from one thread
+};
+
+struct CompareFiles {
+  std::filesystem::path json, csv, equal_time_csv;
+};
+
+// Measures every model and writes the three files into `dir` (each atomically). The numbers that
+// are not timings are the same for any thread count. Throws std::runtime_error on an unreadable
+// or malformed claims_from / sweeps_from file.
+CompareFiles run_compare(const std::filesystem::path& dir, const CompareOptions& options);
+
+// The fields of compare.json that are wall-clock measurements (left out by determinism checks).
+inline constexpr const char* kTimingFields[] = {"scalar_ns_per_eval", "best_ns_per_eval",
+                                                "seconds"};
+
+}  // namespace glintlab::experiments::compare

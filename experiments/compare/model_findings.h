@@ -1,0 +1,46 @@
+// A model's conformance verdicts and stability failure regions for the comparison, each labelled
+// with where it comes from: measured in this run, read from an earlier run's output folder, or the
+// registry's recorded verdict (never passed off as measured).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/model_registry.h"
+#include "verify/check.h"
+
+namespace glintlab::experiments::compare {
+
+// Where a verdict shown by compare comes from.
+inline constexpr const char* kMeasured = "measured";  // by this compare run
+inline constexpr const char* kRead = "read";          // from a glintlab verify / sweep --out folder
+inline constexpr const char* kRecorded = "recorded";  // the registry's recorded verdict
+inline constexpr const char* kDeclared = "declared";  // a property the model does not claim
+inline constexpr const char* kNotMeasured = "not measured";  // nothing measured nor recorded
+
+struct PropertyVerdict {
+  std::string property, verdict, origin, detail;
+  std::optional<bool> control_rejected;  // measured or read rows only
+};
+
+// Every conformance property of `m` (kProperties order, those that apply): the rows of
+// claims.json in `claims_from` where it has them; otherwise, without claims_from and with
+// `measure`, measured here by the model's own conformance checks; otherwise "not-claimed" where the model declares so, the
+// verdict recorded for budget b for a built-in model, and nothing for a plug-in.
+std::vector<PropertyVerdict> conformance_verdicts(const ModelEntry& m, verify::Budget b,
+                                                  const std::filesystem::path& claims_from,
+                                                  bool measure);
+
+struct StabilityFinding {
+  std::string sampler, verdict, failure_region, origin;
+};
+
+// Per sampler of `m`: the entries of stability.json in `sweeps_from`, else (with `measure`) the
+// sweep run here, else one "not measured" row.
+std::vector<StabilityFinding> stability_findings(const ModelEntry& m, verify::Budget b,
+                                                 const std::filesystem::path& sweeps_from,
+                                                 bool measure);
+
+}  // namespace glintlab::experiments::compare

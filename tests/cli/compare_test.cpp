@@ -1,0 +1,129 @@
+// `glintlab compare`: the page's files, the example plug-in (examples/zirr_kaplanyan) beside the
+// papers' models, verdict origins, thread-count independence of every field but the timings, and
+// a malformed --claims-from file (one line, exit 2, nothing written).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli/cli_test_util.h"
+
+#ifndef GLINTLAB_TEST_PLUGIN_ZIRR_KAPLANYAN
+#error "GLINTLAB_TEST_PLUGIN_ZIRR_KAPLANYAN must be defined by the build (tests/CMakeLists.txt)"
+#endif
+
+namespace glintlab::cli_test {
+namespace {
+
+namespace fs = std::filesystem;
+using CompareTest = CliTest;
+
+// compare.json without its wall-clock fields (experiments/compare/compare.h kTimingFields).
+nlohmann::json without_timings(nlohmann::json j) {
+  if (j.is_object()) {
+    for (const char* f : {"scalar_ns_per_eval", "best_ns_per_eval", "seconds"}) j.erase(f);
+    for (auto& [k, v] : j.items()) v = without_timings(v);
+  } else if (j.is_array()) {
+    for (auto& v : j) v = without_timings(v);
+  }
+  return j;
+}
+
+const nlohmann::json& model_named(const nlohmann::json& doc, const std::string& name) {
+  for (const auto& m : doc["models"])
+    if (m["name"] == name) return m;
+  ADD_FAILURE() << "no model " << name << " in compare.json";
+  static const nlohmann::json none;
+  return none;
+}
+
+TEST_F(CompareTest, PluginModelBesideThePapersModelsAndThreadIndependent) {
+  fs::create_directory(path("verify"));
+  write_text(path("verify/claims.json"), "[]\n");
+  const auto compare = [&](const std::string& out, const std::string& threads) {
+    return run({"--plugin", GLINTLAB_TEST_PLUGIN_ZIRR_KAPLANYAN, "compare", "--models",
+                "smooth_ggx,deliot_belcour,zirr*", "--claims-from", "verify", "--threads",
+                threads, "--out", out});
+  };
+  const RunResult one = compare("c1", "1");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  EXPECT_NE(one.out.find("compare: 3 models; wrote c1/index.html"), std::string::npos) << one.out;
+  for (const char* f : {"compare.json", "compare.csv", "equal_time.csv", "equal_time.png",
+                        "index.html"})
+    EXPECT_TRUE(fs::is_regular_file(path("c1") / f)) << f;
+  // Nothing but the page (no staging folder).
+  EXPECT_TRUE(unexpected_files(path("c1"), {"compare.json", "compare.csv", "equal_time.csv",
+                                            "equal_time.png", "index.html"})
+                  .empty());
+  const auto doc = nlohmann::json::parse(read_text(path("c1/compare.json")));
+  ASSERT_EQ(doc["models"].size(), 3u);
+  EXPECT_EQ(doc["models"][2]["name"], "zirr_kaplanyan");
+  EXPECT_NE(read_text(path("c1/index.html")).find("zirr_kaplanyan"), std::string::npos);
+  EXPECT_NE(read_text(path("c1/compare.csv")).find("\nzirr_kaplanyan,"), std::string::npos);
+  // claims.json holds no rows: a built-in model shows its recorded verdicts, labelled so; the
+  // plug-in has none to show, except the property it declares it does not claim.
+  for (const auto& v : model_named(doc, "deliot_belcour")["conformance"])
+    EXPECT_EQ(v["origin"], "recorded") << v.dump();
+  for (const auto& v : model_named(doc, "zirr_kaplanyan")["conformance"]) {
+    EXPECT_NE(v["origin"], "recorded") << v.dump();
+    EXPECT_NE(v["origin"], "measured") << v.dump();
+  }
+  // Swept here, so measured; every model gets timings and a curve or a reason for none.
+  for (const auto& m : doc["models"]) {
+    EXPECT_EQ(m["stability"][0]["origin"], "measured") << m["name"];
+    EXPECT_GT(m["timing"]["scalar_ns_per_eval"].get<double>(), 0) << m["name"];
+    EXPECT_TRUE(!m["equal_time"]["points"].empty() || m["equal_time"]["not_shown"].is_string())
+        << m["name"];
+  }
+  EXPECT_EQ(model_named(doc, "smooth_ggx")["reference"][0]["method"], "cubature");
+  EXPECT_EQ(model_named(doc, "deliot_belcour")["reference"][0]["method"], "monte-carlo");
+
+  const RunResult two = compare("c2", "2");
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  const auto doc2 = nlohmann::json::parse(read_text(path("c2/compare.json")));
+  EXPECT_EQ(without_timings(doc), without_timings(doc2));
+}
+
+TEST_F(CompareTest, ReadsVerdictsAndFailureRegionsFromEarlierRuns) {
+  fs::create_directories(path("verify"));
+  write_text(path("verify/claims.json"),
+             R"([{"id": "model.smooth_ggx.energy", "verdict": "fails", "detail": "d",
+                  "control_rejected": true}])");
+  fs::create_directories(path("sweeps"));
+  write_text(path("sweeps/stability.json"),
+             R"({"models": [{"model": "smooth_ggx", "sampler": "vndf", "verdict": "holds",
+                             "failure_region": "none found"}]})");
+  const RunResult r = run({"compare", "--models", "smooth_ggx", "--claims-from", "verify",
+                           "--sweeps-from", "sweeps", "--out", "c"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto m = nlohmann::json::parse(read_text(path("c/compare.json")))["models"][0];
+  bool seen = false;
+  for (const auto& v : m["conformance"]) {
+    if (v["property"] != "energy") continue;
+    seen = true;
+    EXPECT_EQ(v["verdict"], "fails");  // what the file says, not the recorded "holds"
+    EXPECT_EQ(v["origin"], "read");
+  }
+  EXPECT_TRUE(seen);
+  ASSERT_EQ(m["stability"].size(), 1u);
+  EXPECT_EQ(m["stability"][0]["failure_region"], "none found");
+  EXPECT_EQ(m["stability"][0]["origin"], "read");
+}
+
+TEST_F(CompareTest, MalformedClaimsFileIsAnErrorAndWritesNothing) {
+  fs::create_directories(path("verify"));
+  write_text(path("verify/claims.json"), "[{\"id\": ");
+  expect_input_error(run({"compare", "--models", "smooth_ggx", "--claims-from", "verify",
+                          "--sweeps-from", "verify", "--out", "c"}),
+                     {"--sweeps-from", "stability.json"}, {"verify", "verify/claims.json"});
+  fs::create_directories(path("sweeps"));
+  write_text(path("sweeps/stability.json"), "{\"models\": []}");
+  expect_input_error(run({"compare", "--models", "smooth_ggx", "--claims-from", "verify",
+                          "--sweeps-from", "sweeps", "--out", "c"}),
+                     {"--claims-from", "malformed"},
+                     {"verify", "verify/claims.json", "sweeps", "sweeps/stability.json"});
+}
+
+}  // namespace
+}  // namespace glintlab::cli_test
