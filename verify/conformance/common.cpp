@@ -6,12 +6,14 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <numbers>
 
 #include "core/math/rng.h"
+#include "core/samplers/heitz_vndf.h"
 #include "verify/claims/gof_family.h"
 #include "verify/stability/cell_stats.h"
 #include "verify/stability/sweep_plan.h"
@@ -61,14 +63,78 @@ double roughness_hint(const ModelEntry& m, const std::vector<double>& values) {
   return 0.3;
 }
 
+namespace {
+
+// The mirror direction of ωi and a frame (t, s, r) about it, where glossy lobes and glints sit.
+struct MirrorFrame {
+  V3 t, s, r;
+  V3 to_world(const V3& w) const { return t * w.x + s * w.y + r * w.z; }
+};
+MirrorFrame mirror_frame(const V3& wi) {
+  const V3 r = normalize(V3{-wi.x, -wi.y, std::max(wi.z, 1e-6)});
+  const V3 helper = std::abs(r.z) < 0.9 ? V3{0, 0, 1} : V3{1, 0, 0};
+  const V3 t = normalize(cross(helper, r));
+  return {t, cross(r, t), r};
+}
+
+// The proposal of the Monte Carlo hemisphere integral: a fixed mixture, chosen without the
+// model's sampler (the integral is the truth that sampler is tested against), of
+//   - the uniform upper hemisphere (defensive: every direction with ωo_z > 0 has density, so the
+//     estimate is unbiased for any integrand),
+//   - Heitz 2018's GGX VNDF reflection of ωi (core/samplers/heitz_vndf.h, checked by the smooth
+//     models' own conformance) at the roughness width, where a lobe's mass lies, and
+//   - two caps about the mirror direction of half-angles 8 and 32 × the width (capped at π), for
+//     values wider than that lobe or offset from it.
+// Sample i takes component i mod 4, so each holds exactly a quarter of the samples (multi-sample
+// MIS, balance heuristic: weight f / Σ_k ¼ p_k, unbiased; the iid variance bounds this
+// estimator's). A uniform proposal alone put one direction in thousands into a narrow lobe: 6 %
+// relative standard error at 10^5 samples for podee's highlight.
+struct MirrorMixture {
+  static constexpr std::size_t kComponents = 4;
+  static constexpr std::array<double, 2> kCapFactors = {8, 32};
+  MirrorFrame frame;
+  V3 wi;
+  GGX<double> lobe;
+  std::array<double, 2> cap_cos{};
+
+  MirrorMixture(const V3& incident, double width)
+      : frame(mirror_frame(incident)),
+        wi(incident),
+        lobe{std::clamp(width, 1e-3, 1.0), std::clamp(width, 1e-3, 1.0)} {
+    for (std::size_t k = 0; k < cap_cos.size(); ++k)
+      cap_cos[k] = std::cos(std::min(kCapFactors[k] * lobe.alpha_x, std::numbers::pi));
+  }
+  V3 direction(std::uint64_t i, Vec2<double> u) const {
+    const double phi = 2 * std::numbers::pi * u.y;
+    const std::size_t k = std::size_t(i % kComponents);
+    if (k == 0) {  // uniform upper hemisphere
+      const double r = std::sqrt(std::max(0.0, 1 - u.x * u.x));
+      return {r * std::cos(phi), r * std::sin(phi), u.x};
+    }
+    if (k == 1) return sample_heitz_vndf(lobe, wi, u).wo;
+    const double z = 1 - u.x * (1 - cap_cos[k - 2]);
+    const double r = std::sqrt(std::max(0.0, 1 - z * z));
+    return normalize(frame.to_world(V3{r * std::cos(phi), r * std::sin(phi), z}));
+  }
+  double density(const V3& w) const {
+    double q = w.z > 0 ? 1 / (2 * std::numbers::pi) : 0.0;
+    q += pdf_heitz_vndf(lobe, wi, w);
+    const double c = dot(w, frame.r);
+    for (double cap : cap_cos)
+      if (c >= cap) q += 1 / (2 * std::numbers::pi * (1 - cap));
+    return q / double(kComponents);
+  }
+};
+
+}  // namespace
+
 Cubature integrate_about_mirror(const std::function<double(const V3&)>& f, const V3& wi,
                                 double width, Budget b) {
   // Frame with its pole at the mirror direction r = (−wi_x, −wi_y, wi_z).
-  const V3 r = normalize(V3{-wi.x, -wi.y, std::max(wi.z, 1e-6)});
-  const V3 helper = std::abs(r.z) < 0.9 ? V3{0, 0, 1} : V3{1, 0, 0};
-  const V3 t = normalize(cross(helper, r)), s = cross(r, t);
-  auto to_world = [=](const V3& w) { return t * w.x + s * w.y + r * w.z; };
-  const V3 up_local{dot(V3{0, 0, 1}, t), dot(V3{0, 0, 1}, s), dot(V3{0, 0, 1}, r)};
+  const MirrorFrame frame = mirror_frame(wi);
+  auto to_world = [&frame](const V3& w) { return frame.to_world(w); };
+  const V3 up{0, 0, 1};
+  const V3 up_local{dot(up, frame.t), dot(up, frame.s), dot(up, frame.r)};
   SphereCubatureOptions o;
   o.theta_breaks = lobe_theta_breaks(std::clamp(width, 1e-3, 1.0), 0, std::numbers::pi);
   o.theta_breaks_at_phi = [up_local](double phi, std::vector<double>& breaks) {
@@ -82,6 +148,8 @@ Cubature integrate_about_mirror(const std::function<double(const V3&)>& f, const
 
 Vec2<double> pair_at(std::uint64_t seed, std::uint64_t i) { return uniform_pair(seed, i); }
 
+std::uint64_t reference_block(Budget b) { return b == Budget::kQuick ? 100'000 : 2'000'000; }
+
 HemisphereIntegral integrate_hemisphere(const ModelEntry& m, const std::function<double(const V3&)>& f,
                                         const V3& wi, double width, Budget b, std::uint64_t seed) {
   if (!(m.needs & kNeedsFootprint)) {
@@ -89,16 +157,75 @@ HemisphereIntegral integrate_hemisphere(const ModelEntry& m, const std::function
                                               wi, width, b);
     return {c.value, c.error, false};
   }
-  const std::uint64_t n = b == Budget::kQuick ? 100'000 : 2'000'000;
-  const MeanAccumulator acc = accumulate_mean(
-      [&](std::uint64_t i) {
-        const Vec2<double> u = uniform_pair(seed, i);
-        const double z = u.x, r = std::sqrt(std::max(0.0, 1 - z * z));
-        const double phi = 2 * std::numbers::pi * u.y;
-        return 2 * std::numbers::pi * f(V3{r * std::cos(phi), r * std::sin(phi), z});
-      },
-      n);
+  const MirrorMixture proposal(wi, width);
+  const std::uint64_t block = reference_block(b);
+  auto estimate = [&](std::uint64_t first, std::uint64_t n) {
+    return accumulate_mean(
+        [&](std::uint64_t i) {
+          const V3 w = proposal.direction(first + i, uniform_pair(seed, first + i));
+          return w.z > 0 ? f(w) / proposal.density(w) : 0.0;  // density ≥ 1/8π up there
+        },
+        n);
+  };
+  // The pilot: one block of indices past the largest estimate's, discarded after it sets the
+  // block count (so the count does not depend on the estimate's own draws, which would bias it).
+  const MeanAccumulator pilot = estimate(kMaxReferenceBlocks * block, block);
+  const double pilot_rel =
+      pilot.mean != 0 ? std::sqrt(pilot.variance() / double(block)) / std::abs(pilot.mean) : 0.0;
+  const double wanted = std::ceil(std::pow(pilot_rel / kReferenceRelativeError, 2));
+  const std::uint64_t blocks =
+      std::uint64_t(std::clamp(std::isfinite(wanted) ? wanted : 1e9, 1.0, double(kMaxReferenceBlocks)));
+  const std::uint64_t n = blocks * block;
+  const MeanAccumulator acc = estimate(0, n);
   return {acc.mean, std::sqrt(acc.variance() / double(n)), true};
+}
+
+MirrorCells::MirrorCells(const V3& wi, double width) {
+  const MirrorFrame f = mirror_frame(wi);
+  t = f.t;
+  s = f.s;
+  r = f.r;
+  const double w = std::clamp(width, 1e-3, 1.0);
+  const std::array<double, 3> factors = {2, 8, 32};
+  for (std::size_t k = 0; k < ring_cos.size(); ++k)
+    ring_cos[k] = std::cos(std::min(factors[k] * w, std::numbers::pi));
+}
+
+std::size_t MirrorCells::cell(const V3& w) const {
+  const double c = dot(w, r);
+  std::size_t ring = 0;
+  while (ring < ring_cos.size() && c < ring_cos[ring]) ++ring;
+  const double phi = std::atan2(dot(w, s), dot(w, t)) + std::numbers::pi;  // [0, 2π]
+  const std::size_t sector = std::min<std::size_t>(3, std::size_t(phi / (std::numbers::pi / 2)));
+  return ring * 4 + sector;
+}
+
+CellSums integrate_cells(const std::function<double(const V3&)>& f, const V3& wi, double width,
+                         std::uint64_t n, std::uint64_t seed) {
+  const MirrorMixture proposal(wi, width);
+  const MirrorCells cells(wi, width);
+  std::vector<CellSums> parts(chunk_count(n));
+  for_chunks(n, [&](std::uint64_t begin, std::uint64_t end, std::size_t c) {
+    CellSums& p = parts[c];
+    for (std::uint64_t i = begin; i < end; ++i) {
+      const V3 w = proposal.direction(i, uniform_pair(seed, i));
+      const double y = w.z > 0 ? f(w) / proposal.density(w) : 0.0;
+      if (y == 0) continue;
+      const std::size_t k = cells.cell(w);
+      p.sum[k] += y;
+      p.sum_sq[k] += y * y;
+      ++p.hits[k];
+    }
+  });
+  CellSums all;
+  all.n = n;
+  for (const CellSums& p : parts)
+    for (std::size_t k = 0; k < MirrorCells::kCount; ++k) {
+      all.sum[k] += p.sum[k];
+      all.sum_sq[k] += p.sum_sq[k];
+      all.hits[k] += p.hits[k];
+    }
+  return all;
 }
 
 FamilyOutcome family_at(const std::vector<double>& raw_p, double level) {

@@ -24,7 +24,9 @@ bool footprint_property(std::string_view p) {
 // What each property checks, for the check's `source` column.
 std::string_view describe_property(std::string_view p) {
   if (p == "eval-pdf-consistency") return "every sample's weight = value/pdf and pdf = pdf()";
-  if (p == "sampler-matches-pdf") return "sampled ωo ~ pdf() (chi-square on the sphere)";
+  if (p == "sampler-matches-pdf")
+    return "sampled ωo ~ pdf() (chi-square on the sphere) and weights value/pdf per cell = "
+           "∫_cell value (weighted histogram)";
   if (p == "sampler-covers-value") return "mean weight = ∫ value dωo (cubature)";
   if (p == "pdf-normalized") return "∫ pdf dωo = 1 − rejection rate";
   if (p == "energy") return "white-furnace albedo ≤ 1";
@@ -68,10 +70,10 @@ double model_level(const ModelEntry& m) {
 }
 
 Assessment assess(std::string_view property, const ModelEntry& m, Budget b, const std::string& id,
-                  double level) {
+                  double level, const std::vector<HemisphereIntegral>* reuse) {
   if (property == "eval-pdf-consistency") return assess_eval_pdf(m, b, id, level);
   if (property == "sampler-matches-pdf") return assess_sampler_gof(m, b, id, level);
-  if (property == "sampler-covers-value") return assess_covers_value(m, b, id, level);
+  if (property == "sampler-covers-value") return assess_covers_value(m, b, id, level, reuse);
   if (property == "pdf-normalized") return assess_pdf_normalized(m, b, id, level);
   if (property == "energy") return assess_energy(m, b, id, level);
   if (property == "float-vs-double") return assess_float_double(m, b, id, level);
@@ -91,7 +93,14 @@ Control make_control(std::string_view property, const ModelEntry& m, const Asses
     return holding ? Control{with_pdf_scaled(m, kControlOffset), "pdf() × 1.03"}
                    : Control{with_consistent_sample(m),
                              "corrected: sample pdf and weight recomputed from pdf() and eval()"};
-  if (property == "sampler-matches-pdf" || property == "pdf-normalized")
+  // Each of the property's two tests gets its own wrong input: the chi-square the pdf, the
+  // weighted histogram the weights; the detail gives both tests' p.
+  if (property == "sampler-matches-pdf")
+    return holding ? Control{with_weight_scaled(with_pdf_scaled(m, kControlOffset), kControlOffset),
+                             "pdf() × 1.03 and sample weights × 1.03"}
+                   : Control{with_uniform_sampler(m),
+                             "corrected: uniform sphere sampling with its exact pdf 1/4π"};
+  if (property == "pdf-normalized")
     return holding ? Control{with_pdf_scaled(m, kControlOffset), "pdf() × 1.03"}
                    : Control{with_uniform_sampler(m),
                              "corrected: uniform sphere sampling with its exact pdf 1/4π"};
@@ -169,10 +178,13 @@ CheckResult run_property(std::string_view property, const ModelEntry& m, Budget 
   r.p_value = a.p_value;
   r.raw_p_values = a.raw_p_values;
   r.configurations = a.configurations;
+  r.power = a.power;
   if (a.verdict == Verdict::kHoldsInRegime)
     r.regime = "the stability sweep's core domain (α ≥ 1e-3, anisotropy ≤ 100:1, θi ≤ 89°), double";
   const Control c = make_control(property, m, a, b);
-  const Assessment ca = assess(property, c.model, b, id, level);
+  // sampler-covers-value's controls change only the sampler (make_control): same integrals of value.
+  const Assessment ca = assess(property, c.model, b, id, level,
+                               property == "sampler-covers-value" ? &a.references : nullptr);
   record_control(r, ca.verdict);
   r.control_p_value = ca.p_value;
   r.control = fmt::format("{}: {} — {}", c.name, to_string(ca.verdict), ca.detail);

@@ -41,6 +41,13 @@ std::optional<std::string> not_claimed_reason(std::string_view property, const M
 // claimed statistical properties.
 double model_level(const ModelEntry& model);
 
+// An integral over the upper hemisphere by cubature or, for footprint models, Monte Carlo
+// (verify/conformance/common.h), with its error estimate (one σ for Monte Carlo).
+struct HemisphereIntegral {
+  double value = 0, error = 0;
+  bool monte_carlo = false;
+};
+
 // The result of one property's measure and decide steps on one entry (the model or a control).
 struct Assessment {
   Verdict verdict = Verdict::kInconclusive;
@@ -50,12 +57,17 @@ struct Assessment {
   std::vector<double> raw_p_values;
   int configurations = 0;
   std::string power;
+  // sampler-covers-value's integrals of value, one per configuration: its controls change only the
+  // sampler, so they reuse them (the control then differs from the model in nothing else).
+  std::vector<HemisphereIntegral> references;
 };
 
 // Measure and decide `property` for `model` at budget b, seeds from check id `id`, configurations
 // corrected at `level`. `model` may be any entry (a registered one, a control, a test's toy).
+// `reuse`: another assessment's references, for an entry whose value is that one's.
 Assessment assess(std::string_view property, const ModelEntry& model, Budget b,
-                  const std::string& id, double level);
+                  const std::string& id, double level,
+                  const std::vector<HemisphereIntegral>* reuse = nullptr);
 
 // The control of a property: a copy of `model` deliberately wrong (when `genuine` holds) or
 // corrected from what was measured (when it fails), and its name. Its verdict comes from assess.

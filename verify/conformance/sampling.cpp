@@ -2,10 +2,13 @@
 // sampler-covers-value, pdf-normalized and energy (verify/conformance/conformance.h).
 #include <fmt/format.h>
 
+#include <boost/math/distributions/chi_squared.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <utility>
 
 #include "verify/conformance/common.h"
 #include "verify/claims/gof_family.h"
@@ -37,6 +40,17 @@ double p_beyond_bound(double difference, double bound, double std_error) {
   if (excess == 0) return 1;
   if (!(std_error > 0)) return 0;
   return std::erfc(excess / std_error / std::numbers::sqrt2);
+}
+
+// The smallest relative difference one configuration's z test detects with 90 % power: (z of the
+// per-configuration Šidák share of `level`, two-sided, + z of 90 %) standard errors, relative to
+// the truth. A property reports its most sensitive configuration's (a wrong input shifts every
+// configuration; the property rejects when any does); one whose truth is 0 detects no relative
+// difference (infinite).
+double detectable_effect(double level, std::size_t configurations, double std_error, double truth) {
+  const double per_config = 1 - std::pow(1 - level, 1.0 / double(std::max<std::size_t>(configurations, 1)));
+  const double z = normal_quantile(1 - per_config / 2) + normal_quantile(0.9);
+  return truth != 0 ? z * std_error / std::abs(truth) : std::numeric_limits<double>::infinity();
 }
 
 // The sample mean of the weight (non-finite weights count as a hard failure) and the share of
@@ -177,39 +191,142 @@ ChiSquareResult sampler_chi_square(const ModelEntry& m, const Setting& setting, 
   return run_direction_chi_square(
       plan, [&](std::uint64_t i) { return m.sample(s.values, s.query, pair_at(seed, i)).wo; });
 }
+
+// The weighted histogram (Mitsuba 3's chi2 test runs it with weighted sample counts): the sum of
+// the weights value/pdf of the samples landing in a cell, over n, estimates ∫_cell value dωo, and
+// is tested against that integral (the mirror mixture's Monte Carlo, independent draws), so the
+// sampler is checked against what it estimates, not only against its own pdf. Per cell
+// z = (weighted − reference) / (their standard errors in quadrature); cells with fewer than 20
+// nonzero contributions on either side are pooled into one, tested when both sides have 20 there
+// (a cell the sampler never reached has no standard error to test with: smooth_beckmann's
+// far tail holds 3e-8 of the value, 0.003 expected samples in 10^5; value the sampler misses as a
+// whole is sampler-covers-value's). The statistic Σ z² is chi-square with one degree of freedom
+// per cell tested. The reference takes two blocks of draws (its per-cell spread is 2–3 × the
+// sampler's; more cost a glint model's eval time for little: the test's power against a global
+// scale is covers-value's). At the settings' footprint (a glint model's value at
+// the sweep's is ~0 almost everywhere, which tests nothing).
+struct WeightedHistogram {
+  double statistic = 0, p_value = 1;
+  std::size_t cells = 0;
+  std::uint64_t non_finite = 0;
+};
+WeightedHistogram weighted_histogram(const ModelEntry& m, const Setting& s, Budget b,
+                                     std::uint64_t sampler_seed, std::uint64_t reference_seed) {
+  const std::uint64_t n = gof_samples(b);
+  const double width = roughness_hint(m, s.values);
+  const MirrorCells cells(s.query.wi, width);
+  const CellSums reference = integrate_cells(
+      [&](const V3& wo) { return value_at(m, s.values, s.query, wo); }, s.query.wi, width,
+      2 * reference_block(b), reference_seed);
+  std::vector<CellSums> parts(chunk_count(n));
+  std::vector<std::uint64_t> non_finite(parts.size(), 0);
+  for_chunks(n, [&](std::uint64_t begin, std::uint64_t end, std::size_t c) {
+    CellSums& p = parts[c];
+    for (std::uint64_t i = begin; i < end; ++i) {
+      const ModelSample<double> x = m.sample(s.values, s.query, pair_at(sampler_seed, i));
+      if (x.rejected || x.weight == 0) continue;
+      if (!std::isfinite(x.weight) || !finite(x.wo)) {
+        ++non_finite[c];
+        continue;
+      }
+      const std::size_t k = cells.cell(x.wo);
+      p.sum[k] += x.weight;
+      p.sum_sq[k] += x.weight * x.weight;
+      ++p.hits[k];
+    }
+  });
+  WeightedHistogram h;
+  CellSums weighted;
+  for (std::size_t c = 0; c < parts.size(); ++c) {
+    h.non_finite += non_finite[c];
+    for (std::size_t k = 0; k < MirrorCells::kCount; ++k) {
+      weighted.sum[k] += parts[c].sum[k];
+      weighted.sum_sq[k] += parts[c].sum_sq[k];
+      weighted.hits[k] += parts[c].hits[k];
+    }
+  }
+  // Mean and squared standard error of the per-draw contribution y over `draws` (zeros included).
+  auto mean_se2 = [](double sum, double sum_sq, std::uint64_t draws) {
+    const double d = double(draws), mean = sum / d;
+    return std::pair{mean, std::max(0.0, sum_sq / d - mean * mean) / (d - 1)};
+  };
+  auto add_z2 = [&](double ws, double wss, double rs, double rss) {
+    const auto [wm, wv] = mean_se2(ws, wss, n);
+    const auto [rm, rv] = mean_se2(rs, rss, reference.n);
+    h.statistic += wv + rv > 0 ? (wm - rm) * (wm - rm) / (wv + rv) : (wm == rm ? 0.0 : INFINITY);
+    ++h.cells;
+  };
+  constexpr std::uint64_t kMinHits = 20;
+  double pool[4] = {0, 0, 0, 0};
+  std::uint64_t pool_hits[2] = {0, 0};
+  for (std::size_t k = 0; k < MirrorCells::kCount; ++k) {
+    if (weighted.hits[k] >= kMinHits && reference.hits[k] >= kMinHits) {
+      add_z2(weighted.sum[k], weighted.sum_sq[k], reference.sum[k], reference.sum_sq[k]);
+      continue;
+    }
+    pool[0] += weighted.sum[k];
+    pool[1] += weighted.sum_sq[k];
+    pool[2] += reference.sum[k];
+    pool[3] += reference.sum_sq[k];
+    pool_hits[0] += weighted.hits[k];
+    pool_hits[1] += reference.hits[k];
+  }
+  if (pool_hits[0] >= kMinHits && pool_hits[1] >= kMinHits)
+    add_z2(pool[0], pool[1], pool[2], pool[3]);
+  h.p_value = h.non_finite > 0 ? 0.0
+              : h.cells == 0   ? 1.0
+                               : boost::math::cdf(boost::math::complement(
+                                     boost::math::chi_squared_distribution<double>(double(h.cells)),
+                                     std::min(h.statistic, 1e300)));
+  return h;
+}
 }  // namespace
 
 Assessment assess_sampler_gof(const ModelEntry& m, Budget b, const std::string& id,
                               double level) {
   Assessment a;
-  a.statistic = "Holm–Šidák-adjusted p of the chi-square of sampled ωo against pdf()";
+  a.statistic = "Holm–Šidák-adjusted p of the chi-square of sampled ωo against pdf() and of the "
+                "weighted histogram (value/pdf per cell against ∫_cell value)";
   // Quick: the θi = 70° setting only (the cubature of a glint model's pdf dominates the suite's
   // time); full: every setting.
   auto set = settings(m, b);
   if (b == Budget::kQuick) set.erase(set.begin());
-  std::size_t inconclusive = 0, hard = 0, worst = 0;
+  std::size_t inconclusive = 0, hard = 0, worst = 0, worst_weighted = 0;
   std::vector<ChiSquareResult> results;
+  std::vector<WeightedHistogram> weighted;
+  std::vector<double> chi_p, weighted_p;
   for (std::size_t k = 0; k < set.size(); ++k) {
-    results.push_back(
-        sampler_chi_square(m, set[k], check_seed(id, k), b));
+    results.push_back(sampler_chi_square(m, set[k], check_seed(id, k), b));
     const ChiSquareResult& r = results.back();
-    a.raw_p_values.push_back(r.hard_fail ? 0.0 : r.p_value);
+    chi_p.push_back(r.hard_fail ? 0.0 : r.p_value);
     inconclusive += r.inconclusive && !r.hard_fail ? 1 : 0;
     hard += r.hard_fail ? 1 : 0;
-    if (a.raw_p_values[k] < a.raw_p_values[worst]) worst = k;
+    if (chi_p[k] < chi_p[worst]) worst = k;
+    // The weighted histogram's seeds follow the chi-square's (configurations set.size() + 2k, +1).
+    weighted.push_back(weighted_histogram(m, set[k], b,
+                                          check_seed(id, set.size() + 2 * k),
+                                          check_seed(id, set.size() + 2 * k + 1)));
+    weighted_p.push_back(weighted.back().p_value);
+    if (weighted_p[k] < weighted_p[worst_weighted]) worst_weighted = k;
   }
+  a.raw_p_values = chi_p;
+  a.raw_p_values.insert(a.raw_p_values.end(), weighted_p.begin(), weighted_p.end());
   const FamilyOutcome f = family_at(a.raw_p_values, level);
   a.p_value = f.min_adjusted;
   a.value = f.min_adjusted;
-  a.configurations = int(set.size());
+  a.configurations = int(a.raw_p_values.size());
   a.verdict = hard > 0 || f.any_rejected ? Verdict::kFails
               : inconclusive > 0         ? Verdict::kInconclusive
                                          : Verdict::kHolds;
+  const WeightedHistogram& w = weighted[worst_weighted];
   a.detail = fmt::format(
-      "{} settings × {} samples: {} rejected at level {:.3g}, {} hard failures, {} inconclusive; "
-      "smallest raw p {:.3g} at {} ({})",
-      set.size(), gof_samples(b), f.rejections, level, hard, inconclusive,
-      a.raw_p_values[worst], set[worst].label, results[worst].summary());
+      "{} settings × {} samples, chi-square and weighted histogram each: {} rejected at level "
+      "{:.3g}, {} hard failures, {} inconclusive; chi-square: smallest raw p {:.3g} at {} ({}); "
+      "weighted histogram: smallest raw p {:.3g} at {} (Σ z² {:.4g} over {} cells{})",
+      set.size(), gof_samples(b), f.rejections, level, hard, inconclusive, chi_p[worst],
+      set[worst].label, results[worst].summary(), weighted_p[worst_weighted],
+      set[worst_weighted].label, w.statistic, w.cells,
+      w.non_finite ? fmt::format(", {} non-finite weights", w.non_finite) : "");
   return a;
 }
 
@@ -219,35 +336,57 @@ Assessment assess_sampler_gof(const ModelEntry& m, Budget b, const std::string& 
 // direction, error estimate included) is the truth. A sampler whose pdf is 0 where the value is
 // not misses that part, even when it matches its own pdf.
 Assessment assess_covers_value(const ModelEntry& m, Budget b, const std::string& id,
-                               double level) {
+                               double level, const std::vector<HemisphereIntegral>* reuse) {
   Assessment a;
   a.statistic = "Holm–Šidák-adjusted p of mean weight = ∫ value dωo (cubature)";
-  const auto set = settings(m, b);
+  // Footprint models also at the wide footprint (common.h): quick moves its first setting there
+  // (kneiphof_klein's value is 0 everywhere at θi = 30° and footprint 0.1: it tested nothing),
+  // full adds every setting there.
+  auto set = settings(m, b);
+  if (m.needs & kNeedsFootprint) {
+    auto widened = [&m](const Setting& s) {
+      return Setting{s.values, make_query(m, s.theta_deg, kWideFootprint), s.theta_deg,
+                     fmt::format("{}, footprint {:g}", s.label, kWideFootprint)};
+    };
+    if (b == Budget::kQuick)
+      set.front() = widened(set.front());
+    else
+      for (std::size_t k = 0, base = set.size(); k < base; ++k) set.push_back(widened(set[k]));
+  }
   const std::uint64_t n = samples(b);
-  double worst_rel = 0;
+  double worst_rel = 0, power = std::numeric_limits<double>::infinity();
+  std::string power_where = "—";
   std::string where = "—";
   std::uint64_t non_finite = 0;
   for (std::size_t k = 0; k < set.size(); ++k) {
     const Setting& s = set[k];
     // The reference's seeds follow the sampler's (configurations set.size() + k).
-    const HemisphereIntegral c = integrate_hemisphere(
-        m, [&](const V3& wo) { return value_at(m, s.values, s.query, wo); }, s.query.wi,
-        roughness_hint(m, s.values), b, check_seed(id, set.size() + k));
+    const HemisphereIntegral c =
+        reuse && k < reuse->size()
+            ? (*reuse)[k]
+            : integrate_hemisphere(
+                  m, [&](const V3& wo) { return value_at(m, s.values, s.query, wo); }, s.query.wi,
+                  roughness_hint(m, s.values), b, check_seed(id, set.size() + k));
+    a.references.push_back(c);
     const WeightStats w = weight_stats(m, s, n, check_seed(id, k));
     non_finite += w.non_finite;
-    double se = std::sqrt(w.weight.variance() / double(n));
-    double bound = c.error;
+    const double weight_se = std::sqrt(w.weight.variance() / double(n));
+    double se = weight_se, bound = c.error;
     if (c.monte_carlo) {  // two independent estimates: their errors add in quadrature
       se = std::hypot(se, c.error);
       bound = 0;
     }
     a.raw_p_values.push_back(w.non_finite ? 0.0 : p_beyond_bound(w.weight.mean - c.value, bound, se));
+    if (const double d = detectable_effect(level, set.size(), se, c.value); d < power) {
+      power = d;
+      power_where = s.label;
+    }
     const double rel = c.value > 0 ? (w.weight.mean - c.value) / c.value : w.weight.mean;
     if (std::abs(rel) >= std::abs(worst_rel)) {
       worst_rel = rel;
       where = fmt::format("{}: mean weight {:.5g} ± {:.2g}, ∫ value {:.5g} ± {:.2g}{}", s.label,
-                          w.weight.mean, se, c.value, c.error,
-                          c.monte_carlo ? " (uniform-hemisphere estimate)" : " (cubature)");
+                          w.weight.mean, weight_se, c.value, c.error,
+                          c.monte_carlo ? " (Monte Carlo estimate)" : " (cubature)");
     }
   }
   const FamilyOutcome f = family_at(a.raw_p_values, level);
@@ -255,6 +394,8 @@ Assessment assess_covers_value(const ModelEntry& m, Budget b, const std::string&
   a.value = worst_rel;
   a.configurations = int(set.size());
   a.verdict = f.any_rejected ? Verdict::kFails : Verdict::kHolds;
+  a.power = fmt::format("a relative difference of {:.2g} % of ∫ value beyond the cubature's "
+                        "error ({})", 100 * power, power_where);
   a.detail = fmt::format("{} settings × {} samples: {} rejected at level {:.3g}{}; largest "
                          "relative difference {:+.3g} ({})",
                          set.size(), n, f.rejections, level,
@@ -273,7 +414,8 @@ Assessment assess_pdf_normalized(const ModelEntry& m, Budget b, const std::strin
   a.statistic = "Holm–Šidák-adjusted p of ∫ pdf dωo (ωo_z > 0) = 1 − rejection rate";
   const auto set = settings(m, b);
   const std::uint64_t n = samples(b);
-  double worst = 0;
+  double worst = 0, power = std::numeric_limits<double>::infinity();
+  std::string power_where = "—";
   std::string where = "—";
   for (std::size_t k = 0; k < set.size(); ++k) {
     const Setting& s = set[k];
@@ -288,17 +430,21 @@ Assessment assess_pdf_normalized(const ModelEntry& m, Budget b, const std::strin
     const WeightStats w = weight_stats(m, s, n, check_seed(id, k));
     const double accept = double(w.accepted_above) / double(n);
     // The binomial standard error, at least that of one sample in n (no rejection seen).
-    double se = std::max(std::sqrt(accept * (1 - accept) / double(n)), 1.0 / double(n));
-    double bound = c.error;
+    const double accept_se = std::max(std::sqrt(accept * (1 - accept) / double(n)), 1.0 / double(n));
+    double se = accept_se, bound = c.error;
     if (c.monte_carlo) {
       se = std::hypot(se, c.error);
       bound = 0;
     }
     a.raw_p_values.push_back(p_beyond_bound(c.value - accept, bound, se));
+    if (const double d = detectable_effect(level, set.size(), se, accept); d < power) {
+      power = d;
+      power_where = s.label;
+    }
     if (std::abs(c.value - accept) >= std::abs(worst)) {
       worst = c.value - accept;
       where = fmt::format("{}: ∫ pdf {:.5g} ± {:.2g}, accepted {:.5g} ± {:.2g}", s.label, c.value,
-                          c.error, accept, se);
+                          c.error, accept, accept_se);
     }
   }
   const FamilyOutcome f = family_at(a.raw_p_values, level);
@@ -306,6 +452,8 @@ Assessment assess_pdf_normalized(const ModelEntry& m, Budget b, const std::strin
   a.value = worst;
   a.configurations = int(set.size());
   a.verdict = f.any_rejected ? Verdict::kFails : Verdict::kHolds;
+  a.power = fmt::format("a relative difference of {:.2g} % between ∫ pdf and the acceptance rate "
+                        "beyond the cubature's error ({})", 100 * power, power_where);
   a.detail = fmt::format("{} settings × {} samples: {} rejected at level {:.3g}; largest "
                          "difference {:+.3g} ({})",
                          set.size(), n, f.rejections, level, worst, where);
