@@ -5,6 +5,7 @@ and the errors. Run by ctest as `/usr/bin/python3 -m pytest tests/python`."""
 import csv
 import os
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -241,3 +242,10 @@ def test_help_documents_every_argument():
     for word in ("wi, wo", "params", "footprint", "light", "precision", "isa", "threads"):
         assert word in doc
     assert "bit-identical" in glintlab.sample.__doc__
+
+
+def test_the_example_script_runs_and_writes_its_figure(tmp_path):
+    script = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "python", "lobes.py")
+    out = tmp_path / "lobes.png"
+    subprocess.run([sys.executable, script, str(out)], check=True, capture_output=True)
+    assert out.stat().st_size > 10000
