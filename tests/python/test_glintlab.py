@@ -249,3 +249,17 @@ def test_the_example_script_runs_and_writes_its_figure(tmp_path):
     out = tmp_path / "lobes.png"
     subprocess.run([sys.executable, script, str(out)], check=True, capture_output=True)
     assert out.stat().st_size > 10000
+
+
+def test_load_plugin_registers_its_models_and_refuses_a_non_plugin():
+    bad = os.environ.get("GLINTLAB_TEST_NOT_A_PLUGIN")
+    good = os.environ.get("GLINTLAB_TEST_PLUGIN")
+    if not (bad and good):
+        pytest.skip("GLINTLAB_TEST_PLUGIN / GLINTLAB_TEST_NOT_A_PLUGIN not set (ctest sets them)")
+    assert "load_plugin" in error_of(glintlab.load_plugin, bad)
+    names = glintlab.load_plugin(good)
+    assert names and all(n in [m["name"] for m in glintlab.models()] for n in names)
+    model = model_info(names[0])
+    wi, wo, footprint, light = queries(model)
+    got = glintlab.eval(names[0], wi, wo, footprint=footprint, light=light)
+    assert np.all(np.isfinite(got["value"]))
