@@ -97,7 +97,9 @@ py::dict eval_in(const ModelEntry& model, const QuerySources& q, const CallParam
   for (auto& a : outs) out_data.push_back(a.mutable_data());
   run_chunks(model, q, p, opts,
              [&](std::size_t begin, std::size_t count, const std::vector<double>& params) {
-               std::vector<S> buffer;
+               // Per worker thread, kept across chunks: a fresh chunk-sized buffer would be
+               // fresh pages (mmap) for every chunk.
+               thread_local std::vector<S> buffer;
                const auto cols = chunk_columns<S>(q.columns, width, begin, count, buffer);
                std::vector<S*> o;
                for (S* d : out_data) o.push_back(d + begin);
@@ -149,7 +151,8 @@ py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallPar
   run_chunks(
       model, q, p, opts,
       [&](std::size_t begin, std::size_t count, const std::vector<double>& params) {
-        std::vector<S> buffer, uniforms(2 * count);
+        thread_local std::vector<S> buffer, uniforms;  // kept across chunks, as in eval_in
+        uniforms.resize(2 * count);
         const auto cols = chunk_columns<S>(q.columns, width, begin, count, buffer);
         // The CLI's counter-based stream (sample --model), or the caller's uniforms.
         for (std::size_t i = 0; i < count; ++i) {
