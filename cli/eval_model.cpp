@@ -228,8 +228,13 @@ void check_query_row(const ModelEntry& model, const QueryRow<double>& v,
     }
   }
   const ModelQuery<double> row_query = from_row(v);
-  check_unit(row_query.wi, at("") + ", columns wi_x,wi_y,wi_z (wi)");
-  check_unit(row_query.wo, at("") + ", columns wo_x,wo_y,wo_z (wo)");
+  // The message (and `at`) only for a direction that fails: this runs on every row of a batch.
+  const auto unit = [&](const Vec3<double>& w, const auto& where) {
+    if (!(std::abs(std::sqrt(w.x * w.x + w.y * w.y + w.z * w.z) - 1.0) <= kUnitTolerance))
+      check_unit(w, where());
+  };
+  unit(row_query.wi, [&] { return at("") + ", columns wi_x,wi_y,wi_z (wi)"; });
+  unit(row_query.wo, [&] { return at("") + ", columns wo_x,wo_y,wo_z (wo)"; });
   if (!(v[kCos] >= -1 && v[kCos] <= 1)) {
     throw InputError(fmt::format("{}: {} is out of range (valid: [-1, 1])",
                                  at("light_cos_half_angle"), v[kCos]));
@@ -240,9 +245,10 @@ void check_query_row(const ModelEntry& model, const QueryRow<double>& v,
   }
   if (part_needed(QueryPart::kCorners, model.needs)) {
     for (std::size_t c = 0; c < row_query.footprint.corner_r.size(); ++c) {
-      check_unit(
-          row_query.footprint.corner_r[c],
-          fmt::format("{}, columns r{}_x,r{}_y,r{}_z (corner reflection vector)", at(""), c, c, c));
+      unit(row_query.footprint.corner_r[c], [&] {
+        return fmt::format("{}, columns r{}_x,r{}_y,r{}_z (corner reflection vector)", at(""), c,
+                           c, c);
+      });
     }
   }
   if (!model.validate) return;

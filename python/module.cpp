@@ -1,0 +1,278 @@
+// The `glintlab._glintlab` extension: the model registry (core/model_registry.h) and its batch API
+// (core/simd/model_batch.h) for numpy. glintlab/__init__.py re-exports it with the docstrings.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "cli/commands.h"
+#include "cli/input.h"
+#include "core/math/rng.h"
+#include "core/model_registry.h"
+#include "core/plugin_loader.h"
+#include "core/simd/model_batch.h"
+#include "python/batch_call.h"
+#include "python/query_columns.h"
+
+namespace glintlab::python {
+namespace {
+
+const ModelEntry& model_named(const std::string& name) {
+  try {
+    return find_model(name);
+  } catch (const ModelParamError& e) {
+    throw py::value_error(e.what());
+  }
+}
+
+std::vector<std::string> needs_names(unsigned needs) {
+  std::vector<std::string> out;
+  if (needs & kNeedsFootprint) out.emplace_back("footprint");
+  if (needs & kNeedsPointLight) out.emplace_back("point light");
+  if (needs & kNeedsAreaLight) out.emplace_back("area light");
+  if (needs & kNeedsPixelCorners) out.emplace_back("pixel corners");
+  return out;
+}
+
+py::dict param_dict(const ParamSpec& p) {
+  py::dict d;
+  d["name"] = std::string(p.name);
+  d["description"] = std::string(p.description);
+  d["range"] = describe_range(p);
+  if (p.choices.empty()) {
+    d["default"] = p.default_value;
+    d["lo"] = p.lo;
+    d["hi"] = p.hi;
+    d["lo_open"] = p.lo_open;
+    d["hi_open"] = p.hi_open;
+    d["integral"] = p.integral;
+  } else {
+    d["default"] = format_param_value(p, p.default_value);
+    std::vector<std::string> choices(p.choices.begin(), p.choices.end());
+    d["choices"] = choices;
+  }
+  return d;
+}
+
+py::list models() {
+  py::list out;
+  for (const ModelEntry& m : registered_models()) {
+    py::dict d;
+    d["name"] = std::string(m.name);
+    d["description"] = std::string(m.description);
+    d["source"] = std::string(m.source);
+    d["needs"] = needs_names(m.needs);
+    py::list params;
+    for (const ParamSpec& p : m.params) params.append(param_dict(p));
+    d["params"] = params;
+    d["intermediates"] = std::vector<std::string>(m.intermediates.begin(), m.intermediates.end());
+    d["smooth_limit"] = m.smooth_limit.empty() ? py::object(py::none())
+                                               : py::object(py::str(std::string(m.smooth_limit)));
+    d["batched"] = simd::is_batched(m);
+    out.append(d);
+  }
+  return out;
+}
+
+// The number of query columns the batch calls take for this model (with the corners or not).
+std::size_t query_width(const ModelEntry& m) {
+  return (m.needs & kNeedsPixelCorners) != 0 ? simd::kQueryColumnsWithCorners
+                                             : simd::kQueryColumns.size();
+}
+
+template <class S>
+py::dict eval_in(const ModelEntry& model, const QuerySources& q, const CallParams& p,
+                 const cli::BatchOptions& opts) {
+  const std::size_t n = q.rows, width = query_width(model);
+  std::vector<py::array_t<S>> outs;
+  for (std::size_t k = 0; k < 2 + model.intermediates.size(); ++k)
+    outs.emplace_back(py::ssize_t(n));
+  std::vector<S*> out_data;
+  for (auto& a : outs) out_data.push_back(a.mutable_data());
+  run_chunks(model, q, p, opts,
+             [&](std::size_t begin, std::size_t count, const std::vector<double>& params) {
+               // Per worker thread, kept across chunks: a fresh chunk-sized buffer would be
+               // fresh pages (mmap) for every chunk.
+               thread_local std::vector<S> buffer;
+               const auto cols = chunk_columns<S>(q.columns, width, begin, count, buffer);
+               std::vector<S*> o;
+               for (S* d : out_data) o.push_back(d + begin);
+               simd::eval_batch(model, params, cols, o, count, opts.isa, opts.math);
+             });
+  py::dict r;
+  r["value"] = outs[0];
+  r["pdf"] = outs[1];
+  for (std::size_t k = 0; k < model.intermediates.size(); ++k)
+    r[py::str(std::string(model.intermediates[k]))] = outs[2 + k];
+  return r;
+}
+
+py::dict eval(const std::string& name, const py::object& wi, const py::object& wo,
+              const py::object& params, const py::object& footprint, const py::object& light,
+              const std::string& precision, const py::object& isa, const std::string& math,
+              const py::object& threads) {
+  const ModelEntry& model = model_named(name);
+  const cli::BatchOptions opts = batch_options(precision, isa, math, threads);
+  if (wi.is_none() || wo.is_none()) throw py::value_error("wi and wo are required (valid: (N, 3) or (3,) arrays)");
+  QuerySources q = query_sources(model, wi, wo, footprint, light, 0);
+  const CallParams p = call_params(model, params, q.rows, q.keep_alive);
+  if (q.rows == 0) q.rows = 1;
+  return opts.float_precision ? eval_in<float>(model, q, p, opts)
+                              : eval_in<double>(model, q, p, opts);
+}
+
+template <class S>
+py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallParams& p,
+                   const cli::BatchOptions& opts, const ColumnSource* u1, const ColumnSource* u2,
+                   std::uint64_t seed) {
+  const std::size_t n = q.rows, width = query_width(model);
+  py::array_t<S, py::array::f_style> wo({py::ssize_t(n), py::ssize_t(3)});
+  auto pdf = py::array_t<S>(py::ssize_t(n));
+  auto weight = py::array_t<S>(py::ssize_t(n));
+  std::vector<S> rejected(n);
+  S* wo_data = wo.mutable_data();
+  S* const out_data[6] = {wo_data, wo_data + n, wo_data + 2 * n, pdf.mutable_data(),
+                          weight.mutable_data(), rejected.data()};
+  const auto check_u = [&](std::size_t r) -> std::optional<std::string> {
+    if (u1 == nullptr) return std::nullopt;
+    for (const ColumnSource* u : {u1, u2}) {
+      const double v = u->at(r);
+      if (!(v >= 0 && v < 1))
+        return fmt::format("row {}, {}: {} is out of range (valid: [0, 1))", r, u->origin, v);
+    }
+    return std::nullopt;
+  };
+  run_chunks(
+      model, q, p, opts,
+      [&](std::size_t begin, std::size_t count, const std::vector<double>& params) {
+        thread_local std::vector<S> buffer, uniforms;  // kept across chunks, as in eval_in
+        uniforms.resize(2 * count);
+        const auto cols = chunk_columns<S>(q.columns, width, begin, count, buffer);
+        // The CLI's counter-based stream (sample --model), or the caller's uniforms.
+        for (std::size_t i = 0; i < count; ++i) {
+          uniforms[i] = u1 ? S(u1->at(begin + i)) : S(counter_uniform<double>(seed, begin + i, 0));
+          uniforms[count + i] =
+              u2 ? S(u2->at(begin + i)) : S(counter_uniform<double>(seed, begin + i, 1));
+        }
+        std::vector<S*> o;
+        for (S* d : out_data) o.push_back(d + begin);
+        simd::sample_batch(model, params, cols, {uniforms.data(), 1},
+                           {uniforms.data() + count, 1}, o, count, opts.isa, opts.math);
+      },
+      check_u);
+  auto rej = py::array_t<bool>(py::ssize_t(n));
+  bool* rd = rej.mutable_data();
+  for (std::size_t i = 0; i < n; ++i) rd[i] = rejected[i] != 0;
+  py::dict r;
+  r["wo"] = wo;
+  r["pdf"] = pdf;
+  r["weight"] = weight;
+  r["rejected"] = rej;
+  return r;
+}
+
+py::dict sample(const std::string& name, const py::object& wi, const py::object& u,
+                const py::object& params, const py::object& footprint, const py::object& light,
+                const py::object& n, const py::object& seed, const std::string& precision,
+                const py::object& isa, const std::string& math, const py::object& threads) {
+  const ModelEntry& model = model_named(name);
+  const cli::BatchOptions opts = batch_options(precision, isa, math, threads);
+  if (wi.is_none()) throw py::value_error("wi is required (valid: an (N, 3) or (3,) array)");
+  if (u.is_none() == n.is_none()) {
+    throw py::value_error(
+        "u, n: give exactly one (valid: u an (N, 2) array of uniforms in [0, 1), or n= and "
+        "seed= for the CLI's counter-based stream)");
+  }
+  if (!u.is_none() && !seed.is_none())
+    throw py::value_error("seed: only with n= (valid: u= or n= with seed=)");
+  std::size_t rows = 0;
+  std::uint64_t s = 0;
+  if (!n.is_none()) {
+    try {
+      rows = cli::integer_option(std::string(py::str(n)), "n", 1, 1000000000);
+      s = seed.is_none() ? 0 : cli::integer_option(std::string(py::str(seed)), "seed", 0, UINT64_MAX);
+    } catch (const cli::InputError& e) {
+      throw py::value_error(e.what());
+    }
+  }
+  QuerySources q = query_sources(model, wi, py::none(), footprint, light, rows);
+  ColumnSource u1, u2;
+  if (!u.is_none()) {
+    const py::array a = py::array::ensure(u);
+    if (!a || a.ndim() != 2 || a.shape(1) != 2)
+      throw py::value_error("u: not an (N, 2) array (valid: (N, 2) uniforms in [0, 1))");
+    py::object col0 = a[py::make_tuple(py::slice(py::none(), py::none(), py::none()), 0)];
+    py::object col1 = a[py::make_tuple(py::slice(py::none(), py::none(), py::none()), 1)];
+    u1 = column_source(col0, "u[:, 0]", q.rows, q.keep_alive);
+    u2 = column_source(col1, "u[:, 1]", q.rows, q.keep_alive);
+  }
+  const CallParams p = call_params(model, params, q.rows, q.keep_alive);
+  if (q.rows == 0) q.rows = 1;
+  const ColumnSource* p1 = u.is_none() ? nullptr : &u1;
+  const ColumnSource* p2 = u.is_none() ? nullptr : &u2;
+  return opts.float_precision ? sample_in<float>(model, q, p, opts, p1, p2, s)
+                              : sample_in<double>(model, q, p, opts, p1, p2, s);
+}
+
+// Where each query column of an eval call would be read from in `precision`: the array's own
+// memory (its address), or None (gathered or a constant). For the tests of the no-copy path.
+py::dict column_addresses(const std::string& name, const py::object& wi, const py::object& wo,
+                          const py::object& footprint, const py::object& light,
+                          const std::string& precision) {
+  const ModelEntry& model = model_named(name);
+  const QuerySources q = query_sources(model, wi, wo, footprint, light, 0);
+  py::dict d;
+  for (std::size_t c = 0; c < query_width(model); ++c) {
+    const ColumnSource& s = q.columns[c];
+    const bool in_place = precision == "float" ? s.in_place<float>() : s.in_place<double>();
+    d[py::str(std::string(kQueryLayout[c].name))] =
+        in_place ? py::object(py::int_(reinterpret_cast<std::uintptr_t>(s.data)))
+                 : py::object(py::none());
+  }
+  return d;
+}
+
+std::vector<std::string> load_plugin(const std::string& path) {
+  try {
+    const std::vector<std::string_view> names = glintlab::load_plugin(path, "load_plugin");
+    return {names.begin(), names.end()};
+  } catch (const PluginError& e) {
+    throw py::value_error(e.what());
+  }
+}
+
+}  // namespace
+}  // namespace glintlab::python
+
+PYBIND11_MODULE(_glintlab, m) {
+  using namespace glintlab::python;
+  namespace py = pybind11;
+  using py::arg;
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const glintlab::cli::InputError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const glintlab::ModelParamError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
+  m.doc() = "glintlab's C++ layer (see the glintlab package for the documented functions)";
+  m.def("models", &models);
+  m.def("eval", &eval, arg("model"), arg("wi"), arg("wo"), arg("params") = py::none(),
+        arg("footprint") = py::none(), arg("light") = py::none(), arg("precision") = "double",
+        arg("isa") = py::none(), arg("math") = "exact", arg("threads") = py::none());
+  m.def("sample", &sample, arg("model"), arg("wi"), arg("u") = py::none(),
+        arg("params") = py::none(), arg("footprint") = py::none(), arg("light") = py::none(),
+        arg("n") = py::none(), arg("seed") = py::none(), arg("precision") = "double",
+        arg("isa") = py::none(), arg("math") = "exact", arg("threads") = py::none());
+  m.def("column_addresses", &column_addresses, arg("model"), arg("wi"), arg("wo"),
+        arg("footprint") = py::none(), arg("light") = py::none(), arg("precision") = "double");
+  m.def("load_plugin", &load_plugin, arg("path"));
+}

@@ -1,0 +1,97 @@
+// The query of a Python call as columns of core/model_layout.h: each column read in place from a
+// numpy array (any stride, float32 or float64), or one value for every row. A chunk of rows becomes
+// the SoA columns of core/simd/model_batch.h without copying where the array already is one
+// contiguous column of the precision evaluated in; otherwise the chunk is gathered into a buffer.
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/model_layout.h"
+#include "core/model_registry.h"
+#include "core/simd/batch.h"
+
+namespace glintlab::python {
+
+namespace py = pybind11;
+
+// Where one column's values come from: data[i * stride] (elements of float32 or float64), or
+// `constant` for every row when data is null.
+struct ColumnSource {
+  const void* data = nullptr;
+  std::ptrdiff_t stride = 0;
+  bool is_float = false;
+  double constant = 0;
+  std::string origin;  // how an error names it: "wi[:, 0]", "footprint['u']"
+
+  double at(std::size_t row) const {
+    if (data == nullptr) return constant;
+    const std::ptrdiff_t k = std::ptrdiff_t(row) * stride;
+    return is_float ? double(static_cast<const float*>(data)[k])
+                    : static_cast<const double*>(data)[k];
+  }
+  // Whether a chunk can be passed as it lies: one contiguous column of S.
+  template <class S>
+  bool in_place() const {
+    return data != nullptr && stride == 1 && is_float == std::is_same_v<S, float>;
+  }
+};
+
+// The columns of one call, kQueryLayout order (corners included), and the row count.
+struct QuerySources {
+  std::vector<ColumnSource> columns;
+  std::size_t rows = 0;
+  std::vector<py::object> keep_alive;  // converted arrays the sources point into
+};
+
+// Builds the sources of a call: `wi`, `wo` (N, 3) or (3,) arrays or None (the layout's defaults),
+// `footprint` and `light` dicts of scalars or (N,) arrays keyed by the layout's column names.
+// `rows` is the row count when no array fixes it (sample's n=), 0 otherwise; it stays 0 when
+// every input is broadcast. Throws ValueError for
+// a wrong shape, unknown key, a missing column the model needs, or mismatched row counts.
+QuerySources query_sources(const ModelEntry& model, const py::object& wi, const py::object& wo,
+                           const py::object& footprint, const py::object& light,
+                           std::size_t rows);
+
+// A 1-D (N,) or scalar input as a column source (float32/float64 read in place, any other real
+// dtype converted once); `name` names it in errors. Row count checked against `rows` (0: any).
+ColumnSource column_source(const py::handle& value, const std::string& name, std::size_t& rows,
+                           std::vector<py::object>& keep_alive);
+
+// The SoA columns of rows [begin, begin + count) in precision S, `ncols` first columns; columns
+// not in place are gathered into `buffer`.
+template <class S>
+std::vector<simd::Column<S>> chunk_columns(const std::vector<ColumnSource>& sources,
+                                           std::size_t ncols, std::size_t begin, std::size_t count,
+                                           std::vector<S>& buffer) {
+  buffer.assign(ncols * count, S(0));
+  std::vector<simd::Column<S>> cols;
+  cols.reserve(ncols);
+  for (std::size_t c = 0; c < ncols; ++c) {
+    const ColumnSource& s = sources[c];
+    S* gathered = buffer.data() + c * count;
+    if (s.in_place<S>()) {
+      cols.push_back({static_cast<const S*>(s.data) + begin, 1});
+    } else if (s.data == nullptr || s.stride == 0) {
+      gathered[0] = S(s.at(0));
+      cols.push_back({gathered, 0});
+    } else {
+      for (std::size_t i = 0; i < count; ++i) gathered[i] = S(s.at(begin + i));
+      cols.push_back({gathered, 1});
+    }
+  }
+  return cols;
+}
+
+// The query row `row` in double, every column of the layout.
+inline QueryRow<double> query_row(const std::vector<ColumnSource>& sources, std::size_t row) {
+  QueryRow<double> v{};
+  for (std::size_t c = 0; c < v.size(); ++c) v[c] = sources[c].at(row);
+  return v;
+}
+
+}  // namespace glintlab::python
