@@ -34,10 +34,13 @@ def describe(fig):
         if not ax.get_visible() or ax.get_label() == "<colorbar>":
             continue
         is_map = bool(ax.images) or any(type(c).__name__ == "QuadMesh" for c in ax.collections)
+        render = bool(getattr(ax, "_render_panel", False))
         axes.append({"title": ax.get_title() or suptitle, "xlabel": ax.get_xlabel(),
                      "ylabel": ax.get_ylabel(),
                      "legend": ax.get_legend() is not None or bool(fig.legends),
-                     "map": is_map,
+                     # a rendered image (a figure's panel), not a map of data: no colour scale
+                     "render": render,
+                     "map": is_map and not render,
                      # a colour bar beside this map (matplotlib makes it an axes of its own)
                      "colorbar": is_map and any(getattr(c, "_colorbar_of", None) is ax
                                                 for c in colorbars)})
@@ -217,6 +220,73 @@ def furnace_chart(header, rows, path, relpath, manifest, subtitle):
     fig.suptitle(f"kemppinen2025-fig15: white furnace over theta_o (from furnace.csv)\n{subtitle}",
                  fontsize=9)
     fig.tight_layout(rect=(0, 0, 1, 0.92))
+    save(fig, path, relpath, manifest)
+    return True
+
+
+# ----------------------------------------------------------------------------------------------
+# Montage PNGs of a figure, drawn as labelled panels from their NAME.panels.json
+# (experiments/figures/panel_layout.h)
+
+def _srgb_to_linear(v):
+    import numpy as np
+    return np.where(v <= 0.04045, v / 12.92, ((v + 0.055) / 1.055) ** 2.4)
+
+
+def panel_tiles(image, layout):
+    """The panels of a montage image (H x W x C array), row by row from the top left; None when
+    the image's size does not fit the layout's grid."""
+    n, cols, gap = len(layout["labels"]), int(layout["columns"]), int(layout.get("gap", 0))
+    if n == 0 or cols <= 0:
+        return None
+    rows = (n + cols - 1) // cols
+    h, w = image.shape[0], image.shape[1]
+    if (w - gap * (cols - 1)) % cols or (h - gap * (rows - 1)) % rows:
+        return None
+    tw, th = (w - gap * (cols - 1)) // cols, (h - gap * (rows - 1)) // rows
+    return [image[(k // cols) * (th + gap):(k // cols) * (th + gap) + th,
+                  (k % cols) * (tw + gap):(k % cols) * (tw + gap) + tw] for k in range(n)]
+
+
+def panel_chart(png, layout, path, relpath, manifest, subtitle):
+    """A figure's montage as one labelled panel per tile, each enlarged (nearest pixel): renders
+    with pixel axes, maps (layout "axes") with their parameter axes and a colour bar of the value
+    recovered from the 8-bit preview. Returns False when the layout does not fit the image."""
+    import matplotlib.image
+    import numpy as np
+    image = matplotlib.image.imread(png)
+    tiles = panel_tiles(image, layout)
+    if tiles is None:
+        return False
+    plt = pyplot()
+    cols = min(int(layout["columns"]), len(tiles))
+    rows = (len(tiles) + cols - 1) // cols
+    th, tw = tiles[0].shape[0], tiles[0].shape[1]
+    aspect = min(2.0, max(0.5, th / tw))
+    fig, axes = plt.subplots(rows, cols, squeeze=False,
+                             figsize=(max(6.5, 2.7 * cols + 0.6), 2.7 * aspect * rows + 1.0))
+    for ax in axes.flat[len(tiles):]:
+        ax.set_visible(False)
+    spec = layout.get("axes")
+    for ax, tile, label in zip(axes.flat, tiles, layout["labels"]):
+        ax.set_title(label, fontsize=7)
+        ax.tick_params(labelsize=6)
+        if spec:
+            value = _srgb_to_linear(tile[..., 0]) / float(spec["exposure"])
+            x0, x1 = spec["x_range"]
+            y0, y1 = spec["y_range"]
+            im = ax.imshow(value, cmap="magma", interpolation="nearest", aspect="auto",
+                           extent=(x0, x1, y0, y1), vmin=0, vmax=1 / float(spec["exposure"]))
+            colorbar(fig, im, ax, spec["value_label"] + " (8-bit preview, clipped at the top)")
+            ax.set_xlabel(spec["x_label"], fontsize=7)
+            ax.set_ylabel(spec["y_label"], fontsize=7)
+        else:
+            ax.imshow(tile[..., :3], interpolation="nearest")
+            ax._render_panel = True
+            ax.set_xlabel("x [pixel]", fontsize=7)
+            ax.set_ylabel("y [pixel]", fontsize=7)
+    fig.suptitle(f"{layout.get('title', '')}\n{subtitle}", fontsize=9)
+    fig.tight_layout(rect=(0, 0, 1, 0.93))
     save(fig, path, relpath, manifest)
     return True
 
