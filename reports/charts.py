@@ -291,6 +291,55 @@ def panel_chart(png, layout, path, relpath, manifest, subtitle):
     return True
 
 
+def p_map_chart(header, rows, path, relpath, manifest, subtitle):
+    """kneiphof2024-fig6 p_map.csv: Eq. 20's probability p at normal incidence over the light's
+    half-angle gamma (log) and sqrt(alpha), the cells with p > 1 outlined."""
+    import numpy as np
+    from matplotlib.colors import LogNorm
+    from matplotlib.patches import Patch, Rectangle
+    if not {"sqrt_alpha", "gamma_deg", "p_eq20", "p_gt_1"} <= set(header):
+        return False
+    recs = [{h: _num(c) for h, c in zip(header, r)} for r in rows]
+    sa = sorted({r["sqrt_alpha"] for r in recs})
+    gd = sorted({r["gamma_deg"] for r in recs})
+    grid = np.full((len(sa), len(gd)), np.nan)
+    over = np.zeros(grid.shape, dtype=bool)
+    for r in recs:
+        i, j = sa.index(r["sqrt_alpha"]), gd.index(r["gamma_deg"])
+        grid[i, j] = r["p_eq20"]
+        over[i, j] = r["p_gt_1"] > 0
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(7, 5))
+    pos = grid[np.isfinite(grid) & (grid > 0)]
+    lo = float(pos.min()) if pos.size else 1e-3
+    mesh = ax.pcolormesh(np.arange(len(gd) + 1) - 0.5, np.arange(len(sa) + 1) - 0.5,
+                         np.ma.masked_invalid(np.where(grid > 0, grid, lo)), cmap="viridis",
+                         shading="flat",
+                         norm=LogNorm(vmin=lo, vmax=max(lo * 10, float(pos.max()) if pos.size
+                                                        else 1.0)))
+    for i, j in zip(*np.nonzero(over)):
+        ax.add_patch(Rectangle((j - 0.5, i - 0.5), 1, 1, fill=False, edgecolor="red", lw=1.2,
+                               hatch="///"))
+    colorbar(fig, mesh, ax, "p of Eq. 20 [1] (log scale)")
+    xi, xl = _ticks(gd)
+    yi, yl = _ticks(sa)
+    ax.set_xticks(xi)
+    ax.set_xticklabels(xl, fontsize=7)
+    ax.set_yticks(yi)
+    ax.set_yticklabels(yl, fontsize=7)
+    ax.set_xlabel("light half-angle gamma [deg] (log spaced)", fontsize=8)
+    ax.set_ylabel("sqrt(alpha) [1]", fontsize=8)
+    ax.set_title(f"{int(over.sum())} of {over.size} cells have p > 1", fontsize=8)
+    ax.legend(handles=[Patch(facecolor="none", edgecolor="red", hatch="///",
+                             label="p > 1 (not a probability)")], fontsize=7, loc="upper right")
+    fig.suptitle(f"kneiphof2024-fig6: p at normal incidence (from p_map.csv)\n{subtitle}",
+                 fontsize=9)
+    fig.tight_layout(rect=(0, 0, 1, 0.92))
+    save(fig, path, relpath, manifest)
+    return True
+
+
 # figure id -> {csv name: function(header, rows, path, relpath, manifest, subtitle) -> bool,
 #               and the C++ chart PNG it replaces}
-FIGURE_CHARTS = {"kemppinen2025-fig15": {"furnace.csv": (furnace_chart, "furnace.png")}}
+FIGURE_CHARTS = {"kemppinen2025-fig15": {"furnace.csv": (furnace_chart, "furnace.png")},
+                 "kneiphof2024-fig6": {"p_map.csv": (p_map_chart, "p_map.png")}}
