@@ -34,10 +34,13 @@ def describe(fig):
         if not ax.get_visible() or ax.get_label() == "<colorbar>":
             continue
         is_map = bool(ax.images) or any(type(c).__name__ == "QuadMesh" for c in ax.collections)
+        render = bool(getattr(ax, "_render_panel", False))
         axes.append({"title": ax.get_title() or suptitle, "xlabel": ax.get_xlabel(),
                      "ylabel": ax.get_ylabel(),
                      "legend": ax.get_legend() is not None or bool(fig.legends),
-                     "map": is_map,
+                     # a rendered image (a figure's panel), not a map of data: no colour scale
+                     "render": render,
+                     "map": is_map and not render,
                      # a colour bar beside this map (matplotlib makes it an axes of its own)
                      "colorbar": is_map and any(getattr(c, "_colorbar_of", None) is ax
                                                 for c in colorbars)})
@@ -221,6 +224,122 @@ def furnace_chart(header, rows, path, relpath, manifest, subtitle):
     return True
 
 
+# ----------------------------------------------------------------------------------------------
+# Montage PNGs of a figure, drawn as labelled panels from their NAME.panels.json
+# (experiments/figures/panel_layout.h)
+
+def _srgb_to_linear(v):
+    import numpy as np
+    return np.where(v <= 0.04045, v / 12.92, ((v + 0.055) / 1.055) ** 2.4)
+
+
+def panel_tiles(image, layout):
+    """The panels of a montage image (H x W x C array), row by row from the top left; None when
+    the image's size does not fit the layout's grid."""
+    n, cols, gap = len(layout["labels"]), int(layout["columns"]), int(layout.get("gap", 0))
+    if n == 0 or cols <= 0:
+        return None
+    rows = (n + cols - 1) // cols
+    h, w = image.shape[0], image.shape[1]
+    if (w - gap * (cols - 1)) % cols or (h - gap * (rows - 1)) % rows:
+        return None
+    tw, th = (w - gap * (cols - 1)) // cols, (h - gap * (rows - 1)) // rows
+    return [image[(k // cols) * (th + gap):(k // cols) * (th + gap) + th,
+                  (k % cols) * (tw + gap):(k % cols) * (tw + gap) + tw] for k in range(n)]
+
+
+def panel_chart(png, layout, path, relpath, manifest, subtitle):
+    """A figure's montage as one labelled panel per tile, each enlarged (nearest pixel): renders
+    with pixel axes, maps (layout "axes") with their parameter axes and a colour bar of the value
+    recovered from the 8-bit preview. Returns False when the layout does not fit the image."""
+    import matplotlib.image
+    import numpy as np
+    image = matplotlib.image.imread(png)
+    tiles = panel_tiles(image, layout)
+    if tiles is None:
+        return False
+    plt = pyplot()
+    cols = min(int(layout["columns"]), len(tiles))
+    rows = (len(tiles) + cols - 1) // cols
+    th, tw = tiles[0].shape[0], tiles[0].shape[1]
+    aspect = min(2.0, max(0.5, th / tw))
+    fig, axes = plt.subplots(rows, cols, squeeze=False,
+                             figsize=(max(6.5, 2.7 * cols + 0.6), 2.7 * aspect * rows + 1.0))
+    for ax in axes.flat[len(tiles):]:
+        ax.set_visible(False)
+    spec = layout.get("axes")
+    for ax, tile, label in zip(axes.flat, tiles, layout["labels"]):
+        ax.set_title(label, fontsize=7)
+        ax.tick_params(labelsize=6)
+        if spec:
+            value = _srgb_to_linear(tile[..., 0]) / float(spec["exposure"])
+            x0, x1 = spec["x_range"]
+            y0, y1 = spec["y_range"]
+            im = ax.imshow(value, cmap="magma", interpolation="nearest", aspect="auto",
+                           extent=(x0, x1, y0, y1), vmin=0, vmax=1 / float(spec["exposure"]))
+            colorbar(fig, im, ax, spec["value_label"] + " (8-bit preview, clipped at the top)")
+            ax.set_xlabel(spec["x_label"], fontsize=7)
+            ax.set_ylabel(spec["y_label"], fontsize=7)
+        else:
+            ax.imshow(tile[..., :3], interpolation="nearest")
+            ax._render_panel = True
+            ax.set_xlabel("x [pixel]", fontsize=7)
+            ax.set_ylabel("y [pixel]", fontsize=7)
+    fig.suptitle(f"{layout.get('title', '')}\n{subtitle}", fontsize=9)
+    fig.tight_layout(rect=(0, 0, 1, 0.93))
+    save(fig, path, relpath, manifest)
+    return True
+
+
+def p_map_chart(header, rows, path, relpath, manifest, subtitle):
+    """kneiphof2024-fig6 p_map.csv: Eq. 20's probability p at normal incidence over the light's
+    half-angle gamma (log) and sqrt(alpha), the cells with p > 1 outlined."""
+    import numpy as np
+    from matplotlib.colors import LogNorm
+    from matplotlib.patches import Patch, Rectangle
+    if not {"sqrt_alpha", "gamma_deg", "p_eq20", "p_gt_1"} <= set(header):
+        return False
+    recs = [{h: _num(c) for h, c in zip(header, r)} for r in rows]
+    sa = sorted({r["sqrt_alpha"] for r in recs})
+    gd = sorted({r["gamma_deg"] for r in recs})
+    grid = np.full((len(sa), len(gd)), np.nan)
+    over = np.zeros(grid.shape, dtype=bool)
+    for r in recs:
+        i, j = sa.index(r["sqrt_alpha"]), gd.index(r["gamma_deg"])
+        grid[i, j] = r["p_eq20"]
+        over[i, j] = r["p_gt_1"] > 0
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(7, 5))
+    pos = grid[np.isfinite(grid) & (grid > 0)]
+    lo = float(pos.min()) if pos.size else 1e-3
+    mesh = ax.pcolormesh(np.arange(len(gd) + 1) - 0.5, np.arange(len(sa) + 1) - 0.5,
+                         np.ma.masked_invalid(np.where(grid > 0, grid, lo)), cmap="viridis",
+                         shading="flat",
+                         norm=LogNorm(vmin=lo, vmax=max(lo * 10, float(pos.max()) if pos.size
+                                                        else 1.0)))
+    for i, j in zip(*np.nonzero(over)):
+        ax.add_patch(Rectangle((j - 0.5, i - 0.5), 1, 1, fill=False, edgecolor="red", lw=1.2,
+                               hatch="///"))
+    colorbar(fig, mesh, ax, "p of Eq. 20 [1] (log scale)")
+    xi, xl = _ticks(gd)
+    yi, yl = _ticks(sa)
+    ax.set_xticks(xi)
+    ax.set_xticklabels(xl, fontsize=7)
+    ax.set_yticks(yi)
+    ax.set_yticklabels(yl, fontsize=7)
+    ax.set_xlabel("light half-angle gamma [deg] (log spaced)", fontsize=8)
+    ax.set_ylabel("sqrt(alpha) [1]", fontsize=8)
+    ax.set_title(f"{int(over.sum())} of {over.size} cells have p > 1", fontsize=8)
+    ax.legend(handles=[Patch(facecolor="none", edgecolor="red", hatch="///",
+                             label="p > 1 (not a probability)")], fontsize=7, loc="upper right")
+    fig.suptitle(f"kneiphof2024-fig6: p at normal incidence (from p_map.csv)\n{subtitle}",
+                 fontsize=9)
+    fig.tight_layout(rect=(0, 0, 1, 0.92))
+    save(fig, path, relpath, manifest)
+    return True
+
+
 # figure id -> {csv name: function(header, rows, path, relpath, manifest, subtitle) -> bool,
 #               and the C++ chart PNG it replaces}
-FIGURE_CHARTS = {"kemppinen2025-fig15": {"furnace.csv": (furnace_chart, "furnace.png")}}
+FIGURE_CHARTS = {"kemppinen2025-fig15": {"furnace.csv": (furnace_chart, "furnace.png")},
+                 "kneiphof2024-fig6": {"p_map.csv": (p_map_chart, "p_map.png")}}

@@ -708,6 +708,24 @@ def write_figures(doc, figures, part, root, plots_tmp, plots_rel, made, manifest
                 doc.image(f"{plots_rel}/{out}", f"{fid} {name} chart",
                           f"{fid}: drawn from {name} (replaces the experiment's {png_name}, "
                           "linked below)", "chart")
+        for name in [n for n in f["files"] if n.endswith(".png") and n not in replaced]:
+            layout_name = name[:-4] + ".panels.json"
+            if layout_name not in f["files"]:
+                continue
+            layout = load_json(root, f"{base}/{layout_name}")
+            if not isinstance(layout, dict) or not isinstance(layout.get("labels"), list) or \
+                    not isinstance(layout.get("columns"), int):
+                raise ReportError(f"{base}/{layout_name} is malformed: expected an object with "
+                                  "\"labels\" and \"columns\"")
+            out = f"{fid}__{name[:-4]}_panels.png"
+            if charts.panel_chart(os.path.join(f["dir"], name), layout,
+                                  os.path.join(plots_tmp, out), f"{plots_rel}/{out}", manifest,
+                                  f"{machine}; budget {budget}"):
+                made.append(out)
+                replaced.add(name)
+                doc.image(f"{plots_rel}/{out}", f"{fid} {name} panels",
+                          f"{fid}: {name} as labelled panels (the PNG itself is linked below)",
+                          "chart")
         pngs = [n for n in f["files"] if n.endswith(".png") and n not in replaced]
         doc.gallery(f"{len(pngs)} rendered image(s) of {fid} (click to unfold)",
                     [(f"{base}/{n}", f"{fid} {n}", f"{n} (preview of the EXR data)")

@@ -16,6 +16,7 @@
 #include "core/io/csv.h"
 #include "core/io/exr.h"
 #include "core/io/png.h"
+#include "experiments/figures/panel_layout.h"
 #include "verify/check.h"
 #include "verify/claims/chermain_probes.h"
 #include "verify/claims/chermain_scenes.h"
@@ -134,6 +135,14 @@ void run_fig7(const FigureContext& ctx) {
                   attributes(ctx, "chermain2021-fig7", names[i]));
   io::write_png_preview(ctx.dir / "fig7.png", montage({images[0], images[1], images[2], images[3]}),
                         display_exposure(m.reference));
+  write_panel_layout(ctx.dir / "fig7.png",
+                     {"chermain2021-fig7: LEAN correlation of the glint slopes (display exposure "
+                      "of the reference)",
+                      4,
+                      0,
+                      {"no LEAN", "LEAN, rho = 0", "LEAN with rho",
+                       fmt::format("reference ({} spp)", b.reference_spp)},
+                      {}});
   const double paper[] = {8.009, 10.378, 4.764};
   const double ours[] = {m.rmse_no_lean, m.rmse_lean_rho0, m.rmse_lean};
   io::write_csv_atomic(
@@ -177,6 +186,14 @@ void run_fig8(const FigureContext& ctx) {
                 attributes(ctx, "chermain2021-fig8", fmt::format("{} spp", b.reference_spp)));
   io::write_png_preview(ctx.dir / "fig8.png", montage({&m.none, &m.proj05, &m.reference}),
                         display_exposure(m.reference));
+  write_panel_layout(ctx.dir / "fig8.png",
+                     {"chermain2021-fig8: GGAA on curved tubes (display exposure of the "
+                      "reference)",
+                      3,
+                      0,
+                      {"without GGAA", "with GGAA (Eq. 21, s_K 0.5)",
+                       fmt::format("reference ({} spp)", b.reference_spp)},
+                      {}});
   io::write_csv_atomic(
       ctx.dir / "fig8.csv", {"method", "rmse_percent", "paper_rmse_percent", "reference_spp"},
       [&](io::CsvWriter& w) {
@@ -212,6 +229,15 @@ void run_fig9(const FigureContext& ctx) {
       ctx.dir / "fig9.png",
       montage({images[0], images[1], images[2], images[3], images[4], &m.reference}),
       display_exposure(m.reference));
+  write_panel_layout(
+      ctx.dir / "fig9.png",
+      {"chermain2021-fig9: half-slope vs projected-half derivatives and s_K "
+       "(display exposure of the reference)",
+       6,
+       0,
+       {"without GGAA", "half-slope, s_K 0.5", "half-slope, s_K 1", "projected half, s_K 0.5",
+        "projected half, s_K 1", fmt::format("reference ({} spp)", b.reference_spp)},
+       {}});
   const double ours[] = {v.rmse_none, v.rmse_half05, v.rmse_half1, v.rmse_proj05, v.rmse_proj1};
   const double paper[] = {13.484, 7.527, 8.185, 7.425, 7.794};
   const double flicker[] = {v.flicker_none, std::nan(""), std::nan(""), v.flicker05, v.flicker1};
@@ -288,6 +314,16 @@ void run_fig10(const FigureContext& ctx) {
   std::vector<const Image*> all;
   for (const Image& im : panels) all.push_back(&im);
   io::write_png_preview(ctx.dir / "fig10.png", montage(all), 0.5);
+  std::vector<std::string> labels;
+  for (const Row& r : rows)
+    labels.push_back(fmt::format("rho {}, density e^{}", r.rho, r.log_density));
+  write_panel_layout(
+      ctx.dir / "fig10.png",
+      {fmt::format("chermain2021-fig10: the patch-SDF over the slope plane, s = {}", s),
+       int(all.size()),
+       0,
+       labels,
+       {"slope x [1]", "slope y [1]", "patch-SDF density [1/slope^2]", -1.2, 1.2, -1.2, 1.2, 0.5}});
   io::write_csv_atomic(ctx.dir / "fig10.csv",
                        {"rho", "log_density", "sigma_x", "sigma_y", "sigma_x_measured",
                         "sigma_y_measured", "rho_measured", "mass"},

@@ -19,6 +19,7 @@
 #include "core/models/smooth_ggx.h"
 #include "core/render/metrics.h"
 #include "experiments/figures/orb_render.h"
+#include "experiments/figures/panel_layout.h"
 
 namespace glintlab::experiments {
 namespace {
@@ -175,9 +176,12 @@ void run_fig4(const FigureContext& ctx) {
   };
   std::vector<Row> rows;
   std::vector<Image> previews;
+  std::vector<std::string> labels;
   previews.reserve(kAlphas.size() * 3);
   for (double alpha : kAlphas) {
     const Render ref = render(ctx, kFig4Id, scene, alpha, kReference, b.reference_spp);
+    labels.push_back(
+        fmt::format("alpha {}: reference ({}, {} spp)", alpha, kReference.name, b.reference_spp));
     const std::vector<std::uint8_t> mask = orb_mask(ref.image);
     const MetricOptions metric{{"R", "G", "B"}, &mask};
     io::write_exr(ctx.dir / fmt::format("{}_reference.exr", alpha_tag(alpha)), ref.image,
@@ -191,6 +195,7 @@ void run_fig4(const FigureContext& ctx) {
       rows.push_back({alpha, m.name, r.seed, rmse(r.image, ref.image, metric),
                       rel_mse(r.image, ref.image, metric), mean_rejected(r.image, mask)});
       previews.push_back(r.image);
+      labels.push_back(fmt::format("alpha {}: {}, {} spp", alpha, m.name, b.spp));
     }
   }
   io::write_csv_atomic(ctx.dir / "fig4.csv",
@@ -210,6 +215,9 @@ void run_fig4(const FigureContext& ctx) {
   std::vector<const Image*> grid;
   for (const Image& im : previews) grid.push_back(&im);
   io::write_png_preview(ctx.dir / "fig4.png", montage(grid, 3));
+  write_panel_layout(
+      ctx.dir / "fig4.png",
+      {"eto2023-fig4: GGX orb under the sky, reference and the two samplers", 3, 0, labels, {}});
 }
 
 void run_series(const FigureContext& ctx) {
@@ -270,6 +278,13 @@ void run_series(const FigureContext& ctx) {
         }
       });
   io::write_png_preview(ctx.dir / "references.png", montage({&refs[0], &refs[1]}, 2));
+  std::vector<std::string> labels;
+  for (double alpha : kAlphas)
+    labels.push_back(
+        fmt::format("alpha {}: reference ({}, {} spp)", alpha, kReference.name, b.reference_spp));
+  write_panel_layout(
+      ctx.dir / "references.png",
+      {"eto2023-fig4-rmse-spp: the references of the RMSE series", 2, 0, labels, {}});
 }
 
 }  // namespace

@@ -27,6 +27,7 @@
 #include "core/ndf/microfacet.h"
 #include "core/ndf/ndf_kind.h"
 #include "core/samplers/walter.h"
+#include "experiments/figures/panel_layout.h"
 #include "verify/scenes/kemppinen_furnace.h"
 #include "verify/scenes/kemppinen_presets.h"
 
@@ -160,6 +161,7 @@ void run_fig2_3(const FigureContext& ctx) {
   };
   std::vector<Row> rows;
   std::vector<Image> tiles;
+  std::vector<std::string> labels;
   for (const NdfChoice& nd : kNdfs) {
     with_ndf(ndf_kind(nd.ggx), kFig23Alpha, kFig23Alpha, [&](const auto& ndf) {
       // Prior space: pixel centre p of [0,1]², ratio D★^f/D at ω_h = T⁻¹(p) (uniform 1 for the
@@ -242,6 +244,9 @@ void run_fig2_3(const FigureContext& ctx) {
         const double scale = s_max > 0 ? 0.5 / s_max : 1.0;
         tiles.push_back(grey_tile(img, disk ? "inside" : "D_smooth", scale));
         tiles.push_back(grey_tile(img, "R", scale));
+        labels.push_back(fmt::format("{} {}: smooth {}", nd.name, domain, disk ? "1" : "D"));
+        labels.push_back(
+            fmt::format("{} {}: glinty {}", nd.name, domain, disk ? "D*f / D" : "D*f"));
       }
       return 0;
     });
@@ -265,6 +270,15 @@ void run_fig2_3(const FigureContext& ctx) {
         }
       });
   io::write_png_preview(ctx.dir / "fig2_3.png", montage(tiles, 4));
+  write_panel_layout(ctx.dir / "fig2_3.png",
+                     {fmt::format("kemppinen2025-fig2_3: smooth vs glinty NDF over the prior "
+                                  "square's disk and the projected hemisphere, {} cells "
+                                  "(grey = value x 0.5 / smooth maximum)",
+                                  kFig23Cells),
+                      4,
+                      0,
+                      labels,
+                      {}});
 }
 
 // ---- Fig. 15: area-averaged white furnace -----------------------------------------------------
@@ -399,6 +413,15 @@ void run_fig14(const FigureContext& ctx) {
                          }
                        });
   io::write_png_preview(ctx.dir / "background.png", montage(tiles, 2));
+  write_panel_layout(ctx.dir / "background.png",
+                     {fmt::format("kemppinen2025-fig14: D*f / D at theta_h {:.3g} deg over "
+                                  "positions and footprint size",
+                                  th * 180 / kPiD),
+                      2,
+                      0,
+                      {"k = 4", "k = 16"},
+                      {"position index [1]", "log2 footprint cells [1]", "D*f / D [1]", -0.5,
+                       w - 0.5, 9 + 4.5 / (hgt - 1), -4.5 / (hgt - 1), 0.5}});
 
   // Right pair: the highlight's shape, area mean of D★^f over θ_h (φ_h = 0), footprint 64 cells.
   constexpr double kSmoothAlpha = 0.05;
@@ -503,6 +526,13 @@ void run_fig6(const FigureContext& ctx) {
                          }
                        });
   io::write_png_preview(ctx.dir / "strip.png", montage(tiles, 1));
+  write_panel_layout(ctx.dir / "strip.png",
+                     {"kemppinen2025-fig6: D*f at normal incidence over the LOD, per blending",
+                      1,
+                      0,
+                      {"roulette blending", "linear blending"},
+                      {"LOD lambda [1]", "position index [1]", "D*f / D(h) [1]",
+                       3 - 1.0 / (cols - 1), 5 + 1.0 / (cols - 1), img_rows - 0.5, -0.5, 0.5}});
 }
 
 // ---- Fig. 10: one sweep per parameter ----------------------------------------------------
@@ -599,6 +629,17 @@ void run_fig10(const FigureContext& ctx) {
   std::vector<Image> rgb;
   for (const Image& t : tiles) rgb.push_back(grey_tile(t, "R", exposure > 0 ? 0.7 / exposure : 1));
   io::write_png_preview(ctx.dir / "sweeps.png", montage(rgb, 1));
+  std::vector<std::string> labels;
+  for (const SweepParam& sw : kSweeps)
+    for (double v : sw.values) labels.push_back(fmt::format("{} {}", sw.name, v));
+  write_panel_layout(ctx.dir / "sweeps.png",
+                     {"kemppinen2025-fig10: a glinty GGX plane under a point light, one "
+                      "parameter swept per row (others alpha 0.2, microroughness 0.02, density "
+                      "1e4, anisotropy 1)",
+                      5,
+                      0,
+                      labels,
+                      {}});
 }
 
 }  // namespace

@@ -30,6 +30,7 @@
 #include "core/ndf/ndf_kind.h"
 #include "core/render/convergence.h"
 #include "experiments/figures/kemppinen2025.h"
+#include "experiments/figures/panel_layout.h"
 #include "verify/scenes/kemppinen_env_radiance.h"
 #include "verify/scenes/kemppinen_presets.h"
 
@@ -279,6 +280,19 @@ void run_fig7(const FigureContext& ctx) {
                        });
   io::write_png_preview(ctx.dir / "fig7_rmse_spp.png", loglog_chart(runs, b.max_spp));
   io::write_png_preview(ctx.dir / "fig7_images.png", preview_montage(runs, 192 / b.size), 0.1);
+  std::vector<std::string> labels;
+  for (const NdfRun& r : runs) {
+    labels.push_back(fmt::format("{}: reference ({} spp)", r.name, b.reference_spp));
+    for (const Strategy& st : kStrategies)
+      labels.push_back(fmt::format("{}: {}, {} spp", r.name, st.name, b.preview_spp));
+  }
+  write_panel_layout(ctx.dir / "fig7_images.png",
+                     {"kemppinen2025-fig7: the glinty plane under the environment, per NDF and "
+                      "sampling strategy (exposure 0.1)",
+                      4,
+                      0,
+                      labels,
+                      {}});
   std::string md = fmt::format(
       "# {} — environment-light convergence (Kemppinen et al. 2025, Fig. 7)\n\n"
       "Glinty plane ({}×{} pixels, one level-0 cell per pixel, θ_v = {}°), α = {}, α★ = {}, "

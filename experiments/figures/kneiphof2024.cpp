@@ -32,6 +32,7 @@
 #include "core/ltc/ltc_table.h"
 #include "core/ndf/total_area.h"
 #include "core/render/image.h"
+#include "experiments/figures/panel_layout.h"
 
 namespace glintlab::experiments {
 namespace {
@@ -165,6 +166,17 @@ void run_fig6(const FigureContext& ctx) {
   }
   // Columns: γ = 0.26° (K&K, D&B), γ = 5° (K&K, D&B); rows √α = 0.1, 0.5, 0.9 — as Fig. 6.
   io::write_png_preview(ctx.dir / "fig6.png", montage(tiles, 4));
+  std::vector<std::string> labels;
+  for (const RRow& r : rrows)
+    for (std::string_view model : {"Kneiphof & Klein", "Deliot & Belcour"})
+      labels.push_back(fmt::format("sqrt(alpha) {}, gamma {} deg: {}", r.sa, r.gamma, model));
+  write_panel_layout(ctx.dir / "fig6.png",
+                     {"kneiphof2024-fig6: glints of the two models under a cap light (grey = "
+                      "0.8 x radiance / smooth peak)",
+                      4,
+                      2,
+                      labels,
+                      {}});
   io::write_csv_atomic(
       ctx.dir / "fig6.csv",
       {"sqrt_alpha", "gamma_deg", "R_fitted", "p_normal_incidence", "p_gt_1",
@@ -308,6 +320,18 @@ void run_fig9(const FigureContext& ctx) {
     tiles.push_back(tile(size, sub_ltc, sc));
   }
   io::write_png_preview(ctx.dir / "fig9.png", montage(tiles, 4));
+  std::vector<std::string> labels;
+  for (const Row& r : rows)
+    for (std::string_view what : {"single light (MC terms)", "256 sub-lights (MC terms)",
+                                  "single light (LTC)", "256 sub-lights (LTC)"})
+      labels.push_back(fmt::format("half-width {}: {}", r.w, what));
+  write_panel_layout(ctx.dir / "fig9.png",
+                     {"kneiphof2024-fig9: one area light vs 256 sub-lights (grey = 0.8 x "
+                      "radiance / smooth peak)",
+                      4,
+                      2,
+                      labels,
+                      {}});
   io::write_csv_atomic(
       ctx.dir / "fig9.csv",
       {"light_half_width", "alpha", "rel_rms_subdivided_mc_vs_single_mc",
@@ -417,6 +441,19 @@ void run_fig10(const FigureContext& ctx) {
     }
   }
   io::write_png_preview(ctx.dir / "fig10.png", montage(tiles, 6));
+  std::vector<std::string> labels;
+  for (double sa : {0.1, 0.5, 0.9})
+    for (std::string_view light : {"large area", "small area", "directional"})
+      for (std::string_view what : {"glints", "smooth"})
+        labels.push_back(fmt::format("sqrt(alpha) {}, {} light: {}", sa, light, what));
+  write_panel_layout(ctx.dir / "fig10.png",
+                     {fmt::format("kneiphof2024-fig10: glints vs the smooth BRDF, N_P x4 per "
+                                  "vertical strip of {} (grey = 0.8 x radiance / smooth peak)",
+                                  strips),
+                      6,
+                      2,
+                      labels,
+                      {}});
   io::write_csv_atomic(
       ctx.dir / "fig10.csv",
       {"light", "sqrt_alpha", "strip", "mean_N_P", "rel_rms_vs_smooth", "rel_mean_vs_smooth"},

@@ -19,6 +19,7 @@
 #include "core/io/png.h"
 #include "core/math/rng.h"
 #include "core/render/metrics.h"
+#include "experiments/figures/panel_layout.h"
 #include "verify/scenes/podee_scene.h"
 
 namespace glintlab::experiments {
@@ -133,12 +134,21 @@ void write_distance_images(const FigureContext& ctx, std::string_view figure, co
                   r.method[m], attributes(figure, to_string(kMethods[m]), r.distance, 1, 0));
 }
 
-// Montage row: converged | 64 spp | centre | LEAN | method.
-void append_row(std::vector<Image>& cells, const DistanceRun& r) {
+// Montage row: converged | 64 spp | centre | LEAN | method, and the labels of its panels.
+void append_row(std::vector<Image>& cells, std::vector<std::string>& labels, const DistanceRun& r,
+                const Budget& b) {
   cells.push_back(r.converged);
   cells.push_back(r.paper);
-  for (std::size_t m = 0; m < 3; ++m) cells.push_back(r.method[m]);
+  labels.push_back(fmt::format("d {}: converged ({} spp)", r.distance, b.converged_spp));
+  labels.push_back(fmt::format("d {}: reference ({} spp)", r.distance, kPaperSpp));
+  for (std::size_t m = 0; m < 3; ++m) {
+    cells.push_back(r.method[m]);
+    labels.push_back(fmt::format("d {}: {}, 1 spp", r.distance, to_string(kMethods[m])));
+  }
 }
+
+constexpr std::string_view kSphereTitle =
+    "the bump-mapped sphere under a disk light, per camera distance d (linear radiance, grey)";
 
 void run_table1(const FigureContext& ctx) {
   const Budget b = budget(ctx);
@@ -186,8 +196,11 @@ void run_table1(const FigureContext& ctx) {
       "podee_scene.h), the paper does not say how its LEAN lit the disk.\n";
   io::write_file_atomic(ctx.dir / "summary.md", md);
   std::vector<Image> cells;
-  for (const DistanceRun& r : runs) append_row(cells, r);
+  std::vector<std::string> labels;
+  for (const DistanceRun& r : runs) append_row(cells, labels, r, b);
   io::write_png_preview(ctx.dir / "table1.png", montage(cells, 5));
+  write_panel_layout(ctx.dir / "table1.png",
+                     {fmt::format("podee-table1: {}", kSphereTitle), 5, 0, labels, {}});
 }
 
 void run_distance_figure(const FigureContext& ctx) {
@@ -212,14 +225,17 @@ void run_distance_figure(const FigureContext& ctx) {
         }
       });
   std::vector<Image> cells;
+  std::vector<std::string> labels;
   for (const DistanceRun& r : runs) {
-    append_row(cells, r);
+    append_row(cells, labels, r, b);
     io::write_exr(ctx.dir / fmt::format("{}_podee.exr", tag(r.distance)), r.method[2],
                   attributes(id, "podee", r.distance, 1, 0));
     io::write_exr(ctx.dir / fmt::format("{}_converged.exr", tag(r.distance)), r.converged,
                   attributes(id, "converged", r.distance, b.converged_spp, r.converged_seed));
   }
   io::write_png_preview(ctx.dir / "error_vs_distance.png", montage(cells, 5));
+  write_panel_layout(ctx.dir / "error_vs_distance.png",
+                     {fmt::format("podee-fig4-distance: {}", kSphereTitle), 5, 0, labels, {}});
 }
 
 void run_flicker(const FigureContext& ctx) {
@@ -232,6 +248,7 @@ void run_flicker(const FigureContext& ctx) {
   };
   std::vector<Row> rows;
   std::vector<Image> cells;
+  std::vector<std::string> labels;
   for (double d : {podee::kNear, podee::kMedium, podee::kFar}) {
     const podee::SceneConfig c = podee::config(d, b.size);
     progress(ctx, fmt::format("{} d={}", id, d), 0, 1);
@@ -260,6 +277,7 @@ void run_flicker(const FigureContext& ctx) {
       io::write_exr(ctx.dir / fmt::format("{}_{}_temporal_sd.exr", tag(d), to_string(m)), sd,
                     attributes(id, to_string(m), d, 1, 0));
       cells.push_back(std::move(sd));
+      labels.push_back(fmt::format("d {}: {}", d, to_string(m)));
     }
   }
   io::write_csv_atomic(
@@ -276,6 +294,14 @@ void run_flicker(const FigureContext& ctx) {
         }
       });
   io::write_png_preview(ctx.dir / "flicker.png", montage(cells, 3, 2.0));
+  write_panel_layout(ctx.dir / "flicker.png",
+                     {fmt::format("podee-fig4-flicker: per-pixel temporal standard deviation over "
+                                  "{} sub-pixel camera shifts (grey = 2 x sd)",
+                                  b.frames),
+                      3,
+                      0,
+                      labels,
+                      {}});
 }
 
 }  // namespace

@@ -66,9 +66,10 @@ TEST_F(FigureTest, Fig4QuickWritesExrPngAndCsv) {
       unexpected_files(
           work(),
           {"out", "out/eto2023-fig4", "out/eto2023-fig4/fig4.csv", "out/eto2023-fig4/fig4.png",
-           "out/eto2023-fig4/a0.2_reference.exr", "out/eto2023-fig4/a0.2_spherical_caps.exr",
-           "out/eto2023-fig4/a0.2_bounded_caps.exr", "out/eto2023-fig4/a0.8_reference.exr",
-           "out/eto2023-fig4/a0.8_spherical_caps.exr", "out/eto2023-fig4/a0.8_bounded_caps.exr"}),
+           "out/eto2023-fig4/fig4.panels.json", "out/eto2023-fig4/a0.2_reference.exr",
+           "out/eto2023-fig4/a0.2_spherical_caps.exr", "out/eto2023-fig4/a0.2_bounded_caps.exr",
+           "out/eto2023-fig4/a0.8_reference.exr", "out/eto2023-fig4/a0.8_spherical_caps.exr",
+           "out/eto2023-fig4/a0.8_bounded_caps.exr"}),
       std::vector<std::string>{});
 }
 

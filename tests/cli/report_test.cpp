@@ -105,11 +105,14 @@ TEST_F(ReportTest, SmallRealRun) {
   // The claim's row, anchored so the summary can link to it.
   EXPECT_NE(html.find("id=\"claim-kneiphof.total-area\""), std::string::npos);
   EXPECT_NE(html.find(">kneiphof.total-area</a></td>"), std::string::npos);
-  EXPECT_NE(html.find("src=\"figures/eto2023-fig4/fig4.png\""), std::string::npos);
+  // The montage drawn as labelled panels (its NAME.panels.json), the PNG itself linked.
+  EXPECT_NE(html.find("src=\"plots/eto2023-fig4__fig4_panels.png\""), std::string::npos);
+  EXPECT_NE(html.find("href=\"figures/eto2023-fig4/fig4.png\""), std::string::npos);
   EXPECT_NE(html.find("href=\"figures/eto2023-fig4/a0.2_reference.exr\""), std::string::npos);
   const std::string md = read_text(path("r/report.md"));
   EXPECT_NE(md.find("| kneiphof.total-area |"), std::string::npos);
-  EXPECT_NE(md.find("![eto2023-fig4 fig4.png](figures/eto2023-fig4/fig4.png)"), std::string::npos);
+  EXPECT_NE(md.find("![eto2023-fig4 fig4.png panels](plots/eto2023-fig4__fig4_panels.png)"),
+            std::string::npos);
   const auto info = nlohmann::json::parse(read_text(path("r/run.json")));
   EXPECT_EQ(info["parts"]["claims"]["status"], "ran");
   EXPECT_EQ(info["parts"]["stability"]["status"], "skipped");

@@ -126,7 +126,9 @@ def plot_problems(root, page):
                 for k in ("xlabel", "ylabel", "title"):
                     if not str(ax.get(k, "")).strip():
                         problems.append(f"{src}: axes {i} has no {k}")
-                if not ax.get("legend"):
+                # A rendered panel is named by its title; a map's colour bar is its legend.
+                if not ax.get("legend") and not ax.get("render") and \
+                        not (ax.get("map") and ax.get("colorbar")):
                     problems.append(f"{src}: axes {i} has no legend")
                 if ax.get("map") and not ax.get("colorbar"):
                     problems.append(f"{src}: map {i} has no colour scale")
