@@ -119,9 +119,9 @@ std::vector<double> resolve_params(
     const bool whole = v && (!p.integral || std::floor(*v) == *v);
     if (!in_range || !whole) {
       const std::string_view problem = !v          ? io::number_problem(text)
-                                       : !in_range ? "out of range"
-                                                   : "not an integer";
-      throw ModelParamError(fmt::format("--param {}: '{}' is {} (valid: {})", p.name, text, problem,
+                                       : !in_range ? "is out of range"
+                                                   : "is not an integer";
+      throw ModelParamError(fmt::format("--param {}: '{}' {} (valid: {})", p.name, text, problem,
                                         describe_range(p)));
     }
     values[i] = *v;

@@ -123,7 +123,7 @@ std::vector<Case> cases() {
   add("eval_model_no_input", em, "--in");
   add("eval_param_zero", join(em, {"--grid", "theta_i=0:90:3", "--param", "alpha_x=0"}), "alpha_x");
   add("eval_param_nan", join(em, {"--grid", "theta_i=0:90:3", "--param", "alpha_x=nan"}),
-      "alpha_x");
+      "--param alpha_x: 'nan' is not finite");
   add("eval_param_tiny", join(em, {"--grid", "theta_i=0:90:3", "--param", "alpha_x=1e-300"}),
       "alpha_x");
   add("eval_param_huge", join(em, {"--grid", "theta_i=0:90:3", "--param", "alpha_x=1e300"}),
