@@ -327,6 +327,8 @@ void ReportRun::run_compare(json& part) {
   if (fs::is_regular_file(stage_ / "verify" / "claims.json")) c.claims_from = stage_ / "verify";
   if (fs::is_regular_file(stage_ / "stability" / "stability.json"))
     c.sweeps_from = stage_ / "stability";
+  c.claims_shown_as = out_ / "verify";  // the staging folder becomes out_
+  c.sweeps_shown_as = out_ / "stability";
   fs::create_directories(stage_ / "compare");
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads_));
   try {

@@ -20,6 +20,13 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
 
+fs::path claims_name(const CompareOptions& o) {
+  return o.claims_shown_as.empty() ? o.claims_from : o.claims_shown_as;
+}
+fs::path sweeps_name(const CompareOptions& o) {
+  return o.sweeps_shown_as.empty() ? o.sweeps_from : o.sweeps_shown_as;
+}
+
 // A JSON number, or null where it is not finite (JSON has no NaN).
 json number(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
 
@@ -44,7 +51,8 @@ json model_json(const ModelEntry& m, const CompareOptions& o, const CompareBudge
 
   step("conformance");
   json verdicts = json::array();
-  for (const PropertyVerdict& v : conformance_verdicts(m, o.budget, o.claims_from, o.measure_missing))
+  for (const PropertyVerdict& v : conformance_verdicts(m, o.budget, o.claims_from, claims_name(o),
+                                                              o.measure_missing))
     verdicts.push_back({{"property", v.property},
                         {"verdict", v.verdict},
                         {"origin", v.origin},
@@ -90,7 +98,8 @@ json model_json(const ModelEntry& m, const CompareOptions& o, const CompareBudge
 
   step("stability");
   json stability = json::array();
-  for (const StabilityFinding& s : stability_findings(m, o.budget, o.sweeps_from, o.measure_missing))
+  for (const StabilityFinding& s : stability_findings(m, o.budget, o.sweeps_from, sweeps_name(o),
+                                                            o.measure_missing))
     stability.push_back({{"sampler", s.sampler},
                          {"verdict", s.verdict},
                          {"origin", s.origin},
@@ -172,8 +181,8 @@ json settings_json(const CompareOptions& o, const CompareBudget& b) {
           {"repetitions", b.repetitions},
           {"timing_rows", b.timing_rows},
           {"timing_seconds_per_round", b.timing_seconds},
-          {"claims_from", o.claims_from.empty() ? json(nullptr) : json(o.claims_from.string())},
-          {"sweeps_from", o.sweeps_from.empty() ? json(nullptr) : json(o.sweeps_from.string())}};
+          {"claims_from", o.claims_from.empty() ? json(nullptr) : json(claims_name(o).string())},
+          {"sweeps_from", o.sweeps_from.empty() ? json(nullptr) : json(sweeps_name(o).string())}};
 }
 
 }  // namespace

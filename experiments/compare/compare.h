@@ -21,6 +21,9 @@ struct CompareOptions {
   std::vector<std::string> models;        // registered model names, in the order shown
   std::filesystem::path claims_from;      // a `glintlab verify --out` folder; empty: see below
   std::filesystem::path sweeps_from;      // a `glintlab sweep --out` folder; empty: see below
+  // How the two folders are named in the outputs, where that differs from where they are read
+  // (the report reads its staging folder but shows the folder it becomes); empty: as given.
+  std::filesystem::path claims_shown_as, sweeps_shown_as;
   // Without claims_from / sweeps_from: run each model's conformance checks (minutes per glint
   // model) and sweeps here; when false, show the recorded verdicts only and no failure region
   // (the report: it never runs a suite it did not run itself).

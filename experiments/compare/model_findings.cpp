@@ -39,7 +39,8 @@ std::string check_id(const ModelEntry& m, std::string_view property) {
 }  // namespace
 
 std::vector<PropertyVerdict> conformance_verdicts(const ModelEntry& m, verify::Budget b,
-                                                  const fs::path& claims_from, bool measure) {
+                                                  const fs::path& claims_from,
+                                                  const fs::path& shown_as, bool measure) {
   std::map<std::string, json> read;
   if (!claims_from.empty())
     for (const json& row : read_json(claims_from / "claims.json"))
@@ -77,7 +78,7 @@ std::vector<PropertyVerdict> conformance_verdicts(const ModelEntry& m, verify::B
       v.detail = claims_from.empty()
                      ? std::string("the verdict recorded for this budget; not measured here")
                      : fmt::format("the verdict recorded for this budget; {} has no row {}",
-                                   (claims_from / "claims.json").string(), id);
+                                   (shown_as / "claims.json").string(), id);
     } else {
       v.verdict = "-";
       v.origin = kNotMeasured;
@@ -91,7 +92,8 @@ std::vector<PropertyVerdict> conformance_verdicts(const ModelEntry& m, verify::B
 }
 
 std::vector<StabilityFinding> stability_findings(const ModelEntry& m, verify::Budget b,
-                                                 const fs::path& sweeps_from, bool measure) {
+                                                 const fs::path& sweeps_from,
+                                                 const fs::path& shown_as, bool measure) {
   std::vector<StabilityFinding> out;
   if (sweeps_from.empty() && !measure)
     return {{"-", "-", "no stability sweep in this run", kNotMeasured}};
@@ -104,7 +106,7 @@ std::vector<StabilityFinding> stability_findings(const ModelEntry& m, verify::Bu
     if (out.empty())
       out.push_back({"-", "-",
                      fmt::format("{} has no entry for this model",
-                                 (sweeps_from / "stability.json").string()),
+                                 (shown_as / "stability.json").string()),
                      kNotMeasured});
     return out;
   }

@@ -28,9 +28,11 @@ struct PropertyVerdict {
 // Every conformance property of `m` (kProperties order, those that apply): the rows of
 // claims.json in `claims_from` where it has them; otherwise, without claims_from and with
 // `measure`, measured here by the model's own conformance checks; otherwise "not-claimed" where the model declares so, the
-// verdict recorded for budget b for a built-in model, and nothing for a plug-in.
+// verdict recorded for budget b for a built-in model, and nothing for a plug-in. Messages name
+// the folder `shown_as`.
 std::vector<PropertyVerdict> conformance_verdicts(const ModelEntry& m, verify::Budget b,
                                                   const std::filesystem::path& claims_from,
+                                                  const std::filesystem::path& shown_as,
                                                   bool measure);
 
 struct StabilityFinding {
@@ -41,6 +43,7 @@ struct StabilityFinding {
 // sweep run here, else one "not measured" row.
 std::vector<StabilityFinding> stability_findings(const ModelEntry& m, verify::Budget b,
                                                  const std::filesystem::path& sweeps_from,
+                                                 const std::filesystem::path& shown_as,
                                                  bool measure);
 
 }  // namespace glintlab::experiments::compare

@@ -117,6 +117,10 @@ TEST_F(ReportTest, SmallRealRun) {
   EXPECT_EQ(info["parts"]["claims"]["status"], "ran");
   EXPECT_EQ(info["parts"]["stability"]["status"], "skipped");
   EXPECT_EQ(info["budget"], "quick");
+  // The compare part names the report's own folders, never the staging folder it was built in.
+  const auto cmp = nlohmann::json::parse(read_text(path("r/compare/compare.json")));
+  EXPECT_EQ(cmp["settings"]["claims_from"], "r/verify");
+  EXPECT_EQ(html.find(".tmp."), std::string::npos) << "a staging path is shown in the report";
   // Nothing but the report itself is left in the working folder (no staging folder).
   for (const auto& e : fs::directory_iterator(work()))
     EXPECT_EQ(e.path().filename(), "r") << "left behind: " << e.path();
