@@ -31,8 +31,9 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
   std::vector<std::string> names(verify::adequacy::kBinomialFamilyModels.begin(),
                                  verify::adequacy::kBinomialFamilyModels.end());
   experiments::AdequacyOptions a;
-  a.models = select_by_globs(o.models, "--models", names,
-                             fmt::format("models of the binomial family: {}", fmt::join(names, ", ")));
+  a.models =
+      select_by_globs(o.models, "--models", names,
+                      fmt::format("models of the binomial family: {}", fmt::join(names, ", ")));
   a.threshold = number_option(o.threshold, "--threshold", 0, 1, true, false);
   a.budget = quick ? verify::Budget::kQuick : verify::Budget::kFull;
   const int threads = resolve_threads(o.threads);
@@ -51,20 +52,23 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
   const auto s = experiments::run_adequacy(o.out, a);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  fmt::print("adequacy: {} cells, TAU {:g}; cheapest adequate level: smooth {}, realtime {}, "
-             "small_count {}, exact {}\n",
-             s.cells, a.threshold, s.chosen[0], s.chosen[1], s.chosen[2], s.chosen[3]);
-  fmt::print("chooser (core/glints/adequacy.h): same level as measured in {} cells, refuted in {}\n",
-             s.chooser_matches, s.chooser_refuted);
+  fmt::print(
+      "adequacy: {} cells, TAU {:g}; cheapest adequate level: smooth {}, realtime {}, "
+      "small_count {}, exact {}\n",
+      s.cells, a.threshold, s.chosen[0], s.chosen[1], s.chosen[2], s.chosen[3]);
+  fmt::print(
+      "chooser (core/glints/adequacy.h): same level as measured in {} cells, refuted in {}\n",
+      s.chooser_matches, s.chooser_refuted);
   fmt::print("{} cells undecided (too few lit positions at the exact level: exact kept)\n",
              s.undecided);
   const auto saved = [&](double ns) { return s.exact_ns > 0 ? 100 * (1 - ns / s.exact_ns) : 0.0; };
-  fmt::print("time per evaluation summed over cells (this CPU, scalar double): exact everywhere "
-             "{:.0f} ns; chosen level {:.0f} ns ({:.1f} % saved); measured-cheapest adequate level "
-             "{:.0f} ns ({:.1f} % saved; smooth {}, realtime {}, small_count {}, exact {} cells)\n",
-             s.exact_ns, s.chosen_ns, saved(s.chosen_ns), s.cheapest_ns, saved(s.cheapest_ns),
-             s.cheapest_measured[0], s.cheapest_measured[1], s.cheapest_measured[2],
-             s.cheapest_measured[3]);
+  fmt::print(
+      "time per evaluation summed over cells (this CPU, scalar double): exact everywhere "
+      "{:.0f} ns; chosen level {:.0f} ns ({:.1f} % saved); measured-cheapest adequate level "
+      "{:.0f} ns ({:.1f} % saved; smooth {}, realtime {}, small_count {}, exact {} cells)\n",
+      s.exact_ns, s.chosen_ns, saved(s.chosen_ns), s.cheapest_ns, saved(s.cheapest_ns),
+      s.cheapest_measured[0], s.cheapest_measured[1], s.cheapest_measured[2],
+      s.cheapest_measured[3]);
   fmt::print("wrote {}, {} and {} maps in {:.1f} s\n", s.csv.string(), s.json.string(),
              s.maps.size(), seconds);
 }
@@ -88,18 +92,20 @@ the predicted boundary CV = sqrt((1 - p)/(N_P p)) = TAU drawn over it.)";
 
 void add_adequacy_command(CLI::App& app) {
   auto o = std::make_shared<AdequacyCliOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "adequacy", "Where a cheaper glint model level is indistinguishable from the most complete");
+  CLI::App* cmd =
+      add_command(app, "adequacy",
+                  "Where a cheaper glint model level is indistinguishable from the most complete");
   add_text_option(cmd, "--out", o->out, "output folder", "DIR");
-  add_budget_option(cmd, o->budget, "quick = 9 footprint sizes x 12 settings (seconds), full = finer");
+  add_budget_option(cmd, o->budget,
+                    "quick = 9 footprint sizes x 12 settings (seconds), full = finer");
   add_text_option(cmd, "--models", o->models,
                   "comma-separated globs over the binomial family (deliot_belcour, kneiphof_klein)",
                   "LIST");
   add_text_option(cmd, "--threshold", o->threshold,
                   "TAU, the largest relative difference no one sees: a number in (0, 1]", "NUMBER");
   add_threads_option(cmd, o->threads);
-  cmd->footer(kFooter);
-  cmd->callback([cmd, o] { run(cmd, *o); });
+  set_footer(cmd, kFooter);
+  set_callback(cmd, [cmd, o] { run(cmd, *o); });
 }
 
 }  // namespace glintlab::cli

@@ -37,7 +37,7 @@ void add_batch_options(CLI::App* cmd, BatchOptionTexts& t) {
 
 bool batch_options_given(const CLI::App* cmd) {
   for (const char* name : {"--isa", "--precision", "--math"})
-    if (cmd->count(name) > 0) return true;
+    if (option_count(cmd, name) > 0) return true;
   return false;
 }
 

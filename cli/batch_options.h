@@ -2,11 +2,11 @@
 // --math, --threads) and the chunked parallel loop they run: core/simd/model_batch.h underneath.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <cstddef>
 #include <functional>
 #include <string>
 
+#include "cli/cli11_fwd.h"
 #include "core/simd/batch.h"
 
 namespace glintlab::cli {

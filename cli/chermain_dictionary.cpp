@@ -34,13 +34,13 @@ void add_chermain_dictionary_command(CLI::App& app) {
   };
   auto opt = std::make_shared<Options>();
   Options& o = *opt;
-  CLI::App* cmd = app.add_subcommand(
-      "chermain-dictionary",
+  CLI::App* cmd = add_command(
+      app, "chermain-dictionary",
       "Regenerate the Chermain et al. 2020 dictionary of multiscale 1D slope marginals as an EXR "
       "(same options and seed -> identical file contents)");
-  add_text_option(cmd, "--out", o.out,
-                  "output EXR file (rows: (n/3)*levels + k; R,G,B: distributions)", "FILE")
-      ->required();
+  set_required(add_text_option(cmd, "--out", o.out,
+                               "output EXR file (rows: (n/3)*levels + k; R,G,B: distributions)",
+                               "FILE"));
   add_text_option(cmd, "--seed", o.seed,
                   "seed of the lobe means: an integer in [0, 18446744073709551615]", "INT");
   add_text_option(cmd, "--distributions", o.distributions, "N: a positive multiple of 3", "INT");
@@ -53,7 +53,7 @@ void add_chermain_dictionary_command(CLI::App& app) {
   add_text_option(cmd, "--lobe-std", o.lobe_std,
                   "lobe standard deviation: a number in (0, alpha/sqrt 2)", "NUMBER");
   add_threads_option(cmd, o.threads);
-  cmd->callback([opt] {
+  set_callback(cmd, [opt] {
     Options& c = *opt;
     const int threads = resolve_threads(c.threads);
     constexpr auto kIntMax = std::uint64_t(std::numeric_limits<int>::max());

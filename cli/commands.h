@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include <CLI/CLI.hpp>
+#include "cli/cli11_fwd.h"
 
 namespace glintlab::cli {
 
@@ -15,14 +15,14 @@ struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-void add_eval_command(CLI::App& app);    // cli/eval.cpp
-void add_sample_command(CLI::App& app);  // cli/sample.cpp
-void add_verify_command(CLI::App& app);  // cli/verify.cpp
-void add_figure_command(CLI::App& app);  // cli/figure.cpp
-void add_models_command(CLI::App& app);  // cli/models.cpp
-void add_sweep_command(CLI::App& app);   // cli/sweep.cpp
-void add_report_command(CLI::App& app);  // cli/report.cpp
-void add_ltc_fit_command(CLI::App& app);  // cli/ltc_fit.cpp
+void add_eval_command(CLI::App& app);                 // cli/eval.cpp
+void add_sample_command(CLI::App& app);               // cli/sample.cpp
+void add_verify_command(CLI::App& app);               // cli/verify.cpp
+void add_figure_command(CLI::App& app);               // cli/figure.cpp
+void add_models_command(CLI::App& app);               // cli/models.cpp
+void add_sweep_command(CLI::App& app);                // cli/sweep.cpp
+void add_report_command(CLI::App& app);               // cli/report.cpp
+void add_ltc_fit_command(CLI::App& app);              // cli/ltc_fit.cpp
 void add_chermain_dictionary_command(CLI::App& app);  // cli/chermain_dictionary.cpp
 void add_adequacy_command(CLI::App& app);             // cli/adequacy.cpp
 void add_compare_command(CLI::App& app);              // cli/compare.cpp

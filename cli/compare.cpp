@@ -1,6 +1,8 @@
 // `glintlab compare --models A,B[,…] [--budget quick|full] [--out DIR] [--threads N]
 // [--claims-from DIR] [--sweeps-from DIR]`: the models side by side (experiments/compare/), drawn
 // as one page by reports/compare_page.py.
+#include "experiments/compare/compare.h"
+
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 #include <unistd.h>
@@ -16,7 +18,6 @@
 #include "cli/input.h"
 #include "cli/progress.h"
 #include "core/model_registry.h"
-#include "experiments/compare/compare.h"
 
 namespace glintlab::cli {
 namespace {
@@ -38,8 +39,8 @@ constexpr const char* kPageFiles[] = {"compare.json", "compare.csv", "equal_time
 void check_input_folder(const std::string& dir, const char* option, const char* index,
                         const char* made_by) {
   if (!dir.empty() && !fs::is_regular_file(fs::path(dir) / index))
-    throw InputError(fmt::format("{}: '{}' holds no {} (a {} folder is expected)", option, dir,
-                                 index, made_by));
+    throw InputError(
+        fmt::format("{}: '{}' holds no {} (a {} folder is expected)", option, dir, index, made_by));
 }
 
 // Removes the staging folder of a failed run.
@@ -54,11 +55,12 @@ struct StagingFolder {
 void draw_page(const fs::path& stage) {
   const fs::path script = reports_dir() / "compare_page.py";
   if (!fs::is_regular_file(script))
-    throw std::runtime_error(fmt::format(
-        "compare: {} not found (set GLINTLAB_REPORTS_DIR to the reports/ folder)", script.string()));
+    throw std::runtime_error(
+        fmt::format("compare: {} not found (set GLINTLAB_REPORTS_DIR to the reports/ folder)",
+                    script.string()));
   const fs::path log = stage / "compare_page.log", err = stage / "compare_page.stderr";
-  const int rc = run_process({"/usr/bin/python3", script.string(), "--dir", stage.string()}, log,
-                             err);
+  const int rc =
+      run_process({"/usr/bin/python3", script.string(), "--dir", stage.string()}, log, err);
   if (rc != 0)
     throw std::runtime_error(
         fmt::format("compare: compare_page.py failed (exit {}): {}", rc, last_error_line(err)));
@@ -68,8 +70,8 @@ void draw_page(const fs::path& stage) {
 
 void run(const CLI::App* cmd, const CompareCliOptions& o) {
   experiments::compare::CompareOptions c;
-  c.budget = resolve_budget(cmd, o.budget) == "quick" ? verify::Budget::kQuick
-                                                      : verify::Budget::kFull;
+  c.budget =
+      resolve_budget(cmd, o.budget) == "quick" ? verify::Budget::kQuick : verify::Budget::kFull;
   std::vector<std::string> names;
   for (const ModelEntry& m : registered_models()) names.emplace_back(m.name);
   c.models = select_by_globs(o.models, "--models", names,
@@ -83,8 +85,8 @@ void run(const CLI::App* cmd, const CompareCliOptions& o) {
   check_output_dir(out, "--out");
   // Staged beside DIR, so a failed run leaves no DIR behind.
   const fs::path absolute = fs::absolute(out).lexically_normal();
-  const fs::path parent = absolute.has_filename() ? absolute.parent_path()
-                                                  : absolute.parent_path().parent_path();
+  const fs::path parent =
+      absolute.has_filename() ? absolute.parent_path() : absolute.parent_path().parent_path();
   fs::create_directories(parent);
   register_staging_parent(parent);
   const StagingFolder stage{parent / fmt::format(".compare.tmp.{}", ::getpid())};
@@ -97,8 +99,8 @@ void run(const CLI::App* cmd, const CompareCliOptions& o) {
   try {
     experiments::compare::run_compare(stage.dir, c);
   } catch (const nlohmann::json::exception& e) {
-    throw InputError(fmt::format("--claims-from/--sweeps-from: a file there is malformed ({})",
-                                 e.what()));
+    throw InputError(
+        fmt::format("--claims-from/--sweeps-from: a file there is malformed ({})", e.what()));
   }
   draw_page(stage.dir);
   fs::create_directories(out);
@@ -132,9 +134,10 @@ index.html; staged and moved into DIR only when complete. Every field but the ti
 
 void add_compare_command(CLI::App& app) {
   auto o = std::make_shared<CompareCliOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "compare", "Registered models side by side: conformance, time per eval, error against "
-                 "each model's reference, equal-time curves, stability");
+  CLI::App* cmd =
+      add_command(app, "compare",
+                  "Registered models side by side: conformance, time per eval, error against "
+                  "each model's reference, equal-time curves, stability");
   add_text_option(cmd, "--out", o->out, "output folder", "DIR");
   add_budget_option(cmd, o->budget,
                     "quick = 2 scenes and up to 1024 samples (seconds per model), full = 4 scenes "
@@ -148,8 +151,8 @@ void add_compare_command(CLI::App& app) {
   add_text_option(cmd, "--sweeps-from", o->sweeps_from,
                   "a glintlab sweep --out folder whose stability.json gives the failure regions",
                   "DIR");
-  cmd->footer(kFooter);
-  cmd->callback([cmd, o] { run(cmd, *o); });
+  set_footer(cmd, kFooter);
+  set_callback(cmd, [cmd, o] { run(cmd, *o); });
 }
 
 }  // namespace glintlab::cli

@@ -249,16 +249,17 @@ written then.)";
 }  // namespace
 
 void add_eval_command(CLI::App& app) {
-  CLI::App* cmd = app.add_subcommand(
-      "eval", "Evaluate every microfacet term (D, G1, G2, VNDF, pdfs, BRDF, maps) for CSV queries");
+  CLI::App* cmd = add_command(
+      app, "eval",
+      "Evaluate every microfacet term (D, G1, G2, VNDF, pdfs, BRDF, maps) for CSV queries");
   auto in = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   add_text_option(cmd, "--in", *in, "query CSV file (columns described below)", "FILE");
-  add_text_option(cmd, "--out", *out,
-                  "result CSV file; written to a temporary file and renamed into place only "
-                  "when every row succeeded",
-                  "FILE")
-      ->required();
+  set_required(
+      add_text_option(cmd, "--out", *out,
+                      "result CSV file; written to a temporary file and renamed into place only "
+                      "when every row succeeded",
+                      "FILE"));
   auto model = std::make_shared<std::string>();
   auto params = std::make_shared<std::vector<std::string>>();
   add_model_options(cmd, *model, *params,
@@ -269,20 +270,20 @@ void add_eval_command(CLI::App& app) {
                   "AXES");
   auto batch = std::make_shared<BatchOptionTexts>();
   add_batch_options(cmd, *batch);
-  cmd->footer(std::string(kEvalFooter) + kModelEvalFooter + kBatchOptionsFooter);
-  cmd->callback([cmd, in, out, model, params, grid, batch] {
+  set_footer(cmd, std::string(kEvalFooter) + kModelEvalFooter + kBatchOptionsFooter);
+  set_callback(cmd, [cmd, in, out, model, params, grid, batch] {
     if (model->empty() && !params->empty()) {
       throw InputError("--param: needs --model (see glintlab models)");
     }
-    if (model->empty() && (cmd->count("--grid") > 0 || batch_options_given(cmd))) {
+    if (model->empty() && (option_count(cmd, "--grid") > 0 || batch_options_given(cmd))) {
       throw InputError(
           fmt::format("{}: needs --model (valid: a model of glintlab models)",
-                      cmd->count("--grid") > 0 ? "--grid" : "--isa/--precision/--math"));
+                      option_count(cmd, "--grid") > 0 ? "--grid" : "--isa/--precision/--math"));
     }
     for (const char* o : {"--in", "--grid", "--model"}) {
-      if (cmd->count(o) > 0 && (o == std::string("--in")     ? in->empty()
-                                : o == std::string("--grid") ? grid->empty()
-                                                             : model->empty()))
+      if (option_count(cmd, o) > 0 && (o == std::string("--in")     ? in->empty()
+                                       : o == std::string("--grid") ? grid->empty()
+                                                                    : model->empty()))
         throw InputError(fmt::format("{}: '' is empty (valid: see glintlab eval --help)", o));
     }
     register_staging_parent(std::filesystem::path(*out).has_parent_path()

@@ -89,7 +89,7 @@ only when the whole experiment succeeded. Output is identical for any --threads.
 
 void add_figure_command(CLI::App& app) {
   auto o = std::make_shared<FigureOptions>();
-  CLI::App* cmd = app.add_subcommand("figure", "Run a registered paper-figure experiment");
+  CLI::App* cmd = add_command(app, "figure", "Run a registered paper-figure experiment");
   o->budget.budget = "full";
   add_text_option(cmd, "id", o->id, "figure id: one of glintlab figure --list", "ID");
   add_bool_flag(cmd, "--list", o->list,
@@ -103,8 +103,8 @@ void add_figure_command(CLI::App& app) {
                   "the zenith, z up) lighting the experiments that use one, instead of their "
                   "procedural sky",
                   "FILE");
-  cmd->footer(kFooter);
-  cmd->callback([cmd, o] { run(cmd, *o); });
+  set_footer(cmd, kFooter);
+  set_callback(cmd, [cmd, o] { run(cmd, *o); });
 }
 
 }  // namespace glintlab::cli

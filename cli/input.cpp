@@ -9,6 +9,7 @@
 #include <tbb/info.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -22,6 +23,22 @@
 namespace glintlab::cli {
 
 namespace fs = std::filesystem;
+
+CLI::App* add_command(CLI::App& app, const std::string& name, const std::string& description) {
+  return app.add_subcommand(name, description);
+}
+
+void set_footer(CLI::App* cmd, const std::string& footer) { cmd->footer(footer); }
+
+void set_callback(CLI::App* cmd, std::function<void()> run) { cmd->callback(std::move(run)); }
+
+std::size_t option_count(const CLI::App* cmd, const std::string& option) {
+  return cmd->count(option);
+}
+
+void set_required(CLI::Option* option) { option->required(); }
+
+void exit_with_code(int code) { throw CLI::RuntimeError(code); }
 
 CLI::Option* add_text_option(CLI::App* cmd, const std::string& name, std::string& var,
                              const std::string& description, const std::string& type) {

@@ -3,14 +3,29 @@
 // lists and globs, and the checks on output paths made before any long work starts.
 #pragma once
 
-#include <CLI/CLI.hpp>
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "cli/cli11_fwd.h"
+
 namespace glintlab::cli {
+
+// The subcommand plumbing the commands share, so that their units need CLI11's types by name
+// only (cli/cli11_fwd.h). add_command: a subcommand of `app`; set_footer: the text after its
+// option list in --help; set_callback: what runs when it was given; option_count: how often
+// `option` was given to `cmd`; set_required: `option` must be given; exit_with_code: ends the run
+// through CLI11's error path with exit code `code` (no message).
+CLI::App* add_command(CLI::App& app, const std::string& name, const std::string& description);
+void set_footer(CLI::App* cmd, const std::string& footer);
+void set_callback(CLI::App* cmd, std::function<void()> run);
+std::size_t option_count(const CLI::App* cmd, const std::string& option);
+void set_required(CLI::Option* option);
+[[noreturn]] void exit_with_code(int code);
 
 // A string option stored in `var`. `type` is the help's placeholder (INT, NUMBER, LIST, DIR,
 // FILE, NAME, ...); when `var` is not empty it is the default and the help shows TYPE=DEFAULT.

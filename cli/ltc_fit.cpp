@@ -68,8 +68,8 @@ void run(const LtcFitCliOptions& o) {
 
 void add_ltc_fit_command(CLI::App& app) {
   auto o = std::make_shared<LtcFitCliOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "ltc-fit", "Fit the GGX LTC tables (BRDF lobe, albedo, Fresnel; NDF lobe, D_PR)");
+  CLI::App* cmd = add_command(
+      app, "ltc-fit", "Fit the GGX LTC tables (BRDF lobe, albedo, Fresnel; NDF lobe, D_PR)");
   add_text_option(cmd, "--out", o->out,
                   "output folder (core/ltc/tables holds the committed tables)", "DIR");
   add_text_option(
@@ -80,13 +80,14 @@ void add_ltc_fit_command(CLI::App& app) {
                   "per-axis samples of each sampler in the fit's error estimate: an integer in "
                   "[4, 1024]",
                   "INT");
-  cmd->footer(
+  set_footer(
+      cmd,
       "Writes DIR/ggx_brdf.csv (sqrt_alpha, theta_o [rad], m00, m02, m20, m22, albedo, fresnel, "
       "l1_error) and DIR/ggx_ndf.csv (sqrt_alpha, theta_o, m00, m02, m20, m22, d_pr, l1_error), "
       "one row per entry ordered by sqrt_alpha then theta_o, each with a '#' header saying how it "
       "was made. M^-1 = [[m00,0,m02],[0,1,0],[m20,0,m22]] for a view in the xz-plane. To update "
       "the committed tables: glintlab ltc-fit --out core/ltc/tables, then rebuild.");
-  cmd->callback([o] { run(*o); });
+  set_callback(cmd, [o] { run(*o); });
 }
 
 }  // namespace glintlab::cli

@@ -1,6 +1,7 @@
 // --model and --param of `glintlab eval` and `glintlab sample`; see model_options.h.
 #include "cli/model_options.h"
 
+#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include "cli/commands.h"

@@ -2,11 +2,11 @@
 // added to a subcommand, then resolved against the model registry (core/model_registry.h).
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "cli/cli11_fwd.h"
 #include "core/model_registry.h"
 
 namespace glintlab::cli {

@@ -3,14 +3,15 @@
 #include <fmt/format.h>
 
 #include "cli/commands.h"
+#include "cli/input.h"
 #include "core/model_registry.h"
 
 namespace glintlab::cli {
 
 void add_models_command(CLI::App& app) {
-  CLI::App* cmd = app.add_subcommand(
-      "models", "List the registered models, their parameters, defaults and valid ranges");
-  cmd->callback([] {
+  CLI::App* cmd = add_command(
+      app, "models", "List the registered models, their parameters, defaults and valid ranges");
+  set_callback(cmd, [] {
     for (const ModelEntry& m : registered_models()) {
       fmt::print("{}: {}\n  source: {}\n  {}\n", m.name, m.description, m.source,
                  describe_needs(m.needs));

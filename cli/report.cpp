@@ -1,6 +1,7 @@
 // `glintlab report`: runs (or, with --reuse, reads the cached results of) the claim suite, every
 // registered figure, the benchmarks and the stability sweeps, then has reports/make_report.py draw
 // the plots and write DIR/index.html and its Markdown twin DIR/report.md.
+#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <fnmatch.h>
 #include <tbb/global_control.h>
@@ -49,8 +50,8 @@ struct ReportOptions {
 constexpr const char* kParts[] = {"claims", "figures", "bench", "stability", "compare"};
 constexpr const char* kPartDirs[] = {"verify", "figures", "bench", "stability", "compare"};
 // The file whose presence (and validity, checked by make_report.py) makes a cached part reusable.
-constexpr const char* kPartIndex[] = {"claims.json", "figures.json", "bench.json",
-                                      "stability.json", "compare.json"};
+constexpr const char* kPartIndex[] = {"claims.json", "figures.json", "bench.json", "stability.json",
+                                      "compare.json"};
 constexpr int kNumParts = 5;
 
 std::string cpu_model() {
@@ -145,10 +146,9 @@ class ReportRun {
 void ReportRun::validate() {
   budget_ = resolve_budget(cmd_, o_.budget);
   threads_ = resolve_threads(threads_text_);
-  if (cmd_->count("--skip") > 0) {
-    skip_ =
-        split_list(o_.skip, "--skip",
-                   "comma-separated parts: claims, figures, bench, stability, compare");
+  if (option_count(cmd_, "--skip") > 0) {
+    skip_ = split_list(o_.skip, "--skip",
+                       "comma-separated parts: claims, figures, bench, stability, compare");
     for (const std::string& s : skip_) {
       bool known = false;
       for (const char* p : kParts) known = known || s == p;
@@ -334,8 +334,8 @@ void ReportRun::run_compare(json& part) {
   try {
     experiments::compare::run_compare(stage_ / "compare", c);
   } catch (const json::exception& e) {
-    throw InputError(fmt::format("report: compare cannot read a verify or sweep output ({})",
-                                 e.what()));
+    throw InputError(
+        fmt::format("report: compare cannot read a verify or sweep output ({})", e.what()));
   }
   part["status"] = "ran";
   part["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -501,8 +501,8 @@ complete: a bad option, a failed part or a malformed cached file leaves DIR as i
 
 void add_report_command(CLI::App& app) {
   auto o = std::make_shared<ReportOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "report",
+  CLI::App* cmd = add_command(
+      app, "report",
       "Run the claim suite, every figure, the benchmarks and the stability sweeps (or reuse their "
       "cached results) and write a static HTML report with a Markdown twin");
   add_text_option(cmd, "--out", o->out, "output folder", "DIR");
@@ -525,9 +525,9 @@ void add_report_command(CLI::App& app) {
                   "LIST");
   auto threads = std::make_shared<std::string>();
   add_threads_option(cmd, *threads);
-  cmd->footer(kFooter);
+  set_footer(cmd, kFooter);
   const CLI::App* root = &app;
-  cmd->callback([o, root, cmd, threads] { ReportRun(*o, *root, cmd, *threads).run(); });
+  set_callback(cmd, [o, root, cmd, threads] { ReportRun(*o, *root, cmd, *threads).run(); });
 }
 
 }  // namespace glintlab::cli

@@ -221,8 +221,8 @@ no output file is written then.)";
 }  // namespace
 
 void add_sample_command(CLI::App& app) {
-  CLI::App* cmd = app.add_subcommand(
-      "sample",
+  CLI::App* cmd = add_command(
+      app, "sample",
       "Draw N reflected directions from a microfacet sampler, with pdf and weight, as CSV");
   auto a = std::make_shared<SampleArgs>();
   add_text_option(cmd, "--ndf", a->ndf, "normal distribution: ggx or beckmann", "NAME");
@@ -245,40 +245,40 @@ void add_sample_command(CLI::App& app) {
                   "seed of the counter-based generator: an integer in [0, "
                   "18446744073709551615]",
                   "INT");
-  add_text_option(cmd, "--out", a->out,
-                  "output CSV file; written to a temporary file and renamed into place only "
-                  "when the run succeeded",
-                  "FILE")
-      ->required();
+  set_required(
+      add_text_option(cmd, "--out", a->out,
+                      "output CSV file; written to a temporary file and renamed into place only "
+                      "when the run succeeded",
+                      "FILE"));
   auto m = std::make_shared<ModelSampleArgs>();
   add_model_options(cmd, m->model, m->params,
                     "Sample this registered model's sampler instead (see glintlab models and "
                     "below); --param sets its parameters");
   add_batch_options(cmd, m->batch);
-  cmd->footer(std::string(kSampleFooter) + kModelSampleFooter + kBatchOptionsFooter);
+  set_footer(cmd, std::string(kSampleFooter) + kModelSampleFooter + kBatchOptionsFooter);
   add_text_option(cmd, "--query", m->query,
                   "with --model: the query columns the model needs besides wi, 'name=value,...' "
                   "(footprint u, v, dudx, dvdx, dudy, dvdy; light light_cos_half_angle, "
                   "light_intensity; corners r0_x..r3_z), as eval --model reads them",
                   "LIST");
-  cmd->callback([a, m, cmd] {
+  set_callback(cmd, [a, m, cmd] {
     register_staging_parent(std::filesystem::path(a->out).has_parent_path()
                                 ? std::filesystem::path(a->out).parent_path()
                                 : std::filesystem::path("."));
-    if (cmd->count("--model") > 0 && m->model.empty())
+    if (option_count(cmd, "--model") > 0 && m->model.empty())
       throw InputError("--model: '' is empty (valid: a model of glintlab models)");
     if (!m->model.empty()) {
       for (const char* o : {"--ndf", "--alpha", "--sampler", "--bound"}) {
-        if (cmd->count(o) > 0) {
+        if (option_count(cmd, o) > 0) {
           throw InputError(fmt::format(
               "{}: does not apply with --model (the model's --param sets it; see glintlab models)",
               o));
         }
       }
       for (const char* o : {"--wi", "--n"})
-        if (cmd->count(o) == 0)
+        if (option_count(cmd, o) == 0)
           throw InputError(fmt::format("{} is required (valid: see glintlab sample --help)", o));
-      m->query_given = cmd->count("--query") > 0;
+      m->query_given = option_count(cmd, "--query") > 0;
       m->wi = a->wi;
       m->n = a->n;
       m->seed = a->seed;
@@ -288,7 +288,7 @@ void add_sample_command(CLI::App& app) {
     }
     if (!m->params.empty())
       throw InputError("--param: needs --model (valid: a model of glintlab models)");
-    if (cmd->count("--query") > 0)
+    if (option_count(cmd, "--query") > 0)
       throw InputError("--query: needs --model (valid: a model of glintlab models)");
     if (batch_options_given(cmd)) {
       throw InputError(
@@ -296,9 +296,9 @@ void add_sample_command(CLI::App& app) {
     }
     // Required without --model (CLI11 cannot express "required unless --model").
     for (const char* o : {"--ndf", "--alpha", "--wi", "--sampler", "--n"})
-      if (cmd->count(o) == 0)
+      if (option_count(cmd, o) == 0)
         throw InputError(fmt::format("{} is required (valid: see glintlab sample --help)", o));
-    a->bound_given = cmd->count("--bound") > 0;
+    a->bound_given = option_count(cmd, "--bound") > 0;
     a->threads = m->batch.threads;
     run_sample(*a);
   });

@@ -85,7 +85,7 @@ into DIR only when every target finished. Output is identical for any --threads.
 void add_sweep_command(CLI::App& app) {
   auto o = std::make_shared<SweepOptions>();
   CLI::App* cmd =
-      app.add_subcommand("sweep", "Stability maps of every registered model (all.stability)");
+      add_command(app, "sweep", "Stability maps of every registered model (all.stability)");
   o->budget.budget = "full";
   add_text_option(cmd, "--out", o->out, "output folder", "DIR");
   add_budget_option(cmd, o->budget,
@@ -93,8 +93,8 @@ void add_sweep_command(CLI::App& app) {
   add_text_option(cmd, "--models", o->models,
                   "comma-separated globs over model names (see glintlab models)", "LIST");
   add_threads_option(cmd, o->threads);
-  cmd->footer(kFooter);
-  cmd->callback([cmd, o] { run(cmd, *o); });
+  set_footer(cmd, kFooter);
+  set_callback(cmd, [cmd, o] { run(cmd, *o); });
 }
 
 }  // namespace glintlab::cli

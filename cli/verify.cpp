@@ -92,7 +92,7 @@ int run(const CLI::App* cmd, const VerifyOptions& o) {
   const int threads = resolve_threads(o.threads);
   const std::uint64_t runs = integer_option(o.runs, "--runs", 2, 1000000);
   const double level = number_option(o.level, "--level", 0, 1, true, true);
-  if (cmd->count("--calibrate") > 0 && o.calibrate.empty())
+  if (option_count(cmd, "--calibrate") > 0 && o.calibrate.empty())
     throw InputError(
         "--calibrate: '' is not a claim id (valid: a statistical check's id, see --list)");
   const verify::Check* to_calibrate =
@@ -177,8 +177,8 @@ int run(const CLI::App* cmd, const VerifyOptions& o) {
 
 void add_verify_command(CLI::App& app) {
   auto opts = std::make_shared<VerifyOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "verify",
+  CLI::App* sub = add_command(
+      app, "verify",
       "Run the registered checks of the papers' claims (ids from shared/CLAIMS.md). Each reports "
       "what it measured, its p-value or error bound, a verdict (holds, holds-within, "
       "holds-in-regime, fails, inconclusive) and whether its negative control (a deliberately "
@@ -207,9 +207,9 @@ void add_verify_command(CLI::App& app) {
   add_text_option(sub, "--level", opts->level,
                   "nominal level for the calibration's false-positive rate: a number in (0, 1)",
                   "NUMBER");
-  sub->callback([sub, opts] {
+  set_callback(sub, [sub, opts] {
     const int rc = run(sub, *opts);
-    if (rc != 0) throw CLI::RuntimeError(rc);
+    if (rc != 0) exit_with_code(rc);
   });
 }
 

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Every test: install dependencies, build (release), run the whole ctest suite.
+# Every test: install dependencies, build (release), run the whole ctest suite. Each step prints
+# its wall time (scripts/steps.sh).
 # Usage (as root on Debian 12): bash scripts/test.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
-bash scripts/build.sh release
-ctest --preset release -j "${GLINTLAB_JOBS:-$(nproc)}"
+source scripts/steps.sh
+step setup bash scripts/setup.sh
+step build bash scripts/build.sh release
+step ctest ctest --preset release -j "${GLINTLAB_JOBS:-$(nproc)}"

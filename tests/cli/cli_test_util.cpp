@@ -96,7 +96,7 @@ void CliTest::TearDown() {
 }
 
 RunResult CliTest::run(const std::vector<std::string>& args) const {
-  std::string cmd = "cd " + shell_quote(work_.string()) + " && " + shell_quote(GLINTLAB_EXE);
+  std::string cmd = "cd " + shell_quote(work_.string()) + " && " + shell_quote(kGlintlabExe);
   for (const std::string& a : args) cmd += " " + shell_quote(a);
   const fs::path out = capture_ / "stdout", err = capture_ / "stderr";
   cmd += " >" + shell_quote(out.string()) + " 2>" + shell_quote(err.string()) + " </dev/null";

@@ -9,11 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "cli/build_paths.h"
 #include "core/io/csv.h"
-
-#ifndef GLINTLAB_EXE
-#error "GLINTLAB_EXE (the path of the glintlab executable) must be defined by the build"
-#endif
 
 namespace glintlab::cli_test {
 

@@ -9,10 +9,6 @@
 
 #include "cli/cli_test_util.h"
 
-#ifndef GLINTLAB_TEST_PLUGIN_ZIRR_KAPLANYAN
-#error "GLINTLAB_TEST_PLUGIN_ZIRR_KAPLANYAN must be defined by the build (tests/CMakeLists.txt)"
-#endif
-
 namespace glintlab::cli_test {
 namespace {
 
@@ -42,15 +38,15 @@ TEST_F(CompareTest, PluginModelBesideThePapersModelsAndThreadIndependent) {
   fs::create_directory(path("verify"));
   write_text(path("verify/claims.json"), "[]\n");
   const auto compare = [&](const std::string& out, const std::string& threads) {
-    return run({"--plugin", GLINTLAB_TEST_PLUGIN_ZIRR_KAPLANYAN, "compare", "--models",
-                "smooth_ggx,deliot_belcour,zirr*", "--claims-from", "verify", "--threads",
-                threads, "--out", out});
+    return run({"--plugin", kTestPluginZirrKaplanyan, "compare", "--models",
+                "smooth_ggx,deliot_belcour,zirr*", "--claims-from", "verify", "--threads", threads,
+                "--out", out});
   };
   const RunResult one = compare("c1", "1");
   ASSERT_EQ(one.exit_code, 0) << one.err;
   EXPECT_NE(one.out.find("compare: 3 models; wrote c1/index.html"), std::string::npos) << one.out;
-  for (const char* f : {"compare.json", "compare.csv", "equal_time.csv", "equal_time.png",
-                        "index.html"})
+  for (const char* f :
+       {"compare.json", "compare.csv", "equal_time.csv", "equal_time.png", "index.html"})
     EXPECT_TRUE(fs::is_regular_file(path("c1") / f)) << f;
   // Nothing but the page (no staging folder).
   EXPECT_TRUE(unexpected_files(path("c1"), {"compare.json", "compare.csv", "equal_time.csv",

@@ -13,12 +13,6 @@
 #include "core/model_registry.h"
 #include "experiments/example_glint_model.h"
 
-#if !defined(GLINTLAB_TEST_PLUGIN) || !defined(GLINTLAB_TEST_PLUGIN_WRONG_VERSION) ||       \
-    !defined(GLINTLAB_TEST_PLUGIN_BUILTIN_CLASH) || !defined(GLINTLAB_TEST_NOT_A_PLUGIN) || \
-    !defined(GLINTLAB_TEST_VERSION)
-#error "the test plug-in paths must be defined by the build (tests/CMakeLists.txt)"
-#endif
-
 namespace glintlab::cli_test {
 namespace {
 
@@ -64,7 +58,7 @@ const char* const kQueries =
     "0.8,0,0.6,0,0.6,0.8,0.3,0.7,0.0001,0.00002,0.00001,0.0003\n";
 
 TEST_F(PluginTest, ListedByModelsWithItsParameters) {
-  const RunResult r = run({"--plugin", GLINTLAB_TEST_PLUGIN, "models"});
+  const RunResult r = run({"--plugin", kTestPlugin, "models"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* s : {"example_glints:", "needs: footprint", "--param density=10000",
                         "intermediates: expected_facets, p_hit", "smooth_ggx:"}) {
@@ -75,7 +69,7 @@ TEST_F(PluginTest, ListedByModelsWithItsParameters) {
 }
 
 TEST_F(PluginTest, EnvironmentVariableLoadsColonSeparatedPaths) {
-  const ScopedEnv env("GLINTLAB_PLUGINS", std::string("::") + GLINTLAB_TEST_PLUGIN + ":");
+  const ScopedEnv env("GLINTLAB_PLUGINS", std::string("::") + kTestPlugin + ":");
   const RunResult r = run({"models"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("example_glints:"), std::string::npos);
@@ -85,9 +79,8 @@ TEST_F(PluginTest, EvalGivesTheNumbersOfTheInProcessModel) {
   write_text(path("q.csv"), kQueries);
   // --isa scalar: the plug-in's scalar batches are the thunks' code, bit for bit; the other ISAs
   // agree within the budgets of tests/simd (tests/simd/plugin_batch_test.cpp).
-  const RunResult r =
-      run({"--plugin", GLINTLAB_TEST_PLUGIN, "eval", "--model", "example_glints", "--param",
-           "density=1e6", "--isa", "scalar", "--in", "q.csv", "--out", "r.csv"});
+  const RunResult r = run({"--plugin", kTestPlugin, "eval", "--model", "example_glints", "--param",
+                           "density=1e6", "--isa", "scalar", "--in", "q.csv", "--out", "r.csv"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const io::CsvTable t = io::read_csv(path("r.csv"));
   ASSERT_EQ(t.num_rows(), 3u);
@@ -105,8 +98,8 @@ TEST_F(PluginTest, EvalGivesTheNumbersOfTheInProcessModel) {
 }
 
 TEST_F(PluginTest, SampleWeightsAndPdfsMatchTheInProcessModel) {
-  const RunResult r = run({"--plugin", GLINTLAB_TEST_PLUGIN, "sample", "--model", "example_glints",
-                           "--wi", "0.6,0,0.8", "--n", "200", "--query",
+  const RunResult r = run({"--plugin", kTestPlugin, "sample", "--model", "example_glints", "--wi",
+                           "0.6,0,0.8", "--n", "200", "--query",
                            "u=0.1,v=0.2,dudx=0.001,dvdx=0,dudy=0,dvdy=0.002", "--out", "s.csv"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const io::CsvTable t = io::read_csv(path("s.csv"));
@@ -137,23 +130,23 @@ TEST_F(PluginTest, SampleWeightsAndPdfsMatchTheInProcessModel) {
 }
 
 TEST_F(PluginTest, SweepFigureAndGenericClaimCoverThePluginModel) {
-  const RunResult sweep = run({"--plugin", GLINTLAB_TEST_PLUGIN, "sweep", "--models",
-                               "example_glints", "--budget", "quick", "--out", "sweeps"});
+  const RunResult sweep = run({"--plugin", kTestPlugin, "sweep", "--models", "example_glints",
+                               "--budget", "quick", "--out", "sweeps"});
   ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
   const auto stability = nlohmann::json::parse(read_text(path("sweeps/stability.json")));
   ASSERT_EQ(stability["models"].size(), 1u);
   EXPECT_EQ(stability["models"][0]["model"], "example_glints");
 
-  const RunResult figure = run({"--plugin", GLINTLAB_TEST_PLUGIN, "figure", "models-hemisphere",
-                                "--budget", "quick", "--out", "figures"});
+  const RunResult figure = run({"--plugin", kTestPlugin, "figure", "models-hemisphere", "--budget",
+                                "quick", "--out", "figures"});
   ASSERT_EQ(figure.exit_code, 0) << figure.err;
   EXPECT_TRUE(std::filesystem::exists(path("figures/models-hemisphere/example_glints.exr")));
   EXPECT_NE(
       read_text(path("figures/models-hemisphere/models_hemisphere.csv")).find("example_glints"),
       std::string::npos);
 
-  const RunResult verify = run({"--plugin", GLINTLAB_TEST_PLUGIN, "verify", "--claims",
-                                "all.stability", "--budget", "quick", "--out", "verify"});
+  const RunResult verify = run({"--plugin", kTestPlugin, "verify", "--claims", "all.stability",
+                                "--budget", "quick", "--out", "verify"});
   ASSERT_EQ(verify.exit_code, 0) << verify.err;
   EXPECT_NE(read_text(path("verify/claims.json")).find("example_glints/default"),
             std::string::npos);
@@ -173,23 +166,22 @@ TEST_F(PluginTest, FileThatIsNotALoadableModuleIsRefused) {
 }
 
 TEST_F(PluginTest, ModuleWithoutTheEntryPointIsRefused) {
-  expect_input_error(run({"--plugin", GLINTLAB_TEST_NOT_A_PLUGIN, "models"}),
+  expect_input_error(run({"--plugin", kTestNotAPlugin, "models"}),
                      {"--plugin", "not a glintlab plug-in", "glintlab_plugin_v1"}, {});
 }
 
 TEST_F(PluginTest, PluginBuiltAgainstAnotherVersionIsRefused) {
-  expect_input_error(run({"--plugin", GLINTLAB_TEST_PLUGIN_WRONG_VERSION, "models"}),
-                     {"--plugin", "built against glintlab 0.0.1",
-                      std::string("this is glintlab ") + GLINTLAB_TEST_VERSION},
-                     {});
+  expect_input_error(
+      run({"--plugin", kTestPluginWrongVersion, "models"}),
+      {"--plugin", "built against glintlab 0.0.1", std::string("this is glintlab ") + kVersion},
+      {});
 }
 
 TEST_F(PluginTest, NameClashesAreRefused) {
-  expect_input_error(run({"--plugin", GLINTLAB_TEST_PLUGIN_BUILTIN_CLASH, "models"}),
+  expect_input_error(run({"--plugin", kTestPluginBuiltinClash, "models"}),
                      {"--plugin", "model 'smooth_ggx' clashes"}, {});
-  expect_input_error(
-      run({"--plugin", GLINTLAB_TEST_PLUGIN, "--plugin", GLINTLAB_TEST_PLUGIN, "models"}),
-      {"--plugin", "model 'example_glints' clashes"}, {});
+  expect_input_error(run({"--plugin", kTestPlugin, "--plugin", kTestPlugin, "models"}),
+                     {"--plugin", "model 'example_glints' clashes"}, {});
 }
 
 TEST_F(PluginTest, PluginWithoutAPathIsRefused) {

@@ -10,10 +10,6 @@
 
 #include "cli/cli_test_util.h"
 
-#ifndef GLINTLAB_REPORT_FIXTURES
-#error "GLINTLAB_REPORT_FIXTURES (tests/reports/fixtures) must be defined by the build"
-#endif
-
 namespace glintlab::cli_test {
 namespace {
 
@@ -63,7 +59,7 @@ TEST_F(ReportTest, BadOptionsAreErrors) {
 }
 
 TEST_F(ReportTest, ReuseReadsCachedResultsAndAMalformedOneLeavesTheOldReport) {
-  fs::copy(GLINTLAB_REPORT_FIXTURES, path("report"), fs::copy_options::recursive);
+  fs::copy(kReportFixtures, path("report"), fs::copy_options::recursive);
   RunResult r = run({"report", "--out", "report", "--reuse", "--skip", "bench"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string html = read_text(path("report/index.html"));

@@ -44,7 +44,7 @@ void interrupt(const fs::path& work, const std::vector<std::string>& args, int s
     all.insert(all.end(), args.begin(), args.end());
     for (std::string& a : all) argv.push_back(a.data());
     argv.push_back(nullptr);
-    ::execv(GLINTLAB_EXE, argv.data());
+    ::execv(kGlintlabExe, argv.data());
     ::_exit(127);
   }
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
