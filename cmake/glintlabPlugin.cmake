@@ -57,8 +57,11 @@ function(glintlab_add_model_plugin target)
 #include \"${path}\"
 ")
       target_sources(${target} PRIVATE "${unit}")
+      # GLINTLAB_SIMD_UNIT_FLAGS: glintlab's own extra flags for its per-ISA units (its asan
+      # preset's), empty in other projects.
+      set(options ${flags_${isa}} ${GLINTLAB_SIMD_UNIT_FLAGS})
       set_source_files_properties("${unit}" PROPERTIES
-        COMPILE_OPTIONS "${flags_${isa}}"
+        COMPILE_OPTIONS "${options}"
         OBJECT_DEPENDS "${path}")
     endforeach()
   endforeach()

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Every test: install dependencies, build (release), run the whole ctest suite. Each step prints
-# its wall time (scripts/steps.sh).
+# Every test: install dependencies, build (release), run the whole ctest suite, then the core,
+# verify and CLI tests again under AddressSanitizer + UBSan (scripts/test_asan.sh). Each step
+# prints its wall time (scripts/steps.sh).
 # Usage (as root on Debian 12): bash scripts/test.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -8,3 +9,4 @@ source scripts/steps.sh
 step setup bash scripts/setup.sh
 step build bash scripts/build.sh release
 step ctest ctest --preset release -j "${GLINTLAB_JOBS:-$(nproc)}"
+bash scripts/test_asan.sh

@@ -4,13 +4,14 @@
 # and what they need (glintlab, the test plug-ins) are built. The claim matrix at the quick budget
 # (Checks/QuickBudget.*) is left out: it repeats, at the claims' sample counts, kernels the core
 # and verify tests already run under the sanitizers (docs/building.md).
-# Usage: bash scripts/test_asan.sh (after scripts/setup.sh)
+# Usage: bash scripts/test_asan.sh (after scripts/setup.sh); scripts/test.sh (and so CI) ends with it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs="${GLINTLAB_JOBS:-$(nproc)}"
-cmake --preset asan >/dev/null
-cmake --build --preset asan -j "$jobs" \
+source scripts/steps.sh
+step asan-configure cmake --preset asan >/dev/null
+step asan-build cmake --build --preset asan -j "$jobs" \
   --target glintlab_core_tests glintlab_verify_tests glintlab_cli_tests
 export ASAN_OPTIONS="${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
-ctest --preset asan -j "$jobs" -L '^(core|verify|cli)$' -E '^Checks/QuickBudget\.'
+step asan-ctest ctest --preset asan -j "$jobs" -L '^(core|verify|cli)$' -E '^Checks/QuickBudget\.'

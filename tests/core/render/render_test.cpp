@@ -66,7 +66,7 @@ TEST(RenderImage, IdenticalForAnyThreadCount) {
   EXPECT_EQ(a.data, c.data);
   EXPECT_EQ(a.at(3, 2, 1), 1.0);
   long rows = 0;
-  render_image(8, 9, {"A"}, 2, pixel, [&](long done, long total) {
+  render_image(8, 9, {"A", "B"}, 2, pixel, [&](long done, long total) {
     EXPECT_EQ(total, 9);
     rows = std::max(rows, done);
   });

@@ -1,0 +1,20 @@
+# Every test of the build tree carries exactly one tier label, fast or slow (test_tiers.cmake and
+# tests/CMakeLists.txt). Run: cmake -DCTEST=ctest -DDIR=<build dir> -P tiers_test.cmake
+function(count_tests out)
+  execute_process(COMMAND "${CTEST}" -N ${ARGN} WORKING_DIRECTORY "${DIR}"
+                  OUTPUT_VARIABLE text RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0 OR NOT text MATCHES "Total Tests: ([0-9]+)")
+    message(FATAL_ERROR "ctest -N ${ARGN} failed in ${DIR}: ${text}")
+  endif()
+  set(${out} ${CMAKE_MATCH_1} PARENT_SCOPE)
+endfunction()
+count_tests(all)
+count_tests(fast -L "^fast$")
+count_tests(slow -L "^slow$")
+count_tests(both -L "^fast$" -L "^slow$")
+math(EXPR labelled "${fast} + ${slow}")
+if(fast EQUAL 0 OR slow EQUAL 0 OR NOT labelled EQUAL all OR NOT both EQUAL 0)
+  message(FATAL_ERROR "tiers: ${all} tests, ${fast} fast, ${slow} slow, ${both} both: every test "
+                      "must carry exactly one of the labels fast and slow")
+endif()
+message(STATUS "tiers: ${all} tests: ${fast} fast, ${slow} slow")
