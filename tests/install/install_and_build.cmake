@@ -9,8 +9,16 @@ function(install_and_build source what)
   if(r)
     message(FATAL_ERROR "install failed: ${r}")
   endif()
+  # The build tree's compiler launcher (the compiler cache, cmake/glintlabCcache.cmake), given
+  # as LAUNCHER with | between its words: the project's own units then hit the cache of an
+  # earlier run.
+  set(launcher)
+  if(LAUNCHER)
+    string(REPLACE "|" ";" words "${LAUNCHER}")
+    set(launcher "-DCMAKE_CXX_COMPILER_LAUNCHER=${words}")
+  endif()
   execute_process(COMMAND "${CMAKE_COMMAND}" -S "${source}" -B "${WORK}/build" -G Ninja
-                          -DCMAKE_PREFIX_PATH=${WORK}/prefix ${ARGN}
+                          -DCMAKE_PREFIX_PATH=${WORK}/prefix ${launcher} ${ARGN}
                   RESULT_VARIABLE r OUTPUT_QUIET)
   if(r)
     message(FATAL_ERROR "${what} configure failed: ${r}")
