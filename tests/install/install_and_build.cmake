@@ -12,13 +12,14 @@ function(install_and_build source what)
   # The build tree's compiler launcher (the compiler cache, cmake/glintlabCcache.cmake), given
   # as LAUNCHER with | between its words: the project's own units then hit the cache of an
   # earlier run.
-  set(launcher)
+  # (One quoted argument: its value is a list.)
+  set(launcher -UCMAKE_CXX_COMPILER_LAUNCHER)
   if(LAUNCHER)
     string(REPLACE "|" ";" words "${LAUNCHER}")
     set(launcher "-DCMAKE_CXX_COMPILER_LAUNCHER=${words}")
   endif()
   execute_process(COMMAND "${CMAKE_COMMAND}" -S "${source}" -B "${WORK}/build" -G Ninja
-                          -DCMAKE_PREFIX_PATH=${WORK}/prefix ${launcher} ${ARGN}
+                          -DCMAKE_PREFIX_PATH=${WORK}/prefix "${launcher}" ${ARGN}
                   RESULT_VARIABLE r OUTPUT_QUIET)
   if(r)
     message(FATAL_ERROR "${what} configure failed: ${r}")
