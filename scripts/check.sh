@@ -4,8 +4,8 @@
 # and misses for the run, and removes the clone. Run it before committing (docs/building.md).
 # Usage: bash scripts/check.sh            (exit status: .ci/run's)
 # Environment: CHECK_KEEP=1 keeps the clone and prints its path; CHECK_LOG=FILE keeps the log;
-# CHECK_TOUCH=PATH appends a C++ comment line to the source file PATH (relative to the repository)
-# in the clone before the run: what editing that one file costs (docs/building.md "Measured").
+# CHECK_TOUCH=PATH appends an unused C++ declaration to the source file PATH (relative to the
+# repository) in the clone before the run: what editing that one file costs (docs/building.md).
 set -euo pipefail
 
 # All in one function, which bash reads whole before running it: editing this file while a check
@@ -33,8 +33,10 @@ main() {
   echo "check: cloned $(git -C "$work/glintlab" rev-parse --short HEAD) into $work/glintlab"
   if [[ -n ${CHECK_TOUCH:-} ]]; then
     [[ -f $work/glintlab/$CHECK_TOUCH ]] || { echo "check: CHECK_TOUCH: no file $CHECK_TOUCH" >&2; exit 2; }
-    echo "// edited by scripts/check.sh (CHECK_TOUCH)" >>"$work/glintlab/$CHECK_TOUCH"
-    echo "check: appended a comment line to $CHECK_TOUCH"
+    # A declaration, not a comment: the preprocessor drops comments, so the cache would still hit.
+    echo "inline constexpr int glintlab_check_touch_${RANDOM}${RANDOM} = 0;  // scripts/check.sh" \
+      >>"$work/glintlab/$CHECK_TOUCH"
+    echo "check: appended an unused declaration to $CHECK_TOUCH"
   fi
   set +e
   (cd "$work/glintlab" && CI=true bash .ci/run) >"$log" 2>&1
