@@ -560,6 +560,35 @@ def control_text(c):
     return head, body
 
 
+def finding_parts(c):
+    """(label, text) pairs a finding is read by: the paper's sentence, what was measured, the
+    competing causes excluded, the smallest correction."""
+    parts = [("The paper", c.get("paper_quote") or "(no quote recorded)"),
+             ("Measured", short(c["detail"], 400))]
+    excluded = "; ".join(f"{a['cause']}: {a['how']}" for a in c.get("alternatives_excluded") or [])
+    parts.append(("Causes excluded", excluded or "none recorded"))
+    if c.get("correction"):
+        parts.append(("Smallest correction", c["correction"]))
+    return parts
+
+
+def finding_list_html(findings):
+    items = []
+    for c in findings:
+        rows = "".join(f"<br><i>{esc(k)}:</i> {esc(v)}" for k, v in finding_parts(c))
+        items.append(f"<li><b>{esc(c['id'])}</b>{rows}</li>")
+    return "<ul>" + "".join(items) + "</ul>"
+
+
+def finding_list_md(findings):
+    out = ""
+    for c in findings:
+        out += f"\n  - **{c['id']}**"
+        for k, v in finding_parts(c):
+            out += f"\n    - *{k}:* {v}"
+    return out
+
+
 def write_summary(doc, claims, run, got):
     """What a reader needs first: the counts, the failures and whether they are the recorded
     findings, regressions, the controls."""
@@ -584,15 +613,35 @@ def write_summary(doc, claims, run, got):
         differ = [c for c in claims if not as_recorded(c)]
         item(esc(f"{len(same)} of {n} as recorded (the verdict equals the one recorded in the "
                  "repository)."))
-        findings = [c for c in claims if c["verdict"] == "fails" and as_recorded(c)]
+        # A finding: a paper's claim that fails as recorded, every competing cause excluded
+        # (a "fails" with a cause open is reported inconclusive by the finding rule).
+        findings = [c for c in claims if c["verdict"] == "fails" and as_recorded(c)
+                    and c.get("kind", "paper's claim") == "paper's claim"]
         if findings:
             h, m = claim_links(findings)
-            item(f"<b>Fails, as recorded (a finding: the paper's claim was found wrong)</b>, "
-                 f"{len(findings)}: {h}",
-                 f"**Fails, as recorded (a finding: the paper's claim was found wrong)**, "
-                 f"{len(findings)}: {m}")
+            item(f"<b>Fails, as recorded (a finding: the paper's claim was found wrong, every "
+                 f"competing cause excluded)</b>, {len(findings)}: {h}"
+                 + finding_list_html(findings),
+                 f"**Fails, as recorded (a finding: the paper's claim was found wrong, every "
+                 f"competing cause excluded)**, {len(findings)}: {m}"
+                 + finding_list_md(findings))
         else:
-            item("No claim fails as recorded.")
+            item("No paper's claim fails as recorded.")
+        rules = [c for c in claims if c["verdict"] == "fails" and as_recorded(c)
+                 and c.get("kind") == "glintlab rule"]
+        if rules:
+            h, m = claim_links(rules)
+            item(f"<b>glintlab's own rules that fail, as recorded</b> (not a paper's claim), "
+                 f"{len(rules)}: {h}",
+                 f"**glintlab's own rules that fail, as recorded** (not a paper's claim), "
+                 f"{len(rules)}: {m}")
+        open_causes = [c for c in claims if c.get("measured_verdict") == "fails"]
+        if open_causes:
+            h, m = claim_links(open_causes)
+            item(f"<b>Measured as failing, but a competing cause is not excluded</b> "
+                 f"(inconclusive, not a finding), {len(open_causes)}: {h}",
+                 f"**Measured as failing, but a competing cause is not excluded** "
+                 f"(inconclusive, not a finding), {len(open_causes)}: {m}")
         if differ:
             h, m = claim_links(differ, lambda c: f" ({c['verdict']}, recorded "
                                                  f"{c.get('expected_verdict')})")
@@ -646,7 +695,8 @@ def write_claims(doc, claims, part, root):
             vcell = Raw(f"<b>{esc(verdict)}</b>", verdict)
         exp = c.get("expected_verdict")
         if as_recorded(c):
-            rec = "yes — a finding" if verdict == "fails" else "yes"
+            finding = verdict == "fails" and c.get("kind", "paper's claim") == "paper's claim"
+            rec = "yes — a finding" if finding else "yes"
         else:
             rec = f"NO (recorded: {exp}) — a regression"
         head, body = control_text(c)
@@ -654,6 +704,14 @@ def write_claims(doc, claims, part, root):
                    f"{head}: {body}")
         evidence = c["detail"]
         extra = []
+        if c.get("paper_quote"):
+            extra.append(f"the paper: {c['paper_quote']}")
+        if c.get("stronger_reading"):
+            extra.append(f"tested beyond the paper's sentence: {c['stronger_reading']}")
+        for a in c.get("alternatives_excluded") or []:
+            extra.append(f"excluded: {a['cause']} — {a['how']}")
+        for a in c.get("alternatives_open") or []:
+            extra.append(f"not excluded: {a['cause']} — {a['why']}")
         if c.get("statistic"):
             extra.append(f"statistic: {c['statistic']}")
         if c.get("power"):

@@ -358,6 +358,53 @@ def budget_note_lines(checks, measured):
     return lines
 
 
+def run_of(check, measured):
+    """The claim's row of the quick run, else of the full run."""
+    for budget in BUDGETS:
+        run = measured.get(budget, {}).get(check["id"])
+        if run is not None:
+            return run
+    return None
+
+
+def finding_lines(checks, measured):
+    """The papers' claims that fail (findings, every competing cause excluded) and those measured
+    as failing whose competing causes are not all excluded (reported inconclusive), once per
+    claim with the budgets it happened at."""
+    lines = []
+    for c in checks:
+        runs = [(b, measured[b][c["id"]]) for b in BUDGETS if c["id"] in measured.get(b, {})]
+        fails = [(b, r) for b, r in runs if r["verdict"] == "fails" and
+                 r.get("kind") == "paper's claim"]
+        open_ = [(b, r) for b, r in runs if r.get("measured_verdict") == "fails"]
+        if fails:
+            run = fails[-1][1]
+            how = "; ".join(f"{a['cause']}: {a['how']}" for a in run.get("alternatives_excluded") or [])
+            fix = f" Smallest correction: {run['correction']}" if run.get("correction") else ""
+            lines.append(f"- `{c['id']}` fails ({', '.join(b for b, _ in fails)}): the paper: "
+                         f"{run.get('paper_quote')} Competing causes excluded: {how}.{fix}")
+        elif open_:
+            run = open_[-1][1]
+            why = "; ".join(f"{a['cause']}: {a['why']}" for a in run.get("alternatives_open") or [])
+            lines.append(f"- `{c['id']}` measured as failing ({', '.join(b for b, _ in open_)}), "
+                         f"reported inconclusive: {why or 'no competing cause reviewed'}")
+    return lines
+
+
+def quote_lines(checks, measured):
+    """Every claim's paper sentence, and what the check tests beyond it."""
+    lines = []
+    for c in checks:
+        run = run_of(c, measured)
+        if run is None or not run.get("paper_quote"):
+            continue
+        line = f"- `{c['id']}`: {run['paper_quote']}"
+        if run.get("stronger_reading"):
+            line += f" *Tested beyond the sentence:* {run['stronger_reading']}"
+        lines.append(line)
+    return lines
+
+
 def render(checks, measured, command, inputs):
     lines = [
         "# Claims and verdicts",
@@ -419,6 +466,16 @@ def render(checks, measured, command, inputs):
     if regimes:
         lines += ["", "Regimes, as each check declares them in its code before measuring:", ""]
         lines += regimes
+    findings = finding_lines(checks, measured)
+    if findings:
+        lines += ["", "Failures and their competing causes (a paper's claim fails only when every "
+                  "other cause — our bug, our scene or reference, our convention, our tolerance — "
+                  "is excluded; otherwise it is inconclusive):", ""]
+        lines += findings
+    quotes = quote_lines(checks, measured)
+    if quotes:
+        lines += ["", "What each claim is judged against, in the paper's words:", ""]
+        lines += quotes
     notes = budget_note_lines(checks, measured)
     if notes:
         lines += ["", "Where the two budgets record different verdicts, and why:", ""]

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "verify/claims/paper_reading.h"
+
 namespace glintlab::verify {
 
 enum class Budget { kQuick, kFull };
@@ -40,6 +42,10 @@ struct CheckResult {
   std::string regime;
   std::string power;  // smallest effect detected at 90 % power, where computed
   int configurations = 0;
+  // The check's own decision where the finding rule (verify/finding_rule.h) changed it: a
+  // "fails" with a competing cause not excluded is reported inconclusive, and what the check
+  // measured is kept here. Empty when the reported verdict is the measured one.
+  std::optional<Verdict> measured_verdict = {};
 };
 
 // holds, holds-within or holds-in-regime.
@@ -85,6 +91,16 @@ struct Check {
   // check_level()); "model.<name>" for a model's conformance checks (verify/conformance/), each
   // model's its own family, so adding a model or a plug-in changes no other check's level.
   std::string family = {};
+  // The paper's own sentence the claim tests, and what the check tests beyond it, from
+  // verify/claims/paper_quotes.cpp; empty for a model's conformance checks.
+  std::string paper_quote = {};
+  std::string stronger_reading = {};
+  // glintlab's own rule (the all.* stability rules, adequacy), not a paper's claim: its "fails"
+  // is never reported as a paper found wrong.
+  bool glintlab_rule = false;
+  // The competing causes of a "fails" reviewed for this claim (verify/claims/failure_reviews.cpp).
+  std::vector<Alternative> alternatives = {};
+  std::string correction = {};  // the smallest change to the paper that makes it hold
 
   Verdict expected_for(Budget b) const {
     return b == Budget::kFull && expected_full ? *expected_full : expected;
@@ -109,9 +125,10 @@ inline bool control_ok(const CheckResult& r) {
 
 // The significance level one statistical check holds its configuration-corrected p-value to: the
 // suite's family-wise rate kFamilyWiseRate (verify/stats/multiple_testing.h) split by Šidák over
-// every statistical check of the papers' claims registered (Check::family empty), so that a run of the whole suite rejects any true claim with
-// probability at most kFamilyWiseRate. Inside a check, its configurations are corrected by
-// Holm–Šidák at this level. The level does not depend on which claims a run selects.
+// every statistical check of the papers' claims registered (Check::family empty), so that a run of
+// the whole suite rejects any true claim with probability at most kFamilyWiseRate. Inside a check,
+// its configurations are corrected by Holm–Šidák at this level. The level does not depend on which
+// claims a run selects.
 double check_level();
 
 }  // namespace glintlab::verify

@@ -1,22 +1,54 @@
 // The registry of every check, in the order of shared/CLAIMS.md.
-#include "verify/check.h"
-
 #include <algorithm>
 
+#include "verify/check.h"
 #include "verify/claims/claims.h"
 #include "verify/conformance/conformance.h"
+#include "verify/finding_rule.h"
 #include "verify/stats/multiple_testing.h"
 
 namespace glintlab::verify {
+namespace {
+
+// Gives a claim the paper's sentence it is judged against and the competing causes reviewed for
+// its failure, and routes its result through the finding rule, so that every caller of run() sees
+// the verdict the rule gives.
+void attach_reading(Check& c) {
+  for (const PaperQuote& q : paper_quotes())
+    if (q.id == c.id) {
+      c.paper_quote = q.quote;
+      c.stronger_reading = q.stronger_reading;
+      c.glintlab_rule = q.glintlab_rule;
+    }
+  for (const FailureReview& f : failure_reviews())
+    if (f.id == c.id) {
+      c.alternatives = f.alternatives;
+      c.correction = f.correction;
+    }
+  Check reviewed;  // what the rule reads: the id, the family and the alternatives
+  reviewed.id = c.id;
+  reviewed.family = c.family;
+  reviewed.alternatives = c.alternatives;
+  c.run = [measure = std::move(c.run), reviewed = std::move(reviewed)](Budget b) {
+    CheckResult r = measure(b);
+    apply_finding_rule(reviewed, r);
+    return r;
+  };
+}
+
+}  // namespace
 
 const std::vector<Check>& registered_checks() {
   static const std::vector<Check> checks = [] {
     std::vector<Check> all;
-    for (auto* list : {&smooth_checks, &smooth_sampler_checks, &smooth_consistency_checks,
-                       &eto_pdf_checks, &eto_checks, &kemppinen_checks, &kneiphof_checks,
-                       &kneiphof_ltc_checks,
-                       &chermain_checks, &podee_checks, &across_checks, &adequacy_checks}) {
-      for (Check& c : list()) all.push_back(std::move(c));
+    for (auto* list :
+         {&smooth_checks, &smooth_sampler_checks, &smooth_consistency_checks, &eto_pdf_checks,
+          &eto_checks, &kemppinen_checks, &kneiphof_checks, &kneiphof_ltc_checks, &chermain_checks,
+          &podee_checks, &across_checks, &adequacy_checks}) {
+      for (Check& c : list()) {
+        attach_reading(c);
+        all.push_back(std::move(c));
+      }
     }
     // Every registered model's conformance checks, generated from the registry as it stands now
     // (after start-up has loaded the plug-ins).

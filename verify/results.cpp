@@ -3,9 +3,8 @@
 
 #include <fmt/format.h>
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
+#include <nlohmann/json.hpp>
 
 #include "verify/stats/multiple_testing.h"
 
@@ -30,6 +29,26 @@ std::string md_cell(const std::string& s) {
 
 std::string number_or_dash(const std::optional<double>& v) {
   return v ? fmt::format("{:.3g}", *v) : std::string("—");
+}
+
+// What kind of statement the check tests: a paper's claim, glintlab's own rule, or a model's
+// conformance property.
+const char* kind_of(const Check& c) {
+  if (!c.family.empty()) return "conformance";
+  return c.glintlab_rule ? "glintlab rule" : "paper's claim";
+}
+
+nlohmann::json alternatives_json(const Check& c, bool excluded) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const Alternative& a : c.alternatives)
+    if (a.excluded == excluded)
+      list.push_back(
+          {{"cause", std::string(a.cause)}, {excluded ? "how" : "why", std::string(a.how)}});
+  return list;
+}
+
+nlohmann::json text_or_null(const std::string& s) {
+  return s.empty() ? nlohmann::json(nullptr) : nlohmann::json(s);
 }
 
 }  // namespace
@@ -73,7 +92,15 @@ std::string to_json(const std::vector<RunRecord>& records, const RunInfo& info) 
         {{"id", r.check->id},
          {"paper", r.check->paper},
          {"source", r.check->source},
+         {"kind", kind_of(*r.check)},
+         {"paper_quote", text_or_null(r.check->paper_quote)},
+         {"stronger_reading", text_or_null(r.check->stronger_reading)},
          {"verdict", to_string(x.verdict)},
+         {"measured_verdict", x.measured_verdict ? nlohmann::json(to_string(*x.measured_verdict))
+                                                 : nlohmann::json(nullptr)},
+         {"alternatives_excluded", alternatives_json(*r.check, true)},
+         {"alternatives_open", alternatives_json(*r.check, false)},
+         {"correction", text_or_null(r.check->correction)},
          {"expected_verdict", to_string(r.check->expected_for(r.budget))},
          {"budget_note", r.check->budget_note.empty() ? nlohmann::json(nullptr)
                                                       : nlohmann::json(budget_note(*r.check))},
@@ -100,7 +127,8 @@ std::string to_json(const std::vector<RunRecord>& records, const RunInfo& info) 
 
 std::string to_csv(const std::vector<RunRecord>& records) {
   std::string csv =
-      "id,paper,source,verdict,expected_verdict,detail,statistic,value,bound,p_value,"
+      "id,paper,source,kind,paper_quote,verdict,measured_verdict,expected_verdict,detail,statistic,"
+      "value,bound,p_value,"
       "suite_adjusted_p_value,control_p_value,control_rejected,control_verdict,control,regime,"
       "power,"
       "configurations,seconds\n";
@@ -110,8 +138,10 @@ std::string to_csv(const std::vector<RunRecord>& records) {
   for (const RunRecord& r : records) {
     const CheckResult& x = r.result;
     csv += fmt::format(
-        "{},{},{},{},{},{},{},{:.17g},{},{},{},{},{},{},{},{},{},{},{:.3f}\n", r.check->id,
-        csv_field(r.check->paper), csv_field(r.check->source), to_string(x.verdict),
+        "{},{},{},{},{},{},{},{},{},{},{:.17g},{},{},{},{},{},{},{},{},{},{},{:.3f}\n", r.check->id,
+        csv_field(r.check->paper), csv_field(r.check->source), kind_of(*r.check),
+        csv_field(r.check->paper_quote), to_string(x.verdict),
+        x.measured_verdict ? to_string(*x.measured_verdict) : "",
         to_string(r.check->expected_for(r.budget)), csv_field(x.detail), csv_field(x.statistic),
         x.value, num(x.bound), num(x.p_value), num(r.suite_adjusted_p), num(x.control_p_value),
         x.control_rejected ? 1 : 0, x.control_verdict ? to_string(*x.control_verdict) : "",
@@ -132,6 +162,9 @@ std::string to_markdown(const std::vector<RunRecord>& records, const RunInfo& in
       verdict += fmt::format(" (recorded: {})", to_string(r.check->expected_for(r.budget)));
     if (!x.regime.empty()) verdict += fmt::format(" in {}", x.regime);
     if (!r.check->budget_note.empty()) verdict += fmt::format(" ({})", budget_note(*r.check));
+    if (x.measured_verdict)
+      verdict += fmt::format(" (measured {}, a competing cause not excluded)",
+                             to_string(*x.measured_verdict));
     const std::string control =
         x.control_verdict ? fmt::format("**{}**: {}", to_string(*x.control_verdict), x.control)
                           : x.control;

@@ -80,6 +80,11 @@ with tempfile.TemporaryDirectory() as tmp:
     check("3 of 4 as recorded" in summary, "summary: how many as recorded")
     check("a finding" in summary and 'href="#claim-fixture.fails"' in summary,
           "summary: the recorded failure as a finding, linked")
+    check("Smallest correction" in summary and "the fixture formula divided by 2" in summary and
+          "the fixture formula is exact" in summary and "cross-checked by finite" in summary,
+          "summary: a finding shows the paper's sentence, the causes excluded, the correction")
+    check("a competing cause is not excluded" in summary,
+          "summary: a measured failure with a cause open is listed apart, not as a finding")
     check("a regression" in summary and 'href="#claim-fixture.inconclusive"' in summary,
           "summary: the differing verdict as a regression, linked")
     check("1 of 4 negative controls NOT rejected" in summary, "summary: the control not rejected")

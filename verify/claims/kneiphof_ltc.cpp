@@ -354,15 +354,11 @@ LtcDecisionProbe probe_kneiphof_ltc_decision() {
 }
 
 std::vector<Check> kneiphof_ltc_checks() {
-  // fails at both budgets: inside the declared regime (large lights on the mirror direction)
-  // cells lie beyond the 10 % tolerance by more than 3 MC standard errors.
-  return {{kLtcProbability,
-           "Kneiphof & Klein 2024",
-           "Sec. 4, Eq. 12–19",
-           Verdict::kFails,
-           run,
-           {},
-           Verdict::kFails}};
+  // Measures "fails" at both budgets (inside the declared regime cells lie beyond the 10 %
+  // tolerance by more than 3 MC standard errors); recorded inconclusive: the tolerance is stronger
+  // than the paper's "visually negligible" (verify/claims/failure_reviews.cpp).
+  return {{kLtcProbability, "Kneiphof & Klein 2024", "Sec. 4, Eq. 12–19",
+           Verdict::kInconclusive, run}};
 }
 
 }  // namespace glintlab::verify
