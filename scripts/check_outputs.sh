@@ -68,6 +68,17 @@ run_commands() {  # binary, output dir
   for m in $models; do
     needs_corners=0
     "$bin" models | grep -A3 "^$m: " | grep -q "pixel corner" && needs_corners=1
+    # sample --model takes the query columns its model needs besides wi (those of the first rows
+    # of the query files whose wi is the sampled one).
+    local needs query=()
+    needs=$("$bin" models | grep -A3 "^$m: " | sed -n 's/^  needs: //p')
+    local q=""
+    [[ $needs == *footprint* ]] && q+="u=0.3,v=0.7,dudx=0.001,dvdx=0.0002,dudy=-0.0003,dvdy=0.002,"
+    [[ $needs == *light* ]] && q+="light_cos_half_angle=0.999,light_intensity=1,"
+    [[ $needs == *corner* ]] &&
+      q+="r0_x=-0.6,r0_y=0,r0_z=0.8,r1_x=-0.48,r1_y=0.36,r1_z=0.8,r2_x=-0.48,r2_y=-0.36,r2_z=0.8,"
+    [[ $needs == *corner* ]] && q+="r3_x=-0.36,r3_y=0.48,r3_z=0.8,"
+    [[ -n $q ]] && query=(--query "${q%,}")
     for p in double float; do
       for isa in $isas; do
         isa_arg=()
@@ -83,7 +94,8 @@ run_commands() {  # binary, output dir
           fi
         fi
         if [[ $skip != *" sample "* ]]; then
-          "$bin" sample "${args[@]}" --wi 0.6,0,0.8 --n 2000 --seed 7 --out "$dir/sample.$tag.csv"
+          "$bin" sample "${args[@]}" "${query[@]}" --wi 0.6,0,0.8 --n 2000 --seed 7 \
+            --out "$dir/sample.$tag.csv"
         fi
       done
     done
