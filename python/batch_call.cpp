@@ -28,10 +28,11 @@ double checked_value(const ModelEntry& model, const std::string& name, const std
   }
 }
 
-// A per-row array's values: each distinct one checked as --param would check it.
+// A per-row array's values: each distinct one checked as --param would check it, an error naming
+// the first row that holds it. O(N log N): the rows are sorted by (value, row) once.
 void check_per_row(const ModelEntry& model, const ParamSpec& p, const ColumnSource& s,
                    std::size_t rows) {
-  std::vector<double> seen;
+  std::vector<std::pair<double, std::size_t>> seen;
   seen.reserve(rows);
   for (std::size_t r = 0; r < rows; ++r) {
     const double v = s.at(r);
@@ -39,19 +40,20 @@ void check_per_row(const ModelEntry& model, const ParamSpec& p, const ColumnSour
       checked_value(model, std::string(p.name), number_text(v),
                     fmt::format("params['{}'] row {}", p.name, r));
     }
-    seen.push_back(v);
+    seen.emplace_back(v, r);
   }
   std::sort(seen.begin(), seen.end());
-  seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
-  for (double v : seen) {
+  seen.erase(std::unique(seen.begin(), seen.end(),
+                         [](const auto& a, const auto& b) { return a.first == b.first; }),
+             seen.end());
+  for (const auto& [v, first_row] : seen) {
     // A choice is given per row by its index (the value models() lists as its default).
     const bool index = v >= 0 && std::floor(v) == v && v < double(p.choices.size());
     const std::string text =
         p.choices.empty() ? number_text(v)
                           : index ? std::string(p.choices[std::size_t(v)]) : number_text(v);
-    std::size_t r = 0;
-    while (s.at(r) != v) ++r;
-    checked_value(model, std::string(p.name), text, fmt::format("params['{}'] row {}", p.name, r));
+    checked_value(model, std::string(p.name), text,
+                  fmt::format("params['{}'] row {}", p.name, first_row));
   }
 }
 
