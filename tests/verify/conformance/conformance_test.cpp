@@ -252,5 +252,24 @@ TEST(ConformanceToys, NanFailsStability) {
   EXPECT_EQ(verdict_of(find_model("smooth_ggx"), "stability"), Verdict::kHolds);
 }
 
+// smooth_ggx declared as its own smooth limit, 5 % too bright at θi = 20° and 5 % too dark at
+// θi = 50° (the two direction pairs): pooled over the pairs the biases cancel; decided pair by
+// pair, converges-to-smooth fails. Unchanged, it holds.
+TEST(ConformanceToys, OppositeBiasesAtTwoDirectionsFailConvergesToSmooth) {
+  ModelEntry toy = find_model("smooth_ggx");
+  toy.smooth_limit = "smooth_ggx";
+  const ModelEntry exact = toy;
+  toy.eval = [f = toy.eval](const std::vector<double>& v, const ModelQuery<double>& q) {
+    ErasedEval r = f(v, q);
+    r.value *= q.wi.z > std::cos(35 * std::numbers::pi / 180) ? 1.05 : 0.95;
+    return r;
+  };
+  const Assessment a = assess("converges-to-smooth", toy, Budget::kQuick, "test.opposite",
+                              model_level(toy));
+  EXPECT_EQ(a.verdict, Verdict::kFails) << a.detail;
+  EXPECT_NEAR(std::abs(a.value), 0.05, 1e-9) << a.detail;
+  EXPECT_EQ(verdict_of(exact, "converges-to-smooth"), Verdict::kHolds);
+}
+
 }  // namespace
 }  // namespace glintlab::verify::conformance
