@@ -1,7 +1,9 @@
-// `glintlab figure ID [--out DIR] [--budget quick|full] [--threads N]` and `glintlab figure
-// --list`: runs a registered figure experiment (experiments/figures/).
+// `glintlab figure ID [--out DIR] [--budget quick|full] [--threads N] [--env FILE]
+// [--bench-from DIR]` and `glintlab figure --list`: runs a registered figure experiment
+// (experiments/figures/).
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -20,8 +22,13 @@ struct FigureOptions {
   BudgetOption budget;
   bool list = false;
   std::string threads;
-  std::string env;  // lat-long EXR environment map; empty = the experiment's procedural sky
+  std::string env;         // lat-long EXR environment map; empty = the experiment's procedural sky
+  std::string bench_from;  // folder of Google Benchmark JSON for the timing figures
 };
+
+constexpr const char* kBenchFiles =
+    "a folder of Google Benchmark JSON: glints.json of glintlab_bench_glints, kemppinen.json of "
+    "glintlab_bench_kemppinen";
 
 void list_figures() {
   for (const experiments::FigureEntry& e : experiments::registered_figures()) {
@@ -43,6 +50,10 @@ void run(const CLI::App* cmd, const FigureOptions& o) {
   const bool quick = resolve_budget(cmd, o.budget) == "quick";
   // 0 = all cores is passed on as 0: the experiments size their own pools.
   const int threads = int(integer_option(o.threads, "--threads", 0, 1024));
+  std::error_code ec;
+  if (option_count(cmd, "--bench-from") > 0 && !std::filesystem::is_directory(o.bench_from, ec))
+    throw InputError(
+        fmt::format("--bench-from: '{}' is not a folder (valid: {})", o.bench_from, kBenchFiles));
   try {
     const experiments::FigureEntry& entry = experiments::find_figure(o.id);
     check_output_dir(o.out, "--out");
@@ -50,6 +61,7 @@ void run(const CLI::App* cmd, const FigureOptions& o) {
     experiments::FigureContext ctx;
     ctx.quick = quick;
     ctx.threads = threads;
+    ctx.bench_dir = o.bench_from;
     if (!o.env.empty()) {
       // Loaded before anything is written, so a missing or malformed map leaves no output.
       try {
@@ -83,7 +95,10 @@ constexpr const char* kFooter =
 R, G, B plus extra channels; header attributes glintlab_model, glintlab_parameters, glintlab_seed,
 glintlab_spp, glintlab_reference_spp, glintlab_version), a tonemapped PNG preview and a CSV of
 every number the figure plots. Files are written into a staging folder that replaces DIR/<id>
-only when the whole experiment succeeded. Output is identical for any --threads.)";
+only when the whole experiment succeeded. Output is identical for any --threads. The timing figures
+(kneiphof2024-table1, kemppinen2025-table3, kemppinen2025-speed-accuracy) read benchmark JSON only
+from --bench-from DIR (DIR/glints.json, DIR/kemppinen.json); without it they say so, and the
+Kemppinen ones time their rows in process.)";
 
 }  // namespace
 
@@ -103,6 +118,10 @@ void add_figure_command(CLI::App& app) {
                   "the zenith, z up) lighting the experiments that use one, instead of their "
                   "procedural sky",
                   "FILE");
+  add_text_option(cmd, "--bench-from", o->bench_from,
+                  std::string(kBenchFiles) +
+                      ", read by the timing figures (e.g. out/bench); none = no benchmark data",
+                  "DIR");
   set_footer(cmd, kFooter);
   set_callback(cmd, [cmd, o] { run(cmd, *o); });
 }

@@ -1,6 +1,7 @@
-// `glintlab report`: runs (or, with --reuse, reads the cached results of) the claim suite, every
-// registered figure, the benchmarks and the stability sweeps, then has reports/make_report.py draw
-// the plots and write DIR/index.html and its Markdown twin DIR/report.md.
+// `glintlab report`: runs (or, with --reuse, reads the cached results of) the claim suite, the
+// benchmarks, every registered figure (the timing ones read those benchmarks) and the stability
+// sweeps, then has reports/make_report.py draw the plots and write DIR/index.html and its Markdown
+// twin DIR/report.md.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <fnmatch.h>
@@ -46,11 +47,12 @@ struct ReportOptions {
   std::string skip;         // comma-separated parts
 };
 
-// The parts of a report, in the order they run; each has its own subfolder of DIR.
-constexpr const char* kParts[] = {"claims", "figures", "bench", "stability", "compare"};
-constexpr const char* kPartDirs[] = {"verify", "figures", "bench", "stability", "compare"};
+// The parts of a report, in the order they run; each has its own subfolder of DIR. The benchmarks
+// run before the figures, which read their JSON (bench/glints.json, bench/kemppinen.json).
+constexpr const char* kParts[] = {"claims", "bench", "figures", "stability", "compare"};
+constexpr const char* kPartDirs[] = {"verify", "bench", "figures", "stability", "compare"};
 // The file whose presence (and validity, checked by make_report.py) makes a cached part reusable.
-constexpr const char* kPartIndex[] = {"claims.json", "figures.json", "bench.json", "stability.json",
+constexpr const char* kPartIndex[] = {"claims.json", "bench.json", "figures.json", "stability.json",
                                       "compare.json"};
 constexpr int kNumParts = 5;
 
@@ -100,6 +102,24 @@ std::string read_text(const fs::path& p) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+// The method rows (names starting "method/") of a Google Benchmark JSON, with its context, written
+// to `to`: the file the speed-vs-accuracy section reads per binary.
+void write_method_rows(const fs::path& from, const fs::path& to) {
+  json doc;
+  try {
+    doc = json::parse(read_text(from));
+  } catch (const json::exception& e) {
+    throw std::runtime_error(
+        fmt::format("report: the benchmark JSON {} does not parse ({})", from.string(), e.what()));
+  }
+  json rows = json::array();
+  if (doc.contains("benchmarks") && doc["benchmarks"].is_array())
+    for (const json& b : doc["benchmarks"])
+      if (b.value("name", std::string()).rfind("method/", 0) == 0) rows.push_back(b);
+  doc["benchmarks"] = rows;
+  io::write_file_atomic(to, doc.dump(1) + "\n");
 }
 
 // Removes a folder on scope exit unless disarmed: the staging folder of a failed run.
@@ -221,6 +241,12 @@ void ReportRun::run_figures(json& part) {
     experiments::FigureContext ctx;
     ctx.quick = quick();
     ctx.threads = threads_;
+    // This run's benchmarks (ran, or reused with them); none when that part was skipped or could
+    // not run, which the timing figures then say.
+    if (fs::is_directory(stage_ / "bench")) {
+      ctx.bench_dir = stage_ / "bench";
+      ctx.bench_name = (out_ / "bench").string();
+    }
     try {
       experiments::run_figure(*e, stage_ / "figures", ctx);
     } catch (const std::exception& ex) {
@@ -271,23 +297,39 @@ void ReportRun::run_bench(json& part) {
   if (rc != 0) child_failed("glintlab_accuracy", rc, "accuracy");
   // The method rows (experiments/bench/METHOD_BENCHMARKS.md) of every binary that has them, as
   // scripts/speed_accuracy.sh runs them; quick = their small query sets (GLINTLAB_BENCH_QUICK).
+  // glints and kemppinen also run the rows the timing figures read (Table 1, Table 3, the cost
+  // against footprint) in the same run, into glints.json and kemppinen.json, whose method rows
+  // are copied into methods/: one run, one set of numbers for the figures and this section.
+  struct MethodTool {
+    const char* name;
+    const char* figure_json;  // null: method rows only
+    const char* figure_rows;  // the figures' rows, a regex alternative
+  };
+  constexpr MethodTool kTools[] = {
+      {"glintlab_bench_glints", "glints.json", "table1/"},
+      {"glintlab_bench_chermain", nullptr, nullptr},
+      {"glintlab_bench_podee", nullptr, nullptr},
+      {"glintlab_bench_kemppinen", "kemppinen.json", "table3/|BM_Kemppinen"}};
   fs::create_directories(dir / "methods");
   if (quick()) ::setenv("GLINTLAB_BENCH_QUICK", "1", 1);
-  for (const char* name : {"glintlab_bench_glints", "glintlab_bench_chermain",
-                           "glintlab_bench_podee", "glintlab_bench_kemppinen"}) {
-    const fs::path tool = bench_tool(name);
+  for (const MethodTool& t : kTools) {
+    const fs::path tool = bench_tool(t.name);
     if (tool.empty()) continue;
+    const fs::path methods_json = dir / "methods" / (std::string(t.name) + ".json");
+    const fs::path out = t.figure_json ? dir / t.figure_json : methods_json;
     std::vector<std::string> margs = {
-        tool.string(), "--benchmark_filter=^method/",
-        "--benchmark_out=" + (dir / "methods" / (std::string(name) + ".json")).string(),
-        "--benchmark_out_format=json"};
+        tool.string(),
+        t.figure_json ? fmt::format("--benchmark_filter=^(method/|{})", t.figure_rows)
+                      : std::string("--benchmark_filter=^method/"),
+        "--benchmark_out=" + out.string(), "--benchmark_out_format=json"};
     if (quick())
       margs.insert(margs.end(), {"--benchmark_min_time=0.01", "--benchmark_repetitions=1"});
     else
       margs.insert(margs.end(), {"--benchmark_min_time=0.05", "--benchmark_repetitions=3",
                                  "--benchmark_report_aggregates_only=true"});
-    rc = child(margs, name);
-    if (rc != 0) child_failed(name, rc, name);
+    rc = child(margs, t.name);
+    if (rc != 0) child_failed(t.name, rc, t.name);
+    if (t.figure_json) write_method_rows(out, methods_json);
   }
   if (quick()) ::unsetenv("GLINTLAB_BENCH_QUICK");
   part["status"] = "ran";
@@ -490,7 +532,8 @@ void ReportRun::run() {
 constexpr const char* kFooter =
     R"(DIR (default out/report) gets index.html (static, no script, relative links only) and its
 Markdown twin report.md, and beside them every input: verify/ (claims.json, .csv, .md),
-figures/<id>/ (EXR, PNG, CSV of each figure), bench/ (bench.json, accuracy.csv, methods/*.json), stability/
+figures/<id>/ (EXR, PNG, CSV of each figure), bench/ (bench.json, accuracy.csv, glints.json and
+kemppinen.json, run before the figures, whose timing tables read them, methods/*.json), stability/
 (stability.json and its maps), compare/ (glintlab compare of every registered model, from the verify and
 stability parts' outputs: compare.json, compare.csv, equal_time.csv), plots/ (the charts drawn by reports/make_report.py: convergence
 log-log plots, speed_accuracy.png, speed_accuracy_methods.png and speed_accuracy.csv), logs/ and run.json (machine, budget,

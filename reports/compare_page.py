@@ -54,13 +54,25 @@ def draw_equal_time(data, path, relpath="equal_time.png", manifest=None):
         plt.close(fig)
 
 
-def conformance_cell(m):
+# Verdicts this run measured (here, or in the run whose claims.json was read) and those it did not:
+# the recorded ones are copied from glintlab's source, so they get a column of their own.
+RUN_ORIGINS = ("measured", "read")
+RECORDED_SOURCE = "verify/conformance/conformance.cpp"
+NOT_RUN_HEADER = (f"conformance not measured in this run (recorded: copied from {RECORDED_SOURCE}; "
+                  "declared: not claimed by the model)")
+
+
+def conformance_cell(m, this_run):
+    """The verdicts of one model measured in this run (this_run) or not (recorded, declared, not
+    measured), each labelled with its origin; "—" when there is none."""
     out = []
     for v in m["conformance"]:
-        mark = "" if v["origin"] in ("measured",) else f" ({v['origin']})"
+        if (v["origin"] in RUN_ORIGINS) != this_run:
+            continue
+        mark = "" if v["origin"] == "measured" else f" ({v['origin']})"
         out.append(f"<span title=\"{html.escape(v['detail'])}\">{html.escape(v['property'])}: "
                    f"<b>{html.escape(v['verdict'])}</b>{html.escape(mark)}</span>")
-    return "<br>".join(out)
+    return "<br>".join(out) or "—"
 
 
 def reference_cell(m):
@@ -99,9 +111,10 @@ without a footprint, {s['reference_samples_monte_carlo']} uniform-direction samp
 models; a reference whose relative error exceeds {s['cubature_converged_relative_error']:g}
 (cubature) or {s['monte_carlo_converged_relative_error']:g} (Monte Carlo, one standard error) is
 flagged as not converged and not used. Times are measurements of this run's machine
-({html.escape(data['machine'])}). Verdicts marked "read" come from
-{html.escape(str(s['claims_from']))}; "recorded" ones are the verdicts recorded for this budget,
-not measured in this run; "declared" ones are properties the model does not claim.</p>"""
+({html.escape(data['machine'])}). Conformance verdicts are in two columns: those of this run
+(marked "read" when they come from {html.escape(str(s['claims_from']))}) and those not measured in
+this run: "recorded" ones are copied from the verdicts recorded for this budget in glintlab's
+source ({RECORDED_SOURCE}), "declared" ones are properties the model does not claim.</p>"""
 
 
 def table_html(data):
@@ -111,11 +124,12 @@ def table_html(data):
         rows.append(
             "<tr>" + "".join(f"<td>{c}</td>" for c in [
                 f"<b>{html.escape(m['name'])}</b>",
-                conformance_cell(m),
+                conformance_cell(m, True), conformance_cell(m, False),
                 f"{fmt(t['scalar_ns_per_eval'], '.1f')} → {fmt(t['best_ns_per_eval'], '.1f')} "
                 f"({html.escape(t['best_isa'])}{'' if t['batched'] else ', not batched'})",
                 reference_cell(m), error_cell(m), stability_cell(m)]) + "</tr>")
-    return ("<table><thead><tr><th>model</th><th>conformance</th>"
+    return ("<table><thead><tr><th>model</th><th>conformance, this run</th>"
+            f"<th>{html.escape(NOT_RUN_HEADER)}</th>"
             "<th>ns/eval scalar → best ISA</th><th>reference albedo per scene</th>"
             "<th>sampler error against it</th><th>stability</th></tr></thead><tbody>\n" +
             "\n".join(rows) + "\n</tbody></table>\n")
@@ -128,19 +142,23 @@ def section_html(data, png_rel):
 
 
 def table_markdown(data):
-    lines = ["| model | conformance | ns/eval scalar → best | sampler error | stability |",
-             "|---|---|---|---|---|"]
+    lines = [f"| model | conformance, this run | {NOT_RUN_HEADER} | ns/eval scalar → best | "
+             "sampler error | stability |",
+             "|---|---|---|---|---|---|"]
     for m in data["models"]:
-        counts = {}
+        counts = [{}, {}]  # this run, not
         for v in m["conformance"]:
             key = v["verdict"] + ("" if v["origin"] == "measured" else f" ({v['origin']})")
-            counts[key] = counts.get(key, 0) + 1
+            c = counts[0 if v["origin"] in RUN_ORIGINS else 1]
+            c[key] = c.get(key, 0) + 1
         t = m["timing"]
         e = m["equal_time"]
         err = (f"not shown: {e['not_shown']}" if e["not_shown"] else
                f"{fmt(e['points'][-1]['relative_rmse'])} at N = {e['points'][-1]['samples']}")
         lines.append(
-            f"| {m['name']} | {', '.join(f'{k} {n}' for k, n in counts.items())} | "
+            f"| {m['name']} | "
+            + " | ".join(", ".join(f"{k} {n}" for k, n in c.items()) or "—" for c in counts) +
+            " | "
             f"{fmt(t['scalar_ns_per_eval'], '.1f')} → {fmt(t['best_ns_per_eval'], '.1f')} "
             f"({t['best_isa']}) | {err} | "
             f"{'; '.join(s['sampler'] + ': ' + s['verdict'] for s in m['stability'])} |")

@@ -37,6 +37,7 @@ import html
 import json
 import math
 import os
+import re
 import shutil
 import sys
 import urllib.parse
@@ -384,6 +385,81 @@ def speed_accuracy_plot(bench, plots, machine, budget, manifest):
 
 # ----------------------------------------------------------------------------------------------
 # Writing
+
+MD_TABLE_RULE = re.compile(r"^\s*\|?\s*:?-+:?\s*(\|\s*:?-+:?\s*)+\|?\s*$")
+
+
+def md_inline(text):
+    """HTML of one line of Markdown text: escaped, `code` and **bold** rendered."""
+    h = esc(text)
+    h = re.sub(r"`([^`]+)`", r"<code>\1</code>", h)
+    return re.sub(r"\*\*([^*]+)\*\*", r"<b>\1</b>", h)
+
+
+def md_row(line):
+    """The cells of a Markdown table row (a \\| in a cell is a literal pipe)."""
+    s = line.strip()
+    s = s[1:] if s.startswith("|") else s
+    s = s[:-1] if s.endswith("|") and not s.endswith("\\|") else s
+    return [c.strip().replace("\\|", "|") for c in re.split(r"(?<!\\)\|", s)]
+
+
+def markdown_html(text):
+    """A figure's summary.md as HTML: its tables as <table>, headings, list items and paragraphs as
+    text; nothing else of Markdown is needed by the summaries the figures write."""
+    lines = text.splitlines()
+    out, para, items = [], [], []
+
+    def flush():
+        if para:
+            out.append("<p>" + " ".join(md_inline(x) for x in para) + "</p>")
+            para.clear()
+        if items:
+            out.append("<ul>" + "".join(f"<li>{md_inline(x)}</li>" for x in items) + "</ul>")
+            items.clear()
+
+    i = 0
+    while i < len(lines):
+        line = lines[i].strip()
+        if line.startswith("|") and i + 1 < len(lines) and MD_TABLE_RULE.match(lines[i + 1]):
+            flush()
+            head = md_row(line)
+            rows = []
+            i += 2
+            while i < len(lines) and lines[i].strip().startswith("|"):
+                rows.append(md_row(lines[i]))
+                i += 1
+            out.append('<table class="md"><thead><tr>' +
+                       "".join(f"<th>{md_inline(c)}</th>" for c in head) + "</tr></thead><tbody>" +
+                       "".join("<tr>" + "".join(f"<td>{md_inline(c)}</td>" for c in r) + "</tr>"
+                               for r in rows) + "</tbody></table>")
+            continue
+        if not line:
+            flush()
+        elif line.startswith("#"):
+            flush()
+            out.append(f"<p><b>{md_inline(line.lstrip('#').strip())}</b></p>")
+        elif line.startswith(("- ", "* ")):
+            if para:
+                flush()
+            items.append(line[2:])
+        elif items and lines[i].startswith("  "):  # a list item continued
+            items[-1] += " " + line
+        else:
+            if items:
+                flush()
+            para.append(line)
+        i += 1
+    flush()
+    return "".join(out)
+
+
+def markdown_twin(text):
+    """A figure's summary.md inside the Markdown twin: as it is (its tables stay tables), its
+    headings made bold so they do not enter the twin's outline."""
+    return "\n".join(f"**{ln.lstrip('#').strip()}**" if ln.startswith("#") else ln
+                     for ln in text.splitlines()) + "\n"
+
 
 class Raw:
     """A table cell given as HTML and Markdown."""
@@ -794,7 +870,9 @@ def write_figures(doc, figures, part, root, plots_tmp, plots_rel, made, manifest
                                   if not n.endswith((".exr", ".csv")) and
                                   (not n.endswith(".png") or n in replaced)])
         if f["summary"]:
-            doc.pre(f["summary"].strip(), "summary.md")
+            doc.raw("<details><summary>summary.md</summary>" +
+                    markdown_html(f["summary"].strip()) + "</details>",
+                    markdown_twin(f["summary"].strip()))
         for name, (header, rows) in f["csvs"].items():
             if "spp" not in header or "rmse" not in header:
                 continue
@@ -947,7 +1025,7 @@ tr.v-holds td:nth-child(3),tr.v-holds-within td:nth-child(3){background:#d9f2d9}
 tr.v-holds-in-regime td:nth-child(3){background:#eef6cc}
 tr.v-fails td:nth-child(3){background:#f6d0d0}tr.v-inconclusive td:nth-child(3){background:#eee}
 tr.regress td:nth-child(4),tr.loose td:nth-child(6){background:#f3a0a0;font-weight:bold}
-.bad{color:#a00}ul.summary li{margin:0.2em 0}
+.bad{color:#a00}ul.summary li{margin:0.2em 0}table.md td{white-space:nowrap}
 nav ul.toc{columns:2;font-size:14px}nav ul.sub{font-size:12px}"""
 
 
@@ -955,7 +1033,8 @@ def write_compare(doc, data, plots_tmp, plots_rel, made, manifest):
     """The comparison of every registered model (glintlab compare, reports/compare_page.py)."""
     doc.heading(2, PART_TITLES["compare"], "compare")
     doc.raw(compare_page.intro_html(data), "Every model at its default parameters on the same "
-            "scenes; verdicts marked recorded or declared were not measured in this run.\n")
+            "scenes; conformance verdicts not measured in this run (recorded: copied from "
+            f"{compare_page.RECORDED_SOURCE}; declared) have a column of their own.\n")
     png = "compare_equal_time.png"
     compare_page.draw_equal_time(data, os.path.join(plots_tmp, png), f"{plots_rel}/{png}",
                                  manifest)

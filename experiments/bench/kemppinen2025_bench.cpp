@@ -5,7 +5,7 @@
 // method benchmarks `method/kemppinen_*.dstar_f_vs_{bruteforce,smooth}/k=K,erf=E[,blend=linear]`
 // (time per evaluation with the error of Eq. 11 against its references as counters;
 // experiments/bench/kemppinen2025_speed_accuracy.h). Read by the figures kemppinen2025-table3 and
-// kemppinen2025-speed-accuracy from out/bench/kemppinen.json:
+// kemppinen2025-speed-accuracy from kemppinen.json of their --bench-from folder, e.g. out/bench:
 //   build/release/experiments/bench/glintlab_bench_kemppinen
 //   --benchmark_out=out/bench/kemppinen.json
 //     --benchmark_out_format=json

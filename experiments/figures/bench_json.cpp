@@ -55,4 +55,25 @@ const BenchRow* find_bench_row(const std::vector<BenchRow>& rows, const std::str
   return nullptr;
 }
 
+BenchSource bench_source(const FigureContext& ctx, std::string_view file) {
+  if (ctx.bench_dir.empty()) return {};
+  const std::filesystem::path shown =
+      ctx.bench_name.empty() ? ctx.bench_dir : std::filesystem::path(ctx.bench_name);
+  return {ctx.bench_dir / file, (shown / file).string()};
+}
+
+std::string no_bench_data(const BenchSource& s, std::string_view file, std::string_view tool) {
+  const std::string why =
+      s.path.empty()
+          ? std::string(
+                "no benchmark folder was given (`glintlab figure --bench-from DIR`, or the "
+                "report's bench part)")
+          : fmt::format("`{}` does not exist", s.shown_as);
+  return fmt::format(
+      "No benchmark data: {}; make it with `build/release/experiments/bench/{} "
+      "--benchmark_out=out/bench/{} --benchmark_out_format=json` from the repository root, then "
+      "rerun this figure with `--bench-from out/bench`.",
+      why, tool, file);
+}
+
 }  // namespace glintlab::experiments

@@ -6,7 +6,10 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include "experiments/figures/figure_registry.h"
 
 namespace glintlab::experiments {
 
@@ -29,5 +32,18 @@ std::optional<std::vector<BenchRow>> read_bench_json(const std::filesystem::path
 
 // The row named `name`, or null.
 const BenchRow* find_bench_row(const std::vector<BenchRow>& rows, const std::string& name);
+
+// Where a figure's benchmark file lies: `file` in ctx.bench_dir (`glintlab figure --bench-from`),
+// and that path as the figure's outputs name it. `path` is empty when no folder was given.
+struct BenchSource {
+  std::filesystem::path path;
+  std::string shown_as;
+};
+BenchSource bench_source(const FigureContext& ctx, std::string_view file);
+
+// The one sentence a figure without benchmark data writes: why it has none (no --bench-from
+// folder, or the folder lacks the file) and how to make it: `tool` (a benchmark binary with its
+// filter), writing `file`, then the figure rerun with --bench-from.
+std::string no_bench_data(const BenchSource& s, std::string_view file, std::string_view tool);
 
 }  // namespace glintlab::experiments

@@ -27,6 +27,13 @@ struct FigureContext {
   // experiment's default (a procedural sky). `environment_name` describes it in the outputs.
   std::shared_ptr<const EnvironmentMap> environment;
   std::string environment_name;
+  // The folder of Google Benchmark JSON the timing figures read (`glintlab figure --bench-from
+  // DIR`; the report's own bench/ folder): glints.json of glintlab_bench_glints, kemppinen.json of
+  // glintlab_bench_kemppinen. Empty = none given: a figure then says so and reads no fixed path,
+  // so its numbers never come from another run. `bench_name` is how the outputs name the folder
+  // (the report's staging folder is renamed when done); empty = bench_dir itself.
+  std::filesystem::path bench_dir;
+  std::string bench_name;
   // (stage, done, total); called from one thread at a time.
   std::function<void(const std::string& stage, long done, long total)> progress;
 };

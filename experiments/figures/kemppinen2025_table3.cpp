@@ -3,9 +3,10 @@
 // experiments/bench/kemppinen2025_table3_scene.h) and kemppinen2025-speed-accuracy (error of the
 // constant-time D★^f of Eq. 11 against the brute-force Eq. 5 and against the smooth D, per k and
 // erf of Eq. 10, against ns per evaluation; and the cost against footprint size, the constant-time
-// claim). Both read the Google Benchmark JSON out/bench/kemppinen.json of
-// experiments/bench/kemppinen2025_bench.cpp; rows it lacks are measured in process (the CPU time
-// of one thread over a small query set) and marked so in their time_source column.
+// claim). Both read the Google Benchmark JSON kemppinen.json of
+// experiments/bench/kemppinen2025_bench.cpp from the --bench-from folder; rows it lacks (all of
+// them without one) are measured in process (the CPU time of one thread over a small query set)
+// and marked so in their time_source column.
 #include "experiments/figures/kemppinen2025_table3.h"
 
 #include <fmt/format.h>
@@ -37,17 +38,17 @@ namespace kt3 = glintlab::kemppinen_table3;
 
 constexpr std::string_view kTable3Id = "kemppinen2025-table3";
 constexpr std::string_view kSpeedId = "kemppinen2025-speed-accuracy";
-const std::filesystem::path kJson = "out/bench/kemppinen.json";
-constexpr std::string_view kBenchCommand =
-    "build/release/experiments/bench/glintlab_bench_kemppinen "
-    "--benchmark_out=out/bench/kemppinen.json --benchmark_out_format=json";
+constexpr std::string_view kJsonFile = "kemppinen.json";
+constexpr std::string_view kTool = "glintlab_bench_kemppinen";
 constexpr std::string_view kFromJson = "google_benchmark_json";
 constexpr std::string_view kInProcess = "in_process_thread_cputime";
 
-// The bench JSON's rows, or nothing (file missing). A malformed file is a figure error.
-std::optional<std::vector<BenchRow>> bench_rows() {
+// The bench JSON's rows, or nothing (no folder given, or no file in it). A malformed file is a
+// figure error.
+std::optional<std::vector<BenchRow>> bench_rows(const BenchSource& src) {
+  if (src.path.empty()) return std::nullopt;
   try {
-    return read_bench_json(kJson);
+    return read_bench_json(src.path);
   } catch (const std::exception& e) {
     throw FigureError(e.what());
   }
@@ -80,16 +81,20 @@ double time_ns(F&& f, long calls, double min_ms) {
   return elapsed_ms * 1e6 / double(done);
 }
 
-std::string time_source_note(bool any_json, bool any_in_process, double min_ms) {
+// Where the times came from: the JSON's rows, rows measured here (all of them without a JSON,
+// which says so in one sentence).
+std::string time_source_note(const BenchSource& src, bool have_json, bool any_json,
+                             bool any_in_process, double min_ms) {
   std::string s;
-  if (any_json) s += fmt::format("Times marked `{}` are from `{}`. ", kFromJson, kJson.string());
+  if (!have_json) s += no_bench_data(src, kJsonFile, kTool) + " ";
+  if (any_json) s += fmt::format("Times marked `{}` are from `{}`. ", kFromJson, src.shown_as);
   if (any_in_process)
     s += fmt::format(
         "Times marked `{}` were measured in this run (CPU time of one thread, {} ms per row "
-        "or more, on whatever machine ran it): indicative only. For Google Benchmark times run\n"
-        "`{}` from the repository root, then rerun this figure.\n",
-        kInProcess, min_ms, kBenchCommand);
-  return s;
+        "or more, on whatever machine ran it): indicative only.",
+        kInProcess, min_ms);
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s + "\n";
 }
 
 // ---- Table 3 -----------------------------------------------------------------------------
@@ -114,7 +119,8 @@ struct Table3Time {
 };
 
 void run_table3(const FigureContext& ctx) {
-  const auto json = bench_rows();
+  const BenchSource src = bench_source(ctx, kJsonFile);
+  const auto json = bench_rows(src);
   const double min_ms = ctx.quick ? 15 : 300;
   const long pixels = ctx.quick ? 400 : 20000;
   std::vector<kt3::Cell> cells = kt3::cells();
@@ -201,8 +207,7 @@ void run_table3(const FigureContext& ctx) {
       "\"early exits for points outside the hemisphere\" in sparse cases. glintlab's kernel is "
       "branch-free (every query visits 2k² cell pairs, see kemppinen.constant-time), so our "
       "cells differ only by the cost of the footprint and of the exp/erf calls.\n\n";
-  md += time_source_note(any_json, any_in_process, min_ms);
-  if (!json) md += fmt::format("\n{} NOT FOUND.\n", kJson.string());
+  md += time_source_note(src, bool(json), any_json, any_in_process, min_ms);
   io::write_file_atomic(ctx.dir / "summary.md", md);
 }
 
@@ -262,7 +267,8 @@ struct CostRow {
 };
 
 void run_speed_accuracy(const FigureContext& ctx) {
-  const auto json = bench_rows();
+  const BenchSource src = bench_source(ctx, kJsonFile);
+  const auto json = bench_rows(src);
   const double min_ms = ctx.quick ? 8 : 200;
   bool any_json = false, any_in_process = false;
   std::vector<SaRow> rows;
@@ -467,8 +473,7 @@ void run_speed_accuracy(const FigureContext& ctx) {
     md += fmt::format("| {} | {} | {:.4g} | {:.3g} | {:.3g} | {:.3g} | {} | {} |\n",
                       sa::method_id(r.ggx, r.ref), r.setting, r.ns, r.err.rms, r.err.p99, r.err.max,
                       r.err.n, r.front ? "yes" : "");
-  md += "\n" + time_source_note(any_json, any_in_process, min_ms);
-  if (!json) md += fmt::format("\n{} NOT FOUND.\n", kJson.string());
+  md += "\n" + time_source_note(src, bool(json), any_json, any_in_process, min_ms);
   io::write_file_atomic(ctx.dir / "summary.md", md);
 }
 

@@ -2,7 +2,8 @@
 // cap probability of Eq. 20 against Deliot & Belcour's R fitted at normal incidence, and the
 // p > 1 region), Fig. 9 (a 2^4 × 2^4 subdivided light: Monte Carlo terms vs the single LTC lobe),
 // Fig. 10 (convergence to the smooth BRDF as N_P quadruples) and a Table 1 analogue (time per
-// evaluation, read from the Google Benchmark JSON of experiments/bench/bench_glints.cpp).
+// evaluation, read from the Google Benchmark JSON of experiments/bench/bench_glints.cpp in the
+// --bench-from folder; without one it says so and prints only the paper's row).
 //
 // The scene: the plane z = 0, uv = (x, y) ∈ [−1, 1]², the viewer at C = (0, −1, 1.2); a pixel's
 // footprint is its square in uv (the plane is rendered top-down, the viewer direction varies as
@@ -32,6 +33,7 @@
 #include "core/ltc/ltc_table.h"
 #include "core/ndf/total_area.h"
 #include "core/render/image.h"
+#include "experiments/figures/bench_json.h"
 #include "experiments/figures/panel_layout.h"
 
 namespace glintlab::experiments {
@@ -518,10 +520,33 @@ std::vector<std::array<double, 4>> read_bench(const std::filesystem::path& path,
   return t;
 }
 
+// A time of the table in the summary: "—" for a row the JSON lacks.
+std::string ns_cell(double ns) { return std::isnan(ns) ? "—" : fmt::format("{:.1f}", ns); }
+
 void run_table1(const FigureContext& ctx) {
-  const std::filesystem::path json = "out/bench/glints.json";
+  constexpr std::string_view kFile = "glints.json";
+  constexpr std::string_view kTool = "glintlab_bench_glints --benchmark_filter=table1";
+  const BenchSource src = bench_source(ctx, kFile);
   bool found = false;
-  const auto t = read_bench(json, &found);
+  const auto t =
+      src.path.empty() ? std::vector<std::array<double, 4>>{} : read_bench(src.path, &found);
+  std::string md = fmt::format(
+      "# kneiphof2024-table1\n\nTime per evaluation (ns, scalar double, one core) from the Google "
+      "Benchmark JSON of `glintlab_bench_glints`. Area light (a unit square at height 2): L_o by "
+      "the BRDF LTC lobe (Heitz et al. 2016, our fitted 64 × 64 table) for every column; Kneiphof "
+      "& Klein reuse that lobe × D_PR for p (Sec. 4), + NDF LTC integrates the separately fitted "
+      "NDF lobe × D_PR as well (one more polygon integral); Deliot & Belcour take glints for the "
+      "light's mean direction. Directional: + NDF LTC is Kneiphof & Klein (no lobe). The paper's "
+      "numbers are ms per 4K frame on an RTX 4090: compare ratios, not values.\n\n");
+  if (!found) {
+    // Nothing measured: the sentence and the paper's row, no column of ours (no table of nan).
+    md += no_bench_data(src, kFile, kTool) + "\n\n";
+    md += "| light | paper ms (smooth / D&B / ours / + NDF LTC) |\n|---|---|\n";
+    for (const PaperRow& p : kPaper)
+      md += fmt::format("| {} | {} / {} / {} / {} |\n", p.light, p.smooth, p.db, p.ours, p.ndf_ltc);
+    io::write_file_atomic(ctx.dir / "summary.md", md);
+    return;
+  }
   io::write_csv_atomic(
       ctx.dir / "table1.csv",
       {"light", "smooth_ns", "deliot_belcour_ns", "kneiphof_klein_ns", "ndf_ltc_ns",
@@ -534,27 +559,15 @@ void run_table1(const FigureContext& ctx) {
           w.end_row();
         }
       });
-  std::string md = fmt::format(
-      "# kneiphof2024-table1\n\nTime per evaluation (ns, scalar double, one core) from the Google "
-      "Benchmark JSON {} ({}); produce it with\n`build/release/experiments/bench/glintlab_bench_"
-      "glints --benchmark_filter=table1 --benchmark_out=out/bench/glints.json "
-      "--benchmark_out_format=json` from the repository root, then rerun this figure. Area light "
-      "(a "
-      "unit square at height 2): L_o by the BRDF LTC lobe (Heitz et al. 2016, our fitted 64 × 64 "
-      "table) for every column; Kneiphof & Klein reuse that lobe × D_PR for p (Sec. 4), + NDF LTC "
-      "integrates the separately fitted NDF lobe × D_PR as well (one more polygon integral); "
-      "Deliot & Belcour take glints for the light's mean direction. Directional: + NDF LTC is "
-      "Kneiphof & Klein (no lobe). The paper's numbers are ms per 4K frame on an RTX 4090: "
-      "compare ratios, not values.\n",
-      json.string(), found ? "read" : "NOT FOUND: our columns are empty");
+  md += fmt::format("Our times are read from `{}`; a row it lacks shows —.\n", src.shown_as);
   md +=
       "\n| light | smooth ns | D&B ns | K&K ns | + NDF LTC ns | paper ms (smooth / D&B / ours / + "
       "NDF LTC) |\n|---|---|---|---|---|---|\n";
   for (int l = 0; l < 3; ++l) {
     const auto& m = t[std::size_t(l)];
-    md += fmt::format("| {} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {} / {} / {} / {} |\n",
-                      kPaper[l].light, m[0], m[1], m[2], m[3], kPaper[l].smooth, kPaper[l].db,
-                      kPaper[l].ours, kPaper[l].ndf_ltc);
+    md += fmt::format("| {} | {} | {} | {} | {} | {} / {} / {} / {} |\n", kPaper[l].light,
+                      ns_cell(m[0]), ns_cell(m[1]), ns_cell(m[2]), ns_cell(m[3]), kPaper[l].smooth,
+                      kPaper[l].db, kPaper[l].ours, kPaper[l].ndf_ltc);
   }
   io::write_file_atomic(ctx.dir / "summary.md", md);
 }

@@ -32,14 +32,16 @@ TEST_F(KemppinenTimingTest, Table3WithoutJsonMeasuresInProcess) {
     EXPECT_EQ(t.text(i, t.column("time_source")), "in_process_thread_cputime");
   }
   const std::string md = read_text(path("out/kemppinen2025-table3/summary.md"));
-  EXPECT_NE(md.find("NOT FOUND"), std::string::npos);
+  EXPECT_NE(md.find("No benchmark data: no benchmark folder was given"), std::string::npos);
   EXPECT_NE(md.find("glintlab_bench_kemppinen --benchmark_out=out/bench/kemppinen.json"),
             std::string::npos);
+  EXPECT_NE(md.find("--bench-from out/bench"), std::string::npos);
+  for (const char* bad : {"nan", "NaN", "NOT FOUND"}) EXPECT_EQ(md.find(bad), std::string::npos);
   EXPECT_NE(md.find("3.26/1.70"), std::string::npos);  // the paper's number beside ours
 }
 
-// A JSON with one Table 3 row and one method row: those are read (1e9/items_per_second, the
-// counters), every other row is measured.
+// A --bench-from folder whose JSON has one Table 3 row and one method row: those are read
+// (1e9/items_per_second, the counters), every other row is measured.
 TEST_F(KemppinenTimingTest, FiguresReadTheBenchmarkJson) {
   fs::create_directories(path("out/bench"));
   write_text(path("out/bench/kemppinen.json"), R"({"context": {}, "benchmarks": [
@@ -52,7 +54,9 @@ TEST_F(KemppinenTimingTest, FiguresReadTheBenchmarkJson) {
   "iterations": 10, "real_time": 900, "cpu_time": 900, "time_unit": "ns",
   "items_per_second": 2.0e6, "err_max": 0.5, "err_rms": 0.125, "err_p99": 0.25, "err_n": 1024,
   "label": "x"}]})");
-  ASSERT_EQ(run({"figure", "kemppinen2025-table3", "--budget", "quick", "--out", "out"}).exit_code,
+  ASSERT_EQ(run({"figure", "kemppinen2025-table3", "--budget", "quick", "--out", "out",
+                 "--bench-from", "out/bench"})
+                .exit_code,
             0);
   const io::CsvTable t = io::read_csv(path("out/kemppinen2025-table3/table3.csv"));
   int from_json = 0;
@@ -65,8 +69,8 @@ TEST_F(KemppinenTimingTest, FiguresReadTheBenchmarkJson) {
   }
   EXPECT_EQ(from_json, 1);
 
-  const RunResult r =
-      run({"figure", "kemppinen2025-speed-accuracy", "--budget", "quick", "--out", "out"});
+  const RunResult r = run({"figure", "kemppinen2025-speed-accuracy", "--budget", "quick", "--out",
+                           "out", "--bench-from", "out/bench"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/kemppinen2025-speed-accuracy");
   const io::CsvTable s = io::read_csv(d / "speed_accuracy.csv");
@@ -89,7 +93,10 @@ TEST_F(KemppinenTimingTest, FiguresReadTheBenchmarkJson) {
   EXPECT_EQ(read, 1);
   EXPECT_TRUE(png(d / "speed_accuracy.png"));
   EXPECT_TRUE(png(d / "cost_vs_footprint.png"));
-  EXPECT_NE(read_text(d / "summary.md").find("in_process_thread_cputime"), std::string::npos);
+  const std::string md = read_text(d / "summary.md");
+  EXPECT_NE(md.find("in_process_thread_cputime"), std::string::npos);
+  EXPECT_NE(md.find("are from `out/bench/kemppinen.json`"), std::string::npos);
+  EXPECT_EQ(md.find("No benchmark data"), std::string::npos);
 }
 
 // The constant-time claim's picture: Algorithm 1 visits 2k² cell pairs at every footprint, the
@@ -114,7 +121,9 @@ TEST_F(KemppinenTimingTest, SpeedAccuracyWithoutJson) {
     }
   }
   EXPECT_GT(bf_last, 10 * bf_first);
-  EXPECT_NE(read_text(d / "summary.md").find("NOT FOUND"), std::string::npos);
+  const std::string md = read_text(d / "summary.md");
+  EXPECT_NE(md.find("No benchmark data"), std::string::npos);
+  for (const char* bad : {"nan", "NaN", "NOT FOUND"}) EXPECT_EQ(md.find(bad), std::string::npos);
 }
 
 TEST_F(KemppinenTimingTest, EvalTriplanarOnTheZPlaneEqualsUv) {

@@ -1,7 +1,8 @@
 // `glintlab figure kneiphof2024-*` --quick: each writes its EXR, PNG, CSV and summary.md; the
 // numbers in them are the ones the paper's statements imply (p > 1 only at √α = 0.1, γ = 5° of
-// Fig. 6; the shared-lobe subdivision is invariant; convergence as N_P grows); and
-// `glintlab eval --model kneiphof_klein` exposes the intermediates and rejects γ = 0.
+// Fig. 6; the shared-lobe subdivision is invariant; convergence as N_P grows); Table 1 reads its
+// times only from --bench-from and says so in one sentence without them.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -77,13 +78,64 @@ TEST_F(KneiphofFigureTest, Fig10) {
   }
 }
 
-TEST_F(KneiphofFigureTest, Table1WithoutBenchmarkJson) {
-  const RunResult r = run({"figure", "kneiphof2024-table1", "--budget", "quick", "--out", "out"});
+// Without benchmark data the table says so in one sentence and shows only the paper's row: no
+// column of nan, no CSV of ours, and no fixed path read behind the user's back (a glints.json in
+// out/bench is ignored unless --bench-from names the folder).
+TEST_F(KneiphofFigureTest, Table1WithoutBenchmarkDataSaysSo) {
+  std::filesystem::create_directories(path("out/bench"));
+  write_text(path("out/bench/glints.json"), "{\"benchmarks\": []}");
+  const RunResult r = run({"figure", "kneiphof2024-table1", "--budget", "quick", "--out", "figs"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const fs::path d = path("figs/kneiphof2024-table1");
+  EXPECT_FALSE(fs::exists(d / "table1.csv"));
+  const std::string md = read_text(d / "summary.md");
+  EXPECT_NE(md.find("No benchmark data: no benchmark folder was given"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| area | 1.7 / 2.7 / 2.8 / 2.9 |"), std::string::npos) << md;
+  for (const char* bad : {"nan", "NaN", "NOT FOUND"}) EXPECT_EQ(md.find(bad), std::string::npos);
+
+  // A folder without the file: the same, naming the file it lacked.
+  fs::create_directories(path("empty"));
+  ASSERT_EQ(run({"figure", "kneiphof2024-table1", "--budget", "quick", "--out", "figs",
+                 "--bench-from", "empty"})
+                .exit_code,
+            0);
+  EXPECT_NE(read_text(d / "summary.md").find("`empty/glints.json` does not exist"),
+            std::string::npos);
+}
+
+// The table reads its times from --bench-from DIR/glints.json; a row the JSON lacks shows —.
+TEST_F(KneiphofFigureTest, Table1ReadsTheBenchFolder) {
+  std::string rows;
+  for (int light = 0; light < 3; ++light)
+    for (int method = 0; method < 4; ++method) {
+      if (light == 2 && method == 3) continue;  // one row missing
+      rows += fmt::format(
+          "{}{{\n      \"name\": \"table1/method:{}/light:{}\",\n      \"real_time\": {},\n"
+          "      \"time_unit\": \"ns\"\n    }}",
+          rows.empty() ? "" : ",\n    ", method, light, 10 * light + method + 0.5);
+    }
+  fs::create_directories(path("b"));
+  write_text(path("b/glints.json"), "{\n  \"benchmarks\": [\n    " + rows + "\n  ]\n}\n");
+  const RunResult r = run(
+      {"figure", "kneiphof2024-table1", "--budget", "quick", "--out", "out", "--bench-from", "b"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const io::CsvTable t = io::read_csv(path("out/kneiphof2024-table1/table1.csv"));
   ASSERT_EQ(t.num_rows(), 3u);
-  EXPECT_NE(read_text(path("out/kneiphof2024-table1/summary.md")).find("NOT FOUND"),
-            std::string::npos);
+  EXPECT_EQ(t.number(1, t.column("deliot_belcour_ns")), 11.5);
+  EXPECT_EQ(t.number(2, t.column("kneiphof_klein_ns")), 22.5);
+  const std::string md = read_text(path("out/kneiphof2024-table1/summary.md"));
+  EXPECT_NE(md.find("read from `b/glints.json`"), std::string::npos) << md;
+  EXPECT_NE(md.find("| area | 20.5 | 21.5 | 22.5 | — |"), std::string::npos) << md;
+  for (const char* bad : {"nan", "NaN", "NOT FOUND", "No benchmark data"})
+    EXPECT_EQ(md.find(bad), std::string::npos) << bad;
+}
+
+// --bench-from names a folder that is not there: one line naming the option, no output.
+TEST_F(KneiphofFigureTest, BenchFromMissingFolderIsOneLine) {
+  expect_input_error(run({"figure", "kneiphof2024-table1", "--budget", "quick", "--out", "out",
+                          "--bench-from", "nowhere"}),
+                     {"--bench-from", "'nowhere'", "glints.json", "kemppinen.json"}, {});
 }
 
 }  // namespace

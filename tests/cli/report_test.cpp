@@ -88,6 +88,34 @@ TEST_F(ReportTest, ReuseReadsCachedResultsAndAMalformedOneLeavesTheOldReport) {
                      {"--reuse", "run.json"}, before);
 }
 
+// The benchmarks run (here: are reused) before the figures, and the timing figures read the
+// report's own bench/ folder, named as the report's folder, not the staging one; without that
+// part they say in one sentence that they have no benchmark data.
+TEST_F(ReportTest, TimingFiguresReadTheReportsOwnBenchmarks) {
+  fs::create_directories(path("r"));
+  fs::copy(fs::path(kReportFixtures) / "bench", path("r/bench"), fs::copy_options::recursive);
+  write_text(path("r/bench/glints.json"),
+             "{\n  \"benchmarks\": [\n    {\n      \"name\": \"table1/method:2/light:2\",\n"
+             "      \"real_time\": 42.5,\n      \"time_unit\": \"ns\"\n    }\n  ]\n}\n");
+  RunResult r = run({"report", "--out", "r", "--reuse", "--figures", "kneiphof2024-table1",
+                     "--skip", "claims,stability,compare", "--threads", "1"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string md = read_text(path("r/figures/kneiphof2024-table1/summary.md"));
+  EXPECT_NE(md.find("read from `r/bench/glints.json`"), std::string::npos) << md;
+  EXPECT_NE(md.find("| area | — | — | 42.5 | — |"), std::string::npos) << md;
+  std::string html = read_text(path("r/index.html"));
+  EXPECT_EQ(html.find(".tmp."), std::string::npos) << "a staging path is shown in the report";
+
+  r = run({"report", "--out", "r2", "--figures", "kneiphof2024-table1", "--skip",
+           "claims,bench,stability,compare", "--threads", "1"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  md = read_text(path("r2/figures/kneiphof2024-table1/summary.md"));
+  EXPECT_NE(md.find("No benchmark data: no benchmark folder was given"), std::string::npos) << md;
+  html = read_text(path("r2/index.html"));
+  for (const char* bad : {">nan<", ">NaN<", "NOT FOUND"})
+    EXPECT_EQ(html.find(bad), std::string::npos) << bad;
+}
+
 TEST_F(ReportTest, SmallRealRun) {
   const RunResult r = run({"report", "--out", "r", "--claims", "kneiphof.total-area", "--figures",
                            "eto2023-fig4", "--skip", "bench,stability", "--threads", "2"});

@@ -157,6 +157,13 @@ def main():
         if problems:
             failures.append(f"unreadable pictures: {problems[:10]}" +
                             (f" and {len(problems) - 10} more" if len(problems) > 10 else ""))
+        # Nothing shown that no run measured: a nan in a table, NOT FOUND, raw Markdown tables (the
+        # page is static, so its text is the HTML's; the negative controls are in
+        # report_writer_test.py).
+        shown = rc.visible_problems(open(index, encoding="utf-8").read())
+        if shown:
+            failures.append(f"shown but not measured: {shown[:10]}" +
+                            (f" and {len(shown) - 10} more" if len(shown) > 10 else ""))
         # Negative control: a chart whose axis label is gone, a raw data map shown as an image
         # and a one-colour block must all be caught.
         broken = os.path.join(tmp, "broken")

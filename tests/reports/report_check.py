@@ -1,5 +1,6 @@
-"""Checks shared by the report tests: parse index.html / report.md, and find links and images that
-are absolute or do not resolve to a file inside the report folder."""
+"""Checks shared by the report tests: parse index.html / report.md, find links and images that
+are absolute or do not resolve to a file inside the report folder, and what a reader would see
+that no run measured (a nan in a table, NOT FOUND, a Markdown table left as raw text)."""
 import html.parser
 import json
 import os
@@ -141,4 +142,67 @@ def plot_problems(root, page):
         full = os.path.join(root, path)
         if os.path.isfile(full) and is_png(full) and distinct_colours(full) < 4:
             problems.append(f"{src}: a bare block (fewer than 4 colours)")
+    return problems
+
+
+class Text(html.parser.HTMLParser):
+    """The text a reader sees on a page (folded <details> included, <style> and <title> not), one
+    string per text node, and the cells of every table."""
+
+    def __init__(self):
+        super().__init__()
+        self.chunks, self.cells = [], []
+        self._skip = 0
+        self._cell = None
+
+    def handle_starttag(self, tag, attrs):
+        if tag in ("style", "script", "title"):
+            self._skip += 1
+        if tag in ("td", "th"):
+            self._cell = ""
+
+    def handle_endtag(self, tag):
+        if tag in ("style", "script", "title"):
+            self._skip -= 1
+        if tag in ("td", "th") and self._cell is not None:
+            self.cells.append(" ".join(self._cell.split()))
+            self._cell = None
+
+    def handle_data(self, data):
+        if self._skip:
+            return
+        self.chunks.append(data)
+        if self._cell is not None:
+            self._cell += data
+
+
+NAN_TOKEN = re.compile(r"^[-+]?nan$", re.IGNORECASE)
+WORD = re.compile(r"[A-Za-z]{3,}")
+MD_RULE = re.compile(r"^\s*\|?\s*:?-{3,}:?\s*(\|\s*:?-{3,}:?\s*)+\|?\s*$")
+
+
+def nan_as_value(cell):
+    """A cell that shows nan as a number: a token nan (alone, or among numbers and separators),
+    not the word NaN in a sentence ("NaN for alpha below 1e-3")."""
+    tokens = re.split(r"[\s/,;()=|]+", cell)
+    if not any(NAN_TOKEN.match(t) for t in tokens):
+        return False
+    return not any(WORD.search(t) and not NAN_TOKEN.match(t) for t in tokens)
+
+
+def visible_problems(page_html):
+    """What a reader of the page sees that no run measured: a table cell showing nan, "NOT FOUND"
+    anywhere, and Markdown tables left as raw text (a row of pipes over a |---| rule) instead of
+    HTML tables."""
+    t = Text()
+    t.feed(page_html)
+    problems = [f"table cell shows nan: {c!r}" for c in t.cells if nan_as_value(c)]
+    text = "\n".join(t.chunks)
+    for line in text.splitlines():
+        if "NOT FOUND" in line:
+            problems.append(f"visible NOT FOUND: {line.strip()[:120]!r}")
+    lines = text.splitlines()
+    for i in range(1, len(lines)):
+        if MD_RULE.match(lines[i]) and lines[i - 1].strip().startswith("|"):
+            problems.append(f"raw Markdown table: {lines[i - 1].strip()[:120]!r}")
     return problems

@@ -125,6 +125,13 @@ with tempfile.TemporaryDirectory() as tmp:
     check("NaN for alpha below 1e-3 at grazing" in text, "the failure region in words")
     check("Fixture CPU, 2 cores" in text and "budget quick" in text, "machine and budget named")
     check("&lt;tag&gt;" in text, "text is HTML-escaped")
+    # A figure's summary.md: its Markdown table shown as an HTML table, and nothing on the page a
+    # reader would take for a missing measurement.
+    check(["quantity", "paper", "ours"] in [t[0] for t in page.tables if t] and
+          ["ratio", "0.5", "0.52"] in [r for t in page.tables for r in t],
+          "summary.md's Markdown table is an HTML table")
+    problems = rc.visible_problems(text)
+    check(not problems, f"no visible nan, NOT FOUND or raw Markdown table (got {problems})")
     # The Markdown twin: same verdict rows, same images, links resolve.
     links, images, md = rc.markdown_targets(os.path.join(d, "report.md"))
     rows = [ln for ln in md.splitlines() if ln.startswith("| fixture.")]
@@ -135,9 +142,60 @@ with tempfile.TemporaryDirectory() as tmp:
     bad = rc.bad_targets(d, links + images)
     check(not bad, f"Markdown links resolve (bad: {bad})")
     check(r"\| pipe" in md, "a | in a Markdown cell is escaped")
+    check("\n| ratio | 0.5 | 0.52 |\n" in md, "Markdown twin: summary.md's table is a table")
     # The checker can fail: an absolute link, a dangling one, one leaving the report.
     check(len(rc.bad_targets(d, ["/etc/passwd", "http://x/y.png", "nope.png", "../x.png",
                                  "#top"])) == 4, "link checker rejects bad targets")
+
+    # --- a figure without its benchmark data, the old way: a table of nan and NOT FOUND ---
+    d = fresh(tmp, "nan_table")
+    with open(os.path.join(d, "figures", "fixture2026-fig1", "summary.md"), "w") as f:
+        f.write("# fixture2026-fig1\n\nGoogle Benchmark JSON out/bench/glints.json (NOT FOUND: our "
+                "columns are empty)\n\n| light | smooth ns | paper ms |\n|---|---|---|\n"
+                "| area | nan | 1.7 |\n| none | -nan / 2 | 1.4 |\n")
+    r = make(d)
+    check(r.returncode == 0, f"report of the broken figure: exit 0 (got {r.returncode})")
+    problems = rc.visible_problems(open(os.path.join(d, "index.html"), encoding="utf-8").read())
+    check(len([p for p in problems if "shows nan" in p]) == 2 and
+          any("NOT FOUND" in p for p in problems),
+          f"the check fails a table of nan and a visible NOT FOUND (got {problems})")
+    # ... and a summary.md shown as raw Markdown text (as the report once did, in a <pre>).
+    raw = ("<details><summary>summary.md</summary><pre>" +
+           open(os.path.join(FIXTURES, "figures", "fixture2026-fig1", "summary.md")).read() +
+           "</pre></details>")
+    check(any("raw Markdown table" in p for p in rc.visible_problems(raw)),
+          "the check fails a Markdown table left as raw text")
+    check(not rc.visible_problems("<table><tr><td>NaN for alpha below 1e-3</td>"
+                                  "<td>nan_fraction</td></tr></table>"),
+          "the word NaN in a sentence and nan_fraction are not values")
+
+    # --- the comparison: verdicts copied from the source apart from those of this run ---
+    sys.path.insert(0, os.path.join(HERE, "..", "..", "reports"))
+    import compare_page  # noqa: E402
+    model = {"name": "m", "timing": {"scalar_ns_per_eval": 2.0, "best_ns_per_eval": 1.0,
+                                     "best_isa": "avx2", "batched": True},
+             "reference": [], "equal_time": {"not_shown": "no sampler", "points": []},
+             "stability": [{"sampler": "s", "verdict": "holds", "origin": "read",
+                            "failure_region": "none"}],
+             "conformance": [{"property": p, "verdict": v, "origin": o, "detail": ""}
+                             for p, v, o in [("measured-here", "holds", "measured"),
+                                             ("from-verify", "holds", "read"),
+                                             ("copied", "fails", "recorded"),
+                                             ("unclaimed", "not-claimed", "declared")]]}
+    cpage = rc.Page()
+    cpage.feed(compare_page.table_html({"models": [model]}))
+    head, row = cpage.tables[0][0], cpage.tables[0][1]
+    check(head[1] == "conformance, this run" and "recorded" in head[2] and
+          "verify/conformance/conformance.cpp" in head[2],
+          f"compare: a column for this run, one for recorded verdicts naming their source ({head})")
+    check("measured-here" in row[1] and "from-verify" in row[1] and "recorded" not in row[1] and
+          "copied: fails (recorded)" in row[2] and "unclaimed" in row[2] and
+          "measured-here" not in row[2],
+          f"compare: recorded and declared verdicts only in their own column ({row})")
+    cmd = compare_page.table_markdown({"models": [model]}).splitlines()
+    check(len(cmd) == 3 and cmd[2].split(" | ")[1] == "holds 1, holds (read) 1" and
+          cmd[2].split(" | ")[2] == "fails (recorded) 1, not-claimed (declared) 1",
+          f"compare Markdown: the same two columns ({cmd[-1]})")
 
     # --- a part absent: the report says so ---
     d = fresh(tmp, "no_stability")
