@@ -33,6 +33,7 @@ struct VerifyOptions {
   std::string claims = "*";
   std::string threads;
   bool list = false;
+  bool json = false;  // with --list: the registry as JSON
   std::string calibrate;  // a check id: run its calibration instead of the suite
   std::string runs = "100";
   std::string level = "0.05";
@@ -98,6 +99,12 @@ int run(const CLI::App* cmd, const VerifyOptions& o) {
   const verify::Check* to_calibrate =
       o.calibrate.empty() ? nullptr : &calibration_check(o.calibrate);
   const auto selected = select_checks(o.claims);
+  if (o.json && !o.list)
+    throw InputError("--json: only with --list (valid: glintlab verify --list --json)");
+  if (o.list && o.json) {
+    fmt::print("{}", verify::registry_to_json(selected));
+    return 0;
+  }
   if (o.list) {
     for (const auto* c : selected)
       fmt::print(
@@ -195,6 +202,9 @@ void add_verify_command(CLI::App& app) {
   add_threads_option(sub, opts->threads);
   add_bool_flag(sub, "--list", opts->list,
                 "list the matching claims with their recorded verdicts and exit");
+  add_bool_flag(sub, "--json", opts->json,
+                "with --list: print the registry as JSON (id, paper, source, kind, recorded "
+                "verdicts per budget, paper_quote, stronger_reading, alternatives, correction)");
   add_text_option(
       sub, "--calibrate", opts->calibrate,
       "a statistical check's id: run its test on a known-correct input over --runs "

@@ -3,34 +3,27 @@
 
 Usage (Debian's /usr/bin/python3, standard library only):
 
-    /usr/bin/python3 scripts/claims_doc.py [CLAIMS_JSON ...] [--out FILE] [--source-dir DIR]
+    glintlab verify --list --json > REGISTRY
+    /usr/bin/python3 scripts/claims_doc.py --registry REGISTRY [CLAIMS_JSON ...] [--out FILE]
 
 Each CLAIMS_JSON is the claims.json that `glintlab verify --out DIR [--budget quick|full]`
 writes (a list of records; each record names its budget). Give the quick and the full run's
-files to fill both verdict columns. The recorded verdicts (what `glintlab verify` must
-reproduce for its exit status 0) are read from the check registrations in verify/claims/*.cpp,
-in the order of verify/registry.cpp; with no CLAIMS_JSON the table shows only those, and its
-header says so. Without --out the Markdown goes to stdout. A malformed input is one line on
+files to fill both verdict columns. The registered claims and their recorded verdicts (what
+`glintlab verify` must reproduce for its exit status 0) come from the program itself, the JSON
+of `glintlab verify --list --json`, in the registry's order; with no CLAIMS_JSON the table shows
+only those, and its header says so. Without --out the Markdown goes to stdout. A malformed input is one line on
 stderr, exit status 2, and nothing written.
 """
 
 import argparse
 import json
 import os
-import re
 import sys
 import tempfile
 import textwrap
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-VERDICTS = {
-    "kHolds": "holds",
-    "kHoldsWithin": "holds-within",
-    "kHoldsInRegime": "holds-in-regime",
-    "kFails": "fails",
-    "kInconclusive": "inconclusive",
-    "kNotClaimed": "not-claimed",
-}
+VERDICTS = ("holds", "holds-within", "holds-in-regime", "fails", "inconclusive", "not-claimed")
 BUDGETS = ("quick", "full")
 
 # One line per registered claim: what the paper says, in this project's words (the ids are those
@@ -84,173 +77,38 @@ class InputError(Exception):
     pass
 
 
-# ---- the recorded verdicts, from the check registrations in verify/claims/*.cpp ---------------
+# ---- the recorded verdicts, from the program's registry ---------------------------------------
 
-def end_of_literal(src, i):
-    """Index just past the string or char literal that opens at src[i]."""
-    j = i + 1
-    while j < len(src) and src[j] != src[i]:
-        j += 2 if src[j] == "\\" else 1
-    return j + 1
-
-
-def strip_comments(src):
-    """C++ source without // and /* */ comments; string and char literals kept intact."""
-    out, i, n = [], 0, len(src)
-    while i < n:
-        c = src[i]
-        if c in "\"'":
-            j = end_of_literal(src, i)
-            out.append(src[i:j])
-            i = j
-        elif src.startswith("//", i):
-            j = src.find("\n", i)
-            i = n if j < 0 else j
-        elif src.startswith("/*", i):
-            j = src.find("*/", i + 2)
-            i = n if j < 0 else j + 2
-        else:
-            out.append(c)
-            i += 1
-    return "".join(out)
-
-
-def pieces(src, i=0):
-    """(index, text) of src from i on: a whole string or char literal, or one other character."""
-    while i < len(src):
-        j = end_of_literal(src, i) if src[i] in "\"'" else i + 1
-        yield i, src[i:j]
-        i = j
-
-
-def matching(src, i):
-    """Index of the bracket closing the one at src[i] (strings skipped)."""
-    pairs = {"{": "}", "(": ")", "[": "]"}
-    stack = []
-    for k, t in pieces(src, i):
-        if t in pairs:
-            stack.append(pairs[t])
-        elif t in (")", "]", "}"):
-            if not stack or stack.pop() != t:
-                raise InputError(f"unbalanced '{t}' in a check registration")
-            if not stack:
-                return k
-    raise InputError("unterminated bracket in a check registration")
-
-
-def split_top(s):
-    """Splits s at commas outside brackets and strings."""
-    parts, depth, cur = [], 0, []
-    for _, t in pieces(s):
-        depth += (t in ("{", "(", "[")) - (t in ("}", ")", "]"))
-        if t == "," and depth == 0:
-            parts.append("".join(cur).strip())
-            cur = []
-        else:
-            cur.append(t)
-    if "".join(cur).strip():
-        parts.append("".join(cur).strip())
-    return parts
-
-
-LITERAL = re.compile(r'"((?:[^"\\]|\\.)*)"')
-
-
-def literal_text(expr):
-    """The text of one or more adjacent C++ string literals, or None if expr is not one."""
-    expr = expr.strip()
-    if not expr.startswith('"'):
-        return None
-    rest = LITERAL.sub("", expr).strip()
-    if rest:
-        return None
-    text = "".join(m.group(1) for m in LITERAL.finditer(expr))
-    return text.replace('\\"', '"').replace("\\\\", "\\")
-
-
-def resolve(expr, scopes):
-    """A string argument: a literal, or a name defined as one in the function or its file."""
-    text = literal_text(expr)
-    if text is not None:
-        return text
-    name = expr.strip()
-    if not re.fullmatch(r"[A-Za-z_]\w*", name):
-        raise InputError(f"cannot read the claim field '{name}' from the source")
-    definition = re.compile(r"\b" + name + r"\s*(?:\[\s*\])?\s*=\s*((?:\"(?:[^\"\\]|\\.)*\"\s*)+);")
-    for scope in scopes:
-        m = definition.search(scope)
-        if m:
-            return literal_text(m.group(1))
-    raise InputError(f"the name '{name}' has no string definition in its source file")
-
-
-def function_body(sources, name):
-    """(body, file text) of `std::vector<Check> name()` in one of the sources."""
-    pattern = re.compile(r"std::vector<Check>\s+" + re.escape(name) + r"\s*\(\s*\)\s*\{")
-    for text in sources.values():
-        m = pattern.search(text)
-        if m:
-            open_brace = m.end() - 1
-            return text[open_brace + 1:matching(text, open_brace)], text
-    raise InputError(f"no definition of {name}() in verify/claims/*.cpp")
-
-
-def checks_of(sources, name):
-    body, file_text = function_body(sources, name)
-    m = re.search(r"(?:return|=)\s*\{", body)
-    if not m:
-        raise InputError(f"{name}() has no list of checks")
-    open_brace = m.end() - 1
-    entries = split_top(body[open_brace + 1:matching(body, open_brace)])
-    checks = []
-    for entry in entries:
-        if not entry.startswith("{"):
-            raise InputError(f"{name}(): unexpected entry '{entry[:40]}'")
-        args = split_top(entry[1:matching(entry, 0)])
-        if len(args) < 5:
-            raise InputError(f"{name}(): a check with fewer than five fields")
-        verdicts = [a for a in args if re.fullmatch(r"Verdict::k\w+", a)]
-        expected = VERDICTS.get(args[3].replace("Verdict::", ""))
-        if expected is None:
-            raise InputError(f"{name}(): '{args[3]}' is not a verdict")
-        full = VERDICTS.get(args[6].replace("Verdict::", "")) if len(args) > 6 else None
-        if len(verdicts) != (2 if full else 1):
-            raise InputError(f"{name}(): cannot place the verdicts of '{args[0]}'")
-        calibration = len(args) > 5 and args[5] not in ("{}", "nullptr")
-        checks.append({
-            "id": resolve(args[0], (body, file_text)),
-            "paper": resolve(args[1], (body, file_text)),
-            "source": resolve(args[2], (body, file_text)),
-            "recorded": {"quick": expected, "full": full or expected},
-            "statistical": calibration,
-        })
-    for extra in re.findall(r"for\s*\(\s*Check\s*&\s*\w+\s*:\s*(\w+)\s*\(\s*\)\s*\)", body):
-        checks.extend(checks_of(sources, extra))
-    return checks
-
-
-def recorded_checks(source_dir):
-    """Every registered check, in the registry's order, with its recorded verdicts."""
-    registry = os.path.join(source_dir, "..", "registry.cpp")
+def read_registry(path):
+    """The papers' claims and glintlab's rules in the registry's order, with their recorded
+    verdicts: the JSON of `glintlab verify --list --json` (the program's own metadata; the C++
+    sources are not parsed)."""
     try:
-        with open(registry, encoding="utf-8") as f:
-            registry_src = strip_comments(f.read())
-        sources = {}
-        for name in sorted(os.listdir(source_dir)):
-            if name.endswith(".cpp"):
-                with open(os.path.join(source_dir, name), encoding="utf-8") as f:
-                    sources[name] = strip_comments(f.read())
+        with open(path, encoding="utf-8") as f:
+            entries = json.load(f)
     except OSError as e:
-        raise InputError(f"--source-dir: {e.strerror}: {e.filename}")
-    m = re.search(r"for\s*\(\s*auto\s*\*\s*\w+\s*:\s*\{([^}]*)\}", registry_src)
-    if not m:
-        raise InputError("verify/registry.cpp: the list of check lists was not found")
+        raise InputError(f"--registry: {e.strerror}: {path}")
+    except (json.JSONDecodeError, UnicodeDecodeError) as e:
+        raise InputError(f"--registry: {path} is not JSON ({e})")
+    if not isinstance(entries, list) or not entries:
+        raise InputError(f"--registry: {path}: expected the non-empty list that "
+                         "glintlab verify --list --json prints")
     checks = []
-    for name in re.findall(r"&\s*(\w+)", m.group(1)):
-        checks.extend(checks_of(sources, name))
+    for i, e in enumerate(entries):
+        if not isinstance(e, dict) or not isinstance(e.get("id"), str) or \
+                not isinstance(e.get("expected_verdict"), dict):
+            raise InputError(f"--registry: {path}: entry {i} lacks 'id' or 'expected_verdict'")
+        if e.get("family"):
+            continue  # a model's conformance check: taken from the runs (conformance_checks)
+        recorded = {b: e["expected_verdict"].get(b) for b in BUDGETS}
+        for b, v in recorded.items():
+            if v not in VERDICTS:
+                raise InputError(f"--registry: {path}: {e['id']}: '{v}' is not a {b} verdict")
+        checks.append({"id": e["id"], "paper": e.get("paper", ""), "source": e.get("source", ""),
+                       "recorded": recorded, "statistical": bool(e.get("statistical"))})
     ids = [c["id"] for c in checks]
     if len(set(ids)) != len(ids):
-        raise InputError("the registry holds a claim id twice")
+        raise InputError(f"--registry: {path}: a claim id appears twice")
     return checks
 
 
@@ -276,7 +134,7 @@ def read_claims_json(path):
                 raise InputError(f"{path}: record {i} lacks '{key}' ({kind.__name__})")
         if r["budget"] not in BUDGETS:
             raise InputError(f"{path}: record {i}: budget '{r['budget']}' is not quick or full")
-        if r["verdict"] not in VERDICTS.values():
+        if r["verdict"] not in VERDICTS:
             raise InputError(f"{path}: record {i}: '{r['verdict']}' is not a verdict")
         runs.setdefault(r["budget"], {})[r["id"]] = r
     return runs
@@ -284,7 +142,7 @@ def read_claims_json(path):
 
 def conformance_checks(measured):
     """The model conformance checks (model.<name>.<property>) of the runs: generated from the
-    model registry at run time, so they are not in verify/claims/*.cpp; each run reports its
+    model registry at run time and selected only by naming them; each run reports its
     recorded verdict (verify/conformance/conformance.cpp) as expected_verdict."""
     checks = {}
     for budget in BUDGETS:
@@ -417,15 +275,15 @@ def render(checks, measured, command, inputs):
         lines.append(f"Measured verdicts from {described}.")
     else:
         lines.append(
-            "No claims.json was given: every verdict below is the one recorded in "
-            "`verify/claims/*.cpp`, which `glintlab verify` must reproduce (exit status 0), "
-            "not a measurement. The control column needs a claims.json: `glintlab verify` "
+            "No claims.json was given: every verdict below is the one recorded in the registry "
+            "(`glintlab verify --list --json`), which `glintlab verify` must reproduce (exit "
+            "status 0), not a measurement. The control column needs a claims.json: `glintlab verify` "
             "exits 1 when a negative control is not rejected.")
     missing = [b for b in BUDGETS if b not in measured]
     if measured and missing:
         lines.append(
             f"No {' or '.join(missing)}-budget claims.json was given: that column shows the "
-            "verdict recorded in `verify/claims/*.cpp`, marked \"(recorded)\".")
+            "verdict recorded in the registry, marked \"(recorded)\".")
     statistical = sum(1 for c in checks if c["statistical"])
     lines += [
         "",
@@ -508,11 +366,11 @@ def main(argv):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("claims_json", nargs="*", help="claims.json of glintlab verify runs")
     parser.add_argument("--out", help="Markdown file to write (default: stdout)")
-    parser.add_argument("--source-dir", default=os.path.join(REPO, "verify", "claims"),
-                        help="folder of the check registrations (default: verify/claims)")
+    parser.add_argument("--registry", required=True,
+                        help="the JSON that glintlab verify --list --json prints")
     args = parser.parse_args(argv)
     try:
-        checks = recorded_checks(args.source_dir)
+        checks = read_registry(args.registry)
         measured, inputs = {}, []
         for path in args.claims_json:
             for budget, runs in read_claims_json(path).items():
@@ -521,8 +379,9 @@ def main(argv):
                 measured[budget] = runs
                 inputs.append((path, budget))
         checks += conformance_checks(measured)
-        command = " ".join(["/usr/bin/python3 scripts/claims_doc.py"] + args.claims_json +
-                           (["--out", args.out] if args.out else []))
+        command = (f"glintlab verify --list --json > {args.registry}; " + " ".join(
+            ["/usr/bin/python3 scripts/claims_doc.py", "--registry", args.registry] +
+            args.claims_json + (["--out", args.out] if args.out else [])))
         text = render(checks, measured, command, inputs)
         if args.out:
             folder = os.path.dirname(os.path.abspath(args.out))

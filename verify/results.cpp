@@ -125,6 +125,33 @@ std::string to_json(const std::vector<RunRecord>& records, const RunInfo& info) 
   return list.dump(2) + "\n";
 }
 
+std::string registry_to_json(const std::vector<const Check*>& checks) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const Check* c : checks) {
+    nlohmann::json alternatives = nlohmann::json::array();
+    for (const Alternative& a : c->alternatives)
+      alternatives.push_back({{"cause", std::string(a.cause)},
+                              {"how", std::string(a.how)},
+                              {"excluded", a.excluded}});
+    list.push_back(
+        {{"id", c->id},
+         {"paper", c->paper},
+         {"source", c->source},
+         {"kind", kind_of(*c)},
+         {"family", c->family},
+         {"statistical", is_statistical(*c)},
+         {"expected_verdict",
+          {{"quick", to_string(c->expected_for(Budget::kQuick))},
+           {"full", to_string(c->expected_for(Budget::kFull))}}},
+         {"budget_note", text_or_null(c->budget_note)},
+         {"paper_quote", text_or_null(c->paper_quote)},
+         {"stronger_reading", text_or_null(c->stronger_reading)},
+         {"alternatives", alternatives},
+         {"correction", text_or_null(c->correction)}});
+  }
+  return list.dump(2) + "\n";
+}
+
 std::string to_csv(const std::vector<RunRecord>& records) {
   std::string csv =
       "id,paper,source,kind,paper_quote,verdict,measured_verdict,expected_verdict,detail,statistic,"

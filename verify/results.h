@@ -26,6 +26,11 @@ struct RunInfo {
 };
 
 std::string to_json(const std::vector<RunRecord>& records, const RunInfo& info);
+// What the registry says of each check, nothing measured (glintlab verify --list --json): id,
+// paper, source, kind, family, statistical, the recorded verdict per budget and why they differ,
+// paper_quote, stronger_reading, the reviewed alternatives and the correction. The tools that
+// document the claims (scripts/claims_doc.py) read this instead of the C++ sources.
+std::string registry_to_json(const std::vector<const Check*>& checks);
 std::string to_csv(const std::vector<RunRecord>& records);
 std::string to_markdown(const std::vector<RunRecord>& records, const RunInfo& info);
 
