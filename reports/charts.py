@@ -56,10 +56,22 @@ def colorbar(fig, mappable, ax, label):
 
 
 def save(fig, path, relpath, manifest, dpi=110):
-    """Saves a chart, records it in the manifest (relpath: its path in the report)."""
+    """Saves a chart, records it in the manifest (relpath: its path in the report) with, per
+    rendered panel, the pixels of its image and the size it is drawn at in the saved chart, so
+    that the browser test can tell how large a reader sees it."""
     entry = describe(fig)
     entry["file"] = relpath
     fig.savefig(path, dpi=dpi, format="png", metadata={"Software": None})
+    # After drawing: the axes' box is the one the image's aspect made (a fraction of the figure,
+    # which savefig writes at figsize x dpi pixels).
+    w_in, h_in = fig.get_size_inches()
+    visible = [ax for ax in fig.axes if ax.get_visible() and ax.get_label() != "<colorbar>"]
+    for ax, a in zip(visible, entry["axes"]):
+        if a["render"] and ax.images:
+            shape = ax.images[0].get_array().shape
+            box = ax.get_position()
+            a["image_px"] = [int(shape[1]), int(shape[0])]
+            a["drawn_px"] = [round(box.width * w_in * dpi, 1), round(box.height * h_in * dpi, 1)]
     pyplot().close(fig)
     manifest.append(entry)
 
@@ -260,8 +272,12 @@ def panel_chart(png, layout, path, relpath, manifest, subtitle):
         return False
     plt = pyplot()
     cols = min(int(layout["columns"]), len(tiles))
-    rows = (len(tiles) + cols - 1) // cols
     th, tw = tiles[0].shape[0], tiles[0].shape[1]
+    # A row of wide panels too long for its height (six 16:11 frames) is drawn in two, so that each
+    # panel keeps a readable height in the page.
+    while cols % 2 == 0 and cols * tw > 7 * th:
+        cols //= 2
+    rows = (len(tiles) + cols - 1) // cols
     aspect = min(2.0, max(0.5, th / tw))
     fig, axes = plt.subplots(rows, cols, squeeze=False,
                              figsize=(max(6.5, 2.7 * cols + 0.6), 2.7 * aspect * rows + 1.0))

@@ -554,22 +554,26 @@ class Doc:
         self.html.append("\n".join(h))
         self.md.append("\n".join(m) + "\n")
 
-    def image(self, href, alt, caption, kind="render"):
+    def image(self, href, alt, caption, kind="render", wide=False):
         """kind: "chart" (drawn by the report, in plots/plots.json) or "render" (a rendered
-        image of a figure, small ones drawn enlarged with visible pixels)."""
-        self.html.append(f'<figure class="{kind}"><a href="{esc(url(href))}"><img class="{kind}" '
+        image of a figure, small ones drawn enlarged with visible pixels). wide: in a gallery, the
+        image takes a whole row (a wide one squeezed into one cell would be too low to read)."""
+        cls = f"{kind} wide" if wide else kind
+        self.html.append(f'<figure class="{cls}"><a href="{esc(url(href))}"><img class="{kind}" '
                          f'src="{esc(url(href))}" alt="{esc(alt)}"></a>'
                          f'<figcaption>{esc(caption)}</figcaption></figure>')
         self.md.append(f"![{md_cell(alt)}]({url(href)})\n\n*{caption}*\n")
 
-    def gallery(self, summary, items):
-        """Rendered images side by side, folded: items [(href, alt, caption)]."""
+    def gallery(self, summary, items, root=None):
+        """Rendered images side by side, folded: items [(href, alt, caption)]; with root, those
+        at least twice as wide as high take a row of their own."""
         if not items:
             return
         self.html.append(f'<details class="gallery"><summary>{esc(summary)}</summary>'
                          '<div class="grid">')
         for href, alt, caption in items:
-            self.image(href, alt, caption, "render")
+            size = png_size(os.path.join(root, href)) if root else None
+            self.image(href, alt, caption, "render", wide=bool(size and size[0] >= 2 * size[1]))
         self.html.append("</div></details>")
 
     def links(self, label, items):
@@ -587,6 +591,18 @@ class Doc:
             body = f"<details><summary>{esc(summary)}</summary>{body}</details>"
         self.html.append(body)
         self.md.append("\n".join("    " + line for line in text.splitlines()) + "\n")
+
+
+def png_size(path):
+    """(width, height) from a PNG's header; None when the file is not a readable PNG."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(24)
+    except OSError:
+        return None
+    if len(head) < 24 or head[:8] != b"\x89PNG\r\n\x1a\n":
+        return None
+    return int.from_bytes(head[16:20], "big"), int.from_bytes(head[20:24], "big")
 
 
 def fmt_p(v):
@@ -863,7 +879,7 @@ def write_figures(doc, figures, part, root, plots_tmp, plots_rel, made, manifest
         pngs = [n for n in f["files"] if n.endswith(".png") and n not in replaced]
         doc.gallery(f"{len(pngs)} rendered image(s) of {fid} (click to unfold)",
                     [(f"{base}/{n}", f"{fid} {n}", f"{n} (preview of the EXR data)")
-                     for n in pngs])
+                     for n in pngs], root)
         doc.links("EXR", [(n, f"{base}/{n}") for n in f["files"] if n.endswith(".exr")])
         doc.links("CSV", [(n, f"{base}/{n}") for n in f["files"] if n.endswith(".csv")])
         doc.links("Other files", [(n, f"{base}/{n}") for n in f["files"]
@@ -1016,7 +1032,7 @@ th{background:#eee}img{max-width:100%;border:1px solid #ddd}figure{margin:0.6em 
 figcaption{font-size:12px;color:#555}
 img.render{width:100%;min-width:200px;image-rendering:pixelated}
 .grid{display:grid;grid-template-columns:repeat(auto-fill,minmax(230px,1fr));gap:6px}
-.grid figure{margin:0}pre{background:#f6f6f6;padding:0.5em;overflow:auto;font-size:12px}
+.grid figure{margin:0}.grid figure.wide{grid-column:1/-1}pre{background:#f6f6f6;padding:0.5em;overflow:auto;font-size:12px}
 details>summary{cursor:pointer;color:#245}details.gallery{margin:0.4em 0}
 table.verdicts{width:100%}table.verdicts td:first-child{white-space:nowrap}
 table.verdicts td:nth-child(7){max-width:420px}table.verdicts details{max-width:420px}

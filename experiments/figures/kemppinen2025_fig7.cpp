@@ -287,8 +287,10 @@ void run_fig7(const FigureContext& ctx) {
       labels.push_back(fmt::format("{}: {}, {} spp", r.name, st.name, b.preview_spp));
   }
   write_panel_layout(ctx.dir / "fig7_images.png",
-                     {"kemppinen2025-fig7: the glinty plane under the environment, per NDF and "
-                      "sampling strategy (exposure 0.1)",
+                     {fmt::format("kemppinen2025-fig7: the glinty plane under the environment, per "
+                                  "NDF and sampling strategy (exposure 0.1; {0} x {0} pixels, one "
+                                  "level-0 cell each, enlarged {1} x)",
+                                  b.size, 192 / b.size),
                       4,
                       0,
                       labels,

@@ -120,7 +120,8 @@ double p_normal(double alpha, double gamma_deg) {
 }
 
 void run_fig6(const FigureContext& ctx) {
-  const int size = ctx.quick ? 48 : 160;
+  // One closed-form evaluation per pixel centre: cheap enough for 512 pixels at full.
+  const int size = ctx.quick ? 128 : 512;
   const double density = 7.0;  // log10 facets per unit uv area
   std::vector<Image> tiles;
   struct RRow {
@@ -225,8 +226,11 @@ void run_fig6(const FigureContext& ctx) {
 constexpr std::string_view kFig9 = "kneiphof2024-fig9";
 
 void run_fig9(const FigureContext& ctx) {
-  const int size = ctx.quick ? 24 : 96;
-  const int samples = ctx.quick ? 2 : 8;  // MC samples per sub-light (and ×256 for the whole)
+  // 128 pixels at quick to see the glints, with fewer samples; full stays at 256, not 512: every
+  // pixel integrates 256 sub-lights (quick: 9 CPU-seconds; full, 32 times the pixel-samples at
+  // 256², some CPU-minutes, four times that at 512²).
+  const int size = ctx.quick ? 128 : 256;
+  const int samples = ctx.quick ? 1 : 8;  // MC samples per sub-light (and ×256 for the whole)
   const double alpha = 0.25, density = 6.0;
   const GGX<double> g{alpha, alpha};
   const double dh = total_area_ggx_eq29(alpha);
@@ -328,8 +332,9 @@ void run_fig9(const FigureContext& ctx) {
                                   "single light (LTC)", "256 sub-lights (LTC)"})
       labels.push_back(fmt::format("half-width {}: {}", r.w, what));
   write_panel_layout(ctx.dir / "fig9.png",
-                     {"kneiphof2024-fig9: one area light vs 256 sub-lights (grey = 0.8 x "
-                      "radiance / smooth peak)",
+                     {fmt::format("kneiphof2024-fig9: one area light vs 256 sub-lights, {} MC "
+                                  "samples per sub-light (grey = 0.8 x radiance / smooth peak)",
+                                  samples),
                       4,
                       2,
                       labels,
@@ -365,10 +370,12 @@ void run_fig9(const FigureContext& ctx) {
 constexpr std::string_view kFig10 = "kneiphof2024-fig10";
 
 void run_fig10(const FigureContext& ctx) {
-  const int size = ctx.quick ? 32 : 128;
+  const int size = ctx.quick ? 128 : 512;
   const int strips = 8;  // N_P quadruples from strip to strip
-  const int samples = ctx.quick ? 16 : 128;
-  const double d0 = 5.0;  // log10 density of the first strip
+  const int samples = ctx.quick ? 16 : 128;  // MC samples per pixel for an area light
+  // log10 facet density of the first strip, raised with the pixel count so that each strip's N_P
+  // (facets per pixel footprint, what the figure is about) is the same at every image size.
+  const double d0 = 5.0 + 2 * std::log10(size / 32.0);
   std::vector<Image> tiles;
   struct Row {
     std::string light;
@@ -450,8 +457,9 @@ void run_fig10(const FigureContext& ctx) {
         labels.push_back(fmt::format("sqrt(alpha) {}, {} light: {}", sa, light, what));
   write_panel_layout(ctx.dir / "fig10.png",
                      {fmt::format("kneiphof2024-fig10: glints vs the smooth BRDF, N_P x4 per "
-                                  "vertical strip of {} (grey = 0.8 x radiance / smooth peak)",
-                                  strips),
+                                  "vertical strip of {}, area lights {} MC samples per pixel "
+                                  "(grey = 0.8 x radiance / smooth peak)",
+                                  strips, samples),
                       6,
                       2,
                       labels,

@@ -25,7 +25,7 @@ namespace {
 constexpr double kThetaDeg = 45;
 
 void run(const FigureContext& ctx) {
-  const int n = ctx.quick ? 64 : 256;
+  const int n = ctx.quick ? 128 : 512;
   const Vec3<double> wi = verify::stability::incidence_at(kThetaDeg);
   io::AtomicFile csv(ctx.dir / "models_hemisphere.csv");
   io::CsvWriter w(csv.stream(),

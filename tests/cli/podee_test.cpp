@@ -88,7 +88,7 @@ TEST_F(PodeeCliTest, Table1Quick) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/podee-table1");
   for (const char* m : {"reference64", "converged", "centre", "lean", "podee"})
-    expect_exr(d / (std::string("d4_") + m + ".exr"), 48);
+    expect_exr(d / (std::string("d4_") + m + ".exr"), 128);
   expect_png(d / "table1.png");
   const io::CsvTable t = io::read_csv(d / "table1.csv");
   ASSERT_EQ(t.num_rows(), 15u);  // 3 distances × (4 methods + the 64-spp reference)
@@ -102,13 +102,13 @@ TEST_F(PodeeCliTest, DistanceAndFlickerQuick) {
       run({"figure", "podee-fig4-distance", "--budget", "quick", "--out", "out", "--threads", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/podee-fig4-distance");
-  expect_exr(d / "d10_podee.exr", 48);
+  expect_exr(d / "d10_podee.exr", 128);
   expect_png(d / "error_vs_distance.png");
   EXPECT_EQ(io::read_csv(d / "error_vs_distance.csv").num_rows(), 12u);
   r = run({"figure", "podee-fig4-flicker", "--budget", "quick", "--out", "out", "--threads", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path f = path("out/podee-fig4-flicker");
-  expect_exr(f / "d4_podee_temporal_sd.exr", 48);
+  expect_exr(f / "d4_podee_temporal_sd.exr", 128);
   expect_png(f / "flicker.png");
   const io::CsvTable t = io::read_csv(f / "flicker.csv");
   EXPECT_EQ(t.num_rows(), 12u);

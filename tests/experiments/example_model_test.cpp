@@ -142,7 +142,7 @@ TEST(ExampleModel, GetsTheRegistryDrivenFigure) {
       experiments::run_figure(experiments::find_figure("models-hemisphere"), dir, ctx);
   EXPECT_TRUE(fs::exists(out / "example_glints.png"));
   const io::ExrFile f = io::read_exr(out / "example_glints.exr");
-  EXPECT_EQ(f.image.width, 64);
+  EXPECT_EQ(f.image.width, 128);
   f.image.channel("value");
   f.image.channel("pdf");
   const io::CsvTable t = io::read_csv(out / "models_hemisphere.csv");

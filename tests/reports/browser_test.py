@@ -27,9 +27,16 @@ SCRIPT = os.path.join(HERE, "..", "..", "reports", "make_report.py")
 # (allowed by --allow-file-access-from-files); the verdict goes into a <pre id>.
 PROBE = """<script>
 window.addEventListener('load', function () {
-  var broken = [], dead = [], imgs = document.images, links = document.links;
-  for (var i = 0; i < imgs.length; i++)
+  var broken = [], dead = [], shown = [], imgs = document.images, links = document.links;
+  // Unfold every <details>, as a reader would, so that folded images have a displayed size.
+  var folds = document.getElementsByTagName('details');
+  for (var k = 0; k < folds.length; k++) folds[k].open = true;
+  for (var i = 0; i < imgs.length; i++) {
     if (!imgs[i].complete || imgs[i].naturalWidth === 0) broken.push(imgs[i].getAttribute('src'));
+    var r = imgs[i].getBoundingClientRect();
+    shown.push({src: imgs[i].getAttribute('src'), cls: imgs[i].className,
+                nw: imgs[i].naturalWidth, nh: imgs[i].naturalHeight, w: r.width, h: r.height});
+  }
   for (var j = 0; j < links.length; j++) {
     var h = links[j].getAttribute('href');
     if (/^[a-z]+:|^\\/|^#/i.test(h)) continue;
@@ -43,13 +50,15 @@ window.addEventListener('load', function () {
   var pre = document.createElement('pre');
   pre.id = 'glintlab-browser-check';
   pre.textContent = JSON.stringify({images: imgs.length, links: links.length,
-                                    broken: broken, dead: dead});
+                                    broken: broken, dead: dead, shown: shown});
   document.body.appendChild(pre);
 });
 </script>"""
 
+# The window width fixes the layout, so the displayed sizes measured are those of a 1280-pixel-wide
+# browser window.
 FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars", "--no-first-run",
-         "--allow-file-access-from-files", "--virtual-time-budget=15000"]
+         "--allow-file-access-from-files", "--virtual-time-budget=15000", "--window-size=1280,3000"]
 
 
 def chromium(args, profile):
@@ -101,6 +110,28 @@ def broken_plots(broken, page):
     return True if not missing and len(got) == len(want) else f"wanted {want}, got {got}"
 
 
+def shrunk_panels(tmp, profile):
+    """Negative control: the fixtures with their two-panel montage cut to 48-pixel panels (the old
+    quick renders, enlarged in the page); True when small_renders names both panels."""
+    import matplotlib.image
+    d = os.path.join(tmp, "small")
+    shutil.copytree(os.path.join(HERE, "fixtures"), d)
+    png = os.path.join(d, "figures", "fixture2026-fig1", "renders.png")
+    img = matplotlib.image.imread(png)
+    matplotlib.image.imsave(png, img[::8, ::8][:, :, :3].repeat(3, 0).repeat(3, 1)[:48, :96])
+    r = subprocess.run([sys.executable, SCRIPT, "--dir", d], capture_output=True, text=True)
+    if r.returncode != 0:
+        return f"make_report.py on the shrunk fixtures: {r.stderr.strip()}"
+    res, err = probe(os.path.join(d, "index.html"), profile)
+    if res is None:
+        return f"chromium did not run the probe: {err}"
+    got = rc.small_renders(d, res["shown"])
+    want = [f"plots/fixture2026-fig1__renders_panels.png: panel {i} " for i in (0, 1)]
+    ok = all(any(g.startswith(w) and "rendered at 48 x 48 pixels" in g for g in got)
+             for w in want)
+    return True if ok and len(got) == 2 else f"wanted both panels at 48 x 48, got {got}"
+
+
 def main():
     if len(sys.argv) < 2:
         print("usage: browser_test.py SCREENSHOT.png [--report DIR]")
@@ -139,19 +170,29 @@ def main():
         bad = rc.bad_targets(report, page.hrefs + page.srcs)
         if bad:
             failures.append(f"absolute or missing targets: {bad}")
-        # Negative control: one image pointed at a missing file must be caught.
+        # Negative control: one image and one relative link pointed at missing files must be
+        # caught (the first relative link: a report made without claims has no verify/).
         control = os.path.join(report, ".control.html")
         text = open(index, encoding="utf-8").read()
         first = page.srcs[0] if page.srcs else ""
+        link = next((h for h in page.hrefs if not re.match(r"^[a-z]+:|^/|^#", h, re.I)), "")
         with open(control, "w", encoding="utf-8") as f:
             text = text.replace(f'src="{first}"', 'src="missing-image.png"', 1)
-            f.write(text.replace('href="verify/claims.json"', 'href="missing-file.json"', 1))
+            f.write(text.replace(f'href="{link}"', 'href="missing-file.json"', 1))
         cres, err = probe(control, profile)
         os.unlink(control)
         if cres is None or cres["broken"] != ["missing-image.png"] or \
                 cres["dead"] != ["missing-file.json"]:
             failures.append(f"negative control: a missing image and a dangling link were not "
                             f"both reported ({cres}, {err})")
+        # Every render is large enough to judge, rendered and as displayed.
+        small = rc.small_renders(report, res["shown"])
+        if small:
+            failures.append(f"renders too small: {small[:10]}" +
+                            (f" and {len(small) - 10} more" if len(small) > 10 else ""))
+        caught = shrunk_panels(tmp, profile)
+        if caught is not True:
+            failures.append(f"negative control: 48-pixel panels not reported ({caught})")
         # Every picture is readable: charts with title, labelled axes, legend, colour scale.
         problems = rc.plot_problems(report, page)
         if problems:
@@ -161,6 +202,7 @@ def main():
         # page is static, so its text is the HTML's; the negative controls are in
         # report_writer_test.py).
         shown = rc.visible_problems(open(index, encoding="utf-8").read())
+        shown += rc.empty_number_cells(page)
         if shown:
             failures.append(f"shown but not measured: {shown[:10]}" +
                             (f" and {len(shown) - 10} more" if len(shown) > 10 else ""))
@@ -171,7 +213,7 @@ def main():
         caught = broken_plots(broken, page)
         if caught is not True:
             failures.append(f"negative control: broken pictures not all reported ({caught})")
-        r = chromium(["--window-size=1280,3000", f"--screenshot={shot}",
+        r = chromium([f"--screenshot={shot}",
                       "file://" + os.path.abspath(index)], profile)
         if not os.path.exists(shot) or not rc.is_png(shot):
             failures.append(f"no screenshot written to {shot}: {r.stderr[-500:]}")

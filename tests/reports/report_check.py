@@ -1,6 +1,7 @@
 """Checks shared by the report tests: parse index.html / report.md, find links and images that
 are absolute or do not resolve to a file inside the report folder, and what a reader would see
-that no run measured (a nan in a table, NOT FOUND, a Markdown table left as raw text)."""
+that no run measured (a nan in a table, NOT FOUND, a Markdown table left as raw text, an empty cell
+where a number belongs), and render panels too small to judge."""
 import html.parser
 import json
 import os
@@ -205,4 +206,70 @@ def visible_problems(page_html):
     for i in range(1, len(lines)):
         if MD_RULE.match(lines[i]) and lines[i - 1].strip().startswith("|"):
             problems.append(f"raw Markdown table: {lines[i - 1].strip()[:120]!r}")
+    return problems
+
+
+NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*(%|×|x|s|ms|µs|ns)?$")
+
+
+def empty_number_cells(page):
+    """Cells left empty in a table column whose other cells hold numbers: a number that a run
+    should have written and did not (a column of words or links may have blanks)."""
+    problems = []
+    for t, rows in enumerate(page.tables):
+        if len(rows) < 2:
+            continue
+        header, body = rows[0], rows[1:]
+        for j, name in enumerate(header):
+            cells = [r[j] for r in body if j < len(r)]
+            numbers = sum(1 for c in cells if NUMBER.match(c))
+            empty = sum(1 for c in cells if not c)
+            if numbers and empty:
+                problems.append(f"table {t + 1} ({' | '.join(header[:3])} ...): column "
+                                f"{name!r} has {empty} empty cell(s) among {numbers} numbers")
+    return problems
+
+
+# A reader judges a glint method by its sparkle: a rendered panel needs this many pixels, rendered
+# (not enlarged from fewer) and as displayed.
+MIN_RENDER_PX = 128
+
+
+def small_renders(root, shown):
+    """Rendered images a reader sees under MIN_RENDER_PX pixels. shown: per <img>, as the browser
+    laid it out (details unfolded): {src, cls, nw, nh (natural size), w, h (displayed size)}. A
+    chart's rendered panels are read from plots/plots.json: each panel's image pixels and the size
+    it is drawn at in the chart, scaled as the browser shows the chart; any other render (a
+    figure's PNG in the gallery) by its own natural and displayed size."""
+    try:
+        with open(os.path.join(root, "plots", "plots.json"), encoding="utf-8") as f:
+            manifest = {p["file"]: p for p in json.load(f)["plots"]}
+    except (OSError, ValueError, KeyError) as e:
+        return [f"plots/plots.json unreadable ({e})"]
+    n = MIN_RENDER_PX
+    problems = []
+    for im in shown:
+        src, cls = urllib.parse.unquote(im["src"]), im["cls"].split()
+        if "chart" in cls:
+            scale = im["w"] / im["nw"] if im["nw"] else 0
+            for i, ax in enumerate(manifest.get(src, {}).get("axes", [])):
+                if not ax.get("render"):
+                    continue
+                if "image_px" not in ax or "drawn_px" not in ax:
+                    problems.append(f"{src}: panel {i} ({ax.get('title')!r}) has no recorded size")
+                    continue
+                pw, ph = ax["image_px"]
+                dw, dh = (scale * v for v in ax["drawn_px"])
+                if min(pw, ph) < n:
+                    problems.append(f"{src}: panel {i} ({ax.get('title')!r}) is rendered at "
+                                    f"{pw} x {ph} pixels (under {n})")
+                if min(dw, dh) < n:
+                    problems.append(f"{src}: panel {i} ({ax.get('title')!r}) is displayed at "
+                                    f"{dw:.0f} x {dh:.0f} pixels (under {n})")
+        elif "render" in cls:
+            if min(im["nw"], im["nh"]) < n:
+                problems.append(f"{src}: a render of {im['nw']} x {im['nh']} pixels (under {n})")
+            if min(im["w"], im["h"]) < n:
+                problems.append(f"{src}: displayed at {im['w']:.0f} x {im['h']:.0f} pixels "
+                                f"(under {n})")
     return problems

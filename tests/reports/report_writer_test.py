@@ -103,8 +103,12 @@ with tempfile.TemporaryDirectory() as tmp:
           "every chart shown is in plots/plots.json")
     for p in manifest:
         for ax in p["axes"]:
-            check(ax["xlabel"] and ax["ylabel"] and ax["title"] and ax["legend"],
+            # A rendered panel is named by its title (no legend); its size is recorded for the
+            # browser test.
+            check(ax["xlabel"] and ax["ylabel"] and ax["title"] and (ax["legend"] or ax["render"]),
                   f"{p['file']}: title, axis labels and legend ({ax})")
+            check(not ax["render"] or (ax.get("image_px") == [128, 128] and ax.get("drawn_px")),
+                  f"{p['file']}: a rendered panel's pixels and drawn size recorded ({ax})")
             check(not ax["map"] or ax["colorbar"], f"{p['file']}: a map has a colour scale")
     st = [p for p in manifest if p["file"] == "plots/stability__fixture_model__vndf__alpha.png"]
     check(len(st) == 1 and len(st[0]["axes"]) == 2 and all(a["map"] for a in st[0]["axes"]),
