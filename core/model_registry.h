@@ -88,6 +88,10 @@ const ModelEntry& find_model(std::string_view name);
 // kMaxModels entries; registering more throws).
 inline constexpr std::size_t kMaxModels = 256;
 void register_model(ModelEntry entry);
+// Throws ModelParamError naming the property and the valid names when `entry` declares a
+// not-claimed property that is not one of kConformanceProperties (register_model and the plug-in
+// loader call it; the built-in models are checked when the registry is compiled).
+void check_not_claimed(const ModelEntry& entry);
 
 // The parameter values for `assignments` (name, text) over the defaults; throws ModelParamError
 // for an unknown name, a repeated one, a value that does not parse, or one out of range.
@@ -113,6 +117,17 @@ concept DeclaresNotClaimed = requires {
   M::kNotClaimed.size();
   { M::kNotClaimed[0].property } -> std::convertible_to<std::string_view>;
 };
+
+// Whether every property M declares not claimed is a conformance property (true where M declares
+// none).
+template <class M>
+constexpr bool not_claimed_are_properties() {
+  if constexpr (DeclaresNotClaimed<M>) {
+    for (const NotClaimed& n : M::kNotClaimed)
+      if (!is_conformance_property(n.property)) return false;
+  }
+  return true;
+}
 
 template <class M>
 concept DoubleOnly = requires {
