@@ -65,7 +65,7 @@ TEST_F(ModelEvalTest, BadModelParameterOrColumnIsOneLine) {
 
 // --grid fills only the directions: a model that needs a footprint or a light takes those columns
 // from --query, as sample --model does; without them it is an error naming them (it used to
-// evaluate a zero footprint, value 0 everywhere, without a word).
+// evaluate a zero footprint, value 0 everywhere, without a word), as a file without them is.
 TEST_F(ModelEvalTest, GridNeedsTheModelsQueryColumns) {
   const std::vector<std::string> grid = {"eval",
                                          "--model",
@@ -95,6 +95,12 @@ TEST_F(ModelEvalTest, GridNeedsTheModelsQueryColumns) {
       {"--query", "only with --grid"}, {"q.csv"});
   expect_input_error(run({"eval", "--in", "q.csv", "--query", "u=0.5", "--out", "r.csv"}),
                      {"--query", "needs --model"}, {"q.csv"});
+  // From a file, the same columns are required in its header.
+  expect_input_error(run({"eval", "--model", "deliot_belcour", "--in", "q.csv", "--out", "r.csv"}),
+                     {"missing column(s) u, v, dudx, dvdx, dudy, dvdy, light_cos_half_angle, "
+                      "light_intensity",
+                      "deliot_belcour"},
+                     {"q.csv"});
 }
 
 // The grid's rows with --query are the rows --in would give: the same query columns, the same
