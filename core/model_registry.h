@@ -83,9 +83,10 @@ const ModelEntry& find_model(std::string_view name);
 // consumer of registered_models() (CLI, claims, figures, sweeps, benchmarks) then sees it. Call it
 // before any concurrent use of the registry (start-up, a test's set-up): it is not thread-safe.
 // The entry's string views must outlive the registry (static strings, as make_model_entry gives).
-// Throws ModelParamError for an empty or already registered name, or an entry without
-// eval/pdf/sample. References to registered entries stay valid (storage is reserved up front for
-// kMaxModels entries; registering more throws).
+// Throws ModelParamError for an empty or already registered name, an entry without
+// eval/pdf/sample, or a misspelled not-claimed property (check_not_claimed). References to
+// registered entries stay valid (storage is reserved up front for kMaxModels entries; registering
+// more throws).
 inline constexpr std::size_t kMaxModels = 256;
 void register_model(ModelEntry entry);
 // Throws ModelParamError naming the property and the valid names when `entry` declares a
