@@ -268,17 +268,26 @@ void add_eval_command(CLI::App& app) {
   add_text_option(cmd, "--grid", *grid,
                   "with --model, instead of --in: 'theta_i=lo:hi:count,...' (degrees; below)",
                   "AXES");
+  auto query = std::make_shared<std::string>();
+  add_text_option(cmd, "--query", *query,
+                  "with --model --grid: the query columns the model needs besides wi and wo, "
+                  "'name=value,...' (footprint u, v, dudx, dvdx, dudy, dvdy; light "
+                  "light_cos_half_angle, light_intensity), for every row; as sample --model",
+                  "LIST");
   auto batch = std::make_shared<BatchOptionTexts>();
   add_batch_options(cmd, *batch);
   set_footer(cmd, std::string(kEvalFooter) + kModelEvalFooter + kBatchOptionsFooter);
-  set_callback(cmd, [cmd, in, out, model, params, grid, batch] {
+  set_callback(cmd, [cmd, in, out, model, params, grid, query, batch] {
     if (model->empty() && !params->empty()) {
       throw InputError("--param: needs --model (see glintlab models)");
     }
-    if (model->empty() && (option_count(cmd, "--grid") > 0 || batch_options_given(cmd))) {
+    if (model->empty() && (option_count(cmd, "--grid") > 0 || option_count(cmd, "--query") > 0 ||
+                           batch_options_given(cmd))) {
+      const char* option = option_count(cmd, "--grid") > 0    ? "--grid"
+                           : option_count(cmd, "--query") > 0 ? "--query"
+                                                              : "--isa/--precision/--math";
       throw InputError(
-          fmt::format("{}: needs --model (valid: a model of glintlab models)",
-                      option_count(cmd, "--grid") > 0 ? "--grid" : "--isa/--precision/--math"));
+          fmt::format("{}: needs --model (valid: a model of glintlab models)", option));
     }
     for (const char* o : {"--in", "--grid", "--model"}) {
       if (option_count(cmd, o) > 0 && (o == std::string("--in")     ? in->empty()
@@ -293,7 +302,8 @@ void add_eval_command(CLI::App& app) {
       if (in->empty()) throw InputError("--in is required (valid: a query CSV file)");
       run_eval(*in, *out, batch->threads);
     } else {
-      run_model_eval({*model, *params, *in, *grid, *out, *batch});
+      run_model_eval(
+          {*model, *params, *in, *grid, *query, option_count(cmd, "--query") > 0, *out, *batch});
     }
   });
 }

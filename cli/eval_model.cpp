@@ -267,6 +267,45 @@ std::vector<std::string_view> needed_query_columns(const ModelEntry& model) {
   return out;
 }
 
+QueryRow<double> parse_query_option(const ModelEntry& model, const std::string& text, bool given) {
+  const std::vector<std::string_view> needed = needed_query_columns(model);
+  const std::string valid = needed.empty()
+                                ? std::string("no --query: the model needs only the directions")
+                                : fmt::format("name=value for each of {}", fmt::join(needed, ", "));
+  QueryRow<double> v{};
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = kQueryLayout[i].default_value;
+  std::vector<bool> set(needed.size(), false);
+  if (given) {
+    for (const std::string& item : split_list(text, "--query", valid)) {
+      const std::size_t eq = item.find('=');
+      const std::string name = item.substr(0, std::min(eq, item.size()));
+      std::size_t k = 0;
+      while (k < needed.size() && needed[k] != name) ++k;
+      if (eq == std::string::npos || k == needed.size()) {
+        throw InputError(
+            fmt::format("--query: '{}' is not a query column model {} needs (valid: {})", item,
+                        model.name, valid));
+      }
+      if (set[k]) throw InputError(fmt::format("--query {}: given twice (valid: {})", name, valid));
+      set[k] = true;
+      std::string_view value(item);
+      value.remove_prefix(eq + 1);
+      while (!value.empty() && value.front() == ' ') value.remove_prefix(1);
+      std::size_t i = 0;
+      while (kQueryLayout[i].name != name) ++i;
+      v[i] = parse_number(value, "--query " + name, "a finite number");
+    }
+  }
+  std::string missing;
+  for (std::size_t k = 0; k < needed.size(); ++k)
+    if (!set[k]) missing += fmt::format("{}{}", missing.empty() ? "" : ", ", needed[k]);
+  if (!missing.empty()) {
+    throw InputError(fmt::format("--query: model {} needs {} ({}; valid: {})", model.name, missing,
+                                 describe_needs(model.needs), valid));
+  }
+  return v;
+}
+
 const char* const kModelEvalFooter =
     R"(
 WITH --model NAME (any model of 'glintlab models'; --param name=value, repeatable, sets its
@@ -290,8 +329,10 @@ and --out has every one of those columns (defaults filled in), then
 Instead of --in, --grid 'theta_i=lo:hi:count,phi_i=...,theta_o=...,phi_o=...' (degrees; theta in
 [0, 180], count in [1, 10000], at most 1e8 rows; an axis left out is 0) evaluates the product of
 the axes, theta_i outermost, phi_o innermost, wi and wo at those polar angles and azimuths;
---out then starts with the columns theta_i, phi_i, theta_o, phi_o (degrees) and the other query
-columns take their defaults.)";
+--out then starts with the columns theta_i, phi_i, theta_o, phi_o (degrees). The other query
+columns the model needs (the footprint, the light) are required in --query 'name=value,...', as
+sample --model takes them (e.g. --query u=0.5,v=0.5,dudx=1e-3,dvdx=0,dudy=0,dvdy=1e-3), the
+same for every row, and checked as --in rows are; the rest take their defaults.)";
 
 void run_model_eval(const ModelEvalArgs& a) {
   const ResolvedModel resolved = resolve_model(a.model, a.params);
@@ -302,6 +343,9 @@ void run_model_eval(const ModelEvalArgs& a) {
     throw InputError("--grid: cannot be combined with --in (valid: one of them)");
   }
   if (a.grid.empty() && a.in_path.empty()) throw InputError("--in is required (or --grid)");
+  if (a.query_given && a.grid.empty()) {
+    throw InputError("--query: only with --grid (valid: with --in, the query columns of the file)");
+  }
 
   const bool need_corners = (model->needs & kNeedsPixelCorners) != 0;
   if (need_corners && !a.grid.empty()) {
@@ -315,6 +359,16 @@ void run_model_eval(const ModelEvalArgs& a) {
   std::vector<std::vector<double>> angles, corners;
   std::size_t n = 0;
   const std::array<GridAxis, 4> g = a.grid.empty() ? std::array<GridAxis, 4>{} : parse_grid(a.grid);
+  // A grid fills only the directions: the other columns the model needs come from --query, one
+  // value each for every row (without them a footprint or light model would see the defaults, a
+  // zero footprint, and return 0 everywhere). Checked once, with the directions the normal.
+  QueryRow<double> fixed{};
+  if (!a.grid.empty()) {
+    fixed = parse_query_option(*model, a.query, a.query_given);
+    check_query_row(*model, fixed, [](std::string_view column) {
+      return column.empty() ? std::string("--query") : "--query " + std::string(column);
+    });
+  }
   check_output_file(a.out_path, "--out");
   if (!a.grid.empty()) {
     n = 1;
@@ -323,8 +377,7 @@ void run_model_eval(const ModelEvalArgs& a) {
     check_free_space(
         a.out_path, std::uint64_t(n) * (4 + kColumns.size() + 2 + model->intermediates.size()) * 20,
         "--out");
-    for (std::size_t i = 0; i < kColumns.size(); ++i)
-      query[i].assign(n, kQueryLayout[i].default_value);
+    for (std::size_t i = 0; i < kColumns.size(); ++i) query[i].assign(n, fixed[i]);
     angles.assign(4, std::vector<double>(n));
     std::size_t r = 0;
     for (std::uint64_t i0 = 0; i0 < g[0].count; ++i0)

@@ -18,6 +18,8 @@ struct ModelEvalArgs {
   std::vector<std::string> params;  // the raw "k=v" texts of --param
   std::string in_path;              // --in, or empty with --grid
   std::string grid;                 // --grid, or empty
+  std::string query;                // --query (with --grid): name=value,... of the needed columns
+  bool query_given = false;
   std::string out_path;
   BatchOptionTexts batch;
 };
@@ -33,6 +35,12 @@ void check_query_row(const ModelEntry& model, const QueryRow<double>& row,
 // The query columns besides wi and wo that `model` needs (footprint, light, corners), in layout
 // order.
 std::vector<std::string_view> needed_query_columns(const ModelEntry& model);
+// The query row of --query 'name=value,...' (`given`: whether the option was on the command
+// line), shared by sample --model and eval --model --grid: each column of needed_query_columns
+// given once and no other, every other column the layout's default (wi = wo = the normal).
+// Throws InputError naming the columns missing or not needed; the caller sets the directions and
+// runs check_query_row.
+QueryRow<double> parse_query_option(const ModelEntry& model, const std::string& text, bool given);
 
 // The help text of the --model form (appended to eval's footer).
 extern const char* const kModelEvalFooter;

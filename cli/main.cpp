@@ -161,6 +161,18 @@ int main(int argc, char** argv) {
           first, names));
     }
 
+    // A global option placed after the subcommand: CLI11 would report it as an unexpected
+    // argument of the subcommand; name it and where it goes instead.
+    for (int i = 2; i < argc; ++i) {
+      const std::string_view arg = argv[i];
+      if (arg != "--plugin" && arg.rfind("--plugin=", 0) != 0) continue;
+      const std::string_view path = arg != "--plugin" ? arg.substr(9)
+                                    : i + 1 < argc    ? std::string_view(argv[i + 1])
+                                                      : std::string_view("PATH");
+      return fail(fmt::format(
+          "--plugin goes before the subcommand (valid: glintlab --plugin {} {} ...)", path, first));
+    }
+
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {
     // A subcommand that ran and chose its own exit status (verify: a control not rejected); it

@@ -26,54 +26,6 @@ namespace {
 
 constexpr std::uint64_t kMaxSamples = 1000000000;
 
-// The query row of --wi and --query: every column the model needs besides wi and wo given once,
-// no other; the rest take the layout's defaults; then eval --model's checks.
-QueryRow<double> query_row(const ModelEntry& model, const Vec3<double>& wi, const std::string& text,
-                           bool given) {
-  const std::vector<std::string_view> needed = needed_query_columns(model);
-  const std::string valid = needed.empty()
-                                ? std::string("no --query: the model needs only the directions")
-                                : fmt::format("name=value for each of {}", fmt::join(needed, ", "));
-  QueryRow<double> v{};
-  for (std::size_t i = 0; i < v.size(); ++i) v[i] = kQueryLayout[i].default_value;
-  v[query_column_index("wi_x")] = wi.x;
-  v[query_column_index("wi_y")] = wi.y;
-  v[query_column_index("wi_z")] = wi.z;
-  std::vector<bool> set(needed.size(), false);
-  if (given) {
-    for (const std::string& item : split_list(text, "--query", valid)) {
-      const std::size_t eq = item.find('=');
-      const std::string name = item.substr(0, std::min(eq, item.size()));
-      std::size_t k = 0;
-      while (k < needed.size() && needed[k] != name) ++k;
-      if (eq == std::string::npos || k == needed.size()) {
-        throw InputError(
-            fmt::format("--query: '{}' is not a query column model {} needs (valid: {})", item,
-                        model.name, valid));
-      }
-      if (set[k]) throw InputError(fmt::format("--query {}: given twice (valid: {})", name, valid));
-      set[k] = true;
-      std::string_view value(item);
-      value.remove_prefix(eq + 1);
-      while (!value.empty() && value.front() == ' ') value.remove_prefix(1);
-      std::size_t i = 0;
-      while (kQueryLayout[i].name != name) ++i;
-      v[i] = parse_number(value, "--query " + name, "a finite number");
-    }
-  }
-  std::string missing;
-  for (std::size_t k = 0; k < needed.size(); ++k)
-    if (!set[k]) missing += fmt::format("{}{}", missing.empty() ? "" : ", ", needed[k]);
-  if (!missing.empty()) {
-    throw InputError(fmt::format("--query: model {} needs {} ({}; valid: {})", model.name, missing,
-                                 describe_needs(model.needs), valid));
-  }
-  check_query_row(model, v, [](std::string_view column) {
-    return column.empty() ? std::string("--wi/--query") : "--query " + std::string(column);
-  });
-  return v;
-}
-
 }  // namespace
 
 const char* const kModelSampleFooter = R"(
@@ -98,7 +50,13 @@ void run_model_sample(const ModelSampleArgs& a) {
   const Vec3<double> wi = parse_unit_direction(a.wi, "--wi");
   const std::uint64_t n = parse_integer(a.n, "--n", 1, kMaxSamples);
   const std::uint64_t seed = parse_integer(a.seed, "--seed", 0, UINT64_MAX);
-  const QueryRow<double> row = query_row(*model, wi, a.query, a.query_given);
+  QueryRow<double> row = parse_query_option(*model, a.query, a.query_given);
+  row[query_column_index("wi_x")] = wi.x;
+  row[query_column_index("wi_y")] = wi.y;
+  row[query_column_index("wi_z")] = wi.z;
+  check_query_row(*model, row, [](std::string_view column) {
+    return column.empty() ? std::string("--wi/--query") : "--query " + std::string(column);
+  });
   check_output_file(a.out, "--out");
   // About 20 bytes per number written (17 significant digits, sign, exponent, comma), and the
   // samples are held in memory (8 bytes per number) before they are written.

@@ -186,7 +186,8 @@ void add_verify_command(CLI::App& app) {
   auto opts = std::make_shared<VerifyOptions>();
   CLI::App* sub = add_command(
       app, "verify",
-      "Run the registered checks of the papers' claims (ids from shared/CLAIMS.md). Each reports "
+      "Run the registered checks of the papers' claims (ids and recorded verdicts: --list, "
+      "docs/claims.md; how the suite decides: docs/verification.md). Each reports "
       "what it measured, its p-value or error bound, a verdict (holds, holds-within, "
       "holds-in-regime, fails, inconclusive) and whether its negative control (a deliberately "
       "wrong input) was rejected. Writes <out>/claims.json, claims.csv and claims.md. Exit 0 when "

@@ -20,7 +20,9 @@
 //                                 grows (parameters of the same name are passed on; the
 //                                 conformance suite's converges-to-smooth, verify/conformance/)
 //   kNotClaimed = {{{"constant-time", "why"}}}  conformance properties the model does not claim,
-//                                 each with its reason (reported as "not-claimed", never as holds)
+//                                 each with its reason (reported as "not-claimed", never as holds);
+//                                 a name outside kConformanceProperties is refused (a built-in
+//                                 model does not compile, a plug-in does not load)
 // params<T> reads the values by name (values[param_index<M>("seed")]), never by position.
 // core/model_registry.h turns such a struct into a type-erased entry for the CLI, the claims, the
 // figures and the benchmarks; adding a model = its file plus its type in core/model_list.h.
@@ -131,6 +133,22 @@ consteval std::size_t param_index(std::string_view name) {
 struct NotClaimed {
   std::string_view property, reason;
 };
+
+// The conformance properties, in the suite's order: the valid NotClaimed::property names. Here
+// rather than in verify/ so that the registry can refuse a misspelled declaration (a property it
+// would otherwise silently claim).
+// clang-format off
+inline constexpr std::array<std::string_view, 10> kConformanceProperties = {
+    "eval-pdf-consistency", "sampler-matches-pdf", "sampler-covers-value", "pdf-normalized",
+    "energy",               "float-vs-double",     "simd-equivalence",     "stability",
+    "converges-to-smooth",  "constant-time"};
+// clang-format on
+
+constexpr bool is_conformance_property(std::string_view name) {
+  for (std::string_view p : kConformanceProperties)
+    if (p == name) return true;
+  return false;
+}
 
 // A query value a model does not take (from its optional static validate): the column that breaks
 // the rule (a name of core/model_layout.h) and the valid range, in words.

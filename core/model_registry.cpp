@@ -13,8 +13,19 @@ namespace glintlab {
 
 namespace {
 
+// A built-in model's misspelled not-claimed property is a compile error here; the instantiation
+// context names the model.
+template <class M>
+struct CheckedNotClaimed {
+  static_assert(detail::not_claimed_are_properties<M>(),
+                "a built-in model's kNotClaimed names a property that is not a conformance "
+                "property (valid: kConformanceProperties, core/model.h)");
+  static constexpr bool kChecked = true;
+};
+
 template <class... Ms>
 void append_entries(std::vector<ModelEntry>& m, ModelList<Ms...>) {
+  static_assert((CheckedNotClaimed<Ms>::kChecked && ...));
   (m.push_back(make_model_entry<Ms>()), ...);
 }
 
@@ -46,11 +57,23 @@ void register_model(ModelEntry entry) {
           fmt::format("register_model: a model named {} is already registered", entry.name));
     }
   }
+  check_not_claimed(entry);
   if (list.size() >= kMaxModels) {
     throw ModelParamError(
         fmt::format("register_model: at most {} models can be registered", kMaxModels));
   }
   list.push_back(std::move(entry));
+}
+
+void check_not_claimed(const ModelEntry& entry) {
+  for (const NotClaimed& n : entry.not_claimed) {
+    if (!is_conformance_property(n.property)) {
+      throw ModelParamError(fmt::format(
+          "model '{}' declares '{}' not claimed (kNotClaimed), which is not a conformance property "
+          "(valid: {})",
+          entry.name, n.property, fmt::join(kConformanceProperties, ", ")));
+    }
+  }
 }
 
 const ModelEntry& find_model(std::string_view name) {
@@ -121,8 +144,8 @@ std::vector<double> resolve_params(
       const std::string_view problem = !v          ? io::number_problem(text)
                                        : !in_range ? "is out of range"
                                                    : "is not an integer";
-      throw ModelParamError(fmt::format("--param {}: '{}' {} (valid: {})", p.name, text, problem,
-                                        describe_range(p)));
+      throw ModelParamError(
+          fmt::format("--param {}: '{}' {} (valid: {})", p.name, text, problem, describe_range(p)));
     }
     values[i] = *v;
   }

@@ -83,11 +83,16 @@ const ModelEntry& find_model(std::string_view name);
 // consumer of registered_models() (CLI, claims, figures, sweeps, benchmarks) then sees it. Call it
 // before any concurrent use of the registry (start-up, a test's set-up): it is not thread-safe.
 // The entry's string views must outlive the registry (static strings, as make_model_entry gives).
-// Throws ModelParamError for an empty or already registered name, or an entry without
-// eval/pdf/sample. References to registered entries stay valid (storage is reserved up front for
-// kMaxModels entries; registering more throws).
+// Throws ModelParamError for an empty or already registered name, an entry without
+// eval/pdf/sample, or a misspelled not-claimed property (check_not_claimed). References to
+// registered entries stay valid (storage is reserved up front for kMaxModels entries; registering
+// more throws).
 inline constexpr std::size_t kMaxModels = 256;
 void register_model(ModelEntry entry);
+// Throws ModelParamError naming the property and the valid names when `entry` declares a
+// not-claimed property that is not one of kConformanceProperties (register_model and the plug-in
+// loader call it; the built-in models are checked when the registry is compiled).
+void check_not_claimed(const ModelEntry& entry);
 
 // The parameter values for `assignments` (name, text) over the defaults; throws ModelParamError
 // for an unknown name, a repeated one, a value that does not parse, or one out of range.
@@ -113,6 +118,17 @@ concept DeclaresNotClaimed = requires {
   M::kNotClaimed.size();
   { M::kNotClaimed[0].property } -> std::convertible_to<std::string_view>;
 };
+
+// Whether every property M declares not claimed is a conformance property (true where M declares
+// none).
+template <class M>
+constexpr bool not_claimed_are_properties() {
+  if constexpr (DeclaresNotClaimed<M>) {
+    for (const NotClaimed& n : M::kNotClaimed)
+      if (!is_conformance_property(n.property)) return false;
+  }
+  return true;
+}
 
 template <class M>
 concept DoubleOnly = requires {

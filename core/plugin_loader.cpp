@@ -73,8 +73,8 @@ std::vector<std::string_view> load_plugin(const std::string& path, std::string_v
   std::vector<ModelEntry> entries;
   info->append_models(entries);
   if (entries.empty()) throw fail("registers no model");
-  // Every name checked before any is registered, so a refused plug-in leaves the registry as it
-  // was.
+  // Every name and not-claimed declaration checked before any is registered, so a refused plug-in
+  // leaves the registry as it was.
   for (std::size_t i = 0; i < entries.size(); ++i) {
     for (std::size_t j = 0; j < i; ++j) {
       if (entries[j].name == entries[i].name) {
@@ -88,6 +88,11 @@ std::vector<std::string_view> load_plugin(const std::string& path, std::string_v
             "an earlier plug-in; valid: a name 'glintlab models' does not list)",
             entries[i].name));
       }
+    }
+    try {
+      check_not_claimed(entries[i]);
+    } catch (const ModelParamError& error) {
+      throw fail(error.what());
     }
   }
   std::vector<std::string_view> names;

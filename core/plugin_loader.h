@@ -19,9 +19,9 @@ struct PluginError : std::invalid_argument {
 // Loads the plug-in at `path` (dlopen RTLD_NOW | RTLD_LOCAL) and registers each of its models;
 // returns their names. `source` names where the path came from in the message ("--plugin",
 // "GLINTLAB_PLUGINS:"). Throws PluginError for a path that does not exist or cannot be loaded, a
-// file without the entry point, a plug-in built against another glintlab version or ABI, or a
-// model name already registered (no model of that plug-in is then registered). Not thread-safe:
-// call it at start-up, as register_model.
+// file without the entry point, a plug-in built against another glintlab version or ABI, a model
+// name already registered, or a not-claimed property that is not a conformance property (no model
+// of that plug-in is then registered). Not thread-safe: call it at start-up, as register_model.
 std::vector<std::string_view> load_plugin(const std::string& path,
                                           std::string_view source = "--plugin");
 

@@ -64,21 +64,20 @@ run_commands() {  # binary, output dir
   local models
   models=$("$bin" models | sed -n 's/^\([a-z_0-9]*\): .*/\1/p')
   local grid='theta_i=0:85:4,phi_i=0:90:2,theta_o=0:89:5,phi_o=0:180:4'
-  local isas="scalar default" m p isa isa_arg needs_corners
+  local isas="scalar default" m p isa isa_arg needs_corners needs q query
   for m in $models; do
     needs_corners=0
-    "$bin" models | grep -A3 "^$m: " | grep -q "pixel corner" && needs_corners=1
-    # sample --model takes the query columns its model needs besides wi (those of the first rows
-    # of the query files whose wi is the sampled one).
-    local needs query=()
-    needs=$("$bin" models | grep -A3 "^$m: " | sed -n 's/^  needs: //p')
-    local q=""
-    [[ $needs == *footprint* ]] && q+="u=0.3,v=0.7,dudx=0.001,dvdx=0.0002,dudy=-0.0003,dvdy=0.002,"
-    [[ $needs == *light* ]] && q+="light_cos_half_angle=0.999,light_intensity=1,"
-    [[ $needs == *corner* ]] &&
-      q+="r0_x=-0.6,r0_y=0,r0_z=0.8,r1_x=-0.48,r1_y=0.36,r1_z=0.8,r2_x=-0.48,r2_y=-0.36,r2_z=0.8,"
-    [[ $needs == *corner* ]] && q+="r3_x=-0.36,r3_y=0.48,r3_z=0.8,"
-    [[ -n $q ]] && query=(--query "${q%,}")
+    needs=$("$bin" models | grep -A3 "^$m: " | grep -m1 "needs:")
+    [[ $needs == *"pixel corner"* ]] && needs_corners=1
+    # The columns besides the directions the model needs, for --grid and sample (--query).
+    q=""
+    [[ $needs == *footprint* ]] && q="u=0.5,v=0.5,dudx=0.004,dvdx=-0.001,dudy=0.001,dvdy=0.003"
+    [[ $needs == *light* ]] && q="${q:+$q,}light_cos_half_angle=0.99,light_intensity=1"
+    ((needs_corners)) &&
+      q="$q,r0_x=-0.28,r0_y=0,r0_z=0.96,r1_x=0,r1_y=-0.28,r1_z=0.96,r2_x=0,r2_y=0.28,r2_z=0.96"
+    ((needs_corners)) && q="$q,r3_x=0.28,r3_y=0,r3_z=0.96"
+    query=()
+    [[ -n $q ]] && query=(--query "$q")
     for p in double float; do
       for isa in $isas; do
         isa_arg=()
@@ -89,12 +88,12 @@ run_commands() {  # binary, output dir
           if ((needs_corners)); then
             "$bin" eval "${args[@]}" --in "$dir/queries_corners.csv" --out "$dir/eval_in.$tag.csv"
           else
-            "$bin" eval "${args[@]}" --grid "$grid" --out "$dir/eval_grid.$tag.csv"
+            "$bin" eval "${args[@]}" --grid "$grid" "${query[@]}" --out "$dir/eval_grid.$tag.csv"
             "$bin" eval "${args[@]}" --in "$dir/queries.csv" --out "$dir/eval_in.$tag.csv"
           fi
         fi
         if [[ $skip != *" sample "* ]]; then
-          "$bin" sample "${args[@]}" "${query[@]}" --wi 0.6,0,0.8 --n 2000 --seed 7 \
+          "$bin" sample "${args[@]}" --wi 0.6,0,0.8 "${query[@]}" --n 2000 --seed 7 \
             --out "$dir/sample.$tag.csv"
         fi
       done

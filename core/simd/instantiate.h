@@ -4,6 +4,7 @@
 // only).
 #pragma once
 
+#include <concepts>
 #include <cstddef>
 #include <span>
 #include <type_traits>
@@ -197,15 +198,50 @@ template <class K, class WF, class WFF, class WD>
 constexpr BatchFns kernel_fns() {
   return {&run_kernel<K, WF, float>, &run_kernel<K, WFF, float>, &run_kernel<K, WD, double>};
 }
+
+// Whether M's kernels, as declared, take the batch type W: params, eval and sample as the batch
+// drivers above call them. (A kernel declared for every T whose body does not compile for W, an
+// `if` on a per-lane value, is not visible here: the compiler reports that in the body.)
+template <class M, class W>
+concept KernelsTakeBatch = requires(std::span<const double> v, const ModelQuery<W>& q, Vec2<W> u) {
+  { M::template params<W>(v) } -> std::same_as<typename M::template Params<W>>;
+  {
+    M::template eval<W>(M::template params<W>(v), q)
+    } -> std::same_as<ModelEval<W, M::kIntermediates.size()>>;
+  { M::template sample<W>(M::template params<W>(v), q, u) } -> std::same_as<ModelSample<W>>;
+};
+
+// One message for a model that does not take the batch types, instead of an error per kernel
+// call and batch type; the compiler names the model in the instantiation of this struct.
+template <class M, class WF, class WFF, class WD>
+struct ModelKernelsOnSimdBatches {
+  static constexpr bool kTake =
+      KernelsTakeBatch<M, WF> && KernelsTakeBatch<M, WFF> && KernelsTakeBatch<M, WD>;
+  static_assert(kTake,
+                "this model's kernels (params, eval, sample) cannot be instantiated on the SIMD "
+                "batch types (Wide<>): write them as templates on the float type with select() "
+                "instead of branches on per-lane values (docs/adding_a_model.md, Kernels), or "
+                "declare `static constexpr bool kBatched = false;` in the model so that its "
+                "batches loop over its double kernels");
+};
+
 template <class M, class WF, class WFF, class WD>
 constexpr BatchFns model_eval_fns() {
-  return {&run_model_eval<M, WF, float>, &run_model_eval<M, WFF, float>,
-          &run_model_eval<M, WD, double>};
+  if constexpr (ModelKernelsOnSimdBatches<M, WF, WFF, WD>::kTake) {
+    return {&run_model_eval<M, WF, float>, &run_model_eval<M, WFF, float>,
+            &run_model_eval<M, WD, double>};
+  } else {
+    return BatchFns{};  // (refused above; nothing more to report)
+  }
 }
 template <class M, class WF, class WFF, class WD>
 constexpr BatchFns model_sample_fns() {
-  return {&run_model_sample<M, WF, float>, &run_model_sample<M, WFF, float>,
-          &run_model_sample<M, WD, double>};
+  if constexpr (ModelKernelsOnSimdBatches<M, WF, WFF, WD>::kTake) {
+    return {&run_model_sample<M, WF, float>, &run_model_sample<M, WFF, float>,
+            &run_model_sample<M, WD, double>};
+  } else {
+    return BatchFns{};
+  }
 }
 
 // A double-only model (kDoubleOnly) runs on the double batches whatever the column type: float

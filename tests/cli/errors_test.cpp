@@ -292,5 +292,18 @@ TEST_F(ErrorTest, UnknownTopLevelOption) {
   expect_input_error(run({"--frobnicate"}), {"--frobnicate"}, {});
 }
 
+// --plugin is glintlab's, not the subcommand's: after the subcommand the error names it and its
+// place, whatever the path (it is not loaded).
+TEST_F(ErrorTest, PluginAfterTheSubcommandIsNamed) {
+  expect_input_error(run({"models", "--plugin", "x.so"}),
+                     {"--plugin goes before the subcommand", "glintlab --plugin x.so models"}, {});
+  expect_input_error(run({"eval", "--model", "smooth_ggx", "--plugin=y.so"}),
+                     {"--plugin goes before the subcommand", "glintlab --plugin y.so eval"}, {});
+  const RunResult r = run({"models", "--plugin"});
+  expect_input_error(r, {"--plugin goes before the subcommand", "glintlab --plugin PATH models"},
+                     {});
+  EXPECT_EQ(r.err.find("unexpected argument"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace glintlab::cli_test

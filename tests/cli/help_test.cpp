@@ -1,9 +1,14 @@
 // --help on the executable and on every subcommand exits 0 and documents the options and columns.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "cli/build_paths.h"
 #include "cli/cli_test_util.h"
 
 namespace glintlab::cli_test {
@@ -110,6 +115,47 @@ TEST_F(HelpTest, DefaultsThreadsAndBudgetsShownTheSameWayEverywhere) {
     EXPECT_EQ(threads, s.threads) << s.name << " --threads";
     EXPECT_EQ(budget, s.budget) << s.name << " --budget";
   }
+}
+
+// Help points only inside the repository: every repository file a help text names (a path with a
+// folder and a source or document extension; outputs such as out/… and <out>/… aside) exists in
+// this source tree.
+TEST_F(HelpTest, EveryFileNamedIsInTheRepository) {
+  // kReportFixtures is <source>/tests/reports/fixtures.
+  const std::filesystem::path source =
+      std::filesystem::path(kReportFixtures).parent_path().parent_path().parent_path();
+  const std::vector<std::string> extensions = {".md", ".h", ".cpp", ".py", ".sh", ".cmake"};
+  int named = 0;
+  for (const std::string sub :
+       {"", "eval", "sample", "verify", "figure", "models", "sweep", "report", "ltc-fit",
+        "chermain-dictionary", "adequacy", "compare"}) {
+    const RunResult r = sub.empty() ? run({"--help"}) : run({sub, "--help"});
+    ASSERT_EQ(r.exit_code, 0) << sub;
+    std::string token;
+    const auto check = [&] {
+      std::string path = token.substr(0, token.find('#'));
+      token.clear();
+      while (!path.empty() && path.back() == '.') path.pop_back();  // a sentence's full stop
+      const bool file =
+          std::any_of(extensions.begin(), extensions.end(), [&](const std::string& e) {
+            return path.size() > e.size() && path.compare(path.size() - e.size(), e.size(), e) == 0;
+          });
+      if (!file || path.find('/') == std::string::npos || path.find('<') != std::string::npos ||
+          path.rfind("out/", 0) == 0)
+        return;
+      ++named;
+      EXPECT_TRUE(std::filesystem::exists(source / path))
+          << "glintlab " << sub << " --help names " << path << ", which is not in the repository";
+    };
+    for (char c : r.out + " ") {
+      if (std::isalnum(static_cast<unsigned char>(c)) ||
+          std::string_view("_./-<>#").find(c) != std::string_view::npos)
+        token += c;
+      else
+        check();
+    }
+  }
+  EXPECT_GT(named, 0);  // the scan found the paths the help texts do name
 }
 
 // The old flag --quick still works, as --budget quick, with one note naming the new spelling.

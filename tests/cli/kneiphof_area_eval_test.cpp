@@ -14,9 +14,12 @@ namespace {
 using KneiphofAreaEvalTest = CliTest;
 
 TEST_F(KneiphofAreaEvalTest, GridShowsTheCountingIntermediates) {
-  const RunResult r = run({"eval", "--model", "kneiphof_klein_area", "--param", "light_width=0.3",
-                           "--param", "alpha=0.04", "--grid",
-                           "theta_i=30:30:1,phi_i=180:180:1,theta_o=0:60:7", "--out", "r.csv"});
+  const RunResult r =
+      run({"eval", "--model", "kneiphof_klein_area", "--param", "light_width=0.3", "--param",
+           "alpha=0.04", "--grid", "theta_i=30:30:1,phi_i=180:180:1,theta_o=0:60:7", "--query",
+           "u=0.5,v=0.5,dudx=0.01,dvdx=0,dudy=0,dvdy=0.01,"
+           "light_cos_half_angle=1,light_intensity=1",
+           "--out", "r.csv"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const io::CsvTable t = io::read_csv(path("r.csv"));
   ASSERT_EQ(t.num_rows(), 7u);

@@ -184,6 +184,14 @@ TEST_F(PluginTest, NameClashesAreRefused) {
                      {"--plugin", "model 'example_glints' clashes"}, {});
 }
 
+TEST_F(PluginTest, MisspelledNotClaimedPropertyIsRefused) {
+  expect_input_error(
+      run({"--plugin", kTestPluginMisspelledNotClaimed, "models"}),
+      {"--plugin", "model 'misspelled_not_claimed'", "'enrgy'", "not a conformance property",
+       "valid: eval-pdf-consistency", "energy", "constant-time"},
+      {});
+}
+
 TEST_F(PluginTest, PluginWithoutAPathIsRefused) {
   expect_input_error(run({"--plugin"}), {"--plugin: needs a value"}, {});
 }

@@ -22,10 +22,9 @@
 
 namespace glintlab::verify::conformance {
 
-inline constexpr std::array<std::string_view, 10> kProperties = {
-    "eval-pdf-consistency", "sampler-matches-pdf", "sampler-covers-value", "pdf-normalized",
-    "energy",               "float-vs-double",     "simd-equivalence",     "stability",
-    "converges-to-smooth",  "constant-time"};
+// The properties, in check order (core/model.h, where a model's kNotClaimed is checked against
+// them).
+inline constexpr const auto& kProperties = kConformanceProperties;
 
 // Whether a property is generated for a model at all: converges-to-smooth and constant-time only
 // for footprint models (kNeedsFootprint); every other property for every model.

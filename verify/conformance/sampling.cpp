@@ -338,7 +338,8 @@ Assessment assess_sampler_gof(const ModelEntry& m, Budget b, const std::string& 
 Assessment assess_covers_value(const ModelEntry& m, Budget b, const std::string& id,
                                double level, const std::vector<HemisphereIntegral>* reuse) {
   Assessment a;
-  a.statistic = "Holm–Šidák-adjusted p of mean weight = ∫ value dωo (cubature)";
+  a.statistic = "largest relative difference of the mean weight from ∫ value dωo (cubature; z "
+                "test, p Holm–Šidák-adjusted)";
   // Footprint models also at the wide footprint (common.h): quick moves its first setting there
   // (kneiphof_klein's value is 0 everywhere at θi = 30° and footprint 0.1: it tested nothing),
   // full adds every setting there.
@@ -411,7 +412,8 @@ Assessment assess_covers_value(const ModelEntry& m, Budget b, const std::string&
 Assessment assess_pdf_normalized(const ModelEntry& m, Budget b, const std::string& id,
                                  double level) {
   Assessment a;
-  a.statistic = "Holm–Šidák-adjusted p of ∫ pdf dωo (ωo_z > 0) = 1 − rejection rate";
+  a.statistic = "largest difference of ∫ pdf dωo (ωo_z > 0) from the acceptance rate above the "
+                "horizon (z test, p Holm–Šidák-adjusted)";
   const auto set = settings(m, b);
   const std::uint64_t n = samples(b);
   double worst = 0, power = std::numeric_limits<double>::infinity();

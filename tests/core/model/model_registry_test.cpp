@@ -170,5 +170,29 @@ TEST(ModelRegistry, ModelsOwnTheirQueryRules) {
   EXPECT_FALSE(find_model("smooth_ggx").validate);
 }
 
+// A not-claimed property must be one the conformance suite has: a misspelled one would silently
+// leave the property claimed. The built-in models are checked at compile time (model_registry.cpp);
+// an entry added at run time (a plug-in, a test's model) is refused naming the name and the valid
+// ones, and nothing is registered.
+TEST(ModelRegistry, MisspelledNotClaimedPropertyIsRefused) {
+  static_assert(detail::not_claimed_are_properties<SmoothGGX>());
+  for (const ModelEntry& e : registered_models()) EXPECT_NO_THROW(check_not_claimed(e)) << e.name;
+  ModelEntry misspelled = make_model_entry<SmoothGGX>();
+  misspelled.name = "smooth_ggx_misspelled_not_claimed";
+  misspelled.not_claimed = {{"energy", "fine"}, {"constant_time", "misspelled"}};
+  const std::size_t before = registered_models().size();
+  try {
+    register_model(misspelled);
+    ADD_FAILURE() << "a misspelled not-claimed property was registered";
+  } catch (const ModelParamError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'constant_time'"), std::string::npos) << what;
+    EXPECT_NE(what.find("smooth_ggx_misspelled_not_claimed"), std::string::npos) << what;
+    EXPECT_NE(what.find("valid: eval-pdf-consistency, "), std::string::npos) << what;
+    EXPECT_NE(what.find("constant-time"), std::string::npos) << what;
+  }
+  EXPECT_EQ(registered_models().size(), before);
+}
+
 }  // namespace
 }  // namespace glintlab

@@ -217,6 +217,24 @@ TEST(ConformanceToys, WrongWeightsFailSamplerMatchesPdf) {
   EXPECT_EQ(g.verdict, Verdict::kHolds) << g.detail;
 }
 
+// verify prints "<value> = <statistic>": the label says what the value is. sampler-covers-value's
+// value is a relative difference (here the weights' 3 %), pdf-normalized's a difference; their
+// p-values are reported apart.
+TEST(ConformanceToys, MeasuredValuesAreLabelledForWhatTheyAre) {
+  const ModelEntry toy = with_weight_scaled(lambert_toy(0.9), 1.03);
+  const Assessment a =
+      assess("sampler-covers-value", toy, Budget::kQuick, "test.label", model_level(toy));
+  EXPECT_NEAR(a.value, 0.03, 0.01);
+  EXPECT_EQ(a.statistic.rfind("largest relative difference of the mean weight", 0), 0u)
+      << a.statistic;
+  ASSERT_TRUE(a.p_value.has_value());
+  EXPECT_LT(*a.p_value, 1e-3);
+  const Assessment n =
+      assess("pdf-normalized", toy, Budget::kQuick, "test.label", model_level(toy));
+  EXPECT_LT(std::abs(n.value), 0.01);
+  EXPECT_EQ(n.statistic.rfind("largest difference of ∫ pdf", 0), 0u) << n.statistic;
+}
+
 // The Monte Carlo integral of a footprint model (a mixture about the mirror direction, never the
 // model's sampler) is unbiased within its error: ∫ cos θo / π = 1 over the hemisphere, at a
 // grazing and a near-normal incidence; the integrand 3 % too large is told apart.
