@@ -497,8 +497,9 @@ CheckResult run_subdivision(Budget b) {
   const Family f = correct_family(p);
   CheckResult r;
   r.statistic =
-      "Holm–Šidák adjusted p (Σ b_k and three marginals b_k vs Binomial); max rel. radiance "
-      "difference 1 vs 256 sub-lights with the shared lobe";
+      "max relative radiance difference, 1 vs 256 sub-lights with the shared lobe (Eq. 32); the "
+      "counts (Σ b_k and three marginals b_k vs Binomial) decided by their Holm–Šidák adjusted "
+      "p-value";
   r.configurations = int(cfg.size());
   record_p_values(r, f);
   r.value = shared;
