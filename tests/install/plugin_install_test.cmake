@@ -2,7 +2,8 @@
 # against it (glintlab_add_model_plugin from the installed package), then run the INSTALLED
 # glintlab with the plug-in: listed by `models` (--plugin and GLINTLAB_PLUGINS), `eval --model`
 # equal bit for bit to the same model registered in-process (and the comparison fails on a
-# perturbed value), the plug-in defines no registry of its own, and a missing file, a module
+# perturbed value), the plug-in defines no registry of its own, a scalar plug-in (kBatched = false)
+# is swept by model.<name>.stability and its NaN control rejected, and a missing file, a module
 # without the entry point, a plug-in built against another version and a name clash are each
 # refused with one line and exit 2.
 include("${CMAKE_CURRENT_LIST_DIR}/install_and_build.cmake")
@@ -119,3 +120,17 @@ expect_refused("other version" "built against glintlab 0.0.1, this is glintlab"
                --plugin "${WORK}/build/example_glints_wrong_version.so")
 expect_refused("name clash" "model 'example_glints' clashes"
                --plugin "${plugin}" --plugin "${plugin}")
+
+# A scalar plug-in (kBatched = false, its roughness under a name of its own) is swept like a built-in
+# model: its stability check measures cells and the NaN control is rejected.
+execute_process(COMMAND "${glintlab}" --plugin "${WORK}/build/scalar_glints.so" verify
+                        --claims "model.scalar_glints.stability" --budget quick
+                        --out "${WORK}/verify_scalar"
+                RESULT_VARIABLE r OUTPUT_VARIABLE out ERROR_VARIABLE err)
+file(READ "${WORK}/verify_scalar/claims.json" claims)
+string(REGEX MATCH "target\\(s\\) swept, ([0-9]+) cells" swept "${claims}")
+if(r EQUAL 2 OR NOT swept OR CMAKE_MATCH_1 EQUAL 0 OR out MATCHES "NOT REJECTED"
+   OR NOT out MATCHES "scalar_glints.stability")
+  message(FATAL_ERROR "scalar plug-in not swept (exit ${r}, '${swept}'):\n${out}\n${err}")
+endif()
+message(STATUS "scalar plug-in: ${swept}")

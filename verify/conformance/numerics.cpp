@@ -221,9 +221,10 @@ Assessment assess_stability(const ModelEntry& m, Budget b, const std::string&, d
       targets.push_back({&m, sp, c, std::string(m.params[*sp].choices[c])});
   bool fails = false, regime = false;
   std::string breaks, others;
-  std::size_t core_cells = 0;
+  std::size_t core_cells = 0, swept_cells = 0;
   for (const SweepTarget& t : targets) {
     const ModelSweep s = sweep_model(t, b);
+    for (const SweepMap& map : s.maps) swept_cells += map.cells.size();
     const Verdict v = stability_verdict(s, DefectClass::kBreaks);
     fails |= v == Verdict::kFails;
     regime |= v == Verdict::kHoldsInRegime;
@@ -244,8 +245,9 @@ Assessment assess_stability(const ModelEntry& m, Budget b, const std::string&, d
   a.value = double(core_cells);
   a.configurations = int(targets.size());
   a.verdict = fails ? Verdict::kFails : regime ? Verdict::kHoldsInRegime : Verdict::kHolds;
-  a.detail = fmt::format("{} sampler target(s) swept; NaN/Inf/negative: {}; sub-verdicts: {}",
-                         targets.size(), breaks.empty() ? "none" : breaks, others);
+  a.detail = fmt::format(
+      "{} sampler target(s) swept, {} cells; NaN/Inf/negative: {}; sub-verdicts: {}",
+      targets.size(), swept_cells, breaks.empty() ? "none" : breaks, others);
   return a;
 }
 

@@ -138,6 +138,27 @@ std::vector<SweepPlane> sweep_planes(const ModelEntry& m, bool quick) {
                                          0.3, 1,    3,    10,   30,   60,   90};
     planes.push_back(std::move(p));
   }
+  // Footprint and light planes vary only the query: without a parameter plane the model's own
+  // parameters would stay at their defaults, so the named axes count only when one applied.
+  const bool parameter_plane = std::any_of(planes.begin(), planes.end(), [](const SweepPlane& p) {
+    return p.axis != Axis::kFootprint && p.axis != Axis::kLightSize;
+  });
+  if (!parameter_plane) {
+    for (std::size_t i = 0; i < m.params.size(); ++i) {
+      const ParamSpec& spec = m.params[i];
+      if (!spec.choices.empty() || !std::isfinite(spec.lo) || !std::isfinite(spec.hi)) continue;
+      const std::string name(spec.name);
+      SweepPlane p{Axis::kParameter, name, name, name, span_range(spec, quick ? 7 : 15), theta, i};
+      if (spec.integral)
+        for (double& r : p.rows)
+          r = std::clamp(std::round(r), std::ceil(spec.lo), std::floor(spec.hi));
+      dedupe(p.rows);
+      planes.push_back(std::move(p));
+    }
+  }
+  if (planes.empty())
+    planes.push_back(
+        {Axis::kDirections, "directions", "defaults (no parameter swept)", "-", {0}, theta, 0});
   return planes;
 }
 
@@ -155,7 +176,9 @@ std::vector<double> cell_params(const SweepTarget& t, const SweepPlane& plane, d
   if (ax) v[*ax] = clamp_to_range(m.params[*ax], a_x);
   if (ay) v[*ay] = clamp_to_range(m.params[*ay], a_y);
   if (alpha) v[*alpha] = clamp_to_range(m.params[*alpha], a_x);
-  if (plane.axis == Axis::kDensity || plane.axis == Axis::kMicroroughness) v[plane.param] = row;
+  if (plane.axis == Axis::kDensity || plane.axis == Axis::kMicroroughness ||
+      plane.axis == Axis::kParameter)
+    v[plane.param] = row;
   return v;
 }
 

@@ -20,6 +20,8 @@ enum class Axis {
   kMicroroughness,  // the `microroughness` parameter over its range
   kFootprint,       // footprint size s: duv_dx = (s, 0), duv_dy = (0, s) (footprint models)
   kLightSize,       // light cone half-angle (LightQuery::cos_half_angle; light models)
+  kParameter,       // any other real parameter over its range, for a model no axis above applies to
+  kDirections,      // one row at the defaults, for a model with no sweepable parameter at all
 };
 
 struct SweepPlane {
@@ -29,7 +31,7 @@ struct SweepPlane {
   std::string row_symbol;  // short form used in failure regions, e.g. "α", "αx/αy"
   std::vector<double> rows;
   std::vector<double> theta_deg;  // incidence polar angle, degrees; > 90 is back-facing
-  std::size_t param = 0;          // index of the swept parameter (density, microroughness)
+  std::size_t param = 0;  // index of the swept parameter (density, microroughness, kParameter)
 };
 
 // One model with one choice of its `sampler` parameter (or its only sampler).
@@ -49,7 +51,9 @@ inline constexpr double kDefaultLightHalfAngleDeg = 1.0;  // area-light models; 
 // globs (empty = all), in registration order and choice order.
 std::vector<SweepTarget> sweep_targets(const std::string& globs = "");
 
-// The planes of a model; `quick` uses coarser grids.
+// The planes of a model; `quick` uses coarser grids. Never empty: a model whose parameters none of
+// the named axes covers (a plug-in is free to call its roughness anything) is swept along each of
+// its real parameters with a finite range, or at its defaults when it has none.
 std::vector<SweepPlane> sweep_planes(const ModelEntry& model, bool quick);
 
 // Parameter values for one cell: the model's defaults, the target's sampler, α, and the plane's
