@@ -67,21 +67,14 @@ struct Agreement {
   double worst = 0;           // largest relative difference seen
 };
 
-// Compares value and pdf of `reference` and `candidate` eval functions over n random queries.
-template <class RefFn, class GotFn>
-Agreement compare_rows(const ModelEntry& m, const std::vector<double>& values, std::uint64_t n,
-                       std::uint64_t seed, double tol, RefFn ref, GotFn got) {
+// Compares value and pdf of the reference rows `r` with the candidate rows `g` (row k of each from
+// random_query k).
+Agreement agreement(const std::vector<ErasedEval>& r, const std::vector<ErasedEval>& g,
+                    double tol) {
   // The floor: 1e-9 of the largest value seen on the uniform queries (even k: the function's scale
   // over the sphere), below which differences are cancellation, not error. The sampled rows do not
   // set it: a glint model's peaks would raise it and hide zero-against-non-zero flips elsewhere.
-  std::vector<ErasedEval> r(n), g(n);
-  for_chunks(n, [&](std::uint64_t begin, std::uint64_t end, std::size_t) {
-    for (std::uint64_t k = begin; k < end; ++k) {
-      const ModelQuery<double> q = random_query(m, values, seed, k);
-      r[k] = ref(values, q);
-      g[k] = got(values, q, k);
-    }
-  });
+  const std::uint64_t n = r.size();
   double vmax = 0, pmax = 0;
   for (std::uint64_t k = 0; k < n; k += 2) {
     if (std::isfinite(r[k].value)) vmax = std::max(vmax, std::abs(r[k].value));
@@ -127,13 +120,17 @@ Assessment assess_float_double(const ModelEntry& m, Budget b, const std::string&
   }
   const std::uint64_t n = b == Budget::kQuick ? 20'000 : 400'000;
   const auto values = resolve_params(m, {});
-  const Agreement g = compare_rows(
-      m, values, n, check_seed(id, 0), kTolerance, m.eval,
-      [&](const std::vector<double>& v, const ModelQuery<double>& q, std::uint64_t) {
-        ErasedEval e = m.eval_float(v, q);
-        e.pdf = m.pdf_float(v, q);
-        return e;
-      });
+  const std::uint64_t seed = check_seed(id, 0);
+  std::vector<ErasedEval> ref(n), got(n);
+  for_chunks(n, [&](std::uint64_t begin, std::uint64_t end, std::size_t) {
+    for (std::uint64_t k = begin; k < end; ++k) {
+      const ModelQuery<double> q = random_query(m, values, seed, k);
+      ref[k] = m.eval(values, q);
+      got[k] = m.eval_float(values, q);
+      got[k].pdf = m.pdf_float(values, q);
+    }
+  });
+  const Agreement g = agreement(ref, got, kTolerance);
   a.value = double(g.outliers) / double(g.rows);
   a.configurations = 1;
   a.verdict = a.value <= kFloatOutlierShare ? Verdict::kHolds : Verdict::kFails;
@@ -158,14 +155,19 @@ Assessment assess_simd(const ModelEntry& m, Budget b, const std::string& id, dou
   const std::uint64_t n = b == Budget::kQuick ? 20'000 : 400'000;
   const auto values = resolve_params(m, {});
   const std::uint64_t seed = check_seed(id, 0);
-  // The batch's columns, filled from the same random queries.
+  // The scalar reference and the batch's columns, from the same random queries, made once for
+  // every ISA.
   constexpr std::size_t kCols = simd::kQueryColumnsWithCorners;
   std::vector<std::vector<double>> cols(kCols, std::vector<double>(n));
-  for (std::uint64_t k = 0; k < n; ++k) {
-    const ModelQuery<double> q = random_query(m, values, seed, k);
-    const QueryRow<double> row = to_row(q);
-    for (std::size_t c = 0; c < kCols; ++c) cols[c][k] = row[c];
-  }
+  std::vector<ErasedEval> ref(n);
+  for_chunks(n, [&](std::uint64_t begin, std::uint64_t end, std::size_t) {
+    for (std::uint64_t k = begin; k < end; ++k) {
+      const ModelQuery<double> q = random_query(m, values, seed, k);
+      ref[k] = m.eval(values, q);
+      const QueryRow<double> row = to_row(q);
+      for (std::size_t c = 0; c < kCols; ++c) cols[c][k] = row[c];
+    }
+  });
   std::vector<simd::Column<double>> in;
   for (const auto& c : cols) in.push_back({c.data(), 1});
   // Every instruction set this CPU runs, each against the scalar eval.
@@ -179,11 +181,9 @@ Assessment assess_simd(const ModelEntry& m, Budget b, const std::string& id, dou
     std::vector<double*> outp;
     for (auto& o : out) outp.push_back(o.data());
     simd::eval_batch(m, values, in, outp, n, isa);
-    const Agreement g = compare_rows(
-        m, values, n, seed, kTolerance, m.eval,
-        [&](const std::vector<double>&, const ModelQuery<double>&, std::uint64_t k) {
-          return ErasedEval{out[0][k], out[1][k], {}};
-        });
+    std::vector<ErasedEval> got(n);
+    for (std::uint64_t k = 0; k < n; ++k) got[k] = ErasedEval{out[0][k], out[1][k], {}};
+    const Agreement g = agreement(ref, got, kTolerance);
     const double share = double(g.outliers) / double(g.rows);
     a.value = std::max(a.value, share);
     ++a.configurations;
