@@ -4,7 +4,9 @@
 # the INSTALLED glintlab with it: `models` lists it, `eval --model` gives a finite value for every
 # query row, and its conformance claims run at the quick budget (CONFORMANCE=ON).
 include("${CMAKE_CURRENT_LIST_DIR}/install_and_build.cmake")
-install_and_build("${EXAMPLE}" "example")
+# Built as on a machine without OpenEXR, PNG and TBB: a plug-in needs only the headers' packages.
+install_and_build("${EXAMPLE}" "example" -DCMAKE_DISABLE_FIND_PACKAGE_OpenEXR=TRUE
+                  -DCMAKE_DISABLE_FIND_PACKAGE_PNG=TRUE -DCMAKE_DISABLE_FIND_PACKAGE_TBB=TRUE)
 
 set(glintlab "${WORK}/prefix/bin/glintlab")
 set(plugin "${WORK}/build/zirr_kaplanyan.so")
