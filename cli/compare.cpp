@@ -110,20 +110,23 @@ void run(const CLI::App* cmd, const CompareCliOptions& o) {
 
 constexpr const char* kFooter =
     R"(Every model sees the same scenes: theta_i in {30, 70} deg (quick) or {0, 30, 60, 80} deg
-(full), a footprint of side 0.1 in uv at (0.5, 0.5), a 1 deg light cone for area-light models and a
+(full), a footprint of side 0.4 in uv at (0.5, 0.5), a 1 deg light cone for area-light models and a
 delta light otherwise, the model's default parameters. Per model:
 - conformance: the model.<name>.<property> verdicts; with --claims-from DIR the rows of
   DIR/claims.json ("read"), where a row is missing the registry's recorded verdict ("recorded");
   without it, the model's conformance checks run here ("measured"; minutes per glint model).
 - time per evaluation: eval_batch in double precision on the scalar path and on the widest ISA
   (GLINTLAB_ISA if set), best of 3 rounds: a measurement of this machine, ns/eval.
-- reference: the albedo (integral of value over the upper hemisphere) by cubature (models without
-  a footprint) or by 2^15 (quick) / 2^19 (full) uniform-direction samples (footprint models), with
-  its error; flagged as not converged, and not used, above a relative error of 1e-3 / 1e-5
+- reference: the albedo (integral of value over the upper hemisphere) by the conformance suite's
+  integral, the truth sampler-covers-value uses: cubature about the mirror direction (models
+  without a footprint) or Monte Carlo over a fixed mixture about the mirror direction, blocks of
+  10^5 (quick) / 2*10^6 (full) draws, up to 4 blocks for 0.4 % relative error (footprint models),
+  with its error; flagged as not converged, and not used, above a relative error of 1e-3 / 1e-5
   (cubature) or 0.1 / 0.03 (Monte Carlo standard error).
 - equal-time curve: relative RMS error of the model's own sampler's estimate against the reference
-  at 1, 4, 16, ... 1024 (quick) / 16384 (full) samples, 8 / 32 repetitions, against wall time;
-  and the relative bias at the largest count with its standard error.
+  at 1, 4, 16, ... 1024 (quick) / 16384 (full) samples, 8 / 32 repetitions, against wall time,
+  beside the reference's own relative error (the curve's floor); and the relative bias at the
+  largest count with its standard error.
 - stability: each sampler's failure region, from --sweeps-from DIR/stability.json ("read") or swept
   here at the budget ("measured").
 Writes DIR/compare.json, compare.csv (one row per model), equal_time.csv, equal_time.png and

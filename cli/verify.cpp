@@ -23,6 +23,7 @@
 #include "verify/calibration.h"
 #include "verify/check.h"
 #include "verify/results.h"
+#include "verify/stability/sweep.h"
 
 namespace glintlab::cli {
 namespace {
@@ -128,6 +129,8 @@ int run(const CLI::App* cmd, const VerifyOptions& o) {
 
   std::vector<verify::RunRecord> records;
   {
+    // all.stability and each model.<name>.stability sweep the same models: measured once.
+    const verify::stability::SweepReuse one_sweep_per_model;
     // Scoped so that its line is ended before the table is printed.
     Progress progress("verify", long(selected.size()));
     for (const auto* c : selected) {

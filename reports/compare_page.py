@@ -34,14 +34,22 @@ def draw_equal_time(data, path, relpath="equal_time.png", manifest=None):
                if p["relative_rmse"] is not None and p["relative_rmse"] > 0 and p["seconds"] > 0]
         if not pts:
             continue
-        ax.loglog([p["seconds"] * 1e6 for p in pts], [p["relative_rmse"] for p in pts],
-                  marker="o", markersize=3, label=m["name"])
+        xs = [p["seconds"] * 1e6 for p in pts]
+        line, = ax.loglog(xs, [p["relative_rmse"] for p in pts],
+                          marker="o", markersize=3, label=m["name"])
+        # The reference's own error: the curve cannot be resolved below it.
+        floor = m["equal_time"].get("reference_relative_error")
+        if floor:
+            ax.plot([min(xs), max(xs)], [floor, floor], linestyle=":", linewidth=1,
+                    color=line.get_color())
         drawn += 1
     s = data["settings"]
     ax.set_title("Equal-time error: albedo estimate with each model's sampler\n"
                  f"{data['machine']}; budget {s['budget']}", fontsize=9)
     ax.set_xlabel("wall time per estimate (µs, this machine)")
     ax.set_ylabel("relative RMS error against the model's reference")
+    if drawn:
+        ax.plot([], [], linestyle=":", color="grey", label="reference's own error (each model)")
     ax.grid(True, which="both", alpha=0.3)
     if drawn == 0:
         ax.plot([], [], label="no model has a curve")
@@ -91,7 +99,8 @@ def error_cell(m):
     if e["not_shown"]:
         return f"not shown: {html.escape(e['not_shown'])}"
     last = e["points"][-1]
-    return (f"{fmt(last['relative_rmse'])} at N = {last['samples']}; bias "
+    return (f"{fmt(last['relative_rmse'])} at N = {last['samples']} (reference's own error "
+            f"{fmt(e.get('reference_relative_error'), '.2g')}); bias "
             f"{fmt(e['relative_bias'], '+.2g')} ± {fmt(e['relative_bias_se'], '.2g')}")
 
 
@@ -106,9 +115,11 @@ def intro_html(data):
     scenes = ", ".join(f"{t:g}°" for t in s["theta_deg"])
     return f"""<p>Every model at its default parameters on the same scenes: θi ∈ {{{scenes}}}, a
 footprint of side {s['footprint_side_uv']:g} in uv, a 1° light cone for area-light models and a
-delta light otherwise. Quantity: {html.escape(s['quantity'])}. Reference: cubature for models
-without a footprint, {s['reference_samples_monte_carlo']} uniform-direction samples for footprint
-models; a reference whose relative error exceeds {s['cubature_converged_relative_error']:g}
+delta light otherwise. Quantity: {html.escape(s['quantity'])}. Reference: the conformance
+suite's integral (the truth of sampler-covers-value): cubature for models without a footprint;
+for footprint models Monte Carlo over a fixed mixture about the mirror direction, blocks of
+{s['reference_monte_carlo_block']} draws, as many (at most {s['reference_monte_carlo_max_blocks']})
+as reach a relative error of {s['reference_monte_carlo_target_relative_error']:g}. A reference whose relative error exceeds {s['cubature_converged_relative_error']:g}
 (cubature) or {s['monte_carlo_converged_relative_error']:g} (Monte Carlo, one standard error) is
 flagged as not converged and not used. Times are measurements of this run's machine
 ({html.escape(data['machine'])}). Conformance verdicts are in two columns: those of this run

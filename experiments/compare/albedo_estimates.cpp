@@ -20,42 +20,26 @@ namespace cf = verify::conformance;
 using V3 = Vec3<double>;
 
 ModelQuery<double> scene_query(const ModelEntry& m, double theta_deg) {
-  return cf::make_query(m, theta_deg, cf::kFootprint);
+  return cf::make_query(m, theta_deg, kSceneFootprint);
 }
 
-AlbedoReference by_cubature(const ModelEntry& m, const std::vector<double>& values,
-                            const ModelQuery<double>& q, const CompareBudget& b) {
-  const cf::Cubature c = cf::integrate_about_mirror(
-      [&](const V3& w) { return cf::value_at(m, values, q, w); }, q.wi,
-      cf::roughness_hint(m, values), b.budget);
+// The conformance suite's integral of the value over the upper hemisphere (integrate_hemisphere:
+// cubature about the mirror direction, or for footprint models Monte Carlo over its fixed mirror
+// mixture), the same truth sampler-covers-value tests the model's sampler against.
+AlbedoReference by_suite_integral(const ModelEntry& m, const std::vector<double>& values,
+                                  const ModelQuery<double>& q, const CompareBudget& b,
+                                  std::uint64_t seed) {
+  const verify::conformance::HemisphereIntegral h = cf::integrate_hemisphere(
+      m, [&](const V3& w) { return cf::value_at(m, values, q, w); }, q.wi,
+      cf::roughness_hint(m, values), b.budget, seed);
   AlbedoReference ref;
-  ref.method = "cubature";
-  ref.value = c.value;
-  ref.error = c.error;
-  ref.converged = std::isfinite(c.value) &&
-                  c.error <= b.cubature_converged_rel * std::max(std::abs(c.value), 1e-12);
-  return ref;
-}
-
-AlbedoReference by_monte_carlo(const ModelEntry& m, const std::vector<double>& values,
-                               const ModelQuery<double>& q, const CompareBudget& b,
-                               std::uint64_t seed) {
-  const std::uint64_t n = b.reference_samples;
-  const verify::MeanAccumulator acc = verify::accumulate_mean(
-      [&](std::uint64_t i) {
-        const Vec2<double> u = cf::pair_at(seed, i);
-        const double z = u.x, rho = std::sqrt(std::max(0.0, 1 - z * z));
-        const double phi = 2 * std::numbers::pi * u.y;
-        return 2 * std::numbers::pi *
-               cf::value_at(m, values, q, V3{rho * std::cos(phi), rho * std::sin(phi), z});
-      },
-      n);
-  AlbedoReference ref;
-  ref.method = "monte-carlo";
-  ref.value = acc.mean;
-  ref.error = std::sqrt(acc.variance() / double(n));
-  ref.converged = std::isfinite(acc.mean) &&
-                  ref.error <= b.monte_carlo_converged_rel * std::abs(acc.mean) && acc.mean != 0;
+  ref.method = h.monte_carlo ? "monte-carlo" : "cubature";
+  ref.value = h.value;
+  ref.error = h.error;
+  const double bound = h.monte_carlo ? b.monte_carlo_converged_rel : b.cubature_converged_rel;
+  ref.converged = std::isfinite(h.value) && std::isfinite(h.error) &&
+                  h.error <= bound * std::max(std::abs(h.value), 1e-12) &&
+                  (!h.monte_carlo || h.value != 0);
   return ref;
 }
 
@@ -102,8 +86,7 @@ AlbedoReference reference_albedo(const ModelEntry& m, double theta_deg, const Co
                                  std::uint64_t seed) {
   const std::vector<double> values = resolve_params(m, {});
   const ModelQuery<double> q = scene_query(m, theta_deg);
-  AlbedoReference ref = (m.needs & kNeedsFootprint) ? by_monte_carlo(m, values, q, b, seed)
-                                                     : by_cubature(m, values, q, b);
+  AlbedoReference ref = by_suite_integral(m, values, q, b, seed);
   ref.theta_deg = theta_deg;
   return ref;
 }
@@ -149,10 +132,10 @@ EqualTimeCurve equal_time_curve(const ModelEntry& m, const std::vector<AlbedoRef
     curve.points.push_back({n, seconds / estimates, std::sqrt(squares / double(refs.size()))});
     if (n == ladder.back()) {
       // The references' own errors (one σ for Monte Carlo) enter the bias's standard error.
-      double reference_variance = 0;
-      for (const AlbedoReference& r : refs)
-        reference_variance += std::pow(r.error / std::abs(r.value), 2);
-      reference_variance /= double(refs.size() * refs.size());
+      double reference_squares = 0;
+      for (const AlbedoReference& r : refs) reference_squares += std::pow(r.error / std::abs(r.value), 2);
+      curve.reference_relative_error = std::sqrt(reference_squares / double(refs.size()));
+      const double reference_variance = reference_squares / double(refs.size() * refs.size());
       curve.relative_bias = bias.mean;
       curve.relative_bias_se = std::sqrt(bias.variance() / double(bias.n) + reference_variance);
     }

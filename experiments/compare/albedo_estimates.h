@@ -1,12 +1,14 @@
 // The quantity every model is compared on: the albedo a(ωi) = ∫ value(ωi, ωo) dωo over the upper
 // hemisphere (value is cosine-weighted, core/model.h) of each shared scene, i.e. the white-furnace
 // radiance a renderer estimates with the model's own sampler. Per model:
-//   - its reference: cubature (models without a footprint; flagged when its error estimate says it
-//     did not converge) or a Monte Carlo estimate over uniform directions with its standard error
-//     (footprint models, whose value holds thousands of glint peaks cubature resolves only after
-//     minutes);
+//   - its reference: the conformance suite's integral (verify/conformance/common.h
+//     integrate_hemisphere, the truth of sampler-covers-value): cubature about the mirror
+//     direction for models without a footprint, Monte Carlo over a fixed mixture about the mirror
+//     direction with its standard error for footprint models (whose value holds thousands of glint
+//     peaks cubature resolves only after minutes); flagged when its error says it did not converge;
 //   - the equal-time curve: the relative RMS error of the sampler's estimate against that
-//     reference at N = 1, 4, 16, … samples, against the wall time the N samples took.
+//     reference at N = 1, 4, 16, … samples, against the wall time the N samples took, beside the
+//     reference's own relative error (the floor below which the curve says nothing).
 #pragma once
 
 #include <cstdint>
@@ -44,6 +46,9 @@ struct EqualTimeCurve {
   // error, the references' errors included (the estimator's bias against the reference, where it
   // is resolved).
   double relative_bias = 0, relative_bias_se = 0;
+  // RMS over scenes of the references' relative errors (one σ for Monte Carlo): an estimate's
+  // error against the reference cannot be resolved below it.
+  double reference_relative_error = 0;
   std::string isa;     // the ISA the samples were drawn on
   std::string reason;  // non-empty: no curve, and why (a reference not converged, or zero)
 };

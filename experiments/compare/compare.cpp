@@ -13,6 +13,7 @@
 #include "experiments/compare/model_findings.h"
 #include "experiments/sweeps/stability_run.h"
 #include "verify/conformance/common.h"
+#include "verify/stability/sweep.h"
 
 namespace glintlab::experiments::compare {
 namespace {
@@ -91,6 +92,8 @@ json model_json(const ModelEntry& m, const CompareOptions& o, const CompareBudge
         {{"samples", p.samples}, {"seconds", p.seconds}, {"relative_rmse", number(p.relative_rmse)}});
   j["equal_time"] = {{"isa", c.isa},
                      {"points", points},
+                     {"reference_relative_error",
+                      c.reason.empty() ? number(c.reference_relative_error) : json(nullptr)},
                      {"relative_bias", c.reason.empty() ? number(c.relative_bias) : json(nullptr)},
                      {"relative_bias_se",
                       c.reason.empty() ? number(c.relative_bias_se) : json(nullptr)},
@@ -172,9 +175,12 @@ std::string equal_time_csv(const json& models) {
 json settings_json(const CompareOptions& o, const CompareBudget& b) {
   return {{"budget", o.budget == verify::Budget::kQuick ? "quick" : "full"},
           {"theta_deg", b.thetas_deg},
-          {"footprint_side_uv", verify::conformance::kFootprint},
+          {"footprint_side_uv", kSceneFootprint},
           {"quantity", "albedo: ∫ value dωo over the upper hemisphere (white furnace)"},
-          {"reference_samples_monte_carlo", b.reference_samples},
+          {"reference_monte_carlo_block", verify::conformance::reference_block(o.budget)},
+          {"reference_monte_carlo_max_blocks", verify::conformance::kMaxReferenceBlocks},
+          {"reference_monte_carlo_target_relative_error",
+           verify::conformance::kReferenceRelativeError},
           {"cubature_converged_relative_error", b.cubature_converged_rel},
           {"monte_carlo_converged_relative_error", b.monte_carlo_converged_rel},
           {"max_samples", b.max_samples},
@@ -189,6 +195,9 @@ json settings_json(const CompareOptions& o, const CompareBudget& b) {
 
 CompareFiles run_compare(const fs::path& dir, const CompareOptions& o) {
   const CompareBudget b = compare_budget(o.budget);
+  // A model's stability is swept once: by its conformance suite's stability property where that
+  // runs here, and the same sweep gives the failure regions.
+  const verify::stability::SweepReuse one_sweep_per_model;
   json models = json::array();
   for (const std::string& name : o.models) models.push_back(model_json(find_model(name), o, b));
   json doc;

@@ -18,7 +18,7 @@ namespace {
 // on a golden-angle spiral over the upper hemisphere, so the timing mixes lobe and tail.
 std::vector<std::vector<double>> timing_queries(const ModelEntry& m, const CompareBudget& b) {
   const ModelQuery<double> base =
-      verify::conformance::make_query(m, b.thetas_deg.front(), verify::conformance::kFootprint);
+      verify::conformance::make_query(m, b.thetas_deg.front(), kSceneFootprint);
   std::vector<std::vector<double>> cols(kQueryLayout.size(), std::vector<double>(b.timing_rows));
   for (std::size_t i = 0; i < b.timing_rows; ++i) {
     ModelQuery<double> q = base;

@@ -4,6 +4,11 @@
 #include <tbb/parallel_for.h>
 
 #include <chrono>
+#include <map>
+#include <mutex>
+#include <tuple>
+
+#include "core/model_registry.h"
 
 namespace glintlab::verify::stability {
 
@@ -13,8 +18,27 @@ CellBudget cell_budget(Budget b) {
   return b == Budget::kQuick ? CellBudget{64, 256} : CellBudget{1024, 1024};
 }
 
-ModelSweep sweep_model(const SweepTarget& target, Budget b,
-                       const std::function<void(long, long)>& progress) {
+namespace {
+
+using SweepKey = std::tuple<const ModelEntry*, std::optional<std::size_t>, std::size_t, Budget>;
+struct ReuseState {
+  std::mutex mutex;
+  bool active = false;
+  std::map<SweepKey, ModelSweep> sweeps;
+  std::size_t reused = 0;
+};
+ReuseState& reuse_state() {
+  static ReuseState state;
+  return state;
+}
+bool is_registered(const ModelEntry* m) {
+  for (const ModelEntry& e : registered_models())
+    if (&e == m) return true;
+  return false;
+}
+
+ModelSweep measure_sweep(const SweepTarget& target, Budget b,
+                         const std::function<void(long, long)>& progress) {
   const auto start = std::chrono::steady_clock::now();
   ModelSweep s;
   s.target = target;
@@ -37,6 +61,50 @@ ModelSweep sweep_model(const SweepTarget& target, Budget b,
   }
   s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return s;
+}
+
+}  // namespace
+
+ModelSweep sweep_model(const SweepTarget& target, Budget b,
+                       const std::function<void(long, long)>& progress) {
+  ReuseState& r = reuse_state();
+  const SweepKey key{target.model, target.sampler_param, target.sampler_choice, b};
+  bool reusable = false;
+  {
+    std::lock_guard lock(r.mutex);
+    if (r.active && is_registered(target.model)) {
+      reusable = true;
+      if (auto it = r.sweeps.find(key); it != r.sweeps.end()) {
+        ++r.reused;
+        return it->second;
+      }
+    }
+  }
+  ModelSweep s = measure_sweep(target, b, progress);
+  if (reusable) {
+    std::lock_guard lock(r.mutex);
+    if (r.active) r.sweeps.emplace(key, s);
+  }
+  return s;
+}
+
+SweepReuse::SweepReuse() {
+  ReuseState& r = reuse_state();
+  std::lock_guard lock(r.mutex);
+  r.active = true;
+  r.sweeps.clear();
+  r.reused = 0;
+}
+SweepReuse::~SweepReuse() {
+  ReuseState& r = reuse_state();
+  std::lock_guard lock(r.mutex);
+  r.active = false;
+  r.sweeps.clear();
+}
+std::size_t SweepReuse::reused() const {
+  ReuseState& r = reuse_state();
+  std::lock_guard lock(r.mutex);
+  return r.reused;
 }
 
 }  // namespace glintlab::verify::stability

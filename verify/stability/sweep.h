@@ -40,4 +40,19 @@ CellBudget cell_budget(Budget b);
 ModelSweep sweep_model(const SweepTarget& target, Budget b,
                        const std::function<void(long, long)>& progress = {});
 
+// While a SweepReuse is alive, sweep_model returns the earlier sweep of the same registered model
+// entry, sampler choice and budget instead of measuring it again: `glintlab compare` runs a
+// model's conformance suite, whose stability property sweeps the model, and then reports that
+// sweep's failure regions. Only entries of registered_models() are reused, never a copy of one
+// (the controls' broken models). A sweep is deterministic, so a reused one is what a second sweep
+// would measure (its `seconds` apart). One at a time per process; not nested.
+class SweepReuse {
+ public:
+  SweepReuse();
+  ~SweepReuse();
+  SweepReuse(const SweepReuse&) = delete;
+  SweepReuse& operator=(const SweepReuse&) = delete;
+  std::size_t reused() const;  // sweeps returned from memory so far
+};
+
 }  // namespace glintlab::verify::stability

@@ -198,3 +198,45 @@ TEST(StabilitySweep, MapsDoNotDependOnTheThreadCount) {
 
 }  // namespace
 }  // namespace glintlab::verify::stability
+
+namespace glintlab::verify::stability {
+namespace {
+
+bool same_maps(const ModelSweep& a, const ModelSweep& b) {
+  if (a.maps.size() != b.maps.size()) return false;
+  for (std::size_t k = 0; k < a.maps.size(); ++k)
+    for (std::size_t i = 0; i < a.maps[k].cells.size(); ++i) {
+      const CellStats &x = a.maps[k].cells[i], &y = b.maps[k].cells[i];
+      if (x.evals != y.evals || x.samples != y.samples || x.albedo != y.albedo ||
+          x.relative_variance != y.relative_variance || x.value.nan != y.value.nan)
+        return false;
+    }
+  return true;
+}
+
+// Within a SweepReuse scope a registered model is swept once (the second call returns the first
+// sweep); a copy of the entry (a control's broken model) and a sweep outside the scope are
+// measured, and every one of them equals a fresh sweep.
+TEST(StabilitySweep, ReuseReturnsTheSameSweepOfARegisteredModelOnly) {
+  const ModelEntry& registered = find_model("smooth_beckmann");
+  ModelEntry copy = registered;
+  const ModelSweep fresh = sweep_model(target_of(registered), Budget::kQuick);
+  {
+    const SweepReuse reuse;
+    const ModelSweep first = sweep_model(target_of(registered), Budget::kQuick);
+    EXPECT_EQ(reuse.reused(), 0u);
+    const ModelSweep second = sweep_model(target_of(registered), Budget::kQuick);
+    EXPECT_EQ(reuse.reused(), 1u);
+    (void)sweep_model(target_of(copy), Budget::kQuick);
+    (void)sweep_model(target_of(copy), Budget::kQuick);
+    EXPECT_EQ(reuse.reused(), 1u);  // copies are never reused
+    EXPECT_TRUE(same_maps(fresh, first));
+    EXPECT_TRUE(same_maps(fresh, second));
+  }
+  const SweepReuse later;
+  (void)sweep_model(target_of(registered), Budget::kQuick);
+  EXPECT_EQ(later.reused(), 0u);  // nothing kept past the scope that measured it
+}
+
+}  // namespace
+}  // namespace glintlab::verify::stability
