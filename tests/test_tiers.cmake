@@ -3,64 +3,112 @@
 # folder of tests/ its binary is built from) and `fast` or `slow`. A test is slow when it is named
 # below: each took over a second on 2 cores (AMD EPYC, release build), with the reason it cannot
 # be quicker at the same power. `ctest -L fast` is the inner loop; CI runs both tiers.
-# An entry ending in `*` names every test that starts with it; any other entry one test.
+# An entry ending in `*` names every test whose name starts with it (a parameterised test's name
+# ends in its `# GetParam() = …` comment, so it is named with `*`); any other entry one test. The
+# first entry that names a test decides.
+#
+# Each entry ends in the seconds its test took in a release build (2 cores, rounded): the COST of
+# every test the entry names. `ctest -j` starts the costliest tests first, so a fresh clone,
+# which has no Testing/Temporary/CTestCostData.txt, does not start a 30 s test last (it would
+# start them in declaration order). ctest prefers a COST to the times it recorded itself.
 set(glintlab_slow_tests
   # A claim run end to end at its quick sample counts, then its near-truth control: the sample
   # counts are the claim's power (verify/claims/*.cpp).
-  "Checks/QuickBudget.*"
-  "AcrossClaims.StabilityVerdictAndControl"
-  "Properties/ControlRejected.ByTheSameDecision/kneiphof_klein_sampler_covers_value"
+  "Checks/QuickBudget.VerdictAndControl/smooth_sampler_matches_pdf* 30"
+  "Checks/QuickBudget.VerdictAndControl/eto_pdf_matches* 25"
+  "Checks/QuickBudget.VerdictAndControl/smooth_vndf_normalized* 5"
+  "Checks/QuickBudget.VerdictAndControl/smooth_eval_pdf_consistency* 5"
+  "Checks/QuickBudget.* 1"
+  "AcrossClaims.StabilityVerdictAndControl 9"
+  "Properties/ControlRejected.ByTheSameDecision/kneiphof_klein_sampler_covers_value* 4"
   # Chi-square and integration checks whose sample sizes set what they can detect.
-  "ChiSquareClaims.EtoPdfMatchesControlsRejected"
-  "ChiSquareClaims.IdenticalWithOneAndTwoThreads"
-  "ChiSquareClaims.SamplerMatchesPdfControlsRejected"
-  "LightsChiSquare.PolygonSamplersMatchTheirPdfsAndControlsAreRejected"
-  "LightsChiSquare.RectangleSamplersMatchTheirPdfsAndControlsAreRejected"
-  "NdfIdentities.ProjectedAreaIsOmegaZAndSmithArea<glintlab::Beckmann<double>>"
-  "NdfIdentities.ProjectedAreaIsOmegaZAndSmithArea<glintlab::GGX<double>>"
-  "NdfIdentities.VisibleNormalsNormalized<glintlab::Beckmann<double>>"
-  "NdfIdentities.VisibleNormalsNormalized<glintlab::GGX<double>>"
-  "SamplerNormalization.PdfIntegratesToOneOverTheSphere"
-  "AdequacyClosedForms.RealtimeMomentsMatchItsDraws"
-  "ChermainClaims.DictionaryConverges"
-  "ChermainClaims.GgaaDecisionFailsAgainstNearTruth"
-  "ChermainClaims.LeanMarginNegativeAgainstNearTruth"
-  "ChermainPatchSdf.NormalizedWithAndWithoutGgaa"
-  "ChermainScalarIdentity.ModelMatchesTheHostCode"
-  "KneiphofClaims.DiscreteNdfMean"
-  "ZirrKaplanyan.CountMeanAndVarianceMatchADirectlySimulatedBinomial"
+  "ChiSquareClaims.EtoPdfMatchesControlsRejected 10"
+  "ChiSquareClaims.IdenticalWithOneAndTwoThreads 2"
+  "ChiSquareClaims.SamplerMatchesPdfControlsRejected 11"
+  "LightsChiSquare.PolygonSamplersMatchTheirPdfsAndControlsAreRejected 3"
+  "LightsChiSquare.RectangleSamplersMatchTheirPdfsAndControlsAreRejected 5"
+  "NdfIdentities.ProjectedAreaIsOmegaZAndSmithArea<glintlab::Beckmann<double>> 4"
+  "NdfIdentities.ProjectedAreaIsOmegaZAndSmithArea<glintlab::GGX<double>> 2"
+  "NdfIdentities.VisibleNormalsNormalized<glintlab::Beckmann<double>> 7"
+  "NdfIdentities.VisibleNormalsNormalized<glintlab::GGX<double>> 3"
+  "SamplerNormalization.PdfIntegratesToOneOverTheSphere 1"
+  "AdequacyClosedForms.RealtimeMomentsMatchItsDraws 2"
+  "ChermainClaims.DictionaryConverges 2"
+  "ChermainClaims.GgaaDecisionFailsAgainstNearTruth 1"
+  "ChermainClaims.LeanMarginNegativeAgainstNearTruth 4"
+  "ChermainPatchSdf.NormalizedWithAndWithoutGgaa 1"
+  "ChermainScalarIdentity.ModelMatchesTheHostCode 1"
+  "KneiphofClaims.DiscreteNdfMean 2"
+  "ZirrKaplanyan.CountMeanAndVarianceMatchADirectlySimulatedBinomial 3"
   # The glintlab executable run end to end on a subcommand's quick budget (a figure, a sweep, a
   # report, compare, adequacy), or a fuzz loop of a fixed number of inputs.
-  "AdequacyTest.OutputDoesNotDependOnThreads"
-  "AdequacyTest.QuickRunWritesTableAndMaps"
-  "ChermainCli.Fig3Quick"
-  "ChermainCli.Fig7Quick"
-  "ChermainCli.Fig9Quick"
-  "CompareTest.PluginModelBesideThePapersModelsAndThreadIndependent"
-  "CompareTest.ReadsVerdictsAndFailureRegionsFromEarlierRuns"
-  "ExampleModel.AppearsInTheStabilityClaim"
-  "ExampleModel.GetsTheRegistryDrivenFigure"
-  "FigureTest.EnvironmentMapFromExr"
-  "FigureTest.Fig4QuickWritesExrPngAndCsv"
-  "FigureTest.RmseSppQuickWritesExrPngAndCsv"
-  "FuzzCli.*"
-  "FuzzEnvironmentExr.*"
-  "KemppinenFig7Test.ConvergenceUnderEnvironmentLight"
-  "KemppinenFigureTest.Fig2_3DiskAndHemisphere"
-  "KemppinenTimingTest.FiguresReadTheBenchmarkJson"
-  "KemppinenTimingTest.SpeedAccuracyWithoutJson"
-  "PluginTest.SweepFigureAndGenericClaimCoverThePluginModel"
-  "PodeeCliTest.DistanceAndFlickerQuick"
-  "ReportTest.ReuseReadsCachedResultsAndAMalformedOneLeavesTheOldReport"
-  "ReportTest.SmallRealRun"
+  "AdequacyTest.OutputDoesNotDependOnThreads 11"
+  "AdequacyTest.QuickRunWritesTableAndMaps 3"
+  "ChermainCli.Fig3Quick 1"
+  "ChermainCli.Fig7Quick 1"
+  "ChermainCli.Fig9Quick 1"
+  "CompareTest.PluginModelBesideThePapersModelsAndThreadIndependent 8"
+  "CompareTest.ReadsVerdictsAndFailureRegionsFromEarlierRuns 1"
+  "ExampleModel.AppearsInTheStabilityClaim 13"
+  "ExampleModel.GetsTheRegistryDrivenFigure 2"
+  "FigureTest.EnvironmentMapFromExr 1"
+  "FigureTest.Fig4QuickWritesExrPngAndCsv 1"
+  "FigureTest.RmseSppQuickWritesExrPngAndCsv 1"
+  "FuzzCli.* 2"
+  "FuzzEnvironmentExr.* 4"
+  "KemppinenFig7Test.ConvergenceUnderEnvironmentLight 1"
+  "KemppinenFigureTest.Fig2_3DiskAndHemisphere 1"
+  "KemppinenTimingTest.FiguresReadTheBenchmarkJson 4"
+  "KemppinenTimingTest.SpeedAccuracyWithoutJson 3"
+  "PluginTest.SweepFigureAndGenericClaimCoverThePluginModel 21"
+  "PodeeCliTest.DistanceAndFlickerQuick 2"
+  "ReportTest.ReuseReadsCachedResultsAndAMalformedOneLeavesTheOldReport 12"
+  "ReportTest.SmallRealRun 15"
   # Every batched kernel or model on every ISA against its scalar instantiation, on enough rows
   # to reach the recorded worst cases (tests/simd/).
-  "SimdChermainEquivalence.DoubleEveryIsa"
-  "SimdChermainEquivalence.FloatColumnsRunOnDoubleBatches"
-  "SimdChermainNegativeControl.UnperturbedBatchPassesPerturbedFail"
-  "SimdEquivalence.*"
-  "SimdKemppinenEquivalence.*"
-  "SimdModelEquivalence.*")
+  "SimdChermainEquivalence.DoubleEveryIsa 6"
+  "SimdChermainEquivalence.FloatColumnsRunOnDoubleBatches 1"
+  "SimdChermainNegativeControl.UnperturbedBatchPassesPerturbedFail 1"
+  "SimdEquivalence.DoubleEveryKernelEveryIsa 13"
+  "SimdEquivalence.* 9"
+  "SimdKemppinenEquivalence.* 4"
+  "SimdModelEquivalence.FloatEveryBatchedModelEveryIsa 20"
+  "SimdModelEquivalence.* 11")
+
+# The slow tests whose time is statistical power (sample counts) or a cubature's precision, over
+# code paths that tests of the sanitized run (scripts/test_asan.sh) also take: each is named
+# with those tests. They carry the label `power`, and the sanitized run leaves them out: the
+# sanitizers find memory and UB errors, which depend on the paths taken, not on how many samples
+# take them. A slow test that is the only sanitized run of a path (a whole sweep, a claim's own
+# measure, the CLI end to end, a fuzzer, plug-in loading, report writing) is not listed here.
+# Entries are matched as above.
+set(glintlab_power_tests
+  # Every claim at its quick budget: its measure and decision on smaller inputs in the claim's own
+  # tests (tests/verify/claims/: ChiSquareClaims.*, KemppinenClaims.*, PodeeClaims.*,
+  # ChermainClaims.*, KneiphofClaims.*, ...), the conformance properties in
+  # Properties/ControlRejected.*, all.stability in AcrossClaims.StabilityVerdictAndControl.
+  "Checks/QuickBudget.*"
+  # The controls of smooth.sampler-matches-pdf and eto.pdf-matches at the samples that reject a
+  # 2 % error: ChiSquareClaims.IdenticalWithOneAndTwoThreads runs both families (the batched
+  # samplers, scaled, α × 1.02 and replanned controls) at 2·10^4 samples;
+  # SamplerPdfConsistency.*, SamplerWeights.* and BoundedVndf*.* every sampler and pdf of
+  # their grids.
+  "ChiSquareClaims.EtoPdfMatchesControlsRejected"
+  "ChiSquareClaims.SamplerMatchesPdfControlsRejected"
+  # 10^5 samples per light: LightsChiSquare.CapsMatchTheirPdfsAndControlsAreRejected and
+  # .DiskMatchesItsPdfAndControlIsRejected take the same plan and fit; Lights.PdfsIntegrateToOne-
+  # ByCubature and Lights.SamplesAgreeWithPdfRadianceAndGeometry every light's pdf and sampler,
+  # the rectangle's and polygon's included.
+  "LightsChiSquare.PolygonSamplersMatchTheirPdfsAndControlsAreRejected"
+  "LightsChiSquare.RectangleSamplersMatchTheirPdfsAndControlsAreRejected"
+  # Cubature to 1e-10 around lobes down to α = 1e-3: NdfIdentities.ChecksRejectBrokenNdfs runs
+  # the same two checks at α = 0.3, .NormalizedOverProjectedArea the same cubature at every α,
+  # .FiniteAtExtremes D, Λ, the projected area and the VNDF at the extreme α and directions.
+  "NdfIdentities.ProjectedAreaIsOmegaZAndSmithArea*"
+  "NdfIdentities.VisibleNormalsNormalized*"
+  # 4·10^5 draws at each of 20 (n, p): AdequacyClosedForms.RealtimeMomentsTellAWrongCountApart
+  # draws and evaluates the same closed form at one (n, p).
+  "AdequacyClosedForms.RealtimeMomentsMatchItsDraws")
 
 # The test binaries and the layer label of their tests.
 set(glintlab_test_binaries
@@ -68,21 +116,42 @@ set(glintlab_test_binaries
   glintlab_cli_tests glintlab_simd_tests)
 set(glintlab_test_layers core verify experiments examples cli simd)
 
+# Whether `entry` (a name, or a prefix ending in `*`) names `test`.
+function(glintlab_entry_names entry test out)
+  set(${out} FALSE PARENT_SCOPE)
+  if(entry MATCHES "^(.*)\\*$")
+    string(FIND "${test}" "${CMAKE_MATCH_1}" at)
+    if(at EQUAL 0)
+      set(${out} TRUE PARENT_SCOPE)
+    endif()
+  elseif(test STREQUAL entry)
+    set(${out} TRUE PARENT_SCOPE)
+  endif()
+endfunction()
+
 foreach(binary layer IN ZIP_LISTS glintlab_test_binaries glintlab_test_layers)
   foreach(test IN LISTS ${binary}_TESTS)
-    set(tier fast)
+    set(labels "${layer};fast")
+    set(cost 0)
     foreach(entry IN LISTS glintlab_slow_tests)
-      if(entry MATCHES "^(.*)\\*$")
-        string(FIND "${test}" "${CMAKE_MATCH_1}" at)
-        if(at EQUAL 0)
-          set(tier slow)
-          break()
-        endif()
-      elseif(test STREQUAL entry)
-        set(tier slow)
+      if(NOT entry MATCHES "^(.+) ([0-9]+)$")
+        message(FATAL_ERROR "test_tiers.cmake: slow entry without its seconds: ${entry}")
+      endif()
+      set(seconds ${CMAKE_MATCH_2})
+      glintlab_entry_names("${CMAKE_MATCH_1}" "${test}" named)
+      if(named)
+        set(labels "${layer};slow")
+        set(cost ${seconds})
         break()
       endif()
     endforeach()
-    set_tests_properties("${test}" PROPERTIES LABELS "${layer};${tier}")
+    foreach(entry IN LISTS glintlab_power_tests)
+      glintlab_entry_names("${entry}" "${test}" named)
+      if(named)
+        list(APPEND labels power)
+        break()
+      endif()
+    endforeach()
+    set_tests_properties("${test}" PROPERTIES LABELS "${labels}" COST ${cost})
   endforeach()
 endforeach()

@@ -1,5 +1,5 @@
 # Every test of the build tree carries exactly one tier label, fast or slow (test_tiers.cmake and
-# tests/CMakeLists.txt). Run: cmake -DCTEST=ctest -DDIR=<build dir> -P tiers_test.cmake
+# tests/CMakeLists.txt), and every test labelled power is slow. Run: cmake -DCTEST=ctest -DDIR=<build dir> -P tiers_test.cmake
 function(count_tests out)
   execute_process(COMMAND "${CTEST}" -N ${ARGN} WORKING_DIRECTORY "${DIR}"
                   OUTPUT_VARIABLE text RESULT_VARIABLE rc)
@@ -17,4 +17,11 @@ if(fast EQUAL 0 OR slow EQUAL 0 OR NOT labelled EQUAL all OR NOT both EQUAL 0)
   message(FATAL_ERROR "tiers: ${all} tests, ${fast} fast, ${slow} slow, ${both} both: every test "
                       "must carry exactly one of the labels fast and slow")
 endif()
-message(STATUS "tiers: ${all} tests: ${fast} fast, ${slow} slow")
+# A test labelled `power` (left out of the sanitized run) is a slow one.
+count_tests(power -L "^power$")
+count_tests(fast_power -L "^power$" -L "^fast$")
+if(power EQUAL 0 OR NOT fast_power EQUAL 0)
+  message(FATAL_ERROR "tiers: ${power} tests labelled power, ${fast_power} of them fast: the "
+                      "power label is for slow tests (test_tiers.cmake)")
+endif()
+message(STATUS "tiers: ${all} tests: ${fast} fast, ${slow} slow, ${power} of them power")

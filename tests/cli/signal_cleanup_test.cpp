@@ -47,10 +47,14 @@ void interrupt(const fs::path& work, const std::vector<std::string>& args, int s
     ::execv(kGlintlabExe, argv.data());
     ::_exit(127);
   }
+  // Whether a staging entry was seen, as the loop saw it: a second listing can miss it, since
+  // the directory walk stops at an entry the run renames or removes meanwhile.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (staging_entries(work).empty() && std::chrono::steady_clock::now() < deadline)
+  bool staged = !staging_entries(work).empty();
+  while (!staged && std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  const bool staged = !staging_entries(work).empty();
+    staged = !staging_entries(work).empty();
+  }
   // Let it write a little into the staging folder first.
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   ::kill(pid, sig);

@@ -256,10 +256,42 @@ struct Measured {
   }
 };
 
-// Compares batch outputs with the scalar instantiation M::eval<S> / M::sample<S>, and the sampled
-// pdf with the scalar M::pdf<S> at the batch's own wo (the sampler's contract), under budget b.
+// The scalar instantiation's eval outputs (value, pdf, intermediates: `columns` per row, row-major)
+// and sample at every row of a case. It does not depend on the ISA, so each case computes it once
+// and compares every ISA's batch with it.
+template <class S>
+struct Reference {
+  std::size_t columns = 0;
+  std::vector<S> eval;
+  std::vector<ModelSample<S>> sample;
+};
+
 template <class M, class S>
-Measured compare(const ModelEntry& m, const Case& k, const Outputs<S>& got, const ModelBudget& b) {
+Reference<S> reference(const ModelEntry& m, const Case& k) {
+  Reference<S> r;
+  r.columns = 2 + m.intermediates.size();
+  r.eval.reserve(k.rows() * r.columns);
+  r.sample.reserve(k.rows());
+  for (std::size_t s = 0; s < k.params.size(); ++s) {
+    const auto p = M::template params<S>(k.params[s]);
+    for (std::size_t i = s * kRowsPerSet; i < (s + 1) * kRowsPerSet; ++i) {
+      const ModelQuery<S> q = row_query<S>(k, i);
+      const auto e = M::template eval<S>(p, q);
+      r.eval.push_back(e.value);
+      r.eval.push_back(e.pdf);
+      r.eval.insert(r.eval.end(), e.intermediates.begin(), e.intermediates.end());
+      r.sample.push_back(M::template sample<S>(p, q, Vec2<S>{S(k.u1[i]), S(k.u2[i])}));
+    }
+  }
+  return r;
+}
+
+// Compares batch outputs with the scalar instantiation M::eval<S> / M::sample<S> (`ref`), and the
+// sampled pdf with the scalar M::pdf<S> at the batch's own wo (the sampler's contract), under
+// budget b.
+template <class M, class S>
+Measured compare(const ModelEntry& m, const Case& k, const Reference<S>& reference,
+                 const Outputs<S>& got, const ModelBudget& b) {
   Measured r;
   std::size_t flags = 0, over = 0;
   const S eps = std::numeric_limits<S>::epsilon();
@@ -279,11 +311,9 @@ Measured compare(const ModelEntry& m, const Case& k, const Outputs<S>& got, cons
     const auto p = M::template params<S>(k.params[s]);
     for (std::size_t i = s * kRowsPerSet; i < (s + 1) * kRowsPerSet; ++i) {
       const ModelQuery<S> q = row_query<S>(k, i);
-      const auto e = M::template eval<S>(p, q);
-      std::vector<S> ref = {e.value, e.pdf};
-      ref.insert(ref.end(), e.intermediates.begin(), e.intermediates.end());
+      const S* ref = &reference.eval[i * reference.columns];
       bool row_over = false;
-      for (std::size_t c = 0; c < ref.size(); ++c) {
+      for (std::size_t c = 0; c < reference.columns; ++c) {
         const double d = error(got.eval[c][i], ref[c], out_budget[c].floor);
         r.output_ulp[c] = std::max(r.output_ulp[c], d);
         row_over = row_over || d > out_budget[c].ulp;
@@ -292,7 +322,7 @@ Measured compare(const ModelEntry& m, const Case& k, const Outputs<S>& got, cons
           r.worst_eval = c == 0 ? "value" : c == 1 ? "pdf" : std::string(m.intermediates[c - 2]);
         }
       }
-      const ModelSample<S> ss = M::template sample<S>(p, q, Vec2<S>{S(k.u1[i]), S(k.u2[i])});
+      const ModelSample<S>& ss = reference.sample[i];
       const bool rej_ref = static_cast<bool>(ss.rejected), rej = got.sample[5][i] != 0;
       if (rej || rej_ref) {
         flags += rej != rej_ref ? 1 : 0;
@@ -322,6 +352,12 @@ Measured compare(const ModelEntry& m, const Case& k, const Outputs<S>& got, cons
   return r;
 }
 
+// One batch against the reference computed for it alone (each negative control compares one).
+template <class M, class S>
+Measured compare(const ModelEntry& m, const Case& k, const Outputs<S>& got, const ModelBudget& b) {
+  return compare<M, S>(m, k, reference<M, S>(m, k), got, b);
+}
+
 template <class S, class... Ms>
 void check_models(ModelList<Ms...>) {
   int ran = 0;
@@ -336,13 +372,15 @@ void check_models(ModelList<Ms...>) {
     if (m.name == "chermain") return;
     for (const Case& k : make_cases(m, sizeof(S) == 8)) {
       const ModelBudget b = model_budget(m.name, k.sampler, sizeof(S) == 8);
+      const Reference<S> ref = reference<M, S>(m, k);
       // The scalar ISA runs the very same instantiation: bit-identical.
-      const Measured s = compare<M, S>(m, k, run_rows_batch<S>(m, k, kRowsPerSet, Isa::kScalar), b);
+      const Measured s =
+          compare<M, S>(m, k, ref, run_rows_batch<S>(m, k, kRowsPerSet, Isa::kScalar), b);
       EXPECT_EQ(s.eval_ulp + s.pdf_ulp + s.weight_ulp + s.wo_eps + s.flag_fraction, 0.0)
           << s.summary(std::string(m.name) + " " + k.label + " scalar");
       for (Isa isa : kBatchIsas) {
         if (!isa_supported(isa)) continue;
-        const Measured r = compare<M, S>(m, k, run_rows_batch<S>(m, k, kRowsPerSet, isa), b);
+        const Measured r = compare<M, S>(m, k, ref, run_rows_batch<S>(m, k, kRowsPerSet, isa), b);
         const std::string what =
             std::string(m.name) + " " + k.label + " " + std::string(isa_name(isa)) +
             (sizeof(S) == 8 ? " double" : " float") + " (" + std::to_string(k.rows()) + " rows)";
