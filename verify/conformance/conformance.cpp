@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -158,6 +159,27 @@ Control make_control(std::string_view property, const ModelEntry& m, const Asses
                            "corrected: footprint clamped to side 0.01"};
 }
 
+namespace {
+
+// What of an assessment is NaN or infinite where a number is required (its statistic, its p-value,
+// a configuration's p-value), or nothing: the property could not be computed (e.g. an eval that
+// returns NaN), which is an error, not a verdict on the model.
+std::optional<std::string> non_finite_measure(const Assessment& a) {
+  if (!a.non_finite.empty()) return a.non_finite;
+  if (!std::isfinite(a.value))
+    return fmt::format("the statistic ({}) is {}: {}", a.statistic, a.value, a.detail);
+  if (a.p_value && !std::isfinite(*a.p_value))
+    return fmt::format("the p-value of the statistic ({}) is {}: {}", a.statistic, *a.p_value,
+                       a.detail);
+  for (std::size_t i = 0; i < a.raw_p_values.size(); ++i)
+    if (!std::isfinite(a.raw_p_values[i]))
+      return fmt::format("the p-value of configuration {} of {} is {}: {}", i + 1,
+                         a.raw_p_values.size(), a.raw_p_values[i], a.detail);
+  return std::nullopt;
+}
+
+}  // namespace
+
 CheckResult run_property(std::string_view property, const ModelEntry& m, Budget b) {
   const std::string id = fmt::format("model.{}.{}", m.name, property);
   CheckResult r;
@@ -170,6 +192,8 @@ CheckResult run_property(std::string_view property, const ModelEntry& m, Budget 
   }
   const double level = model_level(m);
   const Assessment a = assess(property, m, b, id, level);
+  if (const auto what = non_finite_measure(a))
+    return error_result(fmt::format("model {}: {}: {}", m.name, property, *what));
   r.verdict = a.verdict;
   r.detail = a.detail;
   r.statistic = a.statistic;
@@ -230,7 +254,8 @@ std::vector<Check> conformance_checks(const ModelEntry& model) {
     const auto rec = recorded_verdict(m->name, property);
     c.expected = !claimed ? Verdict::kNotClaimed : rec ? rec->quick : Verdict::kHolds;
     if (claimed && rec) c.expected_full = rec->full;
-    c.run = [m, p = std::string(property)](Budget b) { return run_property(p, *m, b); };
+    c.run = contained(fmt::format("model {}: {}", m->name, property),
+                      [m, p = std::string(property)](Budget b) { return run_property(p, *m, b); });
     if (claimed && is_statistical_property(property))
       c.calibration = [m, p = std::string(property), id = c.id](std::uint64_t seed) {
         const Assessment a = assess(p, *m, Budget::kQuick, fmt::format("{}/calibration/{}", id, seed),

@@ -59,6 +59,10 @@ struct Assessment {
   // sampler-covers-value's integrals of value, one per configuration: its controls change only the
   // sampler, so they reuse them (the control then differs from the model in nothing else).
   std::vector<HemisphereIntegral> references;
+  // What the property needed as a number but measured NaN or Inf (e.g. ∫ value dωo of an eval
+  // that returns NaN); non-empty: the statistic could not be computed, and run_property reports
+  // the check's verdict as error with this.
+  std::string non_finite;
 };
 
 // Measure and decide `property` for `model` at budget b, seeds from check id `id`, configurations
@@ -78,7 +82,9 @@ Control make_control(std::string_view property, const ModelEntry& model, const A
                      Budget b);
 
 // The whole check of one property of one model: assess, the control's assessment, described;
-// a not-claimed property gives Verdict::kNotClaimed with the reason and measures nothing.
+// a not-claimed property gives Verdict::kNotClaimed with the reason and measures nothing; a
+// statistic or p-value measured NaN or infinite gives Verdict::kError naming the model and what
+// was not finite (the check's run, from conformance_checks, also reports an exception so).
 CheckResult run_property(std::string_view property, const ModelEntry& model, Budget b);
 
 // The recorded verdicts of the built-in models (quick, and full where it differs): the generator

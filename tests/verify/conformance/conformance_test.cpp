@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <numbers>
 #include <set>
+#include <stdexcept>
 #include <string>
 
 #include "core/model_registry.h"
@@ -287,6 +288,68 @@ TEST(ConformanceToys, OppositeBiasesAtTwoDirectionsFailConvergesToSmooth) {
   EXPECT_EQ(a.verdict, Verdict::kFails) << a.detail;
   EXPECT_NEAR(std::abs(a.value), 0.05, 1e-9) << a.detail;
   EXPECT_EQ(verdict_of(exact, "converges-to-smooth"), Verdict::kHolds);
+}
+
+// ---- Faults: a check that cannot compute its statistic -------------------------------------------
+
+// An exception escaping a check's run (here from inside a parallel loop) is its error verdict,
+// naming the model, the property and the exception's message; nothing else is reported.
+TEST(ConformanceFaults, ThrowingEvalIsAnErrorNamingTheModel) {
+  ModelEntry toy = lambert_toy(0.9);
+  toy.eval = [](const std::vector<double>&, const ModelQuery<double>&) -> ErasedEval {
+    throw std::runtime_error("toy eval broke");
+  };
+  bool ran = false;
+  for (const Check& c : conformance_checks(toy)) {
+    if (c.id != "model.toy_lambert.eval-pdf-consistency") continue;
+    ran = true;
+    const CheckResult r = c.run(Budget::kQuick);
+    EXPECT_EQ(r.verdict, Verdict::kError);
+    EXPECT_EQ(r.detail, "model toy_lambert: eval-pdf-consistency: exception: toy eval broke");
+    EXPECT_FALSE(r.control_verdict.has_value());
+    EXPECT_FALSE(control_ok(r));
+    EXPECT_FALSE(is_holding(r.verdict));
+  }
+  EXPECT_TRUE(ran);
+  EXPECT_STREQ(to_string(Verdict::kError), "error");
+}
+
+TEST(ConformanceFaults, ContainedCatchesAnyException) {
+  const auto throws_int = contained("claim x", [](Budget) -> CheckResult { throw 7; });
+  const CheckResult r = throws_int(Budget::kQuick);
+  EXPECT_EQ(r.verdict, Verdict::kError);
+  EXPECT_NE(r.detail.find("claim x: exception:"), std::string::npos) << r.detail;
+  const auto fine = contained("claim y", [](Budget) {
+    CheckResult ok;
+    ok.verdict = Verdict::kHolds;
+    return ok;
+  });
+  EXPECT_EQ(fine(Budget::kQuick).verdict, Verdict::kHolds);
+}
+
+// eval NaN everywhere: the properties whose statistic needs its value report error naming what
+// was not finite; stability, whose statistic counts NaN outputs, fails (its verdict, not an error);
+// energy reads only the sampler's weights and holds.
+TEST(ConformanceFaults, NanEvalIsAnErrorWhereANumberIsRequired) {
+  ModelEntry toy = find_model("smooth_ggx");
+  toy.eval = [f = toy.eval](const std::vector<double>& v, const ModelQuery<double>& q) {
+    ErasedEval r = f(v, q);
+    r.value = std::nan("");
+    return r;
+  };
+  toy.static_model = nullptr;  // the batches loop over the NaN eval too
+  const CheckResult covers = run_property("sampler-covers-value", toy, Budget::kQuick);
+  EXPECT_EQ(covers.verdict, Verdict::kError);
+  EXPECT_NE(covers.detail.find("model smooth_ggx: sampler-covers-value: ∫ value dωo at"),
+            std::string::npos)
+      << covers.detail;
+  const CheckResult precision = run_property("float-vs-double", toy, Budget::kQuick);
+  EXPECT_EQ(precision.verdict, Verdict::kError);
+  EXPECT_NE(precision.detail.find("not finite on any"), std::string::npos) << precision.detail;
+  EXPECT_EQ(run_property("sampler-matches-pdf", toy, Budget::kQuick).verdict, Verdict::kError);
+  EXPECT_EQ(run_property("eval-pdf-consistency", toy, Budget::kQuick).verdict, Verdict::kError);
+  EXPECT_EQ(run_property("stability", toy, Budget::kQuick).verdict, Verdict::kFails);
+  EXPECT_EQ(run_property("energy", toy, Budget::kQuick).verdict, Verdict::kHolds);
 }
 
 }  // namespace
