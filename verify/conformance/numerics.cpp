@@ -152,8 +152,10 @@ Assessment assess_float_double(const ModelEntry& m, Budget b, const std::string&
 // eval_batch (core/simd/model_batch.h, double columns, on every ISA this CPU runs) against the
 // entry's scalar eval: within 1e-9 relative (tests/simd/'s double budgets reach 2^36 ulps ≈ 1.5e-5
 // only for the Beckmann VNDF pdf's cancellation below the horizon, which the 1e-9·max floor
-// covers; elsewhere ≤ 2^16 ulps ≈ 1.5e-11), on all but kSimdOutlierShare of the rows.
-Assessment assess_simd(const ModelEntry& m, Budget b, const std::string& id, double) {
+// covers; elsewhere ≤ 2^16 ulps ≈ 1.5e-11), on all but kSimdOutlierShare of the rows. The scalar
+// eval is the reference; its control scales the batch's value (batch_value_scale), not it.
+Assessment assess_simd(const ModelEntry& m, Budget b, const std::string& id, double,
+                       double batch_value_scale) {
   constexpr double kTolerance = 1e-9;
   Assessment a;
   a.statistic = "share of rows where the SIMD batch and the scalar eval differ beyond 1e-9 relative";
@@ -187,6 +189,8 @@ Assessment assess_simd(const ModelEntry& m, Budget b, const std::string& id, dou
     std::vector<double*> outp;
     for (auto& o : out) outp.push_back(o.data());
     simd::eval_batch(m, values, in, outp, n, isa);
+    if (batch_value_scale != 1)
+      for (double& v : out[0]) v *= batch_value_scale;
     std::vector<ErasedEval> got(n);
     for (std::uint64_t k = 0; k < n; ++k) got[k] = ErasedEval{out[0][k], out[1][k], {}};
     const Agreement g = agreement(ref, got, kTolerance);

@@ -352,5 +352,41 @@ TEST(ConformanceFaults, NanEvalIsAnErrorWhereANumberIsRequired) {
   EXPECT_EQ(run_property("energy", toy, Budget::kQuick).verdict, Verdict::kHolds);
 }
 
+// ---- simd-equivalence's control perturbs the batch, the path under test ---------------------------
+
+TEST(ConformanceControls, SimdControlScalesTheBatchNotTheScalarReference) {
+  const ModelEntry& ggx = find_model("smooth_ggx");
+  const Assessment genuine = assess("simd-equivalence", ggx, Budget::kQuick, "test.simd",
+                                    model_level(ggx));
+  ASSERT_EQ(genuine.verdict, Verdict::kHolds) << genuine.detail;
+  const Control c = make_control("simd-equivalence", ggx, genuine, Budget::kQuick);
+  EXPECT_EQ(c.batch_value_scale, kControlOffset);
+  // The scalar reference is the model's own eval, unchanged.
+  ModelQuery<double> q = make_query(ggx, 30, kFootprint);
+  q.wo = {-q.wi.x, -q.wi.y, q.wi.z};
+  const auto values = resolve_params(ggx, {});
+  EXPECT_EQ(c.model.eval(values, q).value, ggx.eval(values, q).value);
+  const Assessment control = assess("simd-equivalence", c.model, Budget::kQuick, "test.simd",
+                                    model_level(ggx), nullptr, c.batch_value_scale);
+  EXPECT_EQ(control.verdict, Verdict::kFails) << control.detail;
+  // The measured statistic is the same whichever side carries the 3 %: the share of non-zero rows.
+  EXPECT_GT(control.value, 0.9) << control.detail;
+}
+
+// The scale reaches the batch output on every ISA: a batch 1e-6 off fails (beyond 1e-9 relative)
+// where the unscaled batch holds; a scale of 1 changes nothing.
+TEST(ConformanceControls, PerturbedBatchFailsSimdEquivalence) {
+  const ModelEntry& ggx = find_model("smooth_ggx");
+  const Assessment exact = assess("simd-equivalence", ggx, Budget::kQuick, "test.batch",
+                                  model_level(ggx), nullptr, 1);
+  const Assessment off = assess("simd-equivalence", ggx, Budget::kQuick, "test.batch",
+                                model_level(ggx), nullptr, 1 + 1e-6);
+  EXPECT_EQ(exact.verdict, Verdict::kHolds) << exact.detail;
+  EXPECT_EQ(off.verdict, Verdict::kFails) << off.detail;
+  EXPECT_EQ(off.configurations, exact.configurations);
+  // Every ISA's batch was perturbed, not only one.
+  EXPECT_EQ(off.detail.find(": 0 beyond"), std::string::npos) << off.detail;
+}
+
 }  // namespace
 }  // namespace glintlab::verify::conformance
