@@ -1,6 +1,8 @@
 // `glintlab verify`: runs the registered checks of the papers' claims, prints a verdict table and
 // writes claims.json, claims.csv and claims.md. Exit 0 when every verdict equals the one recorded
-// in the repository and every negative control was rejected; 1 otherwise; 2 on bad input.
+// in the repository and every negative control was rejected; 3 when a check could not run
+// (verdict error: an exception, or NaN where a number is required; the other checks still run
+// and the files are written), whatever the other verdicts; 1 otherwise; 2 on bad input.
 #include <fmt/format.h>
 #include <fnmatch.h>
 #include <tbb/global_control.h>
@@ -160,6 +162,7 @@ int run(const CLI::App* cmd, const VerifyOptions& o) {
                verify::to_string(x.verdict), x.p_value ? fmt::format("{:.3g}", *x.p_value) : "—",
                x.control_p_value ? fmt::format("{:.3g}", *x.control_p_value) : "—",
                x.verdict == verify::Verdict::kNotClaimed ? "none (not claimed)"
+               : x.verdict == verify::Verdict::kError    ? "none (error)"
                : x.control_rejected                      ? "rejected"
                                                          : "NOT REJECTED (check is broken)",
                x.value, x.statistic,
@@ -173,6 +176,19 @@ int run(const CLI::App* cmd, const VerifyOptions& o) {
       fmt::print("note: {}: {}\n", r.check->id, verify::budget_note(*r.check));
   fmt::print("{} claims, budget {}, {} thread(s); results in {}/claims.{{json,csv,md}}\n",
              records.size(), budget_name, threads, o.out);
+  const auto errors = std::count_if(records.begin(), records.end(), [](const auto& r) {
+    return r.result.verdict == verify::Verdict::kError;
+  });
+  if (errors) {
+    for (const auto& r : records)
+      if (r.result.verdict == verify::Verdict::kError)
+        fmt::print(stderr, "glintlab: error: {}\n", r.result.detail);
+    fmt::print(stderr,
+               "glintlab: error: {} claim(s) could not be checked (verdict error); the other "
+               "claims ran and the results are in {}\n",
+               errors, o.out);
+    return 3;
+  }
   if (unexpected) {
     fmt::print(stderr,
                "glintlab: error: {} claim(s) differ from their recorded verdict or did not reject "
@@ -192,10 +208,13 @@ void add_verify_command(CLI::App& app) {
       "Run the registered checks of the papers' claims (ids and recorded verdicts: --list, "
       "docs/claims.md; how the suite decides: docs/verification.md). Each reports "
       "what it measured, its p-value or error bound, a verdict (holds, holds-within, "
-      "holds-in-regime, fails, inconclusive) and whether its negative control (a deliberately "
-      "wrong input) was rejected. Writes <out>/claims.json, claims.csv and claims.md. Exit 0 when "
-      "every verdict equals the verdict recorded in the repository, 1 when one differs, 2 on bad "
-      "input.");
+      "holds-in-regime, fails, inconclusive; a model's conformance also not-claimed) and "
+      "whether its negative control (a deliberately wrong input) was rejected; a check that "
+      "cannot run (an exception, e.g. from a plug-in's eval, or NaN where a number is required) "
+      "reports verdict error with the cause. Writes "
+      "<out>/claims.json, claims.csv and claims.md. Exit 0 when every verdict equals the verdict "
+      "recorded in the repository, 1 when one differs, 3 when a check reported error (whatever "
+      "the others; the other checks still run and the files are written), 2 on bad input.");
   add_text_option(sub, "--claims", opts->claims,
                   "comma-separated globs over claim ids (see --list), e.g. 'eto.*'; the models' "
                   "conformance checks only when an item names them: 'model.*', "

@@ -54,7 +54,9 @@ PART_TITLES = {"claims": "Claims (glintlab verify)", "figures": "Figures (glintl
                "compare": "Models compared (glintlab compare)"}
 CLAIM_KEYS = {"id": str, "paper": str, "source": str, "verdict": str, "detail": str,
               "control": str, "control_rejected": bool}
-VERDICTS = {"holds", "holds-within", "holds-in-regime", "fails", "inconclusive", "not-claimed"}
+# "error": a check that could not compute its statistic (glintlab verify exits 3 with it).
+VERDICTS = {"holds", "holds-within", "holds-in-regime", "fails", "inconclusive", "not-claimed",
+            "error"}
 PARAM_COLUMNS = {"density", "microroughness", "reference_spp", "model", "sampler", "light"}
 TABLE_ROW_LIMIT = 80
 
@@ -640,6 +642,8 @@ def as_recorded(c):
 def control_text(c):
     """(short, long) of the control column: the control's own verdict and whether it opposes the
     claim's (control_rejected), then what the control input is."""
+    if c["verdict"] == "error":
+        return "control: none (the check could not run)", c["control"]
     cv = c.get("control_verdict")
     own = f"control {cv}" if cv else "control"
     if c["control_rejected"]:
@@ -734,6 +738,11 @@ def write_summary(doc, claims, run, got):
                  f"(inconclusive, not a finding), {len(open_causes)}: {h}",
                  f"**Measured as failing, but a competing cause is not excluded** "
                  f"(inconclusive, not a finding), {len(open_causes)}: {m}")
+        errors = [c for c in claims if c["verdict"] == "error"]
+        if errors:
+            h, m = claim_links(errors, lambda c: f" ({c['detail']})")
+            item(f'<b class="bad">Could not be checked (error)</b>, {len(errors)}: {h}',
+                 f"**Could not be checked (error)**, {len(errors)}: {m}")
         if differ:
             h, m = claim_links(differ, lambda c: f" ({c['verdict']}, recorded "
                                                  f"{c.get('expected_verdict')})")
@@ -741,7 +750,7 @@ def write_summary(doc, claims, run, got):
                  f"**Differs from recorded (a regression)**, {len(differ)}: {m}")
         else:
             item("No verdict differs from the recorded one (no regression).")
-        loose = [c for c in claims if not c["control_rejected"]]
+        loose = [c for c in claims if not c["control_rejected"] and c["verdict"] != "error"]
         if loose:
             h, m = claim_links(loose)
             item(f'<b class="bad">{len(loose)} of {n} negative controls NOT rejected</b> (those '
@@ -771,7 +780,8 @@ def write_claims(doc, claims, part, root):
     doc.heading(2, "Verdicts", "verdicts")
     doc.para(f"{len(claims)} claims. Budget {part.get('budget', '?')}, "
              f"{machine_text(part.get('machine'))}. Verdicts: holds, holds-within, "
-             "holds-in-regime (in the parameter region the check declares), fails, inconclusive; "
+             "holds-in-regime (in the parameter region the check declares), fails, inconclusive, "
+             "error (the check could not compute its statistic; the evidence says why); "
              "each check's negative control (a deliberately wrong input) must get the opposite "
              "verdict from the check's own decision (rejected) for the verdict to count. Click a "
              "row's evidence or control to unfold it.")
@@ -789,6 +799,8 @@ def write_claims(doc, claims, part, root):
         if as_recorded(c):
             finding = verdict == "fails" and c.get("kind", "paper's claim") == "paper's claim"
             rec = "yes — a finding" if finding else "yes"
+        elif verdict == "error":
+            rec = f"NO (recorded: {exp}) — the check could not run"
         else:
             rec = f"NO (recorded: {exp}) — a regression"
         head, body = control_text(c)
@@ -817,7 +829,7 @@ def write_claims(doc, claims, part, root):
                      f"{c['paper']}, {c['source']}", vcell, rec, fmt_p(c.get("p_value")), ctrl,
                      ev])
         classes.append("v-" + c["verdict"] + ("" if as_recorded(c) else " regress") +
-                       ("" if c["control_rejected"] else " loose"))
+                       ("" if c["control_rejected"] or verdict == "error" else " loose"))
         ids.append(claim_anchor(c))
     doc.table(["claim", "paper, source", "verdict", "as recorded", "p-value", "control",
                "evidence"], rows, classes, ids, cls="verdicts")
@@ -1040,6 +1052,7 @@ table.verdicts td:nth-child(7){max-width:420px}table.verdicts details{max-width:
 tr.v-holds td:nth-child(3),tr.v-holds-within td:nth-child(3){background:#d9f2d9}
 tr.v-holds-in-regime td:nth-child(3){background:#eef6cc}
 tr.v-fails td:nth-child(3){background:#f6d0d0}tr.v-inconclusive td:nth-child(3){background:#eee}
+tr.v-error td:nth-child(3){background:#f0b0f0}
 tr.regress td:nth-child(4),tr.loose td:nth-child(6){background:#f3a0a0;font-weight:bold}
 .bad{color:#a00}ul.summary li{margin:0.2em 0}table.md td{white-space:nowrap}
 nav ul.toc{columns:2;font-size:14px}nav ul.sub{font-size:12px}"""

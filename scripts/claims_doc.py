@@ -23,7 +23,10 @@ import tempfile
 import textwrap
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-VERDICTS = ("holds", "holds-within", "holds-in-regime", "fails", "inconclusive", "not-claimed")
+# A run may also report "error" (the check could not compute its statistic); no claim records it.
+RECORDED_VERDICTS = ("holds", "holds-within", "holds-in-regime", "fails", "inconclusive",
+                     "not-claimed")
+VERDICTS = RECORDED_VERDICTS + ("error",)
 BUDGETS = ("quick", "full")
 
 # One line per registered claim: what the paper says, in this project's words (the ids are those
@@ -102,7 +105,7 @@ def read_registry(path):
             continue  # a model's conformance check: taken from the runs (conformance_checks)
         recorded = {b: e["expected_verdict"].get(b) for b in BUDGETS}
         for b, v in recorded.items():
-            if v not in VERDICTS:
+            if v not in RECORDED_VERDICTS:
                 raise InputError(f"--registry: {path}: {e['id']}: '{v}' is not a {b} verdict")
         checks.append({"id": e["id"], "paper": e.get("paper", ""), "source": e.get("source", ""),
                        "recorded": recorded, "statistical": bool(e.get("statistical"))})
@@ -185,6 +188,8 @@ def control_cell(check, measured):
         run = measured.get(budget, {}).get(check["id"])
         if run is not None and run["verdict"] == "not-claimed":
             parts.append(f"{budget}: none (not claimed)")
+        elif run is not None and run["verdict"] == "error":
+            parts.append(f"{budget}: none (**error**: the check could not run)")
         elif run is not None:
             verdict = run.get("control_verdict")
             opposed = "opposes" if run["control_rejected"] else "**does NOT oppose**"
@@ -345,7 +350,9 @@ def render(checks, measured, command, inputs):
         "detail says what happens outside); **fails** (with the evidence); **inconclusive** "
         "(the test could not decide, e.g. an interval straddling the tolerance); **not-claimed** "
         "(model conformance only: a property the model declares it does not claim, with the "
-        "reason; nothing is measured). The control "
+        "reason; nothing is measured); **error** (a run's check could not compute its statistic: "
+        "an exception, e.g. from a plug-in's eval, or NaN where a number is required; the detail "
+        "names the model and the cause; never a recorded verdict). The control "
         "column gives the verdict the same measurement and decision reach on the control's "
         "input: a deliberately wrong input for a claim that holds (it must fail), the corrected "
         "formula or input for a claim that fails (it must hold). A verdict that differs from the "

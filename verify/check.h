@@ -17,10 +17,21 @@ enum class Budget { kQuick, kFull };
 
 // Verdicts as shared/CLAIMS.md defines them. kNotClaimed: a conformance property the model
 // declares it does not claim (core/model.h NotClaimed); nothing is measured, the detail gives the
-// model's reason, and it never counts as holding.
-enum class Verdict { kHolds, kHoldsWithin, kHoldsInRegime, kFails, kInconclusive, kNotClaimed };
+// model's reason, and it never counts as holding. kError: the check could not compute its
+// statistic (an exception escaped its run, e.g. from a plug-in's eval, or it measured NaN/Inf
+// where a number is required); the detail names the model or claim and the cause, nothing else
+// is reported, and it never equals a recorded verdict.
+enum class Verdict {
+  kHolds,
+  kHoldsWithin,
+  kHoldsInRegime,
+  kFails,
+  kInconclusive,
+  kNotClaimed,
+  kError
+};
 const char* to_string(Verdict v);  // "holds", "holds-within", "holds-in-regime", "fails", ...,
-                                   // "not-claimed"
+                                   // "not-claimed", "error"
 
 struct CheckResult {
   Verdict verdict = Verdict::kInconclusive;
@@ -69,6 +80,16 @@ inline void record_control(CheckResult& r, Verdict control) {
   r.control_verdict = control;
   r.control_rejected = control_opposes(r.verdict, control);
 }
+
+// The result of a check that could not compute its statistic: verdict kError, `what` (which model
+// or claim, and why) as its detail, no control.
+CheckResult error_result(const std::string& what);
+
+// `run` with any exception that escapes it (one thrown inside a parallel loop reaches the caller)
+// reported as error_result("<subject>: exception: <its message>") instead of ending the process,
+// so the other checks of a run still run and its files are still written.
+std::function<CheckResult(Budget)> contained(std::string subject,
+                                             std::function<CheckResult(Budget)> run);
 
 struct Check {
   std::string id;      // the id in shared/CLAIMS.md

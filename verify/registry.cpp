@@ -12,7 +12,7 @@ namespace {
 
 // Gives a claim the paper's sentence it is judged against and the competing causes reviewed for
 // its failure, and routes its result through the finding rule, so that every caller of run() sees
-// the verdict the rule gives.
+// the verdict the rule gives; an exception escaping the run is the claim's error verdict.
 void attach_reading(Check& c) {
   for (const PaperQuote& q : paper_quotes())
     if (q.id == c.id) {
@@ -29,11 +29,12 @@ void attach_reading(Check& c) {
   reviewed.id = c.id;
   reviewed.family = c.family;
   reviewed.alternatives = c.alternatives;
-  c.run = [measure = std::move(c.run), reviewed = std::move(reviewed)](Budget b) {
-    CheckResult r = measure(b);
-    apply_finding_rule(reviewed, r);
-    return r;
-  };
+  c.run = contained("claim " + c.id,
+                    [measure = std::move(c.run), reviewed = std::move(reviewed)](Budget b) {
+                      CheckResult r = measure(b);
+                      apply_finding_rule(reviewed, r);
+                      return r;
+                    });
 }
 
 }  // namespace

@@ -10,6 +10,7 @@ extern const char* const kTestPlugin;                      // tests/plugin/examp
 extern const char* const kTestPluginWrongVersion;          // the same, built as version 0.0.1
 extern const char* const kTestPluginBuiltinClash;          // tests/plugin/builtin_clash_plugin.cpp
 extern const char* const kTestPluginMisspelledNotClaimed;  // misspelled_not_claimed_plugin.cpp
+extern const char* const kTestPluginFaultyEval;            // tests/plugin/faulty_eval_plugin.cpp
 extern const char* const kTestNotAPlugin;                  // tests/plugin/not_a_plugin.cpp
 extern const char* const kTestPluginZirrKaplanyan;         // examples/zirr_kaplanyan/plugin.cpp
 extern const char* const kReportFixtures;                  // tests/reports/fixtures

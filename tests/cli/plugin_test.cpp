@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include <cmath>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -150,6 +151,61 @@ TEST_F(PluginTest, SweepFigureAndGenericClaimCoverThePluginModel) {
   ASSERT_EQ(verify.exit_code, 0) << verify.err;
   EXPECT_NE(read_text(path("verify/claims.json")).find("example_glints/default"),
             std::string::npos);
+}
+
+// A plug-in whose eval throws (throwing_eval) or returns NaN (nan_eval): the checks that need eval
+// report verdict error naming the model and the cause, the checks that do not (energy reads the
+// sampler's weights) and the paper's claim run as usual, the stability sweep's NaN is that
+// property's fails, the files are written with every row, and the exit status is 3.
+TEST_F(PluginTest, FaultyEvalIsReportedAsErrorAndTheRunGoesOn) {
+  const RunResult r =
+      run({"--plugin", kTestPluginFaultyEval, "verify", "--claims",
+           "model.throwing_eval.*,model.nan_eval.*,smooth.projected-area", "--budget", "quick",
+           "--out", "verify"});
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("glintlab: error: model throwing_eval: eval-pdf-consistency: exception: "
+                       "throwing_eval: eval failed on purpose"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("could not be checked (verdict error)"), std::string::npos) << r.err;
+  for (const char* file : {"verify/claims.json", "verify/claims.csv", "verify/claims.md"})
+    ASSERT_TRUE(std::filesystem::exists(path(file))) << file;
+  std::map<std::string, nlohmann::json> rows;
+  for (const auto& row : nlohmann::json::parse(read_text(path("verify/claims.json"))))
+    rows[row["id"].get<std::string>()] = row;
+  ASSERT_EQ(rows.size(), 17u);
+  auto verdict = [&](const std::string& id) { return rows.at(id)["verdict"].get<std::string>(); };
+  auto detail = [&](const std::string& id) { return rows.at(id)["detail"].get<std::string>(); };
+
+  EXPECT_EQ(verdict("smooth.projected-area"), "holds");
+  EXPECT_TRUE(rows.at("smooth.projected-area")["control_rejected"].get<bool>());
+  // An exception from eval, thrown inside the checks' parallel loops.
+  for (const char* p : {"eval-pdf-consistency", "sampler-covers-value", "float-vs-double",
+                        "stability"}) {
+    const std::string id = std::string("model.throwing_eval.") + p;
+    EXPECT_EQ(verdict(id), "error") << id;
+    EXPECT_NE(detail(id).find(std::string("model throwing_eval: ") + p + ": exception: "
+                              "throwing_eval: eval failed on purpose"),
+              std::string::npos)
+        << detail(id);
+    EXPECT_TRUE(rows.at(id)["control_verdict"].is_null()) << id;
+  }
+  EXPECT_EQ(verdict("model.throwing_eval.energy"), "holds");
+  // NaN where a number is required: what was not finite is named.
+  EXPECT_EQ(verdict("model.nan_eval.sampler-covers-value"), "error");
+  EXPECT_NE(detail("model.nan_eval.sampler-covers-value").find("∫ value dωo at"),
+            std::string::npos);
+  EXPECT_NE(detail("model.nan_eval.sampler-covers-value").find("is nan"), std::string::npos);
+  EXPECT_EQ(verdict("model.nan_eval.float-vs-double"), "error");
+  EXPECT_NE(detail("model.nan_eval.float-vs-double").find("not finite on any of the 20000"),
+            std::string::npos);
+  EXPECT_EQ(verdict("model.nan_eval.sampler-matches-pdf"), "error");
+  EXPECT_EQ(verdict("model.nan_eval.energy"), "holds");
+  // The NaN a check exists to find is its verdict, not an error.
+  EXPECT_EQ(verdict("model.nan_eval.stability"), "fails");
+  EXPECT_TRUE(rows.at("model.nan_eval.stability")["control_rejected"].get<bool>());
+  EXPECT_NE(read_text(path("verify/claims.csv")).find(",error,"), std::string::npos);
+  EXPECT_NE(read_text(path("verify/claims.md")).find("**error**"), std::string::npos);
 }
 
 TEST_F(PluginTest, MissingFileIsRefused) {

@@ -48,6 +48,26 @@ with tempfile.TemporaryDirectory() as tmp:
           "docs/claims.md is current: regenerate it with the command at its top")
     for e in entries:
         check(f"`{e['id']}`" in r.stdout, f"{e['id']} is in the page")
+    # A run may report "error" (a check that could not run); a registry may not record it.
+    run_with_error = os.path.join(tmp, "claims-error.json")
+    some = entries[0]["id"]
+    with open(run_with_error, "w", encoding="utf-8") as f:
+        json.dump([{"id": some, "budget": "quick", "verdict": "error",
+                    "detail": "claim x: exception: failed on purpose", "control": "none",
+                    "control_rejected": False, "control_verdict": None, "value": 0,
+                    "seconds": 0}], f)
+    r = subprocess.run([sys.executable, SCRIPT, "--registry", registry, run_with_error],
+                       cwd=ROOT, capture_output=True, text=True)
+    check(r.returncode == 0 and "quick: none (**error**: the check could not run)" in r.stdout,
+          f"a run's error verdict is accepted and shown (got {r.returncode}: {r.stderr.strip()})")
+    recorded_error = os.path.join(tmp, "recorded-error.json")
+    with open(recorded_error, "w", encoding="utf-8") as f:
+        json.dump([dict(entries[0], expected_verdict={"quick": "error", "full": "error"})] +
+                  entries[1:], f)
+    r = subprocess.run([sys.executable, SCRIPT, "--registry", recorded_error] + RUNS, cwd=ROOT,
+                       capture_output=True, text=True)
+    check(r.returncode == 2 and "'error' is not a quick verdict" in r.stderr,
+          f"error is never a recorded verdict (got {r.returncode}: {r.stderr.strip()})")
     # A malformed registry: an unknown verdict.
     bad = os.path.join(tmp, "bad.json")
     entries[0]["expected_verdict"]["quick"] = "holds-mostly"

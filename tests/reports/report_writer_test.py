@@ -201,6 +201,32 @@ with tempfile.TemporaryDirectory() as tmp:
           cmd[2].split(" | ")[2] == "fails (recorded) 1, not-claimed (declared) 1",
           f"compare Markdown: the same two columns ({cmd[-1]})")
 
+    # --- a check that could not run (verdict error): shown with its cause, no control ---
+    d = fresh(tmp, "error_row")
+    c = json.load(open(os.path.join(d, "verify", "claims.json")))
+    c.append({"id": "fixture.error", "paper": "Fixture 2026", "source": "Eq. 1",
+              "verdict": "error", "expected_verdict": "holds",
+              "detail": "model faulty: energy: exception: eval failed on purpose",
+              "statistic": "none (the check could not compute its statistic)", "value": 0,
+              "bound": None, "p_value": None, "control": "none: the check could not run",
+              "control_p_value": None, "control_rejected": False, "budget": "quick",
+              "seconds": 0.1, "control_verdict": None, "regime": None})
+    json.dump(c, open(os.path.join(d, "verify", "claims.json"), "w"))
+    r = make(d)
+    check(r.returncode == 0, f"report with an error row: exit 0 (got {r.returncode}: "
+          f"{r.stderr.strip()})")
+    page = rc.parse_html(os.path.join(d, "index.html"))
+    rows = {row[0]: row for t in page.tables if t and t[0] == header for row in t[1:]}
+    err = rows.get("fixture.error", [""] * 7)
+    check(err[2] == "error" and "could not run" in err[3] and "none" in err[5] and
+          "eval failed on purpose" in err[6],
+          f"error row: verdict, as recorded, control and cause (got {err})")
+    text = open(os.path.join(d, "index.html"), encoding="utf-8").read()
+    summary = text[text.index('id="summary"'):text.index('id="contents"')]
+    check("Could not be checked (error)" in summary and "eval failed on purpose" in summary and
+          "1 of 5 negative controls NOT rejected" in summary,
+          "summary: the error named with its cause, not counted as a control not rejected")
+
     # --- a part absent: the report says so ---
     d = fresh(tmp, "no_stability")
     shutil.rmtree(os.path.join(d, "stability"))

@@ -148,7 +148,10 @@ Assessment assess_pdf_normalized(const ModelEntry& m, Budget b, const std::strin
 Assessment assess_energy(const ModelEntry& m, Budget b, const std::string& id, double level);
 Assessment assess_float_double(const ModelEntry& m, Budget b, const std::string& id,
                                double level);
-Assessment assess_simd(const ModelEntry& m, Budget b, const std::string& id, double level);
+// batch_value_scale: the batch's value column × this before the comparison (the control's
+// perturbation of the path under test; 1 for the model's own check).
+Assessment assess_simd(const ModelEntry& m, Budget b, const std::string& id, double level,
+                       double batch_value_scale);
 Assessment assess_stability(const ModelEntry& m, Budget b, const std::string& id, double level);
 Assessment assess_converges(const ModelEntry& m, Budget b, const std::string& id, double level);
 Assessment assess_constant_time(const ModelEntry& m, Budget b, const std::string& id,

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -70,14 +71,15 @@ double model_level(const ModelEntry& m) {
 }
 
 Assessment assess(std::string_view property, const ModelEntry& m, Budget b, const std::string& id,
-                  double level, const std::vector<HemisphereIntegral>* reuse) {
+                  double level, const std::vector<HemisphereIntegral>* reuse,
+                  double batch_value_scale) {
   if (property == "eval-pdf-consistency") return assess_eval_pdf(m, b, id, level);
   if (property == "sampler-matches-pdf") return assess_sampler_gof(m, b, id, level);
   if (property == "sampler-covers-value") return assess_covers_value(m, b, id, level, reuse);
   if (property == "pdf-normalized") return assess_pdf_normalized(m, b, id, level);
   if (property == "energy") return assess_energy(m, b, id, level);
   if (property == "float-vs-double") return assess_float_double(m, b, id, level);
-  if (property == "simd-equivalence") return assess_simd(m, b, id, level);
+  if (property == "simd-equivalence") return assess_simd(m, b, id, level, batch_value_scale);
   if (property == "stability") return assess_stability(m, b, id, level);
   if (property == "converges-to-smooth") return assess_converges(m, b, id, level);
   if (property == "constant-time") return assess_constant_time(m, b, id, level);
@@ -133,13 +135,9 @@ Control make_control(std::string_view property, const ModelEntry& m, const Asses
       e.static_model = nullptr;
       return {e, "corrected: batches as the scalar loop over the thunks"};
     }
-    ModelEntry e = m;  // same SIMD instantiation, scalar reference × 1.03
-    e.eval = [f = m.eval](const std::vector<double>& v, const ModelQuery<double>& q) {
-      ErasedEval r = f(v, q);
-      r.value *= kControlOffset;
-      return r;
-    };
-    return {e, "scalar value × 1.03 against the unchanged SIMD batch"};
+    // The path under test is perturbed: the batch's value × 1.03 (assess_simd applies it to
+    // every ISA's batch output), against the unchanged scalar eval.
+    return {m, "SIMD batch value × 1.03 against the unchanged scalar eval", kControlOffset};
   }
   if (property == "stability")
     return holding ? Control{with_sparse_nan(m, stability::kSparseNanRate),
@@ -158,6 +156,27 @@ Control make_control(std::string_view property, const ModelEntry& m, const Asses
                            "corrected: footprint clamped to side 0.01"};
 }
 
+namespace {
+
+// What of an assessment is NaN or infinite where a number is required (its statistic, its p-value,
+// a configuration's p-value), or nothing: the property could not be computed (e.g. an eval that
+// returns NaN), which is an error, not a verdict on the model.
+std::optional<std::string> non_finite_measure(const Assessment& a) {
+  if (!a.non_finite.empty()) return a.non_finite;
+  if (!std::isfinite(a.value))
+    return fmt::format("the statistic ({}) is {}: {}", a.statistic, a.value, a.detail);
+  if (a.p_value && !std::isfinite(*a.p_value))
+    return fmt::format("the p-value of the statistic ({}) is {}: {}", a.statistic, *a.p_value,
+                       a.detail);
+  for (std::size_t i = 0; i < a.raw_p_values.size(); ++i)
+    if (!std::isfinite(a.raw_p_values[i]))
+      return fmt::format("the p-value of configuration {} of {} is {}: {}", i + 1,
+                         a.raw_p_values.size(), a.raw_p_values[i], a.detail);
+  return std::nullopt;
+}
+
+}  // namespace
+
 CheckResult run_property(std::string_view property, const ModelEntry& m, Budget b) {
   const std::string id = fmt::format("model.{}.{}", m.name, property);
   CheckResult r;
@@ -170,6 +189,8 @@ CheckResult run_property(std::string_view property, const ModelEntry& m, Budget 
   }
   const double level = model_level(m);
   const Assessment a = assess(property, m, b, id, level);
+  if (const auto what = non_finite_measure(a))
+    return error_result(fmt::format("model {}: {}: {}", m.name, property, *what));
   r.verdict = a.verdict;
   r.detail = a.detail;
   r.statistic = a.statistic;
@@ -184,7 +205,8 @@ CheckResult run_property(std::string_view property, const ModelEntry& m, Budget 
   const Control c = make_control(property, m, a, b);
   // sampler-covers-value's controls change only the sampler (make_control): same integrals of value.
   const Assessment ca = assess(property, c.model, b, id, level,
-                               property == "sampler-covers-value" ? &a.references : nullptr);
+                               property == "sampler-covers-value" ? &a.references : nullptr,
+                               c.batch_value_scale);
   record_control(r, ca.verdict);
   r.control_p_value = ca.p_value;
   r.control = fmt::format("{}: {} — {}", c.name, to_string(ca.verdict), ca.detail);
@@ -230,7 +252,8 @@ std::vector<Check> conformance_checks(const ModelEntry& model) {
     const auto rec = recorded_verdict(m->name, property);
     c.expected = !claimed ? Verdict::kNotClaimed : rec ? rec->quick : Verdict::kHolds;
     if (claimed && rec) c.expected_full = rec->full;
-    c.run = [m, p = std::string(property)](Budget b) { return run_property(p, *m, b); };
+    c.run = contained(fmt::format("model {}: {}", m->name, property),
+                      [m, p = std::string(property)](Budget b) { return run_property(p, *m, b); });
     if (claimed && is_statistical_property(property))
       c.calibration = [m, p = std::string(property), id = c.id](std::uint64_t seed) {
         const Assessment a = assess(p, *m, Budget::kQuick, fmt::format("{}/calibration/{}", id, seed),

@@ -59,26 +59,39 @@ struct Assessment {
   // sampler-covers-value's integrals of value, one per configuration: its controls change only the
   // sampler, so they reuse them (the control then differs from the model in nothing else).
   std::vector<HemisphereIntegral> references;
+  // What the property needed as a number but measured NaN or Inf (e.g. ∫ value dωo of an eval
+  // that returns NaN); non-empty: the statistic could not be computed, and run_property reports
+  // the check's verdict as error with this.
+  std::string non_finite;
 };
 
 // Measure and decide `property` for `model` at budget b, seeds from check id `id`, configurations
 // corrected at `level`. `model` may be any entry (a registered one, a control, a test's toy).
 // `reuse`: another assessment's references, for an entry whose value is that one's.
+// `batch_value_scale`: simd-equivalence's batch outputs (the path under test) have their value
+// multiplied by it before they are compared with the scalar eval; 1 (the model's own check) leaves
+// them as the batch wrote them. The other properties ignore it.
 Assessment assess(std::string_view property, const ModelEntry& model, Budget b,
                   const std::string& id, double level,
-                  const std::vector<HemisphereIntegral>* reuse = nullptr);
+                  const std::vector<HemisphereIntegral>* reuse = nullptr,
+                  double batch_value_scale = 1);
 
 // The control of a property: a copy of `model` deliberately wrong (when `genuine` holds) or
 // corrected from what was measured (when it fails), and its name. Its verdict comes from assess.
+// batch_value_scale: what assess multiplies the SIMD batch's value by (simd-equivalence's
+// near-truth control perturbs the batch, the path under test; its scalar reference is unchanged).
 struct Control {
   ModelEntry model;
   std::string name;
+  double batch_value_scale = 1;
 };
 Control make_control(std::string_view property, const ModelEntry& model, const Assessment& genuine,
                      Budget b);
 
 // The whole check of one property of one model: assess, the control's assessment, described;
-// a not-claimed property gives Verdict::kNotClaimed with the reason and measures nothing.
+// a not-claimed property gives Verdict::kNotClaimed with the reason and measures nothing; a
+// statistic or p-value measured NaN or infinite gives Verdict::kError naming the model and what
+// was not finite (the check's run, from conformance_checks, also reports an exception so).
 CheckResult run_property(std::string_view property, const ModelEntry& model, Budget b);
 
 // The recorded verdicts of the built-in models (quick, and full where it differs): the generator

@@ -64,6 +64,7 @@ bool agrees(double ref, double got, double tol, double floor) {
 struct Agreement {
   std::uint64_t rows = 0, outliers = 0;
   std::uint64_t nonzero = 0;  // rows whose reference value is finite and not zero
+  std::uint64_t finite = 0;   // rows whose reference value is finite
   double worst = 0;           // largest relative difference seen
 };
 
@@ -87,6 +88,7 @@ Agreement agreement(const std::vector<ErasedEval>& r, const std::vector<ErasedEv
                     agrees(r[k].pdf, g[k].pdf, tol, 1e-9 * pmax);
     a.outliers += ok ? 0 : 1;
     a.nonzero += std::isfinite(r[k].value) && r[k].value != 0 ? 1 : 0;
+    a.finite += std::isfinite(r[k].value) ? 1 : 0;
     for (auto [x, y] : {std::pair{r[k].value, g[k].value}, std::pair{r[k].pdf, g[k].pdf}})
       if (std::isfinite(x) && std::isfinite(y) && std::max(std::abs(x), std::abs(y)) > 0)
         a.worst = std::max(a.worst, std::abs(x - y) / std::max(std::abs(x), std::abs(y)));
@@ -131,6 +133,10 @@ Assessment assess_float_double(const ModelEntry& m, Budget b, const std::string&
     }
   });
   const Agreement g = agreement(ref, got, kTolerance);
+  if (g.finite == 0)
+    a.non_finite = fmt::format("eval's value is not finite on any of the {} queries: there is "
+                               "nothing to compare",
+                               g.rows);
   a.value = double(g.outliers) / double(g.rows);
   a.configurations = 1;
   a.verdict = a.value <= kFloatOutlierShare ? Verdict::kHolds : Verdict::kFails;
@@ -146,8 +152,10 @@ Assessment assess_float_double(const ModelEntry& m, Budget b, const std::string&
 // eval_batch (core/simd/model_batch.h, double columns, on every ISA this CPU runs) against the
 // entry's scalar eval: within 1e-9 relative (tests/simd/'s double budgets reach 2^36 ulps ≈ 1.5e-5
 // only for the Beckmann VNDF pdf's cancellation below the horizon, which the 1e-9·max floor
-// covers; elsewhere ≤ 2^16 ulps ≈ 1.5e-11), on all but kSimdOutlierShare of the rows.
-Assessment assess_simd(const ModelEntry& m, Budget b, const std::string& id, double) {
+// covers; elsewhere ≤ 2^16 ulps ≈ 1.5e-11), on all but kSimdOutlierShare of the rows. The scalar
+// eval is the reference; its control scales the batch's value (batch_value_scale), not it.
+Assessment assess_simd(const ModelEntry& m, Budget b, const std::string& id, double,
+                       double batch_value_scale) {
   constexpr double kTolerance = 1e-9;
   Assessment a;
   a.statistic = "share of rows where the SIMD batch and the scalar eval differ beyond 1e-9 relative";
@@ -181,9 +189,15 @@ Assessment assess_simd(const ModelEntry& m, Budget b, const std::string& id, dou
     std::vector<double*> outp;
     for (auto& o : out) outp.push_back(o.data());
     simd::eval_batch(m, values, in, outp, n, isa);
+    if (batch_value_scale != 1)
+      for (double& v : out[0]) v *= batch_value_scale;
     std::vector<ErasedEval> got(n);
     for (std::uint64_t k = 0; k < n; ++k) got[k] = ErasedEval{out[0][k], out[1][k], {}};
     const Agreement g = agreement(ref, got, kTolerance);
+    if (g.finite == 0)
+      a.non_finite = fmt::format("eval's value is not finite on any of the {} rows: there is "
+                                 "nothing to compare",
+                                 g.rows);
     const double share = double(g.outliers) / double(g.rows);
     a.value = std::max(a.value, share);
     ++a.configurations;

@@ -209,6 +209,9 @@ struct WeightedHistogram {
   double statistic = 0, p_value = 1;
   std::size_t cells = 0;
   std::uint64_t non_finite = 0;
+  // Whether every cell's ∫_cell value is finite; false: nothing is tested (eval's value is NaN or
+  // Inf where the reference draws it, and the property cannot be computed).
+  bool reference_finite = true;
 };
 WeightedHistogram weighted_histogram(const ModelEntry& m, const Setting& s, Budget b,
                                      std::uint64_t sampler_seed, std::uint64_t reference_seed) {
@@ -218,6 +221,10 @@ WeightedHistogram weighted_histogram(const ModelEntry& m, const Setting& s, Budg
   const CellSums reference = integrate_cells(
       [&](const V3& wo) { return value_at(m, s.values, s.query, wo); }, s.query.wi, width,
       2 * reference_block(b), reference_seed);
+  WeightedHistogram h;
+  for (std::size_t k = 0; k < MirrorCells::kCount; ++k)
+    h.reference_finite = h.reference_finite && std::isfinite(reference.sum[k]);
+  if (!h.reference_finite) return h;
   std::vector<CellSums> parts(chunk_count(n));
   std::vector<std::uint64_t> non_finite(parts.size(), 0);
   for_chunks(n, [&](std::uint64_t begin, std::uint64_t end, std::size_t c) {
@@ -235,7 +242,6 @@ WeightedHistogram weighted_histogram(const ModelEntry& m, const Setting& s, Budg
       ++p.hits[k];
     }
   });
-  WeightedHistogram h;
   CellSums weighted;
   for (std::size_t c = 0; c < parts.size(); ++c) {
     h.non_finite += non_finite[c];
@@ -307,6 +313,10 @@ Assessment assess_sampler_gof(const ModelEntry& m, Budget b, const std::string& 
                                           check_seed(id, set.size() + 2 * k),
                                           check_seed(id, set.size() + 2 * k + 1)));
     weighted_p.push_back(weighted.back().p_value);
+    if (!weighted.back().reference_finite && a.non_finite.empty())
+      a.non_finite = fmt::format("∫_cell value dωo of the weighted histogram at {} is not finite "
+                                 "(eval's value is not finite there)",
+                                 set[k].label);
     if (weighted_p[k] < weighted_p[worst_weighted]) worst_weighted = k;
   }
   a.raw_p_values = chi_p;
@@ -369,6 +379,9 @@ Assessment assess_covers_value(const ModelEntry& m, Budget b, const std::string&
                   m, [&](const V3& wo) { return value_at(m, s.values, s.query, wo); }, s.query.wi,
                   roughness_hint(m, s.values), b, check_seed(id, set.size() + k));
     a.references.push_back(c);
+    if (!std::isfinite(c.value) && a.non_finite.empty())
+      a.non_finite = fmt::format("∫ value dωo at {} is {} (eval's value is not finite there)",
+                                 s.label, c.value);
     const WeightStats w = weight_stats(m, s, n, check_seed(id, k));
     non_finite += w.non_finite;
     const double weight_se = std::sqrt(w.weight.variance() / double(n));
@@ -429,6 +442,9 @@ Assessment assess_pdf_normalized(const ModelEntry& m, Budget b, const std::strin
           return m.pdf(s.values, q);
         },
         s.query.wi, roughness_hint(m, s.values), b, check_seed(id, set.size() + k));
+    if (!std::isfinite(c.value) && a.non_finite.empty())
+      a.non_finite = fmt::format("∫ pdf dωo at {} is {} (pdf() is not finite there)", s.label,
+                                 c.value);
     const WeightStats w = weight_stats(m, s, n, check_seed(id, k));
     const double accept = double(w.accepted_above) / double(n);
     // The binomial standard error, at least that of one sample in n (no rejection seen).

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <numbers>
 #include <set>
+#include <stdexcept>
 #include <string>
 
 #include "core/model_registry.h"
@@ -287,6 +288,104 @@ TEST(ConformanceToys, OppositeBiasesAtTwoDirectionsFailConvergesToSmooth) {
   EXPECT_EQ(a.verdict, Verdict::kFails) << a.detail;
   EXPECT_NEAR(std::abs(a.value), 0.05, 1e-9) << a.detail;
   EXPECT_EQ(verdict_of(exact, "converges-to-smooth"), Verdict::kHolds);
+}
+
+// ---- Faults: a check that cannot compute its statistic -------------------------------------------
+
+// An exception escaping a check's run (here from inside a parallel loop) is its error verdict,
+// naming the model, the property and the exception's message; nothing else is reported.
+TEST(ConformanceFaults, ThrowingEvalIsAnErrorNamingTheModel) {
+  ModelEntry toy = lambert_toy(0.9);
+  toy.eval = [](const std::vector<double>&, const ModelQuery<double>&) -> ErasedEval {
+    throw std::runtime_error("toy eval broke");
+  };
+  bool ran = false;
+  for (const Check& c : conformance_checks(toy)) {
+    if (c.id != "model.toy_lambert.eval-pdf-consistency") continue;
+    ran = true;
+    const CheckResult r = c.run(Budget::kQuick);
+    EXPECT_EQ(r.verdict, Verdict::kError);
+    EXPECT_EQ(r.detail, "model toy_lambert: eval-pdf-consistency: exception: toy eval broke");
+    EXPECT_FALSE(r.control_verdict.has_value());
+    EXPECT_FALSE(control_ok(r));
+    EXPECT_FALSE(is_holding(r.verdict));
+  }
+  EXPECT_TRUE(ran);
+  EXPECT_STREQ(to_string(Verdict::kError), "error");
+}
+
+TEST(ConformanceFaults, ContainedCatchesAnyException) {
+  const auto throws_int = contained("claim x", [](Budget) -> CheckResult { throw 7; });
+  const CheckResult r = throws_int(Budget::kQuick);
+  EXPECT_EQ(r.verdict, Verdict::kError);
+  EXPECT_NE(r.detail.find("claim x: exception:"), std::string::npos) << r.detail;
+  const auto fine = contained("claim y", [](Budget) {
+    CheckResult ok;
+    ok.verdict = Verdict::kHolds;
+    return ok;
+  });
+  EXPECT_EQ(fine(Budget::kQuick).verdict, Verdict::kHolds);
+}
+
+// eval NaN everywhere: the properties whose statistic needs its value report error naming what
+// was not finite; stability, whose statistic counts NaN outputs, fails (its verdict, not an error);
+// energy reads only the sampler's weights and holds.
+TEST(ConformanceFaults, NanEvalIsAnErrorWhereANumberIsRequired) {
+  ModelEntry toy = find_model("smooth_ggx");
+  toy.eval = [f = toy.eval](const std::vector<double>& v, const ModelQuery<double>& q) {
+    ErasedEval r = f(v, q);
+    r.value = std::nan("");
+    return r;
+  };
+  toy.static_model = nullptr;  // the batches loop over the NaN eval too
+  const CheckResult covers = run_property("sampler-covers-value", toy, Budget::kQuick);
+  EXPECT_EQ(covers.verdict, Verdict::kError);
+  EXPECT_NE(covers.detail.find("model smooth_ggx: sampler-covers-value: ∫ value dωo at"),
+            std::string::npos)
+      << covers.detail;
+  const CheckResult precision = run_property("float-vs-double", toy, Budget::kQuick);
+  EXPECT_EQ(precision.verdict, Verdict::kError);
+  EXPECT_NE(precision.detail.find("not finite on any"), std::string::npos) << precision.detail;
+  EXPECT_EQ(run_property("sampler-matches-pdf", toy, Budget::kQuick).verdict, Verdict::kError);
+  EXPECT_EQ(run_property("eval-pdf-consistency", toy, Budget::kQuick).verdict, Verdict::kError);
+  EXPECT_EQ(run_property("stability", toy, Budget::kQuick).verdict, Verdict::kFails);
+  EXPECT_EQ(run_property("energy", toy, Budget::kQuick).verdict, Verdict::kHolds);
+}
+
+// ---- simd-equivalence's control perturbs the batch, the path under test ---------------------------
+
+TEST(ConformanceControls, SimdControlScalesTheBatchNotTheScalarReference) {
+  const ModelEntry& ggx = find_model("smooth_ggx");
+  const Assessment genuine = assess("simd-equivalence", ggx, Budget::kQuick, "test.simd",
+                                    model_level(ggx));
+  ASSERT_EQ(genuine.verdict, Verdict::kHolds) << genuine.detail;
+  const Control c = make_control("simd-equivalence", ggx, genuine, Budget::kQuick);
+  EXPECT_EQ(c.batch_value_scale, kControlOffset);
+  // The scalar reference is the model's own eval, unchanged.
+  ModelQuery<double> q = make_query(ggx, 30, kFootprint);
+  q.wo = {-q.wi.x, -q.wi.y, q.wi.z};
+  const auto values = resolve_params(ggx, {});
+  EXPECT_EQ(c.model.eval(values, q).value, ggx.eval(values, q).value);
+  const Assessment control = assess("simd-equivalence", c.model, Budget::kQuick, "test.simd",
+                                    model_level(ggx), nullptr, c.batch_value_scale);
+  EXPECT_EQ(control.verdict, Verdict::kFails) << control.detail;
+  // The measured statistic is the same whichever side carries the 3 %: the share of non-zero rows.
+  EXPECT_GT(control.value, 0.9) << control.detail;
+}
+
+// The scale reaches the batch output on every ISA: a batch 1e-6 off fails (beyond 1e-9 relative)
+// where the unscaled batch holds; a scale of 1 changes nothing.
+TEST(ConformanceControls, PerturbedBatchFailsSimdEquivalence) {
+  const ModelEntry& ggx = find_model("smooth_ggx");
+  const Assessment exact = assess("simd-equivalence", ggx, Budget::kQuick, "test.batch",
+                                  model_level(ggx), nullptr, 1);
+  const Assessment off = assess("simd-equivalence", ggx, Budget::kQuick, "test.batch",
+                                model_level(ggx), nullptr, 1 + 1e-6);
+  EXPECT_EQ(exact.verdict, Verdict::kHolds) << exact.detail;
+  EXPECT_EQ(off.verdict, Verdict::kFails) << off.detail;
+  EXPECT_EQ(off.configurations, exact.configurations);
+  // Every ISA's batch was perturbed, not only one.
+  EXPECT_EQ(off.detail.find(": 0 beyond"), std::string::npos) << off.detail;
 }
 
 }  // namespace
