@@ -164,7 +164,11 @@ int run(const CLI::App* cmd, const VerifyOptions& o) {
                x.verdict == verify::Verdict::kNotClaimed ? "none (not claimed)"
                : x.verdict == verify::Verdict::kError    ? "none (error)"
                : x.control_rejected                      ? "rejected"
-                                                         : "NOT REJECTED (check is broken)",
+               // Neither decided: the check lacks power here (its detail says how much it needs).
+               : x.verdict == verify::Verdict::kInconclusive &&
+                       x.control_verdict == verify::Verdict::kInconclusive
+                   ? "undecided (both inconclusive)"
+                   : "NOT REJECTED (check is broken)",
                x.value, x.statistic,
                x.verdict == r.check->expected_for(budget)
                    ? ""

@@ -294,7 +294,12 @@ Limit smooth_limit_of(const ModelEntry& m, const std::vector<double>& values) {
 // the largest footprint, pair by pair (each pair's interval at the model's level split by Šidák
 // over the pairs), so that a bias of one sign at one pair cannot cancel another's: holds when every
 // pair's interval lies within ±2 %, fails when one lies wholly beyond, inconclusive otherwise; the
-// bias of every pair at every footprint is reported.
+// bias of every pair at every footprint is reported. A pair left undecided at the largest
+// footprint by the first estimate is measured again, with fresh positions (the first estimate only
+// sets the count, so the count does not depend on the draws it decides on), as many as make its
+// interval ±1 % (half the tolerance), up to kConvergesCapFactor × the first count; where even the
+// cap cannot, the detail says "underpowered" and how many positions it would need.
+inline constexpr std::uint64_t kConvergesCapFactor = 16;
 Assessment assess_converges(const ModelEntry& m, Budget b, const std::string& id, double level) {
   constexpr double kTolerance = 0.02;
   Assessment a;
@@ -310,6 +315,7 @@ Assessment assess_converges(const ModelEntry& m, Budget b, const std::string& id
   const std::vector<double> sides =
       b == Budget::kQuick ? std::vector<double>{0.01, 0.1, 1} : std::vector<double>{0.01, 0.1, 1, 3};
   const std::uint64_t positions = b == Budget::kQuick ? 1024 : 16384;
+  const std::uint64_t cap = kConvergesCapFactor * positions;
   // Directions in the lobe: the mirror direction at θi = 20°, and at θi = 50° with ωo turned
   // 0.5 α in azimuth off it (half vector inside the lobe).
   const double alpha = roughness_hint(m, values);
@@ -322,7 +328,7 @@ Assessment assess_converges(const ModelEntry& m, Budget b, const std::string& id
   }
   const double pair_level = sidak_level(level, pairs.size());
   const double z = normal_quantile(1 - pair_level / 2);
-  std::string trail;
+  std::string trail, underpowered;
   std::vector<double> bias(pairs.size()), se(pairs.size());
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     trail += fmt::format("{}θi {:.0f}°:", p ? "; " : "",
@@ -336,19 +342,39 @@ Assessment assess_converges(const ModelEntry& m, Budget b, const std::string& id
       ql.wo = q.wo;
       const double smooth = limit.model->eval(limit.values, ql).value;
       const std::uint64_t seed = check_seed(id, k * pairs.size() + p);
-      const MeanAccumulator r = accumulate_mean(
-          [&](std::uint64_t i) {
-            ModelQuery<double> at = q;
-            at.footprint.uv = {counter_uniform<double>(seed, i, 0) * 1000,
-                               counter_uniform<double>(seed, i, 1) * 1000};
-            const double v = m.eval(values, at).value;
-            return smooth > 0 && std::isfinite(v) ? v / smooth : std::nan("");
-          },
-          positions, 64);
-      bias[p] = r.mean - 1;
-      se[p] = std::sqrt(r.variance() / double(r.n));
-      trail += fmt::format("{} side {:g} {:+.3g} ± {:.2g}", k ? "," : "", sides[k], bias[p],
-                           z * se[p]);
+      // Positions [first, first + n) of this pair's and footprint's stream.
+      auto estimate = [&](std::uint64_t first, std::uint64_t n) {
+        const MeanAccumulator r = accumulate_mean(
+            [&](std::uint64_t i) {
+              ModelQuery<double> at = q;
+              at.footprint.uv = {counter_uniform<double>(seed, first + i, 0) * 1000,
+                                 counter_uniform<double>(seed, first + i, 1) * 1000};
+              const double v = m.eval(values, at).value;
+              return smooth > 0 && std::isfinite(v) ? v / smooth : std::nan("");
+            },
+            n, 64);
+        bias[p] = r.mean - 1;
+        se[p] = std::sqrt(r.variance() / double(r.n));
+      };
+      estimate(0, positions);
+      std::uint64_t drawn = positions;
+      const bool last = k + 1 == sides.size();
+      const bool decided = std::abs(bias[p]) - z * se[p] > kTolerance ||
+                           std::abs(bias[p]) + z * se[p] <= kTolerance;
+      if (last && !decided && std::isfinite(se[p])) {
+        const double needed = std::ceil(double(positions) * std::pow(2 * z * se[p] / kTolerance, 2));
+        drawn = std::uint64_t(std::min(needed, double(cap)));
+        if (needed > double(cap))
+          underpowered += fmt::format(
+              "{}underpowered at θi {:.0f}°: needs about {:.3g} footprint positions for ±{:g} "
+              "(cap {})",
+              underpowered.empty() ? "" : "; ", std::acos(pairs[p].first.z) * 180 / std::numbers::pi,
+              needed, kTolerance / 2, cap);
+        if (drawn > positions) estimate(positions, drawn);  // fresh positions past the first
+        else drawn = positions;
+      }
+      trail += fmt::format("{} side {:g} {:+.3g} ± {:.2g}{}", k ? "," : "", sides[k], bias[p],
+                           z * se[p], drawn != positions ? fmt::format(" ({} positions)", drawn) : "");
     }
   }
   // The pair farthest from the smooth limit is the statistic; every pair is decided.
@@ -373,9 +399,12 @@ Assessment assess_converges(const ModelEntry& m, Budget b, const std::string& id
               : beyond  ? Verdict::kFails
               : within  ? Verdict::kHolds
                         : Verdict::kInconclusive;
-  a.detail = fmt::format("value / {} over {} footprint positions per direction pair and footprint; "
+  a.detail = fmt::format("{}value / {} over {} footprint positions per direction pair and footprint; "
                          "bias (± interval at level {:.3g} per pair, Šidák over {} pairs) {}; "
                          "tolerance ±{:g} for every pair at the largest footprint",
+                         underpowered.empty() || a.verdict != Verdict::kInconclusive
+                             ? std::string()
+                             : underpowered + "; ",
                          m.smooth_limit, positions, pair_level, pairs.size(), trail, kTolerance);
   return a;
 }

@@ -290,6 +290,41 @@ TEST(ConformanceToys, OppositeBiasesAtTwoDirectionsFailConvergesToSmooth) {
   EXPECT_EQ(verdict_of(exact, "converges-to-smooth"), Verdict::kHolds);
 }
 
+// smooth_ggx declared as its own smooth limit, its value scaled by 1 ± σ with a sign that varies
+// from footprint position to position (mean 1): a glinty model converging to the right limit. At
+// σ = 0.2 the first 1024 positions leave the largest footprint undecided, and the second,
+// larger estimate decides holds; at σ = 1 even the cap cannot, and the detail says underpowered
+// and how many positions the tolerance needs.
+ModelEntry noisy_smooth_ggx(double sigma) {
+  ModelEntry toy = find_model("smooth_ggx");
+  toy.smooth_limit = "smooth_ggx";
+  toy.static_model = nullptr;
+  toy.eval = [f = toy.eval, sigma](const std::vector<double>& v, const ModelQuery<double>& q) {
+    ErasedEval r = f(v, q);
+    const double phase = std::sin(q.footprint.uv.x * 7919.0 + q.footprint.uv.y * 104729.0);
+    r.value *= 1 + (phase >= 0 ? sigma : -sigma);
+    return r;
+  };
+  return toy;
+}
+
+TEST(ConformanceToys, ConvergesToSmoothDrawsWhatItsToleranceNeedsUpToACap) {
+  const ModelEntry moderate = noisy_smooth_ggx(0.2);
+  const Assessment a = assess("converges-to-smooth", moderate, Budget::kQuick, "test.noisy",
+                              model_level(moderate));
+  EXPECT_EQ(a.verdict, Verdict::kHolds) << a.detail;
+  EXPECT_NE(a.detail.find("positions)"), std::string::npos) << a.detail;  // a second estimate
+  EXPECT_EQ(a.detail.find("underpowered"), std::string::npos) << a.detail;
+
+  const ModelEntry glinty = noisy_smooth_ggx(1.0);
+  const Assessment g = assess("converges-to-smooth", glinty, Budget::kQuick, "test.noisy",
+                              model_level(glinty));
+  EXPECT_EQ(g.verdict, Verdict::kInconclusive) << g.detail;
+  EXPECT_EQ(g.detail.rfind("underpowered at θi", 0), 0u) << g.detail;
+  EXPECT_NE(g.detail.find("footprint positions for ±0.01 (cap 16384)"), std::string::npos)
+      << g.detail;
+}
+
 // ---- Faults: a check that cannot compute its statistic -------------------------------------------
 
 // An exception escaping a check's run (here from inside a parallel loop) is its error verdict,
