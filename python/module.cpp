@@ -104,6 +104,7 @@ py::dict eval_in(const ModelEntry& model, const QuerySources& q, const CallParam
     outs.emplace_back(py::ssize_t(n));
   std::vector<S*> out_data;
   for (auto& a : outs) out_data.push_back(a.mutable_data());
+  const PythonModel* const numpy_model = python_model(model);  // looked up once, with the GIL
   run_chunks(model, q, p, opts,
              [&](std::size_t begin, std::size_t count, const std::vector<double>& params) {
                // Per worker thread, kept across chunks: a fresh chunk-sized buffer would be
@@ -112,8 +113,8 @@ py::dict eval_in(const ModelEntry& model, const QuerySources& q, const CallParam
                const auto cols = chunk_columns<S>(q.columns, width, begin, count, buffer);
                std::vector<S*> o;
                for (S* d : out_data) o.push_back(d + begin);
-               if (const PythonModel* pm = python_model(model))
-                 python_eval_rows<S>(*pm, params, cols, o, count);  // one call per chunk
+               if (numpy_model)
+                 python_eval_rows<S>(*numpy_model, params, cols, o, count);  // one call per chunk
                else
                  simd::eval_batch(model, params, cols, o, count, opts.isa, opts.math);
              });
@@ -160,6 +161,7 @@ py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallPar
     }
     return std::nullopt;
   };
+  const PythonModel* const numpy_model = python_model(model);  // looked up once, with the GIL
   run_chunks(
       model, q, p, opts,
       [&](std::size_t begin, std::size_t count, const std::vector<double>& params) {
@@ -174,8 +176,8 @@ py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallPar
         }
         std::vector<S*> o;
         for (S* d : out_data) o.push_back(d + begin);
-        if (const PythonModel* pm = python_model(model))
-          python_sample_rows<S>(*pm, params, cols, {uniforms.data(), 1},
+        if (numpy_model)
+          python_sample_rows<S>(*numpy_model, params, cols, {uniforms.data(), 1},
                                 {uniforms.data() + count, 1}, o, count);
         else
           simd::sample_batch(model, params, cols, {uniforms.data(), 1},
