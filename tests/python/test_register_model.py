@@ -4,6 +4,10 @@ wrong type, dtype, shape, NaN) and of register_model's arguments; verify's argum
 conformance suite on it (and the wrong-pdf model failing sampler-matches-pdf) is
 slow_register_model_conformance.py, its own ctest test."""
 
+import os
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
@@ -175,3 +179,19 @@ def test_verify_a_paper_claim():
     assert row["id"] == "smooth.projected-area"
     assert row["verdict"] == row["expected_verdict"] == "holds"
     assert row["control_rejected"] is True and row["budget"] == "quick"
+
+
+def test_example_my_glint_model(tmp_path):
+    """examples/python/my_glint_model.py registers its numpy glint model, prints the verdicts of
+    the conformance checks it is asked for and writes its plots (one property here: the suite
+    calls a Python model one query at a time)."""
+    script = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "python",
+                          "my_glint_model.py")
+    out = tmp_path / "glint.png"
+    r = subprocess.run([sys.executable, script, "--out", str(out),
+                        "--properties", "eval-pdf-consistency"],
+                       check=True, capture_output=True, text=True)
+    lines = r.stdout.splitlines()
+    assert lines[0].startswith("model.facet_cells.eval-pdf-consistency")
+    assert lines[0].split()[1] == "holds" and "control fails" in lines[0]
+    assert out.stat().st_size > 10000
