@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <deque>
@@ -119,7 +120,11 @@ py::object call(const PythonModel& m, std::string_view function, PyObject* f, Ar
   try {
     return py::reinterpret_borrow<py::object>(f)(std::forward<Args>(args)...);
   } catch (py::error_already_set& e) {
-    fail(m, function, fmt::format("raised {}", e.what()));
+    // One line (type: message), as a check's detail would carry it; not pybind11's traceback.
+    std::string text = fmt::format("{}: {}", std::string(py::str(e.type().attr("__name__"))),
+                                   std::string(py::str(e.value())));
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    fail(m, function, "raised " + text);
   }
 }
 
