@@ -94,7 +94,7 @@ CheckedArray checked_array(const PythonModel& m, std::string_view function, cons
   }
   const auto a = py::reinterpret_borrow<py::array>(result);
   const py::dtype dt = a.dtype();
-  if (dt.kind() != 'f' || dt.itemsize() != 8) {
+  if (dt.kind() != 'f' || dt.itemsize() != 8 || !py::cast<bool>(dt.attr("isnative"))) {
     fail(m, function, fmt::format("returned {} of dtype {} (valid: {})", what,
                                   std::string(py::str(py::handle(dt))), want));
   }

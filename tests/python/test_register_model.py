@@ -108,6 +108,8 @@ BROKEN = {
     "shape": ({"eval": lambda q, p: np.zeros((len(q["wo_z"]), 2))}, "eval returned its value of shape"),
     "dtype": ({"pdf": lambda q, p: np.zeros(len(q["wo_z"]), dtype=np.float32)},
               "pdf returned its pdf of dtype float32"),
+    "byteorder": ({"pdf": lambda q, p: np.zeros(len(q["wo_z"]), dtype=">f8")},
+                  "pdf returned its pdf of dtype >f8"),
     "type": ({"eval": lambda q, p: 0.5}, "eval returned its value of type float"),
     "nan": ({"eval": lambda q, p: np.full(len(q["wo_z"]), np.nan)}, "eval returned NaN"),
     "sample_keys": ({"sample": lambda q, u, p: {"wo": np.zeros((len(u), 3))}},
