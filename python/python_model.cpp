@@ -10,7 +10,6 @@
 #include <cmath>
 #include <deque>
 #include <map>
-#include <mutex>
 
 #include "core/model_layout.h"
 #include "core/simd/model_batch.h"
