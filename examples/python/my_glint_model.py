@@ -12,8 +12,10 @@ glints, large ones a smoother, rougher lobe.
     PYTHONPATH=build/release/python /usr/bin/python3 examples/python/my_glint_model.py \
         [--out my_glint_model.png] [--properties eval-pdf-consistency,stability]
 
-Prints each conformance check's verdict (all properties by default: minutes, since the suite
-calls a Python model one query at a time) and writes three labelled plots.
+Prints the verdicts of the conformance checks asked for and writes three labelled plots. The
+suite calls a Python model one query at a time (for this model 0.3 ms an eval, 1.7 ms a sample,
+measured on a busy 2-core machine), so the default runs the two cheapest properties (240 s
+there); `--properties '*'` runs them all, which takes over half an hour.
 """
 
 import argparse
@@ -174,8 +176,8 @@ def plots(out):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--out", default="my_glint_model.png")
-    parser.add_argument("--properties", default="*",
-                        help="comma-separated conformance properties to run (default: all)")
+    parser.add_argument("--properties", default="eval-pdf-consistency,stability",
+                        help="comma-separated conformance properties to run, '*' for all")
     parser.add_argument("--budget", default="quick")
     args = parser.parse_args()
     register()
