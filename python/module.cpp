@@ -6,7 +6,12 @@
 
 #include <fmt/format.h>
 
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <chrono>
 #include <cstdint>
+#include <thread>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -17,7 +22,11 @@
 #include "core/model_registry.h"
 #include "core/plugin_loader.h"
 #include "core/simd/model_batch.h"
+#include "verify/check.h"
+#include "verify/conformance/conformance.h"
+#include "verify/results.h"
 #include "python/batch_call.h"
+#include "python/python_model.h"
 #include "python/query_columns.h"
 
 namespace glintlab::python {
@@ -95,6 +104,7 @@ py::dict eval_in(const ModelEntry& model, const QuerySources& q, const CallParam
     outs.emplace_back(py::ssize_t(n));
   std::vector<S*> out_data;
   for (auto& a : outs) out_data.push_back(a.mutable_data());
+  const PythonModel* const numpy_model = python_model(model);  // looked up once, with the GIL
   run_chunks(model, q, p, opts,
              [&](std::size_t begin, std::size_t count, const std::vector<double>& params) {
                // Per worker thread, kept across chunks: a fresh chunk-sized buffer would be
@@ -103,7 +113,10 @@ py::dict eval_in(const ModelEntry& model, const QuerySources& q, const CallParam
                const auto cols = chunk_columns<S>(q.columns, width, begin, count, buffer);
                std::vector<S*> o;
                for (S* d : out_data) o.push_back(d + begin);
-               simd::eval_batch(model, params, cols, o, count, opts.isa, opts.math);
+               if (numpy_model)
+                 python_eval_rows<S>(*numpy_model, params, cols, o, count);  // one call per chunk
+               else
+                 simd::eval_batch(model, params, cols, o, count, opts.isa, opts.math);
              });
   py::dict r;
   r["value"] = outs[0];
@@ -148,6 +161,7 @@ py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallPar
     }
     return std::nullopt;
   };
+  const PythonModel* const numpy_model = python_model(model);  // looked up once, with the GIL
   run_chunks(
       model, q, p, opts,
       [&](std::size_t begin, std::size_t count, const std::vector<double>& params) {
@@ -162,8 +176,12 @@ py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallPar
         }
         std::vector<S*> o;
         for (S* d : out_data) o.push_back(d + begin);
-        simd::sample_batch(model, params, cols, {uniforms.data(), 1},
-                           {uniforms.data() + count, 1}, o, count, opts.isa, opts.math);
+        if (numpy_model)
+          python_sample_rows<S>(*numpy_model, params, cols, {uniforms.data(), 1},
+                                {uniforms.data() + count, 1}, o, count);
+        else
+          simd::sample_batch(model, params, cols, {uniforms.data(), 1},
+                             {uniforms.data() + count, 1}, o, count, opts.isa, opts.math);
       },
       check_u);
   auto rej = py::array_t<bool>(py::ssize_t(n));
@@ -247,6 +265,46 @@ std::vector<std::string> load_plugin(const std::string& path) {
   }
 }
 
+// `glintlab verify --claims ... --budget ...` without the files: claims.json's text. The model checks
+// are generated from the registry as it stands now, so a model registered from Python after start-up
+// has its model.<name>.* checks. As in the CLI, model checks are selected only by a pattern naming
+// "model.". The checks run without the GIL (a Python model's calls take it per call).
+std::string verify(const std::string& claims, const std::string& budget, const py::object& threads) {
+  if (budget != "quick" && budget != "full")
+    throw py::value_error(fmt::format("budget: '{}' is not a budget (valid: quick, full)", budget));
+  const int thread_count = cli::resolve_threads(threads.is_none() ? std::string("0") : std::string(py::str(threads)));
+  const bool conformance = claims.find("model.") != std::string::npos;
+  std::vector<const verify::Check*> all;
+  for (const verify::Check& c : verify::registered_checks())
+    if (c.family.empty()) all.push_back(&c);
+  const std::vector<verify::Check> model_checks =
+      conformance ? verify::conformance_checks() : std::vector<verify::Check>{};
+  for (const verify::Check& c : model_checks) all.push_back(&c);
+  std::vector<std::string> ids;
+  for (const verify::Check* c : all) ids.push_back(c->id);
+  const std::vector<std::string> chosen =
+      cli::select_by_globs(claims, "claims", ids, "claim ids (see glintlab verify --list)");
+  const verify::Budget b = budget == "full" ? verify::Budget::kFull : verify::Budget::kQuick;
+  std::vector<verify::RunRecord> records;
+  {
+    const py::gil_scoped_release release;
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                    std::size_t(thread_count));
+    for (const verify::Check* c : all) {
+      if (std::find(chosen.begin(), chosen.end(), c->id) == chosen.end()) continue;
+      const auto t0 = std::chrono::steady_clock::now();
+      verify::CheckResult r = c->run(b);
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      records.push_back({c, std::move(r), s, b});
+    }
+  }
+  verify::adjust_for_suite(records);
+  const verify::RunInfo info{
+      budget, thread_count,
+      fmt::format("{} hardware thread(s), {} used", std::thread::hardware_concurrency(), thread_count)};
+  return verify::to_json(records, info);
+}
+
 }  // namespace
 }  // namespace glintlab::python
 
@@ -275,4 +333,9 @@ PYBIND11_MODULE(_glintlab, m) {
   m.def("column_addresses", &column_addresses, arg("model"), arg("wi"), arg("wo"),
         arg("footprint") = py::none(), arg("light") = py::none(), arg("precision") = "double");
   m.def("load_plugin", &load_plugin, arg("path"));
+  m.def("register_model", &register_python_model, arg("name"), arg("eval"), arg("pdf"),
+        arg("sample"), arg("params") = py::none(), arg("needs") = py::none(),
+        arg("smooth_limit") = py::none(), arg("description") = "", arg("source") = "",
+        arg("not_claimed") = py::none());
+  m.def("verify", &verify, arg("claims"), arg("budget") = "quick", arg("threads") = py::none());
 }

@@ -5,7 +5,8 @@ on worker threads, the GIL released), with the same input checks and the same re
 ``glintlab`` command line: ``eval`` matches ``glintlab eval --model`` and ``sample(n=, seed=)``
 matches ``glintlab sample --model`` bit for bit in double precision.
 
-Functions: models, eval, sample, load_plugin. Bad input raises ValueError with the CLI's
+Functions: models, eval, sample, load_plugin, register_model (a model prototyped in numpy) and
+verify (the claims and the models' conformance checks). Bad input raises ValueError with the CLI's
 one-line message naming the parameter (or row and column) and its valid range.
 
 Directions are unit vectors in the local shading frame (z the normal): ``wi`` toward the viewer,
@@ -13,9 +14,11 @@ Directions are unit vectors in the local shading frame (z the normal): ``wi`` to
 the density of wo (per steradian) under the model's own sampler.
 """
 
+import json as _json
+
 from . import _glintlab
 
-__all__ = ["models", "eval", "sample", "load_plugin"]
+__all__ = ["models", "eval", "sample", "load_plugin", "register_model", "verify"]
 
 _PRECISIONS = "precision: 'double' (float64 in, float64 out) or 'float' (float32)"
 
@@ -94,3 +97,56 @@ def load_plugin(path):
     models; returns their names. They are then listed by models() and usable by eval and sample.
     Raises ValueError for a file that is not a usable plug-in (the reason in the message)."""
     return _glintlab.load_plugin(str(path))
+
+
+def register_model(name, eval, pdf, sample, params=None, needs=None, smooth_limit=None,
+                   description="", source="", not_claimed=None):
+    """Registers a model written as three vectorised numpy functions; returns None.
+
+    The model is then listed by models(), usable by eval() and sample() (one call of its
+    functions per chunk of 4096 rows) and has the conformance checks model.<name>.* of verify().
+
+    name         letters, digits and '_'; not a registered model's name.
+    eval(q, p)   q: dict of (N,) float64 arrays keyed by the query layout's column names
+                 (wi_x, wi_y, wi_z, wo_x, wo_y, wo_z; with needs 'footprint': u, v, dudx,
+                 dvdx, dudy, dvdy; with a light: light_cos_half_angle, light_intensity; with
+                 'pixel corners': r0_x .. r3_z); p: dict parameter name -> float (the same
+                 for every row of a call). Returns the cosine-weighted value f(wi, wo) max(wo_z, 0)
+                 as a float64 (N,) array.
+    pdf(q, p)    the density of wo under the model's sampler (per steradian), float64 (N,).
+    sample(q, u, p)  u: (N, 2) float64 uniforms in [0, 1). Returns a dict: 'wo' (N, 3),
+                 'pdf' (N,), 'weight' (N,) = value / pdf, all float64, and optionally
+                 'rejected' (N,) bool.
+    params       list of dicts: name, default, lo, hi, and optionally lo_open, hi_open,
+                 integral, description (checked like a built-in model's parameters).
+    needs        list of the query parts read besides the directions: 'footprint',
+                 'point light', 'area light', 'pixel corners'.
+    smooth_limit the registered model a footprint model tends to (converges-to-smooth).
+    not_claimed  dict conformance property -> the reason the model does not claim it.
+
+    A function that raises, or returns another type, dtype or shape, or NaN, makes the call that
+    used it raise RuntimeError naming the model and the function. Raises ValueError for bad
+    arguments here.
+    """
+    _glintlab.register_model(name, eval, pdf, sample, params=params, needs=needs,
+                             smooth_limit=smooth_limit, description=description, source=source,
+                             not_claimed=not_claimed)
+
+
+def verify(claims, budget="quick", threads=None):
+    """Runs the checks whose ids match `claims`; returns a list of dicts, claims.json's rows.
+
+    claims   comma-separated globs over the claim ids (glintlab verify --list), e.g. 'eto.*'. As
+             in the CLI, a model's conformance checks (model.<name>.<property>) are selected only
+             by a pattern naming 'model.', e.g. 'model.my_model.*'; they include the models
+             registered so far, plug-ins and register_model ones.
+    budget   'quick' or 'full'.
+    threads  worker threads, an integer in [0, 1024]; None or 0: all cores.
+
+    Each dict has claims.json's fields: id, verdict, detail, statistic, value, bound, p_value,
+    control, control_verdict, control_rejected, expected_verdict, seconds, ... Raises ValueError
+    for a bad argument (the CLI's message), RuntimeError when a registered Python model's function
+    fails during a check.
+    """
+    rows = _json.loads(_glintlab.verify(claims, budget=budget, threads=threads))
+    return rows["claims"] if isinstance(rows, dict) else rows

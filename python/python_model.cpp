@@ -1,0 +1,380 @@
+// Models prototyped in numpy behind registry entries; see python_model.h.
+#include "python/python_model.h"
+
+#include <pybind11/numpy.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <deque>
+#include <map>
+
+#include "core/model_layout.h"
+#include "core/simd/model_batch.h"
+
+namespace glintlab::python {
+
+namespace py = pybind11;
+
+struct PythonModel {
+  std::string name;
+  // Borrowed for the life of the process: the registry (and every copy of its entries) outlives
+  // the interpreter, and dropping a reference after Python has finalised would crash at exit.
+  PyObject* eval = nullptr;
+  PyObject* pdf = nullptr;
+  PyObject* sample = nullptr;
+  std::vector<std::size_t> columns;  // the kQueryLayout columns passed to the callables
+  std::vector<std::string> param_names;
+};
+
+namespace {
+
+// Text the registry's string views point into; never freed (the registry is never emptied).
+std::string_view keep(std::string text) {
+  static std::deque<std::string> texts;
+  return texts.emplace_back(std::move(text));
+}
+
+std::map<std::string, const PythonModel*, std::less<>>& python_models() {
+  static std::map<std::string, const PythonModel*, std::less<>> models;
+  return models;
+}
+
+[[noreturn]] void fail(const PythonModel& m, std::string_view function, const std::string& why) {
+  throw PythonModelError(fmt::format("glintlab model '{}': {} {}", m.name, function, why));
+}
+
+py::dict params_dict(const PythonModel& m, const std::vector<double>& values) {
+  py::dict d;
+  for (std::size_t k = 0; k < m.param_names.size(); ++k) d[py::str(m.param_names[k])] = values[k];
+  return d;
+}
+
+template <class S>
+py::dict query_dict(const PythonModel& m, std::span<const simd::Column<S>> query, std::size_t n) {
+  static const S kZero = 0;  // a corner column the caller did not give
+  py::dict d;
+  for (std::size_t c : m.columns) {
+    const simd::Column<S> col = c < query.size() ? query[c] : simd::Column<S>{&kZero, 0};
+    py::array_t<double> a(static_cast<py::ssize_t>(n));
+    double* out = a.mutable_data();
+    for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<double>(col.data[col.stride * i]);
+    d[py::str(std::string(kQueryLayout[c].name))] = a;
+  }
+  return d;
+}
+
+std::string shape_text(const py::array& a) {
+  std::string s = "(";
+  for (py::ssize_t k = 0; k < a.ndim(); ++k) s += fmt::format("{}{}", k ? ", " : "", a.shape(k));
+  return s + (a.ndim() == 1 ? ",)" : ")");
+}
+
+// `result` checked as float64 of shape (n,) or (n, width) (width 0: one dimension), NaN-free;
+// its element (i, j) is then at(i, j).
+struct CheckedArray {
+  py::array array;
+  double at(std::size_t i, std::size_t j = 0) const {
+    const char* p = static_cast<const char*>(array.data());
+    p += py::ssize_t(i) * array.strides(0) + (array.ndim() > 1 ? py::ssize_t(j) * array.strides(1) : 0);
+    return *reinterpret_cast<const double*>(p);
+  }
+};
+
+CheckedArray checked_array(const PythonModel& m, std::string_view function, const std::string& what,
+                           const py::handle& result, std::size_t n, std::size_t width = 0) {
+  const std::string want =
+      width == 0 ? fmt::format("float64 of shape ({},)", n) : fmt::format("float64 of shape ({}, {})", n, width);
+  if (!py::isinstance<py::array>(result)) {
+    fail(m, function, fmt::format("returned {} of type {} (valid: a numpy array, {})", what,
+                                  std::string(py::str(py::type::handle_of(result).attr("__name__"))), want));
+  }
+  const auto a = py::reinterpret_borrow<py::array>(result);
+  const py::dtype dt = a.dtype();
+  if (dt.kind() != 'f' || dt.itemsize() != 8 || !py::cast<bool>(dt.attr("isnative"))) {
+    fail(m, function, fmt::format("returned {} of dtype {} (valid: {})", what,
+                                  std::string(py::str(py::handle(dt))), want));
+  }
+  const bool shape_ok = width == 0 ? a.ndim() == 1 && std::size_t(a.shape(0)) == n
+                                   : a.ndim() == 2 && std::size_t(a.shape(0)) == n &&
+                                         std::size_t(a.shape(1)) == width;
+  if (!shape_ok)
+    fail(m, function, fmt::format("returned {} of shape {} (valid: {})", what, shape_text(a), want));
+  CheckedArray c{a};
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < std::max<std::size_t>(width, 1); ++j)
+      if (std::isnan(c.at(i, j))) {
+        fail(m, function,
+             fmt::format("returned NaN in {} at row {} of {} (valid: numbers, no NaN)", what, i, n));
+      }
+  return c;
+}
+
+// Calls one of the model's functions; a Python exception becomes PythonModelError (built while the
+// GIL is held, so the exception object is released with it).
+template <class... Args>
+py::object call(const PythonModel& m, std::string_view function, PyObject* f, Args&&... args) {
+  try {
+    return py::reinterpret_borrow<py::object>(f)(std::forward<Args>(args)...);
+  } catch (py::error_already_set& e) {
+    // One line (type: message), as a check's detail would carry it; not pybind11's traceback.
+    std::string text = fmt::format("{}: {}", std::string(py::str(e.type().attr("__name__"))),
+                                   std::string(py::str(e.value())));
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    fail(m, function, "raised " + text);
+  }
+}
+
+unsigned needs_bits(const py::object& needs) {
+  static constexpr std::array<std::pair<std::string_view, unsigned>, 4> kNames = {
+      {{"footprint", kNeedsFootprint},
+       {"point light", kNeedsPointLight},
+       {"area light", kNeedsAreaLight},
+       {"pixel corners", kNeedsPixelCorners}}};
+  unsigned bits = 0;
+  if (needs.is_none()) return bits;
+  if (py::isinstance<py::str>(needs))
+    throw py::value_error("needs: a string (valid: a list of 'footprint', 'point light', 'area "
+                          "light', 'pixel corners')");
+  for (const py::handle item : needs) {
+    const std::string name = py::str(item);
+    bool found = false;
+    for (const auto& [text, bit] : kNames)
+      if (text == name) {
+        bits |= bit;
+        found = true;
+      }
+    if (!found) {
+      throw py::value_error(fmt::format(
+          "needs: '{}' is not a query part (valid: 'footprint', 'point light', 'area light', "
+          "'pixel corners')",
+          name));
+    }
+  }
+  return bits;
+}
+
+bool column_needed(const QueryColumn& c, unsigned needs) {
+  switch (c.part) {
+    case QueryPart::kDirections: return true;
+    case QueryPart::kFootprint: return (needs & (kNeedsFootprint | kNeedsPixelCorners)) != 0;
+    case QueryPart::kLight: return (needs & (kNeedsPointLight | kNeedsAreaLight)) != 0;
+    case QueryPart::kCorners: return (needs & kNeedsPixelCorners) != 0;
+  }
+  return false;
+}
+
+// One parameter from {"name", "default", "lo", "hi", optional "lo_open", "hi_open", "integral",
+// "description"}.
+ParamSpec param_spec(const py::handle& item) {
+  if (!py::isinstance<py::dict>(item))
+    throw py::value_error("params: an item is not a dict (valid: dicts with name, default, lo, hi "
+                          "and optionally lo_open, hi_open, integral, description)");
+  const auto d = py::reinterpret_borrow<py::dict>(item);
+  for (const auto& [key, value] : d) {
+    const std::string k = py::str(key);
+    if (k != "name" && k != "default" && k != "lo" && k != "hi" && k != "lo_open" &&
+        k != "hi_open" && k != "integral" && k != "description")
+      throw py::value_error(fmt::format(
+          "params: unknown key '{}' (valid: name, default, lo, hi, lo_open, hi_open, integral, "
+          "description)",
+          k));
+  }
+  for (const char* k : {"name", "default", "lo", "hi"})
+    if (!d.contains(k))
+      throw py::value_error(fmt::format("params: an item has no '{}' (valid: dicts with name, "
+                                        "default, lo, hi)",
+                                        k));
+  ParamSpec p{};
+  p.name = keep(py::str(d["name"]));
+  p.default_value = py::cast<double>(d["default"]);
+  p.lo = py::cast<double>(d["lo"]);
+  p.hi = py::cast<double>(d["hi"]);
+  p.lo_open = d.contains("lo_open") && py::cast<bool>(d["lo_open"]);
+  p.hi_open = d.contains("hi_open") && py::cast<bool>(d["hi_open"]);
+  p.integral = d.contains("integral") && py::cast<bool>(d["integral"]);
+  p.description = keep(d.contains("description") ? std::string(py::str(d["description"])) : "");
+  const bool lo_ok = p.lo_open ? p.default_value > p.lo : p.default_value >= p.lo;
+  const bool hi_ok = p.hi_open ? p.default_value < p.hi : p.default_value <= p.hi;
+  if (p.name.empty() || !(p.lo <= p.hi) || !lo_ok || !hi_ok)
+    throw py::value_error(fmt::format(
+        "params: '{}' needs a name and lo <= default <= hi (got default {}, range {})", p.name,
+        p.default_value, describe_range(p)));
+  return p;
+}
+
+bool valid_name(std::string_view name) {
+  if (name.empty()) return false;
+  for (char c : name)
+    if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_'))
+      return false;
+  return true;
+}
+
+}  // namespace
+
+const PythonModel* python_model(const ModelEntry& entry) {
+  const auto& models = python_models();
+  const auto it = models.find(entry.name);
+  return it == models.end() ? nullptr : it->second;
+}
+
+template <class S>
+void python_eval_rows(const PythonModel& m, const std::vector<double>& params,
+                      std::span<const simd::Column<S>> query, std::span<S* const> outputs,
+                      std::size_t n) {
+  const py::gil_scoped_acquire gil;
+  const py::dict q = query_dict<S>(m, query, n);
+  const py::dict p = params_dict(m, params);
+  const py::object value = call(m, "eval", m.eval, q, p);
+  const CheckedArray v = checked_array(m, "eval", "its value", value, n);
+  const py::object pdf = call(m, "pdf", m.pdf, q, p);
+  const CheckedArray d = checked_array(m, "pdf", "its pdf", pdf, n);
+  for (std::size_t i = 0; i < n; ++i) {
+    outputs[0][i] = static_cast<S>(v.at(i));
+    outputs[1][i] = static_cast<S>(d.at(i));
+  }
+}
+
+template <class S>
+void python_sample_rows(const PythonModel& m, const std::vector<double>& params,
+                        std::span<const simd::Column<S>> query, simd::Column<S> u1,
+                        simd::Column<S> u2, std::span<S* const> outputs, std::size_t n) {
+  const py::gil_scoped_acquire gil;
+  const py::dict q = query_dict<S>(m, query, n);
+  py::array_t<double> u({py::ssize_t(n), py::ssize_t(2)});
+  double* ud = u.mutable_data();
+  for (std::size_t i = 0; i < n; ++i) {
+    ud[2 * i] = static_cast<double>(u1.data[u1.stride * i]);
+    ud[2 * i + 1] = static_cast<double>(u2.data[u2.stride * i]);
+  }
+  const py::object r = call(m, "sample", m.sample, q, u, params_dict(m, params));
+  if (!py::isinstance<py::dict>(r))
+    fail(m, "sample", "did not return a dict (valid: a dict of wo (N, 3), pdf, weight and "
+                      "optionally rejected (N,) bool)");
+  const auto d = py::reinterpret_borrow<py::dict>(r);
+  for (const char* k : {"wo", "pdf", "weight"})
+    if (!d.contains(k))
+      fail(m, "sample", fmt::format("returned no '{}' (valid: a dict of wo (N, 3), pdf, weight "
+                                    "and optionally rejected (N,) bool)",
+                                    k));
+  const CheckedArray wo = checked_array(m, "sample", "its 'wo'", d["wo"], n, 3);
+  const CheckedArray pdf = checked_array(m, "sample", "its 'pdf'", d["pdf"], n);
+  const CheckedArray weight = checked_array(m, "sample", "its 'weight'", d["weight"], n);
+  std::vector<bool> rejected(n, false);
+  if (d.contains("rejected")) {
+    const py::object rej = d["rejected"];
+    const auto a = py::isinstance<py::array>(rej) ? py::reinterpret_borrow<py::array>(rej)
+                                                   : py::array();
+    if (!a || a.dtype().kind() != 'b' || a.ndim() != 1 || std::size_t(a.shape(0)) != n)
+      fail(m, "sample", fmt::format("returned a 'rejected' that is not a bool array of shape ({},)", n));
+    const char* base = static_cast<const char*>(a.data());
+    for (std::size_t i = 0; i < n; ++i)
+      rejected[i] = *reinterpret_cast<const bool*>(base + py::ssize_t(i) * a.strides(0));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const double row[6] = {wo.at(i, 0), wo.at(i, 1), wo.at(i, 2),
+                           pdf.at(i),   weight.at(i), rejected[i] ? 1.0 : 0.0};
+    for (std::size_t k = 0; k < 6; ++k) outputs[k][i] = static_cast<S>(row[k]);
+  }
+}
+
+template void python_eval_rows<float>(const PythonModel&, const std::vector<double>&,
+                                      std::span<const simd::Column<float>>, std::span<float* const>,
+                                      std::size_t);
+template void python_eval_rows<double>(const PythonModel&, const std::vector<double>&,
+                                       std::span<const simd::Column<double>>,
+                                       std::span<double* const>, std::size_t);
+template void python_sample_rows<float>(const PythonModel&, const std::vector<double>&,
+                                        std::span<const simd::Column<float>>, simd::Column<float>,
+                                        simd::Column<float>, std::span<float* const>, std::size_t);
+template void python_sample_rows<double>(const PythonModel&, const std::vector<double>&,
+                                         std::span<const simd::Column<double>>,
+                                         simd::Column<double>, simd::Column<double>,
+                                         std::span<double* const>, std::size_t);
+
+void register_python_model(const std::string& name, const py::object& eval, const py::object& pdf,
+                           const py::object& sample, const py::object& params,
+                           const py::object& needs, const py::object& smooth_limit,
+                           const std::string& description, const std::string& source,
+                           const py::object& not_claimed) {
+  if (!valid_name(name))
+    throw py::value_error(fmt::format(
+        "name: '{}' is not a model name (valid: letters, digits and '_', not empty)", name));
+  for (const auto& [arg, f] : {std::pair{"eval", &eval}, {"pdf", &pdf}, {"sample", &sample}})
+    if (!PyCallable_Check(f->ptr()))
+      throw py::value_error(fmt::format("{}: not callable (valid: a function of (query, params))", arg));
+  auto* m = new PythonModel;  // lives as long as the registry (the process)
+  m->name = name;
+  ModelEntry e;
+  e.name = keep(name);
+  e.description = keep(description);
+  e.source = keep(source.empty() ? "Python (glintlab.register_model)" : source);
+  e.needs = needs_bits(needs);
+  if (!params.is_none())
+    for (const py::handle item : params) {
+      e.params.push_back(param_spec(item));
+      m->param_names.emplace_back(e.params.back().name);
+    }
+  for (std::size_t c = 0; c < kQueryLayout.size(); ++c)
+    if (column_needed(kQueryLayout[c], e.needs)) m->columns.push_back(c);
+  if (!smooth_limit.is_none()) {
+    const std::string limit = py::str(smooth_limit);
+    try {
+      find_model(limit);
+    } catch (const ModelParamError& error) {
+      throw py::value_error(fmt::format("smooth_limit: {}", error.what()));
+    }
+    e.smooth_limit = keep(limit);
+  }
+  if (!not_claimed.is_none()) {
+    if (!py::isinstance<py::dict>(not_claimed))
+      throw py::value_error("not_claimed: not a dict (valid: conformance property -> reason)");
+    for (const auto& [property, reason] : py::reinterpret_borrow<py::dict>(not_claimed))
+      e.not_claimed.push_back({keep(py::str(property)), keep(py::str(reason))});
+  }
+  e.eval = [m](const std::vector<double>& values, const ModelQuery<double>& q) {
+    const QueryRow<double> row = to_row(q);
+    std::array<simd::Column<double>, kQueryLayout.size()> cols;
+    for (std::size_t c = 0; c < cols.size(); ++c) cols[c] = {&row[c], 0};
+    double value = 0, pdf_value = 0;
+    double* const out[2] = {&value, &pdf_value};
+    python_eval_rows<double>(*m, values, cols, out, 1);
+    return ErasedEval{value, pdf_value, {}};
+  };
+  e.pdf = [m](const std::vector<double>& values, const ModelQuery<double>& q) {
+    const QueryRow<double> row = to_row(q);
+    std::array<simd::Column<double>, kQueryLayout.size()> cols;
+    for (std::size_t c = 0; c < cols.size(); ++c) cols[c] = {&row[c], 0};
+    const py::gil_scoped_acquire gil;
+    const py::object r = call(*m, "pdf", m->pdf, query_dict<double>(*m, cols, 1),
+                              params_dict(*m, values));
+    return checked_array(*m, "pdf", "its pdf", r, 1).at(0);
+  };
+  e.sample = [m](const std::vector<double>& values, const ModelQuery<double>& q, Vec2<double> u) {
+    const QueryRow<double> row = to_row(q);
+    std::array<simd::Column<double>, kQueryLayout.size()> cols;
+    for (std::size_t c = 0; c < cols.size(); ++c) cols[c] = {&row[c], 0};
+    double out[6] = {};
+    double* const outs[6] = {&out[0], &out[1], &out[2], &out[3], &out[4], &out[5]};
+    python_sample_rows<double>(*m, values, cols, {&u.x, 0}, {&u.y, 0}, outs, 1);
+    return ModelSample<double>{{out[0], out[1], out[2]}, out[3], out[4], out[5] != 0};
+  };
+  try {
+    register_model(std::move(e));
+  } catch (const ModelParamError& error) {
+    delete m;
+    throw py::value_error(error.what());
+  }
+  m->eval = eval.ptr();
+  m->pdf = pdf.ptr();
+  m->sample = sample.ptr();
+  Py_INCREF(m->eval);
+  Py_INCREF(m->pdf);
+  Py_INCREF(m->sample);
+  python_models().emplace(name, m);
+}
+
+}  // namespace glintlab::python

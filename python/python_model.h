@@ -1,0 +1,56 @@
+// Models prototyped in numpy (glintlab.register_model): three vectorised Python callables behind a
+// registry entry (core/model_registry.h), so that every consumer of the registry (models(), eval,
+// sample, the conformance suite) sees them like a built-in model without SIMD batches.
+//
+// The callables take a dict of (N,) float64 arrays keyed by the query layout's column names
+// (core/model_layout.h; the parts the model's needs select) and a dict of parameter values; each
+// call is checked (type, dtype, shape, NaN) and a failure becomes PythonModelError naming the model
+// and the function. The entry's per-row thunks call them with N = 1 (the suite calls thunks row by
+// row); the module's eval and sample call them once per chunk of rows (python_eval_rows,
+// python_sample_rows). Every call takes the GIL itself, so callers run them without holding it.
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+#include <cstddef>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/model_registry.h"
+#include "core/simd/batch.h"
+
+namespace glintlab::python {
+
+// A Python model's callable raised, or returned something that is not what it must return.
+struct PythonModelError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct PythonModel;
+
+// Registers a Python model; ValueError for a bad name, needs, parameter list, smooth limit or
+// not-claimed declaration (the messages name the argument and what is valid).
+void register_python_model(const std::string& name, const pybind11::object& eval,
+                           const pybind11::object& pdf, const pybind11::object& sample,
+                           const pybind11::object& params, const pybind11::object& needs,
+                           const pybind11::object& smooth_limit, const std::string& description,
+                           const std::string& source, const pybind11::object& not_claimed);
+
+// The Python model behind a registry entry, or nullptr for any other entry.
+const PythonModel* python_model(const ModelEntry& entry);
+
+// value, pdf of rows [0, n) of the columns (kQueryLayout order, stride 0 or 1) into outputs[0],
+// outputs[1]: one call of eval and one of pdf. Takes the GIL; throws PythonModelError.
+template <class S>
+void python_eval_rows(const PythonModel& model, const std::vector<double>& params,
+                      std::span<const simd::Column<S>> query, std::span<S* const> outputs,
+                      std::size_t n);
+// One sample per row into the six columns of simd::kSampleColumns: one call of sample.
+template <class S>
+void python_sample_rows(const PythonModel& model, const std::vector<double>& params,
+                        std::span<const simd::Column<S>> query, simd::Column<S> u1,
+                        simd::Column<S> u2, std::span<S* const> outputs, std::size_t n);
+
+}  // namespace glintlab::python

@@ -1,0 +1,199 @@
+"""glintlab.register_model: a numpy Lambertian registered from Python, listed, evaluated and sampled
+in chunks, judged by the cheap conformance properties; the errors of a model's functions (raise,
+wrong type, dtype, shape, NaN) and of register_model's arguments; verify's arguments. The whole
+conformance suite on it (and the wrong-pdf model failing sampler-matches-pdf) is
+slow_register_model_conformance.py, its own ctest test."""
+
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import glintlab
+import numpy_models as nm
+
+WI = np.array([0.3, 0.0, np.sqrt(1 - 0.09)])
+
+
+def unit(v):
+    return v / np.linalg.norm(v, axis=-1, keepdims=True)
+
+
+@pytest.fixture(scope="module")
+def lambert():
+    nm.register_lambert(glintlab, "py_lambert")
+    return "py_lambert"
+
+
+def directions(rows, seed=3):
+    wo = unit(np.random.default_rng(seed).normal(size=(rows, 3)))
+    wo[:, 2] = np.abs(wo[:, 2])
+    return wo
+
+
+def test_listed(lambert):
+    m = {m["name"]: m for m in glintlab.models()}[lambert]
+    assert m["description"] == "Lambertian in numpy"
+    assert m["needs"] == [] and m["batched"] is False and m["smooth_limit"] is None
+    assert [p["name"] for p in m["params"]] == ["albedo"] and m["params"][0]["default"] == 0.8
+
+
+def test_eval_and_sample(lambert):
+    wo = directions(10000)
+    r = glintlab.eval(lambert, WI, wo, params={"albedo": 0.5})
+    np.testing.assert_array_equal(r["value"], 0.5 * wo[:, 2] / np.pi)
+    np.testing.assert_array_equal(r["pdf"], wo[:, 2] / np.pi)
+    # Per-row parameters: each run of equal values is one call with that value.
+    albedo = np.where(np.arange(10000) < 5000, 0.25, 0.75)
+    r = glintlab.eval(lambert, WI, wo, params={"albedo": albedo})
+    np.testing.assert_array_equal(r["value"], albedo * wo[:, 2] / np.pi)
+    f = glintlab.eval(lambert, WI, wo, precision="float")
+    assert f["value"].dtype == np.float32
+    np.testing.assert_allclose(f["value"], 0.8 * wo[:, 2] / np.pi, rtol=1e-6)
+    s = glintlab.sample(lambert, WI, n=20000, seed=7)
+    np.testing.assert_allclose(np.linalg.norm(s["wo"], axis=1), 1, rtol=1e-12)
+    np.testing.assert_array_equal(s["weight"], 0.8)
+    np.testing.assert_allclose(s["pdf"], s["wo"][:, 2] / np.pi, rtol=1e-12)
+    assert not s["rejected"].any()
+    # Mean cos θo of the cosine-weighted hemisphere is 2/3 (σ of the mean ≈ 0.0016).
+    assert abs(s["wo"][:, 2].mean() - 2 / 3) < 0.01
+    again = glintlab.sample(lambert, WI, n=20000, seed=7, threads=1)
+    np.testing.assert_array_equal(s["wo"], again["wo"])
+
+
+def test_called_per_chunk():
+    calls = []
+
+    def ev(q, p):
+        calls.append(len(q["wo_z"]))
+        return nm.lambert_eval(q, p)
+
+    glintlab.register_model("py_counted", ev, nm.lambert_pdf, nm.lambert_sample,
+                            params=[nm.ALBEDO])
+    glintlab.eval("py_counted", WI, directions(10000), threads=1)
+    # The CLI's chunks of 4096 rows: one call of eval per chunk, never one per row.
+    assert sorted(calls) == [1808, 4096, 4096]
+
+
+def test_cheap_conformance_properties(lambert):
+    rows = {r["id"]: r for r in glintlab.verify(
+        f"model.{lambert}.eval-pdf-consistency,model.{lambert}.stability,"
+        f"model.{lambert}.float-vs-double,model.{lambert}.simd-equivalence", budget="quick")}
+    assert rows[f"model.{lambert}.eval-pdf-consistency"]["verdict"] == "holds"
+    assert rows[f"model.{lambert}.eval-pdf-consistency"]["control_verdict"] == "fails"
+    assert rows[f"model.{lambert}.stability"]["verdict"] == "holds"
+    assert rows[f"model.{lambert}.stability"]["control_rejected"] is True
+    # Nothing to compare for a model without float or SIMD instantiations.
+    assert rows[f"model.{lambert}.float-vs-double"]["verdict"] == "not-claimed"
+    assert rows[f"model.{lambert}.simd-equivalence"]["verdict"] == "not-claimed"
+    # converges-to-smooth and constant-time are footprint models' properties only.
+    assert not any(k.endswith("converges-to-smooth") or k.endswith("constant-time") for k in rows)
+
+
+def register_broken(name, **overrides):
+    fns = {"eval": nm.lambert_eval, "pdf": nm.lambert_pdf, "sample": nm.lambert_sample}
+    fns.update(overrides)
+    glintlab.register_model(name, fns["eval"], fns["pdf"], fns["sample"], params=[nm.ALBEDO])
+    return name
+
+
+def raises_zero_division(q, p):
+    return 1 / 0
+
+
+BROKEN = {
+    "raises": ({"eval": raises_zero_division}, "eval raised ZeroDivisionError"),
+    "shape": ({"eval": lambda q, p: np.zeros((len(q["wo_z"]), 2))}, "eval returned its value of shape"),
+    "dtype": ({"pdf": lambda q, p: np.zeros(len(q["wo_z"]), dtype=np.float32)},
+              "pdf returned its pdf of dtype float32"),
+    "byteorder": ({"pdf": lambda q, p: np.zeros(len(q["wo_z"]), dtype=">f8")},
+                  "pdf returned its pdf of dtype >f8"),
+    "type": ({"eval": lambda q, p: 0.5}, "eval returned its value of type float"),
+    "nan": ({"eval": lambda q, p: np.full(len(q["wo_z"]), np.nan)}, "eval returned NaN"),
+    "sample_keys": ({"sample": lambda q, u, p: {"wo": np.zeros((len(u), 3))}},
+                    "sample returned no 'pdf'"),
+    "sample_list": ({"sample": lambda q, u, p: [1, 2]}, "sample did not return a dict"),
+}
+
+
+@pytest.mark.parametrize("kind", sorted(BROKEN))
+def test_broken_functions_raise(kind):
+    overrides, message = BROKEN[kind]
+    name = register_broken(f"py_broken_{kind}", **overrides)
+    with pytest.raises(RuntimeError, match=f"glintlab model '{name}': {message}"):
+        if kind.startswith("sample"):
+            glintlab.sample(name, WI, n=5000, seed=1)
+        else:
+            glintlab.eval(name, WI, directions(5000))
+
+
+def test_register_errors(lambert):
+    f = nm.lambert_eval
+    with pytest.raises(ValueError, match="already registered"):
+        glintlab.register_model(lambert, f, f, f)
+    with pytest.raises(ValueError, match="not a model name"):
+        glintlab.register_model("bad name", f, f, f)
+    with pytest.raises(ValueError, match="pdf: not callable"):
+        glintlab.register_model("py_e1", f, 3, f)
+    with pytest.raises(ValueError, match="needs: 'light' is not a query part"):
+        glintlab.register_model("py_e2", f, f, f, needs=["light"])
+    with pytest.raises(ValueError, match="smooth_limit"):
+        glintlab.register_model("py_e3", f, f, f, smooth_limit="no_such_model")
+    with pytest.raises(ValueError, match="params: 'a' needs a name and lo <= default <= hi"):
+        glintlab.register_model("py_e4", f, f, f, params=[{"name": "a", "default": 2, "lo": 0, "hi": 1}])
+    with pytest.raises(ValueError, match="energy-conservation"):
+        glintlab.register_model("py_e5", f, f, f, not_claimed={"energy-conservation": "why"})
+    names = [m["name"] for m in glintlab.models()]
+    assert not any(n.startswith("py_e") for n in names)
+
+
+def test_footprint_model_gets_its_columns():
+    seen = {}
+
+    def ev(q, p):
+        seen.update({k: v.copy() for k, v in q.items()})
+        return nm.lambert_eval(q, p)
+
+    glintlab.register_model("py_footprint", ev, nm.lambert_pdf, nm.lambert_sample,
+                            params=[nm.ALBEDO], needs=["footprint"], smooth_limit="smooth_ggx")
+    m = {m["name"]: m for m in glintlab.models()}["py_footprint"]
+    assert m["needs"] == ["footprint"] and m["smooth_limit"] == "smooth_ggx"
+    fp = {"u": 0.25, "v": 0.5, "dudx": 1e-3, "dvdx": 0.0, "dudy": 0.0, "dvdy": 2e-3}
+    glintlab.eval("py_footprint", WI, directions(10), footprint=fp)
+    assert sorted(seen) == sorted(["u", "v", "dudx", "dvdx", "dudy", "dvdy",
+                                   "wi_x", "wi_y", "wi_z", "wo_x", "wo_y", "wo_z"])
+    np.testing.assert_array_equal(seen["dvdy"], 2e-3)
+
+
+def test_verify_errors():
+    with pytest.raises(ValueError, match="budget: 'medium' is not a budget"):
+        glintlab.verify("smooth.projected-area", budget="medium")
+    with pytest.raises(ValueError, match="no.such.claim' matches nothing"):
+        glintlab.verify("no.such.claim")
+    with pytest.raises(ValueError, match="--threads"):
+        glintlab.verify("smooth.projected-area", threads=-1)
+
+
+def test_verify_a_paper_claim():
+    (row,) = glintlab.verify("smooth.projected-area", threads=1)
+    assert row["id"] == "smooth.projected-area"
+    assert row["verdict"] == row["expected_verdict"] == "holds"
+    assert row["control_rejected"] is True and row["budget"] == "quick"
+
+
+def test_example_my_glint_model(tmp_path):
+    """examples/python/my_glint_model.py registers its numpy glint model, prints the verdicts of
+    the conformance checks it is asked for and writes its plots (one property here: the suite
+    calls a Python model one query at a time)."""
+    script = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "python",
+                          "my_glint_model.py")
+    out = tmp_path / "glint.png"
+    r = subprocess.run([sys.executable, script, "--out", str(out),
+                        "--properties", "eval-pdf-consistency"],
+                       check=True, capture_output=True, text=True)
+    lines = r.stdout.splitlines()
+    assert lines[0].startswith("model.facet_cells.eval-pdf-consistency")
+    assert lines[0].split()[1] == "holds" and "control fails" in lines[0]
+    assert out.stat().st_size > 10000
