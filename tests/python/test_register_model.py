@@ -183,6 +183,18 @@ def test_verify_a_paper_claim():
     assert row["control_rejected"] is True and row["budget"] == "quick"
 
 
+def test_a_raising_model_is_an_error_row_inside_verify():
+    """Inside the suite a Python function that raises is that model's `error` verdict, naming the
+    model and the function; the other claims of the run still run."""
+    name = register_broken("py_broken_in_suite", eval=raises_zero_division)
+    rows = {r["id"]: r for r in glintlab.verify(
+        f"model.{name}.eval-pdf-consistency,smooth.projected-area", threads=1)}
+    bad = rows[f"model.{name}.eval-pdf-consistency"]
+    assert bad["verdict"] == "error"
+    assert f"glintlab model '{name}': eval raised ZeroDivisionError" in bad["detail"]
+    assert rows["smooth.projected-area"]["verdict"] == "holds"
+
+
 def test_example_my_glint_model(tmp_path):
     """examples/python/my_glint_model.py registers its numpy glint model, prints the verdicts of
     the conformance checks it is asked for and writes its plots (one property here: the suite
