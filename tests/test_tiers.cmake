@@ -10,6 +10,9 @@ set(glintlab_slow_tests
   "Checks/QuickBudget.*"
   "AcrossClaims.StabilityVerdictAndControl"
   "Properties/ControlRejected.ByTheSameDecision/kneiphof_klein_sampler_covers_value"
+  # sampler-covers-value of both Kemppinen models at quick, with the mixture and with Algorithm 2
+  # alone (10^5 samples and up to 4 · 10^5 reference evaluations per setting).
+  "KemppinenSampler.*"
   # Chi-square and integration checks whose sample sizes set what they can detect.
   "ChiSquareClaims.EtoPdfMatchesControlsRejected"
   "ChiSquareClaims.IdenticalWithOneAndTwoThreads"
