@@ -38,8 +38,8 @@ inline constexpr double kWideFootprint = 0.4;
 std::vector<Setting> settings(const ModelEntry& m, Budget b);
 // Settings where a part of the value that the model's paper does not sample carries most of it,
 // at their own footprints (never widened), for the properties that check a sampler against the
-// value (eval-pdf-consistency, sampler-covers-value, the weighted histogram of
-// sampler-matches-pdf); empty for most models. The Kemppinen models (kemppinen_ggx,
+// value (eval-pdf-consistency, sampler-covers-value and, at the full budget, the weighted
+// histogram of sampler-matches-pdf); empty for most models. The Kemppinen models (kemppinen_ggx,
 // kemppinen_beckmann): the compensation C of Eq. 10, which Algorithm 2 does not draw (common.cpp
 // lists the settings and their measured shares).
 std::vector<Setting> compensation_settings(const ModelEntry& m);
