@@ -21,6 +21,9 @@ set(glintlab_slow_tests
   "Checks/QuickBudget.* 1"
   "AcrossClaims.StabilityVerdictAndControl 9"
   "Properties/ControlRejected.ByTheSameDecision/kneiphof_klein_sampler_covers_value* 4"
+  # sampler-covers-value of both Kemppinen models at quick, with the mixture and with Algorithm 2
+  # alone (10^5 samples and up to 4 · 10^5 reference evaluations per setting).
+  "KemppinenSampler.* 15"
   # Chi-square and integration checks whose sample sizes set what they can detect.
   "ChiSquareClaims.EtoPdfMatchesControlsRejected 10"
   "ChiSquareClaims.IdenticalWithOneAndTwoThreads 2"

@@ -2,6 +2,8 @@
 // explicit points + compensation C of Eq. 10) as a one-sample mixture of Algorithm 2 (the explicit
 // part, Sec. 3.3.5) and the smooth NDF's sampler ω_h ~ D cosθ (Walter et al. 2007 Eq. 28–29,
 // 35–36) for the compensation, with the exact mixture density and with Algorithm 2's printed pdf.
+// The models kemppinen_ggx / kemppinen_beckmann sample with it (core/models/kemppinen_model.h),
+// and so do the figures and the environment-light claims (verify/scenes/kemppinen_env_radiance.h).
 //
 // What the paper specifies: Algorithm 2 samples the sum of Gaussians of Eq. 11 and "we choose to
 // not sample the compensation term" (Sec. 3.3.5). An estimator that divides the whole D★^f by a
@@ -23,16 +25,20 @@
 //   of strategy 1, and for a sample of strategy 2 by the printed formula evaluated without a draw:
 //   x_a := T(ω_h) and both levels summed with their weights w_l (Algorithm 2 only returns the pdf
 //   of its own draw, so some evaluation rule is needed for MIS; this is the natural one).
+// * triplanar (Sec. 3.3.6): strategy 1 is the blend of the three planes' Algorithm 2
+//   (triplanar_sample_half), q the planes' explicit shares blended by their weights w_i, and the
+//   printed formula at ω_h the planes' printed_pdf_at blended by w_i.
 //
-// Like Algorithm 2 in kemppinen_sampling.h these are host functions for scalar T (a thread-local
-// block buffer, loops over the k⁴ candidates of the drawn block), not SIMD kernels.
+// Generic over T (float, double, a SIMD batch), as Algorithm 2 in kemppinen_sampling.h: the
+// strategy is a mask per lane, and each strategy's code runs when any lane chose it (uniform
+// early-outs, never per-lane branches). For double the results are those of the scalar code.
 #pragma once
 
-#include <algorithm>
 #include <cstdint>
 
 #include "core/glints/kemppinen.h"
 #include "core/glints/kemppinen_sampling.h"
+#include "core/glints/kemppinen_triplanar.h"
 #include "core/samplers/walter.h"
 
 namespace glintlab::kemppinen2025 {
@@ -42,111 +48,215 @@ inline constexpr double kMixtureMin = 0.1;
 inline constexpr double kMixtureMax = 0.9;
 
 // The fraction of the lobe mass inside B(k) at level `level`, averaged over a 4 × 4 grid of x_a in
-// the angular cell at the centre of □.
+// the angular cell at the centre of □ (index max(n_a/2 − 1, 0) on both axes).
 template <class Ndf, class T>
-T level_explicit_share(const Params<T>& p, const Ndf& ndf, int level) {
-  const std::int64_t n_a = std::int64_t(1) << level;
+T level_explicit_share(const Params<T>& p, const Ndf& ndf, const LaneInt<T, int>& level) {
+  const LaneInt<T> n_a = level_cells<T>(level);
   const T res_a = angular_resolution<T>(level);
-  const std::int64_t c = std::max<std::int64_t>(n_a / 2 - 1, 0);
+  const T c = max(floor(res_a * T(0.5)) - T(1), T(0));
   T near_sum = T(0), whole_sum = T(0);
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) {
-      const Vec2<T> x_a{(T(c) + (T(i) + T(0.5)) / T(4)) / res_a,
-                        (T(c) + (T(j) + T(0.5)) / T(4)) / res_a};
+      const Vec2<T> x_a{(c + (T(i) + T(0.5)) / T(4)) / res_a, (c + (T(j) + T(0.5)) / T(4)) / res_a};
       const Vec2<T> sigma = point_sigma(p, ndf, x_a);
-      const std::int64_t ax0 = block_start(x_a.x * res_a, p.side);
-      const std::int64_t ay0 = block_start(x_a.y * res_a, p.side);
-      const Vec2<T> lo{T(std::max<std::int64_t>(ax0, 0)) / res_a,
-                       T(std::max<std::int64_t>(ay0, 0)) / res_a};
-      const Vec2<T> hi{T(std::min<std::int64_t>(ax0 + p.side, n_a)) / res_a,
-                       T(std::min<std::int64_t>(ay0 + p.side, n_a)) / res_a};
+      const LaneInt<T> ax0 = block_start(x_a.x * res_a, p.side);
+      const LaneInt<T> ay0 = block_start(x_a.y * res_a, p.side);
+      const Vec2<T> lo{int_to_float<T>(int_max(ax0, std::int64_t(0))) / res_a,
+                       int_to_float<T>(int_max(ay0, std::int64_t(0))) / res_a};
+      const Vec2<T> hi{int_to_float<T>(int_min(ax0 + p.side, n_a)) / res_a,
+                       int_to_float<T>(int_min(ay0 + p.side, n_a)) / res_a};
       near_sum += gaussian_rect_mass(lo, hi, x_a, sigma, Erf::kExact);
       whole_sum +=
           gaussian_rect_mass(Vec2<T>{T(0), T(0)}, Vec2<T>{T(1), T(1)}, x_a, sigma, Erf::kExact);
     }
-  return whole_sum > T(0) ? near_sum / whole_sum : T(1);
+  const Mask<T> has = whole_sum > T(0);
+  return select(has, near_sum / select(has, whole_sum, T(1)), T(1));
+}
+
+// The explicit share at a footprint, both levels with their weights (before the clamp of q).
+template <class Ndf, class T>
+T explicit_share(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp) {
+  const Spatial<T> sp = spatial(p, fp);
+  return (T(1) - sp.w1) * level_explicit_share(p, ndf, sp.l0) +
+         sp.w1 * level_explicit_share(p, ndf, sp.l0 + 1);
 }
 
 // q: the probability of sampling the explicit part with Algorithm 2 (our choice, see the header).
 template <class Ndf, class T>
 T mixture_probability(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp) {
-  const Spatial<T> sp = spatial(p, fp);
-  const T share = (T(1) - sp.w1) * level_explicit_share(p, ndf, sp.l0) +
-                  sp.w1 * level_explicit_share(p, ndf, sp.l0 + 1);
-  return clamp(share, T(kMixtureMin), T(kMixtureMax));
+  return clamp(explicit_share(p, ndf, fp), T(kMixtureMin), T(kMixtureMax));
 }
 
 // Algorithm 2's printed pdf (lines 16–17) evaluated at ω_h without a draw: x_a := T(ω_h), summed
 // over both levels with their weights, per steradian (the MIS evaluation rule of the header).
 template <class Ndf, class T>
-T printed_pdf_at(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp, Vec3<T> h) {
-  if (!(h.z > T(0))) return T(0);
-  const Vec2<T> x = map_to_square(ndf, h);
-  if (sqr(x.x - T(0.5)) + sqr(x.y - T(0.5)) > T(0.25)) return T(0);
+T printed_pdf_at(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp, Vec3<T> h,
+                 int process = 0) {
+  const Mask<T> up = h.z > T(0);
+  if (!any_lane<T>(up)) return T(0);
+  const Vec2<T> x = map_to_square(ndf, select(up, h, Vec3<T>{T(0), T(0), T(1)}));
+  const Mask<T> in_disk = up && !(sqr(x.x - T(0.5)) + sqr(x.y - T(0.5)) > T(0.25));
+  if (!any_lane<T>(in_disk)) return T(0);
   const Spatial<T> sp = spatial(p, fp);
   static thread_local Block<T> block;
   T total = T(0);
-  for (int up = 0; up < 2; ++up) {
-    const int level = sp.l0 + up;
-    const T w_l = up ? sp.w1 : T(1) - sp.w1;
-    if (!(w_l > T(0))) continue;
+  for (int upper = 0; upper < 2; ++upper) {
+    const LaneInt<T, int> level = sp.l0 + upper;
+    const T w_l = upper ? sp.w1 : T(1) - sp.w1;
+    const Mask<T> w_positive = w_l > T(0);
+    if (!any_lane<T>(w_positive)) continue;
     const T res_a = angular_resolution<T>(level);
     kemppinen2025::block(p, ndf, sp, level, w_l, block_start(x.x * res_a, p.side),
-                         block_start(x.y * res_a, p.side), block);
+                         block_start(x.y * res_a, p.side), block, process);
     const T area_b = (block.hi.x - block.lo.x) * (block.hi.y - block.lo.y);
-    total += block_density(block, x) * area_b * w_l;
+    total += select(w_positive, block_density(block, x) * area_b * w_l, T(0));
   }
-  return total * map_jacobian_paper(ndf, h) * h.z;
+  return select(in_disk, total * map_jacobian_paper(ndf, h) * h.z, T(0));
 }
 
 template <class T>
 struct FullSample {
-  Vec3<T> h;           // ω_h
-  T pdf_h;             // exact mixture density q p₁ + (1 − q) D cosθ, per steradian of ω_h
-  T pdf_printed_h;     // the same mixture with Algorithm 2's printed pdf as p₁
-  T q;                 // probability of the explicit strategy
-  bool from_explicit;  // drawn by Algorithm 2 (else by D cosθ)
-  bool ok;             // false: Algorithm 2 produced no direction (contributes 0)
+  Vec3<T> h;              // ω_h
+  T pdf_h;                // exact mixture density q p₁ + (1 − q) D cosθ, per steradian of ω_h
+  T pdf_printed_h;        // the same mixture with Algorithm 2's printed pdf as p₁
+  T q;                    // probability of the explicit strategy
+  Mask<T> from_explicit;  // drawn by Algorithm 2 (else by D cosθ)
+  Mask<T> ok;             // false: Algorithm 2 produced no direction (contributes 0)
 };
 
-// The random number `dim` of the mixture's own choices (Algorithm 2 uses the key's dims 0–5).
+// The random number `dim` of the mixture's own choices (Algorithm 2 uses the key's dims 0–6).
 template <class T>
 T mixture_uniform(std::uint64_t key, std::uint64_t dim) {
   return counter_uniform<T>(key, 0x66756c6cULL, dim);
 }
+template <class T, class I, std::size_t N>
+T mixture_uniform(const IntLanes<I, N>& key, std::uint64_t dim) {
+  return float_lanes<T>(
+      [&](std::size_t l) { return counter_uniform<Scalar<T>>(key.v[l], 0x66756c6cULL, dim); });
+}
 
-// The exact mixture density of ω_h (q from mixture_probability).
+// Strategy 1 on the uv point process: Algorithm 2, its marginal, its printed pdf at ω_h.
+template <class Ndf, class T>
+struct UvExplicit {
+  const Params<T>& p;
+  const Ndf& ndf;
+  const FootprintQuery<T>& fp;
+  HalfSample<T> draw(const LaneInt<T, std::uint64_t>& key) const {
+    return sample_half(p, ndf, fp, key);
+  }
+  T density(Vec3<T> h) const { return sample_density_half(p, ndf, fp, h); }
+  T printed_at(Vec3<T> h) const { return printed_pdf_at(p, ndf, fp, h); }
+};
+
+// Strategy 1 in triplanar mode: the planes' blend (kemppinen_triplanar.h).
+template <class Ndf, class T>
+struct TriplanarExplicit {
+  const Params<T>& p;
+  const Ndf& ndf;
+  const TriplanarInput<T>& in;
+  HalfSample<T> draw(const LaneInt<T, std::uint64_t>& key) const {
+    return triplanar_sample_half(p, ndf, in, key);
+  }
+  T density(Vec3<T> h) const { return triplanar_density_half(p, ndf, in, h); }
+  // Σ_i w_i × plane i's printed pdf at ω_h.
+  T printed_at(Vec3<T> h) const {
+    const Vec3<T> wv = triplanar_weights(in.normal);
+    const T w[3] = {wv.x, wv.y, wv.z};
+    T sum = T(0);
+    for (int i = 0; i < 3; ++i) {
+      const Mask<T> nonempty = w[i] > T(0);
+      if (!any_lane<T>(nonempty)) continue;
+      sum += select(nonempty,
+                    w[i] * printed_pdf_at(p, ndf,
+                                          triplanar_footprint(i, in.pos, in.dpos_dx, in.dpos_dy),
+                                          h, kTriplanarProcess[i]),
+                    T(0));
+    }
+    return sum;
+  }
+};
+
+// The explicit share of the triplanar blend: the planes' shares weighted by w_i, clamped as q.
+template <class Ndf, class T>
+T triplanar_mixture_probability(const Params<T>& p, const Ndf& ndf, const TriplanarInput<T>& in) {
+  const Vec3<T> wv = triplanar_weights(in.normal);
+  const T w[3] = {wv.x, wv.y, wv.z};
+  T share = T(0);
+  for (int i = 0; i < 3; ++i) {
+    const Mask<T> nonempty = w[i] > T(0);
+    if (!any_lane<T>(nonempty)) continue;
+    share += select(
+        nonempty,
+        w[i] * explicit_share(p, ndf, triplanar_footprint(i, in.pos, in.dpos_dx, in.dpos_dy)),
+        T(0));
+  }
+  return clamp(share, T(kMixtureMin), T(kMixtureMax));
+}
+
+// The exact mixture density of ω_h, q p₁(ω_h) + (1 − q) D(ω_h) cosθ_h, strategy 1 `e`.
+template <class Ndf, class T, class Explicit>
+T mixture_density_half(const Ndf& ndf, const Explicit& e, Vec3<T> h, T q) {
+  const Mask<T> up = h.z > T(0);
+  if (!any_lane<T>(up)) return T(0);
+  const Vec3<T> hu = select(up, h, Vec3<T>{T(0), T(0), T(1)});
+  return select(up, q * e.density(hu) + (T(1) - q) * ndf.D(hu) * hu.z, T(0));
+}
+
+// One ω_h from the mixture with strategy 1 `e`, random numbers from `key`, with the exact density
+// and, when `printed`, the printed one (else pdf_printed_h is 0: it costs a block per draw of
+// strategy 2).
+template <class Ndf, class T, class Explicit>
+FullSample<T> sample_mixture(const Ndf& ndf, const Explicit& e,
+                             const LaneInt<T, std::uint64_t>& key, T q, bool printed) {
+  const Mask<T> kNone = T(0) > T(1);
+  const Vec3<T> zenith{T(0), T(0), T(1)};
+  FullSample<T> out;
+  out.h = {T(0), T(0), T(0)};
+  out.pdf_h = T(0);
+  out.pdf_printed_h = T(0);
+  out.q = q;
+  out.from_explicit = mixture_uniform<T>(key, 0) < q;
+  out.ok = kNone;
+  Mask<T> drawn = kNone;
+  T p1_printed = T(0);
+  if (any_lane<T>(out.from_explicit)) {
+    const HalfSample<T> s = e.draw(key);
+    const Mask<T> m = out.from_explicit && s.ok;
+    out.h = select(m, s.h, out.h);
+    p1_printed = select(m, s.pdf_printed_h, p1_printed);
+    drawn = m;
+  }
+  const Mask<T> smooth = !out.from_explicit;
+  if (any_lane<T>(smooth)) {
+    const Vec3<T> h2 =
+        sample_normal_walter(ndf, Vec2<T>{mixture_uniform<T>(key, 1), mixture_uniform<T>(key, 2)});
+    out.h = select(smooth, h2, out.h);
+    const Mask<T> m = smooth && (h2.z > T(0));
+    drawn = drawn || m;
+    if (printed && any_lane<T>(m))
+      p1_printed = select(m, e.printed_at(select(m, h2, zenith)), p1_printed);
+  }
+  if (!any_lane<T>(drawn)) return out;
+  const Vec3<T> h = select(drawn, out.h, zenith);
+  const T p2 = ndf.D(h) * h.z;
+  out.pdf_h = select(drawn, q * e.density(h) + (T(1) - q) * p2, T(0));
+  out.pdf_printed_h = select(drawn, q * p1_printed + (T(1) - q) * p2, T(0));
+  out.ok = drawn && (out.pdf_h > T(0));
+  return out;
+}
+
+// The exact mixture density of ω_h on the uv point process (q from mixture_probability).
 template <class Ndf, class T>
 T full_sample_density_half(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp,
                            Vec3<T> h, T q) {
-  if (!(h.z > T(0))) return T(0);
-  return q * sample_density_half(p, ndf, fp, h) + (T(1) - q) * ndf.D(h) * h.z;
+  return mixture_density_half(ndf, UvExplicit<Ndf, T>{p, ndf, fp}, h, q);
 }
 
-// One ω_h from the mixture, random numbers from `key`, with both densities.
+// One ω_h from the uv mixture, random numbers from `key`, with both densities.
 template <class Ndf, class T>
 FullSample<T> sample_full(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp,
-                          std::uint64_t key, T q) {
-  FullSample<T> out{};
-  out.q = q;
-  out.from_explicit = mixture_uniform<T>(key, 0) < q;
-  T p1_printed = T(0);
-  if (out.from_explicit) {
-    const HalfSample<T> s = sample_half(p, ndf, fp, key);
-    if (!s.ok) return out;
-    out.h = s.h;
-    p1_printed = s.pdf_printed_h;
-  } else {
-    out.h =
-        sample_normal_walter(ndf, Vec2<T>{mixture_uniform<T>(key, 1), mixture_uniform<T>(key, 2)});
-    if (!(out.h.z > T(0))) return out;
-    p1_printed = printed_pdf_at(p, ndf, fp, out.h);
-  }
-  const T p2 = ndf.D(out.h) * out.h.z;
-  out.pdf_h = q * sample_density_half(p, ndf, fp, out.h) + (T(1) - q) * p2;
-  out.pdf_printed_h = q * p1_printed + (T(1) - q) * p2;
-  out.ok = out.pdf_h > T(0);
-  return out;
+                          const LaneInt<T, std::uint64_t>& key, T q) {
+  return sample_mixture(ndf, UvExplicit<Ndf, T>{p, ndf, fp}, key, q, true);
 }
 
 }  // namespace glintlab::kemppinen2025

@@ -1,7 +1,12 @@
 // Kemppinen et al. 2025 glinty microfacet reflection as a model (core/model.h), shared by
 // kemppinen_ggx and kemppinen_beckmann: Eq. 1 with D replaced by D★^f of Eq. 11 (Algorithm 1),
 // Smith height-correlated G2 of the base NDF (Sec. 3.2: "the Smith masking-shadowing function"),
-// F = 1, and Algorithm 2 as the sampler.
+// F = 1. The sampler draws the whole D★^f: the mixture of Algorithm 2 (the explicit points) and
+// ω_h ~ D cosθ (the compensation C of Eq. 10, which Algorithm 2 does not sample, Sec. 3.3.5) of
+// core/glints/kemppinen_full_sampling.h. Algorithm 2 alone stays below
+// (kemppinen_model_explicit_sample, its density kemppinen_model_explicit_pdf): divided into the
+// whole value, its weight C/p is unbounded where the compensation carries the value and the
+// explicit lobes' tails vanish (the conformance tests show it failing sampler-covers-value there).
 #pragma once
 
 #include <array>
@@ -9,6 +14,7 @@
 #include <string_view>
 
 #include "core/glints/kemppinen.h"
+#include "core/glints/kemppinen_full_sampling.h"
 #include "core/glints/kemppinen_sampling.h"
 #include "core/glints/kemppinen_triplanar.h"
 #include "core/model.h"
@@ -46,7 +52,8 @@ inline constexpr std::array<ParamSpec, 16> kKemppinenParams = {{
     {"colors", 0.0, 0.0, 1.0, false, false, "per-glint colours (Sec. 3.3.6): white or red_yellow",
      kKemppinenColorNames},
     {"pdf", 0.0, 0.0, 1.0, false, false,
-     "pdf returned by sample(): marginal (density of the samples) or printed (Alg. 2 l. 16-17)",
+     "pdf returned by sample(): marginal (density of the samples) or printed (the mixture with "
+     "Alg. 2 l. 16-17 as the explicit part's density)",
      kKemppinenPdfNames},
     {"seed",
      0.0,
@@ -139,10 +146,75 @@ ModelEval<T, kKemppinenIntermediates.size()> kemppinen_model_eval(
            int_to_float<T>(r.level0), T(r.points), r.d.x, r.d.y, r.d.z, g2, brdf}};
 }
 
-// pdf of ωo = reflect(ωi, ω_h) under Algorithm 2: the marginal density of ω_h / (4 |ωo·ω_h|).
+// The explicit-strategy probability q of the mixture at the query's footprint (uv or triplanar).
+template <class Ndf, class T>
+T kemppinen_model_mixture_probability(const KemppinenModelParams<Ndf, T>& p,
+                                      const ModelQuery<T>& q) {
+  return p.triplanar ? kemppinen2025::triplanar_mixture_probability(
+                           p.glint, p.ndf, kemppinen2025::triplanar_input(q.footprint, p.normal))
+                     : kemppinen2025::mixture_probability(p.glint, p.ndf, q.footprint);
+}
+
+// pdf of ωo = reflect(ωi, ω_h) under the model's sampler: the mixture density of ω_h,
+// q p₁(ω_h) + (1 − q) D cosθ_h with p₁ Algorithm 2's marginal, / (4 |ωo·ω_h|).
 // (Generic over T: the early-outs are taken only when no lane needs the rest, and masked after.)
 template <class Ndf, class T>
 T kemppinen_model_pdf(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q) {
+  const Mask<T> lit = (q.wi.z > T(0)) && (q.wo.z > T(0));
+  if (!any_lane<T>(lit)) return T(0);
+  const Vec3<T> h = half_vector(q.wi, q.wo);
+  const Mask<T> ok = lit && (h.z > T(0)) && (dot(q.wi, h) > T(0));
+  if (!any_lane<T>(ok)) return T(0);
+  const T mq = kemppinen_model_mixture_probability(p, q);
+  const T d =
+      p.triplanar
+          ? kemppinen2025::mixture_density_half(
+                p.ndf,
+                kemppinen2025::TriplanarExplicit<Ndf, T>{
+                    p.glint, p.ndf, kemppinen2025::triplanar_input(q.footprint, p.normal)},
+                h, mq)
+          : kemppinen2025::full_sample_density_half(p.glint, p.ndf, q.footprint, h, mq);
+  return select(ok, d * reflection_jacobian(q.wo, h), T(0));
+}
+
+// ωo = reflect(ωi, ω_h), ω_h from the mixture; the pdf the marginal (exact) or the printed
+// mixture density (pdf=printed), the weight value/pdf.
+template <class Ndf, class T>
+ModelSample<T> kemppinen_model_sample(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q,
+                                      Vec2<T> u) {
+  const ModelSample<T> none{{T(0), T(0), T(0)}, T(0), T(0), Mask<T>(true)};
+  const Mask<T> lit = q.wi.z > T(0);
+  if (!any_lane<T>(lit)) return none;
+  const LaneInt<T, std::uint64_t> key = kemppinen2025::key_from_uniforms(u);
+  const T mq = kemppinen_model_mixture_probability(p, q);
+  const kemppinen2025::FullSample<T> s =
+      p.triplanar
+          ? kemppinen2025::sample_mixture(
+                p.ndf,
+                kemppinen2025::TriplanarExplicit<Ndf, T>{
+                    p.glint, p.ndf, kemppinen2025::triplanar_input(q.footprint, p.normal)},
+                key, mq, p.printed_pdf)
+          : kemppinen2025::sample_mixture(
+                p.ndf, kemppinen2025::UvExplicit<Ndf, T>{p.glint, p.ndf, q.footprint}, key, mq,
+                p.printed_pdf);
+  const Mask<T> facing = lit && s.ok && (dot(q.wi, s.h) > T(0));
+  if (!any_lane<T>(facing)) return none;
+  const Vec3<T> wo = reflect(q.wi, s.h);
+  const Mask<T> ok = facing && (wo.z > T(0));
+  if (!any_lane<T>(ok)) return none;
+  ModelQuery<T> qo = q;
+  qo.wo = wo;
+  const T pdf = (p.printed_pdf ? s.pdf_printed_h : s.pdf_h) * reflection_jacobian(wo, s.h);
+  const T value = kemppinen_model_eval(p, qo, pdf).value;
+  return {select(ok, wo, none.wo), select(ok, pdf, T(0)),
+          select(ok && (pdf > T(0)), value / pdf, T(0)), !ok};
+}
+
+// Algorithm 2 alone (the paper's sampler, which does not draw the compensation): the pdf of ωo,
+// its marginal density of ω_h / (4 |ωo·ω_h|). Not the model's sampler; kept as the input on which
+// the conformance tests show sampler-covers-value failing where the compensation dominates.
+template <class Ndf, class T>
+T kemppinen_model_explicit_pdf(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q) {
   const Mask<T> lit = (q.wi.z > T(0)) && (q.wo.z > T(0));
   if (!any_lane<T>(lit)) return T(0);
   const Vec3<T> h = half_vector(q.wi, q.wo);
@@ -155,9 +227,11 @@ T kemppinen_model_pdf(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>
   return select(ok, d * reflection_jacobian(q.wo, h), T(0));
 }
 
+// Algorithm 2 alone: ωo = reflect(ωi, ω_h), its pdf the marginal (kemppinen_model_explicit_pdf)
+// or Algorithm 2's printed pdf (lines 16–17), the weight the whole value / pdf.
 template <class Ndf, class T>
-ModelSample<T> kemppinen_model_sample(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q,
-                                      Vec2<T> u) {
+ModelSample<T> kemppinen_model_explicit_sample(const KemppinenModelParams<Ndf, T>& p,
+                                               const ModelQuery<T>& q, Vec2<T> u) {
   const ModelSample<T> none{{T(0), T(0), T(0)}, T(0), T(0), Mask<T>(true)};
   const Mask<T> lit = q.wi.z > T(0);
   if (!any_lane<T>(lit)) return none;
@@ -173,8 +247,8 @@ ModelSample<T> kemppinen_model_sample(const KemppinenModelParams<Ndf, T>& p, con
   if (!any_lane<T>(ok)) return none;
   ModelQuery<T> qo = q;
   qo.wo = wo;
-  const T pdf =
-      p.printed_pdf ? s.pdf_printed_h * reflection_jacobian(wo, s.h) : kemppinen_model_pdf(p, qo);
+  const T pdf = p.printed_pdf ? s.pdf_printed_h * reflection_jacobian(wo, s.h)
+                              : kemppinen_model_explicit_pdf(p, qo);
   const T value = kemppinen_model_eval(p, qo, pdf).value;
   return {select(ok, wo, none.wo), select(ok, pdf, T(0)),
           select(ok && (pdf > T(0)), value / pdf, T(0)), !ok};

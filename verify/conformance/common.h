@@ -36,6 +36,13 @@ inline constexpr double kFootprint = 0.1;
 inline constexpr double kWideFootprint = 0.4;
 // Quick: θi ∈ {30°, 70°}; full: θi ∈ {0°, 30°, 60°, 80°}; the model's default parameters.
 std::vector<Setting> settings(const ModelEntry& m, Budget b);
+// Settings where a part of the value that the model's paper does not sample carries most of it,
+// at their own footprints (never widened), for the properties that check a sampler against the
+// value (eval-pdf-consistency, sampler-covers-value and, at the full budget, the weighted
+// histogram of sampler-matches-pdf); empty for most models. The Kemppinen models (kemppinen_ggx,
+// kemppinen_beckmann): the compensation C of Eq. 10, which Algorithm 2 does not draw (common.cpp
+// lists the settings and their measured shares).
+std::vector<Setting> compensation_settings(const ModelEntry& m);
 
 // value of eval at ωo, 0 where the model's own validate rejects the query (podee: ωo below the
 // horizon, outside its domain) and below the horizon (the value is cosine-weighted).
