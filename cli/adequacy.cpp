@@ -57,6 +57,11 @@ void run_calibration(const experiments::AdequacyCalibrationOptions& a, const std
                  verify::adequacy::kTruthKindNames[std::size_t(r.truth.kind)], r.truth.cv_exact,
                  r.nominal, r.false_adequate, r.decisions, r.rate, r.rate_low, r.rate_high,
                  verify::adequacy::kRateVerdictNames[std::size_t(r.verdict)]);
+  for (const auto& r : cal.pooled)
+    fmt::print("  pooled delta {:<4g} nominal {:<9.3g} false adequate {:>5}/{} = {:.3g} "
+               "[{:.3g}, {:.3g}] {}\n",
+               r.delta, r.nominal, r.false_adequate, r.decisions, r.rate, r.rate_low, r.rate_high,
+               verify::adequacy::kRateVerdictNames[std::size_t(r.verdict)]);
   const auto& fw = cal.family_wise;
   fmt::print(
       "family-wise (tables of {} boundary decisions at the table's z): {}/{} tables with a false "

@@ -302,6 +302,21 @@ AdequacyCalibrationSummary run_adequacy_calibration(const std::filesystem::path&
                     {"rate_high", r.rate_high},
                     {"verdict", kRateVerdictNames[std::size_t(r.verdict)]}});
   doc["rows"] = rows;
+  nlohmann::json pooled = nlohmann::json::array();
+  for (const DecisionRateRow& r : cal.pooled)
+    pooled.push_back({{"delta", r.delta},
+                      {"nominal", r.nominal},
+                      {"z", r.z},
+                      {"table_level", r.table_level},
+                      {"decisions", r.decisions},
+                      {"false_adequate", r.false_adequate},
+                      {"rate", r.rate},
+                      {"rate_low", r.rate_low},
+                      {"rate_high", r.rate_high},
+                      {"verdict", kRateVerdictNames[std::size_t(r.verdict)]}});
+  doc["pooled"] = pooled;
+  doc["pooled_cases"] = "the cases whose other difference's bound is not alone wider than TAU "
+                        "(all but mean and cv at cv_exact 1)";
   io::write_file_atomic(sum.json, doc.dump(1) + "\n");
   return sum;
 }

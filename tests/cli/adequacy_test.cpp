@@ -82,6 +82,8 @@ TEST_F(AdequacyTest, CalibrateWritesRatesForEveryCaseDeltaAndLevel) {
   // 7 cases × 3 δ × (4 nominal levels + the table's share).
   EXPECT_EQ(doc["rows"].size(), 7u * 3u * 5u);
   EXPECT_EQ(io::read_csv(path("c/adequacy-calibration.csv")).num_rows(), 7u * 3u * 5u);
+  EXPECT_EQ(doc["pooled"].size(), 3u * 5u);  // the five pooled cases summed per δ and level
+  EXPECT_EQ(doc["pooled"][0]["decisions"], 5 * 3);
   EXPECT_EQ(doc["family_wise"]["pooled_decisions"], 7 * 3);
   EXPECT_EQ(unexpected_files(path("c"), {}).size(), 2u);
 }

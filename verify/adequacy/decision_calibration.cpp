@@ -30,8 +30,8 @@ void normalized_counts(std::uint64_t trials, double p, double scale, std::uint64
 std::vector<TruthCase> default_truth_cases() {
   std::vector<TruthCase> cases;
   for (TruthKind k : {TruthKind::kMean, TruthKind::kCv})
-    for (double cv : {1.0, 0.3, 0.1}) cases.push_back({k, cv, 1000});
-  cases.push_back({TruthKind::kSmooth, 0, 1000});
+    for (double cv : {1.0, 0.3, 0.1}) cases.push_back({k, cv, 1000, cv < 1});
+  cases.push_back({TruthKind::kSmooth, 0, 1000, true});
   return cases;
 }
 
@@ -124,6 +124,23 @@ DecisionCalibration calibrate_decision(const DecisionCalibrationOptions& o) {
         row.verdict = rate_verdict(row.nominal, row.rate_low, row.rate_high);
         r.rows.push_back(row);
       }
+
+  for (std::size_t d = 0; d < n_deltas; ++d)
+    for (std::size_t l = 0; l < n_levels; ++l) {
+      DecisionRateRow sum = r.rows[d * n_levels + l];  // δ, level and z of this (δ, level)
+      sum.decisions = sum.false_adequate = 0;
+      for (std::size_t c = 0; c < n_cases; ++c) {
+        if (!o.cases[c].pooled) continue;
+        const DecisionRateRow& row = r.rows[(c * n_deltas + d) * n_levels + l];
+        sum.decisions += row.decisions;
+        sum.false_adequate += row.false_adequate;
+      }
+      if (sum.decisions == 0) continue;
+      sum.rate = double(sum.false_adequate) / double(sum.decisions);
+      clopper_pearson(sum.false_adequate, sum.decisions, o.confidence, sum.rate_low, sum.rate_high);
+      sum.verdict = rate_verdict(sum.nominal, sum.rate_low, sum.rate_high);
+      r.pooled.push_back(sum);
+    }
 
   FamilyWiseRow& fw = r.family_wise;
   fw.table_decisions = o.table_decisions;

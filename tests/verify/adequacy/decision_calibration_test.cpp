@@ -93,5 +93,19 @@ TEST(AdequacyDecisionCalibration, SameResultForAnyThreadCount) {
   EXPECT_EQ(counts[0].size(), 7u * 2u * 2u);
 }
 
+TEST(AdequacyDecisionCalibration, PooledRowsSumThePooledCases) {
+  DecisionCalibrationOptions o = boundary_options(50);
+  o.cases = default_truth_cases();
+  o.levels = {0.05};
+  const DecisionCalibration r = calibrate_decision(o);
+  ASSERT_EQ(r.pooled.size(), 2u);  // (δ 0) × (0.05, the table's share)
+  std::size_t sum = 0;
+  for (const DecisionRateRow& row : r.rows)
+    if (!row.table_level && row.truth.cv_exact < 1) sum += row.false_adequate;
+  EXPECT_EQ(r.pooled[0].false_adequate, sum);
+  EXPECT_EQ(r.pooled[0].decisions, 5u * 50u);  // the CV-1 mean and cv cases left out
+  EXPECT_EQ(r.pooled[0].nominal, 0.05);
+}
+
 }  // namespace
 }  // namespace glintlab::verify::adequacy
