@@ -149,9 +149,9 @@ the predicted boundary CV = sqrt((1 - p)/(N_P p)) = TAU drawn over it.
 --calibrate measures the decision instead: on synthetic cells whose cheaper level differs from
 exact by exactly TAU (1 + delta), delta = 0, 0.05, 0.25 (in the mean, in the CV, or the smooth
 level at the boundary), --runs cells each (default 2000) with the budget's positions, how often
-the same rule declares it adequate, at nominal levels 0.05, 0.01, 1e-3 and the table's own, with
-Clopper-Pearson intervals; and the family-wise rate over tables of the grid's size. Writes
-DIR/adequacy-calibration.csv and adequacy-calibration.json.)";
+the same rule declares it adequate, at nominal levels 0.05, 0.01, 1e-3, 1e-4 and the table's own,
+with Clopper-Pearson intervals (also pooled over the cases); and the family-wise rate over tables
+of the grid's size. Writes DIR/adequacy-calibration.csv and adequacy-calibration.json.)";
 
 }  // namespace
 
