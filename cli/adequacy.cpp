@@ -1,6 +1,8 @@
 // `glintlab adequacy [--models GLOBS] [--threshold TAU] [--budget quick|full] [--threads N]
-// [--out DIR]`: where each cheaper level of the binomial glint family is indistinguishable from
-// the exact count (verify/adequacy/, experiments/adequacy/; docs/adequacy.md).
+// [--out DIR] [--calibrate [--runs N]]`: where each cheaper level of the binomial glint family is
+// indistinguishable from the exact count (verify/adequacy/, experiments/adequacy/;
+// docs/adequacy.md); with --calibrate, the decision rule's false-adequate rate on synthetic cells
+// whose truth is known instead.
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
@@ -24,7 +26,52 @@ struct AdequacyCliOptions {
   std::string models = "*";
   std::string threshold = "0.02";
   std::string threads;
+  bool calibrate = false;
+  std::string runs = "2000";
 };
+
+void run_calibration(const experiments::AdequacyCalibrationOptions& a, const std::string& out) {
+  const auto c = experiments::decision_calibration_options(a);
+  Progress bar("adequacy calibration",
+               long(c.runs * c.cases.size() * c.deltas.size()));
+  std::mutex m;
+  experiments::AdequacyCalibrationOptions with_progress = a;
+  with_progress.progress = [&] {
+    const std::lock_guard<std::mutex> lock(m);
+    bar.step("cells");
+  };
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto s = experiments::run_adequacy_calibration(out, with_progress);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto& cal = s.calibration;
+  fmt::print(
+      "adequacy calibration: TAU {:g}, {} positions per cell, the table's {} decisions (z {:.3f}); "
+      "{} synthetic cells per case and delta\n",
+      cal.options.threshold, cal.options.samples, cal.options.table_decisions,
+      cal.table_decision.z, cal.options.runs);
+  for (const auto& r : cal.rows)
+    if (r.delta == 0)
+      fmt::print("  {:6} cv_exact {:<5g} nominal {:<9.3g} false adequate {:>5}/{} = {:.3g} "
+                 "[{:.3g}, {:.3g}] {}\n",
+                 verify::adequacy::kTruthKindNames[std::size_t(r.truth.kind)], r.truth.cv_exact,
+                 r.nominal, r.false_adequate, r.decisions, r.rate, r.rate_low, r.rate_high,
+                 verify::adequacy::kRateVerdictNames[std::size_t(r.verdict)]);
+  for (const auto& r : cal.pooled)
+    fmt::print("  pooled delta {:<4g} nominal {:<9.3g} false adequate {:>5}/{} = {:.3g} "
+               "[{:.3g}, {:.3g}] {}\n",
+               r.delta, r.nominal, r.false_adequate, r.decisions, r.rate, r.rate_low, r.rate_high,
+               verify::adequacy::kRateVerdictNames[std::size_t(r.verdict)]);
+  const auto& fw = cal.family_wise;
+  fmt::print(
+      "family-wise (tables of {} boundary decisions at the table's z): {}/{} tables with a false "
+      "adequate [{:.3g}, {:.3g}]; from {} pooled decisions ({} false adequate): {:.3g} "
+      "[{:.3g}, {:.3g}] against {:g}: {}\n",
+      fw.table_decisions, fw.tables_with_false_adequate, fw.tables, fw.rate_low, fw.rate_high,
+      fw.pooled_decisions, fw.pooled_false_adequate, fw.implied, fw.implied_low, fw.implied_high,
+      fw.nominal, verify::adequacy::kRateVerdictNames[std::size_t(fw.verdict)]);
+  fmt::print("wrote {} and {} in {:.1f} s\n", s.csv.string(), s.json.string(), seconds);
+}
 
 void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
   const bool quick = resolve_budget(cmd, o.budget) == "quick";
@@ -36,10 +83,22 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
                       fmt::format("models of the binomial family: {}", fmt::join(names, ", ")));
   a.threshold = number_option(o.threshold, "--threshold", 0, 1, true, false);
   a.budget = quick ? verify::Budget::kQuick : verify::Budget::kFull;
+  const std::uint64_t runs = integer_option(o.runs, "--runs", 1, 1000000);
+  if (!o.calibrate && option_count(cmd, "--runs") > 0)
+    throw InputError("--runs: only with --calibrate (synthetic cells per case and delta)");
   const int threads = resolve_threads(o.threads);
   check_output_dir(o.out, "--out");
   register_staging_parent(o.out);
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  if (o.calibrate) {
+    experiments::AdequacyCalibrationOptions c;
+    c.models = a.models;
+    c.threshold = a.threshold;
+    c.budget = a.budget;
+    c.runs = std::size_t(runs);
+    run_calibration(c, o.out);
+    return;
+  }
   const auto axes = verify::adequacy::grid_axes(a.budget);
   const long total = long(verify::adequacy::make_grid(a.models, axes).size());
   Progress bar("adequacy", total);
@@ -86,7 +145,13 @@ positions is undecided and keeps exact. `chosen` takes the levels in the order a
 cost order); `cheapest_measured` is the adequate level timed fastest in this run. Writes DIR/adequacy.csv and adequacy.json (the
 table, with each level's measured ns per evaluation: the only numbers that vary run to run) and
 per model x light x incidence an EXR and a labelled PNG map of the cheapest adequate level, with
-the predicted boundary CV = sqrt((1 - p)/(N_P p)) = TAU drawn over it.)";
+the predicted boundary CV = sqrt((1 - p)/(N_P p)) = TAU drawn over it.
+--calibrate measures the decision instead: on synthetic cells whose cheaper level differs from
+exact by exactly TAU (1 + delta), delta = 0, 0.05, 0.25 (in the mean, in the CV, or the smooth
+level at the boundary), --runs cells each (default 2000) with the budget's positions, how often
+the same rule declares it adequate, at nominal levels 0.05, 0.01, 1e-3, 1e-4 and the table's own,
+with Clopper-Pearson intervals (also pooled over the cases); and the family-wise rate over tables
+of the grid's size. Writes DIR/adequacy-calibration.csv and adequacy-calibration.json.)";
 
 }  // namespace
 
@@ -104,6 +169,11 @@ void add_adequacy_command(CLI::App& app) {
   add_text_option(cmd, "--threshold", o->threshold,
                   "TAU, the largest relative difference no one sees: a number in (0, 1]", "NUMBER");
   add_threads_option(cmd, o->threads);
+  add_bool_flag(cmd, "--calibrate", o->calibrate,
+                "measure the decision rule's false-adequate rate on synthetic cells of known truth");
+  add_text_option(cmd, "--runs", o->runs,
+                  "with --calibrate: synthetic cells per case and delta, an integer in [1, 1000000]",
+                  "INT");
   set_footer(cmd, kFooter);
   set_callback(cmd, [cmd, o] { run(cmd, *o); });
 }

@@ -220,4 +220,105 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
   return sum;
 }
 
+verify::adequacy::DecisionCalibrationOptions decision_calibration_options(
+    const AdequacyCalibrationOptions& o) {
+  const verify::adequacy::GridAxes axes = verify::adequacy::grid_axes(o.budget);
+  verify::adequacy::DecisionCalibrationOptions c;
+  c.threshold = o.threshold;
+  c.samples = axes.samples;
+  c.table_decisions =
+      verify::adequacy::make_grid(o.models, axes).size() * std::size_t(kBinomialLevels - 1);
+  c.runs = o.runs;
+  c.progress = o.progress;
+  return c;
+}
+
+AdequacyCalibrationSummary run_adequacy_calibration(const std::filesystem::path& out,
+                                                    const AdequacyCalibrationOptions& o) {
+  using verify::adequacy::DecisionRateRow;
+  using verify::adequacy::kRateVerdictNames;
+  using verify::adequacy::kTruthKindNames;
+  AdequacyCalibrationSummary sum;
+  sum.calibration = verify::adequacy::calibrate_decision(decision_calibration_options(o));
+  const verify::adequacy::DecisionCalibration& cal = sum.calibration;
+  std::filesystem::create_directories(out);
+  sum.csv = out / "adequacy-calibration.csv";
+  sum.json = out / "adequacy-calibration.json";
+  const std::vector<std::string_view> header = {
+      "kind",   "cv_exact",  "trials",         "delta",     "true_difference",
+      "nominal", "z",        "table_level",    "decisions", "false_adequate",
+      "rate",    "rate_low", "rate_high",      "verdict"};
+  io::write_csv_atomic(sum.csv, header, [&](io::CsvWriter& w) {
+    for (const DecisionRateRow& r : cal.rows) {
+      w.cell(kTruthKindNames[std::size_t(r.truth.kind)]).cell(r.truth.cv_exact);
+      w.cell_int(std::int64_t(r.truth.trials)).cell(r.delta).cell(cal.options.threshold * (1 + r.delta));
+      w.cell(r.nominal).cell(r.z).cell_int(r.table_level ? 1 : 0);
+      w.cell_int(std::int64_t(r.decisions)).cell_int(std::int64_t(r.false_adequate));
+      w.cell(r.rate).cell(r.rate_low).cell(r.rate_high);
+      w.cell(kRateVerdictNames[std::size_t(r.verdict)]);
+      w.end_row();
+    }
+  });
+  nlohmann::json doc;
+  doc["threshold"] = cal.options.threshold;
+  doc["positions_per_cell"] = cal.options.samples;
+  doc["table_decisions"] = cal.options.table_decisions;
+  doc["table_z"] = cal.table_decision.z;
+  doc["family_wise_rate"] = verify::kFamilyWiseRate;
+  doc["runs_per_case"] = cal.options.runs;
+  doc["confidence"] = cal.options.confidence;
+  doc["truth"] = {
+      {"exact", "Binomial(trials, p)/(trials p), p = 1/(1 + trials cv_exact^2)"},
+      {"mean", "an independent draw of the exact count times 1 + TAU (1 + delta)"},
+      {"cv", "an independent Binomial(trials, p')/(trials p') of CV cv_exact + TAU (1 + delta)"},
+      {"smooth", "the constant 1 against an exact level of CV TAU (1 + delta)"}};
+  const verify::adequacy::FamilyWiseRow& fw = cal.family_wise;
+  doc["family_wise"] = {{"table_decisions", fw.table_decisions},
+                        {"tables", fw.tables},
+                        {"tables_with_false_adequate", fw.tables_with_false_adequate},
+                        {"rate", fw.rate},
+                        {"rate_low", fw.rate_low},
+                        {"rate_high", fw.rate_high},
+                        {"nominal", fw.nominal},
+                        {"pooled_decisions", fw.pooled_decisions},
+                        {"pooled_false_adequate", fw.pooled_false_adequate},
+                        {"implied", fw.implied},
+                        {"implied_low", fw.implied_low},
+                        {"implied_high", fw.implied_high},
+                        {"verdict", kRateVerdictNames[std::size_t(fw.verdict)]}};
+  nlohmann::json rows = nlohmann::json::array();
+  for (const DecisionRateRow& r : cal.rows)
+    rows.push_back({{"kind", kTruthKindNames[std::size_t(r.truth.kind)]},
+                    {"cv_exact", r.truth.cv_exact},
+                    {"trials", r.truth.trials},
+                    {"delta", r.delta},
+                    {"nominal", r.nominal},
+                    {"z", r.z},
+                    {"table_level", r.table_level},
+                    {"decisions", r.decisions},
+                    {"false_adequate", r.false_adequate},
+                    {"rate", r.rate},
+                    {"rate_low", r.rate_low},
+                    {"rate_high", r.rate_high},
+                    {"verdict", kRateVerdictNames[std::size_t(r.verdict)]}});
+  doc["rows"] = rows;
+  nlohmann::json pooled = nlohmann::json::array();
+  for (const DecisionRateRow& r : cal.pooled)
+    pooled.push_back({{"delta", r.delta},
+                      {"nominal", r.nominal},
+                      {"z", r.z},
+                      {"table_level", r.table_level},
+                      {"decisions", r.decisions},
+                      {"false_adequate", r.false_adequate},
+                      {"rate", r.rate},
+                      {"rate_low", r.rate_low},
+                      {"rate_high", r.rate_high},
+                      {"verdict", kRateVerdictNames[std::size_t(r.verdict)]}});
+  doc["pooled"] = pooled;
+  doc["pooled_cases"] = "the cases whose other difference's bound is not alone wider than TAU "
+                        "(all but mean and cv at cv_exact 1)";
+  io::write_file_atomic(sum.json, doc.dump(1) + "\n");
+  return sum;
+}
+
 }  // namespace glintlab::experiments

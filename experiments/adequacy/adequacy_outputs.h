@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "verify/adequacy/binomial_adequacy.h"
+#include "verify/adequacy/decision_calibration.h"
 
 namespace glintlab::experiments {
 
@@ -42,5 +43,30 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
 
 // The table alone (for the tests): the cells of the budget's grid for `models`, measured.
 std::vector<verify::adequacy::CellResult> measure_adequacy(const AdequacyOptions& o);
+
+// `glintlab adequacy --calibrate`: the decision rule's false-adequate rate on synthetic cells
+// whose truth is known (verify/adequacy/decision_calibration.h), at the budget's positions per
+// cell and the number of decisions of the budget's table for `models`. Writes
+// adequacy-calibration.csv (one row per case, δ and nominal level) and adequacy-calibration.json
+// (the same with the settings and the family-wise rows), each atomically.
+struct AdequacyCalibrationOptions {
+  std::vector<std::string> models;
+  double threshold = verify::adequacy::kDefaultThreshold;
+  verify::Budget budget = verify::Budget::kQuick;
+  std::size_t runs = 2000;          // synthetic cells per (case, δ)
+  std::function<void()> progress;   // once per synthetic cell, never concurrently
+};
+
+struct AdequacyCalibrationSummary {
+  std::filesystem::path json, csv;
+  verify::adequacy::DecisionCalibration calibration;
+};
+
+// The options a calibration run uses for `o` (the grid's positions and decision count).
+verify::adequacy::DecisionCalibrationOptions decision_calibration_options(
+    const AdequacyCalibrationOptions& o);
+
+AdequacyCalibrationSummary run_adequacy_calibration(const std::filesystem::path& out,
+                                                    const AdequacyCalibrationOptions& o);
 
 }  // namespace glintlab::experiments

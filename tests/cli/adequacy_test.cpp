@@ -65,6 +65,27 @@ TEST_F(AdequacyTest, BadInputIsOneLineAndWritesNothing) {
                      {"--models", "deliot_belcour, kneiphof_klein"}, {});
   expect_input_error(run({"adequacy", "--budget", "huge", "--out", "o"}), {"--budget"}, {});
   expect_input_error(run({"adequacy", "--threads", "-1", "--out", "o"}), {"--threads"}, {});
+  expect_input_error(run({"adequacy", "--calibrate", "--runs", "0", "--out", "o"}),
+                     {"--runs", "[1, 1000000]"}, {});
+  expect_input_error(run({"adequacy", "--runs", "10", "--out", "o"}), {"--runs", "--calibrate"},
+                     {});
+}
+
+TEST_F(AdequacyTest, CalibrateWritesRatesForEveryCaseDeltaAndLevel) {
+  const RunResult r = run({"adequacy", "--calibrate", "--runs", "3", "--models", "deliot_belcour",
+                           "--out", "c", "--threads", "2"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("972 decisions"), std::string::npos) << r.out;  // 324 cells × 3 levels
+  const auto doc = nlohmann::json::parse(read_text(path("c/adequacy-calibration.json")));
+  EXPECT_EQ(doc["table_decisions"], 972);
+  EXPECT_EQ(doc["positions_per_cell"], 8000);
+  // 7 cases × 3 δ × (4 nominal levels + the table's share).
+  EXPECT_EQ(doc["rows"].size(), 7u * 3u * 5u);
+  EXPECT_EQ(io::read_csv(path("c/adequacy-calibration.csv")).num_rows(), 7u * 3u * 5u);
+  EXPECT_EQ(doc["pooled"].size(), 3u * 5u);  // the five pooled cases summed per δ and level
+  EXPECT_EQ(doc["pooled"][0]["decisions"], 5 * 3);
+  EXPECT_EQ(doc["family_wise"]["pooled_decisions"], 7 * 3);
+  EXPECT_EQ(unexpected_files(path("c"), {}).size(), 2u);
 }
 
 }  // namespace

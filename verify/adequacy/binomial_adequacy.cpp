@@ -126,7 +126,11 @@ std::vector<Cell> make_grid(const std::vector<std::string>& models, const GridAx
 
 Decision decision_for(std::size_t cells, double threshold) {
   const std::size_t tests = cells * std::size_t(kBinomialLevels - 1);
-  return {threshold, normal_quantile_upper(sidak_level(kFamilyWiseRate, tests))};
+  return decision_at_level(sidak_level(kFamilyWiseRate, tests), threshold);
+}
+
+Decision decision_at_level(double level, double threshold) {
+  return {threshold, normal_quantile_upper(level)};
 }
 
 double level_values(const Cell& cell, BinomialLevel level, int samples, std::uint64_t seed,

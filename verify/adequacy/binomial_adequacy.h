@@ -90,6 +90,8 @@ struct Decision {
 // over every (cell, cheaper level) decision, so that the whole table declares a level adequate that
 // is not with probability at most kFamilyWiseRate (asymptotically: the bounds are delta-method).
 Decision decision_for(std::size_t cells, double threshold);
+// The decision whose bounds have one-sided level `level` (z = Φ⁻¹(1 − level)).
+Decision decision_at_level(double level, double threshold);
 
 // The pixel values of one level at `samples` surface positions (the footprint centre moved over a
 // 2-d low-discrepancy set; the counter RNG is keyed by it), with the model seed `seed`; returns the
