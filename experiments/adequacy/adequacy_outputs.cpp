@@ -76,6 +76,20 @@ nlohmann::json level_json(const LevelStats& s) {
           {"ns_per_eval", s.ns_per_eval}};
 }
 
+// One measured false-adequate rate of the decision calibration (a case's row or a pooled one).
+nlohmann::json rate_json(const verify::adequacy::DecisionRateRow& r) {
+  return {{"delta", r.delta},
+          {"nominal", r.nominal},
+          {"z", r.z},
+          {"table_level", r.table_level},
+          {"decisions", r.decisions},
+          {"false_adequate", r.false_adequate},
+          {"rate", r.rate},
+          {"rate_low", r.rate_low},
+          {"rate_high", r.rate_high},
+          {"verdict", verify::adequacy::kRateVerdictNames[std::size_t(r.verdict)]}};
+}
+
 }  // namespace
 
 std::vector<CellResult> measure_adequacy(const AdequacyOptions& o) {
@@ -287,33 +301,16 @@ AdequacyCalibrationSummary run_adequacy_calibration(const std::filesystem::path&
                         {"implied_high", fw.implied_high},
                         {"verdict", kRateVerdictNames[std::size_t(fw.verdict)]}};
   nlohmann::json rows = nlohmann::json::array();
-  for (const DecisionRateRow& r : cal.rows)
-    rows.push_back({{"kind", kTruthKindNames[std::size_t(r.truth.kind)]},
-                    {"cv_exact", r.truth.cv_exact},
-                    {"trials", r.truth.trials},
-                    {"delta", r.delta},
-                    {"nominal", r.nominal},
-                    {"z", r.z},
-                    {"table_level", r.table_level},
-                    {"decisions", r.decisions},
-                    {"false_adequate", r.false_adequate},
-                    {"rate", r.rate},
-                    {"rate_low", r.rate_low},
-                    {"rate_high", r.rate_high},
-                    {"verdict", kRateVerdictNames[std::size_t(r.verdict)]}});
+  for (const DecisionRateRow& r : cal.rows) {
+    nlohmann::json row = rate_json(r);
+    row["kind"] = kTruthKindNames[std::size_t(r.truth.kind)];
+    row["cv_exact"] = r.truth.cv_exact;
+    row["trials"] = r.truth.trials;
+    rows.push_back(std::move(row));
+  }
   doc["rows"] = rows;
   nlohmann::json pooled = nlohmann::json::array();
-  for (const DecisionRateRow& r : cal.pooled)
-    pooled.push_back({{"delta", r.delta},
-                      {"nominal", r.nominal},
-                      {"z", r.z},
-                      {"table_level", r.table_level},
-                      {"decisions", r.decisions},
-                      {"false_adequate", r.false_adequate},
-                      {"rate", r.rate},
-                      {"rate_low", r.rate_low},
-                      {"rate_high", r.rate_high},
-                      {"verdict", kRateVerdictNames[std::size_t(r.verdict)]}});
+  for (const DecisionRateRow& r : cal.pooled) pooled.push_back(rate_json(r));
   doc["pooled"] = pooled;
   doc["pooled_cases"] = "the cases whose other difference's bound is not alone wider than TAU "
                         "(all but mean and cv at cv_exact 1)";
