@@ -27,6 +27,7 @@
 #include "cli/progress.h"
 #include "core/io/atomic_file.h"
 #include "core/model_registry.h"
+#include "core/plugin_loader.h"
 #include "experiments/compare/compare.h"
 #include "experiments/figures/figure_registry.h"
 #include "verify/check.h"
@@ -43,6 +44,7 @@ struct ReportOptions {
   bool reuse = false;
   std::string claims = "*";
   std::string figures = "*";
+  std::string models = "*";  // the models the stability and compare parts cover
   std::string claims_from;  // a `glintlab verify --out` folder to read instead of running it
   std::string skip;         // comma-separated parts
 };
@@ -55,6 +57,14 @@ constexpr const char* kPartDirs[] = {"verify", "bench", "figures", "stability", 
 constexpr const char* kPartIndex[] = {"claims.json", "bench.json", "figures.json", "stability.json",
                                       "compare.json"};
 constexpr int kNumParts = 5;
+
+// This glintlab with this process's --plugin options, so that a child run knows the same models
+// (GLINTLAB_PLUGINS, the other route, is inherited).
+std::vector<std::string> glintlab_command() {
+  std::vector<std::string> args = {self_exe().string()};
+  for (const std::string& p : plugin_option_paths()) args.insert(args.end(), {"--plugin", p});
+  return args;
+}
 
 std::string cpu_model() {
   std::ifstream in("/proc/cpuinfo");
@@ -160,6 +170,7 @@ class ReportRun {
   std::string budget_;
   std::vector<std::string> skip_;
   std::vector<const experiments::FigureEntry*> figures_;
+  std::vector<std::string> models_;
   std::unique_ptr<Progress> progress_;
 };
 
@@ -190,6 +201,10 @@ void ReportRun::validate() {
   for (const experiments::FigureEntry& e : experiments::registered_figures())
     if (std::find(chosen.begin(), chosen.end(), std::string(e.id)) != chosen.end())
       figures_.push_back(&e);
+  std::vector<std::string> names;
+  for (const ModelEntry& m : registered_models()) names.emplace_back(m.name);
+  models_ = select_by_globs(o_.models, "--models", names,
+                            fmt::format("model names: {}", fmt::join(names, ", ")));
   if (!o_.claims_from.empty() && !fs::is_regular_file(fs::path(o_.claims_from) / "claims.json"))
     throw InputError(
         fmt::format("--claims-from: '{}' holds no claims.json (a glintlab verify --out "
@@ -216,16 +231,9 @@ void ReportRun::run_claims(json& part) {
     part["note"] = fmt::format("read from {} (glintlab verify --out)", o_.claims_from);
     return;
   }
-  const std::vector<std::string> args = {self_exe().string(),
-                                         "verify",
-                                         "--claims",
-                                         o_.claims,
-                                         "--budget",
-                                         budget_,
-                                         "--threads",
-                                         std::to_string(threads_),
-                                         "--out",
-                                         (stage_ / "verify").string()};
+  std::vector<std::string> args = glintlab_command();
+  args.insert(args.end(), {"verify", "--claims", o_.claims, "--budget", budget_, "--threads",
+                           std::to_string(threads_), "--out", (stage_ / "verify").string()});
   const int rc = child(args, "verify");
   // 1 = a verdict differs from the recorded one: a finding the report shows, not a failure.
   if (rc != 0 && rc != 1) child_failed("glintlab verify", rc, "verify");
@@ -349,9 +357,10 @@ void ReportRun::run_stability(json& part) {
     part["note"] = "this glintlab has no sweep subcommand (stability sweeps not built in)";
     return;
   }
-  std::vector<std::string> args = {self_exe().string(), "sweep", "--out",
-                                   (stage_ / "stability").string()};
-  args.insert(args.end(), {"--budget", budget_, "--threads", std::to_string(threads_)});
+  std::vector<std::string> args = glintlab_command();
+  args.insert(args.end(), {"sweep", "--out", (stage_ / "stability").string()});
+  args.insert(args.end(), {"--budget", budget_, "--threads", std::to_string(threads_),
+                           "--models", fmt::format("{}", fmt::join(models_, ","))});
   const int rc = child(args, "sweep");
   if (rc != 0) child_failed("glintlab sweep", rc, "sweep");
   part["status"] = "ran";
@@ -364,7 +373,7 @@ void ReportRun::run_compare(json& part) {
   const auto start = std::chrono::steady_clock::now();
   experiments::compare::CompareOptions c;
   c.budget = quick() ? verify::Budget::kQuick : verify::Budget::kFull;
-  for (const ModelEntry& m : registered_models()) c.models.emplace_back(m.name);
+  c.models = models_;
   c.measure_missing = false;
   if (fs::is_regular_file(stage_ / "verify" / "claims.json")) c.claims_from = stage_ / "verify";
   if (fs::is_regular_file(stage_ / "stability" / "stability.json"))
@@ -534,7 +543,7 @@ constexpr const char* kFooter =
 Markdown twin report.md, and beside them every input: verify/ (claims.json, .csv, .md),
 figures/<id>/ (EXR, PNG, CSV of each figure), bench/ (bench.json, accuracy.csv, glints.json and
 kemppinen.json, run before the figures, whose timing tables read them, methods/*.json), stability/
-(stability.json and its maps), compare/ (glintlab compare of every registered model, from the verify and
+(stability.json and its maps), compare/ (glintlab compare of the --models, from the verify and
 stability parts' outputs: compare.json, compare.csv, equal_time.csv), plots/ (the charts drawn by reports/make_report.py: convergence
 log-log plots, speed_accuracy.png, speed_accuracy_methods.png and speed_accuracy.csv), logs/ and run.json (machine, budget,
 date and status of each part). The report is staged in a hidden folder beside DIR and replaces DIR only when it is
@@ -559,6 +568,10 @@ void add_report_command(CLI::App& app) {
                   "comma-separated globs over claim ids (see glintlab verify --list)", "LIST");
   add_text_option(cmd, "--figures", o->figures,
                   "comma-separated globs over figure ids (see glintlab figure --list)", "LIST");
+  add_text_option(cmd, "--models", o->models,
+                  "comma-separated globs over model names (see glintlab models): the models the "
+                  "stability and compare parts cover",
+                  "LIST");
   add_text_option(cmd, "--claims-from", o->claims_from,
                   "a glintlab verify --out folder whose claims.json the report shows instead of "
                   "running the suite",

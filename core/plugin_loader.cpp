@@ -147,11 +147,23 @@ std::vector<std::string> take_plugin_options(int& argc, char** argv, bool leadin
   return paths;
 }
 
+namespace {
+std::vector<std::string>& loaded_option_paths() {
+  static std::vector<std::string> paths;
+  return paths;
+}
+}  // namespace
+
 void load_plugins(int& argc, char** argv, bool leading_only) {
   // Both lists are read before anything loads: a --plugin without a value fails first.
   const std::vector<std::string> from_options = take_plugin_options(argc, argv, leading_only);
   for (const std::string& p : plugin_paths_from_environment()) load_plugin(p, "GLINTLAB_PLUGINS:");
-  for (const std::string& p : from_options) load_plugin(p, "--plugin");
+  for (const std::string& p : from_options) {
+    load_plugin(p, "--plugin");
+    loaded_option_paths().push_back(p);
+  }
 }
+
+const std::vector<std::string>& plugin_option_paths() { return loaded_option_paths(); }
 
 }  // namespace glintlab

@@ -36,4 +36,8 @@ std::vector<std::string> take_plugin_options(int& argc, char** argv, bool leadin
 // GLINTLAB_PLUGINS' plug-ins, then the --plugin ones taken from argv (take_plugin_options).
 void load_plugins(int& argc, char** argv, bool leading_only);
 
+// The --plugin paths load_plugins loaded, in order: a command that runs glintlab as a child
+// process passes them on, so the child knows the same models (GLINTLAB_PLUGINS is inherited).
+const std::vector<std::string>& plugin_option_paths();
+
 }  // namespace glintlab

@@ -63,10 +63,11 @@ set(glintlab_slow_tests
   "KemppinenFigureTest.Fig2_3DiskAndHemisphere 1"
   "KemppinenTimingTest.FiguresReadTheBenchmarkJson 4"
   "KemppinenTimingTest.SpeedAccuracyWithoutJson 3"
+  "PluginTest.ReportCoversThePluginModelInEveryPart 3"
   "PluginTest.SweepFigureAndGenericClaimCoverThePluginModel 21"
   "PodeeCliTest.DistanceAndFlickerQuick 2"
-  "ReportTest.ReuseReadsCachedResultsAndAMalformedOneLeavesTheOldReport 12"
-  "ReportTest.SmallRealRun 15"
+  "ReportTest.ReuseReadsCachedResultsAndAMalformedOneLeavesTheOldReport 1"
+  "ReportTest.SmallRealRun 4"
   # Every batched kernel or model on every ISA against its scalar instantiation, on enough rows
   # to reach the recorded worst cases (tests/simd/).
   "SimdChermainEquivalence.DoubleEveryIsa 6"

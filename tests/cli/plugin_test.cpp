@@ -1,7 +1,7 @@
 // Model plug-ins (glintlab/plugin.h, core/plugin_loader.h) through the CLI: the example model
 // built as a plug-in (tests/plugin/example_plugin.cpp) is listed, evaluates and samples with the
 // same numbers as the same model registered in this process, and reaches the sweeps, the generic
-// claims and the registry-driven figure; each kind of bad plug-in is refused with one line.
+// claims, the registry-driven figure and a report; each kind of bad plug-in is refused with one line.
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
@@ -151,6 +151,27 @@ TEST_F(PluginTest, SweepFigureAndGenericClaimCoverThePluginModel) {
   ASSERT_EQ(verify.exit_code, 0) << verify.err;
   EXPECT_NE(read_text(path("verify/claims.json")).find("example_glints/default"),
             std::string::npos);
+}
+
+// `glintlab --plugin X report`: the report's verify and sweep parts run as child processes, which
+// get the same --plugin, so the plug-in model's conformance row, stability sweep and compare row
+// are all in the report.
+TEST_F(PluginTest, ReportCoversThePluginModelInEveryPart) {
+  const RunResult r = run({"--plugin", kTestPlugin, "report", "--out", "r", "--claims",
+                           "model.example_glints.energy", "--models", "example_glints", "--skip",
+                           "figures,bench", "--threads", "2"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(read_text(path("r/verify/claims.json")).find("\"model.example_glints.energy\""),
+            std::string::npos);
+  const auto stability = nlohmann::json::parse(read_text(path("r/stability/stability.json")));
+  ASSERT_EQ(stability["models"].size(), 1u);
+  EXPECT_EQ(stability["models"][0]["model"], "example_glints");
+  const auto compare = nlohmann::json::parse(read_text(path("r/compare/compare.json")));
+  ASSERT_EQ(compare["models"].size(), 1u);
+  EXPECT_EQ(compare["models"][0]["name"], "example_glints");
+  EXPECT_EQ(compare["models"][0]["stability"][0]["origin"].get<std::string>().find("not"),
+            std::string::npos)
+      << compare["models"][0]["stability"].dump();
 }
 
 // A plug-in whose eval throws (throwing_eval) or returns NaN (nan_eval): the checks that need eval

@@ -54,13 +54,16 @@ TEST_F(ReportTest, BadOptionsAreErrors) {
                      {"--skip", "pictures", "claims, figures, bench, stability"}, {});
   expect_input_error(run({"report", "--out", "r", "--figures", "nope*"}),
                      {"--figures", "nope*", "figure --list"}, {});
+  expect_input_error(run({"report", "--out", "r", "--models", "nope*"}),
+                     {"--models", "nope*", "smooth_ggx"}, {});
   expect_input_error(run({"report", "--out", "r", "--claims-from", "missing"}),
                      {"--claims-from", "missing", "claims.json"}, {});
 }
 
 TEST_F(ReportTest, ReuseReadsCachedResultsAndAMalformedOneLeavesTheOldReport) {
   fs::copy(kReportFixtures, path("report"), fs::copy_options::recursive);
-  RunResult r = run({"report", "--out", "report", "--reuse", "--skip", "bench"});
+  RunResult r =
+      run({"report", "--out", "report", "--reuse", "--skip", "bench", "--models", "smooth_ggx"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string html = read_text(path("report/index.html"));
   EXPECT_NE(html.find("fixture.fails"), std::string::npos);
@@ -117,8 +120,10 @@ TEST_F(ReportTest, TimingFiguresReadTheReportsOwnBenchmarks) {
 }
 
 TEST_F(ReportTest, SmallRealRun) {
-  const RunResult r = run({"report", "--out", "r", "--claims", "kneiphof.total-area", "--figures",
-                           "eto2023-fig4", "--skip", "bench,stability", "--threads", "2"});
+  // compare covers the --models only: one model with a cubature reference, one with Monte Carlo.
+  const RunResult r =
+      run({"report", "--out", "r", "--claims", "kneiphof.total-area", "--figures", "eto2023-fig4",
+           "--models", "smooth_ggx,kneiphof_klein", "--skip", "bench,stability", "--threads", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("report: wrote r/index.html and r/report.md"), std::string::npos) << r.out;
   for (const char* f : {"r/index.html", "r/report.md", "r/run.json", "r/verify/claims.json",
@@ -144,6 +149,9 @@ TEST_F(ReportTest, SmallRealRun) {
   // The compare part names the report's own folders, never the staging folder it was built in.
   const auto cmp = nlohmann::json::parse(read_text(path("r/compare/compare.json")));
   EXPECT_EQ(cmp["settings"]["claims_from"], "r/verify");
+  ASSERT_EQ(cmp["models"].size(), 2u);
+  EXPECT_EQ(cmp["models"][0]["name"], "smooth_ggx");
+  EXPECT_EQ(cmp["models"][1]["name"], "kneiphof_klein");
   EXPECT_EQ(html.find(".tmp."), std::string::npos) << "a staging path is shown in the report";
   // Nothing but the report itself is left in the working folder (no staging folder).
   for (const auto& e : fs::directory_iterator(work()))
