@@ -52,7 +52,6 @@ set(glintlab_slow_tests
   "ChermainCli.Fig9Quick 1"
   "CompareTest.PluginModelBesideThePapersModelsAndThreadIndependent 8"
   "CompareTest.ReadsVerdictsAndFailureRegionsFromEarlierRuns 1"
-  "ExampleModel.AppearsInTheStabilityClaim 13"
   "ExampleModel.GetsTheRegistryDrivenFigure 2"
   "FigureTest.EnvironmentMapFromExr 1"
   "FigureTest.Fig4QuickWritesExrPngAndCsv 1"

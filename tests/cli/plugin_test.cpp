@@ -149,8 +149,12 @@ TEST_F(PluginTest, SweepFigureAndGenericClaimCoverThePluginModel) {
   const RunResult verify = run({"--plugin", kTestPlugin, "verify", "--claims", "all.stability",
                                 "--budget", "quick", "--out", "verify"});
   ASSERT_EQ(verify.exit_code, 0) << verify.err;
-  EXPECT_NE(read_text(path("verify/claims.json")).find("example_glints/default"),
-            std::string::npos);
+  const auto claims = nlohmann::json::parse(read_text(path("verify/claims.json")));
+  ASSERT_EQ(claims.size(), 1u);
+  EXPECT_NE(claims[0]["detail"].get<std::string>().find("example_glints/default"),
+            std::string::npos)
+      << claims[0]["detail"];
+  EXPECT_TRUE(claims[0]["control_rejected"].get<bool>()) << claims[0]["control"];
 }
 
 // `glintlab --plugin X report`: the report's verify and sweep parts run as child processes, which

@@ -16,6 +16,9 @@ TEST(AcrossClaims, StabilityVerdictAndControl) {
   const CheckResult r = c->run(Budget::kQuick);
   EXPECT_EQ(r.verdict, c->expected) << r.detail;
   EXPECT_TRUE(r.control_rejected) << r.control;
+  ASSERT_TRUE(r.control_verdict.has_value());
+  EXPECT_TRUE(control_opposes(r.verdict, *r.control_verdict)) << to_string(*r.control_verdict);
+  EXPECT_EQ(r.verdict == Verdict::kHoldsInRegime, !r.regime.empty()) << r.regime;
   EXPECT_NE(r.control.find("NaN in value"), std::string::npos) << r.control;
   EXPECT_NE(r.detail.find("smooth_ggx/vndf"), std::string::npos) << r.detail;
   EXPECT_GT(r.configurations, 0);
