@@ -2,7 +2,8 @@
 # project builds it. Install glintlab into a scratch prefix, configure and build the example
 # against that install only (CMAKE_PREFIX_PATH, no path into the source or build tree), then run
 # the INSTALLED glintlab with it: `models` lists it, `eval --model` gives a finite value for every
-# query row, and its conformance claims run at the quick budget (CONFORMANCE=ON).
+# query row, and its conformance claims run at the quick budget and give exactly the verdicts the
+# model declares, exit 0 (CONFORMANCE=ON).
 include("${CMAKE_CURRENT_LIST_DIR}/install_and_build.cmake")
 # Built as on a machine without OpenEXR, PNG and TBB: a plug-in needs only the headers' packages.
 install_and_build("${EXAMPLE}" "example" -DCMAKE_DISABLE_FIND_PACKAGE_OpenEXR=TRUE
@@ -44,11 +45,28 @@ if(CONFORMANCE)
   execute_process(COMMAND "${glintlab}" --plugin "${plugin}" verify
                           --claims "model.zirr_kaplanyan.*" --budget quick --out "${WORK}/verify"
                   RESULT_VARIABLE r OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  # Exit 1 means a verdict differs from the recorded one: a plug-in model has no recorded verdicts
-  # other than what it declares, so only a run that could not complete (exit 2) or a control
-  # that was not rejected fails this test.
-  if(r EQUAL 2 OR NOT EXISTS "${WORK}/verify/claims.json" OR out MATCHES "NOT REJECTED")
+  # Exit 0: every verdict is the one the model declares (holds, and not-claimed for the property
+  # in its kNotClaimed, energy) and every control is rejected; exit 1 (a verdict differs), 2 (the
+  # run could not complete) or 3 (a check could not run) fails this test.
+  if(NOT r EQUAL 0 OR NOT EXISTS "${WORK}/verify/claims.json" OR out MATCHES "NOT REJECTED")
     message(FATAL_ERROR "conformance claims of zirr_kaplanyan (exit ${r}):\n${out}\n${err}")
   endif()
+  file(READ "${WORK}/verify/claims.json" claims)
+  string(JSON rows LENGTH "${claims}")
+  if(NOT rows EQUAL 10)
+    message(FATAL_ERROR "expected the 10 conformance properties, got ${rows} rows")
+  endif()
+  math(EXPR last "${rows} - 1")
+  foreach(i RANGE ${last})
+    string(JSON id GET "${claims}" ${i} id)
+    string(JSON verdict GET "${claims}" ${i} verdict)
+    set(want "holds")
+    if(id STREQUAL "model.zirr_kaplanyan.energy")
+      set(want "not-claimed")
+    endif()
+    if(NOT verdict STREQUAL want)
+      message(FATAL_ERROR "${id}: verdict ${verdict}, the example declares ${want}")
+    endif()
+  endforeach()
   message(STATUS "${out}")
 endif()
