@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The main job: install dependencies, build, run the claim suite (`glintlab verify`), then the
+# The main job: install dependencies, build and install (scripts/install.sh), run the claim suite (`glintlab verify`), then the
 # report of everything (`glintlab report`: figures, benchmarks, stability maps when built in, and
 # the verdicts just computed) as out/report/index.html and out/report/report.md.
 # Usage (as root on Debian 12): bash scripts/main.sh [--budget quick|full]
@@ -9,6 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh release
+bash scripts/install.sh
 out="${GLINTLAB_OUT:-out}"
 mkdir -p "$out"
 verify_rc=0
