@@ -217,12 +217,12 @@ std::optional<Recorded> recorded_verdict(std::string_view model, std::string_vie
   using V = Verdict;
   // Measured at the quick budget (and full where noted); see docs/data/claims-quick.json.
   static const std::map<std::pair<std::string_view, std::string_view>, Recorded> table = {
-      // Binomial counts drawn from float and double disagree on 54 % of random queries (the
-      // count's inputs, rounded to float, land on other sides of the gates; the float path is
-      // not a rounding of the double one).
+      // Binomial counts drawn from float and double disagree on a large share of the queries
+      // (the count's inputs, rounded to float, land on other sides of the gates; the float path
+      // is not a rounding of the double one). The same for Kneiphof & Klein's counts and
+      // Kemppinen's glint sums (glints at the threshold of the cell and LOD decisions). The
+      // shares are the recorded rows' values (docs/data/claims-quick.json).
       {{"deliot_belcour", "float-vs-double"}, {V::kFails}},
-      // The same for Kneiphof & Klein's counts (4.9 % of queries) and Kemppinen's glint sums
-      // (1.3 % GGX, 2.8 % Beckmann: glints at the threshold of the cell and LOD decisions).
       {{"kneiphof_klein", "float-vs-double"}, {V::kFails}},
       {{"kemppinen_ggx", "float-vs-double"}, {V::kFails}},
       {{"kemppinen_beckmann", "float-vs-double"}, {V::kFails}},
