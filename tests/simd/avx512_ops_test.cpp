@@ -25,6 +25,7 @@ const char* op_label(Op op) {
       "add",  "sub",   "mul",      "div",      "sqrt",   "fma",    "neg",        "abs",
       "min",  "max",   "floor",    "copysign", "sign_not_zero",   "less",       "less_equal",
       "greater",       "greater_equal",        "equal",  "not_equal",           "isfinite",
+      "hash32 uniform",
       "exp",  "expm1", "log",      "log1p",    "erf",    "erfc",   "atan",       "acos",
       "acosh", "atan2", "sin",     "cos",      "tan",    "fast rsqrt",
       "unfused_fma (xsimd 8.1 AVX-512)",
@@ -37,7 +38,7 @@ constexpr Op kCorrectlyRounded[] = {
     Op::kAdd,   Op::kSub,      Op::kMul,          Op::kDiv,  Op::kSqrt,      Op::kFma,
     Op::kNeg,   Op::kAbs,      Op::kMin,          Op::kMax,  Op::kFloor,     Op::kCopysign,
     Op::kSignNotZero, Op::kLess, Op::kLessEqual,  Op::kGreater, Op::kGreaterEqual, Op::kEqual,
-    Op::kNotEqual, Op::kIsfinite};
+    Op::kNotEqual, Op::kIsfinite, Op::kHash32Uniform};
 // xsimd's algorithms, the same on AVX2 and AVX-512 once both have a fused fma.
 constexpr Op kSameAlgorithm[] = {Op::kExp,  Op::kExpm1, Op::kLog,   Op::kLog1p, Op::kErf,
                                  Op::kErfc, Op::kAtan,  Op::kAcos,  Op::kAcosh, Op::kAtan2};

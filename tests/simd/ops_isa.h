@@ -13,6 +13,9 @@ enum class Op {
   // Correctly rounded IEEE 754 operations (and comparisons, selects): equal to scalar bit for bit.
   kAdd, kSub, kMul, kDiv, kSqrt, kFma, kNeg, kAbs, kMin, kMax, kFloor, kCopysign, kSignNotZero,
   kLess, kLessEqual, kGreater, kGreaterEqual, kEqual, kNotEqual, kIsfinite,
+  // core/math/hash32.h in the batch's integer lanes: hash32_uniform(hash32_counter(index(a),
+  // index(b), index(c))), bit for bit the scalar one.
+  kHash32Uniform,
   // xsimd's vectorised libm: within a few ulp of glibc, never bit-identical to it.
   kExp, kExpm1, kLog, kLog1p, kErf, kErfc, kAtan, kAcos, kAcosh, kAtan2, kSin, kCos, kTan,
   // core/simd/fast_math.h's rsqrt (hardware estimate + one Newton step), float only (0 in double).
