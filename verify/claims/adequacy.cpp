@@ -1,7 +1,10 @@
 // Claim adequacy.prediction-matches-measurement: the closed forms the adequacy chooser
 // (core/glints/adequacy.h) is built on — the count's CV √((1 − p)/(N_P p)) and P(no glint) =
 // (1 − p)^N_P — match the pixel values the binomial glint models give over surface positions
-// (verify/adequacy/binomial_adequacy.h), at the exact counting level, from N_P = 1 to 10^8.
+// (verify/adequacy/binomial_adequacy.h), at the exact counting level, from N_P = 1 to 10^8; and the
+// boundary they predict, where the smooth level becomes indistinguishable (the CV falls to TAU:
+// N* = (1 − p)/(p·TAU²)), lies inside the confidence interval of the boundary measured on a ladder
+// of footprints around it.
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
@@ -14,6 +17,7 @@
 #include "verify/adequacy/binomial_adequacy.h"
 #include "verify/claims/claims.h"
 #include "verify/stats/count_tests.h"
+#include "verify/stats/mean_tests.h"
 #include "verify/stats/multiple_testing.h"
 
 namespace glintlab::verify {
@@ -27,6 +31,11 @@ constexpr const char* kPrediction = "adequacy.prediction-matches-measurement";
 constexpr double kControlFacetScale = 1.05;
 // The CV test needs the count's moments to be well estimated: only where N_P p ≥ this.
 constexpr double kMinExpectedCount = 1;
+// The boundary's threshold (the adequacy default) and the ladder of footprints N* · r measured
+// around the predicted boundary; the control moves the prediction by 5 %.
+constexpr double kBoundaryTau = adequacy::kDefaultThreshold;
+constexpr double kBoundaryLadder[] = {0.5, 0.70710678118654752, 1.0, 1.4142135623730951, 2.0};
+constexpr double kControlBoundaryScale = 1.05;
 
 // Cells away from the degenerate p = 1 of deliot_belcour's peak: its off-peak half-vector
 // (θ_h = atan 2α, p ≈ 0.04) and kneiphof_klein's 1° cap (p ≈ 1e-3 on the peak side).
@@ -48,8 +57,19 @@ struct PredictionRow {
   double control_p_cv = 1, control_p_zero = 1;  // against the prediction with N_P × 1.05
 };
 
+// One setting's smooth-level boundary: the exact level's CV on the ladder, the crossing of
+// log CV = log TAU by a weighted least-squares line through (log N, log CV), and its standard
+// error by the delta method; the crossing is tested against log N* (and log 1.05 N*, the
+// control).
+struct BoundaryRow {
+  Cell cell;  // at N*
+  double p = 0, predicted = 0, measured = 0, log_se = 0;
+  double p_value = 1, control_p_value = 1;
+};
+
 struct PredictionMeasured {
   std::vector<PredictionRow> rows;
+  std::vector<BoundaryRow> boundaries;
   HolmSidakResult genuine, control;
   double worst_cv_rel = 0;  // max |CV/CV_pred − 1|
 };
@@ -100,6 +120,44 @@ PredictionRow measure_row(const Cell& c, int samples, std::uint64_t seed) {
   return r;
 }
 
+// The settings whose boundary is measured: the two families' cells of prediction_cells (their
+// N_P set to N*).
+std::vector<Cell> boundary_cells() {
+  return {{"deliot_belcour", 0, 0.1, 0, 30, std::atan(0.2) * 180 / std::numbers::pi, 2},
+          {"kneiphof_klein", 0, 0.1, 1, 30, std::atan(0.1) * 180 / std::numbers::pi, 1}};
+}
+
+BoundaryRow measure_boundary(Cell c, int samples, std::uint64_t seed) {
+  BoundaryRow r;
+  r.p = adequacy::cell_probability_and_smooth(c).first;
+  r.predicted = (1 - r.p) / (r.p * kBoundaryTau * kBoundaryTau);
+  c.facets = r.predicted;
+  r.cell = c;
+  // Weighted least squares of y = log CV on x = log(N / N*), weights 1 / Var(log CV).
+  double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  std::vector<double> x;
+  for (std::size_t k = 0; k < std::size(kBoundaryLadder); ++k) {
+    Cell at = c;
+    at.facets = r.predicted * kBoundaryLadder[k];
+    adequacy::level_values(at, BinomialLevel::kExact, samples, seed + k, x);
+    const auto [cv, se] = cv_and_se(x);
+    if (!(cv > 0) || !(se > 0)) return r;  // untestable: p-values stay 1
+    const double w = (cv / se) * (cv / se), lx = std::log(kBoundaryLadder[k]), ly = std::log(cv);
+    sw += w, sx += w * lx, sy += w * ly, sxx += w * lx * lx, sxy += w * lx * ly;
+  }
+  const double det = sw * sxx - sx * sx;
+  const double slope = (sw * sxy - sx * sy) / det, intercept = (sxx * sy - sx * sxy) / det;
+  const double var_a = sxx / det, var_b = sw / det, cov_ab = -sx / det;
+  const double crossing = (std::log(kBoundaryTau) - intercept) / slope;  // log(N̂ / N*)
+  // ∂crossing/∂a = −1/slope, ∂crossing/∂b = −crossing/slope.
+  const double ga = -1 / slope, gb = -crossing / slope;
+  r.log_se = std::sqrt(std::max(ga * ga * var_a + 2 * ga * gb * cov_ab + gb * gb * var_b, 0.0));
+  r.measured = r.predicted * std::exp(crossing);
+  r.p_value = two_sided_z(crossing / r.log_se);
+  r.control_p_value = two_sided_z((crossing - std::log(kControlBoundaryScale)) / r.log_se);
+  return r;
+}
+
 PredictionMeasured measure_prediction(Budget b) {
   const int samples = b == Budget::kQuick ? 100000 : 1000000;
   const std::vector<Cell> cells = prediction_cells();
@@ -108,7 +166,16 @@ PredictionMeasured measure_prediction(Budget b) {
   tbb::parallel_for(std::size_t(0), cells.size(), [&](std::size_t i) {
     m.rows[i] = measure_row(cells[i], samples, check_seed(kPrediction, i));
   });
+  const std::vector<Cell> settings = boundary_cells();
+  m.boundaries.resize(settings.size());
+  tbb::parallel_for(std::size_t(0), settings.size(), [&](std::size_t i) {
+    m.boundaries[i] = measure_boundary(settings[i], samples, check_seed(kPrediction, 100 + 10 * i));
+  });
   std::vector<double> genuine, control;
+  for (const BoundaryRow& r : m.boundaries) {
+    genuine.push_back(r.p_value);
+    control.push_back(r.control_p_value);
+  }
   for (const PredictionRow& r : m.rows) {
     genuine.insert(genuine.end(), {r.p_cv, r.p_zero});
     control.insert(control.end(), {r.control_p_cv, r.control_p_zero});
@@ -125,21 +192,36 @@ Verdict decide_prediction(const HolmSidakResult& hs) {
   return hs.rejections == 0 ? Verdict::kHoldsInRegime : Verdict::kFails;
 }
 
+std::string describe_boundary(const BoundaryRow& r) {
+  const double z = normal_quantile(1 - check_level() / 2);
+  return fmt::format("{} (p = {:.4g}): predicted N* = {:.4g}, measured {:.4g} (CI {:.4g}–{:.4g}, "
+                     "p = {:.3g})",
+                     r.cell.model, r.p, r.predicted, r.measured, r.measured * std::exp(-z * r.log_se),
+                     r.measured * std::exp(z * r.log_se), r.p_value);
+}
+
 std::string describe_prediction(const PredictionMeasured& m) {
+  std::string boundaries;
+  for (const BoundaryRow& r : m.boundaries)
+    boundaries += (boundaries.empty() ? "" : "; ") + describe_boundary(r);
   return fmt::format(
       "{} cells (deliot_belcour off-peak, kneiphof_klein 1° cap; N_P 1..1e8), {} positions each, "
-      "exact counting: CV and P(no glint) against the closed forms, {} of {} p-values rejected "
+      "exact counting: CV and P(no glint) against the closed forms; the smooth level's boundary "
+      "(CV = TAU = {}) where the exact CV crosses TAU on N*·{{0.5, 0.71, 1, 1.41, 2}} ({} "
+      "positions each; two-sided intervals at the per-test level): {}; {} of {} p-values rejected "
       "(Holm–Šidák at {:.2e}); max |CV/CV_pred − 1| = {:.4f} where N_P p ≥ 1; the real-time and "
       "small-count levels are not binomial and are outside this regime (their differences are "
       "the adequacy table's)",
-      m.rows.size(), m.rows.empty() ? 0 : m.rows.front().samples, m.genuine.rejections,
+      m.rows.size(), m.rows.empty() ? 0 : m.rows.front().samples, kBoundaryTau,
+      m.rows.empty() ? 0 : m.rows.front().samples, boundaries, m.genuine.rejections,
       m.genuine.raw.size(), check_level(), m.worst_cv_rel);
 }
 
 CheckResult run_prediction(Budget b) {
   CheckResult r;
   r.regime = "the exact counting level (its count is Binomial(N_P, p)); N_P in [1, 1e8]; CV "
-             "tested where N_P p >= 1, P(no glint) everywhere";
+             "tested where N_P p >= 1, P(no glint) everywhere; the smooth level's boundary at "
+             "TAU = 0.02 for the same two settings";
   const PredictionMeasured m = measure_prediction(b);
   r.verdict = decide_prediction(m.genuine);
   r.detail = describe_prediction(m);
@@ -152,9 +234,15 @@ CheckResult run_prediction(Budget b) {
   r.raw_p_values = m.genuine.raw;
   r.configurations = int(m.genuine.raw.size());
   r.control_p_value = *std::min_element(m.control.adjusted.begin(), m.control.adjusted.end());
+  // The boundary tests come first in the family.
+  std::size_t boundary_rejections = 0;
+  for (std::size_t i = 0; i < m.boundaries.size(); ++i)
+    boundary_rejections += m.control.reject[i] ? 1 : 0;
   r.control = fmt::format(
-      "the prediction with N_P × {:.2f}: {} of {} p-values rejected (min adjusted p = {:.3g})",
-      kControlFacetScale, m.control.rejections, m.control.raw.size(), *r.control_p_value);
+      "the prediction with N_P × {:.2f} and the boundary at N* × {:.2f}: {} of {} p-values "
+      "rejected (min adjusted p = {:.3g}), the boundary's {} of {}",
+      kControlFacetScale, kControlBoundaryScale, m.control.rejections, m.control.raw.size(),
+      *r.control_p_value, boundary_rejections, m.boundaries.size());
   record_control(r, decide_prediction(m.control));
   return r;
 }
