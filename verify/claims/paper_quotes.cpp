@@ -93,7 +93,8 @@ const std::vector<PaperQuote>& paper_quotes() {
                 "already good enough for most cases (see Figure 2).\"",
        .stronger_reading = "\"Most cases\" is read as more than half of the settings of a "
                            "declared grid (GGX and Beckmann α = 0.3, α★ 0.005–0.1, θ from the "
-                           "centre of U_Ω to near its rim, footprints of 2–128 level-0 cells) "
+                           "centre of U_Ω to near its rim, footprints of 2–128 level-0 cells, "
+                           "4–64 at the quick budget) "
                            "where C carries at least 5 % of D★^f, each within ±3 % (a tolerance "
                            "the project chose) of the brute-force Eq. 5 with the same filter and "
                            "LOD. B(k)'s points are summed over the whole filter, as Sec. 3.3.4 "
