@@ -18,12 +18,18 @@ set(glintlab_slow_tests
   "Checks/QuickBudget.VerdictAndControl/eto_pdf_matches* 25"
   "Checks/QuickBudget.VerdictAndControl/smooth_vndf_normalized* 5"
   "Checks/QuickBudget.VerdictAndControl/smooth_eval_pdf_consistency* 5"
+  # The brute-force Eq. 5 (every point within 5 σ) at 24–400 positions of each setting.
+  "Checks/QuickBudget.VerdictAndControl/kemppinen_compensation_k16* 5"
+  "Checks/QuickBudget.VerdictAndControl/kemppinen_compensation* 24"
   "Checks/QuickBudget.* 1"
   "AcrossClaims.StabilityVerdictAndControl 9"
   "Properties/ControlRejected.ByTheSameDecision/kneiphof_klein_sampler_covers_value* 4"
   # sampler-covers-value of both Kemppinen models at quick, with the mixture and with Algorithm 2
   # alone (10^5 samples and up to 4 · 10^5 reference evaluations per setting).
   "KemppinenSampler.* 20"
+  # kemppinen.compensation's decision on 8 settings of the brute-force Eq. 5, 60 positions each:
+  # fewer leave its intervals undecided.
+  "KemppinenClaims.CompensationDecisionFailsWithoutC 3"
   # Chi-square and integration checks whose sample sizes set what they can detect.
   "ChiSquareClaims.EtoPdfMatchesControlsRejected 10"
   "ChiSquareClaims.IdenticalWithOneAndTwoThreads 2"

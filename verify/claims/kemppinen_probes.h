@@ -2,6 +2,9 @@
 // tests/verify/claims: each runs one check's statistic on a correct and a deliberately wrong input.
 #pragma once
 
+#include <utility>
+
+#include "verify/check.h"
 #include "verify/claims/control_probes.h"
 
 namespace glintlab::verify {
@@ -9,11 +12,15 @@ namespace glintlab::verify {
 // kemppinen.convergence, one configuration inside the regime: the far end of the bias interval of
 // the area mean against D; control: the prefactor as printed.
 ControlProbe probe_kemppinen_convergence();
-// kemppinen.compensation, one far-field setting: |mean D★^f/D − 1|; control: C × 0.9.
+// kemppinen.compensation, one setting where C carries most of D★^f: |bias of Eq. 11 (k = 4)
+// against the brute-force Eq. 5|; control: Eq. 11 without C.
 ControlProbe probe_kemppinen_compensation();
-// kemppinen.compensation's finding (GGX α★ = 0.005, θ = 30°, 64 cells): k = 16 within 5 % of D
-// (the "correct" side), k = 4 beyond it (the "control" side).
-ControlProbe probe_kemppinen_compensation_k4_fails();
+// kemppinen.compensation's decision on a reduced grid (8 settings, 60 positions): for Eq. 11 as
+// given, and for a broken input, Eq. 11 without C.
+std::pair<Verdict, Verdict> probe_kemppinen_compensation_verdicts();
+// kemppinen.compensation-k16, one setting where k = 4 brightens: −(k = 4's error k = 16 removes
+// beyond a tenth of it); control: k = 4's result with 8 % of its error removed.
+ControlProbe probe_kemppinen_compensation_k16();
 // kemppinen.furnace, one setting: one-sided p of a gain; control: rescaled to gain 3 %.
 ControlProbe probe_kemppinen_furnace();
 // kemppinen.roulette: max |E_r[R(r, w)] − w| on [2ε, 1 − 2ε]; control: the roulette weight × 1.02.

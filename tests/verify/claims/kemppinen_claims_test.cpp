@@ -20,9 +20,14 @@ TEST(KemppinenClaims, Convergence) { expect_probe(probe_kemppinen_convergence(),
 TEST(KemppinenClaims, Compensation) {
   expect_probe(probe_kemppinen_compensation(), "compensation");
 }
-// The finding of kemppinen.compensation: where k = 4 misses D by more than 5 %, k = 16 does not.
-TEST(KemppinenClaims, CompensationKFourFailsWhereSixteenHolds) {
-  expect_probe(probe_kemppinen_compensation_k4_fails(), "compensation k = 16 vs k = 4");
+// The decision on a reduced grid holds for Eq. 11 and fails on a broken input (C dropped).
+TEST(KemppinenClaims, CompensationDecisionFailsWithoutC) {
+  const auto [eq11, without_c] = probe_kemppinen_compensation_verdicts();
+  EXPECT_EQ(eq11, Verdict::kHolds);
+  EXPECT_EQ(without_c, Verdict::kFails);
+}
+TEST(KemppinenClaims, CompensationK16) {
+  expect_probe(probe_kemppinen_compensation_k16(), "compensation k = 16 vs k = 4");
 }
 TEST(KemppinenClaims, Furnace) { expect_probe(probe_kemppinen_furnace(), "furnace"); }
 TEST(KemppinenClaims, Roulette) { expect_probe(probe_kemppinen_roulette(), "roulette"); }
