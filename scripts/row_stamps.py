@@ -53,6 +53,7 @@ ROW_SEPARATOR = "\n  },\n  {"
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.MULTILINE)
 ROW_ID = re.compile(r'^    "id": "([^"]+)",$', re.MULTILINE)
 ROW_BUDGET = re.compile(r'^    "budget": "([^"]+)",$', re.MULTILINE)
+ROW_VERDICT = re.compile(r'^    "verdict": "([^"]+)"$', re.MULTILINE)
 ROW_STAMP = re.compile(r'^    "stamp": "([^"]+)",\n', re.MULTILINE)
 
 
@@ -214,6 +215,7 @@ def record(args):
     rows, new = inner(base), inner(fresh)
     index = {row_field(ROW_ID, r, args.file): i for i, r in enumerate(rows)}
     count = 0
+    changed = []
     for chunk in new:
         claim_id = row_field(ROW_ID, chunk, "verify's claims.json")
         if not claim_id.startswith("model."):
@@ -223,6 +225,10 @@ def record(args):
             raise InputError(f"{claim_id}: verify wrote budget {budget}, not {args.budget}")
         chunk = stamped(chunk, expected_stamp(claim_id, budget))
         if claim_id in index:
+            before = row_field(ROW_VERDICT, rows[index[claim_id]], args.file)
+            after = row_field(ROW_VERDICT, chunk, "verify's claims.json")
+            if before != after:
+                changed.append(f"{claim_id}: {before} -> {after}")
             rows[index[claim_id]] = chunk
         else:
             index[claim_id] = len(rows)
@@ -240,6 +246,8 @@ def record(args):
     json.loads(out)  # still one valid list
     os.replace(tmp_path, args.file)
     print(f"row_stamps: {count} conformance row(s) of budget {args.budget} recorded in {args.file}")
+    for line in changed:
+        print(f"row_stamps: verdict changed: {line}")
     return 0
 
 

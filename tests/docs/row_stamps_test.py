@@ -142,6 +142,8 @@ with tempfile.TemporaryDirectory() as tmp:
                                       "model.podee.stability"],
           f"record replaced one row and appended one: {[x['id'] for x in rows]}")
     check(rows[1]["verdict"] == "holds", "the replaced row is the new run's")
+    check("verdict changed: model.podee.energy: fails -> holds" in r.stdout,
+          f"record names the changed verdict: {r.stdout}")
     check(after.startswith(before[:before.index('  },')]), "the other row is kept byte for byte")
     check(all("stamp" in x for x in rows[1:]), "recorded rows carry stamps")
     check(after == claims_file(json.dumps(x, indent=2, sort_keys=True, ensure_ascii=False)
