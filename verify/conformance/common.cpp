@@ -214,8 +214,19 @@ std::uint64_t reference_block(Budget b) { return b == Budget::kQuick ? 100'000 :
 
 HemisphereIntegral integrate_hemisphere(const ModelEntry& m, const DirectionRows& f, const V3& wi,
                                         double width, Budget b, std::uint64_t seed) {
+  if (!(m.needs & kNeedsFootprint) && !m.eval_rows && !m.pdf_rows) {
+    // One direction at a time (the lockstep below holds every inner integral of a step at once).
+    const Cubature c = integrate_about_mirror(
+        [&](const V3& w) {
+          double y = 0;
+          if (w.z > 0) f(std::span<const V3>(&w, 1), std::span<double>(&y, 1));
+          return y;
+        },
+        wi, width, b);
+    return {c.value, c.error, false};
+  }
   if (!(m.needs & kNeedsFootprint)) {
-    // f above the horizon, 0 below.
+    // An entry with rows functions: f above the horizon for a round's directions at once, 0 below.
     std::vector<V3> above;
     std::vector<double> f_above;
     const Cubature c = integrate_about_mirror(
