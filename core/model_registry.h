@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -41,6 +42,21 @@ struct ModelEntry {
   std::function<ModelSample<double>(const std::vector<double>& values, const ModelQuery<double>&,
                                     Vec2<double> u)>
       sample;
+  // Optional: eval and pdf over many queries, and sample at one query for many uniform pairs, in
+  // one call each, for a model whose every call costs far more than its arithmetic (a Python model
+  // calls its numpy functions once per chunk). Row i of `out` is what the per-row thunk above gives
+  // for row i, bit for bit. Empty (every built-in model): eval_each / pdf_each / sample_each below
+  // loop over the thunks. A copy of an entry that replaces a thunk must replace or clear its rows
+  // function too (clear_rows), or callers that use it would bypass the replacement.
+  std::function<void(const std::vector<double>& values, std::span<const ModelQuery<double>> queries,
+                     std::span<ErasedEval> out)>
+      eval_rows;
+  std::function<void(const std::vector<double>& values, std::span<const ModelQuery<double>> queries,
+                     std::span<double> out)>
+      pdf_rows;
+  std::function<void(const std::vector<double>& values, const ModelQuery<double>& query,
+                     std::span<const Vec2<double>> u, std::span<ModelSample<double>> out)>
+      sample_rows;
   // The model's own rules on an evaluated query (M::validate; empty where it has none): the column
   // that breaks one and its valid range, or nothing.
   std::function<std::optional<QueryViolation>(const ModelQuery<double>&)> validate;
@@ -66,6 +82,32 @@ struct ModelEntry {
   std::string_view smooth_limit;
   std::vector<NotClaimed> not_claimed;
 };
+
+// out[i] = eval / pdf of queries[i], sample of `query` at u[i], in one call of the entry's rows
+// function where it has one, else a loop over its per-row thunk (same results either way).
+inline void eval_each(const ModelEntry& m, const std::vector<double>& values,
+                      std::span<const ModelQuery<double>> queries, std::span<ErasedEval> out) {
+  if (m.eval_rows) return m.eval_rows(values, queries, out);
+  for (std::size_t i = 0; i < queries.size(); ++i) out[i] = m.eval(values, queries[i]);
+}
+inline void pdf_each(const ModelEntry& m, const std::vector<double>& values,
+                     std::span<const ModelQuery<double>> queries, std::span<double> out) {
+  if (m.pdf_rows) return m.pdf_rows(values, queries, out);
+  for (std::size_t i = 0; i < queries.size(); ++i) out[i] = m.pdf(values, queries[i]);
+}
+inline void sample_each(const ModelEntry& m, const std::vector<double>& values,
+                        const ModelQuery<double>& query, std::span<const Vec2<double>> u,
+                        std::span<ModelSample<double>> out) {
+  if (m.sample_rows) return m.sample_rows(values, query, u, out);
+  for (std::size_t i = 0; i < u.size(); ++i) out[i] = m.sample(values, query, u[i]);
+}
+// `m` without its rows functions (callers then loop over the per-row thunks).
+inline ModelEntry clear_rows(ModelEntry m) {
+  m.eval_rows = {};
+  m.pdf_rows = {};
+  m.sample_rows = {};
+  return m;
+}
 
 // One address per static model type (an inline variable: the same in every translation unit).
 template <class M>

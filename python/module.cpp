@@ -336,6 +336,6 @@ PYBIND11_MODULE(_glintlab, m) {
   m.def("register_model", &register_python_model, arg("name"), arg("eval"), arg("pdf"),
         arg("sample"), arg("params") = py::none(), arg("needs") = py::none(),
         arg("smooth_limit") = py::none(), arg("description") = "", arg("source") = "",
-        arg("not_claimed") = py::none());
+        arg("not_claimed") = py::none(), arg("chunked") = true);
   m.def("verify", &verify, arg("claims"), arg("budget") = "quick", arg("threads") = py::none());
 }

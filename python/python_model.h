@@ -5,9 +5,11 @@
 // The callables take a dict of (N,) float64 arrays keyed by the query layout's column names
 // (core/model_layout.h; the parts the model's needs select) and a dict of parameter values; each
 // call is checked (type, dtype, shape, NaN) and a failure becomes PythonModelError naming the model
-// and the function. The entry's per-row thunks call them with N = 1 (the suite calls thunks row by
-// row); the module's eval and sample call them once per chunk of rows (python_eval_rows,
-// python_sample_rows). Every call takes the GIL itself, so callers run them without holding it.
+// and the function. The entry's per-row thunks call them with N = 1; its rows functions
+// (ModelEntry::eval_rows, pdf_rows, sample_rows, which the conformance suite calls where it has
+// many queries) and the module's eval and sample call them once per chunk of rows
+// (python_eval_rows, python_sample_rows). Every call takes the GIL itself, so callers run them
+// without holding it.
 #pragma once
 
 #include <pybind11/pybind11.h>
@@ -30,13 +32,15 @@ struct PythonModelError : std::runtime_error {
 
 struct PythonModel;
 
-// Registers a Python model; ValueError for a bad name, needs, parameter list, smooth limit or
+// Registers a Python model (chunked = false: without rows functions, so the suite calls the
+// functions one query at a time, for comparing the two routes); ValueError for a bad name, needs, parameter list, smooth limit or
 // not-claimed declaration (the messages name the argument and what is valid).
 void register_python_model(const std::string& name, const pybind11::object& eval,
                            const pybind11::object& pdf, const pybind11::object& sample,
                            const pybind11::object& params, const pybind11::object& needs,
                            const pybind11::object& smooth_limit, const std::string& description,
-                           const std::string& source, const pybind11::object& not_claimed);
+                           const std::string& source, const pybind11::object& not_claimed,
+                           bool chunked = true);
 
 // The Python model behind a registry entry, or nullptr for any other entry.
 const PythonModel* python_model(const ModelEntry& entry);

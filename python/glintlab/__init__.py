@@ -100,7 +100,7 @@ def load_plugin(path):
 
 
 def register_model(name, eval, pdf, sample, params=None, needs=None, smooth_limit=None,
-                   description="", source="", not_claimed=None):
+                   description="", source="", not_claimed=None, chunked=True):
     """Registers a model written as three vectorised numpy functions; returns None.
 
     The model is then listed by models(), usable by eval() and sample() (one call of its
@@ -123,6 +123,9 @@ def register_model(name, eval, pdf, sample, params=None, needs=None, smooth_limi
                  'point light', 'area light', 'pixel corners'.
     smooth_limit the registered model a footprint model tends to (converges-to-smooth).
     not_claimed  dict conformance property -> the reason the model does not claim it.
+    chunked      True: the conformance suite calls the functions once per chunk of queries where
+                 it has many (a few thousand rows per call); False: once per query (much slower;
+                 for checking that the model's results do not depend on the chunking).
 
     A function that raises, or returns another type, dtype or shape, or NaN, makes the call that
     used it raise RuntimeError naming the model and the function. Raises ValueError for bad
@@ -130,7 +133,7 @@ def register_model(name, eval, pdf, sample, params=None, needs=None, smooth_limi
     """
     _glintlab.register_model(name, eval, pdf, sample, params=params, needs=needs,
                              smooth_limit=smooth_limit, description=description, source=source,
-                             not_claimed=not_claimed)
+                             not_claimed=not_claimed, chunked=chunked)
 
 
 def verify(claims, budget="quick", threads=None):
@@ -145,8 +148,9 @@ def verify(claims, budget="quick", threads=None):
 
     Each dict has claims.json's fields: id, verdict, detail, statistic, value, bound, p_value,
     control, control_verdict, control_rejected, expected_verdict, seconds, ... Raises ValueError
-    for a bad argument (the CLI's message), RuntimeError when a registered Python model's function
-    fails during a check.
+    for a bad argument (the CLI's message). A registered Python model's function that fails during
+    a check makes that check's verdict 'error', its message (naming the model and the function)
+    in the detail; the other checks still run.
     """
     rows = _json.loads(_glintlab.verify(claims, budget=budget, threads=threads))
     return rows["claims"] if isinstance(rows, dict) else rows

@@ -1,8 +1,9 @@
 """The conformance suite on models registered from numpy (ctest python.register_model_conformance;
-slow: the suite calls a Python model row by row, ~20-30 µs per call, so one quick run of a numpy
-model's properties takes minutes). A correct Lambertian holds every property that applies to it,
-each control rejected; a Lambertian whose pdf is 3 % above its sampler's density fails
-sampler-matches-pdf, its corrected control holds."""
+the suite calls the numpy functions once per chunk of queries where it has many, so a quick run of
+all of a numpy Lambertian's properties takes seconds, where one call per query took minutes). A
+correct Lambertian holds every property that applies to it, each control rejected; a Lambertian
+whose pdf is 3 % above its sampler's density fails sampler-matches-pdf, its corrected control
+holds."""
 
 import glintlab
 import numpy_models as nm

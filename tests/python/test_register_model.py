@@ -4,6 +4,7 @@ wrong type, dtype, shape, NaN) and of register_model's arguments; verify's argum
 conformance suite on it (and the wrong-pdf model failing sampler-matches-pdf) is
 slow_register_model_conformance.py, its own ctest test."""
 
+import json
 import os
 import subprocess
 import sys
@@ -183,22 +184,89 @@ def test_verify_a_paper_claim():
     assert row["control_rejected"] is True and row["budget"] == "quick"
 
 
-def test_a_raising_model_is_an_error_row_inside_verify():
+def test_a_raising_model_is_an_error_row_inside_verify(lambert):
     """Inside the suite a Python function that raises is that model's `error` verdict, naming the
-    model and the function; the other claims of the run still run."""
+    model and the function; the other claims of the run still run (another model's check here:
+    a paper claim through verify is test_verify_a_paper_claim's)."""
     name = register_broken("py_broken_in_suite", eval=raises_zero_division)
     rows = {r["id"]: r for r in glintlab.verify(
-        f"model.{name}.eval-pdf-consistency,smooth.projected-area", threads=1)}
+        f"model.{name}.eval-pdf-consistency,model.{lambert}.eval-pdf-consistency", threads=1)}
     bad = rows[f"model.{name}.eval-pdf-consistency"]
     assert bad["verdict"] == "error"
     assert f"glintlab model '{name}': eval raised ZeroDivisionError" in bad["detail"]
-    assert rows["smooth.projected-area"]["verdict"] == "holds"
+    assert rows[f"model.{lambert}.eval-pdf-consistency"]["verdict"] == "holds"
+
+
+# Registers the numpy Lambertian as `py_route` with the given chunked flag, runs its checks and
+# prints their rows without the timing field (the checks' seeds follow the claim id, so the two
+# routes are compared under the same model name, in two processes).
+ROUTE_SCRIPT = """
+import json, sys
+import glintlab, numpy_models as nm
+calls = []
+def pdf(q, p):
+    calls.append(len(q["wo_z"]))
+    return nm.lambert_pdf(q, p)
+glintlab.register_model("py_route", nm.lambert_eval, pdf, nm.lambert_sample, params=[nm.ALBEDO],
+                        chunked=sys.argv[1] == "chunked")
+rows = glintlab.verify("model.py_route.eval-pdf-consistency", threads=2)
+print(json.dumps({"rows": [{k: v for k, v in r.items() if k != "seconds"} for r in rows],
+                  "pdf_calls": len(calls), "pdf_rows": sum(calls)}))
+"""
+
+
+def test_chunked_and_per_query_routes_agree():
+    """The suite's calls per chunk of queries (one call of pdf for thousands of rows) give the same
+    check results, bit for bit, as its calls per query (chunked=False)."""
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [os.path.dirname(__file__), os.environ.get("PYTHONPATH", "")]))
+    out = {}
+    for route in ("chunked", "per-query"):
+        r = subprocess.run([sys.executable, "-c", ROUTE_SCRIPT, route], check=True,
+                           capture_output=True, text=True, env=env)
+        out[route] = json.loads(r.stdout)
+    chunked, per_query = out["chunked"], out["per-query"]
+    assert [r["verdict"] for r in chunked["rows"]] == ["holds"], chunked["rows"]
+    assert chunked["rows"][0]["control_verdict"] == "fails", chunked["rows"]
+    assert chunked["rows"] == per_query["rows"]
+    # The same rows asked for: 32768 rows of pdf (2 settings × 4096 samples, check and control,
+    # for pdf() and for eval's pdf), in 8 calls instead of 32768.
+    assert chunked["pdf_rows"] == per_query["pdf_rows"] == 32768
+    assert per_query["pdf_calls"] == 32768 and chunked["pdf_calls"] == 8
+
+
+def test_chunked_errors_inside_verify():
+    """A function that fails on one row of a chunk is that model's `error` verdict inside the suite,
+    naming the model and the function, and the run goes on to its other checks."""
+    def pdf_nan_near_normal(q, p):
+        v = nm.lambert_pdf(q, p)
+        return np.where(q["wo_z"] > 0.999, np.nan, v)
+
+    def sample_wrong_shape(q, u, p):
+        s = nm.lambert_sample(q, u, p)
+        s["wo"] = s["wo"][:, :2]
+        return s
+
+    glintlab.register_model("py_nan_row", nm.lambert_eval, pdf_nan_near_normal, nm.lambert_sample,
+                            params=[nm.ALBEDO])
+    glintlab.register_model("py_bad_shape", nm.lambert_eval, nm.lambert_pdf, sample_wrong_shape,
+                            params=[nm.ALBEDO])
+    rows = {r["id"]: r for r in glintlab.verify(
+        "model.py_nan_row.sampler-matches-pdf,model.py_bad_shape.energy,"
+        "model.py_bad_shape.eval-pdf-consistency", threads=2)}
+    nan = rows["model.py_nan_row.sampler-matches-pdf"]
+    assert nan["verdict"] == "error"
+    assert "glintlab model 'py_nan_row': pdf returned NaN in its pdf at row" in nan["detail"], nan
+    shape = rows["model.py_bad_shape.energy"]
+    assert shape["verdict"] == "error"
+    assert "glintlab model 'py_bad_shape': sample returned its 'wo' of shape" in shape["detail"], shape
+    assert rows["model.py_bad_shape.eval-pdf-consistency"]["verdict"] == "error"
 
 
 def test_example_my_glint_model(tmp_path):
     """examples/python/my_glint_model.py registers its numpy glint model, prints the verdicts of
-    the conformance checks it is asked for and writes its plots (one property here: the suite
-    calls a Python model one query at a time)."""
+    the conformance checks it is asked for and writes its plots (one property here: all of them
+    take about two minutes, mostly the stability sweep's one call per query)."""
     script = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "python",
                           "my_glint_model.py")
     out = tmp_path / "glint.png"

@@ -77,6 +77,24 @@ double value_at(const ModelEntry& m, const std::vector<double>& values, ModelQue
   return m.eval(values, q).value;
 }
 
+void values_at(const ModelEntry& m, const std::vector<double>& values, const ModelQuery<double>& q,
+               std::span<const V3> wo, std::span<double> out) {
+  std::vector<ModelQuery<double>> asked;
+  std::vector<std::size_t> rows;
+  for (std::size_t i = 0; i < wo.size(); ++i) {
+    out[i] = 0;
+    if (!(wo[i].z > 0)) continue;
+    ModelQuery<double> at = q;
+    at.wo = wo[i];
+    if (m.validate && m.validate(at)) continue;
+    asked.push_back(at);
+    rows.push_back(i);
+  }
+  std::vector<ErasedEval> e(asked.size());
+  eval_each(m, values, asked, e);
+  for (std::size_t k = 0; k < rows.size(); ++k) out[rows[k]] = e[k].value;
+}
+
 double roughness_hint(const ModelEntry& m, const std::vector<double>& values) {
   for (std::string_view name : {"alpha_x", "alpha"})
     for (std::size_t i = 0; i < m.params.size(); ++i)
@@ -167,26 +185,85 @@ Cubature integrate_about_mirror(const std::function<double(const V3&)>& f, const
   return {i.value, i.error};
 }
 
+Cubature integrate_about_mirror(const DirectionRows& f, const V3& wi, double width, Budget b) {
+  // integrate_about_mirror's frame and options, with f asked for many directions at once.
+  const MirrorFrame frame = mirror_frame(wi);
+  const V3 up{0, 0, 1};
+  const V3 up_local{dot(up, frame.t), dot(up, frame.s), dot(up, frame.r)};
+  SphereCubatureOptions o;
+  o.theta_breaks = lobe_theta_breaks(std::clamp(width, 1e-3, 1.0), 0, std::numbers::pi);
+  o.theta_breaks_at_phi = [up_local](double phi, std::vector<double>& breaks) {
+    breaks.push_back(plane_crossing_theta(up_local, phi));  // the horizon
+  };
+  o.rel_tol = b == Budget::kQuick ? 1e-4 : 1e-6;
+  o.max_depth = b == Budget::kQuick ? 10 : 16;
+  std::vector<V3> world;
+  const Integral i = integrate_sphere_rows(
+      [&](std::span<const V3> w, std::span<double> out) {
+        world.resize(w.size());
+        for (std::size_t k = 0; k < w.size(); ++k) world[k] = frame.to_world(w[k]);
+        f(world, out);
+      },
+      o);
+  return {i.value, i.error};
+}
+
 Vec2<double> pair_at(std::uint64_t seed, std::uint64_t i) { return uniform_pair(seed, i); }
 
 std::uint64_t reference_block(Budget b) { return b == Budget::kQuick ? 100'000 : 2'000'000; }
 
-HemisphereIntegral integrate_hemisphere(const ModelEntry& m, const std::function<double(const V3&)>& f,
-                                        const V3& wi, double width, Budget b, std::uint64_t seed) {
+HemisphereIntegral integrate_hemisphere(const ModelEntry& m, const DirectionRows& f, const V3& wi,
+                                        double width, Budget b, std::uint64_t seed) {
+  if (!(m.needs & kNeedsFootprint) && !m.eval_rows && !m.pdf_rows) {
+    // One direction at a time (the lockstep below holds every inner integral of a step at once).
+    const Cubature c = integrate_about_mirror(
+        [&](const V3& w) {
+          double y = 0;
+          if (w.z > 0) f(std::span<const V3>(&w, 1), std::span<double>(&y, 1));
+          return y;
+        },
+        wi, width, b);
+    return {c.value, c.error, false};
+  }
   if (!(m.needs & kNeedsFootprint)) {
-    const Cubature c = integrate_about_mirror([&](const V3& w) { return w.z > 0 ? f(w) : 0.0; },
-                                              wi, width, b);
+    // An entry with rows functions: f above the horizon for a round's directions at once, 0 below.
+    std::vector<V3> above;
+    std::vector<double> f_above;
+    const Cubature c = integrate_about_mirror(
+        [&](std::span<const V3> w, std::span<double> out) {
+          above.clear();
+          for (const V3& d : w)
+            if (d.z > 0) above.push_back(d);
+          f_above.assign(above.size(), 0.0);
+          f(above, f_above);
+          std::size_t next = 0;
+          for (std::size_t k = 0; k < w.size(); ++k) out[k] = w[k].z > 0 ? f_above[next++] : 0.0;
+        },
+        wi, width, b);
     return {c.value, c.error, false};
   }
   const MirrorMixture proposal(wi, width);
   const std::uint64_t block = reference_block(b);
+  // accumulate_mean's fixed chunks, merged in chunk order, with f asked for each chunk's
+  // directions above the horizon at once.
   auto estimate = [&](std::uint64_t first, std::uint64_t n) {
-    return accumulate_mean(
-        [&](std::uint64_t i) {
-          const V3 w = proposal.direction(first + i, uniform_pair(seed, first + i));
-          return w.z > 0 ? f(w) / proposal.density(w) : 0.0;  // density ≥ 1/8π up there
-        },
-        n);
+    std::vector<MeanAccumulator> parts(chunk_count(n));
+    for_chunks(n, [&](std::uint64_t begin, std::uint64_t end, std::size_t c) {
+      std::vector<V3> directions(end - begin), above;
+      for (std::uint64_t i = begin; i < end; ++i) {
+        const V3 w = proposal.direction(first + i, uniform_pair(seed, first + i));
+        directions[i - begin] = w;
+        if (w.z > 0) above.push_back(w);
+      }
+      std::vector<double> f_above(above.size());
+      f(above, f_above);
+      std::size_t next = 0;
+      for (const V3& w : directions)  // density ≥ 1/8π above the horizon
+        parts[c].add(w.z > 0 ? f_above[next++] / proposal.density(w) : 0.0);
+    });
+    MeanAccumulator total;
+    for (const MeanAccumulator& a : parts) total.merge(a);
+    return total;
   };
   // The pilot: one block of indices past the largest estimate's, discarded after it sets the
   // block count (so the count does not depend on the estimate's own draws, which would bias it).
@@ -199,6 +276,16 @@ HemisphereIntegral integrate_hemisphere(const ModelEntry& m, const std::function
   const std::uint64_t n = blocks * block;
   const MeanAccumulator acc = estimate(0, n);
   return {acc.mean, std::sqrt(acc.variance() / double(n)), true};
+}
+
+HemisphereIntegral integrate_hemisphere(const ModelEntry& m, const std::function<double(const V3&)>& f,
+                                        const V3& wi, double width, Budget b, std::uint64_t seed) {
+  return integrate_hemisphere(
+      m,
+      [&f](std::span<const V3> w, std::span<double> out) {
+        for (std::size_t i = 0; i < w.size(); ++i) out[i] = f(w[i]);
+      },
+      wi, width, b, seed);
 }
 
 MirrorCells::MirrorCells(const V3& wi, double width) {
@@ -221,16 +308,24 @@ std::size_t MirrorCells::cell(const V3& w) const {
   return ring * 4 + sector;
 }
 
-CellSums integrate_cells(const std::function<double(const V3&)>& f, const V3& wi, double width,
-                         std::uint64_t n, std::uint64_t seed) {
+CellSums integrate_cells(const DirectionRows& f, const V3& wi, double width, std::uint64_t n,
+                         std::uint64_t seed) {
   const MirrorMixture proposal(wi, width);
   const MirrorCells cells(wi, width);
   std::vector<CellSums> parts(chunk_count(n));
   for_chunks(n, [&](std::uint64_t begin, std::uint64_t end, std::size_t c) {
     CellSums& p = parts[c];
+    std::vector<V3> directions(end - begin), above;
     for (std::uint64_t i = begin; i < end; ++i) {
       const V3 w = proposal.direction(i, uniform_pair(seed, i));
-      const double y = w.z > 0 ? f(w) / proposal.density(w) : 0.0;
+      directions[i - begin] = w;
+      if (w.z > 0) above.push_back(w);
+    }
+    std::vector<double> f_above(above.size());
+    f(above, f_above);
+    std::size_t next = 0;
+    for (const V3& w : directions) {
+      const double y = w.z > 0 ? f_above[next++] / proposal.density(w) : 0.0;  // density ≥ 1/8π
       if (y == 0) continue;
       const std::size_t k = cells.cell(w);
       p.sum[k] += y;
@@ -283,6 +378,13 @@ ModelEntry with_pdf_scaled(const ModelEntry& m, double scale) {
   if (m.pdf_float)
     e.pdf_float = [f = m.pdf_float, scale](const std::vector<double>& v,
                                            const ModelQuery<double>& q) { return scale * f(v, q); };
+  if (m.pdf_rows)
+    e.pdf_rows = [f = m.pdf_rows, scale](const std::vector<double>& v,
+                                         std::span<const ModelQuery<double>> qs,
+                                         std::span<double> out) {
+      f(v, qs, out);
+      for (double& x : out) x = scale * x;
+    };
   return e;
 }
 
@@ -300,6 +402,13 @@ ModelEntry with_value_scaled(const ModelEntry& m, double scale) {
       r.value *= scale;
       return r;
     };
+  if (m.eval_rows)
+    e.eval_rows = [f = m.eval_rows, scale](const std::vector<double>& v,
+                                           std::span<const ModelQuery<double>> qs,
+                                           std::span<ErasedEval> out) {
+      f(v, qs, out);
+      for (ErasedEval& r : out) r.value *= scale;
+    };
   return with_weight_scaled(e, scale);
 }
 
@@ -311,14 +420,20 @@ ModelEntry with_weight_scaled(const ModelEntry& m, double scale) {
     s.weight *= scale;
     return s;
   };
+  if (m.sample_rows)
+    e.sample_rows = [f = m.sample_rows, scale](const std::vector<double>& v,
+                                               const ModelQuery<double>& q,
+                                               std::span<const Vec2<double>> u,
+                                               std::span<ModelSample<double>> out) {
+      f(v, q, u, out);
+      for (ModelSample<double>& s : out) s.weight *= scale;
+    };
   return e;
 }
 
 ModelEntry with_sampler_restricted(const ModelEntry& m, double share) {
   ModelEntry e = m;
-  e.sample = [f = m.sample, share](const std::vector<double>& v, const ModelQuery<double>& q,
-                                   Vec2<double> u) {
-    ModelSample<double> s = f(v, q, u);
+  auto restrict = [share](Vec2<double> u, ModelSample<double>& s) {
     std::uint64_t bx, by;
     std::memcpy(&bx, &u.x, sizeof bx);
     std::memcpy(&by, &u.y, sizeof by);
@@ -326,8 +441,21 @@ ModelEntry with_sampler_restricted(const ModelEntry& m, double share) {
       s.weight = 0;
       s.rejected = true;
     }
+  };
+  e.sample = [f = m.sample, restrict](const std::vector<double>& v, const ModelQuery<double>& q,
+                                      Vec2<double> u) {
+    ModelSample<double> s = f(v, q, u);
+    restrict(u, s);
     return s;
   };
+  if (m.sample_rows)
+    e.sample_rows = [f = m.sample_rows, restrict](const std::vector<double>& v,
+                                                  const ModelQuery<double>& q,
+                                                  std::span<const Vec2<double>> u,
+                                                  std::span<ModelSample<double>> out) {
+      f(v, q, u, out);
+      for (std::size_t i = 0; i < u.size(); ++i) restrict(u[i], out[i]);
+    };
   return e;
 }
 
@@ -354,6 +482,14 @@ ModelEntry with_sparse_nan(const ModelEntry& m, double rate) {
       if (broken(q)) r.value = std::numeric_limits<double>::quiet_NaN();
       return r;
     };
+  if (m.eval_rows)
+    e.eval_rows = [f = m.eval_rows, broken](const std::vector<double>& v,
+                                            std::span<const ModelQuery<double>> qs,
+                                            std::span<ErasedEval> out) {
+      f(v, qs, out);
+      for (std::size_t i = 0; i < qs.size(); ++i)
+        if (broken(qs[i])) out[i].value = std::numeric_limits<double>::quiet_NaN();
+    };
   return e;
 }
 
@@ -366,14 +502,40 @@ ModelEntry with_uniform_sampler(const ModelEntry& m) {
     r.pdf = kPdf;
     return r;
   };
-  e.sample = [m](const std::vector<double>& v, const ModelQuery<double>& q, Vec2<double> u) {
+  auto uniform = [](Vec2<double> u) {
     const double z = 1 - 2 * u.x, r = std::sqrt(std::max(0.0, 1 - z * z));
     const double phi = 2 * std::numbers::pi * u.y;
-    const V3 wo{r * std::cos(phi), r * std::sin(phi), z};
+    return V3{r * std::cos(phi), r * std::sin(phi), z};
+  };
+  e.sample = [m, uniform](const std::vector<double>& v, const ModelQuery<double>& q,
+                          Vec2<double> u) {
+    const V3 wo = uniform(u);
     const bool below = !(wo.z > 0);
     const double value = below ? 0.0 : value_at(m, v, q, wo);
     return ModelSample<double>{wo, kPdf, value / kPdf, below};
   };
+  e.eval_rows = {};
+  e.pdf_rows = {};
+  e.sample_rows = {};
+  if (m.eval_rows) {
+    e.eval_rows = [f = m.eval_rows](const std::vector<double>& v,
+                                    std::span<const ModelQuery<double>> qs,
+                                    std::span<ErasedEval> out) {
+      f(v, qs, out);
+      for (ErasedEval& r : out) r.pdf = kPdf;
+    };
+    // value_at is 0 below the horizon, as the per-row sampler's value there.
+    e.sample_rows = [m, uniform](const std::vector<double>& v, const ModelQuery<double>& q,
+                                 std::span<const Vec2<double>> u,
+                                 std::span<ModelSample<double>> out) {
+      std::vector<V3> wo(u.size());
+      for (std::size_t i = 0; i < u.size(); ++i) wo[i] = uniform(u[i]);
+      std::vector<double> value(u.size());
+      values_at(m, v, q, wo, value);
+      for (std::size_t i = 0; i < u.size(); ++i)
+        out[i] = ModelSample<double>{wo[i], kPdf, value[i] / kPdf, !(wo[i].z > 0)};
+    };
+  }
   e.eval_float = {};
   e.pdf_float = {};
   e.sample_float = {};
@@ -396,6 +558,35 @@ ModelEntry with_consistent_sample(const ModelEntry& m) {
     s.weight = s.rejected || !(s.pdf > 0) ? 0.0 : m.eval(v, at).value / s.pdf;
     return s;
   };
+  e.eval_rows = {};
+  e.sample_rows = {};
+  if (m.eval_rows)
+    e.eval_rows = [m](const std::vector<double>& v, std::span<const ModelQuery<double>> qs,
+                      std::span<ErasedEval> out) {
+      eval_each(m, v, qs, out);
+      std::vector<double> pdf(qs.size());
+      pdf_each(m, v, qs, pdf);
+      for (std::size_t i = 0; i < qs.size(); ++i) out[i].pdf = pdf[i];
+    };
+  if (m.sample_rows)
+    e.sample_rows = [m](const std::vector<double>& v, const ModelQuery<double>& q,
+                        std::span<const Vec2<double>> u, std::span<ModelSample<double>> out) {
+      sample_each(m, v, q, u, out);
+      std::vector<ModelQuery<double>> at(u.size(), q);
+      for (std::size_t i = 0; i < u.size(); ++i) at[i].wo = out[i].wo;
+      std::vector<double> pdf(u.size());
+      pdf_each(m, v, at, pdf);
+      std::vector<ModelQuery<double>> weighed;
+      for (std::size_t i = 0; i < u.size(); ++i) {
+        out[i].pdf = pdf[i];
+        if (!out[i].rejected && pdf[i] > 0) weighed.push_back(at[i]);
+      }
+      std::vector<ErasedEval> value(weighed.size());
+      eval_each(m, v, weighed, value);
+      std::size_t next = 0;
+      for (ModelSample<double>& s : out)
+        s.weight = s.rejected || !(s.pdf > 0) ? 0.0 : value[next++].value / s.pdf;
+    };
   return e;
 }
 
@@ -447,6 +638,28 @@ ModelEntry with_outputs_sanitized(const ModelEntry& m) {
       return clean_sample(f(v, q, u));
     };
   }
+  if (m.eval_rows)
+    e.eval_rows = [f = m.eval_rows, clean_eval](const std::vector<double>& v,
+                                                std::span<const ModelQuery<double>> qs,
+                                                std::span<ErasedEval> out) {
+      f(v, qs, out);
+      for (ErasedEval& r : out) r = clean_eval(std::move(r));
+    };
+  if (m.pdf_rows)
+    e.pdf_rows = [f = m.pdf_rows, clean](const std::vector<double>& v,
+                                         std::span<const ModelQuery<double>> qs,
+                                         std::span<double> out) {
+      f(v, qs, out);
+      for (double& x : out) x = clean(x);
+    };
+  if (m.sample_rows)
+    e.sample_rows = [f = m.sample_rows, clean_sample](const std::vector<double>& v,
+                                                      const ModelQuery<double>& q,
+                                                      std::span<const Vec2<double>> u,
+                                                      std::span<ModelSample<double>> out) {
+      f(v, q, u, out);
+      for (ModelSample<double>& s : out) s = clean_sample(s);
+    };
   return e;
 }
 
@@ -470,6 +683,7 @@ ModelEntry with_cost_per_area(const ModelEntry& m, double base_side, int max_par
     sum.value /= double(k * k);
     return sum;
   };
+  e.eval_rows = {};  // the cost is what this control is about: one query per call
   return e;
 }
 
@@ -481,6 +695,7 @@ ModelEntry with_footprint_clamped(const ModelEntry& m, double side) {
     c.footprint.duv_dy = {0, side};
     return f(v, c);
   };
+  e.eval_rows = {};  // the cost is what this control is about: one query per call
   return e;
 }
 

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,13 @@ std::vector<Setting> compensation_settings(const ModelEntry& m);
 double value_at(const ModelEntry& m, const std::vector<double>& values, ModelQuery<double> q,
                 const Vec3<double>& wo);
 
+// value_at for many directions: out[i] = value_at(m, values, q, wo[i]), with one call of the entry's
+// rows function (ModelEntry::eval_rows) for the directions that reach eval.
+void values_at(const ModelEntry& m, const std::vector<double>& values, const ModelQuery<double>& q,
+               std::span<const Vec3<double>> wo, std::span<double> out);
+// A function of many directions at once: out[i] = f(w[i]).
+using DirectionRows = std::function<void(std::span<const Vec3<double>> w, std::span<double> out)>;
+
 // A roughness scale for cubature breakpoints: the model's alpha_x (or alpha), else 0.3.
 double roughness_hint(const ModelEntry& m, const std::vector<double>& values);
 
@@ -59,6 +67,9 @@ struct Cubature {
 };
 Cubature integrate_about_mirror(const std::function<double(const Vec3<double>&)>& f,
                                 const Vec3<double>& wi, double width, Budget b);
+// The same with f asked for many directions per call (verify/stats/sphere_cubature.h).
+Cubature integrate_about_mirror(const DirectionRows& f, const Vec3<double>& wi, double width,
+                                Budget b);
 
 // ∫ f(ωo) dωo over the upper hemisphere, by cubature about the mirror direction for models
 // without a footprint, and by n Monte Carlo samples for footprint models: a glint model's value
@@ -75,6 +86,12 @@ Cubature integrate_about_mirror(const std::function<double(const Vec3<double>&)>
 inline constexpr double kReferenceRelativeError = 0.004;
 inline constexpr std::uint64_t kMaxReferenceBlocks = 4;
 std::uint64_t reference_block(Budget b);
+// f is asked for each chunk's directions at once (Monte Carlo), or one direction at a time
+// (cubature).
+HemisphereIntegral integrate_hemisphere(const ModelEntry& m, const DirectionRows& f,
+                                        const Vec3<double>& wi, double width, Budget b,
+                                        std::uint64_t seed);
+// The same with f of one direction.
 HemisphereIntegral integrate_hemisphere(const ModelEntry& m,
                                         const std::function<double(const Vec3<double>&)>& f,
                                         const Vec3<double>& wi, double width, Budget b,
@@ -98,8 +115,9 @@ struct CellSums {
 };
 // ∫_cell f over the upper hemisphere for every cell, by the Monte Carlo of integrate_hemisphere
 // (its mirror mixture; n draws).
-CellSums integrate_cells(const std::function<double(const Vec3<double>&)>& f,
-                         const Vec3<double>& wi, double width, std::uint64_t n, std::uint64_t seed);
+// f is asked for each chunk's directions above the horizon at once.
+CellSums integrate_cells(const DirectionRows& f, const Vec3<double>& wi, double width,
+                         std::uint64_t n, std::uint64_t seed);
 
 // The uniform pair of sample i under seed (gof_family.h's uniform_pair).
 Vec2<double> pair_at(std::uint64_t seed, std::uint64_t i);
@@ -119,7 +137,8 @@ std::size_t chunk_count(std::uint64_t n);
 void for_chunks(std::uint64_t n, const std::function<void(std::uint64_t, std::uint64_t,
                                                           std::size_t)>& f);
 
-// Copies of an entry changed in one way (the controls and the tests' broken models).
+// Copies of an entry changed in one way (the controls and the tests' broken models); each changes
+// the entry's rows functions (ModelEntry::eval_rows, ...) the same way as its per-row thunks.
 ModelEntry with_pdf_scaled(const ModelEntry& m, double scale);
 ModelEntry with_value_scaled(const ModelEntry& m, double scale);   // eval value and sample weight
 ModelEntry with_weight_scaled(const ModelEntry& m, double scale);  // sample weight only

@@ -24,6 +24,18 @@ using V3 = Vec3<double>;
 
 std::uint64_t samples(Budget b) { return b == Budget::kQuick ? 100'000 : 2'000'000; }
 
+// Samples begin .. end − 1 of `seed` at the setting, one call of the entry's rows function (or a
+// loop over its thunk).
+std::vector<ModelSample<double>> samples_at(const ModelEntry& m, const Setting& s,
+                                            std::uint64_t seed, std::uint64_t begin,
+                                            std::uint64_t end) {
+  std::vector<Vec2<double>> u(end - begin);
+  for (std::uint64_t i = begin; i < end; ++i) u[i - begin] = pair_at(seed, i);
+  std::vector<ModelSample<double>> x(u.size());
+  sample_each(m, s.values, s.query, u, x);
+  return x;
+}
+
 bool finite(const V3& w) { return std::isfinite(w.x) && std::isfinite(w.y) && std::isfinite(w.z); }
 
 // |a − b| relative to the larger magnitude; 0 when both are 0, infinite when either is not finite.
@@ -64,8 +76,7 @@ WeightStats weight_stats(const ModelEntry& m, const Setting& s, std::uint64_t n,
   std::vector<WeightStats> parts(chunk_count(n));
   for_chunks(n, [&](std::uint64_t begin, std::uint64_t end, std::size_t c) {
     WeightStats& w = parts[c];
-    for (std::uint64_t i = begin; i < end; ++i) {
-      const ModelSample<double> x = m.sample(s.values, s.query, pair_at(seed, i));
+    for (const ModelSample<double>& x : samples_at(m, s, seed, begin, end)) {
       const double weight = x.rejected ? 0.0 : x.weight;
       if (!std::isfinite(weight)) {
         ++w.non_finite;
@@ -120,17 +131,28 @@ Assessment assess_eval_pdf(const ModelEntry& m, Budget b, const std::string& id,
           p.what = what;
         }
       };
-      for (std::uint64_t i = begin; i < end; ++i) {
-        const ModelSample<double> x = m.sample(s.values, s.query, pair_at(seed, i));
+      // The chunk's samples, then pdf() and eval at the sampled ωo of those that are samples.
+      const std::vector<ModelSample<double>> xs = samples_at(m, s, seed, begin, end);
+      std::vector<ModelQuery<double>> at;
+      for (const ModelSample<double>& x : xs) {
+        if (x.rejected || !finite(x.wo) || !(x.pdf > 0)) continue;  // "no sample"
+        ModelQuery<double> q = s.query;
+        q.wo = x.wo;
+        at.push_back(q);
+      }
+      std::vector<double> pdfs(at.size());
+      std::vector<ErasedEval> evals(at.size());
+      pdf_each(m, s.values, at, pdfs);
+      eval_each(m, s.values, at, evals);
+      std::size_t next = 0;
+      for (const ModelSample<double>& x : xs) {
         if (x.rejected) {
           note(x.weight == 0 ? 0.0 : 1.0, "a rejected sample with a nonzero weight");
           continue;
         }
-        if (!finite(x.wo) || !(x.pdf > 0)) continue;  // "no sample"
-        ModelQuery<double> q = s.query;
-        q.wo = x.wo;
-        const double pdf = m.pdf(s.values, q);
-        const ErasedEval e = m.eval(s.values, q);
+        if (!finite(x.wo) || !(x.pdf > 0)) continue;
+        const double pdf = pdfs[next];
+        const ErasedEval& e = evals[next++];
         note(relative_difference(x.pdf, pdf), "sample pdf vs pdf()");
         note(relative_difference(e.pdf, pdf), "eval pdf vs pdf()");
         note(relative_difference(x.weight, pdf > 0 ? e.value / pdf : 0.0), "weight vs value/pdf");
@@ -188,9 +210,18 @@ ChiSquareResult sampler_chi_square(const ModelEntry& m, const Setting& setting, 
     q.wo = wo;
     return m.pdf(s.values, q);
   };
+  if (m.pdf_rows)
+    o.direction_pdf_rows = [&m, &s](std::span<const V3> w, std::span<double> out) {
+      std::vector<ModelQuery<double>> at(w.size(), s.query);
+      for (std::size_t i = 0; i < w.size(); ++i) at[i].wo = w[i];
+      pdf_each(m, s.values, at, out);
+    };
   const ChiSquarePlan plan = plan_direction_chi_square(SampleDomain::kSphere, pdf, gof_samples(b), o);
   return run_direction_chi_square(
-      plan, [&](std::uint64_t i) { return m.sample(s.values, s.query, pair_at(seed, i)).wo; });
+      plan, DirectionBatchSampler([&](std::uint64_t begin, std::size_t count, V3* out) {
+        const std::vector<ModelSample<double>> x = samples_at(m, s, seed, begin, begin + count);
+        for (std::size_t k = 0; k < count; ++k) out[k] = x[k].wo;
+      }));
 }
 
 // The weighted histogram (Mitsuba 3's chi2 test runs it with weighted sample counts): the sum of
@@ -220,8 +251,10 @@ WeightedHistogram weighted_histogram(const ModelEntry& m, const Setting& s, Budg
   const double width = roughness_hint(m, s.values);
   const MirrorCells cells(s.query.wi, width);
   const CellSums reference = integrate_cells(
-      [&](const V3& wo) { return value_at(m, s.values, s.query, wo); }, s.query.wi, width,
-      2 * reference_block(b), reference_seed);
+      [&](std::span<const V3> wo, std::span<double> out) {
+        values_at(m, s.values, s.query, wo, out);
+      },
+      s.query.wi, width, 2 * reference_block(b), reference_seed);
   WeightedHistogram h;
   for (std::size_t k = 0; k < MirrorCells::kCount; ++k)
     h.reference_finite = h.reference_finite && std::isfinite(reference.sum[k]);
@@ -230,8 +263,7 @@ WeightedHistogram weighted_histogram(const ModelEntry& m, const Setting& s, Budg
   std::vector<std::uint64_t> non_finite(parts.size(), 0);
   for_chunks(n, [&](std::uint64_t begin, std::uint64_t end, std::size_t c) {
     CellSums& p = parts[c];
-    for (std::uint64_t i = begin; i < end; ++i) {
-      const ModelSample<double> x = m.sample(s.values, s.query, pair_at(sampler_seed, i));
+    for (const ModelSample<double>& x : samples_at(m, s, sampler_seed, begin, end)) {
       if (x.rejected || x.weight == 0) continue;
       if (!std::isfinite(x.weight) || !finite(x.wo)) {
         ++non_finite[c];
@@ -392,7 +424,11 @@ Assessment assess_covers_value(const ModelEntry& m, Budget b, const std::string&
         reuse && k < reuse->size()
             ? (*reuse)[k]
             : integrate_hemisphere(
-                  m, [&](const V3& wo) { return value_at(m, s.values, s.query, wo); }, s.query.wi,
+                  m,
+                  [&](std::span<const V3> wo, std::span<double> out) {
+                    values_at(m, s.values, s.query, wo, out);
+                  },
+                  s.query.wi,
                   roughness_hint(m, s.values), b, check_seed(id, set.size() + k));
     a.references.push_back(c);
     if (!std::isfinite(c.value) && a.non_finite.empty())
@@ -452,10 +488,10 @@ Assessment assess_pdf_normalized(const ModelEntry& m, Budget b, const std::strin
     const Setting& s = set[k];
     const HemisphereIntegral c = integrate_hemisphere(
         m,
-        [&](const V3& wo) {
-          ModelQuery<double> q = s.query;
-          q.wo = wo;
-          return m.pdf(s.values, q);
+        [&](std::span<const V3> wo, std::span<double> out) {
+          std::vector<ModelQuery<double>> at(wo.size(), s.query);
+          for (std::size_t i = 0; i < wo.size(); ++i) at[i].wo = wo[i];
+          pdf_each(m, s.values, at, out);
         },
         s.query.wi, roughness_hint(m, s.values), b, check_seed(id, set.size() + k));
     if (!std::isfinite(c.value) && a.non_finite.empty())

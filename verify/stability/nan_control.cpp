@@ -30,6 +30,7 @@ ModelEntry wrap_eval(ModelEntry e, F&& change) {
     };
   };
   e.eval = wrap(e.eval);
+  e.eval_rows = {};  // the wrapped thunk is the only route
   if (e.eval_float) e.eval_float = wrap(e.eval_float);
   e.static_model = nullptr;  // batched as a scalar loop over the wrapped thunks
   return e;
@@ -79,6 +80,7 @@ ModelEntry scale_sample_weight(ModelEntry e, F&& scale) {
         };
   };
   e.sample = wrap(e.sample);
+  e.sample_rows = {};  // the wrapped thunk is the only route
   if (e.sample_float) e.sample_float = wrap(e.sample_float);
   e.static_model = nullptr;
   return e;

@@ -38,18 +38,32 @@ struct Piece {
   double carried_error;  // the integrand's own error estimates, integrated by the Kronrod rule
 };
 
-// 15-point Kronrod with the embedded 7-point Gauss rule.
-template <class F>
-Piece gk_piece(F& f, double a, double b) {
+// 15-point Kronrod with the embedded 7-point Gauss rule: the integrand at its 15 abscissae (0 and
+// ± the 7 positive ones Boost lists; gk_abscissae, in the order the rule sums them), combined by
+// gk_combine.
+constexpr std::size_t kGkPoints = 15;
+
+void gk_abscissae(double a, double b, double* out) {
+  static const auto& x = boost::math::quadrature::gauss_kronrod<double, 15>::abscissa();
+  const double c = 0.5 * (a + b), h = 0.5 * (b - a);
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    out[k++] = c + h * x[i];
+    if (i != 0) out[k++] = c - h * x[i];
+  }
+}
+
+Piece gk_combine(const ValErr* f, double a, double b) {
   static const auto& x = boost::math::quadrature::gauss_kronrod<double, 15>::abscissa();
   static const auto& wk = boost::math::quadrature::gauss_kronrod<double, 15>::weights();
   static const auto& wg = boost::math::quadrature::gauss<double, 7>::weights();
-  const double c = 0.5 * (a + b), h = 0.5 * (b - a);
+  const double h = 0.5 * (b - a);
   double k = 0, g = 0, carried = 0;
+  std::size_t next = 0;
   for (std::size_t i = 0; i < x.size(); ++i) {
-    ValErr s = f(c + h * x[i]);
+    ValErr s = f[next++];
     if (i != 0) {
-      const ValErr m = f(c - h * x[i]);
+      const ValErr m = f[next++];
       s.value += m.value;
       s.error += m.error;
     }
@@ -60,6 +74,15 @@ Piece gk_piece(F& f, double a, double b) {
   return {a, b, k * h, std::abs((k - g) * h), std::abs(carried * h)};
 }
 
+template <class F>
+Piece gk_piece(F& f, double a, double b) {
+  double x[kGkPoints];
+  gk_abscissae(a, b, x);
+  ValErr v[kGkPoints];
+  for (std::size_t i = 0; i < kGkPoints; ++i) v[i] = f(x[i]);
+  return gk_combine(v, a, b);
+}
+
 bool finite(const Piece& p) {
   return std::isfinite(p.value) && std::isfinite(p.rule_error) && std::isfinite(p.carried_error);
 }
@@ -67,48 +90,102 @@ bool finite(const Piece& p) {
 // Globally adaptive: bisect the piece with the largest rule error until the summed rule error is
 // ≤ max(abs_tol, rel_tol·|I|) or max_subdivisions bisections are spent. The returned error is the
 // summed rule error plus the carried errors. Non-finite integrands give NaN.
+// A step machine, so that many integrations can run in lockstep with their integrand evaluated
+// for all of them at once (integrate_bin with a pdf over many directions): wanted() is the pieces
+// whose rule the next step needs, feed() takes them, in that order.
+class AdaptiveGk {
+ public:
+  AdaptiveGk(const std::vector<double>& nodes, double abs_tol, double rel_tol,
+             unsigned max_subdivisions)
+      : abs_tol_(abs_tol), rel_tol_(rel_tol), max_subdivisions_(max_subdivisions) {
+    heap_.reserve(nodes.size() + 2 * std::size_t(max_subdivisions));
+    for (std::size_t i = 0; i + 1 < nodes.size(); ++i) wanted_.push_back({nodes[i], nodes[i + 1]});
+    if (wanted_.empty()) finish();
+  }
+  bool done() const { return done_; }
+  const std::vector<std::pair<double, double>>& wanted() const { return wanted_; }
+  ValErr result() const { return result_; }
+
+  void feed(std::span<const Piece> pieces) {
+    if (initial_) {
+      initial_ = false;
+      for (const Piece& p : pieces) {
+        if (!finite(p)) return fail();
+        heap_.push_back(p);
+        value_ += p.value;
+        rule_ += p.rule_error;
+      }
+      std::make_heap(heap_.begin(), heap_.end(), less);
+    } else {
+      const Piece &l = pieces[0], &r = pieces[1];
+      if (!finite(l) || !finite(r)) return fail();
+      value_ += l.value + r.value - worst_.value;
+      rule_ += l.rule_error + r.rule_error - worst_.rule_error;
+      heap_.push_back(l);
+      std::push_heap(heap_.begin(), heap_.end(), less);
+      heap_.push_back(r);
+      std::push_heap(heap_.begin(), heap_.end(), less);
+      ++subdivisions_;
+    }
+    next_step();
+  }
+
+ private:
+  static bool less(const Piece& p, const Piece& q) { return p.rule_error < q.rule_error; }
+  void next_step() {
+    wanted_.clear();
+    if (subdivisions_ >= max_subdivisions_ || heap_.empty() ||
+        rule_ <= std::max(abs_tol_, rel_tol_ * std::abs(value_)))
+      return finish();
+    std::pop_heap(heap_.begin(), heap_.end(), less);
+    worst_ = heap_.back();
+    const double mid = 0.5 * (worst_.a + worst_.b);
+    if (!(mid > worst_.a && mid < worst_.b)) {
+      std::push_heap(heap_.begin(), heap_.end(), less);
+      return finish();
+    }
+    heap_.pop_back();
+    wanted_ = {{worst_.a, mid}, {mid, worst_.b}};
+  }
+  void fail() {
+    wanted_.clear();
+    result_ = {kNaN, kNaN};
+    done_ = true;
+  }
+  void finish() {
+    // Re-sum in interval order: no drift from the running updates, and an order-free result.
+    std::sort(heap_.begin(), heap_.end(), [](const Piece& p, const Piece& q) { return p.a < q.a; });
+    result_ = {};
+    for (const Piece& p : heap_) {
+      result_.value += p.value;
+      result_.error += p.rule_error + p.carried_error;
+    }
+    wanted_.clear();
+    done_ = true;
+  }
+
+  double abs_tol_, rel_tol_;
+  unsigned max_subdivisions_, subdivisions_ = 0;
+  std::vector<Piece> heap_;
+  std::vector<std::pair<double, double>> wanted_;
+  Piece worst_{};
+  double value_ = 0, rule_ = 0;
+  bool initial_ = true, done_ = false;
+  ValErr result_;
+};
+
+// One integration, its integrand called one point at a time.
 template <class F>
 ValErr adaptive_gk(F& f, const std::vector<double>& nodes, double abs_tol, double rel_tol,
                    unsigned max_subdivisions) {
-  std::vector<Piece> heap;
-  heap.reserve(nodes.size() + 2 * std::size_t(max_subdivisions));
-  auto less = [](const Piece& p, const Piece& q) { return p.rule_error < q.rule_error; };
-  double value = 0, rule = 0;
-  for (std::size_t i = 0; i + 1 < nodes.size(); ++i) {
-    const Piece p = gk_piece(f, nodes[i], nodes[i + 1]);
-    if (!finite(p)) return {kNaN, kNaN};
-    heap.push_back(p);
-    value += p.value;
-    rule += p.rule_error;
+  AdaptiveGk gk(nodes, abs_tol, rel_tol, max_subdivisions);
+  std::vector<Piece> pieces;
+  while (!gk.done()) {
+    pieces.clear();
+    for (const auto& [a, b] : gk.wanted()) pieces.push_back(gk_piece(f, a, b));
+    gk.feed(pieces);
   }
-  std::make_heap(heap.begin(), heap.end(), less);
-  for (unsigned s = 0; s < max_subdivisions && !heap.empty(); ++s) {
-    if (rule <= std::max(abs_tol, rel_tol * std::abs(value))) break;
-    std::pop_heap(heap.begin(), heap.end(), less);
-    const Piece worst = heap.back();
-    const double mid = 0.5 * (worst.a + worst.b);
-    if (!(mid > worst.a && mid < worst.b)) {
-      std::push_heap(heap.begin(), heap.end(), less);
-      break;
-    }
-    heap.pop_back();
-    const Piece l = gk_piece(f, worst.a, mid), r = gk_piece(f, mid, worst.b);
-    if (!finite(l) || !finite(r)) return {kNaN, kNaN};
-    value += l.value + r.value - worst.value;
-    rule += l.rule_error + r.rule_error - worst.rule_error;
-    heap.push_back(l);
-    std::push_heap(heap.begin(), heap.end(), less);
-    heap.push_back(r);
-    std::push_heap(heap.begin(), heap.end(), less);
-  }
-  // Re-sum in interval order: no drift from the running updates, and an order-free result.
-  std::sort(heap.begin(), heap.end(), [](const Piece& p, const Piece& q) { return p.a < q.a; });
-  ValErr out;
-  for (const Piece& p : heap) {
-    out.value += p.value;
-    out.error += p.rule_error + p.carried_error;
-  }
-  return out;
+  return gk.result();
 }
 
 // ---- Polar coordinates of the sampling domain ---------------------------------------------------
@@ -122,6 +199,7 @@ struct PolarMap {
   bool tilted = false;    // hemisphere in a tilted frame: mask z ≥ 0, split at the horizon
   Vec3<double> up{0, 0, 1};  // world +z in frame coordinates
   const DirectionPdf* dpdf = nullptr;
+  const DirectionPdfRows* dpdf_rows = nullptr;  // set: integrate_bin asks for many points at once
   const PointPdf* ppdf = nullptr;
 
   bool disk() const { return domain == SampleDomain::kDisk; }
@@ -140,10 +218,13 @@ struct PolarMap {
       const double r = std::sqrt(std::max(0.0, u));
       return 0.5 * (*ppdf)(Vec2<double>{0.5 + r * c, 0.5 + r * s});
     }
-    const double st = std::sqrt(std::max(0.0, u * (2 - u)));
-    const Vec3<double> w = (st * c) * fx + (st * s) * fy + (1 - u) * fz;
+    const Vec3<double> w = direction(u, c, s);
     if (tilted && w.z < 0) return 0.0;
     return (*dpdf)(w);
+  }
+  Vec3<double> direction(double u, double c, double s) const {
+    const double st = std::sqrt(std::max(0.0, u * (2 - u)));
+    return (st * c) * fx + (st * s) * fy + (1 - u) * fz;
   }
   // The u where the horizon z = 0 crosses azimuth φ, for a tilted hemisphere.
   bool horizon_u(double c, double s, double& u) const {
@@ -177,17 +258,95 @@ ValErr integrate_bin(const PolarMap& pm, const CubatureSetup& cs, double u0, dou
   base.push_back(u1);
   const double abs_tol = o.abs_tol_counts / cs.n;
   const double inner_abs = 0.5 * abs_tol / (p1 - p0);
-  std::vector<double> nodes;
-  auto outer = [&](double phi) -> ValErr {
-    const double c = std::cos(phi), s = std::sin(phi);
-    nodes = base;
+  // The inner rule's nodes at azimuth (c, s): the breaks, and the horizon of a tilted hemisphere.
+  auto inner_nodes = [&](double c, double s) {
+    std::vector<double> nodes = base;
     double uh = 0;
     if (pm.horizon_u(c, s, uh) && uh > u0 && uh < u1)
       nodes.insert(std::upper_bound(nodes.begin(), nodes.end(), uh), uh);
-    auto inner = [&](double u) { return ValErr{pm.density(u, c, s), 0.0}; };
-    return adaptive_gk(inner, nodes, inner_abs, 0.5 * o.rel_tol, o.max_subdivisions);
+    return nodes;
   };
-  return adaptive_gk(outer, pnodes, 0.5 * abs_tol, 0.5 * o.rel_tol, o.max_subdivisions);
+  if (!pm.dpdf_rows) {
+    auto outer = [&](double phi) -> ValErr {
+      const double c = std::cos(phi), s = std::sin(phi);
+      auto inner = [&](double u) { return ValErr{pm.density(u, c, s), 0.0}; };
+      return adaptive_gk(inner, inner_nodes(c, s), inner_abs, 0.5 * o.rel_tol, o.max_subdivisions);
+    };
+    return adaptive_gk(outer, pnodes, 0.5 * abs_tol, 0.5 * o.rel_tol, o.max_subdivisions);
+  }
+  // The same integrals with the pdf asked for many directions at once: each step of the outer
+  // rule runs the inner integrals at all of its azimuths in lockstep, one call of the pdf per
+  // round of their bisections. Every integration takes the steps it takes above, in the same
+  // order and arithmetic, so the result is the same bit for bit.
+  struct Inner {
+    double c, s;
+    AdaptiveGk gk;
+  };
+  AdaptiveGk outer(pnodes, 0.5 * abs_tol, 0.5 * o.rel_tol, o.max_subdivisions);
+  std::vector<Piece> outer_pieces, pieces;
+  std::vector<Inner> inners;
+  std::vector<Vec3<double>> w;
+  std::vector<double> pdf;
+  std::vector<std::size_t> asked;  // per point of the round: its index in w, or kNoPdf
+  constexpr std::size_t kNoPdf = std::numeric_limits<std::size_t>::max();
+  while (!outer.done()) {
+    inners.clear();
+    for (const auto& [a, b] : outer.wanted()) {
+      double phis[kGkPoints];
+      gk_abscissae(a, b, phis);
+      for (double phi : phis) {
+        const double c = std::cos(phi), s = std::sin(phi);
+        inners.push_back({c, s, AdaptiveGk(inner_nodes(c, s), inner_abs, 0.5 * o.rel_tol,
+                                           o.max_subdivisions)});
+      }
+    }
+    for (;;) {
+      w.clear();
+      asked.clear();
+      for (const Inner& in : inners) {
+        if (in.gk.done()) continue;
+        for (const auto& [a, b] : in.gk.wanted()) {
+          double us[kGkPoints];
+          gk_abscissae(a, b, us);
+          for (double u : us) {
+            const Vec3<double> d = pm.direction(u, in.c, in.s);
+            if (pm.tilted && d.z < 0) {  // density() is 0 there without asking the pdf
+              asked.push_back(kNoPdf);
+              continue;
+            }
+            asked.push_back(w.size());
+            w.push_back(d);
+          }
+        }
+      }
+      if (asked.empty()) break;
+      pdf.assign(w.size(), 0.0);
+      (*pm.dpdf_rows)(w, pdf);
+      std::size_t next = 0;
+      for (Inner& in : inners) {
+        if (in.gk.done()) continue;
+        pieces.clear();
+        for (const auto& [a, b] : in.gk.wanted()) {
+          ValErr v[kGkPoints];
+          for (ValErr& x : v) {
+            const std::size_t k = asked[next++];
+            x = {k == kNoPdf ? 0.0 : pdf[k], 0.0};
+          }
+          pieces.push_back(gk_combine(v, a, b));
+        }
+        in.gk.feed(pieces);
+      }
+    }
+    outer_pieces.clear();
+    std::size_t next = 0;
+    for (const auto& [a, b] : outer.wanted()) {
+      ValErr v[kGkPoints];
+      for (ValErr& x : v) x = inners[next++].gk.result();
+      outer_pieces.push_back(gk_combine(v, a, b));
+    }
+    outer.feed(outer_pieces);
+  }
+  return outer.result();
 }
 
 // ---- Bin layouts --------------------------------------------------------------------------------
@@ -399,6 +558,7 @@ ChiSquarePlan make_plan(SampleDomain domain, DirectionPdf dpdf, PointPdf ppdf, s
     pm.tilted = plan.tilted_hemisphere;
     pm.up = {plan.frame_x.z, plan.frame_y.z, plan.frame_z.z};
     pm.dpdf = &plan.direction_pdf;
+    if (plan.options.direction_pdf_rows) pm.dpdf_rows = &plan.options.direction_pdf_rows;
   }
   pm.t_max = plan.t_max;
   if (n == 0) {

@@ -136,6 +136,9 @@ double min_detectable_relative_error(double n, double dof, double level, double 
 
 using DirectionSampler = std::function<Vec3<double>(std::uint64_t index)>;
 using DirectionPdf = std::function<double(const Vec3<double>&)>;  // per unit solid angle
+// The same pdf at many directions in one call: out[i] = pdf(w[i]), bit for bit.
+using DirectionPdfRows =
+    std::function<void(std::span<const Vec3<double>> w, std::span<double> out)>;
 using PointSampler = std::function<Vec2<double>(std::uint64_t index)>;
 using PointPdf = std::function<double(const Vec2<double>&)>;      // per unit area
 
@@ -166,6 +169,11 @@ struct ChiSquareOptions {
   double level = kFamilyWiseRate;       // significance level for the power report
   double power = 0.9;
   std::uint64_t chunk = 1 << 14;        // samples per parallel task (results do not depend on it)
+  // Optional, directions only: the pdf over many directions per call (a pdf whose every call costs
+  // far more than its arithmetic, such as a Python model's). The planner's cubature then runs the
+  // inner integrals of each round of its outer rule in lockstep and asks for all of their points at
+  // once; the plan is the same, bit for bit, as with the pdf alone.
+  DirectionPdfRows direction_pdf_rows;
 };
 
 // One resolution's bins: rings [t_i, t_{i+1}) in the radial coordinate t (θ' about the lobe, or r

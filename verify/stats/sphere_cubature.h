@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "core/math/vec.h"
@@ -31,6 +32,14 @@ struct SphereCubatureOptions {
 // ∫ f(ω) dω over θ ∈ [theta_min, theta_max], φ ∈ [0, 2π), ω = (sinθ cosφ, sinθ sinφ, cosθ).
 Integral integrate_sphere(const std::function<double(const Vec3<double>&)>& f,
                           const SphereCubatureOptions& options);
+
+// The same integral with f asked for many directions per call (out[i] = f(w[i]), bit for bit):
+// each step of the outer rule over φ runs the inner integrals over θ at all of its azimuths in
+// lockstep, and each round of their bisections asks for the points of all of their rules at
+// once, for an integrand whose every call costs far more than its arithmetic (a Python model's).
+// The same points, rules and bisections as integrate_sphere: the same result, bit for bit.
+using SphereRows = std::function<void(std::span<const Vec3<double>> w, std::span<double> out)>;
+Integral integrate_sphere_rows(const SphereRows& f, const SphereCubatureOptions& options);
 
 // Breakpoints that resolve a lobe of angular width `width` around θ = 0 (geometric: width·2^k,
 // k = −6..) and the horizon θ = π/2, clipped to (lo, hi). Used for NDF lobes of roughness α.

@@ -3,7 +3,11 @@
 // deliberately broken toy models that fail the property they break.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
+#include <cstring>
+#include <memory>
+#include <span>
 #include <cstdlib>
 #include <numbers>
 #include <set>
@@ -421,6 +425,113 @@ TEST(ConformanceControls, PerturbedBatchFailsSimdEquivalence) {
   EXPECT_EQ(off.configurations, exact.configurations);
   // Every ISA's batch was perturbed, not only one.
   EXPECT_EQ(off.detail.find(": 0 beyond"), std::string::npos) << off.detail;
+}
+
+// ---- Rows functions (ModelEntry::eval_rows, pdf_rows, sample_rows) ----------------------------
+
+// The entry with rows functions over its own thunks, each call counted (a Python model's rows
+// functions call its numpy functions once per chunk instead).
+struct RowCalls {
+  std::atomic<long> eval = 0, pdf = 0, sample = 0, rows = 0;
+};
+ModelEntry with_rows(ModelEntry e, std::shared_ptr<RowCalls> calls) {
+  e.eval_rows = [f = e.eval, calls](const std::vector<double>& v,
+                                    std::span<const ModelQuery<double>> qs,
+                                    std::span<ErasedEval> out) {
+    ++calls->eval;
+    calls->rows += long(qs.size());
+    for (std::size_t i = 0; i < qs.size(); ++i) out[i] = f(v, qs[i]);
+  };
+  e.pdf_rows = [f = e.pdf, calls](const std::vector<double>& v,
+                                  std::span<const ModelQuery<double>> qs, std::span<double> out) {
+    ++calls->pdf;
+    calls->rows += long(qs.size());
+    for (std::size_t i = 0; i < qs.size(); ++i) out[i] = f(v, qs[i]);
+  };
+  e.sample_rows = [f = e.sample, calls](const std::vector<double>& v, const ModelQuery<double>& q,
+                                        std::span<const Vec2<double>> u,
+                                        std::span<ModelSample<double>> out) {
+    ++calls->sample;
+    calls->rows += long(u.size());
+    for (std::size_t i = 0; i < u.size(); ++i) out[i] = f(v, q, u[i]);
+  };
+  return e;
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// Every altered copy of an entry (the controls) changes its rows functions as it changes its
+// per-row thunks: eval_each / pdf_each / sample_each give what the thunks give, bit for bit (a copy
+// that kept the original rows functions would let the suite's chunked callers bypass the change).
+TEST(ConformanceRows, AlteredCopiesChangeTheRowsLikeTheThunks) {
+  const ModelEntry base = with_rows(lambert_toy(0.9), std::make_shared<RowCalls>());
+  const std::vector<std::pair<std::string, ModelEntry>> copies = {
+      {"pdf scaled", with_pdf_scaled(base, 1.03)},
+      {"value scaled", with_value_scaled(base, 1.03)},
+      {"weight scaled", with_weight_scaled(base, 1.03)},
+      {"sampler restricted", with_sampler_restricted(base, 0.3)},
+      {"sparse NaN", with_sparse_nan(base, 0.3)},
+      {"uniform sampler", with_uniform_sampler(base)},
+      {"consistent sample", with_consistent_sample(with_pdf_scaled(base, 1.03))},
+      {"outputs sanitized", with_outputs_sanitized(with_value_scaled(base, -1))},
+      {"cost per area", with_cost_per_area(base, 0.01, 4)},
+      {"footprint clamped", with_footprint_clamped(base, 0.01)}};
+  const std::vector<double> values;
+  ModelQuery<double> q = make_query(base, 40, 0.3);
+  std::vector<ModelQuery<double>> qs;
+  std::vector<Vec2<double>> u;
+  for (std::uint64_t i = 0; i < 500; ++i) {
+    u.push_back(pair_at(7, i));
+    const double z = 2 * u.back().x - 1, r = std::sqrt(1 - z * z), phi = 2 * std::numbers::pi * u.back().y;
+    qs.push_back(q);
+    qs.back().wo = {r * std::cos(phi), r * std::sin(phi), z};
+  }
+  for (const auto& [what, m] : copies) {
+    std::vector<ErasedEval> e(qs.size());
+    std::vector<double> p(qs.size());
+    std::vector<ModelSample<double>> x(u.size());
+    eval_each(m, values, qs, e);
+    pdf_each(m, values, qs, p);
+    sample_each(m, values, q, u, x);
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < qs.size(); ++i) {
+      const ErasedEval one = m.eval(values, qs[i]);
+      const ModelSample<double> s = m.sample(values, q, u[i]);
+      differ += !same_bits(e[i].value, one.value) || !same_bits(e[i].pdf, one.pdf);
+      differ += !same_bits(p[i], m.pdf(values, qs[i]));
+      differ += !same_bits(x[i].wo.x, s.wo.x) || !same_bits(x[i].wo.z, s.wo.z) ||
+                !same_bits(x[i].pdf, s.pdf) || !same_bits(x[i].weight, s.weight) ||
+                x[i].rejected != s.rejected;
+    }
+    EXPECT_EQ(differ, 0u) << what;
+  }
+  // The test tells a stale rows function apart: the pdf thunk scaled, its rows left as they were.
+  ModelEntry stale = base;
+  stale.pdf = with_pdf_scaled(base, 1.03).pdf;
+  std::vector<double> p(qs.size());
+  pdf_each(stale, values, qs, p);
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < qs.size(); ++i) differ += !same_bits(p[i], stale.pdf(values, qs[i]));
+  EXPECT_GT(differ, 100u);
+}
+
+// The properties ask an entry with rows functions for whole chunks of queries: a few hundred calls
+// for the quick budget's millions of queries, and the same check results as the entry without
+// them.
+TEST(ConformanceRows, PropertiesCallTheRowsPerChunk) {
+  const ModelEntry one = lambert_toy(0.9);
+  const auto calls = std::make_shared<RowCalls>();
+  const ModelEntry rows = with_rows(one, calls);
+  for (std::string_view p : {"eval-pdf-consistency", "sampler-matches-pdf", "energy"}) {
+    const CheckResult a = run_property(std::string(p), one, Budget::kQuick);
+    const CheckResult b = run_property(std::string(p), rows, Budget::kQuick);
+    EXPECT_EQ(a.verdict, b.verdict) << p;
+    EXPECT_EQ(a.detail, b.detail) << p;
+    EXPECT_EQ(a.control, b.control) << p;
+    EXPECT_TRUE(same_bits(a.value, b.value)) << p;
+  }
+  EXPECT_GT(calls->rows.load(), 1'000'000);
+  EXPECT_LT(calls->eval + calls->pdf + calls->sample, calls->rows / 500) << calls->rows;
 }
 
 }  // namespace
