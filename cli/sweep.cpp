@@ -74,7 +74,8 @@ anisotropy alpha_x/alpha_y 1 .. 1000, `density` and `microroughness` over their 
 footprint size (footprint models) and light half-angle (light models). Per cell: fractions of
 NaN, Inf and negative values, the white-furnace albedo (energy gain > 1 beyond 4 standard
 errors), p > 1 for probability intermediates (named p or p_*), and Var(w)/E(w)^2 of the
-sample weight (blow-up above 100).
+sample weight at the worst of 4 fixed surface positions (blow-up above 81.92, a pixel still 10 %
+noisy at 8192 samples; docs/stability.md).
 Writes DIR/<model>/<sampler>/<plane>.csv (every number per cell), <plane>_<quantity>.exr (one
 pixel per cell; row 0 = the smallest row value) and .png, and DIR/stability.json: machine,
 budget, and per target its maps and its failure region in words. Files are staged and moved

@@ -72,7 +72,7 @@ STATEMENTS = {
     "all.stability": "no registered model gives NaN, Inf or negative values in its core domain",
     "all.energy-gain": "no registered model gains energy (white furnace) in its core domain",
     "all.probability": "no registered model's probability exceeds 1 in its core domain",
-    "all.variance": "no registered model's sample weights blow up (Var/E² > 100) in its core domain",
+    "all.variance": "no registered model's sample weights blow up at a fixed surface position (Var/E² > 81.92) in its core domain",
 }
 
 

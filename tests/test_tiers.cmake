@@ -22,7 +22,7 @@ set(glintlab_slow_tests
   "Checks/QuickBudget.VerdictAndControl/kemppinen_compensation_k16* 5"
   "Checks/QuickBudget.VerdictAndControl/kemppinen_compensation* 24"
   "Checks/QuickBudget.* 1"
-  "AcrossClaims.StabilityVerdictAndControl 9"
+  "AcrossClaims.StabilityVerdictAndControl 17"
   "Properties/ControlRejected.ByTheSameDecision/kneiphof_klein_sampler_covers_value* 4"
   # sampler-covers-value of both Kemppinen models at quick, with the mixture and with Algorithm 2
   # alone (10^5 samples and up to 4 · 10^5 reference evaluations per setting).
@@ -69,7 +69,7 @@ set(glintlab_slow_tests
   "KemppinenTimingTest.FiguresReadTheBenchmarkJson 4"
   "KemppinenTimingTest.SpeedAccuracyWithoutJson 3"
   "PluginTest.ReportCoversThePluginModelInEveryPart 3"
-  "PluginTest.SweepFigureAndGenericClaimCoverThePluginModel 21"
+  "PluginTest.SweepFigureAndGenericClaimCoverThePluginModel 30"
   "PodeeCliTest.DistanceAndFlickerQuick 2"
   "ReportTest.ReuseReadsCachedResultsAndAMalformedOneLeavesTheOldReport 1"
   "ReportTest.SmallRealRun 4"

@@ -336,12 +336,11 @@ const std::vector<PaperQuote>& paper_quotes() {
                 "(all.stability); per model: \"no NaN/Inf/negative, gain or variance blow-up in "
                 "the core domain\"; this check: huge variance",
        .stronger_reading = "CLAIMS.md names \"huge variance\" without a threshold; the check "
-                           "fails a target where Var(w)/E(w)² > 100 (kVarianceBlowup, "
-                           "verify/stability/cell_stats.h) in the core domain. For glint models "
-                           "every sample is drawn at a new surface position "
-                           "(verify/stability/cell_stats.cpp), so the variance includes the "
-                           "glints' spatial sparsity: with 256 samples per cell one non-zero "
-                           "weight gives exactly 256, the value several targets reach.",
+                           "fails a target where, at a fixed surface position and footprint (the "
+                           "estimator a renderer has at one pixel), Var(w)/max(E(w), 1/256)² "
+                           "exceeds 81.92 in the core domain: a pixel still noisier than 10 % at "
+                           "8192 samples, the reference count of Kemppinen et al. 2025 Fig. 7 "
+                           "(kVarianceBlowup, verify/stability/cell_stats.h).",
        .glintlab_rule = true},
       {.id = "adequacy.prediction-matches-measurement",
        .quote = "Not a paper's claim: glintlab's rule (shared/CLAIMS.md): \"the closed-form "

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <tuple>
+#include <utility>
 
 #include "core/math/rng.h"
 #include "verify/claims/gof_family.h"
@@ -185,9 +187,38 @@ CellStats measure_cell(const SweepTarget& target, const SweepPlane& plane, doubl
     }
   }
   mean_error(ws, ws2, budget.samples, c.albedo, c.albedo_error);
-  const double var =
-      budget.samples > 1 ? c.albedo_error * c.albedo_error * double(budget.samples) : 0;
-  c.relative_variance = c.albedo > 0 ? var / (c.albedo * c.albedo) : 0;
+
+  // The weight's variance at fixed positions: the position drawn once, then only the sampler's
+  // random numbers (index ranges and dimensions unused above, so the draws above are unchanged).
+  // A position above the bound is measured again with fresh numbers, kVarianceConfirmFactor times
+  // as many, and that estimate is the position's.
+  const std::uint64_t first = budget.uniform_evals + budget.samples;
+  auto relative_variance_at = [&](std::uint64_t j, std::uint64_t n, std::uint64_t dim) {
+    double ps = 0, ps2 = 0;
+    for (std::uint64_t i = 0; i < n; ++i) {
+      const std::uint64_t k = first + j * n + i;
+      const Vec2<double> u{counter_uniform<double>(seed, k, dim),
+                           counter_uniform<double>(seed, k, dim + 1)};
+      const ModelSample<double> smp = m.sample(values, q, u);
+      ++c.variance_samples;
+      const double w = furnace * (smp.rejected || !std::isfinite(smp.weight) ? 0.0 : smp.weight);
+      ps += w;
+      ps2 += w * w;
+    }
+    double mean = 0, error = 0;
+    mean_error(ps, ps2, n, mean, error);
+    const double scale = std::max(mean, kDarkAlbedo);
+    return std::pair{mean, error * error * double(n) / (scale * scale)};
+  };
+  for (std::uint64_t j = 0; j < kVariancePositions; ++j) {
+    q.footprint.uv = {counter_uniform<double>(seed, first + j, 6),
+                      counter_uniform<double>(seed, first + j, 7)};
+    auto [mean, rv] = relative_variance_at(j, budget.samples, 8);
+    if (rv > kVarianceBlowup)
+      std::tie(mean, rv) = relative_variance_at(j, kVarianceConfirmFactor * budget.samples, 10);
+    c.positions_reflecting += mean >= kDarkAlbedo;
+    c.relative_variance = std::max(c.relative_variance, rv);
+  }
   return c;
 }
 

@@ -80,7 +80,7 @@ std::string Finding::text() const {
   else if (defect == "p > 1")
     how = fmt::format("up to {:.3g} % of probabilities", 100 * worst);
   else if (defect == "variance blow-up")
-    how = fmt::format("Var(w)/E(w)² up to {:.3g}", worst);
+    how = fmt::format("Var(w)/E(w)² at a fixed position up to {:.3g}", worst);
   else
     how = fmt::format("up to {:.3g} % of calls", 100 * worst);
   return fmt::format("{} for {} ({} of {} cells of the {} sweep, {})", what, region, cells,
@@ -149,7 +149,7 @@ std::string describe_failure_region(const ModelSweep& s) {
   if (f.empty()) {
     return fmt::format(
         "none found: no NaN, Inf or negative value, pdf or sample{}, no significant energy gain, "
-        "{}relative weight variance ≤ {:g} in every cell swept",
+        "{}relative weight variance at a fixed position ≤ {:g} in every cell swept",
         s.has_float ? " (double and float)" : " (double; no float instantiation)",
         s.has_probability ? "no p > 1, " : "", kVarianceBlowup);
   }

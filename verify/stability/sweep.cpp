@@ -13,8 +13,8 @@
 namespace glintlab::verify::stability {
 
 CellBudget cell_budget(Budget b) {
-  // Quick takes 256 samples: Var(w)/E(w)² of n samples is at most n − 1, so 64 could never show a
-  // blow-up above kVarianceBlowup = 100.
+  // Quick takes 256 samples: Var(w)/E(w)² of n samples is at most n, so 64 could never show a
+  // blow-up above kVarianceBlowup = 81.92.
   return b == Budget::kQuick ? CellBudget{64, 256} : CellBudget{1024, 1024};
 }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -90,6 +91,83 @@ TEST(StabilitySweep, GainAndSpikeControlsFailTheirOwnKindOnly) {
   const ModelSweep v = sweep_model(target_of(spike_control_model()), Budget::kQuick);
   EXPECT_EQ(stability_verdict(v, DefectClass::kHugeVariance), Verdict::kFails);
   EXPECT_EQ(stability_verdict(v, DefectClass::kBreaks), Verdict::kHolds);
+}
+
+// A glint-like copy of smooth_ggx: reflecting at one position in kSparseScale (uv.x in the first
+// 1/kSparseScale of [0, 1)), there with value and weight × kSparseScale, and black elsewhere. Its
+// sampler is exact at every position, so a renderer's pixel converges as fast as smooth_ggx's;
+// only the spatial variance is large, which a new position per sample would count.
+constexpr double kSparseScale = 128;
+ModelEntry sparse_positions_model() {
+  auto lit = [](const ModelQuery<double>& q) { return q.footprint.uv.x * kSparseScale < 1; };
+  return altered(
+      "sparse_positions_ggx",
+      [lit](const std::vector<double>&, const ModelQuery<double>& q, ErasedEval& r) {
+        r.value *= lit(q) ? kSparseScale : 0.0;
+      },
+      [lit](const std::vector<double>&, const ModelQuery<double>& q, ModelSample<double>& s) {
+        s.weight *= lit(q) ? kSparseScale : 0.0;
+      });
+}
+
+// smooth_ggx whose sampler draws the VNDF of a lobe `narrowing` times narrower than the BRDF's and
+// weights by value/pdf of that lobe: unbiased, but where the narrow pdf is near zero the value is
+// not (narrowing = 1: the model's own sampler, the near-truth input).
+ModelEntry narrow_sampler_model(double narrowing) {
+  ModelEntry e = find_model("smooth_ggx");
+  e.name = "narrow_sampler_ggx";
+  std::size_t ax = 0, ay = 0;
+  for (std::size_t i = 0; i < e.params.size(); ++i) {
+    if (e.params[i].name == "alpha_x") ax = i;
+    if (e.params[i].name == "alpha_y") ay = i;
+  }
+  auto eval = e.eval;
+  auto sample = e.sample;
+  e.sample = [=](const std::vector<double>& v, const ModelQuery<double>& q, Vec2<double> u) {
+    std::vector<double> narrow = v;
+    narrow[ax] = clamp_to_range(e.params[ax], v[ax] / narrowing);
+    narrow[ay] = clamp_to_range(e.params[ay], v[ay] / narrowing);
+    ModelSample<double> s = sample(narrow, q, u);
+    if (s.rejected || !(s.pdf > 0)) return s;
+    ModelQuery<double> at = q;
+    at.wo = s.wo;
+    s.weight = eval(v, at).value / s.pdf;
+    return s;
+  };
+  e.eval_float = {}, e.pdf_float = {}, e.sample_float = {};
+  return e;
+}
+
+// The variance rule measures a renderer's pixel: at a fixed surface position. Spatial sparsity
+// alone (an exact sampler, a glint at one position in 128) is no blow-up, though weights drawn at
+// a new position per sample exceed the bound; a sampler whose pdf is near zero where the value is
+// not fails by the same decision, and the same sampler with the BRDF's own lobe holds.
+TEST(StabilitySweep, VarianceIsMeasuredAtAFixedPosition) {
+  const ModelEntry sparse = sparse_positions_model();
+  const ModelSweep s = sweep_model(target_of(sparse), Budget::kQuick);
+  EXPECT_EQ(stability_verdict(s, DefectClass::kHugeVariance), Verdict::kHolds)
+      << describe_failure_region(s);
+  double spatial = 0;  // Var(w)/E(w)² of the furnace samples, one position per sample
+  std::uint64_t bright = 0;
+  for (const SweepMap& m : s.maps)
+    for (const CellStats& c : m.cells) {
+      if (c.albedo > 0)
+        spatial = std::max(spatial, c.albedo_error * c.albedo_error * double(c.samples) /
+                                        (c.albedo * c.albedo));
+      bright += c.positions_reflecting;
+    }
+  EXPECT_GT(spatial, kVarianceBlowup);
+  EXPECT_GT(bright, 0u);  // some fixed positions reflect, and their variance is measured
+
+  const ModelEntry broken = narrow_sampler_model(32);
+  const ModelSweep b = sweep_model(target_of(broken), Budget::kQuick);
+  EXPECT_EQ(stability_verdict(b, DefectClass::kHugeVariance), Verdict::kFails)
+      << describe_failure_region(b);
+  EXPECT_EQ(stability_verdict(b, DefectClass::kBreaks), Verdict::kHolds);
+  const ModelEntry near_truth = narrow_sampler_model(1);
+  const ModelSweep t = sweep_model(target_of(near_truth), Budget::kQuick);
+  EXPECT_EQ(stability_verdict(t, DefectClass::kHugeVariance), Verdict::kHolds)
+      << describe_failure_region(t);
 }
 
 TEST(StabilitySweep, RawUnclampedValuesAreNotProbabilities) {
