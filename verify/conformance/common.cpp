@@ -350,6 +350,7 @@ FamilyOutcome family_at(const std::vector<double>& raw_p, double level) {
   const HolmSidakResult h = holm_sidak(raw_p, level);
   f.any_rejected = h.rejections > 0;
   f.rejections = h.rejections;
+  f.reject = h.reject;
   f.min_adjusted = *std::min_element(h.adjusted.begin(), h.adjusted.end());
   return f;
 }

@@ -128,6 +128,7 @@ struct FamilyOutcome {
   bool any_rejected = false;
   double min_adjusted = 1;
   std::size_t rejections = 0;
+  std::vector<bool> reject;  // per raw p-value, in input order
 };
 FamilyOutcome family_at(const std::vector<double>& raw_p, double level);
 

@@ -140,6 +140,10 @@ Assessment assess_float_double(const ModelEntry& m, Budget b, const std::string&
   a.value = double(g.outliers) / double(g.rows);
   a.configurations = 1;
   a.verdict = a.value <= kFloatOutlierShare ? Verdict::kHolds : Verdict::kFails;
+  a.power = fmt::format("deterministic on these {} queries: more than {} of them ({:g}) differing "
+                        "beyond 1e-3 relative is detected",
+                        g.rows, std::uint64_t(kFloatOutlierShare * double(g.rows)),
+                        kFloatOutlierShare);
   a.detail = fmt::format("{} queries at the default parameters (half with ωo from the model's "
                          "sampler; {} with a non-zero value): {} beyond 1e-3 relative (share "
                          "{:.3g}, allowed {:g}); largest relative difference {:.3g}",
@@ -207,6 +211,9 @@ Assessment assess_simd(const ModelEntry& m, Budget b, const std::string& id, dou
                            g.worst);
   }
   a.verdict = a.value <= kSimdOutlierShare ? Verdict::kHolds : Verdict::kFails;
+  a.power = fmt::format("deterministic on these {} rows per ISA: more than {} of them ({:g}) "
+                        "differing beyond 1e-9 relative on one ISA is detected",
+                        n, std::uint64_t(kSimdOutlierShare * double(n)), kSimdOutlierShare);
   a.detail = fmt::format("{} rows at the default parameters (half with ωo from the model's "
                          "sampler; {} with a non-zero value), on every ISA this CPU runs, each "
                          "against the scalar eval, allowed share {:g} beyond 1e-9 relative: {}",
@@ -259,6 +266,10 @@ Assessment assess_stability(const ModelEntry& m, Budget b, const std::string&, d
   a.value = double(core_cells);
   a.configurations = int(targets.size());
   a.verdict = fails ? Verdict::kFails : regime ? Verdict::kHoldsInRegime : Verdict::kHolds;
+  a.power = fmt::format("deterministic on the sweep's grid: one NaN, Inf or negative output in "
+                        "any of the {} cells' samples is detected; a defect between its cells or "
+                        "beyond its sample counts is not",
+                        swept_cells);
   a.detail = fmt::format(
       "{} sampler target(s) swept, {} cells; NaN/Inf/negative: {}; sub-verdicts: {}",
       targets.size(), swept_cells, breaks.empty() ? "none" : breaks, others);
@@ -394,6 +405,15 @@ Assessment assess_converges(const ModelEntry& m, Budget b, const std::string& id
   }
   a.value = bias[worst];
   a.configurations = int(sides.size() * pairs.size());
+  // A pair's bias beyond the tolerance is decided "fails" when |bias| − z·SE > tolerance: with
+  // 90 % power from tolerance + (z + z_90)·SE; the least sensitive pair states the property's.
+  double widest = 0;
+  for (std::size_t p = 0; p < pairs.size(); ++p)
+    if (std::isfinite(se[p])) widest = std::max(widest, se[p]);
+  a.power = fmt::format("a remaining bias of {:.2g} at the largest footprint in every direction "
+                        "pair (tolerance {:g} + {:.2g})",
+                        kTolerance + (z + normal_quantile(0.9)) * widest, kTolerance,
+                        (z + normal_quantile(0.9)) * widest);
   a.p_value = sidak_min(a.raw_p_values);
   a.verdict = !finite   ? Verdict::kFails
               : beyond  ? Verdict::kFails
@@ -451,6 +471,9 @@ Assessment assess_constant_time(const ModelEntry& m, Budget b, const std::string
   a.value = large / small;
   a.configurations = 2;
   a.verdict = a.value <= kMaxRatio ? Verdict::kHolds : Verdict::kFails;
+  a.power = fmt::format("a timing, not a test: a cost growing with the footprint's area (10^3 × "
+                        "or more over 10^6 × the area) is far beyond the margin of {:g} ×",
+                        kMaxRatio);
   a.detail = fmt::format("{:.3g} µs per eval at side 0.01, {:.3g} µs at side 10: ratio {:.3g} "
                          "(margin {:g}, timing: the models expose no work count)",
                          small * 1e6, large * 1e6, a.value, kMaxRatio);

@@ -167,6 +167,9 @@ Assessment assess_eval_pdf(const ModelEntry& m, Budget b, const std::string& id,
   a.value = worst;
   a.configurations = int(set.size());
   a.verdict = worst <= kTolerance ? Verdict::kHolds : Verdict::kFails;
+  a.power = fmt::format("deterministic at the sampled directions: any relative difference above "
+                        "{:g} at one of the {} sampled ωo is detected",
+                        kTolerance, set.size() * n);
   a.detail = fmt::format("{} settings × {} samples: largest relative difference {:.3g} (bound {:g}){}",
                          set.size(), n, worst, kTolerance,
                          worst > 0 ? fmt::format(", at {}", where) : "");
@@ -369,17 +372,41 @@ Assessment assess_sampler_gof(const ModelEntry& m, Budget b, const std::string& 
   a.verdict = hard > 0 || f.any_rejected ? Verdict::kFails
               : inconclusive > 0         ? Verdict::kInconclusive
                                          : Verdict::kHolds;
+  // The chi-square's power: its coarse resolution's δ90 (a pdf off by a relative δ throughout,
+  // detected with 90 % power; chi_square.h) and the same δ confined to one cell, at the most
+  // sensitive setting.
+  double delta90 = std::numeric_limits<double>::infinity(), one_cell = 0;
+  std::string delta90_where = "—";
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    if (results[k].resolutions.empty()) continue;
+    const ChiSquareResolution& coarse = results[k].resolutions.front();
+    if (coarse.detectable_global > 0 && coarse.detectable_global < delta90) {
+      delta90 = coarse.detectable_global;
+      one_cell = coarse.detectable_one_cell;
+      delta90_where = set[k].label;
+    }
+  }
+  a.power = std::isfinite(delta90)
+                ? fmt::format("chi-square: a pdf off by a relative {:.2g} throughout, or by {:.2g} "
+                              "in one cell ({})",
+                              delta90, one_cell, delta90_where)
+                : std::string("not stated: no chi-square setting was conclusive");
   const WeightedHistogram& w = weighted[worst_weighted];
+  // Which of the two tests rejected (a control's detail says what caught it).
+  std::size_t chi_rejected = 0, weighted_rejected = 0;
+  for (std::size_t k = 0; k < f.reject.size(); ++k)
+    (k < chi_p.size() ? chi_rejected : weighted_rejected) += f.reject[k] ? 1 : 0;
   a.detail = fmt::format(
       "{} settings × {} samples, chi-square and weighted histogram each{}: {} rejected at level "
-      "{:.3g}, {} hard failures, {} inconclusive; chi-square: smallest raw p {:.3g} at {} ({}); "
+      "{:.3g} (chi-square {}, weighted histogram {}), {} hard failures, {} inconclusive; "
+      "chi-square: smallest raw p {:.3g} at {} ({}); "
       "weighted histogram: smallest raw p {:.3g} at {} (Σ z² {:.4g} over {} cells{})",
       chi_settings, gof_samples(b),
       set.size() > chi_settings
           ? fmt::format(", and {} compensation settings weighted histogram only",
                         set.size() - chi_settings)
           : "",
-      f.rejections, level, hard, inconclusive, chi_p[worst],
+      f.rejections, level, chi_rejected, weighted_rejected, hard, inconclusive, chi_p[worst],
       set[worst].label, results[worst].summary(), weighted_p[worst_weighted],
       set[worst_weighted].label, w.statistic, w.cells,
       w.non_finite ? fmt::format(", {} non-finite weights", w.non_finite) : "");
@@ -543,8 +570,8 @@ Assessment assess_energy(const ModelEntry& m, Budget b, const std::string& id, d
   set.push_back({set.front().values, make_query(m, 85, kFootprint), 85,
                  "defaults, θi=85°"});
   const std::uint64_t n = samples(b);
-  double max_albedo = -1;
-  std::string where = "—";
+  double max_albedo = -1, power = std::numeric_limits<double>::infinity();
+  std::string where = "—", power_where = "—";
   for (std::size_t k = 0; k < set.size(); ++k) {
     const Setting& s = set[k];
     const WeightStats w = weight_stats(m, s, n, check_seed(id, k));
@@ -555,6 +582,13 @@ Assessment assess_energy(const ModelEntry& m, Budget b, const std::string& id, d
     // One-sided: only an albedo above 1 is a violation.
     const double z = se > 0 ? (albedo - 1) / se : (albedo > 1 ? INFINITY : -INFINITY);
     a.raw_p_values.push_back(w.non_finite ? 0.0 : 0.5 * std::erfc(z / std::numbers::sqrt2));
+    // One-sided: the detectable excess over 1 is (z of the per-setting level + z of 90 %) SE.
+    const double per_setting = 1 - std::pow(1 - level, 1.0 / double(set.size()));
+    if (const double d = (normal_quantile(1 - per_setting) + normal_quantile(0.9)) * se;
+        d < power) {
+      power = d;
+      power_where = s.label;
+    }
     if (albedo > max_albedo) {
       max_albedo = albedo;
       where = fmt::format("{} (± {:.2g})", s.label, se);
@@ -566,6 +600,7 @@ Assessment assess_energy(const ModelEntry& m, Budget b, const std::string& id, d
   a.bound = 1;
   a.configurations = int(set.size());
   a.verdict = f.any_rejected ? Verdict::kFails : Verdict::kHolds;
+  a.power = fmt::format("an albedo {:.2g} above 1 ({})", power, power_where);
   a.detail = fmt::format("{} settings × {} samples: {} significantly above 1 at level {:.3g}; "
                          "largest albedo {:.4g} at {}",
                          set.size(), n, f.rejections, level, max_albedo, where);
