@@ -736,8 +736,8 @@ LtcDecisionProbe probe_kneiphof_ltc_decision() {
 }
 
 std::vector<Check> kneiphof_ltc_checks() {
-  return {
-      {kLtcProbability, "Kneiphof & Klein 2024", "Sec. 4, Eq. 12–19", Verdict::kInconclusive, run}};
+  return {{kLtcProbability, "Kneiphof & Klein 2024", "Sec. 4, Sec. 7, Fig. 8, Eq. 12–19",
+           Verdict::kInconclusive, run}};
 }
 
 }  // namespace glintlab::verify
