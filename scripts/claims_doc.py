@@ -56,7 +56,7 @@ STATEMENTS = {
     "kneiphof.subdivision": "splitting the light leaves the counts and radiance unchanged (App. C)",
     "kneiphof.convergence": "the glint estimate converges to L_o as N_P grows (Fig. 10)",
     "kneiphof.cap-probability": "the cap probability of Eq. 20 is valid only in a regime",
-    "kneiphof.ltc-probability": "the LTC lobe times D_PR approximates ∫ D over Ω_h (Eq. 12–19)",
+    "kneiphof.ltc-probability": "the BRDF LTC lobe × D_PR as D_Ωh looks the same (Sec. 7, Fig. 8)",
     "chermain.kernel-normalized": "filtered marginals stay normalised, so GGAA keeps energy",
     "chermain.dictionary-converges": "dictionary levels converge to a Gaussian of std σ_o",
     "chermain.correlation": "the matrix M of Eq. 18 gives the slope correlation ρ",
