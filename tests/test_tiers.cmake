@@ -22,7 +22,7 @@ set(glintlab_slow_tests
   "Checks/QuickBudget.VerdictAndControl/kemppinen_compensation_k16* 5"
   "Checks/QuickBudget.VerdictAndControl/kemppinen_compensation* 24"
   "Checks/QuickBudget.* 1"
-  "AcrossClaims.StabilityVerdictAndControl 17"
+  "AcrossClaims.StabilityVerdictAndControl 14"
   "Properties/ControlRejected.ByTheSameDecision/kneiphof_klein_sampler_covers_value* 4"
   # sampler-covers-value of both Kemppinen models at quick, with the mixture and with Algorithm 2
   # alone (10^5 samples and up to 4 · 10^5 reference evaluations per setting).

@@ -86,17 +86,22 @@ double CellStats::gain() const {
 
 V3 incidence_at(double theta_deg) { return incidence(theta_deg); }
 
-CellStats measure_cell(const SweepTarget& target, const SweepPlane& plane, double row,
-                       double theta_deg, const CellBudget& budget, std::uint64_t seed) {
-  const ModelEntry& m = *target.model;
-  const std::vector<double> values = cell_params(target, plane, row);
-  std::vector<std::size_t> p_index;
-  for (std::size_t i = 0; i < m.intermediates.size(); ++i)
-    if (is_probability_name(m.intermediates[i])) p_index.push_back(i);
-  const bool has_float = static_cast<bool>(m.eval_float);
-  CellStats c;
+namespace {
 
+// The cell's parameters and query (its footprint and light follow the plane's axis and `row`),
+// and the furnace's normalisation 1/Ω for area lights (1 otherwise).
+struct CellSetup {
+  std::vector<double> values;
   ModelQuery<double> q{};
+  double light_solid_angle = 0, furnace = 1;
+};
+
+CellSetup setup_cell(const SweepTarget& target, const SweepPlane& plane, double row,
+                     double theta_deg) {
+  const ModelEntry& m = *target.model;
+  CellSetup c;
+  c.values = cell_params(target, plane, row);
+  ModelQuery<double>& q = c.q;
   q.wi = incidence_at(theta_deg);
   const double s = plane.axis == Axis::kFootprint ? row : kDefaultFootprint;
   q.footprint = {{0.5, 0.5}, {s, 0}, {0, s}};
@@ -108,8 +113,26 @@ CellStats measure_cell(const SweepTarget& target, const SweepPlane& plane, doubl
   // Area-light models return L_o/L_i, the BRDF integrated over the light: ∫ (L_o/L_i) dωo over
   // the light's centre is Ω ρ(ωi) exactly, so the furnace divides by Ω (a delta light: Ω = 0, no
   // normalisation; such a light reflects nothing almost everywhere).
-  c.light_solid_angle = furnace_light_solid_angle(m, values, q);
-  const double furnace = c.light_solid_angle > 0 ? 1 / c.light_solid_angle : 1.0;
+  c.light_solid_angle = furnace_light_solid_angle(m, c.values, q);
+  c.furnace = c.light_solid_angle > 0 ? 1 / c.light_solid_angle : 1.0;
+  return c;
+}
+
+}  // namespace
+
+CellStats measure_cell(const SweepTarget& target, const SweepPlane& plane, double row,
+                       double theta_deg, const CellBudget& budget, std::uint64_t seed) {
+  const ModelEntry& m = *target.model;
+  std::vector<std::size_t> p_index;
+  for (std::size_t i = 0; i < m.intermediates.size(); ++i)
+    if (is_probability_name(m.intermediates[i])) p_index.push_back(i);
+  const bool has_float = static_cast<bool>(m.eval_float);
+  CellStats c;
+  CellSetup setup = setup_cell(target, plane, row, theta_deg);
+  const std::vector<double>& values = setup.values;
+  ModelQuery<double>& q = setup.q;
+  const double furnace = setup.furnace;
+  c.light_solid_angle = setup.light_solid_angle;
 
   auto eval_at = [&](const V3& wo, double u1, double u2, bool uniform, double& sum, double& sum2) {
     q.wo = wo;
@@ -187,10 +210,23 @@ CellStats measure_cell(const SweepTarget& target, const SweepPlane& plane, doubl
     }
   }
   mean_error(ws, ws2, budget.samples, c.albedo, c.albedo_error);
+  return c;
+}
 
-  // The weight's variance at fixed positions: the position drawn once, then only the sampler's
-  // random numbers (index ranges and dimensions unused above, so the draws above are unchanged).
-  // A position above the bound is measured again with fresh numbers, kVarianceConfirmFactor times
+void measure_fixed_position_variance(CellStats& c, const SweepTarget& target,
+                                     const SweepPlane& plane, double row, double theta_deg,
+                                     const CellBudget& budget, std::uint64_t seed) {
+  const ModelEntry& m = *target.model;
+  CellSetup setup = setup_cell(target, plane, row, theta_deg);
+  const std::vector<double>& values = setup.values;
+  ModelQuery<double>& q = setup.q;
+  const double furnace = setup.furnace;
+  c.relative_variance = 0;
+  c.variance_samples = c.positions_reflecting = 0;
+
+  // The position drawn once, then only the sampler's random numbers (index ranges and dimensions
+  // measure_cell leaves unused, so its draws and these are independent of which runs first). A
+  // position above the bound is measured again with fresh numbers, kVarianceConfirmFactor times
   // as many, and that estimate is the position's.
   const std::uint64_t first = budget.uniform_evals + budget.samples;
   auto relative_variance_at = [&](std::uint64_t j, std::uint64_t n, std::uint64_t dim) {
@@ -219,7 +255,6 @@ CellStats measure_cell(const SweepTarget& target, const SweepPlane& plane, doubl
     c.positions_reflecting += mean >= kDarkAlbedo;
     c.relative_variance = std::max(c.relative_variance, rv);
   }
-  return c;
 }
 
 }  // namespace glintlab::verify::stability

@@ -86,7 +86,7 @@ struct CellStats {
   double albedo = 0, albedo_error = 0;           // mean weight and its standard error
   double albedo_uniform = 0, albedo_uniform_error = 0;  // 4π mean value at uniform directions
   // Var(w)/max(E(w), kDarkAlbedo)² at the worst of the fixed positions, and the positions at
-  // least kDarkAlbedo bright (E(w) ≥ kDarkAlbedo).
+  // least kDarkAlbedo bright (E(w) ≥ kDarkAlbedo); zero until measure_fixed_position_variance.
   double relative_variance = 0;
   std::uint64_t variance_samples = 0, positions_reflecting = 0;
   double weight_max = 0;
@@ -121,9 +121,16 @@ std::array<Vec3<double>, 4> pixel_corner_reflections(const Vec3<double>& wi, dou
 double furnace_light_solid_angle(const ModelEntry& m, const std::vector<double>& values,
                                  const ModelQuery<double>& q);
 
-// Measures one cell. `values` are the model's parameters; the query's footprint and light follow
+// Measures one cell, all but the fixed-position variance. The query's footprint and light follow
 // the plane's axis and `row`. Deterministic: every random number is counter_uniform(seed, i, d).
 CellStats measure_cell(const SweepTarget& target, const SweepPlane& plane, double row,
                        double theta_deg, const CellBudget& budget, std::uint64_t seed);
+
+// Adds the variance blow-up's measurement (relative_variance, variance_samples,
+// positions_reflecting) to a cell measure_cell measured with the same arguments. Its own counter
+// indices and dimensions: the cell's other numbers are the same with or without it, in any order.
+void measure_fixed_position_variance(CellStats& c, const SweepTarget& target,
+                                     const SweepPlane& plane, double row, double theta_deg,
+                                     const CellBudget& budget, std::uint64_t seed);
 
 }  // namespace glintlab::verify::stability

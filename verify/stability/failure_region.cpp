@@ -100,10 +100,11 @@ std::vector<Finding> find_failures(const ModelSweep& s) {
   probes.push_back(
       {"p > 1", DefectClass::kProbabilityAboveOne, false, false, true,
        [](const CellStats& c, std::string&) { return frac(c.p_above_one, c.p_evals); }});
-  probes.push_back({"variance blow-up", DefectClass::kHugeVariance, false, false, false,
-                    [](const CellStats& c, std::string&) {
-                      return c.variance_blowup() ? c.relative_variance : 0.0;
-                    }});
+  if (s.has_variance)
+    probes.push_back({"variance blow-up", DefectClass::kHugeVariance, false, false, false,
+                      [](const CellStats& c, std::string&) {
+                        return c.variance_blowup() ? c.relative_variance : 0.0;
+                      }});
 
   std::vector<Finding> out;
   for (const SweepMap& m : s.maps) {
@@ -147,11 +148,15 @@ std::vector<Finding> find_failures(const ModelSweep& s) {
 std::string describe_failure_region(const ModelSweep& s) {
   const auto f = find_failures(s);
   if (f.empty()) {
+    const std::string variance =
+        s.has_variance
+            ? fmt::format("relative weight variance at a fixed position ≤ {:g}", kVarianceBlowup)
+            : std::string("(the fixed-position variance not measured)");
     return fmt::format(
         "none found: no NaN, Inf or negative value, pdf or sample{}, no significant energy gain, "
-        "{}relative weight variance at a fixed position ≤ {:g} in every cell swept",
+        "{}{} in every cell swept",
         s.has_float ? " (double and float)" : " (double; no float instantiation)",
-        s.has_probability ? "no p > 1, " : "", kVarianceBlowup);
+        s.has_probability ? "no p > 1, " : "", variance);
   }
   std::string text;
   for (std::size_t i = 0; i < f.size(); ++i) text += (i ? "; " : "") + f[i].text();
@@ -159,6 +164,7 @@ std::string describe_failure_region(const ModelSweep& s) {
 }
 
 Verdict stability_verdict(const ModelSweep& s, DefectClass kind) {
+  if (kind == DefectClass::kHugeVariance && !s.has_variance) return Verdict::kInconclusive;
   bool any = false, core = false;
   for (const Finding& f : find_failures(s)) {
     if (f.kind != kind) continue;

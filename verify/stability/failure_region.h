@@ -38,7 +38,8 @@ std::string describe_failure_region(const ModelSweep& s);
 
 // holds / holds-in-regime / fails for one swept target and one kind of defect: holds where none
 // is found, holds-in-regime where found only outside the core domain (or, for NaN/Inf/negative,
-// only in the float instantiation), fails where found inside it.
+// only in the float instantiation), fails where found inside it; inconclusive for the variance
+// blow-up of a sweep that did not measure the fixed-position variance.
 Verdict stability_verdict(const ModelSweep& s, DefectClass kind = DefectClass::kBreaks);
 
 }  // namespace glintlab::verify::stability

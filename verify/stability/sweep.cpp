@@ -6,6 +6,7 @@
 #include <chrono>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <tuple>
 
 #include "core/model_registry.h"
@@ -37,24 +38,32 @@ bool is_registered(const ModelEntry* m) {
   return false;
 }
 
+std::uint64_t cell_seed(const SweepTarget& target, const SweepPlane& plane, std::size_t cell) {
+  return check_seed("all.stability/" + target.id() + "/" + plane.name, cell);
+}
+
 ModelSweep measure_sweep(const SweepTarget& target, Budget b,
-                         const std::function<void(long, long)>& progress) {
+                         const std::function<void(long, long)>& progress,
+                         FixedPositionVariance variance) {
   const auto start = std::chrono::steady_clock::now();
   ModelSweep s;
   s.target = target;
   s.has_float = static_cast<bool>(target.model->eval_float);
   for (std::string_view n : target.model->intermediates)
     s.has_probability |= is_probability_name(n);
+  s.has_variance = variance == FixedPositionVariance::kMeasure;
   const CellBudget budget = cell_budget(b);
   const auto planes = sweep_planes(*target.model, b == Budget::kQuick);
   long done = 0;
   for (const SweepPlane& plane : planes) {
     SweepMap map{plane, std::vector<CellStats>(plane.rows.size() * plane.theta_deg.size())};
-    const std::string id = "all.stability/" + target.id() + "/" + plane.name;
     const std::size_t cols = plane.theta_deg.size();
     tbb::parallel_for(std::size_t(0), map.cells.size(), [&](std::size_t i) {
-      map.cells[i] = measure_cell(target, plane, plane.rows[i / cols], plane.theta_deg[i % cols],
-                                  budget, check_seed(id, i));
+      const double row = plane.rows[i / cols], theta = plane.theta_deg[i % cols];
+      const std::uint64_t seed = cell_seed(target, plane, i);
+      map.cells[i] = measure_cell(target, plane, row, theta, budget, seed);
+      if (s.has_variance)
+        measure_fixed_position_variance(map.cells[i], target, plane, row, theta, budget, seed);
     });
     s.maps.push_back(std::move(map));
     if (progress) progress(++done, long(planes.size()));
@@ -65,25 +74,47 @@ ModelSweep measure_sweep(const SweepTarget& target, Budget b,
 
 }  // namespace
 
+void add_fixed_position_variance(ModelSweep& s, Budget b) {
+  if (s.has_variance) return;
+  const auto start = std::chrono::steady_clock::now();
+  const CellBudget budget = cell_budget(b);
+  for (SweepMap& map : s.maps) {
+    const SweepPlane& plane = map.plane;
+    const std::size_t cols = plane.theta_deg.size();
+    tbb::parallel_for(std::size_t(0), map.cells.size(), [&](std::size_t i) {
+      measure_fixed_position_variance(map.cells[i], s.target, plane, plane.rows[i / cols],
+                                      plane.theta_deg[i % cols], budget,
+                                      cell_seed(s.target, plane, i));
+    });
+  }
+  s.has_variance = true;
+  s.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 ModelSweep sweep_model(const SweepTarget& target, Budget b,
-                       const std::function<void(long, long)>& progress) {
+                       const std::function<void(long, long)>& progress,
+                       FixedPositionVariance variance) {
   ReuseState& r = reuse_state();
   const SweepKey key{target.model, target.sampler_param, target.sampler_choice, b};
+  const bool needs_variance = variance == FixedPositionVariance::kMeasure;
   bool reusable = false;
+  std::optional<ModelSweep> kept;
   {
     std::lock_guard lock(r.mutex);
     if (r.active && is_registered(target.model)) {
       reusable = true;
       if (auto it = r.sweeps.find(key); it != r.sweeps.end()) {
         ++r.reused;
-        return it->second;
+        if (it->second.has_variance || !needs_variance) return it->second;
+        kept = it->second;
       }
     }
   }
-  ModelSweep s = measure_sweep(target, b, progress);
+  ModelSweep s = kept ? std::move(*kept) : measure_sweep(target, b, progress, variance);
+  if (kept) add_fixed_position_variance(s, b);
   if (reusable) {
     std::lock_guard lock(r.mutex);
-    if (r.active) r.sweeps.emplace(key, s);
+    if (r.active) r.sweeps.insert_or_assign(key, s);
   }
   return s;
 }

@@ -316,5 +316,53 @@ TEST(StabilitySweep, ReuseReturnsTheSameSweepOfARegisteredModelOnly) {
   EXPECT_EQ(later.reused(), 0u);  // nothing kept past the scope that measured it
 }
 
+bool same_fixed_position_variance(const ModelSweep& a, const ModelSweep& b) {
+  for (std::size_t k = 0; k < a.maps.size(); ++k)
+    for (std::size_t i = 0; i < a.maps[k].cells.size(); ++i) {
+      const CellStats &x = a.maps[k].cells[i], &y = b.maps[k].cells[i];
+      if (x.relative_variance != y.relative_variance ||
+          x.variance_samples != y.variance_samples ||
+          x.positions_reflecting != y.positions_reflecting)
+        return false;
+    }
+  return true;
+}
+
+// A sweep without the fixed-position variance measures everything else the same, cannot give the
+// variance blow-up a verdict (the spike control is not silently passed), and gets exactly the
+// variance a full sweep measures when it is added later, directly or through a SweepReuse.
+TEST(StabilitySweep, FixedPositionVarianceAddedLaterIsTheSameAsMeasuredAtOnce) {
+  const ModelEntry& registered = find_model("smooth_beckmann");
+  const ModelSweep full = sweep_model(target_of(registered), Budget::kQuick);
+  ModelSweep partial =
+      sweep_model(target_of(registered), Budget::kQuick, {}, FixedPositionVariance::kSkip);
+  EXPECT_TRUE(full.has_variance);
+  EXPECT_FALSE(partial.has_variance);
+  EXPECT_EQ(partial.maps[0].cells[0].variance_samples, 0u);
+  EXPECT_EQ(stability_verdict(partial, DefectClass::kHugeVariance), Verdict::kInconclusive);
+  EXPECT_NE(describe_failure_region(partial).find("variance not measured"), std::string::npos);
+  add_fixed_position_variance(partial, Budget::kQuick);
+  EXPECT_TRUE(partial.has_variance);
+  EXPECT_TRUE(same_maps(full, partial));
+  EXPECT_TRUE(same_fixed_position_variance(full, partial));
+  EXPECT_EQ(describe_failure_region(full), describe_failure_region(partial));
+
+  const ModelSweep spikes = sweep_model(target_of(spike_control_model()), Budget::kQuick, {},
+                                        FixedPositionVariance::kSkip);
+  EXPECT_EQ(stability_verdict(spikes, DefectClass::kHugeVariance), Verdict::kInconclusive);
+
+  const SweepReuse reuse;
+  const ModelSweep first =
+      sweep_model(target_of(registered), Budget::kQuick, {}, FixedPositionVariance::kSkip);
+  EXPECT_FALSE(first.has_variance);
+  const ModelSweep second = sweep_model(target_of(registered), Budget::kQuick);
+  EXPECT_TRUE(second.has_variance);
+  EXPECT_TRUE(same_fixed_position_variance(full, second));
+  const ModelSweep third =
+      sweep_model(target_of(registered), Budget::kQuick, {}, FixedPositionVariance::kSkip);
+  EXPECT_TRUE(third.has_variance);  // the kept sweep has it now
+  EXPECT_EQ(reuse.reused(), 2u);
+}
+
 }  // namespace
 }  // namespace glintlab::verify::stability
