@@ -256,6 +256,62 @@ py::dict column_addresses(const std::string& name, const py::object& wi, const p
   return d;
 }
 
+// The reference time of eval(): seconds of simd::eval_batch alone, one thread, over the same rows
+// as eval(model, wi, wo) with the model's defaults, the columns laid out beforehand (untimed) as
+// contiguous SoA columns of `precision`, run in the CLI's chunks: {"isa": the ISA's name,
+// "seconds": one entry per repeat}. For the
+// benchmark experiments/bench/python_eval.py, which compares eval() against it.
+template <class S>
+std::vector<double> eval_batch_seconds_in(const ModelEntry& model, const QuerySources& q,
+                                          const cli::BatchOptions& opts, int repeats) {
+  const std::size_t n = q.rows, width = query_width(model);
+  const std::vector<double> params = resolve_params(model, {});
+  std::vector<std::vector<S>> data(width);
+  std::vector<simd::Column<S>> cols;
+  for (std::size_t c = 0; c < width; ++c) {
+    const ColumnSource& s = q.columns[c];
+    if (s.data == nullptr || s.stride == 0) {
+      data[c].assign(1, S(s.at(0)));
+      cols.push_back({data[c].data(), 0});
+    } else {
+      data[c].resize(n);
+      for (std::size_t i = 0; i < n; ++i) data[c][i] = S(s.at(i));
+      cols.push_back({data[c].data(), 1});
+    }
+  }
+  std::vector<std::vector<S>> out(2 + model.intermediates.size(), std::vector<S>(n));
+  std::vector<double> seconds;
+  const py::gil_scoped_release release;
+  for (int r = 0; r < repeats; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (std::size_t begin = 0; begin < n; begin += cli::kBatchChunk) {
+      const std::size_t count = std::min(cli::kBatchChunk, n - begin);
+      std::vector<simd::Column<S>> chunk = cols;
+      for (simd::Column<S>& c : chunk) c.data += c.stride * begin;
+      std::vector<S*> o;
+      for (auto& column : out) o.push_back(column.data() + begin);
+      simd::eval_batch(model, params, chunk, o, count, opts.isa, opts.math);
+    }
+    seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  return seconds;
+}
+
+py::dict eval_batch_seconds(const std::string& name, const py::object& wi,
+                                       const py::object& wo, const std::string& precision,
+                                       const py::object& isa, const std::string& math,
+                                       int repeats) {
+  const ModelEntry& model = model_named(name);
+  const cli::BatchOptions opts = batch_options(precision, isa, math, py::int_(1));
+  QuerySources q = query_sources(model, wi, wo, py::none(), py::none(), 0);
+  if (q.rows == 0) q.rows = 1;
+  py::dict d;
+  d["isa"] = std::string(simd::isa_name(opts.isa));
+  d["seconds"] = opts.float_precision ? eval_batch_seconds_in<float>(model, q, opts, repeats)
+                                      : eval_batch_seconds_in<double>(model, q, opts, repeats);
+  return d;
+}
+
 std::vector<std::string> load_plugin(const std::string& path) {
   try {
     const std::vector<std::string_view> names = glintlab::load_plugin(path, "load_plugin");
@@ -332,6 +388,9 @@ PYBIND11_MODULE(_glintlab, m) {
         arg("isa") = py::none(), arg("math") = "exact", arg("threads") = py::none());
   m.def("column_addresses", &column_addresses, arg("model"), arg("wi"), arg("wo"),
         arg("footprint") = py::none(), arg("light") = py::none(), arg("precision") = "double");
+  m.def("eval_batch_seconds", &eval_batch_seconds, arg("model"), arg("wi"), arg("wo"),
+        arg("precision") = "double", arg("isa") = py::none(), arg("math") = "exact",
+        arg("repeats") = 5);
   m.def("load_plugin", &load_plugin, arg("path"));
   m.def("register_model", &register_python_model, arg("name"), arg("eval"), arg("pdf"),
         arg("sample"), arg("params") = py::none(), arg("needs") = py::none(),
