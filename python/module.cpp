@@ -105,19 +105,14 @@ py::dict eval_in(const ModelEntry& model, const QuerySources& q, const CallParam
   std::vector<S*> out_data;
   for (auto& a : outs) out_data.push_back(a.mutable_data());
   const PythonModel* const numpy_model = python_model(model);  // looked up once, with the GIL
-  run_chunks(model, q, p, opts,
-             [&](std::size_t begin, std::size_t count, const std::vector<double>& params) {
-               // Per worker thread, kept across chunks: a fresh chunk-sized buffer would be
-               // fresh pages (mmap) for every chunk.
-               thread_local std::vector<S> buffer;
-               const auto cols = chunk_columns<S>(q.columns, width, begin, count, buffer);
-               std::vector<S*> o;
-               for (S* d : out_data) o.push_back(d + begin);
-               if (numpy_model)
-                 python_eval_rows<S>(*numpy_model, params, cols, o, count);  // one call per chunk
-               else
-                 simd::eval_batch(model, params, cols, o, count, opts.isa, opts.math);
-             });
+  run_chunks<S>(model, q, p, opts, width, out_data,
+                [&](std::span<const simd::Column<S>> cols, std::span<S* const> o, std::size_t count,
+                    const std::vector<double>& params) {
+                  if (numpy_model)
+                    python_eval_rows<S>(*numpy_model, params, cols, o, count);  // one call per chunk
+                  else
+                    simd::eval_batch(model, params, cols, o, count, opts.isa, opts.math);
+                });
   py::dict r;
   r["value"] = outs[0];
   r["pdf"] = outs[1];
@@ -153,7 +148,6 @@ py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallPar
   S* const out_data[6] = {wo_data, wo_data + n, wo_data + 2 * n, pdf.mutable_data(),
                           weight.mutable_data(), rejected.data()};
   const auto check_u = [&](std::size_t r) -> std::optional<std::string> {
-    if (u1 == nullptr) return std::nullopt;
     for (const ColumnSource* u : {u1, u2}) {
       const double v = u->at(r);
       if (!(v >= 0 && v < 1))
@@ -162,28 +156,28 @@ py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallPar
     return std::nullopt;
   };
   const PythonModel* const numpy_model = python_model(model);  // looked up once, with the GIL
-  run_chunks(
-      model, q, p, opts,
-      [&](std::size_t begin, std::size_t count, const std::vector<double>& params) {
-        thread_local std::vector<S> buffer, uniforms;  // kept across chunks, as in eval_in
-        uniforms.resize(2 * count);
-        const auto cols = chunk_columns<S>(q.columns, width, begin, count, buffer);
-        // The CLI's counter-based stream (sample --model), or the caller's uniforms.
+  run_chunks<S>(
+      model, q, p, opts, width, std::span<S* const>(out_data),
+      [&](std::span<const simd::Column<S>> in, std::span<S* const> o, std::size_t count,
+          const std::vector<double>& params) {
+        const auto cols = in.first(width);
+        if (numpy_model)
+          python_sample_rows<S>(*numpy_model, params, cols, in[width], in[width + 1], o, count);
+        else
+          simd::sample_batch(model, params, cols, in[width], in[width + 1], o, count, opts.isa,
+                             opts.math);
+      },
+      2,
+      // The CLI's counter-based stream (sample --model), or the caller's uniforms.
+      [&](std::size_t begin, std::size_t count, std::span<S* const> uniforms) {
         for (std::size_t i = 0; i < count; ++i) {
-          uniforms[i] = u1 ? S(u1->at(begin + i)) : S(counter_uniform<double>(seed, begin + i, 0));
-          uniforms[count + i] =
+          uniforms[0][i] =
+              u1 ? S(u1->at(begin + i)) : S(counter_uniform<double>(seed, begin + i, 0));
+          uniforms[1][i] =
               u2 ? S(u2->at(begin + i)) : S(counter_uniform<double>(seed, begin + i, 1));
         }
-        std::vector<S*> o;
-        for (S* d : out_data) o.push_back(d + begin);
-        if (numpy_model)
-          python_sample_rows<S>(*numpy_model, params, cols, {uniforms.data(), 1},
-                                {uniforms.data() + count, 1}, o, count);
-        else
-          simd::sample_batch(model, params, cols, {uniforms.data(), 1},
-                             {uniforms.data() + count, 1}, o, count, opts.isa, opts.math);
       },
-      check_u);
+      u1 ? RowCheck(check_u) : RowCheck());
   auto rej = py::array_t<bool>(py::ssize_t(n));
   bool* rd = rej.mutable_data();
   for (std::size_t i = 0; i < n; ++i) rd[i] = rejected[i] != 0;

@@ -16,7 +16,8 @@ repeats of:
                           glintlab.eval in chunks, one thread
 
 and the ratios of interest (Python eval over eval_batch; the numpy model's chunked calls over
-its direct calls). Speed is measured here, never asserted: tests/python runs this in its smoke
+its direct calls). The cases take turns in each repeat, so that a shared machine's changing load
+reaches them alike. Speed is measured here, never asserted: tests/python runs this in its smoke
 mode (--rows 1000 --repeats 1) and checks the JSON's shape only. docs/python.md "Speed of eval
 from Python" holds the numbers.
 
@@ -46,14 +47,20 @@ def unit_rows(rng, n):
     return np.ascontiguousarray(v / np.linalg.norm(v, axis=1)[:, None])
 
 
-def timed(f, repeats):
-    """Seconds of each of `repeats` calls of f (one untimed call first: first-touch, caches)."""
-    f()
-    seconds = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
+def round_robin(cases, repeats):
+    """Seconds of each of `repeats` calls of every case, the cases taking turns in each round (so
+    that a change of load on a shared machine reaches every case alike); one untimed call of each
+    first (first-touch, caches). `cases`: name -> callable, or -> callable returning its own
+    seconds (a list of one)."""
+    for f in cases.values():
         f()
-        seconds.append(time.perf_counter() - t0)
+    seconds = {name: [] for name in cases}
+    for _ in range(repeats):
+        for name, f in cases.items():
+            t0 = time.perf_counter()
+            r = f()
+            elapsed = time.perf_counter() - t0
+            seconds[name].append(r[0] if isinstance(r, list) else elapsed)
     return seconds
 
 
@@ -105,19 +112,13 @@ def main():
     alpha_distinct = rng.uniform(0.1, 0.9, size=n)
     model = "smooth_ggx"
 
-    reference = _glintlab.eval_batch_seconds(model, wi, wo, isa=a.isa, repeats=a.repeats)
-    cases = {"cpp_eval_batch": reference["seconds"]}
+    isa = _glintlab.eval_batch_seconds(model, wi[:1], wo[:1], isa=a.isa, repeats=1)["isa"]
+
+    def cpp_eval_batch():
+        return _glintlab.eval_batch_seconds(model, wi, wo, isa=a.isa, repeats=1)["seconds"]
 
     def py_eval(wi_, wo_, threads=1, params=None):
         return lambda: glintlab.eval(model, wi_, wo_, params=params, isa=a.isa, threads=threads)
-
-    cases["python_eval_c_1thread"] = timed(py_eval(wi, wo), a.repeats)
-    cases["python_eval_c"] = timed(py_eval(wi, wo, threads=None), a.repeats)
-    cases["python_eval_f_1thread"] = timed(py_eval(wi_f, wo_f), a.repeats)
-    cases["python_eval_per_row_16_values_1thread"] = timed(
-        py_eval(wi, wo, params={"alpha_x": alpha16}), a.repeats)
-    cases["python_eval_per_row_distinct_1thread"] = timed(
-        py_eval(wi, wo, params={"alpha_x": alpha_distinct}), a.repeats)
 
     name = "bench_numpy_lambert"
     if name not in [m["name"] for m in glintlab.models()]:
@@ -131,9 +132,17 @@ def main():
              "wo_x": wo[:, 0], "wo_y": wo[:, 1], "wo_z": wo[:, 2]}
         return lambert_eval(q, p), lambert_pdf(q, p)
 
-    cases["numpy_model_direct"] = timed(direct, a.repeats)
-    cases["numpy_model_eval_1thread"] = timed(
-        lambda: glintlab.eval(name, wi, wo, threads=1), a.repeats)
+    cases = round_robin({
+        "cpp_eval_batch": cpp_eval_batch,
+        "python_eval_c_1thread": py_eval(wi, wo),
+        "python_eval_c": py_eval(wi, wo, threads=None),
+        "python_eval_f_1thread": py_eval(wi_f, wo_f),
+        "python_eval_per_row_16_values_1thread": py_eval(wi, wo, params={"alpha_x": alpha16}),
+        "python_eval_per_row_distinct_1thread":
+            py_eval(wi, wo, params={"alpha_x": alpha_distinct}),
+        "numpy_model_direct": direct,
+        "numpy_model_eval_1thread": lambda: glintlab.eval(name, wi, wo, threads=1),
+    }, a.repeats)
 
     median = {k: statistics.median(v) for k, v in cases.items()}
     ref = median["cpp_eval_batch"]
@@ -141,7 +150,7 @@ def main():
         "benchmark": "python_eval",
         "machine": {"cpu": cpu_name(), "cores": os.cpu_count(), "python": platform.python_version(),
                     "numpy": np.__version__},
-        "isa": reference["isa"],
+        "isa": isa,
         "precision": "double",
         "model": model,
         "rows": n,
