@@ -320,9 +320,11 @@ void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams
         extra(begin, count, extra_data);
       }
       std::vector<S*> out(n_out);
+      // The columns f reads, rebuilt for each set of rows (allocated once, with the chunk's).
+      std::vector<simd::Column<S>> at(inputs.size());
       const auto in_place = [&](std::size_t first, std::size_t rows, const std::vector<double>& values) {
-        std::vector<simd::Column<S>> at = inputs;
-        for (simd::Column<S>& c : at) c.data += c.stride * first;
+        for (std::size_t c = 0; c < inputs.size(); ++c)
+          at[c] = {inputs[c].data + inputs[c].stride * first, inputs[c].stride};
         for (std::size_t o = 0; o < n_out; ++o) out[o] = outputs[o] + begin + first;
         f(at, out, rows, values);
       };
@@ -344,15 +346,15 @@ void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams
         // Scattered rows: gathered into full batches, the results scattered back.
         if (b.group_in.size() < inputs.size() * size) b.group_in.resize(inputs.size() * size);
         if (b.group_out.size() < n_out * size) b.group_out.resize(n_out * size);
-        std::vector<simd::Column<S>> gathered = inputs;
         for (std::size_t c = 0; c < inputs.size(); ++c) {
+          at[c] = inputs[c];
           if (inputs[c].stride == 0) continue;
           S* dst = b.group_in.data() + c * size;
           for (std::size_t i = 0; i < size; ++i) dst[i] = inputs[c].data[rows[i]];
-          gathered[c] = {dst, 1};
+          at[c] = {dst, 1};
         }
         for (std::size_t o = 0; o < n_out; ++o) out[o] = b.group_out.data() + o * size;
-        f(gathered, out, size, values);
+        f(at, out, size, values);
         for (std::size_t o = 0; o < n_out; ++o)
           for (std::size_t i = 0; i < size; ++i) outputs[o][begin + rows[i]] = out[o][i];
       }

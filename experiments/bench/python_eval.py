@@ -11,7 +11,9 @@ repeats of:
   python_eval_f_1thread   Fortran-ordered (N, 3) input, one thread (read in place)
   python_eval_per_row_*   params={"alpha_x": (N,) array}, one thread: 16 distinct values in
                           random order, and every row its own value
-  numpy_model_direct      a numpy Lambertian's eval and pdf called on all N rows at once
+  numpy_model_direct      a numpy Lambertian's eval and pdf called on all N rows at once, on the
+                          columns of the (N, 3) arrays (strided views)
+  numpy_model_direct_contiguous  the same on contiguous copies of the columns, made beforehand
   numpy_model_eval        the same model registered (glintlab.register_model) and run by
                           glintlab.eval in chunks, one thread
 
@@ -132,6 +134,12 @@ def main():
              "wo_x": wo[:, 0], "wo_y": wo[:, 1], "wo_z": wo[:, 2]}
         return lambert_eval(q, p), lambert_pdf(q, p)
 
+    columns = {"wi_x": wi[:, 0].copy(), "wi_y": wi[:, 1].copy(), "wi_z": wi[:, 2].copy(),
+               "wo_x": wo[:, 0].copy(), "wo_y": wo[:, 1].copy(), "wo_z": wo[:, 2].copy()}
+
+    def direct_contiguous():
+        return lambert_eval(columns, p), lambert_pdf(columns, p)
+
     cases = round_robin({
         "cpp_eval_batch": cpp_eval_batch,
         "python_eval_c_1thread": py_eval(wi, wo),
@@ -141,6 +149,7 @@ def main():
         "python_eval_per_row_distinct_1thread":
             py_eval(wi, wo, params={"alpha_x": alpha_distinct}),
         "numpy_model_direct": direct,
+        "numpy_model_direct_contiguous": direct_contiguous,
         "numpy_model_eval_1thread": lambda: glintlab.eval(name, wi, wo, threads=1),
     }, a.repeats)
 
@@ -166,6 +175,8 @@ def main():
             "per_row_distinct_over_cpp": median["python_eval_per_row_distinct_1thread"] / ref,
             "numpy_model_chunked_over_direct":
                 median["numpy_model_eval_1thread"] / median["numpy_model_direct"],
+            "numpy_model_chunked_over_direct_contiguous":
+                median["numpy_model_eval_1thread"] / median["numpy_model_direct_contiguous"],
         },
     }
     with open(a.out, "w") as f:

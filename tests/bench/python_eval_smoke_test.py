@@ -11,10 +11,11 @@ import tempfile
 
 CASES = ["cpp_eval_batch", "python_eval_c_1thread", "python_eval_c", "python_eval_f_1thread",
          "python_eval_per_row_16_values_1thread", "python_eval_per_row_distinct_1thread",
-         "numpy_model_direct", "numpy_model_eval_1thread"]
+         "numpy_model_direct", "numpy_model_direct_contiguous", "numpy_model_eval_1thread"]
 RATIOS = ["python_eval_c_1thread_over_cpp", "python_eval_c_over_cpp",
           "python_eval_f_1thread_over_cpp", "per_row_16_values_over_cpp",
-          "per_row_distinct_over_cpp", "numpy_model_chunked_over_direct"]
+          "per_row_distinct_over_cpp", "numpy_model_chunked_over_direct",
+          "numpy_model_chunked_over_direct_contiguous"]
 
 failures = []
 
