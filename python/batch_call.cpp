@@ -4,11 +4,17 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <mutex>
+#include <type_traits>
 
+#include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/eval_model.h"
+#include "core/simd/model_batch.h"
 
 namespace glintlab::python {
 namespace {
@@ -28,10 +34,25 @@ double checked_value(const ModelEntry& model, const std::string& name, const std
   }
 }
 
+// Whether `v` surely passes resolve_params as a per-row value of `p`: a choice by its index, or a
+// finite number in range (and whole where integral). resolve_params reads the number's shortest
+// text, which parses back to v, so this is its rule without the text.
+bool surely_valid_value(const ParamSpec& p, double v) {
+  if (!p.choices.empty()) return v >= 0 && std::floor(v) == v && v < double(p.choices.size());
+  const bool in_range =
+      (p.lo_open ? v > p.lo : v >= p.lo) && (p.hi_open ? v < p.hi : v <= p.hi);
+  return std::isfinite(v) && in_range && (!p.integral || std::floor(v) == v);
+}
+
 // A per-row array's values: each distinct one checked as --param would check it, an error naming
-// the first row that holds it. O(N log N): the rows are sorted by (value, row) once.
+// the first row that holds it. O(N) when every value passes (surely_valid_value, one pass);
+// otherwise O(N log N) for the message: the rows sorted by (value, row), the smallest bad value
+// reported.
 void check_per_row(const ModelEntry& model, const ParamSpec& p, const ColumnSource& s,
                    std::size_t rows) {
+  bool all_valid = true;
+  for (std::size_t r = 0; r < rows; ++r) all_valid &= surely_valid_value(p, s.at(r));
+  if (all_valid) return;
   std::vector<std::pair<double, std::size_t>> seen;
   seen.reserve(rows);
   for (std::size_t r = 0; r < rows; ++r) {
@@ -56,6 +77,147 @@ void check_per_row(const ModelEntry& model, const ParamSpec& p, const ColumnSour
                   fmt::format("params['{}'] row {}", p.name, first_row));
   }
 }
+
+// eval --model's checks (cli::check_query_row) on rows [begin, begin + count), row by row, then
+// `extra_check`: the first bad row and its message, or nothing.
+std::optional<std::pair<std::size_t, std::string>> first_bad_row(
+    const ModelEntry& model, const QuerySources& q, std::size_t begin, std::size_t count,
+    const RowCheck& extra_check) {
+  for (std::size_t r = begin; r < begin + count; ++r) {
+    try {
+      cli::check_query_row(model, query_row(q.columns, r), [&](std::string_view column) {
+        std::string origin = fmt::format("row {}", r);
+        for (std::size_t c = 0; c < kQueryLayout.size(); ++c)
+          if (kQueryLayout[c].name == column) origin += ", " + q.columns[c].origin;
+        return origin;
+      });
+      if (extra_check)
+        if (std::optional<std::string> bad = extra_check(r)) return std::pair{r, std::move(*bad)};
+    } catch (const cli::InputError& e) {
+      return std::pair{r, std::string(e.what())};
+    }
+  }
+  return std::nullopt;
+}
+
+// Bounds on a squared length a little inside eval --model's unit tolerance (|length - 1| <= 1e-6):
+// a length whose square lies within them passes in any rounding.
+constexpr double kUnitSquaredLo = (1 - cli::kUnitTolerance) * (1 - cli::kUnitTolerance) * (1 + 1e-9);
+constexpr double kUnitSquaredHi = (1 + cli::kUnitTolerance) * (1 + cli::kUnitTolerance) * (1 - 1e-9);
+
+// Whether |(x, y, z)|^2 of each row lies in [kLo, kHi] (NaN and infinity do not).
+template <bool kContiguous>
+bool squared_lengths_in_bounds(const simd::Column<double>& x, const simd::Column<double>& y,
+                               const simd::Column<double>& z, std::size_t count) {
+  const std::size_t sx = kContiguous ? 1 : x.stride, sy = kContiguous ? 1 : y.stride,
+                    sz = kContiguous ? 1 : z.stride;
+  bool out = false;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double a = x.data[sx * i], b = y.data[sy * i], c = z.data[sz * i];
+    const double s = a * a + b * b + c * c;
+    out |= !(s >= kUnitSquaredLo) | !(s <= kUnitSquaredHi);
+  }
+  return !out;
+}
+
+// Whether every row of a chunk surely passes check_query_row's rules besides the model's own
+// (validate): every checked column finite, unit wi and wo (and the corner vectors where the model
+// reads them), the light's range. `cols`: the chunk's columns in double (the values the rules
+// read), `width` of them (the corners only where the model reads them, as check_query_row skips
+// them otherwise). Branch-free passes over the columns; a squared length is tested against
+// bounds a little inside the unit tolerance, so a row it passes passes |length - 1| <= 1e-6 in
+// any rounding (and is finite), and a row near the bound goes to the exact checks (which then
+// pass or name it).
+bool rows_surely_valid(std::span<const simd::Column<double>> cols, std::size_t count) {
+  constexpr double kMax = std::numeric_limits<double>::max();
+  const auto rows_of = [count](const simd::Column<double>& c) { return c.stride == 0 ? 1 : count; };
+  bool bad = false;
+  std::vector<bool> direction(cols.size(), false);
+  const auto unit = [&](std::size_t first) {
+    const simd::Column<double> &x = cols[first], &y = cols[first + 1], &z = cols[first + 2];
+    direction[first] = direction[first + 1] = direction[first + 2] = true;
+    // The usual case, three contiguous columns, as its own loop the compiler vectorises.
+    bad |= x.stride == 1 && y.stride == 1 && z.stride == 1
+               ? !squared_lengths_in_bounds<true>(x, y, z, count)
+               : !squared_lengths_in_bounds<false>(x, y, z, count);
+  };
+  unit(query_column_index("wi_x"));
+  unit(query_column_index("wo_x"));
+  for (std::size_t first = simd::kQueryColumns.size(); first + 2 < cols.size(); first += 3)
+    unit(first);
+  // Finite: the columns the unit tests did not already cover.
+  for (std::size_t j = 0; j < cols.size(); ++j) {
+    if (direction[j]) continue;
+    const simd::Column<double>& c = cols[j];
+    const std::size_t n = rows_of(c);
+    for (std::size_t i = 0; i < n; ++i) bad |= !(std::abs(c.data[i]) <= kMax);
+  }
+  const simd::Column<double>& cos = cols[query_column_index("light_cos_half_angle")];
+  for (std::size_t i = 0; i < rows_of(cos); ++i)
+    bad |= !(cos.data[i] >= -1) | !(cos.data[i] <= 1);
+  const simd::Column<double>& intensity = cols[query_column_index("light_intensity")];
+  for (std::size_t i = 0; i < rows_of(intensity); ++i) bad |= !(intensity.data[i] >= 0);
+  return !bad;
+}
+
+// The rows of a chunk grouped by their per-row parameter values, compared by bit pattern (each
+// row evaluated with exactly its own values): group g is rows order[start[g]] .. order[start[g+1]
+// - 1], increasing; groups in the order of their first rows. O(count): each row's values hashed
+// into an open-addressing table of the groups' first rows, then a counting sort.
+struct RowGroups {
+  std::vector<std::uint64_t> bits;       // row i's values at [i * k, (i + 1) * k)
+  std::vector<std::uint32_t> table;      // group + 1 per slot, 0 empty
+  std::vector<std::uint32_t> first_row;  // per group
+  std::vector<std::uint32_t> group_of;   // per row
+  std::vector<std::uint32_t> order, start;
+
+  void build(const CallParams& p, std::size_t begin, std::size_t count) {
+    const std::size_t k = p.per_row.size();
+    bits.resize(count * k);
+    for (std::size_t j = 0; j < k; ++j) {
+      const ColumnSource& s = p.per_row[j].second;
+      for (std::size_t i = 0; i < count; ++i)
+        bits[i * k + j] = std::bit_cast<std::uint64_t>(s.at(begin + i));
+    }
+    std::size_t slots = 16;
+    while (slots < 2 * count) slots *= 2;
+    table.assign(slots, 0);
+    first_row.clear();
+    group_of.resize(count);
+    const auto same = [&](std::size_t a, std::size_t b) {
+      return std::equal(bits.begin() + std::ptrdiff_t(a * k), bits.begin() + std::ptrdiff_t(a * k + k),
+                        bits.begin() + std::ptrdiff_t(b * k));
+    };
+    for (std::size_t i = 0; i < count; ++i) {
+      std::uint64_t h = 0x9e3779b97f4a7c15ULL;
+      for (std::size_t j = 0; j < k; ++j) h = (h ^ bits[i * k + j]) * 0xff51afd7ed558ccdULL;
+      std::size_t slot = std::size_t(h ^ (h >> 29)) & (slots - 1);
+      while (table[slot] != 0 && !same(first_row[table[slot] - 1], i)) slot = (slot + 1) & (slots - 1);
+      if (table[slot] == 0) {
+        first_row.push_back(std::uint32_t(i));
+        table[slot] = std::uint32_t(first_row.size());
+      }
+      group_of[i] = table[slot] - 1;
+    }
+    start.assign(first_row.size() + 1, 0);
+    for (std::size_t i = 0; i < count; ++i) ++start[group_of[i] + 1];
+    for (std::size_t g = 0; g < first_row.size(); ++g) start[g + 1] += start[g];
+    order.resize(count);
+    std::vector<std::uint32_t>& next = table;  // reused as each group's fill position
+    next.assign(start.begin(), start.end() - 1);
+    for (std::size_t i = 0; i < count; ++i) order[next[group_of[i]]++] = std::uint32_t(i);
+  }
+  std::size_t groups() const { return first_row.size(); }
+};
+
+// Per worker thread, kept across chunks and calls (a fresh chunk-sized buffer would be fresh pages
+// for every chunk).
+template <class S>
+struct ChunkBuffers {
+  std::vector<S> gathered, extra, group_in, group_out;
+  std::vector<double> check;
+  RowGroups groups;
+};
 
 }  // namespace
 
@@ -115,50 +277,99 @@ cli::BatchOptions batch_options(const std::string& precision, const py::object& 
   }
 }
 
+template <class S>
 void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams& p,
-                const cli::BatchOptions& opts,
-                const std::function<void(std::size_t, std::size_t, const std::vector<double>&)>& f,
-                const std::function<std::optional<std::string>(std::size_t)>& extra_check) {
-  const std::size_t n = q.rows;
+                const cli::BatchOptions& opts, std::size_t width, std::span<S* const> outputs,
+                const BatchFn<S>& f, std::size_t extra_columns, const ExtraFn<S>& extra,
+                const RowCheck& extra_check) {
+  const std::size_t n = q.rows, n_out = outputs.size();
   std::mutex bad_mutex;
   std::optional<std::pair<std::size_t, std::string>> first_bad;
   {
     py::gil_scoped_release release;
     cli::for_each_chunk(n, opts, [&](std::size_t begin, std::size_t count) {
-      for (std::size_t r = begin; r < begin + count; ++r) {
-        std::optional<std::string> bad;
-        try {
-          cli::check_query_row(model, query_row(q.columns, r), [&](std::string_view column) {
-            std::string origin = fmt::format("row {}", r);
-            for (std::size_t c = 0; c < kQueryLayout.size(); ++c)
-              if (kQueryLayout[c].name == column) origin += ", " + q.columns[c].origin;
-            return origin;
-          });
-          if (extra_check) bad = extra_check(r);
-        } catch (const cli::InputError& e) {
-          bad = e.what();
+      thread_local ChunkBuffers<S> b;
+      std::vector<simd::Column<S>> inputs = chunk_columns<S>(q.columns, width, begin, count, b.gathered);
+
+      // The rules of check_query_row on the chunk's columns; the model's own (validate) and the
+      // caller's extra check are per row, so they take the exact route.
+      bool surely_valid = !model.validate && !extra_check;
+      if (surely_valid) {
+        if constexpr (std::is_same_v<S, double>) {
+          surely_valid = rows_surely_valid(inputs, count);
+        } else {
+          const auto in_double = chunk_columns<double>(q.columns, width, begin, count, b.check);
+          surely_valid = rows_surely_valid(in_double, count);
         }
-        if (bad) {
+      }
+      if (!surely_valid) {
+        if (auto bad = first_bad_row(model, q, begin, count, extra_check)) {
           const std::lock_guard<std::mutex> lock(bad_mutex);
-          if (!first_bad || r < first_bad->first) first_bad.emplace(r, *bad);
+          if (!first_bad || bad->first < first_bad->first) first_bad = std::move(bad);
           return;
         }
       }
-      std::vector<double> values = p.constant, next = p.constant;
-      std::size_t run = begin;
-      while (run < begin + count) {
-        p.at(run, values);
-        std::size_t end = run + 1;
-        for (; end < begin + count; ++end) {
-          p.at(end, next);
-          if (next != values) break;
+
+      if (extra_columns > 0) {
+        if (b.extra.size() < extra_columns * count) b.extra.resize(extra_columns * count);
+        std::vector<S*> extra_data;
+        for (std::size_t k = 0; k < extra_columns; ++k) {
+          extra_data.push_back(b.extra.data() + k * count);
+          inputs.push_back({extra_data.back(), 1});
         }
-        f(run, end - run, values);
-        run = end;
+        extra(begin, count, extra_data);
+      }
+      std::vector<S*> out(n_out);
+      // The columns f reads, rebuilt for each set of rows (allocated once, with the chunk's).
+      std::vector<simd::Column<S>> at(inputs.size());
+      const auto in_place = [&](std::size_t first, std::size_t rows, const std::vector<double>& values) {
+        for (std::size_t c = 0; c < inputs.size(); ++c)
+          at[c] = {inputs[c].data + inputs[c].stride * first, inputs[c].stride};
+        for (std::size_t o = 0; o < n_out; ++o) out[o] = outputs[o] + begin + first;
+        f(at, out, rows, values);
+      };
+      if (p.per_row.empty()) {
+        in_place(0, count, p.constant);
+        return;
+      }
+      RowGroups& g = b.groups;
+      g.build(p, begin, count);
+      std::vector<double> values = p.constant;
+      for (std::size_t k = 0; k < g.groups(); ++k) {
+        const std::uint32_t* rows = g.order.data() + g.start[k];
+        const std::size_t size = g.start[k + 1] - g.start[k];
+        p.at(begin + rows[0], values);
+        if (rows[size - 1] - rows[0] + 1 == size) {
+          in_place(rows[0], size, values);  // adjacent rows: the chunk's columns as they are
+          continue;
+        }
+        // Scattered rows: gathered into full batches, the results scattered back.
+        if (b.group_in.size() < inputs.size() * size) b.group_in.resize(inputs.size() * size);
+        if (b.group_out.size() < n_out * size) b.group_out.resize(n_out * size);
+        for (std::size_t c = 0; c < inputs.size(); ++c) {
+          at[c] = inputs[c];
+          if (inputs[c].stride == 0) continue;
+          S* dst = b.group_in.data() + c * size;
+          for (std::size_t i = 0; i < size; ++i) dst[i] = inputs[c].data[rows[i]];
+          at[c] = {dst, 1};
+        }
+        for (std::size_t o = 0; o < n_out; ++o) out[o] = b.group_out.data() + o * size;
+        f(at, out, size, values);
+        for (std::size_t o = 0; o < n_out; ++o)
+          for (std::size_t i = 0; i < size; ++i) outputs[o][begin + rows[i]] = out[o][i];
       }
     });
   }
   if (first_bad) throw py::value_error(first_bad->second);
 }
+
+template void run_chunks<float>(const ModelEntry&, const QuerySources&, const CallParams&,
+                                const cli::BatchOptions&, std::size_t, std::span<float* const>,
+                                const BatchFn<float>&, std::size_t, const ExtraFn<float>&,
+                                const RowCheck&);
+template void run_chunks<double>(const ModelEntry&, const QuerySources&, const CallParams&,
+                                 const cli::BatchOptions&, std::size_t, std::span<double* const>,
+                                 const BatchFn<double>&, std::size_t, const ExtraFn<double>&,
+                                 const RowCheck&);
 
 }  // namespace glintlab::python

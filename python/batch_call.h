@@ -1,6 +1,7 @@
 // One eval or sample call of the Python module over the batch API (core/simd/model_batch.h):
 // the parameters (scalars for every row or per-row arrays), the batch options, the row checks of
-// `glintlab eval --model`, and the chunked parallel loop of the CLI, run without the GIL.
+// `glintlab eval --model` (run over each chunk's columns), and the chunked parallel loop of the
+// CLI, run without the GIL.
 #pragma once
 
 #include <pybind11/pybind11.h>
@@ -8,17 +9,19 @@
 #include <cstddef>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "cli/batch_options.h"
 #include "core/model_registry.h"
+#include "core/simd/batch.h"
 #include "python/query_columns.h"
 
 namespace glintlab::python {
 
 // The parameters of a call: the values of the constant ones (resolve_params order) and, for those
-// given as (N,) arrays, their column sources (checked row by row against the same ranges).
+// given as (N,) arrays, their column sources (every value checked against the same ranges).
 struct CallParams {
   std::vector<double> constant;
   std::vector<std::pair<std::size_t, ColumnSource>> per_row;  // (index in params, values)
@@ -36,13 +39,32 @@ CallParams call_params(const ModelEntry& model, const pybind11::object& params, 
 cli::BatchOptions batch_options(const std::string& precision, const pybind11::object& isa,
                                 const std::string& math, const pybind11::object& threads);
 
-// Rows [0, n) in the CLI's chunks on opts.threads threads, the GIL released: each chunk's rows
-// checked as eval --model checks them (the first bad row, lowest index, becomes a ValueError
-// after the loop), then f(begin, count, params) once per run of rows with equal parameters.
+// The work on a set of rows with one parameter vector: `inputs` the query columns (`width` of
+// them, kQueryLayout order) then the extra columns (sample's uniforms), `count` rows each (stride
+// 0 or 1); `outputs` count rows each.
+template <class S>
+using BatchFn = std::function<void(std::span<const simd::Column<S>> inputs,
+                                   std::span<S* const> outputs, std::size_t count,
+                                   const std::vector<double>& params)>;
+// Writes the extra input columns of rows [begin, begin + count): extra[k][i] for row begin + i.
+template <class S>
+using ExtraFn =
+    std::function<void(std::size_t begin, std::size_t count, std::span<S* const> extra)>;
+// A check of row `row` besides eval --model's (sample's uniforms): the message, or nothing.
+using RowCheck = std::function<std::optional<std::string>(std::size_t row)>;
+
+// Rows [0, n) in the CLI's chunks on opts.threads threads, the GIL released. Each chunk: its
+// query columns read in place or gathered from the arrays' strides (chunk_columns), its rows
+// checked as eval --model checks them by a pass over those columns (the exact row checks, and
+// their message, run only for a chunk where that pass finds a row that may be bad; the first bad
+// row, lowest index, becomes a ValueError after the loop), then f once per set of rows with equal
+// parameters: the whole chunk without per-row parameters; with them, the chunk's rows grouped by
+// their values in O(rows), each group gathered into full batches (in place where its rows are
+// adjacent) and its results scattered back. `outputs`: n rows each.
+template <class S>
 void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams& p,
-                const cli::BatchOptions& opts,
-                const std::function<void(std::size_t begin, std::size_t count,
-                                         const std::vector<double>& params)>& f,
-                const std::function<std::optional<std::string>(std::size_t row)>& extra_check = {});
+                const cli::BatchOptions& opts, std::size_t width, std::span<S* const> outputs,
+                const BatchFn<S>& f, std::size_t extra_columns = 0, const ExtraFn<S>& extra = {},
+                const RowCheck& extra_check = {});
 
 }  // namespace glintlab::python

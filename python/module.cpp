@@ -105,19 +105,14 @@ py::dict eval_in(const ModelEntry& model, const QuerySources& q, const CallParam
   std::vector<S*> out_data;
   for (auto& a : outs) out_data.push_back(a.mutable_data());
   const PythonModel* const numpy_model = python_model(model);  // looked up once, with the GIL
-  run_chunks(model, q, p, opts,
-             [&](std::size_t begin, std::size_t count, const std::vector<double>& params) {
-               // Per worker thread, kept across chunks: a fresh chunk-sized buffer would be
-               // fresh pages (mmap) for every chunk.
-               thread_local std::vector<S> buffer;
-               const auto cols = chunk_columns<S>(q.columns, width, begin, count, buffer);
-               std::vector<S*> o;
-               for (S* d : out_data) o.push_back(d + begin);
-               if (numpy_model)
-                 python_eval_rows<S>(*numpy_model, params, cols, o, count);  // one call per chunk
-               else
-                 simd::eval_batch(model, params, cols, o, count, opts.isa, opts.math);
-             });
+  run_chunks<S>(model, q, p, opts, width, out_data,
+                [&](std::span<const simd::Column<S>> cols, std::span<S* const> o, std::size_t count,
+                    const std::vector<double>& params) {
+                  if (numpy_model)
+                    python_eval_rows<S>(*numpy_model, params, cols, o, count);  // one call per chunk
+                  else
+                    simd::eval_batch(model, params, cols, o, count, opts.isa, opts.math);
+                });
   py::dict r;
   r["value"] = outs[0];
   r["pdf"] = outs[1];
@@ -153,7 +148,6 @@ py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallPar
   S* const out_data[6] = {wo_data, wo_data + n, wo_data + 2 * n, pdf.mutable_data(),
                           weight.mutable_data(), rejected.data()};
   const auto check_u = [&](std::size_t r) -> std::optional<std::string> {
-    if (u1 == nullptr) return std::nullopt;
     for (const ColumnSource* u : {u1, u2}) {
       const double v = u->at(r);
       if (!(v >= 0 && v < 1))
@@ -162,28 +156,28 @@ py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallPar
     return std::nullopt;
   };
   const PythonModel* const numpy_model = python_model(model);  // looked up once, with the GIL
-  run_chunks(
-      model, q, p, opts,
-      [&](std::size_t begin, std::size_t count, const std::vector<double>& params) {
-        thread_local std::vector<S> buffer, uniforms;  // kept across chunks, as in eval_in
-        uniforms.resize(2 * count);
-        const auto cols = chunk_columns<S>(q.columns, width, begin, count, buffer);
-        // The CLI's counter-based stream (sample --model), or the caller's uniforms.
+  run_chunks<S>(
+      model, q, p, opts, width, std::span<S* const>(out_data),
+      [&](std::span<const simd::Column<S>> in, std::span<S* const> o, std::size_t count,
+          const std::vector<double>& params) {
+        const auto cols = in.first(width);
+        if (numpy_model)
+          python_sample_rows<S>(*numpy_model, params, cols, in[width], in[width + 1], o, count);
+        else
+          simd::sample_batch(model, params, cols, in[width], in[width + 1], o, count, opts.isa,
+                             opts.math);
+      },
+      2,
+      // The CLI's counter-based stream (sample --model), or the caller's uniforms.
+      [&](std::size_t begin, std::size_t count, std::span<S* const> uniforms) {
         for (std::size_t i = 0; i < count; ++i) {
-          uniforms[i] = u1 ? S(u1->at(begin + i)) : S(counter_uniform<double>(seed, begin + i, 0));
-          uniforms[count + i] =
+          uniforms[0][i] =
+              u1 ? S(u1->at(begin + i)) : S(counter_uniform<double>(seed, begin + i, 0));
+          uniforms[1][i] =
               u2 ? S(u2->at(begin + i)) : S(counter_uniform<double>(seed, begin + i, 1));
         }
-        std::vector<S*> o;
-        for (S* d : out_data) o.push_back(d + begin);
-        if (numpy_model)
-          python_sample_rows<S>(*numpy_model, params, cols, {uniforms.data(), 1},
-                                {uniforms.data() + count, 1}, o, count);
-        else
-          simd::sample_batch(model, params, cols, {uniforms.data(), 1},
-                             {uniforms.data() + count, 1}, o, count, opts.isa, opts.math);
       },
-      check_u);
+      u1 ? RowCheck(check_u) : RowCheck());
   auto rej = py::array_t<bool>(py::ssize_t(n));
   bool* rd = rej.mutable_data();
   for (std::size_t i = 0; i < n; ++i) rd[i] = rejected[i] != 0;
@@ -253,6 +247,62 @@ py::dict column_addresses(const std::string& name, const py::object& wi, const p
         in_place ? py::object(py::int_(reinterpret_cast<std::uintptr_t>(s.data)))
                  : py::object(py::none());
   }
+  return d;
+}
+
+// The reference time of eval(): seconds of simd::eval_batch alone, one thread, over the same rows
+// as eval(model, wi, wo) with the model's defaults, the columns laid out beforehand (untimed) as
+// contiguous SoA columns of `precision`, run in the CLI's chunks: {"isa": the ISA's name,
+// "seconds": one entry per repeat}. For the
+// benchmark experiments/bench/python_eval.py, which compares eval() against it.
+template <class S>
+std::vector<double> eval_batch_seconds_in(const ModelEntry& model, const QuerySources& q,
+                                          const cli::BatchOptions& opts, int repeats) {
+  const std::size_t n = q.rows, width = query_width(model);
+  const std::vector<double> params = resolve_params(model, {});
+  std::vector<std::vector<S>> data(width);
+  std::vector<simd::Column<S>> cols;
+  for (std::size_t c = 0; c < width; ++c) {
+    const ColumnSource& s = q.columns[c];
+    if (s.data == nullptr || s.stride == 0) {
+      data[c].assign(1, S(s.at(0)));
+      cols.push_back({data[c].data(), 0});
+    } else {
+      data[c].resize(n);
+      for (std::size_t i = 0; i < n; ++i) data[c][i] = S(s.at(i));
+      cols.push_back({data[c].data(), 1});
+    }
+  }
+  std::vector<std::vector<S>> out(2 + model.intermediates.size(), std::vector<S>(n));
+  std::vector<double> seconds;
+  const py::gil_scoped_release release;
+  for (int r = 0; r < repeats; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (std::size_t begin = 0; begin < n; begin += cli::kBatchChunk) {
+      const std::size_t count = std::min(cli::kBatchChunk, n - begin);
+      std::vector<simd::Column<S>> chunk = cols;
+      for (simd::Column<S>& c : chunk) c.data += c.stride * begin;
+      std::vector<S*> o;
+      for (auto& column : out) o.push_back(column.data() + begin);
+      simd::eval_batch(model, params, chunk, o, count, opts.isa, opts.math);
+    }
+    seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  return seconds;
+}
+
+py::dict eval_batch_seconds(const std::string& name, const py::object& wi,
+                                       const py::object& wo, const std::string& precision,
+                                       const py::object& isa, const std::string& math,
+                                       int repeats) {
+  const ModelEntry& model = model_named(name);
+  const cli::BatchOptions opts = batch_options(precision, isa, math, py::int_(1));
+  QuerySources q = query_sources(model, wi, wo, py::none(), py::none(), 0);
+  if (q.rows == 0) q.rows = 1;
+  py::dict d;
+  d["isa"] = std::string(simd::isa_name(opts.isa));
+  d["seconds"] = opts.float_precision ? eval_batch_seconds_in<float>(model, q, opts, repeats)
+                                      : eval_batch_seconds_in<double>(model, q, opts, repeats);
   return d;
 }
 
@@ -332,6 +382,9 @@ PYBIND11_MODULE(_glintlab, m) {
         arg("isa") = py::none(), arg("math") = "exact", arg("threads") = py::none());
   m.def("column_addresses", &column_addresses, arg("model"), arg("wi"), arg("wo"),
         arg("footprint") = py::none(), arg("light") = py::none(), arg("precision") = "double");
+  m.def("eval_batch_seconds", &eval_batch_seconds, arg("model"), arg("wi"), arg("wo"),
+        arg("precision") = "double", arg("isa") = py::none(), arg("math") = "exact",
+        arg("repeats") = 5);
   m.def("load_plugin", &load_plugin, arg("path"));
   m.def("register_model", &register_python_model, arg("name"), arg("eval"), arg("pdf"),
         arg("sample"), arg("params") = py::none(), arg("needs") = py::none(),

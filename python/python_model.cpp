@@ -8,8 +8,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <deque>
 #include <map>
+#include <type_traits>
+#include <utility>
 
 #include "core/model_layout.h"
 #include "core/simd/model_batch.h"
@@ -60,7 +63,10 @@ py::dict query_dict(const PythonModel& m, std::span<const simd::Column<S>> query
     const simd::Column<S> col = c < query.size() ? query[c] : simd::Column<S>{&kZero, 0};
     py::array_t<double> a(static_cast<py::ssize_t>(n));
     double* out = a.mutable_data();
-    for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<double>(col.data[col.stride * i]);
+    if (std::is_same_v<S, double> && col.stride == 1)
+      std::memcpy(out, col.data, n * sizeof(double));
+    else
+      for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<double>(col.data[col.stride * i]);
     d[py::str(std::string(kQueryLayout[c].name))] = a;
   }
   return d;
@@ -75,11 +81,20 @@ std::string shape_text(const py::array& a) {
 // `result` checked as float64 of shape (n,) or (n, width) (width 0: one dimension), NaN-free;
 // its element (i, j) is then at(i, j).
 struct CheckedArray {
+  explicit CheckedArray(py::array a)
+      : array(std::move(a)),
+        base(static_cast<const char*>(array.data())),
+        row_stride(array.strides(0)),
+        column_stride(array.ndim() > 1 ? array.strides(1) : 0) {}
   py::array array;
+  // The layout read once: at() runs on every element, without calls into numpy.
+  const char* base;
+  py::ssize_t row_stride, column_stride;
   double at(std::size_t i, std::size_t j = 0) const {
-    const char* p = static_cast<const char*>(array.data());
-    p += py::ssize_t(i) * array.strides(0) + (array.ndim() > 1 ? py::ssize_t(j) * array.strides(1) : 0);
-    return *reinterpret_cast<const double*>(p);
+    const char* p = base + py::ssize_t(i) * row_stride + py::ssize_t(j) * column_stride;
+    double v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
   }
 };
 
@@ -103,12 +118,18 @@ CheckedArray checked_array(const PythonModel& m, std::string_view function, cons
   if (!shape_ok)
     fail(m, function, fmt::format("returned {} of shape {} (valid: {})", what, shape_text(a), want));
   CheckedArray c{a};
+  // One branch-free pass; the row of the first NaN looked for only when there is one.
+  const std::size_t columns = std::max<std::size_t>(width, 1);
+  bool any_nan = false;
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < std::max<std::size_t>(width, 1); ++j)
-      if (std::isnan(c.at(i, j))) {
-        fail(m, function,
-             fmt::format("returned NaN in {} at row {} of {} (valid: numbers, no NaN)", what, i, n));
-      }
+    for (std::size_t j = 0; j < columns; ++j) any_nan |= std::isnan(c.at(i, j));
+  if (any_nan)
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < columns; ++j)
+        if (std::isnan(c.at(i, j))) {
+          fail(m, function, fmt::format("returned NaN in {} at row {} of {} (valid: numbers, no NaN)",
+                                        what, i, n));
+        }
   return c;
 }
 

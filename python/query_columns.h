@@ -63,24 +63,60 @@ ColumnSource column_source(const py::handle& value, const std::string& name, std
                            std::vector<py::object>& keep_alive);
 
 // The SoA columns of rows [begin, begin + count) in precision S, `ncols` first columns; columns
-// not in place are gathered into `buffer`.
+// not in place are gathered into `buffer` (grown as needed, never cleared: every value read is
+// written first), a strided column by a typed strided load per row.
 template <class S>
 std::vector<simd::Column<S>> chunk_columns(const std::vector<ColumnSource>& sources,
                                            std::size_t ncols, std::size_t begin, std::size_t count,
                                            std::vector<S>& buffer) {
-  buffer.assign(ncols * count, S(0));
+  if (buffer.size() < ncols * count) buffer.resize(ncols * count);
   std::vector<simd::Column<S>> cols;
   cols.reserve(ncols);
+  const auto gather = [count](auto* src, std::ptrdiff_t stride, S* dst) {
+    for (std::size_t i = 0; i < count; ++i) dst[i] = S(src[std::ptrdiff_t(i) * stride]);
+  };
+  // Three columns that are the adjacent elements of each row of one array (a C-ordered (N, 3)
+  // direction array): transposed in one pass over its rows rather than three strided passes.
+  const auto gather3 = [count](auto* src, std::ptrdiff_t stride, S* x, S* y, S* z) {
+    for (std::size_t i = 0; i < count; ++i, src += stride) {
+      x[i] = S(src[0]);
+      y[i] = S(src[1]);
+      z[i] = S(src[2]);
+    }
+  };
+  const auto rows_of_one_array = [&](std::size_t c) {
+    if (c + 2 >= ncols) return false;
+    const ColumnSource &a = sources[c], &b = sources[c + 1], &d = sources[c + 2];
+    const std::size_t size = a.is_float ? sizeof(float) : sizeof(double);
+    const char* base = static_cast<const char*>(a.data);
+    return a.data != nullptr && a.stride != 0 && !a.in_place<S>() && b.stride == a.stride &&
+           d.stride == a.stride && b.is_float == a.is_float && d.is_float == a.is_float &&
+           b.data == base + size && d.data == base + 2 * size;
+  };
   for (std::size_t c = 0; c < ncols; ++c) {
     const ColumnSource& s = sources[c];
     S* gathered = buffer.data() + c * count;
-    if (s.in_place<S>()) {
+    if (rows_of_one_array(c)) {
+      const std::ptrdiff_t first = std::ptrdiff_t(begin) * s.stride;
+      if (s.is_float)
+        gather3(static_cast<const float*>(s.data) + first, s.stride, gathered, gathered + count,
+                gathered + 2 * count);
+      else
+        gather3(static_cast<const double*>(s.data) + first, s.stride, gathered, gathered + count,
+                gathered + 2 * count);
+      for (std::size_t k = 0; k < 3; ++k) cols.push_back({gathered + k * count, 1});
+      c += 2;
+    } else if (s.in_place<S>()) {
       cols.push_back({static_cast<const S*>(s.data) + begin, 1});
     } else if (s.data == nullptr || s.stride == 0) {
       gathered[0] = S(s.at(0));
       cols.push_back({gathered, 0});
     } else {
-      for (std::size_t i = 0; i < count; ++i) gathered[i] = S(s.at(begin + i));
+      const std::ptrdiff_t first = std::ptrdiff_t(begin) * s.stride;
+      if (s.is_float)
+        gather(static_cast<const float*>(s.data) + first, s.stride, gathered);
+      else
+        gather(static_cast<const double*>(s.data) + first, s.stride, gathered);
       cols.push_back({gathered, 1});
     }
   }

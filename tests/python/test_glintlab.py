@@ -173,6 +173,70 @@ def test_per_row_parameters_equal_one_call_per_value():
     assert not np.array_equal(mixed[idx == 0], vndf[idx == 0])
 
 
+def test_per_row_parameters_match_the_per_row_route_bit_for_bit():
+    # Several chunks of 4096 rows; the rows of equal values are scattered (gathered into full
+    # batches), adjacent (read in place) or all different. Each row must equal that row evaluated
+    # alone with its values as scalars, in both precisions, eval and sample.
+    rng = np.random.default_rng(11)
+    n = 9000
+    wi = unit(rng.normal(size=(n, 3)) * [1, 1, 0.5] + [0, 0, 1])
+    wo = unit(rng.normal(size=(n, 3)) * [1, 1, 0.5] + [0, 0, 1])
+    wi[:, 2] = np.abs(wi[:, 2])
+    u = rng.uniform(0, 1, (n, 2))
+    scattered = rng.choice([0.1, 0.3, 0.55, 0.9], size=n)
+    adjacent = np.repeat([0.2, 0.6, 0.4], n // 3)
+    distinct = rng.uniform(0.05, 1.5, size=n)
+    sampler = rng.integers(0, 4, size=n)
+    rows = np.concatenate([rng.choice(n, 40, replace=False), [0, 4095, 4096, n - 1]])
+    for precision in ("double", "float"):
+        for alpha in (scattered, adjacent, distinct):
+            params = {"alpha_x": alpha, "alpha_y": scattered, "sampler": sampler}
+            got = glintlab.eval("smooth_ggx", wi, wo, params=params, precision=precision)
+            sam = glintlab.sample("smooth_ggx", wi, u=u, params=params, precision=precision)
+            for i in rows:
+                one = {"alpha_x": alpha[i], "alpha_y": scattered[i],
+                       "sampler": ["ndf", "vndf", "spherical_caps", "bounded_caps"][sampler[i]]}
+                ref = glintlab.eval("smooth_ggx", wi[i:i + 1], wo[i:i + 1], params=one,
+                                    precision=precision)
+                for k, v in ref.items():
+                    assert got[k][i].tobytes() == v[0].tobytes(), (precision, k, i)
+                ref = glintlab.sample("smooth_ggx", wi[i:i + 1], u=u[i:i + 1], params=one,
+                                      precision=precision)
+                for k, v in ref.items():
+                    assert sam[k][i].tobytes() == v[0].tobytes(), (precision, k, i)
+
+
+def test_the_input_check_over_the_batch_keeps_the_row_rules():
+    # The check runs over each chunk's columns; a row on either side of the unit tolerance
+    # (|length - 1| <= 1e-6), a non-finite value or a bad light in a later chunk, in C-ordered,
+    # Fortran-ordered and float32 input, gives the row-by-row rule's verdict and message.
+    rng = np.random.default_rng(12)
+    n = 10000
+    wi = unit(rng.normal(size=(n, 3)) * [1, 1, 0.5] + [0, 0, 1])
+    wo = unit(rng.normal(size=(n, 3)) * [1, 1, 0.5] + [0, 0, 1])
+    inside = wo.copy()
+    inside[5000] *= 1 + 0.9999e-6
+    inside[6000] *= 1 - 0.9999e-6
+    for w in (inside, np.asfortranarray(inside)):
+        glintlab.eval("smooth_ggx", wi, w)  # no error
+    outside = inside.copy()
+    outside[8000] *= 1 + 1.0002e-6
+    outside[9000, 2] = np.inf
+    for w in (outside, np.asfortranarray(outside)):
+        msg = error_of(glintlab.eval, "smooth_ggx", wi, w)
+        assert msg.startswith("row 8000, columns wo_x,wo_y,wo_z (wo): direction") and \
+            "not unit" in msg, msg
+    outside[8000] = inside[8000]
+    msg = error_of(glintlab.eval, "smooth_ggx", wi, outside.astype(np.float32), precision="float")
+    assert msg.startswith("row 9000, wo[:, 2]: wo_z = inf is not finite"), msg
+    model = next(m for m in glintlab.models() if "point light" in m["needs"])
+    wi_, wo_, footprint, light = queries(model, rows=n, seed=3)
+    light["light_cos_half_angle"] = light["light_cos_half_angle"].copy()
+    light["light_cos_half_angle"][7001] = 1.5
+    msg = error_of(glintlab.eval, model["name"], wi_, wo_, footprint=footprint, light=light)
+    assert msg.startswith("row 7001, light['light_cos_half_angle']: 1.5 is out of range"), msg
+
+
 def test_results_do_not_depend_on_the_thread_count():
     rng = np.random.default_rng(5)
     n = 20000  # several chunks of 4096 rows

@@ -1,0 +1,191 @@
+#!/usr/bin/env python3
+"""Speed of glintlab.eval from Python against the C++ batch underneath, as JSON.
+
+On N rows of C-ordered (N, 3) float64 directions (numpy's usual layout), the median of several
+repeats of:
+
+  cpp_eval_batch          simd::eval_batch alone on one thread, the same rows laid out beforehand as
+                          contiguous columns (glintlab._glintlab.eval_batch_seconds): the reference
+  python_eval_c_1thread   glintlab.eval("smooth_ggx", wi, wo, threads=1)
+  python_eval_c           the same on all cores
+  python_eval_f_1thread   Fortran-ordered (N, 3) input, one thread (read in place)
+  python_eval_per_row_*   params={"alpha_x": (N,) array}, one thread: 16 distinct values in
+                          random order, and every row its own value
+  numpy_model_direct      a numpy Lambertian's eval and pdf called on all N rows at once, on the
+                          columns of the (N, 3) arrays (strided views)
+  numpy_model_direct_contiguous  the same on contiguous copies of the columns, made beforehand
+  numpy_model_eval        the same model registered (glintlab.register_model) and run by
+                          glintlab.eval in chunks, one thread
+
+and the ratios of interest (Python eval over eval_batch; the numpy model's chunked calls over
+its direct calls). The cases take turns in each repeat, so that a shared machine's changing load
+reaches them alike. Speed is measured here, never asserted: tests/python runs this in its smoke
+mode (--rows 1000 --repeats 1) and checks the JSON's shape only. docs/python.md "Speed of eval
+from Python" holds the numbers.
+
+Run with Debian's interpreter and the build tree's module:
+  PYTHONPATH=build/release/python /usr/bin/python3 experiments/bench/python_eval.py \
+      --out out/bench/python_eval.json
+"""
+
+import argparse
+import json
+import os
+import platform
+import statistics
+import sys
+import time
+
+import numpy as np
+
+import glintlab
+from glintlab import _glintlab
+
+
+def unit_rows(rng, n):
+    """n C-ordered (n, 3) float64 unit vectors of the upper hemisphere."""
+    v = rng.normal(size=(n, 3))
+    v[:, 2] = np.abs(v[:, 2]) + 1e-3
+    return np.ascontiguousarray(v / np.linalg.norm(v, axis=1)[:, None])
+
+
+def round_robin(cases, repeats):
+    """Seconds of each of `repeats` calls of every case, the cases taking turns in each round (so
+    that a change of load on a shared machine reaches every case alike); one untimed call of each
+    first (first-touch, caches). `cases`: name -> callable, or -> callable returning its own
+    seconds (a list of one)."""
+    for f in cases.values():
+        f()
+    seconds = {name: [] for name in cases}
+    for _ in range(repeats):
+        for name, f in cases.items():
+            t0 = time.perf_counter()
+            r = f()
+            elapsed = time.perf_counter() - t0
+            seconds[name].append(r[0] if isinstance(r, list) else elapsed)
+    return seconds
+
+
+def lambert_eval(q, p):
+    return p["albedo"] * np.maximum(q["wo_z"], 0) / np.pi
+
+
+def lambert_pdf(q, p):
+    return np.maximum(q["wo_z"], 0) / np.pi
+
+
+def lambert_sample(q, u, p):
+    r = np.sqrt(u[:, 0])
+    phi = 2 * np.pi * u[:, 1]
+    z = np.sqrt(np.maximum(0.0, 1 - u[:, 0]))
+    wo = np.stack([r * np.cos(phi), r * np.sin(phi), z], axis=1)
+    return {"wo": wo, "pdf": z / np.pi, "weight": np.full(len(z), p["albedo"])}
+
+
+def cpu_name():
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor()
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--rows", type=int, default=1_000_000, help="N (default 10^6)")
+    ap.add_argument("--repeats", type=int, default=7, help="timed repeats per case (default 7)")
+    ap.add_argument("--isa", default=None, help="scalar, sse4.2, avx2, avx512 (default: widest)")
+    ap.add_argument("--out", required=True, help="the JSON file to write")
+    a = ap.parse_args()
+    for option, value in (("--rows", a.rows), ("--repeats", a.repeats)):
+        if value < 1:
+            print(f"python_eval.py: error: {option}: {value} is out of range (valid: >= 1)",
+                  file=sys.stderr)
+            return 2
+
+    rng = np.random.default_rng(20260405)
+    n = a.rows
+    wi, wo = unit_rows(rng, n), unit_rows(rng, n)
+    wi_f, wo_f = np.asfortranarray(wi), np.asfortranarray(wo)
+    alpha16 = rng.choice(np.linspace(0.1, 0.9, 16), size=n)
+    alpha_distinct = rng.uniform(0.1, 0.9, size=n)
+    model = "smooth_ggx"
+
+    isa = _glintlab.eval_batch_seconds(model, wi[:1], wo[:1], isa=a.isa, repeats=1)["isa"]
+
+    def cpp_eval_batch():
+        return _glintlab.eval_batch_seconds(model, wi, wo, isa=a.isa, repeats=1)["seconds"]
+
+    def py_eval(wi_, wo_, threads=1, params=None):
+        return lambda: glintlab.eval(model, wi_, wo_, params=params, isa=a.isa, threads=threads)
+
+    name = "bench_numpy_lambert"
+    if name not in [m["name"] for m in glintlab.models()]:
+        glintlab.register_model(name, lambert_eval, lambert_pdf, lambert_sample,
+                                params=[{"name": "albedo", "default": 0.8, "lo": 0, "hi": 1}],
+                                description="Lambertian in numpy (benchmark)")
+    p = {"albedo": 0.8}
+
+    def direct():
+        q = {"wi_x": wi[:, 0], "wi_y": wi[:, 1], "wi_z": wi[:, 2],
+             "wo_x": wo[:, 0], "wo_y": wo[:, 1], "wo_z": wo[:, 2]}
+        return lambert_eval(q, p), lambert_pdf(q, p)
+
+    columns = {"wi_x": wi[:, 0].copy(), "wi_y": wi[:, 1].copy(), "wi_z": wi[:, 2].copy(),
+               "wo_x": wo[:, 0].copy(), "wo_y": wo[:, 1].copy(), "wo_z": wo[:, 2].copy()}
+
+    def direct_contiguous():
+        return lambert_eval(columns, p), lambert_pdf(columns, p)
+
+    cases = round_robin({
+        "cpp_eval_batch": cpp_eval_batch,
+        "python_eval_c_1thread": py_eval(wi, wo),
+        "python_eval_c": py_eval(wi, wo, threads=None),
+        "python_eval_f_1thread": py_eval(wi_f, wo_f),
+        "python_eval_per_row_16_values_1thread": py_eval(wi, wo, params={"alpha_x": alpha16}),
+        "python_eval_per_row_distinct_1thread":
+            py_eval(wi, wo, params={"alpha_x": alpha_distinct}),
+        "numpy_model_direct": direct,
+        "numpy_model_direct_contiguous": direct_contiguous,
+        "numpy_model_eval_1thread": lambda: glintlab.eval(name, wi, wo, threads=1),
+    }, a.repeats)
+
+    median = {k: statistics.median(v) for k, v in cases.items()}
+    ref = median["cpp_eval_batch"]
+    result = {
+        "benchmark": "python_eval",
+        "machine": {"cpu": cpu_name(), "cores": os.cpu_count(), "python": platform.python_version(),
+                    "numpy": np.__version__},
+        "isa": isa,
+        "precision": "double",
+        "model": model,
+        "rows": n,
+        "repeats": a.repeats,
+        "cases": {k: {"seconds": v, "median_s": median[k],
+                      "us_per_1e6_rows": median[k] / n * 1e12}
+                  for k, v in cases.items()},
+        "ratios": {
+            "python_eval_c_1thread_over_cpp": median["python_eval_c_1thread"] / ref,
+            "python_eval_c_over_cpp": median["python_eval_c"] / ref,
+            "python_eval_f_1thread_over_cpp": median["python_eval_f_1thread"] / ref,
+            "per_row_16_values_over_cpp": median["python_eval_per_row_16_values_1thread"] / ref,
+            "per_row_distinct_over_cpp": median["python_eval_per_row_distinct_1thread"] / ref,
+            "numpy_model_chunked_over_direct":
+                median["numpy_model_eval_1thread"] / median["numpy_model_direct"],
+            "numpy_model_chunked_over_direct_contiguous":
+                median["numpy_model_eval_1thread"] / median["numpy_model_direct_contiguous"],
+        },
+    }
+    with open(a.out, "w") as f:
+        json.dump(result, f, indent=1)
+        f.write("\n")
+    for k, v in result["ratios"].items():
+        print(f"{k}: {v:.2f}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
