@@ -21,6 +21,10 @@ set(glintlab_slow_tests
   # The brute-force Eq. 5 (every point within 5 σ) at 24–400 positions of each setting.
   "Checks/QuickBudget.VerdictAndControl/kemppinen_compensation_k16* 5"
   "Checks/QuickBudget.VerdictAndControl/kemppinen_compensation* 24"
+  # Both render the normal-mapped tubes' replicates (three 256-spp references each) in their own
+  # process.
+  "Checks/QuickBudget.VerdictAndControl/chermain_ggaa_derivatives* 15"
+  "Checks/QuickBudget.VerdictAndControl/chermain_ggaa_sk* 15"
   "Checks/QuickBudget.* 1"
   "AcrossClaims.StabilityVerdictAndControl 14"
   "Properties/ControlRejected.ByTheSameDecision/kneiphof_klein_sampler_covers_value* 4"
@@ -44,6 +48,7 @@ set(glintlab_slow_tests
   "AdequacyClosedForms.RealtimeMomentsMatchItsDraws 2"
   "ChermainClaims.DictionaryConverges 2"
   "ChermainClaims.GgaaDecisionFailsAgainstNearTruth 1"
+  "ChermainClaims.OrderingDecisionFailsOnABrokenInput 5"
   "ChermainClaims.LeanMarginNegativeAgainstNearTruth 4"
   "ChermainPatchSdf.NormalizedWithAndWithoutGgaa 1"
   "ChermainScalarIdentity.ModelMatchesTheHostCode 1"

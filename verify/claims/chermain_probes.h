@@ -36,9 +36,9 @@ struct GgaaVerdict {
 GgaaMeasurement measure_ggaa(const GgaaBudget& b, std::uint64_t seed);
 GgaaVerdict judge_ggaa(const GgaaMeasurement& m, const Image& reference);
 
-// The checks chermain.ggaa-error / -derivatives / -sk / -shimmer: `replicates` independent
-// replicates of the tube scene (glint layout, sub-pixel camera offset and reference seed from
-// check_seed(id, k)), each with every method's display RMSE % and the shimmer of s_K 0.5 and 1.
+// The checks chermain.ggaa-error and -shimmer: `replicates` independent replicates of the tube
+// scene (glint layout, sub-pixel camera offset and reference seed from check_seed(id, k)), each
+// with the display RMSE % without GGAA and with GGAA, and the shimmer of s_K 0.5 and 1.
 struct GgaaReplicateBudget {
   int width, height;
   int reference_spp;
@@ -47,7 +47,7 @@ struct GgaaReplicateBudget {
   int threads;  // 0 = all cores
 };
 struct GgaaReplicate {
-  double none = 0, half05 = 0, half1 = 0, proj05 = 0, proj1 = 0;  // display RMSE %
+  double none = 0, proj05 = 0;  // display RMSE %: no GGAA, Eq. 21 at s_K 0.5
   double near_truth = 0;  // control: an independent reference × (1 + kGgaaNearTruthBias)
   double flicker05 = 0, flicker1 = 0;  // frame-to-frame variance × 1e4, projected half vector
   double flicker1_slow = 0;            // control: s_K 1 under a pan kGgaaSlowPan slower
@@ -71,6 +71,46 @@ PairedComparison compare_paired(const std::vector<double>& differences, double c
 // Šidák-corrected kGgaaConfidence interval lies above 0, fails when one lies below 0, else
 // inconclusive (a tie within the noise).
 Verdict decide_ggaa(const std::vector<std::vector<double>>& parts);
+
+// --- chermain.ggaa-derivatives and chermain.ggaa-sk (Fig. 9) ---
+// Both claims on one replicated measurement of the normal-mapped tubes (BumpyTubeOptions of
+// chermain_scenes.h) against the per-sample-footprint reference; each replicate has its own glint
+// layout, sub-pixel camera offset and two independent references (the second gives the
+// reference's own error and the control's near-truth image).
+struct BumpyGgaaBudget {
+  int width, height;
+  int reference_spp;
+  int replicates;
+  int threads;  // 0 = all cores
+};
+struct BumpyGgaaReplicate {
+  // Display RMSE % against the reference; Eq. 20 (half slope) and Eq. 21 (projected half vector)
+  // at s_K 0.5 and 1, and Eq. 21 at the s_K that matches Eq. 20's mean kernel width at s_K 0.5.
+  double none = 0, half05 = 0, half1 = 0, proj05 = 0, proj1 = 0, proj_matched = 0;
+  // The same four against the second, independent reference.
+  double half05_alt = 0, half1_alt = 0, proj05_alt = 0, proj1_alt = 0;
+  double near_truth = 0;       // control: the second reference × (1 + kGgaaNearTruthBias)
+  double reference_error = 0;  // display RMSE % of the second reference against the first / √2
+  // Median over the pixels of Eq. 20's GGAA kernel width / Eq. 21's at s_K 0.5, and the s_K of
+  // Eq. 21 that matches Eq. 20's width at s_K 0.5 (0.5 × that ratio).
+  double width_ratio = 0, matched_s_k = 0;
+  // Diagnostics of the reference: the smooth limit (the glinty BRDF's expectation, no glints at
+  // all) against it, and every method against the other reading of the paper's reference
+  // (BumpyReference::kPixelSized).
+  double smooth = 0;
+  double none_px = 0, half05_px = 0, half1_px = 0, proj05_px = 0, proj1_px = 0, smooth_px = 0;
+};
+// Fixed before measuring: an ordering reversed by less than this many display-RMSE points (or
+// than the reference's own error of the compared difference, where larger) is a tie, not a
+// failure: Fig. 9's smallest reported ordering is 0.10 points (7.527 vs 7.425 %).
+inline constexpr double kPairTolerance = 0.1;
+
+BumpyGgaaReplicate measure_bumpy_ggaa_replicate(const BumpyGgaaBudget& b, const std::string& id,
+                                                int k);
+// Each part: per-replicate differences (claimed higher − claimed lower). holds when every part's
+// Šidák-corrected kGgaaConfidence interval lies above 0, fails when one lies below −tolerance,
+// else inconclusive (a tie, or a reversal the tolerance cannot tell from one).
+Verdict decide_ordering(const std::vector<std::vector<double>>& parts, double tolerance);
 
 // --- chermain.lean-correlation (Fig. 7) ---
 struct LeanBudget {

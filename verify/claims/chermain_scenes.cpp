@@ -140,6 +140,127 @@ Image render_tubes_reference(const TubeSceneOptions& o, int spp, std::uint64_t s
 
 namespace {
 
+// The bump map's shading frame at a tube hit (BumpyTubeOptions): the solid texture's gradient
+// projected on the geometric tangent frame gives the tangent-space slopes (s_t, s_b).
+struct BumpMap {
+  double k, amplitude;
+  std::array<Vec3<double>, 6> dirs;
+  std::array<double, 6> phase;
+
+  Frame<double> frame(const SurfaceHit<double>& hit) const {
+    const Frame<double> g = hit.frame();
+    Vec3<double> grad{0, 0, 0};
+    for (std::size_t j = 0; j < dirs.size(); ++j)
+      grad = grad + (amplitude * k * std::cos(k * dot(dirs[j], hit.p) + phase[j])) * dirs[j];
+    const Vec3<double> n_local = normalize(Vec3<double>{-dot(grad, g.t), -dot(grad, g.b), 1});
+    return frame_from_normal_tangent(g.to_world(n_local), hit.dpdu);
+  }
+};
+
+BumpMap bump_map(const BumpyTubeOptions& o) {
+  check_size(o.tubes.width, o.tubes.height);
+  if (!(o.bump_wavelength_px > 0 && o.bump_slope_rms >= 0))
+    throw std::invalid_argument("bumpy tubes: wavelength must be > 0 and slope rms >= 0");
+  const double pixel = 2 * 4.0 * std::tan(40 * kPi<double> / 360) / o.tubes.height;  // at origin
+  const double k = 2 * kPi<double> / (o.bump_wavelength_px * pixel);
+  const double r = 1 / std::sqrt(2.0);
+  BumpMap m{k,
+            o.bump_slope_rms / k,  // rms slope a·k (Σ (d_j·t)² = 2 over the six directions)
+            {Vec3<double>{r, r, 0}, Vec3<double>{r, -r, 0}, Vec3<double>{r, 0, r},
+             Vec3<double>{r, 0, -r}, Vec3<double>{0, r, r}, Vec3<double>{0, r, -r}},
+            {}};
+  for (std::size_t j = 0; j < m.phase.size(); ++j)  // phases from the golden-ratio rotation
+    m.phase[j] = 2 * kPi<double> * std::fmod(0.6180339887498949 * double(j + 1), 1.0);
+  return m;
+}
+
+}  // namespace
+
+Image render_bumpy_tubes(const BumpyTubeOptions& o, int kernel, double s_k) {
+  const BumpMap bumps = bump_map(o);
+  const TubeScene scene = tube_scene();
+  const PinholeCamera<double> cam = tube_camera(o.tubes);
+  const LightPoint<double> light{kTubeLight, false};
+  const chermain2021::SdfParams p = tube_params(o.tubes, kernel, s_k);
+  constexpr double kCorner[4][2] = {{-0.5, -0.5}, {0.5, -0.5}, {-0.5, 0.5}, {0.5, 0.5}};
+  return render_image(
+      o.tubes.width, o.tubes.height, {"R", "G", "B", "kernel_width"}, o.tubes.threads,
+      [&](int x, int y, double* out) {
+        const PixelFootprint<double> f = pixel_footprint(cam, scene, x + 0.5, y + 0.5, light);
+        if (!f.surface.hit) return;
+        const Frame<double> fr = bumps.frame(f.surface);
+        const Vec3<double> wi = fr.to_local(normalize(cam.eye - f.surface.p));
+        const Vec3<double> wl = fr.to_local(normalize(kTubeLight - f.surface.p));
+        std::array<Vec3<double>, 4> corner_h{};
+        for (int c = 0; c < 4; ++c) {
+          const Ray<double> ray = cam.ray(x + 0.5 + kCorner[c][0], y + 0.5 + kCorner[c][1]);
+          const SurfaceHit<double> hc = scene.intersect(ray);
+          const Vec3<double> pc =
+              hc.hit ? hc.p : detail::on_tangent_plane(ray, f.surface.p, f.surface.n);
+          const Frame<double> fc = hc.hit ? bumps.frame(hc) : fr;
+          corner_h[c] =
+              fc.to_local(half_vector(normalize(cam.eye - pc), normalize(kTubeLight - pc)));
+        }
+        const Vec3<double> dh_dx =
+            0.5 * ((corner_h[1] - corner_h[0]) + (corner_h[3] - corner_h[2]));
+        const Vec3<double> dh_dy =
+            0.5 * ((corner_h[2] - corner_h[0]) + (corner_h[3] - corner_h[1]));
+        const Vec3<double> h = half_vector(wi, wl);
+        const chermain2021::SlopeDerivatives d =
+            chermain2021::slope_derivatives(h, dh_dx, dh_dy, kernel);
+        const Vec3<double> to_light = kTubeLight - f.surface.p;
+        const double E = kTubeLightIntensity / dot(to_light, to_light);
+        set_grey(out, E * glint_value(p, wi, wl, f.footprint, d));
+        const double sk = kernel == chermain2021::kNoGgaa ? 0.0 : s_k;
+        out[3] = sk * std::sqrt(std::max(d.dx_x * d.dx_x + d.dx_y * d.dx_y,
+                                         d.dy_x * d.dy_x + d.dy_y * d.dy_y));
+      });
+}
+
+Image render_bumpy_tubes_reference(const BumpyTubeOptions& o, int spp, std::uint64_t seed,
+                                   BumpyReference kind) {
+  const BumpMap bumps = bump_map(o);
+  const TubeScene scene = tube_scene();
+  const PinholeCamera<double> cam = tube_camera(o.tubes);
+  const LightPoint<double> light{kTubeLight, false};
+  const chermain2021::SdfParams p = tube_params(o.tubes, chermain2021::kNoGgaa, 0.5);
+  const chermain2021::SlopeDerivatives zero{0, 0, 0, 0};
+  const double finest_lod = -0.5 * std::log2(o.tubes.density);  // one microfacet per cell
+  return render_image(
+      o.tubes.width, o.tubes.height, {"R", "G", "B"}, o.tubes.threads,
+      [&](int x, int y, double* out) {
+        const PixelFootprint<double> f = pixel_footprint(cam, scene, x + 0.5, y + 0.5, light);
+        if (!f.surface.hit) return;
+        FootprintQuery<double> sub = f.footprint;
+        double scale = kind == BumpyReference::kFinest ? 1.0 / kBumpyReferenceStrata : 1.0;
+        sub.duv_dx = scale * f.footprint.duv_dx, sub.duv_dy = scale * f.footprint.duv_dy;
+        const double l = chermain2021::lod(sub);
+        if (l < finest_lod) {
+          scale *= std::exp2(finest_lod - l);
+          sub.duv_dx = scale * f.footprint.duv_dx, sub.duv_dy = scale * f.footprint.duv_dy;
+        }
+        const std::uint64_t first =
+            (std::uint64_t(y) * std::uint64_t(o.tubes.width) + std::uint64_t(x)) *
+            std::uint64_t(spp);
+        double sum = 0;
+        for (int s = 0; s < spp; ++s) {
+          const Vec2<double> off = stratified_offset(seed, first + std::uint64_t(s), s, spp);
+          const SurfaceHit<double> hit = scene.intersect(cam.ray(x + off.x, y + off.y));
+          if (!hit.hit) continue;
+          const Frame<double> fr = bumps.frame(hit);
+          const Vec3<double> wi = fr.to_local(normalize(cam.eye - hit.p));
+          const Vec3<double> wl = fr.to_local(normalize(kTubeLight - hit.p));
+          const Vec3<double> to_light = kTubeLight - hit.p;
+          const double E = kTubeLightIntensity / dot(to_light, to_light);
+          sub.uv = hit.uv;
+          sum += E * glint_value(p, wi, wl, sub, zero);
+        }
+        set_grey(out, sum / spp);
+      });
+}
+
+namespace {
+
 constexpr Vec3<double> kMapLightDir = {0.1, 0.85, 0.5};
 
 struct MapScene {

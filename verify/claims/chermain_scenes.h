@@ -32,6 +32,40 @@ Image render_tubes(const TubeSceneOptions& o, int kernel, double s_k);
 // integral that GGAA approximates (2021 Sec. 4.1, Fig. 4a).
 Image render_tubes_reference(const TubeSceneOptions& o, int spp, std::uint64_t seed);
 
+// --- Normal-mapped tubes (Fig. 9's regime) --------------------------------------------------
+// The tubes of Fig. 8 with a procedural bump map, so that the shading normal varies within a
+// pixel as on Fig. 9's lion head. The bump map is a solid texture: the height
+// H(p) = a Σ_j sin(k d_j·p + φ_j) over six directions d_j ∝ (±1, 1, 0), (1, 0, ±1), (0, 1, ±1)
+// (Σ d_j d_jᵀ = 2 I, so the slope ∇H·t has rms a·k along every tangent t), k = 2π / wavelength;
+// its gradient projected on the tube's tangent frame gives the tangent-space slopes, and the
+// shading normal is (−s_t, −s_b, 1)/‖·‖ in that frame (normal mapping without LEAN filtering).
+struct BumpyTubeOptions {
+  TubeSceneOptions tubes;
+  double bump_wavelength_px = 4;  // the bumps' wavelength, in pixels of the view at the origin
+  double bump_slope_rms = 0.1;    // rms tangent-space slope of the bump map along any direction
+};
+
+// One method at 1 spp at pixel centres (channel 0; channel 3 holds the GGAA kernel width, 0
+// without GGAA). As Sec. 6.2 says for normal maps, the half vector is taken in the shading frame
+// of the mapped normal, and the GGAA derivatives are its finite differences between the pixel's
+// corners, each corner in its own mapped frame (the corner scheme of core/scene/footprint.h).
+Image render_bumpy_tubes(const BumpyTubeOptions& o, int kernel, double s_k);
+
+// The reference: `spp` stratified positions per pixel, each shaded with its own mapped normal,
+// view, light, half vector and its own footprint centred at its own uv: the pixel's footprint
+// divided by kBumpyReferenceStrata per axis (the stratum of a 1,024-spp supersampled render, the
+// paper's reference), never finer than one microfacet (LOD ≥ −½ log2 density, dictionary level 0:
+// below it the model has no finer structure), no GGAA. It estimates the pixel's average of that
+// 1,024-stratum render without bias at any spp.
+// kPixelSized is the other reading of a 1,024-spp reference: 1,024 jittered 1-spp frames, each
+// sample's footprint the size of the pixel's but centred at the sample's own uv (the glints then
+// come from the same LOD, the same realization, as the methods'); the per-pixel box average of
+// that is wider than the pixel.
+enum class BumpyReference { kFinest, kPixelSized };
+inline constexpr int kBumpyReferenceStrata = 32;
+Image render_bumpy_tubes_reference(const BumpyTubeOptions& o, int spp, std::uint64_t seed,
+                                   BumpyReference kind = BumpyReference::kFinest);
+
 // --- Anisotropic normal map (Fig. 7) ---------------------------------------------------------
 struct NormalMapSceneOptions {
   int width = 96, height = 64;

@@ -44,6 +44,30 @@ TEST(ChermainClaims, GgaaDecisionFailsAgainstNearTruth) {
   EXPECT_EQ(decide_ggaa({genuine, control}), Verdict::kFails);  // one part reversed: fails
 }
 
+// chermain.ggaa-derivatives / ggaa-sk's measure and decide on four small replicates of the
+// normal-mapped tubes: a claimed winner that is deliberately worse (GGAA s_K 0.5 claimed below an
+// independent reference × 1.03) fails; the near-truth image as the claimed winner holds; a
+// reversal smaller than the tolerance is a tie, one beyond it fails.
+TEST(ChermainClaims, OrderingDecisionFailsOnABrokenInput) {
+  std::vector<BumpyGgaaReplicate> reps;
+  for (int k = 0; k < 4; ++k)
+    reps.push_back(measure_bumpy_ggaa_replicate({32, 22, 256, 4, 2}, "chermain.ggaa-fig9-test", k));
+  std::vector<double> broken, corrected;
+  for (const BumpyGgaaReplicate& r : reps) {
+    EXPECT_GT(r.reference_error, 0);
+    EXPECT_GT(r.width_ratio, 0);
+    broken.push_back(r.near_truth - r.proj05);     // claim: proj05 below the near-truth image
+    corrected.push_back(r.proj05 - r.near_truth);  // claim: the near-truth image below proj05
+  }
+  EXPECT_EQ(decide_ordering({broken}, kPairTolerance), Verdict::kFails);
+  EXPECT_EQ(decide_ordering({corrected}, kPairTolerance), Verdict::kHolds);
+  EXPECT_EQ(decide_ordering({corrected, broken}, kPairTolerance), Verdict::kFails);
+  const std::vector<double> small_reversal = {-0.051, -0.049, -0.050, -0.052, -0.048};
+  const std::vector<double> large_reversal = {-0.51, -0.49, -0.50, -0.52, -0.48};
+  EXPECT_EQ(decide_ordering({small_reversal}, kPairTolerance), Verdict::kInconclusive);
+  EXPECT_EQ(decide_ordering({large_reversal}, kPairTolerance), Verdict::kFails);
+}
+
 // chermain.lean-correlation's measure and decide on four small replicates: LEAN with rho beats
 // both other methods; with a near-truth image (an independent reference × 1.03) in place of both,
 // its margin is negative. At this size the replicate noise leaves the control's decision itself
