@@ -1,12 +1,14 @@
 // glintlab command line: registers the subcommands and turns every failure into one line on
 // stderr, "glintlab: error: <message>", with exit code 2. `--help` prints help and exits 0.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "cli/commands.h"
 #include "cli/input.h"
@@ -82,6 +84,10 @@ std::string translate(const CLI::App* sub, const CLI::ParseError& e) {
   }
   if (msg.find(" not expected: ") != std::string::npos) {
     std::string extras(after(msg, "expected: "));
+    // CLI11's message lists the leftover words last first; the parser keeps them in order.
+    std::vector<std::string> words = sub ? sub->remaining() : std::vector<std::string>{};
+    std::string first = words.empty() ? extras : words.front();
+    if (!words.empty()) extras = fmt::format("{}", fmt::join(words, " "));
     std::string options;
     if (sub) {
       for (const CLI::Option* o : sub->get_options()) {
@@ -89,8 +95,10 @@ std::string translate(const CLI::App* sub, const CLI::ParseError& e) {
         options += fmt::format("{}{}", options.empty() ? "" : ", ", o->get_name());
       }
     }
-    return fmt::format("{}: unexpected argument '{}' (valid: {}; {})",
-                       sub ? sub->get_name() : "glintlab", extras,
+    const std::string what = first.size() > 1 && first[0] == '-'
+                                 ? fmt::format("unknown option '{}'", first)
+                                 : fmt::format("unexpected argument '{}'", extras);
+    return fmt::format("{}: {} (valid: {}; {})", sub ? sub->get_name() : "glintlab", what,
                        options.empty() ? "no arguments" : "the options " + options, see);
   }
   if (type == "ValidationError") return fmt::format("{} (valid: {})", msg, valid(name));
