@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config ccache
   libeigen3-dev libgtest-dev libgmock-dev libopenexr-dev libboost-math-dev libfmt-dev
   libcli11-dev nlohmann-json3-dev libxsimd-dev libbenchmark-dev libtbb-dev
-  python3 python3-matplotlib python3-dev python3-pybind11 python3-numpy python3-pytest
+  python3 python3-matplotlib python3-jinja2 python3-dev python3-pybind11 python3-numpy python3-pytest
   libpng-dev openexr
   chromium
 )
