@@ -46,6 +46,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import charts  # noqa: E402
 import speed_accuracy as sa  # noqa: E402
 import compare_page  # noqa: E402
+import templating  # noqa: E402
 
 PARTS = ["claims", "figures", "bench", "stability", "compare"]
 PART_TITLES = {"claims": "Claims (glintlab verify)", "figures": "Figures (glintlab figure)",
@@ -1061,7 +1062,8 @@ nav ul.toc{columns:2;font-size:14px}nav ul.sub{font-size:12px}"""
 def write_compare(doc, data, plots_tmp, plots_rel, made, manifest):
     """The comparison of every registered model (glintlab compare, reports/compare_page.py)."""
     doc.heading(2, PART_TITLES["compare"], "compare")
-    doc.raw(compare_page.intro_html(data), "Every model at its default parameters on the same "
+    values = compare_page.template_values(data, None)
+    doc.raw(templating.render("compare_intro.html.j2", **values), "Every model at its default parameters on the same "
             "scenes; conformance verdicts not measured in this run (recorded: copied from "
             f"{compare_page.RECORDED_SOURCE}; declared) have a column of their own.\n")
     png = "compare_equal_time.png"

@@ -1,0 +1,39 @@
+"""The Jinja2 environment of the report's pages (reports/templates/): autoescape on, so every value
+from the results is escaped where it is inserted; a value is inserted unescaped only through a
+filter below that escapes its text itself (md_inline). Jinja2 is Debian's python3-jinja2."""
+
+import os
+import re
+import urllib.parse
+
+import jinja2
+import markupsafe
+
+TEMPLATES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "templates")
+
+
+def fmt(x, spec=".3g"):
+    """A number formatted, "–" when there is none."""
+    return "–" if x is None else format(x, spec)
+
+
+def md_inline(text):
+    """One line of Markdown text as HTML: escaped, then `code` and **bold** rendered."""
+    h = str(markupsafe.escape(text))
+    h = re.sub(r"`([^`]+)`", r"<code>\1</code>", h)
+    return markupsafe.Markup(re.sub(r"\*\*([^*]+)\*\*", r"<b>\1</b>", h))
+
+
+def environment():
+    env = jinja2.Environment(loader=jinja2.FileSystemLoader(TEMPLATES),
+                             autoescape=True, undefined=jinja2.StrictUndefined,
+                             trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=True)
+    env.filters["url"] = urllib.parse.quote
+    env.filters["fmt"] = fmt
+    env.filters["spec"] = format
+    env.filters["md_inline"] = md_inline
+    return env
+
+
+def render(template, **values):
+    return environment().get_template(template).render(**values)
