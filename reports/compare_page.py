@@ -72,13 +72,13 @@ NOT_RUN_HEADER = (f"conformance not measured in this run (recorded: copied from 
 
 def template_values(data, png_rel):
     """What the compare templates read: compare.json and the names of the verdicts' origins."""
-    return {"data": data, "png": png_rel, "run_origins": RUN_ORIGINS,
+    return {"compare": data, "png": png_rel, "run_origins": RUN_ORIGINS,
             "recorded_source": RECORDED_SOURCE, "not_run_header": NOT_RUN_HEADER}
 
 
 def table_html(data):
     """The table of the models (HTML), as the page and the report show it."""
-    return templating.render("compare_table.html.j2", **template_values(data, None))
+    return templating.render("compare_table.html.j2", data=template_values(data, None))
 
 
 def table_markdown(data):
@@ -116,7 +116,7 @@ def main():
         return 2
     draw_equal_time(data, os.path.join(a.dir, "equal_time.png"))
     page = templating.render("compare_page.html.j2", title="glintlab compare", lang=None,
-                             stylesheet=None, **template_values(data, "equal_time.png"))
+                             stylesheet=None, data=template_values(data, "equal_time.png"))
     tmp = os.path.join(a.dir, f".index.html.tmp.{os.getpid()}")
     with open(tmp, "w", encoding="utf-8") as f:
         f.write(page)

@@ -1,8 +1,8 @@
 """The glintlab report: index.html and its Markdown twin report.md from a folder
 of results, with the plots drawn here from the results' CSVs.
 
-Run by /usr/bin/python3 (Debian's, with matplotlib); `glintlab report` calls it on its staging
-folder DIR, which holds:
+Run by /usr/bin/python3 (Debian's, with matplotlib and Jinja2); `glintlab report` calls it on its
+staging folder DIR, which holds:
   run.json                 machine, budget, date and status of each part (written by glintlab report)
   verify/claims.json       glintlab verify's results (a list of claim objects)
   figures/figures.json     the figures run ([{id, paper, target, description, ...}]) and
@@ -16,9 +16,12 @@ is validated before anything is written; a malformed one is a one-line error
 ("glintlab: error: ..."), exit 2, and no output. Outputs (plots/, index.html, report.md) are written
 to temporary names and renamed into place last.
 
-The page: a summary first (claims, findings vs regressions, controls), a table of contents, the
-compact verdict table (evidence, control and regime folded in <details>), the figures (renders
-folded in a grid), speed vs accuracy, the stability planes. Every chart is drawn with matplotlib
+The page's HTML comes from the Jinja2 templates in reports/templates/ (templating.py,
+autoescape on): this file loads, validates and computes, and Doc records the page as plain blocks
+(dicts) for report.html.j2 while it writes the Markdown twin. The page: a summary first (claims,
+findings vs regressions, controls), a table of contents, the compact verdict table (evidence,
+control and regime folded in <details>), the figures (renders folded in a grid), speed vs
+accuracy, the stability planes. Every chart is drawn with matplotlib
 and listed in plots/plots.json (charts.py: title, axis labels, legend, colour scale read back from
 the figure); tests/reports/browser_test.py fails on a chart that lacks them.
 
@@ -33,7 +36,6 @@ Every plot names the machine (CPU model, cores) and the budget its data came fro
 import argparse
 import csv
 import glob
-import html
 import json
 import math
 import os
@@ -73,9 +75,6 @@ def rel(path, root):
 def url(relpath):
     return urllib.parse.quote(relpath)
 
-
-def esc(text):
-    return html.escape(str(text), quote=True)
 
 
 def md_cell(text):
@@ -392,13 +391,6 @@ def speed_accuracy_plot(bench, plots, machine, budget, manifest):
 MD_TABLE_RULE = re.compile(r"^\s*\|?\s*:?-+:?\s*(\|\s*:?-+:?\s*)+\|?\s*$")
 
 
-def md_inline(text):
-    """HTML of one line of Markdown text: escaped, `code` and **bold** rendered."""
-    h = esc(text)
-    h = re.sub(r"`([^`]+)`", r"<code>\1</code>", h)
-    return re.sub(r"\*\*([^*]+)\*\*", r"<b>\1</b>", h)
-
-
 def md_row(line):
     """The cells of a Markdown table row (a \\| in a cell is a literal pipe)."""
     s = line.strip()
@@ -407,18 +399,19 @@ def md_row(line):
     return [c.strip().replace("\\|", "|") for c in re.split(r"(?<!\\)\|", s)]
 
 
-def markdown_html(text):
-    """A figure's summary.md as HTML: its tables as <table>, headings, list items and paragraphs as
-    text; nothing else of Markdown is needed by the summaries the figures write."""
+def markdown_parts(text):
+    """A figure's summary.md read into the parts the report shows (templates/blocks.html.j2,
+    markdown): tables, headings, list items and paragraphs; nothing else of Markdown is needed by
+    the summaries the figures write. Each line of text is rendered by the md_inline filter."""
     lines = text.splitlines()
     out, para, items = [], [], []
 
     def flush():
         if para:
-            out.append("<p>" + " ".join(md_inline(x) for x in para) + "</p>")
+            out.append({"kind": "paragraph", "lines": list(para)})
             para.clear()
         if items:
-            out.append("<ul>" + "".join(f"<li>{md_inline(x)}</li>" for x in items) + "</ul>")
+            out.append({"kind": "list", "entries": list(items)})
             items.clear()
 
     i = 0
@@ -432,16 +425,13 @@ def markdown_html(text):
             while i < len(lines) and lines[i].strip().startswith("|"):
                 rows.append(md_row(lines[i]))
                 i += 1
-            out.append('<table class="md"><thead><tr>' +
-                       "".join(f"<th>{md_inline(c)}</th>" for c in head) + "</tr></thead><tbody>" +
-                       "".join("<tr>" + "".join(f"<td>{md_inline(c)}</td>" for c in r) + "</tr>"
-                               for r in rows) + "</tbody></table>")
+            out.append({"kind": "table", "head": head, "rows": rows})
             continue
         if not line:
             flush()
         elif line.startswith("#"):
             flush()
-            out.append(f"<p><b>{md_inline(line.lstrip('#').strip())}</b></p>")
+            out.append({"kind": "heading", "text": line.lstrip('#').strip()})
         elif line.startswith(("- ", "* ")):
             if para:
                 flush()
@@ -454,7 +444,7 @@ def markdown_html(text):
             para.append(line)
         i += 1
     flush()
-    return "".join(out)
+    return out
 
 
 def markdown_twin(text):
@@ -464,17 +454,12 @@ def markdown_twin(text):
                      for ln in text.splitlines()) + "\n"
 
 
-class Raw:
-    """A table cell given as HTML and Markdown."""
+class Cell:
+    """A table cell other than text: what the HTML shows (a kind of templates/blocks.html.j2's
+    cell macro and its values) and its Markdown text."""
 
-    def __init__(self, html_text, md_text):
-        self.html, self.md = html_text, md_text
-
-
-def folded(summary, body, md_body=None):
-    """Long text folded: the first words visible, the rest in <details>."""
-    return Raw(f"<details><summary>{esc(summary)}</summary>{esc(body)}</details>",
-               md_body if md_body is not None else body)
+    def __init__(self, md_text, kind, **values):
+        self.md, self.values = md_text, {"kind": kind, **values}
 
 
 def short(text, n=90):
@@ -483,117 +468,111 @@ def short(text, n=90):
 
 
 class Doc:
-    """The HTML body and the Markdown twin, built side by side; headings are kept for the table of
-    contents, which goes where toc_here() was called."""
+    """The page's blocks (rendered by templates/report.html.j2, each kind by the macro of that name
+    in templates/blocks.html.j2) and the Markdown twin, built side by side; headings are kept for
+    the table of contents, which goes where toc_here() was called."""
 
     def __init__(self):
-        self.html, self.md = [], []
+        self.blocks, self.md = [], []
         self.headings = []
         self.toc_at = None
 
     def heading(self, level, text, anchor):
         self.headings.append((level, text, anchor))
-        self.html.append(f'<h{level} id="{esc(anchor)}">{esc(text)}</h{level}>')
+        self.blocks.append({"kind": "heading", "level": level, "text": text, "anchor": anchor})
         self.md.append(f"{'#' * level} {text}\n")
 
     def toc_here(self):
-        self.toc_at = (len(self.html), len(self.md))
+        self.toc_at = (len(self.blocks), len(self.md))
 
     def toc(self):
-        """(html, md) of the table of contents: level 2 and 3 headings after the placeholder."""
-        h, m = ['<nav id="contents"><h2>Contents</h2><ul class="toc">'], ["## Contents\n"]
-        open_sub = False
+        """(block, md) of the table of contents: the level 2 headings, each with its level 3
+        ones."""
+        entries, m = [], ["## Contents\n"]
         for level, text, anchor in self.headings:
             if level == 2:
-                if open_sub:
-                    h.append("</ul></li>")
-                    open_sub = False
-                h.append(f'<li><a href="#{esc(anchor)}">{esc(text)}</a>')
+                entries.append({"text": text, "anchor": anchor, "subs": []})
                 m.append(f"- [{md_cell(text)}](#{anchor})")
-                h.append('<ul class="sub">')
-                open_sub = True
             elif level == 3:
-                h.append(f'<li><a href="#{esc(anchor)}">{esc(text)}</a></li>')
+                sub = {"text": text, "anchor": anchor, "subs": []}
+                (entries[-1]["subs"] if entries else entries).append(sub)
                 m.append(f"  - [{md_cell(text)}](#{anchor})")
-        if open_sub:
-            h.append("</ul></li>")
-        h.append("</ul></nav>")
-        return "".join(h).replace('<ul class="sub"></ul>', ""), "\n".join(m) + "\n"
+        return {"kind": "toc", "entries": entries}, "\n".join(m) + "\n"
 
     def para(self, text, md=None):
-        self.html.append(f"<p>{esc(text)}</p>")
+        self.blocks.append({"kind": "para", "text": text})
         self.md.append((md if md is not None else text) + "\n")
 
-    def raw(self, html_text, md_text):
-        self.html.append(html_text)
+    def section(self, template, data, md_text):
+        """A part of the page with a template of its own (reports/templates/), given data."""
+        self.blocks.append({"kind": "section", "template": template, "data": data})
         self.md.append(md_text)
 
-    def table(self, header, rows, classes=None, ids=None, cls=None):
-        """rows: lists of Raw, (text, href or None) or plain text cells."""
-        tcls = f' class="{esc(cls)}"' if cls else ""
-        h = [f"<table{tcls}><thead><tr>" + "".join(f"<th>{esc(c)}</th>" for c in header) +
-             "</tr></thead><tbody>"]
+    def markdown(self, summary, text):
+        """A Markdown text (a figure's summary.md) folded under summary."""
+        self.blocks.append({"kind": "markdown", "summary": summary,
+                            "parts": markdown_parts(text)})
+        self.md.append(markdown_twin(text))
+
+    def list(self, entries):
+        self.blocks.append({"kind": "list", "entries": entries})
+        self.md.append("\n".join(f"- {e}" for e in entries) + "\n")
+
+    def table(self, header, rows, classes=None, ids=None, cls=None, fold=None):
+        """rows: lists of Cell, (text, href or None) or plain text cells. fold: the table is
+        folded under this summary (in the HTML; the Markdown caller writes its own line)."""
+        body = []
         m = ["| " + " | ".join(md_cell(c) for c in header) + " |",
              "|" + "---|" * len(header)]
         for i, r in enumerate(rows):
-            attr = f' class="{esc(classes[i])}"' if classes and classes[i] else ""
-            attr += f' id="{esc(ids[i])}"' if ids and ids[i] else ""
-            hc, mc = [], []
+            cells, mc = [], []
             for c in r:
-                if isinstance(c, Raw):
-                    hc.append(f"<td>{c.html}</td>")
+                if isinstance(c, Cell):
+                    cells.append(c.values)
                     mc.append(md_cell(c.md))
                     continue
                 text, href = c if isinstance(c, tuple) else (c, None)
-                if href:
-                    hc.append(f'<td><a href="{esc(url(href))}">{esc(text)}</a></td>')
-                    mc.append(f"[{md_cell(text)}]({url(href)})")
-                else:
-                    hc.append(f"<td>{esc(text)}</td>")
-                    mc.append(md_cell(text))
-            h.append(f"<tr{attr}>" + "".join(hc) + "</tr>")
+                cells.append({"kind": "text", "text": text, "href": href})
+                mc.append(f"[{md_cell(text)}]({url(href)})" if href else md_cell(text))
+            body.append({"cls": classes[i] if classes else None, "id": ids[i] if ids else None,
+                         "cells": cells})
             m.append("| " + " | ".join(mc) + " |")
-        h.append("</tbody></table>")
-        self.html.append("\n".join(h))
+        self.blocks.append({"kind": "table", "header": header, "rows": body, "cls": cls,
+                            "fold": fold})
         self.md.append("\n".join(m) + "\n")
 
     def image(self, href, alt, caption, kind="render", wide=False):
         """kind: "chart" (drawn by the report, in plots/plots.json) or "render" (a rendered
         image of a figure, small ones drawn enlarged with visible pixels). wide: in a gallery, the
         image takes a whole row (a wide one squeezed into one cell would be too low to read)."""
-        cls = f"{kind} wide" if wide else kind
-        self.html.append(f'<figure class="{cls}"><a href="{esc(url(href))}"><img class="{kind}" '
-                         f'src="{esc(url(href))}" alt="{esc(alt)}"></a>'
-                         f'<figcaption>{esc(caption)}</figcaption></figure>')
+        self.blocks.append(self.image_block(href, alt, caption, kind, wide))
         self.md.append(f"![{md_cell(alt)}]({url(href)})\n\n*{caption}*\n")
+
+    @staticmethod
+    def image_block(href, alt, caption, kind, wide):
+        return {"kind": "image", "href": href, "alt": alt, "caption": caption,
+                "image_kind": kind, "wide": wide}
 
     def gallery(self, summary, items, root=None):
         """Rendered images side by side, folded: items [(href, alt, caption)]; with root, those
         at least twice as wide as high take a row of their own."""
         if not items:
             return
-        self.html.append(f'<details class="gallery"><summary>{esc(summary)}</summary>'
-                         '<div class="grid">')
+        images = []
         for href, alt, caption in items:
             size = png_size(os.path.join(root, href)) if root else None
-            self.image(href, alt, caption, "render", wide=bool(size and size[0] >= 2 * size[1]))
-        self.html.append("</div></details>")
+            images.append(self.image_block(href, alt, caption, "render",
+                                           bool(size and size[0] >= 2 * size[1])))
+            self.md.append(f"![{md_cell(alt)}]({url(href)})\n\n*{caption}*\n")
+        self.blocks.append({"kind": "gallery", "summary": summary, "images": images})
 
     def links(self, label, items):
         """items: [(text, href)]."""
         if not items:
             return
-        self.html.append(f"<p>{esc(label)}: " + ", ".join(
-            f'<a href="{esc(url(h))}">{esc(t)}</a>' for t, h in items) + "</p>")
+        self.blocks.append({"kind": "links", "label": label, "links": items})
         self.md.append(f"{label}: " + ", ".join(f"[{md_cell(t)}]({url(h)})" for t, h in items) +
                        "\n")
-
-    def pre(self, text, summary=None):
-        body = f"<pre>{esc(text)}</pre>"
-        if summary:
-            body = f"<details><summary>{esc(summary)}</summary>{body}</details>"
-        self.html.append(body)
-        self.md.append("\n".join("    " + line for line in text.splitlines()) + "\n")
 
 
 def png_size(path):
@@ -669,14 +648,6 @@ def finding_parts(c):
     return parts
 
 
-def finding_list_html(findings):
-    items = []
-    for c in findings:
-        rows = "".join(f"<br><i>{esc(k)}:</i> {esc(v)}" for k, v in finding_parts(c))
-        items.append(f"<li><b>{esc(c['id'])}</b>{rows}</li>")
-    return "<ul>" + "".join(items) + "</ul>"
-
-
 def finding_list_md(findings):
     out = ""
     for c in findings:
@@ -688,78 +659,83 @@ def finding_list_md(findings):
 
 def write_summary(doc, claims, run, got):
     """What a reader needs first: the counts, the failures and whether they are the recorded
-    findings, regressions, the controls."""
+    findings, regressions, the controls (templates/summary.html.j2)."""
     doc.heading(2, "Summary", "summary")
-    items_h, items_m = [], []
+    entries, items_m = [], []
 
-    def item(h, m=None):
-        items_h.append(f"<li>{h}</li>")
-        items_m.append(f"- {m if m is not None else h}")
+    def item(text, md=None, bold=None, bad=False, claims_linked=(), extra=lambda c: "",
+             findings=()):
+        """One entry: an optional bold head, a text, links to the rows of claims_linked (each
+        followed by extra(c)) and the findings' details; md: its Markdown line."""
+        entries.append({"bold": bold, "bad": bad, "text": text,
+                        "claims": [{"id": c["id"], "anchor": claim_anchor(c), "extra": extra(c)}
+                                   for c in claims_linked],
+                        "findings": [{"id": c["id"], "parts": finding_parts(c)}
+                                     for c in findings]})
+        items_m.append(f"- {md if md is not None else text}")
 
-    def claim_links(cs, extra=lambda c: ""):
-        return (", ".join(f'<a href="#{esc(claim_anchor(c))}">{esc(c["id"])}</a>{esc(extra(c))}'
-                          for c in cs),
-                ", ".join(f"[{md_cell(c['id'])}](#{claim_anchor(c)}){extra(c)}" for c in cs))
+    def md_links(cs, extra=lambda c: ""):
+        return ", ".join(f"[{md_cell(c['id'])}](#{claim_anchor(c)}){extra(c)}" for c in cs)
 
     if claims is not None:
         n = len(claims)
         counts = {v: sum(c["verdict"] == v for c in claims) for v in sorted(VERDICTS)}
         text = ", ".join(f"{k} {v}" for k, v in counts.items() if v)
-        item(esc(f"{n} claims: {text}."))
+        item(f"{n} claims: {text}.")
         same = [c for c in claims if as_recorded(c)]
         differ = [c for c in claims if not as_recorded(c)]
-        item(esc(f"{len(same)} of {n} as recorded (the verdict equals the one recorded in the "
-                 "repository)."))
+        item(f"{len(same)} of {n} as recorded (the verdict equals the one recorded in the "
+             "repository).")
         # A finding: a paper's claim that fails as recorded, every competing cause excluded
         # (a "fails" with a cause open is reported inconclusive by the finding rule).
         findings = [c for c in claims if c["verdict"] == "fails" and as_recorded(c)
                     and c.get("kind", "paper's claim") == "paper's claim"]
         if findings:
-            h, m = claim_links(findings)
-            item(f"<b>Fails, as recorded (a finding: the paper's claim was found wrong, every "
-                 f"competing cause excluded)</b>, {len(findings)}: {h}"
-                 + finding_list_html(findings),
-                 f"**Fails, as recorded (a finding: the paper's claim was found wrong, every "
-                 f"competing cause excluded)**, {len(findings)}: {m}"
-                 + finding_list_md(findings))
+            head = ("Fails, as recorded (a finding: the paper's claim was found wrong, every "
+                    "competing cause excluded)")
+            item(f", {len(findings)}: ",
+                 f"**{head}**, {len(findings)}: {md_links(findings)}"
+                 + finding_list_md(findings), bold=head, claims_linked=findings,
+                 findings=findings)
         else:
             item("No paper's claim fails as recorded.")
         rules = [c for c in claims if c["verdict"] == "fails" and as_recorded(c)
                  and c.get("kind") == "glintlab rule"]
         if rules:
-            h, m = claim_links(rules)
-            item(f"<b>glintlab's own rules that fail, as recorded</b> (not a paper's claim), "
-                 f"{len(rules)}: {h}",
-                 f"**glintlab's own rules that fail, as recorded** (not a paper's claim), "
-                 f"{len(rules)}: {m}")
+            head = "glintlab's own rules that fail, as recorded"
+            item(f" (not a paper's claim), {len(rules)}: ",
+                 f"**{head}** (not a paper's claim), {len(rules)}: {md_links(rules)}",
+                 bold=head, claims_linked=rules)
         open_causes = [c for c in claims if c.get("measured_verdict") == "fails"]
         if open_causes:
-            h, m = claim_links(open_causes)
-            item(f"<b>Measured as failing, but a competing cause is not excluded</b> "
-                 f"(inconclusive, not a finding), {len(open_causes)}: {h}",
-                 f"**Measured as failing, but a competing cause is not excluded** "
-                 f"(inconclusive, not a finding), {len(open_causes)}: {m}")
+            head = "Measured as failing, but a competing cause is not excluded"
+            item(f" (inconclusive, not a finding), {len(open_causes)}: ",
+                 f"**{head}** (inconclusive, not a finding), {len(open_causes)}: "
+                 f"{md_links(open_causes)}", bold=head, claims_linked=open_causes)
         errors = [c for c in claims if c["verdict"] == "error"]
         if errors:
-            h, m = claim_links(errors, lambda c: f" ({c['detail']})")
-            item(f'<b class="bad">Could not be checked (error)</b>, {len(errors)}: {h}',
-                 f"**Could not be checked (error)**, {len(errors)}: {m}")
+            cause = lambda c: f" ({c['detail']})"  # noqa: E731
+            item(f", {len(errors)}: ",
+                 f"**Could not be checked (error)**, {len(errors)}: {md_links(errors, cause)}",
+                 bold="Could not be checked (error)", bad=True, claims_linked=errors,
+                 extra=cause)
         if differ:
-            h, m = claim_links(differ, lambda c: f" ({c['verdict']}, recorded "
-                                                 f"{c.get('expected_verdict')})")
-            item(f'<b class="bad">Differs from recorded (a regression)</b>, {len(differ)}: {h}',
-                 f"**Differs from recorded (a regression)**, {len(differ)}: {m}")
+            recorded = lambda c: f" ({c['verdict']}, recorded {c.get('expected_verdict')})"  # noqa
+            item(f", {len(differ)}: ",
+                 f"**Differs from recorded (a regression)**, {len(differ)}: "
+                 f"{md_links(differ, recorded)}",
+                 bold="Differs from recorded (a regression)", bad=True, claims_linked=differ,
+                 extra=recorded)
         else:
             item("No verdict differs from the recorded one (no regression).")
         loose = [c for c in claims if not c["control_rejected"] and c["verdict"] != "error"]
         if loose:
-            h, m = claim_links(loose)
-            item(f'<b class="bad">{len(loose)} of {n} negative controls NOT rejected</b> (those '
-                 f"checks cannot tell a wrong input): {h}",
-                 f"**{len(loose)} of {n} negative controls NOT rejected**: {m}")
+            head = f"{len(loose)} of {n} negative controls NOT rejected"
+            item(" (those checks cannot tell a wrong input): ",
+                 f"**{head}**: {md_links(loose)}", bold=head, bad=True, claims_linked=loose)
         else:
-            item(esc(f"Every negative control rejected ({n} of {n}): each check tells its "
-                     "deliberately wrong input apart."))
+            item(f"Every negative control rejected ({n} of {n}): each check tells its "
+                 "deliberately wrong input apart.")
     else:
         item("No claims in this report.")
     if "stability" in got:
@@ -768,13 +744,13 @@ def write_summary(doc, claims, run, got):
         region = [name(m) for m in ms
                   if m.get("failure_region") and not m["failure_region"].startswith("none")]
         failing = [name(m) for m in ms if m.get("verdict") not in (None, "holds")]
-        item(esc(f"Stability: {len(ms)} model/sampler pairs swept; cells flagged somewhere in "
-                 f"the sweep for {len(region)}" + (f" ({', '.join(region)})" if region else "") +
-                 "; the sweep's verdict fails for " +
-                 (", ".join(failing) if failing else "none") + "."))
+        item(f"Stability: {len(ms)} model/sampler pairs swept; cells flagged somewhere in "
+             f"the sweep for {len(region)}" + (f" ({', '.join(region)})" if region else "") +
+             "; the sweep's verdict fails for " +
+             (", ".join(failing) if failing else "none") + ".")
     if "figures" in got:
-        item(esc(f"Figures: {len(got['figures'])} run."))
-    doc.raw('<ul class="summary">' + "".join(items_h) + "</ul>", "\n".join(items_m) + "\n")
+        item(f"Figures: {len(got['figures'])} run.")
+    doc.section("summary.html.j2", {"entries": entries}, "\n".join(items_m) + "\n")
 
 
 def write_claims(doc, claims, part, root):
@@ -792,10 +768,10 @@ def write_claims(doc, claims, part, root):
     for c in claims:
         verdict = c["verdict"]
         if c.get("regime"):
-            vcell = Raw(f"<b>{esc(verdict)}</b><details><summary>regime</summary>"
-                        f"{esc(c['regime'])}</details>", f"{verdict} (regime: {c['regime']})")
+            vcell = Cell(f"{verdict} (regime: {c['regime']})", "verdict", verdict=verdict,
+                         regime=c["regime"])
         else:
-            vcell = Raw(f"<b>{esc(verdict)}</b>", verdict)
+            vcell = Cell(verdict, "verdict", verdict=verdict, regime=None)
         exp = c.get("expected_verdict")
         if as_recorded(c):
             finding = verdict == "fails" and c.get("kind", "paper's claim") == "paper's claim"
@@ -805,8 +781,7 @@ def write_claims(doc, claims, part, root):
         else:
             rec = f"NO (recorded: {exp}) — a regression"
         head, body = control_text(c)
-        ctrl = Raw(f"<details><summary>{esc(head)}</summary>{esc(body)}</details>",
-                   f"{head}: {body}")
+        ctrl = Cell(f"{head}: {body}", "details", summary=head, body=body, long=False)
         evidence = c["detail"]
         extra = []
         if c.get("paper_quote"):
@@ -824,9 +799,9 @@ def write_claims(doc, claims, part, root):
         if c.get("budget_note"):
             extra.append(f"budgets: {c['budget_note']}")
         full = evidence + ("\n" + "\n".join(extra) if extra else "")
-        ev = Raw(f"<details><summary>{esc(short(evidence))}</summary>"
-                 f"<div class=\"long\">{esc(full)}</div></details>", " ".join(full.split("\n")))
-        rows.append([Raw(f'<a href="#{esc(claim_anchor(c))}">{esc(c["id"])}</a>', c["id"]),
+        ev = Cell(" ".join(full.split("\n")), "details", summary=short(evidence), body=full,
+                  long=True)
+        rows.append([Cell(c["id"], "anchor", text=c["id"], anchor=claim_anchor(c)),
                      f"{c['paper']}, {c['source']}", vcell, rec, fmt_p(c.get("p_value")), ctrl,
                      ev])
         classes.append("v-" + c["verdict"] + ("" if as_recorded(c) else " regress") +
@@ -899,9 +874,7 @@ def write_figures(doc, figures, part, root, plots_tmp, plots_rel, made, manifest
                                   if not n.endswith((".exr", ".csv")) and
                                   (not n.endswith(".png") or n in replaced)])
         if f["summary"]:
-            doc.raw("<details><summary>summary.md</summary>" +
-                    markdown_html(f["summary"].strip()) + "</details>",
-                    markdown_twin(f["summary"].strip()))
+            doc.markdown("summary.md", f["summary"].strip())
         for name, (header, rows) in f["csvs"].items():
             if "spp" not in header or "rmse" not in header:
                 continue
@@ -913,12 +886,11 @@ def write_figures(doc, figures, part, root, plots_tmp, plots_rel, made, manifest
                 doc.image(f"{plots_rel}/{png}", f"{fid} {stem} convergence",
                           f"{fid}: RMSE vs spp from {name} (log-log), {machine}, budget {budget}",
                           "chart")
-            doc.html.append(f"<details><summary>RMSE table ({esc(name)}, {len(rows)} rows"
-                            + (f", first {TABLE_ROW_LIMIT} shown" if len(rows) > TABLE_ROW_LIMIT
-                               else "") + ")</summary>")
             doc.md.append(f"RMSE table ({name}):\n")
-            doc.table(header, [[tidy(c) for c in r] for r in rows[:TABLE_ROW_LIMIT]])
-            doc.html.append("</details>")
+            doc.table(header, [[tidy(c) for c in r] for r in rows[:TABLE_ROW_LIMIT]],
+                      fold=f"RMSE table ({name}, {len(rows)} rows"
+                      + (f", first {TABLE_ROW_LIMIT} shown" if len(rows) > TABLE_ROW_LIMIT
+                         else "") + ")")
 
 
 def write_bench(doc, bench, part, root, plots_tmp, plots_rel, made, manifest):
@@ -950,14 +922,12 @@ def write_bench(doc, bench, part, root, plots_tmp, plots_rel, made, manifest):
     doc.links("Data", [("speed_accuracy.csv", f"{plots_rel}/speed_accuracy.csv")])
     front = sorted((r for r in timed if r["on_pareto_front"] == 1),
                    key=lambda r: (r["method"], r["ns_per_eval"]))
-    doc.html.append(f"<details><summary>Pareto fronts ({len(front)} of {len(timed)} timed "
-                    "points)</summary>")
     doc.md.append(f"Pareto fronts ({len(front)} of {len(timed)} timed points):\n")
     doc.table(["method", "kernel", "isa", "math", "ns per eval", "max rel. error",
                "p99 rel. error"],
               [[r["method"], r["kernel"], r["isa"], r["math"], f"{r['ns_per_eval']:.3g}",
-                r["max_rel_error"], r["p99_rel_error"]] for r in front])
-    doc.html.append("</details>")
+                r["max_rel_error"], r["p99_rel_error"]] for r in front],
+              fold=f"Pareto fronts ({len(front)} of {len(timed)} timed points)")
     write_method_fronts(doc, timed, root, plots_tmp, plots_rel, made, machine, budget,
                         str(ctx.get("date", ""))[:10], manifest)
 
@@ -988,13 +958,11 @@ def write_method_fronts(doc, timed, root, plots_tmp, plots_rel, made, machine, b
               f"method family, Pareto front per method; {machine}, budget {budget}", "chart")
     front = sorted((r for r in rows if r["on_pareto_front"] == 1),
                    key=lambda r: (r["method"], r["ns_per_eval"]))
-    doc.html.append(f"<details><summary>Method fronts ({len(front)} of {len(rows)} settings; "
-                    "RMS error)</summary>")
     doc.md.append(f"Method fronts ({len(front)} of {len(rows)} settings; RMS error):\n")
     doc.table(["method", "setting", "ns per eval", "RMS error", "max error", "reference"],
               [[r["method"], r["setting"], f"{r['ns_per_eval']:.3g}", r["rms_rel_error"],
-                r["max_rel_error"], r["reference"]] for r in front])
-    doc.html.append("</details>")
+                r["max_rel_error"], r["reference"]] for r in front],
+              fold=f"Method fronts ({len(front)} of {len(rows)} settings; RMS error)")
 
 
 def slug(text):
@@ -1038,34 +1006,13 @@ def write_stability(doc, st, part, root, plots_tmp, plots_rel, made, manifest):
             doc.links(f"{plane}: CSV", [("CSV", rel(maps[0]["csv_path"], root))] + items)
 
 
-CSS = """body{font-family:sans-serif;max-width:1250px;margin:1em auto;padding:0 1em;color:#222}
-table{border-collapse:collapse;font-size:12px;margin:0.5em 0}
-td,th{border:1px solid #ccc;padding:2px 5px;vertical-align:top;text-align:left}
-th{background:#eee}img{max-width:100%;border:1px solid #ddd}figure{margin:0.6em 0}
-figcaption{font-size:12px;color:#555}
-img.render{width:100%;min-width:200px;image-rendering:pixelated}
-.grid{display:grid;grid-template-columns:repeat(auto-fill,minmax(230px,1fr));gap:6px}
-.grid figure{margin:0}.grid figure.wide{grid-column:1/-1}pre{background:#f6f6f6;padding:0.5em;overflow:auto;font-size:12px}
-details>summary{cursor:pointer;color:#245}details.gallery{margin:0.4em 0}
-table.verdicts{width:100%}table.verdicts td:first-child{white-space:nowrap}
-table.verdicts td:nth-child(7){max-width:420px}table.verdicts details{max-width:420px}
-.long{white-space:pre-wrap}
-tr.v-holds td:nth-child(3),tr.v-holds-within td:nth-child(3){background:#d9f2d9}
-tr.v-holds-in-regime td:nth-child(3){background:#eef6cc}
-tr.v-fails td:nth-child(3){background:#f6d0d0}tr.v-inconclusive td:nth-child(3){background:#eee}
-tr.v-error td:nth-child(3){background:#f0b0f0}
-tr.regress td:nth-child(4),tr.loose td:nth-child(6){background:#f3a0a0;font-weight:bold}
-.bad{color:#a00}ul.summary li{margin:0.2em 0}table.md td{white-space:nowrap}
-nav ul.toc{columns:2;font-size:14px}nav ul.sub{font-size:12px}"""
-
-
 def write_compare(doc, data, plots_tmp, plots_rel, made, manifest):
     """The comparison of every registered model (glintlab compare, reports/compare_page.py)."""
     doc.heading(2, PART_TITLES["compare"], "compare")
-    values = compare_page.template_values(data, None)
-    doc.raw(templating.render("compare_intro.html.j2", **values), "Every model at its default parameters on the same "
-            "scenes; conformance verdicts not measured in this run (recorded: copied from "
-            f"{compare_page.RECORDED_SOURCE}; declared) have a column of their own.\n")
+    doc.section("compare_intro.html.j2", compare_page.template_values(data, None),
+                "Every model at its default parameters on the same scenes; conformance verdicts "
+                "not measured in this run (recorded: copied from "
+                f"{compare_page.RECORDED_SOURCE}; declared) have a column of their own.\n")
     png = "compare_equal_time.png"
     compare_page.draw_equal_time(data, os.path.join(plots_tmp, png), f"{plots_rel}/{png}",
                                  manifest)
@@ -1073,7 +1020,8 @@ def write_compare(doc, data, plots_tmp, plots_rel, made, manifest):
     doc.image(f"{plots_rel}/{png}", "equal-time error curves",
               "Relative RMS error of each model's sampler estimate of the albedo against wall "
               "time (this machine).", "chart")
-    doc.raw(compare_page.table_html(data), compare_page.table_markdown(data))
+    doc.section("compare_table.html.j2", compare_page.template_values(data, None),
+                compare_page.table_markdown(data))
     doc.links("Files", [("compare.json", "compare/compare.json"),
                         ("compare.csv", "compare/compare.csv"),
                         ("equal_time.csv", "compare/equal_time.csv")])
@@ -1089,8 +1037,7 @@ def build(root, run, got, plots_tmp):
     write_summary(doc, got.get("claims"), run, got)
     doc.toc_here()
     doc.heading(2, "Run", "run")
-    doc.raw("<ul>" + "".join(f"<li>{esc(part_line(n, parts.get(n)))}</li>" for n in PARTS) +
-            "</ul>", "\n".join(f"- {part_line(n, parts.get(n))}" for n in PARTS) + "\n")
+    doc.list([part_line(n, parts.get(n)) for n in PARTS])
     logs = os.path.join(root, "logs")
     doc.links("Run record", [("run.json", "run.json")] +
               [(n, f"logs/{n}") for n in (sorted(os.listdir(logs)) if os.path.isdir(logs) else [])
@@ -1116,16 +1063,15 @@ def build(root, run, got, plots_tmp):
             doc.para("Not in this report: " + part_line(n, parts.get(n)))
     # The table of contents, now that every heading is known, after the summary.
     doc.headings = [h for h in doc.headings if h[2] != "top"]
-    toc_h, toc_m = doc.toc()
+    toc_block, toc_m = doc.toc()
     hi, mi = doc.toc_at
-    doc.html.insert(hi, toc_h)
+    doc.blocks.insert(hi, toc_block)
     doc.md.insert(mi, toc_m)
     with open(os.path.join(plots_tmp, "plots.json"), "w", encoding="utf-8") as f:
         json.dump({"plots": manifest}, f, indent=1, sort_keys=True)
     made.append("plots.json")
-    page = ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-            f"<title>{esc(title)}</title><style>{CSS}</style></head><body>\n" +
-            "\n".join(doc.html) + "\n</body></html>\n")
+    page = templating.render("report.html.j2", title=title, lang="en", stylesheet="report.css",
+                             body=doc.blocks)
     return page, "\n".join(doc.md), made
 
 

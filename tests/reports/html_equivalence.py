@@ -1,7 +1,9 @@
 """Renders the same input folders with the report writer of an earlier commit and with this
 checkout's, and diffs the HTML after normalising what does not change the page: runs of
-whitespace, and the spelling of escaped quotes (html.escape writes &quot; and &#x27;, Jinja2's
-autoescape &#34; and &#39;: the same characters once parsed). Not a ctest: it takes the input
+whitespace (a run of it is one space, none next to a block element's tag), and the spelling of
+escaped quotes (html.escape writes &quot; and &#x27;, Jinja2's autoescape &#34; and &#39;: the
+same characters once parsed; an apostrophe is compared unescaped). The Markdown twins report.md are
+compared byte for byte. Not a ctest: it takes the input
 folders as arguments (a `glintlab report` folder, a `glintlab compare` folder).
 
 Usage: /usr/bin/python3 tests/reports/html_equivalence.py --before REV DIR...
@@ -20,12 +22,17 @@ import tempfile
 REPO = os.path.realpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 
 
+# Tags around which whitespace is not shown (the page's block elements, and the style sheet's).
+BLOCK_TAG = re.compile(r"\s*(</?(?:html|head|body|title|meta|style|nav|h[1-6]|p|ul|li|table|thead|"
+                       r"tbody|tr|td|th|details|summary|div|figure|figcaption|br)\b[^>]*>)\s*")
+
+
 def normalised(page):
-    page = page.replace("&quot;", "&#34;").replace("&#x27;", "&#39;")
-    # Whitespace between tags is not shown; elsewhere a run of it reads as one space.
-    page = re.sub(r">\s+<", "><", page)
-    page = re.sub(r"\s+", " ", page)
-    # One element per line, so that a difference is shown where it is.
+    # The page's attribute values are all in double quotes, so an apostrophe needs no escaping.
+    page = page.replace("&quot;", "&#34;").replace("&#x27;", "'").replace("&#39;", "'")
+    # A run of whitespace reads as one space, and as none next to a block element's tag.
+    page = BLOCK_TAG.sub(r"\1", re.sub(r"\s+", " ", page))
+    # One tag per line, so that a difference is shown where it is.
     return page.replace("><", ">\n<").splitlines()
 
 
@@ -38,8 +45,11 @@ def render(reports_dir, source, work):
                        capture_output=True, text=True)
     if r.returncode != 0:
         raise SystemExit(f"{script} on {source} failed ({reports_dir}): {r.stderr.strip()}")
-    with open(os.path.join(work, "index.html"), encoding="utf-8") as f:
-        return f.read()
+    pages = []
+    for name in ("index.html", "report.md"):
+        path = os.path.join(work, name)
+        pages.append(open(path, encoding="utf-8").read() if os.path.exists(path) else None)
+    return pages
 
 
 def main():
@@ -55,8 +65,15 @@ def main():
                                  capture_output=True, check=True).stdout
         subprocess.run(["tar", "-x", "-C", old], input=archive, check=True)
         for i, d in enumerate(a.dirs):
-            before = render(os.path.join(old, "reports"), d, os.path.join(tmp, f"b{i}"))
-            after = render(os.path.join(REPO, "reports"), d, os.path.join(tmp, f"a{i}"))
+            before, md_before = render(os.path.join(old, "reports"), d, os.path.join(tmp, f"b{i}"))
+            after, md_after = render(os.path.join(REPO, "reports"), d, os.path.join(tmp, f"a{i}"))
+            if md_before != md_after:
+                differs += 1
+                print("\n".join(difflib.unified_diff(
+                    (md_before or "").splitlines(), (md_after or "").splitlines(),
+                    f"{d}/report.md ({a.before})", f"{d}/report.md (this checkout)",
+                    lineterm="", n=0)))
+                print(f"{d}: report.md DIFFERS")
             raw_same = before == after
             diff = list(difflib.unified_diff(normalised(before), normalised(after),
                                              f"{d} ({a.before})", f"{d} (this checkout)",
