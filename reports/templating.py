@@ -2,6 +2,7 @@
 from the results is escaped where it is inserted; a value is inserted unescaped only through a
 filter below that escapes its text itself (md_inline). Jinja2 is Debian's python3-jinja2."""
 
+import functools
 import os
 import re
 import urllib.parse
@@ -24,6 +25,7 @@ def md_inline(text):
     return markupsafe.Markup(re.sub(r"\*\*([^*]+)\*\*", r"<b>\1</b>", h))
 
 
+@functools.lru_cache(maxsize=None)
 def environment():
     env = jinja2.Environment(loader=jinja2.FileSystemLoader(TEMPLATES),
                              autoescape=True, undefined=jinja2.StrictUndefined,
