@@ -5,10 +5,15 @@ filter below that escapes its text itself (md_inline). Jinja2 is Debian's python
 import functools
 import os
 import re
+import sys
 import urllib.parse
 
-import jinja2
-import markupsafe
+try:
+    import jinja2
+    import markupsafe
+except ImportError:
+    sys.exit("glintlab: error: the report's templates need Jinja2 in /usr/bin/python3 "
+             "(Debian's python3-jinja2; scripts/setup.sh installs it)")
 
 TEMPLATES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "templates")
 

@@ -1,7 +1,8 @@
 """Tests of reports/make_report.py on the fixture results of tests/reports/fixtures/: the verdict
 table rows, relative links that resolve, images present, the Markdown twin, the absent-part note,
 and that a malformed input is a one-line error (exit 2) leaving no output. The link checker itself
-is shown to reject an absolute and a dangling link. Exit 0 pass, 1 fail, 77 skip (no matplotlib)."""
+is shown to reject an absolute and a dangling link. Exit 0 pass, 1 fail, 77 skip (no matplotlib or
+Jinja2)."""
 import importlib.util
 import json
 import os
@@ -36,10 +37,11 @@ def fresh(tmp, name):
     return d
 
 
-if importlib.util.find_spec("matplotlib") is None:
-    print(f"SKIP: {sys.executable} lacks matplotlib (Debian: apt-get install python3-matplotlib, "
-          "see scripts/setup.sh)")
-    sys.exit(77)
+for module, package in (("matplotlib", "python3-matplotlib"), ("jinja2", "python3-jinja2")):
+    if importlib.util.find_spec(module) is None:
+        print(f"SKIP: {sys.executable} lacks {module} (Debian: apt-get install {package}, "
+              "see scripts/setup.sh)")
+        sys.exit(77)
 
 with tempfile.TemporaryDirectory() as tmp:
     # --- the whole fixture ---
