@@ -79,10 +79,18 @@ double value_at(const ModelEntry& m, const std::vector<double>& values, ModelQue
 
 void values_at(const ModelEntry& m, const std::vector<double>& values, const ModelQuery<double>& q,
                std::span<const V3> wo, std::span<double> out) {
+  std::vector<double> pdf(wo.size());
+  values_and_pdfs_at(m, values, q, wo, out, pdf);
+}
+
+void values_and_pdfs_at(const ModelEntry& m, const std::vector<double>& values,
+                        const ModelQuery<double>& q, std::span<const V3> wo,
+                        std::span<double> out, std::span<double> pdf) {
   std::vector<ModelQuery<double>> asked;
   std::vector<std::size_t> rows;
   for (std::size_t i = 0; i < wo.size(); ++i) {
     out[i] = 0;
+    pdf[i] = 0;
     if (!(wo[i].z > 0)) continue;
     ModelQuery<double> at = q;
     at.wo = wo[i];
@@ -92,7 +100,10 @@ void values_at(const ModelEntry& m, const std::vector<double>& values, const Mod
   }
   std::vector<ErasedEval> e(asked.size());
   eval_each(m, values, asked, e);
-  for (std::size_t k = 0; k < rows.size(); ++k) out[rows[k]] = e[k].value;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    out[rows[k]] = e[k].value;
+    pdf[rows[k]] = e[k].pdf;
+  }
 }
 
 double roughness_hint(const ModelEntry& m, const std::vector<double>& values) {
@@ -310,36 +321,56 @@ std::size_t MirrorCells::cell(const V3& w) const {
 
 CellSums integrate_cells(const DirectionRows& f, const V3& wi, double width, std::uint64_t n,
                          std::uint64_t seed) {
+  return integrate_cell_pair(
+             [&f](std::span<const V3> w, std::span<double> first, std::span<double> second) {
+               f(w, first);
+               std::fill(second.begin(), second.end(), 0.0);
+             },
+             wi, width, n, seed)
+      .first;
+}
+
+CellSumPair integrate_cell_pair(const DirectionRowPairs& fg, const V3& wi, double width,
+                                std::uint64_t n, std::uint64_t seed) {
   const MirrorMixture proposal(wi, width);
   const MirrorCells cells(wi, width);
-  std::vector<CellSums> parts(chunk_count(n));
+  std::vector<CellSumPair> parts(chunk_count(n));
   for_chunks(n, [&](std::uint64_t begin, std::uint64_t end, std::size_t c) {
-    CellSums& p = parts[c];
+    CellSumPair& p = parts[c];
     std::vector<V3> directions(end - begin), above;
     for (std::uint64_t i = begin; i < end; ++i) {
       const V3 w = proposal.direction(i, uniform_pair(seed, i));
       directions[i - begin] = w;
       if (w.z > 0) above.push_back(w);
     }
-    std::vector<double> f_above(above.size());
-    f(above, f_above);
+    std::vector<double> f_above(above.size()), g_above(above.size());
+    fg(above, f_above, g_above);
+    auto add = [&cells](CellSums& sums, const V3& w, double y) {
+      if (y == 0) return;
+      const std::size_t k = cells.cell(w);
+      sums.sum[k] += y;
+      sums.sum_sq[k] += y * y;
+      ++sums.hits[k];
+    };
     std::size_t next = 0;
     for (const V3& w : directions) {
-      const double y = w.z > 0 ? f_above[next++] / proposal.density(w) : 0.0;  // density ≥ 1/8π
-      if (y == 0) continue;
-      const std::size_t k = cells.cell(w);
-      p.sum[k] += y;
-      p.sum_sq[k] += y * y;
-      ++p.hits[k];
+      if (!(w.z > 0)) continue;
+      const double density = proposal.density(w);  // ≥ 1/8π above the horizon
+      add(p.first, w, f_above[next] / density);
+      add(p.second, w, g_above[next] / density);
+      ++next;
     }
   });
-  CellSums all;
-  all.n = n;
-  for (const CellSums& p : parts)
+  CellSumPair all;
+  all.first.n = all.second.n = n;
+  for (const CellSumPair& p : parts)
     for (std::size_t k = 0; k < MirrorCells::kCount; ++k) {
-      all.sum[k] += p.sum[k];
-      all.sum_sq[k] += p.sum_sq[k];
-      all.hits[k] += p.hits[k];
+      all.first.sum[k] += p.first.sum[k];
+      all.first.sum_sq[k] += p.first.sum_sq[k];
+      all.first.hits[k] += p.first.hits[k];
+      all.second.sum[k] += p.second.sum[k];
+      all.second.sum_sq[k] += p.second.sum_sq[k];
+      all.second.hits[k] += p.second.hits[k];
     }
   return all;
 }

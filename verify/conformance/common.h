@@ -54,8 +54,17 @@ double value_at(const ModelEntry& m, const std::vector<double>& values, ModelQue
 // rows function (ModelEntry::eval_rows) for the directions that reach eval.
 void values_at(const ModelEntry& m, const std::vector<double>& values, const ModelQuery<double>& q,
                std::span<const Vec3<double>> wo, std::span<double> out);
+// values_at with eval's pdf alongside: pdf[i] is eval's pdf at wo[i], 0 where value_at is 0
+// without asking eval (below the horizon, a query validate rejects).
+void values_and_pdfs_at(const ModelEntry& m, const std::vector<double>& values,
+                        const ModelQuery<double>& q, std::span<const Vec3<double>> wo,
+                        std::span<double> value, std::span<double> pdf);
 // A function of many directions at once: out[i] = f(w[i]).
 using DirectionRows = std::function<void(std::span<const Vec3<double>> w, std::span<double> out)>;
+// Two functions of many directions computed together (one eval call for both):
+// first[i] = f(w[i]), second[i] = g(w[i]).
+using DirectionRowPairs = std::function<void(std::span<const Vec3<double>> w,
+                                             std::span<double> first, std::span<double> second)>;
 
 // A roughness scale for cubature breakpoints: the model's alpha_x (or alpha), else 0.3.
 double roughness_hint(const ModelEntry& m, const std::vector<double>& values);
@@ -118,6 +127,13 @@ struct CellSums {
 // f is asked for each chunk's directions above the horizon at once.
 CellSums integrate_cells(const DirectionRows& f, const Vec3<double>& wi, double width,
                          std::uint64_t n, std::uint64_t seed);
+// integrate_cells of two integrands at the same n draws (the draws integrate_cells takes with
+// this seed and n): the cell sums of f (first) and of g (second).
+struct CellSumPair {
+  CellSums first, second;
+};
+CellSumPair integrate_cell_pair(const DirectionRowPairs& fg, const Vec3<double>& wi, double width,
+                                std::uint64_t n, std::uint64_t seed);
 
 // The uniform pair of sample i under seed (gof_family.h's uniform_pair).
 Vec2<double> pair_at(std::uint64_t seed, std::uint64_t i);

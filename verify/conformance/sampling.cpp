@@ -233,10 +233,18 @@ ChiSquareResult sampler_chi_square(const ModelEntry& m, const Setting& setting, 
 // sampler is checked against what it estimates, not only against its own pdf. Per cell
 // z = (weighted − reference) / (their standard errors in quadrature); cells with fewer than 20
 // nonzero contributions on either side are pooled into one, tested when both sides have 20 there
-// (a cell the sampler never reached has no standard error to test with: smooth_beckmann's
-// far tail holds 3e-8 of the value, 0.003 expected samples in 10^5; value the sampler misses as a
-// whole is sampler-covers-value's). The statistic Σ z² is chi-square with one degree of freedom
-// per cell tested. The reference takes two blocks of draws (its per-cell spread is 2–3 × the
+// (a cell the sampler rarely reached has no standard error to test with: smooth_beckmann's
+// far tail holds 3e-8 of the value, 0.003 expected samples in 10^5).
+// Value where the sampler never goes is tested apart, whatever its cells: the model's own pdf
+// says where that is. At the reference's draws, Z = the value mass where eval's pdf is 0 (value
+// > 0, pdf == 0: the sampler, by its pdf, never draws there, so its estimate of that mass is 0 by
+// construction) with its Monte Carlo standard error; one more term (0 − Z)² / SE_Z² with one
+// more degree of freedom, and none when no reference draw lands there. A sampler whose pdf is > 0
+// wherever the value is adds nothing: the term has no tolerance and cannot fire on a correct
+// model. Where the pdf is > 0 but small (a region the sampler rarely reaches) the estimate is
+// unbiased, only spread: that is the weights' variance, not a mass this test can miss.
+// The statistic Σ z² is chi-square with one degree of freedom per cell tested (and one for Z).
+// The reference takes two blocks of draws (its per-cell spread is 2–3 × the
 // sampler's; more cost a glint model's eval time for little: the test's power against a global
 // scale is covers-value's). At the settings' footprint (a glint model's value at
 // the sweep's is ~0 almost everywhere, which tests nothing).
@@ -244,6 +252,10 @@ struct WeightedHistogram {
   double statistic = 0, p_value = 1;
   std::size_t cells = 0;
   std::uint64_t non_finite = 0;
+  // ∫ value dωo where eval's pdf is 0 (Z), its standard error, and how many of the reference's
+  // draws landed there (0: no term).
+  double unreached = 0, unreached_se = 0;
+  std::uint64_t unreached_draws = 0, reference_draws = 0;
   // Whether every cell's ∫_cell value is finite; false: nothing is tested (eval's value is NaN or
   // Inf where the reference draws it, and the property cannot be computed).
   bool reference_finite = true;
@@ -253,11 +265,15 @@ WeightedHistogram weighted_histogram(const ModelEntry& m, const Setting& s, Budg
   const std::uint64_t n = gof_samples(b);
   const double width = roughness_hint(m, s.values);
   const MirrorCells cells(s.query.wi, width);
-  const CellSums reference = integrate_cells(
-      [&](std::span<const V3> wo, std::span<double> out) {
-        values_at(m, s.values, s.query, wo, out);
+  // The value, and the value where eval's pdf is 0, at the same draws.
+  const CellSumPair integrals = integrate_cell_pair(
+      [&](std::span<const V3> wo, std::span<double> value, std::span<double> unreached) {
+        values_and_pdfs_at(m, s.values, s.query, wo, value, unreached);
+        for (std::size_t i = 0; i < wo.size(); ++i)
+          unreached[i] = value[i] > 0 && unreached[i] == 0 ? value[i] : 0.0;
       },
       s.query.wi, width, 2 * reference_block(b), reference_seed);
+  const CellSums& reference = integrals.first;
   WeightedHistogram h;
   for (std::size_t k = 0; k < MirrorCells::kCount; ++k)
     h.reference_finite = h.reference_finite && std::isfinite(reference.sum[k]);
@@ -315,6 +331,22 @@ WeightedHistogram weighted_histogram(const ModelEntry& m, const Setting& s, Budg
   }
   if (pool_hits[0] >= kMinHits && pool_hits[1] >= kMinHits)
     add_z2(pool[0], pool[1], pool[2], pool[3]);
+  // The unreached mass against the sampler's 0 there (a draw lands in one cell: the cells' sums
+  // of y and y² add up to the whole region's).
+  double unreached_sum = 0, unreached_sum_sq = 0;
+  for (std::size_t k = 0; k < MirrorCells::kCount; ++k) {
+    unreached_sum += integrals.second.sum[k];
+    unreached_sum_sq += integrals.second.sum_sq[k];
+    h.unreached_draws += integrals.second.hits[k];
+  }
+  h.reference_draws = reference.n;
+  if (h.unreached_draws > 0) {
+    const auto [z, z_se2] = mean_se2(unreached_sum, unreached_sum_sq, reference.n);
+    h.unreached = z;
+    h.unreached_se = std::sqrt(z_se2);
+    h.statistic += z_se2 > 0 ? z * z / z_se2 : (z == 0 ? 0.0 : INFINITY);
+    ++h.cells;
+  }
   h.p_value = h.non_finite > 0 ? 0.0
               : h.cells == 0   ? 1.0
                                : boost::math::cdf(boost::math::complement(
@@ -400,7 +432,8 @@ Assessment assess_sampler_gof(const ModelEntry& m, Budget b, const std::string& 
       "{} settings × {} samples, chi-square and weighted histogram each{}: {} rejected at level "
       "{:.3g} (chi-square {}, weighted histogram {}), {} hard failures, {} inconclusive; "
       "chi-square: smallest raw p {:.3g} at {} ({}); "
-      "weighted histogram: smallest raw p {:.3g} at {} (Σ z² {:.4g} over {} cells{})",
+      "weighted histogram: smallest raw p {:.3g} at {} (Σ z² {:.4g} over {} cells{}; value "
+      "mass where eval's pdf is 0: {})",
       chi_settings, gof_samples(b),
       set.size() > chi_settings
           ? fmt::format(", and {} compensation settings weighted histogram only",
@@ -409,7 +442,11 @@ Assessment assess_sampler_gof(const ModelEntry& m, Budget b, const std::string& 
       f.rejections, level, chi_rejected, weighted_rejected, hard, inconclusive, chi_p[worst],
       set[worst].label, results[worst].summary(), weighted_p[worst_weighted],
       set[worst_weighted].label, w.statistic, w.cells,
-      w.non_finite ? fmt::format(", {} non-finite weights", w.non_finite) : "");
+      w.non_finite ? fmt::format(", {} non-finite weights", w.non_finite) : "",
+      w.unreached_draws > 0
+          ? fmt::format("{:.4g} ± {:.2g} ({} of {} reference draws)", w.unreached,
+                        w.unreached_se, w.unreached_draws, w.reference_draws)
+          : fmt::format("none ({} reference draws)", w.reference_draws));
   return a;
 }
 

@@ -208,6 +208,59 @@ TEST(ConformanceToys, HalfSupportSamplerFailsCoversValue) {
   EXPECT_EQ(verdict_of(toy, "sampler-covers-value"), Verdict::kFails);
 }
 
+// The Lambertian toy whose sampler never draws the directions more than 8 × 0.3 rad from the
+// mirror direction of ωi (the weighted histogram's outer ring at the toy's roughness scale, 0.3:
+// a cap about the reverse of the mirror direction, by the horizon on the side of incidence,
+// holding 1.8 % of ∫ value at θi = 70°): a draw landing there is rejected, and pdf() and eval's
+// pdf are truthfully 0 there (cos θo / π elsewhere, integrating to the acceptance rate). With
+// `excluded` false the same toy samples the whole hemisphere.
+ModelEntry lambert_toy_missing_cap(double rho, bool excluded) {
+  ModelEntry e = lambert_toy(rho);
+  const double cap_cos = std::cos(8 * 0.3);
+  auto missed = [excluded, cap_cos](const V3& wi, const V3& wo) {
+    const V3 mirror{-wi.x, -wi.y, wi.z};
+    return excluded && dot(wo, mirror) < cap_cos;
+  };
+  auto pdf = [missed](const ModelQuery<double>& q) {
+    return q.wo.z > 0 && !missed(q.wi, q.wo) ? q.wo.z / std::numbers::pi : 0.0;
+  };
+  e.eval = [rho, pdf](const std::vector<double>&, const ModelQuery<double>& q) {
+    return ErasedEval{q.wo.z > 0 ? rho * q.wo.z / std::numbers::pi : 0.0, pdf(q), {}};
+  };
+  e.pdf = [pdf](const std::vector<double>&, const ModelQuery<double>& q) { return pdf(q); };
+  e.sample = [rho, missed](const std::vector<double>&, const ModelQuery<double>& q,
+                           Vec2<double> u) {
+    const double r = std::sqrt(u.x), phi = 2 * std::numbers::pi * u.y;
+    const V3 wo{r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1 - u.x))};
+    if (missed(q.wi, wo)) return ModelSample<double>{V3{0, 0, 0}, 0.0, 0.0, true};
+    const double density = wo.z / std::numbers::pi;
+    return ModelSample<double>{wo, density,
+                               density > 0 ? rho * wo.z / std::numbers::pi / density : 0.0, false};
+  };
+  return e;
+}
+
+// The cap's cells get no sample, so the pooled cells are never tested: only the value mass where
+// the pdf is 0, counted from the reference's own draws, shows the weighted histogram (raw p
+// second) the missing 1.8 %. The chi-square of the directions (raw p first) holds: the sampler
+// matches its pdf. With the whole hemisphere sampled, the same toy holds.
+TEST(ConformanceToys, SamplerMissingACapFailsTheWeightedHistogram) {
+  const ModelEntry toy = lambert_toy_missing_cap(0.9, true);
+  const Assessment a = assess("sampler-matches-pdf", toy, Budget::kQuick, "test.cap",
+                              model_level(toy));
+  ASSERT_EQ(a.raw_p_values.size(), 2u);
+  EXPECT_GT(a.raw_p_values[0], 1e-3) << a.detail;
+  EXPECT_LT(a.raw_p_values[1], model_level(toy)) << a.detail;
+  EXPECT_EQ(a.verdict, Verdict::kFails) << a.detail;
+  EXPECT_EQ(verdict_of(toy, "pdf-normalized"), Verdict::kHolds);
+  const ModelEntry whole = lambert_toy_missing_cap(0.9, false);
+  const Assessment g = assess("sampler-matches-pdf", whole, Budget::kQuick, "test.cap",
+                              model_level(whole));
+  EXPECT_EQ(g.verdict, Verdict::kHolds) << g.detail;
+  EXPECT_NE(g.detail.find("value mass where eval's pdf is 0: none"), std::string::npos)
+      << g.detail;
+}
+
 // The sampler and its pdf agree, but the weights over-estimate the value by 3 %: the chi-square of
 // the directions (raw p first) cannot see it, the weighted histogram (raw p second) must.
 TEST(ConformanceToys, WrongWeightsFailSamplerMatchesPdf) {
