@@ -28,9 +28,10 @@ set(glintlab_slow_tests
   "Checks/QuickBudget.* 1"
   "AcrossClaims.StabilityVerdictAndControl 14"
   "Properties/ControlRejected.ByTheSameDecision/kneiphof_klein_sampler_covers_value* 4"
-  # sampler-covers-value of both Kemppinen models at quick, with the mixture and with Algorithm 2
-  # alone (10^5 samples and up to 4 · 10^5 reference evaluations per setting).
-  "KemppinenSampler.* 20"
+  # sampler-covers-value of both Kemppinen models at quick at the three compensation settings, with
+  # the mixture and with Algorithm 2 alone (10^5 samples and up to 4 · 10^5 reference evaluations
+  # per setting).
+  "KemppinenSampler.* 12"
   # kemppinen.compensation's decision on 8 settings of the brute-force Eq. 5, 60 positions each:
   # fewer leave its intervals undecided.
   "KemppinenClaims.CompensationDecisionFailsWithoutC 3"

@@ -186,6 +186,10 @@ Assessment assess_eval_pdf(const ModelEntry& m, Budget b, const std::string& id,
 Assessment assess_sampler_gof(const ModelEntry& m, Budget b, const std::string& id, double level);
 Assessment assess_covers_value(const ModelEntry& m, Budget b, const std::string& id,
                                double level, const std::vector<HemisphereIntegral>* reuse);
+// sampler-covers-value at the given settings (assess_covers_value: at the property's settings).
+Assessment covers_value_at(const ModelEntry& m, const std::vector<Setting>& set, Budget b,
+                           const std::string& id, double level,
+                           const std::vector<HemisphereIntegral>* reuse);
 Assessment assess_pdf_normalized(const ModelEntry& m, Budget b, const std::string& id,
                                  double level);
 Assessment assess_energy(const ModelEntry& m, Budget b, const std::string& id, double level);

@@ -457,9 +457,6 @@ Assessment assess_sampler_gof(const ModelEntry& m, Budget b, const std::string& 
 // not misses that part, even when it matches its own pdf.
 Assessment assess_covers_value(const ModelEntry& m, Budget b, const std::string& id,
                                double level, const std::vector<HemisphereIntegral>* reuse) {
-  Assessment a;
-  a.statistic = "largest relative difference of the mean weight from ∫ value dωo (cubature; z "
-                "test, p Holm–Šidák-adjusted)";
   // Footprint models also at the wide footprint (common.h): quick moves its first setting there
   // (kneiphof_klein's value is 0 everywhere at θi = 30° and footprint 0.1: it tested nothing),
   // full adds every setting there.
@@ -476,6 +473,15 @@ Assessment assess_covers_value(const ModelEntry& m, Budget b, const std::string&
   }
   // And where the compensation the paper's sampler leaves out carries the value (common.h).
   for (Setting& s : compensation_settings(m)) set.push_back(std::move(s));
+  return covers_value_at(m, set, b, id, level, reuse);
+}
+
+Assessment covers_value_at(const ModelEntry& m, const std::vector<Setting>& set, Budget b,
+                           const std::string& id, double level,
+                           const std::vector<HemisphereIntegral>* reuse) {
+  Assessment a;
+  a.statistic = "largest relative difference of the mean weight from ∫ value dωo (cubature; z "
+                "test, p Holm–Šidák-adjusted)";
   const std::uint64_t n = samples(b);
   double worst_rel = 0, power = std::numeric_limits<double>::infinity();
   std::string power_where = "—";
