@@ -1,8 +1,9 @@
 """glintlab.figure, sweep, compare and adequacy against the glintlab CLI (GLINTLAB_EXE): the same
 arguments write the same files (byte for byte, but for the fields that are wall-clock timings),
-the returned data is those files parsed, a model registered from numpy is seen by the suite run in
-process, and bad arguments raise ValueError with the CLI's error line. Small inputs only: one quick
-figure, one model's sweep, one compare, a calibration of 10 runs."""
+the returned data is those files parsed, a numpy model that raises makes them raise, and bad
+arguments raise ValueError with the CLI's error line. Small inputs only: one quick figure, one
+model's sweep, one compare, a calibration of 10 runs. A numpy model swept, compared and drawn:
+slow_register_model_conformance.py (seconds: the sweep calls it once per query)."""
 
 import csv
 import io
@@ -17,19 +18,10 @@ import glintlab
 import numpy_models as nm
 
 EXE = os.environ.get("GLINTLAB_EXE", "glintlab")
-NUMPY_MODEL = "py_suite_lambert"
-
 # compare's wall-clock fields (experiments/compare/compare.h kTimingFields): they differ between
 # any two runs, so they are left out of the byte comparison; equal_time.png and index.html draw and
 # print them and are compared by name only.
 COMPARE_TIMING_FIELDS = {"scalar_ns_per_eval", "best_ns_per_eval", "seconds"}
-
-
-@pytest.fixture(scope="module")
-def numpy_model():
-    if NUMPY_MODEL not in [m["name"] for m in glintlab.models()]:
-        nm.register_lambert(glintlab, NUMPY_MODEL)
-    return NUMPY_MODEL
 
 
 def run_cli(args, cwd):
@@ -144,7 +136,7 @@ def csv_without_timings(text):
     return [[r[k] for k in keep] for r in rows]
 
 
-def test_compare_writes_what_the_cli_writes(swept, numpy_model, monkeypatch):
+def test_compare_writes_what_the_cli_writes(swept, monkeypatch):
     py, cli, _ = swept
     # No conformance run here (an empty claims.json: the recorded verdicts) and the failure
     # regions read from the sweep's folder, so the comparison takes about a second per model.
@@ -166,15 +158,6 @@ def test_compare_writes_what_the_cli_writes(swept, numpy_model, monkeypatch):
     assert c["models"] == 1 and list(c["table"]["model"]) == ["smooth_ggx"]
     assert c["compare"] == json.loads(mine["compare.json"])
     assert c["equal_time"]["samples"][0] == 1 and c["equal_time"].dtype["seconds"] == np.float64
-    # A model registered from numpy is compared like the papers' models (its failure regions:
-    # none in the sweep's folder, which says so).
-    mine = glintlab.compare(out="cmp_numpy", models=[numpy_model], budget="quick",
-                            claims_from="claims", sweeps_from="sw")
-    assert list(mine["table"]["model"]) == [numpy_model]
-    assert set(mine["equal_time"]["model"]) == {numpy_model}
-    assert mine["table"]["reference_converged"][0] == "yes"
-    assert "has no entry for this model" in mine["table"]["stability"][0] or \
-        "no entry" in json.dumps(mine["compare"])
 
 
 def test_adequacy_calibration_writes_what_the_cli_writes(two_dirs):
@@ -210,3 +193,17 @@ def test_bad_arguments_raise_the_cli_message(two_dirs, call, args):
         call()
     assert str(e.value) == cli_error(args, cli)
     assert os.listdir(py) == [] and os.listdir(cli) == []
+
+
+def test_a_failing_numpy_model_raises_and_writes_nothing(two_dirs):
+    py, _ = two_dirs
+
+    def broken(q, p):
+        raise ZeroDivisionError("on purpose")
+
+    if "py_suite_broken" not in [m["name"] for m in glintlab.models()]:
+        glintlab.register_model("py_suite_broken", broken, nm.lambert_pdf, nm.lambert_sample,
+                                params=[nm.ALBEDO])
+    with pytest.raises(RuntimeError, match="'py_suite_broken': eval raised ZeroDivisionError"):
+        glintlab.sweep(out="sw", models="py_suite_broken", budget="quick")
+    assert not (py / "sw").exists() or os.listdir(py / "sw") == []
