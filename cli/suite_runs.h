@@ -55,7 +55,8 @@ struct CompareRequest {
 };
 struct CompareSummary {
   std::size_t models = 0;
-  std::filesystem::path dir;  // out, holding compare.json, compare.csv, equal_time.csv/.png, index.html
+  // out: compare.json, compare.csv, equal_time.csv, equal_time.png and index.html.
+  std::filesystem::path dir;
 };
 CompareSummary run_compare_request(const CompareRequest& r);
 
