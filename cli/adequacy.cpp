@@ -15,6 +15,7 @@
 #include "cli/commands.h"
 #include "cli/input.h"
 #include "cli/progress.h"
+#include "cli/suite_runs.h"
 #include "experiments/adequacy/adequacy_outputs.h"
 
 namespace glintlab::cli {
@@ -30,20 +31,8 @@ struct AdequacyCliOptions {
   std::string runs = "2000";
 };
 
-void run_calibration(const experiments::AdequacyCalibrationOptions& a, const std::string& out) {
-  const auto c = experiments::decision_calibration_options(a);
-  Progress bar("adequacy calibration",
-               long(c.runs * c.cases.size() * c.deltas.size()));
-  std::mutex m;
-  experiments::AdequacyCalibrationOptions with_progress = a;
-  with_progress.progress = [&] {
-    const std::lock_guard<std::mutex> lock(m);
-    bar.step("cells");
-  };
-  const auto t0 = std::chrono::steady_clock::now();
-  const auto s = experiments::run_adequacy_calibration(out, with_progress);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+void print_calibration(const AdequacyRunSummary& run) {
+  const auto& s = run.calibration;
   const auto& cal = s.calibration;
   fmt::print(
       "adequacy calibration: TAU {:g}, {} positions per cell, the table's {} decisions (z {:.3f}); "
@@ -70,51 +59,29 @@ void run_calibration(const experiments::AdequacyCalibrationOptions& a, const std
       fw.table_decisions, fw.tables_with_false_adequate, fw.tables, fw.rate_low, fw.rate_high,
       fw.pooled_decisions, fw.pooled_false_adequate, fw.implied, fw.implied_low, fw.implied_high,
       fw.nominal, verify::adequacy::kRateVerdictNames[std::size_t(fw.verdict)]);
-  fmt::print("wrote {} and {} in {:.1f} s\n", s.csv.string(), s.json.string(), seconds);
+  fmt::print("wrote {} and {} in {:.1f} s\n", s.csv.string(), s.json.string(), run.seconds);
 }
 
 void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
-  const bool quick = resolve_budget(cmd, o.budget) == "quick";
-  std::vector<std::string> names(verify::adequacy::kBinomialFamilyModels.begin(),
-                                 verify::adequacy::kBinomialFamilyModels.end());
-  experiments::AdequacyOptions a;
-  a.models =
-      select_by_globs(o.models, "--models", names,
-                      fmt::format("models of the binomial family: {}", fmt::join(names, ", ")));
-  a.threshold = number_option(o.threshold, "--threshold", 0, 1, true, false);
-  a.budget = quick ? verify::Budget::kQuick : verify::Budget::kFull;
-  const std::uint64_t runs = integer_option(o.runs, "--runs", 1, 1000000);
-  if (!o.calibrate && option_count(cmd, "--runs") > 0)
-    throw InputError("--runs: only with --calibrate (synthetic cells per case and delta)");
-  const int threads = resolve_threads(o.threads);
-  check_output_dir(o.out, "--out");
-  register_staging_parent(o.out);
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-  if (o.calibrate) {
-    experiments::AdequacyCalibrationOptions c;
-    c.models = a.models;
-    c.threshold = a.threshold;
-    c.budget = a.budget;
-    c.runs = std::size_t(runs);
-    run_calibration(c, o.out);
+  AdequacyRequest r;
+  r.out = o.out;
+  r.budget = resolve_budget(cmd, o.budget);
+  r.models = o.models;
+  r.threshold = o.threshold;
+  r.threads = o.threads;
+  r.calibrate = o.calibrate;
+  if (option_count(cmd, "--runs") > 0) r.runs = o.runs;
+  const AdequacyRunSummary run = run_adequacy_request(r);
+  if (run.calibrate) {
+    print_calibration(run);
     return;
   }
-  const auto axes = verify::adequacy::grid_axes(a.budget);
-  const long total = long(verify::adequacy::make_grid(a.models, axes).size());
-  Progress bar("adequacy", total);
-  std::mutex m;
-  a.progress = [&] {
-    const std::lock_guard<std::mutex> lock(m);
-    bar.step("cells");
-  };
-  const auto t0 = std::chrono::steady_clock::now();
-  const auto s = experiments::run_adequacy(o.out, a);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto& s = run.table;
+  const double seconds = run.seconds;
   fmt::print(
       "adequacy: {} cells, TAU {:g}; cheapest adequate level: smooth {}, realtime {}, "
       "small_count {}, exact {}\n",
-      s.cells, a.threshold, s.chosen[0], s.chosen[1], s.chosen[2], s.chosen[3]);
+      s.cells, run.threshold, s.chosen[0], s.chosen[1], s.chosen[2], s.chosen[3]);
   fmt::print(
       "chooser (core/glints/adequacy.h): same level as measured in {} cells, refuted in {}\n",
       s.chooser_matches, s.chooser_refuted);
@@ -154,6 +121,56 @@ with Clopper-Pearson intervals (also pooled over the cases); and the family-wise
 of the grid's size. Writes DIR/adequacy-calibration.csv and adequacy-calibration.json.)";
 
 }  // namespace
+
+AdequacyRunSummary run_adequacy_request(const AdequacyRequest& o) {
+  const bool quick = quick_budget(o.budget);
+  std::vector<std::string> names(verify::adequacy::kBinomialFamilyModels.begin(),
+                                 verify::adequacy::kBinomialFamilyModels.end());
+  experiments::AdequacyOptions a;
+  a.models =
+      select_by_globs(o.models, "--models", names,
+                      fmt::format("models of the binomial family: {}", fmt::join(names, ", ")));
+  a.threshold = number_option(o.threshold, "--threshold", 0, 1, true, false);
+  a.budget = quick ? verify::Budget::kQuick : verify::Budget::kFull;
+  const std::uint64_t runs = integer_option(o.runs.value_or("2000"), "--runs", 1, 1000000);
+  if (!o.calibrate && o.runs)
+    throw InputError("--runs: only with --calibrate (synthetic cells per case and delta)");
+  const int threads = resolve_threads(o.threads);
+  check_output_dir(o.out, "--out");
+  register_staging_parent(o.out);
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  AdequacyRunSummary run;
+  run.calibrate = o.calibrate;
+  run.threshold = a.threshold;
+  std::mutex m;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (o.calibrate) {
+    experiments::AdequacyCalibrationOptions c;
+    c.models = a.models;
+    c.threshold = a.threshold;
+    c.budget = a.budget;
+    c.runs = std::size_t(runs);
+    const auto settings = experiments::decision_calibration_options(c);
+    Progress bar("adequacy calibration",
+                 long(settings.runs * settings.cases.size() * settings.deltas.size()));
+    c.progress = [&] {
+      const std::lock_guard<std::mutex> lock(m);
+      bar.step("cells");
+    };
+    run.calibration = experiments::run_adequacy_calibration(o.out, c);
+  } else {
+    const auto axes = verify::adequacy::grid_axes(a.budget);
+    const long total = long(verify::adequacy::make_grid(a.models, axes).size());
+    Progress bar("adequacy", total);
+    a.progress = [&] {
+      const std::lock_guard<std::mutex> lock(m);
+      bar.step("cells");
+    };
+    run.table = experiments::run_adequacy(o.out, a);
+  }
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return run;
+}
 
 void add_adequacy_command(CLI::App& app) {
   auto o = std::make_shared<AdequacyCliOptions>();

@@ -17,6 +17,7 @@
 #include "cli/commands.h"
 #include "cli/input.h"
 #include "cli/progress.h"
+#include "cli/suite_runs.h"
 #include "core/model_registry.h"
 
 namespace glintlab::cli {
@@ -69,9 +70,47 @@ void draw_page(const fs::path& stage) {
 }
 
 void run(const CLI::App* cmd, const CompareCliOptions& o) {
+  CompareRequest r;
+  r.out = o.out;
+  r.budget = resolve_budget(cmd, o.budget);
+  r.models = o.models;
+  r.threads = o.threads;
+  r.claims_from = o.claims_from;
+  r.sweeps_from = o.sweeps_from;
+  const CompareSummary s = run_compare_request(r);
+  fmt::print("compare: {} models; wrote {}\n", s.models, (s.dir / "index.html").string());
+}
+
+constexpr const char* kFooter =
+    R"(Every model sees the same scenes: theta_i in {30, 70} deg (quick) or {0, 30, 60, 80} deg
+(full), a footprint of side 0.4 in uv at (0.5, 0.5), a 1 deg light cone for area-light models and a
+delta light otherwise, the model's default parameters. Per model:
+- conformance: the model.<name>.<property> verdicts; with --claims-from DIR the rows of
+  DIR/claims.json ("read"), where a row is missing the registry's recorded verdict ("recorded");
+  without it, the model's conformance checks run here ("measured"; minutes per glint model).
+- time per evaluation: eval_batch in double precision on the scalar path and on the widest ISA
+  (GLINTLAB_ISA if set), best of 3 rounds: a measurement of this machine, ns/eval.
+- reference: the albedo (integral of value over the upper hemisphere) by the conformance suite's
+  integral, the truth sampler-covers-value uses: cubature about the mirror direction (models
+  without a footprint) or Monte Carlo over a fixed mixture about the mirror direction, blocks of
+  10^5 (quick) / 2*10^6 (full) draws, up to 4 blocks for 0.4 % relative error (footprint models),
+  with its error; flagged as not converged, and not used, above a relative error of 1e-3 / 1e-5
+  (cubature) or 0.1 / 0.03 (Monte Carlo standard error).
+- equal-time curve: relative RMS error of the model's own sampler's estimate against the reference
+  at 1, 4, 16, ... 1024 (quick) / 16384 (full) samples, 8 / 32 repetitions, against wall time,
+  beside the reference's own relative error (the curve's floor); and the relative bias at the
+  largest count with its standard error.
+- stability: each sampler's failure region, from --sweeps-from DIR/stability.json ("read") or swept
+  here at the budget ("measured").
+Writes DIR/compare.json, compare.csv (one row per model), equal_time.csv, equal_time.png and
+index.html; staged and moved into DIR only when complete. Every field but the timings
+(scalar_ns_per_eval, best_ns_per_eval, seconds) is identical for any --threads.)";
+
+}  // namespace
+
+CompareSummary run_compare_request(const CompareRequest& o) {
   experiments::compare::CompareOptions c;
-  c.budget =
-      resolve_budget(cmd, o.budget) == "quick" ? verify::Budget::kQuick : verify::Budget::kFull;
+  c.budget = quick_budget(o.budget) ? verify::Budget::kQuick : verify::Budget::kFull;
   std::vector<std::string> names;
   for (const ModelEntry& m : registered_models()) names.emplace_back(m.name);
   c.models = select_by_globs(o.models, "--models", names,
@@ -105,35 +144,8 @@ void run(const CLI::App* cmd, const CompareCliOptions& o) {
   draw_page(stage.dir);
   fs::create_directories(out);
   for (const char* f : kPageFiles) fs::rename(stage.dir / f, out / f);
-  fmt::print("compare: {} models; wrote {}\n", c.models.size(), (out / "index.html").string());
+  return {c.models.size(), out};
 }
-
-constexpr const char* kFooter =
-    R"(Every model sees the same scenes: theta_i in {30, 70} deg (quick) or {0, 30, 60, 80} deg
-(full), a footprint of side 0.4 in uv at (0.5, 0.5), a 1 deg light cone for area-light models and a
-delta light otherwise, the model's default parameters. Per model:
-- conformance: the model.<name>.<property> verdicts; with --claims-from DIR the rows of
-  DIR/claims.json ("read"), where a row is missing the registry's recorded verdict ("recorded");
-  without it, the model's conformance checks run here ("measured"; minutes per glint model).
-- time per evaluation: eval_batch in double precision on the scalar path and on the widest ISA
-  (GLINTLAB_ISA if set), best of 3 rounds: a measurement of this machine, ns/eval.
-- reference: the albedo (integral of value over the upper hemisphere) by the conformance suite's
-  integral, the truth sampler-covers-value uses: cubature about the mirror direction (models
-  without a footprint) or Monte Carlo over a fixed mixture about the mirror direction, blocks of
-  10^5 (quick) / 2*10^6 (full) draws, up to 4 blocks for 0.4 % relative error (footprint models),
-  with its error; flagged as not converged, and not used, above a relative error of 1e-3 / 1e-5
-  (cubature) or 0.1 / 0.03 (Monte Carlo standard error).
-- equal-time curve: relative RMS error of the model's own sampler's estimate against the reference
-  at 1, 4, 16, ... 1024 (quick) / 16384 (full) samples, 8 / 32 repetitions, against wall time,
-  beside the reference's own relative error (the curve's floor); and the relative bias at the
-  largest count with its standard error.
-- stability: each sampler's failure region, from --sweeps-from DIR/stability.json ("read") or swept
-  here at the budget ("measured").
-Writes DIR/compare.json, compare.csv (one row per model), equal_time.csv, equal_time.png and
-index.html; staged and moved into DIR only when complete. Every field but the timings
-(scalar_ns_per_eval, best_ns_per_eval, seconds) is identical for any --threads.)";
-
-}  // namespace
 
 void add_compare_command(CLI::App& app) {
   auto o = std::make_shared<CompareCliOptions>();

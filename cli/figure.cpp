@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "cli/input.h"
 #include "cli/progress.h"
+#include "cli/suite_runs.h"
 #include "core/io/environment_exr.h"
 #include "experiments/figures/figure_registry.h"
 
@@ -44,16 +45,44 @@ void run(const CLI::App* cmd, const FigureOptions& o) {
     list_figures();
     return;
   }
-  if (o.id.empty()) {
+  check_figure_id(o.id);
+  FigureRequest r;
+  r.id = o.id;
+  r.out = o.out;
+  r.budget = resolve_budget(cmd, o.budget);
+  r.threads = o.threads;
+  r.env = o.env;
+  if (option_count(cmd, "--bench-from") > 0) r.bench_from = o.bench_from;
+  const auto dir = run_figure_request(r);
+  fmt::print("{}: wrote {}\n", r.id, dir.string());
+}
+
+constexpr const char* kFooter =
+    R"(Each experiment writes into DIR/<id>/ (default DIR: out/figures): EXR images (32-bit float
+R, G, B plus extra channels; header attributes glintlab_model, glintlab_parameters, glintlab_seed,
+glintlab_spp, glintlab_reference_spp, glintlab_version), a tonemapped PNG preview and a CSV of
+every number the figure plots. Files are written into a staging folder that replaces DIR/<id>
+only when the whole experiment succeeded. Output is identical for any --threads. The timing figures
+(kneiphof2024-table1, kemppinen2025-table3, kemppinen2025-speed-accuracy) read benchmark JSON only
+from --bench-from DIR (DIR/glints.json, DIR/kemppinen.json); without it they say so, and the
+Kemppinen ones time their rows in process.)";
+
+}  // namespace
+
+void check_figure_id(const std::string& id) {
+  if (id.empty())
     throw InputError("figure: a figure id is required (valid: an id of glintlab figure --list)");
-  }
-  const bool quick = resolve_budget(cmd, o.budget) == "quick";
+}
+
+std::filesystem::path run_figure_request(const FigureRequest& o) {
+  check_figure_id(o.id);
+  const bool quick = quick_budget(o.budget);
   // 0 = all cores is passed on as 0: the experiments size their own pools.
   const int threads = int(integer_option(o.threads, "--threads", 0, 1024));
   std::error_code ec;
-  if (option_count(cmd, "--bench-from") > 0 && !std::filesystem::is_directory(o.bench_from, ec))
+  if (o.bench_from && !std::filesystem::is_directory(*o.bench_from, ec))
     throw InputError(
-        fmt::format("--bench-from: '{}' is not a folder (valid: {})", o.bench_from, kBenchFiles));
+        fmt::format("--bench-from: '{}' is not a folder (valid: {})", *o.bench_from, kBenchFiles));
   try {
     const experiments::FigureEntry& entry = experiments::find_figure(o.id);
     check_output_dir(o.out, "--out");
@@ -61,7 +90,7 @@ void run(const CLI::App* cmd, const FigureOptions& o) {
     experiments::FigureContext ctx;
     ctx.quick = quick;
     ctx.threads = threads;
-    ctx.bench_dir = o.bench_from;
+    ctx.bench_dir = o.bench_from.value_or(std::string());
     if (!o.env.empty()) {
       // Loaded before anything is written, so a missing or malformed map leaves no output.
       try {
@@ -82,25 +111,11 @@ void run(const CLI::App* cmd, const FigureOptions& o) {
       bar->step("rows");
       (void)done;
     };
-    const auto dir = experiments::run_figure(entry, o.out, ctx);
-    bar.reset();
-    fmt::print("{}: wrote {}\n", entry.id, dir.string());
+    return experiments::run_figure(entry, o.out, ctx);
   } catch (const experiments::FigureError& e) {
     throw InputError(e.what());
   }
 }
-
-constexpr const char* kFooter =
-    R"(Each experiment writes into DIR/<id>/ (default DIR: out/figures): EXR images (32-bit float
-R, G, B plus extra channels; header attributes glintlab_model, glintlab_parameters, glintlab_seed,
-glintlab_spp, glintlab_reference_spp, glintlab_version), a tonemapped PNG preview and a CSV of
-every number the figure plots. Files are written into a staging folder that replaces DIR/<id>
-only when the whole experiment succeeded. Output is identical for any --threads. The timing figures
-(kneiphof2024-table1, kemppinen2025-table3, kemppinen2025-speed-accuracy) read benchmark JSON only
-from --bench-from DIR (DIR/glints.json, DIR/kemppinen.json); without it they say so, and the
-Kemppinen ones time their rows in process.)";
-
-}  // namespace
 
 void add_figure_command(CLI::App& app) {
   auto o = std::make_shared<FigureOptions>();

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <optional>
 #include <thread>
 #include <string>
 #include <type_traits>
@@ -18,6 +19,7 @@
 
 #include "cli/commands.h"
 #include "cli/input.h"
+#include "cli/suite_runs.h"
 #include "core/math/rng.h"
 #include "core/model_registry.h"
 #include "core/plugin_loader.h"
@@ -355,6 +357,113 @@ std::string verify(const std::string& claims, const std::string& budget, const p
   return verify::to_json(records, info);
 }
 
+// `glintlab figure`, `sweep`, `compare` and `adequacy` in this process (cli/suite_runs.h): the
+// command line's checks and runs on the command line's option text, so the models registered here
+// (register_model, load_plugin) are the registry they see. They run without the GIL; a Python
+// model's functions take it per call, as in verify().
+std::optional<std::string> optional_text(const py::object& o) {
+  if (o.is_none()) return std::nullopt;
+  return std::string(py::str(o));
+}
+
+std::string figure(const std::string& id, const std::string& out, const std::string& budget,
+                   const std::string& threads, const std::string& env,
+                   const py::object& bench_from) {
+  cli::FigureRequest r;
+  r.id = id;
+  r.out = out;
+  r.budget = budget;
+  r.threads = threads;
+  r.env = env;
+  r.bench_from = optional_text(bench_from);
+  const py::gil_scoped_release release;
+  return cli::run_figure_request(r).string();
+}
+
+py::dict sweep(const std::string& out, const std::string& budget, const std::string& models,
+               const std::string& threads) {
+  cli::SweepRequest r;
+  r.out = out;
+  r.budget = budget;
+  r.models = models;
+  r.threads = threads;
+  experiments::SweepRunSummary s;
+  {
+    const py::gil_scoped_release release;
+    s = cli::run_sweep_request(r);
+  }
+  py::dict d;
+  d["json"] = s.json.string();
+  d["targets"] = s.targets;
+  return d;
+}
+
+py::dict compare(const std::string& out, const std::string& budget, const std::string& models,
+                 const std::string& threads, const std::string& claims_from,
+                 const std::string& sweeps_from) {
+  cli::CompareRequest r;
+  r.out = out;
+  r.budget = budget;
+  r.models = models;
+  r.threads = threads;
+  r.claims_from = claims_from;
+  r.sweeps_from = sweeps_from;
+  cli::CompareSummary s;
+  {
+    const py::gil_scoped_release release;
+    s = cli::run_compare_request(r);
+  }
+  py::dict d;
+  d["dir"] = s.dir.string();
+  d["models"] = s.models;
+  return d;
+}
+
+py::dict adequacy(const std::string& out, const std::string& budget, const std::string& models,
+                  const std::string& threshold, const std::string& threads, bool calibrate,
+                  const py::object& runs) {
+  cli::AdequacyRequest r;
+  r.out = out;
+  r.budget = budget;
+  r.models = models;
+  r.threshold = threshold;
+  r.threads = threads;
+  r.calibrate = calibrate;
+  r.runs = optional_text(runs);
+  cli::AdequacyRunSummary s;
+  {
+    const py::gil_scoped_release release;
+    s = cli::run_adequacy_request(r);
+  }
+  py::dict d;
+  d["seconds"] = s.seconds;
+  if (s.calibrate) {
+    d["json"] = s.calibration.json.string();
+    d["csv"] = s.calibration.csv.string();
+    return d;
+  }
+  const experiments::AdequacySummary& t = s.table;
+  d["json"] = t.json.string();
+  d["csv"] = t.csv.string();
+  d["maps"] = t.maps;
+  d["cells"] = t.cells;
+  const char* const levels[] = {"smooth", "realtime", "small_count", "exact"};
+  py::dict chosen, cheapest;
+  for (std::size_t k = 0; k < 4; ++k) {
+    chosen[levels[k]] = t.chosen[k];
+    cheapest[levels[k]] = t.cheapest_measured[k];
+  }
+  d["chosen"] = chosen;
+  d["cheapest_measured"] = cheapest;
+  d["chooser_matches"] = t.chooser_matches;
+  d["chooser_refuted"] = t.chooser_refuted;
+  d["undecided"] = t.undecided;
+  d["exact_ns"] = t.exact_ns;
+  d["chosen_ns"] = t.chosen_ns;
+  d["cheapest_ns"] = t.cheapest_ns;
+  return d;
+}
+
 }  // namespace
 }  // namespace glintlab::python
 
@@ -391,4 +500,11 @@ PYBIND11_MODULE(_glintlab, m) {
         arg("smooth_limit") = py::none(), arg("description") = "", arg("source") = "",
         arg("not_claimed") = py::none(), arg("chunked") = true);
   m.def("verify", &verify, arg("claims"), arg("budget") = "quick", arg("threads") = py::none());
+  m.def("figure", &figure, arg("id"), arg("out"), arg("budget"), arg("threads"), arg("env"),
+        arg("bench_from"));
+  m.def("sweep", &sweep, arg("out"), arg("budget"), arg("models"), arg("threads"));
+  m.def("compare", &compare, arg("out"), arg("budget"), arg("models"), arg("threads"),
+        arg("claims_from"), arg("sweeps_from"));
+  m.def("adequacy", &adequacy, arg("out"), arg("budget"), arg("models"), arg("threshold"),
+        arg("threads"), arg("calibrate"), arg("runs"));
 }

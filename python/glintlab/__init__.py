@@ -5,20 +5,27 @@ on worker threads, the GIL released), with the same input checks and the same re
 ``glintlab`` command line: ``eval`` matches ``glintlab eval --model`` and ``sample(n=, seed=)``
 matches ``glintlab sample --model`` bit for bit in double precision.
 
-Functions: models, eval, sample, load_plugin, register_model (a model prototyped in numpy) and
-verify (the claims and the models' conformance checks). Bad input raises ValueError with the CLI's
-one-line message naming the parameter (or row and column) and its valid range.
+Functions: models, eval, sample, load_plugin, register_model (a model prototyped in numpy),
+verify (the claims and the models' conformance checks), and figure, sweep, compare and adequacy
+(the CLI's subcommands of those names, run in this process: they write the CLI's files and return
+their paths with the data parsed). Bad input raises ValueError with the CLI's one-line message
+naming the parameter (or row and column) and its valid range.
 
 Directions are unit vectors in the local shading frame (z the normal): ``wi`` toward the viewer,
 ``wo`` toward the light. ``value`` is the cosine-weighted BRDF f(wi, wo) max(wo_z, 0), ``pdf``
 the density of wo (per steradian) under the model's own sampler.
 """
 
+import csv as _csv
 import json as _json
+import os as _os
+
+import numpy as _np
 
 from . import _glintlab
 
-__all__ = ["models", "eval", "sample", "load_plugin", "register_model", "verify"]
+__all__ = ["models", "eval", "sample", "load_plugin", "register_model", "verify", "figure",
+           "sweep", "compare", "adequacy", "read_csv"]
 
 _PRECISIONS = "precision: 'double' (float64 in, float64 out) or 'float' (float32)"
 
@@ -154,3 +161,174 @@ def verify(claims, budget="quick", threads=None):
     """
     rows = _json.loads(_glintlab.verify(claims, budget=budget, threads=threads))
     return rows["claims"] if isinstance(rows, dict) else rows
+
+
+def read_csv(path):
+    """A CSV file the suite writes, as a numpy structured array: one field per column, named by
+    the header; a column whose every value parses as a number is float64 (inf and nan included),
+    any other column a str column. One row gives a (1,) array, a header alone a (0,) one. A
+    name the header repeats gets the suffix _1, _2, ... from its second column on, as in
+    numpy.genfromtxt (a sweep of a model with a parameter named `albedo` has the swept value's
+    column and the furnace albedo's)."""
+    with open(path, newline="") as f:
+        rows = list(_csv.reader(f))
+    header, body = [], [r for r in rows[1:] if r]
+    for name in rows[0]:
+        unique, k = name, 0
+        while unique in header:
+            k += 1
+            unique = f"{name}_{k}"
+        header.append(unique)
+    columns = []
+    for k in range(len(header)):
+        values = [r[k] for r in body]
+        try:
+            columns.append(_np.array([float(v) for v in values], dtype=_np.float64))
+        except ValueError:
+            columns.append(_np.array(values, dtype=str))
+    table = _np.empty(len(body), dtype=[(name, c.dtype) for name, c in zip(header, columns)])
+    for name, c in zip(header, columns):
+        table[name] = c
+    return table
+
+
+def _read_json(path):
+    with open(path) as f:
+        return _json.load(f)
+
+
+def _files(folder):
+    """Every file below the absolute `folder`: its relative path -> its path (sorted)."""
+    found = {}
+    for root, _, names in _os.walk(folder):
+        for name in names:
+            full = _os.path.join(root, name)
+            found[_os.path.relpath(full, folder)] = full
+    return dict(sorted(found.items()))
+
+
+def _parsed(files):
+    """The CSV files as structured arrays and the JSON files as dicts/lists, by relative path."""
+    data = {}
+    for rel, full in files.items():
+        if rel.endswith(".csv"):
+            data[rel] = read_csv(full)
+        elif rel.endswith(".json"):
+            data[rel] = _read_json(full)
+    return data
+
+
+def _text(value):
+    """An option's value as the CLI's text: lists joined by commas, None as 0 (threads)."""
+    if value is None:
+        return "0"
+    if isinstance(value, (list, tuple)):
+        return ",".join(str(v) for v in value)
+    return str(value)
+
+
+def figure(id, out, budget="quick", threads=None, env=None, bench_from=None):
+    """Runs the figure experiment `id` as ``glintlab figure ID --out OUT`` does, in this process.
+
+    id          an id of ``glintlab figure --list``.
+    out         the output folder: the figure's files go to out/<id>/ (replaced as a whole).
+    budget      'quick' (the CLI's --budget quick: smaller images, seconds) or 'full'.
+    threads     worker threads, an integer in [0, 1024]; None or 0: all cores. The files do not
+                depend on it.
+    env         a lat-long EXR environment map lighting the experiments that use one.
+    bench_from  a folder of Google Benchmark JSON for the timing figures (None: no benchmark data).
+
+    Returns a dict: ``dir`` (out/<id>), ``files`` (relative path -> path of every file written),
+    ``data`` (each CSV as a structured array, see read_csv, and each JSON as dicts, by relative
+    path). The experiments that draw every registered model (models-hemisphere) include the
+    models registered from Python. Raises ValueError with the CLI's message for bad input.
+    """
+    folder = _glintlab.figure(str(id), str(out), budget=str(budget), threads=_text(threads),
+                              env="" if env is None else str(env),
+                              bench_from=None if bench_from is None else str(bench_from))
+    folder = _os.path.abspath(folder)
+    files = _files(folder)
+    return {"dir": folder, "files": files, "data": _parsed(files)}
+
+
+def sweep(out, models="*", budget="quick", threads=None):
+    """The stability maps of the selected models × samplers, as ``glintlab sweep`` writes them.
+
+    out      the output folder (out/<model>/<sampler>/<plane>.csv, .exr, .png; stability.json).
+    models   comma-separated globs over model names (or a list of them); every glob must match.
+             Models registered from Python are swept like any other.
+    budget   'quick' (coarser grids) or 'full' (the CLI's default).
+    threads  as for figure.
+
+    Returns a dict: ``dir``, ``json`` (the path of stability.json), ``stability`` (its content),
+    ``targets`` (the number of model × sampler targets), ``files`` and ``data`` (every CSV as a
+    structured array, by path relative to out).
+    """
+    s = _glintlab.sweep(str(out), budget=str(budget), models=_text(models), threads=_text(threads))
+    folder, path = _os.path.abspath(str(out)), _os.path.abspath(s["json"])
+    files = _files(folder)
+    return {"dir": folder, "json": path, "stability": _read_json(path),
+            "targets": s["targets"], "files": files, "data": _parsed(files)}
+
+
+def compare(out, models="*", budget="quick", threads=None, claims_from=None, sweeps_from=None):
+    """The models side by side, as ``glintlab compare`` writes them (index.html drawn by
+    reports/compare_page.py with /usr/bin/python3, as the CLI does).
+
+    out          the output folder: compare.json, compare.csv, equal_time.csv, equal_time.png,
+                 index.html.
+    models       comma-separated globs over model names (or a list); models registered from
+                 Python included.
+    budget       'quick' or 'full'.
+    threads      as for figure.
+    claims_from  a ``glintlab verify --out`` folder whose claims.json gives the conformance
+                 verdicts; None: each model's conformance checks run here (minutes per glint
+                 model).
+    sweeps_from  a ``glintlab sweep --out`` folder (or sweep()'s out) whose stability.json gives
+                 the failure regions; None: swept here.
+
+    Returns a dict: ``dir``, ``models`` (how many), ``files`` (name -> path), ``compare``
+    (compare.json), ``table`` (compare.csv) and ``equal_time`` (equal_time.csv), the CSVs as
+    structured arrays (read_csv).
+    """
+    s = _glintlab.compare(str(out), budget=str(budget), models=_text(models),
+                          threads=_text(threads),
+                          claims_from="" if claims_from is None else str(claims_from),
+                          sweeps_from="" if sweeps_from is None else str(sweeps_from))
+    folder = _os.path.abspath(s["dir"])
+    files = _files(folder)
+    return {"dir": folder, "models": s["models"], "files": files,
+            "compare": _read_json(files["compare.json"]),
+            "table": read_csv(files["compare.csv"]),
+            "equal_time": read_csv(files["equal_time.csv"])}
+
+
+def adequacy(out, models="*", threshold=0.02, budget="quick", threads=None, calibrate=False,
+             runs=None):
+    """Where each cheaper level of the binomial glint family is indistinguishable from the exact
+    count, as ``glintlab adequacy`` writes it (docs/adequacy.md); with calibrate=True the decision
+    rule's false-adequate rate on synthetic cells instead (``glintlab adequacy --calibrate``).
+
+    out        the output folder.
+    models     comma-separated globs over the binomial family (deliot_belcour, kneiphof_klein).
+    threshold  TAU, a number in (0, 1].
+    budget     'quick' or 'full'.
+    threads    as for figure.
+    calibrate  measure the decision rule instead of the table.
+    runs       with calibrate: synthetic cells per case and delta, an integer in [1, 1000000]
+               (None: 2000).
+
+    Returns a dict: ``json`` and ``csv`` (the paths of adequacy.json / adequacy.csv, or
+    adequacy-calibration.json / .csv), ``summary`` (the JSON's content), ``table`` (the CSV as a
+    structured array), ``seconds``; without calibrate also ``maps`` (the PNG maps, relative to
+    out), ``cells``, ``chosen`` and ``cheapest_measured`` (cells per level), ``chooser_matches``,
+    ``chooser_refuted``, ``undecided``, ``exact_ns``, ``chosen_ns``, ``cheapest_ns`` (the
+    summary the CLI prints).
+    """
+    s = _glintlab.adequacy(str(out), budget=str(budget), models=_text(models),
+                           threshold=str(threshold), threads=_text(threads),
+                           calibrate=bool(calibrate), runs=None if runs is None else str(runs))
+    s["json"], s["csv"] = _os.path.abspath(s["json"]), _os.path.abspath(s["csv"])
+    s["summary"] = _read_json(s["json"])
+    s["table"] = read_csv(s["csv"])
+    return s

@@ -29,3 +29,34 @@ def test_pdf_three_percent_high_fails_sampler_matches_pdf():
     (row,) = glintlab.verify("model.py_lambert_wrong_pdf.sampler-matches-pdf", budget="quick")
     assert row["verdict"] == "fails", row
     assert row["control_verdict"] == "holds" and row["control_rejected"] is True, row
+
+
+def test_sweep_compare_and_the_registry_figure_include_a_numpy_model(tmp_path):
+    """glintlab.sweep, compare and figure("models-hemisphere") run in this process, so a model
+    registered from numpy is swept, compared beside a paper's model and drawn (seconds: the sweep
+    calls it once per query). The
+    figure draws every model registered in the process, so this file runs in its own process
+    (ctest), away from the broken models of the other test files."""
+    nm.register_lambert(glintlab, "py_lambert_drawn")
+    s = glintlab.sweep(out=tmp_path / "sw", models="smooth_ggx,py_lambert_drawn", budget="quick")
+    assert [(m["model"], m["verdict"]) for m in s["stability"]["models"]
+            if m["model"] == "py_lambert_drawn"] == [("py_lambert_drawn", "holds")], s["stability"]
+    assert any(rel.startswith("py_lambert_drawn/") and rel.endswith(".csv") for rel in s["data"])
+    fig = glintlab.figure("models-hemisphere", tmp_path / "figs", budget="quick")
+    assert {"py_lambert_drawn.exr", "py_lambert_drawn.png"} <= set(fig["files"])
+    table = fig["data"]["models_hemisphere.csv"]
+    (row,) = table[table["model"] == "py_lambert_drawn"]
+    # The Lambertian's albedo is its default 0.8; the estimate is a pixel sum over the hemisphere.
+    assert abs(row["albedo_estimate"] - 0.8) < 0.02 and row["nonfinite_pixels"] == 0
+    # Compared beside a paper's model: its recorded verdicts are none (an empty claims.json) and
+    # its failure regions are read from the sweep above.
+    (tmp_path / "claims").mkdir()
+    (tmp_path / "claims" / "claims.json").write_text("[]\n")
+    c = glintlab.compare(out=tmp_path / "cmp", models=["smooth_ggx", "py_lambert_drawn"],
+                         budget="quick", claims_from=tmp_path / "claims",
+                         sweeps_from=tmp_path / "sw")
+    assert list(c["table"]["model"]) == ["smooth_ggx", "py_lambert_drawn"]
+    assert set(c["equal_time"]["model"]) == {"smooth_ggx", "py_lambert_drawn"}
+    mine = c["table"][c["table"]["model"] == "py_lambert_drawn"][0]
+    assert mine["reference_converged"] == "yes" and mine["stability"] == "default: holds", mine
+    assert {"index.html", "equal_time.png"} <= set(c["files"])
