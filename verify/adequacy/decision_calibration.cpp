@@ -17,9 +17,10 @@ namespace {
 // The p at which Binomial(trials, p) has coefficient of variation cv: CV² = (1 − p)/(trials·p).
 double p_for_cv(std::uint64_t trials, double cv) { return 1 / (1 + double(trials) * cv * cv); }
 
-// Binomial(trials, p) drawn by inversion of its tabulated CDF with a guide table (Devroye 1986,
-// Sec. III.2.4): the same distribution as binomial_exact, several times faster for the millions
-// of counts a calibration draws. (The calibration tests the decision, not the model's sampler.)
+// Binomial(trials, p) drawn by inversion of its tabulated CDF, the search started from a guide
+// table (Chen & Asau 1974): the same distribution as binomial_exact, several times faster for the
+// millions of counts a calibration draws. (The calibration tests the decision, not the model's
+// sampler.)
 class BinomialInverse {
  public:
   BinomialInverse(std::uint64_t trials, double p) : cdf_(trials + 1), guide_(trials + 1) {
