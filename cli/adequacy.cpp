@@ -1,6 +1,6 @@
 // `glintlab adequacy [--models GLOBS] [--threshold TAU] [--budget quick|full] [--threads N]
-// [--out DIR] [--calibrate [--runs N]]`: where each cheaper level of the binomial glint family is
-// indistinguishable from the exact count (verify/adequacy/, experiments/adequacy/;
+// [--out DIR] [--calibrate [--runs N] [--tables N]]`: where each cheaper level of the binomial
+// glint family is indistinguishable from the exact count (verify/adequacy/, experiments/adequacy/;
 // docs/adequacy.md); with --calibrate, the decision rule's false-adequate rate on synthetic cells
 // whose truth is known instead.
 #include <fmt/format.h>
@@ -29,6 +29,7 @@ struct AdequacyCliOptions {
   std::string threads;
   bool calibrate = false;
   std::string runs = "2000";
+  std::string tables = "20";
 };
 
 void print_calibration(const AdequacyRunSummary& run) {
@@ -36,29 +37,29 @@ void print_calibration(const AdequacyRunSummary& run) {
   const auto& cal = s.calibration;
   fmt::print(
       "adequacy calibration: TAU {:g}, {} positions per cell, the table's {} decisions (z {:.3f}); "
-      "{} synthetic cells per case and delta\n",
+      "{} synthetic cells per case and delta, {} tables per family-wise delta\n",
       cal.options.threshold, cal.options.samples, cal.options.table_decisions,
-      cal.table_decision.z, cal.options.runs);
+      cal.table_decision.z, cal.options.runs, cal.options.tables);
   for (const auto& r : cal.rows)
     if (r.delta == 0)
       fmt::print("  {:6} cv_exact {:<5g} nominal {:<9.3g} false adequate {:>5}/{} = {:.3g} "
                  "[{:.3g}, {:.3g}] {}\n",
                  verify::adequacy::kTruthKindNames[std::size_t(r.truth.kind)], r.truth.cv_exact,
-                 r.nominal, r.false_adequate, r.decisions, r.rate, r.rate_low, r.rate_high,
+                 r.nominal, r.declared_adequate, r.decisions, r.rate, r.rate_low, r.rate_high,
                  verify::adequacy::kRateVerdictNames[std::size_t(r.verdict)]);
   for (const auto& r : cal.pooled)
-    fmt::print("  pooled delta {:<4g} nominal {:<9.3g} false adequate {:>5}/{} = {:.3g} "
-               "[{:.3g}, {:.3g}] {}\n",
-               r.delta, r.nominal, r.false_adequate, r.decisions, r.rate, r.rate_low, r.rate_high,
+    fmt::print("  pooled delta {:<5g} nominal {:<9.3g} {} {:>5}/{} = {:.3g} [{:.3g}, {:.3g}] {}\n",
+               r.delta, r.nominal, r.truly_adequate ? "adequate (power)" : "false adequate  ",
+               r.declared_adequate, r.decisions, r.rate, r.rate_low, r.rate_high,
                verify::adequacy::kRateVerdictNames[std::size_t(r.verdict)]);
-  const auto& fw = cal.family_wise;
-  fmt::print(
-      "family-wise (tables of {} boundary decisions at the table's z): {}/{} tables with a false "
-      "adequate [{:.3g}, {:.3g}]; from {} pooled decisions ({} false adequate): {:.3g} "
-      "[{:.3g}, {:.3g}] against {:g}: {}\n",
-      fw.table_decisions, fw.tables_with_false_adequate, fw.tables, fw.rate_low, fw.rate_high,
-      fw.pooled_decisions, fw.pooled_false_adequate, fw.implied, fw.implied_low, fw.implied_high,
-      fw.nominal, verify::adequacy::kRateVerdictNames[std::size_t(fw.verdict)]);
+  for (const auto& fw : cal.family_wise)
+    fmt::print(
+        "family-wise at delta {:g} (tables of {} decisions at TAU (1 + delta), the table's z): "
+        "{}/{} tables with a false adequate ({} in all) = {:.3g} [{:.3g}, {:.3g}] against {:g}: "
+        "{}\n",
+        fw.delta, fw.table_decisions, fw.tables_with_false_adequate, fw.tables, fw.false_adequate,
+        fw.rate, fw.rate_low, fw.rate_high, fw.nominal,
+        verify::adequacy::kRateVerdictNames[std::size_t(fw.verdict)]);
   fmt::print("wrote {} and {} in {:.1f} s\n", s.csv.string(), s.json.string(), run.seconds);
 }
 
@@ -71,6 +72,7 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
   r.threads = o.threads;
   r.calibrate = o.calibrate;
   if (option_count(cmd, "--runs") > 0) r.runs = o.runs;
+  if (option_count(cmd, "--tables") > 0) r.tables = o.tables;
   const AdequacyRunSummary run = run_adequacy_request(r);
   if (run.calibrate) {
     print_calibration(run);
@@ -114,11 +116,14 @@ table, with each level's measured ns per evaluation: the only numbers that vary 
 per model x light x incidence an EXR and a labelled PNG map of the cheapest adequate level, with
 the predicted boundary CV = sqrt((1 - p)/(N_P p)) = TAU drawn over it.
 --calibrate measures the decision instead: on synthetic cells whose cheaper level differs from
-exact by exactly TAU (1 + delta), delta = 0, 0.05, 0.25 (in the mean, in the CV, or the smooth
-level at the boundary), --runs cells each (default 2000) with the budget's positions, how often
-the same rule declares it adequate, at nominal levels 0.05, 0.01, 1e-3, 1e-4 and the table's own,
-with Clopper-Pearson intervals (also pooled over the cases); and the family-wise rate over tables
-of the grid's size. Writes DIR/adequacy-calibration.csv and adequacy-calibration.json.)";
+exact by exactly TAU (1 + delta) (in the mean, in the CV, or the smooth level at the boundary),
+delta = -0.5, -0.25, -0.1 (truly adequate: the power), 0 (the boundary), 0.05, 0.1, 0.25 (just
+beyond it), --runs cells each (default 2000) with the budget's positions, how often the same rule
+declares it adequate, at nominal levels 0.05, 0.01, 1e-3, 1e-4 and the table's own, with
+Clopper-Pearson intervals (also pooled over the cases); and the family-wise rate: --tables whole
+tables (default 20) of the grid's number of decisions, every one at TAU (1 + delta) for delta = 0,
+0.05, 0.1, 0.25, decided at the table's z. Writes DIR/adequacy-calibration.csv and
+adequacy-calibration.json.)";
 
 }  // namespace
 
@@ -135,6 +140,9 @@ AdequacyRunSummary run_adequacy_request(const AdequacyRequest& o) {
   const std::uint64_t runs = integer_option(o.runs.value_or("2000"), "--runs", 1, 1000000);
   if (!o.calibrate && o.runs)
     throw InputError("--runs: only with --calibrate (synthetic cells per case and delta)");
+  const std::uint64_t tables = integer_option(o.tables.value_or("20"), "--tables", 0, 100000);
+  if (!o.calibrate && o.tables)
+    throw InputError("--tables: only with --calibrate (whole tables per family-wise delta)");
   const int threads = resolve_threads(o.threads);
   check_output_dir(o.out, "--out");
   register_staging_parent(o.out);
@@ -150,9 +158,10 @@ AdequacyRunSummary run_adequacy_request(const AdequacyRequest& o) {
     c.threshold = a.threshold;
     c.budget = a.budget;
     c.runs = std::size_t(runs);
-    const auto settings = experiments::decision_calibration_options(c);
+    c.tables = std::size_t(tables);
     Progress bar("adequacy calibration",
-                 long(settings.runs * settings.cases.size() * settings.deltas.size()));
+                 long(verify::adequacy::calibration_cells(
+                     experiments::decision_calibration_options(c))));
     c.progress = [&] {
       const std::lock_guard<std::mutex> lock(m);
       bar.step("cells");
@@ -190,6 +199,9 @@ void add_adequacy_command(CLI::App& app) {
                 "measure the decision rule's false-adequate rate on synthetic cells of known truth");
   add_text_option(cmd, "--runs", o->runs,
                   "with --calibrate: synthetic cells per case and delta, an integer in [1, 1000000]",
+                  "INT");
+  add_text_option(cmd, "--tables", o->tables,
+                  "with --calibrate: whole tables per family-wise delta, an integer in [0, 100000]",
                   "INT");
   set_footer(cmd, kFooter);
   set_callback(cmd, [cmd, o] { run(cmd, *o); });

@@ -69,6 +69,7 @@ struct AdequacyRequest {
   std::string threads = "0";
   bool calibrate = false;
   std::optional<std::string> runs;  // unset: not given (2000 with calibrate)
+  std::optional<std::string> tables;  // unset: not given (20 with calibrate)
 };
 struct AdequacyRunSummary {
   bool calibrate = false;

@@ -76,14 +76,16 @@ nlohmann::json level_json(const LevelStats& s) {
           {"ns_per_eval", s.ns_per_eval}};
 }
 
-// One measured false-adequate rate of the decision calibration (a case's row or a pooled one).
+// One measured rate of the decision calibration (a case's row or a pooled one): false adequate
+// for δ ≥ 0, the power for δ < 0.
 nlohmann::json rate_json(const verify::adequacy::DecisionRateRow& r) {
   return {{"delta", r.delta},
           {"nominal", r.nominal},
           {"z", r.z},
           {"table_level", r.table_level},
+          {"truly_adequate", r.truly_adequate},
           {"decisions", r.decisions},
-          {"false_adequate", r.false_adequate},
+          {"declared_adequate", r.declared_adequate},
           {"rate", r.rate},
           {"rate_low", r.rate_low},
           {"rate_high", r.rate_high},
@@ -243,6 +245,7 @@ verify::adequacy::DecisionCalibrationOptions decision_calibration_options(
   c.table_decisions =
       verify::adequacy::make_grid(o.models, axes).size() * std::size_t(kBinomialLevels - 1);
   c.runs = o.runs;
+  c.tables = o.tables;
   c.progress = o.progress;
   return c;
 }
@@ -259,15 +262,16 @@ AdequacyCalibrationSummary run_adequacy_calibration(const std::filesystem::path&
   sum.csv = out / "adequacy-calibration.csv";
   sum.json = out / "adequacy-calibration.json";
   const std::vector<std::string_view> header = {
-      "kind",   "cv_exact",  "trials",         "delta",     "true_difference",
-      "nominal", "z",        "table_level",    "decisions", "false_adequate",
-      "rate",    "rate_low", "rate_high",      "verdict"};
+      "kind",      "cv_exact",       "trials",            "delta",
+      "true_difference", "truly_adequate", "nominal",       "z",
+      "table_level", "decisions",      "declared_adequate", "rate",
+      "rate_low",  "rate_high",      "verdict"};
   io::write_csv_atomic(sum.csv, header, [&](io::CsvWriter& w) {
     for (const DecisionRateRow& r : cal.rows) {
       w.cell(kTruthKindNames[std::size_t(r.truth.kind)]).cell(r.truth.cv_exact);
       w.cell_int(std::int64_t(r.truth.trials)).cell(r.delta).cell(cal.options.threshold * (1 + r.delta));
-      w.cell(r.nominal).cell(r.z).cell_int(r.table_level ? 1 : 0);
-      w.cell_int(std::int64_t(r.decisions)).cell_int(std::int64_t(r.false_adequate));
+      w.cell_int(r.truly_adequate ? 1 : 0).cell(r.nominal).cell(r.z).cell_int(r.table_level ? 1 : 0);
+      w.cell_int(std::int64_t(r.decisions)).cell_int(std::int64_t(r.declared_adequate));
       w.cell(r.rate).cell(r.rate_low).cell(r.rate_high);
       w.cell(kRateVerdictNames[std::size_t(r.verdict)]);
       w.end_row();
@@ -286,20 +290,23 @@ AdequacyCalibrationSummary run_adequacy_calibration(const std::filesystem::path&
       {"mean", "an independent draw of the exact count times 1 + TAU (1 + delta)"},
       {"cv", "an independent Binomial(trials, p')/(trials p') of CV cv_exact + TAU (1 + delta)"},
       {"smooth", "the constant 1 against an exact level of CV TAU (1 + delta)"}};
-  const verify::adequacy::FamilyWiseRow& fw = cal.family_wise;
-  doc["family_wise"] = {{"table_decisions", fw.table_decisions},
-                        {"tables", fw.tables},
-                        {"tables_with_false_adequate", fw.tables_with_false_adequate},
-                        {"rate", fw.rate},
-                        {"rate_low", fw.rate_low},
-                        {"rate_high", fw.rate_high},
-                        {"nominal", fw.nominal},
-                        {"pooled_decisions", fw.pooled_decisions},
-                        {"pooled_false_adequate", fw.pooled_false_adequate},
-                        {"implied", fw.implied},
-                        {"implied_low", fw.implied_low},
-                        {"implied_high", fw.implied_high},
-                        {"verdict", kRateVerdictNames[std::size_t(fw.verdict)]}};
+  doc["deltas"] = cal.options.deltas;
+  doc["tables_per_delta"] = cal.options.tables;
+  nlohmann::json family_wise = nlohmann::json::array();
+  for (const verify::adequacy::FamilyWiseRow& fw : cal.family_wise)
+    family_wise.push_back({{"delta", fw.delta},
+                           {"table_decisions", fw.table_decisions},
+                           {"tables", fw.tables},
+                           {"tables_with_false_adequate", fw.tables_with_false_adequate},
+                           {"false_adequate", fw.false_adequate},
+                           {"rate", fw.rate},
+                           {"rate_low", fw.rate_low},
+                           {"rate_high", fw.rate_high},
+                           {"nominal", fw.nominal},
+                           {"verdict", kRateVerdictNames[std::size_t(fw.verdict)]}});
+  doc["family_wise"] = family_wise;
+  doc["family_wise_tables"] = "tables of table_decisions decisions at the table's z, every one at "
+                              "TAU (1 + delta), the pooled cases in turn";
   nlohmann::json rows = nlohmann::json::array();
   for (const DecisionRateRow& r : cal.rows) {
     nlohmann::json row = rate_json(r);

@@ -44,16 +44,18 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
 // The table alone (for the tests): the cells of the budget's grid for `models`, measured.
 std::vector<verify::adequacy::CellResult> measure_adequacy(const AdequacyOptions& o);
 
-// `glintlab adequacy --calibrate`: the decision rule's false-adequate rate on synthetic cells
-// whose truth is known (verify/adequacy/decision_calibration.h), at the budget's positions per
-// cell and the number of decisions of the budget's table for `models`. Writes
-// adequacy-calibration.csv (one row per case, δ and nominal level) and adequacy-calibration.json
-// (the same with the settings and the family-wise rows), each atomically.
+// `glintlab adequacy --calibrate`: the decision rule's false-adequate rate (and, on truly
+// adequate cells, its power) on synthetic cells whose truth is known
+// (verify/adequacy/decision_calibration.h), at the budget's positions per cell and the number of
+// decisions of the budget's table for `models`. Writes adequacy-calibration.csv (one row per case,
+// δ and nominal level) and adequacy-calibration.json (the same with the settings, the pooled and
+// the family-wise rows), each atomically.
 struct AdequacyCalibrationOptions {
   std::vector<std::string> models;
   double threshold = verify::adequacy::kDefaultThreshold;
   verify::Budget budget = verify::Budget::kQuick;
   std::size_t runs = 2000;          // synthetic cells per (case, δ)
+  std::size_t tables = 20;          // whole tables per family-wise δ
   std::function<void()> progress;   // once per synthetic cell, never concurrently
 };
 

@@ -304,7 +304,7 @@ def compare(out, models="*", budget="quick", threads=None, claims_from=None, swe
 
 
 def adequacy(out, models="*", threshold=0.02, budget="quick", threads=None, calibrate=False,
-             runs=None):
+             runs=None, tables=None):
     """Where each cheaper level of the binomial glint family is indistinguishable from the exact
     count, as ``glintlab adequacy`` writes it (docs/adequacy.md); with calibrate=True the decision
     rule's false-adequate rate on synthetic cells instead (``glintlab adequacy --calibrate``).
@@ -317,6 +317,8 @@ def adequacy(out, models="*", threshold=0.02, budget="quick", threads=None, cali
     calibrate  measure the decision rule instead of the table.
     runs       with calibrate: synthetic cells per case and delta, an integer in [1, 1000000]
                (None: 2000).
+    tables     with calibrate: whole tables per family-wise delta, an integer in [0, 100000]
+               (None: 20).
 
     Returns a dict: ``json`` and ``csv`` (the paths of adequacy.json / adequacy.csv, or
     adequacy-calibration.json / .csv), ``summary`` (the JSON's content), ``table`` (the CSV as a
@@ -327,7 +329,8 @@ def adequacy(out, models="*", threshold=0.02, budget="quick", threads=None, cali
     """
     s = _glintlab.adequacy(str(out), budget=str(budget), models=_text(models),
                            threshold=str(threshold), threads=_text(threads),
-                           calibrate=bool(calibrate), runs=None if runs is None else str(runs))
+                           calibrate=bool(calibrate), runs=None if runs is None else str(runs),
+                           tables=None if tables is None else str(tables))
     s["json"], s["csv"] = _os.path.abspath(s["json"]), _os.path.abspath(s["csv"])
     s["summary"] = _read_json(s["json"])
     s["table"] = read_csv(s["csv"])

@@ -69,22 +69,29 @@ TEST_F(AdequacyTest, BadInputIsOneLineAndWritesNothing) {
                      {"--runs", "[1, 1000000]"}, {});
   expect_input_error(run({"adequacy", "--runs", "10", "--out", "o"}), {"--runs", "--calibrate"},
                      {});
+  expect_input_error(run({"adequacy", "--calibrate", "--tables", "-1", "--out", "o"}),
+                     {"--tables", "[0, 100000]"}, {});
+  expect_input_error(run({"adequacy", "--tables", "2", "--out", "o"}), {"--tables", "--calibrate"},
+                     {});
 }
 
 TEST_F(AdequacyTest, CalibrateWritesRatesForEveryCaseDeltaAndLevel) {
-  const RunResult r = run({"adequacy", "--calibrate", "--runs", "3", "--models", "deliot_belcour",
-                           "--out", "c", "--threads", "2"});
+  const RunResult r = run({"adequacy", "--calibrate", "--runs", "3", "--tables", "1", "--models",
+                           "deliot_belcour", "--out", "c", "--threads", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("972 decisions"), std::string::npos) << r.out;  // 324 cells × 3 levels
   const auto doc = nlohmann::json::parse(read_text(path("c/adequacy-calibration.json")));
   EXPECT_EQ(doc["table_decisions"], 972);
   EXPECT_EQ(doc["positions_per_cell"], 8000);
-  // 7 cases × 3 δ × (4 nominal levels + the table's share).
-  EXPECT_EQ(doc["rows"].size(), 7u * 3u * 5u);
-  EXPECT_EQ(io::read_csv(path("c/adequacy-calibration.csv")).num_rows(), 7u * 3u * 5u);
-  EXPECT_EQ(doc["pooled"].size(), 3u * 5u);  // the five pooled cases summed per δ and level
+  // 7 cases × 7 δ × (4 nominal levels + the table's share).
+  EXPECT_EQ(doc["rows"].size(), 7u * 7u * 5u);
+  EXPECT_EQ(io::read_csv(path("c/adequacy-calibration.csv")).num_rows(), 7u * 7u * 5u);
+  EXPECT_EQ(doc["pooled"].size(), 7u * 5u);  // the five pooled cases summed per δ and level
   EXPECT_EQ(doc["pooled"][0]["decisions"], 5 * 3);
-  EXPECT_EQ(doc["family_wise"]["pooled_decisions"], 7 * 3);
+  EXPECT_EQ(doc["pooled"][0]["verdict"], "power");  // δ = −0.5: truly adequate
+  ASSERT_EQ(doc["family_wise"].size(), 4u);  // δ = 0, 0.05, 0.1, 0.25
+  EXPECT_EQ(doc["family_wise"][0]["tables"], 1);
+  EXPECT_EQ(doc["family_wise"][0]["table_decisions"], 972);
   EXPECT_EQ(unexpected_files(path("c"), {}).size(), 2u);
 }
 

@@ -163,9 +163,9 @@ def test_compare_writes_what_the_cli_writes(swept, monkeypatch):
 def test_adequacy_calibration_writes_what_the_cli_writes(two_dirs):
     py, cli = two_dirs
     a = glintlab.adequacy(out="adq", models="kneiphof_klein", budget="quick", calibrate=True,
-                          runs=10)
+                          runs=10, tables=1)
     run_cli(["adequacy", "--out", "adq", "--models", "kneiphof_klein", "--budget", "quick",
-             "--calibrate", "--runs", "10"], cli)
+             "--calibrate", "--runs", "10", "--tables", "1"], cli)
     same_tree(py / "adq", cli / "adq")
     assert os.path.samefile(a["csv"], py / "adq" / "adequacy-calibration.csv")
     assert len(a["table"]) > 0 and "rate" in a["table"].dtype.names

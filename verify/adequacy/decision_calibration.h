@@ -7,12 +7,13 @@
 //     plus TAU·(1 + δ) (same mean);
 //   * smooth: the constant 1 against an exact level whose CV is TAU·(1 + δ) (the smooth level at
 //     the predicted boundary).
-// At δ = 0 the cheaper level is exactly not adequate, so every "adequate" is a false one: a
-// calibrated rule declares it with probability at most the bound's one-sided level (equal to it
-// where the other difference's bound is never binding). The same function the table uses decides,
-// at the real table's z and at larger nominal levels where the rate can be measured precisely.
-// Decisions are also grouped into tables of the real table's size (every decision at the boundary,
-// the worst case) to measure the family-wise rate directly.
+// At δ ≥ 0 the cheaper level is not adequate, so every "adequate" is a false one: a calibrated
+// rule declares it with probability at most the bound's one-sided level (equal to it at δ = 0
+// where the other difference's bound is never binding). At δ < 0 the level is truly adequate and
+// the rate of "adequate" is the rule's power. The same function the table uses decides, at the
+// real table's z and at larger nominal levels where the rate can be measured precisely. The
+// family-wise rate is measured directly on whole tables of the real table's size whose every
+// decision is at TAU·(1 + δ) (the worst case for δ = 0), decided at the table's z.
 #pragma once
 
 #include <cstdint>
@@ -57,7 +58,12 @@ struct DecisionCalibrationOptions {
   std::size_t table_decisions = 0;   // (cell, cheaper level) decisions of the real table
   std::size_t runs = 2000;           // synthetic cells per (case, δ)
   std::vector<TruthCase> cases = default_truth_cases();
-  std::vector<double> deltas = {0, 0.05, 0.25};
+  // δ < 0: truly adequate (the power); δ = 0: the boundary; δ > 0: just beyond the tolerance.
+  std::vector<double> deltas = {-0.5, -0.25, -0.1, 0, 0.05, 0.1, 0.25};
+  // Family-wise: `tables` whole tables of table_decisions decisions at each of table_deltas (all
+  // ≥ 0), the pooled cases in turn, decided at the table's z only.
+  std::size_t tables = 20;
+  std::vector<double> table_deltas = {0, 0.05, 0.1, 0.25};
   // Nominal one-sided levels besides the real table's Šidák share (which is always measured).
   std::vector<double> levels = {0.05, 0.01, 1e-3, 1e-4};
   double confidence = 0.95;          // of the Clopper–Pearson intervals
@@ -68,33 +74,36 @@ struct DecisionCalibrationOptions {
   std::function<void()> progress;    // once per synthetic cell, never concurrently
 };
 
-// Where a measured rate lies against the nominal one.
-enum class RateVerdict { kWithin, kBelow, kAbove };
-inline constexpr std::array<std::string_view, 3> kRateVerdictNames = {"within", "below", "ABOVE"};
+// Where a measured false-adequate rate lies against the nominal one; kPower for a row of truly
+// adequate cells (δ < 0), whose rate is the power and has no nominal level.
+enum class RateVerdict { kWithin, kBelow, kAbove, kPower };
+inline constexpr std::array<std::string_view, 4> kRateVerdictNames = {"within", "below", "ABOVE",
+                                                                      "power"};
 RateVerdict rate_verdict(double nominal, double low, double high);
 
-// One (case, δ, nominal level): how often the rule declared the cheaper level adequate.
+// One (case, δ, nominal level): how often the rule declared the cheaper level adequate: falsely
+// for δ ≥ 0, rightly (the power) for δ < 0.
 struct DecisionRateRow {
   TruthCase truth;
   double delta = 0;
   double nominal = 0;  // the bound's one-sided level
   double z = 0;
   bool table_level = false;  // the real table's Šidák share
-  std::size_t decisions = 0, false_adequate = 0;
+  bool truly_adequate = false;  // δ < 0
+  std::size_t decisions = 0, declared_adequate = 0;
   double rate = 0, rate_low = 0, rate_high = 1;
   RateVerdict verdict = RateVerdict::kWithin;
 };
 
-// Tables of table_decisions boundary decisions (δ = 0, the cases in turn) at the real z: how many
-// declared any level adequate, against the family-wise rate kFamilyWiseRate.
+// At one δ ≥ 0: tables of table_decisions decisions (the pooled cases in turn) at the real z, and
+// how many declared any level adequate (a false adequate), against the family-wise rate
+// kFamilyWiseRate.
 struct FamilyWiseRow {
+  double delta = 0;
   std::size_t table_decisions = 0, tables = 0, tables_with_false_adequate = 0;
   double nominal = kFamilyWiseRate;
   double rate = 0, rate_low = 0, rate_high = 1;
-  // The same from every δ = 0 decision at the real z pooled (q their false-adequate rate, with its
-  // interval): 1 − (1 − q)^table_decisions, the decisions being independent.
-  std::size_t pooled_decisions = 0, pooled_false_adequate = 0;
-  double implied = 0, implied_low = 0, implied_high = 1;
+  std::size_t false_adequate = 0;  // over all the tables' decisions
   RateVerdict verdict = RateVerdict::kWithin;
 };
 
@@ -105,10 +114,13 @@ struct DecisionCalibration {
   // Per (δ, nominal level), the rows of the cases marked `pooled` summed (their `truth` is not
   // meaningful): the rate the bound's level promises, measured on more decisions.
   std::vector<DecisionRateRow> pooled;
-  FamilyWiseRow family_wise;
+  std::vector<FamilyWiseRow> family_wise;  // one per table_deltas
 };
 
-// Every (case, δ) cell in parallel (TBB); identical results for any thread count.
+// Synthetic cells a calibration with these options draws (the rows' and the tables').
+std::size_t calibration_cells(const DecisionCalibrationOptions& o);
+
+// Every (case, δ) cell and every table in parallel (TBB); identical results for any thread count.
 DecisionCalibration calibrate_decision(const DecisionCalibrationOptions& o);
 
 }  // namespace glintlab::verify::adequacy
