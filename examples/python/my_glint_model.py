@@ -10,17 +10,25 @@ the mixture of the K lobes; the value is albedo times the pdf above the horizon,
 glints, large ones a smoother, rougher lobe.
 
     PYTHONPATH=build/release/python /usr/bin/python3 examples/python/my_glint_model.py \
-        [--out my_glint_model.png] [--properties '*' | eval-pdf-consistency,stability,...]
+        [--out my_glint_model.png] [--properties '*' | eval-pdf-consistency,stability,...] \
+        [--compare-with smooth_ggx,deliot_belcour | ''] [--compare-out DIR] [--compare-papers-only]
 
-Prints the verdicts of the conformance checks asked for (all of them by default) and writes three
-labelled plots. The suite calls the model's functions once per chunk of queries where it has many
-(samples, integrals) and once per query elsewhere (the stability sweep: for this model 0.3 ms an
+Prints the verdicts of the conformance checks asked for (all of them by default), writes three
+labelled plots, then compares the model beside the papers' models named by --compare-with with
+glintlab.compare (quick budget), prints a table of its rows and the path of its index.html.
+The suite calls the model's functions once per chunk of queries where it has many (samples,
+integrals) and once per query elsewhere (the stability sweep: for this model 0.3 ms an
 eval, 1.7 ms a sample); all properties took 131 s on a busy 2-core machine, the stability sweep
 most of it (eval-pdf-consistency and stability alone: 109 s). One query per call everywhere took
-over half an hour.
+over half an hour. The default run took 404 s on the busy 2-core machine: 222 s the conformance
+checks and plots, 182 s the comparison, nearly all of it the numpy model's reference albedo
+(compare's Monte Carlo integral calls it once per direction, 10^5 to 4*10^5 per incidence angle);
+--compare-papers-only leaves the model out of the comparison (seconds).
 """
 
 import argparse
+import json
+import os
 
 import matplotlib
 
@@ -175,19 +183,57 @@ def plots(out):
     fig.savefig(out, dpi=110)
 
 
+def compare(model_claims, papers, include_model, out):
+    """The numpy model beside the papers' models `papers`, as `glintlab compare` draws them
+    (quick budget). Its conformance verdicts are the rows just measured, written where compare
+    reads them (claims_from); the papers' models not measured here show their recorded verdicts.
+    The stability maps are swept for the papers' models only: the sweep calls a numpy model once
+    per query (minutes); the numpy model's stability verdict, when measured, is among its
+    conformance verdicts."""
+    verdicts = out + "-verdicts"
+    os.makedirs(verdicts, exist_ok=True)
+    with open(os.path.join(verdicts, "claims.json"), "w") as f:
+        json.dump(model_claims, f, indent=1)
+    sweeps = glintlab.sweep(out + "-sweeps", models=papers, budget="quick")
+    c = glintlab.compare(out, models=([NAME] if include_model else []) + papers, budget="quick",
+                         claims_from=verdicts, sweeps_from=sweeps["dir"])
+    print(f"\n{'model':<16} {'ns/eval':>10} {'rel. RMSE @1024':>15} {'rel. bias':>17}  "
+          f"conformance; stability")
+    for row in c["table"]:
+        bias = f"{row['relative_bias']:+.4f}±{row['relative_bias_se']:.4f}"
+        print(f"{row['model']:<16} {row['best_ns_per_eval']:>10.4g} "
+              f"{row['relative_rmse_at_max_samples']:>15.4g} {bias:>17}  "
+              f"{row['conformance']}; {row['stability']}")
+    print(f"compare: {c['files']['index.html']}")
+    return c
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--out", default="my_glint_model.png")
     parser.add_argument("--properties", default="*",
                         help="comma-separated conformance properties to run, '*' for all")
     parser.add_argument("--budget", default="quick")
+    parser.add_argument("--compare-with", default="smooth_ggx,deliot_belcour",
+                        help="comma-separated papers' models to compare the model with "
+                             "(glintlab.models()), at the quick budget; '' skips the comparison")
+    parser.add_argument("--compare-out", default=None,
+                        help="compare's output folder (default: --out's name with _compare)")
+    parser.add_argument("--compare-papers-only", action="store_true",
+                        help="leave the numpy model out of the comparison (its reference albedo "
+                             "calls it once per query: minutes)")
     args = parser.parse_args()
     register()
     claims = ",".join(f"model.{NAME}.{p}" for p in args.properties.split(","))
-    for row in glintlab.verify(claims, budget=args.budget):
+    rows = glintlab.verify(claims, budget=args.budget)
+    for row in rows:
         print(f"{row['id']:<45} {row['verdict']:<12} control {row['control_verdict']}: {row['detail']}")
     plots(args.out)
     print(f"plots: {args.out}")
+    papers = [m for m in args.compare_with.split(",") if m]
+    if papers:
+        compare(rows, papers, not args.compare_papers_only,
+                args.compare_out or os.path.splitext(args.out)[0] + "_compare")
 
 
 if __name__ == "__main__":

@@ -42,7 +42,9 @@ with tempfile.TemporaryDirectory() as tmp:
                 failures.append(f"{installed}/{name} is not this build's (install again)")
     for script, args in (("lobes.py", [os.path.join(tmp, "lobes.png")]),
                          ("my_glint_model.py", ["--out", os.path.join(tmp, "glint.png"),
-                                                "--properties", "eval-pdf-consistency"])):
+                                                "--properties", "eval-pdf-consistency",
+                                                "--compare-with", "smooth_ggx",
+                                                "--compare-papers-only"])):
         r = python([os.path.join(ROOT, "examples", "python", script)] + args, tmp)
         if r.returncode != 0:
             failures.append(f"examples/python/{script} against the installed package: exit "

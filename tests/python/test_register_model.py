@@ -265,15 +265,25 @@ def test_chunked_errors_inside_verify():
 
 def test_example_my_glint_model(tmp_path):
     """examples/python/my_glint_model.py registers its numpy glint model, prints the verdicts of
-    the conformance checks it is asked for and writes its plots (one property here: all of them
-    take about two minutes, mostly the stability sweep's one call per query)."""
+    the conformance checks it is asked for, writes its plots and compares with a paper's model
+    (one property and one paper's model here, the numpy model left out of the comparison: all the
+    properties take about two minutes, mostly the stability sweep's one call per query, and
+    compare's reference albedo calls the numpy model once per query, minutes more)."""
     script = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "python",
                           "my_glint_model.py")
     out = tmp_path / "glint.png"
     r = subprocess.run([sys.executable, script, "--out", str(out),
-                        "--properties", "eval-pdf-consistency"],
+                        "--properties", "eval-pdf-consistency",
+                        "--compare-with", "smooth_ggx", "--compare-papers-only"],
                        check=True, capture_output=True, text=True)
     lines = r.stdout.splitlines()
     assert lines[0].startswith("model.facet_cells.eval-pdf-consistency")
     assert lines[0].split()[1] == "holds" and "control fails" in lines[0]
     assert out.stat().st_size > 10000
+    index = tmp_path / "glint_compare" / "index.html"
+    assert lines[-1] == f"compare: {index}"
+    assert index.stat().st_size > 1000 and "smooth_ggx" in index.read_text()
+    table = lines[lines.index("plots: " + str(out)) + 1:-1]
+    assert table[0] == "" and table[1].split()[:2] == ["model", "ns/eval"], table
+    assert [row.split()[0] for row in table[2:]] == ["smooth_ggx"], table
+    assert "holds (recorded)" in table[2], table
