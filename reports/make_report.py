@@ -5,6 +5,7 @@ Run by /usr/bin/python3 (Debian's, with matplotlib and Jinja2); `glintlab report
 staging folder DIR, which holds:
   run.json                 machine, budget, date and status of each part (written by glintlab report)
   verify/claims.json       glintlab verify's results (a list of claim objects)
+  conformance/claims.json  the same for the models' conformance suites (model.<name>.<property>)
   figures/figures.json     the figures run ([{id, paper, target, description, ...}]) and
   figures/<id>/            each figure's PNG, EXR, CSV (and summary.md) files
   bench/bench.json         Google Benchmark JSON of glintlab_bench_kernels, and
@@ -50,8 +51,10 @@ import speed_accuracy as sa  # noqa: E402
 import compare_page  # noqa: E402
 import templating  # noqa: E402
 
-PARTS = ["claims", "figures", "bench", "stability", "compare"]
-PART_TITLES = {"claims": "Claims (glintlab verify)", "figures": "Figures (glintlab figure)",
+PARTS = ["claims", "conformance", "figures", "bench", "stability", "compare"]
+PART_TITLES = {"claims": "Claims (glintlab verify)",
+               "conformance": "Models' conformance (glintlab verify --claims 'model.<name>.*')",
+               "figures": "Figures (glintlab figure)",
                "bench": "Benchmarks (glintlab_bench_kernels, glintlab_accuracy)",
                "stability": "Stability maps (glintlab sweep)",
                "compare": "Models compared (glintlab compare)"}
@@ -155,8 +158,7 @@ def load_run(root):
     return run
 
 
-def load_claims(root):
-    relpath = "verify/claims.json"
+def load_claims(root, relpath="verify/claims.json"):
     data = load_json(root, relpath)
     if not isinstance(data, list):
         raise ReportError(f"{relpath} is malformed: expected a list of claim objects")
@@ -283,6 +285,18 @@ def load_stability(root):
     return data
 
 
+def load_conformance(root):
+    """The conformance part's rows: claim objects whose ids are model.<name>.<property>."""
+    relpath = "conformance/claims.json"
+    data = load_claims(root, relpath)
+    for i, c in enumerate(data):
+        parts = c["id"].split(".", 2)
+        if len(parts) != 3 or parts[0] != "model" or not parts[1] or not parts[2]:
+            raise ReportError(f"{relpath} is malformed: entry {i} ('{c['id']}') is not a "
+                              "model.<name>.<property> id")
+    return data
+
+
 def load_compare(root):
     data = load_json(root, "compare/compare.json")
     if not isinstance(data, dict) or not isinstance(data.get("models"), list):
@@ -295,6 +309,7 @@ def load_all(root):
     parts = run.get("parts", {})
     got = {}
     loaders = {"claims": ("verify/claims.json", load_claims),
+               "conformance": ("conformance/claims.json", load_conformance),
                "figures": ("figures/figures.json", load_figures),
                "bench": ("bench/bench.json", load_bench),
                "stability": ("stability/stability.json", load_stability),
@@ -811,6 +826,62 @@ def write_claims(doc, claims, part, root):
                "evidence"], rows, classes, ids, cls="verdicts")
 
 
+def checked_control(c):
+    """Whether a row has a control to reject: not for a check that could not run, nor for a
+    property the model declares not claimed (nothing is measured)."""
+    return c["verdict"] not in ("error", "not-claimed")
+
+
+def conformance_cell(c):
+    """A model's property in the conformance matrix: its verdict, whether it is the recorded one
+    and whether its control was rejected; the evidence unfolds."""
+    head = c["verdict"]
+    if not as_recorded(c):
+        head += f" (recorded: {c.get('expected_verdict')})"
+    if checked_control(c) and not c["control_rejected"]:
+        head += ", control NOT REJECTED"
+    ctrl, ctrl_body = control_text(c) if checked_control(c) else ("control", c["control"])
+    body = f"{c['detail']}\n{ctrl}: {ctrl_body}"
+    return Cell(f"{head}", "details", summary=head, body=body, long=False)
+
+
+def write_conformance(doc, rows, part, root):
+    """The models' conformance suites this run measured: one row per model, one column per
+    property (a property that does not apply to a model is —)."""
+    doc.heading(2, "Models' conformance", "conformance")
+    models, props, by = [], [], {}
+    for c in rows:
+        _, m, prop = c["id"].split(".", 2)  # validated by load_conformance
+        if m not in models:
+            models.append(m)
+        if prop not in props:
+            props.append(prop)
+        by[(m, prop)] = c
+    left = part.get("note", "")
+    doc.para(f"The conformance suites of {len(models)} models, measured in this run at budget "
+             f"{part.get('budget', '?')}, {machine_text(part.get('machine'))}: {len(rows)} checks, "
+             f"each with its negative control decided by the same function. Unfold a cell for its "
+             "evidence. The comparison below shows these verdicts as measured in this run; a "
+             "model not measured here shows its recorded verdicts in a column of their own"
+             + (f" ({left})." if left else "."))
+    doc.links("Files", [(f, f"conformance/{f}") for f in ("claims.json", "claims.csv", "claims.md")
+                        if os.path.exists(os.path.join(root, "conformance", f))])
+    table_rows, classes = [], []
+    for m in models:
+        cells = [m]
+        bad = False
+        for prop in props:
+            c = by.get((m, prop))
+            if c is None:
+                cells.append("—")
+                continue
+            cells.append(conformance_cell(c))
+            bad = bad or not as_recorded(c) or (checked_control(c) and not c["control_rejected"])
+        table_rows.append(cells)
+        classes.append("regress" if bad else None)
+    doc.table(["model"] + props, table_rows, classes, cls="verdicts")
+
+
 def figure_chart_for(fid, name):
     return charts.FIGURE_CHARTS.get(fid, {}).get(name)
 
@@ -1046,6 +1117,8 @@ def build(root, run, got, plots_tmp):
     plots_rel = "plots"
     if "claims" in got:
         write_claims(doc, got["claims"], parts.get("claims", {}), root)
+    if "conformance" in got:
+        write_conformance(doc, got["conformance"], parts.get("conformance", {}), root)
     if "figures" in got:
         write_figures(doc, got["figures"], parts.get("figures", {}), root, plots_tmp, plots_rel,
                       made, manifest)

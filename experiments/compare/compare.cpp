@@ -24,6 +24,9 @@ using json = nlohmann::ordered_json;
 fs::path claims_name(const CompareOptions& o) {
   return o.claims_shown_as.empty() ? o.claims_from : o.claims_shown_as;
 }
+fs::path conformance_name(const CompareOptions& o) {
+  return o.conformance_shown_as.empty() ? o.conformance_from : o.conformance_shown_as;
+}
 fs::path sweeps_name(const CompareOptions& o) {
   return o.sweeps_shown_as.empty() ? o.sweeps_from : o.sweeps_shown_as;
 }
@@ -52,8 +55,10 @@ json model_json(const ModelEntry& m, const CompareOptions& o, const CompareBudge
 
   step("conformance");
   json verdicts = json::array();
-  for (const PropertyVerdict& v : conformance_verdicts(m, o.budget, o.claims_from, claims_name(o),
-                                                              o.measure_missing))
+  std::vector<ClaimsFolder> folders;
+  if (!o.conformance_from.empty()) folders.push_back({o.conformance_from, conformance_name(o)});
+  if (!o.claims_from.empty()) folders.push_back({o.claims_from, claims_name(o)});
+  for (const PropertyVerdict& v : conformance_verdicts(m, o.budget, folders, o.measure_missing))
     verdicts.push_back({{"property", v.property},
                         {"verdict", v.verdict},
                         {"origin", v.origin},
@@ -173,7 +178,7 @@ std::string equal_time_csv(const json& models) {
 }
 
 json settings_json(const CompareOptions& o, const CompareBudget& b) {
-  return {{"budget", o.budget == verify::Budget::kQuick ? "quick" : "full"},
+  json s = {{"budget", o.budget == verify::Budget::kQuick ? "quick" : "full"},
           {"theta_deg", b.thetas_deg},
           {"footprint_side_uv", kSceneFootprint},
           {"quantity", "albedo: ∫ value dωo over the upper hemisphere (white furnace)"},
@@ -189,6 +194,8 @@ json settings_json(const CompareOptions& o, const CompareBudget& b) {
           {"timing_seconds_per_round", b.timing_seconds},
           {"claims_from", o.claims_from.empty() ? json(nullptr) : json(claims_name(o).string())},
           {"sweeps_from", o.sweeps_from.empty() ? json(nullptr) : json(sweeps_name(o).string())}};
+  if (!o.conformance_from.empty()) s["conformance_from"] = conformance_name(o).string();
+  return s;
 }
 
 }  // namespace

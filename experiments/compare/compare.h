@@ -20,11 +20,14 @@ struct CompareOptions {
   verify::Budget budget = verify::Budget::kQuick;
   std::vector<std::string> models;        // registered model names, in the order shown
   std::filesystem::path claims_from;      // a `glintlab verify --out` folder; empty: see below
+  // A second `glintlab verify --out` folder holding the models' conformance rows (the report's
+  // conformance part), read before claims_from; empty: none.
+  std::filesystem::path conformance_from;
   std::filesystem::path sweeps_from;      // a `glintlab sweep --out` folder; empty: see below
   // How the two folders are named in the outputs, where that differs from where they are read
   // (the report reads its staging folder but shows the folder it becomes); empty: as given.
-  std::filesystem::path claims_shown_as, sweeps_shown_as;
-  // Without claims_from / sweeps_from: run each model's conformance checks (minutes per glint
+  std::filesystem::path claims_shown_as, conformance_shown_as, sweeps_shown_as;
+  // Without claims_from, conformance_from / sweeps_from: run each model's conformance checks (minutes per glint
   // model) and sweeps here; when false, show the recorded verdicts only and no failure region
   // (the report: it never runs a suite it did not run itself).
   bool measure_missing = true;

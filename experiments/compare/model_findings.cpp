@@ -39,15 +39,19 @@ std::string check_id(const ModelEntry& m, std::string_view property) {
 }  // namespace
 
 std::vector<PropertyVerdict> conformance_verdicts(const ModelEntry& m, verify::Budget b,
-                                                  const fs::path& claims_from,
-                                                  const fs::path& shown_as, bool measure) {
+                                                  const std::vector<ClaimsFolder>& folders,
+                                                  bool measure) {
   std::map<std::string, json> read;
-  if (!claims_from.empty())
-    for (const json& row : read_json(claims_from / "claims.json"))
-      read[row.value("id", std::string())] = row;
+  std::string looked;  // the claims.json files read, as shown
+  for (const ClaimsFolder& f : folders) {
+    for (const json& row : read_json(f.read_from / "claims.json"))
+      read.emplace(row.value("id", std::string()), row);  // an earlier folder's row wins
+    looked += fmt::format("{}{}", looked.empty() ? "" : " and ",
+                          ((f.shown_as.empty() ? f.read_from : f.shown_as) / "claims.json").string());
+  }
   std::vector<PropertyVerdict> out;
   std::vector<verify::Check> checks;
-  const bool run_here = claims_from.empty() && measure;
+  const bool run_here = folders.empty() && measure;
   if (run_here) checks = verify::conformance_checks(m);
   for (std::string_view property : verify::conformance::kProperties) {
     if (!verify::conformance::applies(property, m)) continue;
@@ -75,10 +79,10 @@ std::vector<PropertyVerdict> conformance_verdicts(const ModelEntry& m, verify::B
       for (const verify::Check& c : verify::conformance_checks(m))
         if (c.id == id) v.verdict = verify::to_string(c.expected_for(b));
       v.origin = kRecorded;
-      v.detail = claims_from.empty()
+      v.detail = folders.empty()
                      ? std::string("the verdict recorded for this budget; not measured here")
                      : fmt::format("the verdict recorded for this budget; {} has no row {}",
-                                   (shown_as / "claims.json").string(), id);
+                                   looked, id);
     } else {
       v.verdict = "-";
       v.origin = kNotMeasured;

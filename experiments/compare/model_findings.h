@@ -25,14 +25,19 @@ struct PropertyVerdict {
   std::optional<bool> control_rejected;  // measured or read rows only
 };
 
-// Every conformance property of `m` (kProperties order, those that apply): the rows of
-// claims.json in `claims_from` where it has them; otherwise, without claims_from and with
-// `measure`, measured here by the model's own conformance checks; otherwise "not-claimed" where the model declares so, the
-// verdict recorded for budget b for a built-in model, and nothing for a plug-in. Messages name
-// the folder `shown_as`.
+// A `glintlab verify --out` folder whose claims.json rows compare reads, and how the outputs name
+// it (the report reads its staging folder but shows the folder it becomes).
+struct ClaimsFolder {
+  std::filesystem::path read_from, shown_as;
+};
+
+// Every conformance property of `m` (kProperties order, those that apply): the row of the first
+// folder's claims.json that has it; otherwise, with no folder and with `measure`, measured here by
+// the model's own conformance checks; otherwise "not-claimed" where the model declares so, the
+// verdict recorded for budget b for a built-in model, and nothing for a plug-in. Messages name the
+// folders as shown.
 std::vector<PropertyVerdict> conformance_verdicts(const ModelEntry& m, verify::Budget b,
-                                                  const std::filesystem::path& claims_from,
-                                                  const std::filesystem::path& shown_as,
+                                                  const std::vector<ClaimsFolder>& folders,
                                                   bool measure);
 
 struct StabilityFinding {

@@ -350,6 +350,8 @@ std::vector<Case> cases() {
   add("report_figures_nosuch", join(re, {"--figures", "nosuch"}), "nosuch");
   add("report_figures_empty", join(re, {"--figures", ""}), "--figures");
   add("report_skip_unknown", join(re, {"--skip", "bogus"}), "bogus");
+  add("report_conformance_nosuch", join(re, {"--conformance", "nosuch"}), "nosuch");
+  add("report_conformance_empty", join(re, {"--conformance", ""}), "--conformance");
   add("report_skip_empty", join(re, {"--skip", ""}), "--skip");
   add("report_skip_empty_item", join(re, {"--skip", "claims,,bench"}), "--skip");
   add("report_reuse_empty_folder", {"report", "--reuse", "--out", "emptydir"}, "--reuse");

@@ -157,9 +157,9 @@ TEST_F(PluginTest, SweepFigureAndGenericClaimCoverThePluginModel) {
   EXPECT_TRUE(claims[0]["control_rejected"].get<bool>()) << claims[0]["control"];
 }
 
-// `glintlab --plugin X report`: the report's verify and sweep parts run as child processes, which
-// get the same --plugin, so the plug-in model's conformance row, stability sweep and compare row
-// are all in the report.
+// `glintlab --plugin X report`: the report's verify, conformance and sweep parts run as child
+// processes, which get the same --plugin, so the plug-in model's conformance suite, stability sweep
+// and compare row are all in the report, its verdicts shown as measured in this run.
 TEST_F(PluginTest, ReportCoversThePluginModelInEveryPart) {
   const RunResult r = run({"--plugin", kTestPlugin, "report", "--out", "r", "--claims",
                            "model.example_glints.energy", "--models", "example_glints", "--skip",
@@ -173,6 +173,10 @@ TEST_F(PluginTest, ReportCoversThePluginModelInEveryPart) {
   const auto compare = nlohmann::json::parse(read_text(path("r/compare/compare.json")));
   ASSERT_EQ(compare["models"].size(), 1u);
   EXPECT_EQ(compare["models"][0]["name"], "example_glints");
+  const auto conformance = nlohmann::json::parse(read_text(path("r/conformance/claims.json")));
+  EXPECT_EQ(conformance.size(), compare["models"][0]["conformance"].size());
+  for (const auto& v : compare["models"][0]["conformance"])
+    EXPECT_EQ(v["origin"], "read") << v.dump();
   EXPECT_EQ(compare["models"][0]["stability"][0]["origin"].get<std::string>().find("not"),
             std::string::npos)
       << compare["models"][0]["stability"].dump();

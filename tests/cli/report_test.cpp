@@ -16,7 +16,7 @@ namespace {
 namespace fs = std::filesystem;
 using ReportTest = CliTest;
 
-const std::vector<std::string> kNoParts = {"--skip", "claims,figures,bench,stability"};
+const std::vector<std::string> kNoParts = {"--skip", "claims,conformance,figures,bench,stability"};
 
 std::vector<std::string> with(std::vector<std::string> a, const std::vector<std::string>& b) {
   a.insert(a.end(), b.begin(), b.end());
@@ -51,11 +51,13 @@ TEST_F(ReportTest, BadOptionsAreErrors) {
   expect_input_error(run({"report", "--out", "r", "--budget", "huge"}),
                      {"--budget", "huge", "valid: quick, full"}, {});
   expect_input_error(run({"report", "--out", "r", "--skip", "claims,pictures"}),
-                     {"--skip", "pictures", "claims, figures, bench, stability"}, {});
+                     {"--skip", "pictures", "claims, conformance, bench, figures, stability"}, {});
   expect_input_error(run({"report", "--out", "r", "--figures", "nope*"}),
                      {"--figures", "nope*", "figure --list"}, {});
   expect_input_error(run({"report", "--out", "r", "--models", "nope*"}),
                      {"--models", "nope*", "smooth_ggx"}, {});
+  expect_input_error(run({"report", "--out", "r", "--conformance", "nope*"}),
+                     {"--conformance", "nope*", "smooth_ggx"}, {});
   expect_input_error(run({"report", "--out", "r", "--claims-from", "missing"}),
                      {"--claims-from", "missing", "claims.json"}, {});
 }
@@ -63,7 +65,8 @@ TEST_F(ReportTest, BadOptionsAreErrors) {
 TEST_F(ReportTest, ReuseReadsCachedResultsAndAMalformedOneLeavesTheOldReport) {
   fs::copy(kReportFixtures, path("report"), fs::copy_options::recursive);
   RunResult r =
-      run({"report", "--out", "report", "--reuse", "--skip", "bench", "--models", "smooth_ggx"});
+      run({"report", "--out", "report", "--reuse", "--skip", "bench,conformance", "--models",
+           "smooth_ggx"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string html = read_text(path("report/index.html"));
   EXPECT_NE(html.find("fixture.fails"), std::string::npos);
@@ -80,14 +83,14 @@ TEST_F(ReportTest, ReuseReadsCachedResultsAndAMalformedOneLeavesTheOldReport) {
   // Corrupt the cached claims: one line, exit 2, and the previous report is untouched.
   write_text(path("report/verify/claims.json"), "[{\"id\": ");
   std::set<std::string> before = files_under(work());
-  r = run({"report", "--out", "report", "--reuse", "--skip", "bench"});
+  r = run({"report", "--out", "report", "--reuse", "--skip", "bench,conformance"});
   expect_input_error(r, {"verify/claims.json", "not valid JSON"}, before);
   EXPECT_EQ(read_text(path("report/index.html")), html);
 
   // A malformed cached run.json is an error too.
   write_text(path("report/run.json"), "{\"parts\": 3}");
   before = files_under(work());
-  expect_input_error(run({"report", "--out", "report", "--reuse", "--skip", "bench"}),
+  expect_input_error(run({"report", "--out", "report", "--reuse", "--skip", "bench,conformance"}),
                      {"--reuse", "run.json"}, before);
 }
 
@@ -101,7 +104,7 @@ TEST_F(ReportTest, TimingFiguresReadTheReportsOwnBenchmarks) {
              "{\n  \"benchmarks\": [\n    {\n      \"name\": \"table1/method:2/light:2\",\n"
              "      \"real_time\": 42.5,\n      \"time_unit\": \"ns\"\n    }\n  ]\n}\n");
   RunResult r = run({"report", "--out", "r", "--reuse", "--figures", "kneiphof2024-table1",
-                     "--skip", "claims,stability,compare", "--threads", "1"});
+                     "--skip", "claims,conformance,stability,compare", "--threads", "1"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::string md = read_text(path("r/figures/kneiphof2024-table1/summary.md"));
   EXPECT_NE(md.find("read from `r/bench/glints.json`"), std::string::npos) << md;
@@ -110,7 +113,7 @@ TEST_F(ReportTest, TimingFiguresReadTheReportsOwnBenchmarks) {
   EXPECT_EQ(html.find(".tmp."), std::string::npos) << "a staging path is shown in the report";
 
   r = run({"report", "--out", "r2", "--figures", "kneiphof2024-table1", "--skip",
-           "claims,bench,stability,compare", "--threads", "1"});
+           "claims,conformance,bench,stability,compare", "--threads", "1"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   md = read_text(path("r2/figures/kneiphof2024-table1/summary.md"));
   EXPECT_NE(md.find("No benchmark data: no benchmark folder was given"), std::string::npos) << md;
@@ -120,10 +123,12 @@ TEST_F(ReportTest, TimingFiguresReadTheReportsOwnBenchmarks) {
 }
 
 TEST_F(ReportTest, SmallRealRun) {
-  // compare covers the --models only: one model with a cubature reference, one with Monte Carlo.
+  // compare covers the --models only: one model with a cubature reference, one with Monte Carlo;
+  // the conformance part measures smooth_ggx's suite, kneiphof_klein's verdicts are recorded ones.
   const RunResult r =
       run({"report", "--out", "r", "--claims", "kneiphof.total-area", "--figures", "eto2023-fig4",
-           "--models", "smooth_ggx,kneiphof_klein", "--skip", "bench,stability", "--threads", "2"});
+           "--models", "smooth_ggx,kneiphof_klein", "--conformance", "smooth_ggx", "--skip",
+           "bench,stability", "--threads", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("report: wrote r/index.html and r/report.md"), std::string::npos) << r.out;
   for (const char* f : {"r/index.html", "r/report.md", "r/run.json", "r/verify/claims.json",
@@ -152,6 +157,17 @@ TEST_F(ReportTest, SmallRealRun) {
   ASSERT_EQ(cmp["models"].size(), 2u);
   EXPECT_EQ(cmp["models"][0]["name"], "smooth_ggx");
   EXPECT_EQ(cmp["models"][1]["name"], "kneiphof_klein");
+  // Measured in this run (read from the conformance part) or recorded, never mixed.
+  EXPECT_EQ(cmp["settings"]["conformance_from"], "r/conformance");
+  EXPECT_EQ(info["parts"]["conformance"]["status"], "ran");
+  EXPECT_EQ(info["parts"]["conformance"]["note"],
+            "not measured (left out by --conformance): kneiphof_klein");
+  for (const auto& v : cmp["models"][0]["conformance"]) EXPECT_EQ(v["origin"], "read") << v.dump();
+  for (const auto& v : cmp["models"][1]["conformance"])
+    EXPECT_EQ(v["origin"], "recorded") << v.dump();
+  EXPECT_NE(md.find("## Models' conformance"), std::string::npos);
+  EXPECT_NE(md.find("| smooth_ggx | holds | holds |"), std::string::npos) << md;
+  EXPECT_EQ(md.find("| kneiphof_klein | holds"), std::string::npos) << md;
   EXPECT_EQ(html.find(".tmp."), std::string::npos) << "a staging path is shown in the report";
   // Nothing but the report itself is left in the working folder (no staging folder).
   for (const auto& e : fs::directory_iterator(work()))

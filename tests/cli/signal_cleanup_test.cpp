@@ -77,7 +77,7 @@ TEST_F(SignalCleanupTest, FigureRemovesItsStagingFolderOnSigintAndSigterm) {
 
 TEST_F(SignalCleanupTest, ReportRemovesItsStagingFolderOnSigint) {
   interrupt(work(),
-            {"report", "--skip", "claims,bench,stability", "--figures", "eto2023-fig4", "--budget",
+            {"report", "--skip", "claims,conformance,bench,stability", "--figures", "eto2023-fig4", "--budget",
              "full", "--threads", "1", "--out", "r"},
             SIGINT);
 }

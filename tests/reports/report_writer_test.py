@@ -74,7 +74,24 @@ with tempfile.TemporaryDirectory() as tmp:
         check("<tag> & | pipe" in by_id["fixture.holds"][6], "evidence text kept verbatim")
         check("regime" in by_id["fixture.regime"][2] and "alpha >= 0.1" in by_id["fixture.regime"][2],
               "a holds-in-regime verdict shows its regime")
+    # The models' conformance measured in this run: a model per row, a property per column.
+    conf_header = ["model", "energy", "converges-to-smooth"]
+    conf = [t for t in page.tables if t and t[0] == conf_header]
+    check(len(conf) == 1, f"one conformance table, a column per property (got {[t[0] for t in page.tables if t]})")
+    if conf:
+        rows = {r[0]: r for r in conf[0][1:]}
+        check(sorted(rows) == ["fixture_model", "other_model"], f"a row per model (got {sorted(rows)})")
+        check(rows["fixture_model"][1].startswith("holds") and "NOT" not in rows["fixture_model"][1],
+              f"a holds with its control rejected (got {rows['fixture_model'][1]!r})")
+        check(rows["fixture_model"][2].startswith("not-claimed") and
+              "NOT REJECTED" not in rows["fixture_model"][2],
+              f"a property not claimed has no control to reject (got {rows['fixture_model'][2]!r})")
+        check(rows["other_model"][1].startswith("fails (recorded: holds), control NOT REJECTED"),
+              f"a verdict that is not the recorded one, a control not rejected (got {rows['other_model'][1]!r})")
+        check(rows["other_model"][2] == "—", "a property not measured for a model is —")
     text = open(os.path.join(d, "index.html"), encoding="utf-8").read()
+    check("left out by --conformance): third_model" in text,
+          "the models whose conformance was not measured are named")
     check(text.count("<details>") >= len(claims) * 2, "evidence and controls folded in <details>")
     # The summary comes first and names findings, regressions and loose controls.
     summary = text[text.index('id="summary"'):text.index('id="contents"')]
@@ -276,7 +293,13 @@ with tempfile.TemporaryDirectory() as tmp:
         s = open(p).read().replace(",1e-07,5e-08,1e-07", ",1e-07,abc,1e-07", 1)
         open(p, "w").write(s)
 
+    def conformance_id(d):
+        p = os.path.join(d, "conformance", "claims.json")
+        s = open(p).read().replace("model.other_model.energy", "other_model.energy", 1)
+        open(p, "w").write(s)
+
     cases = [(corrupt_claims, "verify/claims.json is not valid JSON"),
+             (conformance_id, "('other_model.energy') is not a model.<name>.<property> id"),
              (claims_wrong_type, "non-numeric \"p_value\""),
              (ragged_csv, "rmse_spp.csv is malformed: line"),
              (missing_map, "fixture_model_energy_gain.png"),
