@@ -19,9 +19,7 @@ namespace {
 using verify::adequacy::CellResult;
 using verify::adequacy::LevelStats;
 
-const std::array<Vec3<double>, 4> kLevelColors = {
-    Vec3<double>{0.35, 0.75, 0.35}, Vec3<double>{0.35, 0.55, 0.9}, Vec3<double>{0.95, 0.65, 0.2},
-    Vec3<double>{0.85, 0.25, 0.25}};
+const std::array<Vec3<double>, 4>& kLevelColors = kAdequacyLevelColors;
 
 std::string short_number(double x) {
   if (x >= 1000) return fmt::format("1e{}", int(std::lround(std::log10(x))));

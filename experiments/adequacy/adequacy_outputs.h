@@ -11,10 +11,16 @@
 #include <string>
 #include <vector>
 
+#include "core/math/vec.h"
 #include "verify/adequacy/binomial_adequacy.h"
 #include "verify/adequacy/decision_calibration.h"
 
 namespace glintlab::experiments {
+
+// The colours of the binomial levels (smooth, realtime, small_count, exact) in every adequacy map.
+inline constexpr std::array<Vec3<double>, 4> kAdequacyLevelColors = {
+    Vec3<double>{0.35, 0.75, 0.35}, Vec3<double>{0.35, 0.55, 0.9}, Vec3<double>{0.95, 0.65, 0.2},
+    Vec3<double>{0.85, 0.25, 0.25}};
 
 struct AdequacyOptions {
   std::vector<std::string> models;  // names of the binomial family
