@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "core/math/vec.h"
+#include "core/render/image.h"
+#include "experiments/figures/log_chart.h"
 #include "verify/adequacy/binomial_adequacy.h"
 #include "verify/adequacy/decision_calibration.h"
 
@@ -49,6 +51,22 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
 
 // The table alone (for the tests): the cells of the budget's grid for `models`, measured.
 std::vector<verify::adequacy::CellResult> measure_adequacy(const AdequacyOptions& o);
+
+// One map of the measured table, per model × light × incidence: the chosen level over footprint
+// size N_P (columns) × (α, θ_h) (rows, bottom to top) as a labelled category map with the predicted
+// smooth boundary CV_pred = TAU drawn per row, and as an EXR of one pixel per cell (channels
+// chosen, chooser, cv_exact, cv_predicted, p_zero, p_zero_predicted; row 0 the bottom row).
+struct AdequacyLevelMap {
+  std::string stem;  // adequacy_<model>_light<deg>_theta<deg>
+  std::string model;
+  double light_half_angle_deg = 0, theta_i_deg = 0;
+  CategoryMap map;
+  Image exr;
+};
+// `rows` in make_grid's order for `axes`.
+std::vector<AdequacyLevelMap> adequacy_level_maps(
+    const std::vector<verify::adequacy::CellResult>& rows, const verify::adequacy::GridAxes& axes,
+    double threshold);
 
 // `glintlab adequacy --calibrate`: the decision rule's false-adequate rate (and, on truly
 // adequate cells, its power) on synthetic cells whose truth is known
