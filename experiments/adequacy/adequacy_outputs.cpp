@@ -109,9 +109,9 @@ std::vector<AdequacyLevelMap> adequacy_level_maps(const std::vector<CellResult>&
     m.stem = fmt::format("adequacy_{}_light{:g}_theta{:g}", first.cell.model,
                          first.cell.light_half_angle_deg, first.cell.theta_i_deg);
     CategoryMap& map = m.map;
-    map.title = fmt::format("{}: cheapest level within TAU = {:g} (light {:g} deg, theta_i {:g} deg)",
-                            first.cell.model, threshold, first.cell.light_half_angle_deg,
-                            first.cell.theta_i_deg);
+    map.title = fmt::format(
+        "{}: cheapest level within TAU = {:g} (light {:g} deg, theta_i {:g} deg)", first.cell.model,
+        threshold, first.cell.light_half_angle_deg, first.cell.theta_i_deg);
     map.x_label = "footprint size N_P (expected facets)";
     map.y_label = "alpha, theta_h (deg)";
     for (double n : axes.facets) map.column_labels.push_back(short_number(n));

@@ -35,13 +35,15 @@ constexpr std::string_view kId = "adequacy-maps";
 Image sheet(const std::vector<Image>& maps, int columns, const std::string& title) {
   const int gap = 12, top = 24;
   int cell_w = 0, cell_h = 0;
-  for (const Image& m : maps) cell_w = std::max(cell_w, m.width), cell_h = std::max(cell_h, m.height);
+  for (const Image& m : maps)
+    cell_w = std::max(cell_w, m.width), cell_h = std::max(cell_h, m.height);
   const int rows = (int(maps.size()) + columns - 1) / columns;
   Image out(columns * (cell_w + gap) + gap, top + rows * (cell_h + gap), {"R", "G", "B"});
   std::fill(out.data.begin(), out.data.end(), 1.0);
   draw_text(out, gap, 8, title, {0, 0, 0});
   for (std::size_t k = 0; k < maps.size(); ++k) {
-    const int ox = gap + int(k) % columns * (cell_w + gap), oy = top + int(k) / columns * (cell_h + gap);
+    const int ox = gap + int(k) % columns * (cell_w + gap),
+              oy = top + int(k) / columns * (cell_h + gap);
     for (int y = 0; y < maps[k].height; ++y)
       for (int x = 0; x < maps[k].width; ++x)
         for (std::size_t c = 0; c < 3; ++c) out.at(ox + x, oy + y, c) = maps[k].at(x, y, c);
@@ -126,17 +128,19 @@ void run_adequacy_maps(const FigureContext& ctx) {
       "θ_i; docs/adequacy.md). The black bar on each row is the predicted smooth boundary "
       "N* = (1 − p)/(p TAU²). The other families (Kemppinen, Chermain, kneiphof_klein_area) have "
       "no measured levels yet and no maps.\n\n"
-      "| model | cells | smooth | realtime | small_count | exact | undecided | chooser = measured | "
+      "| model | cells | smooth | realtime | small_count | exact | undecided | chooser = measured "
+      "| "
       "chooser refuted |\n|---|---|---|---|---|---|---|---|---|\n",
       axes.samples, o.threshold);
   for (const auto& [model, c] : per_model)
-    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", model, c.cells,
-                      c.chosen[0], c.chosen[1], c.chosen[2], c.chosen[3], c.undecided, c.matches,
-                      c.refuted);
-  md += "\nadequacy-maps.png: every map on one sheet; <map>.png and <map>.exr one map each (EXR "
-        "channels chosen, chooser, cv_exact, cv_predicted, p_zero, p_zero_predicted; one pixel per "
-        "cell, x = N_P, row 0 = the bottom row); adequacy-maps.csv every cell's chosen level and "
-        "the chooser's.\n";
+    md +=
+        fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", model, c.cells, c.chosen[0],
+                    c.chosen[1], c.chosen[2], c.chosen[3], c.undecided, c.matches, c.refuted);
+  md +=
+      "\nadequacy-maps.png: every map on one sheet; <map>.png and <map>.exr one map each (EXR "
+      "channels chosen, chooser, cv_exact, cv_predicted, p_zero, p_zero_predicted; one pixel per "
+      "cell, x = N_P, row 0 = the bottom row); adequacy-maps.csv every cell's chosen level and "
+      "the chooser's.\n";
   io::write_file_atomic(ctx.dir / "summary.md", md);
 }
 

@@ -34,9 +34,9 @@ namespace adq = verify::adequacy;
 constexpr std::string_view kId = "adequacy-scene";
 // The difference map's scale runs from 0 to this many TAU.
 constexpr double kScaleMaxTau = 2;
-const Vec3<double> kOffSurface{0.8, 0.8, 0.8};   // no surface, or the light below its horizon
-const Vec3<double> kDark{0.45, 0.45, 0.45};      // exact level lit too rarely to measure
-const Vec3<double> kExceeds{0.9, 0.0, 0.9};      // a lower bound above TAU
+const Vec3<double> kOffSurface{0.8, 0.8, 0.8};  // no surface, or the light below its horizon
+const Vec3<double> kDark{0.45, 0.45, 0.45};     // exact level lit too rarely to measure
+const Vec3<double> kExceeds{0.9, 0.0, 0.9};     // a lower bound above TAU
 const Vec3<double> kInk{0, 0, 0};
 
 struct SceneResult {
@@ -80,12 +80,12 @@ Image panel(const SceneResult& s, Panel which, double tau) {
   Image im(r.width, r.height, {"R", "G", "B"});
   for (int y = 0; y < r.height; ++y)
     for (int x = 0; x < r.width; ++x) {
-      const adq::ScenePixel& p =
-          r.pixels[std::size_t(y) * std::size_t(r.width) + std::size_t(x)];
+      const adq::ScenePixel& p = r.pixels[std::size_t(y) * std::size_t(r.width) + std::size_t(x)];
       Vec3<double> c = kOffSurface;
       if (which == Panel::kChosen || which == Panel::kExact) {
         const double v = which == Panel::kChosen ? p.chosen_value : p.exact_value;
-        c = p.surface ? Vec3<double>{1, 1, 1} * std::min(v * s.exposure, 1.0) : Vec3<double>{0, 0, 0};
+        c = p.surface ? Vec3<double>{1, 1, 1} * std::min(v * s.exposure, 1.0)
+                      : Vec3<double>{0, 0, 0};
       } else if (which == Panel::kDifference) {
         if (p.surface) c = p.lit ? scale_colour(difference_in_tau(p, tau)) : kDark;
         if (p.exceeds) c = kExceeds;
@@ -127,10 +127,10 @@ Image labelled_sheet(const std::vector<SceneResult>& scenes, const adq::SceneOpt
                         "(TAU = {}, {} realisations per pixel)",
                         o.tau, o.realisations),
             kInk);
-  draw_text(im, left, 18,
-            "renders: radiance x exposure per scene (x, y: image pixels, 0.." +
-                std::to_string(s) + ")",
-            kInk);
+  draw_text(
+      im, left, 18,
+      "renders: radiance x exposure per scene (x, y: image pixels, 0.." + std::to_string(s) + ")",
+      kInk);
   for (int c = 0; c < 4; ++c) draw_text(im, left + c * (s + gap), top - 12, kColumnNames[c], kInk);
   for (std::size_t k = 0; k < scenes.size(); ++k) {
     const int y0 = top + int(k) * row_h;
@@ -194,9 +194,10 @@ void write_scene_exr(const FigureContext& ctx, const SceneResult& s) {
   for (int y = 0; y < r.height; ++y)
     for (int x = 0; x < r.width; ++x) {
       const adq::ScenePixel& p = r.pixels[std::size_t(y) * std::size_t(r.width) + std::size_t(x)];
-      const double v[] = {p.chosen_value, p.exact_value, double(p.level), p.facets, p.p,
-                          p.mean_diff, p.cv_diff, p.mean_diff_lcb, p.cv_diff_lcb, double(p.lit),
-                          double(p.exceeds), double(p.surface)};
+      const double v[] = {
+          p.chosen_value,    p.exact_value,    double(p.level), p.facets,      p.p,
+          p.mean_diff,       p.cv_diff,        p.mean_diff_lcb, p.cv_diff_lcb, double(p.lit),
+          double(p.exceeds), double(p.surface)};
       for (std::size_t c = 0; c < std::size(v); ++c) im.at(x, y, c) = v[c];
     }
   io::write_exr(ctx.dir / (r.scene.name + ".exr"), im,
@@ -232,7 +233,8 @@ void run_adequacy_scene(const FigureContext& ctx) {
     write_scene_exr(ctx, r);
     results.push_back(std::move(r));
   }
-  if (ctx.progress) ctx.progress("adequacy-scene: scenes", long(scenes.size()), long(scenes.size()));
+  if (ctx.progress)
+    ctx.progress("adequacy-scene: scenes", long(scenes.size()), long(scenes.size()));
 
   io::write_png_preview(ctx.dir / "adequacy-scene.png", labelled_sheet(results, o));
   std::vector<Image> tiles;
@@ -247,28 +249,35 @@ void run_adequacy_scene(const FigureContext& ctx) {
                      {"adequacy-scene: chosen level against exact counting per pixel (difference "
                       "map: blue 0, white TAU, red 2 TAU, magenta exceeds TAU; level map: green "
                       "smooth, blue realtime, orange small_count, red exact)",
-                      4, 2, labels, {}});
+                      4,
+                      2,
+                      labels,
+                      {}});
 
   const adq::SafetyDecision d = adq::decide_choice_safety(total, verify::check_level());
-  io::write_csv_atomic(
-      ctx.dir / "adequacy-scene.csv",
-      {"scene", "model", "shape", "light", "log10_density", "width", "height", "realisations",
-       "lit", "cheaper", "exceeds", "smooth", "realtime", "small_count", "exact",
-       "max_diff_over_tau", "exposure"},
-      [&](io::CsvWriter& w) {
-        for (const SceneResult& r : results) {
-          const adq::ChoiceScene& s = r.render.scene;
-          w.cell(s.name).cell(s.model)
-              .cell(s.shape == adq::SceneShape::kPlane ? "plane" : "sphere")
-              .cell(s.light == adq::SceneLight::kPoint ? "point" : "spherical")
-              .cell(s.log10_density).cell_int(r.render.width).cell_int(r.render.height)
-              .cell_int(o.realisations).cell_int((long long)r.tally.lit)
-              .cell_int((long long)r.tally.cheaper).cell_int((long long)r.tally.exceeds);
-          for (std::uint64_t n : r.tally.by_level) w.cell_int((long long)n);
-          w.cell(r.max_diff).cell(r.exposure);
-          w.end_row();
-        }
-      });
+  io::write_csv_atomic(ctx.dir / "adequacy-scene.csv",
+                       {"scene", "model", "shape", "light", "log10_density", "width", "height",
+                        "realisations", "lit", "cheaper", "exceeds", "smooth", "realtime",
+                        "small_count", "exact", "max_diff_over_tau", "exposure"},
+                       [&](io::CsvWriter& w) {
+                         for (const SceneResult& r : results) {
+                           const adq::ChoiceScene& s = r.render.scene;
+                           w.cell(s.name)
+                               .cell(s.model)
+                               .cell(s.shape == adq::SceneShape::kPlane ? "plane" : "sphere")
+                               .cell(s.light == adq::SceneLight::kPoint ? "point" : "spherical")
+                               .cell(s.log10_density)
+                               .cell_int(r.render.width)
+                               .cell_int(r.render.height)
+                               .cell_int(o.realisations)
+                               .cell_int((long long)r.tally.lit)
+                               .cell_int((long long)r.tally.cheaper)
+                               .cell_int((long long)r.tally.exceeds);
+                           for (std::uint64_t n : r.tally.by_level) w.cell_int((long long)n);
+                           w.cell(r.max_diff).cell(r.exposure);
+                           w.end_row();
+                         }
+                       });
 
   std::string md = fmt::format(
       "# adequacy-scene\n\nScenes the adequacy grid was not measured on (verify/claims/"

@@ -260,7 +260,8 @@ void draw_text(Image& image, int x, int y, const std::string& text, Vec3<double>
           if (!((g.rows[std::size_t(r)] >> (4 - col)) & 1) || px < 0 || py < 0 ||
               px >= image.width || py >= image.height)
             continue;
-          image.at(px, py, 0) = color.x, image.at(px, py, 1) = color.y, image.at(px, py, 2) = color.z;
+          image.at(px, py, 0) = color.x, image.at(px, py, 1) = color.y,
+                           image.at(px, py, 2) = color.z;
         }
     }
     ++k;

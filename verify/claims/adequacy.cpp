@@ -258,7 +258,6 @@ double calibrate_prediction(std::uint64_t seed) {
   return measure_row(c, 20000, seed).p_cv;
 }
 
-
 // ---- adequacy.choice-is-safe ----------------------------------------------------------------
 
 constexpr const char* kChoiceSafe = "adequacy.choice-is-safe";
@@ -302,19 +301,20 @@ std::string describe_choice(const ChoiceMeasured& m) {
   std::string per_scene;
   for (std::size_t i = 0; i < m.scenes.size(); ++i) {
     const adequacy::SafetyTally& t = m.scenes[i];
-    per_scene += fmt::format("{}{} ({}): {} lit, {} cheaper, {} exceed", per_scene.empty() ? "" : "; ",
-                             scenes[i].name, scenes[i].model, t.lit, t.cheaper, t.exceeds);
+    per_scene +=
+        fmt::format("{}{} ({}): {} lit, {} cheaper, {} exceed", per_scene.empty() ? "" : "; ",
+                    scenes[i].name, scenes[i].model, t.lit, t.cheaper, t.exceeds);
   }
   std::string levels;
   for (int l = 0; l < kBinomialLevels; ++l)
     levels += fmt::format("{}{} {}", l ? ", " : "", kBinomialLevelNames[std::size_t(l)],
                           m.total.by_level[std::size_t(l)]);
-  return fmt::format("{} of {} lit pixels exceed TAU (fraction {:.4g}; allowed ≤ {} = {:.4g}, "
-                     "one-sided exact binomial p = {:.3g} against rate ≤ {}); chosen levels of "
-                     "the lit pixels: {}; {}",
-                     m.total.exceeds, m.total.lit, m.decision.fraction, m.decision.allowed,
-                     m.decision.allowed_fraction, m.decision.p_value, adequacy::kPixelFlagRate,
-                     levels, per_scene);
+  return fmt::format(
+      "{} of {} lit pixels exceed TAU (fraction {:.4g}; allowed ≤ {} = {:.4g}, "
+      "one-sided exact binomial p = {:.3g} against rate ≤ {}); chosen levels of "
+      "the lit pixels: {}; {}",
+      m.total.exceeds, m.total.lit, m.decision.fraction, m.decision.allowed,
+      m.decision.allowed_fraction, m.decision.p_value, adequacy::kPixelFlagRate, levels, per_scene);
 }
 
 CheckResult run_choice(Budget b) {
@@ -339,7 +339,8 @@ CheckResult run_choice(Budget b) {
   r.configurations = int(m.total.lit);
   r.detail = describe_choice(m);
   const ChoiceMeasured c = measure_choice(o, o.tau * kControlTauScale, {});
-  r.control = fmt::format("the chooser run with TAU × {:g}: {}", kControlTauScale, describe_choice(c));
+  r.control =
+      fmt::format("the chooser run with TAU × {:g}: {}", kControlTauScale, describe_choice(c));
   record_control(r, c.decision.verdict);
   r.power = fmt::format(
       "rejects once more than {} of the {} lit pixels ({:.3g}) exceed TAU, where safe choices "

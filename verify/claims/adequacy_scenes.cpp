@@ -36,7 +36,8 @@ struct SceneGeometry {
 SceneGeometry geometry(const ChoiceScene& s, int width, int height) {
   SceneGeometry g{};
   if (s.shape == SceneShape::kPlane) {
-    g.camera = PinholeCamera<double>::look_at({0, 0, 1}, {0, 3.3, 0}, {0, 0, 1}, 30.0, width, height);
+    g.camera =
+        PinholeCamera<double>::look_at({0, 0, 1}, {0, 3.3, 0}, {0, 0, 1}, 30.0, width, height);
     g.plane = Plane<double>{{0, 0, 0}, Frame<double>{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, 1.0, 0.0};
     g.light = kPlaneLight;
   } else {
@@ -86,11 +87,11 @@ std::pair<double, double> facets_and_p(const DeliotBelcour::Params<double>& para
 }
 std::pair<double, double> facets_and_p(const KneiphofKlein::Params<double>& params,
                                        const ModelQuery<double>& q) {
-  const double omc = q.light.cos_half_angle < 1 ? 1 - q.light.cos_half_angle
-                                                : params.one_minus_cos_gamma;
-  return {footprint_facet_count_scaled(q.footprint, params.density_scale),
-          saturate(kneiphof2024::cap_probability_eq20(params.ggx, q.wi, q.wo, omc,
-                                                      params.total_area))};
+  const double omc =
+      q.light.cos_half_angle < 1 ? 1 - q.light.cos_half_angle : params.one_minus_cos_gamma;
+  return {
+      footprint_facet_count_scaled(q.footprint, params.density_scale),
+      saturate(kneiphof2024::cap_probability_eq20(params.ggx, q.wi, q.wo, omc, params.total_area))};
 }
 double engine_level(const DeliotBelcour::Params<double>& params, const ModelQuery<double>& q,
                     double tau) {
@@ -177,8 +178,9 @@ void render_model(const ChoiceScene& s, const SceneGeometry& g, const SceneOptio
 
 std::vector<ChoiceScene> choice_scenes() {
   // Densities put each scene's footprints on both sides of the smooth boundary
-  // N_P p ≈ 1/(margin·TAU)² = 10^4: the planes' footprints span 1.2e-4 to 0.5 uv units² at 64
-  // pixels; the sphere's about 3e-5 uv units², where kneiphof_klein's 0.26° cap gives p ≲ 3e-4.
+  // N_P p ≈ 1/(margin·TAU)² = 10^4: the planes' footprints span 4.7e-4 to 1.9 uv units² at 64
+  // pixels (the spherical light's cone 1.1° to 3.7°); the sphere's about 3.5e-5/sin θ uv units²,
+  // where kneiphof_klein's 0.26° cap gives p ≤ 2.2e-4 (its value at normal incidence).
   return {
       {"plane-point-low", "deliot_belcour", SceneShape::kPlane, SceneLight::kPoint, 6, "low"},
       {"plane-point-high", "deliot_belcour", SceneShape::kPlane, SceneLight::kPoint, 8, "high"},

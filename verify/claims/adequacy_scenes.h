@@ -31,7 +31,7 @@ struct ChoiceScene {
   std::string model;  // deliot_belcour or kneiphof_klein
   SceneShape shape;
   SceneLight light;
-  double log10_density;  // facets per unit uv area, log10 (the models' density parameter)
+  double log10_density;       // facets per unit uv area, log10 (the models' density parameter)
   std::string density_label;  // "low" or "high"
 };
 
@@ -53,7 +53,7 @@ using LevelChooser = std::function<int(double facets, double p, double tau)>;
 
 struct SceneOptions {
   int width = 64, height = 64;
-  int realisations = 256;  // positions per pixel for the difference statistics
+  int realisations = 256;                  // positions per pixel for the difference statistics
   double tau = kDefaultThreshold;          // what a pixel's difference is compared with
   double chooser_tau = kDefaultThreshold;  // the threshold the chooser is run with
   LevelChooser chooser;  // empty: the engine chooser, choose_<model>_level (core/glints/adequacy.h)
@@ -61,9 +61,9 @@ struct SceneOptions {
 };
 
 struct ScenePixel {
-  bool surface = false;  // the camera ray hits the shape and the light is above its horizon
-  int level = -1;        // the chosen level (BinomialLevel value), -1 off the surface
-  double facets = 0, p = 0;                   // the footprint's N_P and the clamped probability
+  bool surface = false;      // the camera ray hits the shape and the light is above its horizon
+  int level = -1;            // the chosen level (BinomialLevel value), -1 off the surface
+  double facets = 0, p = 0;  // the footprint's N_P and the clamped probability
   double chosen_value = 0, exact_value = 0;   // the rendered radiance (first realisation)
   double mean_diff = 0, cv_diff = 0;          // estimates over the realisations (0: level exact)
   double mean_diff_lcb = 0, cv_diff_lcb = 0;  // their lower confidence bounds
@@ -83,9 +83,9 @@ SceneRender render_choice_scene(const ChoiceScene& scene, const SceneOptions& op
 
 // Counts over scenes.
 struct SafetyTally {
-  std::uint64_t lit = 0;       // lit pixels (the claim's denominator)
-  std::uint64_t cheaper = 0;   // of which the chooser picked a level cheaper than exact
-  std::uint64_t exceeds = 0;   // of which the difference exceeds TAU
+  std::uint64_t lit = 0;      // lit pixels (the claim's denominator)
+  std::uint64_t cheaper = 0;  // of which the chooser picked a level cheaper than exact
+  std::uint64_t exceeds = 0;  // of which the difference exceeds TAU
   std::array<std::uint64_t, kBinomialLevels> by_level{};  // lit pixels per chosen level
 };
 SafetyTally tally(const SceneRender& r);
