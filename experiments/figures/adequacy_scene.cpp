@@ -246,9 +246,8 @@ void run_adequacy_scene(const FigureContext& ctx) {
     }
   io::write_png_preview(ctx.dir / "panels.png", montage(tiles, 4, 2));
   write_panel_layout(ctx.dir / "panels.png",
-                     {"adequacy-scene: chosen level against exact counting per pixel (difference "
-                      "map: blue 0, white TAU, red 2 TAU, magenta exceeds TAU; level map: green "
-                      "smooth, blue realtime, orange small_count, red exact)",
+                     {"adequacy-scene: chosen level vs exact counting (difference: blue 0, white "
+                      "TAU, red 2 TAU, magenta over TAU)",
                       4,
                       2,
                       labels,
@@ -303,8 +302,10 @@ void run_adequacy_scene(const FigureContext& ctx) {
       "adequacy-scene.png: one row per scene; columns: the chosen-level render, the exact render "
       "(same exposure), the difference map (max of the two differences over TAU: blue 0, white "
       "TAU, red 2 TAU or more; magenta where it exceeds TAU for sure; dark grey where the exact "
-      "level is lit at fewer than {:g} realisations), the chosen level. panels.png is the same "
-      "panels unlabelled (labels in panels.panels.json); <scene>.exr every per-pixel quantity.\n",
+      "level is lit at fewer than {:g} realisations), the chosen level (green smooth, blue "
+      "realtime, orange small_count, red exact, light grey off the surface). panels.png is the "
+      "same panels unlabelled (labels in panels.panels.json); <scene>.exr every per-pixel "
+      "quantity.\n",
       total.exceeds, total.lit, d.fraction, d.allowed, d.allowed_fraction, adq::kPixelFlagRate,
       verify::check_level(), d.p_value, to_string(d.verdict), adq::kMinLitPositions);
   io::write_file_atomic(ctx.dir / "summary.md", md);
