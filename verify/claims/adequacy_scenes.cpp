@@ -140,6 +140,8 @@ void render_rows(const ChoiceScene& s, const SceneGeometry& g, const Shape& shap
       std::tie(px.facets, px.p) = facets_and_p(params, q);
       px.level = o.chooser ? o.chooser(px.facets, px.p, o.chooser_tau)
                            : int(engine_level(params, q, o.chooser_tau));
+      if (px.level < 0 || px.level >= kBinomialLevels)
+        throw std::invalid_argument("adequacy scenes: the chooser returned no level of the family");
       const auto chosen = BinomialLevel(px.level);
       const int n = o.realisations;
       x.resize(std::size_t(n));

@@ -105,9 +105,12 @@ TEST(AdequacyChoiceScenes, SamePixelsForAnyThreadCount) {
   }
 }
 
-TEST(AdequacyChoiceScenes, RejectsAnEmptyImage) {
+TEST(AdequacyChoiceScenes, RejectsAnEmptyImageAndALevelOutsideTheFamily) {
   SceneOptions o = small_options();
   o.width = 0;
+  EXPECT_THROW(render_choice_scene(choice_scenes().front(), o), std::invalid_argument);
+  o = small_options();
+  o.chooser = [](double, double, double) { return kBinomialLevels; };
   EXPECT_THROW(render_choice_scene(choice_scenes().front(), o), std::invalid_argument);
 }
 
