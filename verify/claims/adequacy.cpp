@@ -278,16 +278,14 @@ struct ChoiceMeasured {
   adequacy::SafetyDecision decision;
 };
 
-// Every scene rendered with the chooser at `chooser_tau` (or `chooser`, where given), differences
-// compared with the rule's TAU, decided at the suite's per-check level.
-ChoiceMeasured measure_choice(const adequacy::SceneOptions& base, double chooser_tau,
-                              const adequacy::LevelChooser& chooser) {
+// Every scene rendered with the engine chooser at `chooser_tau`, differences compared with the
+// rule's TAU, decided at the suite's per-check level.
+ChoiceMeasured measure_choice(const adequacy::SceneOptions& base, double chooser_tau) {
   ChoiceMeasured m;
   const std::vector<adequacy::ChoiceScene> scenes = adequacy::choice_scenes();
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     adequacy::SceneOptions o = base;
     o.chooser_tau = chooser_tau;
-    o.chooser = chooser;
     o.seed = check_seed(kChoiceSafe, i);
     m.scenes.push_back(adequacy::tally(adequacy::render_choice_scene(scenes[i], o)));
     adequacy::add(m.total, m.scenes.back());
@@ -332,13 +330,13 @@ CheckResult run_choice(Budget b) {
       "level's mean or CV differs from the exact level's by more than TAU (a lower bound at "
       "one-sided {} each above TAU)",
       adequacy::kMinLitPositions, adequacy::kPixelFlagRate / 2);
-  const ChoiceMeasured m = measure_choice(o, o.tau, {});
+  const ChoiceMeasured m = measure_choice(o, o.tau);
   r.verdict = m.decision.verdict;
   r.value = m.decision.fraction;
   r.bound = m.decision.allowed_fraction;
   r.configurations = int(m.total.lit);
   r.detail = describe_choice(m);
-  const ChoiceMeasured c = measure_choice(o, o.tau * kControlTauScale, {});
+  const ChoiceMeasured c = measure_choice(o, o.tau * kControlTauScale);
   r.control =
       fmt::format("the chooser run with TAU × {:g}: {}", kControlTauScale, describe_choice(c));
   record_control(r, c.decision.verdict);
@@ -357,7 +355,8 @@ std::vector<Check> adequacy_checks() {
            "Kneiphof & Klein 2024 Eq. 11, 16; Deliot & Belcour 2023", Verdict::kHoldsInRegime,
            run_prediction, calibrate_prediction},
           // The decision is a count against the exact binomial test's critical count, reported as
-          // a bound (the test's p-value is in the detail).
+          // a bound (the test's p-value is in the detail): a p-valued check would take a share of
+          // check_level() and move every recorded claim's level.
           {kChoiceSafe, "glintlab (adequacy of the binomial family)",
            "core/glints/adequacy.h chooser; Kneiphof & Klein 2024 Eq. 16; Deliot & Belcour 2023",
            Verdict::kHoldsInRegime, run_choice}};
