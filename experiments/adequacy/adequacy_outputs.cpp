@@ -19,9 +19,7 @@ namespace {
 using verify::adequacy::CellResult;
 using verify::adequacy::LevelStats;
 
-const std::array<Vec3<double>, 4> kLevelColors = {
-    Vec3<double>{0.35, 0.75, 0.35}, Vec3<double>{0.35, 0.55, 0.9}, Vec3<double>{0.95, 0.65, 0.2},
-    Vec3<double>{0.85, 0.25, 0.25}};
+const std::array<Vec3<double>, 4>& kLevelColors = kAdequacyLevelColors;
 
 std::string short_number(double x) {
   if (x >= 1000) return fmt::format("1e{}", int(std::lround(std::log10(x))));
@@ -94,6 +92,63 @@ nlohmann::json rate_json(const verify::adequacy::DecisionRateRow& r) {
 
 }  // namespace
 
+std::vector<AdequacyLevelMap> adequacy_level_maps(const std::vector<CellResult>& rows,
+                                                  const verify::adequacy::GridAxes& axes,
+                                                  double threshold) {
+  // Per model × light × incidence, rows (α, θ_h) bottom to top, columns N_P.
+  std::vector<AdequacyLevelMap> out;
+  const std::size_t n_cols = axes.facets.size();
+  const std::size_t n_rows = axes.alpha.size() * std::size_t(axes.theta_h_count);
+  const std::size_t per_map = n_cols * n_rows;
+  for (std::size_t start = 0; start + per_map <= rows.size(); start += per_map) {
+    const CellResult& first = rows[start];
+    AdequacyLevelMap m;
+    m.model = first.cell.model;
+    m.light_half_angle_deg = first.cell.light_half_angle_deg;
+    m.theta_i_deg = first.cell.theta_i_deg;
+    m.stem = fmt::format("adequacy_{}_light{:g}_theta{:g}", first.cell.model,
+                         first.cell.light_half_angle_deg, first.cell.theta_i_deg);
+    CategoryMap& map = m.map;
+    map.title = fmt::format(
+        "{}: cheapest level within TAU = {:g} (light {:g} deg, theta_i {:g} deg)", first.cell.model,
+        threshold, first.cell.light_half_angle_deg, first.cell.theta_i_deg);
+    map.x_label = "footprint size N_P (expected facets)";
+    map.y_label = "alpha, theta_h (deg)";
+    for (double n : axes.facets) map.column_labels.push_back(short_number(n));
+    for (std::string_view l : kBinomialLevelNames) map.category_names.emplace_back(l);
+    map.category_colors.assign(kLevelColors.begin(), kLevelColors.end());
+    map.marker_name = "predicted: CV = TAU";
+    m.exr = Image(int(n_cols), int(n_rows),
+                  {"chosen", "chooser", "cv_exact", "cv_predicted", "p_zero", "p_zero_predicted"});
+    for (std::size_t r = 0; r < n_rows; ++r) {
+      const CellResult& row0 = rows[start + r * n_cols];
+      map.row_labels.push_back(
+          fmt::format("a={:g} th={:.1f}", row0.cell.alpha, row0.cell.theta_h_deg));
+      std::vector<int> cats;
+      for (std::size_t k = 0; k < n_cols; ++k) {
+        const CellResult& c = rows[start + r * n_cols + k];
+        cats.push_back(c.chosen);
+        const double v[] = {double(c.chosen), double(c.chooser),        c.levels[3].cv,
+                            c.cv_predicted,   c.levels[3].p_zero,       c.p_zero_predicted};
+        for (std::size_t ch = 0; ch < 6; ++ch) m.exr.at(int(k), int(r), ch) = v[ch];
+      }
+      map.cells.push_back(cats);
+      // The predicted boundary: CV_pred = TAU at N* = (1 − p)/(p TAU²), in column units (the
+      // columns are evenly spaced in log N_P).
+      const double p = row0.p;
+      double marker = NAN;
+      if (p > 0 && p < 1 && n_cols > 1) {
+        const double star = (1 - p) / (p * threshold * threshold);
+        const double l0 = std::log10(axes.facets.front()), l1 = std::log10(axes.facets.back());
+        marker = (std::log10(star) - l0) / (l1 - l0) * double(n_cols - 1);
+      }
+      map.marker_column.push_back(marker);
+    }
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
 std::vector<CellResult> measure_adequacy(const AdequacyOptions& o) {
   const verify::adequacy::GridAxes axes = verify::adequacy::grid_axes(o.budget);
   const auto cells = verify::adequacy::make_grid(o.models, axes);
@@ -125,64 +180,20 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
   sum.json = out / "adequacy.json";
   write_csv(sum.csv, rows);
 
-  // Maps: per model × light × incidence, rows (α, θ_h) bottom to top, columns N_P.
-  const std::size_t n_cols = axes.facets.size();
-  const std::size_t n_rows = axes.alpha.size() * std::size_t(axes.theta_h_count);
-  const std::size_t per_map = n_cols * n_rows;
   nlohmann::json maps = nlohmann::json::array();
-  for (std::size_t start = 0; start + per_map <= rows.size(); start += per_map) {
-    const CellResult& first = rows[start];
-    const std::string stem =
-        fmt::format("adequacy_{}_light{:g}_theta{:g}", first.cell.model,
-                    first.cell.light_half_angle_deg, first.cell.theta_i_deg);
-    CategoryMap map;
-    map.title = fmt::format("{}: cheapest level within TAU = {:g} (light {:g} deg, theta_i {:g} deg)",
-                            first.cell.model, o.threshold, first.cell.light_half_angle_deg,
-                            first.cell.theta_i_deg);
-    map.x_label = "footprint size N_P (expected facets)";
-    map.y_label = "alpha, theta_h (deg)";
-    for (double n : axes.facets) map.column_labels.push_back(short_number(n));
-    for (std::string_view l : kBinomialLevelNames) map.category_names.emplace_back(l);
-    map.category_colors.assign(kLevelColors.begin(), kLevelColors.end());
-    map.marker_name = "predicted: CV = TAU";
-    Image exr(int(n_cols), int(n_rows),
-              {"chosen", "chooser", "cv_exact", "cv_predicted", "p_zero", "p_zero_predicted"});
-    for (std::size_t r = 0; r < n_rows; ++r) {
-      const CellResult& row0 = rows[start + r * n_cols];
-      map.row_labels.push_back(
-          fmt::format("a={:g} th={:.1f}", row0.cell.alpha, row0.cell.theta_h_deg));
-      std::vector<int> cats;
-      for (std::size_t k = 0; k < n_cols; ++k) {
-        const CellResult& c = rows[start + r * n_cols + k];
-        cats.push_back(c.chosen);
-        const double v[] = {double(c.chosen), double(c.chooser),        c.levels[3].cv,
-                            c.cv_predicted,   c.levels[3].p_zero,       c.p_zero_predicted};
-        for (std::size_t ch = 0; ch < 6; ++ch) exr.at(int(k), int(r), ch) = v[ch];
-      }
-      map.cells.push_back(cats);
-      // The predicted boundary: CV_pred = TAU at N* = (1 − p)/(p TAU²), in column units (the
-      // columns are evenly spaced in log N_P).
-      const double p = row0.p;
-      double marker = NAN;
-      if (p > 0 && p < 1 && n_cols > 1) {
-        const double star = (1 - p) / (p * o.threshold * o.threshold);
-        const double l0 = std::log10(axes.facets.front()), l1 = std::log10(axes.facets.back());
-        marker = (std::log10(star) - l0) / (l1 - l0) * double(n_cols - 1);
-      }
-      map.marker_column.push_back(marker);
-    }
+  for (const AdequacyLevelMap& m : adequacy_level_maps(rows, axes, o.threshold)) {
     // EXR rows: row 0 = the first (α, θ_h) row, as the PNG's bottom row.
-    io::write_exr(out / (stem + ".exr"), exr,
+    io::write_exr(out / (m.stem + ".exr"), m.exr,
                   {{"glintlab_columns", "N_P: " + fmt::format("{}", fmt::join(axes.facets, ", "))},
-                   {"glintlab_rows", fmt::format("{}", fmt::join(map.row_labels, "; "))},
+                   {"glintlab_rows", fmt::format("{}", fmt::join(m.map.row_labels, "; "))},
                    {"glintlab_levels", "0 smooth, 1 realtime, 2 small_count, 3 exact"}});
-    io::write_png_preview(out / (stem + ".png"), draw_category_map(map));
-    sum.maps.push_back(stem + ".png");
-    maps.push_back({{"model", first.cell.model},
-                    {"light_half_angle_deg", first.cell.light_half_angle_deg},
-                    {"theta_i_deg", first.cell.theta_i_deg},
-                    {"png", stem + ".png"},
-                    {"exr", stem + ".exr"}});
+    io::write_png_preview(out / (m.stem + ".png"), draw_category_map(m.map));
+    sum.maps.push_back(m.stem + ".png");
+    maps.push_back({{"model", m.model},
+                    {"light_half_angle_deg", m.light_half_angle_deg},
+                    {"theta_i_deg", m.theta_i_deg},
+                    {"png", m.stem + ".png"},
+                    {"exr", m.stem + ".exr"}});
   }
 
   nlohmann::json doc;

@@ -11,10 +11,18 @@
 #include <string>
 #include <vector>
 
+#include "core/math/vec.h"
+#include "core/render/image.h"
+#include "experiments/figures/log_chart.h"
 #include "verify/adequacy/binomial_adequacy.h"
 #include "verify/adequacy/decision_calibration.h"
 
 namespace glintlab::experiments {
+
+// The colours of the binomial levels (smooth, realtime, small_count, exact) in every adequacy map.
+inline constexpr std::array<Vec3<double>, 4> kAdequacyLevelColors = {
+    Vec3<double>{0.35, 0.75, 0.35}, Vec3<double>{0.35, 0.55, 0.9}, Vec3<double>{0.95, 0.65, 0.2},
+    Vec3<double>{0.85, 0.25, 0.25}};
 
 struct AdequacyOptions {
   std::vector<std::string> models;  // names of the binomial family
@@ -43,6 +51,22 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
 
 // The table alone (for the tests): the cells of the budget's grid for `models`, measured.
 std::vector<verify::adequacy::CellResult> measure_adequacy(const AdequacyOptions& o);
+
+// One map of the measured table, per model × light × incidence: the chosen level over footprint
+// size N_P (columns) × (α, θ_h) (rows, bottom to top) as a labelled category map with the predicted
+// smooth boundary CV_pred = TAU drawn per row, and as an EXR of one pixel per cell (channels
+// chosen, chooser, cv_exact, cv_predicted, p_zero, p_zero_predicted; row 0 the bottom row).
+struct AdequacyLevelMap {
+  std::string stem;  // adequacy_<model>_light<deg>_theta<deg>
+  std::string model;
+  double light_half_angle_deg = 0, theta_i_deg = 0;
+  CategoryMap map;
+  Image exr;
+};
+// `rows` in make_grid's order for `axes`.
+std::vector<AdequacyLevelMap> adequacy_level_maps(
+    const std::vector<verify::adequacy::CellResult>& rows, const verify::adequacy::GridAxes& axes,
+    double threshold);
 
 // `glintlab adequacy --calibrate`: the decision rule's false-adequate rate (and, on truly
 // adequate cells, its power) on synthetic cells whose truth is known

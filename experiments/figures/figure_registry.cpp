@@ -6,6 +6,8 @@
 
 #include <system_error>
 
+#include "experiments/figures/adequacy_maps.h"
+#include "experiments/figures/adequacy_scene.h"
 #include "experiments/figures/chermain2021.h"
 #include "experiments/figures/eto2023.h"
 #include "experiments/figures/models_hemisphere.h"
@@ -41,6 +43,8 @@ const std::vector<FigureEntry>& registered_figures() {
       kemppinen2025_table3_entry(),
       kemppinen2025_speed_accuracy_entry(),
       kemppinen2025_fig7_entry(),
+      adequacy_maps_entry(),
+      adequacy_scene_entry(),
   };
   return kFigures;
 }

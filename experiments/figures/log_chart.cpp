@@ -248,4 +248,24 @@ Image draw_category_map(const CategoryMap& map, int cell_width, int cell_height)
   return c.take();
 }
 
+void draw_text(Image& image, int x, int y, const std::string& text, Vec3<double> color) {
+  int k = 0;
+  for (char ch : text) {
+    const char u = (ch >= 'a' && ch <= 'z') ? char(ch - 'a' + 'A') : ch;
+    for (const Glyph& g : kGlyphs) {
+      if (g.c != u) continue;
+      for (int r = 0; r < 7; ++r)
+        for (int col = 0; col < 5; ++col) {
+          const int px = x + 6 * k + col, py = y + r;
+          if (!((g.rows[std::size_t(r)] >> (4 - col)) & 1) || px < 0 || py < 0 ||
+              px >= image.width || py >= image.height)
+            continue;
+          image.at(px, py, 0) = color.x, image.at(px, py, 1) = color.y,
+                           image.at(px, py, 2) = color.z;
+        }
+    }
+    ++k;
+  }
+}
+
 }  // namespace glintlab::experiments

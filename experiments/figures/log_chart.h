@@ -52,4 +52,8 @@ Image draw_category_map(const CategoryMap& map, int cell_width = 40, int cell_he
 // x and lower y are better; ties kept): the Pareto front of time against error.
 std::vector<std::size_t> pareto_front(const std::vector<Vec2<double>>& xy);
 
+// `text` drawn into the first three channels of `image` in the charts' 5×7 pixel font (lower case
+// as upper), its top-left corner at (x, y), 6 pixels per character; pixels outside are skipped.
+void draw_text(Image& image, int x, int y, const std::string& text, Vec3<double> color);
+
 }  // namespace glintlab::experiments

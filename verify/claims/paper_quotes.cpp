@@ -358,6 +358,12 @@ const std::vector<PaperQuote>& paper_quotes() {
                 "Eq. 11: ∫_Ωh D̂_P dh = D_H · b(N_P, p_Ωh)/N_P and Eq. 16: L̂_o,P = L_o · b(N_P, "
                 "p_Ωh)/(N_P p_Ωh), and on Deliot & Belcour 2023",
        .glintlab_rule = true},
+      {.id = "adequacy.choice-is-safe",
+       .quote = "Not a paper's claim: glintlab's rule (shared/CLAIMS.md): \"rendering each pixel "
+                "with the chosen level differs from the most complete level by more than TAU in "
+                "no more pixels than the confidence level allows, on scenes outside the fitting "
+                "grid\"",
+       .glintlab_rule = true},
   };
   return kQuotes;
 }

@@ -1,0 +1,13 @@
+// Figure adequacy-scene: the validation scenes of claim adequacy.choice-is-safe
+// (verify/claims/adequacy_scenes.h) side by side — each pixel rendered with the level the engine
+// chooser picks, the exact level everywhere, the per-pixel difference against TAU, and the
+// chosen level. The binomial family only (deliot_belcour, kneiphof_klein).
+#pragma once
+
+#include "experiments/figures/figure_registry.h"
+
+namespace glintlab::experiments {
+
+FigureEntry adequacy_scene_entry();
+
+}  // namespace glintlab::experiments

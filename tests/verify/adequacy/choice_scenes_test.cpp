@@ -1,0 +1,118 @@
+// The validation scenes of adequacy.choice-is-safe (verify/claims/adequacy_scenes.h): the
+// decision's critical count, the engine chooser held and a broken chooser caught by the same
+// decision on small renders, the chooser on (N_P, p) identical to the engine's, and the same
+// pixels for any thread count.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include "verify/claims/adequacy_scenes.h"
+
+namespace glintlab::verify::adequacy {
+namespace {
+
+SceneOptions small_options() {
+  SceneOptions o;
+  o.width = o.height = 32;
+  o.realisations = 160;
+  o.seed = 7;
+  return o;
+}
+
+// Two scenes of both models: the plane under the spherical light (kneiphof_klein, the light's
+// cone) and under the point light (deliot_belcour), at the high density.
+SafetyTally tally_of(const SceneOptions& o) {
+  SafetyTally t;
+  for (const ChoiceScene& s : choice_scenes())
+    if (s.name == "plane-point-high" || s.name == "plane-area-high")
+      add(t, tally(render_choice_scene(s, o)));
+  return t;
+}
+
+TEST(AdequacyChoiceDecision, AllowsTheCountABinomialAtTheFlagRateReaches) {
+  SafetyTally t;
+  t.lit = 10000;
+  const double alpha = 1e-3;
+  t.exceeds = 0;
+  const SafetyDecision none = decide_choice_safety(t, alpha);
+  EXPECT_EQ(none.verdict, Verdict::kHoldsInRegime);
+  // 100 expected under H0, σ ≈ 9.95: the critical count lies some 3 σ above.
+  EXPECT_GT(none.allowed, 125u);
+  EXPECT_LT(none.allowed, 140u);
+  t.exceeds = none.allowed;
+  const SafetyDecision at = decide_choice_safety(t, alpha);
+  EXPECT_EQ(at.verdict, Verdict::kHoldsInRegime);
+  EXPECT_GE(at.p_value, alpha);
+  t.exceeds = none.allowed + 1;
+  const SafetyDecision over = decide_choice_safety(t, alpha);
+  EXPECT_EQ(over.verdict, Verdict::kFails);
+  EXPECT_LT(over.p_value, alpha);
+  EXPECT_EQ(decide_choice_safety(SafetyTally{}, alpha).verdict, Verdict::kInconclusive);
+}
+
+TEST(AdequacyChoiceScenes, EngineChooserHoldsAndABrokenChooserFails) {
+  const SceneOptions o = small_options();
+  const SafetyTally genuine = tally_of(o);
+  ASSERT_GT(genuine.lit, 1000u);
+  ASSERT_GT(genuine.cheaper, genuine.lit / 2);
+  EXPECT_EQ(decide_choice_safety(genuine, 1e-3).verdict, Verdict::kHoldsInRegime)
+      << genuine.exceeds << " of " << genuine.lit;
+  // A chooser that takes the footprint 100 times too large (a unit slip in the footprint's area):
+  // it picks cheaper levels than the pixels need.
+  SceneOptions broken = o;
+  broken.chooser = [](double facets, double p, double tau) {
+    return int(choose_binomial_level(100 * facets, p, tau));
+  };
+  const SafetyTally b = tally_of(broken);
+  EXPECT_EQ(decide_choice_safety(b, 1e-3).verdict, Verdict::kFails) << b.exceeds << " of " << b.lit;
+}
+
+TEST(AdequacyChoiceScenes, ChooserOnFacetsAndProbabilityIsTheEngineChooser) {
+  SceneOptions o = small_options();
+  o.realisations = 2;
+  SceneOptions by_np = o;
+  by_np.chooser = [](double facets, double p, double tau) {
+    return int(choose_binomial_level(facets, p, tau));
+  };
+  for (const ChoiceScene& s : choice_scenes()) {
+    const SceneRender a = render_choice_scene(s, o), b = render_choice_scene(s, by_np);
+    int on_surface = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+      EXPECT_EQ(a.pixels[i].level, b.pixels[i].level) << s.name << " pixel " << i;
+      on_surface += a.pixels[i].surface ? 1 : 0;
+    }
+    EXPECT_GT(on_surface, 100) << s.name;
+  }
+}
+
+TEST(AdequacyChoiceScenes, SamePixelsForAnyThreadCount) {
+  SceneOptions o = small_options();
+  o.width = o.height = 16;
+  const ChoiceScene s = choice_scenes().front();
+  SceneRender one, two;
+  {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+    one = render_choice_scene(s, o);
+  }
+  {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
+    two = render_choice_scene(s, o);
+  }
+  for (std::size_t i = 0; i < one.pixels.size(); ++i) {
+    EXPECT_EQ(one.pixels[i].chosen_value, two.pixels[i].chosen_value);
+    EXPECT_EQ(one.pixels[i].exact_value, two.pixels[i].exact_value);
+    EXPECT_EQ(one.pixels[i].cv_diff, two.pixels[i].cv_diff);
+    EXPECT_EQ(one.pixels[i].exceeds, two.pixels[i].exceeds);
+  }
+}
+
+TEST(AdequacyChoiceScenes, RejectsAnEmptyImageAndALevelOutsideTheFamily) {
+  SceneOptions o = small_options();
+  o.width = 0;
+  EXPECT_THROW(render_choice_scene(choice_scenes().front(), o), std::invalid_argument);
+  o = small_options();
+  o.chooser = [](double, double, double) { return kBinomialLevels; };
+  EXPECT_THROW(render_choice_scene(choice_scenes().front(), o), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace glintlab::verify::adequacy

@@ -1,0 +1,252 @@
+// The validation scenes of adequacy.choice-is-safe: per pixel, the chosen level and the exact
+// level over realisations of the same material, compared by the adequacy rule's own statistics.
+#include "verify/claims/adequacy_scenes.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <boost/math/distributions/binomial.hpp>
+#include <cmath>
+#include <stdexcept>
+#include <tuple>
+
+#include "core/model_registry.h"
+#include "core/scene/footprint.h"
+
+namespace glintlab::verify::adequacy {
+namespace {
+
+// The point light's position and intensity; the spherical light is a ball of kLightRadius there
+// with the radiance that gives it the same power (so the two planes are exposed alike).
+constexpr Vec3<double> kPlaneLight{0, 10, 1.5};
+constexpr Vec3<double> kSphereSceneLight{2.5, 2.5, 3.0};
+constexpr double kLightIntensity = 100;
+constexpr double kLightRadius = 0.4;
+
+struct SceneGeometry {
+  PinholeCamera<double> camera;
+  Plane<double> plane;
+  Sphere<double> sphere;
+  Vec3<double> light;
+};
+
+// The plane z = 0 (uv = world x, y) from a camera 1 unit above it whose rows run from 1.6 units
+// ahead (incidence 58°) to 30 units (88°): the footprint grows some 4000-fold from the bottom row
+// to the top. The sphere: the unit sphere from 3.6 units, 20° above its equator.
+SceneGeometry geometry(const ChoiceScene& s, int width, int height) {
+  SceneGeometry g{};
+  if (s.shape == SceneShape::kPlane) {
+    g.camera =
+        PinholeCamera<double>::look_at({0, 0, 1}, {0, 3.3, 0}, {0, 0, 1}, 30.0, width, height);
+    g.plane = Plane<double>{{0, 0, 0}, Frame<double>{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, 1.0, 0.0};
+    g.light = kPlaneLight;
+  } else {
+    g.camera = PinholeCamera<double>::look_at({3.6 * 0.9397, 0.0, 3.6 * 0.3420}, {0, 0, 0},
+                                              {0, 0, 1}, 36.0, width, height);
+    g.sphere = Sphere<double>{{0, 0, 0}, 1.0};
+    g.light = kSphereSceneLight;
+  }
+  return g;
+}
+
+BinomialSampler sampler_of(BinomialLevel level) {
+  return level == BinomialLevel::kRealTime     ? BinomialSampler::kRealTime
+         : level == BinomialLevel::kSmallCount ? BinomialSampler::kSmallCount
+                                               : BinomialSampler::kExact;
+}
+
+template <class M>
+typename M::template Params<double> scene_params(const ChoiceScene& s, std::uint64_t seed) {
+  std::vector<double> v;
+  for (const ParamSpec& p : M::kParams) v.push_back(p.default_value);
+  v[param_index<M>("alpha_x")] = kSceneAlpha;
+  v[param_index<M>("alpha_y")] = kSceneAlpha;
+  v[param_index<M>("density")] = s.log10_density;
+  v[param_index<M>("seed")] = double(seed % 4294967296ULL);
+  return M::template params<double>(v);
+}
+
+// A level's value at a query: the smooth level is the family's smooth factor (F = 1), as the
+// grid measures it (verify/adequacy/binomial_adequacy.cpp); the others the model with that
+// sampler.
+template <class M>
+double level_value(typename M::template Params<double> params, BinomialLevel level,
+                   const ModelQuery<double>& q) {
+  if (level == BinomialLevel::kSmooth)
+    return microfacet_brdf(params.ggx, q.wi, q.wo, 1.0) * std::max(q.wo.z, 0.0);
+  params.sampler = sampler_of(level);
+  return M::template eval<double>(params, q).value;
+}
+
+// N_P and the clamped p exactly as the model (and its chooser) computes them.
+std::pair<double, double> facets_and_p(const DeliotBelcour::Params<double>& params,
+                                       const ModelQuery<double>& q) {
+  const double d_n = kInvPi<double> / (params.ggx.alpha_x * params.ggx.alpha_y);
+  return {footprint_facet_count_scaled(q.footprint, params.density_scale),
+          saturate(params.r * params.ggx.D(half_vector(q.wi, q.wo)) / d_n)};
+}
+std::pair<double, double> facets_and_p(const KneiphofKlein::Params<double>& params,
+                                       const ModelQuery<double>& q) {
+  const double omc =
+      q.light.cos_half_angle < 1 ? 1 - q.light.cos_half_angle : params.one_minus_cos_gamma;
+  return {
+      footprint_facet_count_scaled(q.footprint, params.density_scale),
+      saturate(kneiphof2024::cap_probability_eq20(params.ggx, q.wi, q.wo, omc, params.total_area))};
+}
+double engine_level(const DeliotBelcour::Params<double>& params, const ModelQuery<double>& q,
+                    double tau) {
+  return choose_deliot_belcour_level(params, q, tau);
+}
+double engine_level(const KneiphofKlein::Params<double>& params, const ModelQuery<double>& q,
+                    double tau) {
+  return choose_kneiphof_klein_level(params, q, tau);
+}
+
+// Realisation j of a footprint centred at uv: j = 0 is the rendered pixel itself; the others
+// move the centre along the R2 low-discrepancy sequence (Roberts 2018), as the grid moves it, so
+// each keys the counter RNG afresh.
+Vec2<double> realisation_uv(Vec2<double> uv, int j) {
+  if (j == 0) return uv;
+  const double a = uv.x + 0.75487766624669276005 * j, b = uv.y + 0.56984029099805326591 * j;
+  return {a - std::floor(a), b - std::floor(b)};
+}
+
+template <class M, class Shape>
+void render_rows(const ChoiceScene& s, const SceneGeometry& g, const Shape& shape,
+                 const SceneOptions& o, SceneRender& out) {
+  const auto params = scene_params<M>(s, o.seed);
+  const LightPoint<double> light{g.light, false};
+  const Decision pixel_decision = decision_at_level(kPixelFlagRate / 2, o.tau);
+  tbb::parallel_for(0, o.height, [&](int row) {
+    std::vector<double> x, ref;
+    for (int col = 0; col < o.width; ++col) {
+      ScenePixel& px = out.pixels[std::size_t(row) * std::size_t(o.width) + std::size_t(col)];
+      const PixelFootprint<double> f =
+          pixel_footprint(g.camera, shape, col + 0.5, row + 0.5, light);
+      if (!f.surface.hit || !(f.wi.z > 0) || !(f.wl.z > 0)) continue;
+      px.surface = true;
+      const Vec3<double> to_light = g.light - f.surface.p;
+      const double d2 = dot(to_light, to_light);
+      ModelQuery<double> q{};
+      q.footprint = f.footprint;
+      q.wi = f.wi;
+      q.wo = f.wl;
+      q.light.intensity = 1;
+      q.light.cos_half_angle = 1;  // a point light: kneiphof_klein widens it to its 0.26° cap
+      if (s.light == SceneLight::kSphereLight)
+        q.light.cos_half_angle = std::sqrt(std::max(1 - kLightRadius * kLightRadius / d2, 0.0));
+      // Irradiance at the point from the light (the same for both lights, to first order).
+      const double irradiance = kLightIntensity / d2;
+      std::tie(px.facets, px.p) = facets_and_p(params, q);
+      px.level = o.chooser ? o.chooser(px.facets, px.p, o.chooser_tau)
+                           : int(engine_level(params, q, o.chooser_tau));
+      if (px.level < 0 || px.level >= kBinomialLevels)
+        throw std::invalid_argument("adequacy scenes: the chooser returned no level of the family");
+      const auto chosen = BinomialLevel(px.level);
+      const int n = o.realisations;
+      x.resize(std::size_t(n));
+      ref.resize(std::size_t(n));
+      std::size_t lit = 0;
+      for (int j = 0; j < n; ++j) {
+        ModelQuery<double> at = q;
+        at.footprint.uv = realisation_uv(q.footprint.uv, j);
+        ref[std::size_t(j)] = level_value<M>(params, BinomialLevel::kExact, at);
+        x[std::size_t(j)] = chosen == BinomialLevel::kExact ? ref[std::size_t(j)]
+                                                            : level_value<M>(params, chosen, at);
+        lit += ref[std::size_t(j)] != 0 ? 1 : 0;
+      }
+      px.exact_value = ref[0] * irradiance;
+      px.chosen_value = x[0] * irradiance;
+      px.lit = double(lit) >= kMinLitPositions;
+      if (chosen == BinomialLevel::kExact || !px.lit) continue;
+      const LevelStats st = compare_to_exact(x, ref, pixel_decision);
+      px.mean_diff = st.mean_diff, px.cv_diff = st.cv_diff;
+      px.mean_diff_lcb = st.mean_diff_lcb, px.cv_diff_lcb = st.cv_diff_lcb;
+      px.exceeds = !st.undecided && (st.mean_diff_lcb > o.tau || st.cv_diff_lcb > o.tau);
+    }
+  });
+}
+
+template <class M>
+void render_model(const ChoiceScene& s, const SceneGeometry& g, const SceneOptions& o,
+                  SceneRender& out) {
+  if (s.shape == SceneShape::kPlane)
+    render_rows<M>(s, g, g.plane, o, out);
+  else
+    render_rows<M>(s, g, g.sphere, o, out);
+}
+
+}  // namespace
+
+std::vector<ChoiceScene> choice_scenes() {
+  // Densities put each scene's footprints on both sides of the smooth boundary
+  // N_P p ≈ 1/(margin·TAU)² = 10^4: the planes' footprints span 4.7e-4 to 1.9 uv units² at 64
+  // pixels (the spherical light's cone 1.1° to 3.7°); the sphere's about 3.5e-5/sin θ uv units²,
+  // where kneiphof_klein's 0.26° cap gives p ≤ 2.2e-4 (its value at normal incidence).
+  return {
+      {"plane-point-low", "deliot_belcour", SceneShape::kPlane, SceneLight::kPoint, 6, "low"},
+      {"plane-point-high", "deliot_belcour", SceneShape::kPlane, SceneLight::kPoint, 8, "high"},
+      {"plane-area-low", "kneiphof_klein", SceneShape::kPlane, SceneLight::kSphereLight, 6, "low"},
+      {"plane-area-high", "kneiphof_klein", SceneShape::kPlane, SceneLight::kSphereLight, 8,
+       "high"},
+      {"sphere-point-low", "kneiphof_klein", SceneShape::kSphere, SceneLight::kPoint, 10, "low"},
+      {"sphere-point-high", "kneiphof_klein", SceneShape::kSphere, SceneLight::kPoint, 12, "high"},
+  };
+}
+
+SceneRender render_choice_scene(const ChoiceScene& scene, const SceneOptions& options) {
+  if (options.width < 1 || options.height < 1 || options.realisations < 2)
+    throw std::invalid_argument("adequacy scenes: the image needs a pixel and two realisations");
+  SceneRender out;
+  out.scene = scene;
+  out.width = options.width;
+  out.height = options.height;
+  out.pixels.resize(std::size_t(options.width) * std::size_t(options.height));
+  const SceneGeometry g = geometry(scene, options.width, options.height);
+  if (scene.model == "deliot_belcour")
+    render_model<DeliotBelcour>(scene, g, options, out);
+  else if (scene.model == "kneiphof_klein")
+    render_model<KneiphofKlein>(scene, g, options, out);
+  else
+    throw std::invalid_argument("adequacy scenes: not a model of the binomial family: " +
+                                scene.model);
+  return out;
+}
+
+SafetyTally tally(const SceneRender& r) {
+  SafetyTally t;
+  for (const ScenePixel& p : r.pixels) {
+    if (!p.lit) continue;
+    ++t.lit;
+    ++t.by_level[std::size_t(p.level)];
+    t.cheaper += p.level != int(BinomialLevel::kExact) ? 1 : 0;
+    t.exceeds += p.exceeds ? 1 : 0;
+  }
+  return t;
+}
+
+void add(SafetyTally& into, const SafetyTally& t) {
+  into.lit += t.lit;
+  into.cheaper += t.cheaper;
+  into.exceeds += t.exceeds;
+  for (std::size_t l = 0; l < into.by_level.size(); ++l) into.by_level[l] += t.by_level[l];
+}
+
+SafetyDecision decide_choice_safety(const SafetyTally& t, double alpha) {
+  SafetyDecision d;
+  if (t.lit == 0) return d;  // nothing measured: inconclusive
+  const boost::math::binomial_distribution<double> h0(double(t.lit), kPixelFlagRate);
+  const auto upper_tail = [&](std::uint64_t k) {  // P(X >= k)
+    return k == 0 ? 1.0 : boost::math::cdf(boost::math::complement(h0, double(k - 1)));
+  };
+  d.fraction = double(t.exceeds) / double(t.lit);
+  d.p_value = upper_tail(t.exceeds);
+  std::uint64_t k = std::uint64_t(std::floor(double(t.lit) * kPixelFlagRate));
+  while (k < t.lit && upper_tail(k + 1) >= alpha) ++k;
+  d.allowed = k;
+  d.allowed_fraction = double(k) / double(t.lit);
+  d.verdict = t.exceeds <= d.allowed ? Verdict::kHoldsInRegime : Verdict::kFails;
+  return d;
+}
+
+}  // namespace glintlab::verify::adequacy

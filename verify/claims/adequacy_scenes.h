@@ -1,0 +1,107 @@
+// The validation scenes of claim adequacy.choice-is-safe (verify/claims/adequacy.cpp) and figure
+// adequacy-scene (experiments/figures/adequacy_scene.cpp): scenes the adequacy grid was not
+// measured on — a glinty plane seen from near to far under a point light and under a spherical
+// (area) light, and a sphere, each at two facet densities — rendered per pixel with the level the
+// engine chooser (core/glints/adequacy.h) picks for that pixel's footprint, and with the most
+// complete level (exact counting) everywhere. Only the binomial family (deliot_belcour,
+// kneiphof_klein) is covered: the other families have no measured levels yet.
+//
+// Per pixel, the difference is measured the way the adequacy rule defines "no one could tell"
+// (verify/adequacy/binomial_adequacy.h, compare_to_exact): over many realisations of the same
+// material (the footprint moved over the surface, as the grid moves it), the relative difference
+// of the means and the difference of the CVs of the chosen level against the exact one, each
+// compared with TAU. A pixel "exceeds TAU" when either lower confidence bound is above TAU.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "verify/adequacy/binomial_adequacy.h"
+
+namespace glintlab::verify::adequacy {
+
+enum class SceneShape { kPlane, kSphere };
+enum class SceneLight { kPoint, kSphereLight };
+
+struct ChoiceScene {
+  std::string name;   // e.g. "plane-point-low"
+  std::string model;  // deliot_belcour or kneiphof_klein
+  SceneShape shape;
+  SceneLight light;
+  double log10_density;       // facets per unit uv area, log10 (the models' density parameter)
+  std::string density_label;  // "low" or "high"
+};
+
+// The six scenes, declared before anything is measured: plane under a point light
+// (deliot_belcour), plane under a spherical light (kneiphof_klein, the light's cone per pixel),
+// sphere under a point light (kneiphof_klein, its default 0.26° cap), each at a low and a high
+// density. GGX roughness kSceneAlpha, which is not a grid value.
+std::vector<ChoiceScene> choice_scenes();
+inline constexpr double kSceneAlpha = 0.15;
+
+// A pixel's "exceeds TAU" decision: each of the two lower bounds at one-sided level
+// kPixelFlagRate / 2, so that a pixel whose chosen level truly differs by at most TAU is flagged
+// with probability at most kPixelFlagRate (asymptotically: the bounds are delta-method).
+inline constexpr double kPixelFlagRate = 0.01;
+
+// A chooser replacing the engine's (tests, controls): the level for N_P facets, reflection
+// probability p and threshold tau.
+using LevelChooser = std::function<int(double facets, double p, double tau)>;
+
+struct SceneOptions {
+  int width = 64, height = 64;
+  int realisations = 256;                  // positions per pixel for the difference statistics
+  double tau = kDefaultThreshold;          // what a pixel's difference is compared with
+  double chooser_tau = kDefaultThreshold;  // the threshold the chooser is run with
+  LevelChooser chooser;  // empty: the engine chooser, choose_<model>_level (core/glints/adequacy.h)
+  std::uint64_t seed = 0;
+};
+
+struct ScenePixel {
+  bool surface = false;      // the camera ray hits the shape and the light is above its horizon
+  int level = -1;            // the chosen level (BinomialLevel value), -1 off the surface
+  double facets = 0, p = 0;  // the footprint's N_P and the clamped probability
+  double chosen_value = 0, exact_value = 0;   // the rendered radiance (first realisation)
+  double mean_diff = 0, cv_diff = 0;          // estimates over the realisations (0: level exact)
+  double mean_diff_lcb = 0, cv_diff_lcb = 0;  // their lower confidence bounds
+  // The exact level is non-zero at >= kMinLitPositions realisations: a difference is measurable.
+  bool lit = false;
+  bool exceeds = false;  // a lower bound above TAU: the chosen level differs by more, for sure
+};
+
+struct SceneRender {
+  ChoiceScene scene;
+  int width = 0, height = 0;
+  std::vector<ScenePixel> pixels;  // row by row from the top left
+};
+
+// Renders one scene (in parallel over rows; the result does not depend on the thread count).
+SceneRender render_choice_scene(const ChoiceScene& scene, const SceneOptions& options);
+
+// Counts over scenes.
+struct SafetyTally {
+  std::uint64_t lit = 0;      // lit pixels (the claim's denominator)
+  std::uint64_t cheaper = 0;  // of which the chooser picked a level cheaper than exact
+  std::uint64_t exceeds = 0;  // of which the difference exceeds TAU
+  std::array<std::uint64_t, kBinomialLevels> by_level{};  // lit pixels per chosen level
+};
+SafetyTally tally(const SceneRender& r);
+void add(SafetyTally& into, const SafetyTally& t);
+
+// The decision: the count of lit pixels exceeding TAU against H0 "the rate is at most
+// kPixelFlagRate" (what safe choices give), one-sided exact binomial test at `alpha`. `allowed` is
+// the largest count the test does not reject, so the verdict is holds-in-regime exactly when
+// exceeds <= allowed.
+struct SafetyDecision {
+  double fraction = 0;          // exceeds / lit
+  std::uint64_t allowed = 0;    // the largest count not rejected
+  double allowed_fraction = 0;  // allowed / lit
+  double p_value = 1;           // P(X >= exceeds) under Binomial(lit, kPixelFlagRate)
+  Verdict verdict = Verdict::kInconclusive;
+};
+SafetyDecision decide_choice_safety(const SafetyTally& t, double alpha);
+
+}  // namespace glintlab::verify::adequacy
