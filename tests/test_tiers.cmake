@@ -25,6 +25,8 @@ set(glintlab_slow_tests
   # process.
   "Checks/QuickBudget.VerdictAndControl/chermain_ggaa_derivatives* 15"
   "Checks/QuickBudget.VerdictAndControl/chermain_ggaa_sk* 15"
+  # The six validation scenes rendered with the chosen and the exact level over 256 realisations.
+  "Checks/QuickBudget.VerdictAndControl/adequacy_choice_is_safe* 6"
   "Checks/QuickBudget.* 1"
   "AcrossClaims.StabilityVerdictAndControl 14"
   "Properties/ControlRejected.ByTheSameDecision/kneiphof_klein_sampler_covers_value* 4"
@@ -59,6 +61,8 @@ set(glintlab_slow_tests
   # report, compare, adequacy), or a fuzz loop of a fixed number of inputs.
   "AdequacyTest.OutputDoesNotDependOnThreads 11"
   "AdequacyTest.QuickRunWritesTableAndMaps 3"
+  "AdequacyMapsFigureTest.QuickWritesSheetMapsCsvAndSummary 6"
+  "AdequacySceneFigureTest.QuickWritesSheetExrCsvAndSummary 6"
   "ChermainCli.Fig3Quick 1"
   "ChermainCli.Fig7Quick 1"
   "ChermainCli.Fig9Quick 1"
