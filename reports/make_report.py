@@ -886,7 +886,12 @@ def figure_chart_for(fid, name):
     return charts.FIGURE_CHARTS.get(fid, {}).get(name)
 
 
+# Figures shown in the adequacy section (write_adequacy) rather than among the papers' figures.
+ADEQUACY_FIGURES = ("adequacy-maps", "adequacy-scene")
+
+
 def write_figures(doc, figures, part, root, plots_tmp, plots_rel, made, manifest):
+    figures = [f for f in figures if f["id"] not in ADEQUACY_FIGURES]
     doc.heading(2, "Figures", "figures")
     doc.para(f"{len(figures)} figures. Budget {part.get('budget', '?')} "
              f"({'quick: --budget quick images and sample counts' if part.get('budget') == 'quick' else 'full'}), "
@@ -894,74 +899,104 @@ def write_figures(doc, figures, part, root, plots_tmp, plots_rel, made, manifest
              "the EXR beside it (32-bit float, linear radiance), folded under its figure and "
              "shown enlarged with visible pixels; the CSVs hold every number plotted, and the "
              "charts here are drawn from them.")
-    machine, budget = machine_text(part.get("machine")), part.get("budget", "?")
     for f in figures:
-        fid = f["id"]
-        doc.heading(3, f"{fid} — {f.get('paper', '')}, {f.get('target', '')}", "fig-" + fid)
-        if f.get("description"):
-            doc.para(f["description"])
-        if f.get("seconds") is not None:
-            doc.para(f"Ran in {float(f['seconds']):.1f} s.")
-        base = f"figures/{fid}"
-        replaced = set()
-        for name, (header, rows) in f["csvs"].items():
-            spec = figure_chart_for(fid, name)
-            if not spec:
-                continue
-            draw, png_name = spec
-            out = f"{fid}__{name[:-4]}_chart.png"
-            if draw(header, rows, os.path.join(plots_tmp, out), f"{plots_rel}/{out}", manifest,
-                    f"{machine}; budget {budget}"):
-                made.append(out)
-                replaced.add(png_name)
-                doc.image(f"{plots_rel}/{out}", f"{fid} {name} chart",
-                          f"{fid}: drawn from {name} (replaces the experiment's {png_name}, "
-                          "linked below)", "chart")
-        for name in [n for n in f["files"] if n.endswith(".png") and n not in replaced]:
-            layout_name = name[:-4] + ".panels.json"
-            if layout_name not in f["files"]:
-                continue
-            layout = load_json(root, f"{base}/{layout_name}")
-            if not isinstance(layout, dict) or not isinstance(layout.get("labels"), list) or \
-                    not isinstance(layout.get("columns"), int):
-                raise ReportError(f"{base}/{layout_name} is malformed: expected an object with "
-                                  "\"labels\" and \"columns\"")
-            out = f"{fid}__{name[:-4]}_panels.png"
-            if charts.panel_chart(os.path.join(f["dir"], name), layout,
-                                  os.path.join(plots_tmp, out), f"{plots_rel}/{out}", manifest,
-                                  f"{machine}; budget {budget}"):
-                made.append(out)
-                replaced.add(name)
-                doc.image(f"{plots_rel}/{out}", f"{fid} {name} panels",
-                          f"{fid}: {name} as labelled panels (the PNG itself is linked below)",
-                          "chart")
-        pngs = [n for n in f["files"] if n.endswith(".png") and n not in replaced]
-        doc.gallery(f"{len(pngs)} rendered image(s) of {fid} (click to unfold)",
-                    [(f"{base}/{n}", f"{fid} {n}", f"{n} (preview of the EXR data)")
-                     for n in pngs], root)
-        doc.links("EXR", [(n, f"{base}/{n}") for n in f["files"] if n.endswith(".exr")])
-        doc.links("CSV", [(n, f"{base}/{n}") for n in f["files"] if n.endswith(".csv")])
-        doc.links("Other files", [(n, f"{base}/{n}") for n in f["files"]
-                                  if not n.endswith((".exr", ".csv")) and
-                                  (not n.endswith(".png") or n in replaced)])
-        if f["summary"]:
-            doc.markdown("summary.md", f["summary"].strip())
-        for name, (header, rows) in f["csvs"].items():
-            if "spp" not in header or "rmse" not in header:
-                continue
-            stem = name[:-4]
-            png = f"{fid}__{stem}_convergence.png"
-            if convergence_plot(fid, name, header, rows, os.path.join(plots_tmp, png), machine,
-                                budget, f"{plots_rel}/{png}", manifest):
-                made.append(png)
-                doc.image(f"{plots_rel}/{png}", f"{fid} {stem} convergence",
-                          f"{fid}: RMSE vs spp from {name} (log-log), {machine}, budget {budget}",
-                          "chart")
-            doc.md.append(f"RMSE table ({name}):\n")
-            doc.table(header, [[tidy(c) for c in r] for r in rows[:TABLE_ROW_LIMIT]],
-                      fold=f"RMSE table ({name}, {len(rows)} rows"
-                      + (f", first {TABLE_ROW_LIMIT} shown" if len(rows) > TABLE_ROW_LIMIT
-                         else "") + ")")
+        write_figure(doc, f, part, root, plots_tmp, plots_rel, made, manifest)
+
+
+def write_adequacy(doc, figures, claims, part, root, plots_tmp, plots_rel, made, manifest):
+    """Which model a pixel needs: the adequacy claims' verdicts of this run and the figures
+    adequacy-maps (the chosen level over the grid) and adequacy-scene (validation scenes)."""
+    shown = [f for f in figures if f["id"] in ADEQUACY_FIGURES]
+    rows = [c for c in (claims or []) if c["id"].startswith("adequacy.")]
+    if not shown and not rows:
+        return
+    doc.heading(2, "Model no more than a scene needs (adequacy)", "adequacy")
+    doc.para("glintlab adequacy measures, per pixel setting, the cheapest level of a glint model "
+             "that no one could tell from the most complete one (within TAU), and "
+             "core/glints/adequacy.h picks that level per pixel for an engine "
+             "(docs/adequacy.md). The maps show the level chosen over the adequacy grid; the "
+             "scenes, which the choice was not fitted on, are rendered with each pixel's chosen "
+             "level and with the exact level everywhere, with their difference.")
+    if rows:
+        doc.list([f"{c['id']}: {c['verdict']} — {short(c['detail'], 160)}" for c in rows])
+    else:
+        doc.para("The adequacy claims were not run in this report (see the verdict table).")
+    if not shown:
+        doc.para("The adequacy figures were not run in this report.")
+    for f in shown:
+        write_figure(doc, f, part, root, plots_tmp, plots_rel, made, manifest)
+
+
+def write_figure(doc, f, part, root, plots_tmp, plots_rel, made, manifest):
+    """One figure under its own heading: the charts drawn from its CSVs, its montages as labelled
+    panels, its other renders folded, its files linked, its summary.md and convergence plots."""
+    machine, budget = machine_text(part.get("machine")), part.get("budget", "?")
+    fid = f["id"]
+    doc.heading(3, f"{fid} — {f.get('paper', '')}, {f.get('target', '')}", "fig-" + fid)
+    if f.get("description"):
+        doc.para(f["description"])
+    if f.get("seconds") is not None:
+        doc.para(f"Ran in {float(f['seconds']):.1f} s.")
+    base = f"figures/{fid}"
+    replaced = set()
+    for name, (header, rows) in f["csvs"].items():
+        spec = figure_chart_for(fid, name)
+        if not spec:
+            continue
+        draw, png_name = spec
+        out = f"{fid}__{name[:-4]}_chart.png"
+        if draw(header, rows, os.path.join(plots_tmp, out), f"{plots_rel}/{out}", manifest,
+                f"{machine}; budget {budget}"):
+            made.append(out)
+            replaced.add(png_name)
+            doc.image(f"{plots_rel}/{out}", f"{fid} {name} chart",
+                      f"{fid}: drawn from {name} (replaces the experiment's {png_name}, "
+                      "linked below)", "chart")
+    for name in [n for n in f["files"] if n.endswith(".png") and n not in replaced]:
+        layout_name = name[:-4] + ".panels.json"
+        if layout_name not in f["files"]:
+            continue
+        layout = load_json(root, f"{base}/{layout_name}")
+        if not isinstance(layout, dict) or not isinstance(layout.get("labels"), list) or \
+                not isinstance(layout.get("columns"), int):
+            raise ReportError(f"{base}/{layout_name} is malformed: expected an object with "
+                              "\"labels\" and \"columns\"")
+        out = f"{fid}__{name[:-4]}_panels.png"
+        if charts.panel_chart(os.path.join(f["dir"], name), layout,
+                              os.path.join(plots_tmp, out), f"{plots_rel}/{out}", manifest,
+                              f"{machine}; budget {budget}"):
+            made.append(out)
+            replaced.add(name)
+            doc.image(f"{plots_rel}/{out}", f"{fid} {name} panels",
+                      f"{fid}: {name} as labelled panels (the PNG itself is linked below)",
+                      "chart")
+    pngs = [n for n in f["files"] if n.endswith(".png") and n not in replaced]
+    doc.gallery(f"{len(pngs)} rendered image(s) of {fid} (click to unfold)",
+                [(f"{base}/{n}", f"{fid} {n}", f"{n} (preview of the EXR data)")
+                 for n in pngs], root)
+    doc.links("EXR", [(n, f"{base}/{n}") for n in f["files"] if n.endswith(".exr")])
+    doc.links("CSV", [(n, f"{base}/{n}") for n in f["files"] if n.endswith(".csv")])
+    doc.links("Other files", [(n, f"{base}/{n}") for n in f["files"]
+                              if not n.endswith((".exr", ".csv")) and
+                              (not n.endswith(".png") or n in replaced)])
+    if f["summary"]:
+        doc.markdown("summary.md", f["summary"].strip())
+    for name, (header, rows) in f["csvs"].items():
+        if "spp" not in header or "rmse" not in header:
+            continue
+        stem = name[:-4]
+        png = f"{fid}__{stem}_convergence.png"
+        if convergence_plot(fid, name, header, rows, os.path.join(plots_tmp, png), machine,
+                            budget, f"{plots_rel}/{png}", manifest):
+            made.append(png)
+            doc.image(f"{plots_rel}/{png}", f"{fid} {stem} convergence",
+                      f"{fid}: RMSE vs spp from {name} (log-log), {machine}, budget {budget}",
+                      "chart")
+        doc.md.append(f"RMSE table ({name}):\n")
+        doc.table(header, [[tidy(c) for c in r] for r in rows[:TABLE_ROW_LIMIT]],
+                  fold=f"RMSE table ({name}, {len(rows)} rows"
+                  + (f", first {TABLE_ROW_LIMIT} shown" if len(rows) > TABLE_ROW_LIMIT
+                     else "") + ")")
 
 
 def write_bench(doc, bench, part, root, plots_tmp, plots_rel, made, manifest):
@@ -1122,6 +1157,8 @@ def build(root, run, got, plots_tmp):
     if "figures" in got:
         write_figures(doc, got["figures"], parts.get("figures", {}), root, plots_tmp, plots_rel,
                       made, manifest)
+        write_adequacy(doc, got["figures"], got.get("claims"), parts.get("figures", {}), root,
+                       plots_tmp, plots_rel, made, manifest)
     if "bench" in got:
         write_bench(doc, got["bench"], parts.get("bench", {}), root, plots_tmp, plots_rel, made,
                     manifest)

@@ -220,6 +220,28 @@ with tempfile.TemporaryDirectory() as tmp:
           cmd[2].split(" | ")[2] == "fails (recorded) 1, not-claimed (declared) 1",
           f"compare Markdown: the same two columns ({cmd[-1]})")
 
+    # --- the adequacy section: its claims' verdicts and its figures, not among the papers' ---
+    d = fresh(tmp, "adequacy")
+    os.rename(os.path.join(d, "figures", "fixture2026-fig1"),
+              os.path.join(d, "figures", "adequacy-scene"))
+    figs = json.load(open(os.path.join(d, "figures", "figures.json")))
+    figs[0]["id"] = "adequacy-scene"
+    json.dump(figs, open(os.path.join(d, "figures", "figures.json"), "w"))
+    c = json.load(open(os.path.join(d, "verify", "claims.json")))
+    c.append({**c[0], "id": "adequacy.choice-is-safe", "detail": "1 of 19423 lit pixels over TAU"})
+    json.dump(c, open(os.path.join(d, "verify", "claims.json"), "w"))
+    r = make(d)
+    check(r.returncode == 0, f"report with adequacy: exit 0 (got {r.returncode}: {r.stderr.strip()})")
+    text = open(os.path.join(d, "index.html"), encoding="utf-8").read()
+    check('id="adequacy"' in text and 'id="fig-adequacy-scene"' in text and
+          text.index('id="adequacy"') < text.index('id="fig-adequacy-scene"'),
+          "the adequacy figure is shown under the adequacy section")
+    check(text.index('id="figures"') < text.index('id="adequacy"') and
+          "0 figures." in text[text.index('id="figures"'):text.index('id="adequacy"')],
+          "and not among the papers' figures")
+    check("adequacy.choice-is-safe: holds — 1 of 19423 lit pixels over TAU" in text,
+          "the adequacy claims' verdicts are listed in the section")
+
     # --- a check that could not run (verdict error): shown with its cause, no control ---
     d = fresh(tmp, "error_row")
     c = json.load(open(os.path.join(d, "verify", "claims.json")))
