@@ -277,7 +277,8 @@ void run_fig9(const FigureContext& ctx) {
 
 // --- Fig. 10 ---
 void run_fig10(const FigureContext& ctx) {
-  const int size = ctx.quick ? 64 : 256;
+  // Panels a person can see; the patch-SDF is evaluated, not sampled, so 512² costs seconds.
+  const int size = ctx.quick ? 128 : 512;
   const double rhos[] = {0.0, 0.5, 0.99};
   const double log_densities[] = {15, 50};
   const double s = 0.3;

@@ -54,7 +54,7 @@ struct Fig7Budget {
 // many pixels keep the RMSE precise, and the reference's own noise, which flattens the raw slope
 // at these reference counts, is subtracted in the second slope.
 Fig7Budget fig7_budget(bool quick) {
-  return quick ? Fig7Budget{128, 16, 128, 4} : Fig7Budget{512, 32, 512, 4};
+  return quick ? Fig7Budget{128, 16, 128, 4} : Fig7Budget{512, 32, 256, 4};
 }
 
 struct Strategy {
