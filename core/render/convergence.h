@@ -17,6 +17,37 @@ struct RmseAtSpp {
   std::size_t batches = 0;
 };
 
+// Squared errors of s-spp batch means against the reference, summed: what an RmseAtSpp is
+// computed from. Sums of disjoint sets of batches add, so they can be kept per row of an image
+// and added in row order (deterministic for any thread count).
+struct BatchErrorSums {
+  double sum = 0, sum2 = 0;  // of e² and of e⁴
+  std::size_t batches = 0;
+  void add(double e2) {
+    sum += e2;
+    sum2 += e2 * e2;
+    ++batches;
+  }
+  void add(const BatchErrorSums& o) {
+    sum += o.sum;
+    sum2 += o.sum2;
+    batches += o.batches;
+  }
+};
+
+inline RmseAtSpp rmse_from_batch_errors(int spp, const BatchErrorSums& e) {
+  RmseAtSpp r;
+  r.spp = spp;
+  r.batches = e.batches;
+  if (e.batches > 0) {
+    const double m = double(e.batches), mse = e.sum / m;
+    const double var = e.batches > 1 ? std::max(0.0, (e.sum2 - m * mse * mse) / (m - 1)) : 0;
+    r.rmse = std::sqrt(mse);
+    r.std_error = r.rmse > 0 ? std::sqrt(var / m) / (2 * r.rmse) : 0;
+  }
+  return r;
+}
+
 // For each spp s: pixel p's samples x_p[0..n_p) are cut into ⌊n_p/s⌋ disjoint batches of s
 // consecutive samples, each batch mean an independent s-spp estimate; the squared errors against
 // ref[p] are averaged over every batch of every pixel in index order (deterministic).
@@ -25,29 +56,16 @@ inline std::vector<RmseAtSpp> rmse_at_spp(const std::vector<std::vector<double>>
                                           const std::vector<int>& spps) {
   std::vector<RmseAtSpp> out;
   for (int s : spps) {
-    double sum = 0, sum2 = 0;
-    std::size_t m = 0;
+    BatchErrorSums e;
     for (std::size_t p = 0; p < samples.size(); ++p) {
       const std::size_t nb = samples[p].size() / std::size_t(s);
       for (std::size_t b = 0; b < nb; ++b) {
         double mean = 0;
         for (int k = 0; k < s; ++k) mean += samples[p][b * std::size_t(s) + std::size_t(k)];
-        const double e2 = (mean / s - ref[p]) * (mean / s - ref[p]);
-        sum += e2;
-        sum2 += e2 * e2;
-        ++m;
+        e.add((mean / s - ref[p]) * (mean / s - ref[p]));
       }
     }
-    RmseAtSpp r;
-    r.spp = s;
-    r.batches = m;
-    if (m > 0) {
-      const double mse = sum / double(m);
-      const double var = m > 1 ? std::max(0.0, (sum2 - double(m) * mse * mse) / double(m - 1)) : 0;
-      r.rmse = std::sqrt(mse);
-      r.std_error = r.rmse > 0 ? std::sqrt(var / double(m)) / (2 * r.rmse) : 0;
-    }
-    out.push_back(r);
+    out.push_back(rmse_from_batch_errors(s, e));
   }
   return out;
 }

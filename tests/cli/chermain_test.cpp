@@ -93,6 +93,9 @@ TEST_F(ChermainCli, Fig9Quick) {
 }
 TEST_F(ChermainCli, Fig10Quick) {
   expect_figure("chermain2021-fig10", "fig10.csv", 6, {"sdf_rho0.99_lnD50.exr"});
+  const io::ExrFile f = io::read_exr(path("out/chermain2021-fig10/sdf_rho0.99_lnD50.exr"));
+  EXPECT_GE(f.image.width, 128);  // a panel a person can see
+  EXPECT_GE(f.image.height, 128);
 }
 
 }  // namespace
