@@ -74,7 +74,7 @@ set(glintlab_slow_tests
   "FigureTest.RmseSppQuickWritesExrPngAndCsv 1"
   "FuzzCli.* 2"
   "FuzzEnvironmentExr.* 4"
-  "KemppinenFig7Test.ConvergenceUnderEnvironmentLight 1"
+  "KemppinenFig7Test.ConvergenceUnderEnvironmentLight 12"
   "KemppinenFigureTest.Fig2_3DiskAndHemisphere 1"
   "KemppinenTimingTest.FiguresReadTheBenchmarkJson 4"
   "KemppinenTimingTest.SpeedAccuracyWithoutJson 3"
