@@ -62,7 +62,7 @@ trap 'exit 1' INT TERM HUP
 
 # The daemons' last log lines, printed with a skip or failure.
 logs() {
-  for f in "$WORK"/log/*.log; do
+  for f in "$WORK"/log/*; do
     [ -s "$f" ] || continue
     echo "--- last lines of $(basename "$f")"
     tail -n 8 "$f"
