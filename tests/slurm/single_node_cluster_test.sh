@@ -4,8 +4,8 @@
 # ports), the daemons started as root and detached (setsid, output to files), submit.sh's 4-task
 # array of `glintlab verify --budget quick` on six claims and its merge job, then the merged
 # claims.{json,csv,md} byte-compared with one unsharded run apart from the timing fields.
-# Negative control: the same comparison must tell a merge of only the first shard's rows from
-# the single run.
+# Negative controls: the same comparison must tell the first shard's files alone from the single
+# run, and a broken run (an unknown budget) must fail its tasks and never run its merge.
 #
 # Usage: single_node_cluster_test.sh GLINTLAB. Exit 0 pass, 1 fail, 77 skip (ctest
 # SKIP_RETURN_CODE) when the cluster cannot run here: not root, a package missing, or a daemon
@@ -205,4 +205,21 @@ if same_as_one "$WORK/run1/shards/1"; then
   fail "negative control: shard 1's files pass as the single run's; the comparison is blind"
 fi
 echo "merged claims.{json,csv,md} are the single run's bytes apart from timing; shard 1 alone is not"
+
+# A broken run: an unknown budget fails every task (verify's exit 2), and the merge, whose
+# dependency can no longer be met, is cancelled without running.
+ids=$(GLINTLAB=$GLINTLAB CLAIMS=$CLAIMS BUDGET=no-such-budget SHARDS=2 THREADS=1 OUT=$WORK/run2 \
+        PARTITION=test timeout 30 "$SUBMIT") || { echo "$ids"; fail "submit.sh failed"; }
+array_id=$(echo "$ids" | sed -n 's/^array \([0-9][0-9]*\)$/\1/p')
+merge_id=$(echo "$ids" | sed -n 's/^merge \([0-9][0-9]*\)$/\1/p')
+while [ -n "$(timeout 5 squeue -h -j "$array_id,$merge_id" -t PENDING,RUNNING,CONFIGURING,COMPLETING -o %i 2>&1)" ]; do
+  [ "$(left)" -gt 15 ] || { timeout 5 squeue; fail "the broken run's jobs did not end within the test's ${DEADLINE} s"; }
+  sleep 1
+done
+states=$(timeout 5 squeue -h -j "$array_id,$merge_id" -t all -o '%i %T' 2>&1)
+echo "$states"
+[ "$(echo "$states" | grep -c "^${array_id}_[0-9]* FAILED$")" -eq 2 ] || fail "the broken run's tasks did not fail"
+echo "$states" | grep -q "^$merge_id CANCELLED$" || fail "the broken run's merge was not cancelled"
+[ ! -e "$WORK/run2/verify" ] || fail "the broken run's merge wrote $WORK/run2/verify"
+echo "a broken run fails its tasks and its merge never runs"
 echo "PASS in $((SECONDS - start)) s"
