@@ -37,7 +37,9 @@ done
 GLINTLAB=$(cd "$(dirname "$GLINTLAB")" && pwd)/$(basename "$GLINTLAB")
 
 WORK=$(mktemp -d /tmp/glintlab-slurm.XXXXXX)
-chmod 0755 "$WORK"   # munged refuses a key or socket folder that others may write
+# munged wants its socket's folders searchable by every user (clients of any user reach it) and
+# writable by none but root.
+chmod 0755 "$WORK"
 pids=()
 cleanup() {
   local status=$?
@@ -78,12 +80,12 @@ timeout "$(left)" "$GLINTLAB" verify --claims "$CLAIMS" --budget quick --threads
   --out "$WORK/one" > "$WORK/one.txt" 2>&1 || { cat "$WORK/one.txt"; fail "the single run failed"; }
 
 mkdir -p "$WORK/munge" "$WORK/log" "$WORK/state" "$WORK/spool" "$WORK/run"
-chmod 0700 "$WORK/munge"
+chmod 0755 "$WORK/munge"
 # A munge key: 1024 random bytes, owned by the daemon's user (root) and readable by it only.
 dd if=/dev/urandom of="$WORK/munge/munge.key" bs=1024 count=1 status=none
 chmod 0400 "$WORK/munge/munge.key"
 MUNGE_SOCKET=$WORK/munge/munge.socket
-setsid munged --foreground --force --socket="$MUNGE_SOCKET" --key-file="$WORK/munge/munge.key" \
+setsid munged --foreground --socket="$MUNGE_SOCKET" --key-file="$WORK/munge/munge.key" \
   --pid-file="$WORK/munge/munged.pid" --log-file="$WORK/log/munged.log" \
   --seed-file="$WORK/munge/munged.seed" < /dev/null > "$WORK/log/munged.out" 2>&1 &
 pids+=($!)
