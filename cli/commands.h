@@ -26,5 +26,6 @@ void add_ltc_fit_command(CLI::App& app);              // cli/ltc_fit.cpp
 void add_chermain_dictionary_command(CLI::App& app);  // cli/chermain_dictionary.cpp
 void add_adequacy_command(CLI::App& app);             // cli/adequacy.cpp
 void add_compare_command(CLI::App& app);              // cli/compare.cpp
+void add_merge_command(CLI::App& app);                // cli/merge.cpp
 
 }  // namespace glintlab::cli

@@ -40,6 +40,12 @@ void set_required(CLI::Option* option) { option->required(); }
 
 void exit_with_code(int code) { throw CLI::RuntimeError(code); }
 
+CLI::Option* add_positional_list(CLI::App* cmd, const std::string& name,
+                                 std::vector<std::string>& var, const std::string& description,
+                                 const std::string& type) {
+  return cmd->add_option(name, var, description)->type_name(type);
+}
+
 CLI::Option* add_text_option(CLI::App* cmd, const std::string& name, std::string& var,
                              const std::string& description, const std::string& type) {
   CLI::Option* o = cmd->add_option(name, var, description)->type_name(type);

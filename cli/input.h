@@ -36,6 +36,10 @@ CLI::Option* add_text_option(CLI::App* cmd, const std::string& name, std::string
 // A flag: given or not; `--flag=VALUE` is an error.
 CLI::Option* add_bool_flag(CLI::App* cmd, const std::string& name, bool& var,
                            const std::string& description);
+// Positional arguments (a name without dashes), any number of them, stored in `var`.
+CLI::Option* add_positional_list(CLI::App* cmd, const std::string& name,
+                                 std::vector<std::string>& var, const std::string& description,
+                                 const std::string& type);
 
 // --budget quick|full, plus the old flag --quick as an alias (prints one note naming
 // `--budget quick` and then behaves exactly as it).

@@ -144,6 +144,7 @@ int main(int argc, char** argv) {
     glintlab::cli::add_chermain_dictionary_command(app);
     glintlab::cli::add_adequacy_command(app);
     glintlab::cli::add_compare_command(app);
+    glintlab::cli::add_merge_command(app);
 
     // No subcommand, or a first argument that is neither an option nor a subcommand: say so and
     // name the valid set.

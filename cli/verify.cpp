@@ -21,7 +21,10 @@
 #include "cli/commands.h"
 #include "cli/input.h"
 #include "cli/progress.h"
+#include "cli/shard.h"
+#include "cli/verify_output.h"
 #include "core/io/atomic_file.h"
+#include "experiments/figures/figure_registry.h"
 #include "verify/calibration.h"
 #include "verify/check.h"
 #include "verify/results.h"
@@ -40,6 +43,7 @@ struct VerifyOptions {
   std::string calibrate;  // a check id: run its calibration instead of the suite
   std::string runs = "100";
   std::string level = "0.05";
+  std::string shard;  // K/N: run the K-th of N shards of the selection
 };
 
 // The papers' claims (and adequacy) form the claim suite; a model's conformance checks
@@ -101,7 +105,11 @@ int run(const CLI::App* cmd, const VerifyOptions& o) {
         "--calibrate: '' is not a claim id (valid: a statistical check's id, see --list)");
   const verify::Check* to_calibrate =
       o.calibrate.empty() ? nullptr : &calibration_check(o.calibrate);
-  const auto selected = select_checks(o.claims);
+  auto selected = select_checks(o.claims);
+  const bool sharded = option_count(cmd, "--shard") > 0;
+  const Shard shard = sharded ? parse_shard(o.shard, "--shard") : Shard{};
+  if (sharded && (o.list || to_calibrate))
+    throw InputError("--shard: only for a run of the suite (not with --list or --calibrate)");
   if (o.json && !o.list)
     throw InputError("--json: only with --list (valid: glintlab verify --list --json)");
   if (o.list && o.json) {
@@ -129,6 +137,23 @@ int run(const CLI::App* cmd, const VerifyOptions& o) {
 
   if (to_calibrate) return run_calibration(*to_calibrate, runs, level, o.out);
 
+  // A shard runs its part of the selection and records which run it belongs to (shard.json).
+  ShardManifest manifest;
+  if (sharded) {
+    manifest.command = "verify";
+    manifest.version = std::string(experiments::glintlab_version());
+    manifest.budget = budget_name;
+    for (const auto* c : selected) manifest.selection.push_back(c->id);
+    manifest.selection_digest = selection_digest(budget_name, manifest.selection);
+    manifest.shard = shard;
+    manifest.threads = threads;
+    manifest.machine = machine_description(threads);
+    std::vector<const verify::Check*> part;
+    for (std::size_t i : shard_positions(selected.size(), shard)) part.push_back(selected[i]);
+    selected = part;
+    for (const auto* c : selected) manifest.covered.push_back(c->id);
+  }
+
   std::vector<verify::RunRecord> records;
   {
     // all.stability and each model.<name>.stability sweep the same models: measured once.
@@ -143,64 +168,10 @@ int run(const CLI::App* cmd, const VerifyOptions& o) {
       progress.step(c->id);
     }
   }
-  verify::adjust_for_suite(records);
   const verify::RunInfo info{budget_name, threads, machine_description(threads)};
-  const std::filesystem::path dir(o.out);
-  io::write_file_atomic(dir / "claims.json", verify::to_json(records, info));
-  io::write_file_atomic(dir / "claims.csv", verify::to_csv(records));
-  io::write_file_atomic(dir / "claims.md", verify::to_markdown(records, info));
-
-  int unexpected = 0;
-  // The measured value is printed with what it measures (its statistic names the unit).
-  fmt::print("{:<30} {:<16} {:>10} {:>10}  {:<8}  {}\n", "claim", "verdict", "p", "control p",
-             "control", "measured");
-  for (const auto& r : records) {
-    const auto& x = r.result;
-    const bool ok = verify::as_expected(r);
-    unexpected += ok ? 0 : 1;
-    fmt::print("{:<30} {:<16} {:>10} {:>10}  {:<8}  {:.3g} = {}{}\n", r.check->id,
-               verify::to_string(x.verdict), x.p_value ? fmt::format("{:.3g}", *x.p_value) : "—",
-               x.control_p_value ? fmt::format("{:.3g}", *x.control_p_value) : "—",
-               x.verdict == verify::Verdict::kNotClaimed ? "none (not claimed)"
-               : x.verdict == verify::Verdict::kError    ? "none (error)"
-               : x.control_rejected                      ? "rejected"
-               // Neither decided: the check lacks power here (its detail says how much it needs).
-               : x.verdict == verify::Verdict::kInconclusive &&
-                       x.control_verdict == verify::Verdict::kInconclusive
-                   ? "undecided (both inconclusive)"
-                   : "NOT REJECTED (check is broken)",
-               x.value, x.statistic,
-               x.verdict == r.check->expected_for(budget)
-                   ? ""
-                   : fmt::format("  [recorded verdict: {}]",
-                                 verify::to_string(r.check->expected_for(budget))));
-  }
-  for (const auto& r : records)
-    if (!r.check->budget_note.empty())
-      fmt::print("note: {}: {}\n", r.check->id, verify::budget_note(*r.check));
-  fmt::print("{} claims, budget {}, {} thread(s); results in {}/claims.{{json,csv,md}}\n",
-             records.size(), budget_name, threads, o.out);
-  const auto errors = std::count_if(records.begin(), records.end(), [](const auto& r) {
-    return r.result.verdict == verify::Verdict::kError;
-  });
-  if (errors) {
-    for (const auto& r : records)
-      if (r.result.verdict == verify::Verdict::kError)
-        fmt::print(stderr, "glintlab: error: {}\n", r.result.detail);
-    fmt::print(stderr,
-               "glintlab: error: {} claim(s) could not be checked (verdict error); the other "
-               "claims ran and the results are in {}\n",
-               errors, o.out);
-    return 3;
-  }
-  if (unexpected) {
-    fmt::print(stderr,
-               "glintlab: error: {} claim(s) differ from their recorded verdict or did not reject "
-               "their negative control\n",
-               unexpected);
-    return 1;
-  }
-  return 0;
+  const int rc = write_verify_run(records, info, o.out);
+  if (sharded) io::write_file_atomic(std::filesystem::path(o.out) / "shard.json", to_json(manifest));
+  return rc;
 }
 
 }  // namespace
@@ -244,6 +215,12 @@ void add_verify_command(CLI::App& app) {
   add_text_option(sub, "--level", opts->level,
                   "nominal level for the calibration's false-positive rate: a number in (0, 1)",
                   "NUMBER");
+  add_text_option(sub, "--shard", opts->shard,
+                  "K/N: run only the K-th of N shards of the selected claims (every N-th claim "
+                  "from the K-th, in --list order) and write shard.json beside the rows; "
+                  "glintlab merge joins the N folders into the files of one run. 1 <= K <= N <= "
+                  "10000",
+                  "K/N");
   set_callback(sub, [sub, opts] {
     const int rc = run(sub, *opts);
     if (rc != 0) exit_with_code(rc);

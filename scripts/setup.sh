@@ -10,6 +10,8 @@ packages=(
   python3 python3-matplotlib python3-jinja2 python3-dev python3-pybind11 python3-numpy python3-pytest
   libpng-dev openexr
   chromium
+  # A single-node Slurm cluster for scripts/slurm/'s test (tests/slurm/).
+  slurm-wlm munge
 )
 
 missing=()

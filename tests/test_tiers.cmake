@@ -79,6 +79,8 @@ set(glintlab_slow_tests
   "KemppinenTimingTest.FiguresReadTheBenchmarkJson 4"
   "KemppinenTimingTest.SpeedAccuracyWithoutJson 3"
   "PluginTest.ReportCoversThePluginModelInEveryPart 3"
+  "ShardMergeTest.MergedShardsAreTheBytesOfOneRun 8"
+  "ShardMergeTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 4"
   "PluginTest.SweepFigureAndGenericClaimCoverThePluginModel 30"
   "PodeeCliTest.DistanceAndFlickerQuick 2"
   "ReportTest.ReuseReadsCachedResultsAndAMalformedOneLeavesTheOldReport 1"

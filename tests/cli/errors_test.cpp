@@ -291,9 +291,9 @@ TEST_F(ErrorTest, NoSubcommand) {
 // An option a subcommand does not have is named as such, with the words after it kept in the
 // order given (CLI11 lists leftover words last first); plain leftover words are named in order.
 TEST_F(ErrorTest, UnknownOptionIsNamedAndLeftoverWordsKeepTheirOrder) {
-  const RunResult o = run({"verify", "--shard", "1/3"});
-  expect_input_error(o, {"verify: unknown option '--shard'", "--claims"}, {});
-  EXPECT_EQ(o.err.find("1/3 --shard"), std::string::npos) << o.err;
+  const RunResult o = run({"verify", "--partition", "1/3"});
+  expect_input_error(o, {"verify: unknown option '--partition'", "--claims"}, {});
+  EXPECT_EQ(o.err.find("1/3 --partition"), std::string::npos) << o.err;
   expect_input_error(run({"verify", "x", "y"}), {"verify: unexpected argument 'x y'"}, {});
   expect_input_error(run({"models", "extra"}), {"models: unexpected argument 'extra'",
                                                 "no arguments"}, {});
