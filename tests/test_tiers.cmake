@@ -26,7 +26,6 @@ set(glintlab_slow_tests
   "Checks/QuickBudget.VerdictAndControl/chermain_ggaa_derivatives* 15"
   "Checks/QuickBudget.VerdictAndControl/chermain_ggaa_sk* 15"
   "Checks/QuickBudget.* 1"
-  "AcrossClaims.StabilityVerdictAndControl 14"
   "Properties/ControlRejected.ByTheSameDecision/kneiphof_klein_sampler_covers_value* 4"
   # sampler-covers-value of both Kemppinen models at quick at the three compensation settings, with
   # the mixture and with Algorithm 2 alone (10^5 samples and up to 4 · 10^5 reference evaluations
@@ -101,7 +100,8 @@ set(glintlab_power_tests
   # Every claim at its quick budget: its measure and decision on smaller inputs in the claim's own
   # tests (tests/verify/claims/: ChiSquareClaims.*, KemppinenClaims.*, PodeeClaims.*,
   # ChermainClaims.*, KneiphofClaims.*, ...), the conformance properties in
-  # Properties/ControlRejected.*, all.stability in AcrossClaims.StabilityVerdictAndControl.
+  # Properties/ControlRejected.*, all.stability in
+  # PluginTest.SweepFigureAndGenericClaimCoverThePluginModel.
   "Checks/QuickBudget.*"
   # The controls of smooth.sampler-matches-pdf and eto.pdf-matches at the samples that reject a
   # 2 % error: ChiSquareClaims.IdenticalWithOneAndTwoThreads runs both families (the batched

@@ -71,8 +71,9 @@ TEST_P(QuickBudget, VerdictAndControl) {
 // Every paper claim, and the conformance checks of the two smooth models (seconds); the other
 // models' conformance checks take minutes each at the quick budget and are tested by
 // tests/verify/conformance (their generator, controls and broken models). all.stability is run
-// with these assertions and more by AcrossClaims.StabilityVerdictAndControl, which the sanitized
-// run includes: one sweep of every model, not two.
+// with these assertions and more by PluginTest.SweepFigureAndGenericClaimCoverThePluginModel
+// (tests/cli/plugin_test.cpp), which the sanitized run includes: one sweep of every model, not
+// three.
 std::vector<std::string> all_ids() {
   std::vector<std::string> ids;
   for (const Check& c : registered_checks())
