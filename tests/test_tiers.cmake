@@ -26,6 +26,9 @@ set(glintlab_slow_tests
   "Checks/QuickBudget.VerdictAndControl/chermain_ggaa_derivatives* 15"
   "Checks/QuickBudget.VerdictAndControl/chermain_ggaa_sk* 15"
   "Checks/QuickBudget.* 1"
+  # all.energy-gain, all.probability and all.variance at their quick budget: the stability sweep
+  # of every registered model (once, shared by the three), the fixed-position variance, controls.
+  "SweepClaims.QuickBudgetVerdictsAndControls 28"
   "Properties/ControlRejected.ByTheSameDecision/kneiphof_klein_sampler_covers_value* 4"
   # sampler-covers-value of both Kemppinen models at quick at the three compensation settings, with
   # the mixture and with Algorithm 2 alone (10^5 samples and up to 4 · 10^5 reference evaluations
@@ -103,6 +106,10 @@ set(glintlab_power_tests
   # Properties/ControlRejected.*, all.stability in
   # PluginTest.SweepFigureAndGenericClaimCoverThePluginModel.
   "Checks/QuickBudget.*"
+  # The same for the claims on the stability sweep of every model: their measures and decisions on
+  # smaller sweeps in StabilitySweep.* (tests/verify/stability), the whole sweep of every model in
+  # PluginTest.SweepFigureAndGenericClaimCoverThePluginModel (all.stability).
+  "SweepClaims.QuickBudgetVerdictsAndControls"
   # The controls of smooth.sampler-matches-pdf and eto.pdf-matches at the samples that reject a
   # 2 % error: ChiSquareClaims.IdenticalWithOneAndTwoThreads runs both families (the batched
   # samplers, scaled, α × 1.02 and replanned controls) at 2·10^4 samples;
