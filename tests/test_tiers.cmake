@@ -21,14 +21,13 @@ set(glintlab_slow_tests
   # The brute-force Eq. 5 (every point within 5 σ) at 24–400 positions of each setting.
   "Checks/QuickBudget.VerdictAndControl/kemppinen_compensation_k16* 5"
   "Checks/QuickBudget.VerdictAndControl/kemppinen_compensation* 24"
-  # Both render the normal-mapped tubes' replicates (three 256-spp references each) in their own
-  # process.
-  "Checks/QuickBudget.VerdictAndControl/chermain_ggaa_derivatives* 15"
-  "Checks/QuickBudget.VerdictAndControl/chermain_ggaa_sk* 15"
   "Checks/QuickBudget.* 1"
-  # all.energy-gain, all.probability and all.variance at their quick budget: the stability sweep
-  # of every registered model (once, shared by the three), the fixed-position variance, controls.
-  "SweepClaims.QuickBudgetVerdictsAndControls 28"
+  # Claims that share one measurement, run in one process (tests/verify/registry_test.cpp):
+  # all.energy-gain, all.probability and all.variance on the stability sweep of every registered
+  # model and its fixed-position variance; the Chermain GGAA claims on their renders' replicates.
+  "Checks/SharedMeasurement.QuickVerdictsAndControls/stability_sweep* 28"
+  "Checks/SharedMeasurement.QuickVerdictsAndControls/chermain_ggaa_replicates* 15"
+  "Checks/SharedMeasurement.QuickVerdictsAndControls/chermain_bumpy_replicates* 15"
   "Properties/ControlRejected.ByTheSameDecision/kneiphof_klein_sampler_covers_value* 4"
   # sampler-covers-value of both Kemppinen models at quick at the three compensation settings, with
   # the mixture and with Algorithm 2 alone (10^5 samples and up to 4 · 10^5 reference evaluations
@@ -106,10 +105,12 @@ set(glintlab_power_tests
   # Properties/ControlRejected.*, all.stability in
   # PluginTest.SweepFigureAndGenericClaimCoverThePluginModel.
   "Checks/QuickBudget.*"
-  # The same for the claims on the stability sweep of every model: their measures and decisions on
-  # smaller sweeps in StabilitySweep.* (tests/verify/stability), the whole sweep of every model in
-  # PluginTest.SweepFigureAndGenericClaimCoverThePluginModel (all.stability).
-  "SweepClaims.QuickBudgetVerdictsAndControls"
+  # The same for the claims that share a measurement: the claims on the stability sweep of every
+  # model have their measures and decisions on smaller sweeps in StabilitySweep.*
+  # (tests/verify/stability) and the whole sweep of every model in
+  # PluginTest.SweepFigureAndGenericClaimCoverThePluginModel (all.stability); the Chermain ones
+  # in ChermainClaims.*.
+  "Checks/SharedMeasurement.*"
   # The controls of smooth.sampler-matches-pdf and eto.pdf-matches at the samples that reject a
   # 2 % error: ChiSquareClaims.IdenticalWithOneAndTwoThreads runs both families (the batched
   # samplers, scaled, α × 1.02 and replanned controls) at 2·10^4 samples;
