@@ -21,13 +21,18 @@ set(glintlab_slow_tests
   # The brute-force Eq. 5 (every point within 5 σ) at 24–400 positions of each setting.
   "Checks/QuickBudget.VerdictAndControl/kemppinen_compensation_k16* 5"
   "Checks/QuickBudget.VerdictAndControl/kemppinen_compensation* 24"
+  # Fits of the LTC probability at every (√α, θv) of its regime; renders of LEAN, LEAN with ρ and
+  # the references; the PODEE sweep.
+  "Checks/QuickBudget.VerdictAndControl/kneiphof_ltc_probability* 9"
+  "Checks/QuickBudget.VerdictAndControl/chermain_lean_correlation* 5"
+  "Checks/QuickBudget.VerdictAndControl/podee_stability* 3"
   "Checks/QuickBudget.* 1"
   # Claims that share one measurement, run in one process (tests/verify/registry_test.cpp):
   # all.energy-gain, all.probability and all.variance on the stability sweep of every registered
   # model and its fixed-position variance; the Chermain GGAA claims on their renders' replicates.
   "Checks/SharedMeasurement.QuickVerdictsAndControls/stability_sweep* 28"
-  "Checks/SharedMeasurement.QuickVerdictsAndControls/chermain_ggaa_replicates* 15"
-  "Checks/SharedMeasurement.QuickVerdictsAndControls/chermain_bumpy_replicates* 15"
+  "Checks/SharedMeasurement.QuickVerdictsAndControls/chermain_ggaa_replicates* 2"
+  "Checks/SharedMeasurement.QuickVerdictsAndControls/chermain_bumpy_replicates* 7"
   "Properties/ControlRejected.ByTheSameDecision/kneiphof_klein_sampler_covers_value* 4"
   # sampler-covers-value of both Kemppinen models at quick at the three compensation settings, with
   # the mixture and with Algorithm 2 alone (10^5 samples and up to 4 · 10^5 reference evaluations
@@ -76,7 +81,7 @@ set(glintlab_slow_tests
   "KemppinenTimingTest.FiguresReadTheBenchmarkJson 4"
   "KemppinenTimingTest.SpeedAccuracyWithoutJson 3"
   "PluginTest.ReportCoversThePluginModelInEveryPart 3"
-  "PluginTest.SweepFigureAndGenericClaimCoverThePluginModel 30"
+  "PluginTest.SweepFigureAndGenericClaimCoverThePluginModel 15"
   "PodeeCliTest.DistanceAndFlickerQuick 2"
   "ReportTest.ReuseReadsCachedResultsAndAMalformedOneLeavesTheOldReport 1"
   "ReportTest.SmallRealRun 4"
