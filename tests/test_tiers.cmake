@@ -21,14 +21,20 @@ set(glintlab_slow_tests
   # The brute-force Eq. 5 (every point within 5 σ) at 24–400 positions of each setting.
   "Checks/QuickBudget.VerdictAndControl/kemppinen_compensation_k16* 5"
   "Checks/QuickBudget.VerdictAndControl/kemppinen_compensation* 24"
-  # Both render the normal-mapped tubes' replicates (three 256-spp references each) in their own
-  # process.
-  "Checks/QuickBudget.VerdictAndControl/chermain_ggaa_derivatives* 15"
-  "Checks/QuickBudget.VerdictAndControl/chermain_ggaa_sk* 15"
+  # Fits of the LTC probability at every (√α, θv) of its regime; renders of LEAN, LEAN with ρ and
+  # the references; the PODEE sweep.
+  "Checks/QuickBudget.VerdictAndControl/kneiphof_ltc_probability* 9"
+  "Checks/QuickBudget.VerdictAndControl/chermain_lean_correlation* 5"
+  "Checks/QuickBudget.VerdictAndControl/podee_stability* 3"
   # The six validation scenes rendered with the chosen and the exact level over 256 realisations.
   "Checks/QuickBudget.VerdictAndControl/adequacy_choice_is_safe* 6"
   "Checks/QuickBudget.* 1"
-  "AcrossClaims.StabilityVerdictAndControl 14"
+  # Claims that share one measurement, run in one process (tests/verify/registry_test.cpp):
+  # all.energy-gain, all.probability and all.variance on the stability sweep of every registered
+  # model and its fixed-position variance; the Chermain GGAA claims on their renders' replicates.
+  "Checks/SharedMeasurement.QuickVerdictsAndControls/stability_sweep* 28"
+  "Checks/SharedMeasurement.QuickVerdictsAndControls/chermain_ggaa_replicates* 2"
+  "Checks/SharedMeasurement.QuickVerdictsAndControls/chermain_bumpy_replicates* 7"
   "Properties/ControlRejected.ByTheSameDecision/kneiphof_klein_sampler_covers_value* 4"
   # sampler-covers-value of both Kemppinen models at quick at the three compensation settings, with
   # the mixture and with Algorithm 2 alone (10^5 samples and up to 4 · 10^5 reference evaluations
@@ -81,7 +87,7 @@ set(glintlab_slow_tests
   "PluginTest.ReportCoversThePluginModelInEveryPart 3"
   "ShardMergeTest.MergedShardsAreTheBytesOfOneRun 8"
   "ShardMergeTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 4"
-  "PluginTest.SweepFigureAndGenericClaimCoverThePluginModel 30"
+  "PluginTest.SweepFigureAndGenericClaimCoverThePluginModel 15"
   "PodeeCliTest.DistanceAndFlickerQuick 2"
   "ReportTest.ReuseReadsCachedResultsAndAMalformedOneLeavesTheOldReport 1"
   "ReportTest.SmallRealRun 4"
@@ -107,8 +113,15 @@ set(glintlab_power_tests
   # Every claim at its quick budget: its measure and decision on smaller inputs in the claim's own
   # tests (tests/verify/claims/: ChiSquareClaims.*, KemppinenClaims.*, PodeeClaims.*,
   # ChermainClaims.*, KneiphofClaims.*, ...), the conformance properties in
-  # Properties/ControlRejected.*, all.stability in AcrossClaims.StabilityVerdictAndControl.
+  # Properties/ControlRejected.*, all.stability in
+  # PluginTest.SweepFigureAndGenericClaimCoverThePluginModel.
   "Checks/QuickBudget.*"
+  # The same for the claims that share a measurement: the claims on the stability sweep of every
+  # model have their measures and decisions on smaller sweeps in StabilitySweep.*
+  # (tests/verify/stability) and the whole sweep of every model in
+  # PluginTest.SweepFigureAndGenericClaimCoverThePluginModel (all.stability); the Chermain ones
+  # in ChermainClaims.*.
+  "Checks/SharedMeasurement.*"
   # The controls of smooth.sampler-matches-pdf and eto.pdf-matches at the samples that reject a
   # 2 % error: ChiSquareClaims.IdenticalWithOneAndTwoThreads runs both families (the batched
   # samplers, scaled, α × 1.02 and replanned controls) at 2·10^4 samples;
@@ -154,29 +167,54 @@ function(glintlab_entry_names entry test out)
   endif()
 endfunction()
 
+# One regular expression that matches exactly the tests some entry of `entries` names. Every
+# ctest run includes this file, so each test is matched against it once, and only a test it
+# matches is looked up entry by entry (for the first entry, which decides its cost): the lookup
+# of every test in every entry took about a second per ctest run.
+function(glintlab_entries_regex out)
+  set(alternatives)
+  foreach(entry IN LISTS ARGN)
+    set(anchor "$")
+    if(entry MATCHES "^(.*)\\*$")
+      set(entry "${CMAKE_MATCH_1}")
+      set(anchor "")
+    endif()
+    string(REGEX REPLACE "([][.*+?()|^$])" "\\\\\\1" entry "${entry}")
+    list(APPEND alternatives "${entry}${anchor}")
+  endforeach()
+  list(JOIN alternatives "|" joined)
+  set(${out} "^(${joined})" PARENT_SCOPE)
+endfunction()
+
+set(glintlab_slow_names)
+set(glintlab_slow_costs)
+foreach(entry IN LISTS glintlab_slow_tests)
+  if(NOT entry MATCHES "^(.+) ([0-9]+)$")
+    message(FATAL_ERROR "test_tiers.cmake: slow entry without its seconds: ${entry}")
+  endif()
+  list(APPEND glintlab_slow_names "${CMAKE_MATCH_1}")
+  list(APPEND glintlab_slow_costs "${CMAKE_MATCH_2}")
+endforeach()
+glintlab_entries_regex(glintlab_slow_regex ${glintlab_slow_names})
+glintlab_entries_regex(glintlab_power_regex ${glintlab_power_tests})
+
 foreach(binary layer IN ZIP_LISTS glintlab_test_binaries glintlab_test_layers)
   foreach(test IN LISTS ${binary}_TESTS)
     set(labels "${layer};fast")
     set(cost 0)
-    foreach(entry IN LISTS glintlab_slow_tests)
-      if(NOT entry MATCHES "^(.+) ([0-9]+)$")
-        message(FATAL_ERROR "test_tiers.cmake: slow entry without its seconds: ${entry}")
-      endif()
-      set(seconds ${CMAKE_MATCH_2})
-      glintlab_entry_names("${CMAKE_MATCH_1}" "${test}" named)
-      if(named)
-        set(labels "${layer};slow")
-        set(cost ${seconds})
-        break()
-      endif()
-    endforeach()
-    foreach(entry IN LISTS glintlab_power_tests)
-      glintlab_entry_names("${entry}" "${test}" named)
-      if(named)
-        list(APPEND labels power)
-        break()
-      endif()
-    endforeach()
+    if(test MATCHES "${glintlab_slow_regex}")
+      foreach(name seconds IN ZIP_LISTS glintlab_slow_names glintlab_slow_costs)
+        glintlab_entry_names("${name}" "${test}" named)
+        if(named)
+          set(labels "${layer};slow")
+          set(cost ${seconds})
+          break()
+        endif()
+      endforeach()
+    endif()
+    if(test MATCHES "${glintlab_power_regex}")
+      list(APPEND labels power)
+    endif()
     set_tests_properties("${test}" PROPERTIES LABELS "${labels}" COST ${cost})
   endforeach()
 endforeach()

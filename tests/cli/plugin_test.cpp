@@ -146,15 +146,38 @@ TEST_F(PluginTest, SweepFigureAndGenericClaimCoverThePluginModel) {
       read_text(path("figures/models-hemisphere/models_hemisphere.csv")).find("example_glints"),
       std::string::npos);
 
+  // all.stability at the quick budget, the one run of it in the suite (it sweeps every model, the
+  // plug-in's too): exit 0 is its recorded verdict; its negative control, the NaN model of
+  // verify/stability/nan_control.h, is rejected by the same decision.
   const RunResult verify = run({"--plugin", kTestPlugin, "verify", "--claims", "all.stability",
                                 "--budget", "quick", "--out", "verify"});
   ASSERT_EQ(verify.exit_code, 0) << verify.err;
   const auto claims = nlohmann::json::parse(read_text(path("verify/claims.json")));
   ASSERT_EQ(claims.size(), 1u);
-  EXPECT_NE(claims[0]["detail"].get<std::string>().find("example_glints/default"),
-            std::string::npos)
-      << claims[0]["detail"];
-  EXPECT_TRUE(claims[0]["control_rejected"].get<bool>()) << claims[0]["control"];
+  const auto& row = claims[0];
+  const std::string detail = row["detail"].get<std::string>();
+  EXPECT_NE(detail.find("example_glints/default"), std::string::npos) << detail;
+  EXPECT_NE(detail.find("smooth_ggx/vndf"), std::string::npos) << detail;
+  const std::string verdict = row["verdict"].get<std::string>();
+  EXPECT_EQ(verdict, row["expected_verdict"].get<std::string>());
+  EXPECT_TRUE(row["control_rejected"].get<bool>()) << row["control"];
+  // The control's verdict opposes the genuine one (verify/check.h control_opposes).
+  ASSERT_TRUE(row["control_verdict"].is_string()) << row.dump();
+  const std::string control = row["control_verdict"].get<std::string>();
+  const auto holding = [](const std::string& v) {
+    return v == "holds" || v == "holds-within" || v == "holds-in-regime";
+  };
+  if (holding(verdict)) {
+    EXPECT_EQ(control, "fails") << verdict;
+  } else if (verdict == "fails") {
+    EXPECT_TRUE(holding(control)) << control;
+  } else {
+    EXPECT_NE(control, "inconclusive") << verdict;
+  }
+  EXPECT_EQ(verdict == "holds-in-regime", !row["regime"].is_null()) << row["regime"];
+  EXPECT_NE(row["control"].get<std::string>().find("NaN in value"), std::string::npos)
+      << row["control"];
+  EXPECT_GT(row["configurations"].get<int>(), 0);
 }
 
 // `glintlab --plugin X report`: the report's verify, conformance and sweep parts run as child

@@ -22,6 +22,9 @@ def test_correct_lambertian_holds_everything_applicable():
     for r in rows:
         if r["verdict"] != "not-claimed":
             assert r["control_rejected"] is True, r
+    # The control of a property that holds is a model wrong near the truth: it fails.
+    control = {r["id"].split(".")[-1]: r["control_verdict"] for r in rows}
+    assert control["eval-pdf-consistency"] == "fails", rows
 
 
 def test_pdf_three_percent_high_fails_sampler_matches_pdf():

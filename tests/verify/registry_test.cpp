@@ -3,9 +3,12 @@
 // a discovery; either way this test makes a person look.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cctype>
+#include <ostream>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "verify/check.h"
 
@@ -47,11 +50,10 @@ TEST(Registry, SeedsDependOnIdAndConfiguration) {
   EXPECT_EQ(check_seed("a.b", 7), check_seed("a.b", 7));
 }
 
-class QuickBudget : public ::testing::TestWithParam<std::string> {};
-
-TEST_P(QuickBudget, VerdictAndControl) {
+// The check `id` at the quick budget: its recorded verdict, and a control that opposes it.
+void expect_verdict_and_control(const std::string& id) {
   for (const Check& c : registered_checks()) {
-    if (c.id != GetParam()) continue;
+    if (c.id != id) continue;
     const CheckResult r = c.run(Budget::kQuick);
     EXPECT_EQ(std::string(to_string(r.verdict)), to_string(c.expected)) << r.detail;
     EXPECT_TRUE(r.control_rejected) << r.control;
@@ -65,19 +67,50 @@ TEST_P(QuickBudget, VerdictAndControl) {
     EXPECT_GT(r.configurations, 0);
     return;
   }
-  FAIL() << "not registered: " << GetParam();
+  FAIL() << "not registered: " << id;
+}
+
+class QuickBudget : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(QuickBudget, VerdictAndControl) { expect_verdict_and_control(GetParam()); }
+
+// Claims decided on one measurement that a process makes once and shares between them: run in
+// one test, so the measurement is made once, not once per claim (each claim's own process).
+struct ClaimGroup {
+  const char* name;
+  std::vector<std::string> ids;
+};
+void PrintTo(const ClaimGroup& g, std::ostream* os) { *os << g.name; }
+const std::vector<ClaimGroup>& shared_measurements() {
+  static const std::vector<ClaimGroup> groups = {
+      // The stability sweep of every registered model (verify/claims/across.cpp suite_sweeps):
+      // about 15 s each apart.
+      {"stability_sweep", {"all.energy-gain", "all.probability", "all.variance"}},
+      // The replicates of the GGAA renders (verify/claims/chermain.cpp ggaa_replicates).
+      {"chermain_ggaa_replicates", {"chermain.ggaa-error", "chermain.ggaa-shimmer"}},
+      // The normal-mapped tubes' replicates, three 256-spp references each (bumpy_replicates).
+      {"chermain_bumpy_replicates", {"chermain.ggaa-derivatives", "chermain.ggaa-sk"}},
+  };
+  return groups;
+}
+
+bool in_shared_measurement(const std::string& id) {
+  for (const ClaimGroup& g : shared_measurements())
+    if (std::ranges::find(g.ids, id) != g.ids.end()) return true;
+  return false;
 }
 
 // Every paper claim, and the conformance checks of the two smooth models (seconds); the other
 // models' conformance checks take minutes each at the quick budget and are tested by
-// tests/verify/conformance (their generator, controls and broken models). all.stability is run
-// with these assertions and more by AcrossClaims.StabilityVerdictAndControl, which the sanitized
-// run includes: one sweep of every model, not two.
+// tests/verify/conformance (their generator, controls and broken models). The claims that share
+// a measurement run together in Checks/SharedMeasurement.*. all.stability is run
+// with these assertions and more by PluginTest.SweepFigureAndGenericClaimCoverThePluginModel
+// (tests/cli/plugin_test.cpp), which the sanitized run includes.
 std::vector<std::string> all_ids() {
   std::vector<std::string> ids;
   for (const Check& c : registered_checks())
     if ((c.family.empty() || c.family == "model.smooth_ggx" || c.family == "model.smooth_beckmann") &&
-        c.id != "all.stability")
+        c.id != "all.stability" && !in_shared_measurement(c.id))
       ids.push_back(c.id);
   return ids;
 }
@@ -89,6 +122,19 @@ INSTANTIATE_TEST_SUITE_P(Checks, QuickBudget, ::testing::ValuesIn(all_ids()),
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
                            return n;
                          });
+
+class SharedMeasurement : public ::testing::TestWithParam<ClaimGroup> {};
+
+TEST_P(SharedMeasurement, QuickVerdictsAndControls) {
+  for (const std::string& id : GetParam().ids) {
+    SCOPED_TRACE(id);
+    expect_verdict_and_control(id);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Checks, SharedMeasurement,
+                         ::testing::ValuesIn(shared_measurements()),
+                         [](const auto& param_info) { return std::string(param_info.param.name); });
 
 }  // namespace
 }  // namespace glintlab::verify
