@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "cli/input.h"
 #include "core/math/rng.h"
+#include "glintlab/version.h"
 
 namespace glintlab::cli {
 
@@ -42,6 +43,8 @@ std::string selection_digest(std::string_view budget, const std::vector<std::str
   for (const std::string& id : ids) all += "\n" + id;
   return fmt::format("{:016x}", hash_string(all.c_str()));
 }
+
+std::string glintlab_version_text() { return GLINTLAB_VERSION; }
 
 std::string to_json(const ShardManifest& m) {
   const json j = {{"command", m.command},

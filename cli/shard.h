@@ -37,6 +37,8 @@ struct ShardManifest {
 };
 
 std::string selection_digest(std::string_view budget, const std::vector<std::string>& ids);
+// This glintlab's version (GLINTLAB_VERSION), recorded in each shard's manifest.
+std::string glintlab_version_text();
 // shard.json's text, and its reading back (InputError naming `dir` on a malformed one).
 std::string to_json(const ShardManifest& m);
 ShardManifest read_manifest(const std::filesystem::path& dir);

@@ -24,7 +24,6 @@
 #include "cli/shard.h"
 #include "cli/verify_output.h"
 #include "core/io/atomic_file.h"
-#include "experiments/figures/figure_registry.h"
 #include "verify/calibration.h"
 #include "verify/check.h"
 #include "verify/results.h"
@@ -141,7 +140,7 @@ int run(const CLI::App* cmd, const VerifyOptions& o) {
   ShardManifest manifest;
   if (sharded) {
     manifest.command = "verify";
-    manifest.version = std::string(experiments::glintlab_version());
+    manifest.version = glintlab_version_text();
     manifest.budget = budget_name;
     for (const auto* c : selected) manifest.selection.push_back(c->id);
     manifest.selection_digest = selection_digest(budget_name, manifest.selection);
