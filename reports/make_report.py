@@ -1107,9 +1107,18 @@ def write_stability(doc, st, part, root, plots_tmp, plots_rel, made, manifest):
                       "chart")
             items = []
             for mp in maps:
-                items += [(f"{mp['quantity']} EXR", rel(mp["exr_path"], root)),
-                          (f"{mp['quantity']} PNG", rel(mp["png_path"], root))]
+                name = STABILITY_MAP_NAMES.get(mp["quantity"], mp["quantity"])
+                items += [(f"{name} EXR", rel(mp["exr_path"], root)),
+                          (f"{name} PNG", rel(mp["png_path"], root))]
             doc.links(f"{plane}: CSV", [("CSV", rel(maps[0]["csv_path"], root))] + items)
+
+
+# The stability maps' quantities (experiments/sweeps/stability_maps.cpp) in words, for the links
+# to their files: a bare "nan" beside a file reads like a missing number.
+STABILITY_MAP_NAMES = {
+    "nan": "NaN-fraction map", "inf": "Inf-fraction map", "negative": "negative-fraction map",
+    "energy_gain": "energy-gain map", "p_gt_1": "p > 1 map", "variance": "variance map",
+}
 
 
 def write_compare(doc, data, plots_tmp, plots_rel, made, manifest):
