@@ -10,7 +10,9 @@
 // (1 − p)^N_P. Smooth: b/(N_P p) = 1, CV 0.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <string_view>
 
 #include "core/glints/binomial.h"
 #include "core/glints/deliot_belcour.h"
@@ -92,42 +94,78 @@ GLINTLAB_FN T count_cv(const CountMoments<T>& c) {
   return safe_div(safe_sqrt(c.second - c.mean * c.mean), c.mean);
 }
 
-// The level for a footprint of N_P facets and reflection probability p (clamped to [0, 1], as the
-// models clamp it), at threshold tau. A level is taken where its predicted relative difference of
-// the means and its difference of the CVs from the exact count's are both at most
-// kChooserMargin · tau:
+// Which levels are adequate for a footprint of N_P facets and reflection probability p (clamped
+// to [0, 1], as the models clamp it), at threshold tau. A level is adequate where its predicted
+// relative difference of the means and its difference of the CVs from the exact count's are both
+// at most kChooserMargin · tau:
 //   smooth       mean exact; CV difference = the exact CV.
 //   real-time    realtime_count_moments against N_P p and N_P p (1 − p).
 //   small-count  identical to the exact count where its 16-term inversion covers the count
 //                (N_P p + 6σ ≤ 15.5: the rest has probability < 1e-9), and a rounded normal where the
 //                count starts beyond it (N_P p − 6σ ≥ 16; rounding adds 1/12 to the variance); in
-//                between it is not taken (the mixture has no closed form here).
-// N_P = 0 or p = 0: every count is 0; the smooth value is then 0 too where p = 0 (D(h) = 0), and
-// the real-time level returns 0 where N_P = 0. Returns the level's BinomialLevel value as T.
+//                between it is not adequate (the mixture has no closed form here).
+//   exact        always.
+// N_P < 1 or p = 0: every count is 0, so the real-time level (whose gate returns 0 where N_P = 0)
+// is adequate where N_P < 1, and the smooth one where p = 0 (D(h) = 0: its value is 0 too).
 template <class T>
-GLINTLAB_FN T choose_binomial_level(T n, T p_raw, T tau) {
+struct AdequateLevels {
+  Mask<T> smooth, realtime, small_count;
+};
+template <class T>
+GLINTLAB_FN AdequateLevels<T> adequate_binomial_levels(T n, T p_raw, T tau) {
   const T p = saturate(p_raw);
   const T limit = T(kChooserMargin) * tau;
   const T np = n * p, var = np * (T(1) - p);
   const T cv_exact = binomial_count_cv(n, p);
-  const Mask<T> smooth_ok = cv_exact <= limit;
   const CountMoments<T> rt = realtime_count_moments(n, p);
   const T rt_mean_diff = abs(safe_div(rt.mean, np) - T(1));
   const T rt_cv_diff = abs(count_cv(rt) - cv_exact);
-  const Mask<T> realtime_ok = rt_mean_diff <= limit && rt_cv_diff <= limit;
   const T sd = sqrt(var);
   const T cv_rounded = safe_div(sqrt(var + T(1.0 / 12)), np);
-  const Mask<T> small_ok =
-      np + T(6) * sd <= T(kSmallCountTerms - 0.5) ||
-      (np - T(6) * sd >= T(kSmallCountTerms) && abs(cv_rounded - cv_exact) <= limit);
+  const Mask<T> no_facets = n < T(1), no_probability = p <= T(0);
+  // The smooth level needs the count's CV small, which fewer than one facet never gives (the
+  // closed form's 0/0 there is not a small CV).
+  return {(cv_exact <= limit && !no_facets) || no_probability,
+          (rt_mean_diff <= limit && rt_cv_diff <= limit) || no_facets,
+          np + T(6) * sd <= T(kSmallCountTerms - 0.5) ||
+              (np - T(6) * sd >= T(kSmallCountTerms) && abs(cv_rounded - cv_exact) <= limit)};
+}
+
+// The chooser in the cost order of a GPU lane (smooth < real-time < small-count < exact: the exact
+// count's variable loop is the costly one there): the first adequate level. Returns the level's
+// BinomialLevel value as T.
+template <class T>
+GLINTLAB_FN T choose_binomial_level(T n, T p_raw, T tau) {
+  const AdequateLevels<T> a = adequate_binomial_levels(n, p_raw, tau);
+  const Mask<T> no_facets = n < T(1), no_probability = saturate(p_raw) <= T(0);
   T level = T(int(BinomialLevel::kExact));
-  level = select(small_ok, T(int(BinomialLevel::kSmallCount)), level);
-  level = select(realtime_ok, T(int(BinomialLevel::kRealTime)), level);
-  level = select(smooth_ok, T(int(BinomialLevel::kSmooth)), level);
-  // No facets: every count is 0, the real-time gate included; no probability: D(h) = 0, so the
-  // smooth value is 0 as well.
-  level = select(n < T(1), T(int(BinomialLevel::kRealTime)), level);
-  return select(p <= T(0), T(int(BinomialLevel::kSmooth)), level);
+  level = select(a.small_count, T(int(BinomialLevel::kSmallCount)), level);
+  level = select(a.realtime, T(int(BinomialLevel::kRealTime)), level);
+  level = select(a.smooth, T(int(BinomialLevel::kSmooth)), level);
+  // No facets: every count is 0, the real-time gate included (but no probability wins: D(h) = 0,
+  // the smooth value is 0 as well).
+  level = select(no_facets, T(int(BinomialLevel::kRealTime)), level);
+  return select(no_probability, T(int(BinomialLevel::kSmooth)), level);
+}
+
+// The chooser for measured costs (ns per evaluation, indexed by BinomialLevel: from the benchmark
+// JSON of the machine it runs on, `glintlab adequacy --bench-from`): the adequate level of least
+// cost; a tie goes to the cheaper one in the GPU order. Branch-free on lanes.
+template <class T>
+GLINTLAB_FN T choose_binomial_level_by_cost(T n, T p_raw, T tau,
+                                            const std::array<double, kBinomialLevels>& cost) {
+  const AdequateLevels<T> a = adequate_binomial_levels(n, p_raw, tau);
+  T level = T(int(BinomialLevel::kExact));
+  T best = T(cost[std::size_t(BinomialLevel::kExact)]);
+  const auto consider = [&](const Mask<T>& adequate, BinomialLevel l) {
+    const Mask<T> take = adequate && T(cost[std::size_t(l)]) <= best;
+    level = select(take, T(int(l)), level);
+    best = select(take, T(cost[std::size_t(l)]), best);
+  };
+  consider(a.small_count, BinomialLevel::kSmallCount);
+  consider(a.realtime, BinomialLevel::kRealTime);
+  consider(a.smooth, BinomialLevel::kSmooth);
+  return level;
 }
 
 // The chooser on what a shader of deliot_belcour has: its parameters and the query (footprint,

@@ -8,12 +8,17 @@
 // this binary with --benchmark_out=FILE --benchmark_out_format=json. Method rows
 // (METHOD_BENCHMARKS.md): method/binomial.count_vs_exact.<regime>/sampler=..., the distribution
 // error of each sampler (core/glints/binomial_distribution.h, no sampling) beside its time per
-// draw.
+// draw. Adequacy rows (adequacy/<model>/level=<level>/<isa>): each level of the binomial family
+// through the registry's batch API on every ISA this CPU has, over the quick adequacy grid's
+// cells, the cost per evaluation `glintlab adequacy --bench-from` and the adequacy-scene figure
+// read.
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/glints/binomial.h"
@@ -22,8 +27,11 @@
 #include "core/glints/kneiphof.h"
 #include "core/glints/kneiphof_ltc.h"
 #include "core/ltc/ltc_table.h"
+#include "core/model_registry.h"
 #include "core/models/smooth_ggx.h"
+#include "core/simd/model_batch.h"
 #include "experiments/bench/method_bench.h"
+#include "verify/adequacy/binomial_adequacy.h"
 
 namespace glintlab {
 namespace {
@@ -216,10 +224,86 @@ BENCHMARK(table1)
     ->ArgsProduct({{kSmooth, kDeliotBelcour, kKneiphofKlein, kNdfLtc},
                    {kNone, kDirectional, kArea}});
 
+// --- Adequacy levels: adequacy/<model>/level=<level>/<isa> ---------------------------------------
+// A level's cost per evaluation where the adequacy table decides it: every cell of the quick grid
+// (verify/adequacy: footprints of 1 to 10^8 facets, on and near the specular peak, where the exact
+// count's loop runs long) at kAdequacyPositions surface positions, one batch per cell (a cell's
+// parameters are uniform, as a shader's material is over a pixel batch), in double. The smooth
+// level is smooth_ggx's value (the family's smooth limit) at the cell's roughness.
+constexpr int kAdequacyPositions = 64;
+
+struct AdequacyRows {
+  std::vector<std::vector<double>> params;               // per cell
+  std::vector<std::vector<std::vector<double>>> query;   // per cell: the query columns
+};
+
+AdequacyRows adequacy_rows(const std::string& model, BinomialLevel level) {
+  namespace adq = verify::adequacy;
+  const ModelEntry& smooth = find_model("smooth_ggx");
+  AdequacyRows r;
+  for (const adq::Cell& c : adq::make_grid({model}, adq::grid_axes(verify::Budget::kQuick))) {
+    if (level == BinomialLevel::kSmooth) {
+      r.params.push_back(resolve_params(
+          smooth, {{"alpha_x", fmt::format("{}", c.alpha)}, {"alpha_y", fmt::format("{}", c.alpha)}}));
+    } else {
+      r.params.push_back(adq::level_param_values(c, level, 1));
+    }
+    // Every column of the layout (the corner columns stay 0: the family does not read them).
+    std::vector<std::vector<double>> cols(simd::kQueryColumnsWithCorners,
+                                          std::vector<double>(kAdequacyPositions));
+    for (int i = 0; i < kAdequacyPositions; ++i) {
+      const Vec2<double> uv = adq::surface_position(i);
+      const ModelQuery<double> q = adq::cell_query(c, uv.x, uv.y);
+      for_each_query_column(q, [&](std::size_t k, const QueryColumn&, const double& v) {
+        cols[k][std::size_t(i)] = v;
+      });
+    }
+    r.query.push_back(std::move(cols));
+  }
+  return r;
+}
+
+void adequacy_level_bm(benchmark::State& s, std::string model, BinomialLevel level, simd::Isa isa) {
+  const ModelEntry& m = find_model(level == BinomialLevel::kSmooth ? "smooth_ggx" : model);
+  const AdequacyRows rows = adequacy_rows(model, level);
+  std::vector<std::vector<simd::Column<double>>> cols;
+  for (const auto& cell : rows.query) {
+    cols.emplace_back();
+    for (const auto& c : cell) cols.back().push_back({c.data(), 1});
+  }
+  std::vector<std::vector<double>> out(2 + m.intermediates.size(),
+                                       std::vector<double>(kAdequacyPositions));
+  std::vector<double*> outs;
+  for (auto& c : out) outs.push_back(c.data());
+  std::int64_t evals = 0;
+  for (auto _ : s) {
+    for (std::size_t k = 0; k < cols.size(); ++k)
+      simd::eval_batch(m, rows.params[k], cols[k], outs, kAdequacyPositions, isa);
+    benchmark::DoNotOptimize(out[0].data());
+    benchmark::ClobberMemory();
+    evals += std::int64_t(cols.size()) * kAdequacyPositions;
+  }
+  s.SetItemsProcessed(evals);
+}
+
+void register_adequacy_levels() {
+  for (std::string_view model : verify::adequacy::kBinomialFamilyModels)
+    for (int l = 0; l < kBinomialLevels; ++l)
+      for (simd::Isa isa : simd::kAllIsas) {
+        if (!simd::isa_supported(isa)) continue;
+        benchmark::RegisterBenchmark(
+            fmt::format("adequacy/{}/level={}/{}", model, kBinomialLevelNames[std::size_t(l)],
+                        simd::isa_name(isa))
+                .c_str(),
+            adequacy_level_bm, std::string(model), BinomialLevel(l), isa);
+      }
+}
+
 }  // namespace
 }  // namespace glintlab
 
 int main(int argc, char** argv) {
   glintlab::register_binomial_methods();
+  glintlab::register_adequacy_levels();
   return glintlab::bench::run_benchmarks(argc, argv);
 }

@@ -43,6 +43,33 @@ void expect_lanes_match_scalar() {
   }
 }
 
+// The chooser by measured cost, lane by lane against the scalar one (costs of this CPU's order).
+template <class W>
+void expect_cost_lanes_match_scalar() {
+  using S = typename W::ScalarType;
+  constexpr std::size_t kL = LaneTraits<W>::kLanes;
+  const std::array<double, kBinomialLevels> cost = {25, 85, 90, 50};
+  for (std::uint64_t g = 0; g < 2000; ++g) {
+    alignas(64) S n[kL], p[kL], tau[kL], out[kL];
+    for (std::size_t l = 0; l < kL; ++l) {
+      const Inputs in = inputs(g * kL + l);
+      n[l] = S(in.n), p[l] = S(in.p), tau[l] = S(in.tau);
+    }
+    const W level =
+        choose_binomial_level_by_cost(LaneTraits<W>::load(n), LaneTraits<W>::load(p),
+                                      LaneTraits<W>::load(tau), cost);
+    LaneTraits<W>::store(level, out);
+    for (std::size_t l = 0; l < kL; ++l)
+      EXPECT_EQ(out[l], S(choose_binomial_level_by_cost(double(n[l]), double(p[l]),
+                                                        double(tau[l]), cost)))
+          << n[l] << " " << p[l] << " " << tau[l];
+  }
+}
+
+TEST(AdequacyChooserWide, ByCostBatchDoubleLanesMatchScalar) {
+  expect_cost_lanes_match_scalar<Wide<xsimd::batch<double>, ExactMath>>();
+}
+
 TEST(AdequacyChooserWide, BatchDoubleLanesMatchScalar) {
   expect_lanes_match_scalar<Wide<xsimd::batch<double>, ExactMath>>();
 }

@@ -19,27 +19,10 @@ constexpr double kLog10Density = 6;
 
 double theta_h_of(double alpha, int index) { return std::atan(alpha * index); }
 
-ModelQuery<double> cell_query(const Cell& c, double u, double v) {
-  ModelQuery<double> q{};
-  const double ti = c.theta_i_deg * kDeg, th = c.theta_h_deg * kDeg;
-  q.wi = {std::sin(ti), 0, std::cos(ti)};
-  // h tilted sideways (azimuth 90°): ω_o.z = cos θ_i cos 2θ_h > 0 for θ_h < 45°.
-  const Vec3<double> h{0, std::sin(th), std::cos(th)};
-  const double wh = dot(q.wi, h);
-  q.wo = normalize(Vec3<double>{2 * wh * h.x - q.wi.x, 2 * wh * h.y - q.wi.y, 2 * wh * h.z - q.wi.z});
-  const double side = std::sqrt(c.facets / std::pow(10.0, kLog10Density));
-  q.footprint.uv = {u, v};
-  q.footprint.duv_dx = {side, 0};
-  q.footprint.duv_dy = {0, side};
-  q.light.cos_half_angle = std::cos(c.light_half_angle_deg * kDeg);
-  q.light.intensity = 1;
-  return q;
-}
 
 // The model's parameter values in kParams order, with the level's sampler and the seed.
 template <class M>
-typename M::template Params<double> model_params(const Cell& c, BinomialLevel level,
-                                                 std::uint64_t seed) {
+std::vector<double> model_param_values(const Cell& c, BinomialLevel level, std::uint64_t seed) {
   std::vector<double> v;
   for (const ParamSpec& s : M::kParams) v.push_back(s.default_value);
   v[param_index<M>("alpha_x")] = c.alpha;
@@ -50,14 +33,14 @@ typename M::template Params<double> model_params(const Cell& c, BinomialLevel le
       : level == BinomialLevel::kSmallCount ? double(BinomialSampler::kSmallCount)
                                             : double(BinomialSampler::kExact);
   v[param_index<M>("seed")] = double(seed % 4294967296ULL);
-  return M::template params<double>(v);
+  return v;
+}
+template <class M>
+typename M::template Params<double> model_params(const Cell& c, BinomialLevel level,
+                                                 std::uint64_t seed) {
+  return M::template params<double>(model_param_values<M>(c, level, seed));
 }
 
-// R2 low-discrepancy positions (Roberts 2018): distinct after the models' 2^-24 uv quantization.
-Vec2<double> position(int i) {
-  const double a = 0.5 + 0.75487766624669276005 * i, b = 0.5 + 0.56984029099805326591 * i;
-  return {a - std::floor(a), b - std::floor(b)};
-}
 
 template <class M>
 double values_of(const Cell& c, BinomialLevel level, int samples, std::uint64_t seed,
@@ -68,13 +51,13 @@ double values_of(const Cell& c, BinomialLevel level, int samples, std::uint64_t 
   if (level == BinomialLevel::kSmooth) {
     // The family's smooth limit: the smooth GGX value the models scale (F = 1).
     for (int i = 0; i < samples; ++i) {
-      const Vec2<double> uv = position(i);
+      const Vec2<double> uv = surface_position(i);
       const ModelQuery<double> q = cell_query(c, uv.x, uv.y);
       out[std::size_t(i)] = microfacet_brdf(params.ggx, q.wi, q.wo, 1.0) * std::max(q.wo.z, 0.0);
     }
   } else {
     for (int i = 0; i < samples; ++i) {
-      const Vec2<double> uv = position(i);
+      const Vec2<double> uv = surface_position(i);
       out[std::size_t(i)] = M::template eval<double>(params, cell_query(c, uv.x, uv.y)).value;
     }
   }
@@ -93,6 +76,37 @@ double normal_quantile_upper(double alpha) {
 }
 
 }  // namespace
+
+// R2 low-discrepancy positions (Roberts 2018): distinct after the models' 2^-24 uv quantization.
+Vec2<double> surface_position(int i) {
+  const double a = 0.5 + 0.75487766624669276005 * i, b = 0.5 + 0.56984029099805326591 * i;
+  return {a - std::floor(a), b - std::floor(b)};
+}
+
+ModelQuery<double> cell_query(const Cell& c, double u, double v) {
+  ModelQuery<double> q{};
+  const double ti = c.theta_i_deg * kDeg, th = c.theta_h_deg * kDeg;
+  q.wi = {std::sin(ti), 0, std::cos(ti)};
+  // h tilted sideways (azimuth 90°): ω_o.z = cos θ_i cos 2θ_h > 0 for θ_h < 45°.
+  const Vec3<double> h{0, std::sin(th), std::cos(th)};
+  const double wh = dot(q.wi, h);
+  q.wo = normalize(Vec3<double>{2 * wh * h.x - q.wi.x, 2 * wh * h.y - q.wi.y, 2 * wh * h.z - q.wi.z});
+  const double side = std::sqrt(c.facets / std::pow(10.0, kLog10Density));
+  q.footprint.uv = {u, v};
+  q.footprint.duv_dx = {side, 0};
+  q.footprint.duv_dy = {0, side};
+  q.light.cos_half_angle = std::cos(c.light_half_angle_deg * kDeg);
+  q.light.intensity = 1;
+  return q;
+}
+
+std::vector<double> level_param_values(const Cell& cell, BinomialLevel level, std::uint64_t seed) {
+  if (level == BinomialLevel::kSmooth)
+    throw std::invalid_argument("adequacy: the smooth level is smooth_ggx's value, not a count");
+  if (cell.model == "deliot_belcour") return model_param_values<DeliotBelcour>(cell, level, seed);
+  if (cell.model == "kneiphof_klein") return model_param_values<KneiphofKlein>(cell, level, seed);
+  throw std::invalid_argument("adequacy: not a model of the binomial family: " + cell.model);
+}
 
 GridAxes grid_axes(Budget b) {
   GridAxes g;

@@ -98,6 +98,12 @@ Decision decision_at_level(double level, double threshold);
 // loop's nanoseconds per evaluation.
 double level_values(const Cell& cell, BinomialLevel level, int samples, std::uint64_t seed,
                     std::vector<double>& out);
+// The surface position of sample i (the footprint centre; a 2-d low-discrepancy set), the query of
+// a cell there, and the cell's model's parameter values (its ModelEntry::params order) for a
+// counting level (not kSmooth: that level is the smooth GGX value) — what level_values evaluates.
+Vec2<double> surface_position(int i);
+ModelQuery<double> cell_query(const Cell& c, double u, double v);
+std::vector<double> level_param_values(const Cell& cell, BinomialLevel level, std::uint64_t seed);
 // The clamped p and the smooth value of a cell.
 std::pair<double, double> cell_probability_and_smooth(const Cell& cell);
 

@@ -105,5 +105,29 @@ TEST(AdequacyChooser, SmoothExactlyWhereTheCvIsBelowHalfTau) {
   EXPECT_NE(choose(std::floor(n_star * 0.999), p, tau), L::kSmooth);
 }
 
+// The chooser for measured costs takes the adequate level of least cost: with the GPU order as
+// costs it is the GPU chooser; with this CPU's order (the exact count cheaper than the real-time
+// and small-count ones, adequacy/ benchmark rows) it never takes a level dearer than exact.
+TEST(AdequacyChooser, ByCostIsTheCheapestAdequateLevel) {
+  const std::array<double, kBinomialLevels> gpu = {0, 1, 2, 3};
+  const std::array<double, kBinomialLevels> cpu = {25, 85, 90, 50};  // smooth < exact < rt < sc
+  for (double n : {0.0, 0.5, 1.0, 2.0, 3.0, 10.0, 100.0, 3000.0, 1e4, 1e5, 1e6, 1e8})
+    for (double p : {0.0, 1e-5, 1e-3, 0.01, 0.05, 0.5, 1.0})
+      for (double tau : {0.02, 0.2}) {
+        EXPECT_EQ(choose_binomial_level_by_cost(n, p, tau, gpu), choose_binomial_level(n, p, tau))
+            << n << " " << p << " " << tau;
+        const auto a = adequate_binomial_levels(n, p, tau);
+        const double by_cpu = choose_binomial_level_by_cost(n, p, tau, cpu);
+        const L expected = a.smooth ? L::kSmooth : L::kExact;  // rt and sc cost more than exact
+        EXPECT_EQ(L(int(by_cpu)), expected) << n << " " << p << " " << tau;
+      }
+  // The levels a cost table can reach are the adequate ones: with the exact count dearest, the
+  // choice is the GPU chooser's wherever the GPU order agrees.
+  const std::array<double, kBinomialLevels> exact_dear = {1, 2, 3, 100};
+  EXPECT_EQ(L(int(choose_binomial_level_by_cost(2.0, 0.01, 0.02, exact_dear))), L::kSmallCount);
+  EXPECT_EQ(L(int(choose_binomial_level_by_cost(1e5, 0.01, 0.02, exact_dear))), L::kRealTime);
+  EXPECT_EQ(L(int(choose_binomial_level_by_cost(3000.0, 0.01, 0.02, exact_dear))), L::kExact);
+}
+
 }  // namespace
 }  // namespace glintlab
