@@ -1,5 +1,6 @@
 // `glintlab adequacy [--models GLOBS] [--threshold TAU] [--budget quick|full] [--threads N]
-// [--out DIR] [--calibrate [--runs N] [--tables N]]`: where each cheaper level of the binomial
+// [--out DIR] [--bench-from DIR] [--calibrate [--runs N] [--tables N]]`: where each cheaper level
+// of the binomial
 // glint family is indistinguishable from the exact count (verify/adequacy/, experiments/adequacy/;
 // docs/adequacy.md); with --calibrate, the decision rule's false-adequate rate on synthetic cells
 // whose truth is known instead.
@@ -7,6 +8,7 @@
 #include <tbb/global_control.h>
 
 #include <chrono>
+#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -16,6 +18,7 @@
 #include "cli/input.h"
 #include "cli/progress.h"
 #include "cli/suite_runs.h"
+#include "core/simd/batch.h"
 #include "experiments/adequacy/adequacy_outputs.h"
 
 namespace glintlab::cli {
@@ -30,6 +33,7 @@ struct AdequacyCliOptions {
   bool calibrate = false;
   std::string runs = "2000";
   std::string tables = "20";
+  std::string bench_from;
 };
 
 void print_calibration(const AdequacyRunSummary& run) {
@@ -73,6 +77,7 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
   r.calibrate = o.calibrate;
   if (option_count(cmd, "--runs") > 0) r.runs = o.runs;
   if (option_count(cmd, "--tables") > 0) r.tables = o.tables;
+  if (option_count(cmd, "--bench-from") > 0) r.bench_from = o.bench_from;
   const AdequacyRunSummary run = run_adequacy_request(r);
   if (run.calibrate) {
     print_calibration(run);
@@ -97,6 +102,23 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
       s.exact_ns, s.chosen_ns, saved(s.chosen_ns), s.cheapest_ns, saved(s.cheapest_ns),
       s.cheapest_measured[0], s.cheapest_measured[1], s.cheapest_measured[2],
       s.cheapest_measured[3]);
+  if (s.benchmark_costs) {
+    const auto bench_saved = [&](double ns) {
+      return s.bench_exact_ns > 0 ? 100 * (1 - ns / s.bench_exact_ns) : 0.0;
+    };
+    fmt::print(
+        "time per evaluation summed over cells (benchmark {}, {}): exact everywhere {:.0f} ns; "
+        "chosen level {:.0f} ns ({:.1f} % saved); cheapest adequate level by the benchmark "
+        "{:.0f} ns ({:.1f} % saved; smooth {}, realtime {}, small_count {}, exact {} cells)\n",
+        run.costs_source, run.costs_isa, s.bench_exact_ns, s.bench_chosen_ns,
+        bench_saved(s.bench_chosen_ns), s.bench_cheapest_ns, bench_saved(s.bench_cheapest_ns),
+        s.cheapest_by_benchmark[0], s.cheapest_by_benchmark[1], s.cheapest_by_benchmark[2],
+        s.cheapest_by_benchmark[3]);
+  } else {
+    fmt::print("no benchmark costs (--bench-from DIR, DIR/glints.json from "
+               "glintlab_bench_glints --benchmark_filter=^adequacy/): levels priced by the GPU "
+               "order and the in-process timing only\n");
+  }
   fmt::print("wrote {}, {} and {} maps in {:.1f} s\n", s.csv.string(), s.json.string(),
              s.maps.size(), seconds);
 }
@@ -111,7 +133,11 @@ evaluated at the same surface positions (quick: 8000, full: 32000); a level is a
 0.02: luminance differences under about 1-2 % are not seen). The bounds' level splits the
 suite's family-wise rate over every decision; a cell whose exact level is lit at fewer than 100
 positions is undecided and keeps exact. `chosen` takes the levels in the order above (the GPU-lane
-cost order); `cheapest_measured` is the adequate level timed fastest in this run. Writes DIR/adequacy.csv and adequacy.json (the
+cost order); `cheapest_measured` is the adequate level timed fastest in this run (scalar double,
+in-process). --bench-from DIR prices the levels by Google Benchmark JSON instead: DIR/glints.json's
+adequacy/<model>/level=<level>/<isa> rows of glintlab_bench_glints at the ISA glintlab runs
+(GLINTLAB_ISA, else the widest), adding `cheapest_by_benchmark` and the time saved against the
+exact level everywhere. Writes DIR/adequacy.csv and adequacy.json (the
 table, with each level's measured ns per evaluation: the only numbers that vary run to run) and
 per model x light x incidence an EXR and a labelled PNG map of the cheapest adequate level, with
 the predicted boundary CV = sqrt((1 - p)/(N_P p)) = TAU drawn over it.
@@ -144,6 +170,21 @@ AdequacyRunSummary run_adequacy_request(const AdequacyRequest& o) {
   if (!o.calibrate && o.tables)
     throw InputError("--tables: only with --calibrate (whole tables per family-wise delta)");
   const int threads = resolve_threads(o.threads);
+  if (o.calibrate && o.bench_from)
+    throw InputError("--bench-from: only without --calibrate (it prices the table's levels)");
+  if (o.bench_from) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(*o.bench_from, ec))
+      throw InputError(fmt::format("--bench-from: '{}' is not a folder (valid: a folder holding "
+                                   "{} of glintlab_bench_glints)",
+                                   *o.bench_from, experiments::kLevelCostsFile));
+    try {
+      a.costs = experiments::read_level_costs(*o.bench_from, *o.bench_from,
+                                              simd::isa_name(simd::default_isa()), a.models);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(e.what());
+    }
+  }
   check_output_dir(o.out, "--out");
   register_staging_parent(o.out);
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
@@ -176,6 +217,10 @@ AdequacyRunSummary run_adequacy_request(const AdequacyRequest& o) {
       bar.step("cells");
     };
     run.table = experiments::run_adequacy(o.out, a);
+    if (a.costs) {
+      run.costs_source = a.costs->source;
+      run.costs_isa = a.costs->isa;
+    }
   }
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return run;
@@ -203,6 +248,10 @@ void add_adequacy_command(CLI::App& app) {
   add_text_option(cmd, "--tables", o->tables,
                   "with --calibrate: whole tables per family-wise delta, an integer in [0, 100000]",
                   "INT");
+  add_text_option(cmd, "--bench-from", o->bench_from,
+                  "a folder holding glints.json of glintlab_bench_glints (its adequacy/ rows): "
+                  "each level's cost per evaluation on this machine",
+                  "DIR");
   set_footer(cmd, kFooter);
   set_callback(cmd, [cmd, o] { run(cmd, *o); });
 }

@@ -70,6 +70,7 @@ struct AdequacyRequest {
   bool calibrate = false;
   std::optional<std::string> runs;  // unset: not given (2000 with calibrate)
   std::optional<std::string> tables;  // unset: not given (20 with calibrate)
+  std::optional<std::string> bench_from;  // a folder holding glints.json (the levels' costs)
 };
 struct AdequacyRunSummary {
   bool calibrate = false;
@@ -77,6 +78,7 @@ struct AdequacyRunSummary {
   double seconds = 0;                                   // wall time of the measurement
   experiments::AdequacySummary table;                   // without calibrate
   experiments::AdequacyCalibrationSummary calibration;  // with calibrate
+  std::string costs_source, costs_isa;  // with --bench-from: the file and ISA that priced levels
 };
 AdequacyRunSummary run_adequacy_request(const AdequacyRequest& r);
 

@@ -26,7 +26,22 @@ std::string short_number(double x) {
   return fmt::format("{:g}", x);
 }
 
-void write_csv(const std::filesystem::path& path, const std::vector<CellResult>& rows) {
+// The adequate level of least benchmark cost in a cell, and the costs of its model.
+struct BenchPrice {
+  int cheapest = int(BinomialLevel::kExact);
+  std::array<double, kBinomialLevels> ns{};
+};
+BenchPrice bench_price(const CellResult& r, const LevelCosts& costs) {
+  BenchPrice b;
+  b.ns = costs.ns.at(r.cell.model);
+  std::array<bool, kBinomialLevels> adequate{};
+  for (std::size_t l = 0; l < adequate.size(); ++l) adequate[l] = r.levels[l].adequate;
+  b.cheapest = cheapest_adequate(adequate, b.ns);
+  return b;
+}
+
+void write_csv(const std::filesystem::path& path, const std::vector<CellResult>& rows,
+               const std::optional<LevelCosts>& costs) {
   std::vector<std::string> names = {"model",        "facets",           "alpha",
                                     "light_half_angle_deg", "theta_i_deg", "theta_h_deg",
                                     "p",            "smooth",           "cv_predicted",
@@ -40,6 +55,11 @@ void write_csv(const std::filesystem::path& path, const std::vector<CellResult>&
   for (std::string_view l : kBinomialLevelNames) names.push_back(fmt::format("{}_ns", l));
   names.push_back("cheapest_measured");
   names.push_back("time_saved_ns");
+  // With --bench-from: the levels priced by the benchmark (the same on every run of that file).
+  if (costs)
+    for (const char* n : {"cheapest_by_benchmark", "bench_exact_ns", "bench_chosen_ns",
+                          "bench_cheapest_ns"})
+      names.push_back(n);
   std::vector<std::string_view> header(names.begin(), names.end());
   io::write_csv_atomic(path, header, [&](io::CsvWriter& w) {
     for (const CellResult& r : rows) {
@@ -56,6 +76,11 @@ void write_csv(const std::filesystem::path& path, const std::vector<CellResult>&
       for (const LevelStats& s : r.levels) w.cell(s.ns_per_eval);
       w.cell(kBinomialLevelNames[std::size_t(r.cheapest_measured)]);
       w.cell(r.levels[3].ns_per_eval - r.levels[std::size_t(r.cheapest_measured)].ns_per_eval);
+      if (costs) {
+        const BenchPrice b = bench_price(r, *costs);
+        w.cell(kBinomialLevelNames[std::size_t(b.cheapest)]);
+        w.cell(b.ns[3]).cell(b.ns[std::size_t(r.chosen)]).cell(b.ns[std::size_t(b.cheapest)]);
+      }
       w.end_row();
     }
   });
@@ -174,11 +199,19 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
     sum.cheapest_ns += r.levels[std::size_t(r.cheapest_measured)].ns_per_eval;
     ++sum.cheapest_measured[std::size_t(r.cheapest_measured)];
     sum.undecided += r.levels[0].undecided ? 1 : 0;
+    if (o.costs) {
+      const BenchPrice b = bench_price(r, *o.costs);
+      sum.benchmark_costs = true;
+      sum.bench_exact_ns += b.ns[3];
+      sum.bench_chosen_ns += b.ns[std::size_t(r.chosen)];
+      sum.bench_cheapest_ns += b.ns[std::size_t(b.cheapest)];
+      ++sum.cheapest_by_benchmark[std::size_t(b.cheapest)];
+    }
   }
   std::filesystem::create_directories(out);
   sum.csv = out / "adequacy.csv";
   sum.json = out / "adequacy.json";
-  write_csv(sum.csv, rows);
+  write_csv(sum.csv, rows, o.costs);
 
   nlohmann::json maps = nlohmann::json::array();
   for (const AdequacyLevelMap& m : adequacy_level_maps(rows, axes, o.threshold)) {
@@ -221,6 +254,32 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
                     {"cheapest_measured_ns_total", sum.cheapest_ns},
                     {"undecided", sum.undecided},
                     {"timing_note", "ns columns are measured in-process and vary run to run"}};
+  if (o.costs) {
+    nlohmann::json per_model = nlohmann::json::object();
+    for (const auto& [model, ns] : o.costs->ns) {
+      nlohmann::json levels = nlohmann::json::object();
+      for (std::size_t l = 0; l < ns.size(); ++l) levels[std::string(kBinomialLevelNames[l])] = ns[l];
+      per_model[model] = levels;
+    }
+    const auto saved = [&](double ns) {
+      return sum.bench_exact_ns > 0 ? 1 - ns / sum.bench_exact_ns : 0.0;
+    };
+    doc["benchmark_costs"] = {
+        {"source", o.costs->source},
+        {"isa", o.costs->isa},
+        {"ns_per_eval", per_model},
+        {"exact_ns_total", sum.bench_exact_ns},
+        {"chosen_ns_total", sum.bench_chosen_ns},
+        {"chosen_saved_fraction", saved(sum.bench_chosen_ns)},
+        {"cheapest_ns_total", sum.bench_cheapest_ns},
+        {"cheapest_saved_fraction", saved(sum.bench_cheapest_ns)},
+        {"cheapest_by_benchmark", {{"smooth", sum.cheapest_by_benchmark[0]},
+                                   {"realtime", sum.cheapest_by_benchmark[1]},
+                                   {"small_count", sum.cheapest_by_benchmark[2]},
+                                   {"exact", sum.cheapest_by_benchmark[3]}}}};
+  } else {
+    doc["benchmark_costs"] = nullptr;
+  }
   doc["maps"] = maps;
   nlohmann::json table = nlohmann::json::array();
   for (const CellResult& r : rows) {
@@ -241,6 +300,9 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
                      {"chooser_refuted", r.chooser_refuted},
                      {"cheapest_measured", kBinomialLevelNames[std::size_t(r.cheapest_measured)]},
                      {"levels", levels}});
+    if (o.costs)
+      table.back()["cheapest_by_benchmark"] =
+          kBinomialLevelNames[std::size_t(bench_price(r, *o.costs).cheapest)];
   }
   doc["cells"] = table;
   io::write_file_atomic(sum.json, doc.dump(1) + "\n");

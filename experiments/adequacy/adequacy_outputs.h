@@ -8,11 +8,13 @@
 #include <array>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/math/vec.h"
 #include "core/render/image.h"
+#include "experiments/adequacy/level_costs.h"
 #include "experiments/figures/log_chart.h"
 #include "verify/adequacy/binomial_adequacy.h"
 #include "verify/adequacy/decision_calibration.h"
@@ -29,6 +31,9 @@ struct AdequacyOptions {
   double threshold = verify::adequacy::kDefaultThreshold;
   verify::Budget budget = verify::Budget::kQuick;
   std::function<void()> progress;  // once per measured cell, from any thread
+  // Each level's cost from the benchmark JSON (`--bench-from`); unset: the table prices the levels
+  // only by the GPU order and the in-process timing.
+  std::optional<LevelCosts> costs;
 };
 
 struct AdequacySummary {
@@ -44,6 +49,12 @@ struct AdequacySummary {
   // the approximations; docs/benchmarks.md), with how many cells each level is that for.
   double exact_ns = 0, chosen_ns = 0, cheapest_ns = 0;
   std::array<std::size_t, 4> cheapest_measured{};
+  // With benchmark costs: Σ over cells of the benchmark's ns per evaluation for the exact level
+  // everywhere, the chosen level (GPU order) and the adequate level of least benchmark cost, with
+  // how many cells each level is that for.
+  bool benchmark_costs = false;
+  double bench_exact_ns = 0, bench_chosen_ns = 0, bench_cheapest_ns = 0;
+  std::array<std::size_t, 4> cheapest_by_benchmark{};
 };
 
 // Measures every cell and writes the files into `out` (created), each atomically.

@@ -304,7 +304,7 @@ def compare(out, models="*", budget="quick", threads=None, claims_from=None, swe
 
 
 def adequacy(out, models="*", threshold=0.02, budget="quick", threads=None, calibrate=False,
-             runs=None, tables=None):
+             runs=None, tables=None, bench_from=None):
     """Where each cheaper level of the binomial glint family is indistinguishable from the exact
     count, as ``glintlab adequacy`` writes it (docs/adequacy.md); with calibrate=True the decision
     rule's false-adequate rate on synthetic cells instead (``glintlab adequacy --calibrate``).
@@ -319,6 +319,8 @@ def adequacy(out, models="*", threshold=0.02, budget="quick", threads=None, cali
                (None: 2000).
     tables     with calibrate: whole tables per family-wise delta, an integer in [0, 100000]
                (None: 20).
+    bench_from a folder holding glints.json of glintlab_bench_glints (its adequacy/ rows): each
+               level priced by the benchmark (``cheapest_by_benchmark``, the time saved).
 
     Returns a dict: ``json`` and ``csv`` (the paths of adequacy.json / adequacy.csv, or
     adequacy-calibration.json / .csv), ``summary`` (the JSON's content), ``table`` (the CSV as a
@@ -330,7 +332,8 @@ def adequacy(out, models="*", threshold=0.02, budget="quick", threads=None, cali
     s = _glintlab.adequacy(str(out), budget=str(budget), models=_text(models),
                            threshold=str(threshold), threads=_text(threads),
                            calibrate=bool(calibrate), runs=None if runs is None else str(runs),
-                           tables=None if tables is None else str(tables))
+                           tables=None if tables is None else str(tables),
+                           bench_from=None if bench_from is None else str(bench_from))
     s["json"], s["csv"] = _os.path.abspath(s["json"]), _os.path.abspath(s["csv"])
     s["summary"] = _read_json(s["json"])
     s["table"] = read_csv(s["csv"])

@@ -2,7 +2,9 @@
 // columns aside) for any --threads, and the bad-input errors (one line, exit 2, nothing written).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
+#include <set>
 #include <nlohmann/json.hpp>
 
 #include "cli/cli_test_util.h"
@@ -14,10 +16,34 @@ namespace {
 namespace fs = std::filesystem;
 using AdequacyTest = CliTest;
 
+// A Google Benchmark file of glintlab_bench_glints' adequacy rows for `model` on every ISA, with
+// the given ns per evaluation (smooth, realtime, small_count, exact); rows whose name contains
+// `skip` are left out.
+std::string level_costs_json(const std::string& model, const std::array<double, 4>& ns,
+                             const std::string& skip = "") {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const char* isa : {"scalar", "sse4.2", "avx2", "avx512"})
+    for (std::size_t l = 0; l < 4; ++l) {
+      const char* level[] = {"smooth", "realtime", "small_count", "exact"};
+      const std::string name = "adequacy/" + model + "/level=" + level[l] + "/" + isa;
+      if (!skip.empty() && name.find(skip) != std::string::npos) continue;
+      rows.push_back({{"name", name}, {"run_name", name}, {"run_type", "iteration"},
+                      {"real_time", 1e6}, {"time_unit", "ns"},
+                      {"items_per_second", 1e9 / ns[l]}});
+    }
+  return nlohmann::json{{"context", nlohmann::json::object()}, {"benchmarks", rows}}.dump(1);
+}
+
+// The table priced by benchmark costs (--bench-from): with the exact count cheaper than the two
+// approximations (as measured on CPUs), the cheapest adequate level by the benchmark is smooth
+// where smooth is adequate and exact everywhere else, and the totals are the costs summed.
 TEST_F(AdequacyTest, QuickRunWritesTableAndMaps) {
+  fs::create_directories(path("bench"));
+  write_text(path("bench/glints.json"), level_costs_json("kneiphof_klein", {10, 200, 300, 100}));
   const RunResult r = run({"adequacy", "--budget", "quick", "--models", "kneiphof_klein",
-                           "--out", "a", "--threads", "2"});
+                           "--out", "a", "--threads", "2", "--bench-from", "bench"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("cheapest adequate level by the benchmark"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("324 cells"), std::string::npos) << r.out;  // 9 × 2 × 3 × 3 × 2
   const auto doc = nlohmann::json::parse(read_text(path("a/adequacy.json")));
   EXPECT_EQ(doc["threshold"], 0.02);
@@ -34,6 +60,24 @@ TEST_F(AdequacyTest, QuickRunWritesTableAndMaps) {
   EXPECT_GT(exact, 0u);
   EXPECT_EQ(doc["summary"]["chooser_refuted"], 0);
   EXPECT_EQ(unexpected_files(path("a"), {}).size(), 2u + 12u);
+  const auto& costs = doc["benchmark_costs"];
+  ASSERT_TRUE(costs.is_object());
+  EXPECT_EQ(costs["exact_ns_total"], 100.0 * 324);
+  EXPECT_EQ(costs["ns_per_eval"]["kneiphof_klein"]["realtime"], 200.0);
+  std::size_t by_bench_smooth = 0;
+  double cheapest_total = 0;
+  for (const auto& c : doc["cells"]) {
+    const bool smooth_ok = c["levels"]["smooth"]["adequate"];
+    EXPECT_EQ(c["cheapest_by_benchmark"], smooth_ok ? "smooth" : "exact") << c.dump();
+    by_bench_smooth += smooth_ok ? 1 : 0;
+    cheapest_total += smooth_ok ? 10 : 100;
+  }
+  EXPECT_EQ(costs["cheapest_by_benchmark"]["smooth"], by_bench_smooth);
+  EXPECT_DOUBLE_EQ(costs["cheapest_ns_total"].get<double>(), cheapest_total);
+  const auto header = io::read_csv(path("a/adequacy.csv")).header();
+  ASSERT_GE(header.size(), 4u);
+  EXPECT_EQ(header[header.size() - 4], "cheapest_by_benchmark");
+  EXPECT_EQ(header.back(), "bench_cheapest_ns");
 }
 
 TEST_F(AdequacyTest, OutputDoesNotDependOnThreads) {
@@ -48,6 +92,9 @@ TEST_F(AdequacyTest, OutputDoesNotDependOnThreads) {
     for (int k = 0; k < 6; ++k) cut = line.rfind(',', cut - 1);
     return line.substr(0, cut);
   };
+  // Without --bench-from the table has no benchmark columns and says how to get them.
+  EXPECT_EQ(nlohmann::json::parse(read_text(path("t1/adequacy.json")))["benchmark_costs"],
+            nullptr);
   const auto a = lines_of(read_text(path("t1/adequacy.csv")));
   const auto b = lines_of(read_text(path("t2/adequacy.csv")));
   ASSERT_EQ(a.size(), b.size());
@@ -73,6 +120,24 @@ TEST_F(AdequacyTest, BadInputIsOneLineAndWritesNothing) {
                      {"--tables", "[0, 100000]"}, {});
   expect_input_error(run({"adequacy", "--tables", "2", "--out", "o"}), {"--tables", "--calibrate"},
                      {});
+  expect_input_error(run({"adequacy", "--bench-from", "nowhere", "--out", "o"}),
+                     {"--bench-from", "nowhere", "not a folder"}, {});
+  // The folders given to --bench-from are the only files there.
+  fs::create_directories(path("empty"));
+  expect_input_error(run({"adequacy", "--bench-from", "empty", "--out", "o"}),
+                     {"--bench-from", "glints.json", "glintlab_bench_glints"}, {"empty"});
+  fs::create_directories(path("partial"));
+  write_text(path("partial/glints.json"),
+             level_costs_json("deliot_belcour", {1, 2, 3, 4}, "level=exact/"));
+  const std::set<std::string> given = {"empty", "partial", "partial/glints.json"};
+  expect_input_error(run({"adequacy", "--models", "deliot_belcour", "--bench-from", "partial",
+                          "--out", "o"}),
+                     {"--bench-from", "adequacy/deliot_belcour/level=exact/"}, given);
+  write_text(path("partial/glints.json"), "{\"benchmarks\": 3}");
+  expect_input_error(run({"adequacy", "--bench-from", "partial", "--out", "o"}),
+                     {"--bench-from", "benchmarks"}, given);
+  expect_input_error(run({"adequacy", "--calibrate", "--bench-from", "partial", "--out", "o"}),
+                     {"--bench-from", "--calibrate"}, given);
 }
 
 TEST_F(AdequacyTest, CalibrateWritesRatesForEveryCaseDeltaAndLevel) {
