@@ -370,7 +370,7 @@ void ReportRun::run_bench(json& part) {
     const char* figure_rows;  // the figures' rows, a regex alternative
   };
   constexpr MethodTool kTools[] = {
-      {"glintlab_bench_glints", "glints.json", "table1/"},
+      {"glintlab_bench_glints", "glints.json", "table1/|adequacy/"},
       {"glintlab_bench_chermain", nullptr, nullptr},
       {"glintlab_bench_podee", nullptr, nullptr},
       {"glintlab_bench_kemppinen", "kemppinen.json", "table3/|BM_Kemppinen"}};

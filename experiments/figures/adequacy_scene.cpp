@@ -4,7 +4,8 @@
 // pixel's realisations, in units of TAU) and the map of the chosen level — as one labelled PNG
 // (adequacy-scene.png: title, column and row labels, colour scale, level legend), the plain montage
 // with its panels.json, one EXR per scene (every per-pixel quantity), a CSV of per-scene counts
-// and summary.md.
+// and summary.md; given benchmark data (--bench-from), each scene's time per evaluation with the
+// chosen levels against exact counting everywhere (adequacy-scene-cost.csv, summary.md).
 #include "experiments/figures/adequacy_scene.h"
 
 #include <fmt/format.h>
@@ -12,7 +13,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -21,7 +26,10 @@
 #include "core/io/exr.h"
 #include "core/io/png.h"
 #include "core/render/image.h"
+#include "core/simd/batch.h"
 #include "experiments/adequacy/adequacy_outputs.h"
+#include "experiments/adequacy/level_costs.h"
+#include "experiments/figures/bench_json.h"
 #include "experiments/figures/log_chart.h"
 #include "experiments/figures/panel_layout.h"
 #include "verify/claims/adequacy_scenes.h"
@@ -208,6 +216,79 @@ void write_scene_exr(const FigureContext& ctx, const SceneResult& s) {
                                  "the surface; chosen/exact: radiance of the first realisation"}});
 }
 
+// A scene's time per evaluation summed over its surface pixels (where a shader runs), each level
+// priced by the benchmark: exact counting everywhere, the engine chooser's levels (the GPU order),
+// and the levels the chooser for these costs picks (choose_binomial_level_by_cost).
+struct SceneCost {
+  double exact_ns = 0, chosen_ns = 0, by_cost_ns = 0;
+};
+SceneCost scene_cost(const adq::SceneRender& r, const std::array<double, kBinomialLevels>& ns,
+                     double tau) {
+  SceneCost c;
+  for (const adq::ScenePixel& p : r.pixels) {
+    if (!p.surface || p.level < 0) continue;
+    c.exact_ns += ns[std::size_t(BinomialLevel::kExact)];
+    c.chosen_ns += ns[std::size_t(p.level)];
+    c.by_cost_ns += ns[std::size_t(choose_binomial_level_by_cost(p.facets, p.p, tau, ns))];
+  }
+  return c;
+}
+
+// The cost section of summary.md and adequacy-scene-cost.csv, or the one sentence saying why there
+// is none.
+std::string write_scene_costs(const FigureContext& ctx, const std::vector<SceneResult>& results,
+                              double tau) {
+  const BenchSource src = bench_source(ctx, kLevelCostsFile);
+  std::vector<std::string> models;
+  for (const SceneResult& r : results)
+    if (std::find(models.begin(), models.end(), r.render.scene.model) == models.end())
+      models.push_back(r.render.scene.model);
+  std::optional<LevelCosts> costs;
+  if (!src.path.empty() && std::filesystem::exists(src.path)) {
+    try {
+      costs = read_level_costs(src.path.parent_path(),
+                               std::filesystem::path(src.shown_as).parent_path().string(),
+                               simd::isa_name(simd::default_isa()), models);
+    } catch (const std::invalid_argument& e) {
+      // A file without the adequacy rows: the figure says so rather than failing.
+      return fmt::format("\n## Time per evaluation\n\nNo benchmark data: {}.\n",
+                         std::string_view(e.what()).substr(std::string_view("--bench-from: ").size()));
+    }
+  }
+  if (!costs)
+    return "\n## Time per evaluation\n\n" +
+           no_bench_data(src, kLevelCostsFile,
+                         "glintlab_bench_glints --benchmark_filter=^adequacy/") +
+           "\n";
+  std::string md = fmt::format(
+      "\n## Time per evaluation\n\nEach level priced by {} (rows adequacy/<model>/level=<level>/"
+      "{}), summed over each scene's surface pixels: exact counting everywhere, the engine "
+      "chooser's levels (the GPU-lane order) and the levels the chooser for these costs picks "
+      "(choose_binomial_level_by_cost); saved = 1 − time / exact time.\n\n"
+      "| scene | exact everywhere (ns) | chosen levels (ns) | saved | by these costs (ns) | saved "
+      "|\n|---|---|---|---|---|---|\n",
+      costs->source, costs->isa);
+  const auto saved = [](double t, double exact) { return exact > 0 ? 1 - t / exact : 0.0; };
+  io::write_csv_atomic(
+      ctx.dir / "adequacy-scene-cost.csv",
+      {"scene", "model", "isa", "surface_pixels_exact_ns", "chosen_ns", "chosen_saved_fraction",
+       "by_cost_ns", "by_cost_saved_fraction"},
+      [&](io::CsvWriter& w) {
+        for (const SceneResult& r : results) {
+          const SceneCost c = scene_cost(r.render, costs->ns.at(r.render.scene.model), tau);
+          w.cell(r.render.scene.name).cell(r.render.scene.model).cell(costs->isa);
+          w.cell(c.exact_ns).cell(c.chosen_ns).cell(saved(c.chosen_ns, c.exact_ns));
+          w.cell(c.by_cost_ns).cell(saved(c.by_cost_ns, c.exact_ns));
+          w.end_row();
+          md += fmt::format("| {} | {:.4g} | {:.4g} | {:.1f} % | {:.4g} | {:.1f} % |\n",
+                            r.render.scene.name, c.exact_ns, c.chosen_ns,
+                            100 * saved(c.chosen_ns, c.exact_ns), c.by_cost_ns,
+                            100 * saved(c.by_cost_ns, c.exact_ns));
+        }
+      });
+  return md;
+}
+
 void run_adequacy_scene(const FigureContext& ctx) {
   std::unique_ptr<tbb::global_control> limit;
   if (ctx.threads > 0)
@@ -308,6 +389,7 @@ void run_adequacy_scene(const FigureContext& ctx) {
       "quantity.\n",
       total.exceeds, total.lit, d.fraction, d.allowed, d.allowed_fraction, adq::kPixelFlagRate,
       verify::check_level(), d.p_value, to_string(d.verdict), adq::kMinLitPositions);
+  md += write_scene_costs(ctx, results, o.tau);
   io::write_file_atomic(ctx.dir / "summary.md", md);
 }
 

@@ -25,7 +25,12 @@ void expect_png(const fs::path& p) {
 }
 
 TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
-  const RunResult r = run({"figure", "adequacy-scene", "--budget", "quick", "--out", "out"});
+  // Benchmark costs with the exact count cheaper than both approximations (as on CPUs).
+  std::filesystem::create_directories(path("bench"));
+  write_text(path("bench/glints.json"),
+             level_costs_json({"deliot_belcour", "kneiphof_klein"}, {10, 200, 300, 100}));
+  const RunResult r = run({"figure", "adequacy-scene", "--budget", "quick", "--out", "out",
+                           "--bench-from", "bench"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/adequacy-scene");
   expect_png(d / "adequacy-scene.png");
@@ -60,6 +65,20 @@ TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
   const std::string md = read_text(d / "summary.md");
   EXPECT_NE(md.find("lit pixels exceed TAU"), std::string::npos);
   EXPECT_NE(md.find("binomial family"), std::string::npos);
+  // Each scene's time: exact everywhere = 100 ns per surface pixel; the chooser for these costs
+  // never costs more than exact counting (it takes smooth where adequate, else exact).
+  EXPECT_NE(md.find("## Time per evaluation"), std::string::npos);
+  const io::CsvTable c = io::read_csv(d / "adequacy-scene-cost.csv");
+  ASSERT_EQ(c.num_rows(), 6u);
+  for (std::size_t i = 0; i < c.num_rows(); ++i) {
+    const std::string name(c.text(i, c.column("scene")));
+    const Image im = io::read_exr(d / (name + ".exr")).image;
+    double surface = 0;
+    for (int y = 0; y < im.height; ++y)
+      for (int x = 0; x < im.width; ++x) surface += im.at(x, y, im.channel("level")) >= 0 ? 1 : 0;
+    EXPECT_DOUBLE_EQ(c.number(i, c.column("surface_pixels_exact_ns")), 100 * surface) << name;
+    EXPECT_GE(c.number(i, c.column("by_cost_saved_fraction")), 0) << name;
+  }
 }
 
 }  // namespace

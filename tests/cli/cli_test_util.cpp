@@ -13,6 +13,8 @@
 #include <limits>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 namespace glintlab::cli_test {
 namespace fs = std::filesystem;
 
@@ -123,6 +125,23 @@ void CliTest::expect_input_error(const RunResult& r, const std::vector<std::stri
   }
   EXPECT_EQ(unexpected_files(work_, expected_files), std::vector<std::string>{})
       << "a failed run left files behind";
+}
+
+
+std::string level_costs_json(const std::vector<std::string>& models,
+                             const std::array<double, 4>& ns, const std::string& skip) {
+  nlohmann::json rows = nlohmann::json::array();
+  const char* level[] = {"smooth", "realtime", "small_count", "exact"};
+  for (const std::string& model : models)
+    for (const char* isa : {"scalar", "sse4.2", "avx2", "avx512"})
+      for (std::size_t l = 0; l < 4; ++l) {
+        const std::string name = "adequacy/" + model + "/level=" + level[l] + "/" + isa;
+        if (!skip.empty() && name.find(skip) != std::string::npos) continue;
+        rows.push_back({{"name", name}, {"run_name", name}, {"run_type", "iteration"},
+                        {"real_time", 1e6}, {"time_unit", "ns"},
+                        {"items_per_second", 1e9 / ns[l]}});
+      }
+  return nlohmann::json{{"context", nlohmann::json::object()}, {"benchmarks", rows}}.dump(1);
 }
 
 }  // namespace glintlab::cli_test

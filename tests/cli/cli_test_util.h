@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
 #include <set>
 #include <string>
@@ -24,6 +25,12 @@ struct RunResult {
 std::vector<std::string> lines_of(const std::string& text);
 std::string read_text(const std::filesystem::path& path);
 void write_text(const std::filesystem::path& path, const std::string& text);
+
+// A Google Benchmark JSON file of glintlab_bench_glints' adequacy rows for each of `models` on every
+// ISA, with the given ns per evaluation (smooth, realtime, small_count, exact); rows whose name
+// contains `skip` are left out.
+std::string level_costs_json(const std::vector<std::string>& models,
+                             const std::array<double, 4>& ns, const std::string& skip = "");
 
 // A numeric cell of an output file; unlike CsvTable::number also reads "nan", "-nan", "inf" and
 // "-inf", which the executable prints for non-finite results.
