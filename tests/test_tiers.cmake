@@ -87,6 +87,8 @@ set(glintlab_slow_tests
   "PluginTest.ReportCoversThePluginModelInEveryPart 3"
   "ShardMergeTest.MergedShardsAreTheBytesOfOneRun 8"
   "ShardMergeTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 4"
+  "FigureShardTest.MergedShardsAreTheFoldersOfOneRun 9"
+  "FigureShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 3"
   "PluginTest.SweepFigureAndGenericClaimCoverThePluginModel 15"
   "PodeeCliTest.DistanceAndFlickerQuick 2"
   "ReportTest.ReuseReadsCachedResultsAndAMalformedOneLeavesTheOldReport 1"
