@@ -146,6 +146,36 @@ std::filesystem::path run_prepared(const experiments::FigureEntry& entry,
   }
 }
 
+// The figures of `selection` that shard s of a run at the budget runs, and the costs they are
+// balanced by: `figure IDS --list --shard K/N`, a plan that runs nothing.
+std::vector<std::size_t> shard_plan(const std::vector<const experiments::FigureEntry*>& selection,
+                                    Shard s, bool quick, std::vector<double>& costs) {
+  costs.clear();
+  for (const auto* e : selection) costs.push_back(figure_cost_seconds(e->id, quick));
+  return cost_balanced_positions(costs, s);
+}
+
+void list_shard(const std::string& ids, Shard s, bool quick) {
+  std::vector<const experiments::FigureEntry*> selected;
+  try {
+    selected = figure_selection(ids);
+  } catch (const experiments::FigureError& e) {
+    throw InputError(e.what());
+  }
+  std::vector<double> costs;
+  const std::vector<std::size_t> mine = shard_plan(selected, s, quick, costs);
+  double total = 0, shard_total = 0;
+  for (double c : costs) total += c;
+  for (std::size_t i : mine) {
+    fmt::print("{:<28} {:g} s\n", selected[i]->id, costs[i]);
+    shard_total += costs[i];
+  }
+  fmt::print(
+      "shard {}/{}: {} of {} figures, {:g} s of {:g} s of CPU at --budget {} "
+      "(cli/figure_costs.cpp)\n",
+      s.k, s.n, mine.size(), selected.size(), shard_total, total, quick ? "quick" : "full");
+}
+
 // What a shard's manifest records besides the budget: the options that change the figures'
 // files, so that shards run with another --env or --bench-from are another run to merge.
 std::string figure_run_key(const FigureRequest& r) {
@@ -155,11 +185,17 @@ std::string figure_run_key(const FigureRequest& r) {
 
 void run(const CLI::App* cmd, const FigureOptions& o) {
   const bool sharded = option_count(cmd, "--shard") > 0;
+  if (o.list && sharded) {
+    list_shard(o.id.empty() ? "*" : o.id, parse_shard(o.shard, "--shard"),
+               quick_budget(resolve_budget(cmd, o.budget)));
+    return;
+  }
   if (o.list) {
     if (!o.id.empty())
       throw InputError(fmt::format(
-          "figure: '{}' given with --list (valid: either --list or a figure id)", o.id));
-    if (sharded) throw InputError("--shard: only for a run of figures (not with --list)");
+          "figure: '{}' given with --list (valid: either --list or a figure id; ids with --list "
+          "only with --shard)",
+          o.id));
     list_figures();
     return;
   }
@@ -179,13 +215,10 @@ void run(const CLI::App* cmd, const FigureOptions& o) {
   ShardManifest manifest;
   if (sharded) {
     // Balanced by each figure's measured cost at this budget (cli/figure_costs.h).
+    for (const auto* e : selected) manifest.selection.emplace_back(e->id);
     std::vector<double> costs;
-    for (const auto* e : selected) {
-      manifest.selection.emplace_back(e->id);
-      costs.push_back(figure_cost_seconds(e->id, ctx.quick));
-    }
     part.clear();
-    for (std::size_t i : cost_balanced_positions(costs, shard)) {
+    for (std::size_t i : shard_plan(selected, shard, ctx.quick, costs)) {
       part.push_back(selected[i]);
       manifest.covered.emplace_back(selected[i]->id);
     }
@@ -247,7 +280,9 @@ void add_figure_command(CLI::App& app) {
                   "eto2023-fig4 or 'kemppinen2025-*,podee-*'; run in --list order",
                   "IDS");
   add_bool_flag(cmd, "--list", o->list,
-                "list the registered experiments and the figure each reproduces");
+                "list the registered experiments and the figure each reproduces; with --shard "
+                "K/N (and ids; none: every figure): the figures that shard would run at "
+                "--budget and the cost each is balanced by, running nothing");
   add_text_option(cmd, "--out", o->out, "output folder", "DIR");
   add_budget_option(cmd, o->budget,
                     "quick = smaller images and sample budgets (seconds), full = the paper's");

@@ -48,6 +48,39 @@ class FigureShardTest : public CliTest {
     return files;
   }
 
+  // `figure IDS --list --shard K/N --budget B`: the ids of the plan and their costs, and the
+  // summary line's shard total.
+  struct Plan {
+    std::vector<std::string> ids;
+    std::vector<double> costs;  // of each id
+    double cost = 0, total = 0;
+  };
+  Plan plan(const std::string& ids, int k, int n, const std::string& budget) const {
+    const RunResult r = run({"figure", ids, "--list", "--shard",
+                             std::to_string(k) + "/" + std::to_string(n), "--budget", budget});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    Plan p;
+    const std::regex item(R"(^(\S+) +([0-9.e+-]+) s$)");
+    const std::regex summary(
+        R"(^shard \d+/\d+: \d+ of \d+ figures, ([0-9.e+-]+) s of ([0-9.e+-]+) s)");
+    double listed = 0;
+    for (const std::string& line : lines_of(r.out)) {
+      std::smatch m;
+      if (std::regex_search(line, m, item)) {
+        p.ids.push_back(m[1]);
+        p.costs.push_back(std::stod(m[2]));
+        listed += p.costs.back();
+      } else if (std::regex_search(line, m, summary)) {
+        p.cost = std::stod(m[1]);
+        p.total = std::stod(m[2]);
+      } else {
+        ADD_FAILURE() << "unexpected plan line: " << line;
+      }
+    }
+    EXPECT_NEAR(listed, p.cost, 1e-6 * (1 + p.cost));
+    return p;
+  }
+
   nlohmann::json manifest(const std::string& dir) const {
     return nlohmann::json::parse(read_text(path(dir + "/shard.json")));
   }
@@ -89,6 +122,8 @@ TEST_F(FigureShardTest, MergedShardsAreTheFoldersOfOneRun) {
         EXPECT_TRUE(shard_of.emplace(id, k).second) << id << " in two shards of " << n;
       }
       EXPECT_EQ(entries, expected) << dir;
+      // The plan that --list --shard prints, running nothing, is what the shard ran.
+      EXPECT_EQ(plan(kFigures, k, n, "quick").ids, covered) << dir;
       merge.push_back(dir);
     }
     EXPECT_EQ(shard_of.size(), kSelection.size()) << n;
@@ -148,9 +183,33 @@ TEST_F(FigureShardTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing) 
   for (const char* bad : {"0/2", "3/2", "1/0", "x", "1/"})
     expect_input_error(run({"figure", kFigures, "--budget", "quick", "--shard", bad, "--out", "f"}),
                        {"--shard", bad, "K/N"}, before);
-  expect_input_error(run({"figure", "--list", "--shard", "1/2"}), {"--shard", "--list"}, before);
+  expect_input_error(run({"figure", "--list", "--shard", "0/2"}), {"--shard", "0/2", "K/N"},
+                     before);
   expect_input_error(run({"figure", "kemppinen2025-nosuch*", "--budget", "quick", "--out", "f"}),
                      {"'kemppinen2025-nosuch*' matches no figure id"}, before);
+}
+
+// Every figure at full in 4 shards: each in exactly one shard's plan, and the costliest shard
+// within Graham's bound for a greedy least-loaded assignment (the mean load plus (1 - 1/N) of the
+// costliest figure); the plan writes nothing.
+TEST_F(FigureShardTest, PlanOfEveryFigureCoversEachOnceWithinTheGreedyBound) {
+  const int n = 4;
+  std::multiset<std::string> ids;
+  double largest_shard = 0, total = 0, sum = 0;
+  for (int k = 1; k <= n; ++k) {
+    const Plan p = plan("*", k, n, "full");
+    ids.insert(p.ids.begin(), p.ids.end());
+    largest_shard = std::max(largest_shard, p.cost);
+    total = p.total;
+    sum += p.cost;
+  }
+  const Plan all = plan("*", 1, 1, "full");
+  const double costliest = *std::max_element(all.costs.begin(), all.costs.end());
+  EXPECT_EQ(ids, std::multiset<std::string>(all.ids.begin(), all.ids.end()));
+  EXPECT_EQ(std::set<std::string>(ids.begin(), ids.end()).size(), ids.size());
+  EXPECT_NEAR(sum, total, 1e-6 * total);
+  EXPECT_LE(largest_shard, total / n + (1 - 1.0 / n) * costliest);
+  EXPECT_TRUE(unexpected_files(work(), {}).empty());
 }
 
 // Every registered figure has a measured cost to balance by, shown by --list.
