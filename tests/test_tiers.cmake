@@ -88,7 +88,7 @@ set(glintlab_slow_tests
   "ShardMergeTest.MergedShardsAreTheBytesOfOneRun 8"
   "ShardMergeTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 4"
   "FigureShardTest.MergedShardsAreTheFoldersOfOneRun 9"
-  "FigureShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 3"
+  "FigureShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 4"
   "CompareShardTest.MergedShardsAreThePageOfOneRun 11"
   "CompareShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 5"
   "SweepShardTest.MergedShardsAreTheFilesOfOneRun 6"

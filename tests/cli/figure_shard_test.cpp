@@ -152,6 +152,12 @@ TEST_F(FigureShardTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing) 
                  "2/2", "--out", "c2"})
                 .exit_code,
             0);
+  // The same figures with --bench-from: their files may differ, so it is another run.
+  fs::create_directory(path("bench"));
+  ASSERT_EQ(run({"figure", kFigures, "--budget", "quick", "--bench-from", "bench", "--shard", "2/2",
+                 "--out", "d2"})
+                .exit_code,
+            0);
   // A shard of another subcommand (its manifest edited): the first folder's run decides.
   fs::copy(path("a2"), path("v2"), fs::copy_options::recursive);
   write_text(path("v2/shard.json"),
@@ -168,6 +174,9 @@ TEST_F(FigureShardTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing) 
                      {"'b1' belongs to another run", "3 shards (not 2)"}, before);
   expect_input_error(run({"merge", "a1", "c2", "--out", "m"}),
                      {"'c2' belongs to another run", "another selection"}, before);
+  expect_input_error(
+      run({"merge", "a1", "d2", "--out", "m"}),
+      {"'d2' belongs to another run", "another selection of figures or other options"}, before);
   expect_input_error(run({"merge", "a1", "v2", "--out", "m"}),
                      {"'v2' belongs to another run", "command verify (not figure)"}, before);
   expect_input_error(run({"merge", "a1", "plain", "--out", "m"}), {"'plain' holds no shard.json"},
