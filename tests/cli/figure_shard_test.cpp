@@ -163,6 +163,11 @@ TEST_F(FigureShardTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing) 
   write_text(path("v2/shard.json"),
              std::regex_replace(read_text(path("v2/shard.json")),
                                 std::regex("\"command\": \"figure\""), "\"command\": \"verify\""));
+  // A shard of a subcommand merge does not join.
+  fs::copy(path("a1"), path("u1"), fs::copy_options::recursive);
+  write_text(path("u1/shard.json"), std::regex_replace(read_text(path("u1/shard.json")),
+                                                       std::regex("\"command\": \"figure\""),
+                                                       "\"command\": \"adequacy\""));
   fs::create_directory(path("plain"));  // not a shard
   std::set<std::string> before;
   for (const auto& e : fs::recursive_directory_iterator(work()))
@@ -177,6 +182,9 @@ TEST_F(FigureShardTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing) 
   expect_input_error(
       run({"merge", "a1", "d2", "--out", "m"}),
       {"'d2' belongs to another run", "another selection of figures or other options"}, before);
+  expect_input_error(run({"merge", "u1", "a2", "--out", "m"}),
+                     {"'u1' is a shard of adequacy (valid: verify, figure, compare, sweep)"},
+                     before);
   expect_input_error(run({"merge", "a1", "v2", "--out", "m"}),
                      {"'v2' belongs to another run", "command verify (not figure)"}, before);
   expect_input_error(run({"merge", "a1", "plain", "--out", "m"}), {"'plain' holds no shard.json"},
