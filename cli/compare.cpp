@@ -1,23 +1,32 @@
 // `glintlab compare --models A,B[,…] [--budget quick|full] [--out DIR] [--threads N]
-// [--claims-from DIR] [--sweeps-from DIR]`: the models side by side (experiments/compare/), drawn
-// as one page by reports/compare_page.py.
+// [--claims-from DIR] [--sweeps-from DIR] [--shard K/N]`: the models side by side
+// (experiments/compare/), drawn as one page by reports/compare_page.py; with --shard, every N-th
+// model from the K-th, joined by `glintlab merge` (merge_compare_shards).
 #include "experiments/compare/compare.h"
 
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli/child_process.h"
 #include "cli/commands.h"
 #include "cli/input.h"
 #include "cli/progress.h"
+#include "cli/shard.h"
+#include "cli/shard_merge.h"
 #include "cli/suite_runs.h"
+#include "core/io/atomic_file.h"
 #include "core/model_registry.h"
 
 namespace glintlab::cli {
@@ -31,6 +40,7 @@ struct CompareCliOptions {
   std::string models = "*";
   std::string threads;
   std::string claims_from, sweeps_from;
+  std::string shard;  // K/N: run the K-th of N shards of the selected models
 };
 
 // The files of the page, in the order they are moved into DIR (index.html last).
@@ -69,7 +79,90 @@ void draw_page(const fs::path& stage) {
   fs::remove(err);
 }
 
+// Moves the page's files from the staging folder into `out`.
+void move_page(const fs::path& stage, const fs::path& out) {
+  fs::create_directories(out);
+  for (const char* f : kPageFiles) fs::rename(stage / f, out / f);
+}
+
+// The staging folder beside `out` (so a failed run leaves no `out` behind), registered for the
+// signal cleanup.
+fs::path staging_beside(const fs::path& out) {
+  const fs::path absolute = fs::absolute(out).lexically_normal();
+  const fs::path parent =
+      absolute.has_filename() ? absolute.parent_path() : absolute.parent_path().parent_path();
+  fs::create_directories(parent);
+  register_staging_parent(parent);
+  return parent / fmt::format(".compare.tmp.{}", ::getpid());
+}
+
+// What a shard's manifest records besides the budget: the options that change the files, so that
+// shards run with other --claims-from or --sweeps-from folders are another run to merge.
+std::string compare_run_key(const CompareRequest& r, const std::string& budget) {
+  return fmt::format("{}\n--claims-from {}\n--sweeps-from {}", budget, r.claims_from,
+                     r.sweeps_from);
+}
+
+// run_compare_request, or with `shard` its K-th of N parts: every N-th selected model from the
+// K-th (the models' costs are unknown before they run: a plug-in's or a numpy model's included),
+// and the shard's manifest beside the page. An empty shard writes its manifest alone.
+CompareSummary run_compare(const CompareRequest& o, const Shard* shard) {
+  experiments::compare::CompareOptions c;
+  c.budget = quick_budget(o.budget) ? verify::Budget::kQuick : verify::Budget::kFull;
+  std::vector<std::string> names;
+  for (const ModelEntry& m : registered_models()) names.emplace_back(m.name);
+  c.models = select_by_globs(o.models, "--models", names,
+                             fmt::format("model names: {}", fmt::join(names, ", ")));
+  const int threads = resolve_threads(o.threads);
+  check_input_folder(o.claims_from, "--claims-from", "claims.json", "glintlab verify --out");
+  check_input_folder(o.sweeps_from, "--sweeps-from", "stability.json", "glintlab sweep --out");
+  c.claims_from = o.claims_from;
+  c.sweeps_from = o.sweeps_from;
+  const fs::path out(o.out);
+  check_output_dir(out, "--out");
+  ShardManifest manifest;
+  if (shard) {
+    const std::string budget = c.budget == verify::Budget::kQuick ? "quick" : "full";
+    manifest.command = "compare";
+    manifest.version = glintlab_version_text();
+    manifest.budget = budget;
+    manifest.selection = c.models;
+    manifest.selection_digest = selection_digest(compare_run_key(o, budget), c.models);
+    manifest.shard = *shard;
+    manifest.threads = threads;
+    manifest.machine =
+        fmt::format("{} hardware thread(s), {} used", std::thread::hardware_concurrency(), threads);
+    for (std::size_t i : shard_positions(c.models.size(), *shard))
+      manifest.covered.push_back(c.models[i]);
+    c.models = manifest.covered;
+    if (c.models.empty()) {
+      fs::create_directories(out);
+      io::write_file_atomic(out / "shard.json", to_json(manifest));
+      return {0, out};
+    }
+  }
+  const StagingFolder stage{staging_beside(out)};
+  fs::remove_all(stage.dir);
+  fs::create_directory(stage.dir);
+
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  Progress bar("compare", long(c.models.size()) * 5);
+  c.progress = [&](const std::string& step) { bar.step(step); };
+  try {
+    experiments::compare::run_compare(stage.dir, c);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(
+        fmt::format("--claims-from/--sweeps-from: a file there is malformed ({})", e.what()));
+  }
+  draw_page(stage.dir);
+  move_page(stage.dir, out);
+  if (shard) io::write_file_atomic(out / "shard.json", to_json(manifest));
+  return {c.models.size(), out};
+}
+
 void run(const CLI::App* cmd, const CompareCliOptions& o) {
+  const bool sharded = option_count(cmd, "--shard") > 0;
+  const Shard shard = sharded ? parse_shard(o.shard, "--shard") : Shard{};
   CompareRequest r;
   r.out = o.out;
   r.budget = resolve_budget(cmd, o.budget);
@@ -77,8 +170,45 @@ void run(const CLI::App* cmd, const CompareCliOptions& o) {
   r.threads = o.threads;
   r.claims_from = o.claims_from;
   r.sweeps_from = o.sweeps_from;
-  const CompareSummary s = run_compare_request(r);
-  fmt::print("compare: {} models; wrote {}\n", s.models, (s.dir / "index.html").string());
+  const CompareSummary s = run_compare(r, sharded ? &shard : nullptr);
+  if (s.models == 0)
+    fmt::print("compare: shard {}/{} holds no model; wrote {}\n", shard.k, shard.n,
+               (s.dir / "shard.json").string());
+  else
+    fmt::print("compare: {} models; wrote {}\n", s.models, (s.dir / "index.html").string());
+}
+
+std::string read_file_text(const fs::path& p) {
+  std::ifstream in(p);
+  if (!in) throw InputError(fmt::format("merge: cannot read {}", p.string()));
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A shard's CSV: its header and, per model, its rows (those whose first field is the model's
+// name), every row belonging to one of `models`.
+struct ShardCsv {
+  std::string header;
+  std::map<std::string, std::string> rows;  // model -> its lines, each ending in '\n'
+};
+ShardCsv read_shard_csv(const fs::path& file, const std::vector<std::string>& models) {
+  std::istringstream in(read_file_text(file));
+  ShardCsv csv;
+  std::string line;
+  if (!std::getline(in, csv.header))
+    throw InputError(
+        fmt::format("merge: {} is empty (a compare run's file is expected)", file.string()));
+  while (std::getline(in, line)) {
+    const std::string model = line.substr(0, line.find(','));
+    if (std::find(models.begin(), models.end(), model) == models.end())
+      throw InputError(
+          fmt::format("merge: {} holds a row of '{}', a model its shard.json does "
+                      "not list",
+                      file.string(), model));
+    csv.rows[model] += line + "\n";
+  }
+  return csv;
 }
 
 constexpr const char* kFooter =
@@ -108,43 +238,80 @@ index.html; staged and moved into DIR only when complete. Every field but the ti
 
 }  // namespace
 
-CompareSummary run_compare_request(const CompareRequest& o) {
-  experiments::compare::CompareOptions c;
-  c.budget = quick_budget(o.budget) ? verify::Budget::kQuick : verify::Budget::kFull;
-  std::vector<std::string> names;
-  for (const ModelEntry& m : registered_models()) names.emplace_back(m.name);
-  c.models = select_by_globs(o.models, "--models", names,
-                             fmt::format("model names: {}", fmt::join(names, ", ")));
-  const int threads = resolve_threads(o.threads);
-  check_input_folder(o.claims_from, "--claims-from", "claims.json", "glintlab verify --out");
-  check_input_folder(o.sweeps_from, "--sweeps-from", "stability.json", "glintlab sweep --out");
-  c.claims_from = o.claims_from;
-  c.sweeps_from = o.sweeps_from;
-  const fs::path out(o.out);
-  check_output_dir(out, "--out");
-  // Staged beside DIR, so a failed run leaves no DIR behind.
-  const fs::path absolute = fs::absolute(out).lexically_normal();
-  const fs::path parent =
-      absolute.has_filename() ? absolute.parent_path() : absolute.parent_path().parent_path();
-  fs::create_directories(parent);
-  register_staging_parent(parent);
-  const StagingFolder stage{parent / fmt::format(".compare.tmp.{}", ::getpid())};
+CompareSummary run_compare_request(const CompareRequest& o) { return run_compare(o, nullptr); }
+
+void merge_compare_shards(const std::vector<std::string>& dirs,
+                          const std::vector<ShardManifest>& manifests, const std::string& out) {
+  const ShardManifest& first = manifests.front();
+  // Per model, the shard that ran it: its compare.json entry and CSV rows.
+  std::map<std::string, nlohmann::ordered_json> entries;
+  std::map<std::string, std::string> model_rows, curve_rows;
+  nlohmann::ordered_json machine, settings;
+  std::string model_header, curve_header, settings_from;
+  for (std::size_t i = 0; i < manifests.size(); ++i) {
+    const std::vector<std::string>& covered = manifests[i].covered;
+    if (covered.empty()) continue;  // an empty shard wrote its manifest alone
+    const fs::path dir(dirs[i]);
+    nlohmann::ordered_json doc;
+    try {
+      doc = nlohmann::ordered_json::parse(read_file_text(dir / "compare.json"));
+      std::vector<std::string> names;
+      for (const auto& m : doc.at("models")) names.push_back(m.at("name").get<std::string>());
+      if (names != covered)
+        throw InputError(fmt::format("merge: {} does not hold the models its shard.json lists",
+                                     (dir / "compare.json").string()));
+      if (settings_from.empty()) {
+        machine = doc.at("machine");
+        settings = doc.at("settings");
+        settings_from = dirs[i];
+      } else if (doc.at("settings") != settings) {
+        throw InputError(
+            fmt::format("merge: '{}' belongs to another run than '{}': other "
+                        "settings in compare.json",
+                        dirs[i], settings_from));
+      }
+      for (const auto& m : doc.at("models")) entries[m.at("name").get<std::string>()] = m;
+    } catch (const nlohmann::json::exception& e) {
+      throw InputError(fmt::format("merge: {} is not a compare run's compare.json ({})",
+                                   (dir / "compare.json").string(), e.what()));
+    }
+    const ShardCsv models_csv = read_shard_csv(dir / "compare.csv", covered);
+    const ShardCsv curves_csv = read_shard_csv(dir / "equal_time.csv", covered);
+    if (model_header.empty()) {
+      model_header = models_csv.header;
+      curve_header = curves_csv.header;
+    }
+    for (const std::string& m : covered) {
+      if (!models_csv.rows.count(m))
+        throw InputError(
+            fmt::format("merge: {} lacks the row of '{}'", (dir / "compare.csv").string(), m));
+      model_rows[m] = models_csv.rows.at(m);
+      curve_rows[m] = curves_csv.rows.count(m) ? curves_csv.rows.at(m) : std::string();
+    }
+  }
+  // One run's files: the models in the run's order (every one is covered: cli/merge.cpp).
+  nlohmann::ordered_json models = nlohmann::ordered_json::array();
+  std::string model_csv = model_header + "\n", curve_csv = curve_header + "\n";
+  for (const std::string& m : first.selection) {
+    if (!entries.count(m)) throw InputError(fmt::format("merge: no shard holds the model '{}'", m));
+    models.push_back(entries.at(m));
+    model_csv += model_rows.at(m);
+    curve_csv += curve_rows.at(m);
+  }
+  nlohmann::ordered_json doc;
+  doc["machine"] = machine;
+  doc["settings"] = settings;
+  doc["models"] = models;
+  const fs::path target(out);
+  const StagingFolder stage{staging_beside(target)};
   fs::remove_all(stage.dir);
   fs::create_directory(stage.dir);
-
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-  Progress bar("compare", long(c.models.size()) * 5);
-  c.progress = [&](const std::string& step) { bar.step(step); };
-  try {
-    experiments::compare::run_compare(stage.dir, c);
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(
-        fmt::format("--claims-from/--sweeps-from: a file there is malformed ({})", e.what()));
-  }
+  io::write_file_atomic(stage.dir / "compare.json", doc.dump(1) + "\n");
+  io::write_file_atomic(stage.dir / "compare.csv", model_csv);
+  io::write_file_atomic(stage.dir / "equal_time.csv", curve_csv);
   draw_page(stage.dir);
-  fs::create_directories(out);
-  for (const char* f : kPageFiles) fs::rename(stage.dir / f, out / f);
-  return {c.models.size(), out};
+  move_page(stage.dir, target);
+  fmt::print("compare: {} models; wrote {}\n", models.size(), (target / "index.html").string());
 }
 
 void add_compare_command(CLI::App& app) {
@@ -166,6 +333,12 @@ void add_compare_command(CLI::App& app) {
   add_text_option(cmd, "--sweeps-from", o->sweeps_from,
                   "a glintlab sweep --out folder whose stability.json gives the failure regions",
                   "DIR");
+  add_text_option(cmd, "--shard", o->shard,
+                  "K/N: run only the K-th of N shards of the selected models (every N-th model "
+                  "from the K-th, in glintlab models order) and write shard.json beside the page; "
+                  "glintlab merge joins the N folders into the page of one run. 1 <= K <= N <= "
+                  "10000",
+                  "K/N");
   set_footer(cmd, kFooter);
   set_callback(cmd, [cmd, o] { run(cmd, *o); });
 }

@@ -1,0 +1,125 @@
+// `glintlab compare --shard K/N` and `glintlab merge`: the models of a comparison split into N
+// shards (N = 1, 2 and 3, the 3rd empty) and merged give the page of one unsharded run: the same
+// bytes apart from the timing fields (experiments/compare/compare.h kTimingFields, and the chart
+// drawn from them); a missing, repeated or foreign shard, or one whose files are not the models
+// its manifest lists, is one error line naming it, and nothing is written.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "cli/cli_test_util.h"
+
+namespace glintlab::cli_test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class CompareShardTest : public CliTest {
+ protected:
+  void SetUp() override {
+    CliTest::SetUp();
+    // No conformance rows: each model shows its recorded verdicts instead of running its suite.
+    fs::create_directory(path("verify"));
+    write_text(path("verify/claims.json"), "[]\n");
+  }
+
+  RunResult compare(const std::string& out, const std::string& shard = "",
+                    const std::string& models = "smooth_ggx,smooth_beckmann",
+                    const std::string& threads = "2") const {
+    std::vector<std::string> args = {"compare", "--models", models,  "--claims-from",
+                                     "verify",  "--budget", "quick", "--threads",
+                                     threads,   "--out",    out};
+    if (!shard.empty()) args.insert(args.end(), {"--shard", shard});
+    return run(args);
+  }
+};
+
+// The timing fields blanked: ns per evaluation and seconds in compare.json, their columns in the
+// CSVs (compare.csv: scalar_ns_per_eval, best_ns_per_eval; equal_time.csv: seconds) and the
+// "scalar → best (isa)" cell of index.html.
+std::string without_timing(const std::string& file, const std::string& text) {
+  if (file == "compare.json")
+    return std::regex_replace(
+        text, std::regex("\"(scalar_ns_per_eval|best_ns_per_eval|seconds)\": [-0-9.e+]+"),
+        "\"$1\": T");
+  if (file == "compare.csv")
+    return std::regex_replace(
+        text, std::regex("^([^,]*,\"[^\"]*\"),[^,]*,([^,]*),[^,]*,", std::regex::multiline),
+        "$1,T,$2,T,");
+  if (file == "equal_time.csv")
+    return std::regex_replace(text, std::regex("^([^,]*,[^,]*),[^,]*,", std::regex::multiline),
+                              "$1,T,");
+  return std::regex_replace(text, std::regex("[0-9.]+ → [0-9.]+ \\("), "T → T (");
+}
+
+TEST_F(CompareShardTest, MergedShardsAreThePageOfOneRun) {
+  ASSERT_EQ(compare("one").exit_code, 0);
+  for (int n : {1, 2, 3}) {
+    std::vector<std::string> merge = {"merge"};
+    for (int k = n; k >= 1; --k) {  // any order; shard 1 with one thread
+      const std::string dir = "s" + std::to_string(n) + "_" + std::to_string(k);
+      const RunResult r = compare(dir, std::to_string(k) + "/" + std::to_string(n),
+                                  "smooth_ggx,smooth_beckmann", k == 1 ? "1" : "2");
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      const auto m = nlohmann::json::parse(read_text(path(dir + "/shard.json")));
+      EXPECT_EQ(m["command"], "compare");
+      EXPECT_EQ(m["selection"], nlohmann::json({"smooth_ggx", "smooth_beckmann"}));
+      merge.push_back(dir);
+    }
+    const std::string out = "merged" + std::to_string(n);
+    merge.insert(merge.end(), {"--out", out});
+    const RunResult r = run(merge);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("compare: 2 models"), std::string::npos) << r.out;
+    for (const char* f : {"compare.json", "compare.csv", "equal_time.csv", "index.html"})
+      EXPECT_EQ(without_timing(f, read_text(path(out + "/" + f))),
+                without_timing(f, read_text(path(std::string("one/") + f))))
+          << n << " shards: " << f;
+    EXPECT_TRUE(unexpected_files(path(out), {"compare.json", "compare.csv", "equal_time.csv",
+                                             "equal_time.png", "index.html"})
+                    .empty());
+  }
+  // Two models in 3 shards: the 3rd ran none and holds its manifest alone.
+  EXPECT_TRUE(unexpected_files(path("s3_3"), {"shard.json"}).empty());
+  // The blanking leaves the rest: one run's file against another's with a model more differs.
+  ASSERT_EQ(compare("ggx", "", "smooth_ggx").exit_code, 0);
+  EXPECT_NE(without_timing("compare.csv", read_text(path("ggx/compare.csv"))),
+            without_timing("compare.csv", read_text(path("one/compare.csv"))));
+}
+
+TEST_F(CompareShardTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing) {
+  ASSERT_EQ(compare("a1", "1/2").exit_code, 0);
+  ASSERT_EQ(compare("a2", "2/2").exit_code, 0);
+  ASSERT_EQ(compare("b2", "2/2", "smooth_ggx,smooth_beckmann", "1").exit_code, 0);
+  ASSERT_EQ(compare("c2", "2/2", "smooth_ggx,smooth_beckmann,podee").exit_code, 0);
+  // b2's compare.json with a2's settings changed (as another --budget's would be).
+  const std::string b2 = read_text(path("b2/compare.json"));
+  write_text(path("b2/compare.json"),
+             std::regex_replace(b2, std::regex("\"repetitions\": [0-9]+"), "\"repetitions\": 99"));
+  std::set<std::string> before;
+  for (const auto& e : fs::recursive_directory_iterator(work()))
+    before.insert(fs::relative(e.path(), work()).string());
+  expect_input_error(run({"merge", "a1", "--out", "m"}), {"shard 2/2 is missing"}, before);
+  expect_input_error(run({"merge", "a1", "a2", "a2", "--out", "m"}),
+                     {"shard 2/2 is given twice", "'a2'"}, before);
+  expect_input_error(run({"merge", "a1", "c2", "--out", "m"}),
+                     {"'c2' belongs to another run", "another selection of models"}, before);
+  expect_input_error(run({"merge", "a1", "b2", "--out", "m"}),
+                     {"'b2' belongs to another run than 'a1'", "other settings"}, before);
+  // A shard whose files hold another model than its manifest lists.
+  write_text(path("b2/compare.json"), b2);
+  write_text(path("b2/compare.csv"), read_text(path("a1/compare.csv")));
+  expect_input_error(run({"merge", "a1", "b2", "--out", "m"}),
+                     {"b2/compare.csv holds a row of 'smooth_ggx'"}, before);
+  for (const char* bad : {"0/2", "3/2", "1/0", "x", "1/"})
+    expect_input_error(run({"compare", "--models", "smooth_ggx", "--shard", bad, "--out", "f"}),
+                       {"--shard", bad, "K/N"}, before);
+}
+
+}  // namespace
+}  // namespace glintlab::cli_test

@@ -1,0 +1,94 @@
+// `glintlab sweep --shard K/N` and `glintlab merge`: the models of a sweep split into N shards
+// (N = 1, 2, 3 and 4, the 4th empty) and merged give the files of one unsharded run byte for byte
+// (the sweep writes no timing); a missing, repeated or foreign shard, or one whose files are not
+// the models its manifest lists, is one error line naming it, and nothing is written.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "cli/cli_test_util.h"
+
+namespace glintlab::cli_test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class SweepShardTest : public CliTest {
+ protected:
+  // Three cheap models, seven model × sampler targets.
+  static constexpr const char* kModels = "smooth_ggx,smooth_beckmann,podee";
+
+  RunResult sweep(const std::string& out, const std::string& shard = "",
+                  const std::string& models = kModels, const std::string& threads = "2") const {
+    std::vector<std::string> args = {"sweep",     "--models", models,  "--budget", "quick",
+                                     "--threads", threads,    "--out", out};
+    if (!shard.empty()) args.insert(args.end(), {"--shard", shard});
+    return run(args);
+  }
+
+  // Every file under `dir` (relative path -> bytes).
+  std::map<std::string, std::string> tree(const std::string& dir) const {
+    std::map<std::string, std::string> files;
+    for (const auto& e : fs::recursive_directory_iterator(path(dir)))
+      if (e.is_regular_file())
+        files[fs::relative(e.path(), path(dir)).string()] = read_text(e.path());
+    return files;
+  }
+};
+
+TEST_F(SweepShardTest, MergedShardsAreTheFilesOfOneRun) {
+  ASSERT_EQ(sweep("one").exit_code, 0);
+  const std::map<std::string, std::string> one = tree("one");
+  ASSERT_TRUE(one.count("stability.json"));
+  for (int n : {1, 2, 3, 4}) {
+    std::vector<std::string> merge = {"merge"};
+    for (int k = n; k >= 1; --k) {  // any order; shard 1 with one thread
+      const std::string dir = "s" + std::to_string(n) + "_" + std::to_string(k);
+      const RunResult r =
+          sweep(dir, std::to_string(k) + "/" + std::to_string(n), kModels, k == 1 ? "1" : "2");
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      const auto m = nlohmann::json::parse(read_text(path(dir + "/shard.json")));
+      EXPECT_EQ(m["command"], "sweep");
+      EXPECT_EQ(m["selection"], nlohmann::json({"smooth_ggx", "smooth_beckmann", "podee"}));
+      merge.push_back(dir);
+    }
+    const std::string out = "merged" + std::to_string(n);
+    merge.insert(merge.end(), {"--out", out});
+    const RunResult r = run(merge);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(tree(out) == one) << n << " shards: the merged files differ from one run's";
+  }
+  // Three models in 4 shards: the 4th swept none and holds its manifest alone.
+  EXPECT_TRUE(unexpected_files(path("s4_4"), {"shard.json"}).empty());
+}
+
+TEST_F(SweepShardTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing) {
+  ASSERT_EQ(sweep("a1", "1/2").exit_code, 0);
+  ASSERT_EQ(sweep("a2", "2/2").exit_code, 0);
+  ASSERT_EQ(sweep("c2", "2/2", "smooth_ggx,smooth_beckmann").exit_code, 0);
+  // A shard whose stability.json holds another model than its manifest lists.
+  fs::copy(path("a2"), path("x2"), fs::copy_options::recursive);
+  write_text(path("x2/stability.json"), read_text(path("a1/stability.json")));
+  std::set<std::string> before;
+  for (const auto& e : fs::recursive_directory_iterator(work()))
+    before.insert(fs::relative(e.path(), work()).string());
+  expect_input_error(run({"merge", "a1", "--out", "m"}), {"shard 2/2 is missing"}, before);
+  expect_input_error(run({"merge", "a1", "a2", "a2", "--out", "m"}),
+                     {"shard 2/2 is given twice", "'a2'"}, before);
+  expect_input_error(run({"merge", "a1", "c2", "--out", "m"}),
+                     {"'c2' belongs to another run", "another selection of models"}, before);
+  expect_input_error(run({"merge", "a1", "x2", "--out", "m"}),
+                     {"x2/stability.json does not hold the models its shard.json lists"}, before);
+  for (const char* bad : {"0/2", "3/2", "1/0", "x", "1/"})
+    expect_input_error(run({"sweep", "--models", "smooth_ggx", "--shard", bad, "--out", "f"}),
+                       {"--shard", bad, "K/N"}, before);
+}
+
+}  // namespace
+}  // namespace glintlab::cli_test
