@@ -209,8 +209,16 @@ void append_row(std::vector<Image>& cells, std::vector<std::string>& labels, con
   }
 }
 
-constexpr std::string_view kSphereTitle =
-    "the bump-mapped sphere under a disk light, per camera distance d (linear radiance, grey)";
+// The montages' title: what one panel shows.
+std::string sphere_title(const Budget& b) {
+  const std::string what =
+      b.views == 1 ? std::string("the bump-mapped sphere")
+                   : fmt::format(
+                         "{0} x {0} views of the bump-mapped sphere, each with its normal "
+                         "map translated by another fraction of a tile,",
+                         b.views);
+  return what + " under a disk light, per camera distance d (linear radiance, grey)";
+}
 
 void run_table1(const FigureContext& ctx) {
   const Budget b = budget(ctx);
@@ -263,7 +271,7 @@ void run_table1(const FigureContext& ctx) {
   for (const DistanceRun& r : runs) append_row(cells, labels, r, b);
   io::write_png_preview(ctx.dir / "table1.png", montage(cells, 5));
   write_panel_layout(ctx.dir / "table1.png",
-                     {fmt::format("podee-table1: {}", kSphereTitle), 5, 0, labels, {}});
+                     {fmt::format("podee-table1: {}", sphere_title(b)), 5, 0, labels, {}});
 }
 
 void run_distance_figure(const FigureContext& ctx) {
@@ -300,7 +308,7 @@ void run_distance_figure(const FigureContext& ctx) {
   }
   io::write_png_preview(ctx.dir / "error_vs_distance.png", montage(cells, 5));
   write_panel_layout(ctx.dir / "error_vs_distance.png",
-                     {fmt::format("podee-fig4-distance: {}", kSphereTitle), 5, 0, labels, {}});
+                     {fmt::format("podee-fig4-distance: {}", sphere_title(b)), 5, 0, labels, {}});
 }
 
 void run_flicker(const FigureContext& ctx) {
@@ -375,14 +383,19 @@ void run_flicker(const FigureContext& ctx) {
         }
       });
   io::write_png_preview(ctx.dir / "flicker.png", montage(cells, 3, 2.0));
-  write_panel_layout(ctx.dir / "flicker.png",
-                     {fmt::format("podee-fig4-flicker: per-pixel temporal standard deviation over "
-                                  "{} sub-pixel camera shifts (grey = 2 x sd)",
-                                  b.frames),
-                      3,
-                      0,
-                      labels,
-                      {}});
+  write_panel_layout(
+      ctx.dir / "flicker.png",
+      {fmt::format("podee-fig4-flicker: per-pixel temporal standard deviation over "
+                   "{} sub-pixel camera shifts (grey = 2 x sd){}",
+                   b.frames,
+                   b.views == 1 ? std::string()
+                                : fmt::format(", {0} x {0} views of the sphere per "
+                                              "panel, normal map translated per view",
+                                              b.views)),
+       3,
+       0,
+       labels,
+       {}});
 }
 
 }  // namespace
