@@ -8,8 +8,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -19,6 +21,8 @@
 #include "core/io/png.h"
 #include "core/math/rng.h"
 #include "core/render/metrics.h"
+#include "core/scene/sine_height_field.h"
+#include "core/scene/slope_moment_map.h"
 #include "experiments/figures/panel_layout.h"
 #include "verify/scenes/podee_scene.h"
 
@@ -32,29 +36,63 @@ constexpr std::array<podee::Method, 4> kMethods = {podee::Method::kCentre, podee
 // Table 1 of the paper, in the order centre, LEAN, method.
 constexpr std::array<double, 3> kPaperRmse = {0.0845, 0.0977, 0.0826};
 
+// A panel is `views` × `views` views of `size` pixels across, side by side, each at the pixel
+// footprint of the 96-pixel, 30° frame (podee::config), which the experiment fixes because the
+// method's accuracy depends on it. One wider view would only widen the black background around a
+// sphere that spans about 190, 90 and 37 pixels at distances 2, 4 and 10; more views show more of
+// the glinting surface instead (podee_view_normal_map).
 struct Budget {
-  int size;           // pixels across, at the pixel footprint of the 96-pixel, 30° frame
-  int converged_spp;  // the converged reference
+  int size;   // pixels across one view
+  int views;  // views per panel side
+  int converged_spp;
   int frames;
   std::vector<double> distances;
+  int panel() const { return size * views; }
 };
-// Quick keeps the full budget's 128 pixels, which a reader needs to see the highlights, and saves
-// on the converged reference's samples instead. Full stays at 128, not 512: the experiment fixes
-// the pixel footprint (what the method's accuracy depends on), so more pixels only widen the view
-// around a sphere that spans about 190, 90 and 37 pixels at distances 2, 4 and 10, at 16 times the
-// cost.
+// Quick: one 128-pixel view, which a reader needs to see the highlights, and fewer samples in the
+// converged reference. Full: 4 × 4 views, 512² panels.
 Budget budget(const FigureContext& ctx) {
-  if (ctx.quick) return {128, 128, 6, {podee::kNear, podee::kMedium, podee::kFar}};
-  return {128, 4096, 32, {2, 2.5, 3, 4, 5, 6, 8, 10, 12, 14}};
+  if (ctx.quick) return {128, 1, 128, 6, {podee::kNear, podee::kMedium, podee::kFar}};
+  return {128, 4, 1024, 32, {2, 2.5, 3, 4, 5, 6, 8, 10, 12, 14}};
 }
 
-std::uint64_t seed_for(std::string_view figure, std::string_view what, double distance, int spp) {
-  return hash_string(fmt::format("{}/{}/d={}/spp={}", figure, what, distance, spp).c_str());
+// View 0 keeps the seeds of the single view, so it is the quick budget's image.
+std::uint64_t seed_for(std::string_view figure, std::string_view what, double distance, int spp,
+                       int view = 0) {
+  std::string key = fmt::format("{}/{}/d={}/spp={}", figure, what, distance, spp);
+  if (view > 0) key += fmt::format("/view={}", view);
+  return hash_string(key.c_str());
+}
+
+std::vector<std::shared_ptr<const podee::NormalMap>> view_normal_maps(const Budget& b) {
+  std::vector<std::shared_ptr<const podee::NormalMap>> maps;
+  for (int k = 0; k < b.views * b.views; ++k) maps.push_back(podee_view_normal_map(k, b.views));
+  return maps;
+}
+
+// The panel of one distance: render(k, scene of view k) for each view, placed row by row.
+template <class RenderView>
+Image render_panel(const Budget& b, double distance,
+                   const std::vector<std::shared_ptr<const podee::NormalMap>>& maps,
+                   const RenderView& render) {
+  Image out(b.panel(), b.panel(), {"Y"});
+  for (int k = 0; k < b.views * b.views; ++k) {
+    const Image view = render(k, podee::Scene(podee::config(distance, b.size), maps[k]));
+    const int ox = k % b.views * b.size, oy = k / b.views * b.size;
+    for (int y = 0; y < b.size; ++y)
+      for (int x = 0; x < b.size; ++x) out.at(ox + x, oy + y, 0) = view.at(x, y, 0);
+  }
+  return out;
 }
 
 io::ExrAttributes attributes(std::string_view figure, std::string_view method, double distance,
-                             int spp, std::uint64_t seed) {
+                             int spp, std::uint64_t seed, int views) {
   return {{"glintlab_figure", std::string(figure)},
+          {"glintlab_views",
+           fmt::format("{0} x {0} views side by side; view k (row by row from the top left) has "
+                       "the normal map translated by (k mod {0}, k div {0}) / {0} of a tile and "
+                       "the seed of view 0 (glintlab_seed) with /view=k appended to its key",
+                       views)},
           {"glintlab_method", std::string(method)},
           {"glintlab_distance", fmt::format("{}", distance)},
           {"glintlab_spp", fmt::format("{}", spp)},
@@ -96,8 +134,8 @@ struct DistanceRun {
 };
 
 DistanceRun run_distance(const FigureContext& ctx, std::string_view figure, double distance,
-                         const Budget& b) {
-  const podee::Scene scene(podee::config(distance, b.size), podee::normal_map());
+                         const Budget& b,
+                         const std::vector<std::shared_ptr<const podee::NormalMap>>& maps) {
   DistanceRun r{distance,
                 {},
                 {},
@@ -107,18 +145,24 @@ DistanceRun run_distance(const FigureContext& ctx, std::string_view figure, doub
                 {},
                 {},
                 0};
-  const std::string stage = fmt::format("{} d={}", figure, distance);
-  r.paper = podee::render_podee_reference(
-      scene, kPaperSpp, r.paper_seed, ctx.threads,
-      [&](long d, long t) { progress(ctx, stage + " 64 spp", d, t); });
-  r.converged = podee::render_podee_reference(
-      scene, b.converged_spp, r.converged_seed, ctx.threads, [&](long d, long t) {
-        progress(ctx, fmt::format("{} {} spp", stage, b.converged_spp), d, t);
-      });
+  const int n = b.views * b.views;
+  const auto reference = [&](int spp, std::string_view what) {
+    return render_panel(b, distance, maps, [&](int k, const podee::Scene& scene) {
+      const std::string stage =
+          fmt::format("{} d={} {} spp, view {}/{}", figure, distance, spp, k + 1, n);
+      return podee::render_podee_reference(scene, spp, seed_for(figure, what, distance, spp, k),
+                                           ctx.threads,
+                                           [&](long d, long t) { progress(ctx, stage, d, t); });
+    });
+  };
+  r.paper = reference(kPaperSpp, "reference");
+  r.converged = reference(b.converged_spp, "converged");
   MetricOptions o;
   o.channels = {"Y"};
   for (podee::Method m : kMethods) {
-    r.method.push_back(podee::render_podee(scene, m, ctx.threads));
+    r.method.push_back(render_panel(b, distance, maps, [&](int, const podee::Scene& scene) {
+      return podee::render_podee(scene, m, ctx.threads);
+    }));
     r.vs_paper.push_back(rmse(r.method.back(), r.paper, o));
     r.vs_converged.push_back(rmse(r.method.back(), r.converged, o));
   }
@@ -126,17 +170,30 @@ DistanceRun run_distance(const FigureContext& ctx, std::string_view figure, doub
   return r;
 }
 
+// What a panel is, for the summaries.
+std::string describe_panel(const Budget& b) {
+  const std::string view =
+      fmt::format("{}² pixels at the pixel footprint of a 96-pixel, 30° frame", b.size);
+  if (b.views == 1) return "one view of the sphere, " + view;
+  return fmt::format(
+      "{}² pixels: {} × {} views of the sphere, each {}, each with its normal map translated by "
+      "another fraction of a tile (another part of the bumps under the highlight)",
+      b.panel(), b.views, b.views, view);
+}
+
 std::string tag(double distance) { return fmt::format("d{}", distance); }
 
 void write_distance_images(const FigureContext& ctx, std::string_view figure, const DistanceRun& r,
                            const Budget& b) {
   io::write_exr(ctx.dir / fmt::format("{}_reference64.exr", tag(r.distance)), r.paper,
-                attributes(figure, "reference", r.distance, kPaperSpp, r.paper_seed));
-  io::write_exr(ctx.dir / fmt::format("{}_converged.exr", tag(r.distance)), r.converged,
-                attributes(figure, "converged", r.distance, b.converged_spp, r.converged_seed));
+                attributes(figure, "reference", r.distance, kPaperSpp, r.paper_seed, b.views));
+  io::write_exr(
+      ctx.dir / fmt::format("{}_converged.exr", tag(r.distance)), r.converged,
+      attributes(figure, "converged", r.distance, b.converged_spp, r.converged_seed, b.views));
   for (std::size_t m = 0; m < kMethods.size(); ++m)
     io::write_exr(ctx.dir / fmt::format("{}_{}.exr", tag(r.distance), to_string(kMethods[m])),
-                  r.method[m], attributes(figure, to_string(kMethods[m]), r.distance, 1, 0));
+                  r.method[m],
+                  attributes(figure, to_string(kMethods[m]), r.distance, 1, 0, b.views));
 }
 
 // Montage row: converged | 64 spp | centre | LEAN | method, and the labels of its panels.
@@ -152,15 +209,24 @@ void append_row(std::vector<Image>& cells, std::vector<std::string>& labels, con
   }
 }
 
-constexpr std::string_view kSphereTitle =
-    "the bump-mapped sphere under a disk light, per camera distance d (linear radiance, grey)";
+// The montages' title: what one panel shows.
+std::string sphere_title(const Budget& b) {
+  const std::string what =
+      b.views == 1 ? std::string("the bump-mapped sphere")
+                   : fmt::format(
+                         "{0} x {0} views of the bump-mapped sphere, each with its normal "
+                         "map translated by another fraction of a tile,",
+                         b.views);
+  return what + " under a disk light, per camera distance d (linear radiance, grey)";
+}
 
 void run_table1(const FigureContext& ctx) {
   const Budget b = budget(ctx);
   const char* id = "podee-table1";
+  const auto maps = view_normal_maps(b);
   std::vector<DistanceRun> runs;
   for (double d : {podee::kNear, podee::kMedium, podee::kFar})
-    runs.push_back(run_distance(ctx, id, d, b));
+    runs.push_back(run_distance(ctx, id, d, b, maps));
   for (const DistanceRun& r : runs) write_distance_images(ctx, id, r, b);
   io::write_csv_atomic(
       ctx.dir / "table1.csv",
@@ -171,22 +237,22 @@ void run_table1(const FigureContext& ctx) {
           for (std::size_t m = 0; m < kMethods.size(); ++m) {
             w.cell(r.distance).cell(to_string(kMethods[m])).cell(r.vs_paper[m]);
             w.cell(r.vs_converged[m]).cell(double(b.converged_spp));
-            w.cell(m < 3 ? kPaperRmse[m] : std::nan("")).cell(double(b.size));
+            w.cell(m < 3 ? kPaperRmse[m] : std::nan("")).cell(double(b.panel()));
             w.end_row();
           }
           w.cell(r.distance).cell("reference64").cell(0.0).cell(r.paper_vs_converged);
-          w.cell(double(b.converged_spp)).cell(std::nan("")).cell(double(b.size));
+          w.cell(double(b.converged_spp)).cell(std::nan("")).cell(double(b.panel()));
           w.end_row();
         }
       });
   std::string md = fmt::format(
       "# Podee et al. Table 1 — RMSE against the 64-spp reference\n\n"
-      "{}² pixels at the pixel footprint of a 96-pixel, 30° frame; linear radiance for unit light "
-      "radiance; converged reference {} spp{}.\n\n"
+      "{}; linear radiance for unit light radiance; converged reference {} spp{}. The RMSE is "
+      "over every pixel of the panel.\n\n"
       "| distance | centre | LEAN | method | method (quad-as-circle weight) | 64 spp vs converged "
       "|\n| --- | --- | --- | --- | --- | --- |\n"
       "| paper (Table 1) | 0.0845 | 0.0977 | 0.0826 | — | — |\n",
-      b.size, b.converged_spp, ctx.quick ? " (quick budget)" : "");
+      describe_panel(b), b.converged_spp, ctx.quick ? " (quick budget)" : "");
   for (const DistanceRun& r : runs)
     md += fmt::format("| {} | {:.4f} | {:.4f} | {:.4f} | {:.4f} | {:.4f} |\n", r.distance,
                       r.vs_paper[0], r.vs_paper[1], r.vs_paper[2], r.vs_paper[3],
@@ -205,14 +271,15 @@ void run_table1(const FigureContext& ctx) {
   for (const DistanceRun& r : runs) append_row(cells, labels, r, b);
   io::write_png_preview(ctx.dir / "table1.png", montage(cells, 5));
   write_panel_layout(ctx.dir / "table1.png",
-                     {fmt::format("podee-table1: {}", kSphereTitle), 5, 0, labels, {}});
+                     {fmt::format("podee-table1: {}", sphere_title(b)), 5, 0, labels, {}});
 }
 
 void run_distance_figure(const FigureContext& ctx) {
   const Budget b = budget(ctx);
   const char* id = "podee-fig4-distance";
   std::vector<DistanceRun> runs;
-  for (double d : b.distances) runs.push_back(run_distance(ctx, id, d, b));
+  const auto maps = view_normal_maps(b);
+  for (double d : b.distances) runs.push_back(run_distance(ctx, id, d, b, maps));
   io::write_csv_atomic(
       ctx.dir / "error_vs_distance.csv",
       {"distance", "pixel_size_at_sphere", "method", "rmse_vs_64spp", "rmse_vs_converged",
@@ -234,19 +301,21 @@ void run_distance_figure(const FigureContext& ctx) {
   for (const DistanceRun& r : runs) {
     append_row(cells, labels, r, b);
     io::write_exr(ctx.dir / fmt::format("{}_podee.exr", tag(r.distance)), r.method[2],
-                  attributes(id, "podee", r.distance, 1, 0));
-    io::write_exr(ctx.dir / fmt::format("{}_converged.exr", tag(r.distance)), r.converged,
-                  attributes(id, "converged", r.distance, b.converged_spp, r.converged_seed));
+                  attributes(id, "podee", r.distance, 1, 0, b.views));
+    io::write_exr(
+        ctx.dir / fmt::format("{}_converged.exr", tag(r.distance)), r.converged,
+        attributes(id, "converged", r.distance, b.converged_spp, r.converged_seed, b.views));
   }
   io::write_png_preview(ctx.dir / "error_vs_distance.png", montage(cells, 5));
   write_panel_layout(ctx.dir / "error_vs_distance.png",
-                     {fmt::format("podee-fig4-distance: {}", kSphereTitle), 5, 0, labels, {}});
+                     {fmt::format("podee-fig4-distance: {}", sphere_title(b)), 5, 0, labels, {}});
 }
 
 void run_flicker(const FigureContext& ctx) {
   const Budget b = budget(ctx);
   const char* id = "podee-fig4-flicker";
-  const auto map = podee::normal_map();
+  const auto maps = view_normal_maps(b);
+  const int n = b.views * b.views;
   struct Row {
     std::string method;
     double distance, flicker;
@@ -254,33 +323,48 @@ void run_flicker(const FigureContext& ctx) {
   std::vector<Row> rows;
   std::vector<Image> cells;
   std::vector<std::string> labels;
+  constexpr std::array<podee::Method, 3> kCompared = {podee::Method::kCentre, podee::Method::kLean,
+                                                      podee::Method::kPodee};
   for (double d : {podee::kNear, podee::kMedium, podee::kFar}) {
     const podee::SceneConfig c = podee::config(d, b.size);
-    progress(ctx, fmt::format("{} d={}", id, d), 0, 1);
-    for (podee::Method m : {podee::Method::kCentre, podee::Method::kLean, podee::Method::kPodee})
-      rows.push_back({to_string(m), d, podee::flicker(c, map, m, b.frames, ctx.threads)});
-    rows.push_back({"reference64", d,
-                    podee::flicker(c, map, podee::Method::kCentre, b.frames, ctx.threads, kPaperSpp,
-                                   seed_for(id, "reference", d, kPaperSpp))});
+    // Every view has as many pixels, so the mean over views is the mean over the panel's pixels.
+    const auto panel_flicker = [&](podee::Method m, int spp) {
+      double sum = 0;
+      for (int k = 0; k < n; ++k) {
+        progress(ctx,
+                 fmt::format("{} d={} {}, view {}/{}", id, d,
+                             spp > 0 ? "reference64" : to_string(m), k + 1, n),
+                 0, 1);
+        sum += podee::flicker(c, maps[std::size_t(k)], m, b.frames, ctx.threads, spp,
+                              spp > 0 ? seed_for(id, "reference", d, spp, k) : 0);
+      }
+      return sum / n;
+    };
+    for (podee::Method m : kCompared) rows.push_back({to_string(m), d, panel_flicker(m, 0)});
+    rows.push_back({"reference64", d, panel_flicker(podee::Method::kCentre, kPaperSpp)});
     // Per-pixel temporal standard deviation images of the three methods at this distance.
-    for (podee::Method m : {podee::Method::kCentre, podee::Method::kLean, podee::Method::kPodee}) {
-      Image sum(b.size, b.size, {"Y"}), sum2(b.size, b.size, {"Y"});
-      for (int f = 0; f < b.frames; ++f) {
-        podee::SceneConfig cf = c;
-        cf.film_shift = {double(f) / b.frames, 0.5 * f / b.frames};
-        const Image im = podee::render_podee(podee::Scene(cf, map), m, ctx.threads);
-        for (std::size_t k = 0; k < im.data.size(); ++k) {
-          sum.data[k] += im.data[k];
-          sum2.data[k] += im.data[k] * im.data[k];
+    for (podee::Method m : kCompared) {
+      Image sd = render_panel(b, d, maps, [&](int k, const podee::Scene& view) {
+        Image sum(b.size, b.size, {"Y"}), sum2(b.size, b.size, {"Y"});
+        for (int f = 0; f < b.frames; ++f) {
+          podee::SceneConfig cf = view.config();
+          cf.film_shift = {double(f) / b.frames, 0.5 * f / b.frames};
+          const Image im =
+              podee::render_podee(podee::Scene(cf, maps[std::size_t(k)]), m, ctx.threads);
+          for (std::size_t i = 0; i < im.data.size(); ++i) {
+            sum.data[i] += im.data[i];
+            sum2.data[i] += im.data[i] * im.data[i];
+          }
         }
-      }
-      Image sd(b.size, b.size, {"Y"});
-      for (std::size_t k = 0; k < sd.data.size(); ++k) {
-        const double mean = sum.data[k] / b.frames;
-        sd.data[k] = std::sqrt(std::max(sum2.data[k] / b.frames - mean * mean, 0.0));
-      }
+        Image out(b.size, b.size, {"Y"});
+        for (std::size_t i = 0; i < out.data.size(); ++i) {
+          const double mean = sum.data[i] / b.frames;
+          out.data[i] = std::sqrt(std::max(sum2.data[i] / b.frames - mean * mean, 0.0));
+        }
+        return out;
+      });
       io::write_exr(ctx.dir / fmt::format("{}_{}_temporal_sd.exr", tag(d), to_string(m)), sd,
-                    attributes(id, to_string(m), d, 1, 0));
+                    attributes(id, to_string(m), d, 1, 0, b.views));
       cells.push_back(std::move(sd));
       labels.push_back(fmt::format("d {}: {}", d, to_string(m)));
     }
@@ -299,17 +383,42 @@ void run_flicker(const FigureContext& ctx) {
         }
       });
   io::write_png_preview(ctx.dir / "flicker.png", montage(cells, 3, 2.0));
-  write_panel_layout(ctx.dir / "flicker.png",
-                     {fmt::format("podee-fig4-flicker: per-pixel temporal standard deviation over "
-                                  "{} sub-pixel camera shifts (grey = 2 x sd)",
-                                  b.frames),
-                      3,
-                      0,
-                      labels,
-                      {}});
+  write_panel_layout(
+      ctx.dir / "flicker.png",
+      {fmt::format("podee-fig4-flicker: per-pixel temporal standard deviation over "
+                   "{} sub-pixel camera shifts (grey = 2 x sd){}",
+                   b.frames,
+                   b.views == 1 ? std::string()
+                                : fmt::format(", {0} x {0} views of the sphere per "
+                                              "panel, normal map translated per view",
+                                              b.views)),
+       3,
+       0,
+       labels,
+       {}});
 }
 
 }  // namespace
+
+std::shared_ptr<const podee::NormalMap> podee_view_normal_map(int view, int views) {
+  std::shared_ptr<const podee::NormalMap> base = podee::normal_map();
+  if (view == 0) return base;
+  const double du = double(view % views) / views, dv = double(view / views) / views;
+  auto m = std::make_shared<podee::NormalMap>(*base);
+  for (int k = 0; k < m->field.count; ++k) {
+    SineWave<double>& w = m->field.wave[k];
+    w.phase += 2 * kPi<double> * (w.ku * du + w.kv * dv);
+  }
+  // The supersampling podee::NormalMap builds its moments with.
+  constexpr int kMomentSupersample = 2;
+  m->moments = SlopeMomentMap(
+      [f = m->field](double u, double v) {
+        const SurfacePoint<double> s = f.eval(u, v);
+        return Vec2<double>{s.slope_u, s.slope_v};
+      },
+      base->moments.size(), kMomentSupersample);
+  return m;
+}
 
 FigureEntry podee_table1_entry() {
   return {"podee-table1", "Podee et al.", "Table 1",
