@@ -10,7 +10,9 @@ namespace glintlab::cli {
 // wall time, so that the load matters little), one run each. Five full rows are not measured
 // here but are the CPU times recorded in experiments/README.md ("Image sizes per budget":
 // eto2023-fig4 and -fig4-rmse-spp, kneiphof2024-fig9, chermain2021-fig7, kemppinen2025-fig7), and
-// adequacy-scene's full row the one in docs/adequacy.md. kneiphof2024-table1 runs under the
+// adequacy-scene's full row the one in docs/adequacy.md; the full rows of podee-* and
+// chermain2021-fig8/-fig9 are those measured when their panels became 512 pixels or more
+// (experiments/README.md). kneiphof2024-table1 runs under the
 // clock's 0.01 s resolution (no benchmark JSON) and is recorded as 0.01. Only the ratios matter:
 // the shards' balance, never a verdict or an output, depends on these numbers. Re-measure a row
 // when its figure's budget changes.
@@ -21,17 +23,17 @@ const std::vector<FigureCost>& figure_costs() {
       {"eto2023-fig4",                    2.18,    138},
       {"eto2023-fig4-rmse-spp",           2.80,    161},
       {"models-hemisphere",               1.21,   5.93},
-      {"podee-table1",                    2.06,   53.6},
-      {"podee-fig4-distance",             2.05,    165},
-      {"podee-fig4-flicker",              4.41,   23.3},
+      {"podee-table1",                    2.06,    185},
+      {"podee-fig4-distance",             2.05,    548},
+      {"podee-fig4-flicker",              4.41,    375},
       {"kneiphof2024-fig6",               0.07,   0.94},
       {"kneiphof2024-fig9",               9.26,    231},
       {"kneiphof2024-fig10",              0.62,   66.8},
       {"kneiphof2024-table1",             0.01,   0.01},
       {"chermain2021-fig3",               0.95,   0.97},
       {"chermain2021-fig7",               1.71,    170},
-      {"chermain2021-fig8",               1.81,   20.7},
-      {"chermain2021-fig9",               1.81,   20.8},
+      {"chermain2021-fig8",               1.81,    147},
+      {"chermain2021-fig9",               1.81,    179},
       {"chermain2021-fig10",              1.03,   2.32},
       {"kemppinen2025-fig2-3",            0.52,   8.04},
       {"kemppinen2025-fig6",              0.07,   2.28},
