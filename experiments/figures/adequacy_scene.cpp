@@ -295,8 +295,11 @@ void run_adequacy_scene(const FigureContext& ctx) {
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                   std::size_t(ctx.threads));
   adq::SceneOptions o;
-  o.width = o.height = ctx.quick ? 128 : 256;
-  o.realisations = ctx.quick ? 256 : 1024;
+  // Renders a person can see: 128² at quick, 512² at full, both with 256 realisations per pixel
+  // (fewer realisations rather than fewer pixels; claim adequacy.choice-is-safe measures its own
+  // scenes at its own sizes, verify/claims/adequacy.cpp).
+  o.width = o.height = ctx.quick ? 128 : 512;
+  o.realisations = 256;
   const std::vector<adq::ChoiceScene> scenes = adq::choice_scenes();
   std::vector<SceneResult> results;
   adq::SafetyTally total;
