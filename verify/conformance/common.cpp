@@ -190,7 +190,7 @@ Cubature integrate_about_mirror(const std::function<double(const V3&)>& f, const
   o.theta_breaks_at_phi = [up_local](double phi, std::vector<double>& breaks) {
     breaks.push_back(plane_crossing_theta(up_local, phi));  // the horizon
   };
-  o.rel_tol = b == Budget::kQuick ? 1e-4 : 1e-6;
+  o.rel_tol = cubature_rel_tol(b);
   o.max_depth = b == Budget::kQuick ? 10 : 16;
   const Integral i = integrate_sphere([&](const V3& w) { return f(to_world(w)); }, o);
   return {i.value, i.error};
@@ -206,7 +206,7 @@ Cubature integrate_about_mirror(const DirectionRows& f, const V3& wi, double wid
   o.theta_breaks_at_phi = [up_local](double phi, std::vector<double>& breaks) {
     breaks.push_back(plane_crossing_theta(up_local, phi));  // the horizon
   };
-  o.rel_tol = b == Budget::kQuick ? 1e-4 : 1e-6;
+  o.rel_tol = cubature_rel_tol(b);
   o.max_depth = b == Budget::kQuick ? 10 : 16;
   std::vector<V3> world;
   const Integral i = integrate_sphere_rows(

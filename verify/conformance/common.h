@@ -74,6 +74,8 @@ double roughness_hint(const ModelEntry& m, const std::vector<double>& values);
 struct Cubature {
   double value = 0, error = 0;
 };
+// The relative tolerance the cubature is asked for: differences below it are not resolved.
+constexpr double cubature_rel_tol(Budget b) { return b == Budget::kQuick ? 1e-4 : 1e-6; }
 Cubature integrate_about_mirror(const std::function<double(const Vec3<double>&)>& f,
                                 const Vec3<double>& wi, double width, Budget b);
 // The same with f asked for many directions per call (verify/stats/sphere_cubature.h).
