@@ -455,11 +455,11 @@ Assessment assess_sampler_gof(const ModelEntry& m, Budget b, const std::string& 
 // The sample mean of the weight estimates ∫ value dωo; the cubature of value (about the mirror
 // direction, error estimate included) is the truth. A sampler whose pdf is 0 where the value is
 // not misses that part, even when it matches its own pdf.
-Assessment assess_covers_value(const ModelEntry& m, Budget b, const std::string& id,
-                               double level, const std::vector<HemisphereIntegral>* reuse) {
-  // Footprint models also at the wide footprint (common.h): quick moves its first setting there
-  // (kneiphof_klein's value is 0 everywhere at θi = 30° and footprint 0.1: it tested nothing),
-  // full adds every setting there.
+// The settings of sampler-covers-value (and energy): footprint models also at the wide footprint
+// (common.h): quick moves its first setting there (kneiphof_klein's value is 0 everywhere at
+// θi = 30° and footprint 0.1: it tested nothing), full adds every setting there; and where the
+// compensation the paper's sampler leaves out carries the value (common.h).
+std::vector<Setting> value_settings(const ModelEntry& m, Budget b) {
   auto set = settings(m, b);
   if (m.needs & kNeedsFootprint) {
     auto widened = [&m](const Setting& s) {
@@ -471,9 +471,13 @@ Assessment assess_covers_value(const ModelEntry& m, Budget b, const std::string&
     else
       for (std::size_t k = 0, base = set.size(); k < base; ++k) set.push_back(widened(set[k]));
   }
-  // And where the compensation the paper's sampler leaves out carries the value (common.h).
   for (Setting& s : compensation_settings(m)) set.push_back(std::move(s));
-  return covers_value_at(m, set, b, id, level, reuse);
+  return set;
+}
+
+Assessment assess_covers_value(const ModelEntry& m, Budget b, const std::string& id,
+                               double level, const std::vector<HemisphereIntegral>* reuse) {
+  return covers_value_at(m, value_settings(m, b), b, id, level, reuse);
 }
 
 Assessment covers_value_at(const ModelEntry& m, const std::vector<Setting>& set, Budget b,
@@ -489,17 +493,8 @@ Assessment covers_value_at(const ModelEntry& m, const std::vector<Setting>& set,
   std::uint64_t non_finite = 0;
   for (std::size_t k = 0; k < set.size(); ++k) {
     const Setting& s = set[k];
-    // The reference's seeds follow the sampler's (configurations set.size() + k).
-    const HemisphereIntegral c =
-        reuse && k < reuse->size()
-            ? (*reuse)[k]
-            : integrate_hemisphere(
-                  m,
-                  [&](std::span<const V3> wo, std::span<double> out) {
-                    values_at(m, s.values, s.query, wo, out);
-                  },
-                  s.query.wi,
-                  roughness_hint(m, s.values), b, check_seed(id, set.size() + k));
+    // The suite's integral of the value at this setting (shared with energy).
+    const HemisphereIntegral c = reuse && k < reuse->size() ? (*reuse)[k] : value_integral(m, s, b);
     a.references.push_back(c);
     if (!std::isfinite(c.value) && a.non_finite.empty())
       a.non_finite = fmt::format("∫ value dωo at {} is {} (eval's value is not finite there)",
@@ -609,12 +604,15 @@ Assessment assess_pdf_normalized(const ModelEntry& m, Budget b, const std::strin
 // energy is a property of eval, and a sampler that misses part of the lobe would hide a gain
 // there. Cubature (models without a footprint) is decided against its error estimate; the Monte
 // Carlo integral (footprint models) by a one-sided z test on its standard error.
-Assessment assess_energy(const ModelEntry& m, Budget b, const std::string& id, double level) {
+// (The integrals are seeded per setting by value_integral, not by the check's id.)
+Assessment assess_energy(const ModelEntry& m, Budget b, const std::string& /*id*/,
+                         double level) {
   Assessment a;
   a.statistic = "largest white-furnace albedo ∫ value dωo (/ light solid angle), by the suite's "
                 "hemisphere integral";
-  auto set = settings(m, b);
-  // Grazing incidence, where energy gain of microfacet models shows first.
+  // sampler-covers-value's settings (their integrals are shared), and grazing incidence, where
+  // energy gain of microfacet models shows first.
+  auto set = value_settings(m, b);
   set.push_back({set.front().values, make_query(m, 85, kFootprint), 85,
                  "defaults, θi=85°"});
   double max_albedo = -1, power = std::numeric_limits<double>::infinity();
@@ -622,12 +620,7 @@ Assessment assess_energy(const ModelEntry& m, Budget b, const std::string& id, d
   const double per_setting = 1 - std::pow(1 - level, 1.0 / double(set.size()));
   for (std::size_t k = 0; k < set.size(); ++k) {
     const Setting& s = set[k];
-    const HemisphereIntegral c = integrate_hemisphere(
-        m,
-        [&](std::span<const V3> wo, std::span<double> out) {
-          values_at(m, s.values, s.query, wo, out);
-        },
-        s.query.wi, roughness_hint(m, s.values), b, check_seed(id, k));
+    const HemisphereIntegral c = value_integral(m, s, b);
     if (!std::isfinite(c.value) && a.non_finite.empty())
       a.non_finite = fmt::format("∫ value dωo at {} is {} (eval is not finite there)", s.label,
                                  c.value);
