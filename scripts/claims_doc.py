@@ -259,7 +259,8 @@ def quote_lines(checks, measured):
     lines = []
     for c in checks:
         run = run_of(c, measured)
-        if run is None or not run.get("paper_quote"):
+        # A conformance row's quote restates its property, already in the table's statement.
+        if run is None or not run.get("paper_quote") or run.get("kind") == "conformance":
             continue
         line = f"- `{c['id']}`: {run['paper_quote']}"
         if run.get("stronger_reading"):

@@ -113,7 +113,8 @@ struct Check {
   // model's its own family, so adding a model or a plug-in changes no other check's level.
   std::string family = {};
   // The paper's own sentence the claim tests, and what the check tests beyond it, from
-  // verify/claims/paper_quotes.cpp; empty for a model's conformance checks.
+  // verify/claims/paper_quotes.cpp; for a model's conformance check, its property's statement,
+  // marked as not a paper's claim (verify/conformance/conformance.cpp).
   std::string paper_quote = {};
   std::string stronger_reading = {};
   // glintlab's own rule (the all.* stability rules, adequacy), not a paper's claim: its "fails"

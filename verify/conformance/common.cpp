@@ -10,10 +10,14 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
+#include <mutex>
 #include <numbers>
 
 #include "core/math/rng.h"
+#include "core/model_layout.h"
 #include "core/samplers/heitz_vndf.h"
+#include "verify/check.h"
 #include "verify/claims/gof_family.h"
 #include "verify/stability/cell_stats.h"
 #include "verify/stability/sweep_plan.h"
@@ -190,7 +194,7 @@ Cubature integrate_about_mirror(const std::function<double(const V3&)>& f, const
   o.theta_breaks_at_phi = [up_local](double phi, std::vector<double>& breaks) {
     breaks.push_back(plane_crossing_theta(up_local, phi));  // the horizon
   };
-  o.rel_tol = b == Budget::kQuick ? 1e-4 : 1e-6;
+  o.rel_tol = cubature_rel_tol(b);
   o.max_depth = b == Budget::kQuick ? 10 : 16;
   const Integral i = integrate_sphere([&](const V3& w) { return f(to_world(w)); }, o);
   return {i.value, i.error};
@@ -206,7 +210,7 @@ Cubature integrate_about_mirror(const DirectionRows& f, const V3& wi, double wid
   o.theta_breaks_at_phi = [up_local](double phi, std::vector<double>& breaks) {
     breaks.push_back(plane_crossing_theta(up_local, phi));  // the horizon
   };
-  o.rel_tol = b == Budget::kQuick ? 1e-4 : 1e-6;
+  o.rel_tol = cubature_rel_tol(b);
   o.max_depth = b == Budget::kQuick ? 10 : 16;
   std::vector<V3> world;
   const Integral i = integrate_sphere_rows(
@@ -287,6 +291,59 @@ HemisphereIntegral integrate_hemisphere(const ModelEntry& m, const DirectionRows
   const std::uint64_t n = blocks * block;
   const MeanAccumulator acc = estimate(0, n);
   return {acc.mean, std::sqrt(acc.variance() / double(n)), true};
+}
+
+namespace {
+
+bool is_registered(const ModelEntry& m) {
+  const std::vector<ModelEntry>& all = registered_models();
+  return !all.empty() && &m >= all.data() && &m < all.data() + all.size();
+}
+
+// What identifies a setting's integral: the entry, the budget, the label, the parameter values and
+// every query column (the label names the setting, the rest guards against two settings sharing
+// one).
+struct ValueIntegralKey {
+  const ModelEntry* model;
+  int budget;
+  std::string label;
+  std::vector<double> values;
+  std::vector<double> query;
+  auto operator<=>(const ValueIntegralKey&) const = default;
+};
+
+std::vector<double> query_columns(const ModelQuery<double>& q) {
+  std::vector<double> c;
+  for_each_query_column(q, [&c](std::size_t, const QueryColumn&, const double& v) { c.push_back(v); });
+  return c;
+}
+
+}  // namespace
+
+HemisphereIntegral value_integral(const ModelEntry& m, const Setting& s, Budget b) {
+  const auto integrate = [&] {
+    return integrate_hemisphere(
+        m,
+        [&](std::span<const V3> wo, std::span<double> out) {
+          values_at(m, s.values, s.query, wo, out);
+        },
+        s.query.wi, roughness_hint(m, s.values), b,
+        check_seed(fmt::format("model.{}.value-integral.{}", m.name, s.label), 0));
+  };
+  if (!is_registered(m)) return integrate();
+  static std::mutex mutex;
+  static std::map<ValueIntegralKey, HemisphereIntegral> kept;
+  const ValueIntegralKey key{&m, int(b), s.label, s.values, query_columns(s.query)};
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (auto it = kept.find(key); it != kept.end()) return it->second;
+  }
+  // Computed outside the lock (it runs its own parallel loop); two threads asking at once both
+  // compute the same deterministic value.
+  const HemisphereIntegral h = integrate();
+  const std::lock_guard<std::mutex> lock(mutex);
+  kept.emplace(key, h);
+  return h;
 }
 
 HemisphereIntegral integrate_hemisphere(const ModelEntry& m, const std::function<double(const V3&)>& f,

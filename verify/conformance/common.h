@@ -74,6 +74,8 @@ double roughness_hint(const ModelEntry& m, const std::vector<double>& values);
 struct Cubature {
   double value = 0, error = 0;
 };
+// The relative tolerance the cubature is asked for: differences below it are not resolved.
+constexpr double cubature_rel_tol(Budget b) { return b == Budget::kQuick ? 1e-4 : 1e-6; }
 Cubature integrate_about_mirror(const std::function<double(const Vec3<double>&)>& f,
                                 const Vec3<double>& wi, double width, Budget b);
 // The same with f asked for many directions per call (verify/stats/sphere_cubature.h).
@@ -105,6 +107,13 @@ HemisphereIntegral integrate_hemisphere(const ModelEntry& m,
                                         const std::function<double(const Vec3<double>&)>& f,
                                         const Vec3<double>& wi, double width, Budget b,
                                         std::uint64_t seed);
+
+// ∫ value dωo at a setting by integrate_hemisphere, seeded by the model's name and the setting's
+// label, not by the property asking: sampler-covers-value and energy (and any later property) get
+// the same integral at the same setting. For a registered entry the result is kept for the
+// process, so a suite run computes each setting's integral once; an altered copy (a control's
+// model) is never kept, its address may be reused.
+HemisphereIntegral value_integral(const ModelEntry& m, const Setting& s, Budget b);
 
 // The sphere cut into cells about the mirror direction of ωi, for the weighted histogram of
 // sampler-matches-pdf: four rings, bounded at 2, 8 and 32 × the roughness width from the mirror
@@ -186,6 +195,8 @@ Assessment assess_eval_pdf(const ModelEntry& m, Budget b, const std::string& id,
 Assessment assess_sampler_gof(const ModelEntry& m, Budget b, const std::string& id, double level);
 Assessment assess_covers_value(const ModelEntry& m, Budget b, const std::string& id,
                                double level, const std::vector<HemisphereIntegral>* reuse);
+// The settings of sampler-covers-value, whose integrals energy shares (sampling.cpp).
+std::vector<Setting> value_settings(const ModelEntry& m, Budget b);
 // sampler-covers-value at the given settings (assess_covers_value: at the property's settings).
 Assessment covers_value_at(const ModelEntry& m, const std::vector<Setting>& set, Budget b,
                            const std::string& id, double level,

@@ -195,6 +195,17 @@ TEST(ConformanceToys, AlbedoAboveOneFailsEnergy) {
   EXPECT_EQ(verdict_of(lambert_toy(1.0), "energy"), Verdict::kHolds);
 }
 
+// Energy is a property of eval, measured by the suite's hemisphere integral, not by the model's
+// sampler: a sampler that reaches only half the lobe (its weights average to half the albedo, 0.6
+// here, which a white furnace over the sampler's weights would pass) cannot hide the gain.
+TEST(ConformanceToys, EnergyGainIsFoundWhereTheSamplerNeverGoes) {
+  const ModelEntry toy = lambert_toy(1.2, 1, /*half=*/true);
+  EXPECT_EQ(verdict_of(toy, "energy"), Verdict::kFails);
+  const Assessment a = assess("energy", toy, Budget::kQuick, "test.energy", model_level(toy));
+  EXPECT_NEAR(a.value, 1.2, 1e-3) << a.detail;
+  EXPECT_EQ(verdict_of(lambert_toy(0.97, 1, /*half=*/true), "energy"), Verdict::kHolds);
+}
+
 // The sampler covers half the support and reports its own pdf truthfully: it matches its pdf,
 // yet its estimates miss half the value.
 // The chi-square of its directions holds; the weighted histogram sees the missing value too (in
