@@ -50,8 +50,10 @@ bool is_statistical_property(std::string_view p) {
 }
 
 std::optional<std::string> not_claimed_reason(std::string_view property, const ModelEntry& m) {
+  // A declaration limited to one parameter choice leaves the property claimed at the others
+  // (variant_settings leaves that choice out and the row says so).
   for (const NotClaimed& n : m.not_claimed)
-    if (n.property == property) return std::string(n.reason);
+    if (n.property == property && n.choice.empty()) return std::string(n.reason);
   if (property == "float-vs-double" && !m.eval_float)
     return std::string("the model has no float instantiation (kDoubleOnly, or kernels that do "
                        "not accept float)");
