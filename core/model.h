@@ -22,7 +22,8 @@
 //   kNotClaimed = {{{"constant-time", "why"}}}  conformance properties the model does not claim,
 //                                 each with its reason (reported as "not-claimed", never as holds);
 //                                 a name outside kConformanceProperties is refused (a built-in
-//                                 model does not compile, a plug-in does not load)
+//                                 model does not compile, a plug-in does not load); a third
+//                                 member "param=choice" limits it to that parameter choice
 // params<T> reads the values by name (values[param_index<M>("seed")]), never by position.
 // core/model_registry.h turns such a struct into a type-erased entry for the CLI, the claims, the
 // figures and the benchmarks; adding a model = its file plus its type in core/model_list.h.
@@ -129,10 +130,25 @@ consteval std::size_t param_index(std::string_view name) {
 }
 
 // A conformance property (verify/conformance/) a model does not claim, and why: the suite reports
-// it as "not-claimed" with the reason instead of running it.
+// it as "not-claimed" with the reason instead of running it. With `choice` ("param=name", one of
+// the parameter's declared choices) only that configuration of the property is not claimed: the
+// property runs over the model's other configurations, and its row names the one left out.
 struct NotClaimed {
   std::string_view property, reason;
+  std::string_view choice = {};
 };
+
+// Whether `choice` is "param=name" for a parameter of `params` with `name` among its choices.
+template <class Params>
+constexpr bool is_declared_choice(const Params& params, std::string_view choice) {
+  const std::size_t eq = choice.find('=');
+  if (eq == std::string_view::npos) return false;
+  for (const auto& p : params)
+    if (p.name == choice.substr(0, eq))
+      for (std::string_view c : p.choices)
+        if (c == choice.substr(eq + 1)) return true;
+  return false;
+}
 
 // The conformance properties, in the suite's order: the valid NotClaimed::property names. Here
 // rather than in verify/ so that the registry can refuse a misspelled declaration (a property it

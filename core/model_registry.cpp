@@ -19,7 +19,8 @@ template <class M>
 struct CheckedNotClaimed {
   static_assert(detail::not_claimed_are_properties<M>(),
                 "a built-in model's kNotClaimed names a property that is not a conformance "
-                "property (valid: kConformanceProperties, core/model.h)");
+                "property (valid: kConformanceProperties, core/model.h) or a choice that is not "
+                "one of its parameters' (param=choice)");
   static constexpr bool kChecked = true;
 };
 
@@ -73,6 +74,11 @@ void check_not_claimed(const ModelEntry& entry) {
           "(valid: {})",
           entry.name, n.property, fmt::join(kConformanceProperties, ", ")));
     }
+    if (!n.choice.empty() && !is_declared_choice(entry.params, n.choice))
+      throw ModelParamError(fmt::format(
+          "model '{}' declares '{}' not claimed for '{}' (kNotClaimed), which is not one of its "
+          "parameters' choices (param=choice)",
+          entry.name, n.property, n.choice));
   }
 }
 

@@ -161,13 +161,15 @@ concept DeclaresNotClaimed = requires {
   { M::kNotClaimed[0].property } -> std::convertible_to<std::string_view>;
 };
 
-// Whether every property M declares not claimed is a conformance property (true where M declares
-// none).
+// Whether every property M declares not claimed is a conformance property, and every choice it
+// limits one to is one of its parameters' choices (true where M declares none).
 template <class M>
 constexpr bool not_claimed_are_properties() {
   if constexpr (DeclaresNotClaimed<M>) {
     for (const NotClaimed& n : M::kNotClaimed)
-      if (!is_conformance_property(n.property)) return false;
+      if (!is_conformance_property(n.property) ||
+          (!n.choice.empty() && !is_declared_choice(M::kParams, n.choice)))
+        return false;
   }
   return true;
 }

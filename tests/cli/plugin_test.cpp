@@ -206,8 +206,8 @@ TEST_F(PluginTest, ReportCoversThePluginModelInEveryPart) {
 }
 
 // A plug-in whose eval throws (throwing_eval) or returns NaN (nan_eval): the checks that need eval
-// report verdict error naming the model and the cause, the checks that do not (energy reads the
-// sampler's weights) and the paper's claim run as usual, the stability sweep's NaN is that
+// report verdict error naming the model and the cause (energy too: it integrates eval's value),
+// the checks that do not (pdf-normalized reads only pdf()) and the paper's claim run as usual, the stability sweep's NaN is that
 // property's fails, the files are written with every row, and the exit status is 3.
 TEST_F(PluginTest, FaultyEvalIsReportedAsErrorAndTheRunGoesOn) {
   const RunResult r =
@@ -233,7 +233,7 @@ TEST_F(PluginTest, FaultyEvalIsReportedAsErrorAndTheRunGoesOn) {
   EXPECT_TRUE(rows.at("smooth.projected-area")["control_rejected"].get<bool>());
   // An exception from eval, thrown inside the checks' parallel loops.
   for (const char* p : {"eval-pdf-consistency", "sampler-covers-value", "float-vs-double",
-                        "stability"}) {
+                        "stability", "energy"}) {
     const std::string id = std::string("model.throwing_eval.") + p;
     EXPECT_EQ(verdict(id), "error") << id;
     EXPECT_NE(detail(id).find(std::string("model throwing_eval: ") + p + ": exception: "
@@ -242,7 +242,7 @@ TEST_F(PluginTest, FaultyEvalIsReportedAsErrorAndTheRunGoesOn) {
         << detail(id);
     EXPECT_TRUE(rows.at(id)["control_verdict"].is_null()) << id;
   }
-  EXPECT_EQ(verdict("model.throwing_eval.energy"), "holds");
+  EXPECT_EQ(verdict("model.throwing_eval.pdf-normalized"), "holds");
   // NaN where a number is required: what was not finite is named.
   EXPECT_EQ(verdict("model.nan_eval.sampler-covers-value"), "error");
   EXPECT_NE(detail("model.nan_eval.sampler-covers-value").find("∫ value dωo at"),
@@ -252,7 +252,8 @@ TEST_F(PluginTest, FaultyEvalIsReportedAsErrorAndTheRunGoesOn) {
   EXPECT_NE(detail("model.nan_eval.float-vs-double").find("not finite on any of the 20000"),
             std::string::npos);
   EXPECT_EQ(verdict("model.nan_eval.sampler-matches-pdf"), "error");
-  EXPECT_EQ(verdict("model.nan_eval.energy"), "holds");
+  EXPECT_EQ(verdict("model.nan_eval.energy"), "error");
+  EXPECT_EQ(verdict("model.nan_eval.pdf-normalized"), "holds");
   // The NaN a check exists to find is its verdict, not an error.
   EXPECT_EQ(verdict("model.nan_eval.stability"), "fails");
   EXPECT_TRUE(rows.at("model.nan_eval.stability")["control_rejected"].get<bool>());

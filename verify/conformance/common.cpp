@@ -52,6 +52,94 @@ std::vector<Setting> settings(const ModelEntry& m, Budget b) {
   return out;
 }
 
+std::vector<Variant> variants(const ModelEntry& m) {
+  const std::vector<double> defaults = resolve_params(m, {});
+  std::vector<Variant> out;
+  for (std::size_t i = 0; i < m.params.size(); ++i) {
+    const ParamSpec& p = m.params[i];
+    for (std::size_t c = 0; c < p.choices.size(); ++c) {
+      if (double(c) == defaults[i]) continue;
+      Variant v{defaults, fmt::format("{}={}", p.name, p.choices[c]), ""};
+      v.values[i] = double(c);
+      v.choice = v.label;
+      out.push_back(std::move(v));
+    }
+  }
+  // The roughness: alpha_x with alpha_y (kept isotropic), or alpha.
+  std::vector<std::size_t> rough;
+  for (std::string_view name : {"alpha_x", "alpha_y"})
+    for (std::size_t i = 0; i < m.params.size(); ++i)
+      if (m.params[i].name == name && m.params[i].choices.empty()) rough.push_back(i);
+  if (rough.empty())
+    for (std::size_t i = 0; i < m.params.size(); ++i)
+      if (m.params[i].name == "alpha" && m.params[i].choices.empty()) rough.push_back(i);
+  if (rough.empty()) return out;
+  for (double a : kRoughnessGrid) {
+    bool valid = true, all_default = true;
+    for (std::size_t i : rough) {
+      const ParamSpec& p = m.params[i];
+      valid = valid && (p.lo_open ? a > p.lo : a >= p.lo) && (p.hi_open ? a < p.hi : a <= p.hi);
+      all_default = all_default && a == defaults[i];
+    }
+    if (!valid || all_default) continue;
+    Variant v{defaults, "", ""};
+    for (std::size_t i : rough) {
+      v.values[i] = a;
+      v.label += fmt::format("{}=", m.params[i].name);
+    }
+    v.label += fmt::format("{:g}", a);
+    out.push_back(std::move(v));
+  }
+  return out;
+}
+
+double variant_share(const ModelEntry& m) {
+  const std::size_t n = variants(m).size() * ((m.needs & kNeedsFootprint) ? 2 : 1);
+  return n == 0 ? kMaxVariantShare : std::min(kMaxVariantShare, 1.0 / double(n));
+}
+
+std::vector<Setting> variant_settings(const ModelEntry& m, Budget b, std::string_view property,
+                                      std::string* left_out) {
+  const std::vector<double> thetas =
+      b == Budget::kQuick ? std::vector<double>{70} : std::vector<double>{30, 70};
+  const double share = variant_share(m);
+  std::vector<Setting> out;
+  for (const Variant& v : variants(m)) {
+    const NotClaimed* skip = nullptr;
+    for (const NotClaimed& n : m.not_claimed)
+      if (!n.choice.empty() && n.property == property && n.choice == v.choice) skip = &n;
+    if (skip) {
+      if (left_out)
+        *left_out += fmt::format("{}{} (not claimed: {})", left_out->empty() ? "" : "; ", v.label,
+                                 skip->reason);
+      continue;
+    }
+    for (double t : thetas)
+      out.push_back({v.values, make_query(m, t, kFootprint), t,
+                     fmt::format("{}, θi={:g}°", v.label, t), share});
+  }
+  return out;
+}
+
+std::string describe_configurations(std::size_t defaults, const std::vector<Setting>& variants,
+                                    const std::string& left_out) {
+  std::string names;
+  std::size_t distinct = 0;
+  for (std::size_t k = 0; k < variants.size(); ++k) {
+    const std::string name = variants[k].label.substr(0, variants[k].label.rfind(", θi="));
+    if (k > 0 && variants[k - 1].label.substr(0, variants[k - 1].label.rfind(", θi=")) == name)
+      continue;
+    names += fmt::format("{}{}", names.empty() ? "" : ", ", name);
+    ++distinct;
+  }
+  std::string out = fmt::format("{} at the defaults", defaults);
+  if (!variants.empty())
+    out += fmt::format(" + {} for {} parameter choice(s) ({}) at {:.3g} of the samples",
+                       variants.size(), distinct, names, variants.front().share);
+  if (!left_out.empty()) out += fmt::format("; not run: {}", left_out);
+  return out;
+}
+
 std::vector<Setting> compensation_settings(const ModelEntry& m) {
   if (m.name != "kemppinen_ggx" && m.name != "kemppinen_beckmann") return {};
   // Where C dominates ∫ value (the explicit points' share of ∫ value dωo, measured with eval's
@@ -228,7 +316,7 @@ Vec2<double> pair_at(std::uint64_t seed, std::uint64_t i) { return uniform_pair(
 std::uint64_t reference_block(Budget b) { return b == Budget::kQuick ? 100'000 : 2'000'000; }
 
 HemisphereIntegral integrate_hemisphere(const ModelEntry& m, const DirectionRows& f, const V3& wi,
-                                        double width, Budget b, std::uint64_t seed) {
+                                        double width, Budget b, std::uint64_t seed, double share) {
   if (!(m.needs & kNeedsFootprint) && !m.eval_rows && !m.pdf_rows) {
     // One direction at a time (the lockstep below holds every inner integral of a step at once).
     const Cubature c = integrate_about_mirror(
@@ -258,7 +346,8 @@ HemisphereIntegral integrate_hemisphere(const ModelEntry& m, const DirectionRows
     return {c.value, c.error, false};
   }
   const MirrorMixture proposal(wi, width);
-  const std::uint64_t block = reference_block(b);
+  const std::uint64_t block =
+      std::max<std::uint64_t>(1, std::uint64_t(share * double(reference_block(b))));
   // accumulate_mean's fixed chunks, merged in chunk order, with f asked for each chunk's
   // directions above the horizon at once.
   auto estimate = [&](std::uint64_t first, std::uint64_t n) {
@@ -306,6 +395,7 @@ bool is_registered(const ModelEntry& m) {
 struct ValueIntegralKey {
   const ModelEntry* model;
   int budget;
+  double share;
   std::string label;
   std::vector<double> values;
   std::vector<double> query;
@@ -328,12 +418,12 @@ HemisphereIntegral value_integral(const ModelEntry& m, const Setting& s, Budget 
           values_at(m, s.values, s.query, wo, out);
         },
         s.query.wi, roughness_hint(m, s.values), b,
-        check_seed(fmt::format("model.{}.value-integral.{}", m.name, s.label), 0));
+        check_seed(fmt::format("model.{}.value-integral.{}", m.name, s.label), 0), s.share);
   };
   if (!is_registered(m)) return integrate();
   static std::mutex mutex;
   static std::map<ValueIntegralKey, HemisphereIntegral> kept;
-  const ValueIntegralKey key{&m, int(b), s.label, s.values, query_columns(s.query)};
+  const ValueIntegralKey key{&m, int(b), s.share, s.label, s.values, query_columns(s.query)};
   {
     const std::lock_guard<std::mutex> lock(mutex);
     if (auto it = kept.find(key); it != kept.end()) return it->second;

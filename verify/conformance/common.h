@@ -24,6 +24,9 @@ struct Setting {
   ModelQuery<double> query;
   double theta_deg = 0;
   std::string label;
+  // The share of the property's sample count (and of its reference integral's draws) this setting
+  // gets: 1 at the defaults, variant_share for a parameter choice (variant_settings).
+  double share = 1;
 };
 ModelQuery<double> make_query(const ModelEntry& m, double theta_deg, double footprint);
 // The footprint side of the settings and the precision comparisons: 0.1 in uv, where the glint
@@ -37,6 +40,46 @@ inline constexpr double kFootprint = 0.1;
 inline constexpr double kWideFootprint = 0.4;
 // Quick: θi ∈ {30°, 70°}; full: θi ∈ {0°, 30°, 60°, 80°}; the model's default parameters.
 std::vector<Setting> settings(const ModelEntry& m, Budget b);
+// Every declared choice is a configuration: besides the defaults, the sampling properties
+// (eval-pdf-consistency, sampler-matches-pdf, sampler-covers-value, pdf-normalized) and the numeric
+// ones (float-vs-double, simd-equivalence) run at
+//   - each non-default choice of each parameter with choices (samplers, pdf forms, counting
+//     modes), the other parameters at their defaults, and
+//   - a roughness grid kRoughnessGrid (alpha_x and alpha_y together, or alpha; values outside the
+//     declared range or equal to the default left out), the rest at the defaults.
+// Each is one more configuration of the property, inside its Holm–Šidák correction at the
+// model's level, so the model's family-wise false-positive rate stays kFamilyWiseRate. To bound
+// the cost, the choices of a model together get the samples of one default setting per θi (half
+// of one for footprint models): each variant_share of the defaults' samples (and reference
+// draws), at one θi (70°) at quick and two (30°, 70°) at full; the rows state their power apart
+// from the defaults'.
+// energy, stability (which sweeps every sampler choice itself), converges-to-smooth and
+// constant-time stay at the defaults.
+struct Variant {
+  std::vector<double> values;
+  std::string label;   // "sampler=ndf", "alpha_x=alpha_y=0.05"
+  std::string choice;  // "param=name" for an enumerated choice, empty for the roughness grid
+};
+inline constexpr std::array<double, 3> kRoughnessGrid = {0.05, 0.3, 0.8};
+std::vector<Variant> variants(const ModelEntry& m);
+// 1 / V, V the number of variants (1 / 2V for footprint models), at most kMaxVariantShare: a
+// model with few choices does not get more than a quarter of the defaults' samples per choice.
+// Measured on kemppinen_ggx at quick (CPU time of the checks, without controls): its 10 choices at
+// a quarter each took sampler-matches-pdf from about 40 s to 109 s; at 1/V the six properties the
+// choices run in took 244 s against about 127 s (k = 9 and 16 evaluate 2–4 × the cells of the
+// default k = 4), which is why a footprint model's choices get half of that.
+inline constexpr double kMaxVariantShare = 0.25;
+double variant_share(const ModelEntry& m);
+// The variants' settings for `property` (each variant at the budget's θi above, share
+// variant_share); the variants the model declares not claimed for the property (NotClaimed with a
+// choice) are left out and described in *left_out ("pdf=printed (not claimed: why)").
+std::vector<Setting> variant_settings(const ModelEntry& m, Budget b, std::string_view property,
+                                      std::string* left_out);
+// "2 at the defaults + 7 parameter choices (sampler=ndf, ...) at 1/4 of the samples", and
+// "; not run: ..." where variants were left out.
+std::string describe_configurations(std::size_t defaults, const std::vector<Setting>& variants,
+                                    const std::string& left_out);
+
 // Settings where a part of the value that the model's paper does not sample carries most of it,
 // at their own footprints (never widened), for the properties that check a sampler against the
 // value (eval-pdf-consistency, sampler-covers-value and, at the full budget, the weighted
@@ -99,9 +142,10 @@ inline constexpr std::uint64_t kMaxReferenceBlocks = 4;
 std::uint64_t reference_block(Budget b);
 // f is asked for each chunk's directions at once (Monte Carlo), or one direction at a time
 // (cubature).
+// share: the blocks are that share of reference_block(b) (a variant's, Setting::share).
 HemisphereIntegral integrate_hemisphere(const ModelEntry& m, const DirectionRows& f,
                                         const Vec3<double>& wi, double width, Budget b,
-                                        std::uint64_t seed);
+                                        std::uint64_t seed, double share = 1);
 // The same with f of one direction.
 HemisphereIntegral integrate_hemisphere(const ModelEntry& m,
                                         const std::function<double(const Vec3<double>&)>& f,

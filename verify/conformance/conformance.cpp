@@ -50,8 +50,10 @@ bool is_statistical_property(std::string_view p) {
 }
 
 std::optional<std::string> not_claimed_reason(std::string_view property, const ModelEntry& m) {
+  // A declaration limited to one parameter choice leaves the property claimed at the others
+  // (variant_settings leaves that choice out and the row says so).
   for (const NotClaimed& n : m.not_claimed)
-    if (n.property == property) return std::string(n.reason);
+    if (n.property == property && n.choice.empty()) return std::string(n.reason);
   if (property == "float-vs-double" && !m.eval_float)
     return std::string("the model has no float instantiation (kDoubleOnly, or kernels that do "
                        "not accept float)");
@@ -232,6 +234,10 @@ std::optional<Recorded> recorded_verdict(std::string_view model, std::string_vie
       // pdf() is 0 below the horizon, where the sampler's rejected samples land (27 % at
       // θi = 70°): the sampler's density and pdf() disagree there (mass 0.67 of 1).
       {{"chermain", "sampler-matches-pdf"}, {V::kFails}},
+      // At full, the weighting=quad_as_circle choice: 34 of 33 333 queries (1.02e-3, allowed
+      // 1e-3) differ beyond 1e-3 between float and double (the defaults hold: 288 of 400 000);
+      // at quick it holds.
+      {{"podee", "float-vs-double"}, {V::kHolds, V::kFails}},
   };
   const auto it = table.find({model, property});
   if (it == table.end()) return std::nullopt;

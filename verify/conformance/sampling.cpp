@@ -65,6 +65,45 @@ double detectable_effect(double level, std::size_t configurations, double std_er
   return truth != 0 ? z * std_error / std::abs(truth) : std::numeric_limits<double>::infinity();
 }
 
+// A setting's share of n samples (Setting::share), at least 1.
+std::uint64_t share_of(std::uint64_t n, const Setting& s) {
+  return std::max<std::uint64_t>(1, std::uint64_t(s.share * double(n)));
+}
+
+// The smallest effect a property detects with 90 % power, at the defaults' most sensitive setting
+// and over the parameter choices' settings (their fewer samples: the least and most sensitive).
+struct PowerByConfiguration {
+  double defaults = std::numeric_limits<double>::infinity();
+  double choices_best = std::numeric_limits<double>::infinity(), choices_worst = 0;
+  std::string defaults_where = "—", best_where = "—", worst_where = "—";
+  void add(const Setting& s, double d) {
+    if (s.share == 1) {
+      if (d < defaults) {
+        defaults = d;
+        defaults_where = s.label;
+      }
+      return;
+    }
+    if (d < choices_best) {
+      choices_best = d;
+      best_where = s.label;
+    }
+    if (d >= choices_worst) {
+      choices_worst = d;
+      worst_where = s.label;
+    }
+  }
+  // `effect` formats one detectable effect.
+  template <class F>
+  std::string describe(F effect) const {
+    std::string out = fmt::format("{} ({})", effect(defaults), defaults_where);
+    if (choices_worst > 0 || std::isfinite(choices_best))
+      out += fmt::format("; per parameter-choice configuration: {} ({}) to {} ({})",
+                         effect(choices_best), best_where, effect(choices_worst), worst_where);
+    return out;
+  }
+};
+
 // The sample mean of the weight (non-finite weights count as a hard failure) and the share of
 // samples the sampler rejected or placed below the horizon.
 struct WeightStats {
@@ -106,7 +145,7 @@ WeightStats weight_stats(const ModelEntry& m, const Setting& s, std::uint64_t n,
 // different order: double rounding is below 1e-12; a pdf 3 % off is 3e-2).
 Assessment assess_eval_pdf(const ModelEntry& m, Budget b, const std::string& id, double) {
   constexpr double kTolerance = 1e-6;
-  const std::uint64_t n = b == Budget::kQuick ? 4096 : 65536;
+  const std::uint64_t n_defaults = b == Budget::kQuick ? 4096 : 65536;
   Assessment a;
   a.statistic = "largest relative difference of sample pdf / eval pdf / weight from pdf() and "
                 "value/pdf at the sampled ωo";
@@ -115,9 +154,16 @@ Assessment assess_eval_pdf(const ModelEntry& m, Budget b, const std::string& id,
   std::string where = "—";
   auto set = settings(m, b);
   for (Setting& s : compensation_settings(m)) set.push_back(std::move(s));
+  const std::size_t base = set.size();
+  std::string left_out;
+  const std::vector<Setting> choices = variant_settings(m, b, "eval-pdf-consistency", &left_out);
+  set.insert(set.end(), choices.begin(), choices.end());
+  std::uint64_t total = 0;
   for (std::size_t k = 0; k < set.size(); ++k) {
     const Setting& s = set[k];
     const std::uint64_t seed = check_seed(id, k);
+    const std::uint64_t n = share_of(n_defaults, s);
+    total += n;
     struct Part {
       double worst = 0;
       std::string what;
@@ -168,11 +214,13 @@ Assessment assess_eval_pdf(const ModelEntry& m, Budget b, const std::string& id,
   a.configurations = int(set.size());
   a.verdict = worst <= kTolerance ? Verdict::kHolds : Verdict::kFails;
   a.power = fmt::format("deterministic at the sampled directions: any relative difference above "
-                        "{:g} at one of the {} sampled ωo is detected",
-                        kTolerance, set.size() * n);
-  a.detail = fmt::format("{} settings × {} samples: largest relative difference {:.3g} (bound {:g}){}",
-                         set.size(), n, worst, kTolerance,
-                         worst > 0 ? fmt::format(", at {}", where) : "");
+                        "{:g} at one of the {} sampled ωo is detected ({} per setting at the "
+                        "defaults, {} per parameter-choice setting)",
+                        kTolerance, total, n_defaults, std::max<std::uint64_t>(1, std::uint64_t(variant_share(m) * double(n_defaults))));
+  a.detail = fmt::format("{} settings ({}) × {} samples: largest relative difference {:.3g} (bound "
+                         "{:g}){}",
+                         set.size(), describe_configurations(base, choices, left_out), n_defaults,
+                         worst, kTolerance, worst > 0 ? fmt::format(", at {}", where) : "");
   return a;
 }
 
@@ -219,7 +267,8 @@ ChiSquareResult sampler_chi_square(const ModelEntry& m, const Setting& setting, 
       for (std::size_t i = 0; i < w.size(); ++i) at[i].wo = w[i];
       pdf_each(m, s.values, at, out);
     };
-  const ChiSquarePlan plan = plan_direction_chi_square(SampleDomain::kSphere, pdf, gof_samples(b), o);
+  const ChiSquarePlan plan =
+      plan_direction_chi_square(SampleDomain::kSphere, pdf, share_of(gof_samples(b), s), o);
   return run_direction_chi_square(
       plan, DirectionBatchSampler([&](std::uint64_t begin, std::size_t count, V3* out) {
         const std::vector<ModelSample<double>> x = samples_at(m, s, seed, begin, begin + count);
@@ -262,7 +311,7 @@ struct WeightedHistogram {
 };
 WeightedHistogram weighted_histogram(const ModelEntry& m, const Setting& s, Budget b,
                                      std::uint64_t sampler_seed, std::uint64_t reference_seed) {
-  const std::uint64_t n = gof_samples(b);
+  const std::uint64_t n = share_of(gof_samples(b), s);
   const double width = roughness_hint(m, s.values);
   const MirrorCells cells(s.query.wi, width);
   // The value, and the value where eval's pdf is 0, at the same draws.
@@ -272,7 +321,7 @@ WeightedHistogram weighted_histogram(const ModelEntry& m, const Setting& s, Budg
         for (std::size_t i = 0; i < wo.size(); ++i)
           unreached[i] = value[i] > 0 && unreached[i] == 0 ? value[i] : 0.0;
       },
-      s.query.wi, width, 2 * reference_block(b), reference_seed);
+      s.query.wi, width, share_of(2 * reference_block(b), s), reference_seed);
   const CellSums& reference = integrals.first;
   WeightedHistogram h;
   for (std::size_t k = 0; k < MirrorCells::kCount; ++k)
@@ -365,29 +414,47 @@ Assessment assess_sampler_gof(const ModelEntry& m, Budget b, const std::string& 
   // time); full: every setting, and the weighted histogram also at the compensation settings (the
   // chi-square moves every footprint to the sweep's, where they would repeat the others). Not at
   // quick: the three histograms took 2–6 × the property's time there (Kemppinen), and
-  // sampler-covers-value checks the same settings.
+  // sampler-covers-value checks the same settings. The parameter choices (common.h) get both
+  // tests, after the defaults'.
   auto set = settings(m, b);
   if (b == Budget::kQuick) set.erase(set.begin());
-  const std::size_t chi_settings = set.size();
+  const std::size_t chi_defaults = set.size();
   if (b == Budget::kFull)
     for (Setting& s : compensation_settings(m)) set.push_back(std::move(s));
-  std::size_t inconclusive = 0, hard = 0, worst = 0, worst_weighted = 0;
+  const std::size_t base = set.size();
+  std::string left_out;
+  const std::vector<Setting> choices = variant_settings(m, b, "sampler-matches-pdf", &left_out);
+  set.insert(set.end(), choices.begin(), choices.end());
+  // Which settings get the chi-square: the defaults', and the parameter choices' of models without
+  // a footprint. A footprint model's chi-square is the cubature of a glint pdf() (10–100 µs a
+  // call) over 64 bins, 10–20 s a setting (Kemppinen), which for every choice would multiply the
+  // suite's time; its choices get the weighted histogram, which tests the weights value/pdf per
+  // cell against ∫_cell value and counts the value where the pdf is 0 (a sampler whose draws do
+  // not follow its pdf gets weights that miss the value per cell).
+  const bool chi_at_choices = !(m.needs & kNeedsFootprint);
+  auto has_chi = [&](std::size_t k) { return k < chi_defaults || (chi_at_choices && k >= base); };
+  std::size_t inconclusive = 0, hard = 0;
   std::vector<ChiSquareResult> results;
+  std::vector<std::size_t> chi_setting;  // chi-square i ran at set[chi_setting[i]]
   std::vector<WeightedHistogram> weighted;
   std::vector<double> chi_p, weighted_p;
+  std::size_t worst = 0, worst_weighted = 0;
   for (std::size_t k = 0; k < set.size(); ++k) {
-    if (k < chi_settings) {
-      results.push_back(sampler_chi_square(m, set[k], check_seed(id, k), b));
+    // The defaults' seeds: the chi-square's k, the weighted histogram's chi_defaults + 2k, + 1;
+    // a parameter choice's 1000 + 3k, + 1, + 2.
+    const bool choice = k >= base;
+    if (has_chi(k)) {
+      results.push_back(sampler_chi_square(m, set[k], check_seed(id, choice ? 1000 + 3 * k : k), b));
       const ChiSquareResult& r = results.back();
+      chi_setting.push_back(k);
       chi_p.push_back(r.hard_fail ? 0.0 : r.p_value);
       inconclusive += r.inconclusive && !r.hard_fail ? 1 : 0;
       hard += r.hard_fail ? 1 : 0;
-      if (chi_p[k] < chi_p[worst]) worst = k;
+      if (chi_p.back() < chi_p[worst]) worst = chi_p.size() - 1;
     }
-    // The weighted histogram's seeds follow the chi-square's (configurations chi_settings + 2k,
-    // + 1).
-    weighted.push_back(weighted_histogram(m, set[k], b, check_seed(id, chi_settings + 2 * k),
-                                          check_seed(id, chi_settings + 2 * k + 1)));
+    weighted.push_back(weighted_histogram(
+        m, set[k], b, check_seed(id, choice ? 1001 + 3 * k : chi_defaults + 2 * k),
+        check_seed(id, choice ? 1002 + 3 * k : chi_defaults + 2 * k + 1)));
     weighted_p.push_back(weighted.back().p_value);
     if (!weighted.back().reference_finite && a.non_finite.empty())
       a.non_finite = fmt::format("∫_cell value dωo of the weighted histogram at {} is not finite "
@@ -406,41 +473,45 @@ Assessment assess_sampler_gof(const ModelEntry& m, Budget b, const std::string& 
                                          : Verdict::kHolds;
   // The chi-square's power: its coarse resolution's δ90 (a pdf off by a relative δ throughout,
   // detected with 90 % power; chi_square.h) and the same δ confined to one cell, at the most
-  // sensitive setting.
-  double delta90 = std::numeric_limits<double>::infinity(), one_cell = 0;
-  std::string delta90_where = "—";
-  for (std::size_t k = 0; k < results.size(); ++k) {
-    if (results[k].resolutions.empty()) continue;
-    const ChiSquareResolution& coarse = results[k].resolutions.front();
-    if (coarse.detectable_global > 0 && coarse.detectable_global < delta90) {
-      delta90 = coarse.detectable_global;
-      one_cell = coarse.detectable_one_cell;
-      delta90_where = set[k].label;
+  // sensitive setting of the defaults and over the parameter choices'.
+  PowerByConfiguration global, one_cell;
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    if (results[i].resolutions.empty()) continue;
+    const ChiSquareResolution& coarse = results[i].resolutions.front();
+    if (coarse.detectable_global > 0) {
+      global.add(set[chi_setting[i]], coarse.detectable_global);
+      one_cell.add(set[chi_setting[i]], coarse.detectable_one_cell);
     }
   }
-  a.power = std::isfinite(delta90)
-                ? fmt::format("chi-square: a pdf off by a relative {:.2g} throughout, or by {:.2g} "
-                              "in one cell ({})",
-                              delta90, one_cell, delta90_where)
-                : std::string("not stated: no chi-square setting was conclusive");
+  const auto relative = [](double d) {
+    return std::isfinite(d) ? fmt::format("{:.2g}", d) : std::string("—");
+  };
+  a.power = std::isfinite(global.defaults)
+                ? fmt::format("chi-square: a pdf off by a relative {}; or in one cell by {}",
+                              global.describe(relative), one_cell.describe(relative))
+                : std::string("not stated: no chi-square setting at the defaults was conclusive");
   const WeightedHistogram& w = weighted[worst_weighted];
   // Which of the two tests rejected (a control's detail says what caught it).
   std::size_t chi_rejected = 0, weighted_rejected = 0;
   for (std::size_t k = 0; k < f.reject.size(); ++k)
     (k < chi_p.size() ? chi_rejected : weighted_rejected) += f.reject[k] ? 1 : 0;
   a.detail = fmt::format(
-      "{} settings × {} samples, chi-square and weighted histogram each{}: {} rejected at level "
-      "{:.3g} (chi-square {}, weighted histogram {}), {} hard failures, {} inconclusive; "
+      "{} settings ({}) × {} samples, chi-square and weighted histogram each{}{}: {} rejected at "
+      "level {:.3g} (chi-square {}, weighted histogram {}), {} hard failures, {} inconclusive; "
       "chi-square: smallest raw p {:.3g} at {} ({}); "
       "weighted histogram: smallest raw p {:.3g} at {} (Σ z² {:.4g} over {} cells{}; value "
       "mass where eval's pdf is 0: {})",
-      chi_settings, gof_samples(b),
-      set.size() > chi_settings
+      chi_setting.size(), describe_configurations(chi_defaults, choices, left_out),
+      gof_samples(b),
+      base > chi_defaults
           ? fmt::format(", and {} compensation settings weighted histogram only",
-                        set.size() - chi_settings)
+                        base - chi_defaults)
+          : "",
+      !chi_at_choices && !choices.empty()
+          ? ", the parameter choices weighted histogram only (footprint model)"
           : "",
       f.rejections, level, chi_rejected, weighted_rejected, hard, inconclusive, chi_p[worst],
-      set[worst].label, results[worst].summary(), weighted_p[worst_weighted],
+      set[chi_setting[worst]].label, results[worst].summary(), weighted_p[worst_weighted],
       set[worst_weighted].label, w.statistic, w.cells,
       w.non_finite ? fmt::format(", {} non-finite weights", w.non_finite) : "",
       w.unreached_draws > 0
@@ -477,7 +548,15 @@ std::vector<Setting> value_settings(const ModelEntry& m, Budget b) {
 
 Assessment assess_covers_value(const ModelEntry& m, Budget b, const std::string& id,
                                double level, const std::vector<HemisphereIntegral>* reuse) {
-  return covers_value_at(m, value_settings(m, b), b, id, level, reuse);
+  std::vector<Setting> set = value_settings(m, b);
+  // And at the parameter choices (common.h), after these.
+  std::string left_out;
+  const std::size_t base = set.size();
+  const std::vector<Setting> choices = variant_settings(m, b, "sampler-covers-value", &left_out);
+  set.insert(set.end(), choices.begin(), choices.end());
+  Assessment a = covers_value_at(m, set, b, id, level, reuse);
+  a.detail += fmt::format("; configurations: {}", describe_configurations(base, choices, left_out));
+  return a;
 }
 
 Assessment covers_value_at(const ModelEntry& m, const std::vector<Setting>& set, Budget b,
@@ -486,14 +565,19 @@ Assessment covers_value_at(const ModelEntry& m, const std::vector<Setting>& set,
   Assessment a;
   a.statistic = "largest relative difference of the mean weight from ∫ value dωo (cubature; z "
                 "test, p Holm–Šidák-adjusted)";
-  const std::uint64_t n = samples(b);
-  double worst_rel = 0, power = std::numeric_limits<double>::infinity();
-  std::string power_where = "—";
+  PowerByConfiguration power;
+  double worst_rel = 0;
   std::string where = "—";
   std::uint64_t non_finite = 0;
+  // The settings at the full sample count (the defaults') come first; the parameter choices'
+  // (Setting::share < 1) after them.
+  std::size_t base = 0;
+  while (base < set.size() && set[base].share == 1) ++base;
   for (std::size_t k = 0; k < set.size(); ++k) {
     const Setting& s = set[k];
-    // The suite's integral of the value at this setting (shared with energy).
+    const std::uint64_t n = share_of(samples(b), s);
+    // The suite's integral of the value at this setting (shared with energy; a parameter
+    // choice's with its share of the draws).
     const HemisphereIntegral c = reuse && k < reuse->size() ? (*reuse)[k] : value_integral(m, s, b);
     a.references.push_back(c);
     if (!std::isfinite(c.value) && a.non_finite.empty())
@@ -508,10 +592,7 @@ Assessment covers_value_at(const ModelEntry& m, const std::vector<Setting>& set,
       bound = 0;
     }
     a.raw_p_values.push_back(w.non_finite ? 0.0 : p_beyond_bound(w.weight.mean - c.value, bound, se));
-    if (const double d = detectable_effect(level, set.size(), se, c.value); d < power) {
-      power = d;
-      power_where = s.label;
-    }
+    power.add(s, detectable_effect(level, set.size(), se, c.value));
     const double rel = c.value > 0 ? (w.weight.mean - c.value) / c.value : w.weight.mean;
     if (std::abs(rel) >= std::abs(worst_rel)) {
       worst_rel = rel;
@@ -525,11 +606,11 @@ Assessment covers_value_at(const ModelEntry& m, const std::vector<Setting>& set,
   a.value = worst_rel;
   a.configurations = int(set.size());
   a.verdict = f.any_rejected ? Verdict::kFails : Verdict::kHolds;
-  a.power = fmt::format("a relative difference of {:.2g} % of ∫ value beyond the cubature's "
-                        "error ({})", 100 * power, power_where);
+  a.power = fmt::format("a relative difference of ∫ value beyond the cubature's error of {}",
+                        power.describe([](double d) { return fmt::format("{:.2g} %", 100 * d); }));
   a.detail = fmt::format("{} settings × {} samples: {} rejected at level {:.3g}{}; largest "
                          "relative difference {:+.3g} ({})",
-                         set.size(), n, f.rejections, level,
+                         set.size(), samples(b), f.rejections, level,
                          non_finite ? fmt::format(", {} non-finite weights", non_finite) : "",
                          worst_rel, where);
   return a;
@@ -544,13 +625,17 @@ Assessment assess_pdf_normalized(const ModelEntry& m, Budget b, const std::strin
   Assessment a;
   a.statistic = "largest difference of ∫ pdf dωo (ωo_z > 0) from the acceptance rate above the "
                 "horizon (z test, p Holm–Šidák-adjusted)";
-  const auto set = settings(m, b);
-  const std::uint64_t n = samples(b);
-  double worst = 0, power = std::numeric_limits<double>::infinity();
-  std::string power_where = "—";
+  auto set = settings(m, b);
+  const std::size_t base = set.size();
+  std::string left_out;
+  const std::vector<Setting> choices = variant_settings(m, b, "pdf-normalized", &left_out);
+  set.insert(set.end(), choices.begin(), choices.end());
+  double worst = 0;
+  PowerByConfiguration power;
   std::string where = "—";
   for (std::size_t k = 0; k < set.size(); ++k) {
     const Setting& s = set[k];
+    const std::uint64_t n = share_of(samples(b), s);
     const HemisphereIntegral c = integrate_hemisphere(
         m,
         [&](std::span<const V3> wo, std::span<double> out) {
@@ -558,7 +643,8 @@ Assessment assess_pdf_normalized(const ModelEntry& m, Budget b, const std::strin
           for (std::size_t i = 0; i < wo.size(); ++i) at[i].wo = wo[i];
           pdf_each(m, s.values, at, out);
         },
-        s.query.wi, roughness_hint(m, s.values), b, check_seed(id, set.size() + k));
+        s.query.wi, roughness_hint(m, s.values), b,
+        check_seed(id, k < base ? base + k : 1000 + k), s.share);
     if (!std::isfinite(c.value) && a.non_finite.empty())
       a.non_finite = fmt::format("∫ pdf dωo at {} is {} (pdf() is not finite there)", s.label,
                                  c.value);
@@ -572,10 +658,7 @@ Assessment assess_pdf_normalized(const ModelEntry& m, Budget b, const std::strin
       bound = 0;
     }
     a.raw_p_values.push_back(p_beyond_bound(c.value - accept, bound, se));
-    if (const double d = detectable_effect(level, set.size(), se, accept); d < power) {
-      power = d;
-      power_where = s.label;
-    }
+    power.add(s, detectable_effect(level, set.size(), se, accept));
     if (std::abs(c.value - accept) >= std::abs(worst)) {
       worst = c.value - accept;
       where = fmt::format("{}: ∫ pdf {:.5g} ± {:.2g}, accepted {:.5g} ± {:.2g}", s.label, c.value,
@@ -587,11 +670,13 @@ Assessment assess_pdf_normalized(const ModelEntry& m, Budget b, const std::strin
   a.value = worst;
   a.configurations = int(set.size());
   a.verdict = f.any_rejected ? Verdict::kFails : Verdict::kHolds;
-  a.power = fmt::format("a relative difference of {:.2g} % between ∫ pdf and the acceptance rate "
-                        "beyond the cubature's error ({})", 100 * power, power_where);
-  a.detail = fmt::format("{} settings × {} samples: {} rejected at level {:.3g}; largest "
+  a.power = fmt::format("a relative difference between ∫ pdf and the acceptance rate beyond the "
+                        "cubature's error of {}",
+                        power.describe([](double d) { return fmt::format("{:.2g} %", 100 * d); }));
+  a.detail = fmt::format("{} settings ({}) × {} samples: {} rejected at level {:.3g}; largest "
                          "difference {:+.3g} ({})",
-                         set.size(), n, f.rejections, level, worst, where);
+                         set.size(), describe_configurations(base, choices, left_out), samples(b),
+                         f.rejections, level, worst, where);
   return a;
 }
 

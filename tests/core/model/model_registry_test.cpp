@@ -194,5 +194,24 @@ TEST(ModelRegistry, MisspelledNotClaimedPropertyIsRefused) {
   EXPECT_EQ(registered_models().size(), before);
 }
 
+// A not-claimed declaration limited to a parameter choice must name one of the model's choices
+// ("param=choice"); a choice it does not have is refused like a misspelled property.
+TEST(ModelRegistry, NotClaimedChoiceMustBeDeclared) {
+  static_assert(is_declared_choice(SmoothGGX::kParams, "sampler=ndf"));
+  static_assert(!is_declared_choice(SmoothGGX::kParams, "sampler=nfd"));
+  static_assert(!is_declared_choice(SmoothGGX::kParams, "alpha_x=0.5"));
+  ModelEntry e = make_model_entry<SmoothGGX>();
+  e.name = "smooth_ggx_not_claimed_choice";
+  e.not_claimed = {{"energy", "fine", "sampler=ndf"}};
+  EXPECT_NO_THROW(check_not_claimed(e));
+  e.not_claimed = {{"energy", "misspelled", "sampler=nfd"}};
+  try {
+    check_not_claimed(e);
+    ADD_FAILURE() << "an undeclared choice was accepted";
+  } catch (const ModelParamError& x) {
+    EXPECT_NE(std::string(x.what()).find("'sampler=nfd'"), std::string::npos) << x.what();
+  }
+}
+
 }  // namespace
 }  // namespace glintlab

@@ -251,6 +251,116 @@ ModelEntry lambert_toy_missing_cap(double rho, bool excluded) {
   return e;
 }
 
+// ---- Every declared choice is a configuration -----------------------------------------------------
+
+// The Lambertian toy with a `sampler` parameter: cosine (the default) or a second sampler that,
+// when `broken`, draws only the half-space wo_y ≥ 0 (reporting that sampler's pdf 2 cos θo/π there
+// truthfully, as eval's and pdf() do: it misses half the value), and otherwise samples the
+// hemisphere uniformly (pdf 1/2π: correct, the near-truth twin).
+constexpr std::array<std::string_view, 2> kToySamplers = {"cosine", "second"};
+ModelEntry lambert_toy_two_samplers(bool broken) {
+  ModelEntry e = lambert_toy(0.9);
+  e.params = {ParamSpec{"sampler", 0.0, 0.0, 1.0, false, false, "test sampler", kToySamplers}};
+  auto pdf = [broken](const std::vector<double>& v, const V3& wo) {
+    if (!(wo.z > 0)) return 0.0;
+    if (v[0] == 0) return wo.z / std::numbers::pi;
+    if (!broken) return 1 / (2 * std::numbers::pi);
+    return wo.y >= 0 ? 2 * wo.z / std::numbers::pi : 0.0;
+  };
+  e.eval = [pdf](const std::vector<double>& v, const ModelQuery<double>& q) {
+    return ErasedEval{q.wo.z > 0 ? 0.9 * q.wo.z / std::numbers::pi : 0.0, pdf(v, q.wo), {}};
+  };
+  e.pdf = [pdf](const std::vector<double>& v, const ModelQuery<double>& q) { return pdf(v, q.wo); };
+  e.sample = [pdf, broken](const std::vector<double>& v, const ModelQuery<double>&,
+                           Vec2<double> u) {
+    V3 wo;
+    if (v[0] == 0 || broken) {
+      const double r = std::sqrt(u.x), phi = (v[0] == 0 ? 2.0 : 1.0) * std::numbers::pi * u.y;
+      wo = {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1 - u.x))};
+    } else {
+      const double z = u.x, r = std::sqrt(std::max(0.0, 1 - z * z)),
+                   phi = 2 * std::numbers::pi * u.y;
+      wo = {r * std::cos(phi), r * std::sin(phi), z};
+    }
+    const double density = pdf(v, wo);
+    return ModelSample<double>{wo, density,
+                               density > 0 ? 0.9 * wo.z / std::numbers::pi / density : 0.0, false};
+  };
+  return e;
+}
+
+// Only the defaults ran before: the broken second sampler was never drawn from, and the toy held.
+// Now the choice is a configuration of sampler-covers-value and of sampler-matches-pdf (the
+// weighted histogram), both fail on it, and the twin whose second sampler is correct holds.
+TEST(ConformanceChoices, BrokenNonDefaultSamplerFails) {
+  const ModelEntry broken = lambert_toy_two_samplers(true);
+  ASSERT_EQ(variants(broken).size(), 1u);
+  EXPECT_EQ(variants(broken)[0].label, "sampler=second");
+  const Assessment c = assess("sampler-covers-value", broken, Budget::kQuick, "test.choices",
+                              model_level(broken));
+  EXPECT_EQ(c.verdict, Verdict::kFails) << c.detail;
+  EXPECT_EQ(c.configurations, 3) << c.detail;  // θi 30° and 70° at the defaults, the choice at 70°
+  EXPECT_NE(c.detail.find("sampler=second, θi=70°"), std::string::npos) << c.detail;
+  // The defaults alone (what ran before) hold: the failure is the choice's.
+  ASSERT_EQ(c.raw_p_values.size(), 3u);
+  EXPECT_GT(c.raw_p_values[0], 1e-3) << c.detail;
+  EXPECT_GT(c.raw_p_values[1], 1e-3) << c.detail;
+  EXPECT_LT(c.raw_p_values[2], 1e-6) << c.detail;
+  EXPECT_EQ(verdict_of(broken, "sampler-matches-pdf"), Verdict::kFails);
+
+  const ModelEntry twin = lambert_toy_two_samplers(false);
+  for (std::string_view p : {"eval-pdf-consistency", "sampler-matches-pdf", "sampler-covers-value",
+                             "pdf-normalized"}) {
+    const Assessment a = assess(p, twin, Budget::kQuick, "test.choices", model_level(twin));
+    EXPECT_EQ(a.verdict, Verdict::kHolds) << p << ": " << a.detail;
+  }
+}
+
+// The configurations: each non-default choice and the roughness grid (alpha_x and alpha_y
+// together, the default 0.5 left out) for smooth_ggx; podee's grid inside its range without its
+// default 0.05.
+TEST(ConformanceChoices, EveryChoiceAndARoughnessGrid) {
+  std::vector<std::string> labels;
+  for (const Variant& v : variants(find_model("smooth_ggx"))) labels.push_back(v.label);
+  EXPECT_EQ(labels, (std::vector<std::string>{"sampler=ndf", "sampler=spherical_caps",
+                                              "sampler=bounded_caps", "bound=exact_isotropic",
+                                              "alpha_x=alpha_y=0.05", "alpha_x=alpha_y=0.3",
+                                              "alpha_x=alpha_y=0.8"}));
+  labels.clear();
+  for (const Variant& v : variants(find_model("podee")))
+    if (v.choice.empty()) labels.push_back(v.label);
+  EXPECT_EQ(labels, (std::vector<std::string>{"alpha_x=alpha_y=0.3", "alpha_x=alpha_y=0.8"}));
+  // One θi per choice at quick, two at full, each at 1/7 of the samples (7 choices: together one
+  // default setting's).
+  const ModelEntry& ggx = find_model("smooth_ggx");
+  EXPECT_EQ(variant_settings(ggx, Budget::kQuick, "pdf-normalized", nullptr).size(), 7u);
+  const auto full = variant_settings(ggx, Budget::kFull, "pdf-normalized", nullptr);
+  ASSERT_EQ(full.size(), 14u);
+  for (const Setting& s : full) EXPECT_DOUBLE_EQ(s.share, 1.0 / 7);
+  // At most a quarter each.
+  EXPECT_DOUBLE_EQ(variant_share(lambert_toy_two_samplers(true)), kMaxVariantShare);
+}
+
+// Kemppinen's pdf=printed reports Algorithm 2's printed density by design: it is declared not
+// claimed for the properties that compare the sample's pdf and weight with pdf() and value, left
+// out of them with the reason in the row, and run by the others.
+TEST(ConformanceChoices, PrintedPdfIsNotClaimedWhereItIsInconsistentByDesign) {
+  const ModelEntry& k = find_model("kemppinen_ggx");
+  for (std::string_view p : {"eval-pdf-consistency", "sampler-matches-pdf", "sampler-covers-value"}) {
+    EXPECT_FALSE(not_claimed_reason(p, k)) << p;  // claimed at every other configuration
+    std::string left_out;
+    for (const Setting& s : variant_settings(k, Budget::kQuick, p, &left_out))
+      EXPECT_EQ(s.label.find("pdf=printed"), std::string::npos) << p;
+    EXPECT_EQ(left_out.rfind("pdf=printed (not claimed: ", 0), 0u) << left_out;
+  }
+  std::string left_out;
+  bool printed = false;
+  for (const Setting& s : variant_settings(k, Budget::kQuick, "pdf-normalized", &left_out))
+    printed |= s.label.rfind("pdf=printed", 0) == 0;
+  EXPECT_TRUE(printed);
+  EXPECT_TRUE(left_out.empty()) << left_out;
+}
+
 // The cap's cells get no sample, so the pooled cells are never tested: only the value mass where
 // the pdf is 0, counted from the reference's own draws, shows the weighted histogram (raw p
 // second) the missing 1.8 %. The chi-square of the directions (raw p first) holds: the sampler
@@ -431,8 +541,8 @@ TEST(ConformanceFaults, ContainedCatchesAnyException) {
 }
 
 // eval NaN everywhere: the properties whose statistic needs its value report error naming what
-// was not finite; stability, whose statistic counts NaN outputs, fails (its verdict, not an error);
-// energy reads only the sampler's weights and holds.
+// was not finite (energy too: it integrates eval's value); stability, whose statistic counts NaN
+// outputs, fails (its verdict, not an error).
 TEST(ConformanceFaults, NanEvalIsAnErrorWhereANumberIsRequired) {
   ModelEntry toy = find_model("smooth_ggx");
   toy.eval = [f = toy.eval](const std::vector<double>& v, const ModelQuery<double>& q) {
@@ -452,7 +562,9 @@ TEST(ConformanceFaults, NanEvalIsAnErrorWhereANumberIsRequired) {
   EXPECT_EQ(run_property("sampler-matches-pdf", toy, Budget::kQuick).verdict, Verdict::kError);
   EXPECT_EQ(run_property("eval-pdf-consistency", toy, Budget::kQuick).verdict, Verdict::kError);
   EXPECT_EQ(run_property("stability", toy, Budget::kQuick).verdict, Verdict::kFails);
-  EXPECT_EQ(run_property("energy", toy, Budget::kQuick).verdict, Verdict::kHolds);
+  const CheckResult energy = run_property("energy", toy, Budget::kQuick);
+  EXPECT_EQ(energy.verdict, Verdict::kError);
+  EXPECT_NE(energy.detail.find("∫ value dωo at"), std::string::npos) << energy.detail;
 }
 
 // ---- simd-equivalence's control perturbs the batch, the path under test ---------------------------
