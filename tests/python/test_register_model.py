@@ -237,15 +237,17 @@ def test_chunked_errors_inside_verify():
     glintlab.register_model("py_bad_shape", nm.lambert_eval, nm.lambert_pdf, sample_wrong_shape,
                             params=[nm.ALBEDO])
     rows = {r["id"]: r for r in glintlab.verify(
-        "model.py_nan_row.sampler-matches-pdf,model.py_bad_shape.energy,"
-        "model.py_bad_shape.eval-pdf-consistency", threads=2)}
+        "model.py_nan_row.sampler-matches-pdf,model.py_bad_shape.pdf-normalized,"
+        "model.py_bad_shape.eval-pdf-consistency,model.py_bad_shape.energy", threads=2)}
     nan = rows["model.py_nan_row.sampler-matches-pdf"]
     assert nan["verdict"] == "error"
     assert "glintlab model 'py_nan_row': pdf returned NaN in its pdf at row" in nan["detail"], nan
-    shape = rows["model.py_bad_shape.energy"]
+    shape = rows["model.py_bad_shape.pdf-normalized"]
     assert shape["verdict"] == "error"
     assert "glintlab model 'py_bad_shape': sample returned its 'wo' of shape" in shape["detail"], shape
     assert rows["model.py_bad_shape.eval-pdf-consistency"]["verdict"] == "error"
+    # energy integrates eval's value, never the sampler: the broken sampler does not touch it.
+    assert rows["model.py_bad_shape.energy"]["verdict"] == "holds"
 
 
 def test_example_my_glint_model(tmp_path):
