@@ -144,4 +144,20 @@ std::string level_costs_json(const std::vector<std::string>& models,
   return nlohmann::json{{"context", nlohmann::json::object()}, {"benchmarks", rows}}.dump(1);
 }
 
+
+std::map<std::string, std::string> CliTest::file_tree(const std::string& dir) const {
+  std::map<std::string, std::string> files;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(path(dir)))
+    if (e.is_regular_file())
+      files[std::filesystem::relative(e.path(), path(dir)).string()] = read_text(e.path());
+  return files;
+}
+
+std::set<std::string> CliTest::work_paths() const {
+  std::set<std::string> paths;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(work_))
+    paths.insert(std::filesystem::relative(e.path(), work_).string());
+  return paths;
+}
+
 }  // namespace glintlab::cli_test

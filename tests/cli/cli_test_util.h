@@ -6,6 +6,7 @@
 
 #include <array>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -52,6 +53,10 @@ class CliTest : public ::testing::Test {
 
   // The directory the executable runs in; empty at the start of each test.
   const std::filesystem::path& work() const { return work_; }
+  // Every file under `dir` (a path in work()): relative path -> bytes; for byte-comparing two runs.
+  std::map<std::string, std::string> file_tree(const std::string& dir) const;
+  // Every path (files and folders) under work(), relative: what a failed run must leave as it is.
+  std::set<std::string> work_paths() const;
   std::filesystem::path path(const std::string& name) const { return work_ / name; }
 
   // Asserts a failed run: exit code 2, nothing on stdout, exactly one stderr line of the form

@@ -101,9 +101,7 @@ TEST_F(CompareShardTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing)
   const std::string b2 = read_text(path("b2/compare.json"));
   write_text(path("b2/compare.json"),
              std::regex_replace(b2, std::regex("\"repetitions\": [0-9]+"), "\"repetitions\": 99"));
-  std::set<std::string> before;
-  for (const auto& e : fs::recursive_directory_iterator(work()))
-    before.insert(fs::relative(e.path(), work()).string());
+  const std::set<std::string> before = work_paths();
   expect_input_error(run({"merge", "a1", "--out", "m"}), {"shard 2/2 is missing"}, before);
   expect_input_error(run({"merge", "a1", "a2", "a2", "--out", "m"}),
                      {"shard 2/2 is given twice", "'a2'"}, before);

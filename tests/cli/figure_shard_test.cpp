@@ -39,15 +39,6 @@ class FigureShardTest : public CliTest {
     return run(args);
   }
 
-  // Every file under `dir` (relative path -> bytes).
-  std::map<std::string, std::string> tree(const std::string& dir) const {
-    std::map<std::string, std::string> files;
-    for (const auto& e : fs::recursive_directory_iterator(path(dir)))
-      if (e.is_regular_file())
-        files[fs::relative(e.path(), path(dir)).string()] = read_text(e.path());
-    return files;
-  }
-
   // `figure IDS --list --shard K/N --budget B`: the ids of the plan and their costs, and the
   // summary line's shard total.
   struct Plan {
@@ -88,7 +79,7 @@ class FigureShardTest : public CliTest {
 
 TEST_F(FigureShardTest, MergedShardsAreTheFoldersOfOneRun) {
   ASSERT_EQ(figure("one").exit_code, 0);
-  const std::map<std::string, std::string> one = tree("one");
+  const std::map<std::string, std::string> one = file_tree("one");
   std::set<std::string> folders;
   for (const auto& [file, bytes] : one) folders.insert(file.substr(0, file.find('/')));
   ASSERT_EQ(folders, std::set<std::string>(kSelection.begin(), kSelection.end()));
@@ -134,7 +125,7 @@ TEST_F(FigureShardTest, MergedShardsAreTheFoldersOfOneRun) {
     merge.insert(merge.end(), {"--out", out});
     const RunResult r = run(merge);
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_TRUE(tree(out) == one) << n << " shards: the merged folders differ from one run's";
+    EXPECT_TRUE(file_tree(out) == one) << n << " shards: the merged folders differ from one run's";
     EXPECT_FALSE(fs::exists(path(out + "/shard.json")));
   }
   // Six figures in 7 shards: one shard ran nothing and holds only its manifest.
@@ -169,9 +160,7 @@ TEST_F(FigureShardTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing) 
                                                        std::regex("\"command\": \"figure\""),
                                                        "\"command\": \"adequacy\""));
   fs::create_directory(path("plain"));  // not a shard
-  std::set<std::string> before;
-  for (const auto& e : fs::recursive_directory_iterator(work()))
-    before.insert(fs::relative(e.path(), work()).string());
+  std::set<std::string> before = work_paths();
   expect_input_error(run({"merge", "a1", "--out", "m"}), {"shard 2/2 is missing"}, before);
   expect_input_error(run({"merge", "a1", "a2", "a2", "--out", "m"}),
                      {"shard 2/2 is given twice", "'a2'"}, before);

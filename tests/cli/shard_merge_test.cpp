@@ -85,9 +85,7 @@ TEST_F(ShardMergeTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing) {
   ASSERT_EQ(verify("a2", "2/2").exit_code, 0);
   ASSERT_EQ(verify("b1", "1/3").exit_code, 0);
   ASSERT_EQ(verify("one").exit_code, 0);
-  std::set<std::string> before;
-  for (const auto& e : fs::recursive_directory_iterator(work()))
-    before.insert(fs::relative(e.path(), work()).string());
+  const std::set<std::string> before = work_paths();
   expect_input_error(run({"merge", "a1", "--out", "m"}), {"shard 2/2 is missing"}, before);
   expect_input_error(run({"merge", "a1", "a2", "a2", "--out", "m"}),
                      {"shard 2/2 is given twice", "'a2'"}, before);

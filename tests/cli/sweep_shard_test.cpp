@@ -31,20 +31,11 @@ class SweepShardTest : public CliTest {
     if (!shard.empty()) args.insert(args.end(), {"--shard", shard});
     return run(args);
   }
-
-  // Every file under `dir` (relative path -> bytes).
-  std::map<std::string, std::string> tree(const std::string& dir) const {
-    std::map<std::string, std::string> files;
-    for (const auto& e : fs::recursive_directory_iterator(path(dir)))
-      if (e.is_regular_file())
-        files[fs::relative(e.path(), path(dir)).string()] = read_text(e.path());
-    return files;
-  }
 };
 
 TEST_F(SweepShardTest, MergedShardsAreTheFilesOfOneRun) {
   ASSERT_EQ(sweep("one").exit_code, 0);
-  const std::map<std::string, std::string> one = tree("one");
+  const std::map<std::string, std::string> one = file_tree("one");
   ASSERT_TRUE(one.count("stability.json"));
   for (int n : {1, 2, 3, 4}) {
     std::vector<std::string> merge = {"merge"};
@@ -62,7 +53,7 @@ TEST_F(SweepShardTest, MergedShardsAreTheFilesOfOneRun) {
     merge.insert(merge.end(), {"--out", out});
     const RunResult r = run(merge);
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_TRUE(tree(out) == one) << n << " shards: the merged files differ from one run's";
+    EXPECT_TRUE(file_tree(out) == one) << n << " shards: the merged files differ from one run's";
   }
   // Three models in 4 shards: the 4th swept none and holds its manifest alone.
   EXPECT_TRUE(unexpected_files(path("s4_4"), {"shard.json"}).empty());
@@ -75,9 +66,7 @@ TEST_F(SweepShardTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing) {
   // A shard whose stability.json holds another model than its manifest lists.
   fs::copy(path("a2"), path("x2"), fs::copy_options::recursive);
   write_text(path("x2/stability.json"), read_text(path("a1/stability.json")));
-  std::set<std::string> before;
-  for (const auto& e : fs::recursive_directory_iterator(work()))
-    before.insert(fs::relative(e.path(), work()).string());
+  const std::set<std::string> before = work_paths();
   expect_input_error(run({"merge", "a1", "--out", "m"}), {"shard 2/2 is missing"}, before);
   expect_input_error(run({"merge", "a1", "a2", "a2", "--out", "m"}),
                      {"shard 2/2 is given twice", "'a2'"}, before);
