@@ -1,6 +1,7 @@
-// A run split into shards (`--shard K/N`): shard K of N runs every N-th item of the run's ordered
-// selection, starting at the K-th, and writes its rows and a manifest (shard.json) that
-// `glintlab merge` checks before it joins the shards into the files of one run.
+// A run split into shards (`--shard K/N`): shard K of N runs its part of the run's ordered
+// selection (verify and figure: balanced by cost, cli/shard_plan.h; compare and sweep: every N-th
+// item from the K-th) and writes its rows and a manifest (shard.json) that `glintlab merge` checks
+// before it joins the shards into the files of one run.
 #pragma once
 
 #include <cstdint>
@@ -20,7 +21,7 @@ inline constexpr std::uint64_t kMaxShards = 10000;
 Shard parse_shard(std::string_view text, std::string_view option);
 
 // The positions in a selection of `count` items that shard s runs: k-1, k-1+n, k-1+2n, ...
-// (interleaved, so that each paper's claims, registered together, spread over the shards).
+// (interleaved: compare's and sweep's models, whose costs are not known before they run).
 std::vector<std::size_t> shard_positions(std::size_t count, Shard s);
 
 // What a shard's folder records besides its rows: which run it belongs to and what it covers.

@@ -1,8 +1,8 @@
 // Shards balanced by cost: for the subcommands whose items cost very different times (a figure at
-// full runs from a second to ten minutes), shard K of N runs the items that a greedy longest-first
-// assignment gives it, instead of verify's every-N-th split (cli/shard.h). The manifest, its
-// checks and `glintlab merge` are the same for both: a merge only needs each shard's `covered`
-// items, never how they were chosen.
+// full runs from a second to ten minutes, a claim from a millisecond to thirteen minutes), shard K
+// of N runs the items that a greedy longest-first assignment gives it, instead of the every-N-th
+// split of compare and sweep (cli/shard.h). The manifest, its checks and `glintlab merge` are the
+// same for both: a merge only needs each shard's `covered` items, never how they were chosen.
 #pragma once
 
 #include <cstddef>

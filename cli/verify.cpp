@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cli/args.h"
+#include "cli/claim_costs.h"
 #include "cli/commands.h"
 #include "cli/input.h"
 #include "cli/progress.h"
@@ -107,12 +108,21 @@ int run(const CLI::App* cmd, const VerifyOptions& o) {
   auto selected = select_checks(o.claims);
   const bool sharded = option_count(cmd, "--shard") > 0;
   const Shard shard = sharded ? parse_shard(o.shard, "--shard") : Shard{};
-  if (sharded && (o.list || to_calibrate))
-    throw InputError("--shard: only for a run of the suite (not with --list or --calibrate)");
+  if (sharded && (o.json || to_calibrate))
+    throw InputError(
+        "--shard: only for a run of the suite or its plan (--list), not with --json or "
+        "--calibrate");
   if (o.json && !o.list)
     throw InputError("--json: only with --list (valid: glintlab verify --list --json)");
   if (o.list && o.json) {
     fmt::print("{}", verify::registry_to_json(selected));
+    return 0;
+  }
+  const bool quick = budget_name != "full";
+  if (o.list && sharded) {
+    std::vector<std::string> ids;
+    for (const auto* c : selected) ids.push_back(c->id);
+    print_claim_shard_plan(ids, shard, quick);
     return 0;
   }
   if (o.list) {
@@ -124,8 +134,7 @@ int run(const CLI::App* cmd, const VerifyOptions& o) {
     return 0;
   }
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-  const verify::Budget budget =
-      budget_name == "full" ? verify::Budget::kFull : verify::Budget::kQuick;
+  const verify::Budget budget = quick ? verify::Budget::kQuick : verify::Budget::kFull;
 
   check_output_dir(o.out, "--out");
   std::error_code ec;
@@ -147,8 +156,11 @@ int run(const CLI::App* cmd, const VerifyOptions& o) {
     manifest.shard = shard;
     manifest.threads = threads;
     manifest.machine = machine_description(threads);
+    // Balanced by each claim's recorded seconds at this budget (cli/claim_costs.h).
+    std::vector<ClaimCostEstimate> costs;
     std::vector<const verify::Check*> part;
-    for (std::size_t i : shard_positions(selected.size(), shard)) part.push_back(selected[i]);
+    for (std::size_t i : claim_shard_positions(manifest.selection, shard, quick, costs))
+      part.push_back(selected[i]);
     selected = part;
     for (const auto* c : selected) manifest.covered.push_back(c->id);
   }
@@ -215,10 +227,11 @@ void add_verify_command(CLI::App& app) {
                   "nominal level for the calibration's false-positive rate: a number in (0, 1)",
                   "NUMBER");
   add_text_option(sub, "--shard", opts->shard,
-                  "K/N: run only the K-th of N shards of the selected claims (every N-th claim "
-                  "from the K-th, in --list order) and write shard.json beside the rows; "
-                  "glintlab merge joins the N folders into the files of one run. 1 <= K <= N <= "
-                  "10000",
+                  "K/N: run only the K-th of N shards of the selected claims, balanced by each "
+                  "claim's recorded seconds at the budget (cli/claim_costs_table.cpp), and write "
+                  "shard.json beside the rows; glintlab merge joins the N folders into the files "
+                  "of one run; with --list: the claims that shard would run and their costs, "
+                  "running nothing. 1 <= K <= N <= 10000",
                   "K/N");
   set_callback(sub, [sub, opts] {
     const int rc = run(sub, *opts);

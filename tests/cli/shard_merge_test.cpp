@@ -1,11 +1,14 @@
-// `glintlab verify --shard K/N` and `glintlab merge`: a run split into N shards (N = 1, 2, 3 and 7,
-// some shards empty) and merged gives the bytes of one unsharded run apart from the timing fields,
-// the suite's Holm–Šidák adjustment included (a shard's own adjustment covers only its rows); a
-// missing, repeated or foreign shard is one error line naming it, and nothing is written.
+// `glintlab verify --shard K/N` and `glintlab merge`: a run split into N shards balanced by the
+// claims' recorded seconds (N = 1, 2, 3 and 7, some shards empty) and merged gives the bytes of one
+// unsharded run apart from the timing fields, the suite's Holm–Šidák adjustment included (a
+// shard's own adjustment covers only its rows); `verify --list --shard K/N` prints the plan a
+// shard runs; a missing, repeated or foreign shard is one error line naming it, and nothing is
+// written.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
@@ -21,7 +24,9 @@ namespace fs = std::filesystem;
 
 class ShardMergeTest : public CliTest {
  protected:
-  // Six quick claims, three of them with p-values (so that the adjustment spans shards).
+  // Six quick claims, three of them with p-values (so that the adjustment spans shards). Their
+  // recorded costs (cli/claim_costs_table.cpp) differ: kneiphof.subdivision and
+  // podee.brightest-vector cost most.
   static constexpr const char* kClaims =
       "kemppinen.furnace,kemppinen.roulette,kneiphof.subdivision,eto.backfacing-stable-pdf,"
       "kneiphof.cap-probability,podee.brightest-vector";
@@ -31,6 +36,47 @@ class ShardMergeTest : public CliTest {
                                      "quick",  "--threads", "2",     "--out", out};
     if (!shard.empty()) args.insert(args.end(), {"--shard", shard});
     return run(args);
+  }
+
+  // `verify --claims C --list --shard K/N --budget B`: the ids of the plan, their costs, how many
+  // are estimated (no recorded row at the budget), and the summary line's shard total and total.
+  struct Plan {
+    std::vector<std::string> ids;
+    std::vector<double> costs;
+    int estimated = 0;
+    double cost = 0, total = 0;
+  };
+  Plan plan(const std::string& claims, int k, int n, const std::string& budget) const {
+    const RunResult r = run({"verify", "--claims", claims, "--list", "--shard",
+                             std::to_string(k) + "/" + std::to_string(n), "--budget", budget});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    Plan p;
+    const std::regex item(
+        R"(^(\S+) +([0-9.e+-]+) s( \(estimated: no recorded row at this budget\))?$)");
+    const std::regex summary(
+        R"(^shard \d+/\d+: \d+ of \d+ claims, ([0-9.e+-]+) s of ([0-9.e+-]+) s recorded)");
+    double listed = 0;
+    for (const std::string& line : lines_of(r.out)) {
+      std::smatch m;
+      if (std::regex_search(line, m, item)) {
+        p.ids.push_back(m[1]);
+        p.costs.push_back(std::stod(m[2]));
+        p.estimated += m[3].matched ? 1 : 0;
+        listed += p.costs.back();
+      } else if (std::regex_search(line, m, summary)) {
+        p.cost = std::stod(m[1]);
+        p.total = std::stod(m[2]);
+      } else {
+        ADD_FAILURE() << "unexpected plan line: " << line;
+      }
+    }
+    EXPECT_NEAR(listed, p.cost, 1e-4 * (1 + p.cost));
+    return p;
+  }
+
+  std::vector<std::string> covered(const std::string& dir) const {
+    return nlohmann::json::parse(read_text(path(dir + "/shard.json")))["covered"]
+        .get<std::vector<std::string>>();
   }
 };
 
@@ -47,12 +93,21 @@ TEST_F(ShardMergeTest, MergedShardsAreTheBytesOfOneRun) {
   ASSERT_EQ(verify("one").exit_code, 0);
   for (int n : {1, 2, 3, 7}) {
     std::vector<std::string> merge = {"merge"};
-    for (int k = n; k >= 1; --k) {  // any order
+    std::map<std::string, int> shard_of;  // claim id -> K
+    for (int k = n; k >= 1; --k) {        // any order
       const std::string dir = "s" + std::to_string(n) + "_" + std::to_string(k);
       const RunResult r = verify(dir, std::to_string(k) + "/" + std::to_string(n));
       ASSERT_EQ(r.exit_code, 0) << r.err;
       ASSERT_TRUE(fs::exists(path(dir + "/shard.json"))) << dir;
+      // The plan that --list --shard prints, running nothing, is what the shard ran.
+      EXPECT_EQ(plan(kClaims, k, n, "quick").ids, covered(dir)) << dir;
+      for (const std::string& id : covered(dir))
+        EXPECT_TRUE(shard_of.emplace(id, k).second) << id << " in two shards of " << n;
       merge.push_back(dir);
+    }
+    EXPECT_EQ(shard_of.size(), 6u) << n;
+    if (n >= 2) {  // balanced by cost, not every N-th: the two costliest never share a shard
+      EXPECT_NE(shard_of["kneiphof.subdivision"], shard_of["podee.brightest-vector"]) << n;
     }
     const std::string out = "merged" + std::to_string(n);
     merge.insert(merge.end(), {"--out", out});
@@ -64,9 +119,11 @@ TEST_F(ShardMergeTest, MergedShardsAreTheBytesOfOneRun) {
           << n << " shards: " << f;
     EXPECT_FALSE(fs::exists(path(out + "/shard.json")));
   }
-  // With 7 shards of 6 claims the 7th is empty. A shard's own adjustment covers its rows only:
-  // the merge's is computed over every shard's p-values, as one run's.
+  // With 7 shards of 6 claims one is empty (the 7th: each claim goes to the first shard with the
+  // least load). A shard's own adjustment covers its rows only: the merge's is computed over
+  // every shard's p-values, as one run's.
   EXPECT_EQ(read_text(path("s7_7/claims.json")), "[]\n");
+  EXPECT_TRUE(covered("s7_7").empty());
   auto adjusted = [&](const std::string& file) {
     for (const auto& row : nlohmann::json::parse(read_text(path(file))))
       if (row["id"] == "kemppinen.roulette") return row["suite_adjusted_p_value"].get<double>();
@@ -101,6 +158,47 @@ TEST_F(ShardMergeTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing) {
   for (const char* bad : {"0/2", "3/2", "1/0", "x", "1/"})
     expect_input_error(run({"verify", "--claims", kClaims, "--shard", bad, "--out", "v"}),
                        {"--shard", bad, "K/N"}, before);
+  expect_input_error(run({"verify", "--list", "--shard", "0/2"}), {"--shard", "0/2", "K/N"},
+                     before);
+  expect_input_error(run({"verify", "--list", "--json", "--shard", "1/2"}),
+                     {"--shard", "not with --json"}, before);
+}
+
+// Every claim of the suite and every conformance check at full in 4 shards: each in exactly one
+// shard's plan, and the costliest shard within Graham's bound for a greedy least-loaded
+// assignment (the mean load plus (1 - 1/N) of the costliest claim); the plan writes nothing.
+TEST_F(ShardMergeTest, PlanOfEveryClaimCoversEachOnceWithinTheGreedyBound) {
+  const int n = 4;
+  const std::string every = "*,model.*";
+  std::multiset<std::string> ids;
+  double largest_shard = 0, total = 0, sum = 0;
+  for (int k = 1; k <= n; ++k) {
+    const Plan p = plan(every, k, n, "full");
+    ids.insert(p.ids.begin(), p.ids.end());
+    largest_shard = std::max(largest_shard, p.cost);
+    total = p.total;
+    sum += p.cost;
+  }
+  const Plan all = plan(every, 1, 1, "full");
+  const double costliest = *std::max_element(all.costs.begin(), all.costs.end());
+  EXPECT_EQ(ids, std::multiset<std::string>(all.ids.begin(), all.ids.end()));
+  EXPECT_EQ(std::set<std::string>(ids.begin(), ids.end()).size(), ids.size());
+  EXPECT_NEAR(sum, total, 1e-4 * total);
+  EXPECT_LE(largest_shard, total / n + (1 - 1.0 / n) * costliest);
+  EXPECT_TRUE(unexpected_files(work(), {}).empty());
+}
+
+// Every registered claim has a recorded cost at quick, and every claim of the suite at full
+// (cli/claim_costs_table.cpp, generated from docs/data by scripts/claim_costs.py); conformance
+// checks without a full row get an estimate, marked in the plan.
+TEST_F(ShardMergeTest, EveryClaimHasARecordedCost) {
+  const Plan quick = plan("*,model.*", 1, 1, "quick");
+  EXPECT_GT(quick.ids.size(), 100u);
+  EXPECT_EQ(quick.estimated, 0);
+  const Plan suite = plan("*", 1, 1, "full");
+  EXPECT_GT(suite.ids.size(), 40u);
+  EXPECT_EQ(suite.estimated, 0);
+  for (double c : suite.costs) EXPECT_GE(c, 0);
 }
 
 }  // namespace
