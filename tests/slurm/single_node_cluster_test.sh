@@ -3,8 +3,10 @@
 # this host under a temporary folder (munge key, slurm.conf, state, spool, logs, free localhost
 # ports), the daemons started as root and detached (setsid, output to files), submit.sh's 4-task
 # array of `glintlab verify --budget quick` on six claims and its merge job, then the merged
-# claims.{json,csv,md} byte-compared with one unsharded run apart from the timing fields.
-# Negative controls: the same comparison must tell the first shard's files alone from the single
+# claims.{json,csv,md} byte-compared with one unsharded run apart from the timing fields; then a
+# 3-task array of `glintlab figure --budget quick` on three cheap figures and its merge, the merged
+# folders byte-compared with one run (these figures have no timing field).
+# Negative controls: the same comparisons must tell the first shard's files alone from the single
 # run, and a broken run (an unknown budget) must fail its tasks and never run its merge.
 #
 # Usage: single_node_cluster_test.sh GLINTLAB. Exit 0 pass, 1 fail, 77 skip (ctest
@@ -23,6 +25,9 @@ READY_SECONDS=60            # for the daemons to answer
 # the suite's adjustment spans shards.
 CLAIMS="kemppinen.furnace,kemppinen.roulette,kneiphof.subdivision,eto.backfacing-stable-pdf,kneiphof.cap-probability,podee.brightest-vector"
 SHARDS=4
+# Three quick figures of tests/cli/figure_shard_test.cpp, about 0.1 s of CPU each: one per shard.
+FIGURES="kneiphof2024-fig6,kemppinen2025-fig6,kemppinen2025-fig14"
+FIGURE_SHARDS=3
 start=$SECONDS
 
 skip() { echo "SKIP: $*"; exit 77; }
@@ -78,6 +83,9 @@ started() {  # NAME PID: still running half a second after the start?
 # The unsharded run the cluster's merge must reproduce: 1 thread, as each array task.
 timeout "$(left)" "$GLINTLAB" verify --claims "$CLAIMS" --budget quick --threads 1 \
   --out "$WORK/one" > "$WORK/one.txt" 2>&1 || { cat "$WORK/one.txt"; fail "the single run failed"; }
+timeout "$(left)" "$GLINTLAB" figure "$FIGURES" --budget quick --threads 1 \
+  --out "$WORK/figures-one" > "$WORK/figures-one.txt" 2>&1 ||
+  { cat "$WORK/figures-one.txt"; fail "the single figure run failed"; }
 
 mkdir -p "$WORK/munge" "$WORK/log" "$WORK/state" "$WORK/spool" "$WORK/run"
 chmod 0755 "$WORK/munge"
@@ -224,4 +232,34 @@ echo "$states"
 echo "$states" | grep -q "^$merge_id CANCELLED$" || fail "the broken run's merge was not cancelled"
 [ ! -e "$WORK/run2/verify" ] || fail "the broken run's merge wrote $WORK/run2/verify"
 echo "a broken run fails its tasks and its merge never runs"
+
+# Figures: submit.sh with SUBCOMMAND=figure, one figure per task; the merge writes
+# OUT/figure/<id>/ for each, the single run's folders byte for byte.
+ids=$(GLINTLAB=$GLINTLAB SUBCOMMAND=figure FIGURES=$FIGURES BUDGET=quick SHARDS=$FIGURE_SHARDS \
+        THREADS=1 OUT=$WORK/run3 PARTITION=test timeout 30 "$SUBMIT") || { echo "$ids"; fail "submit.sh failed"; }
+echo "$ids"
+array_id=$(echo "$ids" | sed -n 's/^array \([0-9][0-9]*\)$/\1/p')
+merge_id=$(echo "$ids" | sed -n 's/^merge \([0-9][0-9]*\)$/\1/p')
+[ -n "$array_id" ] || fail "submit.sh printed no 'array ID' line for the figures"
+[ -n "$merge_id" ] || fail "submit.sh printed no 'merge ID' line for the figures"
+while [ -n "$(timeout 5 squeue -h -j "$array_id,$merge_id" -t PENDING,RUNNING,CONFIGURING,COMPLETING -o %i 2>&1)" ]; do
+  [ "$(left)" -gt 15 ] || { timeout 5 squeue; logs; fail "the figure jobs did not end within the test's ${DEADLINE} s"; }
+  sleep 1
+done
+states=$(timeout 5 squeue -h -j "$array_id,$merge_id" -t all -o '%i %T' 2>&1)
+echo "$states"
+tasks=$(echo "$states" | grep -c "^${array_id}_[0-9]* COMPLETED$")
+[ "$tasks" -eq $FIGURE_SHARDS ] || { cat "$WORK"/run3/logs/* 2> /dev/null; fail "$tasks of $FIGURE_SHARDS figure tasks completed"; }
+echo "$states" | grep -q "^$merge_id COMPLETED$" ||
+  { timeout 5 scontrol show job "$merge_id"; cat "$WORK"/run3/logs/* 2> /dev/null; fail "the figure merge job did not complete"; }
+[ -d "$WORK/run3/figure" ] || fail "the figure merge wrote no $WORK/run3/figure"
+if ! diff -r "$WORK/figures-one" "$WORK/run3/figure" > "$WORK/figures.diff" 2>&1; then
+  head -n 20 "$WORK/figures.diff"
+  fail "the merged figure folders differ from the single run's"
+fi
+# Negative control: shard 1 holds one of the three figures (and its manifest).
+if diff -r -q "$WORK/figures-one" "$WORK/run3/shards/1" > /dev/null 2>&1; then
+  fail "negative control: shard 1's folder passes as the single figure run's; the comparison is blind"
+fi
+echo "merged figure folders are the single run's bytes; shard 1 alone is not"
 echo "PASS in $((SECONDS - start)) s"
