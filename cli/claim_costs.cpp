@@ -10,6 +10,22 @@
 namespace glintlab::cli {
 namespace {
 
+// Claims decided on one measurement that a process makes once and keeps (a static cache in
+// verify/claims/): the first to run pays for it and the others' recorded seconds are near zero,
+// so in different shards each would measure again. Each group is one unit of the plan, in the
+// shard of its members' summed cost. tests/verify/registry_test.cpp runs the same groups together.
+const std::vector<std::vector<std::string_view>>& shared_measurements() {
+  static const std::vector<std::vector<std::string_view>> kGroups = {
+      // The stability sweep of every registered model (verify/claims/across.cpp suite_sweeps).
+      {"all.stability", "all.energy-gain", "all.probability", "all.variance"},
+      // The GGAA renders' replicates (verify/claims/chermain.cpp ggaa_replicates).
+      {"chermain.ggaa-error", "chermain.ggaa-shimmer"},
+      // The normal-mapped tubes' replicates (bumpy_replicates).
+      {"chermain.ggaa-derivatives", "chermain.ggaa-sk"},
+  };
+  return kGroups;
+}
+
 double recorded_at(const ClaimCost& c, bool quick) {
   return quick ? c.quick_seconds : c.full_seconds;
 }
@@ -53,25 +69,56 @@ ClaimCostEstimate claim_cost(std::string_view id, bool quick) {
   return {quick ? d.mean_quick : d.mean_full, false};
 }
 
+std::vector<std::size_t> shared_measurement_leaders(const std::vector<std::string>& ids) {
+  std::vector<std::size_t> leader(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    leader[i] = i;
+    for (const auto& group : shared_measurements()) {
+      if (std::find(group.begin(), group.end(), ids[i]) == group.end()) continue;
+      for (std::size_t j = 0; j < i; ++j)
+        if (std::find(group.begin(), group.end(), ids[j]) != group.end()) {
+          leader[i] = j;
+          break;
+        }
+    }
+  }
+  return leader;
+}
+
 std::vector<std::size_t> claim_shard_positions(const std::vector<std::string>& ids, Shard s,
                                                bool quick, std::vector<ClaimCostEstimate>& costs) {
   costs.clear();
-  std::vector<double> seconds;
-  for (const std::string& id : ids) {
-    costs.push_back(claim_cost(id, quick));
-    seconds.push_back(costs.back().seconds);
+  for (const std::string& id : ids) costs.push_back(claim_cost(id, quick));
+  // One unit per claim that leads its group (or has none), costing its members' sum.
+  const std::vector<std::size_t> leader = shared_measurement_leaders(ids);
+  std::vector<std::size_t> unit_of(ids.size());
+  std::vector<double> unit_seconds;
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    if (leader[i] == i) {
+      unit_of[i] = unit_seconds.size();
+      unit_seconds.push_back(0.0);
+    } else {
+      unit_of[i] = unit_of[leader[i]];
+    }
+    unit_seconds[unit_of[i]] += costs[i].seconds;
   }
-  return cost_balanced_positions(seconds, s);
+  const std::vector<std::size_t> units = cost_balanced_positions(unit_seconds, s);
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    if (std::binary_search(units.begin(), units.end(), unit_of[i])) out.push_back(i);
+  return out;
 }
 
 void print_claim_shard_plan(const std::vector<std::string>& ids, Shard s, bool quick) {
   std::vector<ClaimCostEstimate> costs;
   const std::vector<std::size_t> mine = claim_shard_positions(ids, s, quick, costs);
+  const std::vector<std::size_t> leader = shared_measurement_leaders(ids);
   double total = 0, shard_total = 0;
   for (const ClaimCostEstimate& c : costs) total += c.seconds;
   for (std::size_t i : mine) {
-    fmt::print("{:<44} {:g} s{}\n", ids[i], costs[i].seconds,
-               costs[i].recorded ? "" : " (estimated: no recorded row at this budget)");
+    fmt::print("{:<44} {:g} s{}{}\n", ids[i], costs[i].seconds,
+               costs[i].recorded ? "" : " (estimated: no recorded row at this budget)",
+               leader[i] == i ? "" : fmt::format(" (shares {}'s measurement)", ids[leader[i]]));
     shard_total += costs[i].seconds;
   }
   fmt::print(

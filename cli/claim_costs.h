@@ -35,13 +35,18 @@ struct ClaimCostEstimate {
 };
 ClaimCostEstimate claim_cost(std::string_view id, bool quick);
 
-// The positions of `ids` (a run's ordered selection) that shard s runs, balanced by their costs at
-// the budget; `costs` gets every id's cost. In selection order.
+// For each of `ids` (a run's ordered selection), the position of the first of them that shares
+// its measurement (a claim of a group of cli/claim_costs.cpp), or its own.
+std::vector<std::size_t> shared_measurement_leaders(const std::vector<std::string>& ids);
+
+// The positions of `ids` that shard s runs, balanced by their costs at the budget, claims that
+// share a measurement always in one shard; `costs` gets every id's cost. In selection order.
 std::vector<std::size_t> claim_shard_positions(const std::vector<std::string>& ids, Shard s,
                                                bool quick, std::vector<ClaimCostEstimate>& costs);
 
 // `glintlab verify --list --shard K/N --budget B`: the claims shard s would run, each with its cost
-// (marked when estimated), and the shard's share of the selection's total. Runs nothing.
+// (marked when estimated, and with the claim whose measurement it shares), and the shard's share
+// of the selection's total. Runs nothing.
 void print_claim_shard_plan(const std::vector<std::string>& ids, Shard s, bool quick);
 
 }  // namespace glintlab::cli

@@ -39,10 +39,12 @@ class ShardMergeTest : public CliTest {
   }
 
   // `verify --claims C --list --shard K/N --budget B`: the ids of the plan, their costs, how many
-  // are estimated (no recorded row at the budget), and the summary line's shard total and total.
+  // are estimated (no recorded row at the budget), the claim whose measurement each shares (its
+  // own id when none), and the summary line's shard total and total.
   struct Plan {
     std::vector<std::string> ids;
     std::vector<double> costs;
+    std::vector<std::string> unit;
     int estimated = 0;
     double cost = 0, total = 0;
   };
@@ -52,7 +54,8 @@ class ShardMergeTest : public CliTest {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     Plan p;
     const std::regex item(
-        R"(^(\S+) +([0-9.e+-]+) s( \(estimated: no recorded row at this budget\))?$)");
+        R"(^(\S+) +([0-9.e+-]+) s( \(estimated: no recorded row at this budget\))?)"
+        R"((?: \(shares (\S+)'s measurement\))?$)");
     const std::regex summary(
         R"(^shard \d+/\d+: \d+ of \d+ claims, ([0-9.e+-]+) s of ([0-9.e+-]+) s recorded)");
     double listed = 0;
@@ -62,6 +65,7 @@ class ShardMergeTest : public CliTest {
         p.ids.push_back(m[1]);
         p.costs.push_back(std::stod(m[2]));
         p.estimated += m[3].matched ? 1 : 0;
+        p.unit.push_back(m[4].matched ? m[4].str() : m[1].str());
         listed += p.costs.back();
       } else if (std::regex_search(line, m, summary)) {
         p.cost = std::stod(m[1]);
@@ -165,22 +169,38 @@ TEST_F(ShardMergeTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing) {
 }
 
 // Every claim of the suite and every conformance check at full in 4 shards: each in exactly one
-// shard's plan, and the costliest shard within Graham's bound for a greedy least-loaded
-// assignment (the mean load plus (1 - 1/N) of the costliest claim); the plan writes nothing.
+// shard's plan, the claims that share a measurement in one shard, and the costliest shard within
+// Graham's bound for a greedy least-loaded assignment (the mean load plus (1 - 1/N) of the
+// costliest unit: a claim, or a group sharing a measurement); the plan writes nothing.
 TEST_F(ShardMergeTest, PlanOfEveryClaimCoversEachOnceWithinTheGreedyBound) {
   const int n = 4;
   const std::string every = "*,model.*";
   std::multiset<std::string> ids;
+  std::map<std::string, std::set<int>> shards_of_unit;
   double largest_shard = 0, total = 0, sum = 0;
   for (int k = 1; k <= n; ++k) {
     const Plan p = plan(every, k, n, "full");
     ids.insert(p.ids.begin(), p.ids.end());
+    for (const std::string& u : p.unit) shards_of_unit[u].insert(k);
     largest_shard = std::max(largest_shard, p.cost);
     total = p.total;
     sum += p.cost;
   }
+  for (const auto& [unit, shards] : shards_of_unit) EXPECT_EQ(shards.size(), 1u) << unit;
   const Plan all = plan(every, 1, 1, "full");
-  const double costliest = *std::max_element(all.costs.begin(), all.costs.end());
+  std::map<std::string, double> unit_cost;
+  for (std::size_t i = 0; i < all.ids.size(); ++i) unit_cost[all.unit[i]] += all.costs[i];
+  double costliest = 0;
+  for (const auto& [unit, cost] : unit_cost) costliest = std::max(costliest, cost);
+  // The three groups: the stability sweep's four claims and the two Chermain pairs.
+  EXPECT_EQ(all.ids.size() - unit_cost.size(), 5u);
+  const auto unit_of = [&](const std::string& id) {
+    return all.unit.at(
+        std::size_t(std::find(all.ids.begin(), all.ids.end(), id) - all.ids.begin()));
+  };
+  EXPECT_EQ(unit_of("all.variance"), "all.stability");
+  EXPECT_EQ(unit_of("chermain.ggaa-sk"), "chermain.ggaa-derivatives");
+  EXPECT_EQ(unit_of("chermain.ggaa-shimmer"), "chermain.ggaa-error");
   EXPECT_EQ(ids, std::multiset<std::string>(all.ids.begin(), all.ids.end()));
   EXPECT_EQ(std::set<std::string>(ids.begin(), ids.end()).size(), ids.size());
   EXPECT_NEAR(sum, total, 1e-4 * total);
