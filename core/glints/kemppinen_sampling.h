@@ -258,7 +258,110 @@ HalfSample<T> sample_half(const Params<T>& p, const Ndf& ndf, const FootprintQue
   return out;
 }
 
-// The marginal density in □ of sample_half's x (defective: rejections excluded).
+// Every point of the blocks sample_density_square visits at one level, each computed once: a point
+// lies in up to n² of those blocks, and all of it but its mass in the block (∫_B N_j) is the same
+// in each. Spatial cell (i, j) of the level's n×n block, angular cell x's cell + (a, b) with
+// a, b ∈ [1−n, n−1]. Each candidate holds block()'s values bit for bit (m unused), and `term` is
+// block_density's summand s_j N_j(x), masked as there.
+template <class T>
+struct LevelPoints {
+  static constexpr int kSpan = 2 * kMaxSide - 1;
+  std::array<Candidate<T>, kMaxSide * kMaxSide * kSpan * kSpan> c;
+  std::array<T, kMaxSide * kMaxSide * kSpan * kSpan> term;
+  int n = 0;
+  std::size_t index(int i, int j, int a, int b) const {
+    const int span = 2 * n - 1;
+    return std::size_t(((i * n + j) * span + (a + n - 1)) * span + (b + n - 1));
+  }
+};
+
+// The points of LevelPoints around x's angular cell (cx, cy) at `level` (weight w_l): the same
+// arithmetic as block() and block_density(), in the same lane order.
+template <class Ndf, class T>
+void level_points(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp,
+                  const LaneInt<T, int>& level, T w_l, const LaneInt<T>& cx, const LaneInt<T>& cy,
+                  Vec2<T> x, LevelPoints<T>& out, int process) {
+  const int n = p.side;
+  out.n = n;
+  const T res_a = angular_resolution<T>(level);
+  const T res_s = sp.res / res_a;
+  const LaneInt<T> n_a = level_cells<T>(level);
+  const LaneInt<T> sx0 = block_start(sp.x_s.x * res_s, n);
+  const LaneInt<T> sy0 = block_start(sp.x_s.y * res_s, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int a = 1 - n; a <= n - 1; ++a)
+        for (int b = 1 - n; b <= n - 1; ++b) {
+          const LaneInt<T> sx = sx0 + i, sy = sy0 + j, ax = cx + a, ay = cy + b;
+          const LaneInt<T, std::uint64_t> ci = cell_index_lanes<T>(sx, sy, ax, ay, level, process);
+          Candidate<T> k;
+          k.valid = mask_lanes<T>([&](std::size_t l) {
+            return lane(ax, l) >= 0 && lane(ax, l) < lane(n_a, l) && lane(ay, l) >= 0 &&
+                   lane(ay, l) < lane(n_a, l);
+          });
+          k.g_a = {
+              (int_to_float<T>(ax) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) / res_a,
+              (int_to_float<T>(ay) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) / res_a};
+          k.valid = k.valid && (sqr(k.g_a.x - T(0.5)) + sqr(k.g_a.y - T(0.5)) <= T(0.25));
+          k.s = T(0);
+          k.m = T(0);
+          k.sigma = {T(0), T(0)};
+          if (any_lane<T>(k.valid)) {
+            const Vec2<T> g_s{
+                (int_to_float<T>(sx) + cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialX)) / res_s,
+                (int_to_float<T>(sy) + cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialY)) / res_s};
+            const T r = cell_uniform<T>(p.seed, ci, kKemppinenDimRoulette);
+            const T blend = p.blend == Blend::kRoulette ? roulette(r, w_l) : w_l;
+            const Vec3<T> col = color(p.colors, cell_uniform<T>(p.seed, ci, kKemppinenDimColor));
+            k.sigma = point_sigma(p, ndf, k.g_a);
+            k.s = select(k.valid, blend * normal2(sp.x_s - g_s, sp.sigma_s) * luminance(col), T(0));
+          }
+          const T t = k.s * normal2(x - k.g_a, Sym2<T>{sqr(k.sigma.x), T(0), sqr(k.sigma.y)});
+          const Mask<T> live = k.valid && (k.s > T(0)) && (k.sigma.x > T(0)) && (k.sigma.y > T(0));
+          const std::size_t at = out.index(i, j, a, b);
+          out.c[at] = k;
+          out.term[at] = select(live, t, T(0));
+        }
+}
+
+// block_density() of the block with angular start (cx + dx, cy + dy), from the level's points:
+// Σw★ and Σ s_j N_j(x) summed in block()'s order, so the result is the same bits.
+template <class T>
+T level_block_density(const LevelPoints<T>& pts, const LaneInt<T, int>& level, const LaneInt<T>& cx,
+                      const LaneInt<T>& cy, int dx, int dy, Vec2<T> x) {
+  const int n = pts.n;
+  const T res_a = angular_resolution<T>(level);
+  const LaneInt<T> n_a = level_cells<T>(level);
+  const LaneInt<T> ax0 = cx + dx, ay0 = cy + dy;
+  const Vec2<T> lo{int_to_float<T>(int_max(ax0, std::int64_t(0))) / res_a,
+                   int_to_float<T>(int_max(ay0, std::int64_t(0))) / res_a};
+  const Vec2<T> hi{int_to_float<T>(int_min(ax0 + n, n_a)) / res_a,
+                   int_to_float<T>(int_min(ay0 + n, n_a)) / res_a};
+  T total = T(0);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) {
+          const Candidate<T>& k = pts.c[pts.index(i, j, dx + a, dy + b)];
+          const T m = any_lane<T>(k.valid)
+                          ? select(k.valid, gaussian_rect_mass(lo, hi, k.g_a, k.sigma, Erf::kExact),
+                                   T(0))
+                          : T(0);
+          total += k.s * m;
+        }
+  const Mask<T> inside = (total > T(0)) && !(x.x < lo.x || x.x > hi.x || x.y < lo.y || x.y > hi.y);
+  if (!any_lane<T>(inside)) return T(0);
+  T sum = T(0);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) sum += pts.term[pts.index(i, j, dx + a, dy + b)];
+  return select(inside, sum / total, T(0));
+}
+
+// The marginal density in □ of sample_half's x (defective: rejections excluded). Every block
+// B(k) whose selecting square of x_a meets U_Ω, at both levels; their points are computed once
+// per level (level_points).
 template <class Ndf, class T>
 T sample_density_square(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp, Vec2<T> x,
                         int process = 0) {
@@ -266,7 +369,7 @@ T sample_density_square(const Params<T>& p, const Ndf& ndf, const FootprintQuery
   if (!any_lane<T>(in_disk)) return T(0);
   const Spatial<T> sp = spatial(p, fp);
   const int n = p.side;
-  static thread_local Block<T> block;
+  static thread_local LevelPoints<T> points;
   T total = T(0);
   for (int up = 0; up < 2; ++up) {
     const LaneInt<T, int> level = sp.l0 + up;
@@ -276,6 +379,7 @@ T sample_density_square(const Params<T>& p, const Ndf& ndf, const FootprintQuery
     const T res_a = angular_resolution<T>(level);
     const LaneInt<T> cx = floor_int<T>(x.x * res_a);
     const LaneInt<T> cy = floor_int<T>(x.y * res_a);
+    bool have_points = false;
     for (int dx = 1 - n; dx <= 0; ++dx)
       for (int dy = 1 - n; dy <= 0; ++dy) {
         const LaneInt<T> bx = cx + dx, by = cy + dy;
@@ -292,8 +396,12 @@ T sample_density_square(const Params<T>& p, const Ndf& ndf, const FootprintQuery
         });
         const Mask<T> use = w_positive && (area > T(0));
         if (!any_lane<T>(use)) continue;
-        kemppinen2025::block(p, ndf, sp, level, w_l, bx, by, block, process);
-        total += select(use, w_l * area / T(kMapDomainArea<T>) * block_density(block, x), T(0));
+        if (!have_points) level_points(p, ndf, sp, level, w_l, cx, cy, x, points, process);
+        have_points = true;
+        total += select(use,
+                        w_l * area / T(kMapDomainArea<T>) *
+                            level_block_density(points, level, cx, cy, dx, dy, x),
+                        T(0));
       }
   }
   return select(in_disk, total, T(0));

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 #include "core/glints/kemppinen_reference.h"
@@ -240,6 +241,88 @@ TEST(KemppinenSampling, MarginalDensityIntegratesToAcceptanceRate) {
   EXPECT_GT(integral, 0.5);
   EXPECT_LE(integral, 1 + 1e-3);
   EXPECT_NEAR(integral, double(ok) / n, 0.02);
+}
+
+// The marginal density as its definition reads: every block B(k) that x's angular cell lies in,
+// at both levels, built by block() and summed by block_density(), one block at a time.
+template <class Ndf, class T>
+T density_block_by_block(const kemppinen2025::Params<T>& p, const Ndf& ndf,
+                         const FootprintQuery<T>& fp, Vec2<T> x) {
+  namespace k = kemppinen2025;
+  if (sqr(x.x - T(0.5)) + sqr(x.y - T(0.5)) > T(0.25)) return T(0);
+  const k::Spatial<T> sp = k::spatial(p, fp);
+  const int n = p.side;
+  static k::Block<T> block;
+  T total = T(0);
+  for (int up = 0; up < 2; ++up) {
+    const int level = sp.l0 + up;
+    const T w_l = up ? sp.w1 : T(1) - sp.w1;
+    if (!(w_l > T(0))) continue;
+    const T res_a = k::angular_resolution<T>(level);
+    const std::int64_t cx = std::int64_t(std::floor(x.x * res_a));
+    const std::int64_t cy = std::int64_t(std::floor(x.y * res_a));
+    for (int dx = 1 - n; dx <= 0; ++dx)
+      for (int dy = 1 - n; dy <= 0; ++dy) {
+        const T half = T(0.5) * T(n - 1);
+        const T fx = T(cx + dx) + half, fy = T(cy + dy) + half;
+        const T area = T(disk_rect_area(double(fx / res_a), double((fx + T(1)) / res_a),
+                                        double(fy / res_a), double((fy + T(1)) / res_a), 0.5, 0.5,
+                                        0.5));
+        if (!(area > T(0))) continue;
+        k::block(p, ndf, sp, level, w_l, cx + dx, cy + dy, block);
+        total += w_l * area / T(kMapDomainArea<T>) * k::block_density(block, x);
+      }
+  }
+  return total;
+}
+
+// sample_density_square computes each point once per level instead of once per block: the same
+// bits as the block-by-block sum, for every k, both NDFs, both blends, float and double.
+template <class T>
+void expect_density_is_block_by_block() {
+  const kemppinen2025::Params<double> b = base_params();
+  kemppinen2025::Params<T> p{};
+  p.density = T(b.density);
+  p.microroughness = T(0.05);
+  p.anisotropy = T(1.5);
+  p.filter = T(b.filter);
+  p.erf = kemppinen2025::Erf::kExact;
+  p.normalization = b.normalization;
+  p.colors = kemppinen2025::Colors::kRedYellow;
+  p.seed = 11;
+  const GGX<T> ggx{T(0.3), T(0.5)};
+  const Beckmann<T> beckmann{T(0.2), T(0.2)};
+  int nonzero = 0;
+  for (int side = 1; side <= kemppinen2025::kMaxSide; ++side) {
+    p.side = side;
+    for (int q = 0; q < 40; ++q) {
+      const auto frac = [](double t) { return t - std::floor(t); };
+      const double cells = 0.3 + 4.0 * frac(q * 0.5698);
+      const FootprintQuery<double> f =
+          footprint({0.1 + 0.8 * frac(q * 0.618034), 0.1 + 0.8 * frac(q * 0.754878)}, cells, b);
+      const FootprintQuery<T> fp{{T(f.uv.x), T(f.uv.y)},
+                                 {T(f.duv_dx.x), T(f.duv_dx.y)},
+                                 {T(f.duv_dy.x), T(f.duv_dy.y)}};
+      p.blend = q % 2 ? kemppinen2025::Blend::kLinear : kemppinen2025::Blend::kRoulette;
+      for (int r = 0; r < 12; ++r) {
+        const double rad = 0.49 * (r + 1) / 12.0, phi = 0.7 * r + q;
+        const Vec2<T> x{T(0.5 + rad * std::cos(phi)), T(0.5 + rad * std::sin(phi))};
+        const T a = kemppinen2025::sample_density_square(p, ggx, fp, x);
+        const T a_ref = density_block_by_block(p, ggx, fp, x);
+        const T c = kemppinen2025::sample_density_square(p, beckmann, fp, x);
+        const T c_ref = density_block_by_block(p, beckmann, fp, x);
+        ASSERT_EQ(std::memcmp(&a, &a_ref, sizeof a), 0) << side << " " << q << " " << r;
+        ASSERT_EQ(std::memcmp(&c, &c_ref, sizeof c), 0) << side << " " << q << " " << r;
+        nonzero += (a > T(0)) + (c > T(0));
+      }
+    }
+  }
+  EXPECT_GT(nonzero, 4 * 40 * 12);  // most queries see points: the comparison is not of zeros
+}
+
+TEST(KemppinenSampling, MarginalDensityIsTheBlockByBlockSumBitForBit) {
+  expect_density_is_block_by_block<double>();
+  expect_density_is_block_by_block<float>();
 }
 
 TEST(KemppinenModel, RegisteredWithRangeChecks) {
