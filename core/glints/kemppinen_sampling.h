@@ -369,7 +369,9 @@ T sample_density_square(const Params<T>& p, const Ndf& ndf, const FootprintQuery
   if (!any_lane<T>(in_disk)) return T(0);
   const Spatial<T> sp = spatial(p, fp);
   const int n = p.side;
-  static thread_local LevelPoints<T> points;
+  // On the stack, not thread_local: static TLS is reserved in every thread's stack at its start,
+  // and this table at every (Ndf, T) would outgrow a worker thread's stack (pthread_create EINVAL).
+  LevelPoints<T> points;
   T total = T(0);
   for (int up = 0; up < 2; ++up) {
     const LaneInt<T, int> level = sp.l0 + up;
