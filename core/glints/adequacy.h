@@ -28,6 +28,30 @@ inline constexpr int kBinomialLevels = 4;
 inline constexpr std::array<std::string_view, 4> kBinomialLevelNames = {"smooth", "realtime",
                                                                         "small_count", "exact"};
 
+// The levels of the Kemppinen family (kemppinen_ggx, kemppinen_beckmann; Kemppinen et al. 2025),
+// cheapest first in the cost order of a GPU lane: the smooth NDF (D★^f replaced by D), then
+// Algorithm 1 with k = 1, 4, 9, 16 neighbours in space and in angle (2k² points per evaluation),
+// each with the rational erf (A&S 7.1.28, no exp) before the exact one in the compensation
+// (Eq. 10). The most complete level is k = 16 with the exact erf.
+enum class KemppinenLevel : int {
+  kSmooth = 0,
+  kK1Rational = 1,
+  kK1Exact = 2,
+  kK4Rational = 3,
+  kK4Exact = 4,
+  kK9Rational = 5,
+  kK9Exact = 6,
+  kK16Rational = 7,
+  kK16Exact = 8
+};
+inline constexpr int kKemppinenLevels = 9;
+inline constexpr std::array<std::string_view, kKemppinenLevels> kKemppinenLevelNames = {
+    "smooth",     "k1_rational", "k1_exact",     "k4_rational", "k4_exact",
+    "k9_rational", "k9_exact",   "k16_rational", "k16_exact"};
+// √k of a counting level (1 … 4; 0 for the smooth level) and whether it uses the rational erf.
+inline constexpr int kemppinen_level_side(KemppinenLevel l) { return (int(l) + 1) / 2; }
+inline constexpr bool kemppinen_level_rational(KemppinenLevel l) { return int(l) % 2 == 1; }
+
 // The chooser takes a level only where its predicted difference is at most this fraction of TAU:
 // the closed forms are exact for the exact and smooth levels but the real-time one neglects the
 // quantile clamp at 1e-12, and the measured table decides with a confidence bound, so a predicted
