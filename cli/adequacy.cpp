@@ -114,6 +114,9 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
       counts.push_back(fmt::format("{} {}", kKemppinenLevelNames[l], k.chosen[l]));
     fmt::print("Kemppinen family: {} cells; cheapest adequate level: {}\n", k.cells,
                fmt::join(counts, ", "));
+    fmt::print(
+        "chooser (core/glints/adequacy.h): same level as measured in {} cells, refuted in {}\n",
+        k.chooser_matches, k.chooser_refuted);
     fmt::print("{} cells undecided (too few lit positions at k16_exact: k16_exact kept)\n",
                k.undecided);
     const auto saved = [&](double ns) {

@@ -61,6 +61,8 @@ set(glintlab_slow_tests
   "KemppinenAdequacyGrid.SameResultsForAnyThreadCount 2"
   "KemppinenAdequacyCell.SmallFootprintNeedsTheMostCompleteLargeOneIsSmooth 1"
   "KemppinenAdequacyCell.LevelsMadeTwoTauOffAreNotChosen 2"
+  "KemppinenChooser.NeverRefutedByTheMeasuredTableAndTenfoldTauIs 6"
+  "KemppinenChooser.MomentsBoundTheMeasuredCvAndMatchItsMean 1"
   # The binomial family's quick grid for one model and 8 Kemppinen cells, written to files.
   "AdequacyOutputs.BothFamiliesInOneTable 7"
   "ChermainClaims.DictionaryConverges 2"

@@ -122,12 +122,13 @@ void write_csv(const std::filesystem::path& path, const std::vector<CellResult>&
     }
     constexpr auto kRef = std::size_t(KemppinenLevel::kK16Exact);
     for (const KemppinenCellResult& r : kemppinen_rows) {
-      // No light size (the model has none), no p nor predictions (no closed form): nan.
+      // No light size (the model has none) nor p: nan; cv_predicted is the chooser's bound on
+      // k16_exact's CV; no predicted P(0) (nan).
       w.cell(kKemppinenFamily).cell(r.cell.model).cell(r.cell.points).cell(r.cell.alpha);
       w.cell(NAN).cell(r.cell.theta_i_deg).cell(r.cell.theta_h_deg);
-      w.cell(NAN).cell(r.smooth).cell(NAN).cell(NAN);
+      w.cell(NAN).cell(r.smooth).cell(r.cv_bound).cell(NAN);
       w.cell(kKemppinenLevelNames[std::size_t(r.chosen)]);
-      w.cell("none").cell(NAN);
+      w.cell(kKemppinenLevelNames[std::size_t(r.chooser)]).cell_int(r.chooser_refuted ? 1 : 0);
       level_cells(w, r.levels, kKemppinenLevelNames);
       w.cell(kKemppinenLevelNames[std::size_t(r.cheapest_measured)]);
       w.cell(r.levels[kRef].ns_per_eval - r.levels[std::size_t(r.cheapest_measured)].ns_per_eval);
@@ -295,7 +296,7 @@ std::vector<AdequacyLevelMap> kemppinen_level_maps(const std::vector<KemppinenCe
     for (double n : axes.points) map.column_labels.push_back(short_number(n));
     for (std::string_view l : kKemppinenLevelNames) map.category_names.emplace_back(l);
     map.category_colors.assign(kKemppinenLevelColors.begin(), kKemppinenLevelColors.end());
-    m.exr = Image(int(n_cols), int(n_rows), {"chosen", "cv_most_complete", "lambda"});
+    m.exr = Image(int(n_cols), int(n_rows), {"chosen", "chooser", "cv_most_complete", "lambda"});
     for (std::size_t r = 0; r < n_rows; ++r) {
       const KemppinenCellResult& row0 = rows[start + r * n_cols];
       map.row_labels.push_back(
@@ -304,8 +305,8 @@ std::vector<AdequacyLevelMap> kemppinen_level_maps(const std::vector<KemppinenCe
       for (std::size_t k = 0; k < n_cols; ++k) {
         const KemppinenCellResult& c = rows[start + r * n_cols + k];
         cats.push_back(c.chosen);
-        const double v[] = {double(c.chosen), c.levels[kRef].cv, c.lambda};
-        for (std::size_t ch = 0; ch < 3; ++ch) m.exr.at(int(k), int(r), ch) = v[ch];
+        const double v[] = {double(c.chosen), double(c.chooser), c.levels[kRef].cv, c.lambda};
+        for (std::size_t ch = 0; ch < 4; ++ch) m.exr.at(int(k), int(r), ch) = v[ch];
       }
       map.cells.push_back(cats);
       map.marker_column.push_back(NAN);  // no predicted boundary for this family yet
@@ -355,6 +356,8 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
     ++k.cells;
     ++k.chosen[std::size_t(r.chosen)];
     ++k.cheapest_measured[std::size_t(r.cheapest_measured)];
+    k.chooser_matches += r.chooser == r.chosen ? 1 : 0;
+    k.chooser_refuted += r.chooser_refuted ? 1 : 0;
     k.undecided += r.levels[0].undecided ? 1 : 0;
     k.most_complete_ns += r.levels[kRef].ns_per_eval;
     k.chosen_ns += r.levels[std::size_t(r.chosen)].ns_per_eval;
@@ -504,6 +507,8 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
             {"chosen", chosen},
             {"cheapest_measured", cheapest},
             {"undecided", sum.kemppinen.undecided},
+            {"chooser_matches", sum.kemppinen.chooser_matches},
+            {"chooser_refuted", sum.kemppinen.chooser_refuted},
             {"most_complete_ns_total", sum.kemppinen.most_complete_ns},
             {"chosen_ns_total", sum.kemppinen.chosen_ns},
             {"cheapest_measured_ns_total", sum.kemppinen.cheapest_ns}}}}}};
@@ -521,6 +526,9 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
                      {"lambda", r.lambda},
                      {"smooth", r.smooth},
                      {"chosen", kKemppinenLevelNames[std::size_t(r.chosen)]},
+                     {"chooser", kKemppinenLevelNames[std::size_t(r.chooser)]},
+                     {"chooser_refuted", r.chooser_refuted},
+                     {"cv_bound", r.cv_bound},
                      {"cheapest_measured", kKemppinenLevelNames[std::size_t(r.cheapest_measured)]},
                      {"levels", levels}});
   }

@@ -80,6 +80,7 @@ struct AdequacySummary {
   // per evaluation for k = 16 exact everywhere, the chosen level and the measured-cheapest one.
   struct Kemppinen {
     std::size_t cells = 0, undecided = 0;
+    std::size_t chooser_matches = 0, chooser_refuted = 0;  // as the binomial family's
     std::array<std::size_t, kKemppinenLevels> chosen{}, cheapest_measured{};
     double most_complete_ns = 0, chosen_ns = 0, cheapest_ns = 0;
   } kemppinen;

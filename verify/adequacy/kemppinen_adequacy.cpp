@@ -211,10 +211,15 @@ KemppinenCellResult measure_kemppinen_cell(const KemppinenCell& cell, int sample
     using M = decltype(m);
     const auto p =
         M::template params<double>(model_param_values<M>(cell, KemppinenLevel::kK16Exact, seed));
-    r.lambda = detail::kemppinen_model_eval(
-                   p, kemppinen_cell_query(cell, kemppinen_surface_position(cell, 0)), 0.0)
-                   .intermediates[4];
+    const ModelQuery<double> q = kemppinen_cell_query(cell, kemppinen_surface_position(cell, 0));
+    r.lambda = detail::kemppinen_model_eval(p, q, 0.0).intermediates[4];
+    r.chooser = int(choose_kemppinen_model_level(p, q, d.threshold));
+    const KemppinenMoments<double> mo =
+        kemppinen_level_moments(p.glint, p.ndf, q.footprint, half_vector(q.wi, q.wo));
+    r.cv_bound = mo.valid ? (std::sqrt(mo.var_points[3]) + mo.position_sd[3]) / mo.mean[3] : 0.0;
   });
+  const LevelStats& c = r.levels[std::size_t(r.chooser)];
+  r.chooser_refuted = c.mean_diff_lcb > d.threshold || c.cv_diff_lcb > d.threshold;
   return r;
 }
 

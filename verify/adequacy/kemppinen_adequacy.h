@@ -59,6 +59,12 @@ struct KemppinenCellResult {
   // level with the least measured time here (not deterministic).
   int chosen = int(KemppinenLevel::kK16Exact);
   int cheapest_measured = int(KemppinenLevel::kK16Exact);
+  // choose_kemppinen_model_level at TAU (core/glints/adequacy.h), and whether the table refutes it
+  // (its level's lower bound above TAU); the chooser's bound on k = 16's CV
+  // ((√var_points + position_sd) / mean of kemppinen_level_moments).
+  int chooser = int(KemppinenLevel::kK16Rational);
+  bool chooser_refuted = false;
+  double cv_bound = 0;
 };
 
 // The surface position of sample i for a cell: the R2 set of binomial_adequacy.h spread over a
