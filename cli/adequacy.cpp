@@ -173,7 +173,9 @@ with the rational erf before the exact one in the compensation; the most complet
 Its grid: 1 .. 1e6 expected points per footprint, roughness, incidence (the footprint stretched by
 1/cos theta_i) and half-vector angle; the same decision, against k16_exact, with z split over the
 decisions of both families. Its rows share adequacy.csv (column `family`; its own level columns,
-nan in the other family's rows) and adequacy.json, with one map per model and incidence.
+nan in the other family's rows) and adequacy.json (with each row's predicted and
+measured boundary per level), with one map per model and incidence and the predicted smooth
+boundary drawn over it.
 --calibrate measures the decision instead: on synthetic cells whose cheaper level differs from
 exact by exactly TAU (1 + delta) (in the mean, in the CV, or the smooth level at the boundary),
 delta = -0.5, -0.25, -0.1 (truly adequate: the power), 0 (the boundary), 0.05, 0.1, 0.25 (just

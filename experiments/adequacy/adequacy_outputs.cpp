@@ -273,9 +273,9 @@ std::vector<KemppinenCellResult> measure_kemppinen_adequacy(const AdequacyOption
                                                   o.progress);
 }
 
-std::vector<AdequacyLevelMap> kemppinen_level_maps(const std::vector<KemppinenCellResult>& rows,
-                                                   const verify::adequacy::KemppinenGridAxes& axes,
-                                                   double threshold) {
+std::vector<AdequacyLevelMap> kemppinen_level_maps(
+    const std::vector<KemppinenCellResult>& rows, const verify::adequacy::KemppinenGridAxes& axes,
+    double threshold, const std::vector<verify::adequacy::KemppinenBoundary>& boundaries) {
   // Per model × incidence, rows (α, θ_h) bottom to top, columns the expected points.
   std::vector<AdequacyLevelMap> out;
   const std::size_t n_cols = axes.points.size();
@@ -296,6 +296,7 @@ std::vector<AdequacyLevelMap> kemppinen_level_maps(const std::vector<KemppinenCe
     for (double n : axes.points) map.column_labels.push_back(short_number(n));
     for (std::string_view l : kKemppinenLevelNames) map.category_names.emplace_back(l);
     map.category_colors.assign(kKemppinenLevelColors.begin(), kKemppinenLevelColors.end());
+    map.marker_name = "predicted: smooth adequate";
     m.exr = Image(int(n_cols), int(n_rows), {"chosen", "chooser", "cv_most_complete", "lambda"});
     for (std::size_t r = 0; r < n_rows; ++r) {
       const KemppinenCellResult& row0 = rows[start + r * n_cols];
@@ -309,7 +310,16 @@ std::vector<AdequacyLevelMap> kemppinen_level_maps(const std::vector<KemppinenCe
         for (std::size_t ch = 0; ch < 4; ++ch) m.exr.at(int(k), int(r), ch) = v[ch];
       }
       map.cells.push_back(cats);
-      map.marker_column.push_back(NAN);  // no predicted boundary for this family yet
+      // The predicted smooth boundary (kemppinen_boundaries), in column units.
+      const std::size_t global_row = start / n_cols + r;
+      const std::size_t per_row = verify::adequacy::kKemppinenBoundaryLevels.size();
+      double marker = NAN;
+      if (global_row * per_row < boundaries.size() && n_cols > 1) {
+        const double star = boundaries[global_row * per_row].predicted;  // smooth first
+        const double l0 = std::log10(axes.points.front()), l1 = std::log10(axes.points.back());
+        if (star > 0) marker = (std::log10(star) - l0) / (l1 - l0) * double(n_cols - 1);
+      }
+      map.marker_column.push_back(marker);
     }
     out.push_back(std::move(m));
   }
@@ -384,7 +394,10 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
                     {"png", m.stem + ".png"},
                     {"exr", m.stem + ".exr"}});
   }
-  for (const AdequacyLevelMap& m : kemppinen_level_maps(kemppinen_rows, kemppinen_axes, o.threshold)) {
+  const std::vector<verify::adequacy::KemppinenBoundary> boundaries =
+      verify::adequacy::kemppinen_boundaries(kemppinen_rows, kemppinen_axes, o.threshold);
+  for (const AdequacyLevelMap& m :
+       kemppinen_level_maps(kemppinen_rows, kemppinen_axes, o.threshold, boundaries)) {
     io::write_exr(
         out / (m.stem + ".exr"), m.exr,
         {{"glintlab_columns",
@@ -484,6 +497,20 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
       chosen[std::string(kKemppinenLevelNames[l])] = sum.kemppinen.chosen[l];
       cheapest[std::string(kKemppinenLevelNames[l])] = sum.kemppinen.cheapest_measured[l];
     }
+    // NaN (no boundary) and infinity as null in JSON.
+    const auto finite_or_null = [](double x) -> nlohmann::json {
+      return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
+    };
+    nlohmann::json bounds = nlohmann::json::array();
+    for (const verify::adequacy::KemppinenBoundary& b : boundaries)
+      bounds.push_back({{"model", b.row.model},
+                        {"theta_i_deg", b.row.theta_i_deg},
+                        {"alpha", b.row.alpha},
+                        {"theta_h_deg", b.row.theta_h_deg},
+                        {"level", kKemppinenLevelNames[std::size_t(b.level)]},
+                        {"predicted", finite_or_null(b.predicted)},
+                        {"measured_low", b.measured_low},
+                        {"measured_high", finite_or_null(b.measured_high)}});
     doc["families"] = {
         {kBinomialFamily,
          {{"models", binomial_models(o.models)},
@@ -502,6 +529,12 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
                         {"filter", "model default"}}},
           {"facets", "expected points per footprint (density x footprint area); the footprint "
                      "stretched by 1/cos(theta_i) along the plane of incidence"},
+          {"boundaries", bounds},
+          {"boundary",
+           "per row and level: predicted, the fewest expected points from which the level stays "
+           "adequate by the chooser's moments at TAU (no margin); measured, between measured_low "
+           "(the largest grid footprint where it is not adequate; 0: none) and measured_high (the "
+           "next; null: not adequate at the largest)"},
           {"summary",
            {{"cells", sum.kemppinen.cells},
             {"chosen", chosen},

@@ -3,8 +3,8 @@
 // `family`; adequacy.json, the same with the decision's settings and a cost summary) and per
 // model × light × incidence (Kemppinen: model × incidence) one map of the chosen level over
 // footprint size × (roughness, half-vector angle): EXR (chosen level, chooser, measured and
-// predicted CV and P(no glint)) and a labelled PNG, the binomial maps with the predicted boundary
-// CV_pred = TAU drawn over the measured levels.
+// predicted CV and P(no glint)) and a labelled PNG with the predicted boundary drawn over the
+// measured levels (binomial: CV_pred = TAU; Kemppinen: the smooth level's, kemppinen_boundaries).
 #pragma once
 
 #include <array>
@@ -121,10 +121,13 @@ std::vector<AdequacyLevelMap> adequacy_level_maps(
 
 // The Kemppinen maps, per model × incidence: the chosen level over expected points per footprint
 // (columns) × (α, θ_h) (rows, bottom to top), and an EXR of one pixel per cell (channels chosen,
-// cv_most_complete, lambda). `rows` in make_kemppinen_grid's order for `axes`.
+// chooser, cv_most_complete, lambda). `rows` in make_kemppinen_grid's order for `axes`.
+// `boundaries` (kemppinen_boundaries of the same rows; may be empty) draws each row's predicted
+// smooth boundary.
 std::vector<AdequacyLevelMap> kemppinen_level_maps(
     const std::vector<verify::adequacy::KemppinenCellResult>& rows,
-    const verify::adequacy::KemppinenGridAxes& axes, double threshold);
+    const verify::adequacy::KemppinenGridAxes& axes, double threshold,
+    const std::vector<verify::adequacy::KemppinenBoundary>& boundaries = {});
 
 // `glintlab adequacy --calibrate`: the decision rule's false-adequate rate (and, on truly
 // adequate cells, its power) on synthetic cells whose truth is known

@@ -77,6 +77,8 @@ TEST(AdequacyOutputs, BothFamiliesInOneTable) {
   EXPECT_EQ(doc["families"]["kemppinen"]["most_complete"], "k16_exact");
   EXPECT_EQ(doc["families"]["kemppinen"]["levels"].size(), 9u);
   EXPECT_EQ(doc["families"]["kemppinen"]["summary"]["cells"], 8);
+  // Per row (θ_i × θ_h: 4) the boundaries of smooth, k1, k4 and k9.
+  EXPECT_EQ(doc["families"]["kemppinen"]["boundaries"].size(), 4u * 4u);
   EXPECT_EQ(doc["cells"].size(), binomial_cells + 8);
   const nlohmann::json& last = doc["cells"].back();
   EXPECT_EQ(last["family"], "kemppinen");

@@ -234,4 +234,65 @@ std::vector<KemppinenCellResult> measure_kemppinen_grid(const std::vector<Kemppi
   return out;
 }
 
+std::vector<KemppinenBoundary> kemppinen_boundaries(const std::vector<KemppinenCellResult>& rows,
+                                                    const KemppinenGridAxes& axes, double tau) {
+  std::vector<KemppinenBoundary> out;
+  const std::size_t n_cols = axes.points.size();
+  for (std::size_t start = 0; start + n_cols <= rows.size(); start += n_cols) {
+    KemppinenCell c = rows[start].cell;
+    // Predicted adequacy at TAU itself: the chooser's rule with its margin divided out.
+    const auto predicted_at = [&](double points) {
+      c.points = points;
+      return with_model(c.model, [&](auto m) {
+        using M = decltype(m);
+        const auto p =
+            M::template params<double>(model_param_values<M>(c, KemppinenLevel::kK16Exact, 0));
+        const ModelQuery<double> q = kemppinen_cell_query(c, kemppinen_surface_position(c, 0));
+        return adequate_kemppinen_levels(
+            kemppinen_level_moments(p.glint, p.ndf, q.footprint, half_vector(q.wi, q.wo)),
+            tau / kChooserMargin);
+      });
+    };
+    std::array<double, kKemppinenBoundaryLevels.size()> predicted;
+    std::array<bool, kKemppinenBoundaryLevels.size()> open;
+    predicted.fill(NAN);
+    open.fill(true);
+    const auto adequate = [](const AdequateKemppinenLevels<double>& a, KemppinenLevel l) {
+      return l == KemppinenLevel::kSmooth ? bool(a.smooth)
+                                          : bool(a.side[std::size_t(kemppinen_level_side(l) - 1)]);
+    };
+    double previous = NAN;
+    for (int s = 0; s <= 1100; ++s) {
+      const double points = std::pow(10.0, 9 - 0.01 * s);
+      const AdequateKemppinenLevels<double> a = predicted_at(points);
+      for (std::size_t i = 0; i < predicted.size(); ++i) {
+        if (!open[i]) continue;
+        if (adequate(a, kKemppinenBoundaryLevels[i])) continue;
+        open[i] = false;  // not adequate here: the boundary is between here and the step above
+        predicted[i] = s == 0 ? NAN : std::sqrt(points * previous);
+      }
+      previous = points;
+    }
+    for (std::size_t i = 0; i < predicted.size(); ++i)
+      if (open[i]) predicted[i] = previous;  // adequate down to the scan's end
+    for (std::size_t i = 0; i < predicted.size(); ++i) {
+      KemppinenBoundary b;
+      b.row = rows[start].cell;
+      b.level = kKemppinenBoundaryLevels[i];
+      b.predicted = predicted[i];
+      for (std::size_t k = n_cols; k-- > 0;) {
+        const KemppinenCellResult& r = rows[start + k];
+        if (!r.levels[std::size_t(b.level)].adequate) {
+          b.measured_low = r.cell.points;
+          b.measured_high = k + 1 < n_cols ? rows[start + k + 1].cell.points : NAN;
+          break;
+        }
+        b.measured_high = r.cell.points;
+      }
+      out.push_back(b);
+    }
+  }
+  return out;
+}
+
 }  // namespace glintlab::verify::adequacy

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -96,5 +97,27 @@ KemppinenCellResult measure_kemppinen_cell(const KemppinenCell& cell, int sample
 std::vector<KemppinenCellResult> measure_kemppinen_grid(const std::vector<KemppinenCell>& cells,
                                                         int samples, const Decision& d,
                                                         const std::function<void()>& progress = {});
+
+// The construction-derived boundary against the measured one, per row of the grid (model, θ_i, α,
+// θ_h) and cheaper level (smooth, k1_rational, k4_rational, k9_rational; an exact-erf level's
+// boundary is its rational twin's, k16_rational is adequate everywhere). Predicted: the fewest
+// expected points from which the level stays adequate for every larger footprint by the chooser's
+// moments (kemppinen_level_moments) with the differences at TAU itself (no margin), scanned in
+// steps of 1/100 decade down from 10⁹. Measured: between the largest grid footprint where the
+// table's level is not adequate and the next one (the level is adequate there and at every larger
+// cell).
+struct KemppinenBoundary {
+  KemppinenCell row;  // the row's first cell (its points the grid's smallest)
+  KemppinenLevel level;
+  double predicted = NAN;      // NaN: not adequate even at 10⁹ points
+  double measured_low = 0;     // 0: adequate in every cell of the row
+  double measured_high = NAN;  // NaN: not adequate at the row's largest cell
+};
+std::vector<KemppinenBoundary> kemppinen_boundaries(const std::vector<KemppinenCellResult>& rows,
+                                                    const KemppinenGridAxes& axes, double tau);
+// The levels kemppinen_boundaries reports, in its order.
+inline constexpr std::array<KemppinenLevel, 4> kKemppinenBoundaryLevels = {
+    KemppinenLevel::kSmooth, KemppinenLevel::kK1Rational, KemppinenLevel::kK4Rational,
+    KemppinenLevel::kK9Rational};
 
 }  // namespace glintlab::verify::adequacy

@@ -81,3 +81,57 @@ TEST(KemppinenChooser, MomentsBoundTheMeasuredCvAndMatchItsMean) {
 
 }  // namespace
 }  // namespace glintlab::verify::adequacy
+
+namespace glintlab::verify::adequacy {
+namespace {
+
+TEST(KemppinenBoundaries, MeasuredIntervalAndPredictedCrossing) {
+  // One row of four footprints whose measured adequacy is set by hand: smooth adequate from the
+  // third cell on, k1 never, k4 everywhere, k9 only at the last.
+  KemppinenGridAxes a;
+  a.points = {10, 100, 1e3, 1e4};
+  a.alpha = {0.3};
+  a.theta_i_deg = {0};
+  a.theta_h_count = 1;
+  std::vector<KemppinenCellResult> rows;
+  for (const KemppinenCell& c : make_kemppinen_grid({"kemppinen_ggx"}, a)) {
+    KemppinenCellResult r;
+    r.cell = c;
+    r.levels[std::size_t(KemppinenLevel::kSmooth)].adequate = c.points >= 1e3;
+    r.levels[std::size_t(KemppinenLevel::kK4Rational)].adequate = true;
+    r.levels[std::size_t(KemppinenLevel::kK9Rational)].adequate = c.points >= 1e4;
+    rows.push_back(r);
+  }
+  const auto b = kemppinen_boundaries(rows, a, kTau);
+  ASSERT_EQ(b.size(), kKemppinenBoundaryLevels.size());
+  EXPECT_EQ(b[0].level, KemppinenLevel::kSmooth);
+  EXPECT_EQ(b[0].measured_low, 100);
+  EXPECT_EQ(b[0].measured_high, 1e3);
+  EXPECT_EQ(b[1].measured_low, 1e4);  // k1: not adequate at the largest
+  EXPECT_TRUE(std::isnan(b[1].measured_high));
+  EXPECT_EQ(b[2].measured_low, 0);  // k4: adequate everywhere
+  EXPECT_EQ(b[2].measured_high, 10);
+  EXPECT_EQ(b[3].measured_low, 1e3);
+  EXPECT_EQ(b[3].measured_high, 1e4);
+  // The predicted smooth boundary is where the chooser's rule at TAU flips: adequate a little
+  // above it, not a little below.
+  const double star = b[0].predicted;
+  ASSERT_GT(star, 10);
+  ASSERT_LT(star, 1e8);
+  const auto smooth_at = [&](double points) {
+    KemppinenCell c = rows[0].cell;
+    c.points = points;
+    const auto p =
+        KemppinenGGX::params<double>(kemppinen_level_param_values(c, KemppinenLevel::kK16Exact, 0));
+    const ModelQuery<double> q = kemppinen_cell_query(c, kemppinen_surface_position(c, 0));
+    return bool(adequate_kemppinen_levels(
+                    kemppinen_level_moments(p.glint, p.ndf, q.footprint, half_vector(q.wi, q.wo)),
+                    kTau / kChooserMargin)
+                    .smooth);
+  };
+  EXPECT_TRUE(smooth_at(star * 1.03));
+  EXPECT_FALSE(smooth_at(star / 1.03));
+}
+
+}  // namespace
+}  // namespace glintlab::verify::adequacy
