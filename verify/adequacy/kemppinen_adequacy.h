@@ -70,9 +70,9 @@ struct KemppinenCellResult {
 
 // The surface position of sample i for a cell: the R2 set of binomial_adequacy.h spread over a
 // square whose side is kKemppinenSpread cells of the coarser level Algorithm 1 visits, so that
-// neighbouring positions (about 22 such cells apart at 8000 positions, 11 at 32000) never share a
-// cell of any k's neighbourhood (at most 4 cells of the coarser level): each position is another
-// realisation of the same material.
+// positions (about 22 such cells apart at 8000 positions, 11 at 32000; the nearest pair of the
+// 8000 12.8) never share a cell of any k's neighbourhood (at most 4 cells of the coarser level):
+// each position is another realisation of the same material.
 inline constexpr double kKemppinenSpread = 2048;
 Vec2<double> kemppinen_surface_position(const KemppinenCell& c, int i);
 ModelQuery<double> kemppinen_cell_query(const KemppinenCell& c, Vec2<double> uv);

@@ -7,6 +7,7 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "core/models/kemppinen_ggx.h"
 
@@ -45,17 +46,19 @@ TEST(KemppinenAdequacyGrid, ShapeOfTheBudgetsGrids) {
 }
 
 TEST(KemppinenAdequacy, PositionsAreDistinctRealisations) {
-  // Neighbouring positions lie many coarse-level cells apart: the footprint's longer axis is
-  // √(points / K_P / cos θ_i), the coarser level's cell at most twice that.
+  // No two of the quick budget's 8000 positions share a cell of any k's neighbourhood: every pair
+  // lies more than 4 cells of the coarser level apart (that cell is at most twice the footprint's
+  // longer axis √(points / K_P / cos θ_i)).
   const KemppinenCell c = cell(1e4, 0.3, 60, 0);
-  const double longer = std::sqrt(1e4 / kKemppinenDensity / 0.5);
+  const double coarse_cell = 2 * std::sqrt(1e4 / kKemppinenDensity / 0.5);
+  std::vector<Vec2<double>> p;
+  for (int i = 0; i < 8000; ++i) p.push_back(kemppinen_surface_position(c, i));
   double nearest = INFINITY;
-  for (int i = 1; i < 2000; ++i) {
-    const Vec2<double> a = kemppinen_surface_position(c, i - 1),
-                       b = kemppinen_surface_position(c, i);
-    nearest = std::min(nearest, std::hypot(a.x - b.x, a.y - b.y));
-  }
-  EXPECT_GT(nearest, 8 * 2 * longer);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::size_t j = i + 1; j < p.size(); ++j)
+      nearest = std::min(nearest, std::hypot(p[i].x - p[j].x, p[i].y - p[j].y));
+  EXPECT_GT(nearest, 4 * coarse_cell);
+  std::printf("nearest pair of 8000 positions: %.1f coarse cells\n", nearest / coarse_cell);
 }
 
 TEST(KemppinenAdequacy, RationalLevelIsTheExactOnePlusAConstant) {
