@@ -1,7 +1,8 @@
 // `glintlab adequacy [--models GLOBS] [--threshold TAU] [--budget quick|full] [--threads N]
 // [--out DIR] [--bench-from DIR] [--calibrate [--runs N] [--tables N]]`: where each cheaper level
 // of the binomial
-// glint family is indistinguishable from the exact count (verify/adequacy/, experiments/adequacy/;
+// glint family is indistinguishable from the exact count, and each cheaper level of the Kemppinen
+// family from k = 16 with the exact erf (verify/adequacy/, experiments/adequacy/;
 // docs/adequacy.md); with --calibrate, the decision rule's false-adequate rate on synthetic cells
 // whose truth is known instead.
 #include <fmt/format.h>
@@ -85,23 +86,48 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
   }
   const auto& s = run.table;
   const double seconds = run.seconds;
-  fmt::print(
-      "adequacy: {} cells, TAU {:g}; cheapest adequate level: smooth {}, realtime {}, "
-      "small_count {}, exact {}\n",
-      s.cells, run.threshold, s.chosen[0], s.chosen[1], s.chosen[2], s.chosen[3]);
-  fmt::print(
-      "chooser (core/glints/adequacy.h): same level as measured in {} cells, refuted in {}\n",
-      s.chooser_matches, s.chooser_refuted);
-  fmt::print("{} cells undecided (too few lit positions at the exact level: exact kept)\n",
-             s.undecided);
-  const auto saved = [&](double ns) { return s.exact_ns > 0 ? 100 * (1 - ns / s.exact_ns) : 0.0; };
-  fmt::print(
-      "time per evaluation summed over cells (this CPU, scalar double): exact everywhere "
-      "{:.0f} ns; chosen level {:.0f} ns ({:.1f} % saved); measured-cheapest adequate level "
-      "{:.0f} ns ({:.1f} % saved; smooth {}, realtime {}, small_count {}, exact {} cells)\n",
-      s.exact_ns, s.chosen_ns, saved(s.chosen_ns), s.cheapest_ns, saved(s.cheapest_ns),
-      s.cheapest_measured[0], s.cheapest_measured[1], s.cheapest_measured[2],
-      s.cheapest_measured[3]);
+  fmt::print("adequacy: TAU {:g}, z {:.3f} (Sidak over the table's {} decisions)\n", run.threshold,
+             s.z, s.decisions);
+  if (s.cells > 0) {
+    fmt::print(
+        "binomial family: {} cells; cheapest adequate level: smooth {}, realtime {}, "
+        "small_count {}, exact {}\n",
+        s.cells, s.chosen[0], s.chosen[1], s.chosen[2], s.chosen[3]);
+    fmt::print(
+        "chooser (core/glints/adequacy.h): same level as measured in {} cells, refuted in {}\n",
+        s.chooser_matches, s.chooser_refuted);
+    fmt::print("{} cells undecided (too few lit positions at the exact level: exact kept)\n",
+               s.undecided);
+    const auto saved = [&](double ns) { return s.exact_ns > 0 ? 100 * (1 - ns / s.exact_ns) : 0.0; };
+    fmt::print(
+        "time per evaluation summed over cells (this CPU, scalar double): exact everywhere "
+        "{:.0f} ns; chosen level {:.0f} ns ({:.1f} % saved); measured-cheapest adequate level "
+        "{:.0f} ns ({:.1f} % saved; smooth {}, realtime {}, small_count {}, exact {} cells)\n",
+        s.exact_ns, s.chosen_ns, saved(s.chosen_ns), s.cheapest_ns, saved(s.cheapest_ns),
+        s.cheapest_measured[0], s.cheapest_measured[1], s.cheapest_measured[2],
+        s.cheapest_measured[3]);
+  }
+  if (s.kemppinen.cells > 0) {
+    const auto& k = s.kemppinen;
+    std::vector<std::string> counts;
+    for (std::size_t l = 0; l < k.chosen.size(); ++l)
+      counts.push_back(fmt::format("{} {}", kKemppinenLevelNames[l], k.chosen[l]));
+    fmt::print("Kemppinen family: {} cells; cheapest adequate level: {}\n", k.cells,
+               fmt::join(counts, ", "));
+    fmt::print(
+        "chooser (core/glints/adequacy.h): same level as measured in {} cells, refuted in {}\n",
+        k.chooser_matches, k.chooser_refuted);
+    fmt::print("{} cells undecided (too few lit positions at k16_exact: k16_exact kept)\n",
+               k.undecided);
+    const auto saved = [&](double ns) {
+      return k.most_complete_ns > 0 ? 100 * (1 - ns / k.most_complete_ns) : 0.0;
+    };
+    fmt::print(
+        "time per evaluation summed over cells (this CPU, scalar double): k16_exact everywhere "
+        "{:.0f} ns; chosen level {:.0f} ns ({:.1f} % saved); measured-cheapest adequate level "
+        "{:.0f} ns ({:.1f} % saved)\n",
+        k.most_complete_ns, k.chosen_ns, saved(k.chosen_ns), k.cheapest_ns, saved(k.cheapest_ns));
+  }
   if (s.benchmark_costs) {
     const auto bench_saved = [&](double ns) {
       return s.bench_exact_ns > 0 ? 100 * (1 - ns / s.bench_exact_ns) : 0.0;
@@ -124,7 +150,7 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
 }
 
 constexpr const char* kFooter =
-    R"(The binomial glint family (deliot_belcour, kneiphof_klein) has four levels, cheapest first:
+    R"(Two families are measured. The binomial glint family (deliot_belcour, kneiphof_klein) has four levels, cheapest first:
 smooth (the smooth GGX value), realtime, small_count and exact counting (the `binomial` parameter).
 Per cell of a grid (footprint size N_P = 1 .. 1e8 expected facets, roughness, light half-angle
 0 (delta) .. 10 deg, incidence, half-vector angle on and off the specular peak) each level is
@@ -141,6 +167,15 @@ exact level everywhere. Writes DIR/adequacy.csv and adequacy.json (the
 table, with each level's measured ns per evaluation: the only numbers that vary run to run) and
 per model x light x incidence an EXR and a labelled PNG map of the cheapest adequate level, with
 the predicted boundary CV = sqrt((1 - p)/(N_P p)) = TAU drawn over it.
+The Kemppinen family (kemppinen_ggx) has nine levels, cheapest first: smooth
+(the base NDF in place of the glinty one), then Algorithm 1 with k = 1, 4, 9, 16 neighbours, each
+with the rational erf before the exact one in the compensation; the most complete is k16_exact.
+Its grid: 1 .. 1e6 expected points per footprint, roughness, incidence (the footprint stretched by
+1/cos theta_i) and half-vector angle; the same decision, against k16_exact, with z split over the
+decisions of both families. Its rows share adequacy.csv (column `family`; its own level columns,
+nan in the other family's rows) and adequacy.json (with each row's predicted and
+measured boundary per level), with one map per model and incidence and the predicted smooth
+boundary drawn over it.
 --calibrate measures the decision instead: on synthetic cells whose cheaper level differs from
 exact by exactly TAU (1 + delta) (in the mean, in the CV, or the smooth level at the boundary),
 delta = -0.5, -0.25, -0.1 (truly adequate: the power), 0 (the boundary), 0.05, 0.1, 0.25 (just
@@ -157,10 +192,12 @@ AdequacyRunSummary run_adequacy_request(const AdequacyRequest& o) {
   const bool quick = quick_budget(o.budget);
   std::vector<std::string> names(verify::adequacy::kBinomialFamilyModels.begin(),
                                  verify::adequacy::kBinomialFamilyModels.end());
+  names.insert(names.end(), verify::adequacy::kKemppinenFamilyModels.begin(),
+               verify::adequacy::kKemppinenFamilyModels.end());
   experiments::AdequacyOptions a;
-  a.models =
-      select_by_globs(o.models, "--models", names,
-                      fmt::format("models of the binomial family: {}", fmt::join(names, ", ")));
+  a.models = select_by_globs(
+      o.models, "--models", names,
+      fmt::format("models of the binomial and Kemppinen families: {}", fmt::join(names, ", ")));
   a.threshold = number_option(o.threshold, "--threshold", 0, 1, true, false);
   a.budget = quick ? verify::Budget::kQuick : verify::Budget::kFull;
   const std::uint64_t runs = integer_option(o.runs.value_or("2000"), "--runs", 1, 1000000);
@@ -180,7 +217,8 @@ AdequacyRunSummary run_adequacy_request(const AdequacyRequest& o) {
                                    *o.bench_from, experiments::kLevelCostsFile));
     try {
       a.costs = experiments::read_level_costs(*o.bench_from, *o.bench_from,
-                                              simd::isa_name(simd::default_isa()), a.models);
+                                              simd::isa_name(simd::default_isa()),
+                                              experiments::binomial_models(a.models));
     } catch (const std::invalid_argument& e) {
       throw InputError(e.what());
     }
@@ -209,8 +247,13 @@ AdequacyRunSummary run_adequacy_request(const AdequacyRequest& o) {
     };
     run.calibration = experiments::run_adequacy_calibration(o.out, c);
   } else {
-    const auto axes = verify::adequacy::grid_axes(a.budget);
-    const long total = long(verify::adequacy::make_grid(a.models, axes).size());
+    const long total =
+        long(verify::adequacy::make_grid(experiments::binomial_models(a.models),
+                                         verify::adequacy::grid_axes(a.budget))
+                 .size() +
+             verify::adequacy::make_kemppinen_grid(experiments::kemppinen_models(a.models),
+                                                   verify::adequacy::kemppinen_grid_axes(a.budget))
+                 .size());
     Progress bar("adequacy", total);
     a.progress = [&] {
       const std::lock_guard<std::mutex> lock(m);
@@ -235,7 +278,8 @@ void add_adequacy_command(CLI::App& app) {
   add_budget_option(cmd, o->budget,
                     "quick = 9 footprint sizes x 12 settings (seconds), full = finer");
   add_text_option(cmd, "--models", o->models,
-                  "comma-separated globs over the binomial family (deliot_belcour, kneiphof_klein)",
+                  "comma-separated globs over the models (deliot_belcour, kneiphof_klein, "
+                  "kemppinen_ggx)",
                   "LIST");
   add_text_option(cmd, "--threshold", o->threshold,
                   "TAU, the largest relative difference no one sees: a number in (0, 1]", "NUMBER");

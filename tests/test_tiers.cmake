@@ -55,6 +55,16 @@ set(glintlab_slow_tests
   "NdfIdentities.VisibleNormalsNormalized<glintlab::GGX<double>> 3"
   "SamplerNormalization.PdfIntegratesToOneOverTheSphere 1"
   "AdequacyClosedForms.RealtimeMomentsMatchItsDraws 2"
+  # The Kemppinen family's levels are Algorithm 1 at k = 16 (512 points, about 60 µs per
+  # evaluation): a few cells of a few thousand positions each, the fewest that decide them.
+  "KemppinenAdequacy.RationalLevelIsTheExactOnePlusAConstant 2"
+  "KemppinenAdequacyGrid.SameResultsForAnyThreadCount 2"
+  "KemppinenAdequacyCell.SmallFootprintNeedsTheMostCompleteLargeOneIsSmooth 1"
+  "KemppinenAdequacyCell.LevelsMadeTwoTauOffAreNotChosen 2"
+  "KemppinenChooser.NeverRefutedByTheMeasuredTableAndTenfoldTauIs 6"
+  "KemppinenChooser.MomentsBoundTheMeasuredCvAndMatchItsMean 1"
+  # The binomial family's quick grid for one model and 8 Kemppinen cells, written to files.
+  "AdequacyOutputs.BothFamiliesInOneTable 7"
   "ChermainClaims.DictionaryConverges 2"
   "ChermainClaims.GgaaDecisionFailsAgainstNearTruth 1"
   "ChermainClaims.OrderingDecisionFailsOnABrokenInput 5"

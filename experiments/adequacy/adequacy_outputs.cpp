@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <string_view>
@@ -17,6 +18,7 @@ namespace glintlab::experiments {
 namespace {
 
 using verify::adequacy::CellResult;
+using verify::adequacy::KemppinenCellResult;
 using verify::adequacy::LevelStats;
 
 const std::array<Vec3<double>, 4>& kLevelColors = kAdequacyLevelColors;
@@ -40,40 +42,75 @@ BenchPrice bench_price(const CellResult& r, const LevelCosts& costs) {
   return b;
 }
 
+// The level names a table's columns carry: the binomial levels where that family is in the table,
+// then the Kemppinen levels (its smooth level shares the binomial family's `smooth` columns: the
+// same meaning, the family's smooth limit).
+std::vector<std::string_view> table_levels(bool binomial, bool kemppinen) {
+  std::vector<std::string_view> out;
+  if (binomial) out.assign(kBinomialLevelNames.begin(), kBinomialLevelNames.end());
+  if (kemppinen)
+    for (std::string_view l : kKemppinenLevelNames)
+      if (!binomial || l != "smooth") out.push_back(l);
+  return out;
+}
+
 void write_csv(const std::filesystem::path& path, const std::vector<CellResult>& rows,
+               const std::vector<KemppinenCellResult>& kemppinen_rows,
                const std::optional<LevelCosts>& costs) {
-  std::vector<std::string> names = {"model",        "facets",           "alpha",
-                                    "light_half_angle_deg", "theta_i_deg", "theta_h_deg",
-                                    "p",            "smooth",           "cv_predicted",
-                                    "p_zero_predicted", "chosen",       "chooser",
-                                    "chooser_refuted"};
+  std::vector<std::string> names = {"family",       "model",            "facets",
+                                    "alpha",        "light_half_angle_deg", "theta_i_deg",
+                                    "theta_h_deg",  "p",                "smooth",
+                                    "cv_predicted", "p_zero_predicted", "chosen",
+                                    "chooser",      "chooser_refuted"};
   const std::array<std::string_view, 8> per_level = {
       "mean", "cv", "p_zero", "mean_diff", "mean_diff_ucb", "cv_diff", "cv_diff_ucb", "adequate"};
-  for (std::string_view l : kBinomialLevelNames)
+  const std::vector<std::string_view> levels = table_levels(!rows.empty(), !kemppinen_rows.empty());
+  for (std::string_view l : levels)
     for (std::string_view q : per_level) names.push_back(fmt::format("{}_{}", l, q));
   // Timing last: the only columns that change from run to run.
-  for (std::string_view l : kBinomialLevelNames) names.push_back(fmt::format("{}_ns", l));
+  for (std::string_view l : levels) names.push_back(fmt::format("{}_ns", l));
   names.push_back("cheapest_measured");
   names.push_back("time_saved_ns");
-  // With --bench-from: the levels priced by the benchmark (the same on every run of that file).
+  // With --bench-from: the levels priced by the benchmark (the same on every run of that file;
+  // the binomial family's rows only: the benchmark has no Kemppinen adequacy rows, whose fields
+  // there are `none` and `nan`).
   if (costs)
     for (const char* n : {"cheapest_by_benchmark", "bench_exact_ns", "bench_chosen_ns",
                           "bench_cheapest_ns"})
       names.push_back(n);
   std::vector<std::string_view> header(names.begin(), names.end());
+  // A family's row: its levels' statistics in their columns, `nan` where the level is another
+  // family's (the project's CSV has a value in every field).
+  const auto level_cells = [&](io::CsvWriter& w, const auto& row_levels, const auto& row_names) {
+    const auto find = [&](std::string_view l) -> const LevelStats* {
+      for (std::size_t i = 0; i < row_names.size(); ++i)
+        if (row_names[i] == l) return &row_levels[i];
+      return nullptr;
+    };
+    for (std::string_view l : levels) {
+      if (const LevelStats* s = find(l)) {
+        w.cell(s->mean).cell(s->cv).cell(s->p_zero).cell(s->mean_diff).cell(s->mean_diff_ucb);
+        w.cell(s->cv_diff).cell(s->cv_diff_ucb).cell_int(s->adequate ? 1 : 0);
+      } else {
+        for (std::size_t k = 0; k < per_level.size(); ++k) w.cell(NAN);
+      }
+    }
+    for (std::string_view l : levels) {
+      if (const LevelStats* s = find(l))
+        w.cell(s->ns_per_eval);
+      else
+        w.cell(NAN);
+    }
+  };
   io::write_csv_atomic(path, header, [&](io::CsvWriter& w) {
     for (const CellResult& r : rows) {
-      w.cell(r.cell.model).cell(r.cell.facets).cell(r.cell.alpha);
+      w.cell(kBinomialFamily).cell(r.cell.model).cell(r.cell.facets).cell(r.cell.alpha);
       w.cell(r.cell.light_half_angle_deg).cell(r.cell.theta_i_deg).cell(r.cell.theta_h_deg);
       w.cell(r.p).cell(r.smooth).cell(r.cv_predicted).cell(r.p_zero_predicted);
       w.cell(kBinomialLevelNames[std::size_t(r.chosen)]);
       w.cell(kBinomialLevelNames[std::size_t(r.chooser)]);
       w.cell_int(r.chooser_refuted ? 1 : 0);
-      for (const LevelStats& s : r.levels) {
-        w.cell(s.mean).cell(s.cv).cell(s.p_zero).cell(s.mean_diff).cell(s.mean_diff_ucb);
-        w.cell(s.cv_diff).cell(s.cv_diff_ucb).cell_int(s.adequate ? 1 : 0);
-      }
-      for (const LevelStats& s : r.levels) w.cell(s.ns_per_eval);
+      level_cells(w, r.levels, kBinomialLevelNames);
       w.cell(kBinomialLevelNames[std::size_t(r.cheapest_measured)]);
       w.cell(r.levels[3].ns_per_eval - r.levels[std::size_t(r.cheapest_measured)].ns_per_eval);
       if (costs) {
@@ -81,6 +118,21 @@ void write_csv(const std::filesystem::path& path, const std::vector<CellResult>&
         w.cell(kBinomialLevelNames[std::size_t(b.cheapest)]);
         w.cell(b.ns[3]).cell(b.ns[std::size_t(r.chosen)]).cell(b.ns[std::size_t(b.cheapest)]);
       }
+      w.end_row();
+    }
+    constexpr auto kRef = std::size_t(KemppinenLevel::kK16Exact);
+    for (const KemppinenCellResult& r : kemppinen_rows) {
+      // No light size (the model has none) nor p: nan; cv_predicted is the chooser's bound on
+      // k16_exact's CV; no predicted P(0) (nan).
+      w.cell(kKemppinenFamily).cell(r.cell.model).cell(r.cell.points).cell(r.cell.alpha);
+      w.cell(NAN).cell(r.cell.theta_i_deg).cell(r.cell.theta_h_deg);
+      w.cell(NAN).cell(r.smooth).cell(r.cv_bound).cell(NAN);
+      w.cell(kKemppinenLevelNames[std::size_t(r.chosen)]);
+      w.cell(kKemppinenLevelNames[std::size_t(r.chooser)]).cell_int(r.chooser_refuted ? 1 : 0);
+      level_cells(w, r.levels, kKemppinenLevelNames);
+      w.cell(kKemppinenLevelNames[std::size_t(r.cheapest_measured)]);
+      w.cell(r.levels[kRef].ns_per_eval - r.levels[std::size_t(r.cheapest_measured)].ns_per_eval);
+      if (costs) w.cell("none").cell(NAN).cell(NAN).cell(NAN);
       w.end_row();
     }
   });
@@ -174,19 +226,117 @@ std::vector<AdequacyLevelMap> adequacy_level_maps(const std::vector<CellResult>&
   return out;
 }
 
+std::vector<std::string> binomial_models(const std::vector<std::string>& models) {
+  std::vector<std::string> out;
+  for (std::string_view m : verify::adequacy::kBinomialFamilyModels)
+    if (std::find(models.begin(), models.end(), m) != models.end()) out.emplace_back(m);
+  return out;
+}
+
+std::vector<std::string> kemppinen_models(const std::vector<std::string>& models) {
+  std::vector<std::string> out;
+  for (std::string_view m : verify::adequacy::kKemppinenFamilyModels)
+    if (std::find(models.begin(), models.end(), m) != models.end()) out.emplace_back(m);
+  return out;
+}
+
+static verify::adequacy::KemppinenGridAxes kemppinen_axes_of(const AdequacyOptions& o) {
+  return o.kemppinen_axes ? *o.kemppinen_axes : verify::adequacy::kemppinen_grid_axes(o.budget);
+}
+
+std::size_t table_decisions(const AdequacyOptions& o) {
+  const std::size_t binomial =
+      verify::adequacy::make_grid(binomial_models(o.models), verify::adequacy::grid_axes(o.budget))
+          .size();
+  const std::size_t kemppinen =
+      verify::adequacy::make_kemppinen_grid(kemppinen_models(o.models),
+                                            kemppinen_axes_of(o))
+          .size();
+  return binomial * std::size_t(kBinomialLevels - 1) +
+         kemppinen * std::size_t(kKemppinenLevels - 1);
+}
+
+verify::adequacy::Decision table_decision(const AdequacyOptions& o) {
+  return verify::adequacy::decision_for_decisions(table_decisions(o), o.threshold);
+}
+
 std::vector<CellResult> measure_adequacy(const AdequacyOptions& o) {
   const verify::adequacy::GridAxes axes = verify::adequacy::grid_axes(o.budget);
-  const auto cells = verify::adequacy::make_grid(o.models, axes);
-  const auto decision = verify::adequacy::decision_for(cells.size(), o.threshold);
-  return verify::adequacy::measure_grid(cells, axes.samples, decision, o.progress);
+  const auto cells = verify::adequacy::make_grid(binomial_models(o.models), axes);
+  return verify::adequacy::measure_grid(cells, axes.samples, table_decision(o), o.progress);
+}
+
+std::vector<KemppinenCellResult> measure_kemppinen_adequacy(const AdequacyOptions& o) {
+  const verify::adequacy::KemppinenGridAxes axes = kemppinen_axes_of(o);
+  const auto cells = verify::adequacy::make_kemppinen_grid(kemppinen_models(o.models), axes);
+  return verify::adequacy::measure_kemppinen_grid(cells, axes.samples, table_decision(o),
+                                                  o.progress);
+}
+
+std::vector<AdequacyLevelMap> kemppinen_level_maps(
+    const std::vector<KemppinenCellResult>& rows, const verify::adequacy::KemppinenGridAxes& axes,
+    double threshold, const std::vector<verify::adequacy::KemppinenBoundary>& boundaries) {
+  // Per model × incidence, rows (α, θ_h) bottom to top, columns the expected points.
+  std::vector<AdequacyLevelMap> out;
+  const std::size_t n_cols = axes.points.size();
+  const std::size_t n_rows = axes.alpha.size() * std::size_t(axes.theta_h_count);
+  const std::size_t per_map = n_cols * n_rows;
+  constexpr auto kRef = std::size_t(KemppinenLevel::kK16Exact);
+  for (std::size_t start = 0; start + per_map <= rows.size(); start += per_map) {
+    const KemppinenCellResult& first = rows[start];
+    AdequacyLevelMap m;
+    m.model = first.cell.model;
+    m.theta_i_deg = first.cell.theta_i_deg;
+    m.stem = fmt::format("adequacy_{}_theta{:g}", first.cell.model, first.cell.theta_i_deg);
+    CategoryMap& map = m.map;
+    map.title = fmt::format("{}: cheapest level within TAU = {:g} of k16_exact (theta_i {:g} deg)",
+                            first.cell.model, threshold, first.cell.theta_i_deg);
+    map.x_label = "footprint size (expected points)";
+    map.y_label = "alpha, theta_h (deg)";
+    for (double n : axes.points) map.column_labels.push_back(short_number(n));
+    for (std::string_view l : kKemppinenLevelNames) map.category_names.emplace_back(l);
+    map.category_colors.assign(kKemppinenLevelColors.begin(), kKemppinenLevelColors.end());
+    map.marker_name = "predicted: smooth adequate";
+    m.exr = Image(int(n_cols), int(n_rows), {"chosen", "chooser", "cv_most_complete", "lambda"});
+    for (std::size_t r = 0; r < n_rows; ++r) {
+      const KemppinenCellResult& row0 = rows[start + r * n_cols];
+      map.row_labels.push_back(
+          fmt::format("a={:g} th={:.1f}", row0.cell.alpha, row0.cell.theta_h_deg));
+      std::vector<int> cats;
+      for (std::size_t k = 0; k < n_cols; ++k) {
+        const KemppinenCellResult& c = rows[start + r * n_cols + k];
+        cats.push_back(c.chosen);
+        const double v[] = {double(c.chosen), double(c.chooser), c.levels[kRef].cv, c.lambda};
+        for (std::size_t ch = 0; ch < 4; ++ch) m.exr.at(int(k), int(r), ch) = v[ch];
+      }
+      map.cells.push_back(cats);
+      // The predicted smooth boundary (kemppinen_boundaries), in column units.
+      const std::size_t global_row = start / n_cols + r;
+      const std::size_t per_row = verify::adequacy::kKemppinenBoundaryLevels.size();
+      double marker = NAN;
+      if (global_row * per_row < boundaries.size() && n_cols > 1) {
+        const double star = boundaries[global_row * per_row].predicted;  // smooth first
+        const double l0 = std::log10(axes.points.front()), l1 = std::log10(axes.points.back());
+        if (star > 0) marker = (std::log10(star) - l0) / (l1 - l0) * double(n_cols - 1);
+      }
+      map.marker_column.push_back(marker);
+    }
+    out.push_back(std::move(m));
+  }
+  return out;
 }
 
 AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOptions& o) {
   const verify::adequacy::GridAxes axes = verify::adequacy::grid_axes(o.budget);
-  const auto cells = verify::adequacy::make_grid(o.models, axes);
-  const auto decision = verify::adequacy::decision_for(cells.size(), o.threshold);
-  const std::vector<CellResult> rows =
-      verify::adequacy::measure_grid(cells, axes.samples, decision, o.progress);
+  const verify::adequacy::KemppinenGridAxes kemppinen_axes =
+      kemppinen_axes_of(o);
+  const auto decision = table_decision(o);
+  const std::vector<CellResult> rows = verify::adequacy::measure_grid(
+      verify::adequacy::make_grid(binomial_models(o.models), axes), axes.samples, decision,
+      o.progress);
+  const std::vector<KemppinenCellResult> kemppinen_rows = verify::adequacy::measure_kemppinen_grid(
+      verify::adequacy::make_kemppinen_grid(kemppinen_models(o.models), kemppinen_axes),
+      kemppinen_axes.samples, decision, o.progress);
 
   AdequacySummary sum;
   sum.cells = rows.size();
@@ -208,10 +358,25 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
       ++sum.cheapest_by_benchmark[std::size_t(b.cheapest)];
     }
   }
+  sum.decisions = table_decisions(o);
+  sum.z = decision.z;
+  constexpr auto kRef = std::size_t(KemppinenLevel::kK16Exact);
+  for (const KemppinenCellResult& r : kemppinen_rows) {
+    auto& k = sum.kemppinen;
+    ++k.cells;
+    ++k.chosen[std::size_t(r.chosen)];
+    ++k.cheapest_measured[std::size_t(r.cheapest_measured)];
+    k.chooser_matches += r.chooser == r.chosen ? 1 : 0;
+    k.chooser_refuted += r.chooser_refuted ? 1 : 0;
+    k.undecided += r.levels[0].undecided ? 1 : 0;
+    k.most_complete_ns += r.levels[kRef].ns_per_eval;
+    k.chosen_ns += r.levels[std::size_t(r.chosen)].ns_per_eval;
+    k.cheapest_ns += r.levels[std::size_t(r.cheapest_measured)].ns_per_eval;
+  }
   std::filesystem::create_directories(out);
   sum.csv = out / "adequacy.csv";
   sum.json = out / "adequacy.json";
-  write_csv(sum.csv, rows, o.costs);
+  write_csv(sum.csv, rows, kemppinen_rows, o.costs);
 
   nlohmann::json maps = nlohmann::json::array();
   for (const AdequacyLevelMap& m : adequacy_level_maps(rows, axes, o.threshold)) {
@@ -222,8 +387,28 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
                    {"glintlab_levels", "0 smooth, 1 realtime, 2 small_count, 3 exact"}});
     io::write_png_preview(out / (m.stem + ".png"), draw_category_map(m.map));
     sum.maps.push_back(m.stem + ".png");
-    maps.push_back({{"model", m.model},
+    maps.push_back({{"family", kBinomialFamily},
+                    {"model", m.model},
                     {"light_half_angle_deg", m.light_half_angle_deg},
+                    {"theta_i_deg", m.theta_i_deg},
+                    {"png", m.stem + ".png"},
+                    {"exr", m.stem + ".exr"}});
+  }
+  const std::vector<verify::adequacy::KemppinenBoundary> boundaries =
+      verify::adequacy::kemppinen_boundaries(kemppinen_rows, kemppinen_axes, o.threshold);
+  for (const AdequacyLevelMap& m :
+       kemppinen_level_maps(kemppinen_rows, kemppinen_axes, o.threshold, boundaries)) {
+    io::write_exr(
+        out / (m.stem + ".exr"), m.exr,
+        {{"glintlab_columns",
+          "expected points: " + fmt::format("{}", fmt::join(kemppinen_axes.points, ", "))},
+         {"glintlab_rows", fmt::format("{}", fmt::join(m.map.row_labels, "; "))},
+         {"glintlab_levels", "0 smooth, 1 k1_rational, 2 k1_exact, 3 k4_rational, 4 k4_exact, "
+                             "5 k9_rational, 6 k9_exact, 7 k16_rational, 8 k16_exact"}});
+    io::write_png_preview(out / (m.stem + ".png"), draw_category_map(m.map));
+    sum.maps.push_back(m.stem + ".png");
+    maps.push_back({{"family", kKemppinenFamily},
+                    {"model", m.model},
                     {"theta_i_deg", m.theta_i_deg},
                     {"png", m.stem + ".png"},
                     {"exr", m.stem + ".exr"}});
@@ -237,8 +422,9 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
   doc["samples_per_cell"] = axes.samples;
   doc["bound"] = {{"family_wise_rate", verify::kFamilyWiseRate},
                   {"z", decision.z},
+                  {"decisions", sum.decisions},
                   {"method", "delta method on paired positions, one-sided, Sidak over every "
-                             "(cell, cheaper level)"}};
+                             "(cell, cheaper level) of every family"}};
   doc["difference"] = {
       {"mean", "|mean_level / mean_exact - 1|"},
       {"cv", "|CV_level - CV_exact| (absolute: the smooth level's CV is 0)"}};
@@ -286,7 +472,8 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
     nlohmann::json levels = nlohmann::json::object();
     for (std::size_t l = 0; l < 4; ++l)
       levels[std::string(kBinomialLevelNames[l])] = level_json(r.levels[l]);
-    table.push_back({{"model", r.cell.model},
+    table.push_back({{"family", kBinomialFamily},
+                     {"model", r.cell.model},
                      {"facets", r.cell.facets},
                      {"alpha", r.cell.alpha},
                      {"light_half_angle_deg", r.cell.light_half_angle_deg},
@@ -304,6 +491,80 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
       table.back()["cheapest_by_benchmark"] =
           kBinomialLevelNames[std::size_t(bench_price(r, *o.costs).cheapest)];
   }
+  {
+    nlohmann::json chosen = nlohmann::json::object(), cheapest = nlohmann::json::object();
+    for (std::size_t l = 0; l < std::size_t(kKemppinenLevels); ++l) {
+      chosen[std::string(kKemppinenLevelNames[l])] = sum.kemppinen.chosen[l];
+      cheapest[std::string(kKemppinenLevelNames[l])] = sum.kemppinen.cheapest_measured[l];
+    }
+    // NaN (no boundary) and infinity as null in JSON.
+    const auto finite_or_null = [](double x) -> nlohmann::json {
+      return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
+    };
+    nlohmann::json bounds = nlohmann::json::array();
+    for (const verify::adequacy::KemppinenBoundary& b : boundaries)
+      bounds.push_back({{"model", b.row.model},
+                        {"theta_i_deg", b.row.theta_i_deg},
+                        {"alpha", b.row.alpha},
+                        {"theta_h_deg", b.row.theta_h_deg},
+                        {"level", kKemppinenLevelNames[std::size_t(b.level)]},
+                        {"predicted", finite_or_null(b.predicted)},
+                        {"measured_low", b.measured_low},
+                        {"measured_high", finite_or_null(b.measured_high)}});
+    doc["families"] = {
+        {kBinomialFamily,
+         {{"models", binomial_models(o.models)},
+          {"levels", kBinomialLevelNames},
+          {"most_complete", "exact"},
+          {"cells", sum.cells},
+          {"samples_per_cell", axes.samples}}},
+        {kKemppinenFamily,
+         {{"models", kemppinen_models(o.models)},
+          {"levels", kKemppinenLevelNames},
+          {"most_complete", "k16_exact"},
+          {"cells", sum.kemppinen.cells},
+          {"samples_per_cell", kemppinen_axes.samples},
+          {"material", {{"density", verify::adequacy::kKemppinenDensity},
+                        {"microroughness", "model default"},
+                        {"filter", "model default"}}},
+          {"facets", "expected points per footprint (density x footprint area); the footprint "
+                     "stretched by 1/cos(theta_i) along the plane of incidence"},
+          {"boundaries", bounds},
+          {"boundary",
+           "per row and level: predicted, the fewest expected points from which the level stays "
+           "adequate by the chooser's moments at TAU (no margin); measured, between measured_low "
+           "(the largest grid footprint where it is not adequate; 0: none) and measured_high (the "
+           "next; null: not adequate at the largest)"},
+          {"summary",
+           {{"cells", sum.kemppinen.cells},
+            {"chosen", chosen},
+            {"cheapest_measured", cheapest},
+            {"undecided", sum.kemppinen.undecided},
+            {"chooser_matches", sum.kemppinen.chooser_matches},
+            {"chooser_refuted", sum.kemppinen.chooser_refuted},
+            {"most_complete_ns_total", sum.kemppinen.most_complete_ns},
+            {"chosen_ns_total", sum.kemppinen.chosen_ns},
+            {"cheapest_measured_ns_total", sum.kemppinen.cheapest_ns}}}}}};
+  }
+  for (const KemppinenCellResult& r : kemppinen_rows) {
+    nlohmann::json levels = nlohmann::json::object();
+    for (std::size_t l = 0; l < std::size_t(kKemppinenLevels); ++l)
+      levels[std::string(kKemppinenLevelNames[l])] = level_json(r.levels[l]);
+    table.push_back({{"family", kKemppinenFamily},
+                     {"model", r.cell.model},
+                     {"facets", r.cell.points},
+                     {"alpha", r.cell.alpha},
+                     {"theta_i_deg", r.cell.theta_i_deg},
+                     {"theta_h_deg", r.cell.theta_h_deg},
+                     {"lambda", r.lambda},
+                     {"smooth", r.smooth},
+                     {"chosen", kKemppinenLevelNames[std::size_t(r.chosen)]},
+                     {"chooser", kKemppinenLevelNames[std::size_t(r.chooser)]},
+                     {"chooser_refuted", r.chooser_refuted},
+                     {"cv_bound", r.cv_bound},
+                     {"cheapest_measured", kKemppinenLevelNames[std::size_t(r.cheapest_measured)]},
+                     {"levels", levels}});
+  }
   doc["cells"] = table;
   io::write_file_atomic(sum.json, doc.dump(1) + "\n");
   return sum;
@@ -315,8 +576,10 @@ verify::adequacy::DecisionCalibrationOptions decision_calibration_options(
   verify::adequacy::DecisionCalibrationOptions c;
   c.threshold = o.threshold;
   c.samples = axes.samples;
-  c.table_decisions =
-      verify::adequacy::make_grid(o.models, axes).size() * std::size_t(kBinomialLevels - 1);
+  AdequacyOptions table;
+  table.models = o.models;
+  table.budget = o.budget;
+  c.table_decisions = table_decisions(table);
   c.runs = o.runs;
   c.tables = o.tables;
   c.progress = o.progress;

@@ -1,8 +1,10 @@
-// `glintlab adequacy` as files: the measured table of verify/adequacy/ (adequacy.csv, one row per
-// cell; adequacy.json, the same with the decision's settings and a cost summary) and per model ×
-// light × incidence one map of the chosen level over footprint size × (roughness, half-vector
-// angle): EXR (chosen level, chooser, measured and predicted CV and P(no glint)) and a labelled PNG
-// with the predicted boundary CV_pred = TAU drawn over the measured levels.
+// `glintlab adequacy` as files: the measured table of verify/adequacy/ for every family selected
+// (the binomial family and the Kemppinen family; adequacy.csv, one row per cell with its
+// `family`; adequacy.json, the same with the decision's settings and a cost summary) and per
+// model × light × incidence (Kemppinen: model × incidence) one map of the chosen level over
+// footprint size × (roughness, half-vector angle): EXR (chosen level, chooser, measured and
+// predicted CV and P(no glint)) and a labelled PNG with the predicted boundary drawn over the
+// measured levels (binomial: CV_pred = TAU; Kemppinen: the smooth level's, kemppinen_boundaries).
 #pragma once
 
 #include <array>
@@ -18,6 +20,7 @@
 #include "experiments/figures/log_chart.h"
 #include "verify/adequacy/binomial_adequacy.h"
 #include "verify/adequacy/decision_calibration.h"
+#include "verify/adequacy/kemppinen_adequacy.h"
 
 namespace glintlab::experiments {
 
@@ -26,14 +29,28 @@ inline constexpr std::array<Vec3<double>, 4> kAdequacyLevelColors = {
     Vec3<double>{0.35, 0.75, 0.35}, Vec3<double>{0.35, 0.55, 0.9}, Vec3<double>{0.95, 0.65, 0.2},
     Vec3<double>{0.85, 0.25, 0.25}};
 
+// The colours of the Kemppinen levels (smooth, then k = 1, 4, 9, 16 rational and exact: the exact
+// erf a darker shade of its k's colour) in every adequacy map.
+inline constexpr std::array<Vec3<double>, 9> kKemppinenLevelColors = {
+    Vec3<double>{0.35, 0.75, 0.35}, Vec3<double>{0.55, 0.75, 0.95}, Vec3<double>{0.3, 0.5, 0.85},
+    Vec3<double>{0.95, 0.8, 0.4},   Vec3<double>{0.85, 0.6, 0.15},  Vec3<double>{0.85, 0.6, 0.85},
+    Vec3<double>{0.6, 0.3, 0.65},   Vec3<double>{0.95, 0.45, 0.45}, Vec3<double>{0.75, 0.15, 0.15}};
+
+// The family names in the table's `family` column.
+inline constexpr std::string_view kBinomialFamily = "binomial", kKemppinenFamily = "kemppinen";
+
 struct AdequacyOptions {
-  std::vector<std::string> models;  // names of the binomial family
+  // Models of any family (verify::adequacy::kBinomialFamilyModels, kKemppinenFamilyModels).
+  std::vector<std::string> models;
   double threshold = verify::adequacy::kDefaultThreshold;
   verify::Budget budget = verify::Budget::kQuick;
   std::function<void()> progress;  // once per measured cell, from any thread
   // Each level's cost from the benchmark JSON (`--bench-from`); unset: the table prices the levels
   // only by the GPU order and the in-process timing.
   std::optional<LevelCosts> costs;
+  // The Kemppinen family's grid; unset: the budget's (kemppinen_grid_axes). Set by the tests, whose
+  // time does not allow the budget's grid.
+  std::optional<verify::adequacy::KemppinenGridAxes> kemppinen_axes;
 };
 
 struct AdequacySummary {
@@ -55,13 +72,36 @@ struct AdequacySummary {
   bool benchmark_costs = false;
   double bench_exact_ns = 0, bench_chosen_ns = 0, bench_cheapest_ns = 0;
   std::array<std::size_t, 4> cheapest_by_benchmark{};
+  // The decision's bounds: z of the Šidák split over every decision of the table (all families).
+  std::size_t decisions = 0;
+  double z = 0;
+  // The Kemppinen family (zero cells when none of its models is selected): cells per cheapest
+  // adequate level (KemppinenLevel order), undecided cells, and Σ over cells of the in-process time
+  // per evaluation for k = 16 exact everywhere, the chosen level and the measured-cheapest one.
+  struct Kemppinen {
+    std::size_t cells = 0, undecided = 0;
+    std::size_t chooser_matches = 0, chooser_refuted = 0;  // as the binomial family's
+    std::array<std::size_t, kKemppinenLevels> chosen{}, cheapest_measured{};
+    double most_complete_ns = 0, chosen_ns = 0, cheapest_ns = 0;
+  } kemppinen;
 };
 
 // Measures every cell and writes the files into `out` (created), each atomically.
 AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOptions& o);
 
-// The table alone (for the tests): the cells of the budget's grid for `models`, measured.
+// The table alone (for the tests and the maps figure): the binomial family's cells of the budget's
+// grid for `models`, measured with the decision of the whole table (table_decision).
 std::vector<verify::adequacy::CellResult> measure_adequacy(const AdequacyOptions& o);
+// The Kemppinen family's cells of the budget's grid for `models`, measured likewise.
+std::vector<verify::adequacy::KemppinenCellResult> measure_kemppinen_adequacy(
+    const AdequacyOptions& o);
+// The models of `models` in each family, in the families' order.
+std::vector<std::string> binomial_models(const std::vector<std::string>& models);
+std::vector<std::string> kemppinen_models(const std::vector<std::string>& models);
+// The decision of the whole table for `o`: z by Šidák over every (cell, cheaper level) decision
+// of every family selected (binomial: 3 per cell, Kemppinen: 8 per cell).
+verify::adequacy::Decision table_decision(const AdequacyOptions& o);
+std::size_t table_decisions(const AdequacyOptions& o);
 
 // One map of the measured table, per model × light × incidence: the chosen level over footprint
 // size N_P (columns) × (α, θ_h) (rows, bottom to top) as a labelled category map with the predicted
@@ -78,6 +118,16 @@ struct AdequacyLevelMap {
 std::vector<AdequacyLevelMap> adequacy_level_maps(
     const std::vector<verify::adequacy::CellResult>& rows, const verify::adequacy::GridAxes& axes,
     double threshold);
+
+// The Kemppinen maps, per model × incidence: the chosen level over expected points per footprint
+// (columns) × (α, θ_h) (rows, bottom to top), and an EXR of one pixel per cell (channels chosen,
+// chooser, cv_most_complete, lambda). `rows` in make_kemppinen_grid's order for `axes`.
+// `boundaries` (kemppinen_boundaries of the same rows; may be empty) draws each row's predicted
+// smooth boundary.
+std::vector<AdequacyLevelMap> kemppinen_level_maps(
+    const std::vector<verify::adequacy::KemppinenCellResult>& rows,
+    const verify::adequacy::KemppinenGridAxes& axes, double threshold,
+    const std::vector<verify::adequacy::KemppinenBoundary>& boundaries = {});
 
 // `glintlab adequacy --calibrate`: the decision rule's false-adequate rate (and, on truly
 // adequate cells, its power) on synthetic cells whose truth is known

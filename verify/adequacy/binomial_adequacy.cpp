@@ -139,8 +139,11 @@ std::vector<Cell> make_grid(const std::vector<std::string>& models, const GridAx
 }
 
 Decision decision_for(std::size_t cells, double threshold) {
-  const std::size_t tests = cells * std::size_t(kBinomialLevels - 1);
-  return decision_at_level(sidak_level(kFamilyWiseRate, tests), threshold);
+  return decision_for_decisions(cells * std::size_t(kBinomialLevels - 1), threshold);
+}
+
+Decision decision_for_decisions(std::size_t decisions, double threshold) {
+  return decision_at_level(sidak_level(kFamilyWiseRate, decisions), threshold);
 }
 
 Decision decision_at_level(double level, double threshold) {

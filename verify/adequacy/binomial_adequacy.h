@@ -90,6 +90,9 @@ struct Decision {
 // over every (cell, cheaper level) decision, so that the whole table declares a level adequate that
 // is not with probability at most kFamilyWiseRate (asymptotically: the bounds are delta-method).
 Decision decision_for(std::size_t cells, double threshold);
+// The same over `decisions` decisions in all (a table of several families: each family's cells
+// times its cheaper levels).
+Decision decision_for_decisions(std::size_t decisions, double threshold);
 // The decision whose bounds have one-sided level `level` (z = Φ⁻¹(1 − level)).
 Decision decision_at_level(double level, double threshold);
 

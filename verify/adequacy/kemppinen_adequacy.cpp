@@ -1,0 +1,298 @@
+#include "verify/adequacy/kemppinen_adequacy.h"
+
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "core/models/kemppinen_beckmann.h"
+#include "core/models/kemppinen_ggx.h"
+
+namespace glintlab::verify::adequacy {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180;
+
+// The footprint's half-axes in uv: a rectangle of area points / K_P, stretched by 1/cos θ_i along
+// the plane of incidence (x), as a pixel's footprint on a surface seen at θ_i.
+Vec2<double> footprint_axes(const KemppinenCell& c) {
+  const double side = std::sqrt(c.points / kKemppinenDensity);
+  const double stretch = std::sqrt(1 / std::cos(c.theta_i_deg * kDeg));
+  return {side * stretch, side / stretch};
+}
+
+template <class M>
+std::vector<double> model_param_values(const KemppinenCell& c, KemppinenLevel level,
+                                       std::uint64_t seed) {
+  std::vector<double> v;
+  for (const ParamSpec& s : M::kParams) v.push_back(s.default_value);
+  v[param_index<M>("alpha_x")] = c.alpha;
+  v[param_index<M>("alpha_y")] = c.alpha;
+  v[param_index<M>("density")] = kKemppinenDensity;
+  v[param_index<M>("k")] = double(kemppinen_level_side(level) - 1);
+  v[param_index<M>("erf")] = kemppinen_level_rational(level) ? 1.0 : 0.0;
+  v[param_index<M>("seed")] = double(seed % 4294967296ULL);
+  return v;
+}
+
+// Positions at which a rational-erf level is also evaluated by the model itself, for its time.
+constexpr int kRationalTimedPositions = 256;
+
+template <class M>
+typename M::template Params<double> level_params(const KemppinenCell& c, KemppinenLevel level,
+                                                 std::uint64_t seed) {
+  return M::template params<double>(model_param_values<M>(c, level, seed));
+}
+
+// The model's value without its sampler's pdf (M::eval also computes the pdf, which the value
+// does not use and which costs as much again).
+template <class M>
+ModelEval<double, detail::kKemppinenIntermediates.size()> value_at(
+    const typename M::template Params<double>& params, const KemppinenCell& c, int i) {
+  return detail::kemppinen_model_eval(
+      params, kemppinen_cell_query(c, kemppinen_surface_position(c, i)), 0.0);
+}
+
+template <class M>
+double values_of(const KemppinenCell& c, KemppinenLevel level, int samples, std::uint64_t seed,
+                 std::vector<double>& out) {
+  out.resize(std::size_t(samples));
+  using Clock = std::chrono::steady_clock;
+  if (level == KemppinenLevel::kSmooth) {
+    // D★^f replaced by D: G2 and D of the model (independent of the position and the level).
+    const auto t0 = Clock::now();
+    const auto e = value_at<M>(level_params<M>(c, KemppinenLevel::kK1Exact, seed), c, 0);
+    const ModelQuery<double> q = kemppinen_cell_query(c, kemppinen_surface_position(c, 0));
+    const double g2 = e.intermediates[12], d = e.intermediates[3];
+    const double smooth = q.wi.z > 0 && q.wo.z > 0 ? g2 * d / (4 * q.wi.z) : 0.0;
+    for (int i = 0; i < samples; ++i) out[std::size_t(i)] = smooth;
+    return std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / samples;
+  }
+  const KemppinenLevel exact =
+      kemppinen_level_rational(level) ? KemppinenLevel(int(level) + 1) : level;
+  const auto params = level_params<M>(c, exact, seed);
+  const auto t0 = Clock::now();
+  for (int i = 0; i < samples; ++i) out[std::size_t(i)] = value_at<M>(params, c, i).value;
+  const auto t1 = Clock::now();
+  if (exact == level) return std::chrono::duration<double, std::nano>(t1 - t0).count() / samples;
+  // The rational erf enters only the compensation (Eq. 10), which depends on the half-vector and
+  // the LOD λ alone, not on the position (λ is the footprint's, the same at every position of a
+  // cell): the rational level's value is the exact level's plus a constant, taken here from one
+  // position (KemppinenAdequacy.RationalLevelIsTheExactOnePlusAConstant checks it against the
+  // model at every position). Its time is the model's own rational evaluation at the first
+  // kRationalTimedPositions positions.
+  const auto rational = level_params<M>(c, level, seed);
+  const double shift = value_at<M>(rational, c, 0).value - out[0];
+  for (double& v : out) v += shift;
+  const int timed = std::min(samples, kRationalTimedPositions);
+  double sink = 0;
+  const auto t2 = Clock::now();
+  for (int i = 0; i < timed; ++i) sink += value_at<M>(rational, c, i).value;
+  const auto t3 = Clock::now();
+  volatile double kept = sink;  // so the timed loop is not removed
+  (void)kept;
+  return std::chrono::duration<double, std::nano>(t3 - t2).count() / timed;
+}
+
+template <class F>
+decltype(auto) with_model(const std::string& model, F&& f) {
+  if (model == "kemppinen_ggx") return f(KemppinenGGX{});
+  if (model == "kemppinen_beckmann") return f(KemppinenBeckmann{});
+  throw std::invalid_argument("adequacy: not a model of the Kemppinen family: " + model);
+}
+
+}  // namespace
+
+KemppinenGridAxes kemppinen_grid_axes(Budget b) {
+  KemppinenGridAxes g;
+  if (b == Budget::kQuick) {
+    // 1 … 10⁶: every row of the quick grid has reached the smooth level by 10⁵ (10⁷ was measured:
+    // smooth in every row at 10⁶ and 10⁷).
+    for (int e = 0; e <= 6; ++e) g.points.push_back(std::pow(10.0, e));
+    g.alpha = {0.1, 0.3};
+    g.theta_i_deg = {0, 60};
+    g.samples = 8000;
+  } else {
+    for (int e = 0; e <= 14; ++e) g.points.push_back(std::round(std::pow(10.0, 0.5 * e)));
+    g.alpha = {0.1, 0.2, 0.4};
+    g.theta_i_deg = {0, 30, 60, 80};
+    g.samples = 32000;
+  }
+  return g;
+}
+
+std::vector<KemppinenCell> make_kemppinen_grid(const std::vector<std::string>& models,
+                                               const KemppinenGridAxes& axes) {
+  std::vector<KemppinenCell> cells;
+  for (const std::string& m : models)
+    for (double ti : axes.theta_i_deg)
+      for (double a : axes.alpha)
+        for (int h = 0; h < axes.theta_h_count; ++h)
+          for (double n : axes.points) cells.push_back({m, n, a, ti, std::atan(a * h) / kDeg, h});
+  return cells;
+}
+
+Vec2<double> kemppinen_surface_position(const KemppinenCell& c, int i) {
+  // The coarser level's spatial cell is 2^(⌊λ⌋+1)/√K_P ≤ 4 f σ = 2σ for the footprint's longer
+  // axis σ (f = 0.5), or 2/√K_P where λ is clamped at 0.
+  const double cell = 2 * std::max(footprint_axes(c).x, 1 / std::sqrt(kKemppinenDensity));
+  const Vec2<double> r = surface_position(i);
+  return {r.x * kKemppinenSpread * cell, r.y * kKemppinenSpread * cell};
+}
+
+ModelQuery<double> kemppinen_cell_query(const KemppinenCell& c, Vec2<double> uv) {
+  ModelQuery<double> q{};
+  const double ti = c.theta_i_deg * kDeg, th = c.theta_h_deg * kDeg;
+  q.wi = {std::sin(ti), 0, std::cos(ti)};
+  // h tilted sideways, as in the binomial grid: ω_o.z = cos θ_i cos 2θ_h > 0 for θ_h < 45°.
+  const Vec3<double> h{0, std::sin(th), std::cos(th)};
+  const double wh = dot(q.wi, h);
+  q.wo =
+      normalize(Vec3<double>{2 * wh * h.x - q.wi.x, 2 * wh * h.y - q.wi.y, 2 * wh * h.z - q.wi.z});
+  const Vec2<double> axes = footprint_axes(c);
+  q.footprint.uv = uv;
+  q.footprint.duv_dx = {axes.x, 0};
+  q.footprint.duv_dy = {0, axes.y};
+  q.light.cos_half_angle = 1;
+  q.light.intensity = 1;
+  return q;
+}
+
+std::vector<double> kemppinen_level_param_values(const KemppinenCell& c, KemppinenLevel level,
+                                                 std::uint64_t seed) {
+  if (level == KemppinenLevel::kSmooth)
+    throw std::invalid_argument(
+        "adequacy: the smooth level is the base NDF's value, not Algorithm 1");
+  return with_model(c.model,
+                    [&](auto m) { return model_param_values<decltype(m)>(c, level, seed); });
+}
+
+double kemppinen_level_values(const KemppinenCell& cell, KemppinenLevel level, int samples,
+                              std::uint64_t seed, std::vector<double>& out) {
+  return with_model(
+      cell.model, [&](auto m) { return values_of<decltype(m)>(cell, level, samples, seed, out); });
+}
+
+KemppinenCellResult measure_kemppinen_cell(const KemppinenCell& cell, int samples,
+                                           std::uint64_t seed, const Decision& d,
+                                           const KemppinenLevelEdit& edit) {
+  KemppinenCellResult r;
+  r.cell = cell;
+  constexpr auto kRef = std::size_t(KemppinenLevel::kK16Exact);
+  std::vector<double> ref, x;
+  const double t_ref = kemppinen_level_values(cell, KemppinenLevel::kK16Exact, samples, seed, ref);
+  for (std::size_t l = 0; l < std::size_t(kKemppinenLevels); ++l) {
+    if (l == kRef) {
+      r.levels[l] = compare_to_exact(ref, ref, d);
+      r.levels[l].adequate = true;  // the reference itself
+      r.levels[l].undecided = false;
+      r.levels[l].ns_per_eval = t_ref;
+      continue;
+    }
+    const double t = kemppinen_level_values(cell, KemppinenLevel(l), samples, seed, x);
+    if (edit) edit(KemppinenLevel(l), x);
+    r.levels[l] = compare_to_exact(x, ref, d);
+    r.levels[l].ns_per_eval = t;
+    if (l == std::size_t(KemppinenLevel::kSmooth)) r.smooth = x.empty() ? 0 : x[0];
+  }
+  for (int l = 0; l < kKemppinenLevels; ++l)
+    if (r.levels[std::size_t(l)].adequate) {
+      r.chosen = l;
+      break;
+    }
+  for (int l = 0; l < kKemppinenLevels; ++l)
+    if (r.levels[std::size_t(l)].adequate &&
+        r.levels[std::size_t(l)].ns_per_eval <
+            r.levels[std::size_t(r.cheapest_measured)].ns_per_eval)
+      r.cheapest_measured = l;
+  with_model(cell.model, [&](auto m) {
+    using M = decltype(m);
+    const auto p =
+        M::template params<double>(model_param_values<M>(cell, KemppinenLevel::kK16Exact, seed));
+    const ModelQuery<double> q = kemppinen_cell_query(cell, kemppinen_surface_position(cell, 0));
+    r.lambda = detail::kemppinen_model_eval(p, q, 0.0).intermediates[4];
+    r.chooser = int(choose_kemppinen_model_level(p, q, d.threshold));
+    const KemppinenMoments<double> mo =
+        kemppinen_level_moments(p.glint, p.ndf, q.footprint, half_vector(q.wi, q.wo));
+    r.cv_bound = mo.valid ? (std::sqrt(mo.var_points[3]) + mo.position_sd[3]) / mo.mean[3] : 0.0;
+  });
+  const LevelStats& c = r.levels[std::size_t(r.chooser)];
+  r.chooser_refuted = c.mean_diff_lcb > d.threshold || c.cv_diff_lcb > d.threshold;
+  return r;
+}
+
+std::vector<KemppinenCellResult> measure_kemppinen_grid(const std::vector<KemppinenCell>& cells,
+                                                        int samples, const Decision& d,
+                                                        const std::function<void()>& progress) {
+  std::vector<KemppinenCellResult> out(cells.size());
+  tbb::parallel_for(std::size_t(0), cells.size(), [&](std::size_t i) {
+    out[i] = measure_kemppinen_cell(cells[i], samples, check_seed("adequacy.kemppinen", i), d);
+    if (progress) progress();
+  });
+  return out;
+}
+
+std::vector<KemppinenBoundary> kemppinen_boundaries(const std::vector<KemppinenCellResult>& rows,
+                                                    const KemppinenGridAxes& axes, double tau) {
+  std::vector<KemppinenBoundary> out;
+  const std::size_t n_cols = axes.points.size();
+  for (std::size_t start = 0; start + n_cols <= rows.size(); start += n_cols) {
+    KemppinenCell c = rows[start].cell;
+    // Predicted adequacy at TAU itself: the chooser's rule with its margin divided out.
+    const auto predicted_at = [&](double points) {
+      c.points = points;
+      return with_model(c.model, [&](auto m) {
+        using M = decltype(m);
+        const auto p =
+            M::template params<double>(model_param_values<M>(c, KemppinenLevel::kK16Exact, 0));
+        const ModelQuery<double> q = kemppinen_cell_query(c, kemppinen_surface_position(c, 0));
+        return adequate_kemppinen_levels(
+            kemppinen_level_moments(p.glint, p.ndf, q.footprint, half_vector(q.wi, q.wo)),
+            tau / kChooserMargin);
+      });
+    };
+    std::array<double, kKemppinenBoundaryLevels.size()> predicted;
+    std::array<bool, kKemppinenBoundaryLevels.size()> open;
+    predicted.fill(NAN);
+    open.fill(true);
+    const auto adequate = [](const AdequateKemppinenLevels<double>& a, KemppinenLevel l) {
+      return l == KemppinenLevel::kSmooth ? bool(a.smooth)
+                                          : bool(a.side[std::size_t(kemppinen_level_side(l) - 1)]);
+    };
+    double previous = NAN;
+    for (int s = 0; s <= 1100; ++s) {
+      const double points = std::pow(10.0, 9 - 0.01 * s);
+      const AdequateKemppinenLevels<double> a = predicted_at(points);
+      for (std::size_t i = 0; i < predicted.size(); ++i) {
+        if (!open[i]) continue;
+        if (adequate(a, kKemppinenBoundaryLevels[i])) continue;
+        open[i] = false;  // not adequate here: the boundary is between here and the step above
+        predicted[i] = s == 0 ? NAN : std::sqrt(points * previous);
+      }
+      previous = points;
+    }
+    for (std::size_t i = 0; i < predicted.size(); ++i)
+      if (open[i]) predicted[i] = previous;  // adequate down to the scan's end
+    for (std::size_t i = 0; i < predicted.size(); ++i) {
+      KemppinenBoundary b;
+      b.row = rows[start].cell;
+      b.level = kKemppinenBoundaryLevels[i];
+      b.predicted = predicted[i];
+      for (std::size_t k = n_cols; k-- > 0;) {
+        const KemppinenCellResult& r = rows[start + k];
+        if (!r.levels[std::size_t(b.level)].adequate) {
+          b.measured_low = r.cell.points;
+          b.measured_high = k + 1 < n_cols ? rows[start + k + 1].cell.points : NAN;
+          break;
+        }
+        b.measured_high = r.cell.points;
+      }
+      out.push_back(b);
+    }
+  }
+  return out;
+}
+
+}  // namespace glintlab::verify::adequacy
