@@ -163,12 +163,12 @@ template <class W, class T>
 void set_lane(T& dst, const T& src, std::size_t lane) {
   constexpr Kind k = kind_of<W, T>();
   if constexpr (k == Kind::kLane) {
+    // A W is its lanes' scalars in lane order (a SIMD register's memory image): the lane is
+    // copied as bytes, without storing and reloading the whole register.
     using S = Scalar<W>;
-    alignas(64) S d[LaneAccess<W>::kLanes], s[LaneAccess<W>::kLanes];
-    LaneAccess<W>::store(dst, d);
-    LaneAccess<W>::store(src, s);
-    d[lane] = s[lane];
-    dst = LaneAccess<W>::load(d);
+    static_assert(std::is_trivially_copyable_v<W> && sizeof(W) == LaneAccess<W>::kLanes * sizeof(S));
+    std::memcpy(reinterpret_cast<char*>(&dst) + lane * sizeof(S),
+                reinterpret_cast<const char*>(&src) + lane * sizeof(S), sizeof(S));
   } else if constexpr (k == Kind::kArray) {
     for (std::size_t i = 0; i < dst.size(); ++i) set_lane<W>(dst[i], src[i], lane);
   } else if constexpr (k == Kind::kAggregate) {
