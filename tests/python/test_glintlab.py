@@ -174,9 +174,10 @@ def test_per_row_parameters_equal_one_call_per_value():
 
 
 def test_per_row_parameters_match_the_per_row_route_bit_for_bit():
-    # Several chunks of 4096 rows; the rows of equal values are scattered (gathered into full
-    # batches), adjacent (read in place) or all different. Each row must equal that row evaluated
-    # alone with its values as scalars, in both precisions, eval and sample.
+    # Several chunks of 4096 rows; the rows of equal values are scattered, adjacent or all
+    # different (lanes of one batch with different values, a per-row choice splitting a batch).
+    # Each row must equal that row evaluated alone with its values as scalars, in both
+    # precisions, eval and sample.
     rng = np.random.default_rng(11)
     n = 9000
     wi = unit(rng.normal(size=(n, 3)) * [1, 1, 0.5] + [0, 0, 1])
