@@ -282,7 +282,8 @@ template <class S>
 void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams& p,
                 const cli::BatchOptions& opts, std::size_t width, std::span<S* const> outputs,
                 const BatchFn<S>& f, bool per_row_columns, std::size_t extra_columns,
-                const ExtraFn<S>& extra, const RowCheck& extra_check) {
+                const ExtraFn<S>& extra, const RowCheck& extra_check,
+                std::span<const ColumnSource* const> unit_interval) {
   const std::size_t n = q.rows, n_out = outputs.size();
   std::mutex bad_mutex;
   std::optional<std::pair<std::size_t, std::string>> first_bad;
@@ -292,9 +293,18 @@ void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams
       thread_local ChunkBuffers<S> b;
       std::vector<simd::Column<S>> inputs = chunk_columns<S>(q.columns, width, begin, count, b.gathered);
 
-      // The rules of check_query_row on the chunk's columns; the model's own (validate) and the
-      // caller's extra check are per row, so they take the exact route.
-      bool surely_valid = !model.validate && !extra_check;
+      // The rules of check_query_row on the chunk's columns; the model's own (validate) and a
+      // caller's extra check other than the unit interval's are per row, so they take the exact
+      // route.
+      bool surely_valid = !model.validate && (!extra_check || !unit_interval.empty());
+      for (const ColumnSource* u : unit_interval) {
+        bool outside = false;
+        for (std::size_t i = 0; i < count; ++i) {
+          const double v = u->at(begin + i);
+          outside |= !(v >= 0) | !(v < 1);
+        }
+        surely_valid &= !outside;
+      }
       if (surely_valid) {
         if constexpr (std::is_same_v<S, double>) {
           surely_valid = rows_surely_valid(inputs, count);
@@ -378,10 +388,10 @@ void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams
 template void run_chunks<float>(const ModelEntry&, const QuerySources&, const CallParams&,
                                 const cli::BatchOptions&, std::size_t, std::span<float* const>,
                                 const BatchFn<float>&, bool, std::size_t, const ExtraFn<float>&,
-                                const RowCheck&);
+                                const RowCheck&, std::span<const ColumnSource* const>);
 template void run_chunks<double>(const ModelEntry&, const QuerySources&, const CallParams&,
                                  const cli::BatchOptions&, std::size_t, std::span<double* const>,
                                  const BatchFn<double>&, bool, std::size_t, const ExtraFn<double>&,
-                                 const RowCheck&);
+                                 const RowCheck&, std::span<const ColumnSource* const>);
 
 }  // namespace glintlab::python

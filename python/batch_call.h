@@ -66,10 +66,14 @@ using RowCheck = std::function<std::optional<std::string>(std::size_t row)>;
 // parameters: the whole chunk without per-row parameters; with them, the chunk's rows grouped by
 // their values in O(rows), each group gathered (in place where its rows are adjacent) and its
 // results scattered back. `outputs`: n rows each.
+// `unit_interval`: sources whose values extra_check requires in [0, 1) (sample's given
+// uniforms), tested by a pass over each chunk's rows, so that extra_check runs row by row only in
+// a chunk where that pass finds a value outside (or where the model has rules of its own).
 template <class S>
 void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams& p,
                 const cli::BatchOptions& opts, std::size_t width, std::span<S* const> outputs,
                 const BatchFn<S>& f, bool per_row_columns, std::size_t extra_columns = 0,
-                const ExtraFn<S>& extra = {}, const RowCheck& extra_check = {});
+                const ExtraFn<S>& extra = {}, const RowCheck& extra_check = {},
+                std::span<const ColumnSource* const> unit_interval = {});
 
 }  // namespace glintlab::python

@@ -160,6 +160,7 @@ py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallPar
   S* wo_data = wo.mutable_data();
   S* const out_data[6] = {wo_data, wo_data + n, wo_data + 2 * n, pdf.mutable_data(),
                           weight.mutable_data(), rejected.data()};
+  const ColumnSource* const given_u[2] = {u1, u2};
   const auto check_u = [&](std::size_t r) -> std::optional<std::string> {
     for (const ColumnSource* u : {u1, u2}) {
       const double v = u->at(r);
@@ -191,7 +192,8 @@ py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallPar
               u2 ? S(u2->at(begin + i)) : S(counter_uniform<double>(seed, begin + i, 1));
         }
       },
-      u1 ? RowCheck(check_u) : RowCheck());
+      u1 ? RowCheck(check_u) : RowCheck(),
+      u1 ? std::span<const ColumnSource* const>(given_u) : std::span<const ColumnSource* const>());
   auto rej = py::array_t<bool>(py::ssize_t(n));
   bool* rd = rej.mutable_data();
   for (std::size_t i = 0; i < n; ++i) rd[i] = rejected[i] != 0;
