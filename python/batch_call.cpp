@@ -215,7 +215,7 @@ struct RowGroups {
 template <class S>
 struct ChunkBuffers {
   std::vector<S> gathered, extra, group_in, group_out;
-  std::vector<double> check;
+  std::vector<double> check, param_rows;
   RowGroups groups;
 };
 
@@ -241,6 +241,7 @@ CallParams call_params(const ModelEntry& model, const py::object& params, std::s
       while (k < model.params.size() && model.params[k].name != name) ++k;
       if (k == model.params.size()) checked_value(model, name, "0", "");  // the unknown-name error
       ColumnSource s = column_source(item, fmt::format("params['{}']", name), rows, keep_alive);
+      out.per_row_sources.push_back(s);
       out.per_row.emplace_back(k, std::move(s));
     }
   }
@@ -280,8 +281,9 @@ cli::BatchOptions batch_options(const std::string& precision, const py::object& 
 template <class S>
 void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams& p,
                 const cli::BatchOptions& opts, std::size_t width, std::span<S* const> outputs,
-                const BatchFn<S>& f, std::size_t extra_columns, const ExtraFn<S>& extra,
-                const RowCheck& extra_check) {
+                const BatchFn<S>& f, bool per_row_columns, std::size_t extra_columns,
+                const ExtraFn<S>& extra, const RowCheck& extra_check,
+                std::span<const ColumnSource* const> unit_interval) {
   const std::size_t n = q.rows, n_out = outputs.size();
   std::mutex bad_mutex;
   std::optional<std::pair<std::size_t, std::string>> first_bad;
@@ -291,9 +293,18 @@ void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams
       thread_local ChunkBuffers<S> b;
       std::vector<simd::Column<S>> inputs = chunk_columns<S>(q.columns, width, begin, count, b.gathered);
 
-      // The rules of check_query_row on the chunk's columns; the model's own (validate) and the
-      // caller's extra check are per row, so they take the exact route.
-      bool surely_valid = !model.validate && !extra_check;
+      // The rules of check_query_row on the chunk's columns; the model's own (validate) and a
+      // caller's extra check other than the unit interval's are per row, so they take the exact
+      // route.
+      bool surely_valid = !model.validate && (!extra_check || !unit_interval.empty());
+      for (const ColumnSource* u : unit_interval) {
+        bool outside = false;
+        for (std::size_t i = 0; i < count; ++i) {
+          const double v = u->at(begin + i);
+          outside |= !(v >= 0) | !(v < 1);
+        }
+        surely_valid &= !outside;
+      }
       if (surely_valid) {
         if constexpr (std::is_same_v<S, double>) {
           surely_valid = rows_surely_valid(inputs, count);
@@ -322,25 +333,36 @@ void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams
       std::vector<S*> out(n_out);
       // The columns f reads, rebuilt for each set of rows (allocated once, with the chunk's).
       std::vector<simd::Column<S>> at(inputs.size());
-      const auto in_place = [&](std::size_t first, std::size_t rows, const std::vector<double>& values) {
+      // A column per parameter: stride 0 on `values` (the call's constants and, grouped, the
+      // group's per-row values), or the chunk's rows of a per-row array.
+      std::vector<double> values = p.constant;
+      std::vector<simd::Column<double>> param_columns(values.size());
+      for (std::size_t k = 0; k < values.size(); ++k) param_columns[k] = {&values[k], 0};
+      const auto in_place = [&](std::size_t first, std::size_t rows) {
         for (std::size_t c = 0; c < inputs.size(); ++c)
           at[c] = {inputs[c].data + inputs[c].stride * first, inputs[c].stride};
         for (std::size_t o = 0; o < n_out; ++o) out[o] = outputs[o] + begin + first;
-        f(at, out, rows, values);
+        f(at, out, rows, param_columns);
       };
       if (p.per_row.empty()) {
-        in_place(0, count, p.constant);
+        in_place(0, count);
+        return;
+      }
+      if (per_row_columns) {
+        const std::vector<simd::Column<double>> rows = chunk_columns<double>(
+            p.per_row_sources, p.per_row_sources.size(), begin, count, b.param_rows);
+        for (std::size_t j = 0; j < p.per_row.size(); ++j) param_columns[p.per_row[j].first] = rows[j];
+        in_place(0, count);
         return;
       }
       RowGroups& g = b.groups;
       g.build(p, begin, count);
-      std::vector<double> values = p.constant;
       for (std::size_t k = 0; k < g.groups(); ++k) {
         const std::uint32_t* rows = g.order.data() + g.start[k];
         const std::size_t size = g.start[k + 1] - g.start[k];
         p.at(begin + rows[0], values);
         if (rows[size - 1] - rows[0] + 1 == size) {
-          in_place(rows[0], size, values);  // adjacent rows: the chunk's columns as they are
+          in_place(rows[0], size);  // adjacent rows: the chunk's columns as they are
           continue;
         }
         // Scattered rows: gathered into full batches, the results scattered back.
@@ -354,7 +376,7 @@ void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams
           at[c] = {dst, 1};
         }
         for (std::size_t o = 0; o < n_out; ++o) out[o] = b.group_out.data() + o * size;
-        f(at, out, size, values);
+        f(at, out, size, param_columns);
         for (std::size_t o = 0; o < n_out; ++o)
           for (std::size_t i = 0; i < size; ++i) outputs[o][begin + rows[i]] = out[o][i];
       }
@@ -365,11 +387,11 @@ void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams
 
 template void run_chunks<float>(const ModelEntry&, const QuerySources&, const CallParams&,
                                 const cli::BatchOptions&, std::size_t, std::span<float* const>,
-                                const BatchFn<float>&, std::size_t, const ExtraFn<float>&,
-                                const RowCheck&);
+                                const BatchFn<float>&, bool, std::size_t, const ExtraFn<float>&,
+                                const RowCheck&, std::span<const ColumnSource* const>);
 template void run_chunks<double>(const ModelEntry&, const QuerySources&, const CallParams&,
                                  const cli::BatchOptions&, std::size_t, std::span<double* const>,
-                                 const BatchFn<double>&, std::size_t, const ExtraFn<double>&,
-                                 const RowCheck&);
+                                 const BatchFn<double>&, bool, std::size_t, const ExtraFn<double>&,
+                                 const RowCheck&, std::span<const ColumnSource* const>);
 
 }  // namespace glintlab::python

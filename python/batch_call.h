@@ -25,6 +25,7 @@ namespace glintlab::python {
 struct CallParams {
   std::vector<double> constant;
   std::vector<std::pair<std::size_t, ColumnSource>> per_row;  // (index in params, values)
+  std::vector<ColumnSource> per_row_sources;                  // per_row's sources, in its order
 
   // Row `row`'s values into `values` (sized like constant).
   void at(std::size_t row, std::vector<double>& values) const {
@@ -39,13 +40,14 @@ CallParams call_params(const ModelEntry& model, const pybind11::object& params, 
 cli::BatchOptions batch_options(const std::string& precision, const pybind11::object& isa,
                                 const std::string& math, const pybind11::object& threads);
 
-// The work on a set of rows with one parameter vector: `inputs` the query columns (`width` of
-// them, kQueryLayout order) then the extra columns (sample's uniforms), `count` rows each (stride
-// 0 or 1); `outputs` count rows each.
+// The work on a set of rows: `inputs` the query columns (`width` of them, kQueryLayout order) then
+// the extra columns (sample's uniforms), `count` rows each (stride 0 or 1); `outputs` count rows
+// each; `params` a column per parameter (resolve_params order): stride 0 for a value of every row,
+// stride 1 for a per-row array's values (only where run_chunks is told the work takes them).
 template <class S>
 using BatchFn = std::function<void(std::span<const simd::Column<S>> inputs,
                                    std::span<S* const> outputs, std::size_t count,
-                                   const std::vector<double>& params)>;
+                                   std::span<const simd::Column<double>> params)>;
 // Writes the extra input columns of rows [begin, begin + count): extra[k][i] for row begin + i.
 template <class S>
 using ExtraFn =
@@ -57,14 +59,21 @@ using RowCheck = std::function<std::optional<std::string>(std::size_t row)>;
 // query columns read in place or gathered from the arrays' strides (chunk_columns), its rows
 // checked as eval --model checks them by a pass over those columns (the exact row checks, and
 // their message, run only for a chunk where that pass finds a row that may be bad; the first bad
-// row, lowest index, becomes a ValueError after the loop), then f once per set of rows with equal
+// row, lowest index, becomes a ValueError after the loop), then f. With `per_row_columns` (the
+// batch API's eval_batch_with_param_columns, whose batches stay full whatever the values), f once
+// per chunk, per-row parameters as stride-1 columns of the chunk's rows. Without it (a numpy
+// model, whose functions take one value per parameter), f once per set of rows with equal
 // parameters: the whole chunk without per-row parameters; with them, the chunk's rows grouped by
-// their values in O(rows), each group gathered into full batches (in place where its rows are
-// adjacent) and its results scattered back. `outputs`: n rows each.
+// their values in O(rows), each group gathered (in place where its rows are adjacent) and its
+// results scattered back. `outputs`: n rows each.
+// `unit_interval`: sources whose values extra_check requires in [0, 1) (sample's given
+// uniforms), tested by a pass over each chunk's rows, so that extra_check runs row by row only in
+// a chunk where that pass finds a value outside (or where the model has rules of its own).
 template <class S>
 void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams& p,
                 const cli::BatchOptions& opts, std::size_t width, std::span<S* const> outputs,
-                const BatchFn<S>& f, std::size_t extra_columns = 0, const ExtraFn<S>& extra = {},
-                const RowCheck& extra_check = {});
+                const BatchFn<S>& f, bool per_row_columns, std::size_t extra_columns = 0,
+                const ExtraFn<S>& extra = {}, const RowCheck& extra_check = {},
+                std::span<const ColumnSource* const> unit_interval = {});
 
 }  // namespace glintlab::python

@@ -91,6 +91,15 @@ py::list models() {
   return out;
 }
 
+// The values of parameter columns of stride 0 (a numpy model's call: run_chunks groups its rows
+// by their values).
+std::vector<double> uniform_values(std::span<const simd::Column<double>> params) {
+  std::vector<double> values;
+  values.reserve(params.size());
+  for (const simd::Column<double>& c : params) values.push_back(c.data[0]);
+  return values;
+}
+
 // The number of query columns the batch calls take for this model (with the corners or not).
 std::size_t query_width(const ModelEntry& m) {
   return (m.needs & kNeedsPixelCorners) != 0 ? simd::kQueryColumnsWithCorners
@@ -107,14 +116,16 @@ py::dict eval_in(const ModelEntry& model, const QuerySources& q, const CallParam
   std::vector<S*> out_data;
   for (auto& a : outs) out_data.push_back(a.mutable_data());
   const PythonModel* const numpy_model = python_model(model);  // looked up once, with the GIL
-  run_chunks<S>(model, q, p, opts, width, out_data,
-                [&](std::span<const simd::Column<S>> cols, std::span<S* const> o, std::size_t count,
-                    const std::vector<double>& params) {
-                  if (numpy_model)
-                    python_eval_rows<S>(*numpy_model, params, cols, o, count);  // one call per chunk
-                  else
-                    simd::eval_batch(model, params, cols, o, count, opts.isa, opts.math);
-                });
+  run_chunks<S>(
+      model, q, p, opts, width, out_data,
+      [&](std::span<const simd::Column<S>> cols, std::span<S* const> o, std::size_t count,
+          std::span<const simd::Column<double>> params) {
+        if (numpy_model)  // one call per chunk (per set of its rows with equal parameters)
+          python_eval_rows<S>(*numpy_model, uniform_values(params), cols, o, count);
+        else
+          simd::eval_batch_with_param_columns(model, params, cols, o, count, opts.isa, opts.math);
+      },
+      numpy_model == nullptr);
   py::dict r;
   r["value"] = outs[0];
   r["pdf"] = outs[1];
@@ -149,6 +160,7 @@ py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallPar
   S* wo_data = wo.mutable_data();
   S* const out_data[6] = {wo_data, wo_data + n, wo_data + 2 * n, pdf.mutable_data(),
                           weight.mutable_data(), rejected.data()};
+  const ColumnSource* const given_u[2] = {u1, u2};
   const auto check_u = [&](std::size_t r) -> std::optional<std::string> {
     for (const ColumnSource* u : {u1, u2}) {
       const double v = u->at(r);
@@ -161,15 +173,16 @@ py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallPar
   run_chunks<S>(
       model, q, p, opts, width, std::span<S* const>(out_data),
       [&](std::span<const simd::Column<S>> in, std::span<S* const> o, std::size_t count,
-          const std::vector<double>& params) {
+          std::span<const simd::Column<double>> params) {
         const auto cols = in.first(width);
         if (numpy_model)
-          python_sample_rows<S>(*numpy_model, params, cols, in[width], in[width + 1], o, count);
+          python_sample_rows<S>(*numpy_model, uniform_values(params), cols, in[width],
+                                in[width + 1], o, count);
         else
-          simd::sample_batch(model, params, cols, in[width], in[width + 1], o, count, opts.isa,
-                             opts.math);
+          simd::sample_batch_with_param_columns(model, params, cols, in[width], in[width + 1], o,
+                                                count, opts.isa, opts.math);
       },
-      2,
+      numpy_model == nullptr, 2,
       // The CLI's counter-based stream (sample --model), or the caller's uniforms.
       [&](std::size_t begin, std::size_t count, std::span<S* const> uniforms) {
         for (std::size_t i = 0; i < count; ++i) {
@@ -179,7 +192,8 @@ py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallPar
               u2 ? S(u2->at(begin + i)) : S(counter_uniform<double>(seed, begin + i, 1));
         }
       },
-      u1 ? RowCheck(check_u) : RowCheck());
+      u1 ? RowCheck(check_u) : RowCheck(),
+      u1 ? std::span<const ColumnSource* const>(given_u) : std::span<const ColumnSource* const>());
   auto rej = py::array_t<bool>(py::ssize_t(n));
   bool* rd = rej.mutable_data();
   for (std::size_t i = 0; i < n; ++i) rd[i] = rejected[i] != 0;

@@ -116,6 +116,11 @@ set(glintlab_slow_tests
   "SimdEquivalence.* 9"
   "SimdKemppinenEquivalence.* 4"
   "SimdModelEquivalence.FloatEveryBatchedModelEveryIsa 20"
+  # Per-row parameter columns: every registered model, ISA and precision, each row against the
+  # row alone (37 rows of four kinds of parameter columns; the glint models cost most of it).
+  "SimdParamColumns.FloatEveryModelEveryIsaIsEachRowAlone 6"
+  "SimdParamColumns.FastFloatEveryModelEveryIsaIsEachRowAlone 7"
+  "SimdParamColumns.DoubleEveryModelEveryIsaIsEachRowAlone 4"
   "SimdModelEquivalence.* 11")
 
 # The slow tests whose time is statistical power (sample counts) or a cubature's precision, over

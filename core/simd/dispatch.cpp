@@ -111,6 +111,21 @@ template void run<float>(std::size_t, const double*, const Column<float>*, float
 template void run<double>(std::size_t, const double*, const Column<double>*, double* const*,
                           std::size_t, Isa, Math);
 
+template <class S>
+void run_lanes(std::size_t entry, const Column<double>* params, const Column<S>* in, S* const* out,
+               std::size_t n, Isa isa, Math math) {
+  const BatchFns& f = table(isa)[entry];
+  if constexpr (std::is_same_v<S, float>) {
+    (math == Math::kFast ? f.lanes_fast_float : f.lanes_exact_float)(params, in, out, n);
+  } else {
+    f.lanes_exact_double(params, in, out, n);
+  }
+}
+template void run_lanes<float>(std::size_t, const Column<double>*, const Column<float>*,
+                               float* const*, std::size_t, Isa, Math);
+template void run_lanes<double>(std::size_t, const Column<double>*, const Column<double>*,
+                                double* const*, std::size_t, Isa, Math);
+
 }  // namespace detail
 
 std::string_view isa_name(Isa isa) {

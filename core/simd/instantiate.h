@@ -6,6 +6,7 @@
 
 #include <concepts>
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <type_traits>
 #include <utility>
@@ -27,6 +28,7 @@
 
 #include "core/model_list.h"
 #include "core/simd/kernels.h"
+#include "core/simd/lane_params.h"
 #include "core/simd/model_batch.h"
 #include "core/simd/table.h"
 #include "core/simd/wide.h"  // (any order works: the Wide ops are found by ADL, see wide.h)
@@ -157,46 +159,132 @@ GLINTLAB_FN ModelQuery<W> load_query(const Column<S>* q, std::size_t i, std::siz
 template <class M>
 inline constexpr bool kReadsCorners = (M::kNeeds & kNeedsPixelCorners) != 0;
 
-template <class M, class W, class S>
-void run_model_eval(const double* params, const Column<S>* query, S* const* outputs,
-                    std::size_t n) {
+// Output k of rows [i, i + count) where the batch's lane belongs to group g of `lanes` (a batch
+// run once per group of its lanes' parameters, core/simd/lane_params.h).
+template <class W, class S, class L>
+GLINTLAB_FN void store_group_rows(S* out, std::size_t i, std::size_t count, const W& w,
+                                  const L& lanes, std::size_t g) {
   constexpr std::size_t kL = kLanesOf<W>;
-  // Parameters are uniform over the call: converted to W once.
-  const auto p = M::template params<W>(std::span<const double>(params, M::kParams.size()));
+  alignas(64) S tmp[kL];
+  store_lanes(tmp, w);
+  for (std::size_t l = 0; l < count; ++l)
+    if (lanes.group_of(l) == g) out[i + l] = tmp[l];
+}
+
+// The parameters of a model batch driver: one vector for every row (`values`), or a column per
+// parameter (`columns`, stride 0 or 1), whose lanes::LaneParams give each batch's lanes their own
+// rows' values, in groups of lanes that can share a Params<W> (one group unless uniform members
+// such as a choice differ between the batch's rows).
+template <class M, class W>
+class DriverParams {
+ public:
+  using P = typename M::template Params<W>;
+  DriverParams(const double* values, const Column<double>* columns) : columns_(columns) {
+    if (columns_ == nullptr) {
+      uniform_ = M::template params<W>(std::span<const double>(values, M::kParams.size()));
+    } else {
+      lanes_.emplace();
+    }
+  }
+  // Batch [i, i + count): its groups.
+  std::size_t load(std::size_t i, std::size_t count) {
+    if (columns_ == nullptr) return 1;
+    lanes_->load(columns_, i, count);
+    return lanes_->groups();
+  }
+  const P& group(std::size_t g) const { return columns_ == nullptr ? uniform_ : lanes_->group(g); }
+  // Output rows of group g of the batch [i, i + count) among `groups`.
+  template <class S>
+  GLINTLAB_FN void store(S* out, std::size_t i, std::size_t count, const W& w, std::size_t groups,
+                         std::size_t g) const {
+    if (groups == 1)
+      store_rows(out, i, count, w);
+    else
+      store_group_rows(out, i, count, w, *lanes_, g);
+  }
+
+ private:
+  const Column<double>* columns_;
+  P uniform_{};
+  std::optional<lanes::LaneParams<M, W>> lanes_;
+};
+
+// One driver body for both parameter forms, kept out of line (internal linkage): the model's
+// kernels then have one call site per instantiation, as before per-row parameters existed, so
+// the compiler inlines them as it did (no out-of-line copy with vague linkage in an ISA unit).
+template <class M, class W, class S>
+__attribute__((noinline)) void model_eval_rows(const double* values, const Column<double>* columns,
+                                               const Column<S>* query, S* const* outputs,
+                                               std::size_t n) {
+  constexpr std::size_t kL = kLanesOf<W>;
+  DriverParams<M, W> p(values, columns);  // uniform values converted to W once
   for (std::size_t i = 0; i < n; i += kL) {
     const std::size_t count = n - i < kL ? n - i : kL;
-    const auto r = M::template eval<W>(p, load_query<W, kReadsCorners<M>>(query, i, count));
-    store_rows(outputs[0], i, count, r.value);
-    store_rows(outputs[1], i, count, r.pdf);
-    for (std::size_t k = 0; k < r.intermediates.size(); ++k)
-      store_rows(outputs[2 + k], i, count, r.intermediates[k]);
+    const std::size_t groups = p.load(i, count);
+    const ModelQuery<W> q = load_query<W, kReadsCorners<M>>(query, i, count);
+    for (std::size_t g = 0; g < groups; ++g) {
+      const auto r = M::template eval<W>(p.group(g), q);
+      p.store(outputs[0], i, count, r.value, groups, g);
+      p.store(outputs[1], i, count, r.pdf, groups, g);
+      for (std::size_t k = 0; k < r.intermediates.size(); ++k)
+        p.store(outputs[2 + k], i, count, r.intermediates[k], groups, g);
+    }
   }
 }
 
-// query: as for run_model_eval, then the two uniform columns.
+// query: as for model_eval_rows, then the two uniform columns.
+template <class M, class W, class S>
+__attribute__((noinline)) void model_sample_rows(const double* values,
+                                                 const Column<double>* columns,
+                                                 const Column<S>* query, S* const* outputs,
+                                                 std::size_t n) {
+  constexpr std::size_t kL = kLanesOf<W>;
+  const Column<S>* u = query + kQueryColumnsWithCorners;
+  DriverParams<M, W> p(values, columns);
+  for (std::size_t i = 0; i < n; i += kL) {
+    const std::size_t count = n - i < kL ? n - i : kL;
+    const std::size_t groups = p.load(i, count);
+    const Vec2<W> uv{load_column<W>(u[0], i, count), load_column<W>(u[1], i, count)};
+    const ModelQuery<W> q = load_query<W, kReadsCorners<M>>(query, i, count);
+    for (std::size_t g = 0; g < groups; ++g) {
+      const ModelSample<W> s = M::template sample<W>(p.group(g), q, uv);
+      p.store(outputs[0], i, count, s.wo.x, groups, g);
+      p.store(outputs[1], i, count, s.wo.y, groups, g);
+      p.store(outputs[2], i, count, s.wo.z, groups, g);
+      p.store(outputs[3], i, count, s.pdf, groups, g);
+      p.store(outputs[4], i, count, s.weight, groups, g);
+      p.store(outputs[5], i, count, from_mask<W>(s.rejected), groups, g);
+    }
+  }
+}
+
+// A model's batch with parameter values uniform over the call.
+template <class M, class W, class S>
+void run_model_eval(const double* params, const Column<S>* query, S* const* outputs,
+                    std::size_t n) {
+  model_eval_rows<M, W, S>(params, nullptr, query, outputs, n);
+}
 template <class M, class W, class S>
 void run_model_sample(const double* params, const Column<S>* query, S* const* outputs,
                       std::size_t n) {
-  constexpr std::size_t kL = kLanesOf<W>;
-  const Column<S>* u = query + kQueryColumnsWithCorners;
-  const auto p = M::template params<W>(std::span<const double>(params, M::kParams.size()));
-  for (std::size_t i = 0; i < n; i += kL) {
-    const std::size_t count = n - i < kL ? n - i : kL;
-    const Vec2<W> uv{load_column<W>(u[0], i, count), load_column<W>(u[1], i, count)};
-    const ModelSample<W> s =
-        M::template sample<W>(p, load_query<W, kReadsCorners<M>>(query, i, count), uv);
-    store_rows(outputs[0], i, count, s.wo.x);
-    store_rows(outputs[1], i, count, s.wo.y);
-    store_rows(outputs[2], i, count, s.wo.z);
-    store_rows(outputs[3], i, count, s.pdf);
-    store_rows(outputs[4], i, count, s.weight);
-    store_rows(outputs[5], i, count, from_mask<W>(s.rejected));
-  }
+  model_sample_rows<M, W, S>(params, nullptr, query, outputs, n);
+}
+// The same with a parameter column per parameter (stride 0 or 1), each row with its own values.
+template <class M, class W, class S>
+void run_model_eval_lanes(const Column<double>* params, const Column<S>* query, S* const* outputs,
+                          std::size_t n) {
+  model_eval_rows<M, W, S>(nullptr, params, query, outputs, n);
+}
+template <class M, class W, class S>
+void run_model_sample_lanes(const Column<double>* params, const Column<S>* query,
+                            S* const* outputs, std::size_t n) {
+  model_sample_rows<M, W, S>(nullptr, params, query, outputs, n);
 }
 
 template <class K, class WF, class WFF, class WD>
 constexpr BatchFns kernel_fns() {
-  return {&run_kernel<K, WF, float>, &run_kernel<K, WFF, float>, &run_kernel<K, WD, double>};
+  return {&run_kernel<K, WF, float>, &run_kernel<K, WFF, float>, &run_kernel<K, WD, double>,
+          nullptr, nullptr, nullptr};
 }
 
 // Whether M's kernels, as declared, take the batch type W: params, eval and sample as the batch
@@ -228,8 +316,9 @@ struct ModelKernelsOnSimdBatches {
 template <class M, class WF, class WFF, class WD>
 constexpr BatchFns model_eval_fns() {
   if constexpr (ModelKernelsOnSimdBatches<M, WF, WFF, WD>::kTake) {
-    return {&run_model_eval<M, WF, float>, &run_model_eval<M, WFF, float>,
-            &run_model_eval<M, WD, double>};
+    return {&run_model_eval<M, WF, float>,        &run_model_eval<M, WFF, float>,
+            &run_model_eval<M, WD, double>,       &run_model_eval_lanes<M, WF, float>,
+            &run_model_eval_lanes<M, WFF, float>, &run_model_eval_lanes<M, WD, double>};
   } else {
     return BatchFns{};  // (refused above; nothing more to report)
   }
@@ -237,8 +326,9 @@ constexpr BatchFns model_eval_fns() {
 template <class M, class WF, class WFF, class WD>
 constexpr BatchFns model_sample_fns() {
   if constexpr (ModelKernelsOnSimdBatches<M, WF, WFF, WD>::kTake) {
-    return {&run_model_sample<M, WF, float>, &run_model_sample<M, WFF, float>,
-            &run_model_sample<M, WD, double>};
+    return {&run_model_sample<M, WF, float>,        &run_model_sample<M, WFF, float>,
+            &run_model_sample<M, WD, double>,       &run_model_sample_lanes<M, WF, float>,
+            &run_model_sample_lanes<M, WFF, float>, &run_model_sample_lanes<M, WD, double>};
   } else {
     return BatchFns{};
   }

@@ -75,4 +75,33 @@ void sample_batch(const ModelEntry& model, std::span<const double> params,
                   std::span<double* const> outputs, std::size_t n, Isa isa,
                   Math math = Math::kExact);
 
+// eval_batch and sample_batch with a parameter column per parameter (ModelEntry::params order):
+// stride 0 for one value for every row (as `params` above), stride 1 for row i's value at data[i].
+// Row i's result is bit for bit that of eval_batch / sample_batch called with row i's values alone
+// (same query, ISA and math). Rows with different values share a SIMD batch: each lane gets its
+// own row's parameters, and the batch's kernel runs once unless uniform parameters (a choice, a
+// seed, or every parameter of a model whose kernels take them as scalars, such as chermain) differ
+// within it, then once per group of lanes that agree on them (core/simd/lane_params.h). With every
+// column of stride 0 this is the call above. A model that is not batched runs its double thunks
+// row by row with each row's values; a plug-in built before these entries existed is refused by the
+// loader's ABI check. Throws as eval_batch, and for a parameter column of stride above 1.
+void eval_batch_with_param_columns(const ModelEntry& model, std::span<const Column<double>> params,
+                                   std::span<const Column<float>> query,
+                                   std::span<float* const> outputs, std::size_t n, Isa isa,
+                                   Math math = Math::kExact);
+void eval_batch_with_param_columns(const ModelEntry& model, std::span<const Column<double>> params,
+                                   std::span<const Column<double>> query,
+                                   std::span<double* const> outputs, std::size_t n, Isa isa,
+                                   Math math = Math::kExact);
+void sample_batch_with_param_columns(const ModelEntry& model,
+                                     std::span<const Column<double>> params,
+                                     std::span<const Column<float>> query, Column<float> u1,
+                                     Column<float> u2, std::span<float* const> outputs,
+                                     std::size_t n, Isa isa, Math math = Math::kExact);
+void sample_batch_with_param_columns(const ModelEntry& model,
+                                     std::span<const Column<double>> params,
+                                     std::span<const Column<double>> query, Column<double> u1,
+                                     Column<double> u2, std::span<double* const> outputs,
+                                     std::size_t n, Isa isa, Math math = Math::kExact);
+
 }  // namespace glintlab::simd

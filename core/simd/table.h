@@ -19,10 +19,19 @@ namespace glintlab::simd::detail {
 template <class S>
 using BatchFn = void (*)(const double* params, const Column<S>* in, S* const* out, std::size_t n);
 
-// One entry's instantiations; Math::kFast picks fast_float.
+// A model's batch with a parameter column per parameter (kParams order; stride 0: one value for
+// every row, stride 1: row i's value at data[i]), each row evaluated with its own values.
+template <class S>
+using LaneBatchFn = void (*)(const Column<double>* params, const Column<S>* in, S* const* out,
+                             std::size_t n);
+
+// One entry's instantiations; Math::kFast picks fast_float. The lanes_ ones: a model's entries
+// only (null for a kernel).
 struct BatchFns {
   BatchFn<float> exact_float, fast_float;
   BatchFn<double> exact_double;
+  LaneBatchFn<float> lanes_exact_float, lanes_fast_float;
+  LaneBatchFn<double> lanes_exact_double;
 };
 
 // One plug-in model's instantiations (ModelEntry::plugin_batches), compiled in the plug-in
@@ -58,5 +67,9 @@ void check_call(const char* what, std::span<const Column<S>> in, std::string (*l
 template <class S>
 void run(std::size_t entry, const double* params, const Column<S>* in, S* const* out, std::size_t n,
          Isa isa, Math math);
+// Runs the lanes_ function of model entry `entry` of isa's table on checked arguments.
+template <class S>
+void run_lanes(std::size_t entry, const Column<double>* params, const Column<S>* in, S* const* out,
+               std::size_t n, Isa isa, Math math);
 
 }  // namespace glintlab::simd::detail

@@ -174,9 +174,10 @@ def test_per_row_parameters_equal_one_call_per_value():
 
 
 def test_per_row_parameters_match_the_per_row_route_bit_for_bit():
-    # Several chunks of 4096 rows; the rows of equal values are scattered (gathered into full
-    # batches), adjacent (read in place) or all different. Each row must equal that row evaluated
-    # alone with its values as scalars, in both precisions, eval and sample.
+    # Several chunks of 4096 rows; the rows of equal values are scattered, adjacent or all
+    # different (lanes of one batch with different values, a per-row choice splitting a batch).
+    # Each row must equal that row evaluated alone with its values as scalars, in both
+    # precisions, eval and sample.
     rng = np.random.default_rng(11)
     n = 9000
     wi = unit(rng.normal(size=(n, 3)) * [1, 1, 0.5] + [0, 0, 1])
@@ -235,6 +236,28 @@ def test_the_input_check_over_the_batch_keeps_the_row_rules():
     light["light_cos_half_angle"][7001] = 1.5
     msg = error_of(glintlab.eval, model["name"], wi_, wo_, footprint=footprint, light=light)
     assert msg.startswith("row 7001, light['light_cos_half_angle']: 1.5 is out of range"), msg
+
+
+def test_given_uniforms_are_checked_over_the_batch_with_the_row_rule():
+    # sample(u=...): [0, 1) tested by a pass over each chunk; the row rule names the first bad row
+    # (in a later chunk here), and the interval's ends are kept exactly (0 and the largest double
+    # below 1 pass, 1 and NaN do not).
+    rng = np.random.default_rng(13)
+    n = 10000
+    wi = unit(rng.normal(size=(n, 3)) * [1, 1, 0.5] + [0, 0, 1])
+    u = rng.uniform(0, 1, (n, 2))
+    u[4500, 0] = 0.0
+    u[4600, 1] = np.nextafter(1.0, 0.0)
+    for given in (u, np.asfortranarray(u)):
+        glintlab.sample("smooth_ggx", wi, u=given)  # no error
+    bad = u.copy()
+    bad[8000, 1] = 1.0
+    bad[9000, 0] = np.nan
+    for given in (bad, np.asfortranarray(bad)):
+        msg = error_of(glintlab.sample, "smooth_ggx", wi, u=given)
+        assert msg.startswith("row 8000, ") and "1 is out of range (valid: [0, 1))" in msg, msg
+    bad[8000, 1] = u[8000, 1]
+    assert error_of(glintlab.sample, "smooth_ggx", wi, u=bad).startswith("row 9000, ")
 
 
 def test_results_do_not_depend_on_the_thread_count():
