@@ -41,9 +41,18 @@ for extra in sys.argv[2:]:
 json.dump(d, open(sys.argv[1], "w"), indent=1)
 PY
 rm -f "$tmp.models" "$tmp.uarch"
+# Instructions and loads per item of the targets' rows (experiments/bench/uarch_counts.py: this
+# VM has no PMU counters, so valgrind's callgrind counts them; it emulates no AVX-512).
+counts=()
+if command -v valgrind >/dev/null; then
+  /usr/bin/python3 experiments/bench/uarch_counts.py --out out/bench/uarch_counts.json
+  counts=(--uarch-counts out/bench/uarch_counts.json)
+else
+  echo "bench: no valgrind: the targets carry no instruction counts" >&2
+fi
 # Roofline fractions from the peaks of this run, the same-FLOPs check and the targets
 # (scripts/simd_tables.py), then the tables docs/simd.md carries.
-/usr/bin/python3 scripts/simd_tables.py annotate "$tmp"
+/usr/bin/python3 scripts/simd_tables.py annotate "$tmp" "${counts[@]}"
 mv "$tmp" out/bench/bench.json
 /usr/bin/python3 scripts/simd_tables.py tables out/bench/bench.json > out/bench/speedups.md
 cat out/bench/speedups.md
