@@ -1,5 +1,7 @@
 // Google Benchmark suite of the batch API: items/s of every kernel × ISA × {exact, fast}, its
-// counted FLOPs and roofline fraction, and the batched 10^7-sample chi-square workload.
+// counted FLOPs and FLOP rate, and the batched 10^7-sample chi-square workload. The roofline
+// fraction (FLOP rate over this core's peak for the row's ISA, measured in the same run by
+// bench_uarch.cpp's uarch/peak rows) is added by scripts/simd_tables.py annotate.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -23,13 +25,7 @@ namespace {
 using glintlab::bench::Counted;
 using glintlab::bench::g_flops;
 
-// --- Machine model for the roofline ---------------------------------------------------------
-// Peak = lanes × 2 FLOPs (fma) × kFmaPorts × clock. kFmaPorts = 2: two FMA pipes per core, as on
-// AMD Zen 2/3/4 and Intel Skylake and later (256-bit each on Zen 2/3). Clock: "cpu MHz" of
-// /proc/cpuinfo (the nominal clock reported by the kernel; boost clocks make the true peak
-// higher, so achieved fractions are upper estimates). Single thread: one core's peak.
-constexpr double kFmaPorts = 2.0;
-
+// --- The machine, for the JSON context --------------------------------------------------------
 struct Cpu {
   std::string model = "unknown";
   double mhz = 0.0;
@@ -47,9 +43,6 @@ const Cpu& cpu() {
     return r;
   }();
   return c;
-}
-double peak_flops(Isa isa, bool dbl) {
-  return double(lanes(isa, dbl)) * 2.0 * kFmaPorts * cpu().mhz * 1e6;
 }
 
 // --- FLOPs per evaluation, counted by instantiating each kernel on Counted -----------------
@@ -144,9 +137,6 @@ void bm_kernel(benchmark::State& state, int kernel, Isa isa, Math math, WorkingS
   state.SetItemsProcessed(static_cast<std::int64_t>(items));
   state.counters["flops_per_item"] = flops;
   state.counters["gflops"] = benchmark::Counter(items * flops * 1e-9, benchmark::Counter::kIsRate);
-  state.counters["peak_gflops"] = peak_flops(isa, sizeof(S) == 8) * 1e-9;
-  state.counters["roofline_fraction"] = benchmark::Counter(
-      items * flops / peak_flops(isa, sizeof(S) == 8), benchmark::Counter::kIsRate);
   state.counters["lanes"] = double(lanes(isa, sizeof(S) == 8));
   state.counters["rows_per_call"] = double(call);
   state.counters["working_set_bytes"] = double(rows * (d.in.size() + d.out.size()) * sizeof(S));
@@ -291,8 +281,9 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   benchmark::AddCustomContext("cpu_model", cpu().model);
   benchmark::AddCustomContext("cpu_mhz_proc_cpuinfo", std::to_string(cpu().mhz));
-  benchmark::AddCustomContext(
-      "roofline_peak", "lanes x 2 (fma) x 2 FMA ports x cpu MHz, one core; see flop_count.h");
+  benchmark::AddCustomContext("roofline_peak",
+                              "uarch/peak/<isa>/<precision> of bench_uarch.cpp, measured in the "
+                              "same scripts/bench.sh run (scripts/simd_tables.py annotate)");
   benchmark::AddCustomContext("best_isa",
                               std::string(glintlab::simd::isa_name(glintlab::simd::best_isa())));
   register_all();

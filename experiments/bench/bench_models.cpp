@@ -1,7 +1,10 @@
 // Google Benchmark of every registered model (core/model_registry.h) through the registry-level
 // batch API (core/simd/model_batch.h): the entry's scalar double thunk loop against each ISA's
 // batched eval and sample, items (queries) per second. Names: model/<name>/<isa>/<op>_<precision>,
-// model/<name>/entry/<op> for the thunk loop; a model with a choice parameter `k` (Kemppinen's
+// model/<name>/entry/<op> for the thunk loop (op eval, pdf or sample: the batch API has no pdf of
+// its own, eval_batch writes the pdf column with the value, so the batched pdf is in the eval
+// rows); every row carries counters batched (the model has SIMD instantiations, else the batch
+// calls loop over the thunks) and double_only (its kernels take no float); a model with a choice parameter `k` (Kemppinen's
 // neighbourhood) also gets model/<name>/k=<choice>/... for k = 1, 4, 16 (the default k is 1).
 // Model plug-ins join like in `glintlab`: --plugin PATH (repeatable, anywhere) and
 // GLINTLAB_PLUGINS.
@@ -77,7 +80,14 @@ std::vector<double> with_k(const ModelEntry& m, int k_choice) {
   return v;
 }
 
-void bm_entry(benchmark::State& state, const ModelEntry* m, bool sample, int k_choice) {
+enum class Op { kEval, kPdf, kSample };
+
+void model_counters(benchmark::State& state, const ModelEntry& m) {
+  state.counters["batched"] = is_batched(m) ? 1.0 : 0.0;
+  state.counters["double_only"] = m.eval_float ? 0.0 : 1.0;
+}
+
+void bm_entry(benchmark::State& state, const ModelEntry* m, Op op, int k_choice) {
   const Queries& q = queries(*m);
   const std::vector<double> params = with_k(*m, k_choice);
   double sink = 0;
@@ -93,11 +103,16 @@ void bm_entry(benchmark::State& state, const ModelEntry* m, bool sample, int k_c
       mq.wi = {c(6), c(7), c(8)};
       mq.wo = {c(9), c(10), c(11)};
       mq.light = {c(12), c(13)};
-      sink += sample ? m->sample(params, mq, {q.u1[i], q.u2[i]}).weight : m->eval(params, mq).value;
+      switch (op) {
+        case Op::kEval: sink += m->eval(params, mq).value; break;
+        case Op::kPdf: sink += m->pdf(params, mq); break;
+        case Op::kSample: sink += m->sample(params, mq, {q.u1[i], q.u2[i]}).weight; break;
+      }
     }
     benchmark::DoNotOptimize(sink);
   }
   state.SetItemsProcessed(state.iterations() * std::int64_t(kRows));
+  model_counters(state, *m);
 }
 
 template <class S>
@@ -129,6 +144,7 @@ void bm_batch(benchmark::State& state, const ModelEntry* m, Isa isa, bool sample
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(state.iterations() * std::int64_t(kRows));
+  model_counters(state, *m);
 }
 
 void register_all() {
@@ -142,10 +158,12 @@ void register_all() {
             variants.emplace_back("k=" + std::string(p.choices[c]) + "/", int(c));
     for (const auto& [prefix, k_choice] : variants) {
       const std::string base = "model/" + std::string(m.name) + "/" + prefix;
+      benchmark::RegisterBenchmark((base + "entry/pdf").c_str(), bm_entry, &m, Op::kPdf,
+                                   k_choice);
       for (bool sample : {false, true}) {
         const std::string op = sample ? "sample" : "eval";
-        benchmark::RegisterBenchmark((base + "entry/" + op).c_str(), bm_entry, &m, sample,
-                                     k_choice);
+        benchmark::RegisterBenchmark((base + "entry/" + op).c_str(), bm_entry, &m,
+                                     sample ? Op::kSample : Op::kEval, k_choice);
         for (Isa isa : kAllIsas) {
           if (!isa_supported(isa)) continue;
           const std::string name = base + std::string(isa_name(isa)) + "/" + op;
