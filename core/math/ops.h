@@ -29,22 +29,10 @@ GLINTLAB_FN float fma(float a, float b, float c) { return std::fma(a, b, c); }
 GLINTLAB_FN double fma(double a, double b, double c) { return std::fma(a, b, c); }
 GLINTLAB_FN float abs(float x) { return std::fabs(x); }
 GLINTLAB_FN double abs(double x) { return std::fabs(x); }
-// fmin/fmax's rule (a NaN operand yields the other), inline: the scalar code otherwise calls libm's
-// fminf/fmaxf. Of two zeros of opposite signs (unspecified in C; GCC commutes fmin/fmax calls) the
-// first, as the SIMD batches' min/max (core/simd/wide.h). ScalarMinMax checks both against libm
-// bit for bit (tests/core/math/min_max_test.cpp).
-template <class S>
-GLINTLAB_FN S min_like_fmin(S a, S b) {
-  return (b < a || (a != a && b == b)) ? b : a;
-}
-template <class S>
-GLINTLAB_FN S max_like_fmax(S a, S b) {
-  return (b > a || (a != a && b == b)) ? b : a;
-}
-GLINTLAB_FN float min(float a, float b) { return min_like_fmin(a, b); }
-GLINTLAB_FN double min(double a, double b) { return min_like_fmin(a, b); }
-GLINTLAB_FN float max(float a, float b) { return max_like_fmax(a, b); }
-GLINTLAB_FN double max(double a, double b) { return max_like_fmax(a, b); }
+GLINTLAB_FN float min(float a, float b) { return std::fmin(a, b); }
+GLINTLAB_FN double min(double a, double b) { return std::fmin(a, b); }
+GLINTLAB_FN float max(float a, float b) { return std::fmax(a, b); }
+GLINTLAB_FN double max(double a, double b) { return std::fmax(a, b); }
 GLINTLAB_FN float copysign(float a, float b) { return std::copysign(a, b); }
 GLINTLAB_FN double copysign(double a, double b) { return std::copysign(a, b); }
 GLINTLAB_FN float sign_not_zero(float x) { return std::copysign(1.0f, x); }

@@ -125,12 +125,11 @@ GLINTLAB_FN xsimd::batch<S, A> fma(const xsimd::batch<S, A>& a, const xsimd::bat
 }
 
 // min/max with std::fmin/fmax's rule (a NaN operand yields the other one), so that lanes agree
-// with the scalar kernels wherever a discarded branch produced a NaN; inline (core/math/ops.h),
-// not libm's fminf/fmaxf calls.
+// with the scalar kernels wherever a discarded branch produced a NaN.
 template <class S>
-requires std::is_floating_point_v<S> GLINTLAB_FN S min(S a, S b) { return min_like_fmin(a, b); }
+requires std::is_floating_point_v<S> GLINTLAB_FN S min(S a, S b) { return std::fmin(a, b); }
 template <class S>
-requires std::is_floating_point_v<S> GLINTLAB_FN S max(S a, S b) { return max_like_fmax(a, b); }
+requires std::is_floating_point_v<S> GLINTLAB_FN S max(S a, S b) { return std::fmax(a, b); }
 // NaN is tested with isnan: xsimd 8.1's != is the ordered comparison on AVX and AVX-512 (NaN != NaN
 // false there). Operands swapped because the min/max instructions return their second operand
 // when both are zero, and glibc's fmin/fmax return the first (min(+0, −0) = +0, as scalar).
