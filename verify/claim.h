@@ -55,7 +55,7 @@ struct Decision {
   Verdict verdict = Verdict::kInconclusive;
   double value = 0;
   std::optional<double> bound = {};
-  std::optional<double> p_value = {};    // combined (corrected), for statistical claims
+  std::optional<double> p_value = {};     // combined (corrected), for statistical claims
   std::vector<double> raw_p_values = {};  // every configuration's
   int configurations = 0;                 // how many configurations the verdict speaks for
 };

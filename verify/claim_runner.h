@@ -30,8 +30,7 @@ constexpr bool has_corrected_control() {
 // perturbed one, and its control then cannot oppose a genuine "fails" (the tests see that).
 template <typename C>
 constexpr Input control_input(Verdict genuine) {
-  return is_holding(genuine) || !has_corrected_control<C>() ? Input::kPerturbed
-                                                            : Input::kCorrected;
+  return is_holding(genuine) || !has_corrected_control<C>() ? Input::kPerturbed : Input::kCorrected;
 }
 
 namespace detail {
@@ -42,15 +41,13 @@ template <Claim C>
 std::vector<typename C::Evidence> observe_all(const typename C::Sizes& z) {
   std::vector<typename C::Evidence> evidence(static_cast<std::size_t>(C::configurations(z)));
   tbb::parallel_for(0, int(evidence.size()), [&](int k) {
-    evidence[std::size_t(k)] =
-        C::observe(z, k, check_seed(std::string(C::kId), std::uint64_t(k)));
+    evidence[std::size_t(k)] = C::observe(z, k, check_seed(std::string(C::kId), std::uint64_t(k)));
   });
   return evidence;
 }
 
 template <Claim C>
-CheckResult decide_all(const typename C::Sizes& z,
-                       std::span<const typename C::Evidence> evidence) {
+CheckResult decide_all(const typename C::Sizes& z, std::span<const typename C::Evidence> evidence) {
   const typename C::Measured genuine = C::measure(z, evidence, Input::kGenuine);
   const Decision d = C::decide(z, genuine);
   CheckResult r;
@@ -88,8 +85,8 @@ CheckResult run_claim(const typename C::Sizes& z) {
 template <typename C>
 Check claim_check() {
   static_assert(Claim<C>);
-  Check c{std::string(C::kId), std::string(C::kPaper), std::string(C::kSource),
-          C::kExpected.quick, [](Budget b) { return run_claim<C>(C::sizes(b)); }};
+  Check c{std::string(C::kId), std::string(C::kPaper), std::string(C::kSource), C::kExpected.quick,
+          [](Budget b) { return run_claim<C>(C::sizes(b)); }};
   c.expected_full = C::kExpected.full;
   c.budget_note = std::string(C::kExpected.why_full_differs);
   if constexpr (requires(std::uint64_t seed) { C::calibrate(seed); })
@@ -115,8 +112,7 @@ ClaimProbe probe_claim() {
 
 // Ends a claim's file: checks the type against the Claim concept and instantiates its registry
 // entry and its probe run here, for the paper's list (which names the type only) to link.
-#define GLINTLAB_CLAIM(Type)                                         \
-  static_assert(::glintlab::verify::Claim<Type>);                    \
-  template ::glintlab::verify::Check                                 \
-  glintlab::verify::claim_check<Type>();                             \
+#define GLINTLAB_CLAIM(Type)                                                \
+  static_assert(::glintlab::verify::Claim<Type>);                           \
+  template ::glintlab::verify::Check glintlab::verify::claim_check<Type>(); \
   template ::glintlab::verify::ClaimProbe glintlab::verify::probe_claim<Type>()

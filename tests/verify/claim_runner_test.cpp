@@ -2,6 +2,8 @@
 // for a holding claim and the corrected one for a failing claim, a control that does not oppose
 // is reported NOT rejected, the regime is set only for holds-in-regime, the registry entry carries
 // the claim's metadata, and the result does not depend on the thread count.
+#include "verify/claim_runner.h"
+
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
@@ -11,7 +13,6 @@
 #include <string>
 
 #include "core/math/rng.h"
-#include "verify/claim_runner.h"
 
 namespace glintlab::verify {
 namespace {
@@ -53,7 +54,7 @@ struct ToyMean {
   }
   static Decision decide(const Sizes& z, const double& m) {
     const bool ok = std::abs(m - 1) <= 0.01;
-    return {.verdict = !ok                          ? Verdict::kFails
+    return {.verdict = !ok                           ? Verdict::kFails
                        : kToy == Toy::kHoldsInRegime ? Verdict::kHoldsInRegime
                                                      : Verdict::kHolds,
             .value = std::abs(m - 1),

@@ -1,5 +1,5 @@
-// Per-paper check lists; verify/registry.cpp concatenates them into the registry. The papers
-// whose claims are types (verify/claim.h) have a list of types instead: verify/claims/<paper>/list.h.
+// Per-paper check lists; verify/registry.cpp concatenates them into the registry. A paper whose
+// claims are types (verify/claim.h) has a list of types instead: verify/claims/<paper>/list.h.
 #pragma once
 
 #include <vector>

@@ -82,7 +82,9 @@ struct BrightestVector {
     int size;     // crop of the real surface's 96-pixel frame
     int surface_grid() const { return grid / 8; }  // sub-pixel grid on the real surface
   };
-  static Sizes sizes(Budget b) { return b == Budget::kQuick ? Sizes{400, 64, 64} : Sizes{5000, 256, 128}; }
+  static Sizes sizes(Budget b) {
+    return b == Budget::kQuick ? Sizes{400, 64, 64} : Sizes{5000, 256, 128};
+  }
   static Sizes probe_sizes() { return {100, 32, 32}; }
 
   // Configurations 0 … configs − 1: one reflection space each; the last two: the real surface at
@@ -150,7 +152,8 @@ struct BrightestVector {
     Measured m{.medium = e[std::size_t(z.configs)].surface,
                .far = e[std::size_t(z.configs) + 1].surface};
     for (const Evidence& q : e.first(std::size_t(z.configs))) {
-      m.worst_excess = std::max(m.worst_excess, input == Input::kGenuine ? q.excess : q.moved_excess);
+      m.worst_excess =
+          std::max(m.worst_excess, input == Input::kGenuine ? q.excess : q.moved_excess);
       if (input == Input::kGenuine) m.worst_deficit = std::max(m.worst_deficit, q.deficit);
     }
     return m;
@@ -174,7 +177,8 @@ struct BrightestVector {
         "never farther from the projected centre (max excess {:.2g} quad sizes; brute force finds "
         "at most {:.2g} less, its grid spacing). On the real normal-mapped surface (no bilinear "
         "assumption, {}² sub-pixel positions) a sub-pixel reflection vector is closer to the light "
-        "by > 5 % of its radius in {:.1f} % of {} lit pixels at d = {} and {:.1f} % of {} at d = {}",
+        "by > 5 % of its radius in {:.1f} % of {} lit pixels at d = {} "
+        "and {:.1f} % of {} at d = {}",
         z.configs, z.grid + 1, m.worst_excess, m.worst_deficit, z.surface_grid(),
         100 * m.medium.beaten_fraction, m.medium.pixels, podee::kMedium,
         100 * m.far.beaten_fraction, m.far.pixels, podee::kFar);

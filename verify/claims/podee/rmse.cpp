@@ -124,7 +124,8 @@ struct Rmse {
   static Decision decide(const Sizes&, const Measured& m) {
     Decision d{.configurations = int(m.rows.size()) * 2};
     for (const RmseRow& row : m.rows)
-      if (row.distance == podee::kMedium) d.value = std::max(row.vs_centre.d_mse, row.vs_lean.d_mse);
+      if (row.distance == podee::kMedium)
+        d.value = std::max(row.vs_centre.d_mse, row.vs_lean.d_mse);
     bool regime_wins = true, all_wins = true, loses = false;
     for (const RmseRow& r : m.rows) {
       const bool win = r.vs_centre.sign < 0 && r.vs_lean.sign < 0;
@@ -133,8 +134,8 @@ struct Rmse {
       loses = loses || r.vs_centre.sign > 0 || r.vs_lean.sign > 0;
       regime_wins = regime_wins && win;
     }
-    d.verdict = loses      ? Verdict::kFails
-                : all_wins ? Verdict::kHolds
+    d.verdict = loses         ? Verdict::kFails
+                : all_wins    ? Verdict::kHolds
                 : regime_wins ? Verdict::kHoldsInRegime
                               : Verdict::kInconclusive;
     return d;
