@@ -4,7 +4,6 @@
 // list is tested here with no edit.
 #include <gtest/gtest.h>
 
-#include <cctype>
 #include <string>
 #include <vector>
 
@@ -13,35 +12,27 @@
 #include "verify/claims/podee/list.h"
 
 namespace glintlab::verify {
-namespace {
 
 // The claim types are declared, not defined, here (their files instantiate probe_claim); a
-// complete wrapper names each for GoogleTest.
+// complete wrapper names each for GoogleTest, and ctest names the test after it:
+// ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<…::podee_claims::Rmse>>.
 template <typename C>
-struct Tag {
+struct Probe {
   using Claim = C;
 };
-template <typename List>
-struct TagsOf;
-template <typename... Cs>
-struct TagsOf<ClaimList<Cs...>> {
-  using type = ::testing::Types<Tag<Cs>...>;
-};
 
-// Test names from the claims' ids (podee.far-failure → podee_far_failure).
-struct ClaimName {
-  template <typename T>
-  static std::string GetName(int) {
-    std::string n = claim_check<typename T::Claim>().id;
-    for (char& ch : n)
-      if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-    return n;
-  }
+namespace {
+
+template <typename List>
+struct ProbesOf;
+template <typename... Cs>
+struct ProbesOf<ClaimList<Cs...>> {
+  using type = ::testing::Types<Probe<Cs>...>;
 };
 
 template <typename T>
 class ClaimProbes : public ::testing::Test {};
-TYPED_TEST_SUITE(ClaimProbes, TagsOf<podee_claims::Claims>::type, ClaimName);
+TYPED_TEST_SUITE(ClaimProbes, ProbesOf<podee_claims::Claims>::type);
 
 TYPED_TEST(ClaimProbes, VerdictAndControlsAtProbeSize) {
   const ClaimProbe p = probe_claim<typename TypeParam::Claim>();
