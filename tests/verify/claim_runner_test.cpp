@@ -120,6 +120,18 @@ TEST(ClaimRunner, RegistryEntryCarriesTheMetadata) {
   EXPECT_EQ(p.corrected, Verdict::kHolds);
 }
 
+// A statistical claim: its calibrate becomes the registry entry's calibration.
+struct CalibratedToy : ToyMean<Toy::kHolds> {
+  static double calibrate(std::uint64_t seed) { return counter_uniform<double>(seed, 1, 0); }
+};
+
+TEST(ClaimRunner, CalibrateBecomesTheCalibration) {
+  const Check c = claim_check<CalibratedToy>();
+  ASSERT_TRUE(c.calibration);
+  EXPECT_EQ(c.calibration(7), counter_uniform<double>(7, 1, 0));
+  EXPECT_TRUE(is_statistical(c));
+}
+
 TEST(ClaimRunner, SameResultOnOneAndTwoThreads) {
   CheckResult one, two;
   tbb::task_arena(1).execute([&] { one = run_claim<ToyMean<Toy::kHolds>>({64}); });
