@@ -2,7 +2,9 @@
 #include <algorithm>
 
 #include "verify/check.h"
+#include "verify/claim.h"
 #include "verify/claims/claims.h"
+#include "verify/claims/podee/list.h"
 #include "verify/conformance/conformance.h"
 #include "verify/finding_rule.h"
 #include "verify/stats/multiple_testing.h"
@@ -45,7 +47,7 @@ const std::vector<Check>& registered_checks() {
     for (auto* list :
          {&smooth_checks, &smooth_sampler_checks, &smooth_consistency_checks, &eto_pdf_checks,
           &eto_checks, &kemppinen_checks, &kneiphof_checks, &kneiphof_ltc_checks, &chermain_checks,
-          &podee_checks, &across_checks, &adequacy_checks}) {
+          &list_checks<podee_claims::Claims>, &across_checks, &adequacy_checks}) {
       for (Check& c : list()) {
         attach_reading(c);
         all.push_back(std::move(c));

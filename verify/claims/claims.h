@@ -1,4 +1,5 @@
-// Per-paper check lists; verify/registry.cpp concatenates them into the registry.
+// Per-paper check lists; verify/registry.cpp concatenates them into the registry. A paper whose
+// claims are types (verify/claim.h) has a list of types instead: verify/claims/<paper>/list.h.
 #pragma once
 
 #include <vector>
@@ -17,7 +18,6 @@ std::vector<Check> kemppinen_glint_checks();     // verify/claims/kemppinen_glin
 std::vector<Check> kneiphof_checks();            // verify/claims/kneiphof.cpp
 std::vector<Check> kneiphof_ltc_checks();        // verify/claims/kneiphof_ltc.cpp
 std::vector<Check> chermain_checks();            // verify/claims/chermain.cpp
-std::vector<Check> podee_checks();               // verify/claims/podee.cpp
 std::vector<Check> across_checks();              // verify/claims/across.cpp
 std::vector<Check> adequacy_checks();            // verify/claims/adequacy.cpp
 

@@ -1,0 +1,73 @@
+// Every claim that is a type (verify/claim.h), run by the one runner at its probe size: its
+// recorded probe verdict, a control that opposes it, the perturbed input failing and the corrected
+// one (where the claim has one) holding. One typed test over the papers' lists: a claim added to a
+// list is tested here with no edit.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "verify/check.h"
+#include "verify/claim.h"
+#include "verify/claims/podee/list.h"
+
+namespace glintlab::verify {
+
+// The claim types are declared, not defined, here (their files instantiate probe_claim); a
+// complete wrapper names each for GoogleTest, and ctest names the test after it:
+// ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<…::podee_claims::Rmse>>.
+template <typename C>
+struct Probe {
+  using Claim = C;
+};
+
+namespace {
+
+template <typename List>
+struct ProbesOf;
+template <typename... Cs>
+struct ProbesOf<ClaimList<Cs...>> {
+  using type = ::testing::Types<Probe<Cs>...>;
+};
+
+template <typename T>
+class ClaimProbes : public ::testing::Test {};
+TYPED_TEST_SUITE(ClaimProbes, ProbesOf<podee_claims::Claims>::type);
+
+TYPED_TEST(ClaimProbes, VerdictAndControlsAtProbeSize) {
+  const ClaimProbe p = probe_claim<typename TypeParam::Claim>();
+  const CheckResult& r = p.result;
+  SCOPED_TRACE(p.id + ": " + r.detail);
+  EXPECT_EQ(std::string(to_string(r.verdict)), to_string(p.expected.probe));
+  EXPECT_TRUE(r.control_rejected) << r.control;
+  ASSERT_TRUE(r.control_verdict.has_value());
+  EXPECT_TRUE(control_opposes(r.verdict, *r.control_verdict)) << r.control;
+  // Each control input on its own: the perturbed one fails, the corrected one holds.
+  EXPECT_EQ(std::string(to_string(p.perturbed)), "fails");
+  if (p.corrected) {
+    EXPECT_TRUE(is_holding(*p.corrected)) << to_string(*p.corrected);
+  }
+  EXPECT_EQ(r.verdict == Verdict::kHoldsInRegime, !r.regime.empty()) << r.regime;
+  EXPECT_GT(r.configurations, 0);
+  EXPECT_FALSE(r.statistic.empty());
+  EXPECT_FALSE(r.power.empty());
+}
+
+// The lists are registered in order, with the papers' readings attached, and their recorded
+// verdicts.
+TEST(ClaimLists, PodeeRegisteredInOrder) {
+  std::vector<std::string> ids;
+  for (const Check& c : registered_checks())
+    if (c.id.rfind("podee.", 0) == 0) {
+      ids.push_back(c.id);
+      EXPECT_EQ(c.paper, "Podee, Max, Iwasaki & Dobashi");
+      EXPECT_FALSE(c.paper_quote.empty()) << c.id;
+      EXPECT_EQ(c.id == "podee.rmse" ? Verdict::kInconclusive : Verdict::kHolds, c.expected)
+          << c.id;
+    }
+  EXPECT_EQ(ids, (std::vector<std::string>{"podee.brightest-vector", "podee.rmse",
+                                           "podee.far-failure", "podee.stability"}));
+}
+
+}  // namespace
+}  // namespace glintlab::verify

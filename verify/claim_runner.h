@@ -1,0 +1,118 @@
+// run_claim<C>: the one protocol every Claim (verify/claim.h) is run by. Observes every
+// configuration once, measures and decides the genuine input, picks the control by the one rule
+// (a holding claim gets the perturbed input, any other the corrected one where the claim has it),
+// measures and decides the control from the same evidence, and fills the CheckResult: verdict,
+// value, p-values, regime, the control's verdict and whether it opposes, power. Included only by
+// the claims' own files, which end in GLINTLAB_CLAIM(Type).
+#pragma once
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "verify/claim.h"
+
+namespace glintlab::verify {
+
+template <typename C>
+constexpr bool has_corrected_control() {
+  if constexpr (requires { C::kHasCorrectedControl; })
+    return C::kHasCorrectedControl;
+  else
+    return false;
+}
+
+// The control rule, written once: "the control is the corrected input when the claim fails (or is
+// undecided), a perturbed one when it holds". A claim without a corrected input keeps its
+// perturbed one, and its control then cannot oppose a genuine "fails" (the tests see that).
+template <typename C>
+constexpr Input control_input(Verdict genuine) {
+  return is_holding(genuine) || !has_corrected_control<C>() ? Input::kPerturbed : Input::kCorrected;
+}
+
+namespace detail {
+
+// Every configuration's evidence, in parallel; the result does not depend on the thread count
+// (each configuration's evidence is a function of its index and seed).
+template <Claim C>
+std::vector<typename C::Evidence> observe_all(const typename C::Sizes& z) {
+  std::vector<typename C::Evidence> evidence(static_cast<std::size_t>(C::configurations(z)));
+  tbb::parallel_for(0, int(evidence.size()), [&](int k) {
+    evidence[std::size_t(k)] = C::observe(z, k, check_seed(std::string(C::kId), std::uint64_t(k)));
+  });
+  return evidence;
+}
+
+template <Claim C>
+CheckResult decide_all(const typename C::Sizes& z, std::span<const typename C::Evidence> evidence) {
+  const typename C::Measured genuine = C::measure(z, evidence, Input::kGenuine);
+  const Decision d = C::decide(z, genuine);
+  CheckResult r;
+  r.verdict = d.verdict;
+  r.statistic = std::string(C::kStatistic);
+  r.value = d.value;
+  r.bound = d.bound;
+  r.p_value = d.p_value;
+  r.raw_p_values = d.raw_p_values;
+  r.configurations = d.configurations;
+  if constexpr (requires { C::kRegime; })
+    if (r.verdict == Verdict::kHoldsInRegime) r.regime = std::string(C::kRegime);
+  r.detail = C::describe(z, genuine, Input::kGenuine);
+
+  const Input input = control_input<C>(r.verdict);
+  const typename C::Measured control = C::measure(z, evidence, input);
+  const Decision c = C::decide(z, control);
+  record_control(r, c.verdict);
+  r.control_p_value = c.p_value;
+  r.control = fmt::format("{} → {} ({})", C::describe(z, control, input), to_string(c.verdict),
+                          r.control_rejected ? "rejected" : "NOT rejected");
+  if constexpr (requires { C::power(z, genuine, control); })
+    r.power = C::power(z, genuine, control);
+  return r;
+}
+
+}  // namespace detail
+
+template <Claim C>
+CheckResult run_claim(const typename C::Sizes& z) {
+  const std::vector<typename C::Evidence> evidence = detail::observe_all<C>(z);
+  return detail::decide_all<C>(z, evidence);
+}
+
+template <typename C>
+Check claim_check() {
+  static_assert(Claim<C>);
+  Check c{std::string(C::kId), std::string(C::kPaper), std::string(C::kSource), C::kExpected.quick,
+          [](Budget b) { return run_claim<C>(C::sizes(b)); }};
+  c.expected_full = C::kExpected.full;
+  c.budget_note = std::string(C::kExpected.why_full_differs);
+  if constexpr (requires(std::uint64_t seed) { C::calibrate(seed); })
+    c.calibration = [](std::uint64_t seed) { return C::calibrate(seed); };
+  return c;
+}
+
+template <typename C>
+ClaimProbe probe_claim() {
+  static_assert(Claim<C>);
+  const typename C::Sizes z = C::probe_sizes();
+  const std::vector<typename C::Evidence> evidence = detail::observe_all<C>(z);
+  ClaimProbe p{.id = std::string(C::kId),
+               .expected = C::kExpected,
+               .result = detail::decide_all<C>(z, evidence)};
+  p.perturbed = C::decide(z, C::measure(z, evidence, Input::kPerturbed)).verdict;
+  if constexpr (has_corrected_control<C>())
+    p.corrected = C::decide(z, C::measure(z, evidence, Input::kCorrected)).verdict;
+  return p;
+}
+
+}  // namespace glintlab::verify
+
+// Ends a claim's file: checks the type against the Claim concept and instantiates its registry
+// entry and its probe run here, for the paper's list (which names the type only) to link.
+#define GLINTLAB_CLAIM(Type)                                                \
+  static_assert(::glintlab::verify::Claim<Type>);                           \
+  template ::glintlab::verify::Check glintlab::verify::claim_check<Type>(); \
+  template ::glintlab::verify::ClaimProbe glintlab::verify::probe_claim<Type>()
