@@ -12,18 +12,27 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
+#include <thread>
+#include <utility>
 #include <vector>
 
 #include "cli/commands.h"
 #include "cli/input.h"
 #include "cli/progress.h"
+#include "cli/shard.h"
+#include "cli/shard_merge.h"
 #include "cli/suite_runs.h"
+#include "core/io/atomic_file.h"
 #include "core/simd/batch.h"
 #include "experiments/adequacy/adequacy_outputs.h"
+#include "experiments/adequacy/adequacy_shards.h"
 
 namespace glintlab::cli {
 namespace {
+
+namespace fs = std::filesystem;
 
 struct AdequacyCliOptions {
   std::string out = "out/adequacy";
@@ -35,6 +44,7 @@ struct AdequacyCliOptions {
   std::string runs = "2000";
   std::string tables = "20";
   std::string bench_from;
+  std::string shard;
 };
 
 void print_calibration(const AdequacyRunSummary& run) {
@@ -79,7 +89,16 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
   if (option_count(cmd, "--runs") > 0) r.runs = o.runs;
   if (option_count(cmd, "--tables") > 0) r.tables = o.tables;
   if (option_count(cmd, "--bench-from") > 0) r.bench_from = o.bench_from;
+  if (option_count(cmd, "--shard") > 0) r.shard = o.shard;
   const AdequacyRunSummary run = run_adequacy_request(r);
+  if (run.shard) {
+    fmt::print(
+        "adequacy: shard {}/{} measured {} of the table's {} cells; wrote {} and shard.json "
+        "in {:.1f} s (glintlab merge joins the shards)\n",
+        run.shard->first, run.shard->second, run.shard_cells, run.table_cells,
+        (fs::path(r.out) / experiments::kAdequacyCellsFile).string(), run.seconds);
+    return;
+  }
   if (run.calibrate) {
     print_calibration(run);
     return;
@@ -209,6 +228,10 @@ AdequacyRunSummary run_adequacy_request(const AdequacyRequest& o) {
   const int threads = resolve_threads(o.threads);
   if (o.calibrate && o.bench_from)
     throw InputError("--bench-from: only without --calibrate (it prices the table's levels)");
+  if (o.calibrate && o.shard)
+    throw InputError("--shard: only without --calibrate (it splits the table's cells)");
+  const std::optional<Shard> shard =
+      o.shard ? std::optional<Shard>(parse_shard(*o.shard, "--shard")) : std::nullopt;
   if (o.bench_from) {
     std::error_code ec;
     if (!std::filesystem::is_directory(*o.bench_from, ec))
@@ -231,7 +254,36 @@ AdequacyRunSummary run_adequacy_request(const AdequacyRequest& o) {
   run.threshold = a.threshold;
   std::mutex m;
   const auto t0 = std::chrono::steady_clock::now();
-  if (o.calibrate) {
+  if (shard) {
+    const experiments::AdequacyPart part =
+        experiments::adequacy_shard_part(a, std::size_t(shard->k), std::size_t(shard->n));
+    ShardManifest manifest;
+    manifest.command = "adequacy";
+    manifest.version = glintlab_version_text();
+    manifest.budget = quick ? "quick" : "full";
+    manifest.selection = experiments::adequacy_cell_ids(a);
+    manifest.selection_digest =
+        selection_digest(experiments::adequacy_run_text(a), manifest.selection);
+    manifest.covered = experiments::adequacy_part_ids(part);
+    manifest.shard = *shard;
+    manifest.threads = threads;
+    manifest.machine =
+        fmt::format("{} hardware thread(s), {} used", std::thread::hardware_concurrency(), threads);
+    Progress bar(fmt::format("adequacy shard {}/{}", shard->k, shard->n),
+                 long(manifest.covered.size()));
+    a.progress = [&] {
+      const std::lock_guard<std::mutex> lock(m);
+      bar.step("cells");
+    };
+    const experiments::AdequacyCells cells = experiments::measure_adequacy_part(a, part);
+    fs::create_directories(o.out);
+    experiments::write_adequacy_part(fs::path(o.out) / experiments::kAdequacyCellsFile, a, part,
+                                     cells);
+    io::write_file_atomic(fs::path(o.out) / "shard.json", to_json(manifest));
+    run.shard = std::pair{shard->k, shard->n};
+    run.shard_cells = manifest.covered.size();
+    run.table_cells = manifest.selection.size();
+  } else if (o.calibrate) {
     experiments::AdequacyCalibrationOptions c;
     c.models = a.models;
     c.threshold = a.threshold;
@@ -269,6 +321,39 @@ AdequacyRunSummary run_adequacy_request(const AdequacyRequest& o) {
   return run;
 }
 
+void merge_adequacy_shards(const std::vector<std::string>& dirs,
+                           const std::vector<ShardManifest>& manifests, const std::string& out) {
+  std::vector<experiments::AdequacyPartFile> parts;
+  for (std::size_t i = 0; i < dirs.size(); ++i) {
+    const fs::path file = fs::path(dirs[i]) / experiments::kAdequacyCellsFile;
+    try {
+      parts.push_back(experiments::read_adequacy_part(file));
+    } catch (const std::invalid_argument& e) {
+      throw InputError(fmt::format("merge: {}", e.what()));
+    }
+    if (experiments::adequacy_part_ids(parts.back().part) != manifests[i].covered)
+      throw InputError(
+          fmt::format("merge: {} does not hold the cells its shard.json lists", file.string()));
+    if (selection_digest(experiments::adequacy_run_text(parts.back().options),
+                         manifests[i].selection) != manifests[i].selection_digest)
+      throw InputError(fmt::format(
+          "merge: {} was measured with other settings than its shard.json names", file.string()));
+  }
+  // Every shard has the run's digest (cli/merge.cpp), so the first one's settings are the run's.
+  const experiments::AdequacyOptions& o = parts.front().options;
+  experiments::AdequacyCells cells;
+  try {
+    cells = experiments::join_adequacy_parts(o, parts);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(fmt::format("merge: {}", e.what()));
+  }
+  register_staging_parent(out);
+  const experiments::AdequacySummary s = experiments::write_adequacy(out, o, cells);
+  fmt::print("adequacy: {} cells from {} shards; wrote {}, {} and {} maps\n",
+             cells.binomial.size() + cells.kemppinen.size(), dirs.size(), s.csv.string(),
+             s.json.string(), s.maps.size());
+}
+
 void add_adequacy_command(CLI::App& app) {
   auto o = std::make_shared<AdequacyCliOptions>();
   CLI::App* cmd =
@@ -296,6 +381,11 @@ void add_adequacy_command(CLI::App& app) {
                   "a folder holding glints.json of glintlab_bench_glints (its adequacy/ rows): "
                   "each level's cost per evaluation on this machine",
                   "DIR");
+  add_text_option(cmd, "--shard", o->shard,
+                  "K/N: measure only the K-th of N parts of the table's cells (each family's cells "
+                  "dealt round-robin) into DIR/adequacy-cells.json and shard.json; glintlab merge "
+                  "joins the N folders into the files of one run",
+                  "K/N");
   set_footer(cmd, kFooter);
   set_callback(cmd, [cmd, o] { run(cmd, *o); });
 }

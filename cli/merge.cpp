@@ -1,10 +1,11 @@
-// `glintlab merge DIR... --out DIR`: joins the folders of a sharded run (verify, figure, compare or
-// sweep --shard K/N; the subcommand is read from the shards' shard.json) into the files one
-// unsharded run writes, the same bytes apart from the timing fields. For verify: the rows in the
-// run's order and the suite's Holm–Šidák adjustment computed here over every shard's p-values;
-// for figure: each figure's folder, copied from the shard that ran it; for compare and sweep: the
-// models' entries in the run's order, with the page drawn from them or the models' folders of
-// maps (cli/shard_merge.h). Every shard
+// `glintlab merge DIR... --out DIR`: joins the folders of a sharded run (verify, figure, compare,
+// sweep or adequacy --shard K/N; the subcommand is read from the shards' shard.json) into the
+// files one unsharded run writes, the same bytes apart from the timing fields. For verify: the
+// rows in the run's order and the suite's Holm–Šidák adjustment computed here over every shard's
+// p-values; for figure: each figure's folder, copied from the shard that ran it; for compare and
+// sweep: the models' entries in the run's order, with the page drawn from them or the models'
+// folders of maps; for adequacy: the table and its maps written from every shard's cells
+// (cli/shard_merge.h). Every shard
 // must be there exactly once and belong to the same run (command, version, budget and selection),
 // and every item of the selection must be covered by exactly one shard; otherwise one error line
 // names the folder, and nothing is written.
@@ -47,7 +48,10 @@ std::string read_text(const fs::path& p) {
 
 // What the subcommand's selection is made of.
 std::string items_of(const std::string& command) {
-  return command == "verify" ? "claims" : command == "figure" ? "figures" : "models";
+  return command == "verify"     ? "claims"
+         : command == "figure"   ? "figures"
+         : command == "adequacy" ? "cells"
+                                 : "models";
 }
 
 // The field where manifest `m` of `dir` differs from the first shard's, or empty.
@@ -114,16 +118,16 @@ int run(const MergeOptions& o) {
   if (o.dirs.empty())
     throw InputError(
         "merge: no shard folder given (valid: the --out folders of glintlab verify, "
-        "figure, compare or sweep --shard K/N, one per K)");
+        "figure, compare, sweep or adequacy --shard K/N, one per K)");
   check_output_dir(o.out, "--out");
   std::vector<ShardManifest> manifests;
   for (const std::string& d : o.dirs) manifests.push_back(read_manifest(d));
   const ShardManifest& first = manifests.front();
   if (first.command != "verify" && first.command != "figure" && first.command != "compare" &&
-      first.command != "sweep")
-    throw InputError(
-        fmt::format("merge: '{}' is a shard of {} (valid: verify, figure, compare, sweep)",
-                    o.dirs.front(), first.command));
+      first.command != "sweep" && first.command != "adequacy")
+    throw InputError(fmt::format(
+        "merge: '{}' is a shard of {} (valid: verify, figure, compare, sweep, adequacy)",
+        o.dirs.front(), first.command));
   std::map<std::uint64_t, std::size_t> by_shard;  // K -> index in o.dirs
   for (std::size_t i = 0; i < manifests.size(); ++i) {
     const std::string why = foreign_field(first, manifests[i]);
@@ -148,6 +152,10 @@ int run(const MergeOptions& o) {
   }
   if (first.command == "sweep") {
     merge_sweep_shards(o.dirs, manifests, o.out);
+    return 0;
+  }
+  if (first.command == "adequacy") {
+    merge_adequacy_shards(o.dirs, manifests, o.out);
     return 0;
   }
 
@@ -199,15 +207,16 @@ void add_merge_command(CLI::App& app) {
   auto o = std::make_shared<MergeOptions>();
   CLI::App* cmd = add_command(
       app, "merge",
-      "Join the folders of a sharded run (glintlab verify, figure, compare or sweep --shard K/N "
-      "--out DIR, one folder per K; the subcommand is read from their shard.json) into the files "
-      "one "
-      "unsharded run writes, the same bytes apart from the timing fields. verify: claims.json, "
+      "Join the folders of a sharded run (glintlab verify, figure, compare, sweep or adequacy "
+      "--shard K/N --out DIR, one folder per K; the subcommand is read from their shard.json) "
+      "into the files one unsharded run writes, the same bytes apart from the timing fields. "
+      "verify: claims.json, "
       "claims.csv and claims.md, the suite's Holm–Šidák adjustment computed over every shard's "
       "p-values; prints the verdict table; exit status as verify's (0 as recorded, 1 a verdict "
       "differs, 3 a check could not run). figure: each figure's folder, <out>/<id>/. compare: "
       "compare.json, compare.csv, equal_time.csv, equal_time.png and index.html. sweep: "
-      "stability.json and each model's folder of maps. Exit 2 on bad "
+      "stability.json and each model's folder of maps. adequacy: adequacy.csv, adequacy.json and "
+      "the maps. Exit 2 on bad "
       "input: a missing, repeated or foreign shard, named, and nothing written");
   add_positional_list(cmd, "dirs", o->dirs, "the shards' folders, in any order", "DIR...");
   set_required(add_text_option(cmd, "--out", o->out, "output folder", "DIR"));

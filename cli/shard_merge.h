@@ -18,6 +18,11 @@ void merge_compare_shards(const std::vector<std::string>& dirs,
 
 // `glintlab sweep --shard K/N` (cli/sweep.cpp): each model's folder of maps, copied from the
 // shard that swept it, and stability.json with every target in the run's order.
+// `glintlab adequacy --shard K/N` (cli/adequacy.cpp): adequacy.csv, adequacy.json and the maps,
+// written from every shard's cells (experiments/adequacy/adequacy_shards.h) as one run writes them.
+void merge_adequacy_shards(const std::vector<std::string>& dirs,
+                           const std::vector<ShardManifest>& manifests, const std::string& out);
+
 void merge_sweep_shards(const std::vector<std::string>& dirs,
                         const std::vector<ShardManifest>& manifests, const std::string& out);
 

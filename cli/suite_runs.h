@@ -6,9 +6,11 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "cli/input.h"
 #include "experiments/adequacy/adequacy_outputs.h"
@@ -71,6 +73,7 @@ struct AdequacyRequest {
   std::optional<std::string> runs;  // unset: not given (2000 with calibrate)
   std::optional<std::string> tables;  // unset: not given (20 with calibrate)
   std::optional<std::string> bench_from;  // a folder holding glints.json (the levels' costs)
+  std::optional<std::string> shard;       // K/N: the K-th of N parts of the table's cells
 };
 struct AdequacyRunSummary {
   bool calibrate = false;
@@ -79,6 +82,9 @@ struct AdequacyRunSummary {
   experiments::AdequacySummary table;                   // without calibrate
   experiments::AdequacyCalibrationSummary calibration;  // with calibrate
   std::string costs_source, costs_isa;  // with --bench-from: the file and ISA that priced levels
+  // With --shard: which shard, and how many of the table's cells it measured (out of all).
+  std::optional<std::pair<std::uint64_t, std::uint64_t>> shard;
+  std::size_t shard_cells = 0, table_cells = 0;
 };
 AdequacyRunSummary run_adequacy_request(const AdequacyRequest& r);
 

@@ -77,6 +77,8 @@ set(glintlab_slow_tests
   # report, compare, adequacy), or a fuzz loop of a fixed number of inputs.
   "AdequacyTest.OutputDoesNotDependOnThreads 11"
   "AdequacyTest.QuickRunWritesTableAndMaps 3"
+  "AdequacyShardTest.MergedShardsAreTheFilesOfOneRun 10"
+  "AdequacyShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 5"
   "AdequacyMapsFigureTest.QuickWritesSheetMapsCsvAndSummary 6"
   "AdequacySceneFigureTest.QuickWritesSheetExrCsvAndSummary 6"
   "ChermainCli.Fig3Quick 1"

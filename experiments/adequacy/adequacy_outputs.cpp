@@ -240,7 +240,7 @@ std::vector<std::string> kemppinen_models(const std::vector<std::string>& models
   return out;
 }
 
-static verify::adequacy::KemppinenGridAxes kemppinen_axes_of(const AdequacyOptions& o) {
+verify::adequacy::KemppinenGridAxes kemppinen_axes_of(const AdequacyOptions& o) {
   return o.kemppinen_axes ? *o.kemppinen_axes : verify::adequacy::kemppinen_grid_axes(o.budget);
 }
 
@@ -328,15 +328,25 @@ std::vector<AdequacyLevelMap> kemppinen_level_maps(
 
 AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOptions& o) {
   const verify::adequacy::GridAxes axes = verify::adequacy::grid_axes(o.budget);
-  const verify::adequacy::KemppinenGridAxes kemppinen_axes =
-      kemppinen_axes_of(o);
+  const verify::adequacy::KemppinenGridAxes kemppinen_axes = kemppinen_axes_of(o);
   const auto decision = table_decision(o);
-  const std::vector<CellResult> rows = verify::adequacy::measure_grid(
-      verify::adequacy::make_grid(binomial_models(o.models), axes), axes.samples, decision,
-      o.progress);
-  const std::vector<KemppinenCellResult> kemppinen_rows = verify::adequacy::measure_kemppinen_grid(
+  AdequacyCells cells;
+  cells.binomial =
+      verify::adequacy::measure_grid(verify::adequacy::make_grid(binomial_models(o.models), axes),
+                                     axes.samples, decision, o.progress);
+  cells.kemppinen = verify::adequacy::measure_kemppinen_grid(
       verify::adequacy::make_kemppinen_grid(kemppinen_models(o.models), kemppinen_axes),
       kemppinen_axes.samples, decision, o.progress);
+  return write_adequacy(out, o, cells);
+}
+
+AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyOptions& o,
+                               const AdequacyCells& cells) {
+  const verify::adequacy::GridAxes axes = verify::adequacy::grid_axes(o.budget);
+  const verify::adequacy::KemppinenGridAxes kemppinen_axes = kemppinen_axes_of(o);
+  const auto decision = table_decision(o);
+  const std::vector<CellResult>& rows = cells.binomial;
+  const std::vector<KemppinenCellResult>& kemppinen_rows = cells.kemppinen;
 
   AdequacySummary sum;
   sum.cells = rows.size();

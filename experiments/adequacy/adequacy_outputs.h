@@ -89,6 +89,18 @@ struct AdequacySummary {
 // Measures every cell and writes the files into `out` (created), each atomically.
 AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOptions& o);
 
+// A run's measured cells: each family's whole grid in its order (make_grid, make_kemppinen_grid).
+struct AdequacyCells {
+  std::vector<verify::adequacy::CellResult> binomial;
+  std::vector<verify::adequacy::KemppinenCellResult> kemppinen;
+};
+// The files of run_adequacy from cells measured already (by run_adequacy, or by the shards of a
+// run joined: experiments/adequacy/adequacy_shards.h).
+AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyOptions& o,
+                               const AdequacyCells& cells);
+// The Kemppinen family's grid axes for `o`: its override, else the budget's.
+verify::adequacy::KemppinenGridAxes kemppinen_axes_of(const AdequacyOptions& o);
+
 // The table alone (for the tests and the maps figure): the binomial family's cells of the budget's
 // grid for `models`, measured with the decision of the whole table (table_decision).
 std::vector<verify::adequacy::CellResult> measure_adequacy(const AdequacyOptions& o);

@@ -2,11 +2,12 @@
 # Submits a sharded glintlab run to Slurm: a job array of SHARDS tasks (shard_array.sbatch, one
 # shard of `glintlab SUBCOMMAND --shard K/SHARDS` per SLURM_ARRAY_TASK_ID) and the merge job
 # (merge.sbatch) held with --dependency=afterok:<array job id>. SUBCOMMAND is verify, figure,
-# compare or sweep. Prints the two job ids, one line each:
+# compare, sweep or adequacy. Prints the two job ids, one line each:
 #   array <id>
 #   merge <id>
 # The merged files are in OUT/SUBCOMMAND (verify: claims.{json,csv,md}; figure: a folder per
-# figure; compare: the page and its tables; sweep: stability.json and the models' maps); each
+# figure; compare: the page and its tables; sweep: stability.json and the models' maps;
+# adequacy: adequacy.{csv,json} and the maps); each
 # job's output goes to OUT/logs. Examples (docs/scale-out.md "A Slurm cluster"):
 #   GLINTLAB=$PWD/build/release/cli/glintlab BUDGET=full SHARDS=32 OUT=$PWD/run scripts/slurm/submit.sh
 #   SUBCOMMAND=figure FIGURES='kemppinen2025-*' BUDGET=full SHARDS=8 OUT=$PWD/figs scripts/slurm/submit.sh
@@ -14,11 +15,11 @@
 # The options a user sets: environment variables override these defaults; they reach the jobs
 # through sbatch's --export.
 GLINTLAB=${GLINTLAB:-glintlab}   # the glintlab executable, on a file system every node sees
-SUBCOMMAND=${SUBCOMMAND:-verify} # verify, figure, compare or sweep
+SUBCOMMAND=${SUBCOMMAND:-verify} # verify, figure, compare, sweep or adequacy
 BUDGET=${BUDGET:-quick}          # --budget: quick or full
 CLAIMS=${CLAIMS:-}               # verify --claims GLOBS; empty: every claim
 FIGURES=${FIGURES:-*}            # figure IDS (ids and globs, commas allowed); '*': every figure
-MODELS=${MODELS:-}               # compare and sweep --models GLOBS; empty: the subcommand's default
+MODELS=${MODELS:-}               # compare, sweep and adequacy --models GLOBS; empty: the subcommand's default
 EXTRA_ARGS=${EXTRA_ARGS:-}       # further options of each task, split at spaces
 SHARDS=${SHARDS:-4}              # how many shards (array tasks)
 OUT=${OUT:-$PWD/glintlab-run}    # the run's folder, on a file system every node sees
@@ -29,8 +30,8 @@ TIME_LIMIT=${TIME_LIMIT:-}       # sbatch --time of each job; empty: the partiti
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 case "$SUBCOMMAND" in
-  verify | figure | compare | sweep) ;;
-  *) echo "submit.sh: error: SUBCOMMAND must be verify, figure, compare or sweep, not '$SUBCOMMAND'" >&2; exit 2 ;;
+  verify | figure | compare | sweep | adequacy) ;;
+  *) echo "submit.sh: error: SUBCOMMAND must be verify, figure, compare, sweep or adequacy, not '$SUBCOMMAND'" >&2; exit 2 ;;
 esac
 case "$SHARDS" in
   '' | *[!0-9]* | 0*) echo "submit.sh: error: SHARDS must be a whole number >= 1, not '$SHARDS'" >&2; exit 2 ;;

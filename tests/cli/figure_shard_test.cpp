@@ -158,7 +158,7 @@ TEST_F(FigureShardTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing) 
   fs::copy(path("a1"), path("u1"), fs::copy_options::recursive);
   write_text(path("u1/shard.json"), std::regex_replace(read_text(path("u1/shard.json")),
                                                        std::regex("\"command\": \"figure\""),
-                                                       "\"command\": \"adequacy\""));
+                                                       "\"command\": \"report\""));
   fs::create_directory(path("plain"));  // not a shard
   std::set<std::string> before = work_paths();
   expect_input_error(run({"merge", "a1", "--out", "m"}), {"shard 2/2 is missing"}, before);
@@ -172,7 +172,7 @@ TEST_F(FigureShardTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing) 
       run({"merge", "a1", "d2", "--out", "m"}),
       {"'d2' belongs to another run", "another selection of figures or other options"}, before);
   expect_input_error(run({"merge", "u1", "a2", "--out", "m"}),
-                     {"'u1' is a shard of adequacy (valid: verify, figure, compare, sweep)"},
+                     {"'u1' is a shard of report (valid: verify, figure, compare, sweep, adequacy)"},
                      before);
   expect_input_error(run({"merge", "a1", "v2", "--out", "m"}),
                      {"'v2' belongs to another run", "command verify (not figure)"}, before);

@@ -280,9 +280,18 @@ CellResult measure_cell(const Cell& cell, int samples, std::uint64_t seed, const
 
 std::vector<CellResult> measure_grid(const std::vector<Cell>& cells, int samples,
                                      const Decision& d, const std::function<void()>& progress) {
-  std::vector<CellResult> out(cells.size());
-  tbb::parallel_for(std::size_t(0), cells.size(), [&](std::size_t i) {
-    out[i] = measure_cell(cells[i], samples, check_seed("adequacy.table", i), d);
+  std::vector<std::size_t> all(cells.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  return measure_grid_at(cells, all, samples, d, progress);
+}
+
+std::vector<CellResult> measure_grid_at(const std::vector<Cell>& cells,
+                                        const std::vector<std::size_t>& positions, int samples,
+                                        const Decision& d, const std::function<void()>& progress) {
+  std::vector<CellResult> out(positions.size());
+  tbb::parallel_for(std::size_t(0), positions.size(), [&](std::size_t j) {
+    const std::size_t i = positions[j];
+    out[j] = measure_cell(cells.at(i), samples, check_seed("adequacy.table", i), d);
     if (progress) progress();
   });
   return out;

@@ -122,5 +122,11 @@ CellResult measure_cell(const Cell& cell, int samples, std::uint64_t seed, const
 std::vector<CellResult> measure_grid(const std::vector<Cell>& cells, int samples,
                                      const Decision& d,
                                      const std::function<void()>& progress = {});
+// The cells at `positions` (indices into `cells`, the whole grid) alone, in that order, each with
+// the seed of its position in the grid: a shard's cell is bit for bit the unsharded run's.
+std::vector<CellResult> measure_grid_at(const std::vector<Cell>& cells,
+                                        const std::vector<std::size_t>& positions, int samples,
+                                        const Decision& d,
+                                        const std::function<void()>& progress = {});
 
 }  // namespace glintlab::verify::adequacy

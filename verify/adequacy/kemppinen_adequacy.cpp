@@ -226,9 +226,18 @@ KemppinenCellResult measure_kemppinen_cell(const KemppinenCell& cell, int sample
 std::vector<KemppinenCellResult> measure_kemppinen_grid(const std::vector<KemppinenCell>& cells,
                                                         int samples, const Decision& d,
                                                         const std::function<void()>& progress) {
-  std::vector<KemppinenCellResult> out(cells.size());
-  tbb::parallel_for(std::size_t(0), cells.size(), [&](std::size_t i) {
-    out[i] = measure_kemppinen_cell(cells[i], samples, check_seed("adequacy.kemppinen", i), d);
+  std::vector<std::size_t> all(cells.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  return measure_kemppinen_grid_at(cells, all, samples, d, progress);
+}
+
+std::vector<KemppinenCellResult> measure_kemppinen_grid_at(
+    const std::vector<KemppinenCell>& cells, const std::vector<std::size_t>& positions, int samples,
+    const Decision& d, const std::function<void()>& progress) {
+  std::vector<KemppinenCellResult> out(positions.size());
+  tbb::parallel_for(std::size_t(0), positions.size(), [&](std::size_t j) {
+    const std::size_t i = positions[j];
+    out[j] = measure_kemppinen_cell(cells.at(i), samples, check_seed("adequacy.kemppinen", i), d);
     if (progress) progress();
   });
   return out;

@@ -97,6 +97,11 @@ KemppinenCellResult measure_kemppinen_cell(const KemppinenCell& cell, int sample
 std::vector<KemppinenCellResult> measure_kemppinen_grid(const std::vector<KemppinenCell>& cells,
                                                         int samples, const Decision& d,
                                                         const std::function<void()>& progress = {});
+// The cells at `positions` (indices into `cells`, the whole grid) alone, in that order, each with
+// the seed of its position in the grid (a shard's cells; measure_grid_at).
+std::vector<KemppinenCellResult> measure_kemppinen_grid_at(
+    const std::vector<KemppinenCell>& cells, const std::vector<std::size_t>& positions, int samples,
+    const Decision& d, const std::function<void()>& progress = {});
 
 // The construction-derived boundary against the measured one, per row of the grid (model, θ_i, α,
 // θ_h) and cheaper level (smooth, k1_rational, k4_rational, k9_rational; an exact-erf level's

@@ -1,0 +1,140 @@
+// `glintlab adequacy --shard K/N` and `glintlab merge`: the table's cells split into N shards
+// (N = 1, 2, 3 and 7, given to merge in any order) and merged give the files of one unsharded run:
+// the maps byte for byte, adequacy.csv and adequacy.json apart from the in-process timings (each
+// level's ns per evaluation and the cheapest level measured from them); a missing, repeated or
+// foreign shard, or one whose cells are not those its manifest lists, is one error line naming
+// it, and nothing is written.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "cli/cli_test_util.h"
+#include "core/io/csv.h"
+
+namespace glintlab::cli_test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class AdequacyShardTest : public CliTest {
+ protected:
+  RunResult adequacy(const std::string& out, const std::string& shard = "",
+                     const std::string& threshold = "0.02") const {
+    std::vector<std::string> args = {"adequacy", "--models",    "deliot_belcour",
+                                     "--budget", "quick",       "--threads",
+                                     "2",        "--threshold", threshold,
+                                     "--out",    out};
+    if (!shard.empty()) args.insert(args.end(), {"--shard", shard});
+    return run(args);
+  }
+};
+
+bool is_timing(const std::string& key) {
+  return key == "ns_per_eval" || key.ends_with("_ns_total") || key.ends_with("_ns") ||
+         key.starts_with("cheapest_measured");
+}
+
+nlohmann::json without_timing(const nlohmann::json& j) {
+  if (j.is_object()) {
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [k, v] : j.items())
+      if (!is_timing(k)) out[k] = without_timing(v);
+    return out;
+  }
+  if (j.is_array()) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& v : j) out.push_back(without_timing(v));
+    return out;
+  }
+  return j;
+}
+
+// adequacy.csv without its timing columns, one string per row.
+std::vector<std::string> csv_without_timing(const fs::path& file) {
+  const io::CsvTable t = io::read_csv(file);
+  std::vector<std::string> rows;
+  for (std::size_t r = 0; r < t.num_rows(); ++r) {
+    std::string row;
+    for (std::size_t c = 0; c < t.header().size(); ++c)
+      if (!is_timing(t.header()[c])) row += t.header()[c] + "=" + std::string(t.text(r, c)) + ",";
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST_F(AdequacyShardTest, MergedShardsAreTheFilesOfOneRun) {
+  ASSERT_EQ(adequacy("one").exit_code, 0);
+  const std::map<std::string, std::string> one = file_tree("one");
+  for (int n : {1, 2, 3, 7}) {
+    std::vector<std::string> merge = {"merge"};
+    for (int k = n; k >= 1; --k) {  // any order
+      const std::string dir = "s" + std::to_string(n) + "_" + std::to_string(k);
+      const RunResult r = adequacy(dir, std::to_string(k) + "/" + std::to_string(n));
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      EXPECT_NE(r.out.find("of the table's 324 cells"), std::string::npos) << r.out;
+      const auto m = nlohmann::json::parse(read_text(path(dir + "/shard.json")));
+      EXPECT_EQ(m["command"], "adequacy");
+      EXPECT_EQ(m["selection"].size(), 324u);
+      // Each family's cells dealt round-robin: cell k-1, k-1+n, ...
+      EXPECT_EQ(m["covered"][0], "binomial/" + std::to_string(k - 1));
+      merge.push_back(dir);
+    }
+    const std::string out = "merged" + std::to_string(n);
+    merge.insert(merge.end(), {"--out", out});
+    const RunResult r = run(merge);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("324 cells from " + std::to_string(n) + " shards"), std::string::npos)
+        << r.out;
+    const std::map<std::string, std::string> merged = file_tree(out);
+    ASSERT_EQ(merged.size(), one.size()) << n;
+    for (const auto& [file, bytes] : one) {
+      ASSERT_TRUE(merged.count(file)) << n << ": " << file;
+      if (file == "adequacy.csv")
+        EXPECT_EQ(csv_without_timing(path(out + "/" + file)),
+                  csv_without_timing(path("one/" + file)))
+            << n;
+      else if (file == "adequacy.json")
+        EXPECT_EQ(without_timing(nlohmann::json::parse(merged.at(file))),
+                  without_timing(nlohmann::json::parse(bytes)))
+            << n;
+      else
+        EXPECT_TRUE(merged.at(file) == bytes) << n << " shards: " << file << " differs";
+    }
+  }
+}
+
+TEST_F(AdequacyShardTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing) {
+  ASSERT_EQ(adequacy("a1", "1/2").exit_code, 0);
+  ASSERT_EQ(adequacy("a2", "2/2").exit_code, 0);
+  ASSERT_EQ(adequacy("t2", "2/2", "0.05").exit_code, 0);
+  // A shard whose cells are the other shard's.
+  fs::copy(path("a2"), path("x2"), fs::copy_options::recursive);
+  write_text(path("x2/adequacy-cells.json"), read_text(path("a1/adequacy-cells.json")));
+  // A shard whose cells were measured with another TAU than its manifest names.
+  fs::copy(path("a2"), path("y2"), fs::copy_options::recursive);
+  write_text(path("y2/adequacy-cells.json"), read_text(path("t2/adequacy-cells.json")));
+  const std::set<std::string> before = work_paths();
+  expect_input_error(run({"merge", "a1", "--out", "m"}), {"shard 2/2 is missing"}, before);
+  expect_input_error(run({"merge", "a1", "a2", "a2", "--out", "m"}),
+                     {"shard 2/2 is given twice", "'a2'"}, before);
+  expect_input_error(run({"merge", "a1", "t2", "--out", "m"}),
+                     {"'t2' belongs to another run", "another selection of cells"}, before);
+  expect_input_error(run({"merge", "a1", "x2", "--out", "m"}),
+                     {"adequacy-cells.json does not hold the cells its shard.json lists"}, before);
+  expect_input_error(run({"merge", "a1", "y2", "--out", "m"}),
+                     {"adequacy-cells.json was measured with other settings"}, before);
+  for (const char* bad : {"0/2", "3/2", "1/0", "x", "1/"})
+    expect_input_error(run({"adequacy", "--models", "deliot_belcour", "--shard", bad, "--out", "f"}),
+                       {"--shard", bad, "K/N"}, before);
+  expect_input_error(run({"adequacy", "--calibrate", "--shard", "1/2", "--out", "f"}),
+                     {"--shard", "--calibrate"}, before);
+}
+
+}  // namespace
+}  // namespace glintlab::cli_test
