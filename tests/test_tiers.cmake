@@ -134,8 +134,8 @@ set(glintlab_slow_tests
 # Entries are matched as above.
 set(glintlab_power_tests
   # Every claim at its quick budget: its measure and decision on smaller inputs in the claim's own
-  # tests (tests/verify/claims/: ChiSquareClaims.*, KemppinenClaims.*, ClaimProbes.* (the claims written as types),
-  # ChermainClaims.*, KneiphofClaims.*, ...), the conformance properties in
+  # tests (tests/verify/claims/: ChiSquareClaims.*, KemppinenClaims.*, ClaimProbes.* (the claims
+  # written as types), ChermainClaims.*, KneiphofClaims.*, ...), the conformance properties in
   # Properties/ControlRejected.*, all.stability in
   # PluginTest.SweepFigureAndGenericClaimCoverThePluginModel.
   "Checks/QuickBudget.*"
