@@ -9,6 +9,7 @@
 
 #include "verify/check.h"
 #include "verify/claim.h"
+#include "verify/claims/kneiphof/list.h"
 #include "verify/claims/podee/list.h"
 
 namespace glintlab::verify {
@@ -23,16 +24,21 @@ struct Probe {
 
 namespace {
 
-template <typename List>
+template <typename... Lists>
 struct ProbesOf;
 template <typename... Cs>
 struct ProbesOf<ClaimList<Cs...>> {
   using type = ::testing::Types<Probe<Cs>...>;
 };
+// Several papers' lists, joined.
+template <typename... As, typename... Bs, typename... Rest>
+struct ProbesOf<ClaimList<As...>, ClaimList<Bs...>, Rest...>
+    : ProbesOf<ClaimList<As..., Bs...>, Rest...> {};
 
 template <typename T>
 class ClaimProbes : public ::testing::Test {};
-TYPED_TEST_SUITE(ClaimProbes, ProbesOf<podee_claims::Claims>::type);
+using AllProbes = ProbesOf<kneiphof_claims::Claims, podee_claims::Claims>::type;
+TYPED_TEST_SUITE(ClaimProbes, AllProbes);
 
 TYPED_TEST(ClaimProbes, VerdictAndControlsAtProbeSize) {
   const ClaimProbe p = probe_claim<typename TypeParam::Claim>();
