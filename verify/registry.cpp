@@ -47,8 +47,8 @@ const std::vector<Check>& registered_checks() {
     std::vector<Check> all;
     for (auto* list :
          {&smooth_checks, &smooth_sampler_checks, &smooth_consistency_checks, &eto_pdf_checks,
-          &eto_checks, &kemppinen_checks, &kneiphof_checks, &list_checks<kneiphof_claims::Claims>,
-          &chermain_checks, &list_checks<podee_claims::Claims>, &across_checks, &adequacy_checks}) {
+          &eto_checks, &kemppinen_checks, &list_checks<kneiphof_claims::Claims>, &chermain_checks,
+          &list_checks<podee_claims::Claims>, &across_checks, &adequacy_checks}) {
       for (Check& c : list()) {
         attach_reading(c);
         all.push_back(std::move(c));

@@ -75,5 +75,27 @@ TEST(ClaimLists, PodeeRegisteredInOrder) {
                                            "podee.far-failure", "podee.stability"}));
 }
 
+TEST(ClaimLists, KneiphofRegisteredInOrder) {
+  std::vector<std::string> ids;
+  std::vector<Verdict> expected;
+  for (const Check& c : registered_checks())
+    if (c.id.rfind("kneiphof.", 0) == 0) {
+      ids.push_back(c.id), expected.push_back(c.expected);
+      EXPECT_EQ(c.paper, "Kneiphof & Klein 2024");
+      EXPECT_FALSE(c.paper_quote.empty()) << c.id;
+      // The statistical claims keep their calibration (and so count in the suite's level).
+      EXPECT_EQ(bool(c.calibration),
+                c.id == "kneiphof.discrete-ndf-mean" || c.id == "kneiphof.subdivision")
+          << c.id;
+    }
+  EXPECT_EQ(ids,
+            (std::vector<std::string>{"kneiphof.total-area", "kneiphof.discrete-ndf-mean",
+                                      "kneiphof.subdivision", "kneiphof.convergence",
+                                      "kneiphof.cap-probability", "kneiphof.ltc-probability"}));
+  EXPECT_EQ(expected, (std::vector<Verdict>{Verdict::kHoldsWithin, Verdict::kHolds, Verdict::kHolds,
+                                            Verdict::kHoldsWithin, Verdict::kHoldsInRegime,
+                                            Verdict::kInconclusive}));
+}
+
 }  // namespace
 }  // namespace glintlab::verify

@@ -6,8 +6,14 @@
 
 namespace glintlab::verify::kneiphof_claims {
 
-struct LtcProbability;  // ltc_probability.cpp
+struct TotalArea;        // total_area.cpp
+struct DiscreteNdfMean;  // discrete_ndf_mean.cpp
+struct Subdivision;      // subdivision.cpp
+struct Convergence;      // convergence.cpp
+struct CapProbability;   // cap_probability.cpp
+struct LtcProbability;   // ltc_probability.cpp
 
-using Claims = ClaimList<LtcProbability>;
+using Claims =
+    ClaimList<TotalArea, DiscreteNdfMean, Subdivision, Convergence, CapProbability, LtcProbability>;
 
 }  // namespace glintlab::verify::kneiphof_claims
