@@ -11,8 +11,10 @@
 //   decide(sizes, measured)             → Decision   verdict, value, bound, p-values
 //   describe(sizes, measured, input)    → string     the detail line (genuine) or the control's
 //
-// plus `power(sizes, genuine, control)` (the detectable effect, as text) and, for a statistical
-// claim, `calibrate(seed)` (one raw p-value on a known-correct input), both optional. The
+// plus `power(sizes, genuine, control)` (the detectable effect, as text), `beside_control(sizes,
+// control)` (what else the control's measurement shows, appended to the control's text after its
+// verdict) and, for a statistical claim, `calibrate(seed)` (one raw p-value on a known-correct
+// input), all optional. The
 // configurations are enumerable (`configurations(sizes)`, then an index), so a run can be split by
 // configuration. The control rule is the runner's alone: a claim that holds is shown to fail on a
 // perturbed input, one that does not hold to hold on the corrected input (Input::kCorrected, where

@@ -2,7 +2,8 @@
 // configuration once, measures and decides the genuine input, picks the control by the one rule
 // (a holding claim gets the perturbed input, any other the corrected one where the claim has it),
 // measures and decides the control from the same evidence, and fills the CheckResult: verdict,
-// value, p-values, regime, the control's verdict and whether it opposes, power. Included only by
+// value, p-values, regime, the control's verdict and whether it opposes (then, where the claim has
+// one, what is measured beside the control: beside_control), power. Included only by
 // the claims' own files, which end in GLINTLAB_CLAIM(Type).
 #pragma once
 
@@ -69,6 +70,8 @@ CheckResult decide_all(const typename C::Sizes& z, std::span<const typename C::E
   r.control_p_value = c.p_value;
   r.control = fmt::format("{} → {} ({})", C::describe(z, control, input), to_string(c.verdict),
                           r.control_rejected ? "rejected" : "NOT rejected");
+  if constexpr (requires { C::beside_control(z, control); })
+    r.control += ". " + C::beside_control(z, control);
   if constexpr (requires { C::power(z, genuine, control); })
     r.power = C::power(z, genuine, control);
   return r;

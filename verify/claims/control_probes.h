@@ -1,4 +1,4 @@
-// Cheap probes of what the claims in smooth_consistency.cpp, eto.cpp and kneiphof.cpp decide: each
+// Cheap probes of what the claims in smooth_consistency.cpp and eto.cpp decide: each
 // runs one check's statistic on one correct and one deliberately wrong input, at a small size, so
 // tests can assert that the correct input passes and the control is rejected without running the
 // whole check.
@@ -33,8 +33,5 @@ ControlProbe probe_eto_variance_rough();
 // eto.backfacing-stable-pdf on a small grid: max relative error of the stable form; control: the
 // stable form × 1.02.
 ControlProbe probe_eto_backfacing_stable_pdf();
-// kneiphof.total-area at one α: relative error of Eq. 29 (ggx) or Eq. 30 against cubature;
-// control: the closed form at α × 1.02.
-ControlProbe probe_kneiphof_total_area(bool ggx);
 
 }  // namespace glintlab::verify

@@ -9,6 +9,7 @@
 
 #include "verify/check.h"
 #include "verify/claim.h"
+#include "verify/claims/kneiphof/list.h"
 #include "verify/claims/podee/list.h"
 
 namespace glintlab::verify {
@@ -23,16 +24,21 @@ struct Probe {
 
 namespace {
 
-template <typename List>
+template <typename... Lists>
 struct ProbesOf;
 template <typename... Cs>
 struct ProbesOf<ClaimList<Cs...>> {
   using type = ::testing::Types<Probe<Cs>...>;
 };
+// Several papers' lists, joined.
+template <typename... As, typename... Bs, typename... Rest>
+struct ProbesOf<ClaimList<As...>, ClaimList<Bs...>, Rest...>
+    : ProbesOf<ClaimList<As..., Bs...>, Rest...> {};
 
 template <typename T>
 class ClaimProbes : public ::testing::Test {};
-TYPED_TEST_SUITE(ClaimProbes, ProbesOf<podee_claims::Claims>::type);
+using AllProbes = ProbesOf<kneiphof_claims::Claims, podee_claims::Claims>::type;
+TYPED_TEST_SUITE(ClaimProbes, AllProbes);
 
 TYPED_TEST(ClaimProbes, VerdictAndControlsAtProbeSize) {
   const ClaimProbe p = probe_claim<typename TypeParam::Claim>();
@@ -67,6 +73,28 @@ TEST(ClaimLists, PodeeRegisteredInOrder) {
     }
   EXPECT_EQ(ids, (std::vector<std::string>{"podee.brightest-vector", "podee.rmse",
                                            "podee.far-failure", "podee.stability"}));
+}
+
+TEST(ClaimLists, KneiphofRegisteredInOrder) {
+  std::vector<std::string> ids;
+  std::vector<Verdict> expected;
+  for (const Check& c : registered_checks())
+    if (c.id.rfind("kneiphof.", 0) == 0) {
+      ids.push_back(c.id), expected.push_back(c.expected);
+      EXPECT_EQ(c.paper, "Kneiphof & Klein 2024");
+      EXPECT_FALSE(c.paper_quote.empty()) << c.id;
+      // The statistical claims keep their calibration (and so count in the suite's level).
+      EXPECT_EQ(bool(c.calibration),
+                c.id == "kneiphof.discrete-ndf-mean" || c.id == "kneiphof.subdivision")
+          << c.id;
+    }
+  EXPECT_EQ(ids,
+            (std::vector<std::string>{"kneiphof.total-area", "kneiphof.discrete-ndf-mean",
+                                      "kneiphof.subdivision", "kneiphof.convergence",
+                                      "kneiphof.cap-probability", "kneiphof.ltc-probability"}));
+  EXPECT_EQ(expected, (std::vector<Verdict>{Verdict::kHoldsWithin, Verdict::kHolds, Verdict::kHolds,
+                                            Verdict::kHoldsWithin, Verdict::kHoldsInRegime,
+                                            Verdict::kInconclusive}));
 }
 
 }  // namespace
