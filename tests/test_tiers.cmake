@@ -71,7 +71,10 @@ set(glintlab_slow_tests
   "ChermainClaims.LeanMarginNegativeAgainstNearTruth 4"
   "ChermainPatchSdf.NormalizedWithAndWithoutGgaa 1"
   "ChermainScalarIdentity.ModelMatchesTheHostCode 1"
-  "KneiphofClaims.DiscreteNdfMean 2"
+  # A claim type at its probe size (tests/verify/claims/claim_probes_test.cpp): the discrete NDF's
+  # facet draws and the LTC fits at every probe cell.
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::kneiphof_claims::DiscreteNdfMean>> 2"
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::kneiphof_claims::LtcProbability>> 2"
   "ZirrKaplanyan.CountMeanAndVarianceMatchADirectlySimulatedBinomial 3"
   # The glintlab executable run end to end on a subcommand's quick budget (a figure, a sweep, a
   # report, compare, adequacy), or a fuzz loop of a fixed number of inputs.
