@@ -20,6 +20,13 @@ Usage (Debian's /usr/bin/python3, standard library only):
         Runs `EXE verify --budget B --claims GLOBS` (default model.*) in a temporary folder and
         puts each conformance row it wrote, stamped, into FILE: a row with the same id is
         replaced, a new one appended; every other row is left byte for byte.
+    row_stamps.py reproduce --glintlab EXE --budget quick|full [--claims GLOBS] [--threads N] FILE
+        Runs the same `verify` as record and compares each conformance row it wrote with the
+        row of the same id in FILE, which it leaves as it is: every field but `seconds` and
+        `stamp` must be equal (a timing property, model.<name>.constant-time, whose value and
+        detail are measured times: its verdict and control verdict). Exit 0 when every row is
+        reproduced; otherwise one line per row that is not (its differing fields) and exit 1.
+        So a recorded row that the current code no longer produces cannot survive a run of it.
     row_stamps.py files ID
         The files the stamp of claim ID covers, one per line (to see why a row went stale).
 
@@ -189,10 +196,8 @@ def stamped(chunk, stamp):
     return chunk[:m.start()] + f'    "stamp": "{stamp}",\n' + chunk[m.start():]
 
 
-def record(args):
-    with open(args.file, encoding="utf-8") as f:
-        text = f.read()
-    base = split_rows(text, args.file)
+def run_verify(args):
+    """The text of claims.json from `glintlab verify` with record's and reproduce's options."""
     with tempfile.TemporaryDirectory(prefix="row_stamps.") as tmp:
         cmd = [args.glintlab, "verify", "--budget", args.budget, "--claims", args.claims,
                "--out", os.path.join(tmp, "verify")]
@@ -204,7 +209,46 @@ def record(args):
             raise InputError(f"glintlab verify exited {run.returncode}: "
                              f"{run.stderr.strip().splitlines()[-1] if run.stderr.strip() else ''}")
         with open(os.path.join(tmp, "verify", "claims.json"), encoding="utf-8") as f:
-            fresh = split_rows(f.read(), "verify's claims.json")
+            return f.read()
+
+
+# Properties whose value and detail are measured times, different in every run.
+TIMING_PROPERTIES = ("constant-time",)
+
+
+def reproduce(args):
+    with open(args.file, encoding="utf-8") as f:
+        recorded = {r["id"]: r for r in json.loads(f.read())}
+    fresh = [r for r in json.loads(run_verify(args)) if r["id"].startswith("model.")]
+    if not fresh:
+        raise InputError(f"--claims '{args.claims}': no conformance row was written")
+    bad = 0
+    for row in fresh:
+        claim_id = row["id"]
+        old = recorded.get(claim_id)
+        if old is None:
+            print(f"{claim_id}: not recorded in {args.file}")
+            bad += 1
+            continue
+        if claim_id.rsplit(".", 1)[-1] in TIMING_PROPERTIES:
+            keys = ("budget", "verdict", "control_verdict", "control_rejected")
+        else:
+            keys = sorted((set(row) | set(old)) - {"seconds", "stamp"})
+        differ = [k for k in keys if row.get(k) != old.get(k)]
+        if differ:
+            bad += 1
+            shown = ", ".join(f"{k}: {old.get(k)!r} -> {row.get(k)!r}"[:200] for k in differ)
+            print(f"{claim_id}: {shown}")
+    print(f"row_stamps: {len(fresh) - bad} of {len(fresh)} conformance row(s) of budget "
+          f"{args.budget} reproduced from {args.file}")
+    return 1 if bad else 0
+
+
+def record(args):
+    with open(args.file, encoding="utf-8") as f:
+        text = f.read()
+    base = split_rows(text, args.file)
+    fresh = split_rows(run_verify(args), "verify's claims.json")
     # The first and last chunks carry the list's brackets: without them every row has one form.
     def inner(chunks):
         rows = list(chunks)
@@ -264,6 +308,12 @@ def main(argv):
     p.add_argument("--claims", default="model.*")
     p.add_argument("--threads", type=int)
     p.add_argument("file")
+    p = sub.add_parser("reproduce")
+    p.add_argument("--glintlab", required=True)
+    p.add_argument("--budget", required=True, choices=("quick", "full"))
+    p.add_argument("--claims", default="model.*")
+    p.add_argument("--threads", type=int)
+    p.add_argument("file")
     p = sub.add_parser("files")
     p.add_argument("id")
     args = parser.parse_args(argv)
@@ -275,6 +325,8 @@ def main(argv):
             return check(args.files)
         if args.command == "record":
             return record(args)
+        if args.command == "reproduce":
+            return reproduce(args)
         for path in covered_files(args.id):
             print(path)
         return 0

@@ -182,5 +182,45 @@ with tempfile.TemporaryDirectory() as tmp:
     r = stamps(src, "files", "model.no_such_model.energy")
     check(r.returncode == 2 and "no_such_model" in r.stderr, f"an unknown model: {r.stderr!r}")
 
+    # reproduce: every field of each row verify writes equals the recorded row's, but seconds and
+    # stamp; a timing property's verdicts only; the file is left as it is.
+    def full_row(claim_id, value, seconds=1.0, detail="d", verdict="holds"):
+        return json.dumps({"budget": "quick", "id": claim_id, "statistic": "s", "value": value,
+                           "detail": detail, "seconds": seconds, "verdict": verdict},
+                          indent=2, sort_keys=True, ensure_ascii=False)
+
+    recorded = os.path.join(tmp, "reproduce.json")
+    with open(recorded, "w", encoding="utf-8") as f:
+        f.write(claims_file([row("smooth.projected-area", "quick"),
+                             full_row("model.podee.energy", 0.5),
+                             full_row("model.podee.constant-time", 1.02, detail="0.3 us")]))
+    with open(recorded, encoding="utf-8") as f:
+        kept = f.read()
+
+    def reproduce(rows):
+        write_fake_glintlab(fake, rows, exit_code=0)
+        return stamps(src, "reproduce", "--glintlab", fake, "--budget", "quick", recorded)
+
+    r = reproduce([full_row("model.podee.energy", 0.5, seconds=9.0),
+                   full_row("model.podee.constant-time", 0.97, seconds=3.0, detail="0.31 us")])
+    check(r.returncode == 0 and "2 of 2 conformance row(s)" in r.stdout,
+          f"reproduce: other seconds and another measured time pass: {r.returncode} {r.stdout}")
+    r = reproduce([full_row("model.podee.energy", 0.5 * 1.03),
+                   full_row("model.podee.constant-time", 1.02, detail="0.3 us")])
+    check(r.returncode == 1 and "model.podee.energy: value: 0.5 -> 0.515" in r.stdout
+          and "1 of 2" in r.stdout, f"reproduce: a value 3 % off fails, named: {r.stdout}")
+    r = reproduce([full_row("model.podee.energy", 0.5),
+                   full_row("model.podee.constant-time", 1.02, verdict="fails")])
+    check(r.returncode == 1 and "model.podee.constant-time: verdict" in r.stdout,
+          f"reproduce: a timing property's verdict is compared: {r.stdout}")
+    r = reproduce([full_row("model.podee.energy", 0.5, detail="other")])
+    check(r.returncode == 1 and "model.podee.energy: detail" in r.stdout,
+          f"reproduce: a detail that differs fails: {r.stdout}")
+    r = reproduce([full_row("model.podee.stability", 0.5)])
+    check(r.returncode == 1 and "model.podee.stability: not recorded" in r.stdout,
+          f"reproduce: a row the file lacks fails: {r.stdout}")
+    with open(recorded, encoding="utf-8") as f:
+        check(f.read() == kept, "reproduce leaves the file as it was")
+
 print(f"{len(failures)} failure(s)")
 sys.exit(1 if failures else 0)
