@@ -11,7 +11,7 @@ struct Beckmann {
   T alpha_x, alpha_y;
 
   // D(m) = exp(−(mx²/αx² + my²/αy²)/mz²) / (π αx αy mz⁴) for mz > 0 (Heitz 2014 Eq. 80).
-  GLINTLAB_FN T D(Vec3<T> m) const {
+  GLINTLAB_INLINE T D(Vec3<T> m) const {
     const T z2 = sqr(m.z);
     const T safe_z2 = select(m.z > T(0), z2, T(1));
     const T slope2 = (sqr(m.x / alpha_x) + sqr(m.y / alpha_y)) / safe_z2;
@@ -23,11 +23,11 @@ struct Beckmann {
     return select(m.z > T(0) && h > T(0), d, T(0));
   }
 
-  GLINTLAB_FN T sigma2(Vec3<T> w) const { return sqr(alpha_x * w.x) + sqr(alpha_y * w.y); }
+  GLINTLAB_INLINE T sigma2(Vec3<T> w) const { return sqr(alpha_x * w.x) + sqr(alpha_y * w.y); }
 
   // ∫ max(0, ω·m) D(m) dm for every ω (Heitz 2014 Eq. 14 with Eq. 83):
   // (ωz + |ωz| erf(a))/2 + σ exp(−a²)/(2√π), a = |ωz|/σ. Finite at ωz = 0 and at σ = 0.
-  GLINTLAB_FN T projected_area(Vec3<T> w) const {
+  GLINTLAB_INLINE T projected_area(Vec3<T> w) const {
     const T sigma = sqrt(sigma2(w));
     const T az = abs(w.z);
     const Mask<T> normal = sigma == T(0);
@@ -42,7 +42,7 @@ struct Beckmann {
   // Smith Λ, same convention as GGX<T>::lambda: above the surface
   // Λ = (exp(−a²)/(a√π) − erfc(a))/2, a = 1/(α tanθ) = |ωz|/σ (Heitz 2014 Eq. 83, with erf − 1
   // written as −erfc so small Λ keeps its relative precision); Λ(−ω) = 1 + Λ(ω).
-  GLINTLAB_FN T lambda(Vec3<T> w) const {
+  GLINTLAB_INLINE T lambda(Vec3<T> w) const {
     const T sigma = sqrt(sigma2(w));
     const Mask<T> normal = sigma == T(0);
     const T a = abs(w.z) / select(normal, T(1), sigma);

@@ -14,20 +14,20 @@ struct GGX {
 
   // D(m) = 1 / (π αx αy (mx²/αx² + my²/αy² + mz²)²) for mz > 0 (Heitz 2014 Eq. 85, written in
   // the stretched form so it stays accurate near the horizon and for tiny α).
-  GLINTLAB_FN T D(Vec3<T> m) const {
+  GLINTLAB_INLINE T D(Vec3<T> m) const {
     const T e = sqr(m.x / alpha_x) + sqr(m.y / alpha_y) + sqr(m.z);
     const T d = T(kInvPi<T>) / (alpha_x * alpha_y * e * e);
     return select(m.z > T(0), d, T(0));
   }
 
   // σ(ω)² = αx² ωx² + αy² ωy²: squared projected roughness times sin²θ.
-  GLINTLAB_FN T sigma2(Vec3<T> w) const { return sqr(alpha_x * w.x) + sqr(alpha_y * w.y); }
+  GLINTLAB_INLINE T sigma2(Vec3<T> w) const { return sqr(alpha_x * w.x) + sqr(alpha_y * w.y); }
 
   // Projected area of the microsurface seen from ω, ∫ max(0, ω·m) D(m) dm (Heitz 2014 Eq. 14),
   // for every ω: (ωz + sqrt(ωz² + σ²)) / 2. For ωz ≤ 0 this is the area of microfacets a
   // back-facing shading normal still sees (Eto & Tokuyoshi 2023, denominator of Eq. 7).
   // Below the horizon ωz + √(ωz² + σ²) cancels; there it is written σ²/(√(ωz² + σ²) + |ωz|).
-  GLINTLAB_FN T projected_area(Vec3<T> w) const {
+  GLINTLAB_INLINE T projected_area(Vec3<T> w) const {
     const T s2 = sigma2(w);
     const T t = sqrt(sqr(w.z) + s2);
     return T(0.5) * select(w.z > T(0), w.z + t, safe_div(s2, t + abs(w.z)));
@@ -36,7 +36,7 @@ struct GGX {
   // Smith Λ with the convention Λ(ω)|ωz| = ∫ max(0, −ω·m) D(m) dm for every ω, so that
   // Λ(−ω) = 1 + Λ(ω) for ωz > 0 and Λ(ω) = (√(1 + α² tan²θ) − 1)/2 above the surface (Heitz 2014
   // Eq. 86). The upper branch is written without the cancellation of √(1+x) − 1.
-  GLINTLAB_FN T lambda(Vec3<T> w) const {
+  GLINTLAB_INLINE T lambda(Vec3<T> w) const {
     const T s2 = sigma2(w);
     const T t = sqrt(sqr(w.z) + s2);
     const T az = abs(w.z);

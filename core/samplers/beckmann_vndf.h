@@ -98,7 +98,7 @@ GLINTLAB_FN T beckmann_visible_slope_quantile(T c, T s, T u) {
 // θ (x̃ by the CDF inversion above, ỹ Gaussian of variance 1/2), rotate by the stretched azimuth,
 // scale the slopes by (αx, αy), m = normalize(−x, −y, 1).
 template <class T>
-GLINTLAB_FN Vec3<T> sample_normal_beckmann_vndf(const Beckmann<T>& beckmann, Vec3<T> wi,
+GLINTLAB_INLINE Vec3<T> sample_normal_beckmann_vndf(const Beckmann<T>& beckmann, Vec3<T> wi,
                                                 Vec2<T> u) {
   const Vec3<T> v = normalize(Vec3<T>{beckmann.alpha_x * wi.x, beckmann.alpha_y * wi.y, wi.z});
   const T s = sqrt(sqr(v.x) + sqr(v.y));  // sinθ from the tangent part: exact for small θ
@@ -123,14 +123,14 @@ GLINTLAB_FN Vec3<T> sample_normal_beckmann_vndf(const Beckmann<T>& beckmann, Vec
 // Density of the reflected direction: D_wi(h)/(4 |wo·h|) (the VNDF of Heitz & d'Eon 2014 with
 // Walter et al. 2007 Eq. 14).
 template <class T>
-GLINTLAB_FN T pdf_beckmann_vndf(const Beckmann<T>& beckmann, Vec3<T> wi, Vec3<T> wo) {
+GLINTLAB_INLINE T pdf_beckmann_vndf(const Beckmann<T>& beckmann, Vec3<T> wi, Vec3<T> wo) {
   return pdf_vndf_reflection(beckmann, wi, wo);
 }
 
 // Reflection through a visible Beckmann normal. Defined for wi_z > 0; for wi_z <= 0 every sample
 // is rejected.
 template <class T>
-GLINTLAB_FN MicrofacetSample<T> sample_beckmann_vndf(const Beckmann<T>& beckmann, Vec3<T> wi,
+GLINTLAB_INLINE MicrofacetSample<T> sample_beckmann_vndf(const Beckmann<T>& beckmann, Vec3<T> wi,
                                                      Vec2<T> u) {
   const Vec3<T> m = sample_normal_beckmann_vndf(beckmann, wi, u);
   const Vec3<T> wo = reflect(wi, m);

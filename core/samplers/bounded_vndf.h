@@ -20,7 +20,7 @@ enum class BoundedVndfBound { kListing1, kExactIsotropic };
 // k of Eq. 5 for incidence wi (unit). Only meaningful for wi_z > 0 (the sampler uses the full cap
 // otherwise); finite for every wi.
 template <class T>
-GLINTLAB_FN T bounded_vndf_k(const GGX<T>& ggx, Vec3<T> wi, BoundedVndfBound bound) {
+GLINTLAB_INLINE T bounded_vndf_k(const GGX<T>& ggx, Vec3<T> wi, BoundedVndfBound bound) {
   const T len_xy = sqrt(sqr(wi.x) + sqr(wi.y));
   const T a_conservative = saturate(min(ggx.alpha_x, ggx.alpha_y));  // Eq. 6
   if (bound == BoundedVndfBound::kListing1) {
@@ -44,7 +44,7 @@ namespace detail {
 // Eq. 8 × |dm/do| (i_z >= 0) or the stable form of Eq. 7 × |dm/do| (i_z < 0), without the
 // Heaviside: the value of Listing 2 for a given k. `ndf` = D(h).
 template <class T>
-GLINTLAB_FN T bounded_vndf_density(const GGX<T>& ggx, Vec3<T> wi, T ndf, T k) {
+GLINTLAB_INLINE T bounded_vndf_density(const GGX<T>& ggx, Vec3<T> wi, T ndf, T k) {
   const T len2 = sqr(ggx.alpha_x * wi.x) + sqr(ggx.alpha_y * wi.y);
   const T t = sqrt(len2 + wi.z * wi.z);
   const T front = ndf / (T(2) * (k * wi.z + t));
@@ -61,7 +61,7 @@ GLINTLAB_FN T bounded_vndf_density(const GGX<T>& ggx, Vec3<T> wi, T ndf, T k) {
 // stretched-space reflection (m̂ ∝ (m_x/αx, m_y/αy, m_z), ô = reflect(î, m̂)); for i_z < 0 the
 // full-cap density in the stable form of Listing 2. k = 1 is the spherical-cap density.
 template <class T>
-GLINTLAB_FN T pdf_bounded_vndf_with_k(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wo, T k) {
+GLINTLAB_INLINE T pdf_bounded_vndf_with_k(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wo, T k) {
   const Vec3<T> h = half_vector(wi, wo);
   const Vec3<T> wi_std = detail::ggx_stretch(ggx, wi);
   const T b = k * wi_std.z;
@@ -76,7 +76,7 @@ GLINTLAB_FN T pdf_bounded_vndf_with_k(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wo,
 
 // True density of sample_bounded_vndf's wo over the whole sphere (Eq. 8 with its Heaviside).
 template <class T>
-GLINTLAB_FN T pdf_bounded_vndf(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wo,
+GLINTLAB_INLINE T pdf_bounded_vndf(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wo,
                                BoundedVndfBound bound = BoundedVndfBound::kListing1) {
   return pdf_bounded_vndf_with_k(ggx, wi, wo, bounded_vndf_k(ggx, wi, bound));
 }
@@ -85,7 +85,7 @@ GLINTLAB_FN T pdf_bounded_vndf(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wo,
 // stable Eq. 7 form for i_z < 0. Equals pdf_bounded_vndf for wo_z > 0; over the whole sphere it
 // integrates to (1 + î_z)/(1 + k î_z) > 1 — kept to check exactly that.
 template <class T>
-GLINTLAB_FN T pdf_bounded_vndf_listing2(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wo) {
+GLINTLAB_INLINE T pdf_bounded_vndf_listing2(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wo) {
   const Vec3<T> h = half_vector(wi, wo);
   const T k = bounded_vndf_k(ggx, wi, BoundedVndfBound::kListing1);
   return detail::bounded_vndf_density(ggx, wi, ggx.D(h), k);
@@ -94,7 +94,7 @@ GLINTLAB_FN T pdf_bounded_vndf_listing2(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> w
 // Eq. 7 × 1/(4|i·m|) evaluated as printed: 2 D(m) max(i·m, 0) / (i_z + t) / (4 |o·m|). Loses
 // relative precision for i_z < 0 (i_z + t cancels); kept to be compared with the stable form.
 template <class T>
-GLINTLAB_FN T pdf_vndf_backfacing_eq7(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wo) {
+GLINTLAB_INLINE T pdf_vndf_backfacing_eq7(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wo) {
   const Vec3<T> m = half_vector(wi, wo);
   const T t = sqrt(ggx.sigma2(wi) + wi.z * wi.z);
   const T p_m = safe_div(T(2) * ggx.D(m) * max(dot(wi, m), T(0)), wi.z + t);
@@ -105,7 +105,7 @@ GLINTLAB_FN T pdf_vndf_backfacing_eq7(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wo)
 // 1/(i_z + t) = (t − i_z)/len2, and i·m = o·m for a half vector). Meant for i_z < 0; 0 where
 // len2 = 0.
 template <class T>
-GLINTLAB_FN T pdf_vndf_backfacing_stable(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wo) {
+GLINTLAB_INLINE T pdf_vndf_backfacing_stable(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wo) {
   const Vec3<T> m = half_vector(wi, wo);
   const T ndf = ggx.D(m);
   const T len2 = ggx.sigma2(wi);
@@ -123,7 +123,7 @@ GLINTLAB_FN T pdf_vndf_backfacing_stable(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> 
 // bound is tight (measured: wo_z = 2e-16 at u2 = 1 − 2^-53); they are rejected either way, and the
 // reported pdf is always exactly the standalone value.
 template <class T>
-GLINTLAB_FN MicrofacetSample<T> sample_bounded_vndf_with_k(const GGX<T>& ggx, Vec3<T> wi, Vec2<T> u,
+GLINTLAB_INLINE MicrofacetSample<T> sample_bounded_vndf_with_k(const GGX<T>& ggx, Vec3<T> wi, Vec2<T> u,
                                                            T k) {
   const Vec3<T> wi_std = detail::ggx_stretch(ggx, wi);
   const T one_plus_iz = detail::one_plus_stretched_z(ggx, wi, wi_std);
@@ -136,7 +136,7 @@ GLINTLAB_FN MicrofacetSample<T> sample_bounded_vndf_with_k(const GGX<T>& ggx, Ve
 
 // Listing 1 with k from Eq. 5 for the chosen bound.
 template <class T>
-GLINTLAB_FN MicrofacetSample<T> sample_bounded_vndf(
+GLINTLAB_INLINE MicrofacetSample<T> sample_bounded_vndf(
     const GGX<T>& ggx, Vec3<T> wi, Vec2<T> u,
     BoundedVndfBound bound = BoundedVndfBound::kListing1) {
   return sample_bounded_vndf_with_k(ggx, wi, u, bounded_vndf_k(ggx, wi, bound));

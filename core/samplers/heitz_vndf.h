@@ -10,7 +10,7 @@ namespace glintlab {
 
 // Visible normal for wi_z > 0, u in [0, 1)². Heitz 2018 Sec. 3.
 template <class T>
-GLINTLAB_FN Vec3<T> sample_normal_heitz_vndf(const GGX<T>& ggx, Vec3<T> wi, Vec2<T> u) {
+GLINTLAB_INLINE Vec3<T> sample_normal_heitz_vndf(const GGX<T>& ggx, Vec3<T> wi, Vec2<T> u) {
   // Step 1: stretch wi to the α = 1 configuration, where visible normals of the hemisphere are
   // the projection of a uniform disk.
   const Vec3<T> v = normalize(Vec3<T>{ggx.alpha_x * wi.x, ggx.alpha_y * wi.y, wi.z});
@@ -39,14 +39,14 @@ GLINTLAB_FN Vec3<T> sample_normal_heitz_vndf(const GGX<T>& ggx, Vec3<T> wi, Vec2
 
 // Density of the reflected direction: D_wi(h)/(4 |wo·h|) (Heitz 2018 Eq. 1 with Walter Eq. 14).
 template <class T>
-GLINTLAB_FN T pdf_heitz_vndf(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wo) {
+GLINTLAB_INLINE T pdf_heitz_vndf(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wo) {
   return pdf_vndf_reflection(ggx, wi, wo);
 }
 
 // Reflection through a visible normal. Defined for wi_z > 0; for wi_z <= 0 every sample is
 // rejected.
 template <class T>
-GLINTLAB_FN MicrofacetSample<T> sample_heitz_vndf(const GGX<T>& ggx, Vec3<T> wi, Vec2<T> u) {
+GLINTLAB_INLINE MicrofacetSample<T> sample_heitz_vndf(const GGX<T>& ggx, Vec3<T> wi, Vec2<T> u) {
   const Vec3<T> m = sample_normal_heitz_vndf(ggx, wi, u);
   const Vec3<T> wo = reflect(wi, m);
   const T pdf = pdf_heitz_vndf(ggx, wi, wo);

@@ -26,7 +26,7 @@ namespace detail {
 // normalize(v), or `fallback` where v is the zero vector (a measure-zero event, e.g. ô = −î in the
 // spherical-cap construction), so that no sampler ever produces NaN.
 template <class T>
-GLINTLAB_FN Vec3<T> normalize_or(Vec3<T> v, Vec3<T> fallback) {
+GLINTLAB_INLINE Vec3<T> normalize_or(Vec3<T> v, Vec3<T> fallback) {
   const T l2 = dot(v, v);
   const Mask<T> ok = l2 > T(0);
   return select(ok, rsqrt(select(ok, l2, T(1))) * v, fallback);
@@ -37,7 +37,7 @@ GLINTLAB_FN Vec3<T> normalize_or(Vec3<T> v, Vec3<T> fallback) {
 // only by rounding, at the edge of a support (the bounded cap's edge where it touches the horizon,
 // D(h) underflowing in a Beckmann tail), and keeps "accepted ⇒ pdf > 0" exact.
 template <class T>
-GLINTLAB_FN Mask<T> reflection_rejected(Vec3<T> wi, Vec3<T> m, Vec3<T> wo, T pdf) {
+GLINTLAB_INLINE Mask<T> reflection_rejected(Vec3<T> wi, Vec3<T> m, Vec3<T> wo, T pdf) {
   return (wo.z <= T(0)) || (dot(wi, m) <= T(0)) || !(pdf > T(0));
 }
 
@@ -50,7 +50,7 @@ GLINTLAB_FN Mask<T> reflection_rejected(Vec3<T> wi, Vec3<T> m, Vec3<T> wo, T pdf
 // D(h) / (4 A(wi)): the literal product divides two dot products that both cancel near wo = −wi
 // (measured: the float value off by 2× there), the quotient has no cancellation.
 template <class Ndf, class T>
-GLINTLAB_FN T pdf_vndf_reflection(const Ndf& ndf, Vec3<T> wi, Vec3<T> wo) {
+GLINTLAB_INLINE T pdf_vndf_reflection(const Ndf& ndf, Vec3<T> wi, Vec3<T> wo) {
   const Vec3<T> h = half_vector(wi, wo);
   const T a = ndf.projected_area(wi);
   return select(a > T(0), ndf.D(h) / (T(4) * select(a > T(0), a, T(1))), T(0));
@@ -59,7 +59,7 @@ GLINTLAB_FN T pdf_vndf_reflection(const Ndf& ndf, Vec3<T> wi, Vec3<T> wo) {
 // Monte Carlo weight f(wi, wo) wo_z / pdf with F = 1 (Walter et al. 2007 Eq. 20 over the sample
 // density); 0 for a rejected sample or a zero pdf, never NaN from 0/0.
 template <class Ndf, class T>
-GLINTLAB_FN T sample_weight(const Ndf& ndf, Vec3<T> wi, const MicrofacetSample<T>& s) {
+GLINTLAB_INLINE T sample_weight(const Ndf& ndf, Vec3<T> wi, const MicrofacetSample<T>& s) {
   const Mask<T> ok = (!s.rejected) && (s.pdf > T(0));
   const T f = microfacet_brdf(ndf, wi, s.wo, T(1));
   return select(ok, f * s.wo.z / select(ok, s.pdf, T(1)), T(0));

@@ -13,7 +13,7 @@ namespace detail {
 
 // Step (1): the incident direction in the stretched (α = 1) configuration.
 template <class T>
-GLINTLAB_FN Vec3<T> ggx_stretch(const GGX<T>& ggx, Vec3<T> wi) {
+GLINTLAB_INLINE Vec3<T> ggx_stretch(const GGX<T>& ggx, Vec3<T> wi) {
   return normalize(Vec3<T>{ggx.alpha_x * wi.x, ggx.alpha_y * wi.y, wi.z});
 }
 
@@ -21,7 +21,7 @@ GLINTLAB_FN Vec3<T> ggx_stretch(const GGX<T>& ggx, Vec3<T> wi) {
 // i_z < 0 it is written σ²/(t (t − i_z)): the literal 1 + î_z cancels (measured: in float it is 0
 // or twice the truth at α = 1e-3, θ = 170°, where the cap height is ~1e-8).
 template <class T>
-GLINTLAB_FN T one_plus_stretched_z(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wi_std) {
+GLINTLAB_INLINE T one_plus_stretched_z(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wi_std) {
   const T len2 = ggx.sigma2(wi);
   const T t = sqrt(len2 + wi.z * wi.z);
   return select(wi.z < T(0), safe_div(len2, t * (t - wi.z)), T(1) + wi_std.z);
@@ -34,7 +34,7 @@ GLINTLAB_FN T one_plus_stretched_z(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wi_std
 // carry no cancellation even for a cap of height ~1e-8 (back-facing wi, tiny α). The bounded
 // sampler calls this same function, so its k = 1 reproduces sample_spherical_caps bit for bit.
 template <class T>
-GLINTLAB_FN Vec3<T> sample_cap_normal(const GGX<T>& ggx, Vec3<T> wi_std, T one_plus_iz, T c,
+GLINTLAB_INLINE Vec3<T> sample_cap_normal(const GGX<T>& ggx, Vec3<T> wi_std, T one_plus_iz, T c,
                                       Vec2<T> u) {
   T sp, cp;
   sincos(T(2 * kPi<T>) * u.x, &sp, &cp);
@@ -55,7 +55,7 @@ GLINTLAB_FN Vec3<T> sample_cap_normal(const GGX<T>& ggx, Vec3<T> wi_std, T one_p
 // Tokuyoshi Listing 2's stable form; measured: the literal form loses all digits in float at
 // α = 1e-3, θ = 170°, where i_z + t ~ 1e-8).
 template <class T>
-GLINTLAB_FN T pdf_spherical_caps(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wo) {
+GLINTLAB_INLINE T pdf_spherical_caps(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wo) {
   const T ndf = ggx.D(half_vector(wi, wo));
   const T len2 = ggx.sigma2(wi);
   const T t = sqrt(len2 + wi.z * wi.z);
@@ -68,7 +68,7 @@ GLINTLAB_FN T pdf_spherical_caps(const GGX<T>& ggx, Vec3<T> wi, Vec3<T> wo) {
 // Reflection through a visible normal sampled with the full cap ô_z in (−î_z, 1]; any wi, including
 // a back-facing shading normal (wi_z <= 0). u in [0, 1)².
 template <class T>
-GLINTLAB_FN MicrofacetSample<T> sample_spherical_caps(const GGX<T>& ggx, Vec3<T> wi, Vec2<T> u) {
+GLINTLAB_INLINE MicrofacetSample<T> sample_spherical_caps(const GGX<T>& ggx, Vec3<T> wi, Vec2<T> u) {
   const Vec3<T> wi_std = detail::ggx_stretch(ggx, wi);
   const T one_plus_iz = detail::one_plus_stretched_z(ggx, wi, wi_std);
   const Vec3<T> m = detail::sample_cap_normal(ggx, wi_std, one_plus_iz, one_plus_iz, u);

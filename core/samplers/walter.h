@@ -13,7 +13,7 @@ namespace glintlab {
 // (αx √u1 cosφ, αy √u1 sinφ) over the height √(1 − u1): no tan, no division, so u1 → 1 and tiny α
 // stay finite and exact. u in [0, 1)².
 template <class T>
-GLINTLAB_FN Vec3<T> sample_normal_walter(const GGX<T>& ggx, Vec2<T> u) {
+GLINTLAB_INLINE Vec3<T> sample_normal_walter(const GGX<T>& ggx, Vec2<T> u) {
   T sp, cp;
   sincos(T(2 * kPi<T>) * u.y, &sp, &cp);
   const T r = sqrt(u.x);
@@ -23,7 +23,7 @@ GLINTLAB_FN Vec3<T> sample_normal_walter(const GGX<T>& ggx, Vec2<T> u) {
 // Beckmann, Walter Eq. 28–29: tan²θm = −α² log(1 − u1), φ = 2π u2, as the stretched slope
 // (αx ρ cosφ, αy ρ sinφ, 1) with ρ = √(−log1p(−u1)) (log1p keeps small u1 exact). u in [0, 1)².
 template <class T>
-GLINTLAB_FN Vec3<T> sample_normal_walter(const Beckmann<T>& beckmann, Vec2<T> u) {
+GLINTLAB_INLINE Vec3<T> sample_normal_walter(const Beckmann<T>& beckmann, Vec2<T> u) {
   T sp, cp;
   sincos(T(2 * kPi<T>) * u.y, &sp, &cp);
   const T rho = sqrt(-log1p(-u.x));
@@ -37,7 +37,7 @@ GLINTLAB_FN Vec3<T> sample_normal_walter(const Beckmann<T>& beckmann, Vec2<T> u)
 // for unit vectors): the dot product would cancel near wo = −wi, where this density has its
 // integrable 1/|wi + wo| singularity.
 template <class Ndf, class T>
-GLINTLAB_FN T pdf_walter(const Ndf& ndf, Vec3<T> wi, Vec3<T> wo) {
+GLINTLAB_INLINE T pdf_walter(const Ndf& ndf, Vec3<T> wi, Vec3<T> wo) {
   const Vec3<T> sum = wi + wo;
   const T l2 = dot(sum, sum);
   const Mask<T> ok = l2 > T(0);
@@ -50,7 +50,7 @@ GLINTLAB_FN T pdf_walter(const Ndf& ndf, Vec3<T> wi, Vec3<T> wo) {
 // Reflection through an NDF-sampled normal; rejected where wo is below the surface, m faces away,
 // or the pdf underflows to 0.
 template <class Ndf, class T>
-GLINTLAB_FN MicrofacetSample<T> sample_walter(const Ndf& ndf, Vec3<T> wi, Vec2<T> u) {
+GLINTLAB_INLINE MicrofacetSample<T> sample_walter(const Ndf& ndf, Vec3<T> wi, Vec2<T> u) {
   const Vec3<T> m = sample_normal_walter(ndf, u);
   const Vec3<T> wo = reflect(wi, m);
   const T pdf = pdf_walter(ndf, wi, wo);
