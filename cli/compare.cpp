@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "cli/child_process.h"
+#include "cli/claim_costs.h"
 #include "cli/commands.h"
 #include "cli/input.h"
 #include "cli/progress.h"
@@ -118,6 +119,9 @@ CompareSummary run_compare(const CompareRequest& o, const Shard* shard) {
   check_input_folder(o.sweeps_from, "--sweeps-from", "stability.json", "glintlab sweep --out");
   c.claims_from = o.claims_from;
   c.sweeps_from = o.sweeps_from;
+  // The measurements start with the costliest conformance checks, as recorded.
+  const bool quick = c.budget == verify::Budget::kQuick;
+  c.check_cost = [quick](const std::string& id) { return claim_cost(id, quick).seconds; };
   const fs::path out(o.out);
   check_output_dir(out, "--out");
   ShardManifest manifest;

@@ -88,6 +88,39 @@ Vec2<T> point_sigma(const Params<T>& p, const Ndf& ndf, Vec2<T> g_a) {
   return {sigma / sa, sigma * sa};
 }
 
+// The candidate of spatial cell (sx, sy) and angular cell (ax, ay) at `level` (weight w_l), of
+// point process `process` (Algorithm 2 lines 11–12): everything but its mass in a block (m = 0).
+// res_a, res_s and n_a are the level's (angular_resolution, sp.res / res_a, level_cells).
+template <class Ndf, class T>
+Candidate<T> candidate(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp,
+                       const LaneInt<T, int>& level, T w_l, T res_a, T res_s, const LaneInt<T>& n_a,
+                       const LaneInt<T>& sx, const LaneInt<T>& sy, const LaneInt<T>& ax,
+                       const LaneInt<T>& ay, int process) {
+  const LaneInt<T, std::uint64_t> ci = cell_index_lanes<T>(sx, sy, ax, ay, level, process);
+  Candidate<T> k;
+  k.valid = mask_lanes<T>([&](std::size_t l) {
+    return lane(ax, l) >= 0 && lane(ax, l) < lane(n_a, l) && lane(ay, l) >= 0 &&
+           lane(ay, l) < lane(n_a, l);
+  });
+  k.g_a = {(int_to_float<T>(ax) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) / res_a,
+           (int_to_float<T>(ay) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) / res_a};
+  k.valid = k.valid && (sqr(k.g_a.x - T(0.5)) + sqr(k.g_a.y - T(0.5)) <= T(0.25));
+  k.s = T(0);
+  k.m = T(0);
+  k.sigma = {T(0), T(0)};
+  if (any_lane<T>(k.valid)) {  // uniform: some lane has the point
+    const Vec2<T> g_s{
+        (int_to_float<T>(sx) + cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialX)) / res_s,
+        (int_to_float<T>(sy) + cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialY)) / res_s};
+    const T r = cell_uniform<T>(p.seed, ci, kKemppinenDimRoulette);
+    const T blend = p.blend == Blend::kRoulette ? roulette(r, w_l) : w_l;
+    const Vec3<T> col = color(p.colors, cell_uniform<T>(p.seed, ci, kKemppinenDimColor));
+    k.sigma = point_sigma(p, ndf, k.g_a);
+    k.s = select(k.valid, blend * normal2(sp.x_s - g_s, sp.sigma_s) * luminance(col), T(0));
+  }
+  return k;
+}
+
 // The candidates of block B with angular start cell (ax0, ay0) at `level` (weight w_l), of point
 // process `process` (0 = uv; the triplanar planes: kTriplanarProcess).
 template <class Ndf, class T>
@@ -109,32 +142,11 @@ void block(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp, const LaneI
     for (int j = 0; j < n; ++j)
       for (int a = 0; a < n; ++a)
         for (int b = 0; b < n; ++b) {
-          const LaneInt<T> sx = sx0 + i, sy = sy0 + j, ax = ax0 + a, ay = ay0 + b;
-          const LaneInt<T, std::uint64_t> ci = cell_index_lanes<T>(sx, sy, ax, ay, level, process);
-          Candidate<T> k;
-          k.valid = mask_lanes<T>([&](std::size_t l) {
-            return lane(ax, l) >= 0 && lane(ax, l) < lane(n_a, l) && lane(ay, l) >= 0 &&
-                   lane(ay, l) < lane(n_a, l);
-          });
-          k.g_a = {
-              (int_to_float<T>(ax) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) / res_a,
-              (int_to_float<T>(ay) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) / res_a};
-          k.valid = k.valid && (sqr(k.g_a.x - T(0.5)) + sqr(k.g_a.y - T(0.5)) <= T(0.25));
-          k.s = T(0);
-          k.m = T(0);
-          k.sigma = {T(0), T(0)};
-          if (any_lane<T>(k.valid)) {  // uniform: some lane has the point
-            const Vec2<T> g_s{
-                (int_to_float<T>(sx) + cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialX)) / res_s,
-                (int_to_float<T>(sy) + cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialY)) / res_s};
-            const T r = cell_uniform<T>(p.seed, ci, kKemppinenDimRoulette);
-            const T blend = p.blend == Blend::kRoulette ? roulette(r, w_l) : w_l;
-            const Vec3<T> col = color(p.colors, cell_uniform<T>(p.seed, ci, kKemppinenDimColor));
-            k.sigma = point_sigma(p, ndf, k.g_a);
-            k.s = select(k.valid, blend * normal2(sp.x_s - g_s, sp.sigma_s) * luminance(col), T(0));
+          Candidate<T> k = candidate(p, ndf, sp, level, w_l, res_a, res_s, n_a, sx0 + i, sy0 + j,
+                                     ax0 + a, ay0 + b, process);
+          if (any_lane<T>(k.valid))
             k.m = select(k.valid, gaussian_rect_mass(out.lo, out.hi, k.g_a, k.sigma, Erf::kExact),
                          T(0));
-          }
           out.total += k.s * k.m;  // invalid lanes add +0: the scalar sum is unchanged
           out.c[std::size_t(out.count++)] = k;
         }
@@ -262,12 +274,21 @@ HalfSample<T> sample_half(const Params<T>& p, const Ndf& ndf, const FootprintQue
 // lies in up to n² of those blocks, and all of it but its mass in the block (∫_B N_j) is the same
 // in each. Spatial cell (i, j) of the level's n×n block, angular cell x's cell + (a, b) with
 // a, b ∈ [1−n, n−1]. Each candidate holds block()'s values bit for bit (m unused), and `term` is
-// block_density's summand s_j N_j(x), masked as there.
+// block_density's summand s_j N_j(x), masked as there. A point's mass in a block, ∫_B N_j, is the
+// product of its mass along x over the block's columns and along y over its rows
+// (gaussian_rect_mass), and every block of the same start column (cx + dx) shares the x factor,
+// every block of the same start row the y factor: each factor is computed once per point and start
+// (mass_along), the erf pairs a block-by-block computation repeats up to n times.
 template <class T>
 struct LevelPoints {
   static constexpr int kSpan = 2 * kMaxSide - 1;
-  std::array<Candidate<T>, kMaxSide * kMaxSide * kSpan * kSpan> c;
-  std::array<T, kMaxSide * kMaxSide * kSpan * kSpan> term;
+  static constexpr std::size_t kCount = kMaxSide * kMaxSide * kSpan * kSpan;
+  std::array<Candidate<T>, kCount> c;
+  std::array<T, kCount> term;
+  // Per point and start offset d + n − 1 (d ∈ [1 − n, 0]): the mass along x (axis 0) or y (1)
+  // over the blocks of that start, valid where `known`.
+  std::array<std::array<std::array<T, kMaxSide>, kCount>, 2> mass;
+  std::array<std::array<std::array<bool, kMaxSide>, kCount>, 2> known;
   int n = 0;
   std::size_t index(int i, int j, int a, int b) const {
     const int span = 2 * n - 1;
@@ -292,42 +313,37 @@ void level_points(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp,
     for (int j = 0; j < n; ++j)
       for (int a = 1 - n; a <= n - 1; ++a)
         for (int b = 1 - n; b <= n - 1; ++b) {
-          const LaneInt<T> sx = sx0 + i, sy = sy0 + j, ax = cx + a, ay = cy + b;
-          const LaneInt<T, std::uint64_t> ci = cell_index_lanes<T>(sx, sy, ax, ay, level, process);
-          Candidate<T> k;
-          k.valid = mask_lanes<T>([&](std::size_t l) {
-            return lane(ax, l) >= 0 && lane(ax, l) < lane(n_a, l) && lane(ay, l) >= 0 &&
-                   lane(ay, l) < lane(n_a, l);
-          });
-          k.g_a = {
-              (int_to_float<T>(ax) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) / res_a,
-              (int_to_float<T>(ay) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) / res_a};
-          k.valid = k.valid && (sqr(k.g_a.x - T(0.5)) + sqr(k.g_a.y - T(0.5)) <= T(0.25));
-          k.s = T(0);
-          k.m = T(0);
-          k.sigma = {T(0), T(0)};
-          if (any_lane<T>(k.valid)) {
-            const Vec2<T> g_s{
-                (int_to_float<T>(sx) + cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialX)) / res_s,
-                (int_to_float<T>(sy) + cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialY)) / res_s};
-            const T r = cell_uniform<T>(p.seed, ci, kKemppinenDimRoulette);
-            const T blend = p.blend == Blend::kRoulette ? roulette(r, w_l) : w_l;
-            const Vec3<T> col = color(p.colors, cell_uniform<T>(p.seed, ci, kKemppinenDimColor));
-            k.sigma = point_sigma(p, ndf, k.g_a);
-            k.s = select(k.valid, blend * normal2(sp.x_s - g_s, sp.sigma_s) * luminance(col), T(0));
-          }
+          const Candidate<T> k = candidate(p, ndf, sp, level, w_l, res_a, res_s, n_a, sx0 + i,
+                                           sy0 + j, cx + a, cy + b, process);
           const T t = k.s * normal2(x - k.g_a, Sym2<T>{sqr(k.sigma.x), T(0), sqr(k.sigma.y)});
           const Mask<T> live = k.valid && (k.s > T(0)) && (k.sigma.x > T(0)) && (k.sigma.y > T(0));
           const std::size_t at = out.index(i, j, a, b);
           out.c[at] = k;
           out.term[at] = select(live, t, T(0));
+          out.known[0][at].fill(false);
+          out.known[1][at].fill(false);
         }
+}
+
+// The point at `at`'s mass along `axis` over [lo, hi], the range of the blocks whose start on that
+// axis is offset d from x's cell: gaussian_interval_mass, computed at its first use.
+template <class T>
+T mass_along(LevelPoints<T>& pts, std::size_t at, int axis, int d, T lo, T hi) {
+  const std::size_t k = std::size_t(d + pts.n - 1);
+  if (!pts.known[std::size_t(axis)][at][k]) {
+    const Candidate<T>& c = pts.c[at];
+    pts.mass[std::size_t(axis)][at][k] =
+        axis == 0 ? gaussian_interval_mass(lo, hi, c.g_a.x, c.sigma.x, Erf::kExact)
+                  : gaussian_interval_mass(lo, hi, c.g_a.y, c.sigma.y, Erf::kExact);
+    pts.known[std::size_t(axis)][at][k] = true;
+  }
+  return pts.mass[std::size_t(axis)][at][k];
 }
 
 // block_density() of the block with angular start (cx + dx, cy + dy), from the level's points:
 // Σw★ and Σ s_j N_j(x) summed in block()'s order, so the result is the same bits.
 template <class T>
-T level_block_density(const LevelPoints<T>& pts, const LaneInt<T, int>& level, const LaneInt<T>& cx,
+T level_block_density(LevelPoints<T>& pts, const LaneInt<T, int>& level, const LaneInt<T>& cx,
                       const LaneInt<T>& cy, int dx, int dy, Vec2<T> x) {
   const int n = pts.n;
   const T res_a = angular_resolution<T>(level);
@@ -342,9 +358,13 @@ T level_block_density(const LevelPoints<T>& pts, const LaneInt<T, int>& level, c
     for (int j = 0; j < n; ++j)
       for (int a = 0; a < n; ++a)
         for (int b = 0; b < n; ++b) {
-          const Candidate<T>& k = pts.c[pts.index(i, j, dx + a, dy + b)];
+          const std::size_t at = pts.index(i, j, dx + a, dy + b);
+          const Candidate<T>& k = pts.c[at];
+          // gaussian_rect_mass(lo, hi, k.g_a, k.sigma, Erf::kExact), its factors shared.
           const T m = any_lane<T>(k.valid)
-                          ? select(k.valid, gaussian_rect_mass(lo, hi, k.g_a, k.sigma, Erf::kExact),
+                          ? select(k.valid,
+                                   mass_along(pts, at, 0, dx, lo.x, hi.x) *
+                                       mass_along(pts, at, 1, dy, lo.y, hi.y),
                                    T(0))
                           : T(0);
           total += k.s * m;

@@ -2,7 +2,16 @@
 
 #include <fmt/format.h>
 
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <map>
+#include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "core/io/atomic_file.h"
@@ -13,6 +22,7 @@
 #include "experiments/compare/model_findings.h"
 #include "experiments/sweeps/stability_run.h"
 #include "verify/conformance/common.h"
+#include "verify/conformance/conformance.h"
 #include "verify/stability/sweep.h"
 
 namespace glintlab::experiments::compare {
@@ -42,7 +52,169 @@ std::string light_of(const ModelEntry& m) {
   return (m.needs & kNeedsAreaLight) ? "1° cone" : "delta";
 }
 
-json model_json(const ModelEntry& m, const CompareOptions& o, const CompareBudget& b) {
+// What the untimed measurements of one model produced (run_measurements), before its timed ones.
+struct Measured {
+  // Where the suite is not run here: the verdicts read or recorded (conformance_verdicts), taken
+  // before anything is measured, so that a malformed file is reported at once.
+  std::optional<std::vector<PropertyVerdict>> verdicts;
+  std::vector<verify::Check> checks;          // the model's conformance checks run here (or none)
+  std::vector<verify::CheckResult> results;   // per check, in checks' order
+  std::vector<AlbedoReference> refs;          // b.thetas_deg order
+  std::vector<StabilityFinding> stability;
+};
+
+// A measurement of the parallel phase: its estimated seconds (the longest start first), the model
+// and which of its progress steps it is part of.
+enum class Part { kConformance, kReference, kStability };
+constexpr const char* kPartNames[] = {"conformance", "reference", "stability"};
+struct Job {
+  double cost = 0;
+  std::size_t model = 0;
+  std::vector<Part> parts;
+  std::function<void()> run;
+};
+
+// Runs the jobs on the run's threads (tbb::global_control's limit), the costliest first, each job
+// isolated (a thread waiting in a job's own parallel loop takes only that loop's work), so a long
+// job is not left alone at the end. The jobs write to their own slots only, and each is
+// deterministic for any thread count, so the results do not depend on the order or the threads.
+void run_longest_first(std::vector<Job>& jobs, const std::function<void(const Job&)>& done) {
+  std::stable_sort(jobs.begin(), jobs.end(),
+                   [](const Job& a, const Job& b) { return a.cost > b.cost; });
+  const int workers = int(std::max<std::size_t>(
+      1, std::min<std::size_t>(
+             std::size_t(tbb::this_task_arena::max_concurrency()),
+             tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))));
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> failed{false};  // a job threw: the others start no new job
+  tbb::parallel_for(
+      0, workers,
+      [&](int) {
+        for (std::size_t i = next++; i < jobs.size() && !failed; i = next++) {
+          try {
+            tbb::this_task_arena::isolate([&] { jobs[i].run(); });
+          } catch (...) {
+            failed = true;
+            throw;
+          }
+          done(jobs[i]);
+        }
+      },
+      tbb::simple_partitioner());
+}
+
+std::string property_of(const ModelEntry& m, const std::string& check_id) {
+  return check_id.substr(fmt::format("model.{}.", m.name).size());
+}
+
+std::vector<ClaimsFolder> claims_folders(const CompareOptions& o) {
+  std::vector<ClaimsFolder> folders;
+  if (!o.conformance_from.empty()) folders.push_back({o.conformance_from, conformance_name(o)});
+  if (!o.claims_from.empty()) folders.push_back({o.claims_from, claims_name(o)});
+  return folders;
+}
+
+// Every untimed measurement of every model, as jobs run in parallel: each conformance check run
+// here (sampler-covers-value and energy in one job, in that order: they share the settings'
+// integrals; stability with the failure regions, which reuse its sweep), each scene's reference and
+// the stability sweep where no check sweeps. constant-time, a timing, is left to the timed phase.
+// What is read from files (verdicts, failure regions) is read first, before any job.
+std::vector<Measured> run_measurements(const CompareOptions& o, const CompareBudget& b) {
+  std::vector<Measured> out(o.models.size());
+  std::vector<Job> jobs;
+  const auto cost = [&](const std::string& id) { return o.check_cost ? o.check_cost(id) : 1.0; };
+  const std::vector<ClaimsFolder> folders = claims_folders(o);
+  const bool conformance_here = o.measure_missing && folders.empty();
+  const bool stability_here = o.measure_missing && o.sweeps_from.empty();
+  for (std::size_t i = 0; i < o.models.size(); ++i) {
+    const ModelEntry& m = find_model(o.models[i]);
+    Measured& r = out[i];
+    if (!conformance_here)
+      r.verdicts = conformance_verdicts(m, o.budget, folders, o.measure_missing);
+    if (!stability_here)
+      r.stability =
+          stability_findings(m, o.budget, o.sweeps_from, sweeps_name(o), o.measure_missing);
+  }
+  for (std::size_t i = 0; i < o.models.size(); ++i) {
+    const ModelEntry& m = find_model(o.models[i]);
+    Measured& r = out[i];
+    r.refs.resize(b.thetas_deg.size());
+    for (std::size_t k = 0; k < b.thetas_deg.size(); ++k) {
+      const double theta = b.thetas_deg[k];
+      // Cost 0: short (one integral), they fill the gaps at the end.
+      jobs.push_back({0, i, {Part::kReference}, [&m, &r, &b, k, theta] {
+                        r.refs[k] = reference_albedo(
+                            m, theta, b, seed_of(m, fmt::format("reference.{:g}", theta)));
+                      }});
+    }
+    const auto sweep_findings = [&o, &m, &r] {
+      r.stability = stability_findings(m, o.budget, o.sweeps_from, sweeps_name(o), true);
+    };
+    bool swept = !stability_here;  // read (or not measured) above
+    if (conformance_here) {
+      r.checks = verify::conformance_checks(m);
+      r.results.resize(r.checks.size());
+      std::optional<std::size_t> covers, energy;
+      for (std::size_t c = 0; c < r.checks.size(); ++c) {
+        const std::string property = property_of(m, r.checks[c].id);
+        const auto run_check = [&o, &r, c] { r.results[c] = r.checks[c].run(o.budget); };
+        if (property == "constant-time") continue;  // timed: run_compare runs it alone
+        if (property == "sampler-covers-value") {
+          covers = c;
+        } else if (property == "energy") {
+          energy = c;
+        } else if (property == "stability") {
+          // With the failure regions where they are swept here (the check's sweep, reused).
+          const bool with_findings = !swept;
+          swept = true;
+          std::vector<Part> parts{Part::kConformance};
+          if (with_findings) parts.push_back(Part::kStability);
+          jobs.push_back({cost(r.checks[c].id), i, parts, [run_check, sweep_findings, with_findings] {
+                            run_check();
+                            if (with_findings) sweep_findings();
+                          }});
+        } else {
+          jobs.push_back({cost(r.checks[c].id), i, {Part::kConformance}, run_check});
+        }
+      }
+      std::vector<std::size_t> shared;
+      for (const auto& c : {covers, energy})
+        if (c) shared.push_back(*c);
+      if (!shared.empty()) {
+        double seconds = 0;
+        for (std::size_t c : shared) seconds += cost(r.checks[c].id);
+        jobs.push_back({seconds, i, {Part::kConformance}, [&o, &r, shared] {
+                          for (std::size_t c : shared) r.results[c] = r.checks[c].run(o.budget);
+                        }});
+      }
+    }
+    if (!swept)
+      jobs.push_back(
+          {cost(fmt::format("model.{}.stability", m.name)), i, {Part::kStability}, sweep_findings});
+  }
+  // Progress: a model's step of a part once its last job of that part is done.
+  std::vector<std::array<int, 3>> pending(o.models.size(), {0, 0, 0});
+  for (const Job& j : jobs)
+    for (Part p : j.parts) ++pending[j.model][std::size_t(p)];
+  std::mutex mutex;
+  const auto step = [&](std::size_t model, Part p) {
+    if (o.progress) o.progress(fmt::format("{} {}", o.models[model], kPartNames[std::size_t(p)]));
+  };
+  for (std::size_t i = 0; i < o.models.size(); ++i)
+    for (Part p : {Part::kConformance, Part::kStability})
+      if (pending[i][std::size_t(p)] == 0) step(i, p);
+  run_longest_first(jobs, [&](const Job& j) {
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (Part p : j.parts)
+      if (--pending[j.model][std::size_t(p)] == 0) step(j.model, p);
+  });
+  return out;
+}
+
+// A model's entry of compare.json from its untimed measurements, after its timed ones: the
+// constant-time check (where the suite runs here), the evaluation timings and the equal-time curve.
+json model_json(const ModelEntry& m, const CompareOptions& o, const CompareBudget& b,
+                const Measured& pre) {
   const auto step = [&](const std::string& what) {
     if (o.progress) o.progress(fmt::format("{} {}", m.name, what));
   };
@@ -53,12 +225,15 @@ json model_json(const ModelEntry& m, const CompareOptions& o, const CompareBudge
   j["light"] = light_of(m);
   j["smooth_limit"] = m.smooth_limit.empty() ? json(nullptr) : json(m.smooth_limit);
 
-  step("conformance");
+  std::map<std::string, verify::CheckResult> measured;
+  for (std::size_t c = 0; c < pre.checks.size(); ++c)
+    measured[pre.checks[c].id] = property_of(m, pre.checks[c].id) == "constant-time"
+                                     ? pre.checks[c].run(o.budget)
+                                     : pre.results[c];
   json verdicts = json::array();
-  std::vector<ClaimsFolder> folders;
-  if (!o.conformance_from.empty()) folders.push_back({o.conformance_from, conformance_name(o)});
-  if (!o.claims_from.empty()) folders.push_back({o.claims_from, claims_name(o)});
-  for (const PropertyVerdict& v : conformance_verdicts(m, o.budget, folders, o.measure_missing))
+  for (const PropertyVerdict& v :
+       pre.verdicts ? *pre.verdicts
+                    : conformance_verdicts(m, o.budget, {}, o.measure_missing, measured))
     verdicts.push_back({{"property", v.property},
                         {"verdict", v.verdict},
                         {"origin", v.origin},
@@ -74,14 +249,10 @@ json model_json(const ModelEntry& m, const CompareOptions& o, const CompareBudge
                  {"best_ns_per_eval", t.best_ns},
                  {"batched", t.batched}};
 
-  step("reference");
-  std::vector<AlbedoReference> refs;
   json references = json::array();
-  for (double theta : b.thetas_deg) {
-    refs.push_back(reference_albedo(m, theta, b, seed_of(m, fmt::format("reference.{:g}", theta))));
-    const AlbedoReference& r = refs.back();
+  for (const AlbedoReference& r : pre.refs) {
     // A reference that did not converge is flagged, and its value withheld.
-    references.push_back({{"theta_deg", theta},
+    references.push_back({{"theta_deg", r.theta_deg},
                           {"method", r.method},
                           {"converged", r.converged},
                           {"albedo", r.converged ? number(r.value) : json(nullptr)},
@@ -90,7 +261,7 @@ json model_json(const ModelEntry& m, const CompareOptions& o, const CompareBudge
   j["reference"] = references;
 
   step("equal-time curve");
-  const EqualTimeCurve c = equal_time_curve(m, refs, b, seed_of(m, "sampler"));
+  const EqualTimeCurve c = equal_time_curve(m, pre.refs, b, seed_of(m, "sampler"));
   json points = json::array();
   for (const EqualTimePoint& p : c.points)
     points.push_back(
@@ -104,10 +275,8 @@ json model_json(const ModelEntry& m, const CompareOptions& o, const CompareBudge
                       c.reason.empty() ? number(c.relative_bias_se) : json(nullptr)},
                      {"not_shown", c.reason.empty() ? json(nullptr) : json(c.reason)}};
 
-  step("stability");
   json stability = json::array();
-  for (const StabilityFinding& s : stability_findings(m, o.budget, o.sweeps_from, sweeps_name(o),
-                                                            o.measure_missing))
+  for (const StabilityFinding& s : pre.stability)
     stability.push_back({{"sampler", s.sampler},
                          {"verdict", s.verdict},
                          {"origin", s.origin},
@@ -205,8 +374,12 @@ CompareFiles run_compare(const fs::path& dir, const CompareOptions& o) {
   // A model's stability is swept once: by its conformance suite's stability property where that
   // runs here, and the same sweep gives the failure regions.
   const verify::stability::SweepReuse one_sweep_per_model;
+  // First everything that is not a timing, in parallel; then, one model at a time with nothing
+  // else running, the timings (constant-time, time per evaluation, the equal-time curve).
+  const std::vector<Measured> measured = run_measurements(o, b);
   json models = json::array();
-  for (const std::string& name : o.models) models.push_back(model_json(find_model(name), o, b));
+  for (std::size_t i = 0; i < o.models.size(); ++i)
+    models.push_back(model_json(find_model(o.models[i]), o, b, measured[i]));
   json doc;
   doc["machine"] = machine_name();
   doc["settings"] = settings_json(o, b);

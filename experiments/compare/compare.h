@@ -31,7 +31,11 @@ struct CompareOptions {
   // model) and sweeps here; when false, show the recorded verdicts only and no failure region
   // (the report: it never runs a suite it did not run itself).
   bool measure_missing = true;
-  std::function<void(const std::string& step)> progress;  // called from one thread
+  std::function<void(const std::string& step)> progress;  // never called by two threads at once
+  // The estimated seconds of a conformance check (by id, e.g. the recorded ones of
+  // cli/claim_costs.h): the measurements run in parallel start with the costliest, so a long one
+  // is not left alone at the end; empty: all equal. Only the run's duration depends on it.
+  std::function<double(const std::string& check_id)> check_cost;
 };
 
 struct CompareFiles {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,9 +37,11 @@ struct ClaimsFolder {
 // the model's own conformance checks; otherwise "not-claimed" where the model declares so, the
 // verdict recorded for budget b for a built-in model, and nothing for a plug-in. Messages name the
 // folders as shown.
-std::vector<PropertyVerdict> conformance_verdicts(const ModelEntry& m, verify::Budget b,
-                                                  const std::vector<ClaimsFolder>& folders,
-                                                  bool measure);
+// `measured`: the results of m's conformance checks already run (by check id), used instead of
+// running a check again where one is to be measured here.
+std::vector<PropertyVerdict> conformance_verdicts(
+    const ModelEntry& m, verify::Budget b, const std::vector<ClaimsFolder>& folders, bool measure,
+    const std::map<std::string, verify::CheckResult>& measured = {});
 
 struct StabilityFinding {
   std::string sampler, verdict, failure_region, origin;

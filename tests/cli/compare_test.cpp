@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -105,6 +106,51 @@ TEST_F(CompareTest, ReadsVerdictsAndFailureRegionsFromEarlierRuns) {
   ASSERT_EQ(m["stability"].size(), 1u);
   EXPECT_EQ(m["stability"][0]["failure_region"], "none found");
   EXPECT_EQ(m["stability"][0]["origin"], "read");
+}
+
+// Without --claims-from, compare runs the model's conformance checks itself, several at once
+// (the costliest first), constant-time alone afterwards: every verdict, control and detail is the
+// row `glintlab verify` writes for the same check, with one thread or two (constant-time's detail
+// is a timing).
+TEST_F(CompareTest, MeasuredConformanceIsVerifysRowsWithOneOrTwoThreads) {
+  const RunResult v =
+      run({"verify", "--claims", "model.chermain.*", "--budget", "quick", "--out", "v"});
+  ASSERT_TRUE(v.exit_code == 0 || v.exit_code == 1) << v.err;
+  std::map<std::string, nlohmann::json> rows;
+  for (const auto& row : nlohmann::json::parse(read_text(path("v/claims.json"))))
+    rows[row["id"].get<std::string>()] = row;
+  ASSERT_FALSE(rows.empty());
+  nlohmann::json first;
+  for (const char* threads : {"1", "2"}) {
+    const std::string out = std::string("c") + threads;
+    const RunResult r = run({"compare", "--models", "chermain", "--threads", threads, "--out", out});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto doc = nlohmann::json::parse(read_text(path(out + "/compare.json")));
+    const auto& conformance = model_named(doc, "chermain")["conformance"];
+    ASSERT_EQ(conformance.size(), rows.size());
+    for (const auto& c : conformance) {
+      const std::string id = "model.chermain." + c["property"].get<std::string>();
+      ASSERT_TRUE(rows.count(id)) << id;
+      const auto& row = rows.at(id);
+      EXPECT_EQ(c["origin"], "measured") << id;
+      EXPECT_EQ(c["verdict"], row["verdict"]) << id;
+      EXPECT_EQ(c["control_rejected"], row["control_rejected"]) << id;
+      if (c["property"] != "constant-time") {
+        EXPECT_EQ(c["detail"], row["detail"]) << id;
+      }
+    }
+    EXPECT_EQ(model_named(doc, "chermain")["stability"][0]["origin"], "measured");
+    if (first.is_null()) {
+      first = doc;
+      continue;
+    }
+    // Every field but the timings (and constant-time's detail, a timing) for either thread count.
+    auto a = without_timings(first), b = without_timings(doc);
+    for (auto* d : {&a, &b})
+      for (auto& c : (*d)["models"][0]["conformance"])
+        if (c["property"] == "constant-time") c.erase("detail");
+    EXPECT_EQ(a, b);
+  }
 }
 
 TEST_F(CompareTest, MalformedClaimsFileIsAnErrorAndWritesNothing) {

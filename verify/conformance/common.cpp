@@ -382,12 +382,12 @@ HemisphereIntegral integrate_hemisphere(const ModelEntry& m, const DirectionRows
   return {acc.mean, std::sqrt(acc.variance() / double(n)), true};
 }
 
-namespace {
-
 bool is_registered(const ModelEntry& m) {
   const std::vector<ModelEntry>& all = registered_models();
   return !all.empty() && &m >= all.data() && &m < all.data() + all.size();
 }
+
+namespace {
 
 // What identifies a setting's integral: the entry, the budget, the label, the parameter values and
 // every query column (the label names the setting, the rest guards against two settings sharing

@@ -152,6 +152,11 @@ HemisphereIntegral integrate_hemisphere(const ModelEntry& m,
                                         const Vec3<double>& wi, double width, Budget b,
                                         std::uint64_t seed);
 
+// Whether `m` is an entry of registered_models() itself (not a copy of one): what the suite keeps
+// per entry for the process (value_integral) is kept only for those, whose address is never
+// reused (register_model never reallocates the registry).
+bool is_registered(const ModelEntry& m);
+
 // ∫ value dωo at a setting by integrate_hemisphere, seeded by the model's name and the setting's
 // label, not by the property asking: sampler-covers-value and energy (and any later property) get
 // the same integral at the same setting. For a registered entry the result is kept for the

@@ -244,8 +244,23 @@ std::optional<Recorded> recorded_verdict(std::string_view model, std::string_vie
   return it->second;
 }
 
+namespace {
+
+// The entry a model's checks run on: a registered entry itself (register_model never reallocates
+// the registry, so it outlives the checks), so that what the suite keeps per registered entry is
+// shared by its properties and by the rest of the run: the settings' value integrals
+// (value_integral: energy and sampler-covers-value) and, within a SweepReuse, the stability
+// sweep; any other entry (a test's toy, a copy) is copied, as it may not outlive the checks.
+std::shared_ptr<const ModelEntry> checked_entry(const ModelEntry& model) {
+  if (is_registered(model))
+    return std::shared_ptr<const ModelEntry>(std::shared_ptr<const ModelEntry>(), &model);
+  return std::make_shared<const ModelEntry>(model);
+}
+
+}  // namespace
+
 std::vector<Check> conformance_checks(const ModelEntry& model) {
-  auto m = std::make_shared<const ModelEntry>(model);
+  const std::shared_ptr<const ModelEntry> m = checked_entry(model);
   std::vector<Check> out;
   for (std::string_view property : kProperties) {
     if (!applies(property, *m)) continue;
