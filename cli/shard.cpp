@@ -65,8 +65,8 @@ ShardManifest read_manifest(const std::filesystem::path& dir) {
   std::ifstream in(file);
   if (!in)
     throw InputError(fmt::format("merge: '{}' holds no shard.json (a folder written by glintlab "
-                                 "verify, figure, compare or sweep --shard K/N --out DIR is "
-                                 "expected)",
+                                 "verify, figure, compare, sweep or adequacy --shard K/N --out "
+                                 "DIR is expected)",
                                  dir.string()));
   std::stringstream text;
   text << in.rdbuf();

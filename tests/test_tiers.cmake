@@ -88,6 +88,7 @@ set(glintlab_slow_tests
   "ChermainCli.Fig7Quick 1"
   "ChermainCli.Fig9Quick 1"
   "CompareTest.PluginModelBesideThePapersModelsAndThreadIndependent 8"
+  "CompareTest.MeasuredConformanceIsVerifysRowsWithOneOrTwoThreads 25"
   "CompareTest.ReadsVerdictsAndFailureRegionsFromEarlierRuns 1"
   "ExampleModel.GetsTheRegistryDrivenFigure 2"
   "FigureTest.EnvironmentMapFromExr 1"
@@ -148,6 +149,10 @@ set(glintlab_power_tests
   # PluginTest.SweepFigureAndGenericClaimCoverThePluginModel (all.stability); the Chermain ones
   # in ChermainClaims.*.
   "Checks/SharedMeasurement.*"
+  # Chermain's whole conformance suite at quick three times (verify, compare on 1 and 2 threads):
+  # compare's side-by-side scheduling is sanitized in CompareTest.PluginModelBeside… and
+  # CompareShardTest.*, the suite's properties in Properties/ControlRejected.*.
+  "CompareTest.MeasuredConformanceIsVerifysRowsWithOneOrTwoThreads"
   # The controls of smooth.sampler-matches-pdf and eto.pdf-matches at the samples that reject a
   # 2 % error: ChiSquareClaims.IdenticalWithOneAndTwoThreads runs both families (the batched
   # samplers, scaled, α × 1.02 and replanned controls) at 2·10^4 samples;

@@ -10,10 +10,8 @@
 #pragma once
 
 #include <array>
-#include <cstring>
 #include <span>
 #include <string_view>
-#include <type_traits>
 
 #include "core/glints/kemppinen.h"
 #include "core/glints/kemppinen_full_sampling.h"
@@ -149,46 +147,12 @@ ModelEval<T, kKemppinenIntermediates.size()> kemppinen_model_eval(
 }
 
 // The explicit-strategy probability q of the mixture at the query's footprint (uv or triplanar).
-// q depends on the parameters and the footprint only, not on ωo, and about a third of a pdf()'s
-// erf and lobe-width evaluations are q's (level_explicit_share), while the conformance suite asks
-// for the pdf of many directions at one footprint: for scalar T each thread keeps its last q with
-// the bits of every input (all of p, the footprint's uv and Jacobian) and returns it when the same
-// bits recur, which is the value computing it again gives, bit for bit. A few hundred bytes of
-// thread-local storage per (Ndf, T), scalar T only; batches compute q per call.
 template <class Ndf, class T>
 T kemppinen_model_mixture_probability(const KemppinenModelParams<Ndf, T>& p,
                                       const ModelQuery<T>& q) {
-  const auto compute = [&] {
-    return p.triplanar ? kemppinen2025::triplanar_mixture_probability(
-                             p.glint, p.ndf, kemppinen2025::triplanar_input(q.footprint, p.normal))
-                       : kemppinen2025::mixture_probability(p.glint, p.ndf, q.footprint);
-  };
-  if constexpr (!std::is_floating_point_v<T>) {
-    return compute();
-  } else {
-    const kemppinen2025::Params<T>& g = p.glint;
-    const FootprintQuery<T>& fp = q.footprint;
-    const T inputs[] = {g.density,      g.microroughness, g.anisotropy,   g.filter,
-                        T(g.side),      T(int(g.blend)),  T(int(g.erf)),  T(int(g.normalization)),
-                        T(int(g.colors)), T(double(g.seed)), T(g.compensate), T(p.triplanar),
-                        p.normal.x,     p.normal.y,       p.normal.z,     fp.uv.x,
-                        fp.uv.y,        fp.duv_dx.x,      fp.duv_dx.y,    fp.duv_dy.x,
-                        fp.duv_dy.y};
-    struct Memo {
-      bool valid = false;
-      unsigned char key[sizeof(inputs) + sizeof(Ndf)];
-      T q;
-    };
-    static thread_local Memo memo;
-    unsigned char key[sizeof(memo.key)];
-    std::memcpy(key, inputs, sizeof(inputs));
-    std::memcpy(key + sizeof(inputs), &p.ndf, sizeof(Ndf));
-    if (memo.valid && std::memcmp(key, memo.key, sizeof(key)) == 0) return memo.q;
-    memo.q = compute();
-    std::memcpy(memo.key, key, sizeof(key));
-    memo.valid = true;
-    return memo.q;
-  }
+  return p.triplanar ? kemppinen2025::triplanar_mixture_probability(
+                           p.glint, p.ndf, kemppinen2025::triplanar_input(q.footprint, p.normal))
+                     : kemppinen2025::mixture_probability(p.glint, p.ndf, q.footprint);
 }
 
 // pdf of ωo = reflect(ωi, ω_h) under the model's sampler: the mixture density of ω_h,

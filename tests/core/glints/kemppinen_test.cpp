@@ -7,13 +7,9 @@
 #include <cmath>
 #include <cstring>
 #include <numbers>
-#include <set>
-#include <utility>
-#include <vector>
 
 #include "core/glints/kemppinen_reference.h"
 #include "core/glints/kemppinen_sampling.h"
-#include "core/models/kemppinen_model.h"
 #include "core/math/disk_rect_area.h"
 #include "core/model_registry.h"
 #include "core/ndf/beckmann.h"
@@ -327,67 +323,6 @@ void expect_density_is_block_by_block() {
 TEST(KemppinenSampling, MarginalDensityIsTheBlockByBlockSumBitForBit) {
   expect_density_is_block_by_block<double>();
   expect_density_is_block_by_block<float>();
-}
-
-// The model keeps each thread's last mixture probability q with its inputs
-// (kemppinen_model_mixture_probability): after a q at other inputs, every input that q depends on
-// changed one at a time (and changed back) gives the q computed afresh, bit for bit.
-TEST(KemppinenModel, KeptMixtureProbabilityIsTheComputedOneForEveryInput) {
-  const auto values = resolve_params(find_model("kemppinen_ggx"), {});
-  auto base = detail::kemppinen_model_params<GGX<double>, double>(values);
-  // Lobes a few angular cells wide at λ ≈ 3, where q is inside its clamp [0.1, 0.9].
-  base.glint.microroughness = 0.15;
-  ModelQuery<double> q0{};
-  q0.footprint = {{0.3, 0.6}, {0.05, 0.004}, {-0.003, 0.04}};
-  std::vector<std::pair<detail::KemppinenModelParams<GGX<double>, double>, ModelQuery<double>>> in;
-  const auto vary = [&](auto change) {
-    auto p = base;
-    ModelQuery<double> q = q0;
-    change(p, q);
-    in.push_back({p, q});
-  };
-  vary([](auto&, auto&) {});
-  vary([](auto& p, auto&) { p.glint.density *= 3; });
-  vary([](auto& p, auto&) { p.glint.microroughness *= 2; });
-  vary([](auto& p, auto&) { p.glint.anisotropy = 2; });
-  vary([](auto& p, auto&) { p.glint.filter = 0.6; });
-  vary([](auto& p, auto&) { p.glint.side = 3; });
-  vary([](auto& p, auto&) { p.ndf.alpha_x = 0.1; });
-  vary([](auto& p, auto&) { p.ndf.alpha_y = 0.6; });
-  vary([](auto&, auto& q) { q.footprint.uv.x = 0.31; });
-  vary([](auto&, auto& q) { q.footprint.uv.y = 0.2; });
-  vary([](auto&, auto& q) { q.footprint.duv_dx.x *= 1.2; });
-  vary([](auto&, auto& q) { q.footprint.duv_dx.y *= 5; });
-  vary([](auto&, auto& q) { q.footprint.duv_dy.x *= 5; });
-  vary([](auto&, auto& q) { q.footprint.duv_dy.y *= 1.2; });
-  vary([](auto& p, auto&) {
-    p.triplanar = true;
-    p.normal = normalize(V3{0.3, 0.5, 0.8});
-  });
-  vary([](auto& p, auto&) {
-    p.triplanar = true;
-    p.normal = normalize(V3{0.6, 0.2, 0.7});
-  });
-  std::set<std::uint64_t> distinct;
-  for (int round = 0; round < 2; ++round)
-    for (std::size_t k = 0; k < in.size(); ++k) {
-      for (std::size_t other : {k, (k + 1) % in.size(), k}) {  // once kept, once not, once kept
-        const auto& [p, q] = in[other];
-        const double kept = detail::kemppinen_model_mixture_probability(p, q);
-        const double fresh =
-            p.triplanar
-                ? kemppinen2025::triplanar_mixture_probability(
-                      p.glint, p.ndf, kemppinen2025::triplanar_input(q.footprint, p.normal))
-                : kemppinen2025::mixture_probability(p.glint, p.ndf, q.footprint);
-        ASSERT_EQ(std::memcmp(&kept, &fresh, sizeof kept), 0) << other;
-        std::uint64_t bits = 0;
-        std::memcpy(&bits, &fresh, sizeof bits);
-        distinct.insert(bits);
-      }
-    }
-  // Every input but uv changes q (so a kept q missing one would be found): 14 distinct values of
-  // 16, the defaults and their two uv moves sharing one (uv moves the points, not q).
-  EXPECT_GE(distinct.size(), in.size() - 2) << distinct.size();
 }
 
 TEST(KemppinenModel, RegisteredWithRangeChecks) {
