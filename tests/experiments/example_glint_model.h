@@ -46,12 +46,12 @@ struct ExampleGlints {
   }
 
   template <class T>
-  GLINTLAB_FN static T pdf(const Params<T>& p, const ModelQuery<T>& q) {
+  GLINTLAB_INLINE static T pdf(const Params<T>& p, const ModelQuery<T>& q) {
     return pdf_heitz_vndf(p.ggx, q.wi, q.wo);
   }
 
   template <class T>
-  GLINTLAB_FN static ModelEval<T, 2> eval(const Params<T>& p, const ModelQuery<T>& q) {
+  GLINTLAB_INLINE static ModelEval<T, 2> eval(const Params<T>& p, const ModelQuery<T>& q) {
     const auto smooth = detail::smooth_eval(p.ggx, q, pdf(p, q));
     const FootprintQuery<T>& f = q.footprint;
     const T area = abs(f.duv_dx.x * f.duv_dy.y - f.duv_dx.y * f.duv_dy.x);
@@ -62,7 +62,7 @@ struct ExampleGlints {
   }
 
   template <class T>
-  GLINTLAB_FN static ModelSample<T> sample(const Params<T>& p, const ModelQuery<T>& q, Vec2<T> u) {
+  GLINTLAB_INLINE static ModelSample<T> sample(const Params<T>& p, const ModelQuery<T>& q, Vec2<T> u) {
     return detail::smooth_sample(p.ggx, q.wi, sample_heitz_vndf(p.ggx, q.wi, u));
   }
 };
