@@ -13,7 +13,7 @@ jobs="${GLINTLAB_JOBS:-$(nproc)}"
 source scripts/steps.sh
 step asan-configure cmake --preset asan >/dev/null
 step asan-build cmake --build --preset asan -j "$jobs" \
-  --target glintlab_core_tests glintlab_verify_tests glintlab_cli_tests
+  --target glintlab_core_tests glintlab_verify_tests glintlab_cli_tests glintlab_gpu_tests glintlab_gpu_compare
 export ASAN_OPTIONS="${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
-step asan-ctest ctest --preset asan -j "$jobs" -L '^(core|verify|cli)$' -LE '^power$'
+step asan-ctest ctest --preset asan -j "$jobs" -L '^(core|verify|cli|gpu)$' -LE '^power$'

@@ -182,8 +182,8 @@ set(glintlab_power_tests
 # The test binaries and the layer label of their tests.
 set(glintlab_test_binaries
   glintlab_core_tests glintlab_verify_tests glintlab_experiments_tests glintlab_examples_tests
-  glintlab_cli_tests glintlab_simd_tests)
-set(glintlab_test_layers core verify experiments examples cli simd)
+  glintlab_cli_tests glintlab_simd_tests glintlab_gpu_tests)
+set(glintlab_test_layers core verify experiments examples cli simd gpu)
 
 # Whether `entry` (a name, or a prefix ending in `*`) names `test`.
 function(glintlab_entry_names entry test out)

@@ -1,0 +1,47 @@
+// Which built-in models have device (CUDA) kernels, and why the others have none. The CUDA build
+// (gpu/device_models.cu) instantiates the listed models' own eval, pdf and sample templates from
+// their core headers; nothing of a kernel is written again for the GPU. No CUDA in this header: the
+// CPU side (the result comparison, the tests, docs/gpu.md) reads it too.
+#pragma once
+
+#include <array>
+#include <string_view>
+
+namespace glintlab::gpu {
+
+struct DeviceSupport {
+  std::string_view model;    // a built-in model's name (core/model_list.h)
+  std::string_view why_not;  // empty: the model has device kernels; else why not (docs/gpu.md)
+};
+
+// Every built-in model, in registration order (a test checks it against core/model_list.h).
+inline constexpr std::string_view kParameterCheckReason =
+    "its header reaches core/parameter_check.h (scene and light input checks that format their "
+    "messages with fmt), which nvcc's front end rejects (fmt's consteval format strings): the "
+    "model needs its kernel headers separated from the host-side input checks";
+inline constexpr std::array<DeviceSupport, 9> kDeviceSupport = {{
+    {"smooth_ggx", ""},
+    {"smooth_beckmann", ""},
+    {"podee", kParameterCheckReason},
+    {"deliot_belcour",
+     "its default count sampler, binomial_exact (core/glints/binomial.h), is host-only (not "
+     "marked GLINTLAB_FN: a variable number of uniforms and double-precision BTRS)"},
+    {"kneiphof_klein", kParameterCheckReason},
+    {"kneiphof_klein_area",
+     "kBatched = false (a host LTC table lookup), and its header reaches core/parameter_check.h"},
+    {"chermain",
+     "its multiscale dictionary is a host table built at first use (chermain2021::Dictionary): "
+     "a device copy of the table would be needed"},
+    {"kemppinen_ggx",
+     "core/glints/kemppinen.h's kTriplanarProcess is a host constant, and the model's eval, pdf "
+     "and sample (core/models/kemppinen_model.h) are not marked GLINTLAB_FN"},
+    {"kemppinen_beckmann", "as kemppinen_ggx (the same kernels on the Beckmann NDF)"},
+}};
+
+constexpr bool has_device_kernels(std::string_view model) {
+  for (const DeviceSupport& s : kDeviceSupport)
+    if (s.model == model) return s.why_not.empty();
+  return false;
+}
+
+}  // namespace glintlab::gpu
