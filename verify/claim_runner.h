@@ -3,8 +3,9 @@
 // (a holding claim gets the perturbed input, any other the corrected one where the claim has it),
 // measures and decides the control from the same evidence, and fills the CheckResult: verdict,
 // value, p-values, regime, the control's verdict and whether it opposes (then, where the claim has
-// one, what is measured beside the control: beside_control), power. Included only by
-// the claims' own files, which end in GLINTLAB_CLAIM(Type).
+// one, what is measured beside the control: beside_control), power. A decision that reports another
+// verdict than it measured (Decision::measured_verdict) has its control picked and judged against
+// the measured one. Included only by the claims' own files, which end in GLINTLAB_CLAIM(Type).
 #pragma once
 
 #include <fmt/format.h>

@@ -99,5 +99,26 @@ TEST(ClaimLists, KneiphofRegisteredInOrder) {
                                             Verdict::kInconclusive}));
 }
 
+TEST(ClaimLists, ChermainRegisteredInOrder) {
+  std::vector<std::string> ids;
+  std::vector<Verdict> expected;
+  for (const Check& c : registered_checks())
+    if (c.id.rfind("chermain.", 0) == 0) {
+      ids.push_back(c.id), expected.push_back(c.expected);
+      EXPECT_EQ(c.paper, "Chermain et al. 2021");
+      EXPECT_FALSE(c.paper_quote.empty()) << c.id;
+      EXPECT_FALSE(c.calibration) << c.id;
+      EXPECT_FALSE(c.expected_full.has_value()) << c.id;
+    }
+  EXPECT_EQ(ids, (std::vector<std::string>{
+                     "chermain.kernel-normalized", "chermain.dictionary-converges",
+                     "chermain.correlation", "chermain.ggaa-error", "chermain.ggaa-derivatives",
+                     "chermain.ggaa-sk", "chermain.ggaa-shimmer", "chermain.lean-correlation"}));
+  EXPECT_EQ(expected,
+            (std::vector<Verdict>{Verdict::kHolds, Verdict::kHolds, Verdict::kHolds,
+                                  Verdict::kHolds, Verdict::kInconclusive, Verdict::kInconclusive,
+                                  Verdict::kHolds, Verdict::kHolds}));
+}
+
 }  // namespace
 }  // namespace glintlab::verify

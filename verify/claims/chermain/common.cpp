@@ -136,8 +136,7 @@ GgaaReplicate ggaa_replicate(const GgaaReplicateBudget& b, int k) {
                                   [&] { return measure_ggaa_replicate(b, "chermain.ggaa", k); });
 }
 
-GgaaMeasured measure_ggaa(const GgaaOrdering& o, std::span<const GgaaReplicate> reps,
-                          Input input) {
+GgaaMeasured measure_ggaa(const GgaaOrdering& o, std::span<const GgaaReplicate> reps, Input input) {
   GgaaMeasured m{.reps = {reps.begin(), reps.end()}, .input = input};
   const bool replace_a = input == Input::kCorrected, replace_b = input == Input::kPerturbed;
   for (const GgaaPart& p : o.parts) {
@@ -200,8 +199,8 @@ std::string ggaa_power(const GgaaOrdering& o, const GgaaReplicateBudget& g,
   return fmt::format(
       "paired difference detected at 90 % power: ≥ {:.3f} {} ((t_{{{:.4f}, {}}} + 1.28) × SE of "
       "the mean over {} replicates, largest over {} part(s))",
-      largest_detectable(genuine.diffs), o.unit, 0.5 + 0.5 * conf, g.replicates - 1,
-      g.replicates, o.parts.size());
+      largest_detectable(genuine.diffs), o.unit, 0.5 + 0.5 * conf, g.replicates - 1, g.replicates,
+      o.parts.size());
 }
 
 // --- The normal-mapped tubes' replicates -----------------------------------------------------
@@ -346,8 +345,7 @@ std::string ordering_parts(const Ordering& o, const OrderingMeasured& m) {
         "{:+.3f}] ({})",
         i ? "; " : "", replace_a ? "near-truth image" : p.a_name,
         replace_a ? nt : mean_field(m.reps, p.a), replace_b ? "near-truth image" : p.b_name,
-        replace_b ? nt : mean_field(m.reps, p.b), c.mean, c.se, 100 * conf, c.lo, c.hi,
-        reading(c));
+        replace_b ? nt : mean_field(m.reps, p.b), c.mean, c.se, 100 * conf, c.lo, c.hi, reading(c));
   }
   return out;
 }
@@ -387,8 +385,7 @@ std::string describe_ordering(const Ordering& o, const BumpyGgaaBudget& g,
       "and the reference's own error of the difference, {:.3f}), else a tie. Paper (Fig. 9, "
       "1,024 spp): no GGAA 13.484, half slope 7.527 | 8.185, projected half 7.425 | 7.794 % "
       "(s_K 0.5 | 1)",
-      bumpy_setup(g, m.reps), ordering_parts(o, m), m.tolerance, kPairTolerance,
-      m.reference_error);
+      bumpy_setup(g, m.reps), ordering_parts(o, m), m.tolerance, kPairTolerance, m.reference_error);
 }
 
 std::string ordering_power(const Ordering& o, const BumpyGgaaBudget& g,

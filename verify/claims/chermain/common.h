@@ -62,7 +62,7 @@ struct GgaaReplicateBudget {
 };
 struct GgaaReplicate {
   double none = 0, proj05 = 0;  // display RMSE %: no GGAA, Eq. 21 at s_K 0.5
-  double near_truth = 0;  // control: an independent reference × (1 + kGgaaNearTruthBias)
+  double near_truth = 0;        // control: an independent reference × (1 + kGgaaNearTruthBias)
   double flicker05 = 0, flicker1 = 0;  // frame-to-frame variance × 1e4, projected half vector
   double flicker1_slow = 0;            // control: s_K 1 under a pan kGgaaSlowPan slower
 };

@@ -135,8 +135,8 @@ struct KernelNormalized {
     const int per_kernel = int(z.rhos.size() * z.log2_densities.size());
     const int kernel = i < per_kernel ? chermain2021::kNoGgaa : chermain2021::kProjectedHalf;
     const double rho = z.rhos[std::size_t(i % per_kernel) / z.log2_densities.size()];
-    const double log2_density = z.log2_densities[std::size_t(i % per_kernel) %
-                                                 z.log2_densities.size()];
+    const double log2_density =
+        z.log2_densities[std::size_t(i % per_kernel) % z.log2_densities.size()];
     const FootprintQuery<double> fp{{0.3, 0.7}, {0.004, 0.001}, {-0.001, 0.003}};
     const chermain2021::SlopeDerivatives der{0.06, -0.02, 0.01, 0.04};
     chermain2021::SdfParams p{&d, 0.3, 0.2, rho, log2_density, kernel, 0.5, 17};

@@ -81,8 +81,8 @@ struct LeanCorrelation {
     NormalMapSceneOptions o;
     o.width = z.budget.width, o.height = z.budget.height, o.threads = z.budget.threads;
     o.groove_p = z.budget.groove_p, o.groove_q = z.budget.groove_q;
-    Image near_truth = render_normal_map_reference(o, near_truth_spp(z),
-                                                   check_seed(std::string(kId), 1000 + k));
+    Image near_truth =
+        render_normal_map_reference(o, near_truth_spp(z), check_seed(std::string(kId), 1000 + k));
     for (double& v : near_truth.data) v *= 1 + kLeanNearTruthBias;
     return {m.rmse_no_lean, m.rmse_lean_rho0, m.rmse_lean,
             display_rmse_percent(near_truth, m.reference)};
