@@ -94,6 +94,15 @@ std::string_view reading(const PairedComparison& c) {
   return c.lo > 0 ? "as claimed" : c.hi < 0 ? "reversed" : "tie within the noise";
 }
 
+std::string paired_power(const std::vector<std::vector<double>>& parts, std::string_view unit,
+                         int replicates) {
+  return fmt::format(
+      "paired difference detected at 90 % power: ≥ {:.3f} {} ((t_{{{:.4f}, {}}} + 1.28) × SE of "
+      "the mean over {} replicates, largest over {} part(s))",
+      largest_detectable(parts), unit, 0.5 + 0.5 * sidak_confidence(parts.size()), replicates - 1,
+      replicates, parts.size());
+}
+
 // --- The tube scene's replicates -------------------------------------------------------------
 
 GgaaReplicate measure_ggaa_replicate(const GgaaReplicateBudget& b, const std::string& id, int k) {
@@ -124,19 +133,24 @@ GgaaReplicate measure_ggaa_replicate(const GgaaReplicateBudget& b, const std::st
   return r;
 }
 
-GgaaReplicateBudget ggaa_budget(Budget b) {
+template <>
+GgaaReplicateBudget replicate_budget<GgaaReplicateBudget>(Budget b) {
   return b == Budget::kQuick ? GgaaReplicateBudget{64, 44, 32, 3, 6, 0}
                              : GgaaReplicateBudget{128, 88, 64, 4, 10, 0};
 }
-GgaaReplicateBudget ggaa_probe_budget() { return {32, 22, 16, 3, 6, 0}; }
+template <>
+GgaaReplicateBudget replicate_probe_budget<GgaaReplicateBudget>() {
+  return {32, 22, 16, 3, 6, 0};
+}
 
-GgaaReplicate ggaa_replicate(const GgaaReplicateBudget& b, int k) {
+GgaaReplicate replicate(const GgaaReplicateBudget& b, int k) {
   const std::array<int, 5> key = {b.width, b.height, b.reference_spp, b.frames, k};
   return made_once<GgaaReplicate>(key,
                                   [&] { return measure_ggaa_replicate(b, "chermain.ggaa", k); });
 }
 
-GgaaMeasured measure_ggaa(const GgaaOrdering& o, std::span<const GgaaReplicate> reps, Input input) {
+GgaaMeasured measure_ordering(const GgaaOrdering& o, std::span<const GgaaReplicate> reps,
+                              Input input) {
   GgaaMeasured m{.reps = {reps.begin(), reps.end()}, .input = input};
   const bool replace_a = input == Input::kCorrected, replace_b = input == Input::kPerturbed;
   for (const GgaaPart& p : o.parts) {
@@ -149,7 +163,7 @@ GgaaMeasured measure_ggaa(const GgaaOrdering& o, std::span<const GgaaReplicate> 
   return m;
 }
 
-Decision decide_ggaa(const GgaaOrdering& o, const GgaaMeasured& m) {
+Decision decide_ordering(const GgaaOrdering& o, const GgaaMeasured& m) {
   const double conf = sidak_confidence(o.parts.size());
   return {.verdict = decide_paired(m.diffs),
           .value = compare_paired(m.diffs[0], conf).mean,
@@ -178,8 +192,8 @@ std::string ggaa_parts(const GgaaOrdering& o, const GgaaMeasured& m) {
 
 }  // namespace
 
-std::string describe_ggaa(const GgaaOrdering& o, const GgaaReplicateBudget& g,
-                          const GgaaMeasured& m) {
+std::string describe_ordering(const GgaaOrdering& o, const GgaaReplicateBudget& g,
+                              const GgaaMeasured& m) {
   if (m.input != Input::kGenuine)
     return fmt::format(
         "{} in place of {}: {}", o.control_name,
@@ -191,16 +205,6 @@ std::string describe_ggaa(const GgaaOrdering& o, const GgaaReplicateBudget& g,
       "shimmer (frame-to-frame variance x1e4); the claim: a < b in each part: {}. "
       "Paper: Fig. 8 4.815 -> 3.661 %; Fig. 9 13.48 | 7.53, 8.19 | 7.43, 7.79 %",
       g.width, g.height, g.replicates, g.reference_spp, g.frames, kGgaaPan, ggaa_parts(o, m));
-}
-
-std::string ggaa_power(const GgaaOrdering& o, const GgaaReplicateBudget& g,
-                       const GgaaMeasured& genuine) {
-  const double conf = sidak_confidence(o.parts.size());
-  return fmt::format(
-      "paired difference detected at 90 % power: ≥ {:.3f} {} ((t_{{{:.4f}, {}}} + 1.28) × SE of "
-      "the mean over {} replicates, largest over {} part(s))",
-      largest_detectable(genuine.diffs), o.unit, 0.5 + 0.5 * conf, g.replicates - 1, g.replicates,
-      o.parts.size());
 }
 
 // --- The normal-mapped tubes' replicates -----------------------------------------------------
@@ -266,13 +270,17 @@ BumpyGgaaReplicate measure_bumpy_ggaa_replicate(const BumpyGgaaBudget& b, const 
   return r;
 }
 
-BumpyGgaaBudget bumpy_budget(Budget b) {
+template <>
+BumpyGgaaBudget replicate_budget<BumpyGgaaBudget>(Budget b) {
   return b == Budget::kQuick ? BumpyGgaaBudget{64, 44, 256, 6, 0}
                              : BumpyGgaaBudget{128, 88, 1024, 10, 0};
 }
-BumpyGgaaBudget bumpy_probe_budget() { return {32, 22, 256, 4, 0}; }
+template <>
+BumpyGgaaBudget replicate_probe_budget<BumpyGgaaBudget>() {
+  return {32, 22, 256, 4, 0};
+}
 
-BumpyGgaaReplicate bumpy_replicate(const BumpyGgaaBudget& b, int k) {
+BumpyGgaaReplicate replicate(const BumpyGgaaBudget& b, int k) {
   const std::array<int, 4> key = {b.width, b.height, b.reference_spp, k};
   return made_once<BumpyGgaaReplicate>(
       key, [&] { return measure_bumpy_ggaa_replicate(b, "chermain.ggaa-fig9", k); });
@@ -386,16 +394,6 @@ std::string describe_ordering(const Ordering& o, const BumpyGgaaBudget& g,
       "1,024 spp): no GGAA 13.484, half slope 7.527 | 8.185, projected half 7.425 | 7.794 % "
       "(s_K 0.5 | 1)",
       bumpy_setup(g, m.reps), ordering_parts(o, m), m.tolerance, kPairTolerance, m.reference_error);
-}
-
-std::string ordering_power(const Ordering& o, const BumpyGgaaBudget& g,
-                           const OrderingMeasured& genuine) {
-  const double conf = sidak_confidence(o.parts.size());
-  return fmt::format(
-      "paired difference detected at 90 % power: ≥ {:.3f} % RMSE ((t_{{{:.4f}, {}}} + 1.28) × SE "
-      "of the mean over {} replicates, largest over {} part(s))",
-      largest_detectable(genuine.diffs), 0.5 + 0.5 * conf, g.replicates - 1, g.replicates,
-      o.parts.size());
 }
 
 const Ordering kSkOrdering{

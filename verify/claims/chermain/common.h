@@ -48,6 +48,10 @@ double largest_detectable(const std::vector<std::vector<double>>& parts);
 
 // "a (claimed higher) vs b" in words: as claimed, reversed or a tie within the noise.
 std::string_view reading(const PairedComparison& c);
+// The power of a claim decided by decide_paired over `replicates` replicates: the largest
+// difference detected at 90 % power, in `unit`.
+std::string paired_power(const std::vector<std::vector<double>>& parts, std::string_view unit,
+                         int replicates);
 
 // --- The tube scene's replicates (chermain.ggaa-error, chermain.ggaa-shimmer) -----------------
 // K independent replicates of the tube scene (glint layout, sub-pixel camera offset and reference
@@ -68,7 +72,7 @@ struct GgaaReplicate {
 };
 GgaaReplicate measure_ggaa_replicate(const GgaaReplicateBudget& b, const std::string& id, int k);
 // Replicate k of "chermain.ggaa" at `b`, measured once per process.
-GgaaReplicate ggaa_replicate(const GgaaReplicateBudget& b, int k);
+GgaaReplicate replicate(const GgaaReplicateBudget& b, int k);
 
 // A claim "a < b" in every part (RMSE: a is more accurate; shimmer: b shimmers more), decided on
 // the per-replicate differences b − a. The control puts `control` in place of b when the genuine
@@ -91,43 +95,12 @@ struct GgaaMeasured {
   Input input = Input::kGenuine;
   std::vector<std::vector<double>> diffs = {};  // per part, per replicate: b − a
 };
-GgaaMeasured measure_ggaa(const GgaaOrdering& o, std::span<const GgaaReplicate> reps, Input input);
-Decision decide_ggaa(const GgaaOrdering& o, const GgaaMeasured& m);
+GgaaMeasured measure_ordering(const GgaaOrdering& o, std::span<const GgaaReplicate> reps,
+                              Input input);
+Decision decide_ordering(const GgaaOrdering& o, const GgaaMeasured& m);
 // The genuine measurement's detail, or the control's text.
-std::string describe_ggaa(const GgaaOrdering& o, const GgaaReplicateBudget& g,
-                          const GgaaMeasured& m);
-std::string ggaa_power(const GgaaOrdering& o, const GgaaReplicateBudget& g,
-                       const GgaaMeasured& genuine);
-
-// The sizes: quick 64×44, 32-spp references, 3 frames, 6 replicates; full 128×88, 64 spp, 4, 10.
-GgaaReplicateBudget ggaa_budget(Budget b);
-GgaaReplicateBudget ggaa_probe_budget();
-
-// What chermain.ggaa-error and chermain.ggaa-shimmer have in common as claims (verify/claim.h):
-// everything but their names and Self::ordering().
-template <typename Self>
-struct GgaaOrderingClaim {
-  static constexpr bool kHasCorrectedControl = true;
-  using Sizes = GgaaReplicateBudget;
-  static Sizes sizes(Budget b) { return ggaa_budget(b); }
-  static Sizes probe_sizes() { return ggaa_probe_budget(); }
-  static int configurations(const Sizes& z) { return z.replicates; }
-  using Evidence = GgaaReplicate;  // replicate k, shared by both claims
-  static Evidence observe(const Sizes& z, int k, std::uint64_t) { return ggaa_replicate(z, k); }
-  using Measured = GgaaMeasured;
-  static Measured measure(const Sizes&, std::span<const Evidence> all, Input input) {
-    return measure_ggaa(Self::ordering(), all, input);
-  }
-  static Decision decide(const Sizes&, const Measured& m) {
-    return decide_ggaa(Self::ordering(), m);
-  }
-  static std::string describe(const Sizes& z, const Measured& m, Input) {
-    return describe_ggaa(Self::ordering(), z, m);
-  }
-  static std::string power(const Sizes& z, const Measured& m, const Measured&) {
-    return ggaa_power(Self::ordering(), z, m);
-  }
-};
+std::string describe_ordering(const GgaaOrdering& o, const GgaaReplicateBudget& g,
+                              const GgaaMeasured& m);
 
 // --- The normal-mapped tubes' replicates (chermain.ggaa-derivatives, chermain.ggaa-sk) --------
 // Both claims on one replicated measurement of the normal-mapped tubes (BumpyTubeOptions of
@@ -165,7 +138,7 @@ inline constexpr double kPairTolerance = 0.1;
 BumpyGgaaReplicate measure_bumpy_ggaa_replicate(const BumpyGgaaBudget& b, const std::string& id,
                                                 int k);
 // Replicate k of "chermain.ggaa-fig9" at `b`, measured once per process.
-BumpyGgaaReplicate bumpy_replicate(const BumpyGgaaBudget& b, int k);
+BumpyGgaaReplicate replicate(const BumpyGgaaBudget& b, int k);
 
 using BumpyField = double BumpyGgaaReplicate::*;
 // "a has the lower RMSE" for one part: a and b against the reference, and against the second one.
@@ -177,6 +150,7 @@ struct OrderingPart {
 };
 struct Ordering {
   std::vector<OrderingPart> parts;
+  static constexpr std::string_view unit = "% RMSE";
   // Per part, per replicate: b − a, with the near-truth image in place of a (replace_a: the
   // corrected input, which must hold) or of b (replace_b: the perturbed one, which must fail).
   std::vector<std::vector<double>> diffs(std::span<const BumpyGgaaReplicate> reps,
@@ -199,26 +173,39 @@ Decision decide_ordering(const Ordering& o, const OrderingMeasured& m);
 // The genuine measurement's detail, or the control's text.
 std::string describe_ordering(const Ordering& o, const BumpyGgaaBudget& g,
                               const OrderingMeasured& m);
-std::string ordering_power(const Ordering& o, const BumpyGgaaBudget& g,
-                           const OrderingMeasured& genuine);
 double mean_field(std::span<const BumpyGgaaReplicate> reps, BumpyField f);
 
-// The sizes: quick 64×44, 256-spp references, 6 replicates; full 128×88, 1,024 spp, 10.
-BumpyGgaaBudget bumpy_budget(Budget b);
-BumpyGgaaBudget bumpy_probe_budget();
+// The sizes of a replicated measurement, per budget and at the probe size: the tube scene's
+// (GgaaReplicateBudget) quick 64×44, 32-spp references, 3 frames, 6 replicates, full 128×88,
+// 64 spp, 4 frames, 10; the normal-mapped tubes' (BumpyGgaaBudget) quick 64×44, 256-spp
+// references, 6 replicates, full 128×88, 1,024 spp, 10.
+template <typename Sizes>
+Sizes replicate_budget(Budget b);
+template <typename Sizes>
+Sizes replicate_probe_budget();
+template <>
+GgaaReplicateBudget replicate_budget<GgaaReplicateBudget>(Budget b);
+template <>
+GgaaReplicateBudget replicate_probe_budget<GgaaReplicateBudget>();
+template <>
+BumpyGgaaBudget replicate_budget<BumpyGgaaBudget>(Budget b);
+template <>
+BumpyGgaaBudget replicate_probe_budget<BumpyGgaaBudget>();
 
-// What chermain.ggaa-derivatives and chermain.ggaa-sk have in common as claims (verify/claim.h):
-// everything but their names and Self::ordering(). A claim may replace any step.
-template <typename Self>
-struct OrderingClaim {
+// What the replicated ordering claims have in common as claims (verify/claim.h): chermain.ggaa-
+// error and -shimmer on the tube scene's replicates (GgaaOrderingClaim), chermain.ggaa-derivatives
+// and -sk on the normal-mapped tubes' (BumpyOrderingClaim). Everything but their names and
+// Self::ordering(); a claim may replace any step.
+template <typename Self, typename SizesT, typename Replicate, typename MeasuredT>
+struct ReplicatedOrderingClaim {
   static constexpr bool kHasCorrectedControl = true;
-  using Sizes = BumpyGgaaBudget;
-  static Sizes sizes(Budget b) { return bumpy_budget(b); }
-  static Sizes probe_sizes() { return bumpy_probe_budget(); }
+  using Sizes = SizesT;
+  static Sizes sizes(Budget b) { return replicate_budget<Sizes>(b); }
+  static Sizes probe_sizes() { return replicate_probe_budget<Sizes>(); }
   static int configurations(const Sizes& z) { return z.replicates; }
-  using Evidence = BumpyGgaaReplicate;  // replicate k, shared by both claims
-  static Evidence observe(const Sizes& z, int k, std::uint64_t) { return bumpy_replicate(z, k); }
-  using Measured = OrderingMeasured;
+  using Evidence = Replicate;  // replicate k, made once for the claims that share it
+  static Evidence observe(const Sizes& z, int k, std::uint64_t) { return replicate(z, k); }
+  using Measured = MeasuredT;
   static Measured measure(const Sizes&, std::span<const Evidence> all, Input input) {
     return measure_ordering(Self::ordering(), all, input);
   }
@@ -229,9 +216,15 @@ struct OrderingClaim {
     return describe_ordering(Self::ordering(), z, m);
   }
   static std::string power(const Sizes& z, const Measured& m, const Measured&) {
-    return ordering_power(Self::ordering(), z, m);
+    return paired_power(m.diffs, Self::ordering().unit, z.replicates);
   }
 };
+template <typename Self>
+using GgaaOrderingClaim =
+    ReplicatedOrderingClaim<Self, GgaaReplicateBudget, GgaaReplicate, GgaaMeasured>;
+template <typename Self>
+using BumpyOrderingClaim =
+    ReplicatedOrderingClaim<Self, BumpyGgaaBudget, BumpyGgaaReplicate, OrderingMeasured>;
 
 // The two orderings of Fig. 9: chermain.ggaa-sk's (s_K 0.5 below s_K 1, for both derivative
 // variants), which chermain.ggaa-derivatives also reads (ggaa_sk.cpp), and the derivatives' own

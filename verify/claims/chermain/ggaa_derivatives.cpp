@@ -39,7 +39,7 @@ struct DerivativesMeasured {
 
 }  // namespace
 
-struct GgaaDerivatives : OrderingClaim<GgaaDerivatives> {
+struct GgaaDerivatives : BumpyOrderingClaim<GgaaDerivatives> {
   static constexpr std::string_view kId = "chermain.ggaa-derivatives";
   static constexpr std::string_view kPaper = chermain_claims::kPaper;
   static constexpr std::string_view kSource = "Fig. 9, Sec. 6.2";
@@ -102,7 +102,7 @@ struct GgaaDerivatives : OrderingClaim<GgaaDerivatives> {
   }
 
   static std::string power(const Sizes& z, const Measured& m, const Measured&) {
-    return ordering_power(ordering(), z, m.ordering);
+    return paired_power(m.ordering.diffs, Ordering::unit, z.replicates);
   }
 };
 

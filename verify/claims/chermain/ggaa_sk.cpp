@@ -22,7 +22,7 @@
 
 namespace glintlab::verify::chermain_claims {
 
-struct GgaaSk : OrderingClaim<GgaaSk> {
+struct GgaaSk : BumpyOrderingClaim<GgaaSk> {
   static constexpr std::string_view kId = "chermain.ggaa-sk";
   static constexpr std::string_view kPaper = chermain_claims::kPaper;
   static constexpr std::string_view kSource = "Fig. 9, Sec. 6.2";
