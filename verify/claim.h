@@ -60,6 +60,11 @@ struct Decision {
   std::optional<double> p_value = {};     // combined (corrected), for statistical claims
   std::vector<double> raw_p_values = {};  // every configuration's
   int configurations = 0;                 // how many configurations the verdict speaks for
+  // Where a rule of the claim's own reports another verdict than the one it measured (e.g. "not
+  // a separate finding: the cause is another claim's"): the measured one. The runner picks and
+  // judges the control against it, as the finding rule (verify/finding_rule.h) keeps a control's
+  // standing, and reports `verdict` with this kept as CheckResult::measured_verdict.
+  std::optional<Verdict> measured_verdict = {};
 };
 
 template <typename C>

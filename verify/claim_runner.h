@@ -3,8 +3,9 @@
 // (a holding claim gets the perturbed input, any other the corrected one where the claim has it),
 // measures and decides the control from the same evidence, and fills the CheckResult: verdict,
 // value, p-values, regime, the control's verdict and whether it opposes (then, where the claim has
-// one, what is measured beside the control: beside_control), power. Included only by
-// the claims' own files, which end in GLINTLAB_CLAIM(Type).
+// one, what is measured beside the control: beside_control), power. A decision that reports another
+// verdict than it measured (Decision::measured_verdict) has its control picked and judged against
+// the measured one. Included only by the claims' own files, which end in GLINTLAB_CLAIM(Type).
 #pragma once
 
 #include <fmt/format.h>
@@ -52,7 +53,7 @@ CheckResult decide_all(const typename C::Sizes& z, std::span<const typename C::E
   const typename C::Measured genuine = C::measure(z, evidence, Input::kGenuine);
   const Decision d = C::decide(z, genuine);
   CheckResult r;
-  r.verdict = d.verdict;
+  r.verdict = d.measured_verdict.value_or(d.verdict);  // the control is judged against this one
   r.statistic = std::string(C::kStatistic);
   r.value = d.value;
   r.bound = d.bound;
@@ -60,7 +61,7 @@ CheckResult decide_all(const typename C::Sizes& z, std::span<const typename C::E
   r.raw_p_values = d.raw_p_values;
   r.configurations = d.configurations;
   if constexpr (requires { C::kRegime; })
-    if (r.verdict == Verdict::kHoldsInRegime) r.regime = std::string(C::kRegime);
+    if (d.verdict == Verdict::kHoldsInRegime) r.regime = std::string(C::kRegime);
   r.detail = C::describe(z, genuine, Input::kGenuine);
 
   const Input input = control_input<C>(r.verdict);
@@ -74,6 +75,7 @@ CheckResult decide_all(const typename C::Sizes& z, std::span<const typename C::E
     r.control += ". " + C::beside_control(z, control);
   if constexpr (requires { C::power(z, genuine, control); })
     r.power = C::power(z, genuine, control);
+  if (d.measured_verdict) r.measured_verdict = d.measured_verdict, r.verdict = d.verdict;
   return r;
 }
 

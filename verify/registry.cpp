@@ -3,6 +3,7 @@
 
 #include "verify/check.h"
 #include "verify/claim.h"
+#include "verify/claims/chermain/list.h"
 #include "verify/claims/claims.h"
 #include "verify/claims/kneiphof/list.h"
 #include "verify/claims/podee/list.h"
@@ -47,7 +48,8 @@ const std::vector<Check>& registered_checks() {
     std::vector<Check> all;
     for (auto* list :
          {&smooth_checks, &smooth_sampler_checks, &smooth_consistency_checks, &eto_pdf_checks,
-          &eto_checks, &kemppinen_checks, &list_checks<kneiphof_claims::Claims>, &chermain_checks,
+          &eto_checks, &kemppinen_checks, &list_checks<kneiphof_claims::Claims>,
+          &list_checks<chermain_claims::Claims>,
           &list_checks<podee_claims::Claims>, &across_checks, &adequacy_checks}) {
       for (Check& c : list()) {
         attach_reading(c);

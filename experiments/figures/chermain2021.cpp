@@ -18,7 +18,6 @@
 #include "core/io/png.h"
 #include "experiments/figures/panel_layout.h"
 #include "verify/check.h"
-#include "verify/claims/chermain_probes.h"
 #include "verify/claims/chermain_scenes.h"
 
 namespace glintlab::experiments {

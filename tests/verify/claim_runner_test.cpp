@@ -132,6 +132,36 @@ TEST(ClaimRunner, CalibrateBecomesTheCalibration) {
   EXPECT_TRUE(is_statistical(c));
 }
 
+// A claim whose own rule reports "inconclusive" for a measured "fails" (not a separate finding,
+// Decision::measured_verdict): the control is picked and judged against the measured "fails", and
+// the result keeps it.
+template <Toy kToy>
+struct NotASeparateFinding : ToyMean<kToy> {
+  static Decision decide(const typename ToyMean<kToy>::Sizes& z, const double& m) {
+    Decision d = ToyMean<kToy>::decide(z, m);
+    // The genuine measurement's "fails" (mean 1.1; the perturbed input's is 1.2).
+    if (d.verdict == Verdict::kFails && m < 1.15)
+      d.measured_verdict = d.verdict, d.verdict = Verdict::kInconclusive;
+    return d;
+  }
+};
+
+TEST(ClaimRunner, MeasuredVerdictPicksAndJudgesTheControl) {
+  const CheckResult r = run_claim<NotASeparateFinding<Toy::kFails>>({8});
+  EXPECT_EQ(r.verdict, Verdict::kInconclusive);
+  EXPECT_EQ(r.measured_verdict, Verdict::kFails);
+  EXPECT_EQ(r.control_verdict, Verdict::kHolds);  // the corrected input, as for "fails"
+  EXPECT_TRUE(r.control_rejected) << r.control;
+  // A perturbed control that fails too does not oppose the measured "fails" (it would oppose the
+  // reported "inconclusive").
+  const CheckResult q = run_claim<NotASeparateFinding<Toy::kFailsWithoutCorrection>>({8});
+  EXPECT_EQ(q.verdict, Verdict::kInconclusive);
+  EXPECT_EQ(q.control_verdict, Verdict::kFails);
+  EXPECT_FALSE(q.control_rejected) << q.control;
+  // Without the rule: no measured verdict kept.
+  EXPECT_FALSE(run_claim<ToyMean<Toy::kFails>>({8}).measured_verdict.has_value());
+}
+
 TEST(ClaimRunner, SameResultOnOneAndTwoThreads) {
   CheckResult one, two;
   tbb::task_arena(1).execute([&] { one = run_claim<ToyMean<Toy::kHolds>>({64}); });

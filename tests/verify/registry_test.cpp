@@ -86,9 +86,9 @@ const std::vector<ClaimGroup>& shared_measurements() {
       // The stability sweep of every registered model (verify/claims/across.cpp suite_sweeps):
       // about 15 s each apart.
       {"stability_sweep", {"all.energy-gain", "all.probability", "all.variance"}},
-      // The replicates of the GGAA renders (verify/claims/chermain.cpp ggaa_replicates).
+      // The replicates of the GGAA renders (verify/claims/chermain/common.h, replicate).
       {"chermain_ggaa_replicates", {"chermain.ggaa-error", "chermain.ggaa-shimmer"}},
-      // The normal-mapped tubes' replicates, three 256-spp references each (bumpy_replicates).
+      // The normal-mapped tubes' replicates, three 256-spp references each (replicate).
       {"chermain_bumpy_replicates", {"chermain.ggaa-derivatives", "chermain.ggaa-sk"}},
   };
   return groups;

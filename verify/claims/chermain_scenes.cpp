@@ -406,4 +406,36 @@ double frame_to_frame_variance(const std::vector<Image>& frames, const Image& re
   return 1e4 * sum / double(n);
 }
 
+GgaaVerdict judge_ggaa(const GgaaMeasurement& m, const Image& reference) {
+  GgaaVerdict v;
+  v.rmse_none = display_rmse_percent(m.none, reference);
+  v.rmse_half05 = display_rmse_percent(m.half05, reference);
+  v.rmse_half1 = display_rmse_percent(m.half1, reference);
+  v.rmse_proj05 = display_rmse_percent(m.proj05, reference);
+  v.rmse_proj1 = display_rmse_percent(m.proj1, reference);
+  v.flicker_none = frame_to_frame_variance(m.frames_none, reference);
+  v.flicker05 = frame_to_frame_variance(m.frames05, reference);
+  v.flicker1 = frame_to_frame_variance(m.frames1, reference);
+  v.ggaa_lowers = v.rmse_proj05 < v.rmse_none && v.rmse_half05 < v.rmse_none;
+  v.projected_beats_half = v.rmse_proj05 < v.rmse_half05 && v.rmse_proj1 < v.rmse_half1;
+  v.small_kernel_lower_rmse = v.rmse_proj05 < v.rmse_proj1;
+  v.small_kernel_shimmers_more = v.flicker05 > v.flicker1;
+  return v;
+}
+
+LeanMeasurement measure_lean(const LeanBudget& b, std::uint64_t seed) {
+  NormalMapSceneOptions o;
+  o.width = b.width, o.height = b.height, o.threads = b.threads;
+  o.groove_p = b.groove_p, o.groove_q = b.groove_q;
+  LeanMeasurement m;
+  m.reference = render_normal_map_reference(o, b.reference_spp, seed);
+  m.no_lean = render_normal_map(o, NormalMapMethod::kNoLean);
+  m.lean_rho0 = render_normal_map(o, NormalMapMethod::kLeanRhoZero);
+  m.lean = render_normal_map(o, NormalMapMethod::kLean);
+  m.rmse_no_lean = display_rmse_percent(m.no_lean, m.reference);
+  m.rmse_lean_rho0 = display_rmse_percent(m.lean_rho0, m.reference);
+  m.rmse_lean = display_rmse_percent(m.lean, m.reference);
+  return m;
+}
+
 }  // namespace glintlab::verify

@@ -1,4 +1,4 @@
-// The two test scenes of Chermain et al. 2021 that chermain.ggaa-error, chermain.lean-correlation
+// The two test scenes of Chermain et al. 2021 that the chermain.* claims (verify/claims/chermain/)
 // and the figures chermain2021-fig7/8/9 render: curved glinty tubes under a point light (Figs. 8–9)
 // and a plane with an anisotropic normal map under a directional light (Fig. 7). Only the glinty
 // specular component is rendered (as the paper's RMSEs, Sec. 6), one sample per pixel at the pixel
@@ -89,6 +89,43 @@ Image render_normal_map(const NormalMapSceneOptions& o, NormalMapMethod method);
 // The reference: `spp` stratified positions per pixel, each with the finest slope of the height
 // field at its own uv, base roughness, the pixel's footprint P.
 Image render_normal_map_reference(const NormalMapSceneOptions& o, int spp, std::uint64_t seed);
+
+// --- What the figures measure on these scenes (chermain2021-fig7/8/9) -------------------------
+// The pan of the shimmer measurements, in pixels per frame (chermain.ggaa-shimmer and Fig. 9).
+inline constexpr double kGgaaPan = 0.37;
+
+struct GgaaBudget {
+  int width, height;
+  int reference_spp;
+  int frames;   // camera-pan frames for the frame-to-frame variance
+  int threads;  // 0 = all cores
+};
+struct GgaaMeasurement {
+  Image reference, none, half05, half1, proj05, proj1;  // 1 spp; half = Eq. 20, proj = Eq. 21
+  std::vector<Image> frames_none, frames05, frames1;    // projected half vector, s_K 0.5 and 1
+};
+struct GgaaVerdict {
+  double rmse_none = 0, rmse_half05 = 0, rmse_half1 = 0, rmse_proj05 = 0, rmse_proj1 = 0;
+  double flicker_none = 0, flicker05 = 0, flicker1 = 0;
+  bool ggaa_lowers = false, projected_beats_half = false;
+  bool small_kernel_lower_rmse = false, small_kernel_shimmers_more = false;
+};
+// The display RMSE % of every method against `reference`, the shimmer of the pans, and Fig. 9's
+// orderings read off them (one render each: no replicates, no intervals).
+GgaaVerdict judge_ggaa(const GgaaMeasurement& m, const Image& reference);
+
+struct LeanBudget {
+  int width, height;
+  int reference_spp;
+  int groove_p, groove_q;  // grooves perpendicular to (p, q)
+  int threads;
+};
+struct LeanMeasurement {
+  Image reference, no_lean, lean_rho0, lean;
+  double rmse_no_lean = 0, rmse_lean_rho0 = 0, rmse_lean = 0;  // display RMSE %
+};
+// The normal-map scene at `b`: its reference (seed), the three methods and their display RMSE %.
+LeanMeasurement measure_lean(const LeanBudget& b, std::uint64_t seed);
 
 // --- Metrics ---------------------------------------------------------------------------------
 // The RMSE of the paper's figures, in %: both images scaled by one exposure that maps the

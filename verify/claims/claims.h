@@ -15,7 +15,6 @@ std::vector<Check> eto_pdf_checks();             // verify/claims/eto_pdf.cpp
 std::vector<Check> eto_checks();                 // verify/claims/eto.cpp
 std::vector<Check> kemppinen_checks();           // verify/claims/kemppinen.cpp
 std::vector<Check> kemppinen_glint_checks();     // verify/claims/kemppinen_glints.cpp
-std::vector<Check> chermain_checks();            // verify/claims/chermain.cpp
 std::vector<Check> across_checks();              // verify/claims/across.cpp
 std::vector<Check> adequacy_checks();            // verify/claims/adequacy.cpp
 

@@ -9,6 +9,7 @@
 
 #include "verify/check.h"
 #include "verify/claim.h"
+#include "verify/claims/chermain/list.h"
 #include "verify/claims/kneiphof/list.h"
 #include "verify/claims/podee/list.h"
 
@@ -37,7 +38,8 @@ struct ProbesOf<ClaimList<As...>, ClaimList<Bs...>, Rest...>
 
 template <typename T>
 class ClaimProbes : public ::testing::Test {};
-using AllProbes = ProbesOf<kneiphof_claims::Claims, podee_claims::Claims>::type;
+using AllProbes =
+    ProbesOf<kneiphof_claims::Claims, chermain_claims::Claims, podee_claims::Claims>::type;
 TYPED_TEST_SUITE(ClaimProbes, AllProbes);
 
 TYPED_TEST(ClaimProbes, VerdictAndControlsAtProbeSize) {
@@ -95,6 +97,27 @@ TEST(ClaimLists, KneiphofRegisteredInOrder) {
   EXPECT_EQ(expected, (std::vector<Verdict>{Verdict::kHoldsWithin, Verdict::kHolds, Verdict::kHolds,
                                             Verdict::kHoldsWithin, Verdict::kHoldsInRegime,
                                             Verdict::kInconclusive}));
+}
+
+TEST(ClaimLists, ChermainRegisteredInOrder) {
+  std::vector<std::string> ids;
+  std::vector<Verdict> expected;
+  for (const Check& c : registered_checks())
+    if (c.id.rfind("chermain.", 0) == 0) {
+      ids.push_back(c.id), expected.push_back(c.expected);
+      EXPECT_EQ(c.paper, "Chermain et al. 2021");
+      EXPECT_FALSE(c.paper_quote.empty()) << c.id;
+      EXPECT_FALSE(c.calibration) << c.id;
+      EXPECT_FALSE(c.expected_full.has_value()) << c.id;
+    }
+  EXPECT_EQ(ids, (std::vector<std::string>{
+                     "chermain.kernel-normalized", "chermain.dictionary-converges",
+                     "chermain.correlation", "chermain.ggaa-error", "chermain.ggaa-derivatives",
+                     "chermain.ggaa-sk", "chermain.ggaa-shimmer", "chermain.lean-correlation"}));
+  EXPECT_EQ(expected,
+            (std::vector<Verdict>{Verdict::kHolds, Verdict::kHolds, Verdict::kHolds,
+                                  Verdict::kHolds, Verdict::kInconclusive, Verdict::kInconclusive,
+                                  Verdict::kHolds, Verdict::kHolds}));
 }
 
 }  // namespace
