@@ -124,5 +124,10 @@ std::vector<KemppinenBoundary> kemppinen_boundaries(const std::vector<KemppinenC
 inline constexpr std::array<KemppinenLevel, 4> kKemppinenBoundaryLevels = {
     KemppinenLevel::kSmooth, KemppinenLevel::kK1Rational, KemppinenLevel::kK4Rational,
     KemppinenLevel::kK9Rational};
+// The predicted boundaries alone, for one row (`row`'s points are ignored), in the order of
+// kKemppinenBoundaryLevels (NaN: not adequate even at 10⁹ points; 0.01 … : adequate down to the
+// scan's end, 10⁻² points).
+std::array<double, kKemppinenBoundaryLevels.size()> kemppinen_predicted_boundaries(
+    KemppinenCell row, double tau);
 
 }  // namespace glintlab::verify::adequacy
