@@ -186,7 +186,7 @@ exact level everywhere. Writes DIR/adequacy.csv and adequacy.json (the
 table, with each level's measured ns per evaluation: the only numbers that vary run to run) and
 per model x light x incidence an EXR and a labelled PNG map of the cheapest adequate level, with
 the predicted boundary CV = sqrt((1 - p)/(N_P p)) = TAU drawn over it.
-The Kemppinen family (kemppinen_ggx) has nine levels, cheapest first: smooth
+The Kemppinen family (kemppinen_ggx, kemppinen_beckmann) has nine levels, cheapest first: smooth
 (the base NDF in place of the glinty one), then Algorithm 1 with k = 1, 4, 9, 16 neighbours, each
 with the rational erf before the exact one in the compensation; the most complete is k16_exact.
 Its grid: 1 .. 1e6 expected points per footprint, roughness, incidence (the footprint stretched by
@@ -364,7 +364,7 @@ void add_adequacy_command(CLI::App& app) {
                     "quick = 9 footprint sizes x 12 settings (seconds), full = finer");
   add_text_option(cmd, "--models", o->models,
                   "comma-separated globs over the models (deliot_belcour, kneiphof_klein, "
-                  "kemppinen_ggx)",
+                  "kemppinen_ggx, kemppinen_beckmann)",
                   "LIST");
   add_text_option(cmd, "--threshold", o->threshold,
                   "TAU, the largest relative difference no one sees: a number in (0, 1]", "NUMBER");

@@ -9,6 +9,7 @@
 
 #include "core/models/kemppinen_beckmann.h"
 #include "core/models/kemppinen_ggx.h"
+#include "verify/adequacy/kemppinen_levels.h"
 
 namespace glintlab::verify::adequacy {
 namespace {
@@ -26,15 +27,7 @@ Vec2<double> footprint_axes(const KemppinenCell& c) {
 template <class M>
 std::vector<double> model_param_values(const KemppinenCell& c, KemppinenLevel level,
                                        std::uint64_t seed) {
-  std::vector<double> v;
-  for (const ParamSpec& s : M::kParams) v.push_back(s.default_value);
-  v[param_index<M>("alpha_x")] = c.alpha;
-  v[param_index<M>("alpha_y")] = c.alpha;
-  v[param_index<M>("density")] = kKemppinenDensity;
-  v[param_index<M>("k")] = double(kemppinen_level_side(level) - 1);
-  v[param_index<M>("erf")] = kemppinen_level_rational(level) ? 1.0 : 0.0;
-  v[param_index<M>("seed")] = double(seed % 4294967296ULL);
-  return v;
+  return kemppinen_param_values<M>(c.alpha, kKemppinenDensity, level, seed);
 }
 
 // Positions at which a rational-erf level is also evaluated by the model itself, for its time.
@@ -43,16 +36,13 @@ constexpr int kRationalTimedPositions = 256;
 template <class M>
 typename M::template Params<double> level_params(const KemppinenCell& c, KemppinenLevel level,
                                                  std::uint64_t seed) {
-  return M::template params<double>(model_param_values<M>(c, level, seed));
+  return kemppinen_level_params<M>(c.alpha, kKemppinenDensity, level, seed);
 }
 
-// The model's value without its sampler's pdf (M::eval also computes the pdf, which the value
-// does not use and which costs as much again).
 template <class M>
 ModelEval<double, detail::kKemppinenIntermediates.size()> value_at(
     const typename M::template Params<double>& params, const KemppinenCell& c, int i) {
-  return detail::kemppinen_model_eval(
-      params, kemppinen_cell_query(c, kemppinen_surface_position(c, i)), 0.0);
+  return kemppinen_value(params, kemppinen_cell_query(c, kemppinen_surface_position(c, i)));
 }
 
 template <class M>
@@ -64,14 +54,12 @@ double values_of(const KemppinenCell& c, KemppinenLevel level, int samples, std:
     // D★^f replaced by D: G2 and D of the model (independent of the position and the level).
     const auto t0 = Clock::now();
     const auto e = value_at<M>(level_params<M>(c, KemppinenLevel::kK1Exact, seed), c, 0);
-    const ModelQuery<double> q = kemppinen_cell_query(c, kemppinen_surface_position(c, 0));
-    const double g2 = e.intermediates[12], d = e.intermediates[3];
-    const double smooth = q.wi.z > 0 && q.wo.z > 0 ? g2 * d / (4 * q.wi.z) : 0.0;
+    const double smooth =
+        kemppinen_smooth_value(e, kemppinen_cell_query(c, kemppinen_surface_position(c, 0)));
     for (int i = 0; i < samples; ++i) out[std::size_t(i)] = smooth;
     return std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / samples;
   }
-  const KemppinenLevel exact =
-      kemppinen_level_rational(level) ? KemppinenLevel(int(level) + 1) : level;
+  const KemppinenLevel exact = kemppinen_exact_twin(level);
   const auto params = level_params<M>(c, exact, seed);
   const auto t0 = Clock::now();
   for (int i = 0; i < samples; ++i) out[std::size_t(i)] = value_at<M>(params, c, i).value;
@@ -243,47 +231,52 @@ std::vector<KemppinenCellResult> measure_kemppinen_grid_at(
   return out;
 }
 
+std::array<double, kKemppinenBoundaryLevels.size()> kemppinen_predicted_boundaries(
+    KemppinenCell c, double tau) {
+  // Predicted adequacy at TAU itself: the chooser's rule with its margin divided out.
+  const auto predicted_at = [&](double points) {
+    c.points = points;
+    return with_model(c.model, [&](auto m) {
+      using M = decltype(m);
+      const auto p =
+          M::template params<double>(model_param_values<M>(c, KemppinenLevel::kK16Exact, 0));
+      const ModelQuery<double> q = kemppinen_cell_query(c, kemppinen_surface_position(c, 0));
+      return adequate_kemppinen_levels(
+          kemppinen_level_moments(p.glint, p.ndf, q.footprint, half_vector(q.wi, q.wo)),
+          tau / kChooserMargin);
+    });
+  };
+  std::array<double, kKemppinenBoundaryLevels.size()> predicted;
+  std::array<bool, kKemppinenBoundaryLevels.size()> open;
+  predicted.fill(NAN);
+  open.fill(true);
+  const auto adequate = [](const AdequateKemppinenLevels<double>& a, KemppinenLevel l) {
+    return l == KemppinenLevel::kSmooth ? bool(a.smooth)
+                                        : bool(a.side[std::size_t(kemppinen_level_side(l) - 1)]);
+  };
+  double previous = NAN;
+  for (int s = 0; s <= 1100; ++s) {
+    const double points = std::pow(10.0, 9 - 0.01 * s);
+    const AdequateKemppinenLevels<double> a = predicted_at(points);
+    for (std::size_t i = 0; i < predicted.size(); ++i) {
+      if (!open[i]) continue;
+      if (adequate(a, kKemppinenBoundaryLevels[i])) continue;
+      open[i] = false;  // not adequate here: the boundary is between here and the step above
+      predicted[i] = s == 0 ? NAN : std::sqrt(points * previous);
+    }
+    previous = points;
+  }
+  for (std::size_t i = 0; i < predicted.size(); ++i)
+    if (open[i]) predicted[i] = previous;  // adequate down to the scan's end
+  return predicted;
+}
+
 std::vector<KemppinenBoundary> kemppinen_boundaries(const std::vector<KemppinenCellResult>& rows,
                                                     const KemppinenGridAxes& axes, double tau) {
   std::vector<KemppinenBoundary> out;
   const std::size_t n_cols = axes.points.size();
   for (std::size_t start = 0; start + n_cols <= rows.size(); start += n_cols) {
-    KemppinenCell c = rows[start].cell;
-    // Predicted adequacy at TAU itself: the chooser's rule with its margin divided out.
-    const auto predicted_at = [&](double points) {
-      c.points = points;
-      return with_model(c.model, [&](auto m) {
-        using M = decltype(m);
-        const auto p =
-            M::template params<double>(model_param_values<M>(c, KemppinenLevel::kK16Exact, 0));
-        const ModelQuery<double> q = kemppinen_cell_query(c, kemppinen_surface_position(c, 0));
-        return adequate_kemppinen_levels(
-            kemppinen_level_moments(p.glint, p.ndf, q.footprint, half_vector(q.wi, q.wo)),
-            tau / kChooserMargin);
-      });
-    };
-    std::array<double, kKemppinenBoundaryLevels.size()> predicted;
-    std::array<bool, kKemppinenBoundaryLevels.size()> open;
-    predicted.fill(NAN);
-    open.fill(true);
-    const auto adequate = [](const AdequateKemppinenLevels<double>& a, KemppinenLevel l) {
-      return l == KemppinenLevel::kSmooth ? bool(a.smooth)
-                                          : bool(a.side[std::size_t(kemppinen_level_side(l) - 1)]);
-    };
-    double previous = NAN;
-    for (int s = 0; s <= 1100; ++s) {
-      const double points = std::pow(10.0, 9 - 0.01 * s);
-      const AdequateKemppinenLevels<double> a = predicted_at(points);
-      for (std::size_t i = 0; i < predicted.size(); ++i) {
-        if (!open[i]) continue;
-        if (adequate(a, kKemppinenBoundaryLevels[i])) continue;
-        open[i] = false;  // not adequate here: the boundary is between here and the step above
-        predicted[i] = s == 0 ? NAN : std::sqrt(points * previous);
-      }
-      previous = points;
-    }
-    for (std::size_t i = 0; i < predicted.size(); ++i)
-      if (open[i]) predicted[i] = previous;  // adequate down to the scan's end
+    const auto predicted = kemppinen_predicted_boundaries(rows[start].cell, tau);
     for (std::size_t i = 0; i < predicted.size(); ++i) {
       KemppinenBoundary b;
       b.row = rows[start].cell;

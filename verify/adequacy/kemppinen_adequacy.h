@@ -18,10 +18,10 @@
 
 namespace glintlab::verify::adequacy {
 
-// The models measured: kemppinen_ggx. kemppinen_beckmann has the same levels on another base NDF;
-// it would double the family's time (about 50 CPU-seconds at quick), which the quick run's two
-// minutes on 2 cores do not leave room for.
-inline constexpr std::array<std::string_view, 1> kKemppinenFamilyModels = {"kemppinen_ggx"};
+// The models measured: kemppinen_ggx and kemppinen_beckmann (the same levels on the Beckmann base
+// NDF; the chooser and the moments take either NDF).
+inline constexpr std::array<std::string_view, 2> kKemppinenFamilyModels = {"kemppinen_ggx",
+                                                                           "kemppinen_beckmann"};
 
 // The material every cell shares: the models' defaults (K_P = 10⁴ points per unit uv area,
 // α★ = 0.02, pixel filter f = 0.5, isotropic, roulette blending, corrected normalisation, white).
@@ -124,5 +124,10 @@ std::vector<KemppinenBoundary> kemppinen_boundaries(const std::vector<KemppinenC
 inline constexpr std::array<KemppinenLevel, 4> kKemppinenBoundaryLevels = {
     KemppinenLevel::kSmooth, KemppinenLevel::kK1Rational, KemppinenLevel::kK4Rational,
     KemppinenLevel::kK9Rational};
+// The predicted boundaries alone, for one row (`row`'s points are ignored), in the order of
+// kKemppinenBoundaryLevels (NaN: not adequate even at 10⁹ points; 0.01 … : adequate down to the
+// scan's end, 10⁻² points).
+std::array<double, kKemppinenBoundaryLevels.size()> kemppinen_predicted_boundaries(
+    KemppinenCell row, double tau);
 
 }  // namespace glintlab::verify::adequacy

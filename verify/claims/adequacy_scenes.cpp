@@ -12,6 +12,8 @@
 
 #include "core/model_registry.h"
 #include "core/scene/footprint.h"
+#include "verify/adequacy/kemppinen_adequacy.h"
+#include "verify/adequacy/kemppinen_levels.h"
 
 namespace glintlab::verify::adequacy {
 namespace {
@@ -111,28 +113,56 @@ Vec2<double> realisation_uv(Vec2<double> uv, int j) {
   return {a - std::floor(a), b - std::floor(b)};
 }
 
+// The query of pixel (col, row): its footprint, directions from ray differentials, a point light
+// of unit intensity (the caller widens it to a cone), and the squared distance to the light.
+// False where the ray misses the shape or the view or the light is below the horizon.
+template <class Shape>
+bool pixel_query(const SceneGeometry& g, const Shape& shape, int col, int row,
+                 ModelQuery<double>& q, double& light_d2) {
+  const PixelFootprint<double> f =
+      pixel_footprint(g.camera, shape, col + 0.5, row + 0.5, LightPoint<double>{g.light, false});
+  if (!f.surface.hit || !(f.wi.z > 0) || !(f.wl.z > 0)) return false;
+  const Vec3<double> to_light = g.light - f.surface.p;
+  light_d2 = dot(to_light, to_light);
+  q = ModelQuery<double>{};
+  q.footprint = f.footprint;
+  q.wi = f.wi;
+  q.wo = f.wl;
+  q.light.intensity = 1;
+  q.light.cos_half_angle = 1;
+  return true;
+}
+
+// A pixel's renders (realisation 0) and, unless its level is the most complete one or it is not
+// lit, the rule's differences of the chosen level's realisations `x` against the most complete
+// level's `ref` and whether they exceed TAU.
+void score_pixel(ScenePixel& px, const std::vector<double>& x, const std::vector<double>& ref,
+                 std::size_t lit, double irradiance, bool most_complete, const Decision& d,
+                 double tau) {
+  px.exact_value = ref[0] * irradiance;
+  px.chosen_value = x[0] * irradiance;
+  px.lit = double(lit) >= kMinLitPositions;
+  if (most_complete || !px.lit) return;
+  const LevelStats st = compare_to_exact(x, ref, d);
+  px.mean_diff = st.mean_diff, px.cv_diff = st.cv_diff;
+  px.mean_diff_lcb = st.mean_diff_lcb, px.cv_diff_lcb = st.cv_diff_lcb;
+  px.exceeds = !st.undecided && (st.mean_diff_lcb > tau || st.cv_diff_lcb > tau);
+}
+
 template <class M, class Shape>
 void render_rows(const ChoiceScene& s, const SceneGeometry& g, const Shape& shape,
                  const SceneOptions& o, SceneRender& out) {
   const auto params = scene_params<M>(s, o.seed);
-  const LightPoint<double> light{g.light, false};
   const Decision pixel_decision = decision_at_level(kPixelFlagRate / 2, o.tau);
   tbb::parallel_for(0, o.height, [&](int row) {
     std::vector<double> x, ref;
     for (int col = 0; col < o.width; ++col) {
       ScenePixel& px = out.pixels[std::size_t(row) * std::size_t(o.width) + std::size_t(col)];
-      const PixelFootprint<double> f =
-          pixel_footprint(g.camera, shape, col + 0.5, row + 0.5, light);
-      if (!f.surface.hit || !(f.wi.z > 0) || !(f.wl.z > 0)) continue;
+      ModelQuery<double> q;
+      double d2 = 0;
+      if (!pixel_query(g, shape, col, row, q, d2)) continue;
       px.surface = true;
-      const Vec3<double> to_light = g.light - f.surface.p;
-      const double d2 = dot(to_light, to_light);
-      ModelQuery<double> q{};
-      q.footprint = f.footprint;
-      q.wi = f.wi;
-      q.wo = f.wl;
-      q.light.intensity = 1;
-      q.light.cos_half_angle = 1;  // a point light: kneiphof_klein widens it to its 0.26° cap
+      // A point light (cos_half_angle 1): kneiphof_klein widens it to its 0.26° cap.
       if (s.light == SceneLight::kSphereLight)
         q.light.cos_half_angle = std::sqrt(std::max(1 - kLightRadius * kLightRadius / d2, 0.0));
       // Irradiance at the point from the light (the same for both lights, to first order).
@@ -155,14 +185,88 @@ void render_rows(const ChoiceScene& s, const SceneGeometry& g, const Shape& shap
                                                             : level_value<M>(params, chosen, at);
         lit += ref[std::size_t(j)] != 0 ? 1 : 0;
       }
-      px.exact_value = ref[0] * irradiance;
-      px.chosen_value = x[0] * irradiance;
-      px.lit = double(lit) >= kMinLitPositions;
-      if (chosen == BinomialLevel::kExact || !px.lit) continue;
-      const LevelStats st = compare_to_exact(x, ref, pixel_decision);
-      px.mean_diff = st.mean_diff, px.cv_diff = st.cv_diff;
-      px.mean_diff_lcb = st.mean_diff_lcb, px.cv_diff_lcb = st.cv_diff_lcb;
-      px.exceeds = !st.undecided && (st.mean_diff_lcb > o.tau || st.cv_diff_lcb > o.tau);
+      score_pixel(px, x, ref, lit, irradiance, chosen == BinomialLevel::kExact, pixel_decision,
+                  o.tau);
+    }
+  });
+}
+
+// Realisation j of a Kemppinen pixel: j = 0 is the rendered pixel itself; the others move the
+// footprint's centre along the R2 sequence over a square kKemppinenSpread coarse cells wide, as the
+// Kemppinen grid moves it (kemppinen_adequacy.h): the implicit grid is spatial, so realisations
+// must not share its cells. Algorithm 1's coarser cell is 2^(⌊λ⌋+1)/√K_P ≤ 4 σ_max, and σ_max =
+// f × the footprint's longer axis ≤ f (|duv_dx| + |duv_dy|) with f = 0.5 (or 2/√K_P where λ is
+// clamped at 0); the spread uses that bound.
+Vec2<double> kemppinen_realisation_uv(const ModelQuery<double>& q, double density, int j) {
+  if (j == 0) return q.footprint.uv;
+  const double cell = 2 * std::max(std::hypot(q.footprint.duv_dx.x, q.footprint.duv_dx.y) +
+                                       std::hypot(q.footprint.duv_dy.x, q.footprint.duv_dy.y),
+                                   1 / std::sqrt(density));
+  const Vec2<double> r = surface_position(j);
+  return {q.footprint.uv.x + r.x * kKemppinenSpread * cell,
+          q.footprint.uv.y + r.y * kKemppinenSpread * cell};
+}
+
+// The Kemppinen family's pixels: the chosen level (choose_kemppinen_model_level, or the options'
+// chooser) against k16_exact at the same realisations. A rational level's values are its exact
+// twin's plus a constant (the compensation depends on ω_h and λ only, the same at every
+// realisation of a pixel; KemppinenAdequacy.RationalLevelIsTheExactOnePlusAConstant), taken from
+// realisation 0; the smooth level is G2 D / (4 cos θ_i), the same at every realisation.
+template <class Shape>
+void render_kemppinen_rows(const ChoiceScene& s, const SceneGeometry& g, const Shape& shape,
+                           const SceneOptions& o, SceneRender& out) {
+  using M = KemppinenGGX;
+  const double density = std::pow(10.0, s.log10_density);
+  std::array<M::Params<double>, kKemppinenLevels> params{};
+  for (int l = 1; l < kKemppinenLevels; ++l)
+    params[std::size_t(l)] =
+        kemppinen_level_params<M>(kSceneAlpha, density, KemppinenLevel(l), o.seed);
+  const M::Params<double>& reference = params[std::size_t(KemppinenLevel::kK16Exact)];
+  const Decision pixel_decision = decision_at_level(kPixelFlagRate / 2, o.tau);
+  tbb::parallel_for(0, o.height, [&](int row) {
+    std::vector<double> x, ref;
+    for (int col = 0; col < o.width; ++col) {
+      ScenePixel& px = out.pixels[std::size_t(row) * std::size_t(o.width) + std::size_t(col)];
+      ModelQuery<double> q;
+      double d2 = 0;
+      if (!pixel_query(g, shape, col, row, q, d2)) continue;
+      px.surface = true;
+      const double irradiance = kLightIntensity / d2;
+      px.facets = density * std::abs(q.footprint.duv_dx.x * q.footprint.duv_dy.y -
+                                     q.footprint.duv_dx.y * q.footprint.duv_dy.x);
+      px.p = 0;
+      px.level = o.kemppinen_chooser ? o.kemppinen_chooser(reference, q, o.chooser_tau)
+                                     : int(choose_kemppinen_model_level(reference, q, o.chooser_tau));
+      if (px.level < 0 || px.level >= kKemppinenLevels)
+        throw std::invalid_argument("adequacy scenes: the chooser returned no Kemppinen level");
+      const auto chosen = KemppinenLevel(px.level);
+      const KemppinenLevel twin = kemppinen_exact_twin(chosen);
+      const int n = o.realisations;
+      x.resize(std::size_t(n));
+      ref.resize(std::size_t(n));
+      std::size_t lit = 0;
+      double smooth = 0;
+      for (int j = 0; j < n; ++j) {
+        ModelQuery<double> at = q;
+        at.footprint.uv = kemppinen_realisation_uv(q, density, j);
+        const auto e = kemppinen_value(reference, at);
+        ref[std::size_t(j)] = e.value;
+        if (j == 0) smooth = kemppinen_smooth_value(e, at);
+        x[std::size_t(j)] = chosen == KemppinenLevel::kSmooth ? smooth
+                            : twin == KemppinenLevel::kK16Exact
+                                ? e.value
+                                : kemppinen_value(params[std::size_t(twin)], at).value;
+        lit += e.value != 0 ? 1 : 0;
+      }
+      if (chosen != twin) {
+        const double shift = kemppinen_value(params[std::size_t(chosen)], q).value -
+                             (twin == KemppinenLevel::kK16Exact
+                                  ? ref[0]
+                                  : kemppinen_value(params[std::size_t(twin)], q).value);
+        for (double& v : x) v += shift;
+      }
+      score_pixel(px, x, ref, lit, irradiance, chosen == KemppinenLevel::kK16Exact,
+                  pixel_decision, o.tau);
     }
   });
 }
@@ -174,6 +278,14 @@ void render_model(const ChoiceScene& s, const SceneGeometry& g, const SceneOptio
     render_rows<M>(s, g, g.plane, o, out);
   else
     render_rows<M>(s, g, g.sphere, o, out);
+}
+
+void render_kemppinen(const ChoiceScene& s, const SceneGeometry& g, const SceneOptions& o,
+                      SceneRender& out) {
+  if (s.shape == SceneShape::kPlane)
+    render_kemppinen_rows(s, g, g.plane, o, out);
+  else
+    render_kemppinen_rows(s, g, g.sphere, o, out);
 }
 
 }  // namespace
@@ -194,6 +306,27 @@ std::vector<ChoiceScene> choice_scenes() {
   };
 }
 
+std::vector<ChoiceScene> kemppinen_choice_scenes() {
+  // K_P spreads the footprints over the Kemppinen grid's range (k = 16 needed below about 100
+  // points per footprint, the smooth level adequate from 10³ to 10⁵ on the grid, later off the
+  // peak): at 24 pixels the plane's footprints span about 10⁻³ to 10 uv units², so 10 to 10⁵
+  // points at K_P = 10⁴ and 10⁴ to 10⁸ at 10⁷; the sphere's some 10⁻⁴ uv units² and more, so
+  // 10³ to 10⁶ points at 10⁷ and 10⁴ to 10⁷ at 10⁸ (the model's largest K_P).
+  return {
+      {"kemppinen-plane-low", "kemppinen_ggx", SceneShape::kPlane, SceneLight::kPoint, 4, "low"},
+      {"kemppinen-plane-high", "kemppinen_ggx", SceneShape::kPlane, SceneLight::kPoint, 7, "high"},
+      {"kemppinen-sphere-low", "kemppinen_ggx", SceneShape::kSphere, SceneLight::kPoint, 7, "low"},
+      {"kemppinen-sphere-high", "kemppinen_ggx", SceneShape::kSphere, SceneLight::kPoint, 8,
+       "high"},
+  };
+}
+
+bool is_kemppinen_scene(const ChoiceScene& s) { return s.model == "kemppinen_ggx"; }
+
+int most_complete_level(const ChoiceScene& s) {
+  return is_kemppinen_scene(s) ? int(KemppinenLevel::kK16Exact) : int(BinomialLevel::kExact);
+}
+
 SceneRender render_choice_scene(const ChoiceScene& scene, const SceneOptions& options) {
   if (options.width < 1 || options.height < 1 || options.realisations < 2)
     throw std::invalid_argument("adequacy scenes: the image needs a pixel and two realisations");
@@ -207,19 +340,22 @@ SceneRender render_choice_scene(const ChoiceScene& scene, const SceneOptions& op
     render_model<DeliotBelcour>(scene, g, options, out);
   else if (scene.model == "kneiphof_klein")
     render_model<KneiphofKlein>(scene, g, options, out);
+  else if (is_kemppinen_scene(scene))
+    render_kemppinen(scene, g, options, out);
   else
-    throw std::invalid_argument("adequacy scenes: not a model of the binomial family: " +
-                                scene.model);
+    throw std::invalid_argument(
+        "adequacy scenes: not a model of the binomial or the Kemppinen family: " + scene.model);
   return out;
 }
 
 SafetyTally tally(const SceneRender& r) {
   SafetyTally t;
+  const int complete = most_complete_level(r.scene);
   for (const ScenePixel& p : r.pixels) {
     if (!p.lit) continue;
     ++t.lit;
     ++t.by_level[std::size_t(p.level)];
-    t.cheaper += p.level != int(BinomialLevel::kExact) ? 1 : 0;
+    t.cheaper += p.level != complete ? 1 : 0;
     t.exceeds += p.exceeds ? 1 : 0;
   }
   return t;

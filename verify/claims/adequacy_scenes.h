@@ -3,8 +3,9 @@
 // measured on — a glinty plane seen from near to far under a point light and under a spherical
 // (area) light, and a sphere, each at two facet densities — rendered per pixel with the level the
 // engine chooser (core/glints/adequacy.h) picks for that pixel's footprint, and with the most
-// complete level (exact counting) everywhere. Only the binomial family (deliot_belcour,
-// kneiphof_klein) is covered: the other families have no measured levels yet.
+// complete level everywhere: for the binomial family (deliot_belcour, kneiphof_klein) exact
+// counting, for the Kemppinen family (kemppinen_ggx) k = 16 with the exact erf. Chermain and
+// kneiphof_klein_area have no measured levels yet.
 //
 // Per pixel, the difference is measured the way the adequacy rule defines "no one could tell"
 // (verify/adequacy/binomial_adequacy.h, compare_to_exact): over many realisations of the same
@@ -19,6 +20,8 @@
 #include <string>
 #include <vector>
 
+#include "core/glints/adequacy.h"
+#include "core/models/kemppinen_ggx.h"
 #include "verify/adequacy/binomial_adequacy.h"
 
 namespace glintlab::verify::adequacy {
@@ -28,10 +31,12 @@ enum class SceneLight { kPoint, kSphereLight };
 
 struct ChoiceScene {
   std::string name;   // e.g. "plane-point-low"
-  std::string model;  // deliot_belcour or kneiphof_klein
+  std::string model;  // deliot_belcour, kneiphof_klein or kemppinen_ggx
   SceneShape shape;
   SceneLight light;
-  double log10_density;       // facets per unit uv area, log10 (the models' density parameter)
+  // log10 of the facets (binomial family: the models' density parameter) or of the points
+  // (Kemppinen: K_P) per unit uv area
+  double log10_density;
   std::string density_label;  // "low" or "high"
 };
 
@@ -42,6 +47,18 @@ struct ChoiceScene {
 std::vector<ChoiceScene> choice_scenes();
 inline constexpr double kSceneAlpha = 0.15;
 
+// The Kemppinen family's scenes, declared before anything is measured: the same plane and sphere
+// under the same point lights (kemppinen_ggx evaluates a direction, not a cone: no area-light
+// scene), roughness kSceneAlpha (the Kemppinen grid has 0.1, 0.3 at quick and 0.1, 0.2, 0.4 at
+// full), the plane seen up to 88° (the grid's incidence stops at 60° / 80°), each at a low and a
+// high K_P.
+std::vector<ChoiceScene> kemppinen_choice_scenes();
+
+// Whether a scene's model is of the Kemppinen family (its levels are KemppinenLevel values, its
+// most complete level k16_exact) rather than the binomial one (BinomialLevel, exact).
+bool is_kemppinen_scene(const ChoiceScene& s);
+int most_complete_level(const ChoiceScene& s);
+
 // A pixel's "exceeds TAU" decision: each of the two lower bounds at one-sided level
 // kPixelFlagRate / 2, so that a pixel whose chosen level truly differs by at most TAU is flagged
 // with probability at most kPixelFlagRate (asymptotically: the bounds are delta-method).
@@ -50,6 +67,10 @@ inline constexpr double kPixelFlagRate = 0.01;
 // A chooser replacing the engine's (tests, controls): the level for N_P facets, reflection
 // probability p and threshold tau.
 using LevelChooser = std::function<int(double facets, double p, double tau)>;
+// The same for the Kemppinen scenes: the level (a KemppinenLevel value) for the model's parameters
+// and the pixel's query.
+using KemppinenLevelChooser =
+    std::function<int(const KemppinenGGX::Params<double>&, const ModelQuery<double>&, double tau)>;
 
 struct SceneOptions {
   int width = 64, height = 64;
@@ -57,13 +78,17 @@ struct SceneOptions {
   double tau = kDefaultThreshold;          // what a pixel's difference is compared with
   double chooser_tau = kDefaultThreshold;  // the threshold the chooser is run with
   LevelChooser chooser;  // empty: the engine chooser, choose_<model>_level (core/glints/adequacy.h)
+  // empty: choose_kemppinen_model_level (core/glints/adequacy.h)
+  KemppinenLevelChooser kemppinen_chooser;
   std::uint64_t seed = 0;
 };
 
 struct ScenePixel {
   bool surface = false;      // the camera ray hits the shape and the light is above its horizon
-  int level = -1;            // the chosen level (BinomialLevel value), -1 off the surface
-  double facets = 0, p = 0;  // the footprint's N_P and the clamped probability
+  int level = -1;  // the chosen level (BinomialLevel or KemppinenLevel value), -1 off the surface
+  // The footprint's N_P and the clamped probability (Kemppinen: the expected points per footprint,
+  // K_P × its area, and p = 0).
+  double facets = 0, p = 0;
   double chosen_value = 0, exact_value = 0;   // the rendered radiance (first realisation)
   double mean_diff = 0, cv_diff = 0;          // estimates over the realisations (0: level exact)
   double mean_diff_lcb = 0, cv_diff_lcb = 0;  // their lower confidence bounds
@@ -86,7 +111,8 @@ struct SafetyTally {
   std::uint64_t lit = 0;      // lit pixels (the claim's denominator)
   std::uint64_t cheaper = 0;  // of which the chooser picked a level cheaper than exact
   std::uint64_t exceeds = 0;  // of which the difference exceeds TAU
-  std::array<std::uint64_t, kBinomialLevels> by_level{};  // lit pixels per chosen level
+  // lit pixels per chosen level (the family's levels; the binomial family uses the first four)
+  std::array<std::uint64_t, kKemppinenLevels> by_level{};
 };
 SafetyTally tally(const SceneRender& r);
 void add(SafetyTally& into, const SafetyTally& t);

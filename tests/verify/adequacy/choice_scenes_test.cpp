@@ -84,19 +84,25 @@ TEST(AdequacyChoiceScenes, ChooserOnFacetsAndProbabilityIsTheEngineChooser) {
   }
 }
 
-TEST(AdequacyChoiceScenes, SamePixelsForAnyThreadCount) {
-  SceneOptions o = small_options();
-  o.width = o.height = 16;
-  const ChoiceScene s = choice_scenes().front();
-  SceneRender one, two;
+// A scene rendered on one thread and on two.
+std::pair<SceneRender, SceneRender> on_one_and_two_threads(const ChoiceScene& s,
+                                                           const SceneOptions& o) {
+  std::pair<SceneRender, SceneRender> r;
   {
     tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
-    one = render_choice_scene(s, o);
+    r.first = render_choice_scene(s, o);
   }
   {
     tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
-    two = render_choice_scene(s, o);
+    r.second = render_choice_scene(s, o);
   }
+  return r;
+}
+
+TEST(AdequacyChoiceScenes, SamePixelsForAnyThreadCount) {
+  SceneOptions o = small_options();
+  o.width = o.height = 16;
+  const auto [one, two] = on_one_and_two_threads(choice_scenes().front(), o);
   for (std::size_t i = 0; i < one.pixels.size(); ++i) {
     EXPECT_EQ(one.pixels[i].chosen_value, two.pixels[i].chosen_value);
     EXPECT_EQ(one.pixels[i].exact_value, two.pixels[i].exact_value);
@@ -112,6 +118,59 @@ TEST(AdequacyChoiceScenes, RejectsAnEmptyImageAndALevelOutsideTheFamily) {
   o = small_options();
   o.chooser = [](double, double, double) { return kBinomialLevels; };
   EXPECT_THROW(render_choice_scene(choice_scenes().front(), o), std::invalid_argument);
+}
+
+// The Kemppinen scenes: small renders of every scene, the engine chooser (choose_kemppinen_model_
+// level) held by the decision, and a chooser told a footprint 100 times too large (it takes the
+// smooth level or a smaller k where the pixels need more) caught by the same decision.
+SceneOptions small_kemppinen_options() {
+  SceneOptions o;
+  o.width = o.height = 12;
+  o.realisations = 128;
+  o.seed = 11;
+  return o;
+}
+
+SafetyTally kemppinen_tally_of(const SceneOptions& o) {
+  SafetyTally t;
+  for (const ChoiceScene& s : kemppinen_choice_scenes()) add(t, tally(render_choice_scene(s, o)));
+  return t;
+}
+
+TEST(AdequacyChoiceScenes, KemppinenEngineChooserHoldsAndABrokenChooserFails) {
+  const SceneOptions o = small_kemppinen_options();
+  const SafetyTally genuine = kemppinen_tally_of(o);
+  ASSERT_GT(genuine.lit, 300u);
+  ASSERT_GT(genuine.cheaper, genuine.lit / 4);
+  EXPECT_EQ(genuine.by_level[std::size_t(KemppinenLevel::kK16Exact)], 0u);
+  EXPECT_EQ(decide_choice_safety(genuine, 1e-3).verdict, Verdict::kHoldsInRegime)
+      << genuine.exceeds << " of " << genuine.lit;
+  SceneOptions broken = o;
+  broken.kemppinen_chooser = [](const KemppinenGGX::Params<double>& p, const ModelQuery<double>& q,
+                                double tau) {
+    ModelQuery<double> wide = q;
+    wide.footprint.duv_dx = 10.0 * q.footprint.duv_dx;
+    wide.footprint.duv_dy = 10.0 * q.footprint.duv_dy;
+    return int(choose_kemppinen_model_level(p, wide, tau));
+  };
+  const SafetyTally b = kemppinen_tally_of(broken);
+  EXPECT_EQ(decide_choice_safety(b, 1e-3).verdict, Verdict::kFails) << b.exceeds << " of " << b.lit;
+}
+
+TEST(AdequacyChoiceScenes, KemppinenPixelsAreTheSameForAnyThreadCount) {
+  SceneOptions o = small_kemppinen_options();
+  o.width = o.height = 6;
+  const ChoiceScene s = kemppinen_choice_scenes().front();
+  const auto [one, two] = on_one_and_two_threads(s, o);
+  for (std::size_t i = 0; i < one.pixels.size(); ++i) {
+    EXPECT_EQ(one.pixels[i].level, two.pixels[i].level);
+    EXPECT_EQ(one.pixels[i].chosen_value, two.pixels[i].chosen_value);
+    EXPECT_EQ(one.pixels[i].exact_value, two.pixels[i].exact_value);
+    EXPECT_EQ(one.pixels[i].cv_diff, two.pixels[i].cv_diff);
+  }
+  o.kemppinen_chooser = [](const KemppinenGGX::Params<double>&, const ModelQuery<double>&,
+                           double) { return kKemppinenLevels; };
+  EXPECT_THROW(render_choice_scene(s, o), std::invalid_argument);
 }
 
 }  // namespace

@@ -126,6 +126,35 @@ TEST(KemppinenAdequacyCell, LevelsMadeTwoTauOffAreNotChosen) {
   EXPECT_EQ(measure_kemppinen_cell(c, 4000, 9, d, near).chosen, int(KemppinenLevel::kSmooth));
 }
 
+TEST(KemppinenAdequacyCell, BeckmannIsMeasuredLikeGgxAndABrokenLevelIsNotChosen) {
+  // kemppinen_beckmann's levels (the same Algorithm 1 on the Beckmann base NDF): one point per
+  // footprint needs k = 16, 10⁶ points are smooth, and the smooth level scaled by 1 + 2 TAU is not.
+  const Decision d = decision_for_decisions(100, kTau);
+  KemppinenCell small = cell(1, 0.3, 0, 0), big = cell(1e6, 0.3, 0, 0);
+  small.model = big.model = "kemppinen_beckmann";
+  const KemppinenCellResult one = measure_kemppinen_cell(small, 2000, 5, d);
+  EXPECT_GE(one.chosen, int(KemppinenLevel::kK16Rational));
+  EXPECT_FALSE(one.chooser_refuted);
+  const KemppinenCellResult many = measure_kemppinen_cell(big, 2000, 6, d);
+  EXPECT_EQ(many.chosen, int(KemppinenLevel::kSmooth));
+  EXPECT_FALSE(many.chooser_refuted);
+  // Not the GGX values: off the peak the base NDFs differ.
+  KemppinenCell off_peak = cell(1e6, 0.3, 0, 1);
+  std::vector<double> ggx, beckmann;
+  kemppinen_level_values(off_peak, KemppinenLevel::kSmooth, 1, 6, ggx);
+  off_peak.model = "kemppinen_beckmann";
+  kemppinen_level_values(off_peak, KemppinenLevel::kSmooth, 1, 6, beckmann);
+  EXPECT_GT(std::abs(beckmann[0] / ggx[0] - 1), 0.01);
+  const auto off = [](KemppinenLevel l, std::vector<double>& v) {
+    if (l == KemppinenLevel::kSmooth)
+      for (double& x : v) x *= 1 + 2 * kTau;
+  };
+  const KemppinenCellResult broken = measure_kemppinen_cell(big, 2000, 6, d, off);
+  EXPECT_FALSE(broken.levels[0].adequate);
+  EXPECT_GT(broken.levels[0].mean_diff_lcb, kTau);
+  EXPECT_NE(broken.chosen, int(KemppinenLevel::kSmooth));
+}
+
 TEST(KemppinenAdequacyGrid, SameResultsForAnyThreadCount) {
   KemppinenGridAxes a;
   a.points = {3, 3e3};
