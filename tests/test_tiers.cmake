@@ -27,7 +27,10 @@ set(glintlab_slow_tests
   "Checks/QuickBudget.VerdictAndControl/chermain_lean_correlation* 5"
   "Checks/QuickBudget.VerdictAndControl/podee_stability* 3"
   # The six validation scenes rendered with the chosen and the exact level over 256 realisations.
-  "Checks/QuickBudget.VerdictAndControl/adequacy_choice_is_safe* 6"
+  "Checks/QuickBudget.VerdictAndControl/adequacy_choice_is_safe* 13"
+  # The binomial boundary and the Kemppinen family's (k16_exact's CV crossing TAU on a ladder of
+  # footprints at 12 cells).
+  "Checks/QuickBudget.VerdictAndControl/adequacy_prediction_matches_measurement* 12"
   "Checks/QuickBudget.* 1"
   # Claims that share one measurement, run in one process (tests/verify/registry_test.cpp):
   # all.energy-gain, all.probability and all.variance on the stability sweep of every registered
@@ -65,16 +68,26 @@ set(glintlab_slow_tests
   "KemppinenChooser.MomentsBoundTheMeasuredCvAndMatchItsMean 1"
   # The binomial family's quick grid for one model and 8 Kemppinen cells, written to files.
   "AdequacyOutputs.BothFamiliesInOneTable 7"
-  "ChermainClaims.DictionaryConverges 2"
-  "ChermainClaims.GgaaDecisionFailsAgainstNearTruth 1"
-  "ChermainClaims.OrderingDecisionFailsOnABrokenInput 5"
-  "ChermainClaims.LeanMarginNegativeAgainstNearTruth 4"
+  # The Kemppinen validation scenes rendered with the chooser's level and k16_exact.
+  "AdequacyChoiceScenes.KemppinenEngineChooserHoldsAndABrokenChooserFails 3"
+  "AdequacyChoiceScenes.KemppinenPixelsAreTheSameForAnyThreadCount 2"
+  "KemppinenAdequacyCell.BeckmannIsMeasuredLikeGgxAndABrokenLevelIsNotChosen 1"
   "ChermainPatchSdf.NormalizedWithAndWithoutGgaa 1"
   "ChermainScalarIdentity.ModelMatchesTheHostCode 1"
   # A claim type at its probe size (tests/verify/claims/claim_probes_test.cpp): the discrete NDF's
   # facet draws and the LTC fits at every probe cell.
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::kneiphof_claims::DiscreteNdfMean>> 2"
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::kneiphof_claims::LtcProbability>> 2"
+  # Chermain's claims at their probe sizes: the default dictionary (about 0.85 s each), the
+  # replicated renders of the GGAA and LEAN claims.
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::chermain_claims::LeanCorrelation>> 10"
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::chermain_claims::GgaaDerivatives>> 4"
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::chermain_claims::GgaaSk>> 4"
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::chermain_claims::DictionaryConverges>> 3"
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::chermain_claims::GgaaError>> 2"
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::chermain_claims::GgaaShimmer>> 2"
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::chermain_claims::Correlation>> 2"
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::chermain_claims::KernelNormalized>> 1"
   "ZirrKaplanyan.CountMeanAndVarianceMatchADirectlySimulatedBinomial 3"
   # The glintlab executable run end to end on a subcommand's quick budget (a figure, a sweep, a
   # report, compare, adequacy), or a fuzz loop of a fixed number of inputs.
@@ -147,7 +160,7 @@ set(glintlab_power_tests
   # model have their measures and decisions on smaller sweeps in StabilitySweep.*
   # (tests/verify/stability) and the whole sweep of every model in
   # PluginTest.SweepFigureAndGenericClaimCoverThePluginModel (all.stability); the Chermain ones
-  # in ChermainClaims.*.
+  # in ClaimProbes.* (the Chermain claim types at their probe sizes).
   "Checks/SharedMeasurement.*"
   # Chermain's whole conformance suite at quick three times (verify, compare on 1 and 2 threads):
   # compare's side-by-side scheduling is sanitized in CompareTest.PluginModelBeside… and
