@@ -203,8 +203,8 @@ Image tile_mosaic(const std::vector<Image>& tiles, int columns) {
   return out;
 }
 
-// What the chermain.ggaa-* claims measure on the single view (verify/claims/chermain/), on the mosaic;
-// `all` = false: the reference, no GGAA and Eq. 21 at s_K 0.5 only (Fig. 8).
+// What the chermain.ggaa-* claims measure on the single view (verify/claims/chermain/), on the
+// mosaic; `all` = false: the reference, no GGAA and Eq. 21 at s_K 0.5 only (Fig. 8).
 verify::GgaaMeasurement measure_ggaa_mosaic(const FigureContext& ctx, const GgaaFigureBudget& b,
                                             const std::string& id, bool all) {
   const int n = b.tiles * b.tiles;
