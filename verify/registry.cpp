@@ -47,7 +47,7 @@ const std::vector<Check>& registered_checks() {
   static const std::vector<Check> checks = [] {
     std::vector<Check> all;
     for (auto* list : {&smooth_checks, &smooth_sampler_checks, &smooth_consistency_checks,
-                       &list_checks<eto_claims::Claims>, &eto_checks, &kemppinen_checks,
+                       &list_checks<eto_claims::Claims>, &kemppinen_checks,
                        &list_checks<kneiphof_claims::Claims>, &chermain_checks,
                        &list_checks<podee_claims::Claims>, &across_checks, &adequacy_checks}) {
       for (Check& c : list()) {

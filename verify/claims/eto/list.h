@@ -6,8 +6,15 @@
 
 namespace glintlab::verify::eto_claims {
 
-struct PdfMatches;  // pdf_matches.cpp
+struct PdfMatches;           // pdf_matches.cpp
+struct Unbiased;             // unbiased.cpp
+struct BoundIsInfimum;       // bound_is_infimum.cpp
+struct FewerRejections;      // fewer_rejections.cpp
+struct VarianceRough;        // variance_rough.cpp
+struct VarianceSmooth;       // variance_smooth.cpp
+struct BackfacingStablePdf;  // backfacing_stable_pdf.cpp
 
-using Claims = ClaimList<PdfMatches>;
+using Claims = ClaimList<PdfMatches, Unbiased, BoundIsInfimum, FewerRejections, VarianceRough,
+                         VarianceSmooth, BackfacingStablePdf>;
 
 }  // namespace glintlab::verify::eto_claims

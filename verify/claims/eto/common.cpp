@@ -1,5 +1,5 @@
-// Shared pieces of the Eto & Tokuyoshi 2023 checks; see eto_common.h.
-#include "verify/claims/eto_common.h"
+// What Eto & Tokuyoshi's claims share (common.h).
+#include "verify/claims/eto/common.h"
 
 #include <fmt/format.h>
 
@@ -12,7 +12,7 @@
 #include "core/samplers/spherical_caps.h"
 #include "verify/stats/ndf_cubature.h"
 
-namespace glintlab::verify::eto {
+namespace glintlab::verify::eto_claims {
 
 using V3 = Vec3<double>;
 
@@ -25,7 +25,11 @@ V3 incidence(double theta_deg) {
   return {std::sin(t) * std::cos(kPhiI), std::sin(t) * std::sin(kPhiI), std::cos(t)};
 }
 
-std::string describe(const Config& c) {
+V3 direction(double theta, double phi) {
+  return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+}
+
+std::string describe_config(const Config& c) {
   return fmt::format("αx={:g} αy={:g} θi={:g}°", c.ax, c.ay, c.theta_deg);
 }
 
@@ -125,4 +129,4 @@ Rate caps_rejection_by_cubature(const Config& c) {
   return {r.value, r.error};
 }
 
-}  // namespace glintlab::verify::eto
+}  // namespace glintlab::verify::eto_claims
