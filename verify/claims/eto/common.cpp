@@ -33,6 +33,15 @@ std::string describe_config(const Config& c) {
   return fmt::format("αx={:g} αy={:g} θi={:g}°", c.ax, c.ay, c.theta_deg);
 }
 
+std::vector<Config> grid_of(const std::vector<double>& alphas, const std::vector<double>& ratios,
+                            const std::vector<double>& thetas) {
+  std::vector<Config> g;
+  for (double a : alphas)
+    for (double r : ratios)
+      for (double t : thetas) g.push_back({a, a / r, t});
+  return g;
+}
+
 std::vector<Config> estimator_grid(Budget b) {
   const bool quick = b == Budget::kQuick;
   const std::vector<double> alphas =
@@ -42,11 +51,7 @@ std::vector<Config> estimator_grid(Budget b) {
       quick ? std::vector<double>{1, 4} : std::vector<double>{1, 2, 4, 10};  // αx / αy
   const std::vector<double> thetas =
       quick ? std::vector<double>{0, 45, 80} : std::vector<double>{0, 20, 40, 60, 75, 85, 89};
-  std::vector<Config> g;
-  for (double a : alphas)
-    for (double r : ratios)
-      for (double t : thetas) g.push_back({a, a / r, t});
-  return g;
+  return grid_of(alphas, ratios, thetas);
 }
 
 const char* to_string(Technique t) {

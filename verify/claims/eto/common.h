@@ -32,6 +32,9 @@ Vec3<double> direction(double theta, double phi);
 
 std::string describe_config(const Config& c);  // "αx=… αy=… θi=…°"
 
+// Every α × anisotropy αx/αy × incidence θi (degrees), in that order.
+std::vector<Config> grid_of(const std::vector<double>& alphas, const std::vector<double>& ratios,
+                            const std::vector<double>& thetas);
 // α ∈ [0.05, 1] × anisotropy αx/αy × incidence θi, for the estimator checks.
 std::vector<Config> estimator_grid(Budget b);
 

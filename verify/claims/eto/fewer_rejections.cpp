@@ -83,12 +83,11 @@ std::vector<Config> rejection_grid(Budget b) {
       quick ? std::vector<double>{1, 4} : std::vector<double>{1, 2, 4, 10};
   const std::vector<double> thetas =
       quick ? std::vector<double>{0, 60} : std::vector<double>{0, 30, 60, 80, 89};
-  std::vector<Config> g;
-  g.push_back({1.0, 1.0, 0});  // the claim's configuration first
-  for (double a : alphas)
-    for (double r : ratios)
-      for (double t : thetas)
-        if (!(a == 1.0 && r == 1 && t == 0)) g.push_back({a, a / r, t});
+  std::vector<Config> g = grid_of(alphas, ratios, thetas);
+  // The claim's configuration (α = 1, θi = 0) first, the others in their order.
+  std::stable_partition(g.begin(), g.end(), [](const Config& c) {
+    return c.ax == 1.0 && c.ay == 1.0 && c.theta_deg == 0;
+  });
   return g;
 }
 

@@ -95,11 +95,7 @@ GainSizes gain_sizes(Budget b) {
       quick ? std::vector<double>{1, 10} : std::vector<double>{1, 2, 4, 10};  // αx / αy
   const std::vector<double> thetas =
       quick ? std::vector<double>{0, 45, 80, 89} : std::vector<double>{0, 20, 40, 60, 75, 85, 89};
-  GainSizes z{{}, quick ? (1u << 15) : (1u << 20)};
-  for (double a : alphas)
-    for (double r : ratios)
-      for (double t : thetas) z.grid.push_back({a, a / r, t});
-  return z;
+  return {grid_of(alphas, ratios, thetas), quick ? (1u << 15) : (1u << 20)};
 }
 
 GainMeasured observe_gain(const GainSizes& z, int configuration) {

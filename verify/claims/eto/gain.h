@@ -77,4 +77,30 @@ Decision decide_gain(const GainMeasurement& m, bool rough);
 std::string describe_gain(const GainSizes& z, const GainMeasurement& m, Input input, bool rough);
 std::string gain_power(const GainMeasurement& m, bool rough);
 
+// The steps of both claim types (verify/claim.h), which differ only in the regime they read; each
+// claim's file adds its id, source, statistic, regime, expected verdict and probe size.
+template <bool kRough>
+struct GainSteps {
+  static constexpr std::string_view kPaper = kPaperVsCaps;
+
+  using Sizes = GainSizes;
+  static Sizes sizes(Budget b) { return gain_sizes(b); }
+
+  using Evidence = GainMeasured;
+  static int configurations(const Sizes& z) { return int(z.grid.size()); }
+  static Evidence observe(const Sizes& z, int k, std::uint64_t) { return observe_gain(z, k); }
+
+  using Measured = GainMeasurement;
+  static Measured measure(const Sizes&, std::span<const Evidence> e, Input input) {
+    return measure_gain(e, input, kRough);
+  }
+  static Decision decide(const Sizes&, const Measured& m) { return decide_gain(m, kRough); }
+  static std::string describe(const Sizes& z, const Measured& m, Input input) {
+    return describe_gain(z, m, input, kRough);
+  }
+  static std::string power(const Sizes&, const Measured& m, const Measured&) {
+    return gain_power(m, kRough);
+  }
+};
+
 }  // namespace glintlab::verify::eto_claims

@@ -14,44 +14,21 @@
 // independent run of itself, its RMSE × 0.98): must fail.
 // Regime, declared before measuring: isotropic α ≥ 0.8 ("high-roughness", "low anisotropy"),
 // θi ≤ 60° (towards grazing the two caps meet for every α).
-#include <span>
-#include <string>
-
 #include "verify/claim_runner.h"
 #include "verify/claims/eto/gain.h"
 #include "verify/claims/eto/list.h"
 
 namespace glintlab::verify::eto_claims {
 
-struct VarianceRough {
-  static constexpr bool kRough = true;
+struct VarianceRough : GainSteps<true> {
   static constexpr std::string_view kId = "eto.variance-rough";
-  static constexpr std::string_view kPaper = kPaperVsCaps;
   static constexpr std::string_view kSource = "Sec. 4, Figs. 4–6 (α = 0.8)";
   static constexpr std::string_view kStatistic =
       "smallest measured RMSE reduction inside the regime (lower end of interval)";
   static constexpr std::string_view kRegime = kRoughRegime;
   static constexpr Expected kExpected{.quick = Verdict::kHoldsInRegime};
 
-  using Sizes = GainSizes;
-  static Sizes sizes(Budget b) { return gain_sizes(b); }
   static Sizes probe_sizes() { return {{{1, 1, 0}, {0.8, 0.8, 45}}, 1u << 14}; }
-
-  using Evidence = GainMeasured;
-  static int configurations(const Sizes& z) { return int(z.grid.size()); }
-  static Evidence observe(const Sizes& z, int k, std::uint64_t) { return observe_gain(z, k); }
-
-  using Measured = GainMeasurement;
-  static Measured measure(const Sizes&, std::span<const Evidence> e, Input input) {
-    return measure_gain(e, input, kRough);
-  }
-  static Decision decide(const Sizes&, const Measured& m) { return decide_gain(m, kRough); }
-  static std::string describe(const Sizes& z, const Measured& m, Input input) {
-    return describe_gain(z, m, input, kRough);
-  }
-  static std::string power(const Sizes&, const Measured& m, const Measured&) {
-    return gain_power(m, kRough);
-  }
 };
 
 }  // namespace glintlab::verify::eto_claims
