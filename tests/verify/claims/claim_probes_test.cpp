@@ -98,5 +98,34 @@ TEST(ClaimLists, KneiphofRegisteredInOrder) {
                                             Verdict::kInconclusive}));
 }
 
+TEST(ClaimLists, EtoRegisteredInOrder) {
+  std::vector<std::string> ids;
+  std::vector<Verdict> expected;
+  for (const Check& c : registered_checks())
+    if (c.id.rfind("eto.", 0) == 0) {
+      ids.push_back(c.id), expected.push_back(c.expected);
+      EXPECT_EQ(c.paper, c.id == "eto.pdf-matches" || c.id == "eto.bound-is-infimum" ||
+                                 c.id == "eto.backfacing-stable-pdf"
+                             ? "Eto & Tokuyoshi 2023"
+                             : "Eto & Tokuyoshi 2023 (vs Dupuy & Benyoub 2023)")
+          << c.id;
+      EXPECT_FALSE(c.paper_quote.empty()) << c.id;
+      // The statistical claims keep their calibration (and so count in the suite's level).
+      EXPECT_EQ(bool(c.calibration), c.id == "eto.pdf-matches" || c.id == "eto.unbiased" ||
+                                         c.id == "eto.fewer-rejections")
+          << c.id;
+      // Only eto.pdf-matches is recorded otherwise at the full budget, with the reason.
+      EXPECT_EQ(c.expected_full.has_value(), c.id == "eto.pdf-matches") << c.id;
+      EXPECT_EQ(c.budget_note.empty(), c.id != "eto.pdf-matches") << c.id;
+    }
+  EXPECT_EQ(ids,
+            (std::vector<std::string>{"eto.pdf-matches", "eto.unbiased", "eto.bound-is-infimum",
+                                      "eto.fewer-rejections", "eto.variance-rough",
+                                      "eto.variance-smooth", "eto.backfacing-stable-pdf"}));
+  EXPECT_EQ(expected, (std::vector<Verdict>{Verdict::kHolds, Verdict::kHolds, Verdict::kHolds,
+                                            Verdict::kHolds, Verdict::kHoldsInRegime,
+                                            Verdict::kHoldsInRegime, Verdict::kHolds}));
+}
+
 }  // namespace
 }  // namespace glintlab::verify
