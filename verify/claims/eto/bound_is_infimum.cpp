@@ -7,9 +7,9 @@
 // Measured: for isotropic α (0.05–3; full budget 0.01–5) and i_z > 0 (θi 0°–89.9°), min ô_z over
 // the reflections ωo in the upper hemisphere (ô the stretched-space reflection of Sec. 2 steps
 // (1)–(4)), by a dense (φ, θ) search refined by golden section, against Eq. 5's −k î_z: the
-// largest deviation, held to 1e-9 (rounding is ~1e-15). For anisotropic α, Eq. 6's bound (Listing 1's k) must be a valid lower
-// bound (violated by no more than the tolerance). Beside them: how much looser Eq. 6 and Listing
-// 1's clamp of α to 1 are.
+// largest deviation, held to 1e-9 (rounding is ~1e-15). For anisotropic α, Eq. 6's bound (Listing
+// 1's k) must be a valid lower bound (violated by no more than the tolerance). Beside them: how
+// much looser Eq. 6 and Listing 1's clamp of α to 1 are.
 // Control (perturbed): Eq. 5's k × 0.97 and k × 1.03, a bound that is not the infimum, each through
 // the same decision: both must fail.
 // Regime: none.
