@@ -47,7 +47,7 @@ set(glintlab_slow_tests
   # fewer leave its intervals undecided.
   "KemppinenClaims.CompensationDecisionFailsWithoutC 3"
   # Chi-square and integration checks whose sample sizes set what they can detect.
-  "ChiSquareClaims.EtoPdfMatchesControlsRejected 10"
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::eto_claims::PdfMatches>> 8"
   "ChiSquareClaims.IdenticalWithOneAndTwoThreads 2"
   "ChiSquareClaims.SamplerMatchesPdfControlsRejected 11"
   "LightsChiSquare.PolygonSamplersMatchTheirPdfsAndControlsAreRejected 3"
@@ -166,12 +166,12 @@ set(glintlab_power_tests
   # compare's side-by-side scheduling is sanitized in CompareTest.PluginModelBeside… and
   # CompareShardTest.*, the suite's properties in Properties/ControlRejected.*.
   "CompareTest.MeasuredConformanceIsVerifysRowsWithOneOrTwoThreads"
-  # The controls of smooth.sampler-matches-pdf and eto.pdf-matches at the samples that reject a
-  # 2 % error: ChiSquareClaims.IdenticalWithOneAndTwoThreads runs both families (the batched
+  # The controls of smooth.sampler-matches-pdf and eto.pdf-matches (its claim type's probe) at the
+  # samples that reject a 2 % error: ChiSquareClaims.IdenticalWithOneAndTwoThreads runs both families (the batched
   # samplers, scaled, α × 1.02 and replanned controls) at 2·10^4 samples;
   # SamplerPdfConsistency.*, SamplerWeights.* and BoundedVndf*.* every sampler and pdf of
   # their grids.
-  "ChiSquareClaims.EtoPdfMatchesControlsRejected"
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::eto_claims::PdfMatches>>"
   "ChiSquareClaims.SamplerMatchesPdfControlsRejected"
   # 10^5 samples per light: LightsChiSquare.CapsMatchTheirPdfsAndControlsAreRejected and
   # .DiskMatchesItsPdfAndControlIsRejected take the same plan and fit; Lights.PdfsIntegrateToOne-

@@ -13,12 +13,13 @@
 //
 // plus `power(sizes, genuine, control)` (the detectable effect, as text), `beside_control(sizes,
 // control)` (what else the control's measurement shows, appended to the control's text after its
-// verdict) and, for a statistical claim, `calibrate(seed)` (one raw p-value on a known-correct
-// input), all optional. The
-// configurations are enumerable (`configurations(sizes)`, then an index), so a run can be split by
-// configuration. The control rule is the runner's alone: a claim that holds is shown to fail on a
-// perturbed input, one that does not hold to hold on the corrected input (Input::kCorrected, where
-// the claim has one: kHasCorrectedControl).
+// verdict), `control_p_value(sizes, control)` (the p-value reported for the control where that is
+// not its decision's combined p) and, for a statistical claim, `calibrate(seed)` (one raw p-value
+// on a known-correct input), all optional. The configurations are enumerable
+// (`configurations(sizes)`, then an index), so a run can be split by configuration. The control
+// rule is the runner's alone: a claim that holds is shown to fail on a perturbed input, one that
+// does not hold to hold on the corrected input (Input::kCorrected, where the claim has one:
+// kHasCorrectedControl).
 //
 // Adding a claim: one file verify/claims/<paper>/<claim>.cpp that defines the type and ends in
 // GLINTLAB_CLAIM(Type), and one line in its paper's list (verify/claims/<paper>/list.h).

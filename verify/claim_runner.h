@@ -68,7 +68,12 @@ CheckResult decide_all(const typename C::Sizes& z, std::span<const typename C::E
   const typename C::Measured control = C::measure(z, evidence, input);
   const Decision c = C::decide(z, control);
   record_control(r, c.verdict);
-  r.control_p_value = c.p_value;
+  // The control's p-value is its decision's combined p, unless the claim reports another one (a
+  // statistical claim whose control is one test among its family: control_p_value).
+  if constexpr (requires { C::control_p_value(z, control); })
+    r.control_p_value = C::control_p_value(z, control);
+  else
+    r.control_p_value = c.p_value;
   r.control = fmt::format("{} → {} ({})", C::describe(z, control, input), to_string(c.verdict),
                           r.control_rejected ? "rejected" : "NOT rejected");
   if constexpr (requires { C::beside_control(z, control); })

@@ -5,6 +5,7 @@
 #include "verify/claim.h"
 #include "verify/claims/chermain/list.h"
 #include "verify/claims/claims.h"
+#include "verify/claims/eto/list.h"
 #include "verify/claims/kneiphof/list.h"
 #include "verify/claims/podee/list.h"
 #include "verify/conformance/conformance.h"
@@ -46,11 +47,10 @@ void attach_reading(Check& c) {
 const std::vector<Check>& registered_checks() {
   static const std::vector<Check> checks = [] {
     std::vector<Check> all;
-    for (auto* list :
-         {&smooth_checks, &smooth_sampler_checks, &smooth_consistency_checks, &eto_pdf_checks,
-          &eto_checks, &kemppinen_checks, &list_checks<kneiphof_claims::Claims>,
-          &list_checks<chermain_claims::Claims>,
-          &list_checks<podee_claims::Claims>, &across_checks, &adequacy_checks}) {
+    for (auto* list : {&smooth_checks, &smooth_sampler_checks, &smooth_consistency_checks,
+                       &list_checks<eto_claims::Claims>, &kemppinen_checks,
+                       &list_checks<kneiphof_claims::Claims>, &list_checks<chermain_claims::Claims>,
+                       &list_checks<podee_claims::Claims>, &across_checks, &adequacy_checks}) {
       for (Check& c : list()) {
         attach_reading(c);
         all.push_back(std::move(c));

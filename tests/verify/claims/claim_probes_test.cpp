@@ -10,6 +10,7 @@
 #include "verify/check.h"
 #include "verify/claim.h"
 #include "verify/claims/chermain/list.h"
+#include "verify/claims/eto/list.h"
 #include "verify/claims/kneiphof/list.h"
 #include "verify/claims/podee/list.h"
 
@@ -38,8 +39,8 @@ struct ProbesOf<ClaimList<As...>, ClaimList<Bs...>, Rest...>
 
 template <typename T>
 class ClaimProbes : public ::testing::Test {};
-using AllProbes =
-    ProbesOf<kneiphof_claims::Claims, chermain_claims::Claims, podee_claims::Claims>::type;
+using AllProbes = ProbesOf<eto_claims::Claims, kneiphof_claims::Claims, chermain_claims::Claims,
+                           podee_claims::Claims>::type;
 TYPED_TEST_SUITE(ClaimProbes, AllProbes);
 
 TYPED_TEST(ClaimProbes, VerdictAndControlsAtProbeSize) {
@@ -118,6 +119,35 @@ TEST(ClaimLists, ChermainRegisteredInOrder) {
             (std::vector<Verdict>{Verdict::kHolds, Verdict::kHolds, Verdict::kHolds,
                                   Verdict::kHolds, Verdict::kInconclusive, Verdict::kInconclusive,
                                   Verdict::kHolds, Verdict::kHolds}));
+}
+
+TEST(ClaimLists, EtoRegisteredInOrder) {
+  std::vector<std::string> ids;
+  std::vector<Verdict> expected;
+  for (const Check& c : registered_checks())
+    if (c.id.rfind("eto.", 0) == 0) {
+      ids.push_back(c.id), expected.push_back(c.expected);
+      EXPECT_EQ(c.paper, c.id == "eto.pdf-matches" || c.id == "eto.bound-is-infimum" ||
+                                 c.id == "eto.backfacing-stable-pdf"
+                             ? "Eto & Tokuyoshi 2023"
+                             : "Eto & Tokuyoshi 2023 (vs Dupuy & Benyoub 2023)")
+          << c.id;
+      EXPECT_FALSE(c.paper_quote.empty()) << c.id;
+      // The statistical claims keep their calibration (and so count in the suite's level).
+      EXPECT_EQ(bool(c.calibration), c.id == "eto.pdf-matches" || c.id == "eto.unbiased" ||
+                                         c.id == "eto.fewer-rejections")
+          << c.id;
+      // Only eto.pdf-matches is recorded otherwise at the full budget, with the reason.
+      EXPECT_EQ(c.expected_full.has_value(), c.id == "eto.pdf-matches") << c.id;
+      EXPECT_EQ(c.budget_note.empty(), c.id != "eto.pdf-matches") << c.id;
+    }
+  EXPECT_EQ(ids,
+            (std::vector<std::string>{"eto.pdf-matches", "eto.unbiased", "eto.bound-is-infimum",
+                                      "eto.fewer-rejections", "eto.variance-rough",
+                                      "eto.variance-smooth", "eto.backfacing-stable-pdf"}));
+  EXPECT_EQ(expected, (std::vector<Verdict>{Verdict::kHolds, Verdict::kHolds, Verdict::kHolds,
+                                            Verdict::kHolds, Verdict::kHoldsInRegime,
+                                            Verdict::kHoldsInRegime, Verdict::kHolds}));
 }
 
 }  // namespace

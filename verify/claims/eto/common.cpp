@@ -1,5 +1,5 @@
-// Shared pieces of the Eto & Tokuyoshi 2023 checks; see eto_common.h.
-#include "verify/claims/eto_common.h"
+// What Eto & Tokuyoshi's claims share (common.h).
+#include "verify/claims/eto/common.h"
 
 #include <fmt/format.h>
 
@@ -12,7 +12,7 @@
 #include "core/samplers/spherical_caps.h"
 #include "verify/stats/ndf_cubature.h"
 
-namespace glintlab::verify::eto {
+namespace glintlab::verify::eto_claims {
 
 using V3 = Vec3<double>;
 
@@ -25,8 +25,21 @@ V3 incidence(double theta_deg) {
   return {std::sin(t) * std::cos(kPhiI), std::sin(t) * std::sin(kPhiI), std::cos(t)};
 }
 
-std::string describe(const Config& c) {
+V3 direction(double theta, double phi) {
+  return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+}
+
+std::string describe_config(const Config& c) {
   return fmt::format("αx={:g} αy={:g} θi={:g}°", c.ax, c.ay, c.theta_deg);
+}
+
+std::vector<Config> grid_of(const std::vector<double>& alphas, const std::vector<double>& ratios,
+                            const std::vector<double>& thetas) {
+  std::vector<Config> g;
+  for (double a : alphas)
+    for (double r : ratios)
+      for (double t : thetas) g.push_back({a, a / r, t});
+  return g;
 }
 
 std::vector<Config> estimator_grid(Budget b) {
@@ -38,11 +51,7 @@ std::vector<Config> estimator_grid(Budget b) {
       quick ? std::vector<double>{1, 4} : std::vector<double>{1, 2, 4, 10};  // αx / αy
   const std::vector<double> thetas =
       quick ? std::vector<double>{0, 45, 80} : std::vector<double>{0, 20, 40, 60, 75, 85, 89};
-  std::vector<Config> g;
-  for (double a : alphas)
-    for (double r : ratios)
-      for (double t : thetas) g.push_back({a, a / r, t});
-  return g;
+  return grid_of(alphas, ratios, thetas);
 }
 
 const char* to_string(Technique t) {
@@ -125,4 +134,4 @@ Rate caps_rejection_by_cubature(const Config& c) {
   return {r.value, r.error};
 }
 
-}  // namespace glintlab::verify::eto
+}  // namespace glintlab::verify::eto_claims

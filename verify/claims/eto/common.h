@@ -1,10 +1,12 @@
-// Shared pieces of the Eto & Tokuyoshi 2023 checks: the configuration grid, the two samplers
-// compared (Dupuy & Benyoub spherical caps and Listing 1's bounded caps), and the exact albedo,
+// What Eto & Tokuyoshi's claims share: the paper's name, the configuration grid, the two samplers
+// compared (Dupuy & Benyoub's spherical caps and Listing 1's bounded caps), and the exact albedo,
 // second moments and rejection rate by cubature that the Monte Carlo measurements are held to.
+// eto.variance-rough and eto.variance-smooth share their measurement too: gain.h.
 #pragma once
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/math/vec.h"
@@ -12,7 +14,11 @@
 #include "core/samplers/sample.h"
 #include "verify/check.h"
 
-namespace glintlab::verify::eto {
+namespace glintlab::verify::eto_claims {
+
+inline constexpr std::string_view kPaper = "Eto & Tokuyoshi 2023";
+// The estimator claims compare the bounded sampler with the one it modifies.
+inline constexpr std::string_view kPaperVsCaps = "Eto & Tokuyoshi 2023 (vs Dupuy & Benyoub 2023)";
 
 struct Config {
   double ax, ay, theta_deg;
@@ -21,9 +27,14 @@ struct Config {
 
 // Incidence at polar angle θ (degrees) and a generic azimuth (so anisotropy is not axis-aligned).
 Vec3<double> incidence(double theta_deg);
+// The direction at polar angle θ and azimuth φ (radians).
+Vec3<double> direction(double theta, double phi);
 
-std::string describe(const Config& c);  // "αx=… αy=… θi=…°"
+std::string describe_config(const Config& c);  // "αx=… αy=… θi=…°"
 
+// Every α × anisotropy αx/αy × incidence θi (degrees), in that order.
+std::vector<Config> grid_of(const std::vector<double>& alphas, const std::vector<double>& ratios,
+                            const std::vector<double>& thetas);
 // α ∈ [0.05, 1] × anisotropy αx/αy × incidence θi, for the estimator checks.
 std::vector<Config> estimator_grid(Budget b);
 
@@ -52,4 +63,4 @@ struct Rate {
 };
 Rate caps_rejection_by_cubature(const Config& c);
 
-}  // namespace glintlab::verify::eto
+}  // namespace glintlab::verify::eto_claims
