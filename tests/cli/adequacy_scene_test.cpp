@@ -1,6 +1,7 @@
 // `glintlab figure adequacy-scene --budget quick`: the labelled sheet, the montage and its panel
-// labels, one EXR per validation scene with every per-pixel quantity at 128 pixels, the per-scene
-// CSV whose counts are the EXRs' pixels, and summary.md with the claim's decision.
+// labels, one EXR per validation scene with every per-pixel quantity (the binomial scenes at 128
+// pixels, the Kemppinen scenes at 32), each family's per-scene CSV whose counts are the EXRs'
+// pixels, and summary.md with the claim's decision per family.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -24,26 +25,18 @@ void expect_png(const fs::path& p) {
   EXPECT_EQ(bytes.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
 }
 
-TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
-  // Benchmark costs with the exact count cheaper than both approximations (as on CPUs).
-  std::filesystem::create_directories(path("bench"));
-  write_text(path("bench/glints.json"),
-             level_costs_json({"deliot_belcour", "kneiphof_klein"}, {10, 200, 300, 100}));
-  const RunResult r = run({"figure", "adequacy-scene", "--budget", "quick", "--out", "out",
-                           "--bench-from", "bench"});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const fs::path d = path("out/adequacy-scene");
-  expect_png(d / "adequacy-scene.png");
-  expect_png(d / "panels.png");
-  EXPECT_NE(read_text(d / "panels.panels.json").find("difference / TAU"), std::string::npos);
-  const io::CsvTable t = io::read_csv(d / "adequacy-scene.csv");
-  ASSERT_EQ(t.num_rows(), 6u);
+// Each row of a family's CSV against its scene's EXR: the size, and the lit, exceeding and cheaper
+// (level below `complete`) pixels counted from the EXR's channels; returns the levels of the lit
+// pixels over all scenes.
+std::set<int> expect_counts_match_exrs(const fs::path& d, const io::CsvTable& t, int size,
+                                       int complete, double min_lit) {
   std::set<int> levels;
   for (std::size_t i = 0; i < t.num_rows(); ++i) {
     const std::string name(t.text(i, t.column("scene")));
     const Image im = io::read_exr(d / (name + ".exr")).image;
-    EXPECT_EQ(im.width, 128);
-    EXPECT_EQ(im.height, 128);
+    EXPECT_EQ(im.width, size) << name;
+    EXPECT_EQ(im.height, size) << name;
+    EXPECT_EQ(t.number(i, t.column("width")), size) << name;
     const std::size_t level = im.channel("level"), lit = im.channel("lit"),
                       exceeds = im.channel("exceeds");
     double n_lit = 0, n_exceeds = 0, n_cheaper = 0;
@@ -52,19 +45,56 @@ TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
         if (im.at(x, y, lit) == 0) continue;
         ++n_lit;
         n_exceeds += im.at(x, y, exceeds);
-        n_cheaper += im.at(x, y, level) < 3 ? 1 : 0;
+        n_cheaper += im.at(x, y, level) < complete ? 1 : 0;
         levels.insert(int(im.at(x, y, level)));
       }
     EXPECT_EQ(n_lit, t.number(i, t.column("lit"))) << name;
     EXPECT_EQ(n_exceeds, t.number(i, t.column("exceeds"))) << name;
     EXPECT_EQ(n_cheaper, t.number(i, t.column("cheaper"))) << name;
-    EXPECT_GT(n_lit, 500) << name;
+    EXPECT_GT(n_lit, min_lit) << name;
   }
-  // The scenes reach every level of the family.
-  EXPECT_EQ(levels, (std::set<int>{0, 1, 2, 3}));
+  return levels;
+}
+
+TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
+  // Benchmark costs with the exact count cheaper than both approximations (as on CPUs).
+  std::filesystem::create_directories(path("bench"));
+  write_text(path("bench/glints.json"),
+             level_costs_json({"deliot_belcour", "kneiphof_klein"}, {10, 200, 300, 100}));
+  const RunResult r = run(
+      {"figure", "adequacy-scene", "--budget", "quick", "--out", "out", "--bench-from", "bench"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const fs::path d = path("out/adequacy-scene");
+  expect_png(d / "adequacy-scene.png");
+  expect_png(d / "panels.png");
+  const std::string layout = read_text(d / "panels.panels.json");
+  EXPECT_NE(layout.find("difference / TAU"), std::string::npos);
+  // Both families' panels: the Kemppinen scenes' rows after the binomial ones.
+  for (const char* name : {"plane-point-low", "kemppinen-plane-low", "kemppinen-plane-high",
+                           "kemppinen-sphere-low", "kemppinen-sphere-high"})
+    for (const char* column :
+         {"chosen level", "most complete level", "difference / TAU", "chosen level map"})
+      EXPECT_NE(layout.find(fmt::format("{}: {}", name, column)), std::string::npos)
+          << name << ": " << column;
+  const io::CsvTable t = io::read_csv(d / "adequacy-scene.csv");
+  ASSERT_EQ(t.num_rows(), 6u);
+  // The binomial scenes reach every level of the family.
+  EXPECT_EQ(expect_counts_match_exrs(d, t, 128, 3, 500), (std::set<int>{0, 1, 2, 3}));
+  // The Kemppinen scenes: 32 pixels, cheaper meaning below k16_exact (8); the chooser takes the
+  // smooth level where the footprint holds enough points and k16_rational where it holds few.
+  const io::CsvTable k = io::read_csv(d / "adequacy-scene-kemppinen.csv");
+  ASSERT_EQ(k.num_rows(), 4u);
+  const std::set<int> k_levels = expect_counts_match_exrs(d, k, 32, 8, 400);
+  EXPECT_TRUE(k_levels.count(0)) << "no Kemppinen pixel at the smooth level";
+  EXPECT_TRUE(k_levels.count(7)) << "no Kemppinen pixel at k16_rational";
+  for (std::size_t i = 0; i < k.num_rows(); ++i)
+    EXPECT_EQ(k.text(i, k.column("model")), "kemppinen_ggx");
   const std::string md = read_text(d / "summary.md");
   EXPECT_NE(md.find("lit pixels exceed TAU"), std::string::npos);
-  EXPECT_NE(md.find("binomial family"), std::string::npos);
+  EXPECT_NE(md.find("Binomial family"), std::string::npos);
+  EXPECT_NE(md.find("Kemppinen family"), std::string::npos);
+  EXPECT_NE(md.find("most complete: k16_exact"), std::string::npos);
+  EXPECT_NE(md.find("The Kemppinen scenes are not priced"), std::string::npos);
   // Each scene's time: exact everywhere = 100 ns per surface pixel; the chooser for these costs
   // never costs more than exact counting (it takes smooth where adequate, else exact).
   EXPECT_NE(md.find("## Time per evaluation"), std::string::npos);
