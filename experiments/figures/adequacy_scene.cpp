@@ -168,7 +168,19 @@ Image labelled_sheet(const std::vector<SceneResult>& scenes, const adq::SceneOpt
   const int s = o.width, gap = 6, left = 8, row_label = 14, legend_w = 230;
   const int top = 44 + 12 * int(families.size());
   const int row_h = row_label + o.height + gap;
-  const int width = left + 4 * (s + gap) + 10 + legend_w;
+  std::vector<std::string> row_labels;
+  std::size_t longest = 0;
+  for (const SceneResult& r : scenes) {
+    row_labels.push_back(fmt::format("{} ({}, 1e{:g} {}/uv area): {} lit, {} cheaper, {} over TAU",
+                                     r.render.scene.name, r.render.scene.model,
+                                     r.render.scene.log10_density,
+                                     adq::is_kemppinen_scene(r.render.scene) ? "points" : "facets",
+                                     r.tally.lit, r.tally.cheaper, r.tally.exceeds));
+    longest = std::max(longest, row_labels.back().size());
+  }
+  // The legend column right of the panels and of the row labels (6 pixels per character).
+  const int lx = std::max(left + 4 * (s + gap) + 10, left + 6 * int(longest) + 12);
+  const int width = lx + legend_w;
   const int height = top + int(scenes.size()) * row_h + 30;
   Image im(width, height, {"R", "G", "B"});
   std::fill(im.data.begin(), im.data.end(), 1.0);
@@ -194,18 +206,13 @@ Image labelled_sheet(const std::vector<SceneResult>& scenes, const adq::SceneOpt
   for (std::size_t k = 0; k < scenes.size(); ++k) {
     const int y0 = top + int(k) * row_h;
     const SceneResult& r = scenes[k];
-    draw_text(im, left, y0 + 2,
-              fmt::format("{} ({}, 1e{:g} {}/uv area): {} lit, {} cheaper, {} over TAU",
-                          r.render.scene.name, r.render.scene.model, r.render.scene.log10_density,
-                          adq::is_kemppinen_scene(r.render.scene) ? "points" : "facets",
-                          r.tally.lit, r.tally.cheaper, r.tally.exceeds),
-              kInk);
+    draw_text(im, left, y0 + 2, row_labels[k], kInk);
     const Panel panels[4] = {Panel::kChosen, Panel::kExact, Panel::kDifference, Panel::kLevel};
     for (int c = 0; c < 4; ++c)
       blit(im, display_panel(r, panels[c], o.tau), left + c * (s + gap), y0 + row_label);
   }
   // Colour scale: a vertical bar from 0 (bottom) to kScaleMaxTau TAU (top).
-  const int lx = left + 4 * (s + gap) + 10, bar_top = top + row_label, bar_h = std::max(2 * s, 120);
+  const int bar_top = top + row_label, bar_h = std::max(2 * s, 120);
   draw_text(im, lx, top - 12, "difference / TAU", kInk);
   for (int y = 0; y < bar_h; ++y)
     for (int x = 0; x < 16; ++x)
