@@ -42,7 +42,7 @@ const std::vector<FigureCost>& figure_costs() {
       {"kemppinen2025-speed-accuracy",    1.85,   23.2},
       {"kemppinen2025-fig7",             18.48,    588},
       {"adequacy-maps",                   5.14,    250},
-      {"adequacy-scene",                  6.06,     99},
+      {"adequacy-scene",                  17.5,    203},
   };
   // clang-format on
   return kCosts;

@@ -916,7 +916,8 @@ def write_adequacy(doc, figures, claims, part, root, plots_tmp, plots_rel, made,
              "core/glints/adequacy.h picks that level per pixel for an engine "
              "(docs/adequacy.md). The maps show the level chosen over the adequacy grid; the "
              "scenes, which the choice was not fitted on, are rendered with each pixel's chosen "
-             "level and with the exact level everywhere, with their difference.")
+             "level and with the most complete level everywhere (exact counting; k16_exact for "
+             "Kemppinen), with their difference.")
     if rows:
         doc.list([f"{c['id']}: {c['verdict']} — {short(c['detail'], 160)}" for c in rows])
     else:

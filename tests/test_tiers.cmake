@@ -96,7 +96,7 @@ set(glintlab_slow_tests
   "AdequacyShardTest.MergedShardsAreTheFilesOfOneRun 10"
   "AdequacyShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 5"
   "AdequacyMapsFigureTest.QuickWritesSheetMapsCsvAndSummary 6"
-  "AdequacySceneFigureTest.QuickWritesSheetExrCsvAndSummary 6"
+  "AdequacySceneFigureTest.QuickWritesSheetExrCsvAndSummary 26"
   "ChermainCli.Fig3Quick 1"
   "ChermainCli.Fig7Quick 1"
   "ChermainCli.Fig9Quick 1"
