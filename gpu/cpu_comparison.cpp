@@ -11,6 +11,8 @@
 #include "core/model_layout.h"
 #include "core/model_registry.h"
 #include "core/simd/model_batch.h"
+#include "experiments/bench/kemppinen2025_table3_scene.h"
+#include "gpu/results_format.h"
 
 namespace glintlab::gpu {
 namespace {
@@ -122,6 +124,45 @@ ColumnComparison compare_column(const std::string& name, const std::vector<doubl
   return c;
 }
 
+// The Table 3 frames' pixels (table3_pixels.csv) against shade_pixel on the CPU, cell by cell.
+std::vector<RunComparison> compare_frames(const fs::path& folder, const nlohmann::json& table3) {
+  namespace t3 = kemppinen_table3;
+  const fs::path path = folder / kTable3PixelsFile;
+  const Csv pixels = read_csv(path);
+  const auto& cell_column = column(pixels, "cell", path);
+  const auto& pixel_column = column(pixels, "pixel", path);
+  const auto& radiance_column = column(pixels, "radiance", path);
+  std::vector<RunComparison> out;
+  for (std::size_t index = 0; index < table3.size(); ++index) {
+    const std::string name = table3[index].at("cell").get<std::string>();
+    const std::vector<t3::Cell> cells = t3::cells();
+    const auto cell = std::find_if(cells.begin(), cells.end(),
+                                   [&](const t3::Cell& c) { return t3::cell_name(c) == name; });
+    if (cell == cells.end())
+      throw ResultsError(folder.string() + "/results.json: Table 3 cell '" + name +
+                         "' is not a cell of this build");
+    std::vector<double> gpu, cpu;
+    std::vector<std::uint64_t> which;
+    for (std::size_t i = 0; i < cell_column.size(); ++i)
+      if (cell_column[i] == double(index)) {
+        which.push_back(static_cast<std::uint64_t>(pixel_column[i]));
+        gpu.push_back(radiance_column[i]);
+      }
+    if (which.empty()) throw ResultsError(path.string() + ": no pixel of cell " + name);
+    t3::with_cell(*cell, [&](const auto& shade) {
+      for (std::uint64_t p : which) cpu.push_back(shade(p));
+    });
+    RunComparison run;
+    run.model = name;
+    run.precision = "double";
+    run.function = "frame";
+    run.columns.push_back(compare_column("radiance", cpu, gpu, kDoubleBudget));
+    run.within_budget = run.columns[0].rows_over == 0;
+    out.push_back(std::move(run));
+  }
+  return out;
+}
+
 }  // namespace
 
 FolderComparison compare_with_cpu(const fs::path& folder) {
@@ -187,6 +228,11 @@ FolderComparison compare_with_cpu(const fs::path& folder) {
       out.within_budget = out.within_budget && run.within_budget;
       out.runs.push_back(std::move(run));
     }
+    if (results.contains("table3")) {
+      out.frames = compare_frames(folder, results.at("table3"));
+      for (const RunComparison& f : out.frames)
+        out.within_budget = out.within_budget && f.within_budget;
+    }
   } catch (const nlohmann::json::exception& e) {
     throw ResultsError(results_path.string() + ": " + e.what());
   }
@@ -198,12 +244,16 @@ std::string describe(const FolderComparison& c) {
   std::string s = "device: " + c.device + ", CUDA " + c.cuda_version + ", " +
                   std::to_string(c.rows) + " queries\n";
   char line[512];
-  std::snprintf(line, sizeof line, "%-20s %-7s %-7s %-14s %12s %10s %8s\n", "model", "prec",
-                "function", "column", "max rel diff", "rows over", "verdict");
+  std::snprintf(line, sizeof line, "%-54s %-7s %-8s %-14s %12s %10s %8s\n", "model or Table 3 cell",
+                "prec", "function", "column", "max rel diff", "rows over", "verdict");
   s += line;
-  for (const RunComparison& r : c.runs)
-    for (const ColumnComparison& col : r.columns) {
-      std::snprintf(line, sizeof line, "%-20s %-7s %-7s %-14s %12.3g %10zu %8s\n", r.model.c_str(),
+  std::vector<const RunComparison*> all;
+  for (const RunComparison& r : c.runs) all.push_back(&r);
+  for (const RunComparison& r : c.frames) all.push_back(&r);
+  for (const RunComparison* rp : all)
+    for (const ColumnComparison& col : rp->columns) {
+      const RunComparison& r = *rp;
+      std::snprintf(line, sizeof line, "%-54s %-7s %-8s %-14s %12.3g %10zu %8s\n", r.model.c_str(),
                     r.precision.c_str(), r.function.c_str(), col.column.c_str(), col.max_relative,
                     col.rows_over, r.within_budget ? "within" : "BEYOND");
       s += line;

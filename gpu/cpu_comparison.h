@@ -44,6 +44,9 @@ struct FolderComparison {
   std::string device, cuda_version;
   std::size_t rows = 0;
   std::vector<RunComparison> runs;
+  // The Table 3 frames' pixels against the CPU benchmark's shade_pixel (double): model is the
+  // cell's name, function "frame", one column "radiance".
+  std::vector<RunComparison> frames;
   bool within_budget = true;
 };
 

@@ -10,21 +10,37 @@
 
 namespace glintlab::gpu {
 
-// Column pointers are passed by value (a kernel argument), each n rows long.
+// Column pointers are passed by value (a kernel argument), each n rows long, with where each
+// column's member sits in ModelQuery<T> (query_offsets).
 template <class T>
 struct DeviceQueryColumns {
   const T* column[kQueryLayout.size()];
+  std::size_t offset[kQueryLayout.size()];
 };
 template <class T, std::size_t N>
 struct DeviceOutputColumns {
   T* column[N];
 };
 
+// The byte offset of each column's member in ModelQuery<T>, from the layout's own visitor, on the
+// host: a device thread cannot run that visitor, which names each column with a std::string_view
+// built from a literal (libstdc++'s strlen builtin, which nvcc compiles to nothing on the device
+// — silently, the whole kernel with it).
+template <class T>
+void query_offsets(std::size_t (&offset)[kQueryLayout.size()]) {
+  ModelQuery<T> q{};
+  const auto* base = reinterpret_cast<const unsigned char*>(&q);
+  for_each_query_column(q, [&](std::size_t k, const QueryColumn&, T& member) {
+    offset[k] = static_cast<std::size_t>(reinterpret_cast<const unsigned char*>(&member) - base);
+  });
+}
+
 template <class T>
 __device__ ModelQuery<T> load_query(const DeviceQueryColumns<T>& columns, std::size_t row) {
   ModelQuery<T> q{};
-  for_each_query_column(
-      q, [&](std::size_t k, const QueryColumn&, T& member) { member = columns.column[k][row]; });
+  auto* base = reinterpret_cast<unsigned char*>(&q);
+  for (std::size_t k = 0; k < kQueryLayout.size(); ++k)
+    *reinterpret_cast<T*>(base + columns.offset[k]) = columns.column[k][row];
   return q;
 }
 

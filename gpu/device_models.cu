@@ -9,6 +9,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/models/kemppinen_beckmann.h"
+#include "core/models/kemppinen_ggx.h"
 #include "core/models/smooth_beckmann.h"
 #include "core/models/smooth_ggx.h"
 #include "gpu/device_kernels.cuh"
@@ -20,7 +22,7 @@ namespace {
 
 template <class... Ms>
 struct DeviceModelList {};
-using DeviceModels = DeviceModelList<SmoothGGX, SmoothBeckmann>;
+using DeviceModels = DeviceModelList<SmoothGGX, SmoothBeckmann, KemppinenGGX, KemppinenBeckmann>;
 
 void check(cudaError_t status, const char* call) {
   if (status != cudaSuccess)
@@ -112,6 +114,7 @@ std::vector<std::vector<T>> run_model(std::span<const double> params, Function f
   std::vector<DeviceArray<T>> query;
   query.reserve(kQueryLayout.size());
   DeviceQueryColumns<T> query_columns{};
+  query_offsets<T>(query_columns.offset);
   for (std::size_t k = 0; k < kQueryLayout.size(); ++k) {
     query.emplace_back(n);
     query.back().upload(rounded<T>(queries.columns[k]));

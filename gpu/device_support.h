@@ -32,10 +32,8 @@ inline constexpr std::array<DeviceSupport, 9> kDeviceSupport = {{
     {"chermain",
      "its multiscale dictionary is a host table built at first use (chermain2021::Dictionary): "
      "a device copy of the table would be needed"},
-    {"kemppinen_ggx",
-     "core/glints/kemppinen.h's kTriplanarProcess is a host constant, and the model's eval, pdf "
-     "and sample (core/models/kemppinen_model.h) are not marked GLINTLAB_FN"},
-    {"kemppinen_beckmann", "as kemppinen_ggx (the same kernels on the Beckmann NDF)"},
+    {"kemppinen_ggx", ""},
+    {"kemppinen_beckmann", ""},
 }};
 
 constexpr bool has_device_kernels(std::string_view model) {

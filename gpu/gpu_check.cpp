@@ -3,7 +3,9 @@
 // and sample over the fixed query set (gpu/query_set.h) on the device and writes, into --out:
 //   queries.csv                      the query set's rows (every column, exact decimal form)
 //   <model>.<precision>.<function>.csv  the device's output columns, one row per query
-//   results.json                     the device, the toolkit, the settings and each run's timing
+//   table3_pixels.csv                the Table 3 analogue frames' radiance at the first rows pixels
+//   results.json                     the device, the toolkit, the settings, each run's timing and
+//                                    each Table 3 frame's (gpu/table3_frame.h)
 // The folder is written under a temporary name and renamed when complete. Needs only the CUDA
 // runtime and the core headers (no fmt, TBB, OpenEXR or the CLI): the GPU machine has nothing else.
 // The CPU side reads the folder back (glintlab_gpu_compare) and compares it with the CPU batches.
@@ -23,6 +25,7 @@
 #include "gpu/device_support.h"
 #include "gpu/query_set.h"
 #include "gpu/results_format.h"
+#include "gpu/table3_frame.h"
 
 namespace fs = std::filesystem;
 using namespace glintlab;
@@ -76,7 +79,9 @@ Options parse(int argc, char** argv) {
           "fixed query set of M rows (default 1048576, 1 <= M <= 67108864) on the first CUDA\n"
           "device, times R launches of each (default 20, 1 <= R <= 1000), and writes the\n"
           "first N rows (default 2048, 1 <= N <= M) of every result to DIR (queries.csv,\n"
-          "<model>.<precision>.<function>.csv, results.json); docs/gpu.md.\n");
+          "<model>.<precision>.<function>.csv, results.json); then renders and times every cell\n"
+          "of the Table 3 analogue (Kemppinen et al. 2025: 1920x1080, 3 point lights, k = 4) as\n"
+          "R frames, keeping N pixels of each (table3_pixels.csv); docs/gpu.md.\n");
       std::exit(0);
     } else {
       fail_input("unknown argument '" + std::string(a) +
@@ -132,6 +137,11 @@ int main(int argc, char** argv) {
       run_precision<float>(model, params, queries, o, staging, runs);
       run_precision<double>(model, params, queries, o, staging, runs);
     }
+    // The Table 3 analogue: every cell as a whole 1080p frame (the first --rows pixels kept).
+    const std::vector<gpu::Table3FrameRun> frames = gpu::run_table3_frames(o.repetitions, o.rows);
+    for (const gpu::Table3FrameRun& f : frames)
+      std::printf("%-58s %9.3f ms per frame\n", f.cell.c_str(), f.timing.median_ms);
+    gpu::write_table3_pixels_csv(staging / gpu::kTable3PixelsFile, frames);
     gpu::CheckSettings settings{device.name,
                                 device.compute_major,
                                 device.compute_minor,
@@ -140,7 +150,7 @@ int main(int argc, char** argv) {
                                 o.timing_rows,
                                 o.seed,
                                 o.repetitions};
-    gpu::write_results_json(staging / "results.json", settings, runs);
+    gpu::write_results_json(staging / "results.json", settings, runs, frames);
     fs::rename(staging, o.out);
   } catch (const std::exception& e) {
     std::error_code ignored;

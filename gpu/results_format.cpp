@@ -82,8 +82,22 @@ template void write_output_csv<double>(const std::filesystem::path&,
                                        const std::vector<std::string>&,
                                        const std::vector<std::vector<double>>&, std::size_t);
 
+void write_table3_pixels_csv(const std::filesystem::path& path,
+                             const std::vector<Table3FrameRun>& frames) {
+  File f = open_for_writing(path);
+  std::fprintf(f.get(), "cell,pixel,radiance\n");
+  for (std::size_t c = 0; c < frames.size(); ++c)
+    for (std::size_t i = 0; i < frames[c].pixels.size(); ++i) {
+      std::fprintf(f.get(), "%zu,%llu,", c, static_cast<unsigned long long>(frames[c].pixels[i]));
+      put(f.get(), frames[c].radiance[i]);
+      std::fputc('\n', f.get());
+    }
+  close(f, path);
+}
+
 void write_results_json(const std::filesystem::path& path, const CheckSettings& settings,
-                        const std::vector<RunRecord>& runs) {
+                        const std::vector<RunRecord>& runs,
+                        const std::vector<Table3FrameRun>& frames) {
   File f = open_for_writing(path);
   std::FILE* o = f.get();
   std::fprintf(o, "{\n  \"device\": %s,\n  \"compute_capability\": \"%d.%d\",\n",
@@ -105,6 +119,14 @@ void write_results_json(const std::filesystem::path& path, const CheckSettings& 
     std::fprintf(o, "],\n     \"median_ms\": %.6g, \"min_ms\": %.6g, \"rows_per_second\": %.6g}",
                  run.timing.median_ms, run.timing.min_ms, run.timing.items_per_second);
   }
+  std::fprintf(o, "\n  ],\n  \"table3_pixels\": %s,\n  \"table3\": [",
+               json_string(kTable3PixelsFile).c_str());
+  for (std::size_t c = 0; c < frames.size(); ++c)
+    std::fprintf(o,
+                 "%s\n    {\"cell\": %s, \"median_ms\": %.6g, \"min_ms\": %.6g, "
+                 "\"pixels_per_second\": %.6g}",
+                 c == 0 ? "" : ",", json_string(frames[c].cell).c_str(), frames[c].timing.median_ms,
+                 frames[c].timing.min_ms, frames[c].timing.items_per_second);
   std::fprintf(o, "\n  ]\n}\n");
   close(f, path);
 }

@@ -11,6 +11,7 @@
 
 #include "gpu/device_timing.h"
 #include "gpu/query_set.h"
+#include "gpu/table3_frame.h"
 
 namespace glintlab::gpu {
 
@@ -47,8 +48,13 @@ void write_query_csv(const std::filesystem::path& path, const QuerySet& queries,
 template <class T>
 void write_output_csv(const std::filesystem::path& path, const std::vector<std::string>& names,
                       const std::vector<std::vector<T>>& columns, std::size_t rows);
-// results.json: the settings and every run with its columns and timing.
+// table3_pixels.csv: cell (the index into results.json's "table3"), pixel, radiance.
+inline constexpr const char* kTable3PixelsFile = "table3_pixels.csv";
+void write_table3_pixels_csv(const std::filesystem::path& path,
+                             const std::vector<Table3FrameRun>& frames);
+// results.json: the settings, every run with its columns and timing, every Table 3 frame's timing.
 void write_results_json(const std::filesystem::path& path, const CheckSettings& settings,
-                        const std::vector<RunRecord>& runs);
+                        const std::vector<RunRecord>& runs,
+                        const std::vector<Table3FrameRun>& frames);
 
 }  // namespace glintlab::gpu

@@ -297,7 +297,10 @@ GLINTLAB_FN Vec3<T> triplanar_weights(Vec3<T> n_geo) {
 
 // The point process of each triplanar plane: ⊥ z is process 0, the uv process, so on a plane
 // ⊥ z at uv = (x, y) the triplanar glints are the uv glints; ⊥ x and ⊥ y are 1 and 2.
-constexpr int kTriplanarProcess[3] = {1, 2, 0};
+// (A function rather than a constant array: a device kernel cannot index a host array.)
+GLINTLAB_FN constexpr int triplanar_process(int axis) {
+  return axis == 0 ? 1 : axis == 1 ? 2 : 0;
+}
 
 // The footprint of triplanar plane `axis` (⊥ x, y, z) at object-space position `pos` with screen
 // derivatives dpos_dx, dpos_dy: uv = (p.y, p.z), (p.z, p.x), (p.x, p.y).
@@ -321,11 +324,11 @@ GLINTLAB_FN Result<T> eval_triplanar(const Params<T>& p, const Ndf& ndf, Vec3<T>
   const Vec3<T> wv = triplanar_weights(n_geo);
   const T w[3] = {wv.x, wv.y, wv.z};
   Result<T> out = eval_process(p, ndf, triplanar_footprint(0, pos, dpos_dx, dpos_dy), h,
-                               kTriplanarProcess[0], w[0]);
+                               triplanar_process(0), w[0]);
   T w_best = w[0];
   for (int i = 1; i < 3; ++i) {
     const Result<T> r = eval_process(p, ndf, triplanar_footprint(i, pos, dpos_dx, dpos_dy), h,
-                                     kTriplanarProcess[i], w[i]);
+                                     triplanar_process(i), w[i]);
     out.explicit_part = out.explicit_part + r.explicit_part;
     out.compensation_part = out.compensation_part + r.compensation_part;
     out.points += r.points;

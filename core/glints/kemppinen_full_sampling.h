@@ -50,7 +50,7 @@ inline constexpr double kMixtureMax = 0.9;
 // The fraction of the lobe mass inside B(k) at level `level`, averaged over a 4 × 4 grid of x_a in
 // the angular cell at the centre of □ (index max(n_a/2 − 1, 0) on both axes).
 template <class Ndf, class T>
-T level_explicit_share(const Params<T>& p, const Ndf& ndf, const LaneInt<T, int>& level) {
+GLINTLAB_FN T level_explicit_share(const Params<T>& p, const Ndf& ndf, const LaneInt<T, int>& level) {
   const LaneInt<T> n_a = level_cells<T>(level);
   const T res_a = angular_resolution<T>(level);
   const T c = max(floor(res_a * T(0.5)) - T(1), T(0));
@@ -75,7 +75,7 @@ T level_explicit_share(const Params<T>& p, const Ndf& ndf, const LaneInt<T, int>
 
 // The explicit share at a footprint, both levels with their weights (before the clamp of q).
 template <class Ndf, class T>
-T explicit_share(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp) {
+GLINTLAB_FN T explicit_share(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp) {
   const Spatial<T> sp = spatial(p, fp);
   return (T(1) - sp.w1) * level_explicit_share(p, ndf, sp.l0) +
          sp.w1 * level_explicit_share(p, ndf, sp.l0 + 1);
@@ -83,14 +83,14 @@ T explicit_share(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp
 
 // q: the probability of sampling the explicit part with Algorithm 2 (our choice, see the header).
 template <class Ndf, class T>
-T mixture_probability(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp) {
+GLINTLAB_FN T mixture_probability(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp) {
   return clamp(explicit_share(p, ndf, fp), T(kMixtureMin), T(kMixtureMax));
 }
 
 // Algorithm 2's printed pdf (lines 16–17) evaluated at ω_h without a draw: x_a := T(ω_h), summed
 // over both levels with their weights, per steradian (the MIS evaluation rule of the header).
 template <class Ndf, class T>
-T printed_pdf_at(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp, Vec3<T> h,
+GLINTLAB_FN T printed_pdf_at(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp, Vec3<T> h,
                  int process = 0) {
   const Mask<T> up = h.z > T(0);
   if (!any_lane<T>(up)) return T(0);
@@ -98,7 +98,7 @@ T printed_pdf_at(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp
   const Mask<T> in_disk = up && !(sqr(x.x - T(0.5)) + sqr(x.y - T(0.5)) > T(0.25));
   if (!any_lane<T>(in_disk)) return T(0);
   const Spatial<T> sp = spatial(p, fp);
-  static thread_local Block<T> block;
+  Block<T> block;  // on the stack, as in sample_half
   T total = T(0);
   for (int upper = 0; upper < 2; ++upper) {
     const LaneInt<T, int> level = sp.l0 + upper;
@@ -126,11 +126,11 @@ struct FullSample {
 
 // The random number `dim` of the mixture's own choices (Algorithm 2 uses the key's dims 0–6).
 template <class T>
-T mixture_uniform(std::uint64_t key, std::uint64_t dim) {
+GLINTLAB_FN T mixture_uniform(std::uint64_t key, std::uint64_t dim) {
   return counter_uniform<T>(key, 0x66756c6cULL, dim);
 }
 template <class T, class I, std::size_t N>
-T mixture_uniform(const IntLanes<I, N>& key, std::uint64_t dim) {
+GLINTLAB_FN T mixture_uniform(const IntLanes<I, N>& key, std::uint64_t dim) {
   return float_lanes<T>(
       [&](std::size_t l) { return counter_uniform<Scalar<T>>(key.v[l], 0x66756c6cULL, dim); });
 }
@@ -141,11 +141,11 @@ struct UvExplicit {
   const Params<T>& p;
   const Ndf& ndf;
   const FootprintQuery<T>& fp;
-  HalfSample<T> draw(const LaneInt<T, std::uint64_t>& key) const {
+  GLINTLAB_FN HalfSample<T> draw(const LaneInt<T, std::uint64_t>& key) const {
     return sample_half(p, ndf, fp, key);
   }
-  T density(Vec3<T> h) const { return sample_density_half(p, ndf, fp, h); }
-  T printed_at(Vec3<T> h) const { return printed_pdf_at(p, ndf, fp, h); }
+  GLINTLAB_FN T density(Vec3<T> h) const { return sample_density_half(p, ndf, fp, h); }
+  GLINTLAB_FN T printed_at(Vec3<T> h) const { return printed_pdf_at(p, ndf, fp, h); }
 };
 
 // Strategy 1 in triplanar mode: the planes' blend (kemppinen_triplanar.h).
@@ -154,12 +154,12 @@ struct TriplanarExplicit {
   const Params<T>& p;
   const Ndf& ndf;
   const TriplanarInput<T>& in;
-  HalfSample<T> draw(const LaneInt<T, std::uint64_t>& key) const {
+  GLINTLAB_FN HalfSample<T> draw(const LaneInt<T, std::uint64_t>& key) const {
     return triplanar_sample_half(p, ndf, in, key);
   }
-  T density(Vec3<T> h) const { return triplanar_density_half(p, ndf, in, h); }
+  GLINTLAB_FN T density(Vec3<T> h) const { return triplanar_density_half(p, ndf, in, h); }
   // Σ_i w_i × plane i's printed pdf at ω_h.
-  T printed_at(Vec3<T> h) const {
+  GLINTLAB_FN T printed_at(Vec3<T> h) const {
     const Vec3<T> wv = triplanar_weights(in.normal);
     const T w[3] = {wv.x, wv.y, wv.z};
     T sum = T(0);
@@ -169,7 +169,7 @@ struct TriplanarExplicit {
       sum += select(nonempty,
                     w[i] * printed_pdf_at(p, ndf,
                                           triplanar_footprint(i, in.pos, in.dpos_dx, in.dpos_dy),
-                                          h, kTriplanarProcess[i]),
+                                          h, triplanar_process(i)),
                     T(0));
     }
     return sum;
@@ -178,7 +178,7 @@ struct TriplanarExplicit {
 
 // The explicit share of the triplanar blend: the planes' shares weighted by w_i, clamped as q.
 template <class Ndf, class T>
-T triplanar_mixture_probability(const Params<T>& p, const Ndf& ndf, const TriplanarInput<T>& in) {
+GLINTLAB_FN T triplanar_mixture_probability(const Params<T>& p, const Ndf& ndf, const TriplanarInput<T>& in) {
   const Vec3<T> wv = triplanar_weights(in.normal);
   const T w[3] = {wv.x, wv.y, wv.z};
   T share = T(0);
@@ -195,7 +195,7 @@ T triplanar_mixture_probability(const Params<T>& p, const Ndf& ndf, const Tripla
 
 // The exact mixture density of ω_h, q p₁(ω_h) + (1 − q) D(ω_h) cosθ_h, strategy 1 `e`.
 template <class Ndf, class T, class Explicit>
-T mixture_density_half(const Ndf& ndf, const Explicit& e, Vec3<T> h, T q) {
+GLINTLAB_FN T mixture_density_half(const Ndf& ndf, const Explicit& e, Vec3<T> h, T q) {
   const Mask<T> up = h.z > T(0);
   if (!any_lane<T>(up)) return T(0);
   const Vec3<T> hu = select(up, h, Vec3<T>{T(0), T(0), T(1)});
@@ -206,7 +206,7 @@ T mixture_density_half(const Ndf& ndf, const Explicit& e, Vec3<T> h, T q) {
 // and, when `printed`, the printed one (else pdf_printed_h is 0: it costs a block per draw of
 // strategy 2).
 template <class Ndf, class T, class Explicit>
-FullSample<T> sample_mixture(const Ndf& ndf, const Explicit& e,
+GLINTLAB_FN FullSample<T> sample_mixture(const Ndf& ndf, const Explicit& e,
                              const LaneInt<T, std::uint64_t>& key, T q, bool printed) {
   const Mask<T> kNone = T(0) > T(1);
   const Vec3<T> zenith{T(0), T(0), T(1)};
@@ -247,14 +247,14 @@ FullSample<T> sample_mixture(const Ndf& ndf, const Explicit& e,
 
 // The exact mixture density of ω_h on the uv point process (q from mixture_probability).
 template <class Ndf, class T>
-T full_sample_density_half(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp,
+GLINTLAB_FN T full_sample_density_half(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp,
                            Vec3<T> h, T q) {
   return mixture_density_half(ndf, UvExplicit<Ndf, T>{p, ndf, fp}, h, q);
 }
 
 // One ω_h from the uv mixture, random numbers from `key`, with both densities.
 template <class Ndf, class T>
-FullSample<T> sample_full(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp,
+GLINTLAB_FN FullSample<T> sample_full(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp,
                           const LaneInt<T, std::uint64_t>& key, T q) {
   return sample_mixture(ndf, UvExplicit<Ndf, T>{p, ndf, fp}, key, q, true);
 }

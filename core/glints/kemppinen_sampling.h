@@ -67,7 +67,7 @@ struct Spatial {
 };
 
 template <class T>
-Spatial<T> spatial(const Params<T>& p, const FootprintQuery<T>& fp) {
+GLINTLAB_FN Spatial<T> spatial(const Params<T>& p, const FootprintQuery<T>& fp) {
   Spatial<T> s;
   s.res = base_resolution(p);
   s.x_s = spatial_position(p, fp.uv);
@@ -81,7 +81,7 @@ Spatial<T> spatial(const Params<T>& p, const FootprintQuery<T>& fp) {
 
 // Lobe standard deviations of a point at g_a (Σ_a of Algorithm 1 line 12 at ω = T⁻¹(g_a)).
 template <class Ndf, class T>
-Vec2<T> point_sigma(const Params<T>& p, const Ndf& ndf, Vec2<T> g_a) {
+GLINTLAB_FN Vec2<T> point_sigma(const Params<T>& p, const Ndf& ndf, Vec2<T> g_a) {
   const Vec3<T> w = map_from_square(ndf, g_a);
   const T sigma = p.microroughness * sqrt(ndf.D(w) / T(kMapDomainArea<T>));
   const T sa = sqrt(p.anisotropy);
@@ -92,7 +92,7 @@ Vec2<T> point_sigma(const Params<T>& p, const Ndf& ndf, Vec2<T> g_a) {
 // point process `process` (Algorithm 2 lines 11–12): everything but its mass in a block (m = 0).
 // res_a, res_s and n_a are the level's (angular_resolution, sp.res / res_a, level_cells).
 template <class Ndf, class T>
-Candidate<T> candidate(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp,
+GLINTLAB_FN Candidate<T> candidate(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp,
                        const LaneInt<T, int>& level, T w_l, T res_a, T res_s, const LaneInt<T>& n_a,
                        const LaneInt<T>& sx, const LaneInt<T>& sy, const LaneInt<T>& ax,
                        const LaneInt<T>& ay, int process) {
@@ -122,9 +122,9 @@ Candidate<T> candidate(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp,
 }
 
 // The candidates of block B with angular start cell (ax0, ay0) at `level` (weight w_l), of point
-// process `process` (0 = uv; the triplanar planes: kTriplanarProcess).
+// process `process` (0 = uv; the triplanar planes: triplanar_process).
 template <class Ndf, class T>
-void block(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp, const LaneInt<T, int>& level,
+GLINTLAB_FN void block(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp, const LaneInt<T, int>& level,
            T w_l, const LaneInt<T>& ax0, const LaneInt<T>& ay0, Block<T>& out, int process = 0) {
   const int n = p.side;
   const T res_a = angular_resolution<T>(level);
@@ -154,7 +154,7 @@ void block(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp, const LaneI
 
 // Σ_j s_j N_j(x) / W over a block: the density in the square of the sample given the block.
 template <class T>
-T block_density(const Block<T>& b, Vec2<T> x) {
+GLINTLAB_FN T block_density(const Block<T>& b, Vec2<T> x) {
   const Mask<T> inside =
       (b.total > T(0)) && !(x.x < b.lo.x || x.x > b.hi.x || x.y < b.lo.y || x.y > b.hi.y);
   if (!any_lane<T>(inside)) return T(0);
@@ -174,7 +174,7 @@ T block_density(const Block<T>& b, Vec2<T> x) {
 
 // One draw of the 1D normal N(m, s²) truncated to [lo, hi] by inverting its CDF with erf/erfinv.
 template <class T>
-T truncated_normal(T lo, T hi, T m, T s, T u) {
+GLINTLAB_FN T truncated_normal(T lo, T hi, T m, T s, T u) {
   const T k = T(0.70710678118654752440) / s;
   const T ea = erf((lo - m) * k), eb = erf((hi - m) * k);
   const T z = erfinv(clamp(ea + u * (eb - ea), T(-1) + T(1e-16), T(1) - T(1e-16)));
@@ -193,12 +193,12 @@ struct HalfSample {
 
 // The random number `dim` of one sampler call keyed by `key`.
 template <class T>
-T sampler_uniform(std::uint64_t key, std::uint64_t dim) {
+GLINTLAB_FN T sampler_uniform(std::uint64_t key, std::uint64_t dim) {
   return counter_uniform<T>(key, 0x6b656d70ULL, dim);
 }
 // The same for a batch: the key of each lane.
 template <class T, class I, std::size_t N>
-T sampler_uniform(const IntLanes<I, N>& key, std::uint64_t dim) {
+GLINTLAB_FN T sampler_uniform(const IntLanes<I, N>& key, std::uint64_t dim) {
   return float_lanes<T>(
       [&](std::size_t l) { return counter_uniform<Scalar<T>>(key.v[l], 0x6b656d70ULL, dim); });
 }
@@ -206,7 +206,7 @@ T sampler_uniform(const IntLanes<I, N>& key, std::uint64_t dim) {
 // Algorithm 2: one ω_h from D★^f of point process `process` at the footprint, random numbers
 // from `key`.
 template <class Ndf, class T>
-HalfSample<T> sample_half(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp,
+GLINTLAB_FN HalfSample<T> sample_half(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp,
                           const LaneInt<T, std::uint64_t>& key, int process = 0) {
   const Mask<T> kNone = T(0) > T(1);
   HalfSample<T> out;
@@ -225,7 +225,9 @@ HalfSample<T> sample_half(const Params<T>& p, const Ndf& ndf, const FootprintQue
   out.level = sp.l0 + mask_to_int<T>(up);
   const T w_l = select(up, sp.w1, T(1) - sp.w1);
   const T res_a = angular_resolution<T>(out.level);
-  static thread_local Block<T> block;
+  // On the stack, as LevelPoints in sample_density_square (static TLS would grow every thread's
+  // stack, and a device thread has none): block() writes every field it reads.
+  Block<T> block;
   kemppinen2025::block(p, ndf, sp, out.level, w_l, block_start(x_a.x * res_a, p.side),
                        block_start(x_a.y * res_a, p.side), block, process);
   const Mask<T> has = block.total > T(0);
@@ -290,7 +292,7 @@ struct LevelPoints {
   std::array<std::array<std::array<T, kMaxSide>, kCount>, 2> mass;
   std::array<std::array<std::array<bool, kMaxSide>, kCount>, 2> known;
   int n = 0;
-  std::size_t index(int i, int j, int a, int b) const {
+  GLINTLAB_FN std::size_t index(int i, int j, int a, int b) const {
     const int span = 2 * n - 1;
     return std::size_t(((i * n + j) * span + (a + n - 1)) * span + (b + n - 1));
   }
@@ -299,7 +301,7 @@ struct LevelPoints {
 // The points of LevelPoints around x's angular cell (cx, cy) at `level` (weight w_l): the same
 // arithmetic as block() and block_density(), in the same lane order.
 template <class Ndf, class T>
-void level_points(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp,
+GLINTLAB_FN void level_points(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp,
                   const LaneInt<T, int>& level, T w_l, const LaneInt<T>& cx, const LaneInt<T>& cy,
                   Vec2<T> x, LevelPoints<T>& out, int process) {
   const int n = p.side;
@@ -328,7 +330,7 @@ void level_points(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp,
 // The point at `at`'s mass along `axis` over [lo, hi], the range of the blocks whose start on that
 // axis is offset d from x's cell: gaussian_interval_mass, computed at its first use.
 template <class T>
-T mass_along(LevelPoints<T>& pts, std::size_t at, int axis, int d, T lo, T hi) {
+GLINTLAB_FN T mass_along(LevelPoints<T>& pts, std::size_t at, int axis, int d, T lo, T hi) {
   const std::size_t k = std::size_t(d + pts.n - 1);
   if (!pts.known[std::size_t(axis)][at][k]) {
     const Candidate<T>& c = pts.c[at];
@@ -343,7 +345,7 @@ T mass_along(LevelPoints<T>& pts, std::size_t at, int axis, int d, T lo, T hi) {
 // block_density() of the block with angular start (cx + dx, cy + dy), from the level's points:
 // Σw★ and Σ s_j N_j(x) summed in block()'s order, so the result is the same bits.
 template <class T>
-T level_block_density(LevelPoints<T>& pts, const LaneInt<T, int>& level, const LaneInt<T>& cx,
+GLINTLAB_FN T level_block_density(LevelPoints<T>& pts, const LaneInt<T, int>& level, const LaneInt<T>& cx,
                       const LaneInt<T>& cy, int dx, int dy, Vec2<T> x) {
   const int n = pts.n;
   const T res_a = angular_resolution<T>(level);
@@ -383,7 +385,7 @@ T level_block_density(LevelPoints<T>& pts, const LaneInt<T, int>& level, const L
 // B(k) whose selecting square of x_a meets U_Ω, at both levels; their points are computed once
 // per level (level_points).
 template <class Ndf, class T>
-T sample_density_square(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp, Vec2<T> x,
+GLINTLAB_FN T sample_density_square(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp, Vec2<T> x,
                         int process = 0) {
   const Mask<T> in_disk = !(sqr(x.x - T(0.5)) + sqr(x.y - T(0.5)) > T(0.25));
   if (!any_lane<T>(in_disk)) return T(0);
@@ -410,10 +412,10 @@ T sample_density_square(const Params<T>& p, const Ndf& ndf, const FootprintQuery
         const T fx = int_to_float<T>(bx) + half, fy = int_to_float<T>(by) + half;
         const LanesOf<T> x0(fx / res_a), x1((fx + T(1)) / res_a), y0(fy / res_a),
             y1((fy + T(1)) / res_a);
-        // The exact disk ∩ rectangle area (host scalar code, core/math/disk_rect_area.h), lane
-        // by lane.
+        // The exact disk ∩ rectangle area (scalar code, core/math/disk_rect_area.h), lane by
+        // lane.
         const T area = float_lanes<T>([&](std::size_t l) {
-          return Scalar<T>(disk_rect_area(double(x0[l]), double(x1[l]), double(y0[l]),
+          return Scalar<T>(disk_rect_area_in_kernel(double(x0[l]), double(x1[l]), double(y0[l]),
                                           double(y1[l]), 0.5, 0.5, 0.5));
         });
         const Mask<T> use = w_positive && (area > T(0));
@@ -431,7 +433,7 @@ T sample_density_square(const Params<T>& p, const Ndf& ndf, const FootprintQuery
 
 // The marginal density of ω_h per steradian: the density in □ at T(ω_h) times |det dT/dω|.
 template <class Ndf, class T>
-T sample_density_half(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp, Vec3<T> h,
+GLINTLAB_FN T sample_density_half(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp, Vec3<T> h,
                       int process = 0) {
   const Mask<T> up = h.z > T(0);
   if (!any_lane<T>(up)) return T(0);
@@ -443,7 +445,7 @@ T sample_density_half(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T
 
 // A sampler key from the two uniforms of a model's sample(): their bit patterns hashed.
 template <class T>
-LaneInt<T, std::uint64_t> key_from_uniforms(Vec2<T> u) {
+GLINTLAB_FN LaneInt<T, std::uint64_t> key_from_uniforms(Vec2<T> u) {
   const LanesOf<T> ux(u.x), uy(u.y);
   return int_lanes<T, std::uint64_t>([&](std::size_t l) {
     const double a = double(ux[l]), b = double(uy[l]);

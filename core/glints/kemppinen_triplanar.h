@@ -7,7 +7,7 @@
 // parameters normal_theta, normal_phi), with the tangent frame (t, b) of Duff et al. 2017
 // (core/math/orthonormal_basis.h); the footprint's uv is the position in that frame:
 // p = u t + v b, ∂p/∂x = ∂u/∂x t + ∂v/∂x b (likewise y). For n = +z, t = x and b = y, so p = (u, v,
-// 0): the z plane's process is the uv process (kTriplanarProcess) and triplanar D★^f
+// 0): the z plane's process is the uv process (triplanar_process) and triplanar D★^f
 // equals the uv path's exactly.
 //
 // Sampling (the paper gives no triplanar sampler): choose plane i with probability w_i (the blend
@@ -46,7 +46,7 @@ GLINTLAB_FN TriplanarInput<T> triplanar_input(const FootprintQuery<T>& fp, Vec3<
 }
 
 template <class Ndf, class T>
-Result<T> eval_triplanar(const Params<T>& p, const Ndf& ndf, const TriplanarInput<T>& in,
+GLINTLAB_FN Result<T> eval_triplanar(const Params<T>& p, const Ndf& ndf, const TriplanarInput<T>& in,
                          Vec3<T> h) {
   return eval_triplanar(p, ndf, in.pos, in.dpos_dx, in.dpos_dy, in.normal, h);
 }
@@ -55,7 +55,7 @@ Result<T> eval_triplanar(const Params<T>& p, const Ndf& ndf, const TriplanarInpu
 // then Algorithm 2 on its process. pdf_printed_h carries the factor w_i. Generic over T: the
 // plane is a mask per lane, and a plane's sampler runs when any lane chose it.
 template <class Ndf, class T>
-HalfSample<T> triplanar_sample_half(const Params<T>& p, const Ndf& ndf, const TriplanarInput<T>& in,
+GLINTLAB_FN HalfSample<T> triplanar_sample_half(const Params<T>& p, const Ndf& ndf, const TriplanarInput<T>& in,
                                     const LaneInt<T, std::uint64_t>& key) {
   const Vec3<T> wv = triplanar_weights(in.normal);
   const T w[3] = {wv.x, wv.y, wv.z};
@@ -78,7 +78,7 @@ HalfSample<T> triplanar_sample_half(const Params<T>& p, const Ndf& ndf, const Tr
   for (int i = 0; i < 3; ++i) {
     if (!any_lane<T>(chosen[i])) continue;
     HalfSample<T> s = sample_half(p, ndf, triplanar_footprint(i, in.pos, in.dpos_dx, in.dpos_dy),
-                                  key, kTriplanarProcess[i]);
+                                  key, triplanar_process(i));
     s.pdf_printed_h *= w[i];
     const Mask<T>& m = chosen[i];
     out.x = {select(m, s.x.x, out.x.x), select(m, s.x.y, out.x.y)};
@@ -93,7 +93,7 @@ HalfSample<T> triplanar_sample_half(const Params<T>& p, const Ndf& ndf, const Tr
 
 // The density of triplanar_sample_half's ω_h per steradian: Σ_i w_i p_i(ω_h).
 template <class Ndf, class T>
-T triplanar_density_half(const Params<T>& p, const Ndf& ndf, const TriplanarInput<T>& in,
+GLINTLAB_FN T triplanar_density_half(const Params<T>& p, const Ndf& ndf, const TriplanarInput<T>& in,
                          Vec3<T> h) {
   const Vec3<T> wv = triplanar_weights(in.normal);
   const T w[3] = {wv.x, wv.y, wv.z};
@@ -104,7 +104,7 @@ T triplanar_density_half(const Params<T>& p, const Ndf& ndf, const TriplanarInpu
     sum += select(
         nonempty,
         w[i] * sample_density_half(p, ndf, triplanar_footprint(i, in.pos, in.dpos_dx, in.dpos_dy),
-                                   h, kTriplanarProcess[i]),
+                                   h, triplanar_process(i)),
         T(0));
   }
   return sum;

@@ -127,7 +127,7 @@ KemppinenModelParams<Ndf, T> kemppinen_model_params(std::span<const double> v) {
 
 // Eq. 1 with D★^f: value = G2 D★^f / (4 |ωi·n|) (the cosine-weighted BRDF, F = 1).
 template <class Ndf, class T>
-ModelEval<T, kKemppinenIntermediates.size()> kemppinen_model_eval(
+GLINTLAB_FN ModelEval<T, kKemppinenIntermediates.size()> kemppinen_model_eval(
     const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q, T pdf) {
   const Vec3<T> h = half_vector(q.wi, q.wo);
   const kemppinen2025::Result<T> r =
@@ -148,7 +148,7 @@ ModelEval<T, kKemppinenIntermediates.size()> kemppinen_model_eval(
 
 // The explicit-strategy probability q of the mixture at the query's footprint (uv or triplanar).
 template <class Ndf, class T>
-T kemppinen_model_mixture_probability(const KemppinenModelParams<Ndf, T>& p,
+GLINTLAB_FN T kemppinen_model_mixture_probability(const KemppinenModelParams<Ndf, T>& p,
                                       const ModelQuery<T>& q) {
   return p.triplanar ? kemppinen2025::triplanar_mixture_probability(
                            p.glint, p.ndf, kemppinen2025::triplanar_input(q.footprint, p.normal))
@@ -159,7 +159,7 @@ T kemppinen_model_mixture_probability(const KemppinenModelParams<Ndf, T>& p,
 // q p₁(ω_h) + (1 − q) D cosθ_h with p₁ Algorithm 2's marginal, / (4 |ωo·ω_h|).
 // (Generic over T: the early-outs are taken only when no lane needs the rest, and masked after.)
 template <class Ndf, class T>
-T kemppinen_model_pdf(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q) {
+GLINTLAB_FN T kemppinen_model_pdf(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q) {
   const Mask<T> lit = (q.wi.z > T(0)) && (q.wo.z > T(0));
   if (!any_lane<T>(lit)) return T(0);
   const Vec3<T> h = half_vector(q.wi, q.wo);
@@ -180,7 +180,7 @@ T kemppinen_model_pdf(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>
 // ωo = reflect(ωi, ω_h), ω_h from the mixture; the pdf the marginal (exact) or the printed
 // mixture density (pdf=printed), the weight value/pdf.
 template <class Ndf, class T>
-ModelSample<T> kemppinen_model_sample(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q,
+GLINTLAB_FN ModelSample<T> kemppinen_model_sample(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q,
                                       Vec2<T> u) {
   const ModelSample<T> none{{T(0), T(0), T(0)}, T(0), T(0), Mask<T>(true)};
   const Mask<T> lit = q.wi.z > T(0);
@@ -214,7 +214,7 @@ ModelSample<T> kemppinen_model_sample(const KemppinenModelParams<Ndf, T>& p, con
 // its marginal density of ω_h / (4 |ωo·ω_h|). Not the model's sampler; kept as the input on which
 // the conformance tests show sampler-covers-value failing where the compensation dominates.
 template <class Ndf, class T>
-T kemppinen_model_explicit_pdf(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q) {
+GLINTLAB_FN T kemppinen_model_explicit_pdf(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q) {
   const Mask<T> lit = (q.wi.z > T(0)) && (q.wo.z > T(0));
   if (!any_lane<T>(lit)) return T(0);
   const Vec3<T> h = half_vector(q.wi, q.wo);
@@ -230,7 +230,7 @@ T kemppinen_model_explicit_pdf(const KemppinenModelParams<Ndf, T>& p, const Mode
 // Algorithm 2 alone: ωo = reflect(ωi, ω_h), its pdf the marginal (kemppinen_model_explicit_pdf)
 // or Algorithm 2's printed pdf (lines 16–17), the weight the whole value / pdf.
 template <class Ndf, class T>
-ModelSample<T> kemppinen_model_explicit_sample(const KemppinenModelParams<Ndf, T>& p,
+GLINTLAB_FN ModelSample<T> kemppinen_model_explicit_sample(const KemppinenModelParams<Ndf, T>& p,
                                                const ModelQuery<T>& q, Vec2<T> u) {
   const ModelSample<T> none{{T(0), T(0), T(0)}, T(0), T(0), Mask<T>(true)};
   const Mask<T> lit = q.wi.z > T(0);
@@ -282,15 +282,15 @@ struct KemppinenModel {
     return kemppinen_model_params<Ndf<T>, T>(v);
   }
   template <class T>
-  static T pdf(const Params<T>& p, const ModelQuery<T>& q) {
+  GLINTLAB_FN static T pdf(const Params<T>& p, const ModelQuery<T>& q) {
     return kemppinen_model_pdf(p, q);
   }
   template <class T>
-  static ModelEval<T, kIntermediates.size()> eval(const Params<T>& p, const ModelQuery<T>& q) {
+  GLINTLAB_FN static ModelEval<T, kIntermediates.size()> eval(const Params<T>& p, const ModelQuery<T>& q) {
     return kemppinen_model_eval(p, q, pdf(p, q));
   }
   template <class T>
-  static ModelSample<T> sample(const Params<T>& p, const ModelQuery<T>& q, Vec2<T> u) {
+  GLINTLAB_FN static ModelSample<T> sample(const Params<T>& p, const ModelQuery<T>& q, Vec2<T> u) {
     return kemppinen_model_sample(p, q, u);
   }
 };

@@ -71,7 +71,7 @@ GLINTLAB_FN Vec2<T> solve_uv(Vec3<T> dpdu, Vec3<T> dpdv, Vec3<T> dp) {
 
 // The footprint of pixel coordinates (x, y) (the pixel centre for x = i + ½) on `shape`.
 template <class Shape, class T>
-PixelFootprint<T> pixel_footprint(const PinholeCamera<T>& camera, const Shape& shape, T x, T y,
+GLINTLAB_FN PixelFootprint<T> pixel_footprint(const PinholeCamera<T>& camera, const Shape& shape, T x, T y,
                                   const LightPoint<T>& light) {
   PixelFootprint<T> f{};
   f.surface = shape.intersect(camera.ray(x, y));

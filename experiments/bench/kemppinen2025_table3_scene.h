@@ -61,7 +61,7 @@ inline Scene scene(int plane_deg) {
 
 // Radiance of one pixel: Σ over the 3 lights of value(ωi, ωl) / d², value = brdf(query).
 template <class Brdf>
-double shade_pixel(const Scene& s, std::uint64_t pixel, const Brdf& brdf) {
+GLINTLAB_FN double shade_pixel(const Scene& s, std::uint64_t pixel, const Brdf& brdf) {
   const double x = double(pixel % kWidth) + 0.5, y = double(pixel / kWidth) + 0.5;
   const PixelFootprint<double> f =
       pixel_footprint(s.camera, s.plane, x, y, LightPoint<double>{s.lights[0], false});

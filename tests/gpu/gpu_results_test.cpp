@@ -12,6 +12,7 @@
 
 #include "core/model_registry.h"
 #include "core/simd/model_batch.h"
+#include "experiments/bench/kemppinen2025_table3_scene.h"
 #include "gpu/cpu_comparison.h"
 #include "gpu/device_support.h"
 #include "gpu/query_set.h"
@@ -125,9 +126,24 @@ fs::path write_folder(const std::string& name, std::size_t rows, const Alter& al
     run_precision(float{});
     run_precision(double{});
   }
+  // The Table 3 frames: a few pixels of every cell, shaded on the CPU.
+  std::vector<Table3FrameRun> frames;
+  for (const kemppinen_table3::Cell& cell : kemppinen_table3::cells()) {
+    Table3FrameRun f;
+    f.cell = kemppinen_table3::cell_name(cell);
+    const RunRecord run{f.cell, "double", "frame", {"radiance"}, {}};
+    kemppinen_table3::with_cell(cell, [&](const auto& shade) {
+      for (std::uint64_t n = 0; n < 8; ++n) {
+        f.pixels.push_back(kemppinen_table3::pixel_of(n));
+        f.radiance.push_back(alter(run, "radiance", n, shade(f.pixels.back())));
+      }
+    });
+    frames.push_back(std::move(f));
+  }
+  write_table3_pixels_csv(dir / kTable3PixelsFile, frames);
   write_results_json(dir / "results.json",
                      {"CPU standing in for a device", 0, 0, "none", rows, rows, kQuerySeed, 0},
-                     runs);
+                     runs, frames);
   return dir;
 }
 
@@ -137,8 +153,10 @@ TEST(GpuComparison, TheCpusOwnResultsAreWithinBudgetExactly) {
   const FolderComparison c = compare_with_cpu(write_folder("gpu_same", 512, kUnchanged));
   EXPECT_TRUE(c.within_budget) << describe(c);
   ASSERT_EQ(c.runs.size(), 12u);
-  for (const RunComparison& r : c.runs)
-    for (const ColumnComparison& col : r.columns) EXPECT_EQ(col.max_relative, 0.0) << col.column;
+  ASSERT_EQ(c.frames.size(), kemppinen_table3::cells().size());
+  for (const auto* runs : {&c.runs, &c.frames})
+    for (const RunComparison& r : *runs)
+      for (const ColumnComparison& col : r.columns) EXPECT_EQ(col.max_relative, 0.0) << col.column;
 }
 
 // What a device's math library does: a couple of ulp, everywhere.
@@ -190,6 +208,21 @@ TEST(GpuComparison, ResultsAFewPerCentOffAreBeyondBudget) {
       EXPECT_EQ(r.columns[0].rows_over, 1u);
       EXPECT_NEAR(r.columns[0].max_relative, 0.03, 1e-6);
     }
+
+  // One Table 3 frame pixel 3 % off.
+  const auto frame_pixel = [](const RunRecord& r, const std::string&, std::size_t i, auto v) {
+    using T = decltype(v);
+    return r.function == "frame" &&
+                   r.model == "table3/ndf:ggx/plane:90/roughness:high/model:smooth" && i == 5
+               ? v * T(1.03)
+               : v;
+  };
+  c = compare_with_cpu(write_folder("gpu_frame_pixel", 32, frame_pixel));
+  EXPECT_FALSE(c.within_budget);
+  for (const RunComparison& r : c.runs) EXPECT_TRUE(r.within_budget) << r.model;
+  std::size_t frames_beyond = 0;
+  for (const RunComparison& r : c.frames) frames_beyond += r.within_budget ? 0 : 1;
+  EXPECT_EQ(frames_beyond, 1u);
 
   const auto flipped = [](const RunRecord& r, const std::string& column, std::size_t i, auto v) {
     using T = decltype(v);

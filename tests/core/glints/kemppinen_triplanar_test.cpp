@@ -98,7 +98,7 @@ TEST(KemppinenTriplanar, PlaneNormalToXIsProcessOne) {
     const auto r = kemppinen2025::eval_triplanar(tri.glint, tri.ndf, in, h);
     const auto one = kemppinen2025::eval_process(
         tri.glint, tri.ndf, kemppinen2025::triplanar_footprint(0, in.pos, in.dpos_dx, in.dpos_dy),
-        h, kemppinen2025::kTriplanarProcess[0], 1.0);
+        h, kemppinen2025::triplanar_process(0), 1.0);
     EXPECT_NEAR(r.d.x, one.d.x, 1e-9 * (1 + one.d.x)) << i;
     EXPECT_EQ(r.lambda, one.lambda);
   }
@@ -145,7 +145,7 @@ TEST(KemppinenTriplanar, MixtureDensityIntegratesToAcceptanceRate) {
             wa[a] * kemppinen2025::sample_density_square(
                         m.glint, m.ndf,
                         kemppinen2025::triplanar_footprint(a, in.pos, in.dpos_dx, in.dpos_dy), x,
-                        kemppinen2025::kTriplanarProcess[a]);
+                        kemppinen2025::triplanar_process(a));
     }
   integral /= double(g) * g;
   int ok = 0;
