@@ -8,6 +8,7 @@
 #include "verify/claims/eto/list.h"
 #include "verify/claims/kneiphof/list.h"
 #include "verify/claims/podee/list.h"
+#include "verify/claims/smooth/list.h"
 #include "verify/conformance/conformance.h"
 #include "verify/finding_rule.h"
 #include "verify/stats/multiple_testing.h"
@@ -47,10 +48,10 @@ void attach_reading(Check& c) {
 const std::vector<Check>& registered_checks() {
   static const std::vector<Check> checks = [] {
     std::vector<Check> all;
-    for (auto* list : {&smooth_checks, &smooth_sampler_checks, &smooth_consistency_checks,
-                       &list_checks<eto_claims::Claims>, &kemppinen_checks,
-                       &list_checks<kneiphof_claims::Claims>, &list_checks<chermain_claims::Claims>,
-                       &list_checks<podee_claims::Claims>, &across_checks, &adequacy_checks}) {
+    for (auto* list :
+         {&list_checks<smooth_claims::Claims>, &list_checks<eto_claims::Claims>, &kemppinen_checks,
+          &list_checks<kneiphof_claims::Claims>, &list_checks<chermain_claims::Claims>,
+          &list_checks<podee_claims::Claims>, &across_checks, &adequacy_checks}) {
       for (Check& c : list()) {
         attach_reading(c);
         all.push_back(std::move(c));

@@ -8,12 +8,9 @@
 
 namespace glintlab::verify {
 
-std::vector<Check> smooth_checks();              // verify/claims/smooth.cpp
-std::vector<Check> smooth_sampler_checks();      // verify/claims/smooth_samplers.cpp
-std::vector<Check> smooth_consistency_checks();  // verify/claims/smooth_consistency.cpp
-std::vector<Check> kemppinen_checks();           // verify/claims/kemppinen.cpp
-std::vector<Check> kemppinen_glint_checks();     // verify/claims/kemppinen_glints.cpp
-std::vector<Check> across_checks();              // verify/claims/across.cpp
-std::vector<Check> adequacy_checks();            // verify/claims/adequacy.cpp
+std::vector<Check> kemppinen_checks();        // verify/claims/kemppinen.cpp
+std::vector<Check> kemppinen_glint_checks();  // verify/claims/kemppinen_glints.cpp
+std::vector<Check> across_checks();           // verify/claims/across.cpp
+std::vector<Check> adequacy_checks();         // verify/claims/adequacy.cpp
 
 }  // namespace glintlab::verify

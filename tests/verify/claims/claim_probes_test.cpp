@@ -13,6 +13,7 @@
 #include "verify/claims/eto/list.h"
 #include "verify/claims/kneiphof/list.h"
 #include "verify/claims/podee/list.h"
+#include "verify/claims/smooth/list.h"
 
 namespace glintlab::verify {
 
@@ -39,8 +40,8 @@ struct ProbesOf<ClaimList<As...>, ClaimList<Bs...>, Rest...>
 
 template <typename T>
 class ClaimProbes : public ::testing::Test {};
-using AllProbes = ProbesOf<eto_claims::Claims, kneiphof_claims::Claims, chermain_claims::Claims,
-                           podee_claims::Claims>::type;
+using AllProbes = ProbesOf<smooth_claims::Claims, eto_claims::Claims, kneiphof_claims::Claims,
+                           chermain_claims::Claims, podee_claims::Claims>::type;
 TYPED_TEST_SUITE(ClaimProbes, AllProbes);
 
 TYPED_TEST(ClaimProbes, VerdictAndControlsAtProbeSize) {
@@ -64,6 +65,21 @@ TYPED_TEST(ClaimProbes, VerdictAndControlsAtProbeSize) {
 
 // The lists are registered in order, with the papers' readings attached, and their recorded
 // verdicts.
+TEST(ClaimLists, SmoothRegisteredFirstInOrder) {
+  std::vector<std::string> ids;
+  for (const Check& c : registered_checks())
+    if (c.id.rfind("smooth.", 0) == 0) {
+      ids.push_back(c.id);
+      EXPECT_FALSE(c.paper_quote.empty()) << c.id;
+      EXPECT_EQ(c.expected, Verdict::kHolds) << c.id;
+      EXPECT_EQ(is_statistical(c), c.id == "smooth.sampler-matches-pdf") << c.id;
+    }
+  EXPECT_EQ(
+      ids, (std::vector<std::string>{"smooth.projected-area", "smooth.vndf-normalized",
+                                     "smooth.sampler-matches-pdf", "smooth.eval-pdf-consistency"}));
+  EXPECT_EQ(registered_checks().front().id, "smooth.projected-area");
+}
+
 TEST(ClaimLists, PodeeRegisteredInOrder) {
   std::vector<std::string> ids;
   for (const Check& c : registered_checks())

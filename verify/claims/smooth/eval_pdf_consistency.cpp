@@ -1,6 +1,20 @@
-// smooth.eval-pdf-consistency: for every sampler of the core, pdf(sample()) equals the standalone
-// pdf and eval·cos/pdf equals each paper's closed-form weight (Walter et al. 2007 Eq. 41; Heitz &
-// d'Eon 2014 / Heitz 2018: G2/G1; Eto & Tokuyoshi 2023 Eq. 8: G2/G1 · (k i_z + t)/(i_z + t)).
+// smooth.eval-pdf-consistency — Walter et al. 2007, Eq. 41; Heitz & d'Eon 2014 / Heitz 2018;
+// Eto & Tokuyoshi 2023, Eq. 8 and Listing 2.
+//
+// The papers: Walter et al. 2007, Eq. 41: weight(o) = |i·m| G(i, o, m) / (|i·n| |m·n|); VNDF
+// sampling (Heitz & d'Eon 2014, Heitz 2018): weight = G2(ω_i, ω_o) / G1(ω_i); Eto & Tokuyoshi 2023,
+// Listing 2: "return ndf / (2.0f * (k * i.z + t)); // Eq. 8 * ||dm/do||" for Listing 1's samples.
+//
+// Measured: for every sampler of sampler_table(), per sample, the relative difference of the pdf
+// sample() reports from the standalone pdf(ωo), and of the estimator's weight eval·cos/pdf from
+// each paper's closed form (Walter Eq. 41; G2/G1; Eto Eq. 8: G2/G1 · (k i_z + t)/(i_z + t)),
+// computed from Λ alone; per configuration: α ∈ {0.02, 0.3, 1} × anisotropy {1, 8} × θi ∈ {0°,
+// 45°, 85°} (plus back-facing 120°, 175° where the sampler allows it), 2^16 samples (full: a denser
+// grid, 2^20). Holds when the largest difference is within 10^-9 (rounding).
+// Control (perturbed): one configuration per sampler (α = 0.3, θi = 75°, 4096 samples), each
+// decided alone: the pdf recomputed with α × 1.02, and an eval whose G2 lost the G1(ωi) masking
+// term. Every case must fail.
+// Regime: none. Deterministic per sample (the samples are seeded per configuration).
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
@@ -8,6 +22,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <span>
 #include <string>
 #include <tuple>
 #include <type_traits>
@@ -17,17 +32,18 @@
 #include "core/ndf/beckmann.h"
 #include "core/ndf/ggx.h"
 #include "core/samplers/bounded_vndf.h"
-#include "verify/claims/claims.h"
-#include "verify/claims/control_probes.h"
+#include "verify/claim_runner.h"
 #include "verify/claims/gof_family.h"
 #include "verify/claims/sampler_table.h"
+#include "verify/claims/smooth/common.h"
+#include "verify/claims/smooth/list.h"
 
 namespace glintlab::verify {
 namespace {
 
 using V3 = Vec3<double>;
 
-constexpr const char* kId = "smooth.eval-pdf-consistency";
+constexpr std::string_view kId = "smooth.eval-pdf-consistency";
 // Relative tolerance: both quantities are the same algebra evaluated two ways, so they differ by
 // rounding (a few ulp times the conditioning of G2 and D); any modelling error (α off by 2 %, G1
 // dropped, a wrong Jacobian) is orders of magnitude larger.
@@ -159,19 +175,20 @@ std::vector<Config> grid(Budget b) {
   return g;
 }
 
-// Measure: the errors of every configuration, each run with its own seed.
+// The errors of every configuration: the claim's own (seeds check_seed(kId, index), the runner's)
+// or a control's, each run with its own seed.
 struct ConsistencyMeasurement {
   std::vector<Config> configs;
   std::vector<Errors> errors;  // per configuration
   std::uint64_t n = 0;         // samples per configuration
-  Variant variant = Variant::kCorrect;
 };
 
 ConsistencyMeasurement measure_consistency(const std::vector<Config>& configs, std::uint64_t n,
                                            Variant variant, std::uint64_t first_seed_index) {
-  ConsistencyMeasurement m{configs, std::vector<Errors>(configs.size()), n, variant};
+  ConsistencyMeasurement m{configs, std::vector<Errors>(configs.size()), n};
   tbb::parallel_for(std::size_t(0), configs.size(), [&](std::size_t i) {
-    m.errors[i] = measure(configs[i], n, variant, check_seed(kId, first_seed_index + i));
+    m.errors[i] =
+        measure(configs[i], n, variant, check_seed(std::string(kId), first_seed_index + i));
   });
   return m;
 }
@@ -191,7 +208,7 @@ double statistic_of(const ConsistencyMeasurement& m) {
   return m.errors.empty() ? 0 : std::max(m.errors[wp].pdf, m.errors[ww].weight);
 }
 
-// Decide: holds when every sample's pdf and weight agree within the tolerance.
+// Holds when every sample's pdf and weight agree within the tolerance.
 Verdict decide_consistency(const ConsistencyMeasurement& m) {
   return statistic_of(m) <= kTolerance ? Verdict::kHolds : Verdict::kFails;
 }
@@ -201,14 +218,7 @@ std::string where(const Config& c) {
                      c.theta_deg);
 }
 
-std::size_t sampler_count(const std::vector<Config>& configs) {
-  std::vector<std::size_t> s;
-  for (const Config& c : configs)
-    if (std::find(s.begin(), s.end(), c.sampler) == s.end()) s.push_back(c.sampler);
-  return s.size();
-}
-
-// Describe: how much was sampled and where each error is largest.
+// How much was sampled and where each error is largest.
 std::string describe_consistency(const ConsistencyMeasurement& m) {
   const auto [wp, ww] = worst_of(m);
   std::uint64_t accepted = 0;
@@ -216,66 +226,101 @@ std::string describe_consistency(const ConsistencyMeasurement& m) {
   return fmt::format(
       "{} samplers, {} configurations × {} samples ({} accepted): pdf max rel. error {:.2g} ({}), "
       "weight max rel. error {:.2g} ({}); tolerance {:.0e}",
-      sampler_count(m.configs), m.configs.size(), m.n, accepted, m.errors[wp].pdf,
-      where(m.configs[wp]), m.errors[ww].weight, where(m.configs[ww]), kTolerance);
-}
-
-CheckResult run(Budget b) {
-  const ConsistencyMeasurement m = measure_consistency(
-      grid(b), b == Budget::kQuick ? (1u << 16) : (1u << 20), Variant::kCorrect, 0);
-  CheckResult r;
-  r.statistic = "max relative error of pdf(sample()) vs pdf(ωo) and of eval·cos/pdf vs closed form";
-  r.bound = kTolerance;
-  r.configurations = int(m.configs.size());
-  r.value = statistic_of(m);
-  r.verdict = decide_consistency(m);
-  r.detail = describe_consistency(m);
-  r.power = fmt::format(
-      "deterministic per sample: a relative error above {:g} in any one of the {} samples per "
-      "configuration is detected",
-      kTolerance, m.n);
-  // Controls, one configuration per sampler, each decided alone: the pdf recomputed with α 2 % too
-  // large, and an eval whose G2 lost the G1(ωi) masking term. Every case must fail.
-  const auto& table = sampler_table();
-  std::vector<Verdict> cases;
-  std::string text;
-  for (auto [variant, seeds, what] :
-       {std::tuple{Variant::kPdfAlphaOff, 1000, "α×1.02 in the recomputed pdf"},
-        std::tuple{Variant::kEvalWithoutG1, 2000, "G1(ωi) dropped from eval"}}) {
-    double smallest = 1e300;
-    std::string at;
-    for (std::size_t s = 0; s < table.size(); ++s) {
-      // Λ(ωi) not negligible for Beckmann either at α = 0.3, θi = 75°.
-      const ConsistencyMeasurement c =
-          measure_consistency({{s, 0.3, 0.3, 75}}, 4096, variant, std::uint64_t(seeds) + s);
-      cases.push_back(decide_consistency(c));
-      smallest = std::min(smallest, statistic_of(c));
-      at = fmt::format("αx={:g} αy={:g} θi={:g}°, {} samples each", c.configs[0].ax,
-                       c.configs[0].ay, c.configs[0].theta_deg, c.n);
-    }
-    text += fmt::format("{}{}: smallest max error {:.3g} over {} samplers at {}",
-                        text.empty() ? "" : "; ", what, smallest, table.size(), at);
-  }
-  record_control(r, control_verdict_of_cases(cases));
-  r.control = fmt::format("{} → {} ({})", text, to_string(*r.control_verdict),
-                          r.control_rejected ? "rejected" : "NOT rejected");
-  return r;
+      smooth_claims::sampler_count(std::span<const Config>(m.configs)), m.configs.size(), m.n,
+      accepted, m.errors[wp].pdf, where(m.configs[wp]), m.errors[ww].weight, where(m.configs[ww]),
+      kTolerance);
 }
 
 }  // namespace
 
-ControlProbe probe_eval_pdf_consistency(std::size_t sampler, int control) {
-  const Config c{sampler, 0.3, 0.15, 75};
-  const Variant v = control == 0 ? Variant::kPdfAlphaOff : Variant::kEvalWithoutG1;
-  auto stat = [&](const Errors& e) { return std::max(e.pdf, e.weight); };
-  return {stat(measure(c, 4096, Variant::kCorrect, check_seed(kId, 3000 + sampler))),
-          stat(measure(c, 4096, v, check_seed(kId, 3000 + sampler))), kTolerance, false};
-}
+namespace smooth_claims {
 
-std::vector<Check> smooth_consistency_checks() {
-  return {{kId, "Walter et al. 2007; Heitz 2018; Dupuy & Benyoub 2023; Eto & Tokuyoshi 2023",
-           "weight = f·cos/pdf (Walter Eq. 41, G2/G1, Eto Eq. 8); pdf(sample()) = pdf(ωo)",
-           Verdict::kHolds, run}};
-}
+struct EvalPdfConsistency {
+  static constexpr std::string_view kId = verify::kId;
+  static constexpr std::string_view kPaper =
+      "Walter et al. 2007; Heitz 2018; Dupuy & Benyoub 2023; Eto & Tokuyoshi 2023";
+  static constexpr std::string_view kSource =
+      "weight = f·cos/pdf (Walter Eq. 41, G2/G1, Eto Eq. 8); pdf(sample()) = pdf(ωo)";
+  static constexpr std::string_view kStatistic =
+      "max relative error of pdf(sample()) vs pdf(ωo) and of eval·cos/pdf vs closed form";
+  static constexpr Expected kExpected{.quick = Verdict::kHolds};
 
+  struct Sizes {
+    std::vector<Config> grid;
+    std::uint64_t n = 0;  // samples per configuration
+    Config control;       // the controls' configuration (its sampler: each in turn)
+    std::uint64_t control_n = 0;
+  };
+  // Λ(ωi) is not negligible for Beckmann either at the controls' α = 0.3, θi = 75°.
+  static Sizes sizes(Budget b) {
+    return {grid(b), b == Budget::kQuick ? (1u << 16) : (1u << 20), {0, 0.3, 0.3, 75}, 4096};
+  }
+  // The tests' probe: every sampler at α = (0.3, 0.15), θi = 75°, 4096 samples, the controls there.
+  static Sizes probe_sizes() {
+    const Config c{0, 0.3, 0.15, 75};
+    Sizes z{{}, 4096, c, 4096};
+    for (std::size_t s = 0; s < sampler_table().size(); ++s) z.grid.push_back({s, c.ax, c.ay, 75});
+    return z;
+  }
+  static int configurations(const Sizes& z) { return int(z.grid.size()); }
+
+  using Evidence = Errors;
+  static Evidence observe(const Sizes& z, int k, std::uint64_t seed) {
+    return verify::measure(z.grid[std::size_t(k)], z.n, Variant::kCorrect, seed);
+  }
+
+  // The claim's configurations (genuine), or the controls (perturbed): one configuration per
+  // sampler for each wrong variant, measured here with seeds of their own, each decided alone.
+  struct Measured {
+    ConsistencyMeasurement m;
+    std::vector<Verdict> cases = {};
+    std::string control_text = {};
+  };
+  static Measured measure(const Sizes& z, std::span<const Evidence> evidence, Input input) {
+    if (input == Input::kGenuine)
+      return {{z.grid, std::vector<Errors>(evidence.begin(), evidence.end()), z.n}};
+    Measured out;
+    const auto& table = sampler_table();
+    for (auto [variant, seeds, what] :
+         {std::tuple{Variant::kPdfAlphaOff, 1000, "α×1.02 in the recomputed pdf"},
+          std::tuple{Variant::kEvalWithoutG1, 2000, "G1(ωi) dropped from eval"}}) {
+      double smallest = 1e300;
+      std::string at;
+      for (std::size_t s = 0; s < table.size(); ++s) {
+        const Config at_s{s, z.control.ax, z.control.ay, z.control.theta_deg};
+        const ConsistencyMeasurement c =
+            measure_consistency({at_s}, z.control_n, variant, std::uint64_t(seeds) + s);
+        out.cases.push_back(decide_consistency(c));
+        smallest = std::min(smallest, statistic_of(c));
+        at = fmt::format("αx={:g} αy={:g} θi={:g}°, {} samples each", c.configs[0].ax,
+                         c.configs[0].ay, c.configs[0].theta_deg, c.n);
+      }
+      out.control_text +=
+          fmt::format("{}{}: smallest max error {:.3g} over {} samplers at {}",
+                      out.control_text.empty() ? "" : "; ", what, smallest, table.size(), at);
+    }
+    return out;
+  }
+
+  static Decision decide(const Sizes&, const Measured& m) {
+    if (!m.cases.empty()) return {.verdict = control_verdict_of_cases(m.cases)};
+    return {.verdict = decide_consistency(m.m),
+            .value = statistic_of(m.m),
+            .bound = kTolerance,
+            .configurations = int(m.m.configs.size())};
+  }
+  static std::string describe(const Sizes&, const Measured& m, Input input) {
+    return input == Input::kGenuine ? describe_consistency(m.m) : m.control_text;
+  }
+  static std::string power(const Sizes& z, const Measured&, const Measured&) {
+    return fmt::format(
+        "deterministic per sample: a relative error above {:g} in any one of the {} samples per "
+        "configuration is detected",
+        kTolerance, z.n);
+  }
+};
+
+}  // namespace smooth_claims
 }  // namespace glintlab::verify
+
+GLINTLAB_CLAIM(glintlab::verify::smooth_claims::EvalPdfConsistency);
