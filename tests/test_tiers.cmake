@@ -49,7 +49,7 @@ set(glintlab_slow_tests
   # Chi-square and integration checks whose sample sizes set what they can detect.
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::eto_claims::PdfMatches>> 8"
   "ChiSquareClaims.IdenticalWithOneAndTwoThreads 2"
-  "ChiSquareClaims.SamplerMatchesPdfControlsRejected 11"
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::smooth_claims::SamplerMatchesPdf>> 11"
   "LightsChiSquare.PolygonSamplersMatchTheirPdfsAndControlsAreRejected 3"
   "LightsChiSquare.RectangleSamplersMatchTheirPdfsAndControlsAreRejected 5"
   "NdfIdentities.ProjectedAreaIsOmegaZAndSmithArea<glintlab::Beckmann<double>> 4"
@@ -166,13 +166,13 @@ set(glintlab_power_tests
   # compare's side-by-side scheduling is sanitized in CompareTest.PluginModelBeside… and
   # CompareShardTest.*, the suite's properties in Properties/ControlRejected.*.
   "CompareTest.MeasuredConformanceIsVerifysRowsWithOneOrTwoThreads"
-  # The controls of smooth.sampler-matches-pdf and eto.pdf-matches (its claim type's probe) at the
-  # samples that reject a 2 % error: ChiSquareClaims.IdenticalWithOneAndTwoThreads runs both families (the batched
+  # The controls of smooth.sampler-matches-pdf and eto.pdf-matches (their claim types' probes) at
+  # the samples that reject a 2 % error: ChiSquareClaims.IdenticalWithOneAndTwoThreads runs both families (the batched
   # samplers, scaled, α × 1.02 and replanned controls) at 2·10^4 samples;
   # SamplerPdfConsistency.*, SamplerWeights.* and BoundedVndf*.* every sampler and pdf of
   # their grids.
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::eto_claims::PdfMatches>>"
-  "ChiSquareClaims.SamplerMatchesPdfControlsRejected"
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::smooth_claims::SamplerMatchesPdf>>"
   # 10^5 samples per light: LightsChiSquare.CapsMatchTheirPdfsAndControlsAreRejected and
   # .DiskMatchesItsPdfAndControlIsRejected take the same plan and fit; Lights.PdfsIntegrateToOne-
   # ByCubature and Lights.SamplesAgreeWithPdfRadianceAndGeometry every light's pdf and sampler,

@@ -134,7 +134,7 @@ GofCase make_case(const Config& c) {
     };
   }
   // For anisotropic α the cap edge χ⁺ = 0 is far from a parallel: azimuth breaks resolve the thin
-  // slivers of support near its extreme polar angle (see smooth_samplers.cpp).
+  // slivers of support near its extreme polar angle (see smooth/sampler_matches_pdf.cpp).
   if (c.ax != c.ay)
     for (int k = 1; k < 64; ++k) gc.options.phi_breaks.push_back(2 * std::numbers::pi * k / 64);
   gc.directions = directions(c);
