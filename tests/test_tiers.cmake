@@ -167,8 +167,8 @@ set(glintlab_power_tests
   # CompareShardTest.*, the suite's properties in Properties/ControlRejected.*.
   "CompareTest.MeasuredConformanceIsVerifysRowsWithOneOrTwoThreads"
   # The controls of smooth.sampler-matches-pdf and eto.pdf-matches (their claim types' probes) at
-  # the samples that reject a 2 % error: ChiSquareClaims.IdenticalWithOneAndTwoThreads runs both families (the batched
-  # samplers, scaled, α × 1.02 and replanned controls) at 2·10^4 samples;
+  # the samples that reject a 2 % error: ChiSquareClaims.IdenticalWithOneAndTwoThreads runs both
+  # families (the batched samplers, scaled, α × 1.02 and replanned controls) at 2·10^4 samples;
   # SamplerPdfConsistency.*, SamplerWeights.* and BoundedVndf*.* every sampler and pdf of
   # their grids.
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::eto_claims::PdfMatches>>"
