@@ -74,8 +74,13 @@ CheckResult decide_all(const typename C::Sizes& z, std::span<const typename C::E
     r.control_p_value = C::control_p_value(z, control);
   else
     r.control_p_value = c.p_value;
-  r.control = fmt::format("{} → {} ({})", C::describe(z, control, input), to_string(c.verdict),
-                          r.control_rejected ? "rejected" : "NOT rejected");
+  // The control's line: the claim's own where it words it itself (control_text, e.g. the sweep
+  // claims' "<control>: verdict <v>; <targets>"), else "<describe> → <verdict> (rejected)".
+  if constexpr (requires { C::control_text(z, control, input, c.verdict); })
+    r.control = C::control_text(z, control, input, c.verdict);
+  else
+    r.control = fmt::format("{} → {} ({})", C::describe(z, control, input), to_string(c.verdict),
+                            r.control_rejected ? "rejected" : "NOT rejected");
   if constexpr (requires { C::beside_control(z, control); })
     r.control += ". " + C::beside_control(z, control);
   if constexpr (requires { C::power(z, genuine, control); })

@@ -83,8 +83,8 @@ struct ClaimGroup {
 void PrintTo(const ClaimGroup& g, std::ostream* os) { *os << g.name; }
 const std::vector<ClaimGroup>& shared_measurements() {
   static const std::vector<ClaimGroup> groups = {
-      // The stability sweep of every registered model (verify/claims/across.cpp suite_sweeps):
-      // about 15 s each apart.
+      // The stability sweep of every registered model (verify/claims/across/common.cpp
+      // suite_sweeps): about 15 s each apart.
       {"stability_sweep", {"all.energy-gain", "all.probability", "all.variance"}},
       // The replicates of the GGAA renders (verify/claims/chermain/common.h, replicate).
       {"chermain_ggaa_replicates", {"chermain.ggaa-error", "chermain.ggaa-shimmer"}},

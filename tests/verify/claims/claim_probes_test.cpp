@@ -9,6 +9,7 @@
 
 #include "verify/check.h"
 #include "verify/claim.h"
+#include "verify/claims/across/list.h"
 #include "verify/claims/chermain/list.h"
 #include "verify/claims/eto/list.h"
 #include "verify/claims/kneiphof/list.h"
@@ -40,8 +41,9 @@ struct ProbesOf<ClaimList<As...>, ClaimList<Bs...>, Rest...>
 
 template <typename T>
 class ClaimProbes : public ::testing::Test {};
-using AllProbes = ProbesOf<smooth_claims::Claims, eto_claims::Claims, kneiphof_claims::Claims,
-                           chermain_claims::Claims, podee_claims::Claims>::type;
+using AllProbes =
+    ProbesOf<smooth_claims::Claims, eto_claims::Claims, kneiphof_claims::Claims,
+             chermain_claims::Claims, podee_claims::Claims, across_claims::Claims>::type;
 TYPED_TEST_SUITE(ClaimProbes, AllProbes);
 
 TYPED_TEST(ClaimProbes, VerdictAndControlsAtProbeSize) {
@@ -164,6 +166,25 @@ TEST(ClaimLists, EtoRegisteredInOrder) {
   EXPECT_EQ(expected, (std::vector<Verdict>{Verdict::kHolds, Verdict::kHolds, Verdict::kHolds,
                                             Verdict::kHolds, Verdict::kHoldsInRegime,
                                             Verdict::kHoldsInRegime, Verdict::kHolds}));
+}
+
+TEST(ClaimLists, AcrossRegisteredInOrder) {
+  std::vector<std::string> ids;
+  std::vector<Verdict> expected;
+  for (const Check& c : registered_checks())
+    if (c.id.rfind("all.", 0) == 0) {
+      ids.push_back(c.id), expected.push_back(c.expected);
+      EXPECT_EQ(c.paper, "every registered model (core/model_registry.cpp)");
+      EXPECT_FALSE(c.paper_quote.empty()) << c.id;
+      EXPECT_FALSE(c.calibration) << c.id;  // rules decided without a p-value
+      // Only all.energy-gain is recorded otherwise at the full budget, with the reason.
+      EXPECT_EQ(c.expected_full.has_value(), c.id == "all.energy-gain") << c.id;
+      EXPECT_EQ(c.budget_note.empty(), c.id != "all.energy-gain") << c.id;
+    }
+  EXPECT_EQ(ids, (std::vector<std::string>{"all.stability", "all.energy-gain", "all.probability",
+                                           "all.variance"}));
+  EXPECT_EQ(expected, (std::vector<Verdict>{Verdict::kHolds, Verdict::kHolds, Verdict::kHolds,
+                                            Verdict::kFails}));
 }
 
 }  // namespace
