@@ -15,11 +15,12 @@
 // control)` (what else the control's measurement shows, appended to the control's text after its
 // verdict), `control_p_value(sizes, control)` (the p-value reported for the control where that is
 // not its decision's combined p) and, for a statistical claim, `calibrate(seed)` (one raw p-value
-// on a known-correct input), all optional. The configurations are enumerable
-// (`configurations(sizes)`, then an index), so a run can be split by configuration. The control
-// rule is the runner's alone: a claim that holds is shown to fail on a perturbed input, one that
-// does not hold to hold on the corrected input (Input::kCorrected, where the claim has one:
-// kHasCorrectedControl).
+// on a known-correct input), all optional; a claim whose control text states its own verdict rule
+// sets kControlNamesVerdict = false (the runner then adds no "→ verdict (rejected)"). The
+// configurations are enumerable (`configurations(sizes)`, then an index), so a run can be split
+// by configuration. The control rule is the runner's alone: a claim that holds is shown to fail on
+// a perturbed input, one that does not hold to hold on the corrected input (Input::kCorrected,
+// where the claim has one: kHasCorrectedControl).
 //
 // Adding a claim: one file verify/claims/<paper>/<claim>.cpp that defines the type and ends in
 // GLINTLAB_CLAIM(Type), and one line in its paper's list (verify/claims/<paper>/list.h).
@@ -53,7 +54,8 @@ struct Expected {
 
 // What decide() returns: the verdict and the numbers reported with it. The statistic the value
 // measures (with its unit) is the claim's static kStatistic; the regime a holds-in-regime verdict
-// speaks for is its static kRegime, declared before anything is measured.
+// speaks for is its static kRegime (or regime(sizes), where it names the sizes), declared before
+// anything is measured.
 struct Decision {
   Verdict verdict = Verdict::kInconclusive;
   double value = 0;

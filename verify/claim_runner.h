@@ -27,6 +27,14 @@ constexpr bool has_corrected_control() {
     return false;
 }
 
+template <typename C>
+constexpr bool control_text_names_verdict() {
+  if constexpr (requires { C::kControlNamesVerdict; })
+    return C::kControlNamesVerdict;
+  else
+    return true;
+}
+
 // The control rule, written once: "the control is the corrected input when the claim fails (or is
 // undecided), a perturbed one when it holds". A claim without a corrected input keeps its
 // perturbed one, and its control then cannot oppose a genuine "fails" (the tests see that).
@@ -62,6 +70,9 @@ CheckResult decide_all(const typename C::Sizes& z, std::span<const typename C::E
   r.configurations = d.configurations;
   if constexpr (requires { C::kRegime; })
     if (d.verdict == Verdict::kHoldsInRegime) r.regime = std::string(C::kRegime);
+  // A regime that names the sizes it was measured at: the claim's regime(sizes).
+  if constexpr (requires { C::regime(z); })
+    if (d.verdict == Verdict::kHoldsInRegime) r.regime = C::regime(z);
   r.detail = C::describe(z, genuine, Input::kGenuine);
 
   const Input input = control_input<C>(r.verdict);
@@ -74,8 +85,13 @@ CheckResult decide_all(const typename C::Sizes& z, std::span<const typename C::E
     r.control_p_value = C::control_p_value(z, control);
   else
     r.control_p_value = c.p_value;
-  r.control = fmt::format("{} → {} ({})", C::describe(z, control, input), to_string(c.verdict),
-                          r.control_rejected ? "rejected" : "NOT rejected");
+  // A claim whose control text states its own rule for the verdict (kControlNamesVerdict false)
+  // has it reported as it describes it.
+  if constexpr (control_text_names_verdict<C>())
+    r.control = fmt::format("{} → {} ({})", C::describe(z, control, input), to_string(c.verdict),
+                            r.control_rejected ? "rejected" : "NOT rejected");
+  else
+    r.control = C::describe(z, control, input);
   if constexpr (requires { C::beside_control(z, control); })
     r.control += ". " + C::beside_control(z, control);
   if constexpr (requires { C::power(z, genuine, control); })

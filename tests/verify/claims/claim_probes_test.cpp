@@ -9,6 +9,7 @@
 
 #include "verify/check.h"
 #include "verify/claim.h"
+#include "verify/claims/adequacy/list.h"
 #include "verify/claims/chermain/list.h"
 #include "verify/claims/eto/list.h"
 #include "verify/claims/kneiphof/list.h"
@@ -40,8 +41,9 @@ struct ProbesOf<ClaimList<As...>, ClaimList<Bs...>, Rest...>
 
 template <typename T>
 class ClaimProbes : public ::testing::Test {};
-using AllProbes = ProbesOf<smooth_claims::Claims, eto_claims::Claims, kneiphof_claims::Claims,
-                           chermain_claims::Claims, podee_claims::Claims>::type;
+using AllProbes =
+    ProbesOf<smooth_claims::Claims, eto_claims::Claims, kneiphof_claims::Claims,
+             chermain_claims::Claims, podee_claims::Claims, adequacy_claims::Claims>::type;
 TYPED_TEST_SUITE(ClaimProbes, AllProbes);
 
 TYPED_TEST(ClaimProbes, VerdictAndControlsAtProbeSize) {
