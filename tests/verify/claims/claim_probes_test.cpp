@@ -168,5 +168,23 @@ TEST(ClaimLists, EtoRegisteredInOrder) {
                                             Verdict::kHoldsInRegime, Verdict::kHolds}));
 }
 
+// The adequacy claims, in order; the prediction keeps its calibration, and both are glintlab's
+// rules with their sentences.
+TEST(ClaimLists, AdequacyRegisteredInOrder) {
+  std::vector<std::string> ids;
+  std::vector<Verdict> expected;
+  for (const Check& c : registered_checks())
+    if (c.id.rfind("adequacy.", 0) == 0) {
+      ids.push_back(c.id), expected.push_back(c.expected);
+      EXPECT_EQ(c.paper, "glintlab (adequacy of the binomial family)");
+      EXPECT_FALSE(c.paper_quote.empty()) << c.id;
+      EXPECT_TRUE(c.glintlab_rule) << c.id;
+      EXPECT_EQ(bool(c.calibration), c.id == "adequacy.prediction-matches-measurement") << c.id;
+    }
+  EXPECT_EQ(ids, (std::vector<std::string>{"adequacy.prediction-matches-measurement",
+                                           "adequacy.choice-is-safe"}));
+  EXPECT_EQ(expected, (std::vector<Verdict>{Verdict::kInconclusive, Verdict::kHoldsInRegime}));
+}
+
 }  // namespace
 }  // namespace glintlab::verify
