@@ -88,6 +88,10 @@ set(glintlab_slow_tests
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::chermain_claims::GgaaShimmer>> 2"
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::chermain_claims::Correlation>> 2"
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::chermain_claims::KernelNormalized>> 1"
+  # The adequacy claims at their probe sizes: the prediction's binomial and Kemppinen ladders, the
+  # choice's validation scenes at 16² / 8² pixels.
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::adequacy_claims::PredictionMatchesMeasurement>> 4"
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::adequacy_claims::ChoiceIsSafe>> 2"
   "ZirrKaplanyan.CountMeanAndVarianceMatchADirectlySimulatedBinomial 3"
   # The glintlab executable run end to end on a subcommand's quick budget (a figure, a sweep, a
   # report, compare, adequacy), or a fuzz loop of a fixed number of inputs.

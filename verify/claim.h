@@ -54,7 +54,8 @@ struct Expected {
 
 // What decide() returns: the verdict and the numbers reported with it. The statistic the value
 // measures (with its unit) is the claim's static kStatistic; the regime a holds-in-regime verdict
-// speaks for is its static kRegime, declared before anything is measured.
+// speaks for is its static kRegime (or regime(sizes), where it names the sizes), declared before
+// anything is measured.
 struct Decision {
   Verdict verdict = Verdict::kInconclusive;
   double value = 0;

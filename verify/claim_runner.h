@@ -62,6 +62,9 @@ CheckResult decide_all(const typename C::Sizes& z, std::span<const typename C::E
   r.configurations = d.configurations;
   if constexpr (requires { C::kRegime; })
     if (d.verdict == Verdict::kHoldsInRegime) r.regime = std::string(C::kRegime);
+  // A regime that names the sizes it was measured at: the claim's regime(sizes).
+  if constexpr (requires { C::regime(z); })
+    if (d.verdict == Verdict::kHoldsInRegime) r.regime = C::regime(z);
   r.detail = C::describe(z, genuine, Input::kGenuine);
 
   const Input input = control_input<C>(r.verdict);

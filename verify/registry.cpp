@@ -4,6 +4,7 @@
 #include "verify/check.h"
 #include "verify/claim.h"
 #include "verify/claims/across/list.h"
+#include "verify/claims/adequacy/list.h"
 #include "verify/claims/chermain/list.h"
 #include "verify/claims/claims.h"
 #include "verify/claims/eto/list.h"
@@ -52,7 +53,7 @@ const std::vector<Check>& registered_checks() {
     for (auto* list : {&list_checks<smooth_claims::Claims>, &list_checks<eto_claims::Claims>,
                        &kemppinen_checks, &list_checks<kneiphof_claims::Claims>,
                        &list_checks<chermain_claims::Claims>, &list_checks<podee_claims::Claims>,
-                       &list_checks<across_claims::Claims>, &adequacy_checks}) {
+                       &list_checks<across_claims::Claims>, &list_checks<adequacy_claims::Claims>}) {
       for (Check& c : list()) {
         attach_reading(c);
         all.push_back(std::move(c));

@@ -451,7 +451,7 @@ void run_adequacy_scene(const FigureContext& ctx) {
   adq::SceneOptions o;
   // Renders a person can see: 128² at quick, 512² at full, both with 256 realisations per pixel
   // (fewer realisations rather than fewer pixels; claim adequacy.choice-is-safe measures its own
-  // scenes at its own sizes, verify/claims/adequacy.cpp).
+  // scenes at its own sizes, verify/claims/adequacy/choice_is_safe.cpp).
   o.width = o.height = ctx.quick ? 128 : 512;
   o.realisations = 256;
   // The Kemppinen scenes: k = 16 costs some 90 µs of CPU per evaluation, so 32² with 128

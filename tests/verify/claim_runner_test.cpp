@@ -1,7 +1,8 @@
 // run_claim<C> (verify/claim_runner.h) on toy claims: the control rule picks the perturbed input
 // for a holding claim and the corrected one for a failing claim, a control that does not oppose
-// is reported NOT rejected, the regime is set only for holds-in-regime, the registry entry carries
-// the claim's metadata, and the result does not depend on the thread count.
+// is reported NOT rejected, the regime is set only for holds-in-regime (a claim's regime(sizes) in
+// place of kRegime), a control text without the runner's verdict where the claim says so, the
+// registry entry carries the claim's metadata, and the result does not depend on the thread count.
 #include "verify/claim_runner.h"
 
 #include <fmt/format.h>
@@ -102,6 +103,26 @@ TEST(ClaimRunner, ControlThatAgreesIsNotRejected) {
 TEST(ClaimRunner, RegimeOnlyForHoldsInRegime) {
   EXPECT_EQ(run_claim<ToyMean<Toy::kHoldsInRegime>>({8}).regime, "toy regime");
   EXPECT_TRUE(run_claim<ToyMean<Toy::kFails>>({8}).regime.empty());
+}
+
+// A regime that names the sizes (regime(sizes), in place of kRegime) and a control whose text
+// states its own verdict rule (control_text: no "→ verdict (rejected)" appended).
+struct ToySizedRegime : ToyMean<Toy::kHoldsInRegime> {
+  static std::string control_text(const Sizes& z, const double& control, Input input, Verdict) {
+    return describe(z, control, input);
+  }
+  static std::string regime(const Sizes& z) { return fmt::format("toy regime at n = {}", z.n); }
+};
+
+TEST(ClaimRunner, RegimeOfTheSizesAndControlTextAsDescribed) {
+  const CheckResult r = run_claim<ToySizedRegime>({8});
+  EXPECT_EQ(r.verdict, Verdict::kHoldsInRegime);
+  EXPECT_EQ(r.regime, "toy regime at n = 8");
+  EXPECT_EQ(r.control_verdict, Verdict::kFails);
+  EXPECT_TRUE(r.control_rejected);
+  EXPECT_EQ(r.control.rfind("control mean 1.1", 0), 0u) << r.control;
+  EXPECT_EQ(r.control.find("→"), std::string::npos) << r.control;
+  EXPECT_TRUE(run_claim<ToySizedRegime>({8}).regime != run_claim<ToySizedRegime>({4}).regime);
 }
 
 TEST(ClaimRunner, RegistryEntryCarriesTheMetadata) {

@@ -4,7 +4,7 @@
 // half-vector's angle from the normal) the pixel value over many surface positions, its mean, CV
 // and P(value = 0) per level, the decision with confidence bounds, the closed-form prediction and
 // the time per evaluation. `glintlab adequacy` writes it (experiments/adequacy/); claim
-// adequacy.prediction-matches-measurement checks the prediction (verify/claims/adequacy.cpp).
+// adequacy.prediction-matches-measurement checks the prediction (verify/claims/adequacy/).
 #pragma once
 
 #include <array>

@@ -1,5 +1,5 @@
-// The validation scenes of claim adequacy.choice-is-safe (verify/claims/adequacy.cpp) and figure
-// adequacy-scene (experiments/figures/adequacy_scene.cpp): scenes the adequacy grid was not
+// The validation scenes of claim adequacy.choice-is-safe (verify/claims/adequacy/choice_is_safe.cpp)
+// and figure adequacy-scene (experiments/figures/adequacy_scene.cpp): scenes the adequacy grid was not
 // measured on — a glinty plane seen from near to far under a point light and under a spherical
 // (area) light, and a sphere, each at two facet densities — rendered per pixel with the level the
 // engine chooser (core/glints/adequacy.h) picks for that pixel's footprint, and with the most

@@ -10,6 +10,5 @@ namespace glintlab::verify {
 
 std::vector<Check> kemppinen_checks();        // verify/claims/kemppinen.cpp
 std::vector<Check> kemppinen_glint_checks();  // verify/claims/kemppinen_glints.cpp
-std::vector<Check> adequacy_checks();         // verify/claims/adequacy.cpp
 
 }  // namespace glintlab::verify

@@ -10,6 +10,7 @@
 #include "verify/check.h"
 #include "verify/claim.h"
 #include "verify/claims/across/list.h"
+#include "verify/claims/adequacy/list.h"
 #include "verify/claims/chermain/list.h"
 #include "verify/claims/eto/list.h"
 #include "verify/claims/kneiphof/list.h"
@@ -41,9 +42,13 @@ struct ProbesOf<ClaimList<As...>, ClaimList<Bs...>, Rest...>
 
 template <typename T>
 class ClaimProbes : public ::testing::Test {};
+// Not the across-method all.* claims: their probe size is the quick budget (the stability sweep of
+// every model has no smaller size, and verify/stability is stamped), where each probe, in its own
+// process, would sweep the whole suite again (35–69 s each); Checks/SharedMeasurement runs the
+// four through the same runner at quick, genuine and control, on one sweep.
 using AllProbes =
     ProbesOf<smooth_claims::Claims, eto_claims::Claims, kneiphof_claims::Claims,
-             chermain_claims::Claims, podee_claims::Claims, across_claims::Claims>::type;
+             chermain_claims::Claims, podee_claims::Claims, adequacy_claims::Claims>::type;
 TYPED_TEST_SUITE(ClaimProbes, AllProbes);
 
 TYPED_TEST(ClaimProbes, VerdictAndControlsAtProbeSize) {
@@ -185,6 +190,24 @@ TEST(ClaimLists, AcrossRegisteredInOrder) {
                                            "all.variance"}));
   EXPECT_EQ(expected, (std::vector<Verdict>{Verdict::kHolds, Verdict::kHolds, Verdict::kHolds,
                                             Verdict::kFails}));
+}
+
+// The adequacy claims, in order; the prediction keeps its calibration, and both are glintlab's
+// rules with their sentences.
+TEST(ClaimLists, AdequacyRegisteredInOrder) {
+  std::vector<std::string> ids;
+  std::vector<Verdict> expected;
+  for (const Check& c : registered_checks())
+    if (c.id.rfind("adequacy.", 0) == 0) {
+      ids.push_back(c.id), expected.push_back(c.expected);
+      EXPECT_EQ(c.paper, "glintlab (adequacy of the binomial family)");
+      EXPECT_FALSE(c.paper_quote.empty()) << c.id;
+      EXPECT_TRUE(c.glintlab_rule) << c.id;
+      EXPECT_EQ(bool(c.calibration), c.id == "adequacy.prediction-matches-measurement") << c.id;
+    }
+  EXPECT_EQ(ids, (std::vector<std::string>{"adequacy.prediction-matches-measurement",
+                                           "adequacy.choice-is-safe"}));
+  EXPECT_EQ(expected, (std::vector<Verdict>{Verdict::kInconclusive, Verdict::kHoldsInRegime}));
 }
 
 }  // namespace

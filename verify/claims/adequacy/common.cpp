@@ -1,0 +1,188 @@
+// The measurements of adequacy.prediction-matches-measurement (verify/claims/adequacy/common.h).
+#include "verify/claims/adequacy/common.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <span>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "verify/stats/count_tests.h"
+
+namespace glintlab::verify::adequacy_claims {
+namespace {
+
+double two_sided_z(double z) { return std::erfc(std::abs(z) / std::sqrt(2.0)); }
+
+// The measured CV of `x` and its standard error (influence function of s/m).
+std::pair<double, double> cv_and_se(const std::vector<double>& x) {
+  const double n = double(x.size());
+  double m = 0;
+  for (double v : x) m += v;
+  m /= n;
+  double var = 0;
+  for (double v : x) var += (v - m) * (v - m);
+  var /= n;
+  if (!(m > 0) || !(var > 0)) return {0, 0};
+  const double cv = std::sqrt(var) / m;
+  double s = 0, ss = 0;
+  for (double v : x) {
+    const double d = v - m, inf = cv * ((d * d - var) / (2 * var) - d / m);
+    s += inf, ss += inf * inf;
+  }
+  return {cv, std::sqrt(std::max(ss / n - (s / n) * (s / n), 0.0) / n)};
+}
+
+// The two p-values of one cell's measurement against the prediction for N_P × scale.
+std::pair<double, double> test_row(const PredictionRow& r, double scale) {
+  const double n = r.cell.facets * scale;
+  double p_cv = 1;
+  if (r.cell.facets * r.p >= kMinExpectedCount && r.cv_se > 0)
+    p_cv = two_sided_z((r.cv - binomial_count_cv(n, r.p)) / r.cv_se);
+  const double p0 = binomial_zero_probability(n, r.p);
+  const double p_zero = p0 > 0 && p0 < 1 ? binomial_test(r.zeros, r.samples, p0).p_value : 1;
+  return {p_cv, p_zero};
+}
+
+// The crossing of log CV = log TAU by a weighted least-squares line through (log r, log CV) over
+// a ladder of footprints r × N_ref (weights 1 / Var(log CV)), as log(N̂ / N_ref), and its
+// standard error by the delta method. `ok` is false where a CV is not measurable.
+struct LadderFit {
+  bool ok = false;
+  double crossing = 0, log_se = 0;
+  double slope = 0;  // d log CV / d log N
+};
+LadderFit fit_crossing(std::span<const double> ladder,
+                       const std::vector<std::pair<double, double>>& cv_se, double tau) {
+  LadderFit f;
+  double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t k = 0; k < ladder.size(); ++k) {
+    const auto [cv, se] = cv_se[k];
+    if (!(cv > 0) || !(se > 0)) return f;  // untestable
+    const double w = (cv / se) * (cv / se), lx = std::log(ladder[k]), ly = std::log(cv);
+    sw += w, sx += w * lx, sy += w * ly, sxx += w * lx * lx, sxy += w * lx * ly;
+  }
+  const double det = sw * sxx - sx * sx;
+  const double slope = (sw * sxy - sx * sy) / det, intercept = (sxx * sy - sx * sxy) / det;
+  const double var_a = sxx / det, var_b = sw / det, cov_ab = -sx / det;
+  f.crossing = (std::log(tau) - intercept) / slope;  // log(N̂ / N_ref)
+  // ∂crossing/∂a = −1/slope, ∂crossing/∂b = −crossing/slope.
+  const double ga = -1 / slope, gb = -f.crossing / slope;
+  f.log_se = std::sqrt(std::max(ga * ga * var_a + 2 * ga * gb * cov_ab + gb * gb * var_b, 0.0));
+  f.slope = slope;
+  f.ok = true;
+  return f;
+}
+
+// The ladder fit of k16_exact's CV around `predicted`, and the smooth level's largest mean
+// difference on it.
+LadderFit kemppinen_ladder(const adequacy::KemppinenCell& row, double predicted, int samples,
+                           std::uint64_t seed, double& max_mean_diff) {
+  std::vector<std::pair<double, double>> cv_se;
+  std::vector<double> x, smooth;
+  for (std::size_t k = 0; k < std::size(kKemppinenLadder); ++k) {
+    adequacy::KemppinenCell at = row;
+    at.points = predicted * kKemppinenLadder[k];
+    adequacy::kemppinen_level_values(at, KemppinenLevel::kK16Exact, samples, seed + k, x);
+    adequacy::kemppinen_level_values(at, KemppinenLevel::kSmooth, 1, seed + k, smooth);
+    cv_se.push_back(cv_and_se(x));
+    double mean = 0;
+    for (double v : x) mean += v;
+    mean /= double(x.size());
+    if (mean > 0) max_mean_diff = std::max(max_mean_diff, std::abs(smooth[0] / mean - 1));
+  }
+  return fit_crossing(kKemppinenLadder, cv_se, kBoundaryTau);
+}
+
+}  // namespace
+
+std::vector<Cell> prediction_cells() {
+  std::vector<Cell> cells;
+  for (double n : {1.0, 10.0, 100.0, 1e3, 1e4, 1e6, 1e8}) {
+    cells.push_back({"deliot_belcour", n, 0.1, 0, 30, std::atan(0.2) * 180 / std::numbers::pi, 2});
+    cells.push_back({"kneiphof_klein", n, 0.1, 1, 30, std::atan(0.1) * 180 / std::numbers::pi, 1});
+  }
+  return cells;
+}
+
+PredictionRow measure_row(const Cell& c, int samples, std::uint64_t seed) {
+  PredictionRow r;
+  r.cell = c;
+  r.p = adequacy::cell_probability_and_smooth(c).first;
+  std::vector<double> x;
+  adequacy::level_values(c, BinomialLevel::kExact, samples, seed, x);
+  std::tie(r.cv, r.cv_se) = cv_and_se(x);
+  for (double v : x) r.zeros += v == 0 ? 1 : 0;
+  r.samples = x.size();
+  std::tie(r.p_cv, r.p_zero) = test_row(r, 1);
+  std::tie(r.control_p_cv, r.control_p_zero) = test_row(r, kControlFacetScale);
+  return r;
+}
+
+std::vector<Cell> boundary_cells() {
+  return {{"deliot_belcour", 0, 0.1, 0, 30, std::atan(0.2) * 180 / std::numbers::pi, 2},
+          {"kneiphof_klein", 0, 0.1, 1, 30, std::atan(0.1) * 180 / std::numbers::pi, 1}};
+}
+
+BoundaryRow measure_boundary(Cell c, int samples, std::uint64_t seed) {
+  BoundaryRow r;
+  r.p = adequacy::cell_probability_and_smooth(c).first;
+  r.predicted = (1 - r.p) / (r.p * kBoundaryTau * kBoundaryTau);
+  c.facets = r.predicted;
+  r.cell = c;
+  std::vector<std::pair<double, double>> cv_se;
+  std::vector<double> x;
+  for (std::size_t k = 0; k < std::size(kBoundaryLadder); ++k) {
+    Cell at = c;
+    at.facets = r.predicted * kBoundaryLadder[k];
+    adequacy::level_values(at, BinomialLevel::kExact, samples, seed + k, x);
+    cv_se.push_back(cv_and_se(x));
+    if (!(cv_se.back().first > 0) || !(cv_se.back().second > 0)) return r;  // p-values stay 1
+  }
+  const LadderFit f = fit_crossing(kBoundaryLadder, cv_se, kBoundaryTau);
+  r.log_se = f.log_se;
+  r.measured = r.predicted * std::exp(f.crossing);
+  r.p_value = two_sided_z(f.crossing / r.log_se);
+  r.control_p_value = two_sided_z((f.crossing - std::log(kControlBoundaryScale)) / r.log_se);
+  return r;
+}
+
+std::vector<adequacy::KemppinenCell> kemppinen_boundary_rows() {
+  adequacy::KemppinenGridAxes axes;
+  axes.points = {1};
+  axes.alpha = {0.1, 0.3};
+  axes.theta_i_deg = {0, 60};
+  return adequacy::make_kemppinen_grid({"kemppinen_ggx"}, axes);
+}
+
+KemppinenBoundaryRow measure_kemppinen_boundary(const adequacy::KemppinenCell& row, int samples,
+                                                std::uint64_t seed) {
+  KemppinenBoundaryRow r;
+  r.row = row;
+  r.predicted = adequacy::kemppinen_predicted_boundaries(row, kBoundaryTau)[0];
+  if (!(r.predicted > 0)) return r;  // no prediction: p-values stay 1
+  const LadderFit f = kemppinen_ladder(row, r.predicted, samples, seed, r.max_mean_diff);
+  const LadderFit g =
+      kemppinen_ladder(row, r.predicted, samples, seed + kReplicateSeed, r.max_mean_diff);
+  if (!f.ok || !g.ok) return r;
+  r.log_se = f.log_se;
+  r.slope = f.slope;
+  r.measured = r.predicted * std::exp(f.crossing);
+  r.replicate = r.predicted * std::exp(g.crossing);
+  r.replicate_log_se = g.log_se;
+  r.p_value = two_sided_z(f.crossing / r.log_se);
+  r.moved_p_value = two_sided_z((f.crossing - std::log(kKemppinenControlScale)) / r.log_se);
+  r.replicate_p_value = two_sided_z((f.crossing - g.crossing) / std::hypot(f.log_se, g.log_se));
+  return r;
+}
+
+std::size_t tail_rejections(const HolmSidakResult& hs, std::size_t count) {
+  std::size_t n = 0;
+  for (std::size_t i = hs.reject.size() - count; i < hs.reject.size(); ++i)
+    n += hs.reject[i] ? 1 : 0;
+  return n;
+}
+
+}  // namespace glintlab::verify::adequacy_claims
