@@ -1,5 +1,6 @@
 # Every test of the build tree carries exactly one tier label, fast or slow (test_tiers.cmake and
-# tests/CMakeLists.txt), and every test labelled power is slow. Run: cmake -DCTEST=ctest -DDIR=<build dir> -P tiers_test.cmake
+# tests/CMakeLists.txt), every test labelled power is slow, and every entry of test_tiers.cmake's
+# lists names a test. Run: cmake -DCTEST=ctest -DDIR=<build dir> [-DSTALE=<file>] -P tiers_test.cmake
 function(count_tests out)
   execute_process(COMMAND "${CTEST}" -N ${ARGN} WORKING_DIRECTORY "${DIR}"
                   OUTPUT_VARIABLE text RESULT_VARIABLE rc)
@@ -23,5 +24,14 @@ count_tests(fast_power -L "^power$" -L "^fast$")
 if(power EQUAL 0 OR NOT fast_power EQUAL 0)
   message(FATAL_ERROR "tiers: ${power} tests labelled power, ${fast_power} of them fast: the "
                       "power label is for slow tests (test_tiers.cmake)")
+endif()
+# Every entry of test_tiers.cmake's lists names a test (it writes those that do not to STALE
+# each time ctest reads the test lists, which the count_tests calls above just did).
+if(DEFINED STALE AND EXISTS "${STALE}")
+  file(READ "${STALE}" stale)
+  if(NOT stale STREQUAL "")
+    message(FATAL_ERROR "tiers: entries of tests/test_tiers.cmake that name no test (remove or "
+                        "rename them): ${stale}")
+  endif()
 endif()
 message(STATUS "tiers: ${all} tests: ${fast} fast, ${slow} slow, ${power} of them power")
