@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/schema.h"
 #include "cli/input.h"
 #include "core/plugin_loader.h"
 
@@ -145,6 +146,7 @@ int main(int argc, char** argv) {
     glintlab::cli::add_adequacy_command(app);
     glintlab::cli::add_compare_command(app);
     glintlab::cli::add_merge_command(app);
+    glintlab::cli::add_schema_command(app);
 
     // No subcommand, or a first argument that is neither an option nor a subcommand: say so and
     // name the valid set.

@@ -32,6 +32,7 @@
 #include "experiments/compare/compare.h"
 #include "experiments/figures/figure_registry.h"
 #include "verify/check.h"
+#include "verify/claims_schema.h"
 
 namespace glintlab::cli {
 namespace {
@@ -556,6 +557,10 @@ void ReportRun::run() {
                          {"machine", machine},
                          {"parts", parts}};
   io::write_file_atomic(stage_ / "run.json", run_info.dump(1) + "\n");
+  // The schema of claims.json as this program prints it (glintlab schema claims.json): the report
+  // checks this run's and any reused claims.json against it.
+  fs::create_directories(stage_ / "schemas");
+  io::write_file_atomic(stage_ / "schemas" / "claims.schema.json", verify::claims_json_schema());
 
   // The HTML report and the Markdown twin; make_report.py validates every input and fails with one
   // line (exit 2) on a malformed one, which becomes this command's error.
@@ -607,7 +612,8 @@ conformance/ (the same files for the --conformance models' suites, model.<name>.
 figures/<id>/ (EXR, PNG, CSV of each figure), bench/ (bench.json, accuracy.csv, glints.json and
 kemppinen.json, run before the figures, whose timing tables read them, methods/*.json), stability/
 (stability.json and its maps), compare/ (glintlab compare of the --models, from the conformance,
-verify and stability parts' outputs: compare.json, compare.csv, equal_time.csv), plots/ (the charts drawn by reports/make_report.py: convergence
+verify and stability parts' outputs: compare.json, compare.csv, equal_time.csv), schemas/
+(claims.schema.json, the schema every claims.json is checked against: glintlab schema), plots/ (the charts drawn by reports/make_report.py: convergence
 log-log plots, speed_accuracy.png, speed_accuracy_methods.png and speed_accuracy.csv), logs/ and run.json (machine, budget,
 date and status of each part). The report is staged in a hidden folder beside DIR and replaces DIR only when it is
 complete: a bad option, a failed part or a malformed cached file leaves DIR as it was.)";

@@ -6,6 +6,8 @@ staging folder DIR, which holds:
   run.json                 machine, budget, date and status of each part (written by glintlab report)
   verify/claims.json       glintlab verify's results (a list of claim objects)
   conformance/claims.json  the same for the models' conformance suites (model.<name>.<property>)
+  schemas/claims.schema.json  the JSON Schema of claims.json the program prints (glintlab schema
+                           claims.json): both claims.json files are checked against it
   figures/figures.json     the figures run ([{id, paper, target, description, ...}]) and
   figures/<id>/            each figure's PNG, EXR, CSV (and summary.md) files
   bench/bench.json         Google Benchmark JSON of glintlab_bench_kernels, and
@@ -49,6 +51,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import charts  # noqa: E402
 import speed_accuracy as sa  # noqa: E402
 import compare_page  # noqa: E402
+import json_schema  # noqa: E402
 import templating  # noqa: E402
 
 PARTS = ["claims", "conformance", "figures", "bench", "stability", "compare"]
@@ -58,11 +61,6 @@ PART_TITLES = {"claims": "Claims (glintlab verify)",
                "bench": "Benchmarks (glintlab_bench_kernels, glintlab_accuracy)",
                "stability": "Stability maps (glintlab sweep)",
                "compare": "Models compared (glintlab compare)"}
-CLAIM_KEYS = {"id": str, "paper": str, "source": str, "verdict": str, "detail": str,
-              "control": str, "control_rejected": bool}
-# "error": a check that could not compute its statistic (glintlab verify exits 3 with it).
-VERDICTS = {"holds", "holds-within", "holds-in-regime", "fails", "inconclusive", "not-claimed",
-            "error"}
 PARAM_COLUMNS = {"density", "microroughness", "reference_spp", "model", "sampler", "light"}
 TABLE_ROW_LIMIT = 80
 
@@ -158,29 +156,39 @@ def load_run(root):
     return run
 
 
+# Where glintlab report writes the schema of claims.json the program prints (glintlab schema
+# claims.json); the report checks every claims.json against it instead of a copy of the format.
+CLAIMS_SCHEMA = "schemas/claims.schema.json"
+
+
+def load_claims_schema(root):
+    if not os.path.exists(os.path.join(root, CLAIMS_SCHEMA)):
+        raise ReportError(f"{CLAIMS_SCHEMA} is missing: the schema of claims.json the program "
+                          "prints (glintlab schema claims.json), written by glintlab report")
+    schema = load_json(root, CLAIMS_SCHEMA)
+    try:
+        json_schema.check_schema(schema, CLAIMS_SCHEMA)
+    except ValueError as e:
+        raise ReportError(str(e))
+    if schema.get("type") != "array" or not isinstance(schema.get("items"), dict):
+        raise ReportError(f"{CLAIMS_SCHEMA} is not the schema of a list of claim objects")
+    return schema
+
+
 def load_claims(root, relpath="verify/claims.json"):
+    schema = load_claims_schema(root)
     data = load_json(root, relpath)
     if not isinstance(data, list):
         raise ReportError(f"{relpath} is malformed: expected a list of claim objects")
     for i, c in enumerate(data):
-        if not isinstance(c, dict):
-            raise ReportError(f"{relpath} is malformed: entry {i} is not an object")
-        for k, t in CLAIM_KEYS.items():
-            if not isinstance(c.get(k), t):
-                raise ReportError(f"{relpath} is malformed: entry {i} lacks \"{k}\" "
-                                  f"({t.__name__})")
-        if c["verdict"] not in VERDICTS:
-            raise ReportError(f"{relpath} is malformed: entry {i} ({c['id']}) has verdict "
-                              f"'{c['verdict']}' (valid: {', '.join(sorted(VERDICTS))})")
-        for k in ("control_verdict", "regime", "expected_verdict", "budget_note"):
-            if c.get(k) is not None and not isinstance(c[k], str):
-                raise ReportError(f"{relpath} is malformed: entry {i} ({c['id']}) has a "
-                                  f"non-text \"{k}\"")
-        for k in ("p_value", "control_p_value"):
-            v = c.get(k)
-            if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float))):
-                raise ReportError(f"{relpath} is malformed: entry {i} ({c['id']}) has a "
-                                  f"non-numeric \"{k}\"")
+        label = f"entry {i}"
+        if isinstance(c, dict) and isinstance(c.get("id"), str):
+            label += f" ({c['id']})"
+        try:
+            json_schema.validate(c, schema["items"], label)
+        except json_schema.SchemaError as e:
+            raise ReportError(f"{relpath} does not follow the schema of claims.json "
+                              f"({CLAIMS_SCHEMA}): {e}")
     return data
 
 
@@ -694,7 +702,8 @@ def write_summary(doc, claims, run, got):
 
     if claims is not None:
         n = len(claims)
-        counts = {v: sum(c["verdict"] == v for c in claims) for v in sorted(VERDICTS)}
+        counts = {v: sum(c["verdict"] == v for c in claims)
+                  for v in sorted({c["verdict"] for c in claims})}
         text = ", ".join(f"{k} {v}" for k, v in counts.items() if v)
         item(f"{n} claims: {text}.")
         same = [c for c in claims if as_recorded(c)]

@@ -129,6 +129,7 @@ set(glintlab_slow_tests
   "PluginTest.SweepFigureAndGenericClaimCoverThePluginModel 15"
   "PodeeCliTest.DistanceAndFlickerQuick 2"
   "ReportTest.ReuseReadsCachedResultsAndAMalformedOneLeavesTheOldReport 1"
+  "ReportTest.ClaimsAreCheckedAgainstTheProgramsSchema 3"
   "ReportTest.SmallRealRun 4"
   # Every batched kernel or model on every ISA against its scalar instantiation, on enough rows
   # to reach the recorded worst cases (tests/simd/).

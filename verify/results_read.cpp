@@ -8,15 +8,15 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "verify/claims_schema.h"
+
 namespace glintlab::verify {
 namespace {
 
 using nlohmann::json;
 
 Verdict verdict_named(const std::string& name, const std::string& where) {
-  for (Verdict v : {Verdict::kHolds, Verdict::kHoldsWithin, Verdict::kHoldsInRegime,
-                    Verdict::kFails, Verdict::kInconclusive, Verdict::kNotClaimed,
-                    Verdict::kError})
+  for (Verdict v : kEveryVerdict)
     if (to_string(v) == name) return v;
   throw std::invalid_argument(fmt::format("{}: unknown verdict '{}'", where, name));
 }

@@ -64,9 +64,8 @@ TEST_F(ReportTest, BadOptionsAreErrors) {
 
 TEST_F(ReportTest, ReuseReadsCachedResultsAndAMalformedOneLeavesTheOldReport) {
   fs::copy(kReportFixtures, path("report"), fs::copy_options::recursive);
-  RunResult r =
-      run({"report", "--out", "report", "--reuse", "--skip", "bench,conformance", "--models",
-           "smooth_ggx"});
+  RunResult r = run({"report", "--out", "report", "--reuse", "--skip", "bench,conformance",
+                     "--models", "smooth_ggx"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string html = read_text(path("report/index.html"));
   EXPECT_NE(html.find("fixture.fails"), std::string::npos);
@@ -92,6 +91,36 @@ TEST_F(ReportTest, ReuseReadsCachedResultsAndAMalformedOneLeavesTheOldReport) {
   before = files_under(work());
   expect_input_error(run({"report", "--out", "report", "--reuse", "--skip", "bench,conformance"}),
                      {"--reuse", "run.json"}, before);
+}
+
+// The report checks claims.json against the schema the program prints, which it writes beside the
+// results; a cached claims.json that lacks a field of this program's rows is an error naming it.
+TEST_F(ReportTest, ClaimsAreCheckedAgainstTheProgramsSchema) {
+  fs::copy(kReportFixtures, path("report"), fs::copy_options::recursive);
+  fs::remove_all(path("report/schemas"));
+  const std::vector<std::string> reuse = {"report",   "--out",     "report",
+                                          "--reuse",  "--skip",    "bench,conformance",
+                                          "--models", "smooth_ggx"};
+  RunResult r = run(reuse);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  RunResult schema = run({"schema", "claims.json"});
+  ASSERT_EQ(schema.exit_code, 0) << schema.err;
+  EXPECT_EQ(read_text(path("report/schemas/claims.schema.json")), schema.out);
+
+  auto rows = nlohmann::json::parse(read_text(path("report/verify/claims.json")));
+  rows[1].erase("power");
+  write_text(path("report/verify/claims.json"), rows.dump(1));
+  const std::set<std::string> before = files_under(work());
+  expect_input_error(run(reuse), {"verify/claims.json", "(fixture.fails) lacks power"}, before);
+}
+
+TEST_F(ReportTest, SchemaNamesTheFilesItDescribes) {
+  expect_input_error(run({"schema"}), {"schema", "needs one file name", "claims.json"}, {});
+  expect_input_error(run({"schema", "claims.csv"}), {"'claims.csv'", "valid: claims.json"}, {});
+  const RunResult r = run({"schema", "claims.json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto schema = nlohmann::json::parse(r.out);
+  EXPECT_EQ(schema["items"]["properties"]["verdict"]["enum"].size(), 7u);
 }
 
 // The benchmarks run (here: are reused) before the figures, and the timing figures read the
@@ -125,10 +154,9 @@ TEST_F(ReportTest, TimingFiguresReadTheReportsOwnBenchmarks) {
 TEST_F(ReportTest, SmallRealRun) {
   // compare covers the --models only: one model with a cubature reference, one with Monte Carlo;
   // the conformance part measures smooth_ggx's suite, kneiphof_klein's verdicts are recorded ones.
-  const RunResult r =
-      run({"report", "--out", "r", "--claims", "kneiphof.total-area", "--figures", "eto2023-fig4",
-           "--models", "smooth_ggx,kneiphof_klein", "--conformance", "smooth_ggx", "--skip",
-           "bench,stability", "--threads", "2"});
+  const RunResult r = run({"report", "--out", "r", "--claims", "kneiphof.total-area", "--figures",
+                           "eto2023-fig4", "--models", "smooth_ggx,kneiphof_klein", "--conformance",
+                           "smooth_ggx", "--skip", "bench,stability", "--threads", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("report: wrote r/index.html and r/report.md"), std::string::npos) << r.out;
   for (const char* f : {"r/index.html", "r/report.md", "r/run.json", "r/verify/claims.json",

@@ -245,11 +245,12 @@ with tempfile.TemporaryDirectory() as tmp:
     # --- a check that could not run (verdict error): shown with its cause, no control ---
     d = fresh(tmp, "error_row")
     c = json.load(open(os.path.join(d, "verify", "claims.json")))
-    c.append({"id": "fixture.error", "paper": "Fixture 2026", "source": "Eq. 1",
+    c.append({**c[0], "id": "fixture.error", "paper": "Fixture 2026", "source": "Eq. 1",
               "verdict": "error", "expected_verdict": "holds",
               "detail": "model faulty: energy: exception: eval failed on purpose",
               "statistic": "none (the check could not compute its statistic)", "value": 0,
-              "bound": None, "p_value": None, "control": "none: the check could not run",
+              "bound": None, "p_value": None, "suite_adjusted_p_value": None,
+              "raw_p_values": [], "control": "none: the check could not run",
               "control_p_value": None, "control_rejected": False, "budget": "quick",
               "seconds": 0.1, "control_verdict": None, "regime": None})
     json.dump(c, open(os.path.join(d, "verify", "claims.json"), "w"))
@@ -290,6 +291,30 @@ with tempfile.TemporaryDirectory() as tmp:
         c[1]["p_value"] = "small"
         json.dump(c, open(os.path.join(d, "verify", "claims.json"), "w"))
 
+    def claims_field_missing(d):
+        c = json.load(open(os.path.join(d, "verify", "claims.json")))
+        del c[2]["power"]
+        json.dump(c, open(os.path.join(d, "verify", "claims.json"), "w"))
+
+    def claims_field_unknown(d):
+        c = json.load(open(os.path.join(d, "conformance", "claims.json")))
+        c[0]["p"] = 0.5
+        json.dump(c, open(os.path.join(d, "conformance", "claims.json"), "w"))
+
+    def claims_verdict_unknown(d):
+        c = json.load(open(os.path.join(d, "verify", "claims.json")))
+        c[0]["verdict"] = "passes"
+        json.dump(c, open(os.path.join(d, "verify", "claims.json"), "w"))
+
+    def schema_missing(d):
+        os.unlink(os.path.join(d, "schemas", "claims.schema.json"))
+
+    def schema_unknown_rule(d):
+        p = os.path.join(d, "schemas", "claims.schema.json")
+        schema = json.load(open(p))
+        schema["items"]["properties"]["value"]["minimum"] = 0
+        json.dump(schema, open(p, "w"))
+
     def ragged_csv(d):
         with open(os.path.join(d, "figures", "fixture2026-fig1", "rmse_spp.csv"), "a") as f:
             f.write("0.2,a,32\n")
@@ -322,13 +347,22 @@ with tempfile.TemporaryDirectory() as tmp:
 
     cases = [(corrupt_claims, "verify/claims.json is not valid JSON"),
              (conformance_id, "('other_model.energy') is not a model.<name>.<property> id"),
-             (claims_wrong_type, "non-numeric \"p_value\""),
+             (claims_wrong_type, "entry 1 (fixture.fails) \"p_value\" is string 'small', the "
+                                 "schema wants number or null"),
+             (claims_field_missing, "entry 2 (fixture.inconclusive) lacks power"),
+             (claims_field_unknown, "conformance/claims.json does not follow the schema of "
+                                    "claims.json (schemas/claims.schema.json): entry 0 "
+                                    "(model.fixture_model.energy) has p, which the schema does "
+                                    "not name"),
+             (claims_verdict_unknown, "\"verdict\" is 'passes' (valid: holds, holds-within"),
+             (schema_missing, "schemas/claims.schema.json is missing"),
+             (schema_unknown_rule, "uses minimum, which this checker does not implement"),
              (ragged_csv, "rmse_spp.csv is malformed: line"),
              (missing_map, "fixture_model_energy_gain.png"),
              (run_says_ran, "bench/bench.json is missing"),
              (bad_accuracy, "accuracy.csv is malformed"),
              (stability_csv_columns, "missing column(s) theta_i_deg"),
-             (control_verdict_number, "non-text \"control_verdict\"")]
+             (control_verdict_number, "\"control_verdict\" is 3 (valid: holds")]
     for i, (mutate, needle) in enumerate(cases):
         d = fresh(tmp, f"bad{i}")
         mutate(d)
