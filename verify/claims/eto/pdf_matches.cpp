@@ -35,6 +35,7 @@
 #include "verify/claim_runner.h"
 #include "verify/claims/eto/list.h"
 #include "verify/claims/gof_family.h"
+#include "verify/claims/gof_family_claim.h"
 
 namespace glintlab::verify {
 namespace {
@@ -310,7 +311,7 @@ GofSpec eto_pdf_spec(Budget b) { return spec_of(grid(b)); }
 
 namespace eto_claims {
 
-struct PdfMatches {
+struct PdfMatches : GofFamilyClaim<PdfMatches, Config> {
   static constexpr std::string_view kId = "eto.pdf-matches";
   static constexpr std::string_view kPaper = "Eto & Tokuyoshi 2023";
   static constexpr std::string_view kSource = "Eq. 8 (with χ⁺), Eq. 7 for i_z ≤ 0, Listing 2";
@@ -329,66 +330,14 @@ struct PdfMatches {
           "a sliver of about 5.5e-7 of the mass, and such a configuration is undecided rather than "
           "rejected; the quick budget's 10^5 samples and 21 configurations do not reach it"};
 
-  struct Sizes {
-    std::vector<Config> grid;
-    GofSize size;  // samples per configuration and per control case
-  };
   static Sizes sizes(Budget b) { return {grid(b), b == Budget::kQuick ? kQuick : kFull}; }
   static Sizes probe_sizes() { return {probe_grid(), kProbe}; }
-
-  // Every configuration and control case by chi-square: the family is one configuration here.
-  struct Evidence {
-    GofSpec spec;
-    GofOutcome outcome;
-  };
-  static int configurations(const Sizes&) { return 1; }
-  static Evidence observe(const Sizes& z, int, std::uint64_t) {
-    Evidence e{spec_of(z.grid), {}};
-    e.outcome = run_gof_family(std::string(kId), e.spec.cases, e.spec.controls, z.size);
-    return e;
+  static GofSpec spec(const Sizes& z) { return spec_of(z.grid); }
+  static std::string genuine_text(const Sizes& z, const GofSpec& spec, const GofOutcome& o,
+                                  const GofControlVerdicts& cv, const CheckResult& family,
+                                  std::size_t worst) {
+    return describe_family(z.grid, spec.cases, o, spec.controls, cv, family, worst);
   }
-
-  // The family decided on its configurations (genuine) or with each control case in its
-  // configuration's place (perturbed; there is no corrected input).
-  struct Measured {
-    Verdict verdict = Verdict::kInconclusive;
-    std::optional<double> p_value = {};
-    std::vector<double> raw_p_values = {};
-    int configurations = 0;
-    std::string text = {}, power = {};
-  };
-  static Measured measure(const Sizes& z, std::span<const Evidence> evidence, Input input) {
-    const Evidence& e = evidence.front();
-    const GofOutcome& o = e.outcome;
-    const GofControlVerdicts cv = decide_gof_controls(o, e.spec.controls);
-    // describe_gof gives the family's p-values and power, the controls' largest p and their text
-    // (with their verdict appended, which the runner appends in its own place).
-    CheckResult family;
-    family.verdict = decide_gof(o.results);
-    const std::size_t worst = describe_gof(o, e.spec.controls, cv, family);
-    Measured m{.configurations = family.configurations, .power = family.power};
-    if (input == Input::kGenuine) {
-      m.verdict = family.verdict;
-      m.p_value = family.p_value;
-      m.raw_p_values = family.raw_p_values;
-      m.text = describe_family(z.grid, e.spec.cases, o, e.spec.controls, cv, family, worst);
-    } else {
-      m.verdict = cv.verdict;
-      m.p_value = family.control_p_value;
-      m.text = family.control.substr(0, family.control.rfind(" → "));
-    }
-    return m;
-  }
-
-  static Decision decide(const Sizes&, const Measured& m) {
-    return {.verdict = m.verdict,
-            .value = m.p_value.value_or(1),
-            .p_value = m.p_value,
-            .raw_p_values = m.raw_p_values,
-            .configurations = m.configurations};
-  }
-  static std::string describe(const Sizes&, const Measured& m, Input) { return m.text; }
-  static std::string power(const Sizes&, const Measured& m, const Measured&) { return m.power; }
   static double calibrate(std::uint64_t seed) { return calibration(seed); }
 };
 
