@@ -18,8 +18,9 @@ Usage (Debian's /usr/bin/python3, standard library only):
         give; otherwise one line per stale or unstamped row on stdout and exit 1.
     row_stamps.py record --glintlab EXE --budget quick|full [--claims GLOBS] [--threads N] FILE
         Runs `EXE verify --budget B --claims GLOBS` (default model.*) in a temporary folder and
-        puts each conformance row it wrote, stamped, into FILE: a row with the same id is
-        replaced, a new one appended; every other row is left byte for byte.
+        puts each row it wrote into FILE, a conformance row stamped (a paper claim's row carries
+        no stamp yet): a row with the same id is replaced, a new one appended; every other row is
+        left byte for byte.
     row_stamps.py reproduce --glintlab EXE --budget quick|full [--claims GLOBS] [--threads N] FILE
         Runs the same `verify` as record and compares each conformance row it wrote with the
         row of the same id in FILE, which it leaves as it is: every field but `seconds` and
@@ -262,12 +263,11 @@ def record(args):
     changed = []
     for chunk in new:
         claim_id = row_field(ROW_ID, chunk, "verify's claims.json")
-        if not claim_id.startswith("model."):
-            continue
         budget = row_field(ROW_BUDGET, chunk, "verify's claims.json")
         if budget != args.budget:
             raise InputError(f"{claim_id}: verify wrote budget {budget}, not {args.budget}")
-        chunk = stamped(chunk, expected_stamp(claim_id, budget))
+        if claim_id.startswith("model."):
+            chunk = stamped(chunk, expected_stamp(claim_id, budget))
         if claim_id in index:
             before = row_field(ROW_VERDICT, rows[index[claim_id]], args.file)
             after = row_field(ROW_VERDICT, chunk, "verify's claims.json")
@@ -279,7 +279,7 @@ def record(args):
             rows.append(chunk)
         count += 1
     if count == 0:
-        raise InputError(f"--claims '{args.claims}': no conformance row was written")
+        raise InputError(f"--claims '{args.claims}': verify wrote no row")
     out = "[\n  {" + ROW_SEPARATOR.join(rows) + "\n  }\n]" + text[len(text.rstrip("\n")):]
     if not out.endswith("\n"):
         out += "\n"
@@ -289,7 +289,7 @@ def record(args):
         f.write(out)
     json.loads(out)  # still one valid list
     os.replace(tmp_path, args.file)
-    print(f"row_stamps: {count} conformance row(s) of budget {args.budget} recorded in {args.file}")
+    print(f"row_stamps: {count} row(s) of budget {args.budget} recorded in {args.file}")
     for line in changed:
         print(f"row_stamps: verdict changed: {line}")
     return 0

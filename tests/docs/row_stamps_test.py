@@ -152,6 +152,18 @@ with tempfile.TemporaryDirectory() as tmp:
     r = stamps(src, "check", target)
     check(r.returncode == 0, f"what record wrote passes check ({r.stdout})")
 
+    # A paper claim's row is recorded as verify wrote it, without a stamp.
+    write_fake_glintlab(fake, [row("smooth.projected-area", "quick", verdict="holds")])
+    r = stamps(src, "record", "--glintlab", fake, "--budget", "quick", "--claims",
+               "smooth.projected-area", target)
+    with open(target, encoding="utf-8") as f:
+        paper = json.loads(f.read())
+    check(r.returncode == 0 and paper[0]["verdict"] == "holds" and "stamp" not in paper[0]
+          and [x["id"] for x in paper] == [x["id"] for x in rows],
+          f"a paper claim's row replaced, unstamped: {r.returncode} {r.stderr}")
+    r = stamps(src, "check", target)
+    check(r.returncode == 0, f"and check still passes ({r.stdout})")
+
     # Replacing the first and the last row keeps the form too.
     write_fake_glintlab(fake, [row("model.podee.stability", "quick", verdict="fails")])
     with open(target, "w", encoding="utf-8") as f:
