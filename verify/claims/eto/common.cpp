@@ -2,14 +2,20 @@
 #include "verify/claims/eto/common.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
 #include "core/math/rng.h"
+#include "core/model_layout.h"
+#include "core/model_registry.h"
+#include "core/models/smooth_ggx.h"
 #include "core/samplers/bounded_vndf.h"
 #include "core/samplers/spherical_caps.h"
+#include "core/simd/model_batch.h"
 #include "verify/stats/ndf_cubature.h"
 
 namespace glintlab::verify::eto_claims {
@@ -67,6 +73,83 @@ MicrofacetSample<double> draw(Technique t, const Config& c, std::uint64_t seed, 
 
 double weight(Technique t, const Config& c, std::uint64_t seed, std::uint64_t i) {
   return sample_weight(c.ggx(), incidence(c.theta_deg), draw(t, c, seed, i));
+}
+
+void draw_batch(Technique t, const Config& c, std::uint64_t seed, std::uint64_t first,
+                std::size_t count, double* weight, double* rejected) {
+  static const ModelEntry& model = find_model("smooth_ggx");
+  std::vector<double> values;
+  for (const ParamSpec& p : model.params) {
+    const std::string_view n = p.name;
+    values.push_back(n == "alpha_x"   ? c.ax
+                     : n == "alpha_y" ? c.ay
+                     : n == "sampler" ? double(t == Technique::kBounded ? SmoothGGX::kBoundedCaps
+                                                                        : SmoothGGX::kSphericalCaps)
+                     : n == "bound"   ? 0.0  // Listing 1's k
+                                      : p.default_value);
+  }
+  // Every query column one value for every row (stride 0): the defaults, ω_i of the configuration.
+  std::array<double, simd::kQueryColumns.size()> query = simd::kQueryDefaults;
+  const V3 wi = incidence(c.theta_deg);
+  query[query_column_index("wi_x")] = wi.x;
+  query[query_column_index("wi_y")] = wi.y;
+  query[query_column_index("wi_z")] = wi.z;
+  std::array<simd::Column<double>, simd::kQueryColumns.size()> columns;
+  for (std::size_t k = 0; k < columns.size(); ++k) columns[k] = {&query[k], 0};
+  std::vector<double> u1(count), u2(count), out(simd::kSampleColumns.size() * count);
+  for (std::size_t j = 0; j < count; ++j) {
+    u1[j] = counter_uniform<double>(seed, first + j, 0);
+    u2[j] = counter_uniform<double>(seed, first + j, 1);
+  }
+  std::array<double*, simd::kSampleColumns.size()> outputs;
+  for (std::size_t k = 0; k < outputs.size(); ++k) outputs[k] = out.data() + k * count;
+  simd::sample_batch(model, values, columns, {u1.data(), 1}, {u2.data(), 1}, outputs, count,
+                     simd::default_isa());
+  static_assert(simd::kSampleColumns[4] == "weight" && simd::kSampleColumns[5] == "rejected");
+  std::copy_n(outputs[4], count, weight);
+  std::copy_n(outputs[5], count, rejected);
+}
+
+namespace {
+
+// f(chunk, weights, rejected, count) for every chunk of samples 0 … n − 1, in parallel.
+template <class PerChunk>
+void for_each_chunk(Technique t, const Config& c, std::uint64_t seed, std::uint64_t n,
+                    PerChunk&& per_chunk) {
+  const std::uint64_t chunks = (n + kBatchChunk - 1) / kBatchChunk;
+  tbb::parallel_for(std::uint64_t(0), chunks, [&](std::uint64_t ch) {
+    const std::size_t count = std::size_t(std::min(n, (ch + 1) * kBatchChunk) - ch * kBatchChunk);
+    std::vector<double> w(count), rejected(count);
+    draw_batch(t, c, seed, ch * kBatchChunk, count, w.data(), rejected.data());
+    per_chunk(ch, w, rejected);
+  });
+}
+
+}  // namespace
+
+MeanAccumulator accumulate_weights(Technique t, const Config& c, std::uint64_t seed,
+                                   std::uint64_t n, int power) {
+  std::vector<MeanAccumulator> parts((n + kBatchChunk - 1) / kBatchChunk);
+  for_each_chunk(t, c, seed, n,
+                 [&](std::uint64_t ch, const std::vector<double>& w, const std::vector<double>&) {
+                   MeanAccumulator a;
+                   for (double x : w) a.add(power == 2 ? x * x : x);
+                   parts[ch] = a;
+                 });
+  MeanAccumulator all;
+  for (const MeanAccumulator& a : parts) all.merge(a);
+  return all;
+}
+
+std::uint64_t count_rejected(Technique t, const Config& c, std::uint64_t seed, std::uint64_t n) {
+  std::vector<std::uint64_t> parts((n + kBatchChunk - 1) / kBatchChunk);
+  for_each_chunk(t, c, seed, n,
+                 [&](std::uint64_t ch, const std::vector<double>&, const std::vector<double>& r) {
+                   parts[ch] = std::uint64_t(std::count(r.begin(), r.end(), 1.0));
+                 });
+  std::uint64_t all = 0;
+  for (std::uint64_t k : parts) all += k;
+  return all;
 }
 
 Moments moments_by_cubature(const Config& c, bool second_moments) {

@@ -13,6 +13,7 @@
 #include "core/ndf/ggx.h"
 #include "core/samplers/sample.h"
 #include "verify/check.h"
+#include "verify/stats/mean_tests.h"
 
 namespace glintlab::verify::eto_claims {
 
@@ -45,6 +46,20 @@ const char* to_string(Technique t);
 MicrofacetSample<double> draw(Technique t, const Config& c, std::uint64_t seed, std::uint64_t i);
 // Its Monte Carlo weight f·cos/pdf with F = 1 (0 for a rejected sample).
 double weight(Technique t, const Config& c, std::uint64_t seed, std::uint64_t i);
+// Samples first … first + count − 1 of a technique in one call of the smooth_ggx model's SIMD
+// batch (core/simd/model_batch.h sample_batch, double, on simd::default_isa(): GLINTLAB_ISA or
+// the widest ISA of this CPU), with draw()'s uniforms: weight[j] and rejected[j] (1 or 0) are
+// weight(t, c, seed, first + j) and draw(…).rejected bit for bit on the scalar ISA and within the
+// batches' budgets (docs/simd.md "Equivalence budgets") on the others.
+void draw_batch(Technique t, const Config& c, std::uint64_t seed, std::uint64_t first,
+                std::size_t count, double* weight, double* rejected);
+// Samples 0 … n − 1 of a technique in chunks of kBatchChunk (one draw_batch each, run in parallel),
+// merged in chunk order, so the result does not depend on the thread count: the accumulated
+// weights (power 1) or squared weights (power 2), and the number of rejected samples.
+inline constexpr std::uint64_t kBatchChunk = 4096;
+MeanAccumulator accumulate_weights(Technique t, const Config& c, std::uint64_t seed,
+                                   std::uint64_t n, int power);
+std::uint64_t count_rejected(Technique t, const Config& c, std::uint64_t seed, std::uint64_t n);
 
 // Exact quantities by adaptive cubature over the half vector (dωo = 4 (ωi·h) dh), each with its
 // error estimate: the albedo E = ∫ f cos dωo, and the second moments ∫ (f cos)²/p dωo of both

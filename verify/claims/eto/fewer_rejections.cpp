@@ -44,18 +44,6 @@ namespace {
 using V3 = Vec3<double>;
 constexpr double kClaimedRate = 0.5, kControlRate = 0.52;
 
-std::uint64_t count_rejected(Technique t, const Config& c, std::uint64_t seed, std::uint64_t n) {
-  // Integer sums are associative: the count does not depend on the schedule.
-  return tbb::parallel_reduce(
-      tbb::blocked_range<std::uint64_t>(0, n, 4096), std::uint64_t(0),
-      [&](const tbb::blocked_range<std::uint64_t>& r, std::uint64_t acc) {
-        for (std::uint64_t i = r.begin(); i != r.end(); ++i)
-          acc += draw(t, c, seed, i).rejected ? 1 : 0;
-        return acc;
-      },
-      [](std::uint64_t x, std::uint64_t y) { return x + y; });
-}
-
 // Exact bounded rate from the caps rate: on the upper hemisphere Eq. 8 is Eq. 7 times
 // (i_z + t)/(k i_z + t) (Eq. 8's denominator), so 1 − r_bounded = (1 − r_caps)(i_z + t)/(k i_z +
 // t).

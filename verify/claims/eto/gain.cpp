@@ -25,23 +25,9 @@ bool in_smooth_regime(const Config& c) {
   return c.ax == c.ay && std::abs(c.ax - 0.2) < 1e-12 && c.theta_deg <= 60;
 }
 
-// Second moment of the single-scattering weight f cos / p (F = 1) of technique t, n samples,
-// merged in fixed chunks (identical for any thread count).
+// Second moment of the single-scattering weight f cos / p (F = 1) of technique t, n samples.
 MeanAccumulator second_moment(Technique t, const Config& c, std::uint64_t seed, std::uint64_t n) {
-  constexpr std::uint64_t kChunk = 4096;
-  const std::uint64_t chunks = n / kChunk;
-  std::vector<MeanAccumulator> part(chunks);
-  tbb::parallel_for(std::uint64_t(0), chunks, [&](std::uint64_t ch) {
-    MeanAccumulator a;
-    for (std::uint64_t j = 0; j < kChunk; ++j) {
-      const double w = weight(t, c, seed, ch * kChunk + j);
-      a.add(w * w);
-    }
-    part[ch] = a;
-  });
-  MeanAccumulator all;
-  for (const MeanAccumulator& a : part) all.merge(a);
-  return all;
+  return accumulate_weights(t, c, seed, n, 2);
 }
 
 // The RMSE-reduction interval of a measured ratio: [gain(r·e^{z se}), gain(r·e^{−z se})].

@@ -33,7 +33,7 @@ namespace {
 constexpr double kControlPdfScale = 1.02;
 
 MeanAccumulator weights(Technique t, const Config& c, std::uint64_t seed, std::uint64_t n) {
-  return accumulate_mean([&](std::uint64_t i) { return weight(t, c, seed, i); }, n);
+  return accumulate_weights(t, c, seed, n, 1);
 }
 
 // Weights of a pdf scaled by s are the correct weights divided by s, exactly up to rounding.
