@@ -8,7 +8,6 @@
 
 namespace glintlab::verify {
 
-std::vector<Check> kemppinen_checks();        // verify/claims/kemppinen.cpp
 std::vector<Check> kemppinen_glint_checks();  // verify/claims/kemppinen_glints.cpp
 
 }  // namespace glintlab::verify
