@@ -15,6 +15,7 @@ struct Furnace;           // furnace.cpp
 struct ConstantTime;      // constant_time.cpp
 struct SamplingUnbiased;  // sampling_unbiased.cpp
 
-using Claims = ClaimList<Jacobian>;
+using Claims = ClaimList<Jacobian, Convergence, Compensation, CompensationK16, Roulette, Furnace,
+                         ConstantTime, SamplingUnbiased>;
 
 }  // namespace glintlab::verify::kemppinen_claims
