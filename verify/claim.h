@@ -15,8 +15,10 @@
 // control)` (what else the control's measurement shows, appended to the control's text after its
 // verdict), `control_p_value(sizes, control)` (the p-value reported for the control where that is
 // not its decision's combined p), `control_text(sizes, control, input, verdict)` (the control's
-// whole line, where the claim words it itself) and, for a statistical claim, `calibrate(seed)` (one
-// raw p-value on a known-correct input), all optional. The configurations are enumerable
+// whole line, where the claim words it itself), `control_sensitive(sizes, control)` (false where a
+// control of several inputs — the corrected formula, and near-truth errors the check must be seen
+// to catch — is not caught in every part: it then does not oppose) and, for a statistical claim,
+// `calibrate(seed)` (one raw p-value on a known-correct input), all optional. The configurations are enumerable
 // (`configurations(sizes)`, then an index), so a run can be split by configuration. The control
 // rule is the runner's alone: a claim that holds is shown to fail on a perturbed input, one that
 // does not hold to hold on the corrected input (Input::kCorrected, where the claim has one:

@@ -71,6 +71,10 @@ CheckResult decide_all(const typename C::Sizes& z, std::span<const typename C::E
   const typename C::Measured control = C::measure(z, evidence, input);
   const Decision c = C::decide(z, control);
   record_control(r, c.verdict);
+  // A control made of more than one input (a corrected formula, and beside it the near-truth errors
+  // the check must be seen to catch) opposes only where every part does: control_sensitive.
+  if constexpr (requires { C::control_sensitive(z, control); })
+    r.control_rejected = r.control_rejected && C::control_sensitive(z, control);
   // The control's p-value is its decision's combined p, unless the claim reports another one (a
   // statistical claim whose control is one test among its family: control_p_value).
   if constexpr (requires { C::control_p_value(z, control); })

@@ -6,8 +6,8 @@
 #include "verify/claims/across/list.h"
 #include "verify/claims/adequacy/list.h"
 #include "verify/claims/chermain/list.h"
-#include "verify/claims/claims.h"
 #include "verify/claims/eto/list.h"
+#include "verify/claims/kemppinen/list.h"
 #include "verify/claims/kneiphof/list.h"
 #include "verify/claims/podee/list.h"
 #include "verify/claims/smooth/list.h"
@@ -51,7 +51,7 @@ const std::vector<Check>& registered_checks() {
   static const std::vector<Check> checks = [] {
     std::vector<Check> all;
     for (auto* list : {&list_checks<smooth_claims::Claims>, &list_checks<eto_claims::Claims>,
-                       &kemppinen_checks, &list_checks<kneiphof_claims::Claims>,
+                       &list_checks<kemppinen_claims::Claims>, &list_checks<kneiphof_claims::Claims>,
                        &list_checks<chermain_claims::Claims>, &list_checks<podee_claims::Claims>,
                        &list_checks<across_claims::Claims>, &list_checks<adequacy_claims::Claims>}) {
       for (Check& c : list()) {

@@ -1,7 +1,8 @@
 // run_claim<C> (verify/claim_runner.h) on toy claims: the control rule picks the perturbed input
 // for a holding claim and the corrected one for a failing claim, a control that does not oppose
 // is reported NOT rejected, the regime is set only for holds-in-regime (a claim's regime(sizes) in
-// place of kRegime), a control text without the runner's verdict where the claim says so, the
+// place of kRegime), a control text without the runner's verdict where the claim says so, a
+// control of several inputs that opposes only where every part is caught (control_sensitive), the
 // registry entry carries the claim's metadata, and the result does not depend on the thread count.
 #include "verify/claim_runner.h"
 
@@ -181,6 +182,24 @@ TEST(ClaimRunner, MeasuredVerdictPicksAndJudgesTheControl) {
   EXPECT_FALSE(q.control_rejected) << q.control;
   // Without the rule: no measured verdict kept.
   EXPECT_FALSE(run_claim<ToyMean<Toy::kFails>>({8}).measured_verdict.has_value());
+}
+
+// A control of several inputs (control_sensitive): the corrected input holds, but where the
+// check is not also seen to catch a near-truth error the control does not oppose; its verdict is
+// kept either way.
+template <bool kSensitive>
+struct PartlySensitive : ToyMean<Toy::kFails> {
+  static bool control_sensitive(const Sizes&, const double&) { return kSensitive; }
+};
+
+TEST(ClaimRunner, ControlSensitiveGatesTheRejection) {
+  const CheckResult caught = run_claim<PartlySensitive<true>>({8});
+  EXPECT_EQ(caught.control_verdict, Verdict::kHolds);
+  EXPECT_TRUE(caught.control_rejected) << caught.control;
+  const CheckResult missed = run_claim<PartlySensitive<false>>({8});
+  EXPECT_EQ(missed.control_verdict, Verdict::kHolds);
+  EXPECT_FALSE(missed.control_rejected) << missed.control;
+  EXPECT_NE(missed.control.find("(NOT rejected)"), std::string::npos) << missed.control;
 }
 
 TEST(ClaimRunner, SameResultOnOneAndTwoThreads) {

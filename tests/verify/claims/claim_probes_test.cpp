@@ -13,6 +13,7 @@
 #include "verify/claims/adequacy/list.h"
 #include "verify/claims/chermain/list.h"
 #include "verify/claims/eto/list.h"
+#include "verify/claims/kemppinen/list.h"
 #include "verify/claims/kneiphof/list.h"
 #include "verify/claims/podee/list.h"
 #include "verify/claims/smooth/list.h"
@@ -47,8 +48,9 @@ class ClaimProbes : public ::testing::Test {};
 // process, would sweep the whole suite again (35–69 s each); Checks/SharedMeasurement runs the
 // four through the same runner at quick, genuine and control, on one sweep.
 using AllProbes =
-    ProbesOf<smooth_claims::Claims, eto_claims::Claims, kneiphof_claims::Claims,
-             chermain_claims::Claims, podee_claims::Claims, adequacy_claims::Claims>::type;
+    ProbesOf<smooth_claims::Claims, eto_claims::Claims, kemppinen_claims::Claims,
+             kneiphof_claims::Claims, chermain_claims::Claims, podee_claims::Claims,
+             adequacy_claims::Claims>::type;
 TYPED_TEST_SUITE(ClaimProbes, AllProbes);
 
 TYPED_TEST(ClaimProbes, VerdictAndControlsAtProbeSize) {
@@ -99,6 +101,36 @@ TEST(ClaimLists, PodeeRegisteredInOrder) {
     }
   EXPECT_EQ(ids, (std::vector<std::string>{"podee.brightest-vector", "podee.rmse",
                                            "podee.far-failure", "podee.stability"}));
+}
+
+TEST(ClaimLists, KemppinenRegisteredInOrderAfterEto) {
+  std::vector<std::string> ids;
+  std::vector<Verdict> expected;
+  std::string before;  // the id registered just before the first kemppinen claim
+  for (const Check& c : registered_checks()) {
+    if (c.id.rfind("kemppinen.", 0) == 0) {
+      ids.push_back(c.id), expected.push_back(c.expected);
+      EXPECT_EQ(c.paper, "Kemppinen et al. 2025");
+      EXPECT_FALSE(c.paper_quote.empty()) << c.id;
+      // The statistical claims keep their calibration (and so count in the suite's level).
+      EXPECT_EQ(bool(c.calibration), c.id == "kemppinen.jacobian" || c.id == "kemppinen.roulette" ||
+                                         c.id == "kemppinen.furnace" ||
+                                         c.id == "kemppinen.sampling-unbiased")
+          << c.id;
+      EXPECT_FALSE(c.expected_full.has_value()) << c.id;
+    } else if (ids.empty()) {
+      before = c.id;
+    }
+  }
+  EXPECT_EQ(before, "eto.backfacing-stable-pdf");
+  EXPECT_EQ(ids, (std::vector<std::string>{
+                     "kemppinen.jacobian", "kemppinen.convergence", "kemppinen.compensation",
+                     "kemppinen.compensation-k16", "kemppinen.roulette", "kemppinen.furnace",
+                     "kemppinen.constant-time", "kemppinen.sampling-unbiased"}));
+  EXPECT_EQ(expected, (std::vector<Verdict>{Verdict::kFails, Verdict::kHoldsInRegime,
+                                            Verdict::kHolds, Verdict::kHoldsInRegime,
+                                            Verdict::kHoldsWithin, Verdict::kHolds, Verdict::kHolds,
+                                            Verdict::kHolds}));
 }
 
 TEST(ClaimLists, KneiphofRegisteredInOrder) {
