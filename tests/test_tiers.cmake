@@ -43,9 +43,12 @@ set(glintlab_slow_tests
   # the mixture and with Algorithm 2 alone (10^5 samples and up to 4 · 10^5 reference evaluations
   # per setting).
   "KemppinenSampler.* 12"
-  # kemppinen.compensation's decision on 8 settings of the brute-force Eq. 5, 60 positions each:
-  # fewer leave its intervals undecided.
-  "KemppinenClaims.CompensationDecisionFailsWithoutC 3"
+  # kemppinen.compensation's probe: its decision on 8 settings of the brute-force Eq. 5, 60
+  # positions each (fewer leave its intervals undecided); kemppinen.convergence's region means and
+  # kemppinen.jacobian's finite differences and chi-square family at their probe sizes.
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::kemppinen_claims::Compensation>> 4"
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::kemppinen_claims::Convergence>> 3"
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::kemppinen_claims::Jacobian>> 2"
   # Chi-square and integration checks whose sample sizes set what they can detect.
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::eto_claims::PdfMatches>> 8"
   "ChiSquareClaims.IdenticalWithOneAndTwoThreads 2"
@@ -157,7 +160,7 @@ set(glintlab_slow_tests
 set(glintlab_power_tests
   # Every claim at its quick budget: its measure and decision on smaller inputs in the claim's own
   # tests (tests/verify/claims/: ChiSquareClaims.*, KemppinenClaims.*, ClaimProbes.* (the claims
-  # written as types), ChermainClaims.*, KneiphofClaims.*, ...), the conformance properties in
+  # written as types), KneiphofClaims.*, ...), the conformance properties in
   # Properties/ControlRejected.*, all.stability in
   # PluginTest.SweepFigureAndGenericClaimCoverThePluginModel.
   "Checks/QuickBudget.*"
