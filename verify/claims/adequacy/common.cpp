@@ -158,11 +158,31 @@ std::vector<adequacy::KemppinenCell> kemppinen_boundary_rows() {
 }
 
 KemppinenBoundaryRow measure_kemppinen_boundary(const adequacy::KemppinenCell& row, int samples,
-                                                std::uint64_t seed) {
+                                                std::uint64_t seed, double predicted_scale,
+                                                double bound_scale) {
   KemppinenBoundaryRow r;
   r.row = row;
-  r.predicted = adequacy::kemppinen_predicted_boundaries(row, kBoundaryTau)[0];
-  if (!(r.predicted > 0)) return r;  // no prediction: p-values stay 1
+  const double exact =
+      adequacy::kemppinen_exact_cv_boundary(row, KemppinenLevel::kK16Exact, kBoundaryTau);
+  r.predicted = exact * predicted_scale;
+  r.bound = adequacy::kemppinen_predicted_boundaries(row, kBoundaryTau)[0] * bound_scale;
+  if (!(exact > 0)) return r;  // no prediction: p-values stay 1
+  adequacy::KemppinenCell at = row;
+  at.points = exact;
+  r.predicted_mean = adequacy::kemppinen_exact_moments(at, KemppinenLevel::kK16Exact).mean;
+  // The prediction passed through the measurement's estimator: the same line fitted through the
+  // construction's CV at the ladder's points (equal weights: the measured CVs' relative errors
+  // are alike). The CV is curved in log N there, so the line's crossing is not N_pred itself
+  // (within ±1.2 % on the quick grid's rows).
+  std::vector<std::pair<double, double>> predicted_cv;
+  for (double f : kKemppinenLadder) {
+    at.points = exact * f;
+    const double cv = adequacy::kemppinen_exact_moments(at, KemppinenLevel::kK16Exact).cv();
+    predicted_cv.emplace_back(cv, cv);
+  }
+  const LadderFit pf = fit_crossing(kKemppinenLadder, predicted_cv, kBoundaryTau);
+  if (!pf.ok) return r;
+  r.predicted_fit = exact * std::exp(pf.crossing) * predicted_scale;
   const LadderFit f = kemppinen_ladder(row, r.predicted, samples, seed, r.max_mean_diff);
   const LadderFit g =
       kemppinen_ladder(row, r.predicted, samples, seed + kReplicateSeed, r.max_mean_diff);
@@ -172,9 +192,18 @@ KemppinenBoundaryRow measure_kemppinen_boundary(const adequacy::KemppinenCell& r
   r.measured = r.predicted * std::exp(f.crossing);
   r.replicate = r.predicted * std::exp(g.crossing);
   r.replicate_log_se = g.log_se;
-  r.p_value = two_sided_z(f.crossing / r.log_se);
-  r.moved_p_value = two_sided_z((f.crossing - std::log(kKemppinenControlScale)) / r.log_se);
+  // log(measured / predicted through the fit), the ladder centred on the prediction.
+  const double off = std::log(r.measured / r.predicted_fit);
+  r.p_value = two_sided_z(off / r.log_se);
+  r.moved_p_value = two_sided_z((off - std::log(kKemppinenControlScale)) / r.log_se);
   r.replicate_p_value = two_sided_z((f.crossing - g.crossing) / std::hypot(f.log_se, g.log_se));
+  // One-sided: the bound is refuted where log(measured / bound) is significantly above 0.
+  const auto above = [&](double bound) {
+    return bound > 0 ? 0.5 * std::erfc(std::log(r.measured / bound) / r.log_se / std::sqrt(2.0))
+                     : 1.0;
+  };
+  r.bound_p_value = above(r.bound);
+  r.moved_bound_p_value = above(r.predicted_fit * kKemppinenBoundControlScale);
   return r;
 }
 
