@@ -447,11 +447,13 @@ KemppinenExactMoments kemppinen_exact_moments(const KemppinenCell& c, KemppinenL
   });
 }
 
-double kemppinen_exact_cv_boundary(KemppinenCell c, KemppinenLevel level, double tau) {
-  const auto above = [&](double log_points) {
-    c.points = std::pow(10.0, log_points);
-    return kemppinen_exact_moments(c, level).cv() > tau;
-  };
+namespace {
+
+// The largest log10(points) of a scan down from 10⁹ in steps of 1/50 decade at which `above`
+// holds, refined by bisection to 10⁻⁶ of a decade, as points (NaN: above at 10⁹; 0.01, the scan's
+// end, where it never is).
+template <class Above>
+double scan_boundary(const Above& above) {
   for (int s = 0; s <= 550; ++s) {
     const double lp = 9 - 0.02 * s;
     if (!above(lp)) continue;
@@ -464,6 +466,30 @@ double kemppinen_exact_cv_boundary(KemppinenCell c, KemppinenLevel level, double
     return std::pow(10.0, 0.5 * (lo + hi));
   }
   return 0.01;
+}
+
+}  // namespace
+
+double kemppinen_exact_cv_boundary(KemppinenCell c, KemppinenLevel level, double tau) {
+  return scan_boundary([&](double log_points) {
+    c.points = std::pow(10.0, log_points);
+    return kemppinen_exact_moments(c, level).cv() > tau;
+  });
+}
+
+KemppinenExactDifference kemppinen_exact_difference(const KemppinenCell& c, KemppinenLevel level) {
+  const KemppinenExactMoments m = kemppinen_exact_moments(c, level);
+  const KemppinenExactMoments ref = kemppinen_exact_moments(c, KemppinenLevel::kK16Exact);
+  if (!(ref.mean > 0)) return {0, 0};
+  return {m.mean / ref.mean - 1, m.cv() - ref.cv()};
+}
+
+double kemppinen_exact_level_boundary(KemppinenCell c, KemppinenLevel level, double tau) {
+  return scan_boundary([&](double log_points) {
+    c.points = std::pow(10.0, log_points);
+    const KemppinenExactDifference d = kemppinen_exact_difference(c, level);
+    return std::max(std::abs(d.mean_diff), std::abs(d.cv_diff)) > tau;
+  });
 }
 
 }  // namespace glintlab::verify::adequacy

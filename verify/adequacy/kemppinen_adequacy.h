@@ -152,5 +152,16 @@ KemppinenExactMoments kemppinen_exact_moments(const KemppinenCell& c, KemppinenL
 // tau, refined by bisection in log points to 10⁻⁶ of a decade (NaN: above tau even at 10⁹; the
 // scan's end, 10⁻², where it never is).
 double kemppinen_exact_cv_boundary(KemppinenCell c, KemppinenLevel level, double tau);
+// A counting level against k16_exact by the construction's exact moments, the adequacy table's two
+// statistics signed: mean_n / mean_16 − 1 and CV_n − CV_16 (compare_to_exact takes their absolute
+// values).
+struct KemppinenExactDifference {
+  double mean_diff = 0, cv_diff = 0;
+};
+KemppinenExactDifference kemppinen_exact_difference(const KemppinenCell& c, KemppinenLevel level);
+// The expected points per footprint from which `level` stays within `tau` of k16_exact in both
+// statistics (max(|mean_diff|, |cv_diff|) ≤ tau) by kemppinen_exact_difference, scanned as
+// kemppinen_exact_cv_boundary.
+double kemppinen_exact_level_boundary(KemppinenCell c, KemppinenLevel level, double tau);
 
 }  // namespace glintlab::verify::adequacy

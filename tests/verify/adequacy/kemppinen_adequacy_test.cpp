@@ -278,3 +278,24 @@ TEST(KemppinenBoundaryRow, HoldsAtThePredictionAndRejectsItMovedOrABoundOnTheUns
 
 }  // namespace
 }  // namespace glintlab::verify::adequacy
+
+namespace glintlab::verify::adequacy {
+namespace {
+
+TEST(KemppinenSideRow, MatchesAtThePredictedBoundaryAndRejectsItMoved) {
+  // k = 4 on one quick-grid row at the claim's probe size: both signed statistics within their
+  // errors of the construction's values at its predicted boundary, and far from the values
+  // predicted for a boundary 25 % further right (the claim's control); the chooser's boundary above
+  // the predicted one.
+  const auto r = adequacy_claims::measure_kemppinen_side(cell(1, 0.1, 0, 0),
+                                                         KemppinenLevel::kK4Exact, 1000, 5);
+  ASSERT_GT(r.predicted, 1);
+  EXPECT_GT(r.bound, r.predicted);
+  EXPECT_NEAR(std::max(std::abs(r.expected.mean_diff), std::abs(r.expected.cv_diff)), kTau, 1e-6);
+  EXPECT_GT(r.p_mean, 1e-3);
+  EXPECT_GT(r.p_cv, 1e-3);
+  EXPECT_LT(std::min(r.moved_p_mean, r.moved_p_cv), 1e-7);
+}
+
+}  // namespace
+}  // namespace glintlab::verify::adequacy

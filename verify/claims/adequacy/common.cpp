@@ -207,6 +207,64 @@ KemppinenBoundaryRow measure_kemppinen_boundary(const adequacy::KemppinenCell& r
   return r;
 }
 
+std::vector<std::pair<adequacy::KemppinenCell, KemppinenLevel>> kemppinen_side_rows() {
+  std::vector<std::pair<adequacy::KemppinenCell, KemppinenLevel>> out;
+  for (const adequacy::KemppinenCell& row : kemppinen_boundary_rows())
+    for (KemppinenLevel l : kKemppinenSideLevels) out.emplace_back(row, l);
+  return out;
+}
+
+KemppinenSideRow measure_kemppinen_side(const adequacy::KemppinenCell& row, KemppinenLevel level,
+                                        int samples, std::uint64_t seed) {
+  KemppinenSideRow r;
+  r.row = row;
+  r.level = level;
+  r.predicted = adequacy::kemppinen_exact_level_boundary(row, level, kBoundaryTau);
+  const std::size_t side = std::size_t(kemppinen_level_side(level));  // kKemppinenBoundaryLevels
+  r.bound = adequacy::kemppinen_predicted_boundaries(row, kBoundaryTau)[side];
+  if (!(r.predicted > 0.01)) return r;  // no boundary in the scan: p-values stay 1
+  r.row.points = r.predicted;
+  r.expected = adequacy::kemppinen_exact_difference(r.row, level);
+  adequacy::KemppinenCell moved = r.row;
+  moved.points = r.predicted * kKemppinenSideControlScale;
+  r.moved = adequacy::kemppinen_exact_difference(moved, level);
+  std::vector<double> x, ref;
+  adequacy::kemppinen_level_values(r.row, KemppinenLevel::kK16Exact, samples, seed, ref);
+  adequacy::kemppinen_level_values(r.row, level, samples, seed, x);
+  // The signed statistics and their errors by the empirical influence functions over the paired
+  // positions (as compare_to_exact bounds them).
+  const double n = double(x.size());
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) mx += x[i], my += ref[i];
+  mx /= n, my /= n;
+  double vx = 0, vy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    vx += (x[i] - mx) * (x[i] - mx), vy += (ref[i] - my) * (ref[i] - my);
+  vx /= n, vy /= n;
+  if (!(mx > 0) || !(my > 0) || !(vx > 0) || !(vy > 0)) return r;
+  const double cx = std::sqrt(vx) / mx, cy = std::sqrt(vy) / my;
+  double sm = 0, smm = 0, sc = 0, scc = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double dx = x[i] - mx, dy = ref[i] - my;
+    const double im = (dx - (mx / my) * dy) / my;
+    const double ic =
+        cx * ((dx * dx - vx) / (2 * vx) - dx / mx) - cy * ((dy * dy - vy) / (2 * vy) - dy / my);
+    sm += im, smm += im * im, sc += ic, scc += ic * ic;
+  }
+  r.mean_diff = mx / my - 1;
+  r.cv_diff = cx - cy;
+  r.mean_diff_se = std::sqrt(std::max(smm / n - (sm / n) * (sm / n), 0.0) / n);
+  r.cv_diff_se = std::sqrt(std::max(scc / n - (sc / n) * (sc / n), 0.0) / n);
+  const auto p = [](double measured, double predicted, double se) {
+    return se > 0 ? two_sided_z((measured - predicted) / se) : 1.0;
+  };
+  r.p_mean = p(r.mean_diff, r.expected.mean_diff, r.mean_diff_se);
+  r.p_cv = p(r.cv_diff, r.expected.cv_diff, r.cv_diff_se);
+  r.moved_p_mean = p(r.mean_diff, r.moved.mean_diff, r.mean_diff_se);
+  r.moved_p_cv = p(r.cv_diff, r.moved.cv_diff, r.cv_diff_se);
+  return r;
+}
+
 std::size_t tail_rejections(const HolmSidakResult& hs, std::size_t count) {
   std::size_t n = 0;
   for (std::size_t i = hs.reject.size() - count; i < hs.reject.size(); ++i)

@@ -5,6 +5,7 @@
 // of its cell and seed alone.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -55,6 +56,19 @@ inline constexpr double kKemppinenControlScale = 1.05;
 inline constexpr double kKemppinenBoundControlScale = 0.95;
 inline constexpr std::uint64_t kReplicateSeed = 1000;
 
+// The Kemppinen family's cheaper sides k = 1, 4, 9 (exact erf; a rational twin differs by less than
+// 1e-5 of the mean): each one's boundary predicted by the construction's exact moments
+// (kemppinen_exact_level_boundary: both of the adequacy table's statistics, |mean_n / mean_16 − 1|
+// and |CV_n − CV_16|, within TAU from there on). Those statistics are not monotone in N (a sawtooth
+// per MIP level; in some rows the boundary is a tooth's peak touching TAU), so no crossing is
+// fitted: the level and k16_exact are measured at the same positions at the predicted boundary,
+// and the two signed statistics are tested against their predicted values there (two-sided,
+// paired delta-method errors). Control: the boundary 25 % to the right (the statistics predicted at
+// N_pred × 1.25) against the same measurement.
+inline constexpr std::array<KemppinenLevel, 3> kKemppinenSideLevels = {
+    KemppinenLevel::kK1Exact, KemppinenLevel::kK4Exact, KemppinenLevel::kK9Exact};
+inline constexpr double kKemppinenSideControlScale = 1.25;
+
 // Cells away from the degenerate p = 1 of deliot_belcour's peak: its off-peak half-vector
 // (θ_h = atan 2α, p ≈ 0.04) and kneiphof_klein's 1° cap (p ≈ 1e-3 on the peak side), N_P 1 … 1e8.
 std::vector<Cell> prediction_cells();
@@ -100,6 +114,16 @@ struct KemppinenBoundaryRow {
   double replicate_p_value = 1;    // the replicate as the prediction, both errors
 };
 
+struct KemppinenSideRow {
+  adequacy::KemppinenCell row;  // its points: the predicted boundary
+  KemppinenLevel level = KemppinenLevel::kK1Exact;
+  double predicted = NAN;  // kemppinen_exact_level_boundary
+  double bound = NAN;      // the chooser's boundary of the level's rational twin
+  adequacy::KemppinenExactDifference expected, moved;  // at N_pred and N_pred × 1.25
+  double mean_diff = 0, mean_diff_se = 0, cv_diff = 0, cv_diff_se = 0;  // measured, signed
+  double p_mean = 1, p_cv = 1, moved_p_mean = 1, moved_p_cv = 1;
+};
+
 // One cell's exact-level values at `samples` positions, tested against the closed forms.
 PredictionRow measure_row(const Cell& c, int samples, std::uint64_t seed);
 // The smooth level's boundary of one setting (its N_P ignored).
@@ -110,6 +134,13 @@ BoundaryRow measure_boundary(Cell c, int samples, std::uint64_t seed);
 KemppinenBoundaryRow measure_kemppinen_boundary(const adequacy::KemppinenCell& row, int samples,
                                                 std::uint64_t seed, double predicted_scale = 1,
                                                 double bound_scale = 1);
+
+// The side `level` of one row at its predicted boundary, `samples` positions shared by the level
+// and k16_exact (p-values 1 where there is no boundary to measure).
+KemppinenSideRow measure_kemppinen_side(const adequacy::KemppinenCell& row, KemppinenLevel level,
+                                        int samples, std::uint64_t seed);
+// The rows × sides measured, rows outermost.
+std::vector<std::pair<adequacy::KemppinenCell, KemppinenLevel>> kemppinen_side_rows();
 
 // Rejections among the family's last `count` p-values.
 std::size_t tail_rejections(const HolmSidakResult& hs, std::size_t count);

@@ -70,6 +70,7 @@ struct PredictionMatchesMeasurement {
     std::vector<Cell> cells = prediction_cells();
     std::vector<Cell> settings = boundary_cells();
     std::vector<adequacy::KemppinenCell> kemppinen = kemppinen_boundary_rows();
+    std::vector<std::pair<adequacy::KemppinenCell, KemppinenLevel>> sides = kemppinen_side_rows();
   };
   static Sizes sizes(Budget b) {
     return b == Budget::kQuick ? Sizes{.samples = 100000, .kemppinen_samples = 2000}
@@ -79,16 +80,19 @@ struct PredictionMatchesMeasurement {
   // (Kemppinen).
   static Sizes probe_sizes() { return {.samples = 20000, .kemppinen_samples = 1000}; }
 
-  // Configurations: the cells, then the boundary settings, then the Kemppinen rows.
+  // Configurations: the cells, then the boundary settings, then the Kemppinen rows, then the
+  // Kemppinen rows' sides k = 1, 4, 9.
   static int configurations(const Sizes& z) {
-    return int(z.cells.size() + z.settings.size() + z.kemppinen.size());
+    return int(z.cells.size() + z.settings.size() + z.kemppinen.size() + z.sides.size());
   }
   // One configuration's row (only the one of its kind is filled). Seeds: the cell's index, the
-  // boundary's 100 + 10 i, the Kemppinen row's 200 + 10 i (each ladder point adds its index).
+  // boundary's 100 + 10 i, the Kemppinen row's 200 + 10 i (each ladder point adds its index), the
+  // side's 2000 + i.
   struct Evidence {
     PredictionRow row;
     BoundaryRow boundary;
     KemppinenBoundaryRow kemppinen;
+    KemppinenSideRow side;
   };
   static Evidence observe(const Sizes& z, int k, std::uint64_t seed) {
     Evidence e;
@@ -104,8 +108,14 @@ struct PredictionMatchesMeasurement {
       return e;
     }
     i -= z.settings.size();
-    e.kemppinen = measure_kemppinen_boundary(z.kemppinen[i], z.kemppinen_samples,
-                                             check_seed(std::string(kId), 200 + 10 * i));
+    if (i < z.kemppinen.size()) {
+      e.kemppinen = measure_kemppinen_boundary(z.kemppinen[i], z.kemppinen_samples,
+                                               check_seed(std::string(kId), 200 + 10 * i));
+      return e;
+    }
+    i -= z.kemppinen.size();
+    e.side = measure_kemppinen_side(z.sides[i].first, z.sides[i].second, z.kemppinen_samples,
+                                    check_seed(std::string(kId), 2000 + i));
     return e;
   }
 
@@ -115,6 +125,8 @@ struct PredictionMatchesMeasurement {
     std::vector<PredictionRow> rows;
     std::vector<BoundaryRow> boundaries;
     std::vector<KemppinenBoundaryRow> kemppinen;
+    std::vector<KemppinenSideRow> sides;
+    std::size_t kemppinen_begin = 0;  // the family's first Kemppinen p-value
     HolmSidakResult genuine, moved, replicate;
     double worst_cv_rel = 0;  // max |CV/CV_pred − 1|
     Input input = Input::kGenuine;
@@ -131,6 +143,8 @@ struct PredictionMatchesMeasurement {
       m.boundaries.push_back(evidence[z.cells.size() + i].boundary);
     for (std::size_t i = 0; i < z.kemppinen.size(); ++i)
       m.kemppinen.push_back(evidence[z.cells.size() + nb + i].kemppinen);
+    for (std::size_t i = 0; i < z.sides.size(); ++i)
+      m.sides.push_back(evidence[z.cells.size() + nb + z.kemppinen.size() + i].side);
     std::vector<double> genuine, control;
     for (const BoundaryRow& r : m.boundaries) {
       genuine.push_back(r.p_value);
@@ -143,7 +157,9 @@ struct PredictionMatchesMeasurement {
       if (pred > 0 && r.cell.facets * r.p >= kMinExpectedCount)
         m.worst_cv_rel = std::max(m.worst_cv_rel, std::abs(r.cv / pred - 1));
     }
-    // The Kemppinen boundaries come last in the family: the point predictions, then the bounds.
+    // The Kemppinen boundaries come last in the family: the point predictions, the bounds, then
+    // the sides' two statistics each.
+    m.kemppinen_begin = genuine.size();
     std::vector<double> replicate = genuine;
     for (const KemppinenBoundaryRow& r : m.kemppinen) {
       genuine.push_back(r.p_value);
@@ -154,6 +170,11 @@ struct PredictionMatchesMeasurement {
       genuine.push_back(r.bound_p_value);
       control.push_back(r.moved_bound_p_value);
       replicate.push_back(r.bound_p_value);
+    }
+    for (const KemppinenSideRow& r : m.sides) {
+      genuine.insert(genuine.end(), {r.p_mean, r.p_cv});
+      control.insert(control.end(), {r.moved_p_mean, r.moved_p_cv});
+      replicate.insert(replicate.end(), {r.p_mean, r.p_cv});
     }
     m.moved = holm_sidak(control, check_level());
     m.replicate = holm_sidak(replicate, check_level());
@@ -184,8 +205,10 @@ struct PredictionMatchesMeasurement {
         "by the chooser's moments (kemppinen_level_moments at TAU, no margin; one-sided), on {} "
         "rows (theta_i 0, 60 deg; alpha 0.1, 0.3; theta_h 0, atan alpha, atan 2 alpha), the "
         "crossing fitted on N_pred x {{0.95, 0.975, 1, 1.025, 1.05}}, {} positions per ladder "
-        "point",
-        kBoundaryTau, z.kemppinen.size(), z.kemppinen_samples);
+        "point; the sides k = 1, 4, 9 (exact erf) of the same rows: mean_n / mean_16 - 1 and CV_n "
+        "- CV_16 at the boundary the construction's exact moments predict, against their "
+        "predicted values, {} positions",
+        kBoundaryTau, z.kemppinen.size(), z.kemppinen_samples, z.kemppinen_samples);
   }
 
   // The control's line as describe words it: it states its own rule for the verdict, so the
@@ -221,10 +244,23 @@ struct PredictionMatchesMeasurement {
         r.measured * std::exp(z * r.log_se), r.p_value);
   }
 
-  // Rejections among the Kemppinen point predictions (the family's last 2n p-values but n) and
-  // among the bounds (its last n).
-  static std::size_t point_rejections(const HolmSidakResult& hs, std::size_t n) {
-    return tail_rejections(hs, 2 * n) - tail_rejections(hs, n);
+  // Rejections among `count` p-values of the family from `begin`.
+  static std::size_t range_rejections(const HolmSidakResult& hs, std::size_t begin,
+                                      std::size_t count) {
+    std::size_t r = 0;
+    for (std::size_t i = begin; i < begin + count && i < hs.reject.size(); ++i)
+      r += hs.reject[i] ? 1 : 0;
+    return r;
+  }
+  // ... among the Kemppinen point predictions, the bounds, the sides.
+  static std::size_t point_rejections(const Measured& m, const HolmSidakResult& hs) {
+    return range_rejections(hs, m.kemppinen_begin, m.kemppinen.size());
+  }
+  static std::size_t bound_rejections(const Measured& m, const HolmSidakResult& hs) {
+    return range_rejections(hs, m.kemppinen_begin + m.kemppinen.size(), m.kemppinen.size());
+  }
+  static std::size_t side_rejections(const Measured& m, const HolmSidakResult& hs) {
+    return range_rejections(hs, m.kemppinen_begin + 2 * m.kemppinen.size(), 2 * m.sides.size());
   }
 
   static std::string describe_kemppinen(const Sizes& z, const Measured& m) {
@@ -265,8 +301,37 @@ struct PredictionMatchesMeasurement {
         "{:.3g} on the ladders, {:.3g} by the construction at the prediction (the CV decides); {} "
         "of {} point predictions and {} of {} bounds rejected",
         z.kemppinen_samples, n, rows, lo, hi, raw_lo, raw_hi, bound_lo, bound_hi, slope_lo,
-        slope_hi, max_mean, pred_mean, point_rejections(m.genuine, n), n,
-        tail_rejections(m.genuine, n), n);
+        slope_hi, max_mean, pred_mean, point_rejections(m, m.genuine), n,
+        bound_rejections(m, m.genuine), n);
+  }
+
+  static std::string describe_sides(const Sizes& z, const Measured& m) {
+    std::string rows;
+    double worst_mean = 0, worst_cv = 0, ratio_lo = INFINITY, ratio_hi = 0;
+    for (const KemppinenSideRow& r : m.sides) {
+      rows += fmt::format(
+          "{}θ_i {:g}° α {:g} θ_h {:.1f}° {}: N_pred {:.4g} (bound {:.4g}); mean diff {:+.4f} "
+          "predicted {:+.4f} (se {:.4f}), CV diff {:+.4f} predicted {:+.4f} (se {:.4f})",
+          rows.empty() ? "" : "; ", r.row.theta_i_deg, r.row.alpha, r.row.theta_h_deg,
+          kKemppinenLevelNames[std::size_t(r.level)], r.predicted, r.bound, r.mean_diff,
+          r.expected.mean_diff, r.mean_diff_se, r.cv_diff, r.expected.cv_diff, r.cv_diff_se);
+      if (r.mean_diff_se > 0)
+        worst_mean = std::max(worst_mean, std::abs(r.mean_diff - r.expected.mean_diff));
+      if (r.cv_diff_se > 0) worst_cv = std::max(worst_cv, std::abs(r.cv_diff - r.expected.cv_diff));
+      if (r.predicted > 0) {
+        ratio_lo = std::min(ratio_lo, r.bound / r.predicted);
+        ratio_hi = std::max(ratio_hi, r.bound / r.predicted);
+      }
+    }
+    return fmt::format(
+        "Kemppinen sides k = 1, 4, 9 (exact erf) against k16_exact: each side's boundary predicted "
+        "by the construction's exact moments (both statistics within TAU from there on), the "
+        "side and k16_exact measured at it at the same {} positions, the signed mean difference "
+        "and CV difference tested against their predicted values, {} sides: {}; max |measured − "
+        "predicted| {:.4f} (mean difference), {:.4f} (CV difference); the chooser's boundary / "
+        "the predicted one {:.3g} to {:.3g}; {} of {} p-values rejected",
+        z.kemppinen_samples, m.sides.size(), rows, worst_mean, worst_cv, ratio_lo, ratio_hi,
+        side_rejections(m, m.genuine), 2 * m.sides.size());
   }
 
   static std::string describe_genuine(const Sizes& z, const Measured& m) {
@@ -280,10 +345,11 @@ struct PredictionMatchesMeasurement {
         "({} positions each; two-sided intervals at the per-test level): {}; {} of {} p-values "
         "rejected (Holm–Šidák at {:.2e}); max |CV/CV_pred − 1| = {:.4f} where N_P p ≥ 1; the "
         "real-time and small-count levels are not binomial and are outside this regime (their "
-        "differences are the adequacy table's) | {}",
+        "differences are the adequacy table's) | {} | {}",
         m.rows.size(), m.rows.empty() ? 0 : m.rows.front().samples, kBoundaryTau,
         m.rows.empty() ? 0 : m.rows.front().samples, boundaries, m.genuine.rejections,
-        m.genuine.raw.size(), check_level(), m.worst_cv_rel, describe_kemppinen(z, m));
+        m.genuine.raw.size(), check_level(), m.worst_cv_rel, describe_kemppinen(z, m),
+        describe_sides(z, m));
   }
 
   // The predictions moved by a stated amount (the boundary tests come first in the family, the
@@ -297,11 +363,14 @@ struct PredictionMatchesMeasurement {
         "the prediction with N_P × {:.2f}, the boundary at N* × {:.2f}, the Kemppinen point "
         "prediction at N_pred × {:.2f} and a Kemppinen bound on the unsafe side at N_pred × "
         "{:.2f}: {} of {} p-values rejected (min adjusted p = {:.3g}), the boundary's {} of {}, "
-        "the Kemppinen point predictions' {} of {}, the bounds' {} of {}",
+        "the Kemppinen point predictions' {} of {}, the bounds' {} of {}, the sides' {} of {} "
+        "(their "
+        "boundaries at N_pred × {:.2f})",
         kControlFacetScale, kControlBoundaryScale, kKemppinenControlScale,
         kKemppinenBoundControlScale, m.moved.rejections, m.moved.raw.size(),
         *std::min_element(m.moved.adjusted.begin(), m.moved.adjusted.end()), boundary_rejections,
-        m.boundaries.size(), point_rejections(m.moved, n), n, tail_rejections(m.moved, n), n);
+        m.boundaries.size(), point_rejections(m, m.moved), n, bound_rejections(m, m.moved), n,
+        side_rejections(m, m.moved), 2 * m.sides.size(), kKemppinenSideControlScale);
   }
 
   // The Kemppinen point prediction replaced by its replicate, the other predictions as they are.
@@ -317,7 +386,7 @@ struct PredictionMatchesMeasurement {
         "Kemppinen point predictions' {} of {}",
         ratio, m.replicate.rejections, m.replicate.raw.size(),
         *std::min_element(m.replicate.adjusted.begin(), m.replicate.adjusted.end()),
-        point_rejections(m.replicate, n), n);
+        point_rejections(m, m.replicate), n);
   }
 };
 
