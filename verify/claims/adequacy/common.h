@@ -41,8 +41,8 @@ inline constexpr double kControlBoundaryScale = 1.05;
 // measured crossing is fitted on the ladder N_pred × {0.95, 0.975, 1, 1.025, 1.05}: narrow,
 // because the CV is not a power law of the footprint (it has a sawtooth of period 4 in N, one
 // per MIP level, with a steep drop where it crosses TAU: a line through a wide ladder misplaces
-// the crossing, by a third on the old ladder N_pred × {1/4 … 4}). Even on the narrow ladder the
-// line's crossing is not the CV's (±1.2 %, beyond the full budget's error), so the point
+// the crossing, by up to a quarter on the old ladder N_pred × {1/4 … 4}). Even on the narrow ladder
+// the line's crossing is not the CV's (±1.2 %, beyond the full budget's error), so the point
 // prediction is passed through the same estimator — the line fitted through the construction's CV
 // at the ladder's points — and that crossing is tested, two-sided; the bound one-sided (rejected
 // only where the measured boundary lies significantly above it). Controls: the point prediction ×
