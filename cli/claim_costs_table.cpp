@@ -55,7 +55,7 @@ const std::vector<ClaimCost>& claim_costs() {
       {"all.energy-gain",                                        0.054,          1.11},
       {"all.probability",                                         2.72,          49.6},
       {"all.variance",                                            77.2,         806.0},
-      {"adequacy.prediction-matches-measurement",                 25.9,         115.0},
+      {"adequacy.prediction-matches-measurement",                 6.57,          43.2},
       {"adequacy.choice-is-safe",                                  7.8,         118.0},
       {"model.smooth_ggx.eval-pdf-consistency",                 0.0178,          0.21},
       {"model.smooth_ggx.sampler-matches-pdf",                    5.27,          22.5},

@@ -231,8 +231,8 @@ std::vector<KemppinenCellResult> measure_kemppinen_grid_at(
   return out;
 }
 
-std::array<double, kKemppinenBoundaryLevels.size()> kemppinen_predicted_boundaries(
-    KemppinenCell c, double tau) {
+std::array<double, kKemppinenBoundaryLevels.size()> kemppinen_predicted_boundaries(KemppinenCell c,
+                                                                                   double tau) {
   // Predicted adequacy at TAU itself: the chooser's rule with its margin divided out.
   const auto predicted_at = [&](double points) {
     c.points = points;
@@ -295,6 +295,201 @@ std::vector<KemppinenBoundary> kemppinen_boundaries(const std::vector<KemppinenC
     }
   }
   return out;
+}
+
+}  // namespace glintlab::verify::adequacy
+
+namespace glintlab::verify::adequacy {
+namespace {
+
+// E[R] and E[R²] of the roulette R(r, w) of Eq. 8 (kemppinen2025::roulette), r uniform on [0, 1),
+// by the midpoint rule; R = w for linear blending.
+std::pair<double, double> roulette_moments(kemppinen2025::Blend blend, double w) {
+  if (blend != kemppinen2025::Blend::kRoulette) return {w, w * w};
+  constexpr int kNodes = 2000;
+  double m1 = 0, m2 = 0;
+  for (int i = 0; i < kNodes; ++i) {
+    const double r = kemppinen2025::roulette((i + 0.5) / kNodes, w);
+    m1 += r, m2 += r * r;
+  }
+  return {m1 / kNodes, m2 / kNodes};
+}
+
+// Along one axis, at positions x uniform over [0, period): the block of n cells of side `cell`
+// that Algorithm 1 visits around x (block_start), and per position the block's mass of the filter
+// N(x − g; σ) over g, the sum of its cells' squared masses, and the √2-narrower filter's mass.
+constexpr int kPositionNodes = 256;
+struct AxisBlock {
+  std::array<double, kPositionNodes> mass, mass_sq_cells, narrow;
+};
+AxisBlock axis_block(int n, double cell, double sigma, double period) {
+  AxisBlock b{};
+  for (int q = 0; q < kPositionNodes; ++q) {
+    const double x = (q + 0.5) / kPositionNodes * period;
+    const double start = std::floor(x / cell - 0.5 * (n - 1));
+    double m = 0, sq = 0;
+    for (int i = 0; i < n; ++i) {
+      const double lo = (start + i) * cell - x, hi = lo + cell;
+      const double mi =
+          0.5 * (std::erf(hi / (std::sqrt(2.0) * sigma)) - std::erf(lo / (std::sqrt(2.0) * sigma)));
+      m += mi, sq += mi * mi;
+    }
+    const double lo = start * cell - x, hi = lo + n * cell;
+    b.mass[std::size_t(q)] = m;
+    b.mass_sq_cells[std::size_t(q)] = sq;
+    b.narrow[std::size_t(q)] = 0.5 * (std::erf(hi / sigma) - std::erf(lo / sigma));
+  }
+  return b;
+}
+
+double node_mean(const std::array<double, kPositionNodes>& a) {
+  double s = 0;
+  for (double v : a) s += v;
+  return s / kPositionNodes;
+}
+double node_mean_product(const std::array<double, kPositionNodes>& a,
+                         const std::array<double, kPositionNodes>& b) {
+  double s = 0;
+  for (std::size_t q = 0; q < a.size(); ++q) s += a[q] * b[q];
+  return s / kPositionNodes;
+}
+
+// Along one angular axis at level resolution res_a: the masses of the lobe N(x_a; σ) over the
+// block's cells inside the square [0, 1): their sum, the sum of their squares, the narrower
+// lobe's mass over them.
+struct AngularAxis {
+  double mass = 0, mass_sq_cells = 0, narrow = 0;
+};
+AngularAxis angular_axis(int n, double res_a, double x_a, double sigma) {
+  AngularAxis a;
+  const double start = std::floor(x_a * res_a - 0.5 * (n - 1));
+  const double first = std::max(start, 0.0), last = std::min(start + n, res_a);  // [first, last)
+  for (double i = first; i < last; ++i) {
+    const double lo = i / res_a - x_a, hi = (i + 1) / res_a - x_a;
+    const double m =
+        0.5 * (std::erf(hi / (std::sqrt(2.0) * sigma)) - std::erf(lo / (std::sqrt(2.0) * sigma)));
+    a.mass += m, a.mass_sq_cells += m * m;
+  }
+  if (last > first)
+    a.narrow =
+        0.5 * (std::erf((last / res_a - x_a) / sigma) - std::erf((first / res_a - x_a) / sigma));
+  return a;
+}
+
+template <class Ndf>
+KemppinenExactMoments exact_moments(const kemppinen2025::Params<double>& p, const Ndf& ndf,
+                                    const FootprintQuery<double>& fp, Vec3<double> h, int n) {
+  using namespace kemppinen2025;
+  KemppinenExactMoments out;
+  const Angular<double> ang = angular(p, ndf, h);
+  if (!ang.valid) return out;
+  const double res = base_resolution(p);
+  const Sym2<double> sigma_s = spatial_covariance(p, fp, res);
+  const double lambda = lod(sigma_s, res);
+  const double fl = std::min(std::floor(lambda), double(kMaxLevel - 1));
+  const double w[2] = {1 - (lambda - fl), lambda - fl};
+  const double sx = std::sqrt(sigma_s.xx), sy = std::sqrt(sigma_s.yy);
+  const Vec2<double> sa = ang.sigma_a;
+  // E[X²] per unit of m'_s m'_a: 1 / (K_P 16π² σ_sx σ_sy σ_ax σ_ay).
+  const double points_scale =
+      1 / (res * res * 16 * std::numbers::pi * std::numbers::pi * sx * sy * sa.x * sa.y);
+  // Positions uniform over the coarser level's spatial cell (both blocks are periodic in it).
+  const double period = std::ldexp(1.0, int(fl) + 1) / res;
+  std::array<AxisBlock, 2> bx, by;
+  std::array<double, 2> er{}, a{};
+  double mean = 0, var_within = 0;
+  for (int s = 0; s < 2; ++s) {
+    const double res_a = std::ldexp(1.0, int(fl) + s), cell = res_a / res;
+    bx[std::size_t(s)] = axis_block(n, cell, sx, period);
+    by[std::size_t(s)] = axis_block(n, cell, sy, period);
+    const AngularAxis ax = angular_axis(n, res_a, ang.x_a.x, sa.x);
+    const AngularAxis ay = angular_axis(n, res_a, ang.x_a.y, sa.y);
+    const auto [r1, r2] = roulette_moments(p.blend, w[s]);
+    er[std::size_t(s)] = r1;
+    a[std::size_t(s)] = ax.mass * ay.mass;
+    // The compensation (Eq. 10), as the model computes it: w_l (∫_□ N − ∫_B N), the erf of p.
+    const Vec2<double> lo{std::max(std::floor(ang.x_a.x * res_a - 0.5 * (n - 1)), 0.0) / res_a,
+                          std::max(std::floor(ang.x_a.y * res_a - 0.5 * (n - 1)), 0.0) / res_a};
+    const Vec2<double> hi{
+        std::min(std::floor(ang.x_a.x * res_a - 0.5 * (n - 1)) + n, res_a) / res_a,
+        std::min(std::floor(ang.x_a.y * res_a - 0.5 * (n - 1)) + n, res_a) / res_a};
+    if (p.compensate) mean += w[s] * compensation(ang.x_a, sa, lo, hi, p.erf);
+    const AxisBlock &x = bx[std::size_t(s)], &y = by[std::size_t(s)];
+    mean += r1 * a[std::size_t(s)] * node_mean(x.mass) * node_mean(y.mass);
+    var_within +=
+        r2 * ax.narrow * ay.narrow * node_mean(x.narrow) * node_mean(y.narrow) * points_scale -
+        r1 * r1 * ax.mass_sq_cells * ay.mass_sq_cells * node_mean(x.mass_sq_cells) *
+            node_mean(y.mass_sq_cells);
+  }
+  // Var_x of the conditional mean Σ_l E[R_l] a_l s_l(x) s_l(y): x and y independent.
+  double second = 0, first = 0;
+  for (std::size_t s = 0; s < 2; ++s) {
+    first += er[s] * a[s] * node_mean(bx[s].mass) * node_mean(by[s].mass);
+    for (std::size_t t = 0; t < 2; ++t)
+      second += er[s] * a[s] * er[t] * a[t] * node_mean_product(bx[s].mass, bx[t].mass) *
+                node_mean_product(by[s].mass, by[t].mass);
+  }
+  out.mean = mean;
+  out.sd = std::sqrt(std::max(var_within + second - first * first, 0.0));
+  return out;
+}
+
+}  // namespace
+
+KemppinenExactMoments kemppinen_exact_moments(const KemppinenCell& c, KemppinenLevel level) {
+  if (level == KemppinenLevel::kSmooth) return {1, 0};
+  return with_model(c.model, [&](auto m) {
+    using M = decltype(m);
+    const auto p = level_params<M>(c, level, 0);
+    const ModelQuery<double> q = kemppinen_cell_query(c, kemppinen_surface_position(c, 0));
+    return exact_moments(p.glint, p.ndf, q.footprint, half_vector(q.wi, q.wo),
+                         kemppinen_level_side(level));
+  });
+}
+
+namespace {
+
+// The largest log10(points) of a scan down from 10⁹ in steps of 1/50 decade at which `above`
+// holds, refined by bisection to 10⁻⁶ of a decade, as points (NaN: above at 10⁹; 0.01, the scan's
+// end, where it never is).
+template <class Above>
+double scan_boundary(const Above& above) {
+  for (int s = 0; s <= 550; ++s) {
+    const double lp = 9 - 0.02 * s;
+    if (!above(lp)) continue;
+    if (s == 0) return NAN;
+    double lo = lp, hi = lp + 0.02;  // above at lo, not at hi
+    while (hi - lo > 1e-6) {
+      const double mid = 0.5 * (lo + hi);
+      (above(mid) ? lo : hi) = mid;
+    }
+    return std::pow(10.0, 0.5 * (lo + hi));
+  }
+  return 0.01;
+}
+
+}  // namespace
+
+double kemppinen_exact_cv_boundary(KemppinenCell c, KemppinenLevel level, double tau) {
+  return scan_boundary([&](double log_points) {
+    c.points = std::pow(10.0, log_points);
+    return kemppinen_exact_moments(c, level).cv() > tau;
+  });
+}
+
+KemppinenExactDifference kemppinen_exact_difference(const KemppinenCell& c, KemppinenLevel level) {
+  const KemppinenExactMoments m = kemppinen_exact_moments(c, level);
+  const KemppinenExactMoments ref = kemppinen_exact_moments(c, KemppinenLevel::kK16Exact);
+  if (!(ref.mean > 0)) return {0, 0};
+  return {m.mean / ref.mean - 1, m.cv() - ref.cv()};
+}
+
+double kemppinen_exact_level_boundary(KemppinenCell c, KemppinenLevel level, double tau) {
+  return scan_boundary([&](double log_points) {
+    c.points = std::pow(10.0, log_points);
+    const KemppinenExactDifference d = kemppinen_exact_difference(c, level);
+    return std::max(std::abs(d.mean_diff), std::abs(d.cv_diff)) > tau;
+  });
 }
 
 }  // namespace glintlab::verify::adequacy

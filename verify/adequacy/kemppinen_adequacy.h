@@ -130,4 +130,38 @@ inline constexpr std::array<KemppinenLevel, 4> kKemppinenBoundaryLevels = {
 std::array<double, kKemppinenBoundaryLevels.size()> kemppinen_predicted_boundaries(
     KemppinenCell row, double tau);
 
+// The exact first two moments of a counting level over surface positions, from the construction
+// of Algorithm 1 (core/glints/kemppinen.h, `level`) rather than the chooser's bounds
+// (kemppinen_level_moments, core/glints/adequacy.h): relative to D, the mean and the standard
+// deviation of D★^f / D over positions. Per visited 4D cell the point's term X = R N_s(x_s − g_s)
+// N_a(x_a − g_a) / K_P, g uniform in its cell, R the roulette of Eq. 8 (E[R], E[R²] by quadrature
+// over its uniform r): E[X] = E[R] m_s m_a and E[X²] = E[R²] m'_s m'_a / (K_P 16π² σ_sx σ_sy σ_ax
+// σ_ay) (m: the cell's mass of the lobe, m': of the √2-narrower one), cells independent, so
+// Var(D★ | x) = Σ (E[X²] − E[X]²); over the position x (uniform over the coarser level's cell,
+// both levels' blocks following it) the law of total variance adds Var_x E[D★ | x], by a
+// midpoint rule per axis (x and y independent). Exact for the axis-aligned footprints of the grid
+// (the spatial covariance diagonal), white points and no anisotropy, but for the points outside
+// the disk U_Ω (rejected by the model, counted here) — the chooser's bounds are not used.
+struct KemppinenExactMoments {
+  double mean = 0, sd = 0;  // of D★^f / D over positions
+  double cv() const { return mean > 0 ? sd / mean : INFINITY; }
+};
+KemppinenExactMoments kemppinen_exact_moments(const KemppinenCell& c, KemppinenLevel level);
+// The expected points per footprint where `level`'s exact CV (kemppinen_exact_moments) falls to
+// `tau`: the largest of a scan down from 10⁹ in steps of 1/50 decade at which the CV is above
+// tau, refined by bisection in log points to 10⁻⁶ of a decade (NaN: above tau even at 10⁹; the
+// scan's end, 10⁻², where it never is).
+double kemppinen_exact_cv_boundary(KemppinenCell c, KemppinenLevel level, double tau);
+// A counting level against k16_exact by the construction's exact moments, the adequacy table's two
+// statistics signed: mean_n / mean_16 − 1 and CV_n − CV_16 (compare_to_exact takes their absolute
+// values).
+struct KemppinenExactDifference {
+  double mean_diff = 0, cv_diff = 0;
+};
+KemppinenExactDifference kemppinen_exact_difference(const KemppinenCell& c, KemppinenLevel level);
+// The expected points per footprint from which `level` stays within `tau` of k16_exact in both
+// statistics (max(|mean_diff|, |cv_diff|) ≤ tau) by kemppinen_exact_difference, scanned as
+// kemppinen_exact_cv_boundary.
+double kemppinen_exact_level_boundary(KemppinenCell c, KemppinenLevel level, double tau);
+
 }  // namespace glintlab::verify::adequacy

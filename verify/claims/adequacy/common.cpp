@@ -158,11 +158,31 @@ std::vector<adequacy::KemppinenCell> kemppinen_boundary_rows() {
 }
 
 KemppinenBoundaryRow measure_kemppinen_boundary(const adequacy::KemppinenCell& row, int samples,
-                                                std::uint64_t seed) {
+                                                std::uint64_t seed, double predicted_scale,
+                                                double bound_scale) {
   KemppinenBoundaryRow r;
   r.row = row;
-  r.predicted = adequacy::kemppinen_predicted_boundaries(row, kBoundaryTau)[0];
-  if (!(r.predicted > 0)) return r;  // no prediction: p-values stay 1
+  const double exact =
+      adequacy::kemppinen_exact_cv_boundary(row, KemppinenLevel::kK16Exact, kBoundaryTau);
+  r.predicted = exact * predicted_scale;
+  r.bound = adequacy::kemppinen_predicted_boundaries(row, kBoundaryTau)[0] * bound_scale;
+  if (!(exact > 0)) return r;  // no prediction: p-values stay 1
+  adequacy::KemppinenCell at = row;
+  at.points = exact;
+  r.predicted_mean = adequacy::kemppinen_exact_moments(at, KemppinenLevel::kK16Exact).mean;
+  // The prediction passed through the measurement's estimator: the same line fitted through the
+  // construction's CV at the ladder's points (equal weights: the measured CVs' relative errors
+  // are alike). The CV is curved in log N there, so the line's crossing is not N_pred itself
+  // (within ±1.2 % on the quick grid's rows).
+  std::vector<std::pair<double, double>> predicted_cv;
+  for (double f : kKemppinenLadder) {
+    at.points = exact * f;
+    const double cv = adequacy::kemppinen_exact_moments(at, KemppinenLevel::kK16Exact).cv();
+    predicted_cv.emplace_back(cv, cv);
+  }
+  const LadderFit pf = fit_crossing(kKemppinenLadder, predicted_cv, kBoundaryTau);
+  if (!pf.ok) return r;
+  r.predicted_fit = exact * std::exp(pf.crossing) * predicted_scale;
   const LadderFit f = kemppinen_ladder(row, r.predicted, samples, seed, r.max_mean_diff);
   const LadderFit g =
       kemppinen_ladder(row, r.predicted, samples, seed + kReplicateSeed, r.max_mean_diff);
@@ -172,9 +192,76 @@ KemppinenBoundaryRow measure_kemppinen_boundary(const adequacy::KemppinenCell& r
   r.measured = r.predicted * std::exp(f.crossing);
   r.replicate = r.predicted * std::exp(g.crossing);
   r.replicate_log_se = g.log_se;
-  r.p_value = two_sided_z(f.crossing / r.log_se);
-  r.moved_p_value = two_sided_z((f.crossing - std::log(kKemppinenControlScale)) / r.log_se);
+  // log(measured / predicted through the fit), the ladder centred on the prediction.
+  const double off = std::log(r.measured / r.predicted_fit);
+  r.p_value = two_sided_z(off / r.log_se);
+  r.moved_p_value = two_sided_z((off - std::log(kKemppinenControlScale)) / r.log_se);
   r.replicate_p_value = two_sided_z((f.crossing - g.crossing) / std::hypot(f.log_se, g.log_se));
+  // One-sided: the bound is refuted where log(measured / bound) is significantly above 0.
+  const auto above = [&](double bound) {
+    return bound > 0 ? 0.5 * std::erfc(std::log(r.measured / bound) / r.log_se / std::sqrt(2.0))
+                     : 1.0;
+  };
+  r.bound_p_value = above(r.bound);
+  r.moved_bound_p_value = above(r.predicted_fit * kKemppinenBoundControlScale);
+  return r;
+}
+
+std::vector<std::pair<adequacy::KemppinenCell, KemppinenLevel>> kemppinen_side_rows() {
+  std::vector<std::pair<adequacy::KemppinenCell, KemppinenLevel>> out;
+  for (const adequacy::KemppinenCell& row : kemppinen_boundary_rows())
+    for (KemppinenLevel l : kKemppinenSideLevels) out.emplace_back(row, l);
+  return out;
+}
+
+KemppinenSideRow measure_kemppinen_side(const adequacy::KemppinenCell& row, KemppinenLevel level,
+                                        int samples, std::uint64_t seed) {
+  KemppinenSideRow r;
+  r.row = row;
+  r.level = level;
+  r.predicted = adequacy::kemppinen_exact_level_boundary(row, level, kBoundaryTau);
+  const std::size_t side = std::size_t(kemppinen_level_side(level));  // kKemppinenBoundaryLevels
+  r.bound = adequacy::kemppinen_predicted_boundaries(row, kBoundaryTau)[side];
+  if (!(r.predicted > 0.01)) return r;  // no boundary in the scan: p-values stay 1
+  r.row.points = r.predicted;
+  r.expected = adequacy::kemppinen_exact_difference(r.row, level);
+  adequacy::KemppinenCell moved = r.row;
+  moved.points = r.predicted * kKemppinenSideControlScale;
+  r.moved = adequacy::kemppinen_exact_difference(moved, level);
+  std::vector<double> x, ref;
+  adequacy::kemppinen_level_values(r.row, KemppinenLevel::kK16Exact, samples, seed, ref);
+  adequacy::kemppinen_level_values(r.row, level, samples, seed, x);
+  // The signed statistics and their errors by the empirical influence functions over the paired
+  // positions (as compare_to_exact bounds them).
+  const double n = double(x.size());
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) mx += x[i], my += ref[i];
+  mx /= n, my /= n;
+  double vx = 0, vy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    vx += (x[i] - mx) * (x[i] - mx), vy += (ref[i] - my) * (ref[i] - my);
+  vx /= n, vy /= n;
+  if (!(mx > 0) || !(my > 0) || !(vx > 0) || !(vy > 0)) return r;
+  const double cx = std::sqrt(vx) / mx, cy = std::sqrt(vy) / my;
+  double sm = 0, smm = 0, sc = 0, scc = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double dx = x[i] - mx, dy = ref[i] - my;
+    const double im = (dx - (mx / my) * dy) / my;
+    const double ic =
+        cx * ((dx * dx - vx) / (2 * vx) - dx / mx) - cy * ((dy * dy - vy) / (2 * vy) - dy / my);
+    sm += im, smm += im * im, sc += ic, scc += ic * ic;
+  }
+  r.mean_diff = mx / my - 1;
+  r.cv_diff = cx - cy;
+  r.mean_diff_se = std::sqrt(std::max(smm / n - (sm / n) * (sm / n), 0.0) / n);
+  r.cv_diff_se = std::sqrt(std::max(scc / n - (sc / n) * (sc / n), 0.0) / n);
+  const auto p = [](double measured, double predicted, double se) {
+    return se > 0 ? two_sided_z((measured - predicted) / se) : 1.0;
+  };
+  r.p_mean = p(r.mean_diff, r.expected.mean_diff, r.mean_diff_se);
+  r.p_cv = p(r.cv_diff, r.expected.cv_diff, r.cv_diff_se);
+  r.moved_p_mean = p(r.mean_diff, r.moved.mean_diff, r.mean_diff_se);
+  r.moved_p_cv = p(r.cv_diff, r.moved.cv_diff, r.cv_diff_se);
   return r;
 }
 
