@@ -30,7 +30,7 @@ set(glintlab_slow_tests
   "Checks/QuickBudget.VerdictAndControl/adequacy_choice_is_safe* 13"
   # The binomial boundary and the Kemppinen family's (k16_exact's CV crossing TAU on a ladder of
   # footprints at 12 cells).
-  "Checks/QuickBudget.VerdictAndControl/adequacy_prediction_matches_measurement* 12"
+  "Checks/QuickBudget.VerdictAndControl/adequacy_prediction_matches_measurement* 14"
   "Checks/QuickBudget.* 1"
   # Claims that share one measurement, run in one process (tests/verify/registry_test.cpp):
   # all.energy-gain, all.probability and all.variance on the stability sweep of every registered
@@ -75,6 +75,13 @@ set(glintlab_slow_tests
   "AdequacyChoiceScenes.KemppinenEngineChooserHoldsAndABrokenChooserFails 3"
   "AdequacyChoiceScenes.KemppinenPixelsAreTheSameForAnyThreadCount 2"
   "KemppinenAdequacyCell.BeckmannIsMeasuredLikeGgxAndABrokenLevelIsNotChosen 1"
+  # The exact moments of the Kemppinen construction (the prediction claim's point prediction)
+  # against the model's values and the chooser's bound, and one boundary row and one side row of
+  # the claim with their shifted controls, each at a few thousand positions.
+  "KemppinenExactMoments.MatchTheModelsValuesAroundThePredictedBoundary 2"
+  "KemppinenExactMoments.TheChoosersCvBoundsTheExactOneAndABrokenMomentDoesNot 2"
+  "KemppinenBoundaryRow.HoldsAtThePredictionAndRejectsItMovedOrABoundOnTheUnsafeSide 2"
+  "KemppinenSideRow.MatchesAtThePredictedBoundaryAndRejectsItMoved 1"
   "ChermainPatchSdf.NormalizedWithAndWithoutGgaa 1"
   "ChermainScalarIdentity.ModelMatchesTheHostCode 1"
   # A claim type at its probe size (tests/verify/claims/claim_probes_test.cpp): the discrete NDF's
@@ -93,7 +100,7 @@ set(glintlab_slow_tests
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::chermain_claims::KernelNormalized>> 1"
   # The adequacy claims at their probe sizes: the prediction's binomial and Kemppinen ladders, the
   # choice's validation scenes at 16² / 8² pixels.
-  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::adequacy_claims::PredictionMatchesMeasurement>> 4"
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::adequacy_claims::PredictionMatchesMeasurement>> 9"
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::adequacy_claims::ChoiceIsSafe>> 2"
   "ZirrKaplanyan.CountMeanAndVarianceMatchADirectlySimulatedBinomial 3"
   # The glintlab executable run end to end on a subcommand's quick budget (a figure, a sweep, a
