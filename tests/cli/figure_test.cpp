@@ -1,10 +1,14 @@
 // `glintlab figure`: --list, each experiment's --quick run (EXR read back through OpenEXR with its
 // attributes, PNG signature, CSV parsed), and the bad-input errors.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <string>
 
+#include "cli/chart_png.h"
 #include "cli/cli_test_util.h"
 #include "core/io/exr.h"
 
@@ -111,6 +115,79 @@ TEST_F(FigureTest, BadInputGetsOneLineAndNoOutput) {
                      {"--out", "blocker/sub"}, {"blocker"});
   expect_input_error(run({"figure", "eto2023-fig4", "--threads", "-1"}), {"--threads", "valid"},
                      {"blocker"});
+}
+
+// reports/figure_charts.py, which draws every NAME.chart.json of a figure's folder into NAME.png:
+// a labelled chart (title, axis labels with units, legend, read back from the PNG), the same bytes
+// when drawn again; a spec naming a column the CSV lacks, or an axis label without its unit, is
+// one line on stderr, exit 2, and no PNG.
+TEST_F(FigureTest, ChartSpecsAreDrawnWithTheirLabelsOrFailInOneLine) {
+  const fs::path script =
+      fs::path(kReportFixtures).parent_path().parent_path().parent_path() / "reports" /
+      "figure_charts.py";
+  auto chart_folder = [&](const std::string& name, const std::string& y,
+                          const std::string& x_label) {
+    const fs::path d = path(name);
+    fs::create_directories(d);
+    write_text(d / "data.csv", "series,x,y\na,1,2\na,2,3\nb,1,1\nb,2,4\n");
+    write_text(d / "data.chart.json",
+               R"({"title": "test chart", "csv": "data.csv", "panels": [{"title": "a and b",
+ "where": {}, "x": {"column": "x", "label": ")" +
+                   x_label + R"(", "log": false}, "y": {"label": "y [1]", "log": false},
+ "series": [{"label": "a", "where": {"series": "a"}, "y": ")" +
+                   y + R"("}, {"label": "b", "where": {"series": "b"}, "y": "y"}],
+ "hlines": []}]})");
+    return d;
+  };
+  auto draw = [&](const fs::path& d) {
+    const std::string cmd = "/usr/bin/python3 '" + script.string() + "' --dir '" + d.string() +
+                            "' >'" + path("stdout").string() + "' 2>'" +
+                            path("stderr").string() + "'";
+    const int status = std::system(cmd.c_str());
+    return RunResult{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(path("stdout")),
+                     read_text(path("stderr"))};
+  };
+  const fs::path good = chart_folder("good", "y", "x [m]");
+  const RunResult r = draw(good);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_labelled_chart(good / "data.png", 1);
+  const std::string first = read_text(good / "data.png");
+  ASSERT_EQ(draw(good).exit_code, 0);
+  EXPECT_EQ(read_text(good / "data.png"), first);  // no date, no version: the same bytes
+
+  const fs::path missing = chart_folder("missing", "no_such_column", "x [m]");
+  RunResult bad = draw(missing);
+  EXPECT_EQ(bad.exit_code, 2);
+  ASSERT_EQ(lines_of(bad.err).size(), 1u) << bad.err;
+  EXPECT_EQ(bad.err.rfind("glintlab: error: charts: data.chart.json: data.csv has no column "
+                          "'no_such_column'",
+                          0),
+            0u)
+      << bad.err;
+  EXPECT_FALSE(fs::exists(missing / "data.png"));
+
+  const fs::path unitless = chart_folder("unitless", "y", "x");
+  bad = draw(unitless);
+  EXPECT_EQ(bad.exit_code, 2);
+  ASSERT_EQ(lines_of(bad.err).size(), 1u) << bad.err;
+  EXPECT_NE(bad.err.find("x label 'x' has no unit"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(unitless / "data.png"));
+}
+
+// The chart script's failure is the figure's: one line naming the figure and the script's message,
+// exit 2, and no figure folder (the charts are drawn in the staging folder, before it is swapped
+// in). The script here is a stand-in that fails as figure_charts.py does on a bad spec.
+TEST_F(FigureTest, AFailedChartIsTheFiguresOneLineErrorAndLeavesNoFolder) {
+  const fs::path reports = work().parent_path() / "failing_reports";
+  fs::create_directories(reports);
+  write_text(reports / "figure_charts.py",
+             "import sys\nprint('glintlab: error: charts: furnace.chart.json: furnace.csv has no "
+             "column \\'x\\'', file=sys.stderr)\nsys.exit(2)\n");
+  ::setenv("GLINTLAB_REPORTS_DIR", reports.c_str(), 1);
+  const RunResult r =
+      run({"figure", "kemppinen2025-fig15", "--budget", "quick", "--out", "out", "--threads", "2"});
+  ::unsetenv("GLINTLAB_REPORTS_DIR");
+  expect_input_error(r, {"figure kemppinen2025-fig15", "furnace.csv has no column 'x'"}, {"out"});
 }
 
 // A lat-long EXR environment: a small uniform map lights the quick Fig. 4 and is named in the EXR

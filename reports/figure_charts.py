@@ -1,0 +1,293 @@
+"""The charts of a figure's folder, drawn with matplotlib from the chart specs the C++ figure wrote.
+
+A figure writes its data (CSV) and, beside each chart it wants, NAME.chart.json
+(experiments/figures/chart_spec.h): which CSV, which columns go on which axis, one panel per
+subset of rows, the series, their labels and colours, reference lines. `glintlab figure` runs
+`/usr/bin/python3 reports/figure_charts.py --dir STAGING` before the figure's folder is swapped in;
+this script draws every spec into NAME.png with charts.py's labelling rules (a title, axis labels
+with their units, a legend) and stores what the chart shows (charts.describe: titles, labels,
+legend) in the PNG itself, as the text chunk "glintlab:chart", which the report and the tests read
+back (chart_manifest). The PNG has no date or software version in it: same data, same bytes.
+
+A spec naming a missing CSV or column, an axis label without its unit ("[...]"), a series without
+a label or a panel with nothing to draw is one line on stderr ("glintlab: error: ..."), exit 2,
+and no PNG.
+
+Spec (JSON): {"title", "csv", "panels": [{"title", "where": {column: value}, "x": {"column",
+"label", "log", "range"}, "y": {"label", "log", "range"}, "series": [{"label", "where", "y",
+"yerr", "yerr_scale", "color": [r, g, b], "line": "solid"|"dashed"|"dotted"|"none", "marker",
+"point_label" (a str.format template over the row's cells), "mark" (a 0/1 column: those rows
+ringed and joined, dashed, in x order), "mark_label"}], "hlines": [{"y", "label"}],
+"slope_guide": {"slope", "label"} (a power law through the panel's leftmost point)}]}.
+A value in "where" matches a cell equal to it as text or, when both are numbers, as a number.
+"""
+
+import argparse
+import csv
+import glob
+import json
+import math
+import os
+import sys
+import zlib
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import charts  # noqa: E402
+
+SPEC_SUFFIX = ".chart.json"
+TEXT_KEY = "glintlab:chart"
+LINES = {"solid": "-", "dashed": "--", "dotted": ":", "none": "none"}
+
+
+class ChartError(Exception):
+    pass
+
+
+def _number(cell):
+    try:
+        return float(cell)
+    except (TypeError, ValueError):
+        return None
+
+
+def _matches(row, where):
+    for col, want in (where or {}).items():
+        cell = row[col]
+        a, b = _number(cell), _number(want)
+        if a is not None and b is not None:
+            if a != b:
+                return False
+        elif str(cell) != str(want):
+            return False
+    return True
+
+
+def _need(spec_name, csv_name, header, columns):
+    for c in columns:
+        if c and c not in header:
+            raise ChartError(f"{spec_name}: {csv_name} has no column '{c}' (columns: "
+                             f"{', '.join(header)})")
+
+
+def _text(spec_name, what, value):
+    if not isinstance(value, str) or not value.strip():
+        raise ChartError(f"{spec_name}: {what} is missing (every chart has a title, labelled "
+                         "axes and named series)")
+    return value
+
+
+def _axis_label(spec_name, what, value):
+    _text(spec_name, what, value)
+    if "[" not in value or "]" not in value:
+        raise ChartError(f"{spec_name}: {what} '{value}' has no unit (valid: a label with its "
+                         "unit in brackets, e.g. 'time [ns]' or 'ratio [1]')")
+    return value
+
+
+def read_csv(path):
+    with open(path, newline="", encoding="utf-8") as f:
+        rows = list(csv.reader(f))
+    if not rows:
+        raise ChartError(f"{os.path.basename(path)} is empty")
+    header = rows[0]
+    return header, [dict(zip(header, r)) for r in rows[1:] if r]
+
+
+def _usable(v, log):
+    return v is not None and math.isfinite(v) and (v > 0 or not log)
+
+
+def draw_panel(ax, spec_name, csv_name, header, rows, panel):
+    """One axes of a chart; returns the number of points drawn."""
+    x, y = panel.get("x") or {}, panel.get("y") or {}
+    _axis_label(spec_name, "x label", x.get("label"))
+    _axis_label(spec_name, "y label", y.get("label"))
+    _text(spec_name, "panel title", panel.get("title"))
+    _need(spec_name, csv_name, header, [x.get("column"), *(panel.get("where") or {})])
+    xlog, ylog = bool(x.get("log")), bool(y.get("log"))
+    mine = [r for r in rows if _matches(r, panel.get("where"))]
+    drawn, marks, firsts, x_max = 0, set(), [], -math.inf
+    for s in panel.get("series") or []:
+        label = _text(spec_name, "series label", s.get("label"))
+        _need(spec_name, csv_name, header,
+              [s.get("y"), s.get("yerr"), s.get("mark"), *(s.get("where") or {})])
+        pts = []
+        for r in mine:
+            if not _matches(r, s.get("where")):
+                continue
+            px, py = _number(r[x["column"]]), _number(r[s["y"]])
+            if _usable(px, xlog) and _usable(py, ylog):
+                pts.append((px, py, r))
+        pts.sort(key=lambda p: p[0])
+        if not pts:
+            continue
+        color = tuple(s.get("color") or (0, 0, 0))
+        xs, ys = [p[0] for p in pts], [p[1] for p in pts]
+        firsts.append((xs[0], ys[0]))
+        x_max = max(x_max, xs[-1])
+        line = LINES.get(s.get("line", "solid"))
+        if line is None:
+            raise ChartError(f"{spec_name}: series '{label}' has line '{s.get('line')}' (valid: "
+                             f"{', '.join(LINES)})")
+        marker = s.get("marker", "o")
+        if s.get("yerr"):
+            k = float(s.get("yerr_scale", 1))
+            err = [k * (_number(p[2][s["yerr"]]) or 0.0) for p in pts]
+            ax.errorbar(xs, ys, yerr=err, color=color, ls=line, marker=marker, ms=3, lw=1,
+                        capsize=2, label=label)
+        else:
+            ax.plot(xs, ys, color=color, ls=line, marker=marker, ms=4, lw=1, label=label)
+        if s.get("mark"):
+            front = [p for p in pts if _number(p[2][s["mark"]]) == 1]
+            if front:
+                what = s.get("mark_label") or s["mark"]
+                ax.plot([p[0] for p in front], [p[1] for p in front], color=color, ls="--",
+                        lw=1, marker="o", ms=9, mfc="none", mec="black",
+                        label="_nolegend_" if what in marks else f"{what} (ringed, dashed)")
+                marks.add(what)
+        if s.get("point_label"):
+            for px, py, r in pts:
+                try:
+                    text = s["point_label"].format(**r)
+                except (KeyError, ValueError, IndexError) as e:
+                    raise ChartError(f"{spec_name}: series '{label}' point_label "
+                                     f"'{s['point_label']}' does not fit {csv_name}'s rows "
+                                     f"({e})") from None
+                ax.annotate(text, (px, py), textcoords="offset points", xytext=(4, 4),
+                            fontsize=6, color=color)
+        drawn += len(pts)
+    guide = panel.get("slope_guide")
+    if guide and drawn:
+        # A power law of the given slope through the first series' first point, over the x range.
+        first = firsts[0]
+        x1 = x_max
+        k = float(guide["slope"])
+        ax.plot([first[0], x1], [first[1], first[1] * (x1 / first[0]) ** k], color="gray",
+                ls="--", lw=0.8, label=_text(spec_name, "slope guide label", guide.get("label")))
+    for h in panel.get("hlines") or []:
+        ax.axhline(float(h["y"]), color="gray", lw=0.8, ls=":",
+                   label=_text(spec_name, "reference line label", h.get("label")))
+    if drawn == 0:
+        raise ChartError(f"{spec_name}: panel '{panel.get('title')}' has no point to draw "
+                         f"(no row of {csv_name} matches its series with usable values)")
+    if xlog:
+        ax.set_xscale("log")
+    if ylog:
+        ax.set_yscale("log")
+    if x.get("range"):
+        ax.set_xlim(*x["range"])
+    if y.get("range"):
+        ax.set_ylim(*y["range"])
+    ax.set_xlabel(x["label"], fontsize=8)
+    ax.set_ylabel(y["label"], fontsize=8)
+    ax.set_title(panel["title"], fontsize=8)
+    ax.grid(True, which="both" if (xlog or ylog) else "major", alpha=0.3)
+    ax.tick_params(which="both", labelsize=7)
+    ax.legend(fontsize=6)
+    return drawn
+
+
+def draw_chart(spec_path):
+    """Draws one NAME.chart.json into NAME.png beside it; returns the PNG's path."""
+    spec_name = os.path.basename(spec_path)
+    try:
+        with open(spec_path, encoding="utf-8") as f:
+            spec = json.load(f)
+    except (OSError, ValueError) as e:
+        raise ChartError(f"{spec_name}: unreadable chart spec ({e})") from None
+    if not isinstance(spec, dict) or not isinstance(spec.get("panels"), list) or \
+            not spec["panels"]:
+        raise ChartError(f"{spec_name}: expected an object with a non-empty \"panels\" list")
+    title = _text(spec_name, "title", spec.get("title"))
+    csv_name = _text(spec_name, "csv", spec.get("csv"))
+    folder = os.path.dirname(spec_path)
+    csv_path = os.path.join(folder, csv_name)
+    if not os.path.isfile(csv_path):
+        raise ChartError(f"{spec_name}: its CSV '{csv_name}' is not in the figure's folder")
+    header, rows = read_csv(csv_path)
+    plt = charts.pyplot()
+    n = len(spec["panels"])
+    cols = min(n, int(spec.get("columns", n)))
+    nrows = (n + cols - 1) // cols
+    fig, axes = plt.subplots(nrows, cols, figsize=(5.2 * cols, 4.2 * nrows + 0.5), squeeze=False)
+    for ax in axes.flat[n:]:
+        ax.set_visible(False)
+    try:
+        for ax, panel in zip(axes.flat, spec["panels"]):
+            draw_panel(ax, spec_name, csv_name, header, rows, panel)
+        fig.suptitle(f"{title}\n(from {csv_name})", fontsize=9)
+        fig.tight_layout(rect=(0, 0, 1, 0.93))
+        png = spec_path[:-len(SPEC_SUFFIX)] + ".png"
+        save_png(fig, png)
+    finally:
+        plt.close(fig)
+    return png
+
+
+def save_png(fig, path, dpi=100):
+    """Saves a chart with what it shows (charts.describe) as the PNG's text chunk TEXT_KEY; no
+    date or software name, so that the same chart is the same bytes."""
+    entry = charts.describe(fig)
+    tmp = path + ".tmp"
+    fig.savefig(tmp, dpi=dpi, format="png",
+                metadata={"Software": None, TEXT_KEY: json.dumps(entry, sort_keys=True)})
+    os.replace(tmp, path)
+
+
+def chart_manifest(png_path):
+    """What a chart PNG drawn here shows (its TEXT_KEY chunk), or None when it has none."""
+    try:
+        with open(png_path, "rb") as f:
+            data = f.read()
+    except OSError:
+        return None
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        return None
+    pos = 8
+    while pos + 8 <= len(data):
+        length = int.from_bytes(data[pos:pos + 4], "big")
+        kind = data[pos + 4:pos + 8]
+        body = data[pos + 8:pos + 8 + length]
+        pos += 12 + length
+        key = TEXT_KEY.encode("latin-1") + b"\0"
+        if kind == b"tEXt" and body.startswith(key):
+            return json.loads(body[len(key):].decode("latin-1"))
+        if kind == b"zTXt" and body.startswith(key):
+            return json.loads(zlib.decompress(body[len(key) + 1:]).decode("latin-1"))
+        if kind == b"iTXt" and body.startswith(key):
+            rest = body[len(key):]
+            compressed = rest[0] == 1
+            rest = rest[2:]
+            rest = rest[rest.index(b"\0") + 1:]  # language tag
+            rest = rest[rest.index(b"\0") + 1:]  # translated keyword
+            return json.loads((zlib.decompress(rest) if compressed else rest).decode("utf-8"))
+    return None
+
+
+def chart_specs(folder):
+    """The chart specs of a figure's folder, sorted by name."""
+    return sorted(glob.glob(os.path.join(glob.escape(folder), "*" + SPEC_SUFFIX)))
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--dir", required=True, help="a figure's folder (its staging folder)")
+    a = ap.parse_args(argv)
+    if not os.path.isdir(a.dir):
+        print(f"glintlab: error: charts: --dir '{a.dir}' is not a folder", file=sys.stderr)
+        return 2
+    charts.pyplot().rcParams["svg.hashsalt"] = "glintlab"
+    drawn = []
+    try:
+        for spec in chart_specs(a.dir):
+            drawn.append(draw_chart(spec))
+    except ChartError as e:
+        for png in drawn:  # nothing half done: the charts drawn before the error go too
+            os.remove(png)
+        print(f"glintlab: error: charts: {e}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
