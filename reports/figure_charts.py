@@ -18,7 +18,13 @@ Spec (JSON): {"title", "csv", "panels": [{"title", "where": {column: value}, "x"
 "yerr", "yerr_scale", "color": [r, g, b], "line": "solid"|"dashed"|"dotted"|"none", "marker",
 "point_label" (a str.format template over the row's cells), "mark" (a 0/1 column: those rows
 ringed and joined, dashed, in x order), "mark_label"}], "hlines": [{"y", "label"}],
-"slope_guide": {"slope", "label"} (a power law through the panel's leftmost point)}]}.
+"slope_guide": {"slope", "label"} (a power law through the first series' first point)}]}.
+With "kind": "categories" (a map of categories, e.g. the level chosen per cell), a panel is
+{"title", "where", "x": {"column", "label", "log"} (its distinct values, one column each, in
+order), "y": {"columns", "format", "label"} (one row per distinct tuple, in the CSV's order,
+bottom to top), "value": {"column", "label"}, "categories": [{"value", "label", "color"}],
+"marker": {"column", "label"} (per row, an x value drawn as a bar between the columns)}; the
+categories are its colour bar.
 A value in "where" matches a cell equal to it as text or, when both are numbers, as a number.
 """
 
@@ -187,6 +193,96 @@ def draw_panel(ax, spec_name, csv_name, header, rows, panel):
     return drawn
 
 
+def _category_key(cell):
+    v = _number(cell)
+    return f"{v:.17g}" if v is not None else str(cell)
+
+
+def draw_categories(ax, fig, spec_name, csv_name, header, rows, panel):
+    """One categorical map: a cell per (x value, y row) coloured by its category, the categories
+    as the colour bar's ticks, and per y row an optional marker at an x value (placed between the
+    columns, on a log scale where the x axis is); returns the number of cells drawn."""
+    import numpy as np
+    from matplotlib.colors import BoundaryNorm, ListedColormap
+    x, y, value = panel.get("x") or {}, panel.get("y") or {}, panel.get("value") or {}
+    _axis_label(spec_name, "x label", x.get("label"))
+    _axis_label(spec_name, "y label", y.get("label"))
+    _text(spec_name, "panel title", panel.get("title"))
+    _text(spec_name, "value label", value.get("label"))
+    marker = panel.get("marker") or {}
+    ycols = y.get("columns") or []
+    if not ycols:
+        raise ChartError(f"{spec_name}: a categories panel names its y \"columns\"")
+    _need(spec_name, csv_name, header, [x.get("column"), value.get("column"), marker.get("column"),
+                                        *ycols, *(panel.get("where") or {})])
+    cats = panel.get("categories") or []
+    if not cats:
+        raise ChartError(f"{spec_name}: panel '{panel['title']}' has no categories")
+    index = {_category_key(c["value"]): k for k, c in enumerate(cats)}
+    mine = [r for r in rows if _matches(r, panel.get("where"))]
+    if not mine:
+        raise ChartError(f"{spec_name}: panel '{panel['title']}' has no point to draw (no row "
+                         f"of {csv_name} matches it)")
+    xs = sorted({_number(r[x["column"]]) for r in mine})
+    if None in xs:
+        raise ChartError(f"{spec_name}: {csv_name} column '{x['column']}' is not numeric")
+    ykeys = []
+    for r in mine:
+        k = tuple(r[c] for c in ycols)
+        if k not in ykeys:
+            ykeys.append(k)
+    grid = np.full((len(ykeys), len(xs)), np.nan)
+    marks = [math.nan] * len(ykeys)
+    for r in mine:
+        i, j = ykeys.index(tuple(r[c] for c in ycols)), xs.index(_number(r[x["column"]]))
+        key = _category_key(r[value["column"]])
+        if key not in index:
+            raise ChartError(f"{spec_name}: {csv_name} has {value['column']} = "
+                             f"{r[value['column']]}, which is none of the panel's categories")
+        grid[i, j] = index[key]
+        if marker.get("column"):
+            m = _number(r[marker["column"]])
+            marks[i] = m if m is not None else math.nan
+    cmap = ListedColormap([tuple(c["color"]) for c in cats])
+    cmap.set_bad((0.8, 0.8, 0.8))
+    norm = BoundaryNorm(np.arange(len(cats) + 1) - 0.5, len(cats))
+    mesh = ax.pcolormesh(np.arange(len(xs) + 1) - 0.5, np.arange(len(ykeys) + 1) - 0.5,
+                         np.ma.masked_invalid(grid), cmap=cmap, norm=norm, shading="flat")
+    cb = charts.colorbar(fig, mesh, ax, value["label"])
+    cb.set_ticks(list(range(len(cats))))
+    cb.set_ticklabels([_text(spec_name, "category label", c.get("label")) for c in cats])
+    log = bool(x.get("log"))
+    pos = [math.log10(v) if log else v for v in xs] if all(v > 0 for v in xs) or not log else None
+    if marker.get("column") and pos and len(xs) > 1:
+        label = _text(spec_name, "marker label", marker.get("label"))
+        for i, m in enumerate(marks):
+            if not (m > 0 or (not log and math.isfinite(m))):
+                continue
+            t = math.log10(m) if log else m
+            col = (t - pos[0]) / (pos[-1] - pos[0]) * (len(xs) - 1)
+            if -0.5 <= col <= len(xs) - 0.5:
+                ax.plot([col, col], [i - 0.45, i + 0.45], color="black", lw=2.5, label=label)
+                label = "_nolegend_"
+        if label != "_nolegend_":  # no marker inside the map: still named, as absent
+            ax.plot([], [], color="black", lw=2.5, label=f"{label} (outside the map)")
+        ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(0, -0.14))
+    xi, xl = charts._ticks(xs, n=int(x.get("ticks", 8)))
+    ax.set_xticks(xi)
+    ax.set_xticklabels(xl, fontsize=6)
+    ax.set_yticks(list(range(len(ykeys))))
+    fmt = y.get("format")
+    try:
+        ax.set_yticklabels([fmt.format(**dict(zip(ycols, k))) if fmt else ", ".join(k)
+                            for k in ykeys], fontsize=6)
+    except (KeyError, ValueError, IndexError) as e:
+        raise ChartError(f"{spec_name}: y format '{fmt}' does not fit {csv_name}'s rows "
+                         f"({e})") from None
+    ax.set_xlabel(x["label"], fontsize=8)
+    ax.set_ylabel(y["label"], fontsize=8)
+    ax.set_title(panel["title"], fontsize=8)
+    return int(np.isfinite(grid).sum())
+
+
 def draw_chart(spec_path):
     """Draws one NAME.chart.json into NAME.png beside it; returns the PNG's path."""
     spec_name = os.path.basename(spec_path)
@@ -213,8 +309,14 @@ def draw_chart(spec_path):
     for ax in axes.flat[n:]:
         ax.set_visible(False)
     try:
+        kind = spec.get("kind", "lines")
+        if kind not in ("lines", "categories"):
+            raise ChartError(f"{spec_name}: kind '{kind}' (valid: lines, categories)")
         for ax, panel in zip(axes.flat, spec["panels"]):
-            draw_panel(ax, spec_name, csv_name, header, rows, panel)
+            if kind == "categories":
+                draw_categories(ax, fig, spec_name, csv_name, header, rows, panel)
+            else:
+                draw_panel(ax, spec_name, csv_name, header, rows, panel)
         fig.suptitle(f"{title}\n(from {csv_name})", fontsize=9)
         fig.tight_layout(rect=(0, 0, 1, 0.93))
         png = spec_path[:-len(SPEC_SUFFIX)] + ".png"

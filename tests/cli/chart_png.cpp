@@ -38,7 +38,12 @@ void expect_labelled_chart(const std::filesystem::path& png, std::size_t axes) {
       EXPECT_NE(label.find('['), std::string::npos) << png << " " << k << " '" << label << "'";
       EXPECT_NE(label.find(']'), std::string::npos) << png << " " << k << " '" << label << "'";
     }
-    EXPECT_TRUE(a.value("legend", false)) << png << ": axes '" << a.value("title", "") << "'";
+    // A map's colour bar is its legend.
+    EXPECT_TRUE(a.value("legend", false) || (a.value("map", false) && a.value("colorbar", false)))
+        << png << ": axes '" << a.value("title", "") << "' has no legend";
+    if (a.value("map", false)) {
+      EXPECT_TRUE(a.value("colorbar", false)) << png << ": no colour scale";
+    }
   }
 }
 

@@ -12,7 +12,7 @@ namespace glintlab::cli_test {
 nlohmann::json chart_manifest(const std::filesystem::path& png);
 
 // Expects `png` to carry a manifest with a title and `axes` axes, each with a title, x and y
-// labels with a unit in brackets, and a legend.
+// labels with a unit in brackets, and a legend (for a map: its colour bar).
 void expect_labelled_chart(const std::filesystem::path& png, std::size_t axes);
 
 }  // namespace glintlab::cli_test

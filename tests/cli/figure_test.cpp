@@ -117,14 +117,36 @@ TEST_F(FigureTest, BadInputGetsOneLineAndNoOutput) {
                      {"blocker"});
 }
 
-// reports/figure_charts.py, which draws every NAME.chart.json of a figure's folder into NAME.png:
-// a labelled chart (title, axis labels with units, legend, read back from the PNG), the same bytes
-// when drawn again; a spec naming a column the CSV lacks, or an axis label without its unit, is
-// one line on stderr, exit 2, and no PNG.
-TEST_F(FigureTest, ChartSpecsAreDrawnWithTheirLabelsOrFailInOneLine) {
-  const fs::path script =
-      fs::path(kReportFixtures).parent_path().parent_path().parent_path() / "reports" /
-      "figure_charts.py";
+// reports/figure_charts.py run on a folder of CSVs and chart specs, as glintlab figure runs it.
+class FigureChartsTest : public CliTest {
+ protected:
+  RunResult draw(const fs::path& dir) const {
+    const fs::path script = fs::path(kReportFixtures).parent_path().parent_path().parent_path() /
+                            "reports" / "figure_charts.py";
+    const std::string cmd = "/usr/bin/python3 '" + script.string() + "' --dir '" + dir.string() +
+                            "' >'" + path("stdout").string() + "' 2>'" + path("stderr").string() +
+                            "'";
+    const int status = std::system(cmd.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(path("stdout")),
+            read_text(path("stderr"))};
+  }
+  // A failed run: exit 2, one stderr line containing `needle`, and no PNG in `dir`.
+  void expect_one_line(const fs::path& dir, const std::string& needle) const {
+    const RunResult r = draw(dir);
+    EXPECT_EQ(r.exit_code, 2);
+    ASSERT_EQ(lines_of(r.err).size(), 1u) << r.err;
+    EXPECT_EQ(r.err.rfind("glintlab: error: charts: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+    for (const auto& e : fs::directory_iterator(dir))
+      EXPECT_NE(e.path().extension(), ".png") << e.path();
+  }
+};
+
+// Every NAME.chart.json of a folder drawn into NAME.png: a labelled chart (title, axis labels
+// with units, legend, read back from the PNG), the same bytes when drawn again; a spec naming a
+// column the CSV lacks, or an axis label without its unit, is one line on stderr, exit 2, and no
+// PNG.
+TEST_F(FigureChartsTest, LineChartsAreLabelledAndTheSameBytesOrFailInOneLine) {
   auto chart_folder = [&](const std::string& name, const std::string& y,
                           const std::string& x_label) {
     const fs::path d = path(name);
@@ -139,14 +161,6 @@ TEST_F(FigureTest, ChartSpecsAreDrawnWithTheirLabelsOrFailInOneLine) {
  "hlines": []}]})");
     return d;
   };
-  auto draw = [&](const fs::path& d) {
-    const std::string cmd = "/usr/bin/python3 '" + script.string() + "' --dir '" + d.string() +
-                            "' >'" + path("stdout").string() + "' 2>'" +
-                            path("stderr").string() + "'";
-    const int status = std::system(cmd.c_str());
-    return RunResult{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(path("stdout")),
-                     read_text(path("stderr"))};
-  };
   const fs::path good = chart_folder("good", "y", "x [m]");
   const RunResult r = draw(good);
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -155,23 +169,39 @@ TEST_F(FigureTest, ChartSpecsAreDrawnWithTheirLabelsOrFailInOneLine) {
   ASSERT_EQ(draw(good).exit_code, 0);
   EXPECT_EQ(read_text(good / "data.png"), first);  // no date, no version: the same bytes
 
-  const fs::path missing = chart_folder("missing", "no_such_column", "x [m]");
-  RunResult bad = draw(missing);
-  EXPECT_EQ(bad.exit_code, 2);
-  ASSERT_EQ(lines_of(bad.err).size(), 1u) << bad.err;
-  EXPECT_EQ(bad.err.rfind("glintlab: error: charts: data.chart.json: data.csv has no column "
-                          "'no_such_column'",
-                          0),
-            0u)
-      << bad.err;
-  EXPECT_FALSE(fs::exists(missing / "data.png"));
+  expect_one_line(chart_folder("missing", "no_such_column", "x [m]"),
+                  "data.chart.json: data.csv has no column 'no_such_column'");
+  expect_one_line(chart_folder("unitless", "y", "x"), "x label 'x' has no unit");
+}
 
-  const fs::path unitless = chart_folder("unitless", "y", "x");
-  bad = draw(unitless);
-  EXPECT_EQ(bad.exit_code, 2);
-  ASSERT_EQ(lines_of(bad.err).size(), 1u) << bad.err;
-  EXPECT_NE(bad.err.find("x label 'x' has no unit"), std::string::npos) << bad.err;
-  EXPECT_FALSE(fs::exists(unitless / "data.png"));
+// A map of categories (the adequacy maps' kind): one cell per (x value, y row) in its category's
+// colour, the categories as its colour scale, a marker per row; a cell whose value is none of the
+// categories is one line and no PNG.
+TEST_F(FigureChartsTest, CategoryMapsHaveTheirColourScaleOrFailInOneLine) {
+  auto map_folder = [&](const std::string& name, const std::string& third_value) {
+    const fs::path d = path(name);
+    fs::create_directories(d);
+    write_text(d / "cells.csv",
+               "n,alpha,level,boundary\n1,0.1,1,30\n10,0.1,0,30\n100,0.1,0,30\n1,0.3,1,3\n10,0.3," +
+                   third_value + ",3\n100,0.3,0,3\n");
+    write_text(d / "cells.chart.json", R"({"kind": "categories", "title": "levels",
+ "csv": "cells.csv", "panels": [{"title": "cheapest level", "where": {},
+ "x": {"column": "n", "label": "footprint [cells]", "log": true},
+ "y": {"columns": ["alpha"], "format": "alpha {alpha}", "label": "alpha [1]"},
+ "value": {"column": "level", "label": "level"},
+ "categories": [{"value": 0, "label": "smooth", "color": [0.3, 0.7, 0.3]},
+                {"value": 1, "label": "exact", "color": [0.8, 0.2, 0.2]}],
+ "marker": {"column": "boundary", "label": "predicted boundary"}}]})");
+    return d;
+  };
+  const fs::path good = map_folder("good", "1");
+  const RunResult r = draw(good);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_labelled_chart(good / "cells.png", 1);
+  const nlohmann::json m = chart_manifest(good / "cells.png");
+  EXPECT_TRUE(m["axes"][0].value("map", false));
+  EXPECT_TRUE(m["axes"][0].value("colorbar", false));
+  expect_one_line(map_folder("unknown", "7"), "level = 7, which is none of the panel's categories");
 }
 
 // The chart script's failure is the figure's: one line naming the figure and the script's message,
