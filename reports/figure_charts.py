@@ -24,7 +24,11 @@ With "kind": "categories" (a map of categories, e.g. the level chosen per cell),
 order), "y": {"columns", "format", "label"} (one row per distinct tuple, in the CSV's order,
 bottom to top), "value": {"column", "label"}, "categories": [{"value", "label", "color"}],
 "marker": {"column", "label"} (per row, an x value drawn as a bar between the columns)}; the
-categories are its colour bar.
+categories are its colour bar. With "kind": "heatmap" (a number over a grid: parameters, or the
+pixels of an image with "y": {"invert": true}), "value": {"column", "label", "log", "range",
+"cmap"} is drawn on a colour bar, and "flags": [{"column", "value", "label", "color", "style":
+"outline"|"fill"}] mark cells (outlined and hatched, or filled with the colour), named in the
+legend with their counts; cells without a value are grey and named ("empty_label").
 A value in "where" matches a cell equal to it as text or, when both are numbers, as a number.
 """
 
@@ -219,22 +223,12 @@ def draw_categories(ax, fig, spec_name, csv_name, header, rows, panel):
     if not cats:
         raise ChartError(f"{spec_name}: panel '{panel['title']}' has no categories")
     index = {_category_key(c["value"]): k for k, c in enumerate(cats)}
-    mine = [r for r in rows if _matches(r, panel.get("where"))]
-    if not mine:
-        raise ChartError(f"{spec_name}: panel '{panel['title']}' has no point to draw (no row "
-                         f"of {csv_name} matches it)")
-    xs = sorted({_number(r[x["column"]]) for r in mine})
-    if None in xs:
-        raise ChartError(f"{spec_name}: {csv_name} column '{x['column']}' is not numeric")
-    ykeys = []
-    for r in mine:
-        k = tuple(r[c] for c in ycols)
-        if k not in ykeys:
-            ykeys.append(k)
+    mine, xs, ykeys = _grid_axes(spec_name, csv_name, header, rows, panel, ycols)
+    yi, xj = {k: i for i, k in enumerate(ykeys)}, {v: j for j, v in enumerate(xs)}
     grid = np.full((len(ykeys), len(xs)), np.nan)
     marks = [math.nan] * len(ykeys)
     for r in mine:
-        i, j = ykeys.index(tuple(r[c] for c in ycols)), xs.index(_number(r[x["column"]]))
+        i, j = yi[tuple(r[c] for c in ycols)], xj[_number(r[x["column"]])]
         key = _category_key(r[value["column"]])
         if key not in index:
             raise ChartError(f"{spec_name}: {csv_name} has {value['column']} = "
@@ -269,14 +263,124 @@ def draw_categories(ax, fig, spec_name, csv_name, header, rows, panel):
     xi, xl = charts._ticks(xs, n=int(x.get("ticks", 8)))
     ax.set_xticks(xi)
     ax.set_xticklabels(xl, fontsize=6)
-    ax.set_yticks(list(range(len(ykeys))))
+    _y_ticks(ax, spec_name, csv_name, y, ycols, ykeys)
+    ax.set_xlabel(x["label"], fontsize=8)
+    ax.set_ylabel(y["label"], fontsize=8)
+    ax.set_title(panel["title"], fontsize=8)
+    return int(np.isfinite(grid).sum())
+
+
+def _grid_axes(spec_name, csv_name, header, rows, panel, ycols):
+    """The panel's rows, its distinct x values (sorted) and y keys (in the CSV's order)."""
+    x = panel.get("x") or {}
+    mine = [r for r in rows if _matches(r, panel.get("where"))]
+    if not mine:
+        raise ChartError(f"{spec_name}: panel '{panel['title']}' has no point to draw (no row "
+                         f"of {csv_name} matches it)")
+    xs = sorted({_number(r[x["column"]]) for r in mine}, key=lambda v: (v is None, v))
+    if None in xs:
+        raise ChartError(f"{spec_name}: {csv_name} column '{x['column']}' is not numeric")
+    ykeys = list(dict.fromkeys(tuple(r[c] for c in ycols) for r in mine))
+    return mine, xs, ykeys
+
+
+def _y_ticks(ax, spec_name, csv_name, y, ycols, ykeys):
     fmt = y.get("format")
+    idx = list(range(len(ykeys)))
+    if len(ykeys) > 12:  # a pixel or fine parameter grid: a few ticks
+        idx = sorted({round(k * (len(ykeys) - 1) / 7) for k in range(8)})
+    ax.set_yticks(idx)
     try:
-        ax.set_yticklabels([fmt.format(**dict(zip(ycols, k))) if fmt else ", ".join(k)
-                            for k in ykeys], fontsize=6)
+        ax.set_yticklabels([fmt.format(**dict(zip(ycols, ykeys[i]))) if fmt
+                            else ", ".join(ykeys[i]) for i in idx], fontsize=6)
     except (KeyError, ValueError, IndexError) as e:
         raise ChartError(f"{spec_name}: y format '{fmt}' does not fit {csv_name}'s rows "
                          f"({e})") from None
+
+
+def draw_heatmap(ax, fig, spec_name, csv_name, header, rows, panel):
+    """One map of a number over two grid columns: a cell per (x value, y row) coloured by its
+    value on a colour bar (linear or log, over a given range or the data's), and flagged cells
+    (a column equal to a value) filled with their colour or outlined, named in the legend; cells
+    with no value are grey and named too. Returns the number of cells drawn."""
+    import numpy as np
+    from matplotlib.colors import LogNorm, Normalize
+    from matplotlib.patches import Patch, Rectangle
+    x, y, value = panel.get("x") or {}, panel.get("y") or {}, panel.get("value") or {}
+    _axis_label(spec_name, "x label", x.get("label"))
+    _axis_label(spec_name, "y label", y.get("label"))
+    _text(spec_name, "panel title", panel.get("title"))
+    _axis_label(spec_name, "value label", value.get("label"))
+    ycols = y.get("columns") or []
+    if not ycols:
+        raise ChartError(f"{spec_name}: a heatmap panel names its y \"columns\"")
+    flags = panel.get("flags") or []
+    _need(spec_name, csv_name, header, [x.get("column"), value.get("column"), *ycols,
+                                        *(f.get("column") for f in flags),
+                                        *(panel.get("where") or {})])
+    mine, xs, ykeys = _grid_axes(spec_name, csv_name, header, rows, panel, ycols)
+    yi, xj = {k: i for i, k in enumerate(ykeys)}, {v: j for j, v in enumerate(xs)}
+    grid = np.full((len(ykeys), len(xs)), np.nan)
+    flagged = [np.zeros(grid.shape, dtype=bool) for _ in flags]
+    for r in mine:
+        i, j = yi[tuple(r[c] for c in ycols)], xj[_number(r[x["column"]])]
+        v = _number(r[value["column"]])
+        grid[i, j] = v if v is not None else np.nan
+        for k, f in enumerate(flags):
+            flagged[k][i, j] = _matches(r, {f["column"]: f["value"]})
+    filled = np.zeros(grid.shape, dtype=bool)
+    for k, f in enumerate(flags):
+        if f.get("style", "outline") == "fill":
+            filled |= flagged[k]
+    shown = np.where(filled, np.nan, grid)
+    finite = shown[np.isfinite(shown)]
+    log = bool(value.get("log"))
+    lo, hi = value.get("range") or (None, None)
+    if log:
+        pos = finite[finite > 0]
+        lo = float(lo) if lo is not None else (float(pos.min()) if pos.size else 1e-3)
+        hi = float(hi) if hi is not None else max(float(pos.max()) if pos.size else 1.0, lo * 10)
+        norm = LogNorm(vmin=lo, vmax=hi)
+        shown = np.where(shown > 0, shown, np.nan)
+    else:
+        lo = float(lo) if lo is not None else (float(finite.min()) if finite.size else 0.0)
+        hi = float(hi) if hi is not None else (float(finite.max()) if finite.size else 1.0)
+        if hi <= lo:
+            hi = lo + 1.0
+        norm = Normalize(vmin=lo, vmax=hi)
+    import matplotlib
+    cmap = matplotlib.colormaps[value.get("cmap", "viridis")].copy()
+    cmap.set_bad((0.8, 0.8, 0.8))
+    mesh = ax.pcolormesh(np.arange(len(xs) + 1) - 0.5, np.arange(len(ykeys) + 1) - 0.5,
+                         np.ma.masked_invalid(shown), cmap=cmap, norm=norm, shading="flat")
+    charts.colorbar(fig, mesh, ax, value["label"])
+    handles = []
+    for k, f in enumerate(flags):
+        label = _text(spec_name, "flag label", f.get("label"))
+        color = tuple(f.get("color") or (1, 0, 0))
+        n = int(flagged[k].sum())
+        for i, j in zip(*np.nonzero(flagged[k])):
+            if f.get("style", "outline") == "fill":
+                ax.add_patch(Rectangle((j - 0.5, i - 0.5), 1, 1, facecolor=color, lw=0))
+            else:
+                ax.add_patch(Rectangle((j - 0.5, i - 0.5), 1, 1, fill=False, edgecolor=color,
+                                       lw=1.2, hatch="///"))
+        handles.append(Patch(facecolor=color, label=f"{label} ({n} cells)")
+                       if f.get("style", "outline") == "fill" else
+                       Patch(facecolor="none", edgecolor=color, hatch="///",
+                             label=f"{label} ({n} cells)"))
+    empty = int((~np.isfinite(shown) & ~filled).sum())
+    if empty:
+        handles.append(Patch(facecolor=(0.8, 0.8, 0.8),
+                             label=panel.get("empty_label") or f"no value ({empty} cells)"))
+    if handles:
+        ax.legend(handles=handles, fontsize=6, loc="upper left", bbox_to_anchor=(0, -0.14))
+    xi, xl = charts._ticks(xs, n=int(x.get("ticks", 6)))
+    ax.set_xticks(xi)
+    ax.set_xticklabels(xl, fontsize=6, rotation=30 if len(xi) > 4 else 0)
+    _y_ticks(ax, spec_name, csv_name, y, ycols, ykeys)
+    if y.get("invert"):  # image rows: the first at the top
+        ax.invert_yaxis()
     ax.set_xlabel(x["label"], fontsize=8)
     ax.set_ylabel(y["label"], fontsize=8)
     ax.set_title(panel["title"], fontsize=8)
@@ -310,13 +414,13 @@ def draw_chart(spec_path):
         ax.set_visible(False)
     try:
         kind = spec.get("kind", "lines")
-        if kind not in ("lines", "categories"):
-            raise ChartError(f"{spec_name}: kind '{kind}' (valid: lines, categories)")
+        if kind not in KINDS:
+            raise ChartError(f"{spec_name}: kind '{kind}' (valid: {', '.join(KINDS)})")
         for ax, panel in zip(axes.flat, spec["panels"]):
-            if kind == "categories":
-                draw_categories(ax, fig, spec_name, csv_name, header, rows, panel)
-            else:
+            if kind == "lines":
                 draw_panel(ax, spec_name, csv_name, header, rows, panel)
+            else:
+                KINDS[kind](ax, fig, spec_name, csv_name, header, rows, panel)
         fig.suptitle(f"{title}\n(from {csv_name})", fontsize=9)
         fig.tight_layout(rect=(0, 0, 1, 0.93))
         png = spec_path[:-len(SPEC_SUFFIX)] + ".png"
@@ -324,6 +428,9 @@ def draw_chart(spec_path):
     finally:
         plt.close(fig)
     return png
+
+
+KINDS = {"lines": None, "categories": draw_categories, "heatmap": draw_heatmap}
 
 
 def save_png(fig, path, dpi=100):

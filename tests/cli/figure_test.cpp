@@ -204,6 +204,35 @@ TEST_F(FigureChartsTest, CategoryMapsHaveTheirColourScaleOrFailInOneLine) {
   expect_one_line(map_folder("unknown", "7"), "level = 7, which is none of the panel's categories");
 }
 
+// A heat map (a number over a grid, e.g. p over (gamma, sqrt(alpha)) or a difference over an
+// image's pixels): its colour scale, the flagged cells named in the legend with their count; a flag
+// naming a column the CSV lacks is one line and no PNG.
+TEST_F(FigureChartsTest, HeatMapsHaveTheirColourScaleAndFlagsOrFailInOneLine) {
+  auto map_folder = [&](const std::string& name, const std::string& flag_column) {
+    const fs::path d = path(name);
+    fs::create_directories(d);
+    write_text(d / "p.csv",
+               "gamma,sa,p,over\n0.1,0.1,0.5,0\n1,0.1,2,1\n10,0.1,8,1\n0.1,0.5,0.01,0\n1,0.5,0.1,0\n"
+               "10,0.5,nan,0\n");
+    write_text(d / "p.chart.json", R"({"kind": "heatmap", "title": "p map", "csv": "p.csv",
+ "panels": [{"title": "p over the grid", "where": {},
+ "x": {"column": "gamma", "label": "gamma [deg]"},
+ "y": {"columns": ["sa"], "label": "sqrt(alpha) [1]"},
+ "value": {"column": "p", "label": "p [1]", "log": true},
+ "flags": [{"column": ")" + flag_column +
+                                           R"(", "value": 1, "label": "p > 1", "color": [1, 0, 0]}]}]})");
+    return d;
+  };
+  const fs::path good = map_folder("good", "over");
+  const RunResult r = draw(good);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_labelled_chart(good / "p.png", 1);
+  const nlohmann::json m = chart_manifest(good / "p.png");
+  EXPECT_TRUE(m["axes"][0].value("map", false));
+  EXPECT_TRUE(m["axes"][0].value("legend", false));  // the flags and the cell without a value
+  expect_one_line(map_folder("missing", "p_gt_1"), "p.csv has no column 'p_gt_1'");
+}
+
 // The chart script's failure is the figure's: one line naming the figure and the script's message,
 // exit 2, and no figure folder (the charts are drawn in the staging folder, before it is swapped
 // in). The script here is a stand-in that fails as figure_charts.py does on a bad spec.
