@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cli/commands.h"
 #include "cli/input.h"
 
 extern char** environ;
@@ -95,6 +96,36 @@ std::string last_error_line(const fs::path& err_file) {
   const std::string prefix = "glintlab: error: ";
   if (last.rfind(prefix, 0) == 0) last = last.substr(prefix.size());
   return last.empty() ? "no message" : last;
+}
+
+void draw_figure_charts(const fs::path& dir) {
+  std::error_code ec;
+  bool any = false;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    const std::string suffix = ".chart.json";
+    any = any || (name.size() > suffix.size() &&
+                  name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0);
+  }
+  if (!any) return;  // no chart: no Python
+  const fs::path script = reports_dir() / "figure_charts.py";
+  if (!fs::is_regular_file(script, ec))
+    throw InputError(fmt::format(
+        "charts: {} not found (set GLINTLAB_REPORTS_DIR to the reports/ folder)", script.string()));
+  const fs::path base = dir.parent_path() / fmt::format("{}.charts", dir.filename().string());
+  const fs::path out = fmt::format("{}.out.tmp.{}", base.string(), ::getpid());
+  const fs::path err = fmt::format("{}.err.tmp.{}", base.string(), ::getpid());
+  struct Remove {
+    fs::path a, b;
+    ~Remove() {
+      std::error_code e;
+      fs::remove(a, e);
+      fs::remove(b, e);
+    }
+  } remove{out, err};
+  const int rc =
+      run_process({"/usr/bin/python3", script.string(), "--dir", dir.string()}, out, err);
+  if (rc != 0) throw InputError(last_error_line(err));
 }
 
 }  // namespace glintlab::cli

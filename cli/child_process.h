@@ -22,4 +22,10 @@ int run_process(const std::vector<std::string>& args, const std::filesystem::pat
 // The last non-empty line a child wrote to stderr, without a "glintlab: error: " prefix.
 std::string last_error_line(const std::filesystem::path& err_file);
 
+// Draws the charts of a figure's folder (every NAME.chart.json into NAME.png) with
+// reports/figure_charts.py under /usr/bin/python3; its output goes to files beside `dir` that
+// end in ".tmp.<pid>" (removed after, and by the signal cleanup). A failure throws InputError
+// with the script's one line.
+void draw_figure_charts(const std::filesystem::path& dir);
+
 }  // namespace glintlab::cli

@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "cli/child_process.h"
 #include "cli/commands.h"
 #include "cli/figure_costs.h"
 #include "cli/input.h"
@@ -139,6 +140,14 @@ std::filesystem::path run_prepared(const experiments::FigureEntry& entry,
     bar->step("rows");
     (void)done;
   };
+  // The figure's charts, drawn by matplotlib from its chart specs before its folder is swapped in.
+  ctx.finish = [&entry](const std::filesystem::path& dir) {
+    try {
+      draw_figure_charts(dir);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("figure {}: {}", entry.id, e.what()));
+    }
+  };
   try {
     return experiments::run_figure(entry, out, ctx);
   } catch (const experiments::FigureError& e) {
@@ -246,7 +255,8 @@ constexpr const char* kFooter =
     R"(Each experiment writes into DIR/<id>/ (default DIR: out/figures): EXR images (32-bit float
 R, G, B plus extra channels; header attributes glintlab_model, glintlab_parameters, glintlab_seed,
 glintlab_spp, glintlab_reference_spp, glintlab_version), a tonemapped PNG preview and a CSV of
-every number the figure plots. Files are written into a staging folder that replaces DIR/<id>
+every number the figure plots; its line charts are drawn from the CSV with matplotlib
+(/usr/bin/python3 reports/figure_charts.py, from each NAME.chart.json into NAME.png). Files are written into a staging folder that replaces DIR/<id>
 only when the whole experiment succeeded. Output is identical for any --threads. The timing figures
 (kneiphof2024-table1, kemppinen2025-table3, kemppinen2025-speed-accuracy) read benchmark JSON only
 from --bench-from DIR (DIR/glints.json, DIR/kemppinen.json); without it they say so, and the

@@ -312,6 +312,7 @@ void ReportRun::run_figures(json& part) {
       ctx.bench_dir = stage_ / "bench";
       ctx.bench_name = (out_ / "bench").string();
     }
+    ctx.finish = draw_figure_charts;  // its charts, as glintlab figure draws them
     try {
       experiments::run_figure(*e, stage_ / "figures", ctx);
     } catch (const std::exception& ex) {

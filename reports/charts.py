@@ -199,45 +199,6 @@ def stability_chart(title, plane, header, rows, quantities, path, relpath, manif
 
 
 # ----------------------------------------------------------------------------------------------
-# Charts drawn from figure CSVs (in place of a chart PNG rendered by the C++ experiment)
-
-def furnace_chart(header, rows, path, relpath, manifest, subtitle):
-    """kemppinen2025-fig15 furnace.csv: energy over theta_o, glinty vs smooth, per NDF and alpha,
-    with +-2 standard errors."""
-    need = {"ndf", "alpha", "theta_o_deg", "energy_glinty", "energy_glinty_se", "energy_smooth",
-            "energy_smooth_se"}
-    if not need <= set(header):
-        return False
-    recs = [dict(zip(header, r)) for r in rows]
-    ndfs = sorted({r["ndf"] for r in recs})
-    plt = pyplot()
-    fig, axes = plt.subplots(1, len(ndfs), figsize=(5.2 * len(ndfs), 4.2), squeeze=False)
-    cmap = plt.get_cmap("tab10")
-    for ax, ndf in zip(axes.flat, ndfs):
-        mine = [r for r in recs if r["ndf"] == ndf]
-        for k, a in enumerate(sorted({r["alpha"] for r in mine}, key=float)):
-            pts = sorted((r for r in mine if r["alpha"] == a), key=lambda r: float(r["theta_o_deg"]))
-            x = [float(r["theta_o_deg"]) for r in pts]
-            for kind, ls in (("glinty", "-"), ("smooth", "--")):
-                y = [float(r[f"energy_{kind}"]) for r in pts]
-                e = [2 * float(r[f"energy_{kind}_se"]) for r in pts]
-                ax.errorbar(x, y, yerr=e, color=cmap(k), ls=ls, marker="o", ms=3, lw=1,
-                            capsize=2, label=f"alpha {float(a):.3g}, {kind}")
-        ax.axhline(1.0, color="gray", lw=0.6, ls=":")
-        ax.set_xlabel("outgoing angle theta_o [deg]", fontsize=8)
-        ax.set_ylabel("white-furnace energy (reflected / incident) [1]", fontsize=8)
-        ax.set_title(f"{ndf.upper()}: glinty (solid) vs smooth (dashed), +-2 s.e.", fontsize=8)
-        ax.legend(fontsize=6)
-        ax.grid(True, alpha=0.3)
-        ax.tick_params(labelsize=7)
-    fig.suptitle(f"kemppinen2025-fig15: white furnace over theta_o (from furnace.csv)\n{subtitle}",
-                 fontsize=9)
-    fig.tight_layout(rect=(0, 0, 1, 0.92))
-    save(fig, path, relpath, manifest)
-    return True
-
-
-# ----------------------------------------------------------------------------------------------
 # Montage PNGs of a figure, drawn as labelled panels from their NAME.panels.json
 # (experiments/figures/panel_layout.h)
 
@@ -308,6 +269,10 @@ def panel_chart(png, layout, path, relpath, manifest, subtitle):
     return True
 
 
+# ----------------------------------------------------------------------------------------------
+# Charts drawn from figure CSVs in place of a raster PNG the C++ experiment writes (the figures'
+# line charts are their own: figure_charts.py draws them from their chart specs)
+
 def p_map_chart(header, rows, path, relpath, manifest, subtitle):
     """kneiphof2024-fig6 p_map.csv: Eq. 20's probability p at normal incidence over the light's
     half-angle gamma (log) and sqrt(alpha), the cells with p > 1 outlined."""
@@ -358,5 +323,4 @@ def p_map_chart(header, rows, path, relpath, manifest, subtitle):
 
 # figure id -> {csv name: function(header, rows, path, relpath, manifest, subtitle) -> bool,
 #               and the C++ chart PNG it replaces}
-FIGURE_CHARTS = {"kemppinen2025-fig15": {"furnace.csv": (furnace_chart, "furnace.png")},
-                 "kneiphof2024-fig6": {"p_map.csv": (p_map_chart, "p_map.png")}}
+FIGURE_CHARTS = {"kneiphof2024-fig6": {"p_map.csv": (p_map_chart, "p_map.png")}}

@@ -51,6 +51,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import charts  # noqa: E402
 import speed_accuracy as sa  # noqa: E402
 import compare_page  # noqa: E402
+import figure_charts  # noqa: E402
 import json_schema  # noqa: E402
 import templating  # noqa: E402
 
@@ -891,6 +892,29 @@ def write_conformance(doc, rows, part, root):
     doc.table(["model"] + props, table_rows, classes, cls="verdicts")
 
 
+def figure_chart_pngs(doc, f, root, base, manifest, replaced):
+    """The figure's own charts: each NAME.chart.json of its folder was drawn into NAME.png by
+    reports/figure_charts.py when the figure ran, with what it shows stored in the PNG; shown
+    here as charts (listed in plots/plots.json from that record). Returns the CSVs they draw, whose
+    numbers need no second chart."""
+    charted = set()
+    for spec in [n for n in f["files"] if n.endswith(figure_charts.SPEC_SUFFIX)]:
+        png = spec[:-len(figure_charts.SPEC_SUFFIX)] + ".png"
+        data = load_json(root, f"{base}/{spec}")
+        if not isinstance(data, dict) or not isinstance(data.get("csv"), str):
+            raise ReportError(f"{base}/{spec} is malformed: expected an object with \"csv\"")
+        entry = figure_charts.chart_manifest(os.path.join(f["dir"], png))
+        if entry is None:
+            raise ReportError(f"{base}/{spec}: its chart {png} is missing or was not drawn by "
+                              "reports/figure_charts.py (no chart record in it)")
+        manifest.append({**entry, "file": f"{base}/{png}"})
+        replaced.add(png)
+        charted.add(data["csv"])
+        doc.image(f"{base}/{png}", f"{f['id']} {png}",
+                  f"{f['id']}: {png}, drawn from {data['csv']} (chart spec {spec})", "chart")
+    return charted
+
+
 def figure_chart_for(fid, name):
     return charts.FIGURE_CHARTS.get(fid, {}).get(name)
 
@@ -949,6 +973,7 @@ def write_figure(doc, f, part, root, plots_tmp, plots_rel, made, manifest):
         doc.para(f"Ran in {float(f['seconds']):.1f} s.")
     base = f"figures/{fid}"
     replaced = set()
+    charted = figure_chart_pngs(doc, f, root, base, manifest, replaced)
     for name, (header, rows) in f["csvs"].items():
         spec = figure_chart_for(fid, name)
         if not spec:
@@ -992,7 +1017,7 @@ def write_figure(doc, f, part, root, plots_tmp, plots_rel, made, manifest):
     if f["summary"]:
         doc.markdown("summary.md", f["summary"].strip())
     for name, (header, rows) in f["csvs"].items():
-        if "spp" not in header or "rmse" not in header:
+        if "spp" not in header or "rmse" not in header or name in charted:
             continue
         stem = name[:-4]
         png = f"{fid}__{stem}_convergence.png"

@@ -90,6 +90,7 @@ std::filesystem::path run_figure(const FigureEntry& entry, const std::filesystem
   } cleanup{staging};
   context.dir = staging;
   entry.run(context);
+  if (context.finish) context.finish(staging);
   fs::remove_all(final_dir, ec);
   fs::rename(staging, final_dir, ec);
   if (ec) {

@@ -36,6 +36,11 @@ struct FigureContext {
   std::string bench_name;
   // (stage, done, total); called from one thread at a time.
   std::function<void(const std::string& stage, long done, long total)> progress;
+  // Called on the staging folder once the experiment has written its files, before the folder
+  // replaces out_dir/<id> (`glintlab figure` and `glintlab report` draw the figure's charts from
+  // its NAME.chart.json specs here: cli/child_process.h draw_figure_charts); empty = nothing. A
+  // throw fails the run like one of the experiment's own.
+  std::function<void(const std::filesystem::path& dir)> finish;
 };
 
 struct FigureEntry {

@@ -27,6 +27,7 @@
 #include "core/ndf/microfacet.h"
 #include "core/ndf/ndf_kind.h"
 #include "core/samplers/walter.h"
+#include "experiments/figures/chart_spec.h"
 #include "experiments/figures/panel_layout.h"
 #include "verify/scenes/kemppinen_furnace.h"
 #include "verify/scenes/kemppinen_presets.h"
@@ -96,49 +97,6 @@ Image montage(const std::vector<Image>& tiles, int columns) {
         for (std::size_t c = 0; c < 3; ++c) out.at(ox + x, oy + y, c) = tiles[k].at(x, y, c);
   }
   return out;
-}
-
-// ---- A raster line chart (the Fig. 15 preview) ---------------------------------------------
-
-struct Series {
-  std::vector<double> x, y;
-  V3 color;
-};
-
-// Lines of `series` over [x0, x1] × [y0, y1] on a white canvas with a frame and a dashed
-// horizontal reference line at `y_ref` (energy 1).
-Image line_chart(const std::vector<Series>& series, double x0, double x1, double y0, double y1,
-                 double y_ref) {
-  const int w = 480, h = 320, m = 24;
-  Image img(w, h, {"R", "G", "B"});
-  std::fill(img.data.begin(), img.data.end(), 1.0);
-  auto px = [&](double x) { return m + (x - x0) / (x1 - x0) * (w - 2 * m); };
-  auto py = [&](double y) { return h - m - (y - y0) / (y1 - y0) * (h - 2 * m); };
-  auto dot = [&](double fx, double fy, V3 c) {
-    const int x = static_cast<int>(std::lround(fx)), y = static_cast<int>(std::lround(fy));
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int xx = x + dx, yy = y + dy;
-        if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;
-        img.at(xx, yy, 0) = c.x, img.at(xx, yy, 1) = c.y, img.at(xx, yy, 2) = c.z;
-      }
-  };
-  for (int x = m; x <= w - m; ++x)
-    img.at(x, h - m, 0) = img.at(x, h - m, 1) = img.at(x, h - m, 2) = 0;
-  for (int y = m; y <= h - m; ++y) img.at(m, y, 0) = img.at(m, y, 1) = img.at(m, y, 2) = 0;
-  const int yr = static_cast<int>(std::lround(py(y_ref)));
-  for (int x = m; x <= w - m; x += 2)
-    if (yr >= 0 && yr < h) img.at(x, yr, 0) = img.at(x, yr, 1) = img.at(x, yr, 2) = 0.5;
-  for (const Series& s : series) {
-    for (std::size_t i = 0; i + 1 < s.x.size(); ++i) {
-      for (int t = 0; t <= 64; ++t) {
-        const double u = t / 64.0;
-        const double y = std::clamp(s.y[i] + u * (s.y[i + 1] - s.y[i]), y0, y1);
-        dot(px(s.x[i] + u * (s.x[i + 1] - s.x[i])), py(y), s.color);
-      }
-    }
-  }
-  return img;
 }
 
 // ---- Fig. 2–3: D★^f on U_Ω and on Ω ----------------------------------------------------------
@@ -340,23 +298,45 @@ void run_fig15(const FigureContext& ctx) {
           w.cell(r.smooth).cell(r.smooth_se).cell(r.glint - r.smooth).end_row();
         }
       });
-  // Chart: energy over θo; GGX blue, Beckmann red; glinty solid-dark, smooth light.
-  std::vector<Series> series;
-  for (const NdfChoice& nd : kNdfs)
+  // Chart (drawn by reports/figure_charts.py): energy over θo, one panel per NDF; GGX blue,
+  // Beckmann red, glinty solid and dark, smooth dashed and light, α = 0.5 the darker; ±2 s.e.
+  ChartSpec chart{
+      .title = fmt::format("{}: area-averaged white furnace over theta_o, glinty vs smooth",
+                           kFig15Id),
+      .csv = "furnace.csv"};
+  for (const NdfChoice& nd : kNdfs) {
+    ChartPanel panel{
+        .title = fmt::format("{}: glinty (solid) vs smooth (dashed), +-2 s.e., {} samples",
+                             nd.ggx ? "GGX" : "Beckmann", n),
+        .where = {{"ndf", std::string(nd.name)}},
+        .x = {.column = "theta_o_deg",
+              .label = "outgoing angle theta_o [deg]",
+              .range = std::array{0.0, 85.0}},
+        .y = {.label = "white-furnace energy (reflected / incident) [1]"},
+        .hlines = {{1.0, "energy 1 (no loss, no gain)"}}};
     for (double a : alphas) {
-      Series g, s;
       const double shade = a < 0.3 ? 1.0 : 0.6;
-      g.color = nd.ggx ? V3{0, 0, shade} : V3{shade, 0, 0};
-      s.color = nd.ggx ? V3{0.5, 0.7, 1.0} : V3{1.0, 0.6, 0.5};
-      for (const FurnaceRow& r : rows) {
-        if (r.ndf != nd.name || r.alpha != a) continue;
-        g.x.push_back(r.theta), g.y.push_back(r.glint);
-        s.x.push_back(r.theta), s.y.push_back(r.smooth);
-      }
-      series.push_back(std::move(s));
-      series.push_back(std::move(g));
+      const ChartWhere where{{"alpha", fmt::format("{}", a)}};
+      panel.series.push_back({.label = fmt::format("alpha {}, glinty", a),
+                              .where = where,
+                              .y = "energy_glinty",
+                              .y_error = "energy_glinty_se",
+                              .y_error_scale = 2,
+                              .color = nd.ggx ? std::array{0.0, 0.0, shade}
+                                              : std::array{shade, 0.0, 0.0}});
+      panel.series.push_back({.label = fmt::format("alpha {}, smooth", a),
+                              .where = where,
+                              .y = "energy_smooth",
+                              .y_error = "energy_smooth_se",
+                              .y_error_scale = 2,
+                              .color = nd.ggx ? std::array{0.5, 0.7, 1.0}
+                                              : std::array{1.0, 0.6, 0.5},
+                              .line = "dashed",
+                              .marker = "s"});
     }
-  io::write_png_preview(ctx.dir / "furnace.png", line_chart(series, 0, 85, 0.5, 1.1, 1.0));
+    chart.panels.push_back(std::move(panel));
+  }
+  write_chart_spec(ctx.dir / "furnace.png", chart);
 }
 
 // ---- Fig. 14: limitations ----------------------------------------------------------------

@@ -30,6 +30,7 @@
 #include "core/ndf/ndf_kind.h"
 #include "core/render/convergence.h"
 #include "experiments/figures/kemppinen2025.h"
+#include "experiments/figures/chart_spec.h"
 #include "experiments/figures/panel_layout.h"
 #include "verify/scenes/kemppinen_env_radiance.h"
 #include "verify/scenes/kemppinen_presets.h"
@@ -181,58 +182,6 @@ void run_ndf(const FigureContext& ctx, const EnvironmentMap& env, const Fig7Budg
   }
 }
 
-// A log-log chart of RMSE vs spp: one panel per NDF side by side, decade grid lines, each
-// strategy's points joined by straight lines (power laws are straight here).
-Image loglog_chart(const std::vector<NdfRun>& runs, int max_spp) {
-  const int pw = 360, h = 300, m = 30;
-  Image img(pw * int(runs.size()), h, {"R", "G", "B"});
-  std::fill(img.data.begin(), img.data.end(), 1.0);
-  double ylo = 1e300, yhi = 0;
-  for (const NdfRun& r : runs)
-    for (const auto& series : r.rmse)
-      for (const RmseAtSpp& a : series)
-        if (a.rmse > 0) ylo = std::min(ylo, a.rmse), yhi = std::max(yhi, a.rmse);
-  const double l0 = std::floor(std::log10(ylo)), l1 = std::ceil(std::log10(yhi));
-  const double x1 = std::log10(double(max_spp));
-  auto put = [&](int x, int y, V3 c) {
-    if (x < 0 || y < 0 || x >= img.width || y >= h) return;
-    img.at(x, y, 0) = c.x, img.at(x, y, 1) = c.y, img.at(x, y, 2) = c.z;
-  };
-  for (std::size_t k = 0; k < runs.size(); ++k) {
-    const int ox = int(k) * pw;
-    auto px = [&](double spp) { return ox + m + std::log10(spp) / x1 * (pw - 2 * m); };
-    auto py = [&](double e) { return h - m - (std::log10(e) - l0) / (l1 - l0) * (h - 2 * m); };
-    const V3 grid{0.85, 0.85, 0.85}, black{0, 0, 0};
-    for (double d = l0; d <= l1 + 1e-9; d += 1) {
-      const int y = int(std::lround(py(std::pow(10.0, d))));
-      for (int x = ox + m; x <= ox + pw - m; ++x) put(x, y, grid);
-    }
-    for (int s = 1; s <= max_spp; s *= 2) {
-      const int x = int(std::lround(px(s)));
-      for (int y = m; y <= h - m; y += 3) put(x, y, grid);
-    }
-    for (int x = ox + m; x <= ox + pw - m; ++x) put(x, h - m, black);
-    for (int y = m; y <= h - m; ++y) put(ox + m, y, black);
-    for (int t = 0; t < 3; ++t) {
-      const auto& s = runs[k].rmse[t];
-      for (std::size_t i = 0; i < s.size(); ++i) {
-        const double cx = px(s[i].spp), cy = py(std::max(s[i].rmse, ylo));
-        for (int dy = -2; dy <= 2; ++dy)
-          for (int dx = -2; dx <= 2; ++dx)
-            put(int(std::lround(cx)) + dx, int(std::lround(cy)) + dy, kStrategies[t].color);
-        if (i + 1 == s.size()) continue;
-        const double nx = px(s[i + 1].spp), ny = py(std::max(s[i + 1].rmse, ylo));
-        for (int u = 0; u <= 64; ++u) {
-          const double f = u / 64.0;
-          put(int(std::lround(cx + f * (nx - cx))), int(std::lround(cy + f * (ny - cy))),
-              kStrategies[t].color);
-        }
-      }
-    }
-  }
-  return img;
-}
-
 // Nearest-neighbour enlargement and side-by-side tiles (reference, then each strategy).
 Image preview_montage(const std::vector<NdfRun>& runs, int scale) {
   const int s = runs[0].reference.width * scale;
@@ -312,7 +261,31 @@ void run_fig7(const FigureContext& ctx) {
                                  .cell(r.q)
                                  .end_row();
                        });
-  io::write_png_preview(ctx.dir / "fig7_rmse_spp.png", loglog_chart(runs, b.max_spp));
+  // The log-log chart of rmse_spp.csv (drawn by reports/figure_charts.py): one panel per NDF,
+  // each strategy's points joined (power laws are straight here), +-2 standard errors.
+  ChartSpec chart{
+      .title = fmt::format("{}: RMSE vs spp under the environment light (log-log)", kFig7Id),
+      .csv = "rmse_spp.csv"};
+  for (const NdfRun& r : runs) {
+    ChartPanel panel{
+        .title = fmt::format("{}: RMSE against a {} spp reference, +-2 s.e.", r.name,
+                             b.reference_spp),
+        .where = {{"ndf", std::string(r.name)}},
+        .x = {.column = "spp", .label = "samples per pixel [spp]", .log = true},
+        .y = {.label = "RMSE of the luminance against the reference [linear radiance]",
+              .log = true},
+        .guide_slope = -0.5,
+        .guide_label = "slope -1/2 (unbiased Monte Carlo)"};
+    for (const Strategy& st : kStrategies)
+      panel.series.push_back({.label = std::string(st.name),
+                              .where = {{"strategy", std::string(st.name)}},
+                              .y = "rmse",
+                              .y_error = "stderr",
+                              .y_error_scale = 2,
+                              .color = {st.color.x, st.color.y, st.color.z}});
+    chart.panels.push_back(std::move(panel));
+  }
+  write_chart_spec(ctx.dir / "fig7_rmse_spp.png", chart);
   const int enlargement = std::max(1, 192 / b.size);
   io::write_png_preview(ctx.dir / "fig7_images.png", preview_montage(runs, enlargement), 0.1);
   std::vector<std::string> labels;

@@ -23,12 +23,11 @@
 #include "core/glints/kemppinen_reference.h"
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
-#include "core/io/png.h"
 #include "core/ndf/ndf_kind.h"
 #include "experiments/bench/kemppinen2025_speed_accuracy.h"
 #include "experiments/bench/kemppinen2025_table3_scene.h"
 #include "experiments/figures/bench_json.h"
-#include "experiments/figures/log_chart.h"
+#include "experiments/figures/chart_spec.h"
 
 namespace glintlab::experiments {
 namespace {
@@ -253,11 +252,6 @@ void measure_in_process(SaRow& row, const sa::Setting* s, bool quick, double min
   row.source = kInProcess;
 }
 
-std::string short_label(const SaRow& r) {
-  if (r.k == 0) return "bf";
-  return fmt::format("{}{}", r.k, r.erf == "exact" ? "e" : "f");
-}
-
 struct CostRow {
   std::string method;  // "constant_time" or "bruteforce"
   int k;               // 0 for the brute force
@@ -333,45 +327,37 @@ void run_speed_accuracy(const FigureContext& ctx) {
           .end_row();
     }
   });
-  // One panel per NDF; series: vs brute force (roulette), vs brute force (linear), vs smooth D.
-  std::vector<Image> panels;
+  // The chart of speed_accuracy.csv (drawn by reports/figure_charts.py): one panel per NDF;
+  // series: vs brute force (roulette), vs brute force (linear), vs smooth D; points labelled
+  // k + e/f (exact/fast erf), each series' Pareto front ringed and joined.
+  ChartSpec chart{
+      .title = fmt::format("{}: RMS error vs time per evaluation (log-log)", kSpeedId),
+      .csv = "speed_accuracy.csv"};
   for (bool ggx : {true, false}) {
-    LogChart chart{
-        fmt::format("{}: RMS error vs time (label k, e/f = exact/fast erf)", sa::ndf_name(ggx)),
-        "ns per evaluation",
-        "RMS error",
-        {}};
+    ChartPanel panel{
+        .title = fmt::format("{}: label k, e/f = exact/fast erf", sa::ndf_name(ggx)),
+        .x = {.column = "ns_per_eval", .label = "time per evaluation [ns] (one core)", .log = true},
+        .y = {.label = "RMS error |D*f - reference| / D(omega_h) [1]", .log = true}};
     const struct {
       sa::Reference ref;
       std::string_view blend, name;
-      Vec3<double> color;
+      std::array<double, 3> color;
     } kSeries[] = {{sa::Reference::kBruteForce, "roulette", "vs Eq. 5 (roulette)", {0.1, 0.3, 0.9}},
                    {sa::Reference::kBruteForce, "linear", "vs Eq. 5 (linear)", {0.1, 0.7, 0.3}},
                    {sa::Reference::kSmooth, "roulette", "vs smooth D (far)", {0.85, 0.2, 0.1}}};
-    for (const auto& ser : kSeries) {
-      ChartSeries cs{std::string(ser.name), ser.color, {}, {}};
-      std::vector<Vec2<double>> front;
-      for (const SaRow& r : rows) {
-        if (r.ggx != ggx || r.ref != ser.ref || r.k == 0 || r.blend != ser.blend) continue;
-        cs.points.push_back({r.ns, r.err.rms, short_label(r), r.front});
-        if (r.front) front.push_back({r.ns, r.err.rms});
-      }
-      std::sort(front.begin(), front.end(), [](auto a, auto b) { return a.x < b.x; });
-      cs.line = front;
-      chart.series.push_back(cs);
-    }
-    panels.push_back(draw_log_chart(chart));
+    for (const auto& ser : kSeries)
+      panel.series.push_back(
+          {.label = std::string(ser.name),
+           .where = {{"method", sa::method_id(ggx, ser.ref)}, {"blend", std::string(ser.blend)}},
+           .y = "err_rms",
+           .color = ser.color,
+           .line = "none",
+           .point_label = "{k}{erf:.1}",
+           .mark = "on_pareto_front",
+           .mark_label = "Pareto front (time against RMS error)"});
+    chart.panels.push_back(std::move(panel));
   }
-  const auto side_by_side = [](const std::vector<Image>& im) {
-    Image out(im[0].width * int(im.size()), im[0].height, {"R", "G", "B"});
-    for (std::size_t k = 0; k < im.size(); ++k)
-      for (int y = 0; y < im[k].height; ++y)
-        for (int x = 0; x < im[k].width; ++x)
-          for (std::size_t c = 0; c < 3; ++c)
-            out.at(int(k) * im[0].width + x, y, c) = im[k].at(x, y, c);
-    return out;
-  };
-  io::write_png_preview(ctx.dir / "speed_accuracy.png", side_by_side(panels));
+  write_chart_spec(ctx.dir / "speed_accuracy.png", chart);
 
   // Cost against footprint: Algorithm 1 for each k (exact erf) and the brute-force Eq. 5.
   std::vector<CostRow> cost;
@@ -431,29 +417,30 @@ void run_speed_accuracy(const FigureContext& ctx) {
       w.cell(c.source.empty() ? std::string_view("not_measured") : c.source).end_row();
     }
   });
-  const Vec3<double> kColors[] = {
+  // The chart of cost_vs_footprint.csv (drawn by reports/figure_charts.py): time and points
+  // visited against the footprint, Algorithm 1 per k against the brute force.
+  constexpr std::array<double, 3> kColors[] = {
       {0.1, 0.3, 0.9}, {0.1, 0.7, 0.3}, {0.9, 0.6, 0.1}, {0.6, 0.2, 0.8}, {0.85, 0.1, 0.1}};
-  std::vector<Image> cost_panels;
+  ChartSpec cost_chart{
+      .title = fmt::format("{}: cost against the footprint (constant time vs Eq. 5)", kSpeedId),
+      .csv = "cost_vs_footprint.csv"};
   for (bool points : {false, true}) {
-    LogChart chart{points ? "points visited vs footprint" : "time per evaluation vs footprint",
-                   "footprint (level-0 cells)",
-                   points ? "points visited" : "ns per evaluation",
-                   {}};
+    ChartPanel panel{
+        .title = points ? "points visited vs footprint" : "time per evaluation vs footprint",
+        .x = {.column = "footprint_cells", .label = "footprint [level-0 cells]", .log = true},
+        .y = {.label = points ? "points visited [1]" : "time per evaluation [ns] (one core)",
+              .log = true}};
     for (int s = 0; s <= kemppinen2025::kMaxSide; ++s) {
       const int k = s == kemppinen2025::kMaxSide ? 0 : (s + 1) * (s + 1);
-      ChartSeries cs{
-          k ? fmt::format("constant time k={}", k) : "brute force Eq. 5", kColors[s], {}, {}};
-      for (const CostRow& c : cost)
-        if (c.k == k) {
-          const double y = points ? c.points : c.ns;
-          cs.points.push_back({double(c.cells), y, "", false});
-          cs.line.push_back({double(c.cells), y});
-        }
-      chart.series.push_back(cs);
+      panel.series.push_back(
+          {.label = k ? fmt::format("constant time k={}", k) : "brute force Eq. 5",
+           .where = {{"method", k ? "constant_time" : "bruteforce"}, {"k", fmt::format("{}", k)}},
+           .y = points ? "points_visited" : "ns_per_eval",
+           .color = kColors[s]});
     }
-    cost_panels.push_back(draw_log_chart(chart));
+    cost_chart.panels.push_back(std::move(panel));
   }
-  io::write_png_preview(ctx.dir / "cost_vs_footprint.png", side_by_side(cost_panels));
+  write_chart_spec(ctx.dir / "cost_vs_footprint.png", cost_chart);
 
   std::string md = fmt::format(
       "# {}\n\nSpeed vs accuracy of the constant-time D★^f (Eq. 11, Algorithm 1) for k in "

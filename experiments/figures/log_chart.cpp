@@ -1,13 +1,10 @@
-// The raster log-log chart of log_chart.h and the Pareto front of a point set.
+// The raster category map and text of log_chart.h.
 #include "experiments/figures/log_chart.h"
-
-#include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 
 namespace glintlab::experiments {
 namespace {
@@ -117,84 +114,7 @@ class Canvas {
   Image img_;
 };
 
-bool usable(double v) { return std::isfinite(v) && v > 0; }
-
 }  // namespace
-
-std::vector<std::size_t> pareto_front(const std::vector<Vec2<double>>& xy) {
-  std::vector<std::size_t> out;
-  for (std::size_t i = 0; i < xy.size(); ++i) {
-    bool dominated = false;
-    for (std::size_t j = 0; j < xy.size() && !dominated; ++j)
-      dominated =
-          xy[j].x <= xy[i].x && xy[j].y <= xy[i].y && (xy[j].x < xy[i].x || xy[j].y < xy[i].y);
-    if (!dominated) out.push_back(i);
-  }
-  return out;
-}
-
-Image draw_log_chart(const LogChart& chart, int width, int height) {
-  const int left = 64, right = 16, top = 28, bottom = 40;
-  double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
-  for (const ChartSeries& s : chart.series) {
-    for (const ChartPoint& p : s.points)
-      if (usable(p.x) && usable(p.y)) {
-        x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
-        y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
-      }
-  }
-  if (!(x0 <= x1)) x0 = 1, x1 = 10, y0 = 1, y1 = 10;  // no data: an empty frame
-  const double lx0 = std::floor(std::log10(x0)), lx1 = std::max(lx0 + 1, std::ceil(std::log10(x1)));
-  const double ly0 = std::floor(std::log10(y0)), ly1 = std::max(ly0 + 1, std::ceil(std::log10(y1)));
-  const auto px = [&](double x) {
-    return left + (std::log10(x) - lx0) / (lx1 - lx0) * (width - left - right);
-  };
-  const auto py = [&](double y) {
-    return height - bottom - (std::log10(y) - ly0) / (ly1 - ly0) * (height - top - bottom);
-  };
-  Canvas c(width, height);
-  const Vec3<double> grid{0.88, 0.88, 0.88}, ink{0, 0, 0};
-  for (double e = lx0; e <= lx1; e += 1) {
-    const double x = px(std::pow(10.0, e));
-    c.line(x, top, x, height - bottom, grid);
-    c.text(int(x) - 9, height - bottom + 5, fmt::format("1e{}", int(e)), ink);
-  }
-  for (double e = ly0; e <= ly1; e += 1) {
-    const double y = py(std::pow(10.0, e));
-    c.line(left, y, width - right, y, grid);
-    c.text(left - 34, int(y) - 3, fmt::format("1e{}", int(e)), ink);
-  }
-  c.line(left, top, left, height - bottom, ink);
-  c.line(left, height - bottom, width - right, height - bottom, ink);
-  c.text(left, 8, chart.title, ink);
-  c.text(left + (width - left - right) / 2 - 3 * int(chart.x_label.size()), height - 16,
-         chart.x_label, ink);
-  c.text(6, top + (height - top - bottom) / 2 + 3 * int(chart.y_label.size()), chart.y_label, ink,
-         true);
-  int legend_y = top + 6;
-  for (const ChartSeries& s : chart.series) {
-    for (std::size_t k = 1; k < s.line.size(); ++k)
-      if (usable(s.line[k - 1].x) && usable(s.line[k - 1].y) && usable(s.line[k].x) &&
-          usable(s.line[k].y))
-        c.line(px(s.line[k - 1].x), py(s.line[k - 1].y), px(s.line[k].x), py(s.line[k].y), s.color,
-               true);
-    const Vec3<double> dark = 0.7 * s.color;
-    for (const ChartPoint& p : s.points) {
-      if (!usable(p.x) || !usable(p.y)) continue;
-      const int x = int(std::lround(px(p.x))), y = int(std::lround(py(p.y)));
-      if (p.ringed) {
-        c.rect(x - 4, y - 4, x + 4, y + 4, ink);
-        c.rect(x - 3, y - 3, x + 3, y + 3, {1, 1, 1});
-      }
-      c.rect(x - 2, y - 2, x + 2, y + 2, s.color);
-      if (!p.label.empty()) c.text(x + 5, y - 9, p.label, dark);
-    }
-    c.rect(width - right - 150, legend_y, width - right - 144, legend_y + 6, s.color);
-    c.text(width - right - 140, legend_y, s.name, ink);
-    legend_y += 11;
-  }
-  return c.take();
-}
 
 Image draw_category_map(const CategoryMap& map, int cell_width, int cell_height) {
   const int cols = int(map.column_labels.size()), rows = int(map.row_labels.size());

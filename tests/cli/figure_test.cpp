@@ -1,10 +1,14 @@
 // `glintlab figure`: --list, each experiment's --quick run (EXR read back through OpenEXR with its
 // attributes, PNG signature, CSV parsed), and the bad-input errors.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <string>
 
+#include "cli/chart_png.h"
 #include "cli/cli_test_util.h"
 #include "core/io/exr.h"
 
@@ -111,6 +115,138 @@ TEST_F(FigureTest, BadInputGetsOneLineAndNoOutput) {
                      {"--out", "blocker/sub"}, {"blocker"});
   expect_input_error(run({"figure", "eto2023-fig4", "--threads", "-1"}), {"--threads", "valid"},
                      {"blocker"});
+}
+
+// reports/figure_charts.py run on a folder of CSVs and chart specs, as glintlab figure runs it.
+class FigureChartsTest : public CliTest {
+ protected:
+  RunResult draw(const fs::path& dir) const {
+    const fs::path script = fs::path(kReportFixtures).parent_path().parent_path().parent_path() /
+                            "reports" / "figure_charts.py";
+    const std::string cmd = "/usr/bin/python3 '" + script.string() + "' --dir '" + dir.string() +
+                            "' >'" + path("stdout").string() + "' 2>'" + path("stderr").string() +
+                            "'";
+    const int status = std::system(cmd.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(path("stdout")),
+            read_text(path("stderr"))};
+  }
+  // A failed run: exit 2, one stderr line containing `needle`, and no PNG in `dir`.
+  void expect_one_line(const fs::path& dir, const std::string& needle) const {
+    const RunResult r = draw(dir);
+    EXPECT_EQ(r.exit_code, 2);
+    ASSERT_EQ(lines_of(r.err).size(), 1u) << r.err;
+    EXPECT_EQ(r.err.rfind("glintlab: error: charts: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+    for (const auto& e : fs::directory_iterator(dir))
+      EXPECT_NE(e.path().extension(), ".png") << e.path();
+  }
+};
+
+// Every NAME.chart.json of a folder drawn into NAME.png: a labelled chart (title, axis labels
+// with units, legend, read back from the PNG), the same bytes when drawn again; a spec naming a
+// column the CSV lacks, or an axis label without its unit, is one line on stderr, exit 2, and no
+// PNG.
+TEST_F(FigureChartsTest, LineChartsAreLabelledAndTheSameBytesOrFailInOneLine) {
+  auto chart_folder = [&](const std::string& name, const std::string& y,
+                          const std::string& x_label) {
+    const fs::path d = path(name);
+    fs::create_directories(d);
+    write_text(d / "data.csv", "series,x,y\na,1,2\na,2,3\nb,1,1\nb,2,4\n");
+    write_text(d / "data.chart.json",
+               R"({"title": "test chart", "csv": "data.csv", "panels": [{"title": "a and b",
+ "where": {}, "x": {"column": "x", "label": ")" +
+                   x_label + R"(", "log": false}, "y": {"label": "y [1]", "log": false},
+ "series": [{"label": "a", "where": {"series": "a"}, "y": ")" +
+                   y + R"("}, {"label": "b", "where": {"series": "b"}, "y": "y"}],
+ "hlines": []}]})");
+    return d;
+  };
+  const fs::path good = chart_folder("good", "y", "x [m]");
+  const RunResult r = draw(good);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_labelled_chart(good / "data.png", 1);
+  const std::string first = read_text(good / "data.png");
+  ASSERT_EQ(draw(good).exit_code, 0);
+  EXPECT_EQ(read_text(good / "data.png"), first);  // no date, no version: the same bytes
+
+  expect_one_line(chart_folder("missing", "no_such_column", "x [m]"),
+                  "data.chart.json: data.csv has no column 'no_such_column'");
+  expect_one_line(chart_folder("unitless", "y", "x"), "x label 'x' has no unit");
+}
+
+// A map of categories (the adequacy maps' kind): one cell per (x value, y row) in its category's
+// colour, the categories as its colour scale, a marker per row; a cell whose value is none of the
+// categories is one line and no PNG.
+TEST_F(FigureChartsTest, CategoryMapsHaveTheirColourScaleOrFailInOneLine) {
+  auto map_folder = [&](const std::string& name, const std::string& third_value) {
+    const fs::path d = path(name);
+    fs::create_directories(d);
+    write_text(d / "cells.csv",
+               "n,alpha,level,boundary\n1,0.1,1,30\n10,0.1,0,30\n100,0.1,0,30\n1,0.3,1,3\n10,0.3," +
+                   third_value + ",3\n100,0.3,0,3\n");
+    write_text(d / "cells.chart.json", R"({"kind": "categories", "title": "levels",
+ "csv": "cells.csv", "panels": [{"title": "cheapest level", "where": {},
+ "x": {"column": "n", "label": "footprint [cells]", "log": true},
+ "y": {"columns": ["alpha"], "format": "alpha {alpha}", "label": "alpha [1]"},
+ "value": {"column": "level", "label": "level"},
+ "categories": [{"value": 0, "label": "smooth", "color": [0.3, 0.7, 0.3]},
+                {"value": 1, "label": "exact", "color": [0.8, 0.2, 0.2]}],
+ "marker": {"column": "boundary", "label": "predicted boundary"}}]})");
+    return d;
+  };
+  const fs::path good = map_folder("good", "1");
+  const RunResult r = draw(good);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_labelled_chart(good / "cells.png", 1);
+  const nlohmann::json m = chart_manifest(good / "cells.png");
+  EXPECT_TRUE(m["axes"][0].value("map", false));
+  EXPECT_TRUE(m["axes"][0].value("colorbar", false));
+  expect_one_line(map_folder("unknown", "7"), "level = 7, which is none of the panel's categories");
+}
+
+// A heat map (a number over a grid, e.g. p over (gamma, sqrt(alpha)) or a difference over an
+// image's pixels): its colour scale, the flagged cells named in the legend with their count; a flag
+// naming a column the CSV lacks is one line and no PNG.
+TEST_F(FigureChartsTest, HeatMapsHaveTheirColourScaleAndFlagsOrFailInOneLine) {
+  auto map_folder = [&](const std::string& name, const std::string& flag_column) {
+    const fs::path d = path(name);
+    fs::create_directories(d);
+    write_text(d / "p.csv",
+               "gamma,sa,p,over\n0.1,0.1,0.5,0\n1,0.1,2,1\n10,0.1,8,1\n0.1,0.5,0.01,0\n1,0.5,0.1,0\n"
+               "10,0.5,nan,0\n");
+    write_text(d / "p.chart.json", R"({"kind": "heatmap", "title": "p map", "csv": "p.csv",
+ "panels": [{"title": "p over the grid", "where": {},
+ "x": {"column": "gamma", "label": "gamma [deg]"},
+ "y": {"columns": ["sa"], "label": "sqrt(alpha) [1]"},
+ "value": {"column": "p", "label": "p [1]", "log": true},
+ "flags": [{"column": ")" + flag_column +
+                                           R"(", "value": 1, "label": "p > 1", "color": [1, 0, 0]}]}]})");
+    return d;
+  };
+  const fs::path good = map_folder("good", "over");
+  const RunResult r = draw(good);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_labelled_chart(good / "p.png", 1);
+  const nlohmann::json m = chart_manifest(good / "p.png");
+  EXPECT_TRUE(m["axes"][0].value("map", false));
+  EXPECT_TRUE(m["axes"][0].value("legend", false));  // the flags and the cell without a value
+  expect_one_line(map_folder("missing", "p_gt_1"), "p.csv has no column 'p_gt_1'");
+}
+
+// The chart script's failure is the figure's: one line naming the figure and the script's message,
+// exit 2, and no figure folder (the charts are drawn in the staging folder, before it is swapped
+// in). The script here is a stand-in that fails as figure_charts.py does on a bad spec.
+TEST_F(FigureTest, AFailedChartIsTheFiguresOneLineErrorAndLeavesNoFolder) {
+  const fs::path reports = work().parent_path() / "failing_reports";
+  fs::create_directories(reports);
+  write_text(reports / "figure_charts.py",
+             "import sys\nprint('glintlab: error: charts: furnace.chart.json: furnace.csv has no "
+             "column \\'x\\'', file=sys.stderr)\nsys.exit(2)\n");
+  ::setenv("GLINTLAB_REPORTS_DIR", reports.c_str(), 1);
+  const RunResult r =
+      run({"figure", "kemppinen2025-fig15", "--budget", "quick", "--out", "out", "--threads", "2"});
+  ::unsetenv("GLINTLAB_REPORTS_DIR");
+  expect_input_error(r, {"figure kemppinen2025-fig15", "furnace.csv has no column 'x'"}, {"out"});
 }
 
 // A lat-long EXR environment: a small uniform map lights the quick Fig. 4 and is named in the EXR

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "cli/chart_png.h"
 #include "cli/cli_test_util.h"
 #include "core/io/exr.h"
 
@@ -81,7 +82,8 @@ TEST_F(KemppinenFigureTest, Fig2_3DiskAndHemisphere) {
 // least be less than 1") and below the smooth one on average over θo.
 TEST_F(KemppinenFigureTest, Fig15Furnace) {
   const fs::path d = run_quick("kemppinen2025-fig15");
-  expect_png(d / "furnace.png");
+  // Drawn by matplotlib from furnace.chart.json: one labelled panel per NDF.
+  expect_labelled_chart(d / "furnace.png", 2);
   const io::CsvTable t = io::read_csv(d / "furnace.csv");
   ASSERT_EQ(t.num_rows(), 2u * 2u * 9u);  // NDFs × alphas × θo 0..80 step 10
   double gap = 0;

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "cli/chart_png.h"
 #include "cli/cli_test_util.h"
 
 namespace glintlab::cli_test {
@@ -15,11 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using KemppinenTimingTest = CliTest;
-
-bool png(const fs::path& p) {
-  const std::string b = read_text(p);
-  return b.size() > 8 && b.substr(0, 8) == std::string("\x89PNG\r\n\x1a\n", 8);
-}
 
 TEST_F(KemppinenTimingTest, Table3WithoutJsonMeasuresInProcess) {
   const RunResult r = run({"figure", "kemppinen2025-table3", "--budget", "quick", "--out", "out"});
@@ -91,8 +87,10 @@ TEST_F(KemppinenTimingTest, FiguresReadTheBenchmarkJson) {
     }
   }
   EXPECT_EQ(read, 1);
-  EXPECT_TRUE(png(d / "speed_accuracy.png"));
-  EXPECT_TRUE(png(d / "cost_vs_footprint.png"));
+  // Drawn by matplotlib from their chart specs: one labelled panel per NDF, and time and points
+  // visited against the footprint.
+  expect_labelled_chart(d / "speed_accuracy.png", 2);
+  expect_labelled_chart(d / "cost_vs_footprint.png", 2);
   const std::string md = read_text(d / "summary.md");
   EXPECT_NE(md.find("in_process_thread_cputime"), std::string::npos);
   EXPECT_NE(md.find("are from `out/bench/kemppinen.json`"), std::string::npos);

@@ -118,8 +118,14 @@ with tempfile.TemporaryDirectory() as tmp:
     # The plot manifest: every chart with title, axis labels, legend, and colour scale for maps.
     manifest = json.load(open(os.path.join(d, "plots", "plots.json")))["plots"]
     charts = {p["file"] for p in manifest}
-    check(charts == {s for s in page.srcs if s.startswith("plots/")},
+    check(charts == {s for s, c in page.imgs if "chart" in c.split()},
           "every chart shown is in plots/plots.json")
+    # A figure's own chart (figure_charts.py drew it from its spec when the figure ran): shown
+    # from the figure's folder as a chart, its labels read back from the PNG.
+    curve = [p for p in manifest if p["file"] == "figures/fixture2026-fig1/curve.png"]
+    check(len(curve) == 1 and curve[0]["axes"][0]["xlabel"] == "angle [deg]"
+          and curve[0]["axes"][0]["legend"],
+          "the figure's chart curve.png is shown with the labels it records")
     for p in manifest:
         for ax in p["axes"]:
             # A rendered panel is named by its title (no legend); its size is recorded for the
@@ -345,7 +351,11 @@ with tempfile.TemporaryDirectory() as tmp:
         s = open(p).read().replace("model.other_model.energy", "other_model.energy", 1)
         open(p, "w").write(s)
 
-    cases = [(corrupt_claims, "verify/claims.json is not valid JSON"),
+    def chart_not_drawn(d):
+        os.unlink(os.path.join(d, "figures", "fixture2026-fig1", "curve.png"))
+
+    cases = [(chart_not_drawn, "curve.chart.json: its chart curve.png is missing"),
+             (corrupt_claims, "verify/claims.json is not valid JSON"),
              (conformance_id, "('other_model.energy') is not a model.<name>.<property> id"),
              (claims_wrong_type, "entry 1 (fixture.fails) \"p_value\" is string 'small', the "
                                  "schema wants number or null"),
