@@ -140,6 +140,12 @@ set(glintlab_slow_tests
   "PodeeCliTest.DistanceAndFlickerQuick 2"
   "ReportTest.ReuseReadsCachedResultsAndAMalformedOneLeavesTheOldReport 1"
   "ReportTest.ClaimsAreCheckedAgainstTheProgramsSchema 3"
+  # matplotlib draws a figure's charts from its chart specs (reports/figure_charts.py, started
+  # once per figure: about 1–2 s of interpreter and matplotlib start-up).
+  "KemppinenFigureTest.Fig15Furnace 2"
+  "FigureChartsTest.LineChartsAreLabelledAndTheSameBytesOrFailInOneLine 5"
+  "FigureChartsTest.HeatMapsHaveTheirColourScaleAndFlagsOrFailInOneLine 3"
+  "FigureChartsTest.CategoryMapsHaveTheirColourScaleOrFailInOneLine 3"
   "ReportTest.SmallRealRun 4"
   # Every batched kernel or model on every ISA against its scalar instantiation, on enough rows
   # to reach the recorded worst cases (tests/simd/).
