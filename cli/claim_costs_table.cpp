@@ -30,7 +30,7 @@ const std::vector<ClaimCost>& claim_costs() {
       {"kemppinen.compensation",                                  43.2,         286.0},
       {"kemppinen.compensation-k16",                              8.44,          38.5},
       {"kemppinen.roulette",                                     0.141,          0.39},
-      {"kemppinen.furnace",                                     0.0584,          1.63},
+      {"kemppinen.furnace",                                      0.118,          4.85},
       {"kemppinen.constant-time",                             0.000963,      0.000967},
       {"kemppinen.sampling-unbiased",                             1.31,         124.0},
       {"kneiphof.total-area",                                    0.341,         0.344},

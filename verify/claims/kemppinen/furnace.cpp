@@ -223,13 +223,14 @@ struct Furnace {
         "settings gain significantly, smallest p {:.3g}",
         100 * kFurnaceControlGain, m.d.gains, z.configs.size(), sidak_min(m.d.p_gain));
   }
-  // (z + 1.28)·SE over the settings. The quietest setting's SE is never taken (se_min keeps its
-  // initial value): the recorded rows print that as it is.
+  // (z + 1.28)·SE of the relative gain, from the quietest setting to the noisiest.
   static std::string power(const Sizes& z, const Measured& m, const Measured&) {
     double se_max = 0, se_min = 1e300;
-    for (const FurnSetting& row : m.rows)
-      se_max =
-          std::max(se_max, std::sqrt(row.diff.variance() / double(row.diff.n)) / row.smooth.mean);
+    for (const FurnSetting& row : m.rows) {
+      const double se = std::sqrt(row.diff.variance() / double(row.diff.n)) / row.smooth.mean;
+      se_max = std::max(se_max, se);
+      se_min = std::min(se_min, se);
+    }
     const double q = normal_quantile(1 - sidak_level(check_level(), z.configs.size()));
     return fmt::format(
         "a gain over the smooth NDF's energy of {:.2g} (quietest setting) to {:.2g} (noisiest) is "
