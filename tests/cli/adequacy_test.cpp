@@ -7,6 +7,7 @@
 #include <set>
 #include <nlohmann/json.hpp>
 
+#include "cli/chart_png.h"
 #include "cli/cli_test_util.h"
 #include "core/io/csv.h"
 
@@ -32,16 +33,24 @@ TEST_F(AdequacyTest, QuickRunWritesTableAndMaps) {
   EXPECT_EQ(doc["cells"].size(), 324u);
   EXPECT_EQ(doc["maps"].size(), 6u);
   for (const auto& m : doc["maps"]) {
-    EXPECT_TRUE(fs::exists(path("a") / m["png"].get<std::string>()));
+    // Drawn by matplotlib: a title, labelled axes with units, the levels as its colour scale.
+    const fs::path png = path("a") / m["png"].get<std::string>();
+    expect_labelled_chart(png, 1);
+    const nlohmann::json chart = chart_manifest(png);
+    EXPECT_NE(chart["axes"][0].value("title", "").find("kneiphof_klein"), std::string::npos);
+    EXPECT_EQ(chart["axes"][0].value("xlabel", ""), "footprint size N_P [expected facets]");
     EXPECT_TRUE(fs::exists(path("a") / m["exr"].get<std::string>()));
   }
+  // The maps' cells as drawn: 324 cells, each with its level and its row's predicted boundary.
+  EXPECT_EQ(io::read_csv(path("a/adequacy-levels.csv")).num_rows(), 324u);
   EXPECT_EQ(io::read_csv(path("a/adequacy.csv")).num_rows(), 324u);
   // Every level appears somewhere in 1 .. 1e8 facets except possibly small_count.
   std::size_t smooth = doc["summary"]["chosen"]["smooth"], exact = doc["summary"]["chosen"]["exact"];
   EXPECT_GT(smooth, 0u);
   EXPECT_GT(exact, 0u);
   EXPECT_EQ(doc["summary"]["chooser_refuted"], 0);
-  EXPECT_EQ(unexpected_files(path("a"), {}).size(), 2u + 12u);
+  // adequacy.csv, .json, adequacy-levels.csv and per map its EXR, PNG and chart spec.
+  EXPECT_EQ(unexpected_files(path("a"), {}).size(), 3u + 18u);
   const auto& costs = doc["benchmark_costs"];
   ASSERT_TRUE(costs.is_object());
   EXPECT_EQ(costs["exact_ns_total"], 100.0 * 324);
@@ -82,6 +91,11 @@ TEST_F(AdequacyTest, OutputDoesNotDependOnThreads) {
   ASSERT_EQ(a.size(), b.size());
   ASSERT_GT(a.size(), 100u);
   for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(without_timing(a[i]), without_timing(b[i])) << i;
+  // The maps: the same cells, the same PNG bytes.
+  EXPECT_EQ(read_text(path("t1/adequacy-levels.csv")), read_text(path("t2/adequacy-levels.csv")));
+  const std::string map = "adequacy_deliot_belcour_light0_theta0.png";
+  EXPECT_EQ(read_text(path("t1") / map), read_text(path("t2") / map));
+  EXPECT_TRUE(chart_manifest(path("t1") / map).is_object());
 }
 
 TEST_F(AdequacyTest, BadInputIsOneLineAndWritesNothing) {
