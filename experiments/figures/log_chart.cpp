@@ -1,9 +1,7 @@
-// The raster category map and text of log_chart.h.
+// The 5×7 pixel text of log_chart.h.
 #include "experiments/figures/log_chart.h"
 
-#include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstdint>
 
 namespace glintlab::experiments {
@@ -66,107 +64,7 @@ constexpr Glyph kGlyphs[] = {
     {'|', {0x04, 0x04, 0x04, 0x04, 0x04, 0x04, 0x04}},
 };
 
-class Canvas {
- public:
-  Canvas(int w, int h) : img_(w, h, {"R", "G", "B"}) {
-    std::fill(img_.data.begin(), img_.data.end(), 1.0);
-  }
-  void set(int x, int y, Vec3<double> c) {
-    if (x < 0 || y < 0 || x >= img_.width || y >= img_.height) return;
-    img_.at(x, y, 0) = c.x, img_.at(x, y, 1) = c.y, img_.at(x, y, 2) = c.z;
-  }
-  void rect(int x0, int y0, int x1, int y1, Vec3<double> c) {
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) set(x, y, c);
-  }
-  void line(double x0, double y0, double x1, double y1, Vec3<double> c, bool dashed = false) {
-    const int n = int(std::ceil(std::max(std::abs(x1 - x0), std::abs(y1 - y0)))) + 1;
-    for (int i = 0; i <= n; ++i) {
-      if (dashed && (i / 4) % 2 == 1) continue;
-      const double t = double(i) / n;
-      const int x = int(std::lround(x0 + t * (x1 - x0))), y = int(std::lround(y0 + t * (y1 - y0)));
-      set(x, y, c);
-      set(x, y + 1, c);
-    }
-  }
-  // Text with its top-left corner at (x, y); `vertical` runs it bottom to top.
-  void text(int x, int y, const std::string& s, Vec3<double> c, bool vertical = false) {
-    int k = 0;
-    for (char ch : s) {
-      const char u = (ch >= 'a' && ch <= 'z') ? char(ch - 'a' + 'A') : ch;
-      for (const Glyph& g : kGlyphs) {
-        if (g.c != u) continue;
-        for (int r = 0; r < 7; ++r)
-          for (int col = 0; col < 5; ++col) {
-            if (!((g.rows[std::size_t(r)] >> (4 - col)) & 1)) continue;
-            if (vertical)
-              set(x + r, y - 6 * k - col, c);
-            else
-              set(x + 6 * k + col, y + r, c);
-          }
-      }
-      ++k;
-    }
-  }
-  Image take() { return std::move(img_); }
-
- private:
-  Image img_;
-};
-
 }  // namespace
-
-Image draw_category_map(const CategoryMap& map, int cell_width, int cell_height) {
-  const int cols = int(map.column_labels.size()), rows = int(map.row_labels.size());
-  std::size_t row_label_chars = 0;
-  for (const std::string& l : map.row_labels) row_label_chars = std::max(row_label_chars, l.size());
-  const int left = 24 + 6 * int(row_label_chars), top = 28, legend_w = 170, bottom = 44;
-  const int width = left + cols * cell_width + 16 + legend_w;
-  const int height = top + std::max(rows * cell_height, 14 * int(map.category_names.size()) + 30) +
-                     bottom;
-  Canvas c(width, height);
-  const Vec3<double> ink{0, 0, 0}, none{0.8, 0.8, 0.8};
-  const int plot_bottom = top + rows * cell_height;
-  for (int r = 0; r < rows; ++r) {
-    const int y1 = plot_bottom - r * cell_height - 1, y0 = y1 - cell_height + 2;
-    for (int k = 0; k < cols; ++k) {
-      const int cat = map.cells[std::size_t(r)][std::size_t(k)];
-      const Vec3<double> col =
-          cat >= 0 && cat < int(map.category_colors.size()) ? map.category_colors[std::size_t(cat)]
-                                                            : none;
-      c.rect(left + k * cell_width + 1, y0, left + (k + 1) * cell_width - 1, y1, col);
-    }
-    c.text(left - 6 * int(map.row_labels[std::size_t(r)].size()) - 4, y0 + cell_height / 2 - 4,
-           map.row_labels[std::size_t(r)], ink);
-    if (std::size_t(r) < map.marker_column.size() && std::isfinite(map.marker_column[std::size_t(r)])) {
-      const double x = left + (map.marker_column[std::size_t(r)] + 0.5) * cell_width;
-      if (x >= left && x <= left + cols * cell_width) {
-        c.rect(int(x) - 1, y0 - 1, int(x) + 1, y1 + 1, ink);
-      }
-    }
-  }
-  for (int k = 0; k < cols; ++k)
-    c.text(left + k * cell_width + cell_width / 2 - 3 * int(map.column_labels[std::size_t(k)].size()),
-           plot_bottom + 5, map.column_labels[std::size_t(k)], ink);
-  c.line(left, top, left, plot_bottom, ink);
-  c.line(left, plot_bottom, left + cols * cell_width, plot_bottom, ink);
-  c.text(8, 8, map.title, ink);
-  c.text(left + cols * cell_width / 2 - 3 * int(map.x_label.size()), plot_bottom + 22, map.x_label,
-         ink);
-  c.text(4, top + rows * cell_height / 2 + 3 * int(map.y_label.size()), map.y_label, ink, true);
-  int ly = top + 4;
-  const int lx = left + cols * cell_width + 16;
-  for (std::size_t k = 0; k < map.category_names.size(); ++k) {
-    c.rect(lx, ly, lx + 10, ly + 8, map.category_colors[k]);
-    c.text(lx + 16, ly + 1, map.category_names[k], ink);
-    ly += 14;
-  }
-  if (!map.marker_name.empty()) {
-    c.rect(lx + 4, ly - 1, lx + 6, ly + 9, ink);
-    c.text(lx + 16, ly + 1, map.marker_name, ink);
-  }
-  return c.take();
-}
 
 void draw_text(Image& image, int x, int y, const std::string& text, Vec3<double> color) {
   int k = 0;
