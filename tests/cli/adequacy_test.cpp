@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cstdlib>
 #include <filesystem>
 #include <set>
 #include <nlohmann/json.hpp>
@@ -96,6 +97,28 @@ TEST_F(AdequacyTest, OutputDoesNotDependOnThreads) {
   const std::string map = "adequacy_deliot_belcour_light0_theta0.png";
   EXPECT_EQ(read_text(path("t1") / map), read_text(path("t2") / map));
   EXPECT_TRUE(chart_manifest(path("t1") / map).is_object());
+}
+
+// The maps' chart script failing is the run's one-line error, exit 2, and no map PNG (the script
+// here is a stand-in that fails as figure_charts.py does on a bad spec; the table is written).
+TEST_F(AdequacyTest, AFailedMapChartIsOneLineAndNoMap) {
+  const fs::path reports = work().parent_path() / "failing_reports";
+  fs::create_directories(reports);
+  write_text(reports / "figure_charts.py",
+             "import sys\nprint('glintlab: error: charts: adequacy_x.chart.json: "
+             "adequacy-levels.csv has no column \\'boundary\\'', file=sys.stderr)\nsys.exit(2)\n");
+  ::setenv("GLINTLAB_REPORTS_DIR", reports.c_str(), 1);
+  const RunResult r = run({"adequacy", "--models", "deliot_belcour", "--out", "a"});
+  ::unsetenv("GLINTLAB_REPORTS_DIR");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  const auto err = lines_of(r.err);
+  ASSERT_FALSE(err.empty());
+  EXPECT_EQ(err.back(),
+            "glintlab: error: charts: adequacy_x.chart.json: adequacy-levels.csv has no column "
+            "'boundary'")
+      << r.err;
+  for (const auto& e : fs::directory_iterator(path("a")))
+    EXPECT_NE(e.path().extension(), ".png") << e.path();
 }
 
 TEST_F(AdequacyTest, BadInputIsOneLineAndWritesNothing) {
