@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli/child_process.h"
 #include "cli/commands.h"
 #include "cli/input.h"
 #include "cli/progress.h"
@@ -185,7 +186,8 @@ adequacy/<model>/level=<level>/<isa> rows of glintlab_bench_glints at the ISA gl
 exact level everywhere. Writes DIR/adequacy.csv and adequacy.json (the
 table, with each level's measured ns per evaluation: the only numbers that vary run to run) and
 per model x light x incidence an EXR and a labelled PNG map of the cheapest adequate level, with
-the predicted boundary CV = sqrt((1 - p)/(N_P p)) = TAU drawn over it.
+the predicted boundary CV = sqrt((1 - p)/(N_P p)) = TAU drawn over it (drawn by matplotlib,
+reports/figure_charts.py, from its MAP.chart.json and the maps' cells in adequacy-levels.csv).
 The Kemppinen family (kemppinen_ggx, kemppinen_beckmann) has nine levels, cheapest first: smooth
 (the base NDF in place of the glinty one), then Algorithm 1 with k = 1, 4, 9, 16 neighbours, each
 with the rational erf before the exact one in the compensation; the most complete is k16_exact.
@@ -312,6 +314,7 @@ AdequacyRunSummary run_adequacy_request(const AdequacyRequest& o) {
       bar.step("cells");
     };
     run.table = experiments::run_adequacy(o.out, a);
+    draw_figure_charts(o.out);  // the maps, drawn by matplotlib from their chart specs
     if (a.costs) {
       run.costs_source = a.costs->source;
       run.costs_isa = a.costs->isa;
@@ -349,6 +352,7 @@ void merge_adequacy_shards(const std::vector<std::string>& dirs,
   }
   register_staging_parent(out);
   const experiments::AdequacySummary s = experiments::write_adequacy(out, o, cells);
+  draw_figure_charts(out);  // the maps, drawn by matplotlib from their chart specs
   fmt::print("adequacy: {} cells from {} shards; wrote {}, {} and {} maps\n",
              cells.binomial.size() + cells.kemppinen.size(), dirs.size(), s.csv.string(),
              s.json.string(), s.maps.size());

@@ -23,12 +23,13 @@ With "kind": "categories" (a map of categories, e.g. the level chosen per cell),
 {"title", "where", "x": {"column", "label", "log"} (its distinct values, one column each, in
 order), "y": {"columns", "format", "label"} (one row per distinct tuple, in the CSV's order,
 bottom to top), "value": {"column", "label"}, "categories": [{"value", "label", "color"}],
-"marker": {"column", "label"} (per row, an x value drawn as a bar between the columns)}; the
-categories are its colour bar. With "kind": "heatmap" (a number over a grid: parameters, or the
+"marker": {"column", "label"} (per row, an x value drawn as a bar between the columns),
+"y": {"invert": true} for an image's pixel rows}; the categories are its colour bar. With "kind": "heatmap" (a number over a grid: parameters, or the
 pixels of an image with "y": {"invert": true}), "value": {"column", "label", "log", "range",
 "cmap"} is drawn on a colour bar, and "flags": [{"column", "value", "label", "color", "style":
 "outline"|"fill"}] mark cells (outlined and hatched, or filled with the colour), named in the
-legend with their counts; cells without a value are grey and named ("empty_label").
+legend with their counts; cells without a value are grey and named ("empty_label"). A panel's
+own "kind" overrides the chart's (e.g. a heat map beside a map of categories).
 A value in "where" matches a cell equal to it as text or, when both are numbers, as a number.
 """
 
@@ -63,7 +64,8 @@ def _number(cell):
 def _matches(row, where):
     for col, want in (where or {}).items():
         cell = row[col]
-        a, b = _number(cell), _number(want)
+        b = _number(want)
+        a = _number(cell) if b is not None else None  # a text value: no number to parse
         if a is not None and b is not None:
             if a != b:
                 return False
@@ -264,6 +266,8 @@ def draw_categories(ax, fig, spec_name, csv_name, header, rows, panel):
     ax.set_xticks(xi)
     ax.set_xticklabels(xl, fontsize=6)
     _y_ticks(ax, spec_name, csv_name, y, ycols, ykeys)
+    if y.get("invert"):  # image rows: the first at the top
+        ax.invert_yaxis()
     ax.set_xlabel(x["label"], fontsize=8)
     ax.set_ylabel(y["label"], fontsize=8)
     ax.set_title(panel["title"], fontsize=8)
@@ -417,10 +421,13 @@ def draw_chart(spec_path):
         if kind not in KINDS:
             raise ChartError(f"{spec_name}: kind '{kind}' (valid: {', '.join(KINDS)})")
         for ax, panel in zip(axes.flat, spec["panels"]):
-            if kind == "lines":
+            own = panel.get("kind", kind)  # a panel may be of another kind than the chart's
+            if own not in KINDS:
+                raise ChartError(f"{spec_name}: panel kind '{own}' (valid: {', '.join(KINDS)})")
+            if own == "lines":
                 draw_panel(ax, spec_name, csv_name, header, rows, panel)
             else:
-                KINDS[kind](ax, fig, spec_name, csv_name, header, rows, panel)
+                KINDS[own](ax, fig, spec_name, csv_name, header, rows, panel)
         fig.suptitle(f"{title}\n(from {csv_name})", fontsize=9)
         fig.tight_layout(rect=(0, 0, 1, 0.93))
         png = spec_path[:-len(SPEC_SUFFIX)] + ".png"

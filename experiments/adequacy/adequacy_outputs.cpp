@@ -10,8 +10,6 @@
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"
-#include "core/io/png.h"
-#include "experiments/figures/log_chart.h"
 #include "verify/stats/multiple_testing.h"
 
 namespace glintlab::experiments {
@@ -23,10 +21,8 @@ using verify::adequacy::LevelStats;
 
 const std::array<Vec3<double>, 4>& kLevelColors = kAdequacyLevelColors;
 
-std::string short_number(double x) {
-  if (x >= 1000) return fmt::format("1e{}", int(std::lround(std::log10(x))));
-  return fmt::format("{:g}", x);
-}
+// The cells of every map of a run (write_level_maps_csv), which their chart specs draw.
+constexpr const char* kLevelsCsv = "adequacy-levels.csv";
 
 // The adequate level of least benchmark cost in a cell, and the costs of its model.
 struct BenchPrice {
@@ -169,6 +165,54 @@ nlohmann::json rate_json(const verify::adequacy::DecisionRateRow& r) {
 
 }  // namespace
 
+void write_level_maps_csv(const std::filesystem::path& csv,
+                          const std::vector<const AdequacyLevelMap*>& maps) {
+  io::write_csv_atomic(
+      csv, {"map", "row", "row_label", "footprint", "level", "level_name", "boundary"},
+      [&](io::CsvWriter& w) {
+        for (const AdequacyLevelMap* m : maps) {
+          const LevelChart& c = m->map;
+          for (std::size_t r = 0; r < c.cells.size(); ++r)
+            for (std::size_t k = 0; k < c.cells[r].size(); ++k) {
+              const int level = c.cells[r][k];
+              if (level < 0) continue;  // no value: the chart draws the cell grey
+              w.cell(m->stem).cell_int((long long)r).cell(c.row_labels[r]).cell(c.columns[k]);
+              w.cell_int(level).cell(c.category_names[std::size_t(level)]);
+              w.cell(c.marker[r]).end_row();  // nan: no predicted boundary in the row
+            }
+        }
+      });
+}
+
+void write_level_maps_chart(const std::filesystem::path& png, const std::string& csv_name,
+                            const std::string& title,
+                            const std::vector<const AdequacyLevelMap*>& maps, int columns) {
+  nlohmann::json panels = nlohmann::json::array();
+  for (const AdequacyLevelMap* m : maps) {
+    const LevelChart& c = m->map;
+    nlohmann::json categories = nlohmann::json::array();
+    for (std::size_t l = 0; l < c.category_names.size(); ++l) {
+      const Vec3<double> rgb = c.category_colors[l];
+      categories.push_back(
+          {{"value", l}, {"label", c.category_names[l]}, {"color", {rgb.x, rgb.y, rgb.z}}});
+    }
+    panels.push_back(
+        {{"title", c.title},
+         {"where", {{"map", m->stem}}},
+         {"x", {{"column", "footprint"}, {"label", c.x_label}, {"log", true}}},
+         {"y",
+          {{"columns", {"row", "row_label"}}, {"format", "{row_label}"}, {"label", c.y_label}}},
+         {"value", {{"column", "level"}, {"label", "cheapest adequate level"}}},
+         {"categories", categories},
+         {"marker", {{"column", "boundary"}, {"label", c.marker_name}}}});
+  }
+  nlohmann::json spec = {
+      {"kind", "categories"}, {"image", png.filename().string()}, {"title", title},
+      {"csv", csv_name},      {"columns", std::max(1, columns)},  {"panels", panels}};
+  std::filesystem::path sidecar = png;
+  io::write_file_atomic(sidecar.replace_extension(".chart.json"), spec.dump(1) + "\n");
+}
+
 std::vector<AdequacyLevelMap> adequacy_level_maps(const std::vector<CellResult>& rows,
                                                   const verify::adequacy::GridAxes& axes,
                                                   double threshold) {
@@ -185,13 +229,13 @@ std::vector<AdequacyLevelMap> adequacy_level_maps(const std::vector<CellResult>&
     m.theta_i_deg = first.cell.theta_i_deg;
     m.stem = fmt::format("adequacy_{}_light{:g}_theta{:g}", first.cell.model,
                          first.cell.light_half_angle_deg, first.cell.theta_i_deg);
-    CategoryMap& map = m.map;
+    LevelChart& map = m.map;
     map.title = fmt::format(
         "{}: cheapest level within TAU = {:g} (light {:g} deg, theta_i {:g} deg)", first.cell.model,
         threshold, first.cell.light_half_angle_deg, first.cell.theta_i_deg);
-    map.x_label = "footprint size N_P (expected facets)";
-    map.y_label = "alpha, theta_h (deg)";
-    for (double n : axes.facets) map.column_labels.push_back(short_number(n));
+    map.x_label = "footprint size N_P [expected facets]";
+    map.y_label = "alpha [1], theta_h [deg]";
+    map.columns = axes.facets;
     for (std::string_view l : kBinomialLevelNames) map.category_names.emplace_back(l);
     map.category_colors.assign(kLevelColors.begin(), kLevelColors.end());
     map.marker_name = "predicted: CV = TAU";
@@ -210,16 +254,9 @@ std::vector<AdequacyLevelMap> adequacy_level_maps(const std::vector<CellResult>&
         for (std::size_t ch = 0; ch < 6; ++ch) m.exr.at(int(k), int(r), ch) = v[ch];
       }
       map.cells.push_back(cats);
-      // The predicted boundary: CV_pred = TAU at N* = (1 − p)/(p TAU²), in column units (the
-      // columns are evenly spaced in log N_P).
+      // The predicted boundary: CV_pred = TAU at N* = (1 − p)/(p TAU²).
       const double p = row0.p;
-      double marker = NAN;
-      if (p > 0 && p < 1 && n_cols > 1) {
-        const double star = (1 - p) / (p * threshold * threshold);
-        const double l0 = std::log10(axes.facets.front()), l1 = std::log10(axes.facets.back());
-        marker = (std::log10(star) - l0) / (l1 - l0) * double(n_cols - 1);
-      }
-      map.marker_column.push_back(marker);
+      map.marker.push_back(p > 0 && p < 1 ? (1 - p) / (p * threshold * threshold) : NAN);
     }
     out.push_back(std::move(m));
   }
@@ -288,12 +325,12 @@ std::vector<AdequacyLevelMap> kemppinen_level_maps(
     m.model = first.cell.model;
     m.theta_i_deg = first.cell.theta_i_deg;
     m.stem = fmt::format("adequacy_{}_theta{:g}", first.cell.model, first.cell.theta_i_deg);
-    CategoryMap& map = m.map;
+    LevelChart& map = m.map;
     map.title = fmt::format("{}: cheapest level within TAU = {:g} of k16_exact (theta_i {:g} deg)",
                             first.cell.model, threshold, first.cell.theta_i_deg);
-    map.x_label = "footprint size (expected points)";
-    map.y_label = "alpha, theta_h (deg)";
-    for (double n : axes.points) map.column_labels.push_back(short_number(n));
+    map.x_label = "footprint size [expected points]";
+    map.y_label = "alpha [1], theta_h [deg]";
+    map.columns = axes.points;
     for (std::string_view l : kKemppinenLevelNames) map.category_names.emplace_back(l);
     map.category_colors.assign(kKemppinenLevelColors.begin(), kKemppinenLevelColors.end());
     map.marker_name = "predicted: smooth adequate";
@@ -310,16 +347,15 @@ std::vector<AdequacyLevelMap> kemppinen_level_maps(
         for (std::size_t ch = 0; ch < 4; ++ch) m.exr.at(int(k), int(r), ch) = v[ch];
       }
       map.cells.push_back(cats);
-      // The predicted smooth boundary (kemppinen_boundaries), in column units.
+      // The predicted smooth boundary (kemppinen_boundaries).
       const std::size_t global_row = start / n_cols + r;
       const std::size_t per_row = verify::adequacy::kKemppinenBoundaryLevels.size();
       double marker = NAN;
-      if (global_row * per_row < boundaries.size() && n_cols > 1) {
+      if (global_row * per_row < boundaries.size()) {
         const double star = boundaries[global_row * per_row].predicted;  // smooth first
-        const double l0 = std::log10(axes.points.front()), l1 = std::log10(axes.points.back());
-        if (star > 0) marker = (std::log10(star) - l0) / (l1 - l0) * double(n_cols - 1);
+        if (star > 0) marker = star;
       }
-      map.marker_column.push_back(marker);
+      map.marker.push_back(marker);
     }
     out.push_back(std::move(m));
   }
@@ -388,14 +424,24 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
   sum.json = out / "adequacy.json";
   write_csv(sum.csv, rows, kemppinen_rows, o.costs);
 
+  const std::vector<AdequacyLevelMap> binomial_maps = adequacy_level_maps(rows, axes, o.threshold);
+  const std::vector<verify::adequacy::KemppinenBoundary> boundaries =
+      verify::adequacy::kemppinen_boundaries(kemppinen_rows, kemppinen_axes, o.threshold);
+  const std::vector<AdequacyLevelMap> kemppinen_maps =
+      kemppinen_level_maps(kemppinen_rows, kemppinen_axes, o.threshold, boundaries);
+  std::vector<const AdequacyLevelMap*> every_map;
+  for (const auto* family : {&binomial_maps, &kemppinen_maps})
+    for (const AdequacyLevelMap& m : *family) every_map.push_back(&m);
+  if (!every_map.empty()) write_level_maps_csv(out / kLevelsCsv, every_map);
   nlohmann::json maps = nlohmann::json::array();
-  for (const AdequacyLevelMap& m : adequacy_level_maps(rows, axes, o.threshold)) {
+  for (const AdequacyLevelMap& m : binomial_maps) {
     // EXR rows: row 0 = the first (α, θ_h) row, as the PNG's bottom row.
     io::write_exr(out / (m.stem + ".exr"), m.exr,
                   {{"glintlab_columns", "N_P: " + fmt::format("{}", fmt::join(axes.facets, ", "))},
                    {"glintlab_rows", fmt::format("{}", fmt::join(m.map.row_labels, "; "))},
                    {"glintlab_levels", "0 smooth, 1 realtime, 2 small_count, 3 exact"}});
-    io::write_png_preview(out / (m.stem + ".png"), draw_category_map(m.map));
+    write_level_maps_chart(out / (m.stem + ".png"), kLevelsCsv,
+                           "cheapest adequate level per cell, binomial family", {&m});
     sum.maps.push_back(m.stem + ".png");
     maps.push_back({{"family", kBinomialFamily},
                     {"model", m.model},
@@ -404,10 +450,7 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
                     {"png", m.stem + ".png"},
                     {"exr", m.stem + ".exr"}});
   }
-  const std::vector<verify::adequacy::KemppinenBoundary> boundaries =
-      verify::adequacy::kemppinen_boundaries(kemppinen_rows, kemppinen_axes, o.threshold);
-  for (const AdequacyLevelMap& m :
-       kemppinen_level_maps(kemppinen_rows, kemppinen_axes, o.threshold, boundaries)) {
+  for (const AdequacyLevelMap& m : kemppinen_maps) {
     io::write_exr(
         out / (m.stem + ".exr"), m.exr,
         {{"glintlab_columns",
@@ -415,7 +458,8 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
          {"glintlab_rows", fmt::format("{}", fmt::join(m.map.row_labels, "; "))},
          {"glintlab_levels", "0 smooth, 1 k1_rational, 2 k1_exact, 3 k4_rational, 4 k4_exact, "
                              "5 k9_rational, 6 k9_exact, 7 k16_rational, 8 k16_exact"}});
-    io::write_png_preview(out / (m.stem + ".png"), draw_category_map(m.map));
+    write_level_maps_chart(out / (m.stem + ".png"), kLevelsCsv,
+                           "cheapest adequate level per cell, Kemppinen family", {&m});
     sum.maps.push_back(m.stem + ".png");
     maps.push_back({{"family", kKemppinenFamily},
                     {"model", m.model},

@@ -3,8 +3,10 @@
 // `family`; adequacy.json, the same with the decision's settings and a cost summary) and per
 // model × light × incidence (Kemppinen: model × incidence) one map of the chosen level over
 // footprint size × (roughness, half-vector angle): EXR (chosen level, chooser, measured and
-// predicted CV and P(no glint)) and a labelled PNG with the predicted boundary drawn over the
-// measured levels (binomial: CV_pred = TAU; Kemppinen: the smooth level's, kemppinen_boundaries).
+// predicted CV and P(no glint)), its cells in adequacy-levels.csv and a chart spec
+// (<map>.chart.json) from which reports/figure_charts.py draws the labelled <map>.png with the
+// predicted boundary over the measured levels (binomial: CV_pred = TAU; Kemppinen: the smooth
+// level's, kemppinen_boundaries); `glintlab adequacy` runs it on the output folder.
 #pragma once
 
 #include <array>
@@ -17,7 +19,6 @@
 #include "core/math/vec.h"
 #include "core/render/image.h"
 #include "experiments/adequacy/level_costs.h"
-#include "experiments/figures/log_chart.h"
 #include "verify/adequacy/binomial_adequacy.h"
 #include "verify/adequacy/decision_calibration.h"
 #include "verify/adequacy/kemppinen_adequacy.h"
@@ -115,6 +116,21 @@ std::vector<std::string> kemppinen_models(const std::vector<std::string>& models
 verify::adequacy::Decision table_decision(const AdequacyOptions& o);
 std::size_t table_decisions(const AdequacyOptions& o);
 
+// A map of the level chosen per cell, as its chart draws it: cells over footprint sizes (columns,
+// log-spaced) × rows (bottom to top), each in its level's colour, and per row the predicted
+// boundary as a footprint size.
+struct LevelChart {
+  std::string title;
+  std::string x_label, y_label;  // with their units in brackets
+  std::vector<double> columns;   // the footprint size of each column
+  std::vector<std::string> row_labels;
+  std::vector<std::string> category_names;
+  std::vector<Vec3<double>> category_colors;
+  std::vector<std::vector<int>> cells;  // [row][column] level index (-1: none, drawn grey)
+  std::vector<double> marker;           // per row: the predicted boundary (NaN: none)
+  std::string marker_name;
+};
+
 // One map of the measured table, per model × light × incidence: the chosen level over footprint
 // size N_P (columns) × (α, θ_h) (rows, bottom to top) as a labelled category map with the predicted
 // smooth boundary CV_pred = TAU drawn per row, and as an EXR of one pixel per cell (channels
@@ -123,9 +139,20 @@ struct AdequacyLevelMap {
   std::string stem;  // adequacy_<model>_light<deg>_theta<deg>
   std::string model;
   double light_half_angle_deg = 0, theta_i_deg = 0;
-  CategoryMap map;
+  LevelChart map;
   Image exr;
 };
+
+// The maps' cells as data, one CSV row per cell (map = the stem, row, row_label, footprint,
+// level, level_name, boundary: nan where the row has none), written atomically.
+void write_level_maps_csv(const std::filesystem::path& csv,
+                          const std::vector<const AdequacyLevelMap*>& maps);
+// The chart spec of `png` (written beside it as NAME.chart.json, atomically): `maps`, one panel
+// each (columns panels per row) under `title`, drawn from `csv_name` (write_level_maps_csv, in
+// the same folder) as maps of categories by reports/figure_charts.py.
+void write_level_maps_chart(const std::filesystem::path& png, const std::string& csv_name,
+                            const std::string& title,
+                            const std::vector<const AdequacyLevelMap*>& maps, int columns = 1);
 // `rows` in make_grid's order for `axes`.
 std::vector<AdequacyLevelMap> adequacy_level_maps(
     const std::vector<verify::adequacy::CellResult>& rows, const verify::adequacy::GridAxes& axes,

@@ -1,8 +1,10 @@
 // Figure adequacy-maps: the adequacy table of the binomial family measured at the budget's grid
-// (the table `glintlab adequacy` writes), drawn as one labelled sheet (adequacy-maps.png: a title,
-// then each model × light × incidence map with its own title, axes with units, the levels' legend
-// and the predicted smooth boundary), each map's PNG and EXR, a CSV of every cell's chosen level
-// and the chooser's, and summary.md with the counts per model and level.
+// (the table `glintlab adequacy` writes), drawn by matplotlib as one labelled sheet
+// (adequacy-maps.png: a title, then each model × light × incidence map with its own title, axes
+// with units, the levels' colour scale and the predicted smooth boundary), each map's PNG and EXR,
+// a CSV of every cell's chosen level and the chooser's, the maps' cells as drawn
+// (adequacy-maps-levels.csv, with the chart specs) and summary.md with the counts per model and
+// level.
 #include "experiments/figures/adequacy_maps.h"
 
 #include <fmt/format.h>
@@ -20,9 +22,7 @@
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"
-#include "core/io/png.h"
 #include "experiments/adequacy/adequacy_outputs.h"
-#include "experiments/figures/log_chart.h"
 
 namespace glintlab::experiments {
 namespace {
@@ -30,26 +30,6 @@ namespace {
 namespace adq = verify::adequacy;
 
 constexpr std::string_view kId = "adequacy-maps";
-
-// The maps stacked `columns` wide under a title line, each at its own size, left-aligned.
-Image sheet(const std::vector<Image>& maps, int columns, const std::string& title) {
-  const int gap = 12, top = 24;
-  int cell_w = 0, cell_h = 0;
-  for (const Image& m : maps)
-    cell_w = std::max(cell_w, m.width), cell_h = std::max(cell_h, m.height);
-  const int rows = (int(maps.size()) + columns - 1) / columns;
-  Image out(columns * (cell_w + gap) + gap, top + rows * (cell_h + gap), {"R", "G", "B"});
-  std::fill(out.data.begin(), out.data.end(), 1.0);
-  draw_text(out, gap, 8, title, {0, 0, 0});
-  for (std::size_t k = 0; k < maps.size(); ++k) {
-    const int ox = gap + int(k) % columns * (cell_w + gap),
-              oy = top + int(k) / columns * (cell_h + gap);
-    for (int y = 0; y < maps[k].height; ++y)
-      for (int x = 0; x < maps[k].width; ++x)
-        for (std::size_t c = 0; c < 3; ++c) out.at(ox + x, oy + y, c) = maps[k].at(x, y, c);
-  }
-  return out;
-}
 
 void run_adequacy_maps(const FigureContext& ctx) {
   std::unique_ptr<tbb::global_control> limit;
@@ -73,10 +53,21 @@ void run_adequacy_maps(const FigureContext& ctx) {
   const std::vector<adq::CellResult> rows = measure_adequacy(o);
   const std::vector<AdequacyLevelMap> maps = adequacy_level_maps(rows, axes, o.threshold);
 
-  std::vector<Image> images;
+  // The maps' cells as data; each map's chart and the sheet of all of them drawn from it by
+  // reports/figure_charts.py (FigureContext::finish).
+  const std::string levels_csv = "adequacy-maps-levels.csv";
+  std::vector<const AdequacyLevelMap*> every_map;
+  for (const AdequacyLevelMap& m : maps) every_map.push_back(&m);
+  write_level_maps_csv(ctx.dir / levels_csv, every_map);
+  const std::string title = fmt::format(
+      "adequacy-maps: binomial family, cheapest level within TAU = {:g} per cell ({} positions "
+      "per cell, other families not measured)",
+      o.threshold, axes.samples);
+  write_level_maps_chart(ctx.dir / "adequacy-maps.png", levels_csv, title, every_map, 2);
   for (const AdequacyLevelMap& m : maps) {
-    images.push_back(draw_category_map(m.map));
-    io::write_png_preview(ctx.dir / (m.stem + ".png"), images.back());
+    write_level_maps_chart(ctx.dir / (m.stem + ".png"), levels_csv,
+                           "adequacy-maps: cheapest adequate level per cell, binomial family",
+                           {&m});
     io::write_exr(ctx.dir / (m.stem + ".exr"), m.exr,
                   {{"glintlab_figure", std::string(kId)},
                    {"glintlab_version", std::string(glintlab_version())},
@@ -84,13 +75,6 @@ void run_adequacy_maps(const FigureContext& ctx) {
                    {"glintlab_rows", fmt::format("{}", fmt::join(m.map.row_labels, "; "))},
                    {"glintlab_levels", "0 smooth, 1 realtime, 2 small_count, 3 exact"}});
   }
-  io::write_png_preview(
-      ctx.dir / "adequacy-maps.png",
-      sheet(images, 2,
-            fmt::format("adequacy-maps: binomial family, cheapest level within TAU = {:g} "
-                        "per cell ({} positions per cell, other families not measured)",
-                        o.threshold, axes.samples)));
-
   io::write_csv_atomic(
       ctx.dir / "adequacy-maps.csv",
       {"model", "light_half_angle_deg", "theta_i_deg", "alpha", "theta_h_deg", "facets", "p",

@@ -1,15 +1,16 @@
 // Figure adequacy-scene: per validation scene (verify/claims/adequacy_scenes.h; the binomial
 // family's six and the Kemppinen family's four, rendered by the claim's own render_choice_scene)
-// a row of four panels — the render with each pixel's chosen level, the render with the family's
-// most complete level everywhere (exact counting; k16_exact),
-// the difference map (the larger of the mean's relative difference and the CV difference over the
-// pixel's realisations, in units of TAU) and the map of the chosen level — as one labelled PNG
-// (adequacy-scene.png: title, column and row labels, colour scale, level legend), the plain montage
-// with its panels.json, one EXR per scene (every per-pixel quantity), a CSV of per-scene counts
-// per family (adequacy-scene.csv, adequacy-scene-kemppinen.csv) and summary.md; given benchmark
-// data (--bench-from), each scene's time per evaluation with the chosen levels against exact
-// counting everywhere (adequacy-scene-cost.csv, summary.md; binomial scenes only: the benchmark
-// prices the binomial levels).
+// the render with each pixel's chosen level, the render with the family's most complete level
+// everywhere (exact counting; k16_exact), the difference map (the larger of the mean's relative
+// difference and the CV difference over the pixel's realisations, in units of TAU) and the map of
+// the chosen level: the difference and level maps as one labelled sheet drawn by matplotlib
+// (adequacy-scene.png from adequacy-scene-pixels.csv and its chart spec: titles, axes, colour
+// scales, legends), the four panels as the plain montage panels.png with its panels.json, one EXR
+// per scene (every per-pixel quantity), a CSV of per-scene counts per family (adequacy-scene.csv,
+// adequacy-scene-kemppinen.csv) and summary.md; given benchmark data (--bench-from), each
+// scene's time per evaluation with the chosen levels against exact counting everywhere
+// (adequacy-scene-cost.csv, summary.md; binomial scenes only: the benchmark prices the binomial
+// levels).
 #include "experiments/figures/adequacy_scene.h"
 
 #include <fmt/format.h>
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -34,7 +36,6 @@
 #include "experiments/adequacy/adequacy_outputs.h"
 #include "experiments/adequacy/level_costs.h"
 #include "experiments/figures/bench_json.h"
-#include "experiments/figures/log_chart.h"
 #include "experiments/figures/panel_layout.h"
 #include "verify/claims/adequacy_scenes.h"
 #include "verify/stats/multiple_testing.h"
@@ -50,7 +51,6 @@ constexpr double kScaleMaxTau = 2;
 const Vec3<double> kOffSurface{0.8, 0.8, 0.8};  // no surface, or the light below its horizon
 const Vec3<double> kDark{0.45, 0.45, 0.45};     // exact level lit too rarely to measure
 const Vec3<double> kExceeds{0.9, 0.0, 0.9};     // a lower bound above TAU
-const Vec3<double> kInk{0, 0, 0};
 
 struct SceneResult {
   adq::SceneRender render;
@@ -157,102 +157,103 @@ const char* kColumnNames[4] = {"chosen level", "most complete level", "differenc
 // How the sheet's title describes a family's renders.
 struct FamilyLine {
   std::string_view family, complete;
-  int width = 0, height = 0, realisations = 0, zoom = 1;
+  int width = 0, height = 0, realisations = 0;
 };
 
-// The labelled sheet: title, column labels, per scene a label line and the four panels (every
-// panel o.width × o.height on the sheet); at the right the difference map's colour scale and both
-// families' level legends.
-Image labelled_sheet(const std::vector<SceneResult>& scenes, const adq::SceneOptions& o,
-                     const std::vector<FamilyLine>& families) {
-  const int s = o.width, gap = 6, left = 8, row_label = 14, legend_w = 230;
-  const int top = 44 + 12 * int(families.size());
-  const int row_h = row_label + o.height + gap;
-  std::vector<std::string> row_labels;
-  std::size_t longest = 0;
+// Every scene's pixels as data (the sheet's maps): the difference in TAU where it is measured
+// (nan off the surface, where the most complete level is dark, and where a bound exceeds TAU),
+// whether a bound exceeds TAU, whether the pixel is too dark to measure, and the chosen level
+// (-1 off the surface); pixels in image order, row 0 at the top.
+void write_pixels_csv(const std::filesystem::path& file, const std::vector<SceneResult>& results,
+                      double tau) {
+  io::write_csv_atomic(
+      file, {"scene", "x", "y", "difference", "exceeds", "dark", "level"}, [&](io::CsvWriter& w) {
+        for (const SceneResult& s : results) {
+          const adq::SceneRender& r = s.render;
+          for (int y = 0; y < r.height; ++y)
+            for (int x = 0; x < r.width; ++x) {
+              const adq::ScenePixel& p =
+                  r.pixels[std::size_t(y) * std::size_t(r.width) + std::size_t(x)];
+              const bool measured = p.surface && p.lit && !p.exceeds;
+              w.cell(r.scene.name).cell_int(x).cell_int(y);
+              w.cell(measured ? difference_in_tau(p, tau) : NAN);
+              w.cell_int(p.exceeds ? 1 : 0).cell_int(p.surface && !p.lit && !p.exceeds ? 1 : 0);
+              w.cell_int(p.surface ? p.level : -1).end_row();
+            }
+        }
+      });
+}
+
+nlohmann::json rgb(Vec3<double> c) { return {c.x, c.y, c.z}; }
+
+// The labelled sheet's spec (drawn by reports/figure_charts.py from the pixels' CSV): per scene
+// its difference map (a heat map on a 0 .. kScaleMaxTau TAU colour bar, the pixels over TAU and
+// the dark ones filled and counted) beside its chosen-level map (the family's levels as the
+// colour bar). The renders are the montage panels.png.
+void write_sheet_spec(const std::filesystem::path& png, const std::string& csv,
+                      const std::vector<SceneResult>& scenes, const adq::SceneOptions& o,
+                      const std::vector<FamilyLine>& families) {
+  std::string title = fmt::format(
+      "adequacy-scene: each pixel with its chosen level against the most complete level "
+      "everywhere (TAU = {}, GGX alpha {})",
+      o.tau, adq::kSceneAlpha);
+  for (const FamilyLine& l : families)
+    title += fmt::format("\n{} family: most complete {}, {}x{} pixels, {} realisations per pixel",
+                         l.family, l.complete, l.width, l.height, l.realisations);
+  const nlohmann::json x = {{"column", "x"}, {"label", "x [pixel]"}};
+  const nlohmann::json y = {
+      {"columns", {"y"}}, {"format", "{y}"}, {"label", "y [pixel]"}, {"invert", true}};
+  nlohmann::json panels = nlohmann::json::array();
   for (const SceneResult& r : scenes) {
-    row_labels.push_back(fmt::format("{} ({}, 1e{:g} {}/uv area): {} lit, {} cheaper, {} over TAU",
-                                     r.render.scene.name, r.render.scene.model,
-                                     r.render.scene.log10_density,
-                                     adq::is_kemppinen_scene(r.render.scene) ? "points" : "facets",
-                                     r.tally.lit, r.tally.cheaper, r.tally.exceeds));
-    longest = std::max(longest, row_labels.back().size());
+    const std::string name = fmt::format("{} ({})", r.render.scene.name, r.render.scene.model);
+    const std::string counts = fmt::format(
+        "1e{:g} {}/uv area: {} lit, {} cheaper, {} over TAU", r.render.scene.log10_density,
+        adq::is_kemppinen_scene(r.render.scene) ? "points" : "facets", r.tally.lit, r.tally.cheaper,
+        r.tally.exceeds);
+    const nlohmann::json where = {{"scene", r.render.scene.name}};
+    panels.push_back({{"kind", "heatmap"},
+                      {"title", fmt::format("{}: {}\n{}", name, kColumnNames[2], counts)},
+                      {"where", where},
+                      {"x", x},
+                      {"y", y},
+                      {"value",
+                       {{"column", "difference"},
+                        {"label", "difference / TAU [1] (max of mean and CV differences)"},
+                        {"range", {0.0, kScaleMaxTau}},
+                        {"cmap", "coolwarm"}}},
+                      {"flags",
+                       {{{"column", "exceeds"},
+                         {"value", 1},
+                         {"label", "exceeds TAU (bound)"},
+                         {"color", rgb(kExceeds)},
+                         {"style", "fill"}},
+                        {{"column", "dark"},
+                         {"value", 1},
+                         {"label", "dark: not measurable"},
+                         {"color", rgb(kDark)},
+                         {"style", "fill"}}}},
+                      {"empty_label", "off the surface"}});
+    nlohmann::json categories = nlohmann::json::array();
+    categories.push_back(
+        {{"value", -1}, {"label", "off the surface"}, {"color", rgb(kOffSurface)}});
+    for (std::size_t l = 0; l < std::size_t(r.kemppinen ? kKemppinenLevels : kBinomialLevels); ++l)
+      categories.push_back(
+          {{"value", l},
+           {"label", r.kemppinen ? kKemppinenLevelNames[l] : kBinomialLevelNames[l]},
+           {"color", rgb(r.kemppinen ? kKemppinenLevelColors[l] : kAdequacyLevelColors[l])}});
+    panels.push_back({{"kind", "categories"},
+                      {"title", fmt::format("{}: {}\n{}", name, kColumnNames[3], counts)},
+                      {"where", where},
+                      {"x", x},
+                      {"y", y},
+                      {"value", {{"column", "level"}, {"label", "chosen level"}}},
+                      {"categories", categories}});
   }
-  // The legend column right of the panels and of the row labels (6 pixels per character).
-  const int lx = std::max(left + 4 * (s + gap) + 10, left + 6 * int(longest) + 12);
-  const int width = lx + legend_w;
-  const int height = top + int(scenes.size()) * row_h + 30;
-  Image im(width, height, {"R", "G", "B"});
-  std::fill(im.data.begin(), im.data.end(), 1.0);
-  draw_text(im, left, 6,
-            fmt::format("adequacy-scene: each pixel with its chosen level against the most "
-                        "complete level everywhere (TAU = {}, GGX alpha {})",
-                        o.tau, adq::kSceneAlpha),
-            kInk);
-  for (std::size_t f = 0; f < families.size(); ++f) {
-    const FamilyLine& l = families[f];
-    draw_text(im, left, 18 + 12 * int(f),
-              fmt::format("{} family: most complete {}, {}x{} pixels{}, {} realisations per pixel",
-                          l.family, l.complete, l.width, l.height,
-                          l.zoom > 1 ? fmt::format(" (each shown {}x{})", l.zoom, l.zoom) : "",
-                          l.realisations),
-              kInk);
-  }
-  draw_text(im, left, 18 + 12 * int(families.size()),
-            "renders: radiance x exposure per scene (x, y: image pixels, 0.." + std::to_string(s) +
-                " on this sheet)",
-            kInk);
-  for (int c = 0; c < 4; ++c) draw_text(im, left + c * (s + gap), top - 12, kColumnNames[c], kInk);
-  for (std::size_t k = 0; k < scenes.size(); ++k) {
-    const int y0 = top + int(k) * row_h;
-    const SceneResult& r = scenes[k];
-    draw_text(im, left, y0 + 2, row_labels[k], kInk);
-    const Panel panels[4] = {Panel::kChosen, Panel::kExact, Panel::kDifference, Panel::kLevel};
-    for (int c = 0; c < 4; ++c)
-      blit(im, display_panel(r, panels[c], o.tau), left + c * (s + gap), y0 + row_label);
-  }
-  // Colour scale: a vertical bar from 0 (bottom) to kScaleMaxTau TAU (top).
-  const int bar_top = top + row_label, bar_h = std::max(2 * s, 120);
-  draw_text(im, lx, top - 12, "difference / TAU", kInk);
-  for (int y = 0; y < bar_h; ++y)
-    for (int x = 0; x < 16; ++x)
-      put(im, lx + x, bar_top + y, scale_colour(kScaleMaxTau * (1 - double(y) / (bar_h - 1))));
-  for (double tick : {0.0, 0.5, 1.0, 1.5, 2.0}) {
-    const int y = bar_top + int(std::lround((1 - tick / kScaleMaxTau) * (bar_h - 1)));
-    for (int x = 16; x < 21; ++x) put(im, lx + x, y, kInk);
-    draw_text(im, lx + 24, y - 3, fmt::format("{:g}{}", tick, tick == 1.0 ? " = TAU" : ""), kInk);
-  }
-  int ly = bar_top + bar_h + 16;
-  const auto entry = [&](Vec3<double> c, const std::string& name) {
-    for (int y = 0; y < 9; ++y)
-      for (int x = 0; x < 11; ++x) put(im, lx + x, ly + y, c);
-    draw_text(im, lx + 16, ly + 1, name, kInk);
-    ly += 14;
-  };
-  draw_text(im, lx, ly, "difference map", kInk);
-  ly += 14;
-  entry(kExceeds, "exceeds TAU (bound)");
-  entry(kDark, "dark: not measurable");
-  entry(kOffSurface, "off the surface");
-  ly += 8;
-  draw_text(im, lx, ly, "chosen level map", kInk);
-  ly += 14;
-  const bool any_kemppinen =
-      std::any_of(scenes.begin(), scenes.end(), [](const SceneResult& r) { return r.kemppinen; });
-  if (any_kemppinen) {
-    draw_text(im, lx, ly, "binomial family", kInk);
-    ly += 14;
-  }
-  for (std::size_t l = 0; l < kAdequacyLevelColors.size(); ++l)
-    entry(kAdequacyLevelColors[l], std::string(kBinomialLevelNames[l]));
-  if (any_kemppinen) {
-    draw_text(im, lx, ly, "kemppinen family", kInk);
-    ly += 14;
-    for (std::size_t l = 0; l < kKemppinenLevelColors.size(); ++l)
-      entry(kKemppinenLevelColors[l], std::string(kKemppinenLevelNames[l]));
-  }
-  entry(kOffSurface, "off the surface");
-  return im;
+  const nlohmann::json spec = {{"kind", "heatmap"}, {"image", png.filename().string()},
+                               {"title", title},    {"csv", csv},
+                               {"columns", 2},      {"panels", panels}};
+  std::filesystem::path sidecar = png;
+  io::write_file_atomic(sidecar.replace_extension(".chart.json"), spec.dump(1) + "\n");
 }
 
 Image montage(const std::vector<Image>& tiles, int columns, int gap) {
@@ -485,13 +486,12 @@ void run_adequacy_scene(const FigureContext& ctx) {
   if (ctx.progress)
     ctx.progress("adequacy-scene: scenes", long(scenes.size()), long(scenes.size()));
 
-  io::write_png_preview(
-      ctx.dir / "adequacy-scene.png",
-      labelled_sheet(results, o,
-                     {{"binomial", kBinomialLevelNames[std::size_t(BinomialLevel::kExact)], o.width,
-                       o.height, o.realisations, 1},
-                      {"kemppinen", kKemppinenLevelNames[std::size_t(KemppinenLevel::kK16Exact)],
-                       ko.width, ko.height, ko.realisations, zoom}}));
+  write_pixels_csv(ctx.dir / "adequacy-scene-pixels.csv", results, o.tau);
+  write_sheet_spec(ctx.dir / "adequacy-scene.png", "adequacy-scene-pixels.csv", results, o,
+                   {{"binomial", kBinomialLevelNames[std::size_t(BinomialLevel::kExact)], o.width,
+                     o.height, o.realisations},
+                    {"kemppinen", kKemppinenLevelNames[std::size_t(KemppinenLevel::kK16Exact)],
+                     ko.width, ko.height, ko.realisations}});
   std::vector<Image> tiles;
   std::vector<std::string> labels;
   for (const SceneResult& r : results)
@@ -531,15 +531,17 @@ void run_adequacy_scene(const FigureContext& ctx) {
       ko.width, ko.height, zoom, zoom, ko.realisations);
   md += family_summary(results, true, alpha);
   md += fmt::format(
-      "\nadequacy-scene.png: one row per scene; columns: the chosen-level render, the most "
-      "complete level's render (same exposure), the difference map (max of the two differences "
-      "over TAU: blue 0, white TAU, red 2 TAU or more; magenta where it exceeds TAU for sure; dark "
-      "grey where the most complete level is lit at fewer than {:g} realisations), the chosen "
-      "level (binomial: green smooth, blue realtime, orange small_count, red exact; Kemppinen: "
-      "green smooth, then k = 1, 4, 9, 16 in blue, yellow, purple, red, the exact erf the darker "
-      "shade; light grey off the surface). panels.png is the same panels unlabelled (labels in "
-      "panels.panels.json); <scene>.exr every per-pixel quantity at the render's size; "
-      "adequacy-scene.csv and adequacy-scene-kemppinen.csv the per-scene counts.\n",
+      "\nadequacy-scene.png (drawn by matplotlib from adequacy-scene-pixels.csv): one row per "
+      "scene; columns: the difference map (max of the two differences over TAU on its colour "
+      "scale, 0 to 2 TAU; magenta where it exceeds TAU for sure; dark grey where the most "
+      "complete level is lit at fewer than {:g} realisations; light grey off the surface) and the "
+      "chosen level (binomial: green smooth, blue realtime, orange small_count, red exact; "
+      "Kemppinen: green smooth, then k = 1, 4, 9, 16 in blue, yellow, purple, red, the exact erf "
+      "the darker shade). panels.png: per scene the chosen-level render, the most complete "
+      "level's render (same exposure), the difference map (blue 0, white TAU, red 2 TAU) and the "
+      "chosen level, unlabelled (labels in panels.panels.json); <scene>.exr every per-pixel "
+      "quantity at the render's size; adequacy-scene.csv and adequacy-scene-kemppinen.csv the "
+      "per-scene counts.\n",
       adq::kMinLitPositions);
   md += write_scene_costs(ctx, results, o.tau);
   io::write_file_atomic(ctx.dir / "summary.md", md);

@@ -1,12 +1,13 @@
-// `glintlab figure adequacy-maps --budget quick`: the labelled sheet, one PNG and EXR per model ×
-// light × incidence of the quick grid, the CSV of every cell, whose chosen levels are the EXRs'
-// pixels, and summary.md naming the families not measured.
+// `glintlab figure adequacy-maps --budget quick`: the labelled sheet and one PNG per model × light
+// × incidence of the quick grid (drawn by matplotlib), its EXR, the CSV of every cell, whose chosen
+// levels are the EXRs' pixels, and summary.md naming the families not measured.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <string>
 
+#include "cli/chart_png.h"
 #include "cli/cli_test_util.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"
@@ -28,6 +29,10 @@ TEST_F(AdequacyMapsFigureTest, QuickWritesSheetMapsCsvAndSummary) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/adequacy-maps");
   expect_png(d / "adequacy-maps.png");
+  // Drawn by matplotlib: the sheet's twelve maps and each map alone, labelled, with the levels as
+  // their colour scale; drawn from the maps' cells (one row per cell).
+  expect_labelled_chart(d / "adequacy-maps.png", 12);
+  EXPECT_EQ(io::read_csv(d / "adequacy-maps-levels.csv").num_rows(), 648u);
   const io::CsvTable t = io::read_csv(d / "adequacy-maps.csv");
   // Quick grid: 2 models × 3 lights × 2 incidences × 2 α × 3 θ_h × 9 footprints.
   ASSERT_EQ(t.num_rows(), 648u);
@@ -37,6 +42,7 @@ TEST_F(AdequacyMapsFigureTest, QuickWritesSheetMapsCsvAndSummary) {
       for (const char* theta : {"0", "60"}) {
         const std::string stem = fmt::format("adequacy_{}_light{}_theta{}", model, light, theta);
         expect_png(d / (stem + ".png"));
+        expect_labelled_chart(d / (stem + ".png"), 1);
         const Image im = io::read_exr(d / (stem + ".exr")).image;
         EXPECT_EQ(im.width, 9);
         EXPECT_EQ(im.height, 6);

@@ -1,7 +1,8 @@
-// `glintlab figure adequacy-scene --budget quick`: the labelled sheet, the montage and its panel
-// labels, one EXR per validation scene with every per-pixel quantity (the binomial scenes at 128
-// pixels, the Kemppinen scenes at 32), each family's per-scene CSV whose counts are the EXRs'
-// pixels, and summary.md with the claim's decision per family.
+// `glintlab figure adequacy-scene --budget quick`: the labelled sheet (matplotlib) and its pixels'
+// CSV, the montage and its panel labels, one EXR per validation scene with every per-pixel
+// quantity (the binomial scenes at 128 pixels, the Kemppinen scenes at 32), each family's
+// per-scene CSV whose counts are the EXRs' pixels, and summary.md with the claim's decision per
+// family.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -9,6 +10,7 @@
 #include <set>
 #include <string>
 
+#include "cli/chart_png.h"
 #include "cli/cli_test_util.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"
@@ -66,6 +68,21 @@ TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/adequacy-scene");
   expect_png(d / "adequacy-scene.png");
+  // The sheet, drawn by matplotlib: per scene its difference map and its chosen-level map, each
+  // titled, with pixel axes and a colour scale; the scenes named in the panels' titles.
+  expect_labelled_chart(d / "adequacy-scene.png", 20);
+  const nlohmann::json sheet = chart_manifest(d / "adequacy-scene.png");
+  EXPECT_NE(sheet["axes"][0].value("title", "").find("plane-point-low"), std::string::npos);
+  EXPECT_NE(sheet["axes"][19].value("title", "").find("kemppinen-sphere-high"), std::string::npos);
+  // Its data: every pixel of every scene, image order, the level as in the scene's EXR.
+  const io::CsvTable px = io::read_csv(d / "adequacy-scene-pixels.csv");
+  ASSERT_EQ(px.num_rows(), 6u * 128 * 128 + 4u * 32 * 32);
+  const Image first = io::read_exr(d / "plane-point-low.exr").image;
+  for (std::size_t i = 0; i < 128u * 128; ++i) {
+    ASSERT_EQ(px.text(i, px.column("scene")), "plane-point-low");
+    const int x = int(i % 128), y = int(i / 128);
+    EXPECT_EQ(px.number(i, px.column("level")), first.at(x, y, first.channel("level"))) << i;
+  }
   expect_png(d / "panels.png");
   const std::string layout = read_text(d / "panels.panels.json");
   EXPECT_NE(layout.find("difference / TAU"), std::string::npos);

@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cstdlib>
 #include <filesystem>
 #include <set>
 #include <nlohmann/json.hpp>
 
+#include "cli/chart_png.h"
 #include "cli/cli_test_util.h"
 #include "core/io/csv.h"
 
@@ -32,16 +34,24 @@ TEST_F(AdequacyTest, QuickRunWritesTableAndMaps) {
   EXPECT_EQ(doc["cells"].size(), 324u);
   EXPECT_EQ(doc["maps"].size(), 6u);
   for (const auto& m : doc["maps"]) {
-    EXPECT_TRUE(fs::exists(path("a") / m["png"].get<std::string>()));
+    // Drawn by matplotlib: a title, labelled axes with units, the levels as its colour scale.
+    const fs::path png = path("a") / m["png"].get<std::string>();
+    expect_labelled_chart(png, 1);
+    const nlohmann::json chart = chart_manifest(png);
+    EXPECT_NE(chart["axes"][0].value("title", "").find("kneiphof_klein"), std::string::npos);
+    EXPECT_EQ(chart["axes"][0].value("xlabel", ""), "footprint size N_P [expected facets]");
     EXPECT_TRUE(fs::exists(path("a") / m["exr"].get<std::string>()));
   }
+  // The maps' cells as drawn: 324 cells, each with its level and its row's predicted boundary.
+  EXPECT_EQ(io::read_csv(path("a/adequacy-levels.csv")).num_rows(), 324u);
   EXPECT_EQ(io::read_csv(path("a/adequacy.csv")).num_rows(), 324u);
   // Every level appears somewhere in 1 .. 1e8 facets except possibly small_count.
   std::size_t smooth = doc["summary"]["chosen"]["smooth"], exact = doc["summary"]["chosen"]["exact"];
   EXPECT_GT(smooth, 0u);
   EXPECT_GT(exact, 0u);
   EXPECT_EQ(doc["summary"]["chooser_refuted"], 0);
-  EXPECT_EQ(unexpected_files(path("a"), {}).size(), 2u + 12u);
+  // adequacy.csv, .json, adequacy-levels.csv and per map its EXR, PNG and chart spec.
+  EXPECT_EQ(unexpected_files(path("a"), {}).size(), 3u + 18u);
   const auto& costs = doc["benchmark_costs"];
   ASSERT_TRUE(costs.is_object());
   EXPECT_EQ(costs["exact_ns_total"], 100.0 * 324);
@@ -82,6 +92,33 @@ TEST_F(AdequacyTest, OutputDoesNotDependOnThreads) {
   ASSERT_EQ(a.size(), b.size());
   ASSERT_GT(a.size(), 100u);
   for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(without_timing(a[i]), without_timing(b[i])) << i;
+  // The maps: the same cells, the same PNG bytes.
+  EXPECT_EQ(read_text(path("t1/adequacy-levels.csv")), read_text(path("t2/adequacy-levels.csv")));
+  const std::string map = "adequacy_deliot_belcour_light0_theta0.png";
+  EXPECT_EQ(read_text(path("t1") / map), read_text(path("t2") / map));
+  EXPECT_TRUE(chart_manifest(path("t1") / map).is_object());
+}
+
+// The maps' chart script failing is the run's one-line error, exit 2, and no map PNG (the script
+// here is a stand-in that fails as figure_charts.py does on a bad spec; the table is written).
+TEST_F(AdequacyTest, AFailedMapChartIsOneLineAndNoMap) {
+  const fs::path reports = work().parent_path() / "failing_reports";
+  fs::create_directories(reports);
+  write_text(reports / "figure_charts.py",
+             "import sys\nprint('glintlab: error: charts: adequacy_x.chart.json: "
+             "adequacy-levels.csv has no column \\'boundary\\'', file=sys.stderr)\nsys.exit(2)\n");
+  ::setenv("GLINTLAB_REPORTS_DIR", reports.c_str(), 1);
+  const RunResult r = run({"adequacy", "--models", "deliot_belcour", "--out", "a"});
+  ::unsetenv("GLINTLAB_REPORTS_DIR");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  const auto err = lines_of(r.err);
+  ASSERT_FALSE(err.empty());
+  EXPECT_EQ(err.back(),
+            "glintlab: error: charts: adequacy_x.chart.json: adequacy-levels.csv has no column "
+            "'boundary'")
+      << r.err;
+  for (const auto& e : fs::directory_iterator(path("a")))
+    EXPECT_NE(e.path().extension(), ".png") << e.path();
 }
 
 TEST_F(AdequacyTest, BadInputIsOneLineAndWritesNothing) {
