@@ -105,12 +105,13 @@ set(glintlab_slow_tests
   "ZirrKaplanyan.CountMeanAndVarianceMatchADirectlySimulatedBinomial 3"
   # The glintlab executable run end to end on a subcommand's quick budget (a figure, a sweep, a
   # report, compare, adequacy), or a fuzz loop of a fixed number of inputs.
-  "AdequacyTest.OutputDoesNotDependOnThreads 11"
-  "AdequacyTest.QuickRunWritesTableAndMaps 3"
-  "AdequacyShardTest.MergedShardsAreTheFilesOfOneRun 10"
+  "AdequacyTest.OutputDoesNotDependOnThreads 20"
+  "AdequacyTest.QuickRunWritesTableAndMaps 7"
+  "AdequacyTest.AFailedMapChartIsOneLineAndNoMap 4"
+  "AdequacyShardTest.MergedShardsAreTheFilesOfOneRun 30"
   "AdequacyShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 5"
-  "AdequacyMapsFigureTest.QuickWritesSheetMapsCsvAndSummary 6"
-  "AdequacySceneFigureTest.QuickWritesSheetExrCsvAndSummary 26"
+  "AdequacyMapsFigureTest.QuickWritesSheetMapsCsvAndSummary 15"
+  "AdequacySceneFigureTest.QuickWritesSheetExrCsvAndSummary 60"
   "ChermainCli.Fig3Quick 1"
   "ChermainCli.Fig7Quick 1"
   "ChermainCli.Fig9Quick 1"
