@@ -112,11 +112,12 @@ std::string compare_run_key(const CompareRequest& r, const std::string& budget) 
 // the timed phase per model, the page.
 void print_step_timings(const experiments::compare::CompareFiles& f, int threads,
                         double total_seconds, double page_seconds) {
-  double jobs = 0;
+  double jobs = 0, jobs_cpu = 0;
   std::map<int, double> worker_end;  // per worker, when its last job ended
   for (const auto& s : f.steps)
     if (s.phase == "parallel") {
       jobs += s.seconds;
+      jobs_cpu += s.cpu_seconds;
       worker_end[s.thread] = std::max(worker_end[s.thread], s.start + s.seconds);
     }
   double all_busy_until = int(worker_end.size()) < threads ? 0 : f.parallel_seconds;
@@ -131,7 +132,7 @@ void print_step_timings(const experiments::compare::CompareFiles& f, int threads
   for (const auto& s : f.steps) {
     const bool timed = s.phase == "timed";
     fmt::print(stderr, "{:8.1f} {:8.2f} {:>8} {:>6}  {:<20} {}{}\n", s.start, s.seconds,
-               timed ? fmt::format("{:.2f}", s.cpu_seconds) : std::string("-"),
+               fmt::format("{:.2f}", s.cpu_seconds),
                timed ? std::string("-") : std::to_string(s.thread), s.model,
                timed ? "timed: " : "", s.what);
     if (!timed) continue;
@@ -143,10 +144,11 @@ void print_step_timings(const experiments::compare::CompareFiles& f, int threads
   }
   fmt::print(stderr,
              "parallel phase: {:.1f} s wall, {:.1f} s CPU ({:.2f} threads busy on average), "
-             "{:.1f} s in its jobs; every worker busy until {:.1f} s, then {:.1f} s on fewer "
-             "(the tail)\n",
+             "{:.1f} s in its jobs ({:.1f} s CPU on their workers); every worker busy until "
+             "{:.1f} s, then {:.1f} s on fewer (the tail)\n",
              f.parallel_seconds, f.parallel_cpu_seconds,
              f.parallel_seconds > 0 ? f.parallel_cpu_seconds / f.parallel_seconds : 0.0, jobs,
+             jobs_cpu,
              all_busy_until, f.parallel_seconds - all_busy_until);
   for (const std::string& m : timed_models)
     fmt::print(stderr, "timed phase, {}: {:.1f} s wall, {:.1f} s CPU ({})\n", m, timed_wall[m],

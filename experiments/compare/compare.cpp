@@ -5,6 +5,7 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <sys/resource.h>
+#include <time.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -90,16 +91,23 @@ class StepClock {
     return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
            1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
   }
-  // Runs f and records it as a step (a timed one with the process's CPU time it took).
+  // The calling thread's CPU time so far, seconds.
+  static double thread_cpu() {
+    timespec t{};
+    ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+  }
+  // Runs f and records it as a step: a timed one (thread < 0) with the process's CPU time it
+  // took, a parallel job with its worker's.
   template <class F>
   void time(const std::string& phase, const std::string& model, const std::string& what,
             int thread, F&& f) {
     const bool timed = thread < 0;
-    const double c0 = timed ? cpu() : 0, t0 = now();
+    const double c0 = timed ? cpu() : thread_cpu(), t0 = now();
     f();
-    const double t1 = now(), c1 = timed ? cpu() : 0;
+    const double t1 = now(), c1 = timed ? cpu() : thread_cpu();
     const std::lock_guard<std::mutex> lock(mutex_);
-    steps_.push_back({phase, model, what, thread, t0, t1 - t0, timed ? c1 - c0 : -1.0});
+    steps_.push_back({phase, model, what, thread, t0, t1 - t0, c1 - c0});
   }
   std::vector<StepTiming> steps() const {
     std::vector<StepTiming> s = steps_;

@@ -42,12 +42,13 @@ struct CompareOptions {
 // run's threads) or a step of the timed phase (one model at a time, nothing else running). Seconds
 // from the start of run_compare; `thread` is the worker that ran a parallel job (TBB's thread
 // index), -1 in the timed phase; cpu_seconds: the process's CPU time (user + system) during a
-// timed step (nothing else runs then), -1 for a parallel job (they overlap).
+// timed step (nothing else runs then), the worker's own CPU time during a parallel job (without
+// the parts of its parallel loops that another worker took; below its wall time where it waited).
 struct StepTiming {
   std::string phase;  // "parallel" or "timed"
   std::string model, what;
   int thread = -1;
-  double start = 0, seconds = 0, cpu_seconds = -1;
+  double start = 0, seconds = 0, cpu_seconds = 0;
 };
 
 struct CompareFiles {
