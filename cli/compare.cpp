@@ -284,8 +284,8 @@ delta light otherwise, the model's default parameters. Per model:
 - conformance: the model.<name>.<property> verdicts; with --claims-from DIR the rows of
   DIR/claims.json ("read"), where a row is missing the registry's recorded verdict ("recorded");
   without it, the model's conformance checks run here ("measured"; minutes per glint model,
-  every model's checks side by side on --threads, the costliest first; about 5 minutes for
-  --models '*' at quick on 2 cores).
+  every model's checks side by side on --threads, the costliest first; --models '*' at quick:
+  about 530 s of CPU, about 4 1/2 minutes on 2 idle cores; --verbose prints where the time went).
 - time per evaluation: eval_batch in double precision on the scalar path and on the widest ISA
   (GLINTLAB_ISA if set), best of 3 rounds: a measurement of this machine, ns/eval.
 - reference: the albedo (integral of value over the upper hemisphere) by the conformance suite's
