@@ -2,11 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <sys/resource.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
-#include <sys/resource.h>
-#include <time.h>
 #include <tbb/task_arena.h>
+#include <time.h>
 
 #include <algorithm>
 #include <atomic>
