@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -42,6 +43,7 @@ struct CompareCliOptions {
   std::string threads;
   std::string claims_from, sweeps_from;
   std::string shard;  // K/N: run the K-th of N shards of the selected models
+  bool verbose = false;  // print where the time went (print_step_timings)
 };
 
 // The files of the page, in the order they are moved into DIR (index.html last).
@@ -104,10 +106,62 @@ std::string compare_run_key(const CompareRequest& r, const std::string& budget) 
                      r.sweeps_from);
 }
 
+// Where a run's time went, on stderr: every step (its start, wall seconds, the worker that ran a
+// job of the parallel phase, the CPU seconds of a timed step), the parallel phase's wall and CPU
+// time and how long it ran on fewer than all workers at its end (the tail: the last long jobs),
+// the timed phase per model, the page.
+void print_step_timings(const experiments::compare::CompareFiles& f, int threads,
+                        double total_seconds, double page_seconds) {
+  double jobs = 0, jobs_cpu = 0;
+  std::map<int, double> worker_end;  // per worker, when its last job ended
+  for (const auto& s : f.steps)
+    if (s.phase == "parallel") {
+      jobs += s.seconds;
+      jobs_cpu += s.cpu_seconds;
+      worker_end[s.thread] = std::max(worker_end[s.thread], s.start + s.seconds);
+    }
+  double all_busy_until = int(worker_end.size()) < threads ? 0 : f.parallel_seconds;
+  for (const auto& [w, end] : worker_end) all_busy_until = std::min(all_busy_until, end);
+  fmt::print(stderr, "compare: where the time went (wall seconds from the start; --threads {})\n",
+             threads);
+  fmt::print(stderr, "{:>8} {:>8} {:>8} {:>6}  {:<20} {}\n", "start", "seconds", "cpu", "thread",
+             "model", "step");
+  std::vector<std::string> timed_models;
+  std::map<std::string, std::string> timed_parts;  // model -> "step s (cpu s), ..."
+  std::map<std::string, double> timed_wall, timed_cpu;
+  for (const auto& s : f.steps) {
+    const bool timed = s.phase == "timed";
+    fmt::print(stderr, "{:8.1f} {:8.2f} {:>8} {:>6}  {:<20} {}{}\n", s.start, s.seconds,
+               fmt::format("{:.2f}", s.cpu_seconds),
+               timed ? std::string("-") : std::to_string(s.thread), s.model,
+               timed ? "timed: " : "", s.what);
+    if (!timed) continue;
+    if (!timed_wall.count(s.model)) timed_models.push_back(s.model);
+    std::string& parts = timed_parts[s.model];
+    parts += fmt::format("{}{} {:.1f} s", parts.empty() ? "" : ", ", s.what, s.seconds);
+    timed_wall[s.model] += s.seconds;
+    timed_cpu[s.model] += s.cpu_seconds;
+  }
+  fmt::print(stderr,
+             "parallel phase: {:.1f} s wall, {:.1f} s CPU ({:.2f} threads busy on average), "
+             "{:.1f} s in its jobs ({:.1f} s CPU on their workers); every worker busy until "
+             "{:.1f} s, then {:.1f} s on fewer (the tail)\n",
+             f.parallel_seconds, f.parallel_cpu_seconds,
+             f.parallel_seconds > 0 ? f.parallel_cpu_seconds / f.parallel_seconds : 0.0, jobs,
+             jobs_cpu,
+             all_busy_until, f.parallel_seconds - all_busy_until);
+  for (const std::string& m : timed_models)
+    fmt::print(stderr, "timed phase, {}: {:.1f} s wall, {:.1f} s CPU ({})\n", m, timed_wall[m],
+               timed_cpu[m], timed_parts[m]);
+  fmt::print(stderr, "timed phase: {:.1f} s wall, {:.1f} s CPU; page: {:.1f} s; total: {:.1f} s\n",
+             f.timed_seconds, f.timed_cpu_seconds, page_seconds, total_seconds);
+}
+
 // run_compare_request, or with `shard` its K-th of N parts: every N-th selected model from the
 // K-th (the models' costs are unknown before they run: a plug-in's or a numpy model's included),
 // and the shard's manifest beside the page. An empty shard writes its manifest alone.
-CompareSummary run_compare(const CompareRequest& o, const Shard* shard) {
+CompareSummary run_compare(const CompareRequest& o, const Shard* shard, bool verbose = false) {
+  const auto run_start = std::chrono::steady_clock::now();
   experiments::compare::CompareOptions c;
   c.budget = quick_budget(o.budget) ? verify::Budget::kQuick : verify::Budget::kFull;
   std::vector<std::string> names;
@@ -152,13 +206,21 @@ CompareSummary run_compare(const CompareRequest& o, const Shard* shard) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   Progress bar("compare", long(c.models.size()) * 5);
   c.progress = [&](const std::string& step) { bar.step(step); };
+  experiments::compare::CompareFiles files;
   try {
-    experiments::compare::run_compare(stage.dir, c);
+    files = experiments::compare::run_compare(stage.dir, c);
   } catch (const nlohmann::json::exception& e) {
     throw InputError(
         fmt::format("--claims-from/--sweeps-from: a file there is malformed ({})", e.what()));
   }
+  const auto page_start = std::chrono::steady_clock::now();
   draw_page(stage.dir);
+  if (verbose) {
+    const auto end = std::chrono::steady_clock::now();
+    print_step_timings(files, threads,
+                       std::chrono::duration<double>(end - run_start).count(),
+                       std::chrono::duration<double>(end - page_start).count());
+  }
   move_page(stage.dir, out);
   if (shard) io::write_file_atomic(out / "shard.json", to_json(manifest));
   return {c.models.size(), out};
@@ -174,7 +236,7 @@ void run(const CLI::App* cmd, const CompareCliOptions& o) {
   r.threads = o.threads;
   r.claims_from = o.claims_from;
   r.sweeps_from = o.sweeps_from;
-  const CompareSummary s = run_compare(r, sharded ? &shard : nullptr);
+  const CompareSummary s = run_compare(r, sharded ? &shard : nullptr, o.verbose);
   if (s.models == 0)
     fmt::print("compare: shard {}/{} holds no model; wrote {}\n", shard.k, shard.n,
                (s.dir / "shard.json").string());
@@ -222,8 +284,8 @@ delta light otherwise, the model's default parameters. Per model:
 - conformance: the model.<name>.<property> verdicts; with --claims-from DIR the rows of
   DIR/claims.json ("read"), where a row is missing the registry's recorded verdict ("recorded");
   without it, the model's conformance checks run here ("measured"; minutes per glint model,
-  every model's checks side by side on --threads, the costliest first; about 5 minutes for
-  --models '*' at quick on 2 cores).
+  every model's checks side by side on --threads, the costliest first; --models '*' at quick:
+  about 530 s of CPU, about 4 1/2 minutes on 2 idle cores; --verbose prints where the time went).
 - time per evaluation: eval_batch in double precision on the scalar path and on the widest ISA
   (GLINTLAB_ISA if set), best of 3 rounds: a measurement of this machine, ns/eval.
 - reference: the albedo (integral of value over the upper hemisphere) by the conformance suite's
@@ -333,6 +395,9 @@ void add_compare_command(CLI::App& app) {
   add_text_option(cmd, "--models", o->models,
                   "comma-separated globs over model names (see glintlab models)", "LIST");
   add_threads_option(cmd, o->threads);
+  add_bool_flag(cmd, "--verbose", o->verbose,
+                "print where the time went on stderr: each measurement of the parallel phase "
+                "(worker, start, seconds), the phase's tail, the timed phase per model, the page");
   add_text_option(cmd, "--claims-from", o->claims_from,
                   "a glintlab verify --out folder whose claims.json gives the conformance verdicts",
                   "DIR");

@@ -2,12 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <sys/resource.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <time.h>
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -72,13 +75,59 @@ struct Job {
   std::size_t model = 0;
   std::vector<Part> parts;
   std::function<void()> run;
+  std::string what;  // what the job measures, for the step timings
+};
+
+// The step timings of a run (CompareFiles::steps): seconds since the run started.
+class StepClock {
+ public:
+  double now() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  // The process's CPU time so far (user + system, every thread), seconds.
+  static double cpu() {
+    rusage u{};
+    ::getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+           1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+  }
+  // The calling thread's CPU time so far, seconds.
+  static double thread_cpu() {
+    timespec t{};
+    ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+  }
+  // Runs f and records it as a step: a timed one (thread < 0) with the process's CPU time it
+  // took, a parallel job with its worker's.
+  template <class F>
+  void time(const std::string& phase, const std::string& model, const std::string& what,
+            int thread, F&& f) {
+    const bool timed = thread < 0;
+    const double c0 = timed ? cpu() : thread_cpu(), t0 = now();
+    f();
+    const double t1 = now(), c1 = timed ? cpu() : thread_cpu();
+    const std::lock_guard<std::mutex> lock(mutex_);
+    steps_.push_back({phase, model, what, thread, t0, t1 - t0, c1 - c0});
+  }
+  std::vector<StepTiming> steps() const {
+    std::vector<StepTiming> s = steps_;
+    std::stable_sort(s.begin(), s.end(),
+                     [](const StepTiming& a, const StepTiming& b) { return a.start < b.start; });
+    return s;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::mutex mutex_;
+  std::vector<StepTiming> steps_;
 };
 
 // Runs the jobs on the run's threads (tbb::global_control's limit), the costliest first, each job
 // isolated (a thread waiting in a job's own parallel loop takes only that loop's work), so a long
 // job is not left alone at the end. The jobs write to their own slots only, and each is
 // deterministic for any thread count, so the results do not depend on the order or the threads.
-void run_longest_first(std::vector<Job>& jobs, const std::function<void(const Job&)>& done) {
+void run_longest_first(std::vector<Job>& jobs, const std::function<void(const Job&)>& done,
+                       const std::vector<std::string>& models, StepClock& clock) {
   std::stable_sort(jobs.begin(), jobs.end(),
                    [](const Job& a, const Job& b) { return a.cost > b.cost; });
   const int workers = int(std::max<std::size_t>(
@@ -92,7 +141,9 @@ void run_longest_first(std::vector<Job>& jobs, const std::function<void(const Jo
       [&](int) {
         for (std::size_t i = next++; i < jobs.size() && !failed; i = next++) {
           try {
-            tbb::this_task_arena::isolate([&] { jobs[i].run(); });
+            clock.time("parallel", models[jobs[i].model], jobs[i].what,
+                       tbb::this_task_arena::current_thread_index(),
+                       [&] { tbb::this_task_arena::isolate([&] { jobs[i].run(); }); });
           } catch (...) {
             failed = true;
             throw;
@@ -119,7 +170,8 @@ std::vector<ClaimsFolder> claims_folders(const CompareOptions& o) {
 // integrals; stability with the failure regions, which reuse its sweep), each scene's reference and
 // the stability sweep where no check sweeps. constant-time, a timing, is left to the timed phase.
 // What is read from files (verdicts, failure regions) is read first, before any job.
-std::vector<Measured> run_measurements(const CompareOptions& o, const CompareBudget& b) {
+std::vector<Measured> run_measurements(const CompareOptions& o, const CompareBudget& b,
+                                       StepClock& clock) {
   std::vector<Measured> out(o.models.size());
   std::vector<Job> jobs;
   const auto cost = [&](const std::string& id) { return o.check_cost ? o.check_cost(id) : 1.0; };
@@ -145,7 +197,7 @@ std::vector<Measured> run_measurements(const CompareOptions& o, const CompareBud
       jobs.push_back({0, i, {Part::kReference}, [&m, &r, &b, k, theta] {
                         r.refs[k] = reference_albedo(
                             m, theta, b, seed_of(m, fmt::format("reference.{:g}", theta)));
-                      }});
+                      }, fmt::format("reference {:g}°", theta)});
     }
     const auto sweep_findings = [&o, &m, &r] {
       r.stability = stability_findings(m, o.budget, o.sweeps_from, sweeps_name(o), true);
@@ -172,9 +224,9 @@ std::vector<Measured> run_measurements(const CompareOptions& o, const CompareBud
           jobs.push_back({cost(r.checks[c].id), i, parts, [run_check, sweep_findings, with_findings] {
                             run_check();
                             if (with_findings) sweep_findings();
-                          }});
+                          }, with_findings ? "stability (+ failure regions)" : "stability"});
         } else {
-          jobs.push_back({cost(r.checks[c].id), i, {Part::kConformance}, run_check});
+          jobs.push_back({cost(r.checks[c].id), i, {Part::kConformance}, run_check, property});
         }
       }
       std::vector<std::size_t> shared;
@@ -183,14 +235,18 @@ std::vector<Measured> run_measurements(const CompareOptions& o, const CompareBud
       if (!shared.empty()) {
         double seconds = 0;
         for (std::size_t c : shared) seconds += cost(r.checks[c].id);
+        std::string what;
+        for (std::size_t c : shared)
+          what += (what.empty() ? "" : " + ") + property_of(m, r.checks[c].id);
         jobs.push_back({seconds, i, {Part::kConformance}, [&o, &r, shared] {
                           for (std::size_t c : shared) r.results[c] = r.checks[c].run(o.budget);
-                        }});
+                        }, what});
       }
     }
     if (!swept)
       jobs.push_back(
-          {cost(fmt::format("model.{}.stability", m.name)), i, {Part::kStability}, sweep_findings});
+          {cost(fmt::format("model.{}.stability", m.name)), i, {Part::kStability}, sweep_findings,
+           "stability sweep (failure regions)"});
   }
   // Progress: a model's step of a part once its last job of that part is done.
   std::vector<std::array<int, 3>> pending(o.models.size(), {0, 0, 0});
@@ -207,14 +263,17 @@ std::vector<Measured> run_measurements(const CompareOptions& o, const CompareBud
     const std::lock_guard<std::mutex> lock(mutex);
     for (Part p : j.parts)
       if (--pending[j.model][std::size_t(p)] == 0) step(j.model, p);
-  });
+  }, o.models, clock);
   return out;
 }
 
 // A model's entry of compare.json from its untimed measurements, after its timed ones: the
 // constant-time check (where the suite runs here), the evaluation timings and the equal-time curve.
 json model_json(const ModelEntry& m, const CompareOptions& o, const CompareBudget& b,
-                const Measured& pre) {
+                const Measured& pre, StepClock& clock) {
+  const auto timed = [&](const std::string& what, const auto& f) {
+    clock.time("timed", std::string(m.name), what, -1, f);
+  };
   const auto step = [&](const std::string& what) {
     if (o.progress) o.progress(fmt::format("{} {}", m.name, what));
   };
@@ -226,10 +285,12 @@ json model_json(const ModelEntry& m, const CompareOptions& o, const CompareBudge
   j["smooth_limit"] = m.smooth_limit.empty() ? json(nullptr) : json(m.smooth_limit);
 
   std::map<std::string, verify::CheckResult> measured;
-  for (std::size_t c = 0; c < pre.checks.size(); ++c)
-    measured[pre.checks[c].id] = property_of(m, pre.checks[c].id) == "constant-time"
-                                     ? pre.checks[c].run(o.budget)
-                                     : pre.results[c];
+  for (std::size_t c = 0; c < pre.checks.size(); ++c) {
+    if (property_of(m, pre.checks[c].id) == "constant-time")
+      timed("constant-time", [&] { measured[pre.checks[c].id] = pre.checks[c].run(o.budget); });
+    else
+      measured[pre.checks[c].id] = pre.results[c];
+  }
   json verdicts = json::array();
   for (const PropertyVerdict& v :
        pre.verdicts ? *pre.verdicts
@@ -243,7 +304,8 @@ json model_json(const ModelEntry& m, const CompareOptions& o, const CompareBudge
   j["conformance"] = verdicts;
 
   step("timing");
-  const EvalTiming t = time_evaluations(m, b);
+  EvalTiming t;
+  timed("ns/eval", [&] { t = time_evaluations(m, b); });
   j["timing"] = {{"scalar_ns_per_eval", t.scalar_ns},
                  {"best_isa", t.best_isa},
                  {"best_ns_per_eval", t.best_ns},
@@ -261,7 +323,8 @@ json model_json(const ModelEntry& m, const CompareOptions& o, const CompareBudge
   j["reference"] = references;
 
   step("equal-time curve");
-  const EqualTimeCurve c = equal_time_curve(m, pre.refs, b, seed_of(m, "sampler"));
+  EqualTimeCurve c;
+  timed("equal-time curve", [&] { c = equal_time_curve(m, pre.refs, b, seed_of(m, "sampler")); });
   json points = json::array();
   for (const EqualTimePoint& p : c.points)
     points.push_back(
@@ -376,15 +439,24 @@ CompareFiles run_compare(const fs::path& dir, const CompareOptions& o) {
   const verify::stability::SweepReuse one_sweep_per_model;
   // First everything that is not a timing, in parallel; then, one model at a time with nothing
   // else running, the timings (constant-time, time per evaluation, the equal-time curve).
-  const std::vector<Measured> measured = run_measurements(o, b);
+  StepClock clock;
+  const double cpu0 = StepClock::cpu();
+  const std::vector<Measured> measured = run_measurements(o, b, clock);
+  const double parallel_end = clock.now(), cpu1 = StepClock::cpu();
   json models = json::array();
   for (std::size_t i = 0; i < o.models.size(); ++i)
-    models.push_back(model_json(find_model(o.models[i]), o, b, measured[i]));
+    models.push_back(model_json(find_model(o.models[i]), o, b, measured[i], clock));
+  const double timed_end = clock.now(), cpu2 = StepClock::cpu();
   json doc;
   doc["machine"] = machine_name();
   doc["settings"] = settings_json(o, b);
   doc["models"] = models;
-  const CompareFiles files{dir / "compare.json", dir / "compare.csv", dir / "equal_time.csv"};
+  CompareFiles files{dir / "compare.json", dir / "compare.csv", dir / "equal_time.csv",
+                     clock.steps()};
+  files.parallel_seconds = parallel_end;
+  files.parallel_cpu_seconds = cpu1 - cpu0;
+  files.timed_seconds = timed_end - parallel_end;
+  files.timed_cpu_seconds = cpu2 - cpu1;
   io::write_file_atomic(files.json, doc.dump(1) + "\n");
   io::write_file_atomic(files.csv, models_csv(models));
   io::write_file_atomic(files.equal_time_csv, equal_time_csv(models));

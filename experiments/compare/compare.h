@@ -38,8 +38,25 @@ struct CompareOptions {
   std::function<double(const std::string& check_id)> check_cost;
 };
 
+// What one step of a run took: a job of the parallel phase (every untimed measurement, on the
+// run's threads) or a step of the timed phase (one model at a time, nothing else running). Seconds
+// from the start of run_compare; `thread` is the worker that ran a parallel job (TBB's thread
+// index), -1 in the timed phase; cpu_seconds: the process's CPU time (user + system) during a
+// timed step (nothing else runs then), the worker's own CPU time during a parallel job (without
+// the parts of its parallel loops that another worker took; below its wall time where it waited).
+struct StepTiming {
+  std::string phase;  // "parallel" or "timed"
+  std::string model, what;
+  int thread = -1;
+  double start = 0, seconds = 0, cpu_seconds = 0;
+};
+
 struct CompareFiles {
   std::filesystem::path json, csv, equal_time_csv;
+  std::vector<StepTiming> steps;  // in the order they started
+  // Wall and process CPU seconds of the two phases (the CPU over the wall says how many threads
+  // were busy on average; on a shared machine, also how much of them the run got).
+  double parallel_seconds = 0, parallel_cpu_seconds = 0, timed_seconds = 0, timed_cpu_seconds = 0;
 };
 
 // Measures every model and writes the three files into `dir` (each atomically). The numbers that

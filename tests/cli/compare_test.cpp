@@ -7,6 +7,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "cli/cli_test_util.h"
 
@@ -151,6 +152,34 @@ TEST_F(CompareTest, MeasuredConformanceIsVerifysRowsWithOneOrTwoThreads) {
         if (c["property"] == "constant-time") c.erase("detail");
     EXPECT_EQ(a, b);
   }
+}
+
+// --verbose says where the time went (every measurement of the parallel phase, each timed step of
+// each model, the phases' wall and CPU seconds) and changes nothing else; without it, none of that.
+TEST_F(CompareTest, VerboseSaysWhereTheTimeWentAndChangesNothingElse) {
+  fs::create_directories(path("verify"));
+  write_text(path("verify/claims.json"), "[]\n");
+  fs::create_directories(path("sweeps"));
+  write_text(path("sweeps/stability.json"), R"({"models": []})");
+  const auto compare = [&](const std::string& out, bool verbose) {
+    std::vector<std::string> args{"compare", "--models", "smooth_ggx", "--claims-from", "verify",
+                                  "--sweeps-from", "sweeps", "--out", out};
+    if (verbose) args.push_back("--verbose");
+    return run(args);
+  };
+  const RunResult quiet = compare("q", false), verbose = compare("v", true);
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+  ASSERT_EQ(verbose.exit_code, 0) << verbose.err;
+  for (const char* line :
+       {"compare: where the time went", "smooth_ggx           reference 30°",
+        "smooth_ggx           reference 70°", "smooth_ggx           timed: ns/eval",
+        "smooth_ggx           timed: equal-time curve", "parallel phase: ",
+        "timed phase, smooth_ggx: ", "timed phase: ", "; page: "}) {
+    EXPECT_NE(verbose.err.find(line), std::string::npos) << line << "\n" << verbose.err;
+    EXPECT_EQ(quiet.err.find(line), std::string::npos) << line << "\n" << quiet.err;
+  }
+  EXPECT_EQ(without_timings(nlohmann::json::parse(read_text(path("q/compare.json")))),
+            without_timings(nlohmann::json::parse(read_text(path("v/compare.json")))));
 }
 
 TEST_F(CompareTest, MalformedClaimsFileIsAnErrorAndWritesNothing) {
