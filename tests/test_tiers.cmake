@@ -116,6 +116,7 @@ set(glintlab_slow_tests
   "ChermainCli.Fig7Quick 1"
   "ChermainCli.Fig9Quick 1"
   "CompareTest.PluginModelBesideThePapersModelsAndThreadIndependent 8"
+  "CompareTest.VerboseSaysWhereTheTimeWentAndChangesNothingElse 2"
   "CompareTest.MeasuredConformanceIsVerifysRowsWithOneOrTwoThreads 25"
   "CompareTest.ReadsVerdictsAndFailureRegionsFromEarlierRuns 1"
   "ExampleModel.GetsTheRegistryDrivenFigure 2"
