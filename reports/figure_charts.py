@@ -262,15 +262,7 @@ def draw_categories(ax, fig, spec_name, csv_name, header, rows, panel):
         if label != "_nolegend_":  # no marker inside the map: still named, as absent
             ax.plot([], [], color="black", lw=2.5, label=f"{label} (outside the map)")
         ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(0, -0.14))
-    xi, xl = charts._ticks(xs, n=int(x.get("ticks", 8)))
-    ax.set_xticks(xi)
-    ax.set_xticklabels(xl, fontsize=6)
-    _y_ticks(ax, spec_name, csv_name, y, ycols, ykeys)
-    if y.get("invert"):  # image rows: the first at the top
-        ax.invert_yaxis()
-    ax.set_xlabel(x["label"], fontsize=8)
-    ax.set_ylabel(y["label"], fontsize=8)
-    ax.set_title(panel["title"], fontsize=8)
+    _label_grid_axes(ax, spec_name, csv_name, panel, xs, ycols, ykeys, ticks=8, rotate=False)
     return int(np.isfinite(grid).sum())
 
 
@@ -300,6 +292,21 @@ def _y_ticks(ax, spec_name, csv_name, y, ycols, ykeys):
     except (KeyError, ValueError, IndexError) as e:
         raise ChartError(f"{spec_name}: y format '{fmt}' does not fit {csv_name}'s rows "
                          f"({e})") from None
+
+
+def _label_grid_axes(ax, spec_name, csv_name, panel, xs, ycols, ykeys, ticks, rotate):
+    """A grid map's x ticks (the spec's count, else `ticks`; labels turned when more than four
+    and `rotate`), y ticks, image-row order, axis labels and panel title."""
+    x, y = panel["x"], panel["y"]
+    xi, xl = charts._ticks(xs, n=int(x.get("ticks", ticks)))
+    ax.set_xticks(xi)
+    ax.set_xticklabels(xl, fontsize=6, rotation=30 if rotate and len(xi) > 4 else 0)
+    _y_ticks(ax, spec_name, csv_name, y, ycols, ykeys)
+    if y.get("invert"):  # image rows: the first at the top
+        ax.invert_yaxis()
+    ax.set_xlabel(x["label"], fontsize=8)
+    ax.set_ylabel(y["label"], fontsize=8)
+    ax.set_title(panel["title"], fontsize=8)
 
 
 def draw_heatmap(ax, fig, spec_name, csv_name, header, rows, panel):
@@ -379,15 +386,7 @@ def draw_heatmap(ax, fig, spec_name, csv_name, header, rows, panel):
                              label=panel.get("empty_label") or f"no value ({empty} cells)"))
     if handles:
         ax.legend(handles=handles, fontsize=6, loc="upper left", bbox_to_anchor=(0, -0.14))
-    xi, xl = charts._ticks(xs, n=int(x.get("ticks", 6)))
-    ax.set_xticks(xi)
-    ax.set_xticklabels(xl, fontsize=6, rotation=30 if len(xi) > 4 else 0)
-    _y_ticks(ax, spec_name, csv_name, y, ycols, ykeys)
-    if y.get("invert"):  # image rows: the first at the top
-        ax.invert_yaxis()
-    ax.set_xlabel(x["label"], fontsize=8)
-    ax.set_ylabel(y["label"], fontsize=8)
-    ax.set_title(panel["title"], fontsize=8)
+    _label_grid_axes(ax, spec_name, csv_name, panel, xs, ycols, ykeys, ticks=6, rotate=True)
     return int(np.isfinite(grid).sum())
 
 

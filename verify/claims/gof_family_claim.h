@@ -16,12 +16,37 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "verify/claim.h"
 #include "verify/claims/gof_family.h"
 
 namespace glintlab::verify {
+
+// The configurations of grid g that a control case is built on, in grid order: a family's probe
+// grid (its controls keep their power there, the rest is the budget's).
+template <typename Config>
+std::vector<Config> configurations_under_controls(const std::vector<Config>& g,
+                                                  const std::vector<GofControl>& controls) {
+  std::vector<bool> used(g.size(), false);
+  for (const GofControl& c : controls)
+    for (const GofControlCase& cc : c.cases) used[std::size_t(cc.position())] = true;
+  std::vector<Config> out;
+  for (std::size_t i = 0; i < g.size(); ++i)
+    if (used[i]) out.push_back(g[i]);
+  return out;
+}
+
+// A family's spec: one case per configuration of g, and its controls.
+template <typename Config, typename MakeCase>
+GofSpec gof_spec(const std::vector<Config>& g, MakeCase&& make_case,
+                 std::vector<GofControl> controls) {
+  GofSpec s;
+  for (const Config& c : g) s.cases.push_back(make_case(c));
+  s.controls = std::move(controls);
+  return s;
+}
 
 template <typename Derived, typename Config>
 struct GofFamilyClaim {

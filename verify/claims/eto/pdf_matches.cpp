@@ -249,21 +249,10 @@ constexpr GofSize kFull{10'000'000, 10'000'000, 4096};
 constexpr GofSize kProbe{30'000, 500'000, 500};
 std::vector<Config> probe_grid() {
   const std::vector<Config> g = grid(Budget::kQuick);
-  std::vector<bool> used(g.size(), false);
-  for (const GofControl& c : controls(g))
-    for (const GofControlCase& cc : c.cases) used[std::size_t(cc.position())] = true;
-  std::vector<Config> out;
-  for (std::size_t i = 0; i < g.size(); ++i)
-    if (used[i]) out.push_back(g[i]);
-  return out;
+  return configurations_under_controls(g, controls(g));
 }
 
-GofSpec spec_of(const std::vector<Config>& g) {
-  GofSpec s;
-  for (const Config& c : g) s.cases.push_back(make_case(c));
-  s.controls = controls(g);
-  return s;
-}
+GofSpec spec_of(const std::vector<Config>& g) { return gof_spec(g, make_case, controls(g)); }
 
 // The detail line, from the grid, the family's outcome and the controls' verdicts alone.
 std::string describe_family(const std::vector<Config>& g, const std::vector<GofCase>& cases,
