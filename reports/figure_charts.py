@@ -6,8 +6,8 @@ subset of rows, the series, their labels and colours, reference lines. `glintlab
 `/usr/bin/python3 reports/figure_charts.py --dir STAGING` before the figure's folder is swapped in;
 this script draws every spec into NAME.png with charts.py's labelling rules (a title, axis labels
 with their units, a legend) and stores what the chart shows (charts.describe: titles, labels,
-legend) in the PNG itself, as the text chunk "glintlab:chart", which the report and the tests read
-back (chart_manifest). The PNG has no date or software version in it: same data, same bytes.
+legend; and a map's colour-bar label) in the PNG itself, as the text chunk "glintlab:chart",
+which the report and the tests read back (chart_manifest). The PNG has no date or software version in it: same data, same bytes.
 
 A spec naming a missing CSV or column, an axis label without its unit ("[...]"), a series without
 a label or a panel with nothing to draw is one line on stderr ("glintlab: error: ..."), exit 2,
@@ -22,7 +22,8 @@ ringed and joined, dashed, in x order), "mark_label"}], "hlines": [{"y", "label"
 With "kind": "categories" (a map of categories, e.g. the level chosen per cell), a panel is
 {"title", "where", "x": {"column", "label", "log"} (its distinct values, one column each, in
 order), "y": {"columns", "format", "label"} (one row per distinct tuple, in the CSV's order,
-bottom to top), "value": {"column", "label"}, "categories": [{"value", "label", "color"}],
+bottom to top; "format" is a str.format template over the row's cells, a number's format spec
+such as "{alpha:.3g}" formats the cell as a number), "value": {"column", "label"}, "categories": [{"value", "label", "color"}],
 "marker": {"column", "label"} (per row, an x value drawn as a bar between the columns),
 "y": {"invert": true} for an image's pixel rows}; the categories are its colour bar. With "kind": "heatmap" (a number over a grid: parameters, or the
 pixels of an image with "y": {"invert": true}), "value": {"column", "label", "log", "range",
@@ -286,9 +287,17 @@ def _y_ticks(ax, spec_name, csv_name, y, ycols, ykeys):
     if len(ykeys) > 12:  # a pixel or fine parameter grid: a few ticks
         idx = sorted({round(k * (len(ykeys) - 1) / 7) for k in range(8)})
     ax.set_yticks(idx)
+
+    def label(key):
+        cells = dict(zip(ycols, key))
+        try:
+            return fmt.format(**cells)
+        except ValueError:  # a number's format ("{alpha:.3g}"): the cells as numbers
+            return fmt.format(**{c: v if _number(v) is None else _number(v)
+                                 for c, v in cells.items()})
     try:
-        ax.set_yticklabels([fmt.format(**dict(zip(ycols, ykeys[i]))) if fmt
-                            else ", ".join(ykeys[i]) for i in idx], fontsize=6)
+        ax.set_yticklabels([label(ykeys[i]) if fmt else ", ".join(ykeys[i]) for i in idx],
+                           fontsize=6)
     except (KeyError, ValueError, IndexError) as e:
         raise ChartError(f"{spec_name}: y format '{fmt}' does not fit {csv_name}'s rows "
                          f"({e})") from None
@@ -443,6 +452,12 @@ def save_png(fig, path, dpi=100):
     """Saves a chart with what it shows (charts.describe) as the PNG's text chunk TEXT_KEY; no
     date or software name, so that the same chart is the same bytes."""
     entry = charts.describe(fig)
+    # A map's colour-bar label (its value and unit) beside its axes, in describe's axes order.
+    shown = [ax for ax in fig.axes if ax.get_visible() and ax.get_label() != "<colorbar>"]
+    for ax, e in zip(shown, entry["axes"]):
+        bars = [c for c in fig.axes if getattr(c, "_colorbar_of", None) is ax]
+        if bars:
+            e["colorbar_label"] = bars[0].get_ylabel()
     tmp = path + ".tmp"
     fig.savefig(tmp, dpi=dpi, format="png",
                 metadata={"Software": None, TEXT_KEY: json.dumps(entry, sort_keys=True)})

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -119,6 +120,40 @@ double p_normal(double alpha, double gamma_deg) {
       g, n, n, one_minus_cos(gamma_deg * std::numbers::pi / 180), total_area_ggx_eq29(alpha));
 }
 
+// The chart spec of p_map.png: p of Eq. 20 at normal incidence over (γ, √α), the γ grid
+// logarithmic (its columns evenly spaced in log γ), p on a log colour scale, the cells with p > 1
+// outlined in red.
+void write_p_map_spec(const std::filesystem::path& png, const std::string& csv, int na, int ng) {
+  const nlohmann::json panel = {
+      {"title", fmt::format("p of Eq. 20 at normal incidence, {} x {} cells", ng, na)},
+      {"x",
+       {{"column", "gamma_deg"},
+        {"label", "cap half-angle gamma [deg] (log spacing)"},
+        {"ticks", 4}}},
+      {"y",
+       {{"columns", {"sqrt_alpha"}}, {"format", "{sqrt_alpha:.3g}"}, {"label", "sqrt(alpha) [1]"}}},
+      {"value",
+       {{"column", "p_eq20"},
+        {"label", "cap probability p (Eq. 20) [1] (log scale)"},
+        {"log", true}}},
+      {"flags",
+       {{{"column", "p_gt_1"},
+         {"value", 1},
+         {"label", "p > 1 (not a probability)"},
+         {"color", {1.0, 0.0, 0.0}},
+         {"style", "outline"}}}}};
+  const nlohmann::json spec = {
+      {"kind", "heatmap"},
+      {"image", png.filename().string()},
+      {"title",
+       "kneiphof2024-fig6: p of Eq. 20 over gamma and sqrt(alpha)\nGGX, normal incidence "
+       "(R of Deliot & Belcour = p)"},
+      {"csv", csv},
+      {"panels", {panel}}};
+  std::filesystem::path sidecar = png;
+  io::write_file_atomic(sidecar.replace_extension(".chart.json"), spec.dump(1) + "\n");
+}
+
 void run_fig6(const FigureContext& ctx) {
   // One closed-form evaluation per pixel centre: cheap enough for 512 pixels at full.
   const int size = ctx.quick ? 128 : 512;
@@ -190,9 +225,9 @@ void run_fig6(const FigureContext& ctx) {
           w.end_row();
         }
       });
-  // The p > 1 map at normal incidence over (√α, γ).
+  // The p > 1 map at normal incidence over (√α, γ): its numbers in p_map.csv, drawn by matplotlib
+  // into p_map.png (write_p_map_spec).
   const int na = ctx.quick ? 17 : 81, ng = ctx.quick ? 13 : 61;
-  Image map(ng, na, {"R", "G", "B"});
   io::write_csv_atomic(ctx.dir / "p_map.csv", {"sqrt_alpha", "gamma_deg", "p_eq20", "p_gt_1"},
                        [&](io::CsvWriter& w) {
                          for (int i = 0; i < na; ++i)
@@ -202,13 +237,9 @@ void run_fig6(const FigureContext& ctx) {
                              const double p = p_normal(sa * sa, gd);
                              w.cell(sa).cell(gd).cell(p).cell_int(p > 1);
                              w.end_row();
-                             const double v = std::min(1.0, p);
-                             map.at(j, na - 1 - i, 0) = p > 1 ? 1.0 : v;
-                             map.at(j, na - 1 - i, 1) = p > 1 ? 0.0 : v;
-                             map.at(j, na - 1 - i, 2) = p > 1 ? 0.0 : v;
                            }
                        });
-  io::write_png_preview(ctx.dir / "p_map.png", map);
+  write_p_map_spec(ctx.dir / "p_map.png", "p_map.csv", na, ng);
   std::string md =
       "# kneiphof2024-fig6\n\nR making Deliot & Belcour equal to Eq. 20 at normal incidence "
       "(R = p, since D(h)/D(n) = 1 there). The paper gives no numbers; it states p > 1 (and R > 1) "
@@ -370,7 +401,7 @@ constexpr std::string_view kFig10 = "kneiphof2024-fig10";
 
 void run_fig10(const FigureContext& ctx) {
   const int size = ctx.quick ? 128 : 512;
-  const int strips = 8;  // N_P quadruples from strip to strip
+  const int strips = 8;                      // N_P quadruples from strip to strip
   const int samples = ctx.quick ? 16 : 128;  // MC samples per pixel for an area light
   // log10 facet density of the first strip, raised with the pixel count so that each strip's N_P
   // (facets per pixel footprint, what the figure is about) is the same at every image size.

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "cli/chart_png.h"
 #include "cli/cli_test_util.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"
@@ -29,7 +30,22 @@ TEST_F(KneiphofFigureTest, Fig6) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/kneiphof2024-fig6");
   expect_png(d / "fig6.png");
-  expect_png(d / "p_map.png");
+  // The p map is a heat map drawn by matplotlib from p_map.csv: one labelled panel, its colour bar
+  // the value with its unit, the p > 1 cells named; the same bytes with one thread.
+  expect_labelled_chart(d / "p_map.png", 1);
+  const nlohmann::json m = chart_manifest(d / "p_map.png");
+  EXPECT_NE(m.value("title", std::string()).find("p of Eq. 20"), std::string::npos);
+  const nlohmann::json& a = m["axes"][0];
+  EXPECT_EQ(a.value("xlabel", ""), "cap half-angle gamma [deg] (log spacing)");
+  EXPECT_EQ(a.value("ylabel", ""), "sqrt(alpha) [1]");
+  EXPECT_EQ(a.value("colorbar_label", ""), "cap probability p (Eq. 20) [1] (log scale)");
+  EXPECT_TRUE(a.value("map", false) && a.value("legend", false));
+  EXPECT_EQ(io::read_csv(d / "p_map.csv").num_rows(), 13u * 17u);
+  ASSERT_EQ(
+      run({"figure", "kneiphof2024-fig6", "--budget", "quick", "--out", "one", "--threads", "1"})
+          .exit_code,
+      0);
+  EXPECT_EQ(read_text(path("one/kneiphof2024-fig6/p_map.png")), read_text(d / "p_map.png"));
   io::read_exr(d / "sa0.1_gamma5.exr").image.channel("p_clamped");
   const io::CsvTable t = io::read_csv(d / "fig6.csv");
   ASSERT_EQ(t.num_rows(), 6u);
@@ -89,8 +105,7 @@ TEST_F(KneiphofFigureTest, Table1WithoutBenchmarkDataSaysSo) {
   const fs::path d = path("figs/kneiphof2024-table1");
   EXPECT_FALSE(fs::exists(d / "table1.csv"));
   const std::string md = read_text(d / "summary.md");
-  EXPECT_NE(md.find("No benchmark data: no benchmark folder was given"), std::string::npos)
-      << md;
+  EXPECT_NE(md.find("No benchmark data: no benchmark folder was given"), std::string::npos) << md;
   EXPECT_NE(md.find("| area | 1.7 / 2.7 / 2.8 / 2.9 |"), std::string::npos) << md;
   for (const char* bad : {"nan", "NaN", "NOT FOUND"}) EXPECT_EQ(md.find(bad), std::string::npos);
 
