@@ -7,7 +7,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -57,7 +60,77 @@ void progress(const FigureContext& ctx, const std::string& stage, long done, lon
   if (ctx.progress) ctx.progress(stage, done, total);
 }
 
+// A chart spec (reports/figure_charts.py) beside `png` = NAME.png, as NAME.chart.json.
+void write_chart_json(const std::filesystem::path& png, nlohmann::json spec) {
+  spec["image"] = png.filename().string();
+  std::filesystem::path sidecar = png;
+  io::write_file_atomic(sidecar.replace_extension(".chart.json"), spec.dump(1) + "\n");
+}
+
 // --- Fig. 3 ---
+// fig3.png, drawn by matplotlib from fig3_marginals.csv: per distribution (columns 0..3) its
+// density over the slope and every level as a heat map (log colour scale, down to 1e-3 of the
+// densest cell), and under it the curves of four levels beside the Gaussian N(0, σ_o²) they
+// converge to, as the paper's Fig. 3 draws them.
+// `peak`: the largest density in the CSV.
+void write_fig3_spec(const std::filesystem::path& png, const chermain2021::Dictionary& d,
+                     double peak) {
+  const int last = d.levels() - 1;
+  const int shown[] = {0, (last + 1) / 4 - 1, (last + 1) / 2 - 1, last};
+  const nlohmann::json x = {{"column", "slope"}, {"label", "slope [1]"}};
+  nlohmann::json maps = nlohmann::json::array(), curves = nlohmann::json::array();
+  for (int n = 0; n < 4; ++n) {
+    maps.push_back(
+        {{"kind", "heatmap"},
+         {"title", fmt::format("distribution {}: every level (colours from 1e-3 of the peak)", n)},
+         {"where", {{"distribution", n}}},
+         {"x", x},
+         {"y",
+          {{"columns", {"level"}}, {"format", "{level}"}, {"label", "level k [1] (2^k lobes)"}}},
+         {"value",
+          {{"column", "density"},
+           {"label", "density [1] (log scale)"},
+           {"log", true},
+           {"range", {peak * 1e-3, peak}},
+           {"cmap", "magma"}}},
+         {"empty_label", "density 0"}});
+    nlohmann::json series = nlohmann::json::array();
+    for (std::size_t j = 0; j < std::size(shown); ++j) {
+      const double t = double(j) / double(std::size(shown) - 1);
+      series.push_back({{"label", fmt::format("level {} ({} lobes)", shown[j], 1LL << shown[j])},
+                        {"where", {{"level", shown[j]}}},
+                        {"y", "density"},
+                        {"color", {0.9 * t, 0.2, 0.9 * (1 - t)}},
+                        {"line", "solid"},
+                        {"marker", "none"}});
+    }
+    series.push_back({{"label", "Gaussian N(0, sigma_o^2)"},
+                      {"where", {{"level", 0}}},
+                      {"y", "gaussian_density"},
+                      {"color", {0, 0, 0}},
+                      {"line", "dashed"},
+                      {"marker", "none"}});
+    curves.push_back({{"kind", "lines"},
+                      {"title", fmt::format("distribution {}: four levels and the Gaussian", n)},
+                      {"where", {{"distribution", n}}},
+                      {"x", x},
+                      {"y", {{"label", "density [1]"}}},
+                      {"series", series},
+                      {"hlines", nlohmann::json::array()}});
+  }
+  for (nlohmann::json& c : curves) maps.push_back(std::move(c));
+  write_chart_json(
+      png,
+      {{"kind", "heatmap"},
+       {"title", fmt::format("chermain2021-fig3: the dictionary's 1D distributions 0..3 over "
+                             "their {} levels\n"
+                             "(N = {}, sigma_o = {:.4g}, alpha_dict = {})",
+                             d.levels(), d.distributions(), d.sigma_o(), d.config().alpha_dict)},
+       {"csv", "fig3_marginals.csv"},
+       {"columns", 4},
+       {"panels", maps}});
+}
+
 void run_fig3(const FigureContext& ctx) {
   const chermain2021::Dictionary& d = chermain2021::default_chermain_dictionary();
   progress(ctx, "dictionary", 1, 1);
@@ -66,6 +139,7 @@ void run_fig3(const FigureContext& ctx) {
   // Distributions 0..3 at every level, on a signed slope axis, with the Gaussian of std σ_o.
   const int points = ctx.quick ? 128 : 512;
   const double so = d.sigma_o();
+  double peak = 0;
   io::write_csv_atomic(
       ctx.dir / "fig3_marginals.csv",
       {"distribution", "level", "slope", "density", "gaussian_density"}, [&](io::CsvWriter& w) {
@@ -73,7 +147,9 @@ void run_fig3(const FigureContext& ctx) {
           for (int k = 0; k < d.levels(); ++k)
             for (int i = 0; i < points; ++i) {
               const double x = -d.extent() + (i + 0.5) * 2 * d.extent() / points;
-              w.cell_int(n).cell_int(k).cell(x).cell(d.lookup_lod(n, k, x));
+              const double v = d.lookup_lod(n, k, x);
+              peak = std::max(peak, v);
+              w.cell_int(n).cell_int(k).cell(x).cell(v);
               w.cell(std::exp(-0.5 * x * x / (so * so)) / (so * std::sqrt(2 * kPi<double>)));
               w.end_row();
             }
@@ -96,18 +172,7 @@ void run_fig3(const FigureContext& ctx) {
                          for (int k = 0; k < d.levels(); ++k)
                            w.cell_int(k).cell_int(1LL << k).cell(l1[std::size_t(k)]).end_row();
                        });
-  // Preview: distributions 0..3 as rows of bars, level per row band (brightness = density), each
-  // band two pixels high so that the preview is as tall as a reader needs (128 at 16 levels).
-  Image plot(d.resolution() * 2, 8 * d.levels(), {"R", "G", "B"});
-  for (int n = 0; n < 4; ++n)
-    for (int k = 0; k < d.levels(); ++k)
-      for (int x = 0; x < plot.width; ++x) {
-        const double s = -d.extent() + (x + 0.5) * 2 * d.extent() / plot.width;
-        const double v = d.lookup_lod(n, k, s) * so;
-        for (int row : {2 * (n * d.levels() + k), 2 * (n * d.levels() + k) + 1})
-          for (std::size_t c = 0; c < 3; ++c) plot.at(x, row, c) = v;
-      }
-  io::write_png_preview(ctx.dir / "fig3.png", plot, 2.0);
+  write_fig3_spec(ctx.dir / "fig3.png", d, peak);
   std::string rows;
   for (int k = 0; k < d.levels(); ++k)
     rows += fmt::format("| {} | {} | {:.4f} |\n", k, 1LL << k, l1[std::size_t(k)]);
@@ -356,6 +421,8 @@ void run_fig9(const FigureContext& ctx) {
 }
 
 // --- Fig. 10 ---
+constexpr double kSdfExtent = 1.2;  // the panels cover slopes [-1.2, 1.2]²
+
 void run_fig10(const FigureContext& ctx) {
   // Panels a person can see; the patch-SDF is evaluated, not sampled, so 512² costs seconds.
   const int size = ctx.quick ? 128 : 512;
@@ -379,7 +446,7 @@ void run_fig10(const FigureContext& ctx) {
                                       0.5,
                                       1};
       Image img(size, size, {"R", "G", "B"});
-      const double R = 1.2;
+      const double R = kSdfExtent;
       for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
           const Vec2<double> m{-R + (x + 0.5) * 2 * R / size, R - (y + 0.5) * 2 * R / size};
@@ -398,19 +465,49 @@ void run_fig10(const FigureContext& ctx) {
       panels.push_back(std::move(img));
       progress(ctx, "panels", long(panels.size()), 6);
     }
-  std::vector<const Image*> all;
-  for (const Image& im : panels) all.push_back(&im);
-  io::write_png_preview(ctx.dir / "fig10.png", montage(all), 0.5);
-  std::vector<std::string> labels;
+  // fig10.png, drawn by matplotlib from fig10_sdf.csv: each panel's patch-SDF on at most 128 x 128
+  // cells, each the mean of its block of pixels (the pixels themselves at quick).
+  const int cells = std::min(size, 128), block = size / cells;
+  io::write_csv_atomic(ctx.dir / "fig10_sdf.csv",
+                       {"rho", "log_density", "slope_x", "slope_y", "density"},
+                       [&](io::CsvWriter& w) {
+                         for (std::size_t k = 0; k < panels.size(); ++k)
+                           for (int cy = 0; cy < cells; ++cy)
+                             for (int cx = 0; cx < cells; ++cx) {
+                               double sum = 0;
+                               for (int y = cy * block; y < (cy + 1) * block; ++y)
+                                 for (int x = cx * block; x < (cx + 1) * block; ++x)
+                                   sum += panels[k].at(x, y, 0);
+                               w.cell(rows[k].rho).cell(rows[k].log_density);
+                               w.cell(-kSdfExtent + (cx + 0.5) * 2 * kSdfExtent / cells);
+                               w.cell(kSdfExtent - (cy + 0.5) * 2 * kSdfExtent / cells);
+                               w.cell(sum / (block * block)).end_row();
+                             }
+                       });
+  nlohmann::json maps = nlohmann::json::array();
   for (const Row& r : rows)
-    labels.push_back(fmt::format("rho {}, density e^{}", r.rho, r.log_density));
-  write_panel_layout(
+    maps.push_back(
+        {{"title", fmt::format("rho {}, density e^{}", r.rho, r.log_density)},
+         {"where", {{"rho", r.rho}, {"log_density", r.log_density}}},
+         {"x", {{"column", "slope_x"}, {"label", "slope x [1]"}}},
+         {"y",
+          {{"columns", {"slope_y"}},
+           {"format", "{slope_y:.3g}"},
+           {"label", "slope y [1]"},
+           {"invert", true}}},
+         {"value",
+          {{"column", "density"}, {"label", "patch-SDF density [1/slope^2]"}, {"cmap", "magma"}}}});
+  write_chart_json(
       ctx.dir / "fig10.png",
-      {fmt::format("chermain2021-fig10: the patch-SDF over the slope plane, s = {}", s),
-       int(all.size()),
-       0,
-       labels,
-       {"slope x [1]", "slope y [1]", "patch-SDF density [1/slope^2]", -1.2, 1.2, -1.2, 1.2, 0.5}});
+      {{"kind", "heatmap"},
+       {"title", fmt::format("chermain2021-fig10: the patch-SDF over the slope plane, sigma_x = "
+                             "sigma_y = {}\n{} x {} cells{}",
+                             s, cells, cells,
+                             block > 1 ? fmt::format(", each the mean of {0} x {0} pixels", block)
+                                       : std::string())},
+       {"csv", "fig10_sdf.csv"},
+       {"columns", 3},
+       {"panels", maps}});
   io::write_csv_atomic(ctx.dir / "fig10.csv",
                        {"rho", "log_density", "sigma_x", "sigma_y", "sigma_x_measured",
                         "sigma_y_measured", "rho_measured", "mass"},
@@ -433,7 +530,7 @@ void run_fig10(const FigureContext& ctx) {
   io::write_file_atomic(
       ctx.dir / "summary.md",
       fmt::format("# chermain2021-fig10: slope correlation rho\n\nPatch-SDF panels (EXR, "
-                  "PNG left to right: e^15 rho 0, 0.5, 0.99; e^50 rho 0, 0.5, 0.99), "
+                  "PNG rows e^15 and e^50, each rho 0, 0.5, 0.99 left to right), "
                   "sigma_x = sigma_y = {}, footprint 1/64 uv; covariance by 2D quadrature. "
                   "The paper shows images only.\n\n| rho | density | sigma_x | sigma_y | "
                   "rho measured | mass |\n|---|---|---|---|---|---|\n{}",
