@@ -305,17 +305,20 @@ def _y_ticks(ax, spec_name, csv_name, y, ycols, ykeys):
 
 def _label_grid_axes(ax, spec_name, csv_name, panel, xs, ycols, ykeys, ticks, rotate):
     """A grid map's x ticks (the spec's count, else `ticks`; labels turned when more than four
-    and `rotate`), y ticks, image-row order, axis labels and panel title."""
+    and `rotate`), y ticks, image-row order, axis labels and panel title; returns whether the x
+    tick labels are turned."""
     x, y = panel["x"], panel["y"]
     xi, xl = charts._ticks(xs, n=int(x.get("ticks", ticks)))
+    turned = rotate and len(xi) > 4
     ax.set_xticks(xi)
-    ax.set_xticklabels(xl, fontsize=6, rotation=30 if rotate and len(xi) > 4 else 0)
+    ax.set_xticklabels(xl, fontsize=6, rotation=30 if turned else 0)
     _y_ticks(ax, spec_name, csv_name, y, ycols, ykeys)
     if y.get("invert"):  # image rows: the first at the top
         ax.invert_yaxis()
     ax.set_xlabel(x["label"], fontsize=8)
     ax.set_ylabel(y["label"], fontsize=8)
     ax.set_title(panel["title"], fontsize=8)
+    return turned
 
 
 def draw_heatmap(ax, fig, spec_name, csv_name, header, rows, panel):
@@ -393,9 +396,11 @@ def draw_heatmap(ax, fig, spec_name, csv_name, header, rows, panel):
     if empty:
         handles.append(Patch(facecolor=(0.8, 0.8, 0.8),
                              label=panel.get("empty_label") or f"no value ({empty} cells)"))
-    if handles:
-        ax.legend(handles=handles, fontsize=6, loc="upper left", bbox_to_anchor=(0, -0.14))
-    _label_grid_axes(ax, spec_name, csv_name, panel, xs, ycols, ykeys, ticks=6, rotate=True)
+    turned = _label_grid_axes(ax, spec_name, csv_name, panel, xs, ycols, ykeys, ticks=6,
+                              rotate=True)
+    if handles:  # under the x label, lower where the tick labels are turned
+        ax.legend(handles=handles, fontsize=6, loc="upper left",
+                  bbox_to_anchor=(0, -0.22 if turned else -0.14))
     return int(np.isfinite(grid).sum())
 
 

@@ -9,13 +9,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
 #include <numbers>
+#include <string>
+#include <tuple>
 #include <vector>
 
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"
-#include "core/io/png.h"
 #include "core/model_registry.h"
 #include "verify/stability/cell_stats.h"
 
@@ -23,6 +26,71 @@ namespace glintlab::experiments {
 namespace {
 
 constexpr double kThetaDeg = 45;
+constexpr int kMapCells = 128;  // the charts' cells per axis at most
+
+// STEM.png, drawn by matplotlib from STEM_map.csv: value f·cos and pdf over the hemisphere (the
+// EXR's channels 0 and 1) as two heat maps, on at most kMapCells² cells, each the mean of the
+// finite pixels of its block inside the disk (the pixels themselves at quick); a block with a
+// non-finite pixel is flagged. Cells outside the disk have no row.
+void write_map(const std::filesystem::path& dir, const std::string& stem, const Image& img,
+               double vmax, double pmax) {
+  const int n = img.width, cells = std::min(n, kMapCells), block = n / cells;
+  const std::string csv = stem + "_map.csv";
+  io::write_csv_atomic(
+      dir / csv, {"wo_x", "wo_y", "value", "pdf", "nonfinite"}, [&](io::CsvWriter& w) {
+        for (int cy = 0; cy < cells; ++cy)
+          for (int cx = 0; cx < cells; ++cx) {
+            double v = 0, p = 0;
+            int inside = 0, finite = 0;
+            for (int y = cy * block; y < (cy + 1) * block; ++y)
+              for (int x = cx * block; x < (cx + 1) * block; ++x) {
+                const double px = (x + 0.5) / n * 2 - 1, py = 1 - (y + 0.5) / n * 2;
+                if (px * px + py * py >= 1) continue;
+                ++inside;
+                const double a = img.at(x, y, 0), b = img.at(x, y, 1);
+                if (!std::isfinite(a) || !std::isfinite(b)) continue;
+                v += a, p += b, ++finite;
+              }
+            if (inside == 0) continue;
+            const double nan = std::numeric_limits<double>::quiet_NaN();
+            w.cell((cx + 0.5) / cells * 2 - 1).cell(1 - (cy + 0.5) / cells * 2);
+            w.cell(finite ? v / finite : nan).cell(finite ? p / finite : nan);
+            w.cell_int(finite < inside ? 1 : 0).end_row();
+          }
+      });
+  const nlohmann::json x = {{"column", "wo_x"}, {"label", "wo.x [1] (orthographic)"}};
+  const nlohmann::json y = {{"columns", {"wo_y"}},
+                            {"format", "{wo_y:.2f}"},
+                            {"label", "wo.y [1] (orthographic)"},
+                            {"invert", true}};
+  const nlohmann::json flags = {{{"column", "nonfinite"},
+                                 {"value", 1},
+                                 {"label", "a NaN or Inf pixel"},
+                                 {"color", {1.0, 0.0, 0.0}},
+                                 {"style", "fill"}}};
+  nlohmann::json panels = nlohmann::json::array();
+  for (const auto& [column, what, label, peak] :
+       {std::tuple{"value", "value f cos(theta_o)", "f cos(theta_o) [1/sr]", vmax},
+        std::tuple{"pdf", "pdf of sample", "pdf [1/sr]", pmax}})
+    panels.push_back({{"title", fmt::format("{} (largest pixel {:.4g})", what, peak)},
+                      {"x", x},
+                      {"y", y},
+                      {"value", {{"column", column}, {"label", label}}},
+                      {"flags", flags},
+                      {"empty_label", "below the horizon (outside the disk)"}});
+  const nlohmann::json spec = {
+      {"kind", "heatmap"},
+      {"image", stem + ".png"},
+      {"title", fmt::format("models-hemisphere: {} at its default parameters, theta_i = {:g} deg\n"
+                            "upper hemisphere of wo, {} x {} cells{}",
+                            stem, kThetaDeg, cells, cells,
+                            block > 1 ? fmt::format(" (each the mean of {0} x {0} pixels)", block)
+                                      : std::string())},
+      {"csv", csv},
+      {"columns", 2},
+      {"panels", panels}};
+  io::write_file_atomic(dir / (stem + ".chart.json"), spec.dump(1) + "\n");
+}
 
 void run(const FigureContext& ctx) {
   const int n = ctx.quick ? 128 : 512;
@@ -74,7 +142,7 @@ void run(const FigureContext& ctx) {
         vmax = std::max(vmax, v);
         pmax = std::max(pmax, p);
       }
-    // Preview: value in red, pdf in green, each scaled to its maximum.
+    // The EXR's R, G: value and pdf, each scaled to its maximum.
     for (int y = 0; y < n; ++y)
       for (int x = 0; x < n; ++x) {
         const double v = img.at(x, y, 0), p = img.at(x, y, 1);
@@ -88,7 +156,7 @@ void run(const FigureContext& ctx) {
                    {"glintlab_theta_i_deg", fmt::format("{:g}", kThetaDeg)},
                    {"glintlab_projection", "orthographic upper hemisphere, +x right, +y up"},
                    {"glintlab_version", std::string(glintlab_version())}});
-    io::write_png_preview(ctx.dir / (stem + ".png"), img);
+    write_map(ctx.dir, stem, img, vmax, pmax);
     w.cell(stem).cell(kThetaDeg).cell_int(n * n).cell(albedo).cell(mass).cell(vmax).cell(pmax);
     w.cell_int(bad).end_row();
     if (ctx.progress) ctx.progress("models", long(mi + 1), long(models.size()));

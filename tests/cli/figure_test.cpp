@@ -10,6 +10,7 @@
 
 #include "cli/chart_png.h"
 #include "cli/cli_test_util.h"
+#include "core/io/csv.h"
 #include "core/io/exr.h"
 
 namespace glintlab::cli_test {
@@ -91,8 +92,8 @@ TEST_F(FigureTest, RmseSppQuickWritesExrPngAndCsv) {
   ASSERT_EQ(s.num_rows(), 4u);
   // A smoke test of the series, not a claim: the expected slope is −½, but a quick image's
   // RMSE at 1–4 spp is dominated by a few sun hits (heavy-tailed; measured slopes −0.32 to −0.53
-  // at 48², −0.46 to −0.51 at 128²), so only "falls, at a rate between spp^-0.2 and spp^-1" is checked here, and that
-  // 32 spp beats 1 spp by more than 2× for every (alpha, method).
+  // at 48², −0.46 to −0.51 at 128²), so only "falls, at a rate between spp^-0.2 and spp^-1" is
+  // checked here, and that 32 spp beats 1 spp by more than 2× for every (alpha, method).
   for (std::size_t i = 0; i < 4; ++i) {
     const double slope = s.number(i, s.column("slope"));
     EXPECT_LT(slope, -0.2);
@@ -205,22 +206,27 @@ TEST_F(FigureChartsTest, CategoryMapsHaveTheirColourScaleOrFailInOneLine) {
 }
 
 // A heat map (a number over a grid, e.g. p over (gamma, sqrt(alpha)) or a difference over an
-// image's pixels): its colour scale, the flagged cells named in the legend with their count; a flag
-// naming a column the CSV lacks is one line and no PNG.
+// image's pixels): its colour scale and its label, the flagged cells named in the legend with
+// their count; a flag naming a column the CSV lacks, or a y format that fits no cell, is one line
+// and no PNG.
 TEST_F(FigureChartsTest, HeatMapsHaveTheirColourScaleAndFlagsOrFailInOneLine) {
-  auto map_folder = [&](const std::string& name, const std::string& flag_column) {
+  auto map_folder = [&](const std::string& name, const std::string& flag_column,
+                        const std::string& y_format = "{sa:.2f}") {
     const fs::path d = path(name);
     fs::create_directories(d);
-    write_text(d / "p.csv",
-               "gamma,sa,p,over\n0.1,0.1,0.5,0\n1,0.1,2,1\n10,0.1,8,1\n0.1,0.5,0.01,0\n1,0.5,0.1,0\n"
-               "10,0.5,nan,0\n");
-    write_text(d / "p.chart.json", R"({"kind": "heatmap", "title": "p map", "csv": "p.csv",
+    write_text(
+        d / "p.csv",
+        "gamma,sa,p,over\n0.1,0.1,0.5,0\n1,0.1,2,1\n10,0.1,8,1\n0.1,0.5,0.01,0\n1,0.5,0.1,0\n"
+        "10,0.5,nan,0\n");
+    write_text(
+        d / "p.chart.json", R"({"kind": "heatmap", "title": "p map", "csv": "p.csv",
  "panels": [{"title": "p over the grid", "where": {},
  "x": {"column": "gamma", "label": "gamma [deg]"},
- "y": {"columns": ["sa"], "label": "sqrt(alpha) [1]"},
+ "y": {"columns": ["sa"], "format": ")" +
+                                y_format + R"(", "label": "sqrt(alpha) [1]"},
  "value": {"column": "p", "label": "p [1]", "log": true},
  "flags": [{"column": ")" + flag_column +
-                                           R"(", "value": 1, "label": "p > 1", "color": [1, 0, 0]}]}]})");
+                                R"(", "value": 1, "label": "p > 1", "color": [1, 0, 0]}]}]})");
     return d;
   };
   const fs::path good = map_folder("good", "over");
@@ -230,7 +236,10 @@ TEST_F(FigureChartsTest, HeatMapsHaveTheirColourScaleAndFlagsOrFailInOneLine) {
   const nlohmann::json m = chart_manifest(good / "p.png");
   EXPECT_TRUE(m["axes"][0].value("map", false));
   EXPECT_TRUE(m["axes"][0].value("legend", false));  // the flags and the cell without a value
+  EXPECT_EQ(m["axes"][0].value("colorbar_label", ""), "p [1]");
   expect_one_line(map_folder("missing", "p_gt_1"), "p.csv has no column 'p_gt_1'");
+  // A y format's number spec formats the cell as a number; one that fits no number is one line.
+  expect_one_line(map_folder("bad_format", "over", "{sa:.2q}"), "y format '{sa:.2q}' does not fit");
 }
 
 // The chart script's failure is the figure's: one line naming the figure and the script's message,
@@ -247,6 +256,49 @@ TEST_F(FigureTest, AFailedChartIsTheFiguresOneLineErrorAndLeavesNoFolder) {
       run({"figure", "kemppinen2025-fig15", "--budget", "quick", "--out", "out", "--threads", "2"});
   ::unsetenv("GLINTLAB_REPORTS_DIR");
   expect_input_error(r, {"figure kemppinen2025-fig15", "furnace.csv has no column 'x'"}, {"out"});
+}
+
+// models-hemisphere: per model its value and pdf over the hemisphere as two heat maps drawn by
+// matplotlib from STEM_map.csv (at quick the EXR's pixels inside the disk), labelled with their
+// units and colour bars; the same bytes with one thread and with two.
+TEST_F(FigureTest, ModelsHemisphereMapsAreChartsOfTheirCsv) {
+  for (const char* threads : {"2", "1"}) {
+    const RunResult r = run({"figure", "models-hemisphere", "--budget", "quick", "--out",
+                             std::string("out") + threads, "--threads", threads});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const fs::path d = path("out2/models-hemisphere");
+  const io::CsvTable models = io::read_csv(d / "models_hemisphere.csv");
+  ASSERT_GE(models.num_rows(), 9u);
+  for (std::size_t i = 0; i < models.num_rows(); ++i) {
+    const std::string stem(models.text(i, models.column("model")));
+    const fs::path png = d / (stem + ".png");
+    expect_labelled_chart(png, 2);
+    const nlohmann::json m = chart_manifest(png);
+    EXPECT_NE(m.value("title", std::string()).find(stem), std::string::npos) << stem;
+    EXPECT_EQ(m["axes"][0].value("colorbar_label", ""), "f cos(theta_o) [1/sr]") << stem;
+    EXPECT_EQ(m["axes"][1].value("colorbar_label", ""), "pdf [1/sr]") << stem;
+    EXPECT_EQ(read_text(png), read_text(path("out1/models-hemisphere/" + stem + ".png"))) << stem;
+  }
+  // smooth_ggx's map: every pixel inside the disk, equal to the EXR's (32-bit float) pixels.
+  const Image exr = io::read_exr(d / "smooth_ggx.exr").image;
+  const io::CsvTable t = io::read_csv(d / "smooth_ggx_map.csv");
+  std::size_t inside = 0;
+  for (int y = 0; y < 128; ++y)
+    for (int x = 0; x < 128; ++x) {
+      const double px = (x + 0.5) / 64 - 1, py = 1 - (y + 0.5) / 64;
+      if (px * px + py * py >= 1) continue;
+      if (x == 40 && y == 90) {
+        EXPECT_EQ(t.number(inside, t.column("wo_x")), px);
+        EXPECT_EQ(t.number(inside, t.column("wo_y")), py);
+        EXPECT_EQ(float(t.number(inside, t.column("value"))),
+                  float(exr.at(x, y, exr.channel("value"))));
+        EXPECT_EQ(float(t.number(inside, t.column("pdf"))),
+                  float(exr.at(x, y, exr.channel("pdf"))));
+      }
+      ++inside;
+    }
+  EXPECT_EQ(t.num_rows(), inside);
 }
 
 // A lat-long EXR environment: a small uniform map lights the quick Fig. 4 and is named in the EXR
