@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "cli/child_process.h"
 #include "cli/commands.h"
 #include "cli/input.h"
 #include "cli/progress.h"
@@ -78,7 +79,8 @@ errors), p > 1 for probability intermediates (named p or p_*), and Var(w)/E(w)^2
 sample weight at the worst of 4 fixed surface positions (blow-up above 81.92, a pixel still 10 %
 noisy at 8192 samples; docs/stability.md).
 Writes DIR/<model>/<sampler>/<plane>.csv (every number per cell), <plane>_<quantity>.exr (one
-pixel per cell; row 0 = the smallest row value) and .png, and DIR/stability.json: machine,
+pixel per cell; row 0 = the smallest row value) and .png (a heat map drawn by matplotlib from
+<plane>_maps.csv and <plane>_<quantity>.chart.json), and DIR/stability.json: machine,
 budget, and per target its maps and its failure region in words. Files are staged and moved
 into DIR only when every target finished. Output is identical for any --threads.)";
 
@@ -134,6 +136,15 @@ experiments::SweepRunSummary run_sweep(const SweepRequest& o, const Shard* shard
       current = target;
     }
     bar->step("planes");
+  };
+  // Each target's maps, drawn by matplotlib from their chart specs before the files are moved in.
+  r.finish = [](const fs::path& dir) {
+    try {
+      draw_figure_charts(dir);
+    } catch (const InputError& e) {  // the target's folder: <model>/<sampler>
+      throw InputError(fmt::format("sweep {}/{}: {}", dir.parent_path().filename().string(),
+                                   dir.filename().string(), e.what()));
+    }
   };
   try {
     experiments::SweepRunSummary summary = experiments::run_sweeps(o.out, r);

@@ -1,4 +1,5 @@
-// Stability maps as EXR + PNG + CSV files, one set per plane of a swept model × sampler.
+// Stability maps as EXR + CSV files and chart specs (the PNGs drawn by matplotlib), one set per
+// plane of a swept model × sampler.
 #include "experiments/sweeps/stability_maps.h"
 
 #include <fmt/format.h>
@@ -6,12 +7,12 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"
-#include "core/io/png.h"
 
 namespace glintlab::experiments {
 namespace {
@@ -28,12 +29,15 @@ struct Channel {
   std::function<double(const CellStats&)> get;
 };
 
-// The EXR channels of a quantity and the severity t ∈ [0, 1] the PNG shows (0 = clean).
+// The EXR channels of a quantity, the number its map shows and whether a cell fails (what the
+// sweep flags), with their labels.
 struct QuantitySpec {
   std::vector<Channel> channels;
-  std::function<double(const CellStats&)> severity;
-  // For clean cells: the size of the quantity below its threshold in [0, 1] (blue brightness).
-  std::function<double(const CellStats&)> shade = [](const CellStats&) { return 0.0; };
+  Channel shown;            // the CSV column and value of the map
+  std::string shown_label;  // its colour bar, with its unit
+  bool log = false;         // a log colour scale
+  std::function<bool(const CellStats&)> fails;
+  std::string fails_label;  // what a flagged cell is
 };
 
 QuantitySpec defect_spec(const std::string& q, std::uint64_t Defects::*f, bool with_float) {
@@ -52,12 +56,16 @@ QuantitySpec defect_spec(const std::string& q, std::uint64_t Defects::*f, bool w
                           [=](const CellStats& c) { return frac(c.sample_f.*f, c.samples_f); }});
   }
   const auto channels = s.channels;
-  s.severity = [channels](const CellStats& c) {
+  const auto largest = [channels](const CellStats& c) {
     double m = 0;
     for (const Channel& ch : channels) m = std::max(m, ch.get(c));
-    // Any defect is visible: a single NaN in 10^4 calls still shows as yellow.
-    return m > 0 ? 0.25 + 0.75 * std::min(1.0, m) : 0.0;
+    return m;
   };
+  const std::string name = q == "nan" ? "NaN" : q == "inf" ? "Inf" : "negative";
+  s.shown = {q + "_fraction", largest};
+  s.shown_label = fmt::format("{} fraction of calls [1]", name);
+  s.fails = [largest](const CellStats& c) { return largest(c) > 0; };  // a single one fails
+  s.fails_label = fmt::format("a {} value, pdf or sample seen", name);
   return s;
 }
 
@@ -74,50 +82,103 @@ QuantitySpec quantity_spec(const std::string& q, bool with_float) {
         {"albedo_uniform_error", [](const CellStats& c) { return c.albedo_uniform_error; }},
         {"gain", [](const CellStats& c) { return c.gain(); }},
     };
-    s.severity = [](const CellStats& c) {
-      const double g = c.gain();
-      return g > 0 ? 0.25 + 0.75 * std::min(1.0, g / 0.1) : 0.0;
-    };
-    s.shade = [](const CellStats& c) { return std::clamp(c.albedo, 0.0, 1.0); };
+    s.shown = {"albedo", [](const CellStats& c) { return c.albedo; }};
+    s.shown_label = "white-furnace albedo [1]";
+    s.fails = [](const CellStats& c) { return c.energy_gain(); };
+    s.fails_label = fmt::format("energy gain: albedo > 1 beyond {:g} standard errors",
+                                verify::stability::kGainSigmas);
   } else if (q == "p_gt_1") {
     s.channels = {
         {"p_gt_1", [](const CellStats& c) { return frac(c.p_above_one, c.p_evals); }},
         {"p_max", [](const CellStats& c) { return c.p_max; }},
     };
-    s.severity = [](const CellStats& c) {
-      const double f = frac(c.p_above_one, c.p_evals);
-      return f > 0 ? 0.25 + 0.75 * std::min(1.0, f) : 0.0;
-    };
+    s.shown = {"p_max", [](const CellStats& c) { return c.p_max; }};
+    s.shown_label = "largest probability p seen [1]";
+    s.fails = [](const CellStats& c) { return c.p_above_one > 0; };
+    s.fails_label = "p > 1 seen";
   } else {  // variance
     s.channels = {
         {"relative_variance", [](const CellStats& c) { return c.relative_variance; }},
         {"weight_max", [](const CellStats& c) { return c.weight_max; }},
         {"accepted_fraction", [](const CellStats& c) { return frac(c.accepted, c.samples); }},
     };
-    s.severity = [](const CellStats& c) {
-      if (!c.variance_blowup()) return 0.0;  // two decades above the threshold = full red
-      return 0.25 +
-             0.75 *
-                 std::min(1.0,
-                          std::log10(c.relative_variance / verify::stability::kVarianceBlowup) / 2);
-    };
-    s.shade = [](const CellStats& c) {
-      return std::clamp(
-          std::log1p(c.relative_variance) / std::log1p(verify::stability::kVarianceBlowup), 0.0,
-          1.0);
-    };
+    s.shown = {"relative_variance", [](const CellStats& c) { return c.relative_variance; }};
+    s.shown_label = "Var(w)/E(w)^2 of the sample weight [1] (log scale)";
+    s.log = true;
+    s.fails = [](const CellStats& c) { return c.variance_blowup(); };
+    s.fails_label =
+        fmt::format("variance blow-up: Var(w)/E(w)^2 > {:g}", verify::stability::kVarianceBlowup);
   }
   return s;
 }
 
-// Clean cells dark blue-grey brightening with `shade`, flagged ones from yellow (t = 0.25) to red
-// (t = 1).
-void colour(double t, double shade, double rgb[3]) {
-  if (t <= 0) {
-    rgb[0] = 0.03, rgb[1] = 0.05 + 0.25 * shade, rgb[2] = 0.09 + 0.6 * shade;
-    return;
+// The y axis of a plane's maps: its row value with its unit.
+std::string row_axis_label(const verify::stability::SweepPlane& p) {
+  using verify::stability::Axis;
+  if (p.axis == Axis::kLightSize) return "light cone half-angle [deg]";
+  if (p.axis == Axis::kFootprint) return "footprint size s [uv per pixel]";
+  return p.row_label + " [1]";
+}
+
+// PLANE_maps.csv: per cell (rows as PLANE.csv's) the number each quantity's map shows and
+// whether the cell fails; the maps' charts read it.
+void write_map_csv(const SweepMap& m, const std::vector<std::string>& quantities,
+                   const std::vector<QuantitySpec>& specs, const std::filesystem::path& path) {
+  std::vector<std::string> header = {"row_index", "column_index", m.plane.name, "theta_i_deg"};
+  for (std::size_t k = 0; k < specs.size(); ++k) {
+    header.push_back(specs[k].shown.name);
+    header.push_back(quantities[k] + "_fails");
   }
-  rgb[0] = 1, rgb[1] = std::clamp(1 - (t - 0.25) / 0.75, 0.0, 1.0), rgb[2] = 0;
+  std::vector<std::string_view> views(header.begin(), header.end());
+  std::ostringstream text;
+  {
+    io::CsvWriter w(text, views);
+    const std::size_t cols = m.plane.theta_deg.size();
+    for (std::size_t i = 0; i < m.cells.size(); ++i) {
+      const CellStats& c = m.cells[i];
+      w.cell_int(static_cast<long long>(i / cols)).cell_int(static_cast<long long>(i % cols));
+      w.cell(m.plane.rows[i / cols]).cell(m.plane.theta_deg[i % cols]);
+      for (const QuantitySpec& q : specs) w.cell(q.shown.get(c)).cell_int(q.fails(c) ? 1 : 0);
+      w.end_row();
+    }
+    w.flush();
+  }
+  io::write_file_atomic(path, text.str());
+}
+
+// PLANE_QUANTITY.chart.json: the quantity's map over (θi, the plane's rows), failing cells
+// outlined, drawn by reports/figure_charts.py into PLANE_QUANTITY.png.
+void write_map_spec(const SweepMap& m, const ModelSweep& s, const std::string& q,
+                    const QuantitySpec& spec, const std::string& csv,
+                    const std::filesystem::path& png) {
+  std::size_t failing = 0;
+  for (const CellStats& c : m.cells) failing += spec.fails(c) ? 1 : 0;
+  nlohmann::json value = {{"column", spec.shown.name}, {"label", spec.shown_label}};
+  if (spec.log) value["log"] = true;
+  const nlohmann::json panel = {
+      {"title", fmt::format("{}: {} of {} cells fail", q, failing, m.cells.size())},
+      {"x", {{"column", "theta_i_deg"}, {"label", "incidence angle theta_i [deg]"}}},
+      {"y",
+       {{"columns", {m.plane.name}},
+        {"format", fmt::format("{{{}:.3g}}", m.plane.name)},
+        {"label", row_axis_label(m.plane)}}},
+      {"value", value},
+      {"flags",
+       {{{"column", q + "_fails"},
+         {"value", 1},
+         {"label", spec.fails_label},
+         {"color", {1.0, 0.0, 0.0}},
+         {"style", "outline"}}}},
+      {"empty_label", "no value (not finite, or zero on a log scale)"}};
+  const nlohmann::json chart = {
+      {"kind", "heatmap"},
+      {"image", png.filename().string()},
+      {"title", fmt::format("stability sweep of {} (sampler {}): {}\nplane {} x theta_i",
+                            s.target.model->name, s.target.sampler, q, m.plane.name)},
+      {"csv", csv},
+      {"panels", {panel}}};
+  std::filesystem::path sidecar = png;
+  io::write_file_atomic(sidecar.replace_extension(".chart.json"), chart.dump(1) + "\n");
 }
 
 void write_csv(const SweepMap& m, const ModelSweep& s, const std::filesystem::path& path) {
@@ -177,31 +238,26 @@ std::vector<MapFile> write_stability_maps(const ModelSweep& s, const std::filesy
                                           const std::filesystem::path& rel) {
   std::filesystem::create_directories(root / rel);
   std::vector<MapFile> files;
-  constexpr int kBlock = 16;  // PNG pixels per cell
+  const std::vector<std::string> quantities = map_quantities(s);
+  std::vector<QuantitySpec> specs;
+  for (const std::string& q : quantities) specs.push_back(quantity_spec(q, s.has_float));
   for (const SweepMap& m : s.maps) {
     const std::string csv = (rel / (m.plane.name + ".csv")).generic_string();
     write_csv(m, s, root / csv);
+    const std::string map_csv = m.plane.name + "_maps.csv";
+    write_map_csv(m, quantities, specs, root / rel / map_csv);
     const int w = int(m.plane.theta_deg.size()), h = int(m.plane.rows.size());
-    for (const std::string& q : map_quantities(s)) {
-      const QuantitySpec spec = quantity_spec(q, s.has_float);
+    for (std::size_t qi = 0; qi < quantities.size(); ++qi) {
+      const std::string& q = quantities[qi];
+      const QuantitySpec& spec = specs[qi];
       std::vector<std::string> names;
       for (const auto& ch : spec.channels) names.push_back(ch.name);
       Image exr(w, h, names);
-      Image png(w * kBlock, h * kBlock, {"R", "G", "B"});
       for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
           const CellStats& c = m.at(std::size_t(y), std::size_t(x));
           for (std::size_t k = 0; k < spec.channels.size(); ++k)
             exr.at(x, y, k) = spec.channels[k].get(c);
-          double rgb[3];
-          colour(spec.severity(c), spec.shade(c), rgb);
-          for (int by = 0; by < kBlock; ++by)
-            for (int bx = 0; bx < kBlock; ++bx)
-              for (std::size_t k = 0; k < 3; ++k) {
-                // A one-pixel grid line between cells.
-                const bool line = bx == 0 || by == 0;
-                png.at(x * kBlock + bx, y * kBlock + by, k) = line ? 0.2 : rgb[k];
-              }
         }
       const std::string stem = m.plane.name + "_" + q;
       const std::string exr_path = (rel / (stem + ".exr")).generic_string();
@@ -215,7 +271,7 @@ std::vector<MapFile> write_stability_maps(const ModelSweep& s, const std::filesy
                      {"glintlab_quantity", q},
                      {"glintlab_rows", m.plane.row_label + ": " + rows},
                      {"glintlab_columns", "theta_i_deg: " + cols}});
-      io::write_png_preview(root / png_path, png);
+      write_map_spec(m, s, q, spec, map_csv, root / png_path);
       files.push_back({q, m.plane.name, png_path, exr_path, csv});
     }
   }

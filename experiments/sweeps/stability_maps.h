@@ -1,7 +1,9 @@
 // Stability maps as files (claim all.stability): for one swept model × sampler, per plane one CSV
-// of every measured number per cell and, per quantity, an EXR (one float channel per component,
-// one pixel per cell) and a PNG preview (cells as blocks; clean cells dark, flagged cells yellow
-// to red with the size of the defect).
+// of every measured number per cell (PLANE.csv) and, per quantity, an EXR (one float channel per
+// component, one pixel per cell) and a heat map PLANE_QUANTITY.png: its chart spec
+// (PLANE_QUANTITY.chart.json) over PLANE_maps.csv (per cell the number each map shows and whether
+// the cell fails), drawn by reports/figure_charts.py (`glintlab sweep` runs it on each target's
+// folder before the sweep's files are moved into place). No map is drawn in C++.
 #pragma once
 
 #include <filesystem>
@@ -22,7 +24,8 @@ struct MapFile {
 // intermediate).
 std::vector<std::string> map_quantities(const verify::stability::ModelSweep& s);
 
-// Writes every map of `s` under `root / rel` (created); returns the files, paths relative to root.
+// Writes every map of `s` under `root / rel` (created): the CSVs, EXRs and chart specs; returns the
+// files, paths relative to root (the PNGs to be drawn from the specs).
 std::vector<MapFile> write_stability_maps(const verify::stability::ModelSweep& s,
                                           const std::filesystem::path& root,
                                           const std::filesystem::path& rel);

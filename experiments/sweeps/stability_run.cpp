@@ -73,6 +73,7 @@ SweepRunSummary run_sweeps(const fs::path& out, const SweepRunOptions& o) {
     });
     const fs::path rel = fs::path(std::string(t.model->name)) / t.sampler;
     const auto files = write_stability_maps(s, staging, rel);
+    if (o.finish) o.finish(staging / rel);
     nlohmann::ordered_json entry;
     entry["model"] = t.model->name;
     entry["sampler"] = t.sampler;

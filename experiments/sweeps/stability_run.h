@@ -22,6 +22,9 @@ struct SweepRunOptions {
   std::string models;  // comma-separated fnmatch globs over model names; empty = all
   // (target id, plane done, planes total); called from one thread at a time.
   std::function<void(const std::string& target, long done, long total)> progress;
+  // Called with each target's staging folder once its files are written (glintlab sweep: draws
+  // its maps' charts); a throw fails the run and leaves `out` as it was.
+  std::function<void(const std::filesystem::path& dir)> finish;
 };
 
 struct SweepRunSummary {

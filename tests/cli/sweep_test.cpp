@@ -1,10 +1,13 @@
-// `glintlab sweep`: the quick sweep's files and stability.json, identical output for any
-// --threads, and the bad-input errors (one line, exit 2, no output left behind).
+// `glintlab sweep`: the quick sweep's files and stability.json, its maps drawn by matplotlib
+// (labels read back from the PNGs), identical output for any --threads, and the bad-input errors
+// (one line, exit 2, no output left behind).
 #include <gtest/gtest.h>
+#include <stdlib.h>
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "cli/chart_png.h"
 #include "cli/cli_test_util.h"
 
 namespace glintlab::cli_test {
@@ -33,7 +36,16 @@ TEST_F(SweepTest, QuickSweepWritesMapsAndIndex) {
     EXPECT_EQ(m["maps"].size(), 2u * 5u);  // alpha, anisotropy × nan, inf, negative, gain, var
     for (const auto& map : m["maps"]) {
       for (const char* k : {"quantity", "png", "exr", "csv"}) EXPECT_TRUE(map.contains(k));
-      EXPECT_TRUE(fs::exists(path("s") / map["png"].get<std::string>()));
+      // A heat map drawn by matplotlib: labelled axes, its colour bar, the failing cells named.
+      const fs::path png = path("s") / map["png"].get<std::string>();
+      expect_labelled_chart(png, 1);
+      const nlohmann::json chart = chart_manifest(png);
+      const nlohmann::json& a = chart["axes"][0];
+      EXPECT_EQ(a.value("xlabel", ""), "incidence angle theta_i [deg]") << png;
+      EXPECT_NE(a.value("colorbar_label", "").find("[1]"), std::string::npos) << png;
+      EXPECT_TRUE(a.value("legend", false)) << png;
+      const std::string q = map["quantity"].get<std::string>();
+      EXPECT_NE(chart.value("title", "").find(q), std::string::npos) << png;
     }
   }
   EXPECT_EQ(doc["models"][1]["sampler"], "vndf");
@@ -51,8 +63,27 @@ TEST_F(SweepTest, OutputDoesNotDependOnThreads) {
           .exit_code,
       0);
   EXPECT_EQ(read_text(path("a/stability.json")), read_text(path("b/stability.json")));
-  for (const char* f : {"smooth_ggx/ndf/alpha.csv", "smooth_ggx/bounded_caps/anisotropy.csv"})
+  for (const char* f : {"smooth_ggx/ndf/alpha.csv", "smooth_ggx/bounded_caps/anisotropy.csv",
+                        "smooth_ggx/ndf/alpha_maps.csv", "smooth_ggx/ndf/alpha_variance.png",
+                        "smooth_ggx/bounded_caps/anisotropy_energy_gain.png"})
     EXPECT_EQ(read_text(path("a") / f), read_text(path("b") / f)) << f;
+}
+
+// The maps' chart script failing is the sweep's one-line error naming the target, exit 2, and
+// nothing in the output folder (the maps are drawn in the staging folder, before the move). The
+// script here is a stand-in that fails as figure_charts.py does on a bad spec.
+TEST_F(SweepTest, AFailedMapChartIsOneLineAndLeavesNothing) {
+  const fs::path reports = work().parent_path() / "failing_sweep_reports";
+  fs::create_directories(reports);
+  write_text(reports / "figure_charts.py",
+             "import sys\nprint('glintlab: error: charts: alpha_nan.chart.json: alpha_maps.csv has "
+             "no column \\'x\\'', file=sys.stderr)\nsys.exit(2)\n");
+  ::setenv("GLINTLAB_REPORTS_DIR", reports.c_str(), 1);
+  const RunResult r = run({"sweep", "--budget", "quick", "--models", "smooth_beckmann", "--out",
+                           "s", "--threads", "2"});
+  ::unsetenv("GLINTLAB_REPORTS_DIR");
+  // The output folder itself stays, empty.
+  expect_input_error(r, {"sweep smooth_beckmann/ndf", "alpha_maps.csv has no column 'x'"}, {"s"});
 }
 
 TEST_F(SweepTest, HelpDocumentsTheOutputs) {
