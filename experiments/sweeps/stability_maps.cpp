@@ -120,6 +120,25 @@ std::string row_axis_label(const verify::stability::SweepPlane& p) {
   return p.row_label + " [1]";
 }
 
+// A CSV of one row per cell of `m` (row-major, as m.cells), each written by
+// row(writer, cell, row index, column index), written atomically to `path`.
+void write_cells_csv(
+    const SweepMap& m, const std::vector<std::string>& header, const std::filesystem::path& path,
+    const std::function<void(io::CsvWriter&, const CellStats&, std::size_t, std::size_t)>& row) {
+  std::vector<std::string_view> views(header.begin(), header.end());
+  std::ostringstream text;
+  {
+    io::CsvWriter w(text, views);
+    const std::size_t cols = m.plane.theta_deg.size();
+    for (std::size_t i = 0; i < m.cells.size(); ++i) {
+      row(w, m.cells[i], i / cols, i % cols);
+      w.end_row();
+    }
+    w.flush();
+  }
+  io::write_file_atomic(path, text.str());
+}
+
 // PLANE_maps.csv: per cell (rows as PLANE.csv's) the number each quantity's map shows and
 // whether the cell fails; the maps' charts read it.
 void write_map_csv(const SweepMap& m, const std::vector<std::string>& quantities,
@@ -129,21 +148,13 @@ void write_map_csv(const SweepMap& m, const std::vector<std::string>& quantities
     header.push_back(specs[k].shown.name);
     header.push_back(quantities[k] + "_fails");
   }
-  std::vector<std::string_view> views(header.begin(), header.end());
-  std::ostringstream text;
-  {
-    io::CsvWriter w(text, views);
-    const std::size_t cols = m.plane.theta_deg.size();
-    for (std::size_t i = 0; i < m.cells.size(); ++i) {
-      const CellStats& c = m.cells[i];
-      w.cell_int(static_cast<long long>(i / cols)).cell_int(static_cast<long long>(i % cols));
-      w.cell(m.plane.rows[i / cols]).cell(m.plane.theta_deg[i % cols]);
-      for (const QuantitySpec& q : specs) w.cell(q.shown.get(c)).cell_int(q.fails(c) ? 1 : 0);
-      w.end_row();
-    }
-    w.flush();
-  }
-  io::write_file_atomic(path, text.str());
+  write_cells_csv(m, header, path,
+                  [&](io::CsvWriter& w, const CellStats& c, std::size_t i, std::size_t j) {
+                    w.cell_int(static_cast<long long>(i)).cell_int(static_cast<long long>(j));
+                    w.cell(m.plane.rows[i]).cell(m.plane.theta_deg[j]);
+                    for (const QuantitySpec& q : specs)
+                      w.cell(q.shown.get(c)).cell_int(q.fails(c) ? 1 : 0);
+                  });
 }
 
 // PLANE_QUANTITY.chart.json: the quantity's map over (θi, the plane's rows), failing cells
@@ -195,34 +206,25 @@ void write_csv(const SweepMap& m, const ModelSweep& s, const std::filesystem::pa
                         "albedo_uniform", "albedo_uniform_error", "energy_gain",
                         "relative_variance", "variance_blowup", "weight_max", "float_swept"})
     header.push_back(h);
-  std::vector<std::string_view> views(header.begin(), header.end());
-  std::ostringstream text;
-  {
-    io::CsvWriter w(text, views);
-    const std::size_t cols = m.plane.theta_deg.size();
-    for (std::size_t i = 0; i < m.cells.size(); ++i) {
-      const CellStats& c = m.cells[i];
-      const double row = m.plane.rows[i / cols], th = m.plane.theta_deg[i % cols];
-      w.cell(std::string_view(s.target.model->name)).cell(s.target.sampler);
-      w.cell_int(static_cast<long long>(i / cols)).cell_int(static_cast<long long>(i % cols));
-      w.cell(row).cell(th);
-      w.cell_int(verify::stability::in_core_domain(m.plane, row, th) ? 1 : 0);
-      w.cell_int(static_cast<long long>(c.evals)).cell_int(static_cast<long long>(c.pdf_calls));
-      w.cell_int(static_cast<long long>(c.samples)).cell_int(static_cast<long long>(c.accepted));
-      for (auto f : {&Defects::nan, &Defects::inf, &Defects::negative}) {
-        w.cell(frac(c.value.*f, c.evals)).cell(frac(c.value_f.*f, c.evals_f));
-        w.cell(frac(c.pdf.*f, c.pdf_calls)).cell(frac(c.pdf_f.*f, c.pdf_calls_f));
-        w.cell(frac(c.sample.*f, c.samples)).cell(frac(c.sample_f.*f, c.samples_f));
-      }
-      w.cell_int(static_cast<long long>(c.p_evals)).cell(frac(c.p_above_one, c.p_evals));
-      w.cell(c.p_max).cell(c.albedo).cell(c.albedo_error).cell(c.albedo_uniform);
-      w.cell(c.albedo_uniform_error).cell(c.gain()).cell(c.relative_variance);
-      w.cell_int(c.variance_blowup() ? 1 : 0).cell(c.weight_max).cell_int(s.has_float ? 1 : 0);
-      w.end_row();
-    }
-    w.flush();
-  }
-  io::write_file_atomic(path, text.str());
+  write_cells_csv(
+      m, header, path, [&](io::CsvWriter& w, const CellStats& c, std::size_t i, std::size_t j) {
+        const double row = m.plane.rows[i], th = m.plane.theta_deg[j];
+        w.cell(std::string_view(s.target.model->name)).cell(s.target.sampler);
+        w.cell_int(static_cast<long long>(i)).cell_int(static_cast<long long>(j));
+        w.cell(row).cell(th);
+        w.cell_int(verify::stability::in_core_domain(m.plane, row, th) ? 1 : 0);
+        w.cell_int(static_cast<long long>(c.evals)).cell_int(static_cast<long long>(c.pdf_calls));
+        w.cell_int(static_cast<long long>(c.samples)).cell_int(static_cast<long long>(c.accepted));
+        for (auto f : {&Defects::nan, &Defects::inf, &Defects::negative}) {
+          w.cell(frac(c.value.*f, c.evals)).cell(frac(c.value_f.*f, c.evals_f));
+          w.cell(frac(c.pdf.*f, c.pdf_calls)).cell(frac(c.pdf_f.*f, c.pdf_calls_f));
+          w.cell(frac(c.sample.*f, c.samples)).cell(frac(c.sample_f.*f, c.samples_f));
+        }
+        w.cell_int(static_cast<long long>(c.p_evals)).cell(frac(c.p_above_one, c.p_evals));
+        w.cell(c.p_max).cell(c.albedo).cell(c.albedo_error).cell(c.albedo_uniform);
+        w.cell(c.albedo_uniform_error).cell(c.gain()).cell(c.relative_variance);
+        w.cell_int(c.variance_blowup() ? 1 : 0).cell(c.weight_max).cell_int(s.has_float ? 1 : 0);
+      });
 }
 
 }  // namespace
