@@ -7,7 +7,9 @@ subset of rows, the series, their labels and colours, reference lines. `glintlab
 this script draws every spec into NAME.png with charts.py's labelling rules (a title, axis labels
 with their units, a legend) and stores what the chart shows (charts.describe: titles, labels,
 legend; and a map's colour-bar label) in the PNG itself, as the text chunk "glintlab:chart",
-which the report and the tests read back (chart_manifest). The PNG has no date or software version in it: same data, same bytes.
+which the report and the tests read back (chart_manifest). The PNG has no date or software
+version in it: same data, same bytes. `glintlab sweep` runs it the same way on each target's
+folder of stability maps (experiments/sweeps/stability_maps.h).
 
 A spec naming a missing CSV or column, an axis label without its unit ("[...]"), a series without
 a label or a panel with nothing to draw is one line on stderr ("glintlab: error: ..."), exit 2,
@@ -23,7 +25,8 @@ With "kind": "categories" (a map of categories, e.g. the level chosen per cell),
 {"title", "where", "x": {"column", "label", "log"} (its distinct values, one column each, in
 order), "y": {"columns", "format", "label"} (one row per distinct tuple, in the CSV's order,
 bottom to top; "format" is a str.format template over the row's cells, a number's format spec
-such as "{alpha:.3g}" formats the cell as a number), "value": {"column", "label"}, "categories": [{"value", "label", "color"}],
+such as "{alpha:.3g}" formats the cell as a number; "x": {"ticks": n} sets the number of x
+ticks), "value": {"column", "label"}, "categories": [{"value", "label", "color"}],
 "marker": {"column", "label"} (per row, an x value drawn as a bar between the columns),
 "y": {"invert": true} for an image's pixel rows}; the categories are its colour bar. With "kind": "heatmap" (a number over a grid: parameters, or the
 pixels of an image with "y": {"invert": true}), "value": {"column", "label", "log", "range",
