@@ -16,11 +16,11 @@ namespace {
 // shard of its members' summed cost. tests/verify/registry_test.cpp runs the same groups together.
 const std::vector<std::vector<std::string_view>>& shared_measurements() {
   static const std::vector<std::vector<std::string_view>> kGroups = {
-      // The stability sweep of every registered model (verify/claims/across.cpp suite_sweeps).
+      // The stability sweep of every registered model (verify/claims/across/common.h suite_sweeps).
       {"all.stability", "all.energy-gain", "all.probability", "all.variance"},
-      // The GGAA renders' replicates (verify/claims/chermain.cpp ggaa_replicates).
+      // The GGAA renders' replicates (verify/claims/chermain/common.h replicate).
       {"chermain.ggaa-error", "chermain.ggaa-shimmer"},
-      // The normal-mapped tubes' replicates (bumpy_replicates).
+      // The normal-mapped tubes' replicates (the same header's BumpyGgaaReplicate replicate).
       {"chermain.ggaa-derivatives", "chermain.ggaa-sk"},
   };
   return kGroups;

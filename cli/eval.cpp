@@ -1,6 +1,7 @@
 // `glintlab eval`: evaluates every microfacet term of the library for a CSV file of queries.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -23,10 +24,7 @@
 #include "core/model_registry.h"
 #include "core/ndf/microfacet.h"
 #include "core/ndf/total_area.h"
-#include "core/samplers/beckmann_vndf.h"
-#include "core/samplers/bounded_vndf.h"
-#include "core/samplers/heitz_vndf.h"
-#include "core/samplers/walter.h"
+#include "core/samplers/sampler_list.h"
 
 namespace glintlab::cli {
 namespace {
@@ -34,10 +32,47 @@ namespace {
 constexpr std::array<std::string_view, 9> kQueryColumns = {
     "ndf", "alpha_x", "alpha_y", "wi_x", "wi_y", "wi_z", "wo_x", "wo_y", "wo_z"};
 
-constexpr std::array<std::string_view, 18> kResultColumns = {
-    "h_x",   "h_y", "h_z",    "D",       "lambda_wi", "G1_wi",
-    "G1_wo", "G2",  "vndf_h", "pdf_ndf", "pdf_vndf",  "pdf_bounded",
-    "brdf",  "DH",  "T_x",    "T_y",     "JT_paper",  "JT_true"};
+// The result columns: these, then one pdf column per sampler (pdf_columns), then kTermsAfter.
+constexpr std::array<std::string_view, 9> kTermsBefore = {
+    "h_x", "h_y", "h_z", "D", "lambda_wi", "G1_wi", "G1_wo", "G2", "vndf_h"};
+constexpr std::array<std::string_view, 6> kTermsAfter = {"brdf", "DH",       "T_x",
+                                                         "T_y",  "JT_paper", "JT_true"};
+
+// One pdf column per sampler of the list (core/samplers/sampler_list.h), named by the smooth
+// models' `sampler` value and, where a sampler has several, its `bound`: pdf_<sampler>[_<bound>].
+// `row` is the list's row for each NDF (-1: that NDF has no such sampler; the column is 'nan').
+struct PdfColumn {
+  std::string name;
+  std::string_view choice, bound;
+  int row[2] = {-1, -1};  // ggx, beckmann
+};
+
+int ndf_slot(NdfKind ndf) { return ndf == NdfKind::kGGX ? 0 : 1; }
+
+const std::vector<PdfColumn>& pdf_columns() {
+  static const std::vector<PdfColumn> columns = [] {
+    std::vector<PdfColumn> out;
+    const auto& rows = samplers::Choices<samplers::All>::kRows;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const SamplerInfo& r = rows[i];
+      const std::string name =
+          fmt::format("pdf_{}{}{}", r.choice, r.bound.empty() ? "" : "_", r.bound);
+      auto c =
+          std::find_if(out.begin(), out.end(), [&](const PdfColumn& p) { return p.name == name; });
+      if (c == out.end()) c = out.insert(out.end(), PdfColumn{name, r.choice, r.bound});
+      c->row[ndf_slot(r.ndf == "ggx" ? NdfKind::kGGX : NdfKind::kBeckmann)] = int(i);
+    }
+    return out;
+  }();
+  return columns;
+}
+
+std::vector<std::string_view> result_columns() {
+  std::vector<std::string_view> names(kTermsBefore.begin(), kTermsBefore.end());
+  for (const PdfColumn& c : pdf_columns()) names.push_back(c.name);
+  names.insert(names.end(), kTermsAfter.begin(), kTermsAfter.end());
+  return names;
+}
 
 struct Query {
   NdfKind ndf;
@@ -112,40 +147,30 @@ std::vector<Query> read_queries(const io::CsvTable& table) {
   return queries;
 }
 
-// Every result column for one query, in the order of kResultColumns.
-std::array<double, kResultColumns.size()> evaluate(const Query& q) {
-  return with_ndf(q.ndf, q.alpha_x, q.alpha_y, [&](const auto& ndf) {
+// Every result column for one query, in the order of result_columns(), into `out`.
+void evaluate(const Query& q, double* out) {
+  with_ndf(q.ndf, q.alpha_x, q.alpha_y, [&](const auto& ndf) {
     using Ndf = std::decay_t<decltype(ndf)>;
-    constexpr bool kIsGGX = std::is_same_v<Ndf, GGX<double>>;
     const Vec3<double> wi = q.wi, wo = q.wo;
     const Vec3<double> h = half_vector(wi, wo);
-    double pdf_vndf = 0.0, pdf_bounded = 0.0;
-    if constexpr (kIsGGX) {
-      pdf_vndf = pdf_heitz_vndf(ndf, wi, wo);
-      pdf_bounded = pdf_bounded_vndf(ndf, wi, wo, BoundedVndfBound::kListing1);
-    } else {
-      pdf_vndf = pdf_beckmann_vndf(ndf, wi, wo);
-      pdf_bounded = std::numeric_limits<double>::quiet_NaN();  // the bounded sampler is GGX-only
+    for (double v :
+         {h.x, h.y, h.z, ndf.D(h), ndf.lambda(wi), smith_g1(ndf, wi, h), smith_g1(ndf, wo, h),
+          smith_g2_height_correlated(ndf, wi, wo, h), vndf(ndf, wi, h)})
+      *out++ = v;
+    for (const PdfColumn& c : pdf_columns()) {
+      const int row = c.row[ndf_slot(q.ndf)];
+      *out++ = row < 0 ? std::numeric_limits<double>::quiet_NaN()
+                       : samplers::with<samplers::All>(row, [&]<class S>() {
+                           if constexpr (std::is_same_v<typename S::template Ndf<double>, Ndf>)
+                             return S::pdf(ndf, wi, wo);
+                           else
+                             return std::numeric_limits<double>::quiet_NaN();  // another NDF's row
+                         });
     }
     const Vec2<double> t = map_to_square(ndf, h);
-    return std::array<double, kResultColumns.size()>{h.x,
-                                                     h.y,
-                                                     h.z,
-                                                     ndf.D(h),
-                                                     ndf.lambda(wi),
-                                                     smith_g1(ndf, wi, h),
-                                                     smith_g1(ndf, wo, h),
-                                                     smith_g2_height_correlated(ndf, wi, wo, h),
-                                                     vndf(ndf, wi, h),
-                                                     pdf_walter(ndf, wi, wo),
-                                                     pdf_vndf,
-                                                     pdf_bounded,
-                                                     microfacet_brdf(ndf, wi, wo, 1.0),
-                                                     total_area(ndf),
-                                                     t.x,
-                                                     t.y,
-                                                     map_jacobian_paper(ndf, h),
-                                                     map_jacobian_true(ndf, h)};
+    for (double v : {microfacet_brdf(ndf, wi, wo, 1.0), total_area(ndf), t.x, t.y,
+                     map_jacobian_paper(ndf, h), map_jacobian_true(ndf, h)})
+      *out++ = v;
   });
 }
 
@@ -164,45 +189,49 @@ void run_eval(const std::string& in_path, const std::string& out_path,
   const std::vector<Query> queries = read_queries(table);
 
   // Rows are independent: computed in parallel chunks, checked, then written in order.
-  std::vector<std::array<double, kResultColumns.size()>> results(queries.size());
+  const std::vector<std::string_view> columns = result_columns();
+  const std::size_t width = columns.size();
+  std::vector<double> results(queries.size() * width);
   for_each_chunk(queries.size(), threads, [&](std::size_t begin, std::size_t count) {
-    for (std::size_t i = begin; i < begin + count; ++i) results[i] = evaluate(queries[i]);
+    for (std::size_t i = begin; i < begin + count; ++i) evaluate(queries[i], &results[i * width]);
   });
-  // An accepted query never yields NaN or Inf in an output column (pdf_bounded is 'nan' for
-  // beckmann by definition: the bounded sampler is GGX-only).
-  constexpr std::size_t kPdfBounded = 11;
-  static_assert(kResultColumns[kPdfBounded] == "pdf_bounded");
+  // An accepted query never yields NaN or Inf in an output column, but for the pdf of a sampler
+  // its NDF does not have ('nan' by definition, e.g. the GGX-only samplers for beckmann).
   for (std::size_t r = 0; r < queries.size(); ++r) {
-    for (std::size_t c = 0; c < kResultColumns.size(); ++c) {
-      if (c == kPdfBounded && queries[r].ndf == NdfKind::kBeckmann) continue;
-      if (!std::isfinite(results[r][c])) {
+    for (std::size_t c = 0; c < width; ++c) {
+      const std::size_t pdf = c - kTermsBefore.size();
+      if (c >= kTermsBefore.size() && pdf < pdf_columns().size() &&
+          pdf_columns()[pdf].row[ndf_slot(queries[r].ndf)] < 0)
+        continue;
+      if (!std::isfinite(results[r * width + c])) {
         const Query& q = queries[r];
         const bool opposite = q.wi.x + q.wo.x == 0 && q.wi.y + q.wo.y == 0 && q.wi.z + q.wo.z == 0;
         throw InputError(
             fmt::format("--in {}: the query gives {} = {} (valid: a query whose every "
                         "term is finite{})",
-                        table.where(r), kResultColumns[c], results[r][c],
+                        table.where(r), columns[c], results[r * width + c],
                         opposite ? "; wo = -wi has no half vector" : ""));
       }
     }
   }
-  check_free_space(out_path, std::uint64_t(queries.size()) * 27 * 20, "--out");
+  check_free_space(out_path, std::uint64_t(queries.size()) * (kQueryColumns.size() + width) * 20,
+                   "--out");
 
   std::vector<std::string_view> header(kQueryColumns.begin(), kQueryColumns.end());
-  header.insert(header.end(), kResultColumns.begin(), kResultColumns.end());
+  header.insert(header.end(), columns.begin(), columns.end());
 
   write_out_csv(out_path, header, [&](io::CsvWriter& w) {
     for (std::size_t r = 0; r < queries.size(); ++r) {
       const Query& q = queries[r];
       w.cell(ndf_name(q.ndf)).cell(q.alpha_x).cell(q.alpha_y);
       w.cell(q.wi.x).cell(q.wi.y).cell(q.wi.z).cell(q.wo.x).cell(q.wo.y).cell(q.wo.z);
-      for (double v : results[r]) w.cell(v);
+      for (std::size_t c = 0; c < width; ++c) w.cell(results[r * width + c]);
       w.end_row();
     }
   });
 }
 
-constexpr const char* kEvalFooter =
+constexpr const char* kEvalFooterQueries =
     R"(INPUT (--in): a CSV file, a header row then one query per data row. Columns, in any order, and
 no others:
   ndf               ggx or beckmann
@@ -224,13 +253,10 @@ the order above; the same values, reprinted), then
   G1_wi, G1_wo   Smith masking G1(wi, h) and G1(wo, h)
   G2             height-correlated masking-shadowing G2(wi, wo, h) (Heitz 2014 Eq. 99)
   vndf_h         visible-normal density D_wi(h) = max(0, wi.h) D(h) / A(wi) (Heitz 2018 Eq. 1)
-  pdf_ndf        density of wo (per steradian) when sampling h from D(h)|h.z| and reflecting wi
-                 (Walter et al. 2007)
-  pdf_vndf       density of wo when sampling h from the VNDF: Heitz 2018 for ggx, the Beckmann
-                 VNDF sampler for beckmann
-  pdf_bounded    density of wo under the bounded VNDF sampler with the Listing 1 bound (Eto &
-                 Tokuyoshi 2023); ggx only, 'nan' for beckmann
-  brdf           microfacet reflection BRDF F G2 D / (4 |wi.z| |wo.z|) with F = 1, 0 unless both
+)";
+
+constexpr const char* kEvalFooterTerms =
+    R"(  brdf           microfacet reflection BRDF F G2 D / (4 |wi.z| |wo.z|) with F = 1, 0 unless both
                  wi and wo are above the surface
   DH             total microfacet area D_H = integral of D(m) over the hemisphere (Kneiphof &
                  Klein 2024 Eq. 29-31, with glintlab's anisotropic extension); depends on ndf
@@ -242,9 +268,43 @@ the order above; the same values, reprinted), then
                  square units)
   JT_true        the actual Jacobian |det dT/dh| of map_to_square, per steradian of h
 Every number is a double printed with 17 significant digits (reads back to the same double).
-Any invalid row, or a row whose terms are not all finite (pdf_bounded for beckmann aside), stops
+Any invalid row, or a row whose terms are not all finite (the 'nan' pdfs above aside), stops
 the run with an error naming the file, the 1-based data row and the column; no output file is
 written then.)";
+
+// The pdf columns' lines of the footer, one entry per sampler of the list with its papers per NDF:
+// the column name, then its description from column 18, wrapped before column 100.
+std::string pdf_column_help() {
+  constexpr std::size_t kIndent = 17, kWidth = 100;
+  std::string text;
+  const auto& rows = samplers::Choices<samplers::All>::kRows;
+  for (const PdfColumn& c : pdf_columns()) {
+    std::vector<std::string> by_ndf;
+    for (int slot : {0, 1})
+      if (c.row[slot] >= 0)
+        by_ndf.push_back(fmt::format("{}: {}", rows[std::size_t(c.row[slot])].ndf,
+                                     rows[std::size_t(c.row[slot])].source));
+    const std::string description =
+        fmt::format("density of wo (per steradian) under sample --sampler {}{}{} ({}){}", c.choice,
+                    c.bound.empty() ? "" : " --bound ", c.bound, fmt::join(by_ndf, "; "),
+                    by_ndf.size() < 2 ? "; 'nan' for the other NDF" : "");
+    std::string line = "  " + c.name;
+    if (line.size() >= kIndent) text += line + "\n", line.clear();
+    line.resize(kIndent, ' ');
+    std::size_t words = 0;
+    for (std::size_t at = 0; at < description.size();) {
+      std::size_t end = description.find(' ', at);
+      if (end == std::string::npos) end = description.size();
+      const std::string word = description.substr(at, end - at);
+      if (words > 0 && line.size() + 1 + word.size() > kWidth)
+        text += line + "\n", line.assign(kIndent, ' '), words = 0;
+      line += (words++ > 0 ? " " : "") + word;
+      at = end + 1;
+    }
+    text += line + "\n";
+  }
+  return text;
+}
 
 }  // namespace
 
@@ -276,7 +336,8 @@ void add_eval_command(CLI::App& app) {
                   "LIST");
   auto batch = std::make_shared<BatchOptionTexts>();
   add_batch_options(cmd, *batch);
-  set_footer(cmd, std::string(kEvalFooter) + kModelEvalFooter + kBatchOptionsFooter);
+  set_footer(cmd, std::string(kEvalFooterQueries) + pdf_column_help() + kEvalFooterTerms +
+                      kModelEvalFooter + kBatchOptionsFooter);
   set_callback(cmd, [cmd, in, out, model, params, grid, query, batch] {
     if (model->empty() && !params->empty()) {
       throw InputError("--param: needs --model (see glintlab models)");

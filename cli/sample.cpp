@@ -24,19 +24,14 @@
 #include "core/math/rng.h"
 #include "core/model_registry.h"
 #include "core/models/smooth_ggx.h"
-#include "core/samplers/beckmann_vndf.h"
-#include "core/samplers/bounded_vndf.h"
-#include "core/samplers/heitz_vndf.h"
-#include "core/samplers/spherical_caps.h"
-#include "core/samplers/walter.h"
+#include "core/samplers/sampler_list.h"
 
 namespace glintlab::cli {
 namespace {
 
-// The samplers and bounds by the names of the smooth_ggx model's `sampler` and `bound` choices.
-enum class Sampler { kNdf, kVndf, kSphericalCaps, kBoundedCaps };
-static_assert(int(Sampler::kSphericalCaps) == SmoothGGX::kSphericalCaps &&
-              int(Sampler::kBoundedCaps) == SmoothGGX::kBoundedCaps);
+// --sampler and --bound name the rows of the sampler list (core/samplers/sampler_list.h) as the
+// smooth models' `sampler` and `bound` parameters do; the NDF picks among a choice's rows.
+using AllChoices = samplers::Choices<samplers::All>;
 
 constexpr std::uint64_t kMaxSamples = 1000000000;  // 1e9 rows is already ~200 GB of CSV
 
@@ -50,8 +45,7 @@ struct SampleJob {
   NdfKind ndf;
   double alpha_x, alpha_y;
   Vec3<double> wi;
-  Sampler sampler;
-  BoundedVndfBound bound;
+  int sampler;  // the row of samplers::All
   std::uint64_t n, seed;
 };
 
@@ -87,40 +81,71 @@ SampleJob validate(const SampleArgs& a) {
   job.wi = parse_unit_direction(a.wi, "--wi");
 
   const std::string sampler = canonical_spelling("--sampler", a.sampler);
-  const auto& names = SmoothGGX::kSamplerNames;
-  const auto s = std::find(names.begin(), names.end(), sampler);
-  if (s == names.end()) {
-    throw InputError(fmt::format(
-        "--sampler: unknown sampler '{}' (valid: {}; {} and {} with --ndf ggx only)", sampler,
-        fmt::join(names, ", "), names[SmoothGGX::kSphericalCaps], names[SmoothGGX::kBoundedCaps]));
+  const auto& names = AllChoices::kNames;
+  // The choices some NDF lacks, e.g. spherical_caps and bounded_caps (ggx only).
+  std::vector<std::string> partial;
+  for (std::string_view c : names) {
+    std::vector<std::string_view> ndfs;
+    for (const SamplerInfo& r : AllChoices::kRows)
+      if (r.choice == c && std::find(ndfs.begin(), ndfs.end(), r.ndf) == ndfs.end())
+        ndfs.push_back(r.ndf);
+    if (ndfs.size() == 1) partial.push_back(fmt::format("{} with --ndf {} only", c, ndfs[0]));
   }
-  job.sampler = Sampler(s - names.begin());
-  const bool ggx_only =
-      job.sampler == Sampler::kSphericalCaps || job.sampler == Sampler::kBoundedCaps;
-  if (ggx_only && job.ndf != NdfKind::kGGX) {
-    throw InputError(fmt::format(
-        "--sampler: '{}' samples GGX only, not --ndf {} (valid for --ndf {}: ndf, vndf)", sampler,
-        ndf_name(job.ndf), ndf_name(job.ndf)));
+  if (std::find(names.begin(), names.end(), sampler) == names.end()) {
+    throw InputError(fmt::format("--sampler: unknown sampler '{}' (valid: {}; {})", sampler,
+                                 fmt::join(names, ", "), fmt::join(partial, "; ")));
   }
-  if ((job.sampler == Sampler::kNdf || job.sampler == Sampler::kVndf) && !(job.wi.z > 0.0)) {
-    throw InputError(fmt::format(
-        "--wi: wi.z = {} is not above the surface, which the {} sampler needs (valid: wi.z > 0; "
-        "the spherical_caps and bounded_caps samplers also accept wi.z <= 0)",
-        job.wi.z, sampler));
-  }
-
   const std::string bound = canonical_spelling("--bound", a.bound);
-  const auto& bounds = SmoothGGX::kBoundNames;
-  const auto b = std::find(bounds.begin(), bounds.end(), bound);
-  if (b == bounds.end()) {
+  const auto& bounds = AllChoices::kBounds;
+  if (std::find(bounds.begin(), bounds.end(), bound) == bounds.end()) {
     throw InputError(
         fmt::format("--bound: unknown bound '{}' (valid: {})", bound, fmt::join(bounds, ", ")));
   }
-  job.bound = b == bounds.begin() ? BoundedVndfBound::kListing1 : BoundedVndfBound::kExactIsotropic;
-  if (a.bound_given && job.sampler != Sampler::kBoundedCaps) {
+  // The row of this choice, NDF and bound; the choices this NDF has, for the message.
+  const std::string_view ndf = ndf_name(job.ndf);
+  std::vector<std::string_view> of_ndf;
+  const SamplerInfo* row = nullptr;
+  bool has_bounds = false;
+  for (std::size_t i = 0; i < AllChoices::kRows.size(); ++i) {
+    const SamplerInfo& r = AllChoices::kRows[i];
+    if (r.ndf != ndf) continue;
+    if (std::find(of_ndf.begin(), of_ndf.end(), r.choice) == of_ndf.end())
+      of_ndf.push_back(r.choice);
+    if (r.choice != sampler) continue;
+    has_bounds = has_bounds || !r.bound.empty();
+    if (row == nullptr && (r.bound.empty() || r.bound == bound)) {
+      row = &r;
+      job.sampler = int(i);
+    }
+  }
+  if (row == nullptr) {
+    std::vector<std::string_view> ndfs;  // the NDFs this choice samples
+    for (const SamplerInfo& r : AllChoices::kRows)
+      if (r.choice == sampler && std::find(ndfs.begin(), ndfs.end(), r.ndf) == ndfs.end())
+        ndfs.push_back(r.ndf);
+    throw InputError(
+        fmt::format("--sampler: '{}' samples only --ndf {}, not --ndf {} (valid for --ndf {}: {})",
+                    sampler, fmt::join(ndfs, ", "), ndf, ndf, fmt::join(of_ndf, ", ")));
+  }
+  if (!row->allows_backfacing && !(job.wi.z > 0.0)) {
+    std::vector<std::string_view> backfacing;
+    for (const SamplerInfo& r : AllChoices::kRows)
+      if (r.allows_backfacing &&
+          std::find(backfacing.begin(), backfacing.end(), r.choice) == backfacing.end())
+        backfacing.push_back(r.choice);
     throw InputError(fmt::format(
-        "--bound: only applies to --sampler bounded_caps, not '{}' (valid: omit --bound)",
-        sampler));
+        "--wi: wi.z = {} is not above the surface, which the {} sampler needs (valid: wi.z > 0; "
+        "the {} samplers also accept wi.z <= 0)",
+        job.wi.z, sampler, fmt::join(backfacing, " and ")));
+  }
+  if (a.bound_given && !has_bounds) {
+    std::vector<std::string_view> bounded;  // the choices with several bounds
+    for (const SamplerInfo& r : AllChoices::kRows)
+      if (!r.bound.empty() && std::find(bounded.begin(), bounded.end(), r.choice) == bounded.end())
+        bounded.push_back(r.choice);
+    throw InputError(
+        fmt::format("--bound: only applies to --sampler {}, not '{}' (valid: omit --bound)",
+                    fmt::join(bounded, " or "), sampler));
   }
 
   job.n = parse_integer(a.n, "--n", 1, kMaxSamples);
@@ -133,23 +158,13 @@ template <class Ndf>
 MicrofacetSample<double> draw(const Ndf& ndf, const SampleJob& job, std::uint64_t i) {
   const Vec2<double> u{counter_uniform<double>(job.seed, i, 0),
                        counter_uniform<double>(job.seed, i, 1)};
-  if constexpr (std::is_same_v<Ndf, GGX<double>>) {
-    switch (job.sampler) {
-      case Sampler::kNdf:
-        return sample_walter(ndf, job.wi, u);
-      case Sampler::kVndf:
-        return sample_heitz_vndf(ndf, job.wi, u);
-      case Sampler::kSphericalCaps:
-        return sample_spherical_caps(ndf, job.wi, u);
-      case Sampler::kBoundedCaps:
-        return sample_bounded_vndf(ndf, job.wi, u, job.bound);
-    }
-    return {};
-  } else {
-    // validate() lets only ndf and vndf through for Beckmann.
-    if (job.sampler == Sampler::kNdf) return sample_walter(ndf, job.wi, u);
-    return sample_beckmann_vndf(ndf, job.wi, u);
-  }
+  return samplers::with<samplers::All>(job.sampler, [&]<class S>() -> MicrofacetSample<double> {
+    // validate() chose a row of this NDF.
+    if constexpr (std::is_same_v<typename S::template Ndf<double>, Ndf>)
+      return S::sample(ndf, job.wi, u);
+    else
+      return {};
+  });
 }
 
 void run_sample(const SampleArgs& args) {

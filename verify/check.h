@@ -45,8 +45,8 @@ struct CheckResult {
   std::optional<double> control_p_value;
   bool control_rejected = false;
   // The verdict the check's own measure and decide steps give the control's deliberately wrong
-  // input (or, where the paper is wrong, its corrected formula). Set through record_control; empty
-  // for a check whose control is still a separate rule.
+  // input (or, where the paper is wrong, its corrected formula). Set by the runner's record_control
+  // (verify/claim_runner.h); empty for a check whose control is still a separate rule.
   std::optional<Verdict> control_verdict;
   // The parameter region a holds-in-regime verdict speaks for, written in the check's code before
   // anything is measured (e.g. "α★ ≤ 0.01, θh ≤ 20°"); empty for the other verdicts.
@@ -72,13 +72,6 @@ inline bool control_opposes(Verdict genuine, Verdict control) {
   if (is_holding(genuine)) return control == Verdict::kFails;
   if (genuine == Verdict::kFails) return is_holding(control);
   return control != Verdict::kInconclusive;
-}
-
-// Records the control's verdict (decided by the same function as the genuine one) and whether it
-// opposes the genuine verdict. Call after r.verdict is set.
-inline void record_control(CheckResult& r, Verdict control) {
-  r.control_verdict = control;
-  r.control_rejected = control_opposes(r.verdict, control);
 }
 
 // The result of a check that could not compute its statistic: verdict kError, `what` (which model

@@ -35,6 +35,14 @@ constexpr Input control_input(Verdict genuine) {
   return is_holding(genuine) || !has_corrected_control<C>() ? Input::kPerturbed : Input::kCorrected;
 }
 
+// Records the control's verdict (decided by the same function as the genuine one) and whether it
+// opposes the genuine verdict; after r.verdict is set. run_claim's step, and the conformance
+// suite's (verify/conformance: a property of a model, plug-ins included, is not a type).
+inline void record_control(CheckResult& r, Verdict control) {
+  r.control_verdict = control;
+  r.control_rejected = control_opposes(r.verdict, control);
+}
+
 namespace detail {
 
 // Every configuration's evidence, in parallel; the result does not depend on the thread count

@@ -9,8 +9,7 @@
 #include "core/model.h"
 #include "core/models/smooth_microfacet.h"
 #include "core/ndf/beckmann.h"
-#include "core/samplers/beckmann_vndf.h"
-#include "core/samplers/walter.h"
+#include "core/samplers/sampler_list.h"
 
 namespace glintlab {
 
@@ -23,14 +22,17 @@ struct SmoothBeckmann {
       "d'Eon 2014";
   static constexpr unsigned kNeeds = kNeedsDirections;
 
-  enum Sampler { kNdf = 0, kVndf = 1 };
-  static constexpr std::array<std::string_view, 2> kSamplerNames = {"ndf", "vndf"};
+  // The Beckmann rows of the sampler list (core/samplers/sampler_list.h) and their `sampler`
+  // values.
+  using Samplers = samplers::Of<Beckmann>;
+  using Choices = samplers::Choices<Samplers>;
+  static constexpr const auto& kSamplerNames = Choices::kNames;
   static constexpr std::array<ParamSpec, 3> kParams = {{
       // α ≥ 1e-4, the smallest roughness all.stability sweeps; at α = 1e-20 (float) or 1e-100
       // (double) D and the pdf are already NaN.
       {"alpha_x", 0.5, 1e-4, 100.0, false, false, "roughness along the tangent (x)"},
       {"alpha_y", 0.5, 1e-4, 100.0, false, false, "roughness along the bitangent (y)"},
-      {"sampler", 1.0, 0.0, 1.0, false, false,
+      {"sampler", 1.0, 0.0, double(kSamplerNames.size() - 1), false, false,
        "sampler of wo: ndf (Walter 2007), vndf (Heitz & d'Eon 2014)", kSamplerNames},
   }};
   static constexpr auto kIntermediates = detail::kSmoothIntermediates;
@@ -38,20 +40,20 @@ struct SmoothBeckmann {
   template <class T>
   struct Params {
     Beckmann<T> beckmann;
-    int sampler;  // a uniform choice (not per lane)
+    int sampler;  // the row of Samplers; a uniform choice (not per lane)
   };
 
   template <class T>
   static Params<T> params(std::span<const double> v) {
     return {Beckmann<T>{T(v[param_index<SmoothBeckmann>("alpha_x")]),
                         T(v[param_index<SmoothBeckmann>("alpha_y")])},
-            static_cast<int>(v[param_index<SmoothBeckmann>("sampler")])};
+            Choices::index(static_cast<int>(v[param_index<SmoothBeckmann>("sampler")]), 0)};
   }
 
   template <class T>
   GLINTLAB_FN static T pdf(const Params<T>& p, const ModelQuery<T>& q) {
-    return p.sampler == kNdf ? pdf_walter(p.beckmann, q.wi, q.wo)
-                             : pdf_beckmann_vndf(p.beckmann, q.wi, q.wo);
+    return samplers::with<Samplers>(p.sampler,
+                                    [&]<class S>() { return S::pdf(p.beckmann, q.wi, q.wo); });
   }
 
   template <class T>
@@ -62,9 +64,9 @@ struct SmoothBeckmann {
 
   template <class T>
   GLINTLAB_FN static ModelSample<T> sample(const Params<T>& p, const ModelQuery<T>& q, Vec2<T> u) {
-    return p.sampler == kNdf
-               ? detail::smooth_sample(p.beckmann, q.wi, sample_walter(p.beckmann, q.wi, u))
-               : detail::smooth_sample(p.beckmann, q.wi, sample_beckmann_vndf(p.beckmann, q.wi, u));
+    return samplers::with<Samplers>(p.sampler, [&]<class S>() {
+      return detail::smooth_sample(p.beckmann, q.wi, S::sample(p.beckmann, q.wi, u));
+    });
   }
 };
 

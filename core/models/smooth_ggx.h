@@ -10,10 +10,7 @@
 #include "core/model.h"
 #include "core/models/smooth_microfacet.h"
 #include "core/ndf/ggx.h"
-#include "core/samplers/bounded_vndf.h"
-#include "core/samplers/heitz_vndf.h"
-#include "core/samplers/spherical_caps.h"
-#include "core/samplers/walter.h"
+#include "core/samplers/sampler_list.h"
 
 namespace glintlab {
 
@@ -26,20 +23,21 @@ struct SmoothGGX {
       "Dupuy & Benyoub 2023, Eto & Tokuyoshi 2023";
   static constexpr unsigned kNeeds = kNeedsDirections;
 
-  enum Sampler { kNdf = 0, kVndf = 1, kSphericalCaps = 2, kBoundedCaps = 3 };
-  static constexpr std::array<std::string_view, 4> kSamplerNames = {"ndf", "vndf", "spherical_caps",
-                                                                    "bounded_caps"};
-  static constexpr std::array<std::string_view, 2> kBoundNames = {"listing1", "exact_isotropic"};
+  // The GGX rows of the sampler list (core/samplers/sampler_list.h) and their parameter values.
+  using Samplers = samplers::Of<GGX>;
+  using Choices = samplers::Choices<Samplers>;
+  static constexpr const auto& kSamplerNames = Choices::kNames;
+  static constexpr const auto& kBoundNames = Choices::kBounds;
   static constexpr std::array<ParamSpec, 4> kParams = {{
       // α ≥ 1e-4, the smallest roughness all.stability sweeps; at α = 1e-20 (float) or 1e-100
       // (double) D and the pdf are already NaN.
       {"alpha_x", 0.5, 1e-4, 100.0, false, false, "roughness along the tangent (x)"},
       {"alpha_y", 0.5, 1e-4, 100.0, false, false, "roughness along the bitangent (y)"},
-      {"sampler", 1.0, 0.0, 3.0, false, false,
+      {"sampler", 1.0, 0.0, double(kSamplerNames.size() - 1), false, false,
        "sampler of wo: ndf (Walter 2007), vndf (Heitz 2018), spherical_caps (Dupuy & Benyoub "
        "2023), bounded_caps (Eto & Tokuyoshi 2023)",
        kSamplerNames},
-      {"bound", 0.0, 0.0, 1.0, false, false,
+      {"bound", 0.0, 0.0, double(kBoundNames.size() - 1), false, false,
        "bounded_caps only: k of Eq. 5 as in Listing 1, or exact for isotropic alpha", kBoundNames},
   }};
   static constexpr auto kIntermediates = detail::kSmoothIntermediates;
@@ -47,31 +45,22 @@ struct SmoothGGX {
   template <class T>
   struct Params {
     GGX<T> ggx;
-    int sampler;  // a uniform choice (not per lane): branching on it is allowed
-    BoundedVndfBound bound;
+    int sampler;  // the row of Samplers; a uniform choice (not per lane): branching on it is
+                  // allowed
   };
 
   template <class T>
   static Params<T> params(std::span<const double> v) {
     return {
         GGX<T>{T(v[param_index<SmoothGGX>("alpha_x")]), T(v[param_index<SmoothGGX>("alpha_y")])},
-        static_cast<int>(v[param_index<SmoothGGX>("sampler")]),
-        v[param_index<SmoothGGX>("bound")] == 0.0 ? BoundedVndfBound::kListing1
-                                                  : BoundedVndfBound::kExactIsotropic};
+        Choices::index(static_cast<int>(v[param_index<SmoothGGX>("sampler")]),
+                       static_cast<int>(v[param_index<SmoothGGX>("bound")]))};
   }
 
   template <class T>
   GLINTLAB_FN static T pdf(const Params<T>& p, const ModelQuery<T>& q) {
-    switch (p.sampler) {
-      case kNdf:
-        return pdf_walter(p.ggx, q.wi, q.wo);
-      case kVndf:
-        return pdf_heitz_vndf(p.ggx, q.wi, q.wo);
-      case kSphericalCaps:
-        return pdf_spherical_caps(p.ggx, q.wi, q.wo);
-      default:
-        return pdf_bounded_vndf(p.ggx, q.wi, q.wo, p.bound);
-    }
+    return samplers::with<Samplers>(p.sampler,
+                                    [&]<class S>() { return S::pdf(p.ggx, q.wi, q.wo); });
   }
 
   template <class T>
@@ -82,16 +71,9 @@ struct SmoothGGX {
 
   template <class T>
   GLINTLAB_FN static ModelSample<T> sample(const Params<T>& p, const ModelQuery<T>& q, Vec2<T> u) {
-    switch (p.sampler) {
-      case kNdf:
-        return detail::smooth_sample(p.ggx, q.wi, sample_walter(p.ggx, q.wi, u));
-      case kVndf:
-        return detail::smooth_sample(p.ggx, q.wi, sample_heitz_vndf(p.ggx, q.wi, u));
-      case kSphericalCaps:
-        return detail::smooth_sample(p.ggx, q.wi, sample_spherical_caps(p.ggx, q.wi, u));
-      default:
-        return detail::smooth_sample(p.ggx, q.wi, sample_bounded_vndf(p.ggx, q.wi, u, p.bound));
-    }
+    return samplers::with<Samplers>(p.sampler, [&]<class S>() {
+      return detail::smooth_sample(p.ggx, q.wi, S::sample(p.ggx, q.wi, u));
+    });
   }
 };
 

@@ -20,11 +20,8 @@
 #include "core/ndf/ggx.h"
 #include "core/ndf/microfacet.h"
 #include "core/ndf/total_area.h"
-#include "core/samplers/beckmann_vndf.h"
 #include "core/samplers/bounded_vndf.h"
-#include "core/samplers/heitz_vndf.h"
-#include "core/samplers/spherical_caps.h"
-#include "core/samplers/walter.h"
+#include "core/samplers/sampler_list.h"
 
 namespace glintlab::simd {
 
@@ -224,31 +221,15 @@ GLINTLAB_NDF_KERNELS(Beckmann, Beckmann, "beckmann")
     }                                                             \
   };
 
-GLINTLAB_SAMPLER_KERNEL(SampleWalterGgx, GGX, "sample.walter/ggx", sample_walter(ndf, wi, u))
-GLINTLAB_SAMPLER_KERNEL(SampleWalterBeckmann, Beckmann, "sample.walter/beckmann",
-                        sample_walter(ndf, wi, u))
-GLINTLAB_SAMPLER_KERNEL(SampleHeitzVndf, GGX, "sample.heitz_vndf/ggx",
-                        sample_heitz_vndf(ndf, wi, u))
-GLINTLAB_SAMPLER_KERNEL(SampleBeckmannVndf, Beckmann, "sample.beckmann_vndf/beckmann",
-                        sample_beckmann_vndf(ndf, wi, u))
-GLINTLAB_SAMPLER_KERNEL(SampleSphericalCaps, GGX, "sample.spherical_caps/ggx",
-                        sample_spherical_caps(ndf, wi, u))
-GLINTLAB_SAMPLER_KERNEL(SampleBoundedListing1, GGX, "sample.bounded_vndf_listing1/ggx",
-                        sample_bounded_vndf(ndf, wi, u, BoundedVndfBound::kListing1))
-GLINTLAB_SAMPLER_KERNEL(SampleBoundedExactIso, GGX, "sample.bounded_vndf_exact_isotropic/ggx",
-                        sample_bounded_vndf(ndf, wi, u, BoundedVndfBound::kExactIsotropic))
+// sample.<name> and pdf.<name> for every row of the sampler list (core/samplers/sampler_list.h).
+#define GLINTLAB_SAMPLER_KERNEL_PAIR(A, Type, Ndf, name, ...)                                \
+  GLINTLAB_SAMPLER_KERNEL(Sample##Type, Ndf, "sample." name,                                 \
+                          samplers::Type::sample(ndf, wi, u))                                \
+  GLINTLAB_PDF_KERNEL(Pdf##Type, Ndf, "pdf." name, samplers::Type::pdf(ndf, wi, wo))
+GLINTLAB_SAMPLERS(GLINTLAB_SAMPLER_KERNEL_PAIR, )
+#undef GLINTLAB_SAMPLER_KERNEL_PAIR
 
-GLINTLAB_PDF_KERNEL(PdfWalterGgx, GGX, "pdf.walter/ggx", pdf_walter(ndf, wi, wo))
-GLINTLAB_PDF_KERNEL(PdfWalterBeckmann, Beckmann, "pdf.walter/beckmann", pdf_walter(ndf, wi, wo))
-GLINTLAB_PDF_KERNEL(PdfHeitzVndf, GGX, "pdf.heitz_vndf/ggx", pdf_heitz_vndf(ndf, wi, wo))
-GLINTLAB_PDF_KERNEL(PdfBeckmannVndf, Beckmann, "pdf.beckmann_vndf/beckmann",
-                    pdf_beckmann_vndf(ndf, wi, wo))
-GLINTLAB_PDF_KERNEL(PdfSphericalCaps, GGX, "pdf.spherical_caps/ggx",
-                    pdf_spherical_caps(ndf, wi, wo))
-GLINTLAB_PDF_KERNEL(PdfBoundedListing1, GGX, "pdf.bounded_vndf_listing1/ggx",
-                    pdf_bounded_vndf(ndf, wi, wo, BoundedVndfBound::kListing1))
-GLINTLAB_PDF_KERNEL(PdfBoundedExactIso, GGX, "pdf.bounded_vndf_exact_isotropic/ggx",
-                    pdf_bounded_vndf(ndf, wi, wo, BoundedVndfBound::kExactIsotropic))
+// The densities that are not a sampler's: Eto & Tokuyoshi's Listing 2 as printed and Eq. 7.
 GLINTLAB_PDF_KERNEL(PdfBoundedListing2, GGX, "pdf.bounded_vndf_listing2_printed/ggx",
                     pdf_bounded_vndf_listing2(ndf, wi, wo))
 GLINTLAB_PDF_KERNEL(PdfBackfacingEq7, GGX, "pdf.vndf_backfacing_eq7/ggx",
@@ -339,7 +320,10 @@ GLINTLAB_ISO_AREA_KERNEL(TotalAreaBeckmannEq31, "beckmann.total_area_eq31_printe
                          total_area_beckmann_eq31)
 #undef GLINTLAB_ISO_AREA_KERNEL
 
-// The list. X(Type) once per kernel; the batch table, tests and benchmarks expand it.
+// The list. X(Type) once per kernel; the batch table, tests and benchmarks expand it. The
+// samplers' kernels come from the sampler list: every sample.* kernel, then every pdf.* kernel.
+#define GLINTLAB_SAMPLE_KERNEL_OF(X, Type, ...) X(Sample##Type)
+#define GLINTLAB_PDF_KERNEL_OF(X, Type, ...) X(Pdf##Type)
 // clang-format off
 #define GLINTLAB_SIMD_KERNELS(X)                                                                   \
   X(GgxD) X(GgxLambda) X(GgxProjectedArea) X(GgxG1)                                                \
@@ -347,10 +331,8 @@ GLINTLAB_ISO_AREA_KERNEL(TotalAreaBeckmannEq31, "beckmann.total_area_eq31_printe
   X(BeckmannD) X(BeckmannLambda) X(BeckmannProjectedArea) X(BeckmannG1)                            \
   X(BeckmannG2HeightCorrelated) X(BeckmannG2Separable) X(BeckmannVndf)                             \
   X(BeckmannBrdfSchlick) X(BeckmannBrdfConductor)                                                  \
-  X(SampleWalterGgx) X(SampleWalterBeckmann) X(SampleHeitzVndf) X(SampleBeckmannVndf)              \
-  X(SampleSphericalCaps) X(SampleBoundedListing1) X(SampleBoundedExactIso)                         \
-  X(PdfWalterGgx) X(PdfWalterBeckmann) X(PdfHeitzVndf) X(PdfBeckmannVndf) X(PdfSphericalCaps)      \
-  X(PdfBoundedListing1) X(PdfBoundedExactIso) X(PdfBoundedListing2)                                \
+  GLINTLAB_SAMPLERS(GLINTLAB_SAMPLE_KERNEL_OF, X) GLINTLAB_SAMPLERS(GLINTLAB_PDF_KERNEL_OF, X)     \
+  X(PdfBoundedListing2)                                                                            \
   X(PdfBackfacingEq7) X(PdfBackfacingStable)                                                       \
   X(GgxMapToSquare) X(GgxMapFromSquare) X(GgxMapJacobianPaper) X(GgxMapJacobianTrue)               \
   X(BeckmannMapToSquare) X(BeckmannMapFromSquare) X(BeckmannMapJacobianPaper)                      \

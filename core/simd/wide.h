@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdint>
 #include <type_traits>
+
 #include "core/math/lanes.h"
 #include "core/math/ops.h"
 #include "core/simd/xsimd.h"
@@ -52,10 +53,10 @@ struct RawTraits<xsimd::batch<S, A>> {
 // correction in core/simd/xsimd.h) or the unfused a*b + c it falls back to (SSE4.2): the kernels
 // use fma for error-free products (exp_neg_sqr), which the unfused form silently turns into 0.
 template <class A>
-inline constexpr bool kHasFusedFma = std::is_base_of_v<xsimd::fma3<xsimd::sse4_2>, A> ||
-                                     std::is_base_of_v<xsimd::fma3<xsimd::avx>, A> ||
-                                     std::is_base_of_v<xsimd::fma3<xsimd::avx2>, A> ||
-                                     std::is_base_of_v<xsimd::avx512f, A>;
+inline constexpr bool kHasFusedFma =
+    std::is_base_of_v<xsimd::fma3<xsimd::sse4_2>, A> ||
+    std::is_base_of_v<xsimd::fma3<xsimd::avx>, A> ||
+    std::is_base_of_v<xsimd::fma3<xsimd::avx2>, A> || std::is_base_of_v<xsimd::avx512f, A>;
 // The xsimd arch types are not one chain (fma3<avx2> derives from avx2, avx512f from generic).
 static_assert(kHasFusedFma<xsimd::fma3<xsimd::avx2>> && kHasFusedFma<xsimd::avx512bw> &&
               !kHasFusedFma<xsimd::sse4_2>);
@@ -131,8 +132,10 @@ requires std::is_floating_point_v<S> GLINTLAB_FN S min(S a, S b) { return std::f
 template <class S>
 requires std::is_floating_point_v<S> GLINTLAB_FN S max(S a, S b) { return std::fmax(a, b); }
 // NaN is tested with isnan: xsimd 8.1's != is the ordered comparison on AVX and AVX-512 (NaN != NaN
-// false there). Operands swapped because the min/max instructions return their second operand
-// when both are zero, and glibc's fmin/fmax return the first (min(+0, −0) = +0, as scalar).
+// false there). Of two zeros of opposite signs the batch returns its first operand (the min/max
+// instructions return their second, hence the swap), as GCC's inline fmin/fmax do at -O2; glibc's
+// out-of-line fminf/fmaxf return the second, so the sign can differ from a libm call
+// (docs/simd.md).
 template <class S, class A>
 GLINTLAB_FN xsimd::batch<S, A> min(const xsimd::batch<S, A>& a, const xsimd::batch<S, A>& b) {
   return xsimd::select(xsimd::isnan(b), a, xsimd::select(xsimd::isnan(a), b, xsimd::min(b, a)));

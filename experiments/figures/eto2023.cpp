@@ -70,18 +70,21 @@ Budget budget(bool quick) {
   return {512, 16, 1024, {1, 2, 4, 8, 16, 32, 64}};
 }
 
+// A row of SmoothGGX's sampler list (core/samplers/sampler_list.h), named by its `sampler` value.
 struct Method {
-  std::string_view name;  // the SmoothGGX `sampler` choice
+  std::string_view name;
   int sampler;
+  constexpr explicit Method(std::string_view choice, std::string_view bound = {})
+      : name(choice), sampler(SmoothGGX::Choices::find(choice, bound)) {}
 };
-constexpr std::array<Method, 2> kMethods = {
-    {{"spherical_caps", SmoothGGX::kSphericalCaps}, {"bounded_caps", SmoothGGX::kBoundedCaps}}};
+constexpr std::array<Method, 2> kMethods = {Method{"spherical_caps"},
+                                            Method{"bounded_caps", "listing1"}};
 // The reference uses a third sampler (Heitz 2018 VNDF: the same density as spherical caps by a
 // different map) with its own seed, so it shares no random numbers with either method.
-constexpr Method kReference = {"vndf", SmoothGGX::kVndf};
+constexpr Method kReference{"vndf"};
 
 SmoothGGX::Params<double> ggx_params(double alpha, int sampler) {
-  return {GGX<double>{alpha, alpha}, sampler, BoundedVndfBound::kListing1};
+  return {GGX<double>{alpha, alpha}, sampler};
 }
 
 std::string params_text(double alpha, std::string_view sampler) {
@@ -302,12 +305,12 @@ FigureEntry eto2023_fig4_entry() {
 }
 
 FigureEntry eto2023_rmse_spp_entry() {
-  return {
-      kSeriesId, "Eto & Tokuyoshi 2023", "Fig. 4 (RMSE vs spp)",
-      "RMSE vs spp (log-log) of the Fig. 4 orbs, spherical vs bounded caps, spp 1..64 "
-      "(1..32 at --budget quick), against a converged reference (1024 spp; 256 at --budget quick), 512 "
-      "px (128 at --budget quick)",
-      run_series};
+  return {kSeriesId, "Eto & Tokuyoshi 2023", "Fig. 4 (RMSE vs spp)",
+          "RMSE vs spp (log-log) of the Fig. 4 orbs, spherical vs bounded caps, spp 1..64 "
+          "(1..32 at --budget quick), against a converged reference (1024 spp; 256 at --budget "
+          "quick), 512 "
+          "px (128 at --budget quick)",
+          run_series};
 }
 
 }  // namespace glintlab::experiments

@@ -223,7 +223,7 @@ TEST_F(ErrorTest, SampleBadArguments) {
        {"--sampler", "'importance'", "valid: ndf, vndf, spherical_caps, bounded_caps"}},
       {"spherical_caps on beckmann",
        {"--ndf=beckmann", "--sampler=spherical_caps"},
-       {"--sampler", "'spherical_caps'", "GGX only", "valid for --ndf beckmann: ndf, vndf"}},
+       {"--sampler", "'spherical_caps'", "only --ndf ggx", "valid for --ndf beckmann: ndf, vndf"}},
       {"bounded_caps on beckmann",
        {"--ndf=beckmann", "--sampler=bounded_caps"},
        {"--sampler", "'bounded_caps'", "valid for --ndf beckmann: ndf, vndf"}},

@@ -1,6 +1,7 @@
 // `glintlab eval`: every output column equals the library kernel evaluated on the same query.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -19,6 +20,7 @@
 #include "core/samplers/beckmann_vndf.h"
 #include "core/samplers/bounded_vndf.h"
 #include "core/samplers/heitz_vndf.h"
+#include "core/samplers/spherical_caps.h"
 #include "core/samplers/walter.h"
 
 namespace glintlab::cli_test {
@@ -28,10 +30,29 @@ using V3 = Vec3<double>;
 
 const std::vector<std::string> kQueryColumns = {"ndf",  "alpha_x", "alpha_y", "wi_x", "wi_y",
                                                 "wi_z", "wo_x",    "wo_y",    "wo_z"};
-const std::vector<std::string> kResultColumns = {
-    "h_x",   "h_y", "h_z",    "D",       "lambda_wi", "G1_wi",
-    "G1_wo", "G2",  "vndf_h", "pdf_ndf", "pdf_vndf",  "pdf_bounded",
-    "brdf",  "DH",  "T_x",    "T_y",     "JT_paper",  "JT_true"};
+const std::vector<std::string> kResultColumns = {"h_x",
+                                                 "h_y",
+                                                 "h_z",
+                                                 "D",
+                                                 "lambda_wi",
+                                                 "G1_wi",
+                                                 "G1_wo",
+                                                 "G2",
+                                                 "vndf_h",
+                                                 "pdf_ndf",
+                                                 "pdf_vndf",
+                                                 "pdf_spherical_caps",
+                                                 "pdf_bounded_caps_listing1",
+                                                 "pdf_bounded_caps_exact_isotropic",
+                                                 "brdf",
+                                                 "DH",
+                                                 "T_x",
+                                                 "T_y",
+                                                 "JT_paper",
+                                                 "JT_true"};
+// The samplers Beckmann does not have: their pdf columns are 'nan' for a beckmann query.
+const std::vector<std::string> kGgxOnlyPdfs = {"pdf_spherical_caps", "pdf_bounded_caps_listing1",
+                                               "pdf_bounded_caps_exact_isotropic"};
 
 struct Query {
   std::string ndf;
@@ -60,7 +81,7 @@ std::vector<Query> queries() {
 
 // The expected result columns for a query, straight from the kernels.
 std::map<std::string, double> expected(const Query& q) {
-  const auto common = [&](const auto& ndf, double pdf_vndf, double pdf_bounded) {
+  const auto common = [&](const auto& ndf, double pdf_vndf, std::array<double, 3> ggx_only) {
     const V3 h = half_vector(q.wi, q.wo);
     const Vec2<double> t = map_to_square(ndf, h);
     return std::map<std::string, double>{
@@ -75,7 +96,9 @@ std::map<std::string, double> expected(const Query& q) {
         {"vndf_h", vndf(ndf, q.wi, h)},
         {"pdf_ndf", pdf_walter(ndf, q.wi, q.wo)},
         {"pdf_vndf", pdf_vndf},
-        {"pdf_bounded", pdf_bounded},
+        {"pdf_spherical_caps", ggx_only[0]},
+        {"pdf_bounded_caps_listing1", ggx_only[1]},
+        {"pdf_bounded_caps_exact_isotropic", ggx_only[2]},
         {"brdf", microfacet_brdf(ndf, q.wi, q.wo, 1.0)},
         {"DH", total_area(ndf)},
         {"T_x", t.x},
@@ -87,10 +110,13 @@ std::map<std::string, double> expected(const Query& q) {
   if (q.ndf == "ggx") {
     const GGX<double> g{q.ax, q.ay};
     return common(g, pdf_heitz_vndf(g, q.wi, q.wo),
-                  pdf_bounded_vndf(g, q.wi, q.wo, BoundedVndfBound::kListing1));
+                  {pdf_spherical_caps(g, q.wi, q.wo),
+                   pdf_bounded_vndf(g, q.wi, q.wo, BoundedVndfBound::kListing1),
+                   pdf_bounded_vndf(g, q.wi, q.wo, BoundedVndfBound::kExactIsotropic)});
   }
   const Beckmann<double> b{q.ax, q.ay};
-  return common(b, pdf_beckmann_vndf(b, q.wi, q.wo), std::numeric_limits<double>::quiet_NaN());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  return common(b, pdf_beckmann_vndf(b, q.wi, q.wo), {nan, nan, nan});
 }
 
 // Equal to 1e-15 relative (NaN matches NaN only).
@@ -162,7 +188,7 @@ TEST_F(EvalTest, EveryColumnEqualsTheLibraryKernels) {
       ++compared;
     }
     if (q.ndf == "beckmann") {
-      EXPECT_EQ(t.text(i, t.column("pdf_bounded")), "nan");
+      for (const std::string& name : kGgxOnlyPdfs) EXPECT_EQ(t.text(i, t.column(name)), "nan");
     }
   }
   EXPECT_EQ(compared, static_cast<int>(qs.size() * kResultColumns.size()));

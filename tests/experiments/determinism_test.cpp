@@ -8,9 +8,9 @@
 #include <iterator>
 
 #include "core/io/exr.h"
+#include "core/lights/procedural_sky.h"
 #include "core/models/smooth_ggx.h"
 #include "experiments/figures/orb_render.h"
-#include "core/lights/procedural_sky.h"
 
 namespace glintlab::experiments {
 namespace {
@@ -25,8 +25,8 @@ std::string bytes_of(const fs::path& p) {
 std::string render_bytes(int threads, std::uint64_t seed, const fs::path& dir) {
   const OrbScene scene = make_orb_scene(16, 12);
   const EnvironmentMap sky(make_procedural_sky(SkyParameters{}, 64, 32));
-  const SmoothGGX::Params<double> p{GGX<double>{0.8, 0.8}, SmoothGGX::kBoundedCaps,
-                                    BoundedVndfBound::kListing1};
+  const SmoothGGX::Params<double> p{GGX<double>{0.8, 0.8},
+                                    SmoothGGX::Choices::find("bounded_caps", "listing1")};
   const Image img = render_orb<SmoothGGX>(scene, p, sky, 4, seed, threads);
   const fs::path path = dir / ("t" + std::to_string(threads) + "_" + std::to_string(seed) + ".exr");
   io::write_exr(path, img, {{"glintlab_seed", std::to_string(seed)}});
@@ -51,8 +51,7 @@ TEST(OrbRender, UniformSkyGivesTheAlbedoAndBackground) {
     Vec3<double> radiance(Vec3<double>, Vec3<double>) const { return {1, 1, 1}; }
   };
   const OrbScene scene = make_orb_scene(24, 24);
-  const SmoothGGX::Params<double> p{GGX<double>{0.3, 0.3}, SmoothGGX::kVndf,
-                                    BoundedVndfBound::kListing1};
+  const SmoothGGX::Params<double> p{GGX<double>{0.3, 0.3}, SmoothGGX::Choices::find("vndf")};
   const Image img = render_orb<SmoothGGX>(scene, p, White{}, 16, 5, 2);
   EXPECT_EQ(img.at(0, 0, 0), 1.0);
   EXPECT_EQ(img.at(0, 0, 3), 0.0);  // coverage

@@ -9,6 +9,8 @@
 #include <set>
 #include <string>
 
+#include "verify/claim_runner.h"
+
 namespace glintlab::verify {
 namespace {
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "verify/check.h"
+#include "verify/claim_runner.h"
 
 namespace glintlab::verify {
 namespace {
@@ -109,7 +110,8 @@ bool in_shared_measurement(const std::string& id) {
 std::vector<std::string> all_ids() {
   std::vector<std::string> ids;
   for (const Check& c : registered_checks())
-    if ((c.family.empty() || c.family == "model.smooth_ggx" || c.family == "model.smooth_beckmann") &&
+    if ((c.family.empty() || c.family == "model.smooth_ggx" ||
+         c.family == "model.smooth_beckmann") &&
         c.id != "all.stability" && !in_shared_measurement(c.id))
       ids.push_back(c.id);
   return ids;
@@ -132,8 +134,7 @@ TEST_P(SharedMeasurement, QuickVerdictsAndControls) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Checks, SharedMeasurement,
-                         ::testing::ValuesIn(shared_measurements()),
+INSTANTIATE_TEST_SUITE_P(Checks, SharedMeasurement, ::testing::ValuesIn(shared_measurements()),
                          [](const auto& param_info) { return std::string(param_info.param.name); });
 
 }  // namespace

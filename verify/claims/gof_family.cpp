@@ -259,12 +259,10 @@ std::size_t describe_gof(const GofOutcome& o, const std::vector<GofControl>& con
   const std::string text = control_text(
       o, controls, rejected,
       [&](std::size_t c, std::size_t k) { return cv.cases[c][k] == Verdict::kFails; }, r);
-  record_control(r, cv.verdict);
   r.control = fmt::format(
       "each wrong case in place of its configuration, decided as the family (a case alone is "
-      "caught at the first Holm level {:.2g}): {} → {} ({})",
-      o.configuration_level, text, to_string(cv.verdict),
-      r.control_rejected ? "rejected" : "NOT rejected");
+      "caught at the first Holm level {:.2g}): {}",
+      o.configuration_level, text);
   return worst;
 }
 

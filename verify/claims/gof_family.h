@@ -118,8 +118,8 @@ GofControlVerdicts decide_gof_controls(const GofOutcome& o,
                                        const std::vector<GofControl>& controls);
 
 // Describe: fills raw_p_values, p_value, configurations and power of r from the outcome, and the
-// control's text and largest p; records the control's verdict (record_control, so r.verdict must be
-// set). Returns the index of the configuration with the smallest raw p.
+// control's text (its verdict is the runner's to add) and largest p. Returns the index of the
+// configuration with the smallest raw p.
 std::size_t describe_gof(const GofOutcome& o, const std::vector<GofControl>& controls,
                          const GofControlVerdicts& cv, CheckResult& r);
 
@@ -141,9 +141,9 @@ struct GofSpec {
   std::vector<GofCase> cases;
   std::vector<GofControl> controls;
 };
-GofSpec smooth_sampler_spec(Budget b);  // verify/claims/smooth_samplers.cpp
-GofSpec eto_pdf_spec(Budget b);         // verify/claims/eto_pdf.cpp
-GofSpec kemppinen_spec(Budget b);       // verify/claims/kemppinen.cpp (the chi-square family)
+GofSpec smooth_sampler_spec(Budget b);  // verify/claims/smooth/sampler_matches_pdf.cpp
+GofSpec eto_pdf_spec(Budget b);         // verify/claims/eto/pdf_matches.cpp
+GofSpec kemppinen_spec(Budget b);  // verify/claims/kemppinen/jacobian.cpp (the chi-square family)
 
 // ---- Reflection samplers ------------------------------------------------------------------------
 

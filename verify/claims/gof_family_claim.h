@@ -80,8 +80,7 @@ struct GofFamilyClaim {
     const Evidence& e = evidence.front();
     const GofOutcome& o = e.outcome;
     const GofControlVerdicts cv = decide_gof_controls(o, e.spec.controls);
-    // describe_gof gives the family's p-values and power, the controls' largest p and their text
-    // (with their verdict appended, which the runner appends in its own place).
+    // describe_gof gives the family's p-values and power, the controls' largest p and their text.
     CheckResult family;
     family.verdict = decide_gof(o.results);
     const std::size_t worst = describe_gof(o, e.spec.controls, cv, family);
@@ -94,7 +93,7 @@ struct GofFamilyClaim {
     } else {
       m.verdict = cv.verdict;
       m.p_value = family.control_p_value;
-      m.text = family.control.substr(0, family.control.rfind(" → "));
+      m.text = family.control;
     }
     return m;
   }

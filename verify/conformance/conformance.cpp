@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "core/simd/model_batch.h"
+#include "verify/claim_runner.h"
 #include "verify/conformance/common.h"
 #include "verify/stability/nan_control.h"
 #include "verify/stats/multiple_testing.h"
@@ -30,7 +31,8 @@ std::string_view describe_property(std::string_view p) {
            "∫_cell value (weighted histogram)";
   if (p == "sampler-covers-value") return "mean weight = ∫ value dωo (cubature)";
   if (p == "pdf-normalized") return "∫ pdf dωo = 1 − rejection rate";
-  if (p == "energy") return "white-furnace albedo ∫ value dωo ≤ 1 (the suite's hemisphere integral)";
+  if (p == "energy")
+    return "white-furnace albedo ∫ value dωo ≤ 1 (the suite's hemisphere integral)";
   if (p == "float-vs-double") return "float eval = double eval within 1e-3";
   if (p == "simd-equivalence") return "SIMD batch eval = scalar eval within 1e-9";
   if (p == "stability") return "no NaN/Inf/negative outputs in the sweep's core domain";
@@ -55,11 +57,13 @@ std::optional<std::string> not_claimed_reason(std::string_view property, const M
   for (const NotClaimed& n : m.not_claimed)
     if (n.property == property && n.choice.empty()) return std::string(n.reason);
   if (property == "float-vs-double" && !m.eval_float)
-    return std::string("the model has no float instantiation (kDoubleOnly, or kernels that do "
-                       "not accept float)");
+    return std::string(
+        "the model has no float instantiation (kDoubleOnly, or kernels that do "
+        "not accept float)");
   if (property == "simd-equivalence" && !simd::is_batched(m))
-    return std::string("the model has no SIMD instantiation: its batches loop over the double "
-                       "thunks");
+    return std::string(
+        "the model has no SIMD instantiation: its batches loop over the double "
+        "thunks");
   if (property == "converges-to-smooth" && m.smooth_limit.empty())
     return std::string("the model declares no smooth limit (kSmoothLimit)");
   return std::nullopt;
@@ -110,16 +114,18 @@ Control make_control(std::string_view property, const ModelEntry& m, const Asses
                              "corrected: uniform sphere sampling with its exact pdf 1/4π"};
   if (property == "sampler-covers-value")
     return holding ? Control{with_sampler_restricted(m, 0.03),
-                             "the sampler restricted to 97 % of its primary sample space (weight 0 elsewhere)"}
+                             "the sampler restricted to 97 % of its primary sample space (weight 0 "
+                             "elsewhere)"}
                    : Control{with_uniform_sampler(m),
                              "corrected: uniform sphere sampling, weight value·4π"};
   if (property == "energy") {
     const double albedo = genuine.value > 0 ? genuine.value : 1.0;
-    return holding ? Control{with_value_scaled(m, kControlOffset / albedo),
-                             fmt::format("value × {:.4g}: the largest albedo at 1.03", 1.03 / albedo)}
-                   : Control{with_value_scaled(m, 0.97 / albedo),
-                             fmt::format("corrected: value × {:.4g}, the largest albedo at 0.97",
-                                         0.97 / albedo)};
+    return holding
+               ? Control{with_value_scaled(m, kControlOffset / albedo),
+                         fmt::format("value × {:.4g}: the largest albedo at 1.03", 1.03 / albedo)}
+               : Control{with_value_scaled(m, 0.97 / albedo),
+                         fmt::format("corrected: value × {:.4g}, the largest albedo at 0.97",
+                                     0.97 / albedo)};
   }
   if (property == "float-vs-double") {
     if (!holding) return {with_float_as_double(m), "corrected: the float path run in double"};
@@ -142,10 +148,11 @@ Control make_control(std::string_view property, const ModelEntry& m, const Asses
     return {m, "SIMD batch value × 1.03 against the unchanged scalar eval", kControlOffset};
   }
   if (property == "stability")
-    return holding ? Control{with_sparse_nan(m, stability::kSparseNanRate),
-                             fmt::format("value NaN in {:g} of eval calls", stability::kSparseNanRate)}
-                   : Control{with_outputs_sanitized(m),
-                             "corrected: NaN, Inf and negative outputs set to 0"};
+    return holding
+               ? Control{with_sparse_nan(m, stability::kSparseNanRate),
+                         fmt::format("value NaN in {:g} of eval calls", stability::kSparseNanRate)}
+               : Control{with_outputs_sanitized(m),
+                         "corrected: NaN, Inf and negative outputs set to 0"};
   if (property == "converges-to-smooth")
     return holding ? Control{with_value_scaled(m, 1.04), "value × 1.04 (2 % beyond the tolerance)"}
                    : Control{with_value_scaled(m, 1 / (1 + genuine.value)),
@@ -205,10 +212,11 @@ CheckResult run_property(std::string_view property, const ModelEntry& m, Budget 
   if (a.verdict == Verdict::kHoldsInRegime)
     r.regime = "the stability sweep's core domain (α ≥ 1e-3, anisotropy ≤ 100:1, θi ≤ 89°), double";
   const Control c = make_control(property, m, a, b);
-  // sampler-covers-value's controls change only the sampler (make_control): same integrals of value.
-  const Assessment ca = assess(property, c.model, b, id, level,
-                               property == "sampler-covers-value" ? &a.references : nullptr,
-                               c.batch_value_scale);
+  // sampler-covers-value's controls change only the sampler (make_control): same integrals of
+  // value.
+  const Assessment ca =
+      assess(property, c.model, b, id, level,
+             property == "sampler-covers-value" ? &a.references : nullptr, c.batch_value_scale);
   record_control(r, ca.verdict);
   r.control_p_value = ca.p_value;
   r.control = fmt::format("{}: {} — {}", c.name, to_string(ca.verdict), ca.detail);
@@ -283,8 +291,8 @@ std::vector<Check> conformance_checks(const ModelEntry& model) {
                       [m, p = std::string(property)](Budget b) { return run_property(p, *m, b); });
     if (claimed && is_statistical_property(property))
       c.calibration = [m, p = std::string(property), id = c.id](std::uint64_t seed) {
-        const Assessment a = assess(p, *m, Budget::kQuick, fmt::format("{}/calibration/{}", id, seed),
-                                    model_level(*m));
+        const Assessment a = assess(p, *m, Budget::kQuick,
+                                    fmt::format("{}/calibration/{}", id, seed), model_level(*m));
         return a.raw_p_values.empty() ? 1.0 : a.raw_p_values.front();
       };
     out.push_back(std::move(c));

@@ -39,13 +39,13 @@ ReferenceEstimate estimate(const auto& bsdf) {
 }
 
 TEST(ModelBsdf, SmoothGgxThroughTheModelInterfaceEqualsTheKernels) {
-  const ModelBsdf<SmoothGGX> model{{GGX<double>{0.3, 0.3}, SmoothGGX::kVndf, BoundedVndfBound::kListing1}};
+  const ModelBsdf<SmoothGGX> model{{GGX<double>{0.3, 0.3}, SmoothGGX::Choices::find("vndf")}};
   const ReferenceEstimate a = estimate(model), b = estimate(DirectGgx{{0.3, 0.3}});
   EXPECT_GT(a.mean.x, 0.0);
   EXPECT_NEAR(a.mean.x, b.mean.x, 1e-12 * b.mean.x);
   EXPECT_NEAR(a.mean.z, b.mean.z, 1e-12 * b.mean.z);
   // Control: the model at α = 0.36 (20 % off) must differ by many standard errors.
-  const ModelBsdf<SmoothGGX> wrong{{GGX<double>{0.36, 0.36}, SmoothGGX::kVndf, BoundedVndfBound::kListing1}};
+  const ModelBsdf<SmoothGGX> wrong{{GGX<double>{0.36, 0.36}, SmoothGGX::Choices::find("vndf")}};
   const ReferenceEstimate w = estimate(wrong);
   EXPECT_GT(std::abs(w.mean.x - b.mean.x), 5 * (w.std_error.x + b.std_error.x));
 }

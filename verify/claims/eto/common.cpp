@@ -13,8 +13,6 @@
 #include "core/model_layout.h"
 #include "core/model_registry.h"
 #include "core/models/smooth_ggx.h"
-#include "core/samplers/bounded_vndf.h"
-#include "core/samplers/spherical_caps.h"
 #include "core/simd/model_batch.h"
 #include "verify/stats/ndf_cubature.h"
 
@@ -60,15 +58,13 @@ std::vector<Config> estimator_grid(Budget b) {
   return grid_of(alphas, ratios, thetas);
 }
 
-const char* to_string(Technique t) {
-  return t == Technique::kBounded ? "bounded_caps" : "spherical_caps";
-}
+std::string_view to_string(Technique t) { return SmoothGGX::Choices::kRows[int(t)].choice; }
 
 MicrofacetSample<double> draw(Technique t, const Config& c, std::uint64_t seed, std::uint64_t i) {
   const Vec2<double> u{counter_uniform<double>(seed, i, 0), counter_uniform<double>(seed, i, 1)};
   const V3 wi = incidence(c.theta_deg);
-  return t == Technique::kBounded ? sample_bounded_vndf(c.ggx(), wi, u, BoundedVndfBound::kListing1)
-                                  : sample_spherical_caps(c.ggx(), wi, u);
+  return samplers::with<SmoothGGX::Samplers>(int(t),
+                                             [&]<class S>() { return S::sample(c.ggx(), wi, u); });
 }
 
 double weight(Technique t, const Config& c, std::uint64_t seed, std::uint64_t i) {
@@ -83,9 +79,8 @@ void draw_batch(Technique t, const Config& c, std::uint64_t seed, std::uint64_t 
     const std::string_view n = p.name;
     values.push_back(n == "alpha_x"   ? c.ax
                      : n == "alpha_y" ? c.ay
-                     : n == "sampler" ? double(t == Technique::kBounded ? SmoothGGX::kBoundedCaps
-                                                                        : SmoothGGX::kSphericalCaps)
-                     : n == "bound"   ? 0.0  // Listing 1's k
+                     : n == "sampler" ? double(SmoothGGX::Choices::choice_of(int(t)))
+                     : n == "bound"   ? double(SmoothGGX::Choices::bound_of(int(t)))
                                       : p.default_value);
   }
   // Every query column one value for every row (stride 0): the defaults, ω_i of the configuration.

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/math/vec.h"
+#include "core/models/smooth_ggx.h"
 #include "core/ndf/ggx.h"
 #include "core/samplers/sample.h"
 #include "verify/check.h"
@@ -39,8 +40,13 @@ std::vector<Config> grid_of(const std::vector<double>& alphas, const std::vector
 // α ∈ [0.05, 1] × anisotropy αx/αy × incidence θi, for the estimator checks.
 std::vector<Config> estimator_grid(Budget b);
 
-enum class Technique { kSphericalCaps, kBounded };  // Dupuy & Benyoub 2023; Eto Listing 1
-const char* to_string(Technique t);
+// The two samplers Eto & Tokuyoshi compare, as their rows of smooth_ggx's sampler list
+// (core/samplers/sampler_list.h): Dupuy & Benyoub 2023's spherical caps and Listing 1's bound.
+enum class Technique : int {
+  kSphericalCaps = SmoothGGX::Choices::find("spherical_caps"),
+  kBounded = SmoothGGX::Choices::find("bounded_caps", "listing1"),
+};
+std::string_view to_string(Technique t);  // the smooth_ggx `sampler` value
 
 // Sample i of a technique for the given seed (counter RNG: the value depends on (seed, i) only).
 MicrofacetSample<double> draw(Technique t, const Config& c, std::uint64_t seed, std::uint64_t i);
