@@ -20,7 +20,7 @@
 #include "core/glints/chermain.h"
 #include "core/math/rng.h"
 #include "experiments/bench/method_bench.h"
-#include "verify/claims/chermain_scenes.h"
+#include "verify/scenes/chermain_scenes.h"
 
 namespace glintlab {
 namespace {

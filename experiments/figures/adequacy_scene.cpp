@@ -1,4 +1,4 @@
-// Figure adequacy-scene: per validation scene (verify/claims/adequacy_scenes.h; the binomial
+// Figure adequacy-scene: per validation scene (verify/scenes/adequacy_scenes.h; the binomial
 // family's six and the Kemppinen family's four, rendered by the claim's own render_choice_scene)
 // the render with each pixel's chosen level, the render with the family's most complete level
 // everywhere (exact counting; k16_exact), the difference map (the larger of the mean's relative
@@ -37,7 +37,7 @@
 #include "experiments/adequacy/level_costs.h"
 #include "experiments/figures/bench_json.h"
 #include "experiments/figures/panel_layout.h"
-#include "verify/claims/adequacy_scenes.h"
+#include "verify/scenes/adequacy_scenes.h"
 #include "verify/stats/multiple_testing.h"
 
 namespace glintlab::experiments {

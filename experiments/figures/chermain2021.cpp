@@ -1,6 +1,6 @@
 // Chermain et al. 2021 Figs. 3, 7, 8, 9 and 10 (with the 2020 dictionary of Fig. 3). The paper
 // renders meshes with OpenGL at 1920×1080, bloom and tonemapping; here analytic tubes and a
-// normal-mapped plane (verify/claims/chermain_scenes.h), the glinty specular term only, and the
+// normal-mapped plane (verify/scenes/chermain_scenes.h), the glinty specular term only, and the
 // display RMSE of chermain_scenes.h. Each figure writes EXR + PNG + CSV and a summary.md with the
 // paper's numbers beside ours.
 #include "experiments/figures/chermain2021.h"
@@ -21,7 +21,7 @@
 #include "core/io/png.h"
 #include "experiments/figures/panel_layout.h"
 #include "verify/check.h"
-#include "verify/claims/chermain_scenes.h"
+#include "verify/scenes/chermain_scenes.h"
 
 namespace glintlab::experiments {
 namespace {

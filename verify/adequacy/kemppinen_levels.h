@@ -1,7 +1,7 @@
 // A Kemppinen-family level (core/glints/adequacy.h, KemppinenLevel) as the model evaluates it: its
 // parameter values, its value at a query without the sampler's pdf, and the smooth level's value.
 // Shared by the adequacy grid (kemppinen_adequacy.cpp) and the validation scenes
-// (verify/claims/adequacy_scenes.cpp), so both measure the same levels.
+// (verify/scenes/adequacy_scenes.cpp), so both measure the same levels.
 #pragma once
 
 #include <cstdint>

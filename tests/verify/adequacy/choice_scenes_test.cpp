@@ -1,11 +1,11 @@
-// The validation scenes of adequacy.choice-is-safe (verify/claims/adequacy_scenes.h): the
+// The validation scenes of adequacy.choice-is-safe (verify/scenes/adequacy_scenes.h): the
 // decision's critical count, the engine chooser held and a broken chooser caught by the same
 // decision on small renders, the chooser on (N_P, p) identical to the engine's, and the same
 // pixels for any thread count.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
-#include "verify/claims/adequacy_scenes.h"
+#include "verify/scenes/adequacy_scenes.h"
 
 namespace glintlab::verify::adequacy {
 namespace {

@@ -5,7 +5,7 @@
 // complete level by more than TAU in no more pixels than the confidence level allows, on scenes
 // outside the fitting grid".
 //
-// Measured: on scenes the grids were not measured on (verify/claims/adequacy_scenes.h), per pixel,
+// Measured: on scenes the grids were not measured on (verify/scenes/adequacy_scenes.h), per pixel,
 // the level an engine chooser picks against the family's most complete level, over realisations
 // (surface positions): a lit pixel (the most complete level non-zero at ≥ kMinLitPositions
 // realisations) exceeds when its chosen level's mean or CV differs by more than TAU (a lower bound
@@ -27,7 +27,7 @@
 
 #include "verify/claim_runner.h"
 #include "verify/claims/adequacy/list.h"
-#include "verify/claims/adequacy_scenes.h"
+#include "verify/scenes/adequacy_scenes.h"
 #include "verify/stats/multiple_testing.h"
 
 namespace glintlab::verify::adequacy_claims {

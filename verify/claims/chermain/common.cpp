@@ -14,7 +14,7 @@
 
 #include "core/glints/chermain.h"
 #include "core/math/rng.h"
-#include "verify/claims/chermain_scenes.h"
+#include "verify/scenes/chermain_scenes.h"
 #include "verify/stats/mean_tests.h"
 
 namespace glintlab::verify::chermain_claims {

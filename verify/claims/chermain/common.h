@@ -2,7 +2,7 @@
 // render claims are decided by, and the two replicated measurements that two claims each read
 // (made once per process): the tube scene's (chermain.ggaa-error, chermain.ggaa-shimmer) and the
 // normal-mapped tubes' (chermain.ggaa-derivatives, chermain.ggaa-sk). The scenes themselves are
-// verify/claims/chermain_scenes.h (the figures render them too).
+// verify/scenes/chermain_scenes.h (the figures render them too).
 #pragma once
 
 #include <cmath>

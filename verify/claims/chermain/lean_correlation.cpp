@@ -24,7 +24,7 @@
 
 #include "verify/claim_runner.h"
 #include "verify/claims/chermain/common.h"
-#include "verify/claims/chermain_scenes.h"
+#include "verify/scenes/chermain_scenes.h"
 
 namespace glintlab::verify::chermain_claims {
 namespace {

@@ -1,6 +1,6 @@
 // Curved tubes and an anisotropic normal map rendered with the Chermain et al. 2020/2021 glinty
 // BRDF (2021 Figs. 7–9): methods at 1 spp, references by stratified supersampling.
-#include "verify/claims/chermain_scenes.h"
+#include "verify/scenes/chermain_scenes.h"
 
 #include <algorithm>
 #include <array>

@@ -1,6 +1,6 @@
 // The validation scenes of adequacy.choice-is-safe: per pixel, the chosen level and the exact
 // level over realisations of the same material, compared by the adequacy rule's own statistics.
-#include "verify/claims/adequacy_scenes.h"
+#include "verify/scenes/adequacy_scenes.h"
 
 #include <tbb/parallel_for.h>
 
