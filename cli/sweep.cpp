@@ -137,13 +137,13 @@ experiments::SweepRunSummary run_sweep(const SweepRequest& o, const Shard* shard
     }
     bar->step("planes");
   };
-  // Each target's maps, drawn by matplotlib from their chart specs before the files are moved in.
-  r.finish = [](const fs::path& dir) {
+  // Every target's maps, drawn by matplotlib from their chart specs in one run of the script,
+  // before the files are moved in; a failing spec is named by its <model>/<sampler>/ path.
+  r.finish = [](const fs::path& staging, const std::vector<fs::path>& dirs) {
     try {
-      draw_figure_charts(dir);
-    } catch (const InputError& e) {  // the target's folder: <model>/<sampler>
-      throw InputError(fmt::format("sweep {}/{}: {}", dir.parent_path().filename().string(),
-                                   dir.filename().string(), e.what()));
+      draw_folders_charts(dirs, staging);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("sweep: {}", e.what()));
     }
   };
   try {
