@@ -36,6 +36,7 @@
 #include "experiments/adequacy/adequacy_outputs.h"
 #include "experiments/adequacy/level_costs.h"
 #include "experiments/figures/bench_json.h"
+#include "experiments/figures/chart_spec.h"
 #include "experiments/figures/panel_layout.h"
 #include "verify/claims/adequacy_scenes.h"
 #include "verify/stats/multiple_testing.h"
@@ -249,11 +250,11 @@ void write_sheet_spec(const std::filesystem::path& png, const std::string& csv,
                       {"value", {{"column", "level"}, {"label", "chosen level"}}},
                       {"categories", categories}});
   }
-  const nlohmann::json spec = {{"kind", "heatmap"}, {"image", png.filename().string()},
-                               {"title", title},    {"csv", csv},
-                               {"columns", 2},      {"panels", panels}};
-  std::filesystem::path sidecar = png;
-  io::write_file_atomic(sidecar.replace_extension(".chart.json"), spec.dump(1) + "\n");
+  write_chart_json(png, {{"kind", "heatmap"},
+                         {"title", title},
+                         {"csv", csv},
+                         {"columns", 2},
+                         {"panels", panels}});
 }
 
 Image montage(const std::vector<Image>& tiles, int columns, int gap) {

@@ -50,13 +50,15 @@ void write_chart_spec(const std::filesystem::path& png, const ChartSpec& spec) {
     if (!p.guide_label.empty())
       panels.back()["slope_guide"] = {{"slope", p.guide_slope}, {"label", p.guide_label}};
   }
-  json j = {{"image", png.filename().string()},
-            {"title", spec.title},
-            {"csv", spec.csv},
-            {"panels", panels}};
+  json j = {{"title", spec.title}, {"csv", spec.csv}, {"panels", panels}};
   if (spec.columns > 0) j["columns"] = spec.columns;
+  write_chart_json(png, std::move(j));
+}
+
+void write_chart_json(const std::filesystem::path& png, nlohmann::json spec) {
+  spec["image"] = png.filename().string();
   std::filesystem::path sidecar = png;
-  io::write_file_atomic(sidecar.replace_extension(".chart.json"), j.dump(1) + "\n");
+  io::write_file_atomic(sidecar.replace_extension(".chart.json"), spec.dump(1) + "\n");
 }
 
 }  // namespace glintlab::experiments

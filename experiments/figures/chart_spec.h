@@ -6,6 +6,7 @@
 
 #include <array>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <utility>
@@ -65,5 +66,9 @@ struct ChartSpec {
 // Writes NAME.chart.json beside `png` = NAME.png (atomic); the PNG itself is drawn later, by
 // reports/figure_charts.py. Throws std::runtime_error naming the file on failure.
 void write_chart_spec(const std::filesystem::path& png, const ChartSpec& spec);
+
+// Writes a spec given as JSON (a heat map's or a map of categories', reports/figure_charts.py's
+// other kinds) as NAME.chart.json beside `png` = NAME.png, with "image" set to the PNG's name.
+void write_chart_json(const std::filesystem::path& png, nlohmann::json spec);
 
 }  // namespace glintlab::experiments
