@@ -11,8 +11,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <filesystem>
-#include <nlohmann/json.hpp>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -101,80 +99,6 @@ Image montage(const std::vector<Image>& tiles, int columns) {
   return out;
 }
 
-// One panel of a heat map drawn by reports/figure_charts.py from an image channel: the pixel
-// at column i, row j sits at (x0 + dx i, y0 + dy j) on the panel's axes; `inside` (optional)
-// keeps the pixels of the map (the others are cells without a value, "outside").
-struct MapPanel {
-  std::string key, title;  // the CSV's panel column; the panel's title
-  const Image* image = nullptr;
-  std::string channel;
-  double x0 = 0, dx = 1, y0 = 0, dy = 1;
-  std::string x_label, y_label, value_label;
-  std::array<double, 2> range{0, 1};  // the colour bar's
-  std::string inside;                 // a 0/1 channel, or empty: every pixel
-  bool top_down = true;               // the image's first row at the top of the map
-};
-
-MapPanel map_panel(std::string key, std::string title, const Image* image, std::string channel) {
-  MapPanel p;
-  p.key = std::move(key), p.title = std::move(title), p.image = image;
-  p.channel = std::move(channel);
-  return p;
-}
-
-// NAME_map.csv (panel, x, y, value: per cell the mean of its finite pixels, at most 128 x 128
-// cells per panel; a cell without one is left out) and the heat-map spec of NAME.png, one panel
-// per MapPanel.
-void write_image_maps(const std::filesystem::path& png, const std::string& title,
-                      const std::vector<MapPanel>& panels, int columns,
-                      const std::string& value_column) {
-  const std::string stem = png.stem().string(), csv = stem + "_map.csv";
-  nlohmann::json specs = nlohmann::json::array();
-  io::write_csv_atomic(png.parent_path() / csv, {"panel", "x", "y", value_column},
-                       [&](io::CsvWriter& w) {
-                         for (const MapPanel& m : panels) {
-                           const Image& img = *m.image;
-                           const int block = (std::max(img.width, img.height) + 127) / 128;
-                           const std::size_t c = img.channel(m.channel);
-                           for (int cy = 0; cy * block < img.height; ++cy)
-                             for (int cx = 0; cx * block < img.width; ++cx) {
-                               double sum = 0;
-                               int n = 0;
-                               for (int y = cy * block; y < std::min(img.height, (cy + 1) * block);
-                                    ++y)
-                                 for (int x = cx * block;
-                                      x < std::min(img.width, (cx + 1) * block); ++x) {
-                                   const double v = img.at(x, y, c);
-                                   if (!m.inside.empty() &&
-                                       !(img.at(x, y, img.channel(m.inside)) > 0))
-                                     continue;
-                                   if (std::isfinite(v)) sum += v, ++n;
-                                 }
-                               if (n == 0) continue;
-                               // The block's centre: the mean of its pixel indices.
-                               const double i = cx * block + (block - 1) / 2.0,
-                                            j = cy * block + (block - 1) / 2.0;
-                               w.cell(m.key).cell(m.x0 + m.dx * i).cell(m.y0 + m.dy * j);
-                               w.cell(sum / n).end_row();
-                             }
-                         }
-                       });
-  for (const MapPanel& m : panels)
-    specs.push_back({{"title", m.title},
-                     {"where", {{"panel", m.key}}},
-                     {"x", {{"column", "x"}, {"label", m.x_label}}},
-                     {"y", {{"columns", {"y"}}, {"format", "{y:.3g}"}, {"label", m.y_label},
-                            {"invert", m.top_down}}},
-                     {"value", {{"column", value_column}, {"label", m.value_label},
-                                {"range", {m.range[0], m.range[1]}}}},
-                     {"empty_label", "outside the map (no pixel)"}});
-  write_chart_json(png, {{"kind", "heatmap"},
-                         {"title", title},
-                         {"csv", csv},
-                         {"columns", columns},
-                         {"panels", specs}});
-}
-
 // ---- Fig. 2–3: D★^f on U_Ω and on Ω ----------------------------------------------------------
 
 // Fig. 3 setting: α = 0.5 (a wide highlight), α★ = 0.02, footprint 8 level-0 cells (λ = 4, a
@@ -195,7 +119,7 @@ void run_fig2_3(const FigureContext& ctx) {
   };
   std::vector<Row> rows;
   std::vector<Image> maps;  // per NDF and domain: smooth, glinty and inside, as mapped
-  std::vector<MapPanel> panels;
+  std::vector<ImageMapPanel> panels;
   maps.reserve(std::size(kNdfs) * 2);
   for (const NdfChoice& nd : kNdfs) {
     with_ndf(ndf_kind(nd.ggx), kFig23Alpha, kFig23Alpha, [&](const auto& ndf) {
@@ -285,7 +209,7 @@ void run_fig2_3(const FigureContext& ctx) {
           }
         const double top = s_max > 0 ? 2 * s_max : 1.0;
         for (const bool glinty : {false, true}) {
-          MapPanel mp = map_panel(
+          ImageMapPanel mp = image_map_panel(
               fmt::format("{}_{}_{}", nd.name, domain, glinty ? "glinty" : "smooth"),
               fmt::format("{} {}: {} {}", nd.name, domain, glinty ? "glinty" : "smooth",
                           disk ? (glinty ? "D*f / D" : "1") : (glinty ? "D*f" : "D")),
@@ -489,9 +413,9 @@ void run_fig14(const FigureContext& ctx) {
                          }
                        });
   // Row y of an image: footprint 2^(9 y / (hgt - 1)) cells; column: a position.
-  std::vector<MapPanel> panels;
+  std::vector<ImageMapPanel> panels;
   for (std::size_t k = 0; k < maps.size(); ++k) {
-    MapPanel mp = map_panel(fmt::format("k{}", k == 0 ? 4 : 16),
+    ImageMapPanel mp = image_map_panel(fmt::format("k{}", k == 0 ? 4 : 16),
                            fmt::format("k = {}", k == 0 ? 4 : 16), &maps[k], "ratio");
     mp.dy = 9.0 / (hgt - 1);
     mp.x_label = "position index [1]", mp.y_label = "log2 footprint cells [1]";
@@ -611,14 +535,14 @@ void run_fig6(const FigureContext& ctx) {
                        });
   // Column c of an image: LOD lambda = 3 + 2 c / (cols - 1); row: a position. The maps show
   // D*f / D(h), as the preview did.
-  std::vector<MapPanel> panels;
+  std::vector<ImageMapPanel> panels;
   for (std::size_t k = 0; k < maps.size(); ++k) {
     Image& img = maps[k];
     const std::size_t c = img.channel("D_star_f");
     for (int y = 0; y < img.height; ++y)
       for (int x = 0; x < img.width; ++x) img.at(x, y, c) /= ggx.D(h);
     const std::string blend = k == 0 ? "roulette" : "linear";
-    MapPanel mp = map_panel(blend, blend + " blending", &img, "D_star_f");
+    ImageMapPanel mp = image_map_panel(blend, blend + " blending", &img, "D_star_f");
     mp.x0 = 3, mp.dx = 2.0 / (cols - 1);
     mp.x_label = "LOD lambda [1]", mp.y_label = "position index [1]";
     mp.value_label = "D*f / D(h) [1] (above 2 saturates)";
