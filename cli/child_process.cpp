@@ -98,21 +98,30 @@ std::string last_error_line(const fs::path& err_file) {
   return last.empty() ? "no message" : last;
 }
 
-void draw_figure_charts(const fs::path& dir) {
+void draw_figure_charts(const fs::path& dir) { draw_folders_charts({dir}, {}); }
+
+void draw_folders_charts(const std::vector<fs::path>& dirs, const fs::path& root) {
   std::error_code ec;
-  bool any = false;
-  for (const auto& e : fs::directory_iterator(dir, ec)) {
-    const std::string name = e.path().filename().string();
-    const std::string suffix = ".chart.json";
-    any = any || (name.size() > suffix.size() &&
-                  name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0);
+  const std::string suffix = ".chart.json";
+  std::vector<std::string> args;
+  for (const fs::path& dir : dirs) {
+    bool any = false;
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+      const std::string name = e.path().filename().string();
+      any = any || (name.size() > suffix.size() &&
+                    name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0);
+    }
+    if (any) args.insert(args.end(), {"--dir", dir.string()});
   }
-  if (!any) return;  // no chart: no Python
+  if (args.empty()) return;  // no chart: no Python
   const fs::path script = reports_dir() / "figure_charts.py";
   if (!fs::is_regular_file(script, ec))
     throw InputError(fmt::format(
         "charts: {} not found (set GLINTLAB_REPORTS_DIR to the reports/ folder)", script.string()));
-  const fs::path base = dir.parent_path() / fmt::format("{}.charts", dir.filename().string());
+  // The script's output beside the root (or the one folder), removed after.
+  const fs::path beside = root.empty() ? dirs.front() : root;
+  const fs::path base =
+      beside.parent_path() / fmt::format("{}.charts", beside.filename().string());
   const fs::path out = fmt::format("{}.out.tmp.{}", base.string(), ::getpid());
   const fs::path err = fmt::format("{}.err.tmp.{}", base.string(), ::getpid());
   struct Remove {
@@ -123,8 +132,9 @@ void draw_figure_charts(const fs::path& dir) {
       fs::remove(b, e);
     }
   } remove{out, err};
-  const int rc =
-      run_process({"/usr/bin/python3", script.string(), "--dir", dir.string()}, out, err);
+  args.insert(args.begin(), {"/usr/bin/python3", script.string()});
+  if (!root.empty()) args.insert(args.end(), {"--root", root.string()});
+  const int rc = run_process(args, out, err);
   if (rc != 0) throw InputError(last_error_line(err));
 }
 

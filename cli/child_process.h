@@ -27,5 +27,10 @@ std::string last_error_line(const std::filesystem::path& err_file);
 // end in ".tmp.<pid>" (removed after, and by the signal cleanup). A failure throws InputError
 // with the script's one line.
 void draw_figure_charts(const std::filesystem::path& dir);
+// The same for several folders in one run of the script (one Python start: glintlab sweep's
+// targets); a failing spec is named by its path below `root` (empty: by its file name), and a
+// failure leaves none of the PNGs drawn.
+void draw_folders_charts(const std::vector<std::filesystem::path>& dirs,
+                         const std::filesystem::path& root);
 
 }  // namespace glintlab::cli

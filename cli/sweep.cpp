@@ -80,9 +80,10 @@ sample weight at the worst of 4 fixed surface positions (blow-up above 81.92, a 
 noisy at 8192 samples; docs/stability.md).
 Writes DIR/<model>/<sampler>/<plane>.csv (every number per cell), <plane>_<quantity>.exr (one
 pixel per cell; row 0 = the smallest row value) and .png (a heat map drawn by matplotlib from
-<plane>_maps.csv and <plane>_<quantity>.chart.json), and DIR/stability.json: machine,
-budget, and per target its maps and its failure region in words. Files are staged and moved
-into DIR only when every target finished. Output is identical for any --threads.)";
+<plane>_maps.csv and <plane>_<quantity>.chart.json; every target's maps in one run of
+reports/figure_charts.py, about 0.1 s a map), and DIR/stability.json: machine, budget, and per
+target its maps and its failure region in words. Files are staged and moved into DIR only when
+every target finished and its maps are drawn. Output is identical for any --threads.)";
 
 }  // namespace
 
@@ -137,13 +138,13 @@ experiments::SweepRunSummary run_sweep(const SweepRequest& o, const Shard* shard
     }
     bar->step("planes");
   };
-  // Each target's maps, drawn by matplotlib from their chart specs before the files are moved in.
-  r.finish = [](const fs::path& dir) {
+  // Every target's maps, drawn by matplotlib from their chart specs in one run of the script,
+  // before the files are moved in; a failing spec is named by its <model>/<sampler>/ path.
+  r.finish = [](const fs::path& staging, const std::vector<fs::path>& dirs) {
     try {
-      draw_figure_charts(dir);
-    } catch (const InputError& e) {  // the target's folder: <model>/<sampler>
-      throw InputError(fmt::format("sweep {}/{}: {}", dir.parent_path().filename().string(),
-                                   dir.filename().string(), e.what()));
+      draw_folders_charts(dirs, staging);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("sweep: {}", e.what()));
     }
   };
   try {

@@ -6,15 +6,11 @@ make_report.py writes the entries to plots/plots.json and the browser test
 (tests/reports/browser_test.py) fails on a chart whose axes lack labels, title, legend or, for a
 map, its colour scale.
 
-Stability maps: one chart per model / sampler / plane (a swept parameter x the incidence angle),
-one heatmap panel per quantity drawn from the plane's CSV (every number per cell, written by
-`glintlab sweep`), its cells flagged as failing outlined in red, a colour bar per panel and the
-parameter values on both axes.
+A figure's or a sweep's own charts and heat maps are drawn once, when the figure or sweep runs
+(figure_charts.py, from the chart specs beside its CSVs); the report shows those PNGs and reads
+what they show from their "glintlab:chart" chunk. What is left here: the montages of renders as
+labelled panels (panel_chart), and the helpers figure_charts.py shares.
 """
-
-import math
-
-ZERO = 1e-300
 
 
 def pyplot():
@@ -79,48 +75,14 @@ def save(fig, path, relpath, manifest, dpi=110):
 # ----------------------------------------------------------------------------------------------
 # Stability maps
 
-# quantity -> (label of the colour, value of a cell from its CSV row, whether the cell fails,
-#              logarithmic colour scale)
-def _max_prefixed(prefix):
-    def get(row):
-        vals = [v for k, v in row.items() if k.startswith(prefix) and k.endswith("_fraction")]
-        return max(vals) if vals else 0.0
-    return get
-
-
-STABILITY_QUANTITIES = {
-    "nan": ("NaN fraction of calls (max over value, pdf, sample; double, float) [1]",
-            _max_prefixed("nan_"), lambda r: _max_prefixed("nan_")(r) > 0, False),
-    "inf": ("Inf fraction of calls (max over value, pdf, sample; double, float) [1]",
-            _max_prefixed("inf_"), lambda r: _max_prefixed("inf_")(r) > 0, False),
-    "negative": ("negative fraction of calls (max over value, pdf, sample) [1]",
-                 _max_prefixed("negative_"), lambda r: _max_prefixed("negative_")(r) > 0, False),
-    "energy_gain": ("white-furnace albedo [1] (fails: gain > 1 beyond 4 s.e.)",
-                    lambda r: r.get("albedo", math.nan), lambda r: r.get("energy_gain", 0) > 0,
-                    False),
-    "p_gt_1": ("largest probability p seen [1] (fails: p > 1)", lambda r: r.get("p_max", math.nan),
-               lambda r: r.get("p_gt_1_fraction", 0) > 0, False),
-    "variance": ("Var(w)/E(w)^2 of the sample weight at a fixed position [1] "
-                 "(fails: > 81.92)",
-                 lambda r: r.get("relative_variance", math.nan),
-                 lambda r: r.get("variance_blowup", 0) > 0, True),
-}
+# The columns every plane CSV of a sweep has (the report checks them; the maps themselves are the
+# sweep's PNGs, drawn by figure_charts.py).
 STABILITY_NEEDED = ("row_index", "column_index", "theta_i_deg")
-AXIS_UNITS = {"alpha": "alpha (GGX/Beckmann roughness) [1]",
-              "anisotropy": "anisotropy alpha_x / alpha_y [1]",
-              "density": "glint density [1]", "microroughness": "microroughness [1]",
-              "footprint": "footprint size [1]", "light_size": "light half-angle [deg]"}
-
-
-def _num(cell):
-    try:
-        return float(cell)
-    except ValueError:
-        return math.nan
 
 
 def _ticks(values, n=6):
-    """Tick positions (cell indices) and labels (the parameter values) of one axis."""
+    """Tick positions (cell indices) and labels (the parameter values) of a grid map's axis
+    (figure_charts.py)."""
     if len(values) <= n:
         idx = list(range(len(values)))
     else:
@@ -128,84 +90,9 @@ def _ticks(values, n=6):
     return idx, [f"{values[i]:.5g}" for i in idx]
 
 
-def stability_chart(title, plane, header, rows, quantities, path, relpath, manifest, subtitle):
-    """One panel per quantity of one plane: heatmap of the CSV's cells with the parameter values
-    on the axes, a colour bar and the failing cells outlined. Returns the failing cell count per
-    quantity."""
-    import numpy as np
-    from matplotlib.colors import LogNorm, Normalize
-    from matplotlib.patches import Patch, Rectangle
-
-    plt = pyplot()
-    recs = [{h: _num(c) for h, c in zip(header, r)} for r in rows]
-    nrow = int(max(r["row_index"] for r in recs)) + 1
-    ncol = int(max(r["column_index"] for r in recs)) + 1
-    row_vals, col_vals = [math.nan] * nrow, [math.nan] * ncol
-    for r in recs:
-        row_vals[int(r["row_index"])] = r.get(plane, math.nan)
-        col_vals[int(r["column_index"])] = r["theta_i_deg"]
-    qs = [q for q in quantities if q in STABILITY_QUANTITIES]
-    cols = min(3, len(qs)) or 1
-    nrows = (len(qs) + cols - 1) // cols or 1
-    fig, axes = plt.subplots(nrows, cols, figsize=(4.6 * cols, 3.3 * nrows + 0.8), squeeze=False)
-    for ax in axes.flat[len(qs):]:
-        ax.set_visible(False)
-    failing = {}
-    for ax, q in zip(axes.flat, qs):
-        label, get, fails, log = STABILITY_QUANTITIES[q]
-        grid = np.full((nrow, ncol), np.nan)
-        bad = np.zeros((nrow, ncol), dtype=bool)
-        for r in recs:
-            i, j = int(r["row_index"]), int(r["column_index"])
-            grid[i, j] = get(r)
-            bad[i, j] = fails(r)
-        finite = grid[np.isfinite(grid)]
-        if log:
-            pos = finite[finite > 0]
-            lo = pos.min() if pos.size else 1e-3
-            hi = max(pos.max() if pos.size else 1.0, lo * 10)
-            norm = LogNorm(vmin=lo, vmax=hi)
-            grid = np.where(grid > 0, grid, lo)
-        else:
-            lo = float(finite.min()) if finite.size else 0.0
-            hi = float(finite.max()) if finite.size else 1.0
-            if hi <= lo:
-                lo, hi = lo - 0.5 if lo else 0.0, hi + 0.5 if hi else 1.0
-            norm = Normalize(vmin=lo, vmax=hi)
-        mesh = ax.pcolormesh(np.arange(ncol + 1) - 0.5, np.arange(nrow + 1) - 0.5,
-                             np.ma.masked_invalid(grid), cmap="viridis", norm=norm,
-                             shading="flat")
-        for i, j in zip(*np.nonzero(bad)):
-            ax.add_patch(Rectangle((j - 0.5, i - 0.5), 1, 1, fill=False, edgecolor="red",
-                                   lw=1.4, hatch="///"))
-        failing[q] = int(bad.sum())
-        colorbar(fig, mesh, ax, label.split(" (")[0] if len(label) > 40 else label)
-        xi, xl = _ticks(col_vals)
-        yi, yl = _ticks(row_vals)
-        ax.set_xticks(xi)
-        ax.set_xticklabels(xl, fontsize=6)
-        ax.set_yticks(yi)
-        ax.set_yticklabels(yl, fontsize=6)
-        ax.set_xlabel("incidence angle theta_i [deg]", fontsize=7)
-        ax.set_ylabel(AXIS_UNITS.get(plane, f"{plane} [1]"), fontsize=7)
-        ax.set_title(f"{q}: {label}\n{failing[q]} of {nrow * ncol} cells fail", fontsize=7)
-    fig.suptitle(f"{title}, plane {plane} x theta_i\n{subtitle}", fontsize=9)
-    fig.legend(handles=[Patch(facecolor="none", edgecolor="red", hatch="///",
-                              label="failure region (cells flagged by the sweep)")],
-               loc="lower center", fontsize=7, frameon=False)
-    fig.tight_layout(rect=(0, 0.04, 1, 0.95))
-    save(fig, path, relpath, manifest, dpi=100)
-    return failing
-
-
 # ----------------------------------------------------------------------------------------------
 # Montage PNGs of a figure, drawn as labelled panels from their NAME.panels.json
 # (experiments/figures/panel_layout.h)
-
-def _srgb_to_linear(v):
-    import numpy as np
-    return np.where(v <= 0.04045, v / 12.92, ((v + 0.055) / 1.055) ** 2.4)
-
 
 def panel_tiles(image, layout):
     """The panels of a montage image (H x W x C array), row by row from the top left; None when
@@ -223,11 +110,10 @@ def panel_tiles(image, layout):
 
 
 def panel_chart(png, layout, path, relpath, manifest, subtitle):
-    """A figure's montage as one labelled panel per tile, each enlarged (nearest pixel): renders
-    with pixel axes, maps (layout "axes") with their parameter axes and a colour bar of the value
-    recovered from the 8-bit preview. Returns False when the layout does not fit the image."""
+    """A figure's montage of renders as one labelled panel per tile, each enlarged (nearest
+    pixel) with pixel axes (a map of numbers is a heat map of its own, drawn from its CSV by
+    figure_charts.py). Returns False when the layout does not fit the image."""
     import matplotlib.image
-    import numpy as np
     image = matplotlib.image.imread(png)
     tiles = panel_tiles(image, layout)
     if tiles is None:
@@ -245,82 +131,14 @@ def panel_chart(png, layout, path, relpath, manifest, subtitle):
                              figsize=(max(6.5, 2.7 * cols + 0.6), 2.7 * aspect * rows + 1.0))
     for ax in axes.flat[len(tiles):]:
         ax.set_visible(False)
-    spec = layout.get("axes")
     for ax, tile, label in zip(axes.flat, tiles, layout["labels"]):
         ax.set_title(label, fontsize=7)
         ax.tick_params(labelsize=6)
-        if spec:
-            value = _srgb_to_linear(tile[..., 0]) / float(spec["exposure"])
-            x0, x1 = spec["x_range"]
-            y0, y1 = spec["y_range"]
-            im = ax.imshow(value, cmap="magma", interpolation="nearest", aspect="auto",
-                           extent=(x0, x1, y0, y1), vmin=0, vmax=1 / float(spec["exposure"]))
-            colorbar(fig, im, ax, spec["value_label"] + " (8-bit preview, clipped at the top)")
-            ax.set_xlabel(spec["x_label"], fontsize=7)
-            ax.set_ylabel(spec["y_label"], fontsize=7)
-        else:
-            ax.imshow(tile[..., :3], interpolation="nearest")
-            ax._render_panel = True
-            ax.set_xlabel("x [pixel]", fontsize=7)
-            ax.set_ylabel("y [pixel]", fontsize=7)
+        ax.imshow(tile[..., :3], interpolation="nearest")
+        ax._render_panel = True
+        ax.set_xlabel("x [pixel]", fontsize=7)
+        ax.set_ylabel("y [pixel]", fontsize=7)
     fig.suptitle(f"{layout.get('title', '')}\n{subtitle}", fontsize=9)
     fig.tight_layout(rect=(0, 0, 1, 0.93))
     save(fig, path, relpath, manifest)
     return True
-
-
-# ----------------------------------------------------------------------------------------------
-# Charts drawn from figure CSVs in place of a raster PNG the C++ experiment writes (the figures'
-# line charts are their own: figure_charts.py draws them from their chart specs)
-
-def p_map_chart(header, rows, path, relpath, manifest, subtitle):
-    """kneiphof2024-fig6 p_map.csv: Eq. 20's probability p at normal incidence over the light's
-    half-angle gamma (log) and sqrt(alpha), the cells with p > 1 outlined."""
-    import numpy as np
-    from matplotlib.colors import LogNorm
-    from matplotlib.patches import Patch, Rectangle
-    if not {"sqrt_alpha", "gamma_deg", "p_eq20", "p_gt_1"} <= set(header):
-        return False
-    recs = [{h: _num(c) for h, c in zip(header, r)} for r in rows]
-    sa = sorted({r["sqrt_alpha"] for r in recs})
-    gd = sorted({r["gamma_deg"] for r in recs})
-    grid = np.full((len(sa), len(gd)), np.nan)
-    over = np.zeros(grid.shape, dtype=bool)
-    for r in recs:
-        i, j = sa.index(r["sqrt_alpha"]), gd.index(r["gamma_deg"])
-        grid[i, j] = r["p_eq20"]
-        over[i, j] = r["p_gt_1"] > 0
-    plt = pyplot()
-    fig, ax = plt.subplots(figsize=(7, 5))
-    pos = grid[np.isfinite(grid) & (grid > 0)]
-    lo = float(pos.min()) if pos.size else 1e-3
-    mesh = ax.pcolormesh(np.arange(len(gd) + 1) - 0.5, np.arange(len(sa) + 1) - 0.5,
-                         np.ma.masked_invalid(np.where(grid > 0, grid, lo)), cmap="viridis",
-                         shading="flat",
-                         norm=LogNorm(vmin=lo, vmax=max(lo * 10, float(pos.max()) if pos.size
-                                                        else 1.0)))
-    for i, j in zip(*np.nonzero(over)):
-        ax.add_patch(Rectangle((j - 0.5, i - 0.5), 1, 1, fill=False, edgecolor="red", lw=1.2,
-                               hatch="///"))
-    colorbar(fig, mesh, ax, "p of Eq. 20 [1] (log scale)")
-    xi, xl = _ticks(gd)
-    yi, yl = _ticks(sa)
-    ax.set_xticks(xi)
-    ax.set_xticklabels(xl, fontsize=7)
-    ax.set_yticks(yi)
-    ax.set_yticklabels(yl, fontsize=7)
-    ax.set_xlabel("light half-angle gamma [deg] (log spaced)", fontsize=8)
-    ax.set_ylabel("sqrt(alpha) [1]", fontsize=8)
-    ax.set_title(f"{int(over.sum())} of {over.size} cells have p > 1", fontsize=8)
-    ax.legend(handles=[Patch(facecolor="none", edgecolor="red", hatch="///",
-                             label="p > 1 (not a probability)")], fontsize=7, loc="upper right")
-    fig.suptitle(f"kneiphof2024-fig6: p at normal incidence (from p_map.csv)\n{subtitle}",
-                 fontsize=9)
-    fig.tight_layout(rect=(0, 0, 1, 0.92))
-    save(fig, path, relpath, manifest)
-    return True
-
-
-# figure id -> {csv name: function(header, rows, path, relpath, manifest, subtitle) -> bool,
-#               and the C++ chart PNG it replaces}
-FIGURE_CHARTS = {"kneiphof2024-fig6": {"p_map.csv": (p_map_chart, "p_map.png")}}

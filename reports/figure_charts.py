@@ -8,8 +8,9 @@ this script draws every spec into NAME.png with charts.py's labelling rules (a t
 with their units, a legend) and stores what the chart shows (charts.describe: titles, labels,
 legend; and a map's colour-bar label) in the PNG itself, as the text chunk "glintlab:chart",
 which the report and the tests read back (chart_manifest). The PNG has no date or software
-version in it: same data, same bytes. `glintlab sweep` runs it the same way on each target's
-folder of stability maps (experiments/sweeps/stability_maps.h).
+version in it: same data, same bytes. `glintlab sweep` runs it once for all its targets' folders
+of stability maps (`--dir` repeated, `--root STAGING` naming a failing spec by its
+model/sampler/ path; experiments/sweeps/stability_maps.h): one Python start per sweep.
 
 A spec naming a missing CSV or column, an axis label without its unit ("[...]"), a series without
 a label or a panel with nothing to draw is one line on stderr ("glintlab: error: ..."), exit 2,
@@ -246,8 +247,7 @@ def draw_categories(ax, fig, spec_name, csv_name, header, rows, panel):
     cmap = ListedColormap([tuple(c["color"]) for c in cats])
     cmap.set_bad((0.8, 0.8, 0.8))
     norm = BoundaryNorm(np.arange(len(cats) + 1) - 0.5, len(cats))
-    mesh = ax.pcolormesh(np.arange(len(xs) + 1) - 0.5, np.arange(len(ykeys) + 1) - 0.5,
-                         np.ma.masked_invalid(grid), cmap=cmap, norm=norm, shading="flat")
+    mesh = _cells(ax, grid, cmap, norm)
     cb = charts.colorbar(fig, mesh, ax, value["label"])
     cb.set_ticks(list(range(len(cats))))
     cb.set_ticklabels([_text(spec_name, "category label", c.get("label")) for c in cats])
@@ -268,6 +268,16 @@ def draw_categories(ax, fig, spec_name, csv_name, header, rows, panel):
         ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(0, -0.14))
     _label_grid_axes(ax, spec_name, csv_name, panel, xs, ycols, ykeys, ticks=8, rotate=False)
     return int(np.isfinite(grid).sum())
+
+
+def _cells(ax, grid, cmap, norm):
+    """A grid of cells (row i, column j centred on (j, i)) coloured through `norm` and `cmap`,
+    a cell without a value in cmap's "bad" colour: one image, not a mesh of quadrilaterals."""
+    import numpy as np
+    ny, nx = grid.shape
+    return ax.imshow(np.ma.masked_invalid(grid), cmap=cmap, norm=norm, origin="lower",
+                     extent=(-0.5, nx - 0.5, -0.5, ny - 0.5), aspect="auto",
+                     interpolation="nearest")
 
 
 def _grid_axes(spec_name, csv_name, header, rows, panel, ycols):
@@ -331,6 +341,7 @@ def draw_heatmap(ax, fig, spec_name, csv_name, header, rows, panel):
     with no value are grey and named too. Returns the number of cells drawn."""
     import numpy as np
     from matplotlib.colors import LogNorm, Normalize
+    from matplotlib.collections import PatchCollection
     from matplotlib.patches import Patch, Rectangle
     x, y, value = panel.get("x") or {}, panel.get("y") or {}, panel.get("value") or {}
     _axis_label(spec_name, "x label", x.get("label"))
@@ -377,20 +388,20 @@ def draw_heatmap(ax, fig, spec_name, csv_name, header, rows, panel):
     import matplotlib
     cmap = matplotlib.colormaps[value.get("cmap", "viridis")].copy()
     cmap.set_bad((0.8, 0.8, 0.8))
-    mesh = ax.pcolormesh(np.arange(len(xs) + 1) - 0.5, np.arange(len(ykeys) + 1) - 0.5,
-                         np.ma.masked_invalid(shown), cmap=cmap, norm=norm, shading="flat")
+    mesh = _cells(ax, shown, cmap, norm)
     charts.colorbar(fig, mesh, ax, value["label"])
     handles = []
     for k, f in enumerate(flags):
         label = _text(spec_name, "flag label", f.get("label"))
         color = tuple(f.get("color") or (1, 0, 0))
         n = int(flagged[k].sum())
-        for i, j in zip(*np.nonzero(flagged[k])):
+        cells = [Rectangle((j - 0.5, i - 0.5), 1, 1) for i, j in zip(*np.nonzero(flagged[k]))]
+        if cells:  # one collection per flag, not an artist per cell
             if f.get("style", "outline") == "fill":
-                ax.add_patch(Rectangle((j - 0.5, i - 0.5), 1, 1, facecolor=color, lw=0))
+                ax.add_collection(PatchCollection(cells, facecolor=color, lw=0))
             else:
-                ax.add_patch(Rectangle((j - 0.5, i - 0.5), 1, 1, fill=False, edgecolor=color,
-                                       lw=1.2, hatch="///"))
+                ax.add_collection(PatchCollection(cells, facecolor="none", edgecolor=color,
+                                                  lw=1.2, hatch="///"))
         handles.append(Patch(facecolor=color, label=f"{label} ({n} cells)")
                        if f.get("style", "outline") == "fill" else
                        Patch(facecolor="none", edgecolor=color, hatch="///",
@@ -407,9 +418,10 @@ def draw_heatmap(ax, fig, spec_name, csv_name, header, rows, panel):
     return int(np.isfinite(grid).sum())
 
 
-def draw_chart(spec_path):
-    """Draws one NAME.chart.json into NAME.png beside it; returns the PNG's path."""
-    spec_name = os.path.basename(spec_path)
+def draw_chart(spec_path, name=None):
+    """Draws one NAME.chart.json into NAME.png beside it; returns the PNG's path. `name`: how
+    errors name the spec (default its file name)."""
+    spec_name = name or os.path.basename(spec_path)
     try:
         with open(spec_path, encoding="utf-8") as f:
             spec = json.load(f)
@@ -507,22 +519,38 @@ def chart_specs(folder):
     return sorted(glob.glob(os.path.join(glob.escape(folder), "*" + SPEC_SUFFIX)))
 
 
-def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--dir", required=True, help="a figure's folder (its staging folder)")
-    a = ap.parse_args(argv)
-    if not os.path.isdir(a.dir):
-        print(f"glintlab: error: charts: --dir '{a.dir}' is not a folder", file=sys.stderr)
-        return 2
-    charts.pyplot().rcParams["svg.hashsalt"] = "glintlab"
+def draw_all(folders, root=None):
+    """Draws every spec of every folder (in folder order, each folder's specs by name) in this
+    one process; with `root`, a spec is named in an error by its path below it (e.g.
+    "model/sampler/x.chart.json"). At the first failing spec, removes every PNG drawn and returns
+    its error line; else returns None."""
     drawn = []
     try:
-        for spec in chart_specs(a.dir):
-            drawn.append(draw_chart(spec))
+        for folder in folders:
+            for spec in chart_specs(folder):
+                drawn.append(draw_chart(spec, os.path.relpath(spec, root) if root else None))
     except ChartError as e:
         for png in drawn:  # nothing half done: the charts drawn before the error go too
             os.remove(png)
-        print(f"glintlab: error: charts: {e}", file=sys.stderr)
+        return str(e)
+    return None
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--dir", required=True, action="append",
+                    help="a figure's folder (its staging folder); repeated: every folder's "
+                         "charts in one run (glintlab sweep: each target's)")
+    ap.add_argument("--root", help="name a failing spec by its path below this folder")
+    a = ap.parse_args(argv)
+    for d in a.dir:
+        if not os.path.isdir(d):
+            print(f"glintlab: error: charts: --dir '{d}' is not a folder", file=sys.stderr)
+            return 2
+    charts.pyplot().rcParams["svg.hashsalt"] = "glintlab"
+    error = draw_all(a.dir, a.root)
+    if error is not None:
+        print(f"glintlab: error: charts: {error}", file=sys.stderr)
         return 2
     return 0
 

@@ -915,10 +915,6 @@ def figure_chart_pngs(doc, f, root, base, manifest, replaced):
     return charted
 
 
-def figure_chart_for(fid, name):
-    return charts.FIGURE_CHARTS.get(fid, {}).get(name)
-
-
 # Figures shown in the adequacy section (write_adequacy) rather than among the papers' figures.
 ADEQUACY_FIGURES = ("adequacy-maps", "adequacy-scene")
 
@@ -974,19 +970,6 @@ def write_figure(doc, f, part, root, plots_tmp, plots_rel, made, manifest):
     base = f"figures/{fid}"
     replaced = set()
     charted = figure_chart_pngs(doc, f, root, base, manifest, replaced)
-    for name, (header, rows) in f["csvs"].items():
-        spec = figure_chart_for(fid, name)
-        if not spec:
-            continue
-        draw, png_name = spec
-        out = f"{fid}__{name[:-4]}_chart.png"
-        if draw(header, rows, os.path.join(plots_tmp, out), f"{plots_rel}/{out}", manifest,
-                f"{machine}; budget {budget}"):
-            made.append(out)
-            replaced.add(png_name)
-            doc.image(f"{plots_rel}/{out}", f"{fid} {name} chart",
-                      f"{fid}: drawn from {name} (replaces the experiment's {png_name}, "
-                      "linked below)", "chart")
     for name in [n for n in f["files"] if n.endswith(".png") and n not in replaced]:
         layout_name = name[:-4] + ".panels.json"
         if layout_name not in f["files"]:
@@ -1114,11 +1097,11 @@ def write_stability(doc, st, part, root, plots_tmp, plots_rel, made, manifest):
     doc.heading(2, "Stability maps", "stability")
     machine = machine_text(st.get('machine', part.get('machine')))
     budget = st.get('budget', part.get('budget', '?'))
-    doc.para(f"Budget {budget}, {machine}. {len(st['models'])} model/sampler pairs. Each chart is "
-             "one plane (a swept parameter × the incidence angle θ_i) of one model and sampler, a "
-             "heatmap per quantity drawn from the plane's CSV, with the cells the sweep flags "
-             "outlined and hatched in red (the failure region); the raw maps (EXR, PNG) are "
-             "linked under each chart.")
+    doc.para(f"Budget {budget}, {machine}. {len(st['models'])} model/sampler pairs. Each map is "
+             "one quantity over one plane (a swept parameter × the incidence angle θ_i) of one "
+             "model and sampler: the sweep's own heat map (drawn by matplotlib when the sweep "
+             "ran, from the plane's CSV), with the cells the sweep flags outlined and hatched in "
+             "red (the failure region); its EXR and CSV are linked under each plane.")
     doc.links("Files", [("stability.json", "stability/stability.json")])
     for m in st["models"]:
         title = m["model"] + (f" / {m['sampler']}" if m.get("sampler") else "")
@@ -1128,23 +1111,22 @@ def write_stability(doc, st, part, root, plots_tmp, plots_rel, made, manifest):
         for mp in m["maps"]:
             planes.setdefault(mp["plane"], []).append(mp)
         for plane, maps in planes.items():
-            header, rows = maps[0]["table"]
-            png = slug(f"stability__{m['model']}__{m.get('sampler', '')}__{plane}") + ".png"
-            failing = charts.stability_chart(title, plane, header, rows,
-                                             [mp["quantity"] for mp in maps],
-                                             os.path.join(plots_tmp, png), f"{plots_rel}/{png}",
-                                             manifest, f"{machine}; budget {budget}")
-            made.append(png)
-            worst = ", ".join(f"{q} {n} cells" for q, n in failing.items() if n) or \
-                "no failing cell"
-            doc.image(f"{plots_rel}/{png}", f"{title} plane {plane}",
-                      f"{title}, plane {plane} × θ_i: {worst} (from {os.path.basename(rel(maps[0]['csv_path'], root))})",
-                      "chart")
             items = []
             for mp in maps:
+                png = rel(mp["png_path"], root)
+                entry = figure_charts.chart_manifest(mp["png_path"])
+                if entry is None:
+                    raise ReportError(f"{png}: the sweep's map of {m['model']} "
+                                      f"{mp['quantity']} was not drawn by "
+                                      "reports/figure_charts.py (no chart record in it)")
+                manifest.append({**entry, "file": png})
                 name = STABILITY_MAP_NAMES.get(mp["quantity"], mp["quantity"])
-                items += [(f"{name} EXR", rel(mp["exr_path"], root)),
-                          (f"{name} PNG", rel(mp["png_path"], root))]
+                # The panel's title counts the failing cells ("nan: 3 of 132 cells fail").
+                counts = "; ".join(a["title"] for a in entry["axes"] if a.get("map"))
+                doc.image(png, f"{title} plane {plane} {mp['quantity']}",
+                          f"{title}, plane {plane} × θ_i, {name}: {counts or 'a heat map'} "
+                          f"(from {os.path.basename(rel(maps[0]['csv_path'], root))})", "chart")
+                items.append((f"{name} EXR", rel(mp["exr_path"], root)))
             doc.links(f"{plane}: CSV", [("CSV", rel(maps[0]["csv_path"], root))] + items)
 
 

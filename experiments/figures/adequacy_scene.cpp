@@ -5,7 +5,7 @@
 // difference and the CV difference over the pixel's realisations, in units of TAU) and the map of
 // the chosen level: the difference and level maps as one labelled sheet drawn by matplotlib
 // (adequacy-scene.png from adequacy-scene-pixels.csv and its chart spec: titles, axes, colour
-// scales, legends), the four panels as the plain montage panels.png with its panels.json, one EXR
+// scales, legends), the two renders as the plain montage panels.png with its panels.json, one EXR
 // per scene (every per-pixel quantity), a CSV of per-scene counts per family (adequacy-scene.csv,
 // adequacy-scene-kemppinen.csv) and summary.md; given benchmark data (--bench-from), each
 // scene's time per evaluation with the chosen levels against exact counting everywhere
@@ -36,6 +36,7 @@
 #include "experiments/adequacy/adequacy_outputs.h"
 #include "experiments/adequacy/level_costs.h"
 #include "experiments/figures/bench_json.h"
+#include "experiments/figures/chart_spec.h"
 #include "experiments/figures/panel_layout.h"
 #include "verify/scenes/adequacy_scenes.h"
 #include "verify/stats/multiple_testing.h"
@@ -77,39 +78,25 @@ double difference_in_tau(const adq::ScenePixel& p, double tau) {
   return std::max(p.mean_diff, p.cv_diff) / tau;
 }
 
-// Blue (no difference) through white (TAU) to red (kScaleMaxTau · TAU).
-Vec3<double> scale_colour(double d) {
-  const double t = std::clamp(d / kScaleMaxTau, 0.0, 1.0);
-  const Vec3<double> low{0.1, 0.15, 0.5}, mid{0.95, 0.95, 0.95}, high{0.75, 0.05, 0.05};
-  const auto mix = [](Vec3<double> a, Vec3<double> b, double s) { return (1 - s) * a + s * b; };
-  return t < 0.5 ? mix(low, mid, 2 * t) : mix(mid, high, 2 * t - 1);
-}
-
 void put(Image& im, int x, int y, Vec3<double> c) {
   im.at(x, y, 0) = c.x, im.at(x, y, 1) = c.y, im.at(x, y, 2) = c.z;
 }
 
-enum class Panel { kChosen, kExact, kDifference, kLevel };
+// The renders of a scene (the montage panels.png): each pixel with its chosen level, or with the
+// family's most complete level everywhere, at the scene's exposure; black off the surface. Its
+// difference and level maps are the labelled sheet's heat maps (write_sheet_spec).
+enum class Render { kChosen, kExact };
 
-Image panel(const SceneResult& s, Panel which, double tau) {
+Image render_panel(const SceneResult& s, Render which) {
   const adq::SceneRender& r = s.render;
   Image im(r.width, r.height, {"R", "G", "B"});
   for (int y = 0; y < r.height; ++y)
     for (int x = 0; x < r.width; ++x) {
       const adq::ScenePixel& p = r.pixels[std::size_t(y) * std::size_t(r.width) + std::size_t(x)];
-      Vec3<double> c = kOffSurface;
-      if (which == Panel::kChosen || which == Panel::kExact) {
-        const double v = which == Panel::kChosen ? p.chosen_value : p.exact_value;
-        c = p.surface ? Vec3<double>{1, 1, 1} * std::min(v * s.exposure, 1.0)
-                      : Vec3<double>{0, 0, 0};
-      } else if (which == Panel::kDifference) {
-        if (p.surface) c = p.lit ? scale_colour(difference_in_tau(p, tau)) : kDark;
-        if (p.exceeds) c = kExceeds;
-      } else if (p.surface) {
-        c = s.kemppinen ? kKemppinenLevelColors[std::size_t(p.level)]
-                        : kAdequacyLevelColors[std::size_t(p.level)];
-      }
-      put(im, x, y, c);
+      const double v = which == Render::kChosen ? p.chosen_value : p.exact_value;
+      put(im, x, y,
+          p.surface ? Vec3<double>{1, 1, 1} * std::min(v * s.exposure, 1.0)
+                    : Vec3<double>{0, 0, 0});
     }
   return im;
 }
@@ -130,8 +117,8 @@ Image enlarge(const Image& from, int zoom) {
   return out;
 }
 
-Image display_panel(const SceneResult& s, Panel which, double tau) {
-  return enlarge(panel(s, which, tau), s.zoom);
+Image display_panel(const SceneResult& s, Render which) {
+  return enlarge(render_panel(s, which), s.zoom);
 }
 
 std::string_view most_complete_name(const SceneResult& r) {
@@ -249,11 +236,11 @@ void write_sheet_spec(const std::filesystem::path& png, const std::string& csv,
                       {"value", {{"column", "level"}, {"label", "chosen level"}}},
                       {"categories", categories}});
   }
-  const nlohmann::json spec = {{"kind", "heatmap"}, {"image", png.filename().string()},
-                               {"title", title},    {"csv", csv},
-                               {"columns", 2},      {"panels", panels}};
-  std::filesystem::path sidecar = png;
-  io::write_file_atomic(sidecar.replace_extension(".chart.json"), spec.dump(1) + "\n");
+  write_chart_json(png, {{"kind", "heatmap"},
+                         {"title", title},
+                         {"csv", csv},
+                         {"columns", 2},
+                         {"panels", panels}});
 }
 
 Image montage(const std::vector<Image>& tiles, int columns, int gap) {
@@ -495,14 +482,15 @@ void run_adequacy_scene(const FigureContext& ctx) {
   std::vector<Image> tiles;
   std::vector<std::string> labels;
   for (const SceneResult& r : results)
-    for (int c = 0; c < 4; ++c) {
-      tiles.push_back(display_panel(r, Panel(c), o.tau));
-      labels.push_back(fmt::format("{}: {}", r.render.scene.name, kColumnNames[c]));
+    for (const Render c : {Render::kChosen, Render::kExact}) {
+      tiles.push_back(display_panel(r, c));
+      labels.push_back(fmt::format("{}: {}", r.render.scene.name, kColumnNames[int(c)]));
     }
   io::write_png_preview(ctx.dir / "panels.png", montage(tiles, 4, 2));
   write_panel_layout(ctx.dir / "panels.png",
-                     {"adequacy-scene: chosen level vs the most complete level (difference: blue "
-                      "0, white TAU, red 2 TAU, magenta over TAU)",
+                     {"adequacy-scene: per scene the render with the chosen level and with the "
+                      "most complete level (same exposure; their difference and the chosen level "
+                      "are the maps of adequacy-scene.png)",
                       4,
                       2,
                       labels,
@@ -537,9 +525,9 @@ void run_adequacy_scene(const FigureContext& ctx) {
       "complete level is lit at fewer than {:g} realisations; light grey off the surface) and the "
       "chosen level (binomial: green smooth, blue realtime, orange small_count, red exact; "
       "Kemppinen: green smooth, then k = 1, 4, 9, 16 in blue, yellow, purple, red, the exact erf "
-      "the darker shade). panels.png: per scene the chosen-level render, the most complete "
-      "level's render (same exposure), the difference map (blue 0, white TAU, red 2 TAU) and the "
-      "chosen level, unlabelled (labels in panels.panels.json); <scene>.exr every per-pixel "
+      "the darker shade). panels.png: per scene the chosen-level render and the most complete "
+      "level's render (same exposure), two scenes a row, unlabelled (labels in "
+      "panels.panels.json); <scene>.exr every per-pixel "
       "quantity at the render's size; adequacy-scene.csv and adequacy-scene-kemppinen.csv the "
       "per-scene counts.\n",
       adq::kMinLitPositions);

@@ -6,10 +6,13 @@
 
 #include <array>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "core/render/image.h"
 
 namespace glintlab::experiments {
 
@@ -65,5 +68,34 @@ struct ChartSpec {
 // Writes NAME.chart.json beside `png` = NAME.png (atomic); the PNG itself is drawn later, by
 // reports/figure_charts.py. Throws std::runtime_error naming the file on failure.
 void write_chart_spec(const std::filesystem::path& png, const ChartSpec& spec);
+
+// Writes a spec given as JSON (a heat map's or a map of categories', reports/figure_charts.py's
+// other kinds) as NAME.chart.json beside `png` = NAME.png, with "image" set to the PNG's name.
+void write_chart_json(const std::filesystem::path& png, nlohmann::json spec);
+
+// One panel of a heat map of an image channel: the pixel at column i, row j sits at
+// (x0 + dx i, y0 + dy j) on the panel's axes; `inside` (optional) keeps the pixels of the map (the
+// others are cells without a value).
+struct ImageMapPanel {
+  std::string key, title;  // the CSV's panel column; the panel's title
+  const Image* image = nullptr;
+  std::string channel;
+  double x0 = 0, dx = 1, y0 = 0, dy = 1;
+  std::string x_label, y_label, value_label;  // each with its unit
+  std::array<double, 2> range{0, 1};          // the colour bar's
+  std::string inside;                         // a 0/1 channel, or empty: every pixel
+  bool top_down = true;                       // the image's first row at the top of the map
+};
+
+ImageMapPanel image_map_panel(std::string key, std::string title, const Image* image,
+                              std::string channel);
+
+// NAME_map.csv (panel, x, y, `value_column`: per cell the mean of its finite pixels, at most
+// 128 x 128 cells a panel, each a block of pixels; a cell without one is left out) and the
+// heat-map spec of NAME.png, one panel per ImageMapPanel, `columns` to a row: reports/
+// figure_charts.py draws it. A map of numbers is this heat map, not a grey montage.
+void write_image_maps(const std::filesystem::path& png, const std::string& title,
+                      const std::vector<ImageMapPanel>& panels, int columns,
+                      const std::string& value_column);
 
 }  // namespace glintlab::experiments

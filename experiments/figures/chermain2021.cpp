@@ -19,6 +19,7 @@
 #include "core/io/csv.h"
 #include "core/io/exr.h"
 #include "core/io/png.h"
+#include "experiments/figures/chart_spec.h"
 #include "experiments/figures/panel_layout.h"
 #include "verify/check.h"
 #include "verify/scenes/chermain_scenes.h"
@@ -60,12 +61,6 @@ void progress(const FigureContext& ctx, const std::string& stage, long done, lon
   if (ctx.progress) ctx.progress(stage, done, total);
 }
 
-// A chart spec (reports/figure_charts.py) beside `png` = NAME.png, as NAME.chart.json.
-void write_chart_json(const std::filesystem::path& png, nlohmann::json spec) {
-  spec["image"] = png.filename().string();
-  std::filesystem::path sidecar = png;
-  io::write_file_atomic(sidecar.replace_extension(".chart.json"), spec.dump(1) + "\n");
-}
 
 // --- Fig. 3 ---
 // fig3.png, drawn by matplotlib from fig3_marginals.csv: per distribution (columns 0..3) its

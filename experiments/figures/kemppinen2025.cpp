@@ -118,8 +118,9 @@ void run_fig2_3(const FigureContext& ctx) {
     double glinty_max, lambda, area_mean, area_mean_se;
   };
   std::vector<Row> rows;
-  std::vector<Image> tiles;
-  std::vector<std::string> labels;
+  std::vector<Image> maps;  // per NDF and domain: smooth, glinty and inside, as mapped
+  std::vector<ImageMapPanel> panels;
+  maps.reserve(std::size(kNdfs) * 2);
   for (const NdfChoice& nd : kNdfs) {
     with_ndf(ndf_kind(nd.ggx), kFig23Alpha, kFig23Alpha, [&](const auto& ndf) {
       // Prior space: pixel centre p of [0,1]², ratio D★^f/D at ω_h = T⁻¹(p) (uniform 1 for the
@@ -193,18 +194,40 @@ void run_fig2_3(const FigureContext& ctx) {
         io::write_exr(ctx.dir / fmt::format("{}_{}.exr", nd.name, domain), img,
                       attributes(kFig23Id, nd.ggx, ptext, seed));
         rows.push_back({nd.name, domain, s_int, g_int, e_int, c_int, g_max, lambda, a_mean, a_se});
-        // Preview: smooth (left) and glinty (right), each scaled by the smooth maximum so that
-        // the glints saturate where they concentrate energy.
+        // Heat maps: smooth (left) and glinty (right) on one colour bar from 0 to twice the
+        // smooth maximum, so that the glints saturate where they concentrate energy.
         double s_max = 0;
+        Image& map = maps.emplace_back(n, n, std::vector<std::string>{"smooth", "glinty",
+                                                                      "inside"});
         for (int y = 0; y < n; ++y)
-          for (int x = 0; x < n; ++x)
-            s_max = std::max(s_max, disk ? img.at(x, y, 8) : img.at(x, y, 3));
-        const double scale = s_max > 0 ? 0.5 / s_max : 1.0;
-        tiles.push_back(grey_tile(img, disk ? "inside" : "D_smooth", scale));
-        tiles.push_back(grey_tile(img, "R", scale));
-        labels.push_back(fmt::format("{} {}: smooth {}", nd.name, domain, disk ? "1" : "D"));
-        labels.push_back(
-            fmt::format("{} {}: glinty {}", nd.name, domain, disk ? "D*f / D" : "D*f"));
+          for (int x = 0; x < n; ++x) {
+            const double smooth = disk ? img.at(x, y, 8) : img.at(x, y, 3);
+            s_max = std::max(s_max, smooth);
+            map.at(x, y, 0) = smooth;
+            map.at(x, y, 1) = img.at(x, y, 0);
+            map.at(x, y, 2) = img.at(x, y, 8);
+          }
+        const double top = s_max > 0 ? 2 * s_max : 1.0;
+        for (const bool glinty : {false, true}) {
+          ImageMapPanel mp = image_map_panel(
+              fmt::format("{}_{}_{}", nd.name, domain, glinty ? "glinty" : "smooth"),
+              fmt::format("{} {}: {} {}", nd.name, domain, glinty ? "glinty" : "smooth",
+                          disk ? (glinty ? "D*f / D" : "1") : (glinty ? "D*f" : "D")),
+              &map, glinty ? "glinty" : "smooth");
+          if (disk) {  // prior-space pixel centres (u, v) = ((x + 0.5) / n, (y + 0.5) / n)
+            mp.x0 = mp.y0 = 0.5 / n, mp.dx = mp.dy = 1.0 / n;
+            mp.x_label = "prior-space u [1]", mp.y_label = "prior-space v [1]";
+            mp.value_label = "D*f / D [1] (smooth: 1)";
+          } else {  // projected hemisphere (h.x, h.y) = (2u - 1, 1 - 2v)
+            mp.x0 = 1.0 / n - 1, mp.dx = 2.0 / n, mp.y0 = 1 - 1.0 / n, mp.dy = -2.0 / n;
+            mp.x_label = "h.x [1] (orthographic)", mp.y_label = "h.y [1] (orthographic)";
+            mp.value_label = glinty ? "D*f [1/sr]" : "D [1/sr]";
+          }
+          mp.value_label += fmt::format(" (above {:.3g} saturates)", top);
+          mp.range = {0, top};
+          mp.inside = "inside";
+          panels.push_back(std::move(mp));
+        }
       }
       return 0;
     });
@@ -227,16 +250,12 @@ void run_fig2_3(const FigureContext& ctx) {
           w.cell(r.area_mean).cell(r.area_mean_se).cell_int(kFig23Positions).end_row();
         }
       });
-  io::write_png_preview(ctx.dir / "fig2_3.png", montage(tiles, 4));
-  write_panel_layout(ctx.dir / "fig2_3.png",
-                     {fmt::format("kemppinen2025-fig2_3: smooth vs glinty NDF over the prior "
-                                  "square's disk and the projected hemisphere, {} cells "
-                                  "(grey = value x 0.5 / smooth maximum)",
-                                  kFig23Cells),
-                      4,
-                      0,
-                      labels,
-                      {}});
+  write_image_maps(ctx.dir / "fig2_3.png",
+                   fmt::format("kemppinen2025-fig2_3: smooth vs glinty NDF over the prior "
+                               "square's disk and the projected hemisphere\nfootprint {} cells, "
+                               "{} x {} pixels",
+                               kFig23Cells, n, n),
+                   panels, 4, "value");
 }
 
 // ---- Fig. 15: area-averaged white furnace -----------------------------------------------------
@@ -354,7 +373,8 @@ void run_fig14(const FigureContext& ctx) {
     double cells, mean_ratio, mean_abs_error;
   };
   std::vector<Row> rows;
-  std::vector<Image> tiles;
+  std::vector<Image> maps;
+  maps.reserve(2);
   const GGX<double> ggx{kAlpha, kAlpha};
   const double th = std::atan(2.5 * kAlpha);
   const V3 h{std::sin(th), 0, std::cos(th)};
@@ -380,7 +400,7 @@ void run_fig14(const FigureContext& ctx) {
     }
     io::write_exr(ctx.dir / fmt::format("background_k{}.exr", side * side), img,
                   attributes(kFig14Id, true, params_text(p, kAlpha, -1), seed));
-    tiles.push_back(grey_tile(img, "ratio", 0.5));
+    maps.push_back(std::move(img));
   }
   io::write_csv_atomic(ctx.dir / "background.csv",
                        {"k", "footprint_cells", "lambda", "alpha", "microroughness", "theta_h_deg",
@@ -392,16 +412,23 @@ void run_fig14(const FigureContext& ctx) {
                            wr.cell(r.mean_ratio).cell(r.mean_abs_error).end_row();
                          }
                        });
-  io::write_png_preview(ctx.dir / "background.png", montage(tiles, 2));
-  write_panel_layout(ctx.dir / "background.png",
-                     {fmt::format("kemppinen2025-fig14: D*f / D at theta_h {:.3g} deg over "
-                                  "positions and footprint size",
-                                  th * 180 / kPiD),
-                      2,
-                      0,
-                      {"k = 4", "k = 16"},
-                      {"position index [1]", "log2 footprint cells [1]", "D*f / D [1]", -0.5,
-                       w - 0.5, 9 + 4.5 / (hgt - 1), -4.5 / (hgt - 1), 0.5}});
+  // Row y of an image: footprint 2^(9 y / (hgt - 1)) cells; column: a position.
+  std::vector<ImageMapPanel> panels;
+  for (std::size_t k = 0; k < maps.size(); ++k) {
+    ImageMapPanel mp = image_map_panel(fmt::format("k{}", k == 0 ? 4 : 16),
+                           fmt::format("k = {}", k == 0 ? 4 : 16), &maps[k], "ratio");
+    mp.dy = 9.0 / (hgt - 1);
+    mp.x_label = "position index [1]", mp.y_label = "log2 footprint cells [1]";
+    mp.value_label = "D*f / D [1] (1: the smooth D; above 2 saturates)";
+    mp.range = {0, 2};
+    mp.top_down = false;
+    panels.push_back(std::move(mp));
+  }
+  write_image_maps(ctx.dir / "background.png",
+                   fmt::format("kemppinen2025-fig14: D*f / D at theta_h {:.3g} deg over "
+                               "positions and footprint size\nGGX alpha {}, microroughness {}",
+                               th * 180 / kPiD, kAlpha, kAlphaStarHigh),
+                   panels, 2, "ratio");
 
   // Right pair: the highlight's shape, area mean of D★^f over θ_h (φ_h = 0), footprint 64 cells.
   constexpr double kSmoothAlpha = 0.05;
@@ -452,7 +479,8 @@ void run_fig6(const FigureContext& ctx) {
     double lambda, w1, mean, cv, lit_fraction, lit_mean, p99, max;
   };
   std::vector<Row> out;
-  std::vector<Image> tiles;
+  std::vector<Image> maps;
+  maps.reserve(2);
   for (kemppinen2025::Blend blend :
        {kemppinen2025::Blend::kRoulette, kemppinen2025::Blend::kLinear}) {
     P p = kemppinen2025::preset_params(2, kAlphaStar, seed);
@@ -492,7 +520,7 @@ void run_fig6(const FigureContext& ctx) {
     }
     io::write_exr(ctx.dir / fmt::format("strip_{}.exr", name), img,
                   attributes(kFig6Id, true, params_text(p, kAlpha, -1), seed));
-    tiles.push_back(grey_tile(img, "D_star_f", 0.5 / ggx.D(h)));
+    maps.push_back(std::move(img));
   }
   io::write_csv_atomic(ctx.dir / "blending.csv",
                        {"blending", "lambda", "w_level1", "footprint_cells", "positions",
@@ -505,14 +533,28 @@ void run_fig6(const FigureContext& ctx) {
                            w.cell(r.lit_mean).cell(r.p99).cell(r.max).cell(ggx.D(h)).end_row();
                          }
                        });
-  io::write_png_preview(ctx.dir / "strip.png", montage(tiles, 1));
-  write_panel_layout(ctx.dir / "strip.png",
-                     {"kemppinen2025-fig6: D*f at normal incidence over the LOD, per blending",
-                      1,
-                      0,
-                      {"roulette blending", "linear blending"},
-                      {"LOD lambda [1]", "position index [1]", "D*f / D(h) [1]",
-                       3 - 1.0 / (cols - 1), 5 + 1.0 / (cols - 1), img_rows - 0.5, -0.5, 0.5}});
+  // Column c of an image: LOD lambda = 3 + 2 c / (cols - 1); row: a position. The maps show
+  // D*f / D(h), as the preview did.
+  std::vector<ImageMapPanel> panels;
+  for (std::size_t k = 0; k < maps.size(); ++k) {
+    Image& img = maps[k];
+    const std::size_t c = img.channel("D_star_f");
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) img.at(x, y, c) /= ggx.D(h);
+    const std::string blend = k == 0 ? "roulette" : "linear";
+    ImageMapPanel mp = image_map_panel(blend, blend + " blending", &img, "D_star_f");
+    mp.x0 = 3, mp.dx = 2.0 / (cols - 1);
+    mp.x_label = "LOD lambda [1]", mp.y_label = "position index [1]";
+    mp.value_label = "D*f / D(h) [1] (above 2 saturates)";
+    mp.range = {0, 2};
+    mp.top_down = false;
+    panels.push_back(std::move(mp));
+  }
+  write_image_maps(ctx.dir / "strip.png",
+                   fmt::format("kemppinen2025-fig6: D*f at normal incidence over the LOD, per "
+                               "blending\nGGX alpha {}, microroughness {}, {} positions shown",
+                               kAlpha, kAlphaStar, img_rows),
+                   panels, 1, "D_star_f_over_D");
 }
 
 // ---- Fig. 10: one sweep per parameter ----------------------------------------------------

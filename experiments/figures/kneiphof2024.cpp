@@ -35,6 +35,7 @@
 #include "core/ndf/total_area.h"
 #include "core/render/image.h"
 #include "experiments/figures/bench_json.h"
+#include "experiments/figures/chart_spec.h"
 #include "experiments/figures/panel_layout.h"
 
 namespace glintlab::experiments {
@@ -142,16 +143,13 @@ void write_p_map_spec(const std::filesystem::path& png, const std::string& csv, 
          {"label", "p > 1 (not a probability)"},
          {"color", {1.0, 0.0, 0.0}},
          {"style", "outline"}}}}};
-  const nlohmann::json spec = {
+  write_chart_json(png, {
       {"kind", "heatmap"},
-      {"image", png.filename().string()},
       {"title",
        "kneiphof2024-fig6: p of Eq. 20 over gamma and sqrt(alpha)\nGGX, normal incidence "
        "(R of Deliot & Belcour = p)"},
       {"csv", csv},
-      {"panels", {panel}}};
-  std::filesystem::path sidecar = png;
-  io::write_file_atomic(sidecar.replace_extension(".chart.json"), spec.dump(1) + "\n");
+      {"panels", {panel}}});
 }
 
 void run_fig6(const FigureContext& ctx) {

@@ -20,6 +20,7 @@
 #include "core/io/csv.h"
 #include "core/io/exr.h"
 #include "core/model_registry.h"
+#include "experiments/figures/chart_spec.h"
 #include "verify/stability/cell_stats.h"
 
 namespace glintlab::experiments {
@@ -78,9 +79,8 @@ void write_map(const std::filesystem::path& dir, const std::string& stem, const 
                       {"value", {{"column", column}, {"label", label}}},
                       {"flags", flags},
                       {"empty_label", "below the horizon (outside the disk)"}});
-  const nlohmann::json spec = {
+  write_chart_json(dir / (stem + ".png"), {
       {"kind", "heatmap"},
-      {"image", stem + ".png"},
       {"title", fmt::format("models-hemisphere: {} at its default parameters, theta_i = {:g} deg\n"
                             "upper hemisphere of wo, {} x {} cells{}",
                             stem, kThetaDeg, cells, cells,
@@ -88,8 +88,7 @@ void write_map(const std::filesystem::path& dir, const std::string& stem, const 
                                       : std::string())},
       {"csv", csv},
       {"columns", 2},
-      {"panels", panels}};
-  io::write_file_atomic(dir / (stem + ".chart.json"), spec.dump(1) + "\n");
+      {"panels", panels}});
 }
 
 void run(const FigureContext& ctx) {

@@ -23,6 +23,7 @@
 #include "core/render/metrics.h"
 #include "core/scene/sine_height_field.h"
 #include "core/scene/slope_moment_map.h"
+#include "experiments/figures/chart_spec.h"
 #include "experiments/figures/panel_layout.h"
 #include "verify/scenes/podee_scene.h"
 
@@ -105,7 +106,7 @@ io::ExrAttributes attributes(std::string_view figure, std::string_view method, d
 }
 
 // Grayscale images side by side in a grid, as RGB, for the PNG preview.
-Image montage(const std::vector<Image>& images, int columns, double scale = 1) {
+Image montage(const std::vector<Image>& images, int columns) {
   const int w = images[0].width, h = images[0].height;
   const int rows = (static_cast<int>(images.size()) + columns - 1) / columns;
   Image out(w * columns, h * rows, {"R", "G", "B"});
@@ -114,7 +115,7 @@ Image montage(const std::vector<Image>& images, int columns, double scale = 1) {
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x)
         for (std::size_t c = 0; c < 3; ++c)
-          out.at(ox + x, oy + y, c) = scale * images[k].at(x, y, 0);
+          out.at(ox + x, oy + y, c) = images[k].at(x, y, 0);
   }
   return out;
 }
@@ -382,20 +383,27 @@ void run_flicker(const FigureContext& ctx) {
           w.end_row();
         }
       });
-  io::write_png_preview(ctx.dir / "flicker.png", montage(cells, 3, 2.0));
-  write_panel_layout(
+  // The per-pixel temporal standard deviations as heat maps on one colour bar (a grey preview
+  // showed 2 x sd, saturating at sd 0.5; the bar does too).
+  std::vector<ImageMapPanel> panels;
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    ImageMapPanel mp = image_map_panel(fmt::format("{}_{}", k / 3, k % 3), labels[k], &cells[k],
+                                       "Y");
+    mp.x_label = "x [pixel]", mp.y_label = "y [pixel]";
+    mp.value_label = "temporal standard deviation of Y [radiance] (above 0.5 saturates)";
+    mp.range = {0, 0.5};
+    panels.push_back(std::move(mp));
+  }
+  write_image_maps(
       ctx.dir / "flicker.png",
-      {fmt::format("podee-fig4-flicker: per-pixel temporal standard deviation over "
-                   "{} sub-pixel camera shifts (grey = 2 x sd){}",
-                   b.frames,
-                   b.views == 1 ? std::string()
-                                : fmt::format(", {0} x {0} views of the sphere per "
-                                              "panel, normal map translated per view",
-                                              b.views)),
-       3,
-       0,
-       labels,
-       {}});
+      fmt::format("podee-fig4-flicker: per-pixel temporal standard deviation over {} sub-pixel "
+                  "camera shifts{}",
+                  b.frames,
+                  b.views == 1 ? std::string()
+                               : fmt::format("\n{0} x {0} views of the sphere per panel, normal "
+                                             "map translated per view",
+                                             b.views)),
+      panels, 3, "temporal_sd");
 }
 
 }  // namespace

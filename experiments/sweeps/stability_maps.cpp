@@ -13,6 +13,7 @@
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"
+#include "experiments/figures/chart_spec.h"
 
 namespace glintlab::experiments {
 namespace {
@@ -181,15 +182,12 @@ void write_map_spec(const SweepMap& m, const ModelSweep& s, const std::string& q
          {"color", {1.0, 0.0, 0.0}},
          {"style", "outline"}}}},
       {"empty_label", "no value (not finite, or zero on a log scale)"}};
-  const nlohmann::json chart = {
+  write_chart_json(png, {
       {"kind", "heatmap"},
-      {"image", png.filename().string()},
       {"title", fmt::format("stability sweep of {} (sampler {}): {}\nplane {} x theta_i",
                             s.target.model->name, s.target.sampler, q, m.plane.name)},
       {"csv", csv},
-      {"panels", {panel}}};
-  std::filesystem::path sidecar = png;
-  io::write_file_atomic(sidecar.replace_extension(".chart.json"), chart.dump(1) + "\n");
+      {"panels", {panel}}});
 }
 
 void write_csv(const SweepMap& m, const ModelSweep& s, const std::filesystem::path& path) {

@@ -67,13 +67,14 @@ SweepRunSummary run_sweeps(const fs::path& out, const SweepRunOptions& o) {
   doc["budget"] = o.budget == verify::Budget::kQuick ? "quick" : "full";
   doc["models"] = nlohmann::ordered_json::array();
   std::vector<std::string> top;  // top-level entries to move: one folder per model
+  std::vector<fs::path> dirs;    // each target's folder in the staging folder
   for (const st::SweepTarget& t : targets) {
     const st::ModelSweep s = st::sweep_model(t, o.budget, [&](long done, long total) {
       if (o.progress) o.progress(t.id(), done, total);
     });
     const fs::path rel = fs::path(std::string(t.model->name)) / t.sampler;
     const auto files = write_stability_maps(s, staging, rel);
-    if (o.finish) o.finish(staging / rel);
+    dirs.push_back(staging / rel);
     nlohmann::ordered_json entry;
     entry["model"] = t.model->name;
     entry["sampler"] = t.sampler;
@@ -92,6 +93,7 @@ SweepRunSummary run_sweeps(const fs::path& out, const SweepRunOptions& o) {
     const std::string model_dir(t.model->name);
     if (top.empty() || top.back() != model_dir) top.push_back(model_dir);
   }
+  if (o.finish) o.finish(staging, dirs);
   io::write_file_atomic(staging / "stability.json", doc.dump(2) + "\n");
   // Every target finished: replace the model folders, then the index.
   top.push_back("stability.json");

@@ -7,6 +7,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "verify/check.h"
 
@@ -22,9 +23,12 @@ struct SweepRunOptions {
   std::string models;  // comma-separated fnmatch globs over model names; empty = all
   // (target id, plane done, planes total); called from one thread at a time.
   std::function<void(const std::string& target, long done, long total)> progress;
-  // Called with each target's staging folder once its files are written (glintlab sweep: draws
-  // its maps' charts); a throw fails the run and leaves `out` as it was.
-  std::function<void(const std::filesystem::path& dir)> finish;
+  // Called once every target's files are written, with the staging folder and each target's
+  // folder in it, in the run's order (glintlab sweep: draws all the maps' charts in one run of
+  // the chart script); a throw fails the run and leaves `out` as it was.
+  std::function<void(const std::filesystem::path& staging,
+                     const std::vector<std::filesystem::path>& dirs)>
+      finish;
 };
 
 struct SweepRunSummary {

@@ -23,8 +23,9 @@ namespace fs = std::filesystem;
 
 class FigureShardTest : public CliTest {
  protected:
-  // Six cheap quick figures (about 2 s of CPU together), named by ids and a glob. Their measured
-  // costs (cli/figure_costs.cpp) differ: kemppinen2025-fig10 and kneiphof2024-fig10 cost most.
+  // Six cheap quick figures (about 3 s of CPU together), named by ids and a glob. Their measured
+  // costs (cli/figure_costs.cpp) differ: kemppinen2025-fig10, -fig6 and kneiphof2024-fig10 cost
+  // most.
   static constexpr const char* kFigures =
       "kneiphof2024-fig6,kneiphof2024-fig10,kemppinen2025-fig1[045],kemppinen2025-fig6";
   static inline const std::vector<std::string> kSelection = {

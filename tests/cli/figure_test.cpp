@@ -121,12 +121,15 @@ TEST_F(FigureTest, BadInputGetsOneLineAndNoOutput) {
 // reports/figure_charts.py run on a folder of CSVs and chart specs, as glintlab figure runs it.
 class FigureChartsTest : public CliTest {
  protected:
-  RunResult draw(const fs::path& dir) const {
+  RunResult draw(const fs::path& dir) const { return draw_all({dir}, {}); }
+  // Several folders in one run (as glintlab sweep runs it), a failing spec named below `root`.
+  RunResult draw_all(const std::vector<fs::path>& dirs, const fs::path& root) const {
     const fs::path script = fs::path(kReportFixtures).parent_path().parent_path().parent_path() /
                             "reports" / "figure_charts.py";
-    const std::string cmd = "/usr/bin/python3 '" + script.string() + "' --dir '" + dir.string() +
-                            "' >'" + path("stdout").string() + "' 2>'" + path("stderr").string() +
-                            "'";
+    std::string cmd = "/usr/bin/python3 '" + script.string() + "'";
+    for (const fs::path& d : dirs) cmd += " --dir '" + d.string() + "'";
+    if (!root.empty()) cmd += " --root '" + root.string() + "'";
+    cmd += " >'" + path("stdout").string() + "' 2>'" + path("stderr").string() + "'";
     const int status = std::system(cmd.c_str());
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(path("stdout")),
             read_text(path("stderr"))};
@@ -240,6 +243,43 @@ TEST_F(FigureChartsTest, HeatMapsHaveTheirColourScaleAndFlagsOrFailInOneLine) {
   expect_one_line(map_folder("missing", "p_gt_1"), "p.csv has no column 'p_gt_1'");
   // A y format's number spec formats the cell as a number; one that fits no number is one line.
   expect_one_line(map_folder("bad_format", "over", "{sa:.2q}"), "y format '{sa:.2q}' does not fit");
+}
+
+// Several folders drawn in one run (glintlab sweep's targets): each folder's charts are the bytes
+// of a run on that folder alone; a bad spec in a later folder is one line naming it by its path
+// below the root, and no PNG is left in any folder.
+TEST_F(FigureChartsTest, SeveralFoldersInOneRunAreTheBytesOfSeparateRunsOrNone) {
+  auto folder = [&](const std::string& name, const std::string& y) {
+    const fs::path d = path(name);
+    fs::create_directories(d);
+    write_text(d / "data.csv", "x,y\n1,2\n2,3\n");
+    write_text(d / "data.chart.json",
+               R"({"title": "chart )" + name + R"(", "csv": "data.csv", "panels": [{"title": "y",
+ "x": {"column": "x", "label": "x [m]"}, "y": {"label": "y [1]"},
+ "series": [{"label": "y", "y": ")" + y + R"("}]}]})");
+    return d;
+  };
+  const fs::path a = folder("root/m/a", "y"), b = folder("root/m/b", "y");
+  ASSERT_EQ(draw(a).exit_code, 0);
+  ASSERT_EQ(draw(b).exit_code, 0);
+  const std::string alone_a = read_text(a / "data.png"), alone_b = read_text(b / "data.png");
+  fs::remove(a / "data.png");
+  fs::remove(b / "data.png");
+  const RunResult r = draw_all({a, b}, path("root"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_text(a / "data.png"), alone_a);
+  EXPECT_EQ(read_text(b / "data.png"), alone_b);
+  EXPECT_NE(alone_a, alone_b);  // their titles differ
+  fs::remove(a / "data.png");
+  fs::remove(b / "data.png");
+  const fs::path bad = folder("root/n/bad", "no_such_column");
+  const RunResult f = draw_all({a, b, bad}, path("root"));
+  EXPECT_EQ(f.exit_code, 2);
+  ASSERT_EQ(lines_of(f.err).size(), 1u) << f.err;
+  EXPECT_NE(f.err.find("charts: n/bad/data.chart.json: data.csv has no column 'no_such_column'"),
+            std::string::npos)
+      << f.err;
+  for (const fs::path& d : {a, b, bad}) EXPECT_FALSE(fs::exists(d / "data.png")) << d;
 }
 
 // The chart script's failure is the figure's: one line naming the figure and the script's message,

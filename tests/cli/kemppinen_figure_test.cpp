@@ -29,6 +29,20 @@ void expect_png(const fs::path& p) {
   EXPECT_EQ(bytes.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
 }
 
+// A heat map drawn by matplotlib from its chart spec and NAME_map.csv: `panels` labelled panels,
+// each a map with its colour bar, whose label holds `bar`; no panels.json (no C++ raster).
+void expect_heat_map(const fs::path& png, std::size_t panels, const std::string& bar) {
+  expect_labelled_chart(png, panels);
+  const nlohmann::json m = chart_manifest(png);
+  for (const nlohmann::json& a : m["axes"]) {
+    EXPECT_TRUE(a.value("map", false)) << png;
+    EXPECT_TRUE(a.value("colorbar", false)) << png;
+    EXPECT_NE(a.value("colorbar_label", "").find(bar), std::string::npos) << png;
+  }
+  fs::path layout = png;
+  EXPECT_FALSE(fs::exists(layout.replace_extension(".panels.json"))) << png;
+}
+
 io::ExrFile expect_exr(const fs::path& p, const std::string& model) {
   io::ExrFile f = io::read_exr(p);
   for (const char* key : {"glintlab_figure", "glintlab_model", "glintlab_parameters",
@@ -62,7 +76,12 @@ TEST_F(KemppinenFigureTest, Fig2_3DiskAndHemisphere) {
       for (double v : f.image.data) ASSERT_TRUE(std::isfinite(v)) << ndf << " " << dom;
     }
   }
-  expect_png(d / "fig2_3.png");
+  // Per NDF: disk smooth and glinty (D*f / D), hemisphere smooth and glinty (D [1/sr]).
+  expect_heat_map(d / "fig2_3.png", 8, "[1");
+  // The map's cells are the pixels inside the disk (128 x 128: one pixel a cell).
+  const io::CsvTable cells = io::read_csv(d / "fig2_3_map.csv");
+  EXPECT_GT(cells.num_rows(), 8u * 12000u);
+  EXPECT_LT(cells.num_rows(), 8u * 128u * 128u);
   const io::CsvTable t = io::read_csv(d / "integrals.csv");
   ASSERT_EQ(t.num_rows(), 4u);
   for (std::size_t i = 0; i < 4; ++i) {
@@ -108,7 +127,8 @@ TEST_F(KemppinenFigureTest, Fig14Limitations) {
         expect_exr(d / (std::string("background_k") + k + ".exr"), "kemppinen_ggx");
     f.image.channel("error_vs_D");
   }
-  expect_png(d / "background.png");
+  expect_heat_map(d / "background.png", 2, "D*f / D [1]");
+  EXPECT_EQ(io::read_csv(d / "background_map.csv").num_rows(), 2u * 48u * 32u);
   const io::CsvTable t = io::read_csv(d / "background.csv");
   ASSERT_EQ(t.num_rows(), 64u);
   const std::size_t m = t.column("mean_ratio_to_D");
@@ -128,7 +148,15 @@ TEST_F(KemppinenFigureTest, Fig6Blending) {
   const fs::path d = run_quick("kemppinen2025-fig6");
   expect_exr(d / "strip_roulette.exr", "kemppinen_ggx");
   expect_exr(d / "strip_linear.exr", "kemppinen_ggx");
-  expect_png(d / "strip.png");
+  expect_heat_map(d / "strip.png", 2, "D*f / D(h) [1]");
+  // Its cells are the EXR's D*f over D(h): the roulette's first pixel.
+  const io::CsvTable cells = io::read_csv(d / "strip_map.csv");
+  ASSERT_EQ(cells.num_rows(), 2u * 17u * 64u);
+  EXPECT_EQ(cells.text(0, cells.column("panel")), "roulette");
+  const io::ExrFile roulette = io::read_exr(d / "strip_roulette.exr");
+  const double d_h = io::read_csv(d / "blending.csv").number(0, 11);  // D_smooth
+  EXPECT_NEAR(cells.number(0, cells.column("D_star_f_over_D")),
+              roulette.image.at(0, 0, roulette.image.channel("D_star_f")) / d_h, 1e-9);
   const io::CsvTable t = io::read_csv(d / "blending.csv");
   ASSERT_EQ(t.num_rows(), 34u);
   const std::size_t mean = t.column("mean_D_star_f"), cv = t.column("cv_D_star_f");

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <string>
 
+#include "cli/chart_png.h"
 #include "cli/cli_test_util.h"
 #include "core/io/exr.h"
 
@@ -109,7 +110,21 @@ TEST_F(PodeeCliTest, DistanceAndFlickerQuick) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path f = path("out/podee-fig4-flicker");
   expect_exr(f / "d4_podee_temporal_sd.exr", 128);
-  expect_png(f / "flicker.png");
+  // The temporal standard deviations as heat maps (per distance the three methods), each with
+  // its colour bar, drawn from flicker_map.csv whose cells are the EXRs' pixels.
+  expect_labelled_chart(f / "flicker.png", 9);
+  for (const nlohmann::json& a : chart_manifest(f / "flicker.png")["axes"]) {
+    EXPECT_TRUE(a.value("map", false));
+    EXPECT_NE(a.value("colorbar_label", "").find("temporal standard deviation"),
+              std::string::npos);
+  }
+  EXPECT_FALSE(fs::exists(f / "flicker.panels.json"));
+  const io::CsvTable cells = io::read_csv(f / "flicker_map.csv");
+  ASSERT_EQ(cells.num_rows(), 9u * 128u * 128u);
+  const Image sd = io::read_exr(f / "d4_podee_temporal_sd.exr").image;  // panel 1_2
+  const std::size_t first = (3 + 2) * 128u * 128u;
+  EXPECT_EQ(cells.text(first, cells.column("panel")), "1_2");
+  EXPECT_NEAR(cells.number(first + 130, cells.column("temporal_sd")), sd.at(2, 1, 0), 1e-12);
   const io::CsvTable t = io::read_csv(f / "flicker.csv");
   EXPECT_EQ(t.num_rows(), 12u);
   EXPECT_EQ(t.number(0, t.column("ratio_to_centre")), 1.0);

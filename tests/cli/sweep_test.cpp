@@ -69,21 +69,26 @@ TEST_F(SweepTest, OutputDoesNotDependOnThreads) {
     EXPECT_EQ(read_text(path("a") / f), read_text(path("b") / f)) << f;
 }
 
-// The maps' chart script failing is the sweep's one-line error naming the target, exit 2, and
-// nothing in the output folder (the maps are drawn in the staging folder, before the move). The
-// script here is a stand-in that fails as figure_charts.py does on a bad spec.
+// The maps' chart script failing is the sweep's one-line error naming the target's spec, exit 2,
+// and nothing in the output folder (the maps are drawn in the staging folder, before the move).
+// The script here is a stand-in that fails as figure_charts.py does on a bad spec: it names the
+// first spec of its first --dir by its path below --root (one run for every target).
 TEST_F(SweepTest, AFailedMapChartIsOneLineAndLeavesNothing) {
   const fs::path reports = work().parent_path() / "failing_sweep_reports";
   fs::create_directories(reports);
   write_text(reports / "figure_charts.py",
-             "import sys\nprint('glintlab: error: charts: alpha_nan.chart.json: alpha_maps.csv has "
-             "no column \\'x\\'', file=sys.stderr)\nsys.exit(2)\n");
+             "import glob, os, sys\na = sys.argv\nd = a[a.index('--dir') + 1]\n"
+             "spec = sorted(glob.glob(os.path.join(d, '*.chart.json')))[0]\n"
+             "name = os.path.relpath(spec, a[a.index('--root') + 1])\n"
+             "print(f'glintlab: error: charts: {name}: alpha_maps.csv has no column \\'x\\'', "
+             "file=sys.stderr)\nsys.exit(2)\n");
   ::setenv("GLINTLAB_REPORTS_DIR", reports.c_str(), 1);
   const RunResult r = run({"sweep", "--budget", "quick", "--models", "smooth_beckmann", "--out",
                            "s", "--threads", "2"});
   ::unsetenv("GLINTLAB_REPORTS_DIR");
   // The output folder itself stays, empty.
-  expect_input_error(r, {"sweep smooth_beckmann/ndf", "alpha_maps.csv has no column 'x'"}, {"s"});
+  expect_input_error(r, {"sweep: charts: smooth_beckmann/ndf/", "alpha_maps.csv has no column 'x'"},
+                     {"s"});
 }
 
 TEST_F(SweepTest, HelpDocumentsTheOutputs) {

@@ -135,19 +135,27 @@ with tempfile.TemporaryDirectory() as tmp:
             check(not ax["render"] or (ax.get("image_px") == [128, 128] and ax.get("drawn_px")),
                   f"{p['file']}: a rendered panel's pixels and drawn size recorded ({ax})")
             check(not ax["map"] or ax["colorbar"], f"{p['file']}: a map has a colour scale")
-    st = [p for p in manifest if p["file"] == "plots/stability__fixture_model__vndf__alpha.png"]
-    check(len(st) == 1 and len(st[0]["axes"]) == 2 and all(a["map"] for a in st[0]["axes"]),
-          "the stability plane is one chart with a heatmap per quantity")
+    # The sweep's own heat maps (figure_charts.py drew them when the sweep ran): shown from the
+    # sweep's folder, one chart per quantity, their labels read back from the PNGs; the report
+    # draws no map of its own.
+    st = [p for p in manifest if p["file"].startswith("stability/maps/")]
+    check(sorted(p["file"] for p in st) == ["stability/maps/fixture_model_energy_gain.png",
+                                            "stability/maps/fixture_model_nan_fraction.png"]
+          and all(len(p["axes"]) == 1 and p["axes"][0]["map"] and p["axes"][0]["colorbar"]
+                  for p in st),
+          "each stability map is the sweep's own heat map, with its colour bar")
+    check(not any(p["file"].startswith("plots/stability__") for p in manifest),
+          "no stability chart drawn again by the report")
     bad = rc.bad_targets(d, page.hrefs + page.srcs)
     check(not bad, f"every link and image is relative and resolves (bad: {bad})")
     check(all(rc.is_png(os.path.join(d, s)) for s in page.srcs), "every <img> is a PNG file")
     for want in ["figures/fixture2026-fig1/fig1.png", "plots/speed_accuracy.png",
                  "plots/fixture2026-fig1__rmse_spp_convergence.png",
-                 "plots/stability__fixture_model__vndf__alpha.png"]:
+                 "stability/maps/fixture_model_nan_fraction.png",
+                 "stability/maps/fixture_model_energy_gain.png"]:
         check(want in page.srcs, f"image {want} shown")
     for want in ["figures/fixture2026-fig1/fig1.exr", "figures/fixture2026-fig1/rmse_spp.csv",
                  "stability/maps/fixture_model_energy_gain.exr",
-                 "stability/maps/fixture_model_nan_fraction.png",
                  "stability/maps/fixture_model_alpha.csv", "verify/claims.json",
                  "plots/speed_accuracy.csv"]:
         check(want in page.hrefs, f"link to {want}")
@@ -338,6 +346,10 @@ with tempfile.TemporaryDirectory() as tmp:
     def missing_map(d):
         os.unlink(os.path.join(d, "stability", "maps", "fixture_model_energy_gain.png"))
 
+    def map_not_a_chart(d):  # a raster without the chart record figure_charts.py stores
+        shutil.copy(os.path.join(d, "figures", "fixture2026-fig1", "fig1.png"),
+                    os.path.join(d, "stability", "maps", "fixture_model_energy_gain.png"))
+
     def run_says_ran(d):
         os.unlink(os.path.join(d, "bench", "bench.json"))
 
@@ -369,6 +381,8 @@ with tempfile.TemporaryDirectory() as tmp:
              (schema_unknown_rule, "uses minimum, which this checker does not implement"),
              (ragged_csv, "rmse_spp.csv is malformed: line"),
              (missing_map, "fixture_model_energy_gain.png"),
+             (map_not_a_chart, "fixture_model_energy_gain.png: the sweep's map of fixture_model "
+                               "energy_gain was not drawn by reports/figure_charts.py"),
              (run_says_ran, "bench/bench.json is missing"),
              (bad_accuracy, "accuracy.csv is malformed"),
              (stability_csv_columns, "missing column(s) theta_i_deg"),
