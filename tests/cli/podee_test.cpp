@@ -113,7 +113,8 @@ TEST_F(PodeeCliTest, DistanceAndFlickerQuick) {
   // The temporal standard deviations as heat maps (per distance the three methods), each with
   // its colour bar, drawn from flicker_map.csv whose cells are the EXRs' pixels.
   expect_labelled_chart(f / "flicker.png", 9);
-  for (const nlohmann::json& a : chart_manifest(f / "flicker.png")["axes"]) {
+  const nlohmann::json manifest = chart_manifest(f / "flicker.png");  // outlives the loop
+  for (const nlohmann::json& a : manifest["axes"]) {
     EXPECT_TRUE(a.value("map", false));
     EXPECT_NE(a.value("colorbar_label", "").find("temporal standard deviation"),
               std::string::npos);
