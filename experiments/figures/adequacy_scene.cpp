@@ -493,8 +493,7 @@ void run_adequacy_scene(const FigureContext& ctx) {
                       "are the maps of adequacy-scene.png)",
                       4,
                       2,
-                      labels,
-                      {}});
+                      labels});
 
   write_family_csv(ctx.dir / "adequacy-scene.csv", results, false);
   write_family_csv(ctx.dir / "adequacy-scene-kemppinen.csv", results, true);

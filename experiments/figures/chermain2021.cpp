@@ -205,8 +205,7 @@ void run_fig7(const FigureContext& ctx) {
                       4,
                       0,
                       {"no LEAN", "LEAN, rho = 0", "LEAN with rho",
-                       fmt::format("reference ({} spp)", b.reference_spp)},
-                      {}});
+                       fmt::format("reference ({} spp)", b.reference_spp)}});
   const double paper[] = {8.009, 10.378, 4.764};
   const double ours[] = {m.rmse_no_lean, m.rmse_lean_rho0, m.rmse_lean};
   io::write_csv_atomic(
@@ -341,8 +340,7 @@ void run_fig8(const FigureContext& ctx) {
                       3,
                       0,
                       {"without GGAA", "with GGAA (Eq. 21, s_K 0.5)",
-                       fmt::format("reference ({} spp)", b.view.reference_spp)},
-                      {}});
+                       fmt::format("reference ({} spp)", b.view.reference_spp)}});
   io::write_csv_atomic(
       ctx.dir / "fig8.csv", {"method", "rmse_percent", "paper_rmse_percent", "reference_spp"},
       [&](io::CsvWriter& w) {
@@ -382,8 +380,7 @@ void run_fig9(const FigureContext& ctx) {
        6,
        0,
        {"without GGAA", "half-slope, s_K 0.5", "half-slope, s_K 1", "projected half, s_K 0.5",
-        "projected half, s_K 1", fmt::format("reference ({} spp)", b.view.reference_spp)},
-       {}});
+        "projected half, s_K 1", fmt::format("reference ({} spp)", b.view.reference_spp)}});
   const double ours[] = {v.rmse_none, v.rmse_half05, v.rmse_half1, v.rmse_proj05, v.rmse_proj1};
   const double paper[] = {13.484, 7.527, 8.185, 7.425, 7.794};
   const double flicker[] = {v.flicker_none, std::nan(""), std::nan(""), v.flicker05, v.flicker1};

@@ -225,7 +225,7 @@ void run_fig4(const FigureContext& ctx) {
   io::write_png_preview(ctx.dir / "fig4.png", montage(grid, 3));
   write_panel_layout(
       ctx.dir / "fig4.png",
-      {"eto2023-fig4: GGX orb under the sky, reference and the two samplers", 3, 0, labels, {}});
+      {"eto2023-fig4: GGX orb under the sky, reference and the two samplers", 3, 0, labels});
 }
 
 void run_series(const FigureContext& ctx) {
@@ -292,7 +292,7 @@ void run_series(const FigureContext& ctx) {
         fmt::format("alpha {}: reference ({}, {} spp)", alpha, kReference.name, b.reference_spp));
   write_panel_layout(
       ctx.dir / "references.png",
-      {"eto2023-fig4-rmse-spp: the references of the RMSE series", 2, 0, labels, {}});
+      {"eto2023-fig4-rmse-spp: the references of the RMSE series", 2, 0, labels});
 }
 
 }  // namespace

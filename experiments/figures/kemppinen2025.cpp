@@ -661,8 +661,7 @@ void run_fig10(const FigureContext& ctx) {
                       "1e4, anisotropy 1)",
                       5,
                       0,
-                      labels,
-                      {}});
+                      labels});
 }
 
 }  // namespace

@@ -301,8 +301,7 @@ void run_fig7(const FigureContext& ctx) {
                                   b.size, enlargement),
                       4,
                       0,
-                      labels,
-                      {}});
+                      labels});
   std::string md = fmt::format(
       "# {} — environment-light convergence (Kemppinen et al. 2025, Fig. 7)\n\n"
       "Glinty plane ({}×{} pixels, one level-0 cell per pixel, θ_v = {}°), α = {}, α★ = {}, "

@@ -211,8 +211,7 @@ void run_fig6(const FigureContext& ctx) {
                       "0.8 x radiance / smooth peak)",
                       4,
                       2,
-                      labels,
-                      {}});
+                      labels});
   io::write_csv_atomic(
       ctx.dir / "fig6.csv",
       {"sqrt_alpha", "gamma_deg", "R_fitted", "p_normal_incidence", "p_gt_1",
@@ -365,8 +364,7 @@ void run_fig9(const FigureContext& ctx) {
                                   samples),
                       4,
                       2,
-                      labels,
-                      {}});
+                      labels});
   io::write_csv_atomic(
       ctx.dir / "fig9.csv",
       {"light_half_width", "alpha", "rel_rms_subdivided_mc_vs_single_mc",
@@ -490,8 +488,7 @@ void run_fig10(const FigureContext& ctx) {
                                   strips, samples),
                       6,
                       2,
-                      labels,
-                      {}});
+                      labels});
   io::write_csv_atomic(
       ctx.dir / "fig10.csv",
       {"light", "sqrt_alpha", "strip", "mean_N_P", "rel_rms_vs_smooth", "rel_mean_vs_smooth"},

@@ -13,12 +13,6 @@ void write_panel_layout(const std::filesystem::path& png, const PanelLayout& lay
                       {"columns", layout.columns},
                       {"gap", layout.gap},
                       {"labels", layout.labels}};
-  if (!layout.axes.x_label.empty()) {
-    const PanelAxes& a = layout.axes;
-    j["axes"] = {{"x_label", a.x_label},          {"y_label", a.y_label},
-                 {"value_label", a.value_label},  {"x_range", {a.x_min, a.x_max}},
-                 {"y_range", {a.y_min, a.y_max}}, {"exposure", a.exposure}};
-  }
   std::filesystem::path sidecar = png;
   io::write_file_atomic(sidecar.replace_extension(".panels.json"), j.dump(1) + "\n");
 }

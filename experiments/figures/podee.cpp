@@ -272,7 +272,7 @@ void run_table1(const FigureContext& ctx) {
   for (const DistanceRun& r : runs) append_row(cells, labels, r, b);
   io::write_png_preview(ctx.dir / "table1.png", montage(cells, 5));
   write_panel_layout(ctx.dir / "table1.png",
-                     {fmt::format("podee-table1: {}", sphere_title(b)), 5, 0, labels, {}});
+                     {fmt::format("podee-table1: {}", sphere_title(b)), 5, 0, labels});
 }
 
 void run_distance_figure(const FigureContext& ctx) {
@@ -309,7 +309,7 @@ void run_distance_figure(const FigureContext& ctx) {
   }
   io::write_png_preview(ctx.dir / "error_vs_distance.png", montage(cells, 5));
   write_panel_layout(ctx.dir / "error_vs_distance.png",
-                     {fmt::format("podee-fig4-distance: {}", sphere_title(b)), 5, 0, labels, {}});
+                     {fmt::format("podee-fig4-distance: {}", sphere_title(b)), 5, 0, labels});
 }
 
 void run_flicker(const FigureContext& ctx) {
