@@ -45,7 +45,7 @@ struct CheckResult {
   std::optional<double> control_p_value;
   bool control_rejected = false;
   // The verdict the check's own measure and decide steps give the control's deliberately wrong
-  // input (or, where the paper is wrong, its corrected formula). Set by the runner's record_control
+  // input (or, where the paper is wrong, its corrected formula). Set by the runner
   // (verify/claim_runner.h); empty for a check whose control is still a separate rule.
   std::optional<Verdict> control_verdict;
   // The parameter region a holds-in-regime verdict speaks for, written in the check's code before

@@ -28,19 +28,31 @@ constexpr bool has_corrected_control() {
 }
 
 // The control rule, written once: "the control is the corrected input when the claim fails (or is
-// undecided), a perturbed one when it holds". A claim without a corrected input keeps its
+// undecided), a perturbed one when it holds". A check without a corrected input keeps its
 // perturbed one, and its control then cannot oppose a genuine "fails" (the tests see that).
+inline Input control_input(Verdict genuine, bool has_corrected) {
+  return is_holding(genuine) || !has_corrected ? Input::kPerturbed : Input::kCorrected;
+}
+
 template <typename C>
-constexpr Input control_input(Verdict genuine) {
-  return is_holding(genuine) || !has_corrected_control<C>() ? Input::kPerturbed : Input::kCorrected;
+Input control_input(Verdict genuine) {
+  return control_input(genuine, has_corrected_control<C>());
 }
 
 // Records the control's verdict (decided by the same function as the genuine one) and whether it
-// opposes the genuine verdict; after r.verdict is set. run_claim's step, and the conformance
-// suite's (verify/conformance: a property of a model, plug-ins included, is not a type).
+// opposes the genuine verdict; after r.verdict is set.
 inline void record_control(CheckResult& r, Verdict control) {
   r.control_verdict = control;
   r.control_rejected = control_opposes(r.verdict, control);
+}
+
+// The control step of a check whose subject is a value known only at run time, not a Claim type (a
+// registered model's property, plug-ins included: verify/conformance). `measure_control(input)`
+// measures and decides the input the rule picks for the genuine verdict already in r, filling the
+// control's text and p-value, and returns its verdict; the runner records it as run_claim does.
+template <typename MeasureControl>
+void run_control(CheckResult& r, bool has_corrected, MeasureControl&& measure_control) {
+  record_control(r, measure_control(control_input(r.verdict, has_corrected)));
 }
 
 namespace detail {

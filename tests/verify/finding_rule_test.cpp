@@ -18,7 +18,7 @@ CheckResult failing_result() {
   CheckResult r;
   r.verdict = Verdict::kFails;
   r.detail = "the measurement";
-  record_control(r, Verdict::kHolds);  // the corrected input holds
+  run_control(r, /*has_corrected=*/true, [](Input) { return Verdict::kHolds; });  // corrected: holds
   return r;
 }
 

@@ -39,10 +39,28 @@ TEST(Registry, ControlMustGetTheOppositeVerdict) {
   EXPECT_FALSE(control_opposes(Verdict::kInconclusive, Verdict::kInconclusive));
   CheckResult r;
   r.verdict = Verdict::kHoldsWithin;
-  record_control(r, Verdict::kHoldsWithin);
+  run_control(r, true, [](Input) { return Verdict::kHoldsWithin; });
   EXPECT_FALSE(r.control_rejected);
-  record_control(r, Verdict::kFails);
+  run_control(r, true, [](Input) { return Verdict::kFails; });
   EXPECT_TRUE(r.control_rejected);
+  EXPECT_EQ(r.control_verdict, Verdict::kFails);
+}
+
+// The one control rule, as the conformance suite gets it at run time: a holding check gets the
+// perturbed input, a failing or undecided one the corrected input where it has one.
+TEST(Registry, ControlInputFollowsTheOneRule) {
+  const auto picked = [](Verdict genuine, bool has_corrected) {
+    CheckResult r;
+    r.verdict = genuine;
+    Input seen = Input::kGenuine;
+    run_control(r, has_corrected, [&](Input in) { return seen = in, Verdict::kInconclusive; });
+    return seen;
+  };
+  EXPECT_EQ(picked(Verdict::kHolds, true), Input::kPerturbed);
+  EXPECT_EQ(picked(Verdict::kHoldsInRegime, true), Input::kPerturbed);
+  EXPECT_EQ(picked(Verdict::kFails, true), Input::kCorrected);
+  EXPECT_EQ(picked(Verdict::kInconclusive, true), Input::kCorrected);
+  EXPECT_EQ(picked(Verdict::kFails, false), Input::kPerturbed);
 }
 
 TEST(Registry, SeedsDependOnIdAndConfiguration) {

@@ -125,7 +125,7 @@ std::size_t describe_gof(const GofOutcome& o, const std::vector<GofControl>& con
 
 // The older single step, kept for the Kemppinen checks: fills the fields describe_gof fills, with
 // each control case judged at the first Holm level (run_gof_family's control_rejected) and the
-// control's verdict set without record_control; returns decide_gof's verdict. `worst` receives the
+// control's verdict set without the runner's control step; returns decide_gof's verdict. `worst` receives the
 // index of the configuration with the smallest raw p.
 Verdict summarize_gof(const GofOutcome& o, const std::vector<GofControl>& controls, CheckResult& r,
                       std::size_t& worst);

@@ -95,8 +95,8 @@ Assessment assess(std::string_view property, const ModelEntry& m, Budget b, cons
 // A claim that holds gets a copy about 3 % wrong, which must fail; a claim that fails gets the
 // corrected input, which must hold (verify/check.h control_opposes).
 Control make_control(std::string_view property, const ModelEntry& m, const Assessment& genuine,
-                     Budget) {
-  const bool holding = genuine.verdict != Verdict::kFails;
+                     Input input) {
+  const bool holding = input == Input::kPerturbed;
   if (property == "eval-pdf-consistency")
     return holding ? Control{with_pdf_scaled(m, kControlOffset), "pdf() × 1.03"}
                    : Control{with_consistent_sample(m),
@@ -211,15 +211,18 @@ CheckResult run_property(std::string_view property, const ModelEntry& m, Budget 
   r.power = a.power;
   if (a.verdict == Verdict::kHoldsInRegime)
     r.regime = "the stability sweep's core domain (α ≥ 1e-3, anisotropy ≤ 100:1, θi ≤ 89°), double";
-  const Control c = make_control(property, m, a, b);
-  // sampler-covers-value's controls change only the sampler (make_control): same integrals of
-  // value.
-  const Assessment ca =
-      assess(property, c.model, b, id, level,
-             property == "sampler-covers-value" ? &a.references : nullptr, c.batch_value_scale);
-  record_control(r, ca.verdict);
-  r.control_p_value = ca.p_value;
-  r.control = fmt::format("{}: {} — {}", c.name, to_string(ca.verdict), ca.detail);
+  // Every property has a corrected input (make_control): the runner's rule picks which one.
+  run_control(r, /*has_corrected=*/true, [&](Input input) {
+    const Control c = make_control(property, m, a, input);
+    // sampler-covers-value's controls change only the sampler (make_control): same integrals of
+    // value.
+    const Assessment ca =
+        assess(property, c.model, b, id, level,
+               property == "sampler-covers-value" ? &a.references : nullptr, c.batch_value_scale);
+    r.control_p_value = ca.p_value;
+    r.control = fmt::format("{}: {} — {}", c.name, to_string(ca.verdict), ca.detail);
+    return ca.verdict;
+  });
   return r;
 }
 

@@ -19,6 +19,7 @@
 
 #include "core/model_registry.h"
 #include "verify/check.h"
+#include "verify/claim.h"
 
 namespace glintlab::verify::conformance {
 
@@ -76,8 +77,9 @@ Assessment assess(std::string_view property, const ModelEntry& model, Budget b,
                   const std::vector<HemisphereIntegral>* reuse = nullptr,
                   double batch_value_scale = 1);
 
-// The control of a property: a copy of `model` deliberately wrong (when `genuine` holds) or
-// corrected from what was measured (when it fails), and its name. Its verdict comes from assess.
+// The control of a property: a copy of `model` deliberately wrong (input kPerturbed) or corrected
+// from what `genuine` measured (kCorrected), and its name; which one is the runner's rule
+// (control_input in verify/claim_runner.h). Its verdict comes from assess.
 // batch_value_scale: what assess multiplies the SIMD batch's value by (simd-equivalence's
 // near-truth control perturbs the batch, the path under test; its scalar reference is unchanged).
 struct Control {
@@ -86,7 +88,7 @@ struct Control {
   double batch_value_scale = 1;
 };
 Control make_control(std::string_view property, const ModelEntry& model, const Assessment& genuine,
-                     Budget b);
+                     Input input);
 
 // The whole check of one property of one model: assess, the control's assessment, described;
 // a not-claimed property gives Verdict::kNotClaimed with the reason and measures nothing; a

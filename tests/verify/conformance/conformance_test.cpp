@@ -574,7 +574,7 @@ TEST(ConformanceControls, SimdControlScalesTheBatchNotTheScalarReference) {
   const Assessment genuine = assess("simd-equivalence", ggx, Budget::kQuick, "test.simd",
                                     model_level(ggx));
   ASSERT_EQ(genuine.verdict, Verdict::kHolds) << genuine.detail;
-  const Control c = make_control("simd-equivalence", ggx, genuine, Budget::kQuick);
+  const Control c = make_control("simd-equivalence", ggx, genuine, Input::kPerturbed);
   EXPECT_EQ(c.batch_value_scale, kControlOffset);
   // The scalar reference is the model's own eval, unchanged.
   ModelQuery<double> q = make_query(ggx, 30, kFootprint);
