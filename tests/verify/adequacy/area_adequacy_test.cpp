@@ -12,6 +12,7 @@
 #include <numbers>
 
 #include "core/glints/kneiphof_ltc.h"
+#include "verify/claims/adequacy/common.h"
 
 namespace glintlab::verify::adequacy {
 namespace {
@@ -111,6 +112,23 @@ TEST(AreaAdequacyGrid, SameResultsForAnyThreadCountAndItsOwnSeeds) {
   // Seeded under the family's own name, not the binomial table's: other counts.
   const auto table_seeded = measure_grid_at(cells, {2}, 1000, d);
   EXPECT_NE(table_seeded[0].levels[3].mean, one[2].levels[3].mean);
+}
+
+// The claim adequacy.prediction-matches-measurement's area setting (kneiphof_klein_area under the
+// 1° square): the binomial N* = (1 − p)/(p TAU²) with the model's p holds where the exact CV
+// crosses TAU, and the boundary moved by 5 % (the claim's control) is rejected; a prediction made
+// with p 10 % too large (the count taken as binomial with the wrong p) is rejected too.
+TEST(AreaAdequacyBoundary, BinomialNStarHoldsAndAMovedOrWrongOneIsRejected) {
+  const auto settings = adequacy_claims::boundary_cells();
+  ASSERT_EQ(settings.back().model, "kneiphof_klein_area");
+  const adequacy_claims::BoundaryRow r =
+      adequacy_claims::measure_boundary(settings.back(), 20000, 77);
+  EXPECT_GT(r.p_value, 1e-3) << r.predicted << " measured " << r.measured;
+  EXPECT_LT(r.control_p_value, 1e-3);
+  EXPECT_NEAR(r.measured / r.predicted, 1, 0.03);
+  // N* from a p 10 % too large: 10 % smaller, its z far beyond the per-test level.
+  const double wrong = (1 - 1.1 * r.p) / (1.1 * r.p * 0.02 * 0.02);
+  EXPECT_GT(std::abs(std::log(wrong / r.measured)) / r.log_se, 5);
 }
 
 }  // namespace
