@@ -8,12 +8,14 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
+#include <array>
 #include <chrono>
 #include <filesystem>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -47,6 +49,28 @@ struct AdequacyCliOptions {
   std::string bench_from;
   std::string shard;
 };
+
+// A family of the binomial levels (the binomial and the area family): cells per level, the
+// chooser against the table, undecided cells and the summed in-process times.
+void print_counting_family(std::string_view family, std::string_view chooser, std::size_t cells,
+                           const std::array<std::size_t, kBinomialLevels>& chosen,
+                           std::size_t matches, std::size_t refuted, std::size_t undecided,
+                           double exact_ns, double chosen_ns, double cheapest_ns,
+                           const std::array<std::size_t, kBinomialLevels>& cheapest) {
+  fmt::print(
+      "{}: {} cells; cheapest adequate level: smooth {}, realtime {}, small_count {}, exact {}\n",
+      family, cells, chosen[0], chosen[1], chosen[2], chosen[3]);
+  fmt::print("{}: same level as measured in {} cells, refuted in {}\n", chooser, matches, refuted);
+  fmt::print("{} cells undecided (too few lit positions at the exact level: exact kept)\n",
+             undecided);
+  const auto saved = [&](double ns) { return exact_ns > 0 ? 100 * (1 - ns / exact_ns) : 0.0; };
+  fmt::print(
+      "time per evaluation summed over cells (this CPU, scalar double): exact everywhere "
+      "{:.0f} ns; chosen level {:.0f} ns ({:.1f} % saved); measured-cheapest adequate level "
+      "{:.0f} ns ({:.1f} % saved; smooth {}, realtime {}, small_count {}, exact {} cells)\n",
+      exact_ns, chosen_ns, saved(chosen_ns), cheapest_ns, saved(cheapest_ns), cheapest[0],
+      cheapest[1], cheapest[2], cheapest[3]);
+}
 
 void print_calibration(const AdequacyRunSummary& run) {
   const auto& s = run.calibration;
@@ -108,25 +132,10 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
   const double seconds = run.seconds;
   fmt::print("adequacy: TAU {:g}, z {:.3f} (Sidak over the table's {} decisions)\n", run.threshold,
              s.z, s.decisions);
-  if (s.cells > 0) {
-    fmt::print(
-        "binomial family: {} cells; cheapest adequate level: smooth {}, realtime {}, "
-        "small_count {}, exact {}\n",
-        s.cells, s.chosen[0], s.chosen[1], s.chosen[2], s.chosen[3]);
-    fmt::print(
-        "chooser (core/glints/adequacy.h): same level as measured in {} cells, refuted in {}\n",
-        s.chooser_matches, s.chooser_refuted);
-    fmt::print("{} cells undecided (too few lit positions at the exact level: exact kept)\n",
-               s.undecided);
-    const auto saved = [&](double ns) { return s.exact_ns > 0 ? 100 * (1 - ns / s.exact_ns) : 0.0; };
-    fmt::print(
-        "time per evaluation summed over cells (this CPU, scalar double): exact everywhere "
-        "{:.0f} ns; chosen level {:.0f} ns ({:.1f} % saved); measured-cheapest adequate level "
-        "{:.0f} ns ({:.1f} % saved; smooth {}, realtime {}, small_count {}, exact {} cells)\n",
-        s.exact_ns, s.chosen_ns, saved(s.chosen_ns), s.cheapest_ns, saved(s.cheapest_ns),
-        s.cheapest_measured[0], s.cheapest_measured[1], s.cheapest_measured[2],
-        s.cheapest_measured[3]);
-  }
+  if (s.cells > 0)
+    print_counting_family("binomial family", "chooser (core/glints/adequacy.h)", s.cells, s.chosen,
+                          s.chooser_matches, s.chooser_refuted, s.undecided, s.exact_ns,
+                          s.chosen_ns, s.cheapest_ns, s.cheapest_measured);
   if (s.kemppinen.cells > 0) {
     const auto& k = s.kemppinen;
     std::vector<std::string> counts;
@@ -147,6 +156,13 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
         "{:.0f} ns; chosen level {:.0f} ns ({:.1f} % saved); measured-cheapest adequate level "
         "{:.0f} ns ({:.1f} % saved)\n",
         k.most_complete_ns, k.chosen_ns, saved(k.chosen_ns), k.cheapest_ns, saved(k.cheapest_ns));
+  }
+  if (s.area.cells > 0) {
+    const auto& a = s.area;
+    print_counting_family("area family (kneiphof_klein_area, square lights)",
+                          "binomial chooser with the area p", a.cells, a.chosen, a.chooser_matches,
+                          a.chooser_refuted, a.undecided, a.exact_ns, a.chosen_ns, a.cheapest_ns,
+                          a.cheapest_measured);
   }
   if (s.benchmark_costs) {
     const auto bench_saved = [&](double ns) {
@@ -170,7 +186,7 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
 }
 
 constexpr const char* kFooter =
-    R"(Two families are measured. The binomial glint family (deliot_belcour, kneiphof_klein) has four levels, cheapest first:
+    R"(Three families are measured. The binomial glint family (deliot_belcour, kneiphof_klein) has four levels, cheapest first:
 smooth (the smooth GGX value), realtime, small_count and exact counting (the `binomial` parameter).
 Per cell of a grid (footprint size N_P = 1 .. 1e8 expected facets, roughness, light half-angle
 0 (delta) .. 10 deg, incidence, half-vector angle on and off the specular peak) each level is
@@ -197,6 +213,13 @@ decisions of both families. Its rows share adequacy.csv (column `family`; its ow
 nan in the other family's rows) and adequacy.json (with each row's predicted and
 measured boundary per level), with one map per model and incidence and the predicted smooth
 boundary drawn over it.
+The area family (kneiphof_klein_area: binomial counting under a rectangular light, p from the LTC
+polygon integral) has the binomial levels, its smooth level L_o/L_i. Its grid is the binomial one
+with the cone light replaced by a square facing the shading point at distance 1 along omega_o,
+its side chosen so that its solid angle is a cone's of half-angle 0.26, 1, 10 deg (full adds 3);
+the same decision against its exact level. Its rows share adequacy.csv (family `area`, the binomial
+level columns; light_half_angle_deg the cone-equivalent half-angle), with one map per light and
+incidence.
 --calibrate measures the decision instead: on synthetic cells whose cheaper level differs from
 exact by exactly TAU (1 + delta) (in the mean, in the CV, or the smooth level at the boundary),
 delta = -0.5, -0.25, -0.1 (truly adequate: the power), 0 (the boundary), 0.05, 0.1, 0.25 (just
@@ -215,10 +238,13 @@ AdequacyRunSummary run_adequacy_request(const AdequacyRequest& o) {
                                  verify::adequacy::kBinomialFamilyModels.end());
   names.insert(names.end(), verify::adequacy::kKemppinenFamilyModels.begin(),
                verify::adequacy::kKemppinenFamilyModels.end());
+  names.insert(names.end(), verify::adequacy::kAreaFamilyModels.begin(),
+               verify::adequacy::kAreaFamilyModels.end());
   experiments::AdequacyOptions a;
   a.models = select_by_globs(
       o.models, "--models", names,
-      fmt::format("models of the binomial and Kemppinen families: {}", fmt::join(names, ", ")));
+      fmt::format("models of the binomial, Kemppinen and area families: {}",
+                  fmt::join(names, ", ")));
   a.threshold = number_option(o.threshold, "--threshold", 0, 1, true, false);
   a.budget = quick ? verify::Budget::kQuick : verify::Budget::kFull;
   const std::uint64_t runs = integer_option(o.runs.value_or("2000"), "--runs", 1, 1000000);
@@ -307,6 +333,9 @@ AdequacyRunSummary run_adequacy_request(const AdequacyRequest& o) {
                  .size() +
              verify::adequacy::make_kemppinen_grid(experiments::kemppinen_models(a.models),
                                                    verify::adequacy::kemppinen_grid_axes(a.budget))
+                 .size() +
+             verify::adequacy::make_grid(experiments::area_models(a.models),
+                                         verify::adequacy::area_grid_axes(a.budget))
                  .size());
     Progress bar("adequacy", total);
     a.progress = [&] {
@@ -354,7 +383,7 @@ void merge_adequacy_shards(const std::vector<std::string>& dirs,
   const experiments::AdequacySummary s = experiments::write_adequacy(out, o, cells);
   draw_figure_charts(out);  // the maps, drawn by matplotlib from their chart specs
   fmt::print("adequacy: {} cells from {} shards; wrote {}, {} and {} maps\n",
-             cells.binomial.size() + cells.kemppinen.size(), dirs.size(), s.csv.string(),
+             cells.binomial.size() + cells.kemppinen.size() + cells.area.size(), dirs.size(), s.csv.string(),
              s.json.string(), s.maps.size());
 }
 
@@ -368,7 +397,7 @@ void add_adequacy_command(CLI::App& app) {
                     "quick = 9 footprint sizes x 12 settings (seconds), full = finer");
   add_text_option(cmd, "--models", o->models,
                   "comma-separated globs over the models (deliot_belcour, kneiphof_klein, "
-                  "kemppinen_ggx, kemppinen_beckmann)",
+                  "kemppinen_ggx, kemppinen_beckmann, kneiphof_klein_area)",
                   "LIST");
   add_text_option(cmd, "--threshold", o->threshold,
                   "TAU, the largest relative difference no one sees: a number in (0, 1]", "NUMBER");

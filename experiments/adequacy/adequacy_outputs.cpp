@@ -52,7 +52,7 @@ std::vector<std::string_view> table_levels(bool binomial, bool kemppinen) {
 
 void write_csv(const std::filesystem::path& path, const std::vector<CellResult>& rows,
                const std::vector<KemppinenCellResult>& kemppinen_rows,
-               const std::optional<LevelCosts>& costs) {
+               const std::vector<CellResult>& area_rows, const std::optional<LevelCosts>& costs) {
   std::vector<std::string> names = {"family",       "model",            "facets",
                                     "alpha",        "light_half_angle_deg", "theta_i_deg",
                                     "theta_h_deg",  "p",                "smooth",
@@ -60,7 +60,9 @@ void write_csv(const std::filesystem::path& path, const std::vector<CellResult>&
                                     "chooser",      "chooser_refuted"};
   const std::array<std::string_view, 8> per_level = {
       "mean", "cv", "p_zero", "mean_diff", "mean_diff_ucb", "cv_diff", "cv_diff_ucb", "adequate"};
-  const std::vector<std::string_view> levels = table_levels(!rows.empty(), !kemppinen_rows.empty());
+  // The area family's levels are the binomial ones (the same columns).
+  const std::vector<std::string_view> levels =
+      table_levels(!rows.empty() || !area_rows.empty(), !kemppinen_rows.empty());
   for (std::string_view l : levels)
     for (std::string_view q : per_level) names.push_back(fmt::format("{}_{}", l, q));
   // Timing last: the only columns that change from run to run.
@@ -98,24 +100,30 @@ void write_csv(const std::filesystem::path& path, const std::vector<CellResult>&
         w.cell(NAN);
     }
   };
-  io::write_csv_atomic(path, header, [&](io::CsvWriter& w) {
-    for (const CellResult& r : rows) {
-      w.cell(kBinomialFamily).cell(r.cell.model).cell(r.cell.facets).cell(r.cell.alpha);
-      w.cell(r.cell.light_half_angle_deg).cell(r.cell.theta_i_deg).cell(r.cell.theta_h_deg);
-      w.cell(r.p).cell(r.smooth).cell(r.cv_predicted).cell(r.p_zero_predicted);
-      w.cell(kBinomialLevelNames[std::size_t(r.chosen)]);
-      w.cell(kBinomialLevelNames[std::size_t(r.chooser)]);
-      w.cell_int(r.chooser_refuted ? 1 : 0);
-      level_cells(w, r.levels, kBinomialLevelNames);
-      w.cell(kBinomialLevelNames[std::size_t(r.cheapest_measured)]);
-      w.cell(r.levels[3].ns_per_eval - r.levels[std::size_t(r.cheapest_measured)].ns_per_eval);
-      if (costs) {
-        const BenchPrice b = bench_price(r, *costs);
-        w.cell(kBinomialLevelNames[std::size_t(b.cheapest)]);
-        w.cell(b.ns[3]).cell(b.ns[std::size_t(r.chosen)]).cell(b.ns[std::size_t(b.cheapest)]);
-      }
-      w.end_row();
+  // A row of the binomial levels: the binomial family's, or the area family's (its light the
+  // square's cone-equivalent half-angle; no benchmark rows price it: `none` and `nan` there).
+  const auto counting_row = [&](io::CsvWriter& w, const CellResult& r, std::string_view family) {
+    const bool priced = family == kBinomialFamily;
+    w.cell(family).cell(r.cell.model).cell(r.cell.facets).cell(r.cell.alpha);
+    w.cell(r.cell.light_half_angle_deg).cell(r.cell.theta_i_deg).cell(r.cell.theta_h_deg);
+    w.cell(r.p).cell(r.smooth).cell(r.cv_predicted).cell(r.p_zero_predicted);
+    w.cell(kBinomialLevelNames[std::size_t(r.chosen)]);
+    w.cell(kBinomialLevelNames[std::size_t(r.chooser)]);
+    w.cell_int(r.chooser_refuted ? 1 : 0);
+    level_cells(w, r.levels, kBinomialLevelNames);
+    w.cell(kBinomialLevelNames[std::size_t(r.cheapest_measured)]);
+    w.cell(r.levels[3].ns_per_eval - r.levels[std::size_t(r.cheapest_measured)].ns_per_eval);
+    if (costs && priced) {
+      const BenchPrice b = bench_price(r, *costs);
+      w.cell(kBinomialLevelNames[std::size_t(b.cheapest)]);
+      w.cell(b.ns[3]).cell(b.ns[std::size_t(r.chosen)]).cell(b.ns[std::size_t(b.cheapest)]);
+    } else if (costs) {
+      w.cell("none").cell(NAN).cell(NAN).cell(NAN);
     }
+    w.end_row();
+  };
+  io::write_csv_atomic(path, header, [&](io::CsvWriter& w) {
+    for (const CellResult& r : rows) counting_row(w, r, kBinomialFamily);
     constexpr auto kRef = std::size_t(KemppinenLevel::kK16Exact);
     for (const KemppinenCellResult& r : kemppinen_rows) {
       // No light size (the model has none) nor p: nan; cv_predicted is the chooser's bound on
@@ -131,6 +139,7 @@ void write_csv(const std::filesystem::path& path, const std::vector<CellResult>&
       if (costs) w.cell("none").cell(NAN).cell(NAN).cell(NAN);
       w.end_row();
     }
+    for (const CellResult& r : area_rows) counting_row(w, r, kAreaFamily);
   });
 }
 
@@ -230,9 +239,11 @@ std::vector<AdequacyLevelMap> adequacy_level_maps(const std::vector<CellResult>&
     m.stem = fmt::format("adequacy_{}_light{:g}_theta{:g}", first.cell.model,
                          first.cell.light_half_angle_deg, first.cell.theta_i_deg);
     LevelChart& map = m.map;
+    const bool square = first.cell.model == verify::adequacy::kAreaFamilyModels[0];
     map.title = fmt::format(
-        "{}: cheapest level within TAU = {:g} (light {:g} deg, theta_i {:g} deg)", first.cell.model,
-        threshold, first.cell.light_half_angle_deg, first.cell.theta_i_deg);
+        "{}: cheapest level within TAU = {:g} ({} {:g} deg, theta_i {:g} deg)", first.cell.model,
+        threshold, square ? "square light as cone" : "light",
+        first.cell.light_half_angle_deg, first.cell.theta_i_deg);
     map.x_label = "footprint size N_P [expected facets]";
     map.y_label = "alpha [1], theta_h [deg]";
     map.columns = axes.facets;
@@ -277,6 +288,17 @@ std::vector<std::string> kemppinen_models(const std::vector<std::string>& models
   return out;
 }
 
+std::vector<std::string> area_models(const std::vector<std::string>& models) {
+  std::vector<std::string> out;
+  for (std::string_view m : verify::adequacy::kAreaFamilyModels)
+    if (std::find(models.begin(), models.end(), m) != models.end()) out.emplace_back(m);
+  return out;
+}
+
+verify::adequacy::GridAxes area_axes_of(const AdequacyOptions& o) {
+  return o.area_axes ? *o.area_axes : verify::adequacy::area_grid_axes(o.budget);
+}
+
 verify::adequacy::KemppinenGridAxes kemppinen_axes_of(const AdequacyOptions& o) {
   return o.kemppinen_axes ? *o.kemppinen_axes : verify::adequacy::kemppinen_grid_axes(o.budget);
 }
@@ -289,7 +311,9 @@ std::size_t table_decisions(const AdequacyOptions& o) {
       verify::adequacy::make_kemppinen_grid(kemppinen_models(o.models),
                                             kemppinen_axes_of(o))
           .size();
-  return binomial * std::size_t(kBinomialLevels - 1) +
+  const std::size_t area =
+      verify::adequacy::make_grid(area_models(o.models), area_axes_of(o)).size();
+  return (binomial + area) * std::size_t(kBinomialLevels - 1) +
          kemppinen * std::size_t(kKemppinenLevels - 1);
 }
 
@@ -373,6 +397,12 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
   cells.kemppinen = verify::adequacy::measure_kemppinen_grid(
       verify::adequacy::make_kemppinen_grid(kemppinen_models(o.models), kemppinen_axes),
       kemppinen_axes.samples, decision, o.progress);
+  const verify::adequacy::GridAxes area_axes = area_axes_of(o);
+  const auto area_cells = verify::adequacy::make_grid(area_models(o.models), area_axes);
+  std::vector<std::size_t> all(area_cells.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  cells.area = verify::adequacy::measure_area_grid_at(area_cells, all, area_axes.samples, decision,
+                                                      o.progress);
   return write_adequacy(out, o, cells);
 }
 
@@ -419,18 +449,33 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
     k.chosen_ns += r.levels[std::size_t(r.chosen)].ns_per_eval;
     k.cheapest_ns += r.levels[std::size_t(r.cheapest_measured)].ns_per_eval;
   }
+  const verify::adequacy::GridAxes area_axes = area_axes_of(o);
+  for (const CellResult& r : cells.area) {
+    auto& a = sum.area;
+    ++a.cells;
+    ++a.chosen[std::size_t(r.chosen)];
+    ++a.cheapest_measured[std::size_t(r.cheapest_measured)];
+    a.chooser_matches += r.chooser == r.chosen ? 1 : 0;
+    a.chooser_refuted += r.chooser_refuted ? 1 : 0;
+    a.undecided += r.levels[0].undecided ? 1 : 0;
+    a.exact_ns += r.levels[3].ns_per_eval;
+    a.chosen_ns += r.levels[std::size_t(r.chosen)].ns_per_eval;
+    a.cheapest_ns += r.levels[std::size_t(r.cheapest_measured)].ns_per_eval;
+  }
   std::filesystem::create_directories(out);
   sum.csv = out / "adequacy.csv";
   sum.json = out / "adequacy.json";
-  write_csv(sum.csv, rows, kemppinen_rows, o.costs);
+  write_csv(sum.csv, rows, kemppinen_rows, cells.area, o.costs);
 
   const std::vector<AdequacyLevelMap> binomial_maps = adequacy_level_maps(rows, axes, o.threshold);
   const std::vector<verify::adequacy::KemppinenBoundary> boundaries =
       verify::adequacy::kemppinen_boundaries(kemppinen_rows, kemppinen_axes, o.threshold);
   const std::vector<AdequacyLevelMap> kemppinen_maps =
       kemppinen_level_maps(kemppinen_rows, kemppinen_axes, o.threshold, boundaries);
+  const std::vector<AdequacyLevelMap> area_maps =
+      adequacy_level_maps(cells.area, area_axes, o.threshold);
   std::vector<const AdequacyLevelMap*> every_map;
-  for (const auto* family : {&binomial_maps, &kemppinen_maps})
+  for (const auto* family : {&binomial_maps, &kemppinen_maps, &area_maps})
     for (const AdequacyLevelMap& m : *family) every_map.push_back(&m);
   if (!every_map.empty()) write_level_maps_csv(out / kLevelsCsv, every_map);
   nlohmann::json maps = nlohmann::json::array();
@@ -463,6 +508,30 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
     sum.maps.push_back(m.stem + ".png");
     maps.push_back({{"family", kKemppinenFamily},
                     {"model", m.model},
+                    {"theta_i_deg", m.theta_i_deg},
+                    {"png", m.stem + ".png"},
+                    {"exr", m.stem + ".exr"}});
+  }
+
+  for (const AdequacyLevelMap& m : area_maps) {
+    io::write_exr(out / (m.stem + ".exr"), m.exr,
+                  {{"glintlab_columns",
+                    "N_P: " + fmt::format("{}", fmt::join(area_axes.facets, ", "))},
+                   {"glintlab_rows", fmt::format("{}", fmt::join(m.map.row_labels, "; "))},
+                   {"glintlab_levels", "0 smooth, 1 realtime, 2 small_count, 3 exact"},
+                   {"glintlab_light",
+                    fmt::format("square of side {:g} at distance {:g}, the solid angle of a cone "
+                                "of half-angle {:g} deg",
+                                verify::adequacy::square_light_side(m.light_half_angle_deg),
+                                verify::adequacy::kAreaLightDistance, m.light_half_angle_deg)}});
+    write_level_maps_chart(out / (m.stem + ".png"), kLevelsCsv,
+                           "cheapest adequate level per cell, area family (square light of a cone's solid "
+                           "angle)",
+                           {&m});
+    sum.maps.push_back(m.stem + ".png");
+    maps.push_back({{"family", kAreaFamily},
+                    {"model", m.model},
+                    {"light_half_angle_deg", m.light_half_angle_deg},
                     {"theta_i_deg", m.theta_i_deg},
                     {"png", m.stem + ".png"},
                     {"exr", m.stem + ".exr"}});
@@ -522,11 +591,12 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
   }
   doc["maps"] = maps;
   nlohmann::json table = nlohmann::json::array();
-  for (const CellResult& r : rows) {
+  // A cell of the binomial levels (the binomial or the area family's).
+  const auto counting_cell = [](const CellResult& r, std::string_view family) {
     nlohmann::json levels = nlohmann::json::object();
     for (std::size_t l = 0; l < 4; ++l)
       levels[std::string(kBinomialLevelNames[l])] = level_json(r.levels[l]);
-    table.push_back({{"family", kBinomialFamily},
+    return nlohmann::json{{"family", family},
                      {"model", r.cell.model},
                      {"facets", r.cell.facets},
                      {"alpha", r.cell.alpha},
@@ -540,7 +610,10 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
                      {"chooser", kBinomialLevelNames[std::size_t(r.chooser)]},
                      {"chooser_refuted", r.chooser_refuted},
                      {"cheapest_measured", kBinomialLevelNames[std::size_t(r.cheapest_measured)]},
-                     {"levels", levels}});
+                     {"levels", levels}};
+  };
+  for (const CellResult& r : rows) {
+    table.push_back(counting_cell(r, kBinomialFamily));
     if (o.costs)
       table.back()["cheapest_by_benchmark"] =
           kBinomialLevelNames[std::size_t(bench_price(r, *o.costs).cheapest)];
@@ -599,6 +672,45 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
             {"most_complete_ns_total", sum.kemppinen.most_complete_ns},
             {"chosen_ns_total", sum.kemppinen.chosen_ns},
             {"cheapest_measured_ns_total", sum.kemppinen.cheapest_ns}}}}}};
+    const auto& a = sum.area;
+    nlohmann::json sides = nlohmann::json::array(), solid = nlohmann::json::array();
+    for (double g : area_axes.light_half_angle_deg) {
+      sides.push_back(verify::adequacy::square_light_side(g));
+      solid.push_back(verify::adequacy::square_solid_angle(verify::adequacy::square_light_side(g)));
+    }
+    const auto per_level = [](const std::array<std::size_t, kBinomialLevels>& n) {
+      nlohmann::json j = nlohmann::json::object();
+      for (std::size_t l = 0; l < n.size(); ++l) j[std::string(kBinomialLevelNames[l])] = n[l];
+      return j;
+    };
+    doc["families"][std::string(kAreaFamily)] = {
+        {"models", area_models(o.models)},
+        {"levels", kBinomialLevelNames},
+        {"most_complete", "exact"},
+        {"cells", a.cells},
+        {"samples_per_cell", area_axes.samples},
+        {"light",
+         {{"shape", "square facing the shading point, centred along omega_o (not turned, not "
+                    "tilted); side chosen so that its solid angle 4 asin(w^2/(w^2 + 4 d^2)) is "
+                    "the cone's 2 pi (1 - cos gamma)"},
+          {"distance", verify::adequacy::kAreaLightDistance},
+          {"half_angle_deg", area_axes.light_half_angle_deg},
+          {"side", sides},
+          {"solid_angle_sr", solid},
+          {"p", "D_Omega_h / D_H, D_Omega_h = D_PR x the BRDF LTC lobe's polygon integral "
+                "(area_p = ltc); smooth = L_o/L_i by the same lobe (area_lo = ltc)"}}},
+        {"chooser", "choose_binomial_level(N_P, p) of core/glints/adequacy.h with the area p: "
+                    "the binomial chooser applied to this family, not yet an engine chooser"},
+        {"summary",
+         {{"cells", a.cells},
+          {"chosen", per_level(a.chosen)},
+          {"cheapest_measured", per_level(a.cheapest_measured)},
+          {"undecided", a.undecided},
+          {"chooser_matches", a.chooser_matches},
+          {"chooser_refuted", a.chooser_refuted},
+          {"exact_ns_total", a.exact_ns},
+          {"chosen_ns_total", a.chosen_ns},
+          {"cheapest_measured_ns_total", a.cheapest_ns}}}};
   }
   for (const KemppinenCellResult& r : kemppinen_rows) {
     nlohmann::json levels = nlohmann::json::object();
@@ -618,6 +730,10 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
                      {"cv_bound", r.cv_bound},
                      {"cheapest_measured", kKemppinenLevelNames[std::size_t(r.cheapest_measured)]},
                      {"levels", levels}});
+  }
+  for (const CellResult& r : cells.area) {
+    table.push_back(counting_cell(r, kAreaFamily));
+    table.back()["light_side"] = verify::adequacy::square_light_side(r.cell.light_half_angle_deg);
   }
   doc["cells"] = table;
   io::write_file_atomic(sum.json, doc.dump(1) + "\n");

@@ -1,5 +1,6 @@
 // `glintlab adequacy` as files: the measured table of verify/adequacy/ for every family selected
-// (the binomial family and the Kemppinen family; adequacy.csv, one row per cell with its
+// (the binomial family, the Kemppinen family and the area family, kneiphof_klein_area under a
+// square light; adequacy.csv, one row per cell with its
 // `family`; adequacy.json, the same with the decision's settings and a cost summary) and per
 // model × light × incidence (Kemppinen: model × incidence) one map of the chosen level over
 // footprint size × (roughness, half-vector angle): EXR (chosen level, chooser, measured and
@@ -19,6 +20,7 @@
 #include "core/math/vec.h"
 #include "core/render/image.h"
 #include "experiments/adequacy/level_costs.h"
+#include "verify/adequacy/area_adequacy.h"
 #include "verify/adequacy/binomial_adequacy.h"
 #include "verify/adequacy/decision_calibration.h"
 #include "verify/adequacy/kemppinen_adequacy.h"
@@ -38,10 +40,12 @@ inline constexpr std::array<Vec3<double>, 9> kKemppinenLevelColors = {
     Vec3<double>{0.6, 0.3, 0.65},   Vec3<double>{0.95, 0.45, 0.45}, Vec3<double>{0.75, 0.15, 0.15}};
 
 // The family names in the table's `family` column.
-inline constexpr std::string_view kBinomialFamily = "binomial", kKemppinenFamily = "kemppinen";
+inline constexpr std::string_view kBinomialFamily = "binomial", kKemppinenFamily = "kemppinen",
+                                  kAreaFamily = "area";
 
 struct AdequacyOptions {
-  // Models of any family (verify::adequacy::kBinomialFamilyModels, kKemppinenFamilyModels).
+  // Models of any family (verify::adequacy::kBinomialFamilyModels, kKemppinenFamilyModels,
+  // kAreaFamilyModels).
   std::vector<std::string> models;
   double threshold = verify::adequacy::kDefaultThreshold;
   verify::Budget budget = verify::Budget::kQuick;
@@ -52,6 +56,8 @@ struct AdequacyOptions {
   // The Kemppinen family's grid; unset: the budget's (kemppinen_grid_axes). Set by the tests, whose
   // time does not allow the budget's grid.
   std::optional<verify::adequacy::KemppinenGridAxes> kemppinen_axes;
+  // The area family's grid; unset: the budget's (area_grid_axes). Set by the tests.
+  std::optional<verify::adequacy::GridAxes> area_axes;
 };
 
 struct AdequacySummary {
@@ -85,15 +91,25 @@ struct AdequacySummary {
     std::array<std::size_t, kKemppinenLevels> chosen{}, cheapest_measured{};
     double most_complete_ns = 0, chosen_ns = 0, cheapest_ns = 0;
   } kemppinen;
+  // The area family (kneiphof_klein_area; zero cells when it is not selected): as the binomial
+  // family's, with the in-process times (no benchmark rows price it).
+  struct Area {
+    std::size_t cells = 0, undecided = 0;
+    std::size_t chooser_matches = 0, chooser_refuted = 0;
+    std::array<std::size_t, kBinomialLevels> chosen{}, cheapest_measured{};
+    double exact_ns = 0, chosen_ns = 0, cheapest_ns = 0;
+  } area;
 };
 
 // Measures every cell and writes the files into `out` (created), each atomically.
 AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOptions& o);
 
-// A run's measured cells: each family's whole grid in its order (make_grid, make_kemppinen_grid).
+// A run's measured cells: each family's whole grid in its order (make_grid, make_kemppinen_grid,
+// make_grid over area_grid_axes).
 struct AdequacyCells {
   std::vector<verify::adequacy::CellResult> binomial;
   std::vector<verify::adequacy::KemppinenCellResult> kemppinen;
+  std::vector<verify::adequacy::CellResult> area;
 };
 // The files of run_adequacy from cells measured already (by run_adequacy, or by the shards of a
 // run joined: experiments/adequacy/adequacy_shards.h).
@@ -101,6 +117,8 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
                                const AdequacyCells& cells);
 // The Kemppinen family's grid axes for `o`: its override, else the budget's.
 verify::adequacy::KemppinenGridAxes kemppinen_axes_of(const AdequacyOptions& o);
+// The area family's grid axes for `o`: its override, else the budget's.
+verify::adequacy::GridAxes area_axes_of(const AdequacyOptions& o);
 
 // The table alone (for the tests and the maps figure): the binomial family's cells of the budget's
 // grid for `models`, measured with the decision of the whole table (table_decision).
@@ -111,8 +129,9 @@ std::vector<verify::adequacy::KemppinenCellResult> measure_kemppinen_adequacy(
 // The models of `models` in each family, in the families' order.
 std::vector<std::string> binomial_models(const std::vector<std::string>& models);
 std::vector<std::string> kemppinen_models(const std::vector<std::string>& models);
+std::vector<std::string> area_models(const std::vector<std::string>& models);
 // The decision of the whole table for `o`: z by Šidák over every (cell, cheaper level) decision
-// of every family selected (binomial: 3 per cell, Kemppinen: 8 per cell).
+// of every family selected (binomial: 3 per cell, Kemppinen: 8 per cell, area: 3 per cell).
 verify::adequacy::Decision table_decision(const AdequacyOptions& o);
 std::size_t table_decisions(const AdequacyOptions& o);
 
@@ -153,7 +172,8 @@ void write_level_maps_csv(const std::filesystem::path& csv,
 void write_level_maps_chart(const std::filesystem::path& png, const std::string& csv_name,
                             const std::string& title,
                             const std::vector<const AdequacyLevelMap*>& maps, int columns = 1);
-// `rows` in make_grid's order for `axes`.
+// `rows` in make_grid's order for `axes` (the area family's rows too: their titles name the square
+// light by the cone whose solid angle it has).
 std::vector<AdequacyLevelMap> adequacy_level_maps(
     const std::vector<verify::adequacy::CellResult>& rows, const verify::adequacy::GridAxes& axes,
     double threshold);

@@ -20,7 +20,7 @@ using verify::adequacy::CellResult;
 using verify::adequacy::KemppinenCellResult;
 using verify::adequacy::LevelStats;
 
-constexpr const char* kFormat = "glintlab adequacy cells 1";
+constexpr const char* kFormat = "glintlab adequacy cells 2";  // 2: the area family
 // A level's fields, in the order of its array in the file.
 constexpr const char* kLevelFields =
     "mean cv p_zero mean_diff mean_diff_ucb mean_diff_lcb cv_diff cv_diff_ucb cv_diff_lcb "
@@ -136,6 +136,9 @@ std::vector<verify::adequacy::Cell> binomial_grid(const AdequacyOptions& o) {
 std::vector<verify::adequacy::KemppinenCell> kemppinen_grid(const AdequacyOptions& o) {
   return verify::adequacy::make_kemppinen_grid(kemppinen_models(o.models), kemppinen_axes_of(o));
 }
+std::vector<verify::adequacy::Cell> area_grid(const AdequacyOptions& o) {
+  return verify::adequacy::make_grid(area_models(o.models), area_axes_of(o));
+}
 
 // Each position once and inside the grid; the cell of each.
 template <typename Cells, typename Results>
@@ -155,6 +158,7 @@ AdequacyPart adequacy_shard_part(const AdequacyOptions& o, std::size_t k, std::s
   AdequacyPart part;
   for (std::size_t i = k - 1; i < binomial_grid(o).size(); i += n) part.binomial.push_back(i);
   for (std::size_t i = k - 1; i < kemppinen_grid(o).size(); i += n) part.kemppinen.push_back(i);
+  for (std::size_t i = k - 1; i < area_grid(o).size(); i += n) part.area.push_back(i);
   return part;
 }
 
@@ -162,6 +166,7 @@ std::vector<std::string> adequacy_part_ids(const AdequacyPart& part) {
   std::vector<std::string> ids;
   for (std::size_t i : part.binomial) ids.push_back(fmt::format("binomial/{}", i));
   for (std::size_t i : part.kemppinen) ids.push_back(fmt::format("kemppinen/{}", i));
+  for (std::size_t i : part.area) ids.push_back(fmt::format("area/{}", i));
   return ids;
 }
 
@@ -190,6 +195,11 @@ std::string adequacy_run_text(const AdequacyOptions& o) {
   for (const auto& c : kemppinen_grid(o))
     t += fmt::format("{} {} {} {} {} {}\n", c.model, bits(c.points), bits(c.alpha),
                      bits(c.theta_i_deg), bits(c.theta_h_deg), c.theta_h_index);
+  t += fmt::format("area samples {}\n", area_axes_of(o).samples);
+  for (const auto& c : area_grid(o))
+    t += fmt::format("{} {} {} {} {} {} {}\n", c.model, bits(c.facets), bits(c.alpha),
+                     bits(c.light_half_angle_deg), bits(c.theta_i_deg), bits(c.theta_h_deg),
+                     c.theta_h_index);
   return t;
 }
 
@@ -201,13 +211,15 @@ AdequacyCells measure_adequacy_part(const AdequacyOptions& o, const AdequacyPart
                                                      decision, o.progress);
   cells.kemppinen = verify::adequacy::measure_kemppinen_grid_at(
       kemppinen_grid(o), part.kemppinen, kemppinen_axes_of(o).samples, decision, o.progress);
+  cells.area = verify::adequacy::measure_area_grid_at(area_grid(o), part.area,
+                                                      area_axes_of(o).samples, decision, o.progress);
   return cells;
 }
 
 void write_adequacy_part(const std::filesystem::path& file, const AdequacyOptions& o,
                          const AdequacyPart& part, const AdequacyCells& cells) {
   if (cells.binomial.size() != part.binomial.size() ||
-      cells.kemppinen.size() != part.kemppinen.size())
+      cells.kemppinen.size() != part.kemppinen.size() || cells.area.size() != part.area.size())
     throw std::logic_error("write_adequacy_part: cells and part differ in size");
   const verify::adequacy::KemppinenGridAxes k = kemppinen_axes_of(o);
   json doc;
@@ -220,6 +232,13 @@ void write_adequacy_part(const std::filesystem::path& file, const AdequacyOption
                            {"theta_i_deg", bits_of(k.theta_i_deg)},
                            {"theta_h_count", k.theta_h_count},
                            {"samples", k.samples}};
+  const verify::adequacy::GridAxes a = area_axes_of(o);
+  doc["area_axes"] = {{"facets", bits_of(a.facets)},
+                      {"alpha", bits_of(a.alpha)},
+                      {"light_half_angle_deg", bits_of(a.light_half_angle_deg)},
+                      {"theta_i_deg", bits_of(a.theta_i_deg)},
+                      {"theta_h_count", a.theta_h_count},
+                      {"samples", a.samples}};
   if (o.costs) {
     json ns = json::object();
     for (const auto& [model, v] : o.costs->ns)
@@ -229,13 +248,16 @@ void write_adequacy_part(const std::filesystem::path& file, const AdequacyOption
     doc["costs"] = nullptr;
   }
   doc["level_fields"] = kLevelFields;
-  json binomial = json::array(), kemppinen = json::array();
+  json binomial = json::array(), kemppinen = json::array(), area = json::array();
   for (std::size_t j = 0; j < part.binomial.size(); ++j)
     binomial.push_back(binomial_to_json(part.binomial[j], cells.binomial[j]));
   for (std::size_t j = 0; j < part.kemppinen.size(); ++j)
     kemppinen.push_back(kemppinen_to_json(part.kemppinen[j], cells.kemppinen[j]));
+  for (std::size_t j = 0; j < part.area.size(); ++j)
+    area.push_back(binomial_to_json(part.area[j], cells.area[j]));
   doc["binomial"] = binomial;
   doc["kemppinen"] = kemppinen;
+  doc["area"] = area;
   io::write_file_atomic(file, doc.dump() + "\n");
 }
 
@@ -264,6 +286,15 @@ AdequacyPartFile read_adequacy_part(const std::filesystem::path& file) {
     k.theta_h_count = ka.at("theta_h_count").get<int>();
     k.samples = ka.at("samples").get<int>();
     o.kemppinen_axes = k;
+    const json& aa = doc.at("area_axes");
+    verify::adequacy::GridAxes a;
+    a.facets = doubles_of(aa.at("facets"));
+    a.alpha = doubles_of(aa.at("alpha"));
+    a.light_half_angle_deg = doubles_of(aa.at("light_half_angle_deg"));
+    a.theta_i_deg = doubles_of(aa.at("theta_i_deg"));
+    a.theta_h_count = aa.at("theta_h_count").get<int>();
+    a.samples = aa.at("samples").get<int>();
+    o.area_axes = a;
     if (!doc.at("costs").is_null()) {
       const json& c = doc.at("costs");
       LevelCosts costs;
@@ -285,8 +316,13 @@ AdequacyPartFile read_adequacy_part(const std::filesystem::path& file) {
       f.part.kemppinen.push_back(j.at("position").get<std::size_t>());
       f.cells.kemppinen.push_back(kemppinen_from_json(j));
     }
+    for (const json& j : doc.at("area")) {
+      f.part.area.push_back(j.at("position").get<std::size_t>());
+      f.cells.area.push_back(binomial_from_json(j));
+    }
     place(f.part.binomial, binomial_grid(o), f.cells.binomial, "binomial");
     place(f.part.kemppinen, kemppinen_grid(o), f.cells.kemppinen, "kemppinen");
+    place(f.part.area, area_grid(o), f.cells.area, "area");
     return f;
   } catch (const json::exception& e) {
     throw std::invalid_argument(
@@ -301,7 +337,8 @@ AdequacyCells join_adequacy_parts(const AdequacyOptions& o,
                                   const std::vector<AdequacyPartFile>& parts) {
   const auto binomial = binomial_grid(o);
   const auto kemppinen = kemppinen_grid(o);
-  std::vector<std::optional<CellResult>> b(binomial.size());
+  const auto area = area_grid(o);
+  std::vector<std::optional<CellResult>> b(binomial.size()), a(area.size());
   std::vector<std::optional<KemppinenCellResult>> k(kemppinen.size());
   const auto put = [](auto& slots, std::size_t position, const auto& cell, const char* family) {
     if (position >= slots.size())
@@ -316,6 +353,8 @@ AdequacyCells join_adequacy_parts(const AdequacyOptions& o,
       put(b, f.part.binomial[j], f.cells.binomial[j], "binomial");
     for (std::size_t j = 0; j < f.part.kemppinen.size(); ++j)
       put(k, f.part.kemppinen[j], f.cells.kemppinen[j], "kemppinen");
+    for (std::size_t j = 0; j < f.part.area.size(); ++j)
+      put(a, f.part.area[j], f.cells.area[j], "area");
   }
   AdequacyCells cells;
   for (std::size_t i = 0; i < b.size(); ++i) {
@@ -325,6 +364,10 @@ AdequacyCells join_adequacy_parts(const AdequacyOptions& o,
   for (std::size_t i = 0; i < k.size(); ++i) {
     if (!k[i]) throw std::invalid_argument(fmt::format("no shard holds kemppinen/{}", i));
     cells.kemppinen.push_back(*k[i]);
+  }
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (!a[i]) throw std::invalid_argument(fmt::format("no shard holds area/{}", i));
+    cells.area.push_back(*a[i]);
   }
   return cells;
 }

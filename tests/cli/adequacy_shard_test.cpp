@@ -25,8 +25,9 @@ namespace fs = std::filesystem;
 class AdequacyShardTest : public CliTest {
  protected:
   RunResult adequacy(const std::string& out, const std::string& shard = "",
-                     const std::string& threshold = "0.02") const {
-    std::vector<std::string> args = {"adequacy", "--models",    "deliot_belcour",
+                     const std::string& threshold = "0.02",
+                     const std::string& models = "deliot_belcour") const {
+    std::vector<std::string> args = {"adequacy", "--models",    models,
                                      "--budget", "quick",       "--threads",
                                      "2",        "--threshold", threshold,
                                      "--out",    out};
@@ -107,6 +108,43 @@ TEST_F(AdequacyShardTest, MergedShardsAreTheFilesOfOneRun) {
         EXPECT_TRUE(merged.at(file) == bytes) << n << " shards: " << file << " differs";
     }
   }
+}
+
+// The area family (kneiphof_klein_area under square lights) through the command line: 2 shards
+// merged are the files of one run (its maps byte for byte).
+TEST_F(AdequacyShardTest, AreaFamilyMergedIsTheFilesOfOneRun) {
+  const std::string models = "kneiphof_klein_area";
+  ASSERT_EQ(adequacy("one", "", "0.02", models).exit_code, 0);
+  const std::map<std::string, std::string> one = file_tree("one");
+  std::vector<std::string> merge = {"merge"};
+  for (int k : {2, 1}) {
+    const std::string dir = "a2_" + std::to_string(k);
+    const RunResult r = adequacy(dir, std::to_string(k) + "/2", "0.02", models);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto m = nlohmann::json::parse(read_text(path(dir + "/shard.json")));
+    EXPECT_EQ(m["selection"].size(), 324u);
+    EXPECT_EQ(m["covered"][0], "area/" + std::to_string(k - 1));
+    merge.push_back(dir);
+  }
+  merge.insert(merge.end(), {"--out", "merged"});
+  const RunResult r = run(merge);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("324 cells from 2 shards"), std::string::npos) << r.out;
+  const std::map<std::string, std::string> merged = file_tree("merged");
+  ASSERT_EQ(merged.size(), one.size());
+  std::size_t maps = 0;
+  for (const auto& [file, bytes] : one) {
+    ASSERT_TRUE(merged.count(file)) << file;
+    maps += file.ends_with(".png") ? 1 : 0;
+    if (file == "adequacy.csv")
+      EXPECT_EQ(csv_without_timing(path("merged/" + file)), csv_without_timing(path("one/" + file)));
+    else if (file == "adequacy.json")
+      EXPECT_EQ(without_timing(nlohmann::json::parse(merged.at(file))),
+                without_timing(nlohmann::json::parse(bytes)));
+    else
+      EXPECT_TRUE(merged.at(file) == bytes) << file << " differs";
+  }
+  EXPECT_EQ(maps, 6u);  // 3 lights × 2 incidences
 }
 
 TEST_F(AdequacyShardTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing) {

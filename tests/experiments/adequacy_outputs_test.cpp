@@ -1,4 +1,4 @@
-// The adequacy table's files (experiments/adequacy/adequacy_outputs.h) with both families: one CSV
+// The adequacy table's files (experiments/adequacy/adequacy_outputs.h) with several families: one CSV
 // with a `family` column, each family's level columns (`nan` in the other family's rows), the
 // JSON's families and cells, one map per Kemppinen model × incidence, and z split over the
 // decisions of both families.
@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -94,6 +95,87 @@ TEST(AdequacyOutputs, BothFamiliesInOneTable) {
   }
   EXPECT_EQ(kemppinen_maps, 2u);  // one per incidence
   EXPECT_TRUE(fs::exists(out / "adequacy-levels.csv"));
+  fs::remove_all(out);
+}
+
+// The area family (kneiphof_klein_area under the declared square lights) beside the Kemppinen
+// family: its rows in the same CSV under `family` = area with the binomial level columns, its
+// light declared in the JSON, one map per light × incidence, and z split over all decisions.
+TEST(AdequacyOutputs, AreaFamilyInTheTable) {
+  const fs::path out = fs::temp_directory_path() / "glintlab_adequacy_outputs_area_test";
+  fs::remove_all(out);
+  AdequacyOptions o;
+  o.models = {"kemppinen_ggx", "kneiphof_klein_area"};
+  verify::adequacy::KemppinenGridAxes k;
+  k.points = {1e5};
+  k.alpha = {0.3};
+  k.theta_i_deg = {0};
+  k.theta_h_count = 1;
+  k.samples = 500;
+  o.kemppinen_axes = k;
+  verify::adequacy::GridAxes a;
+  a.facets = {1, 1e4, 1e8};
+  a.alpha = {0.3};
+  a.light_half_angle_deg = {1, 10};
+  a.theta_i_deg = {0, 60};
+  a.theta_h_count = 2;
+  a.samples = 1000;
+  o.area_axes = a;
+  const std::size_t area_cells = 3 * 2 * 2 * 2;
+  EXPECT_EQ(table_decisions(o), area_cells * 3 + 1 * 8);
+  const AdequacySummary s = run_adequacy(out, o);
+  EXPECT_EQ(s.cells, 0u);
+  EXPECT_EQ(s.kemppinen.cells, 1u);
+  EXPECT_EQ(s.area.cells, area_cells);
+  EXPECT_EQ(s.z, verify::adequacy::decision_for_decisions(area_cells * 3 + 8, o.threshold).z);
+  std::size_t chosen = 0;
+  for (std::size_t c : s.area.chosen) chosen += c;
+  EXPECT_EQ(chosen, area_cells);
+  EXPECT_EQ(s.area.chooser_refuted, 0u);
+
+  const io::CsvTable csv = io::read_csv(out / "adequacy.csv");
+  ASSERT_EQ(csv.num_rows(), area_cells + 1);
+  const auto& header = csv.header();
+  const auto column = [&](const std::string& name) {
+    const auto it = std::find(header.begin(), header.end(), name);
+    EXPECT_NE(it, header.end()) << name;
+    return std::size_t(it - header.begin());
+  };
+  const std::size_t family = column("family"), exact = column("exact_mean"),
+                    k16 = column("k16_exact_mean"), light = column("light_half_angle_deg"),
+                    p = column("p");
+  std::size_t area_rows = 0;
+  for (std::size_t r = 0; r < csv.num_rows(); ++r) {
+    const bool is_area = csv.text(r, family) == "area";
+    area_rows += is_area ? 1 : 0;
+    EXPECT_EQ(csv.text(r, exact) == "nan", !is_area) << r;
+    EXPECT_EQ(csv.text(r, k16) == "nan", is_area) << r;
+    EXPECT_EQ(csv.text(r, light) == "nan", !is_area) << r;
+    EXPECT_EQ(csv.text(r, p) == "nan", !is_area) << r;
+  }
+  EXPECT_EQ(area_rows, area_cells);
+
+  std::ifstream in(out / "adequacy.json");
+  const nlohmann::json doc = nlohmann::json::parse(in);
+  const nlohmann::json& fam = doc["families"]["area"];
+  EXPECT_EQ(fam["models"], nlohmann::json::array({"kneiphof_klein_area"}));
+  EXPECT_EQ(fam["most_complete"], "exact");
+  EXPECT_EQ(fam["summary"]["cells"], area_cells);
+  ASSERT_EQ(fam["light"]["side"].size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const double g = a.light_half_angle_deg[i] * std::acos(-1.0) / 180;
+    EXPECT_NEAR(fam["light"]["solid_angle_sr"][i].get<double>(),
+                2 * std::acos(-1.0) * (1 - std::cos(g)), 1e-12);
+  }
+  EXPECT_EQ(doc["cells"].back()["family"], "area");
+  EXPECT_EQ(doc["cells"].back()["levels"].size(), 4u);
+  std::size_t area_maps = 0;
+  for (const auto& m : doc["maps"]) {
+    EXPECT_TRUE(fs::exists(out / m["exr"].get<std::string>()));
+    area_maps += m["family"] == "area" ? 1 : 0;
+  }
+  EXPECT_EQ(area_maps, 4u);  // per light × incidence
+  EXPECT_TRUE(fs::exists(out / "adequacy_kneiphof_klein_area_light10_theta60.chart.json"));
   fs::remove_all(out);
 }
 

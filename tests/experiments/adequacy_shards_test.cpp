@@ -37,13 +37,18 @@ AdequacyCells without_timing(AdequacyCells c) {
     for (auto& l : r.levels) l.ns_per_eval = 0;
     r.cheapest_measured = 0;
   }
+  for (auto& r : c.area) {
+    for (auto& l : r.levels) l.ns_per_eval = 0;
+    r.cheapest_measured = 0;
+  }
   return c;
 }
 
-// The Kemppinen family on a small grid (the binomial family's parts: tests/cli/adequacy_shard_test.cpp).
+// The Kemppinen and the area family on small grids (the binomial family's parts:
+// tests/cli/adequacy_shard_test.cpp).
 AdequacyOptions small_run() {
   AdequacyOptions o;
-  o.models = {"kemppinen_ggx"};
+  o.models = {"kemppinen_ggx", "kneiphof_klein_area"};
   verify::adequacy::KemppinenGridAxes k;
   k.points = {10, 1e4};
   k.alpha = {0.3};
@@ -51,6 +56,14 @@ AdequacyOptions small_run() {
   k.theta_h_count = 2;
   k.samples = 500;
   o.kemppinen_axes = k;
+  verify::adequacy::GridAxes a;
+  a.facets = {1, 1e4, 1e7};
+  a.alpha = {0.3};
+  a.light_half_angle_deg = {1};
+  a.theta_i_deg = {0};
+  a.theta_h_count = 1;
+  a.samples = 500;
+  o.area_axes = a;
   return o;
 }
 
@@ -61,6 +74,7 @@ TEST(AdequacyShards, PartsJoinedAreTheWholeGridBitForBit) {
   const AdequacyOptions o = small_run();
   const AdequacyPart whole = adequacy_shard_part(o, 1, 1);
   ASSERT_EQ(whole.kemppinen.size(), 4u);
+  ASSERT_EQ(whole.area.size(), 3u);
   const AdequacyCells all = measure_adequacy_part(o, whole);
   write_adequacy_part(dir / "whole.json", o, whole, without_timing(all));
 
@@ -83,6 +97,15 @@ TEST(AdequacyShards, PartsJoinedAreTheWholeGridBitForBit) {
   ASSERT_EQ(joined.kemppinen.size(), all.kemppinen.size());
   for (std::size_t i = 0; i < all.kemppinen.size(); ++i)
     EXPECT_EQ(joined.kemppinen[i].cell.points, all.kemppinen[i].cell.points);
+  ASSERT_EQ(joined.area.size(), all.area.size());
+  for (std::size_t i = 0; i < all.area.size(); ++i) {
+    EXPECT_EQ(joined.area[i].cell.facets, all.area[i].cell.facets);
+    EXPECT_EQ(joined.area[i].cell.model, "kneiphof_klein_area");
+  }
+  // Another area grid is another run.
+  AdequacyOptions wider = o;
+  wider.area_axes->light_half_angle_deg = {10};
+  EXPECT_NE(adequacy_run_text(wider), adequacy_run_text(o));
 
   // Another TAU is another run.
   AdequacyOptions other = o;
@@ -130,6 +153,20 @@ TEST(AdequacyShards, NonFiniteNumbersReadBackExactly) {
   EXPECT_TRUE(std::signbit(f.cells.kemppinen[0].lambda));
   EXPECT_EQ(f.part.kemppinen, part.kemppinen);
   // A position outside the run's grid is named.
+  // The area family's cells likewise.
+  AdequacyPart area_part;
+  area_part.area = {1};
+  AdequacyCells area_cells;
+  area_cells.area.resize(1);
+  area_cells.area[0].levels[0].cv_diff_ucb = INFINITY;
+  area_cells.area[0].p = std::nan("0x9");
+  write_adequacy_part(file, o, area_part, area_cells);
+  const AdequacyPartFile g = read_adequacy_part(file);
+  ASSERT_EQ(g.cells.area.size(), 1u);
+  EXPECT_EQ(g.cells.area[0].levels[0].cv_diff_ucb, INFINITY);
+  EXPECT_EQ(std::bit_cast<std::uint64_t>(g.cells.area[0].p),
+            std::bit_cast<std::uint64_t>(std::nan("0x9")));
+  EXPECT_EQ(g.cells.area[0].cell.facets, 1e4);  // its cell placed from the run's area grid
   part.kemppinen = {4};
   write_adequacy_part(file, o, part, cells);
   EXPECT_THROW(read_adequacy_part(file), std::invalid_argument);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/model_registry.h"
+#include "verify/adequacy/area_adequacy.h"
 #include "verify/stats/multiple_testing.h"
 
 namespace glintlab::verify::adequacy {
@@ -28,10 +29,7 @@ std::vector<double> model_param_values(const Cell& c, BinomialLevel level, std::
   v[param_index<M>("alpha_x")] = c.alpha;
   v[param_index<M>("alpha_y")] = c.alpha;
   v[param_index<M>("density")] = kLog10Density;
-  v[param_index<M>("binomial")] =
-      level == BinomialLevel::kRealTime     ? double(BinomialSampler::kRealTime)
-      : level == BinomialLevel::kSmallCount ? double(BinomialSampler::kSmallCount)
-                                            : double(BinomialSampler::kExact);
+  v[param_index<M>("binomial")] = double(binomial_sampler_of(level));
   v[param_index<M>("seed")] = double(seed % 4294967296ULL);
   return v;
 }
@@ -77,6 +75,12 @@ double normal_quantile_upper(double alpha) {
 
 }  // namespace
 
+BinomialSampler binomial_sampler_of(BinomialLevel level) {
+  return level == BinomialLevel::kRealTime     ? BinomialSampler::kRealTime
+         : level == BinomialLevel::kSmallCount ? BinomialSampler::kSmallCount
+                                               : BinomialSampler::kExact;
+}
+
 // R2 low-discrepancy positions (Roberts 2018): distinct after the models' 2^-24 uv quantization.
 Vec2<double> surface_position(int i) {
   const double a = 0.5 + 0.75487766624669276005 * i, b = 0.5 + 0.56984029099805326591 * i;
@@ -105,6 +109,7 @@ std::vector<double> level_param_values(const Cell& cell, BinomialLevel level, st
     throw std::invalid_argument("adequacy: the smooth level is smooth_ggx's value, not a count");
   if (cell.model == "deliot_belcour") return model_param_values<DeliotBelcour>(cell, level, seed);
   if (cell.model == "kneiphof_klein") return model_param_values<KneiphofKlein>(cell, level, seed);
+  if (cell.model == "kneiphof_klein_area") return area_level_param_values(cell, level, seed);
   throw std::invalid_argument("adequacy: not a model of the binomial family: " + cell.model);
 }
 
@@ -154,10 +159,12 @@ double level_values(const Cell& cell, BinomialLevel level, int samples, std::uin
                     std::vector<double>& out) {
   if (cell.model == "deliot_belcour") return values_of<DeliotBelcour>(cell, level, samples, seed, out);
   if (cell.model == "kneiphof_klein") return values_of<KneiphofKlein>(cell, level, samples, seed, out);
+  if (cell.model == "kneiphof_klein_area") return area_level_values(cell, level, samples, seed, out);
   throw std::invalid_argument("adequacy: not a model of the binomial family: " + cell.model);
 }
 
 std::pair<double, double> cell_probability_and_smooth(const Cell& cell) {
+  if (cell.model == "kneiphof_klein_area") return area_cell_probability_and_smooth(cell);
   const ModelQuery<double> q = cell_query(cell, 0.5, 0.5);
   if (cell.model == "deliot_belcour") {
     const auto p = model_params<DeliotBelcour>(cell, BinomialLevel::kExact, 0);
@@ -287,11 +294,12 @@ std::vector<CellResult> measure_grid(const std::vector<Cell>& cells, int samples
 
 std::vector<CellResult> measure_grid_at(const std::vector<Cell>& cells,
                                         const std::vector<std::size_t>& positions, int samples,
-                                        const Decision& d, const std::function<void()>& progress) {
+                                        const Decision& d, const std::function<void()>& progress,
+                                        const char* seed_name) {
   std::vector<CellResult> out(positions.size());
   tbb::parallel_for(std::size_t(0), positions.size(), [&](std::size_t j) {
     const std::size_t i = positions[j];
-    out[j] = measure_cell(cells.at(i), samples, check_seed("adequacy.table", i), d);
+    out[j] = measure_cell(cells.at(i), samples, check_seed(seed_name, i), d);
     if (progress) progress();
   });
   return out;

@@ -98,7 +98,8 @@ Decision decision_at_level(double level, double threshold);
 
 // The pixel values of one level at `samples` surface positions (the footprint centre moved over a
 // 2-d low-discrepancy set; the counter RNG is keyed by it), with the model seed `seed`; returns the
-// loop's nanoseconds per evaluation.
+// loop's nanoseconds per evaluation. A cell of kneiphof_klein_area (the area family) is handed to
+// area_level_values (area_adequacy.h), as are level_param_values and cell_probability_and_smooth.
 double level_values(const Cell& cell, BinomialLevel level, int samples, std::uint64_t seed,
                     std::vector<double>& out);
 // The surface position of sample i (the footprint centre; a 2-d low-discrepancy set), the query of
@@ -107,6 +108,8 @@ double level_values(const Cell& cell, BinomialLevel level, int samples, std::uin
 Vec2<double> surface_position(int i);
 ModelQuery<double> cell_query(const Cell& c, double u, double v);
 std::vector<double> level_param_values(const Cell& cell, BinomialLevel level, std::uint64_t seed);
+// The model's `binomial` sampler of a counting level (kSmooth: none; the exact one is returned).
+BinomialSampler binomial_sampler_of(BinomialLevel level);
 // The clamped p and the smooth value of a cell.
 std::pair<double, double> cell_probability_and_smooth(const Cell& cell);
 
@@ -123,10 +126,12 @@ std::vector<CellResult> measure_grid(const std::vector<Cell>& cells, int samples
                                      const Decision& d,
                                      const std::function<void()>& progress = {});
 // The cells at `positions` (indices into `cells`, the whole grid) alone, in that order, each with
-// the seed of its position in the grid: a shard's cell is bit for bit the unsharded run's.
+// the seed of its position in the grid (check_seed(seed_name, position)): a shard's cell is bit
+// for bit the unsharded run's. The area family (area_adequacy.h) seeds its grid under its own name.
 std::vector<CellResult> measure_grid_at(const std::vector<Cell>& cells,
                                         const std::vector<std::size_t>& positions, int samples,
                                         const Decision& d,
-                                        const std::function<void()>& progress = {});
+                                        const std::function<void()>& progress = {},
+                                        const char* seed_name = "adequacy.table");
 
 }  // namespace glintlab::verify::adequacy

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "core/glints/kneiphof_ltc.h"
 #include "core/model_registry.h"
 #include "core/scene/footprint.h"
 #include "verify/adequacy/kemppinen_adequacy.h"
@@ -51,11 +52,6 @@ SceneGeometry geometry(const ChoiceScene& s, int width, int height) {
   return g;
 }
 
-BinomialSampler sampler_of(BinomialLevel level) {
-  return level == BinomialLevel::kRealTime     ? BinomialSampler::kRealTime
-         : level == BinomialLevel::kSmallCount ? BinomialSampler::kSmallCount
-                                               : BinomialSampler::kExact;
-}
 
 template <class M>
 typename M::template Params<double> scene_params(const ChoiceScene& s, std::uint64_t seed) {
@@ -76,7 +72,7 @@ double level_value(typename M::template Params<double> params, BinomialLevel lev
                    const ModelQuery<double>& q) {
   if (level == BinomialLevel::kSmooth)
     return microfacet_brdf(params.ggx, q.wi, q.wo, 1.0) * std::max(q.wo.z, 0.0);
-  params.sampler = sampler_of(level);
+  params.sampler = binomial_sampler_of(level);
   return M::template eval<double>(params, q).value;
 }
 
@@ -133,6 +129,25 @@ bool pixel_query(const SceneGeometry& g, const Shape& shape, int col, int row,
   return true;
 }
 
+// Every pixel whose camera ray hits the shape with the view and the light above its horizon (the
+// others stay off the surface), in parallel over rows: fn(pixel, its query, the squared distance
+// to the light, per-row scratch x and ref).
+template <class Shape, class F>
+void for_each_surface_pixel(const SceneGeometry& g, const Shape& shape, const SceneOptions& o,
+                            SceneRender& out, const F& fn) {
+  tbb::parallel_for(0, o.height, [&](int row) {
+    std::vector<double> x, ref;
+    for (int col = 0; col < o.width; ++col) {
+      ScenePixel& px = out.pixels[std::size_t(row) * std::size_t(o.width) + std::size_t(col)];
+      ModelQuery<double> q;
+      double d2 = 0;
+      if (!pixel_query(g, shape, col, row, q, d2)) continue;
+      px.surface = true;
+      fn(px, q, d2, x, ref);
+    }
+  });
+}
+
 // A pixel's renders (realisation 0) and, unless its level is the most complete one or it is not
 // lit, the rule's differences of the chosen level's realisations `x` against the most complete
 // level's `ref` and whether they exceed TAU.
@@ -154,40 +169,33 @@ void render_rows(const ChoiceScene& s, const SceneGeometry& g, const Shape& shap
                  const SceneOptions& o, SceneRender& out) {
   const auto params = scene_params<M>(s, o.seed);
   const Decision pixel_decision = decision_at_level(kPixelFlagRate / 2, o.tau);
-  tbb::parallel_for(0, o.height, [&](int row) {
-    std::vector<double> x, ref;
-    for (int col = 0; col < o.width; ++col) {
-      ScenePixel& px = out.pixels[std::size_t(row) * std::size_t(o.width) + std::size_t(col)];
-      ModelQuery<double> q;
-      double d2 = 0;
-      if (!pixel_query(g, shape, col, row, q, d2)) continue;
-      px.surface = true;
-      // A point light (cos_half_angle 1): kneiphof_klein widens it to its 0.26° cap.
-      if (s.light == SceneLight::kSphereLight)
-        q.light.cos_half_angle = std::sqrt(std::max(1 - kLightRadius * kLightRadius / d2, 0.0));
-      // Irradiance at the point from the light (the same for both lights, to first order).
-      const double irradiance = kLightIntensity / d2;
-      std::tie(px.facets, px.p) = facets_and_p(params, q);
-      px.level = o.chooser ? o.chooser(px.facets, px.p, o.chooser_tau)
-                           : int(engine_level(params, q, o.chooser_tau));
-      if (px.level < 0 || px.level >= kBinomialLevels)
-        throw std::invalid_argument("adequacy scenes: the chooser returned no level of the family");
-      const auto chosen = BinomialLevel(px.level);
-      const int n = o.realisations;
-      x.resize(std::size_t(n));
-      ref.resize(std::size_t(n));
-      std::size_t lit = 0;
-      for (int j = 0; j < n; ++j) {
-        ModelQuery<double> at = q;
-        at.footprint.uv = realisation_uv(q.footprint.uv, j);
-        ref[std::size_t(j)] = level_value<M>(params, BinomialLevel::kExact, at);
-        x[std::size_t(j)] = chosen == BinomialLevel::kExact ? ref[std::size_t(j)]
-                                                            : level_value<M>(params, chosen, at);
-        lit += ref[std::size_t(j)] != 0 ? 1 : 0;
-      }
-      score_pixel(px, x, ref, lit, irradiance, chosen == BinomialLevel::kExact, pixel_decision,
-                  o.tau);
+  for_each_surface_pixel(g, shape, o, out, [&](ScenePixel& px, ModelQuery<double>& q, double d2,
+                                               std::vector<double>& x, std::vector<double>& ref) {
+    // A point light (cos_half_angle 1): kneiphof_klein widens it to its 0.26° cap.
+    if (s.light == SceneLight::kSphereLight)
+      q.light.cos_half_angle = std::sqrt(std::max(1 - kLightRadius * kLightRadius / d2, 0.0));
+    // Irradiance at the point from the light (the same for both lights, to first order).
+    const double irradiance = kLightIntensity / d2;
+    std::tie(px.facets, px.p) = facets_and_p(params, q);
+    px.level = o.chooser ? o.chooser(px.facets, px.p, o.chooser_tau)
+                         : int(engine_level(params, q, o.chooser_tau));
+    if (px.level < 0 || px.level >= kBinomialLevels)
+      throw std::invalid_argument("adequacy scenes: the chooser returned no level of the family");
+    const auto chosen = BinomialLevel(px.level);
+    const int n = o.realisations;
+    x.resize(std::size_t(n));
+    ref.resize(std::size_t(n));
+    std::size_t lit = 0;
+    for (int j = 0; j < n; ++j) {
+      ModelQuery<double> at = q;
+      at.footprint.uv = realisation_uv(q.footprint.uv, j);
+      ref[std::size_t(j)] = level_value<M>(params, BinomialLevel::kExact, at);
+      x[std::size_t(j)] = chosen == BinomialLevel::kExact ? ref[std::size_t(j)]
+                                                          : level_value<M>(params, chosen, at);
+      lit += ref[std::size_t(j)] != 0 ? 1 : 0;
     }
+    score_pixel(px, x, ref, lit, irradiance, chosen == BinomialLevel::kExact, pixel_decision,
+                o.tau);
   });
 }
 
@@ -223,51 +231,97 @@ void render_kemppinen_rows(const ChoiceScene& s, const SceneGeometry& g, const S
         kemppinen_level_params<M>(kSceneAlpha, density, KemppinenLevel(l), o.seed);
   const M::Params<double>& reference = params[std::size_t(KemppinenLevel::kK16Exact)];
   const Decision pixel_decision = decision_at_level(kPixelFlagRate / 2, o.tau);
-  tbb::parallel_for(0, o.height, [&](int row) {
-    std::vector<double> x, ref;
-    for (int col = 0; col < o.width; ++col) {
-      ScenePixel& px = out.pixels[std::size_t(row) * std::size_t(o.width) + std::size_t(col)];
-      ModelQuery<double> q;
-      double d2 = 0;
-      if (!pixel_query(g, shape, col, row, q, d2)) continue;
-      px.surface = true;
-      const double irradiance = kLightIntensity / d2;
-      px.facets = density * std::abs(q.footprint.duv_dx.x * q.footprint.duv_dy.y -
-                                     q.footprint.duv_dx.y * q.footprint.duv_dy.x);
-      px.p = 0;
-      px.level = o.kemppinen_chooser ? o.kemppinen_chooser(reference, q, o.chooser_tau)
-                                     : int(choose_kemppinen_model_level(reference, q, o.chooser_tau));
-      if (px.level < 0 || px.level >= kKemppinenLevels)
-        throw std::invalid_argument("adequacy scenes: the chooser returned no Kemppinen level");
-      const auto chosen = KemppinenLevel(px.level);
-      const KemppinenLevel twin = kemppinen_exact_twin(chosen);
-      const int n = o.realisations;
-      x.resize(std::size_t(n));
-      ref.resize(std::size_t(n));
-      std::size_t lit = 0;
-      double smooth = 0;
-      for (int j = 0; j < n; ++j) {
-        ModelQuery<double> at = q;
-        at.footprint.uv = kemppinen_realisation_uv(q, density, j);
-        const auto e = kemppinen_value(reference, at);
-        ref[std::size_t(j)] = e.value;
-        if (j == 0) smooth = kemppinen_smooth_value(e, at);
-        x[std::size_t(j)] = chosen == KemppinenLevel::kSmooth ? smooth
-                            : twin == KemppinenLevel::kK16Exact
-                                ? e.value
-                                : kemppinen_value(params[std::size_t(twin)], at).value;
-        lit += e.value != 0 ? 1 : 0;
-      }
-      if (chosen != twin) {
-        const double shift = kemppinen_value(params[std::size_t(chosen)], q).value -
-                             (twin == KemppinenLevel::kK16Exact
-                                  ? ref[0]
-                                  : kemppinen_value(params[std::size_t(twin)], q).value);
-        for (double& v : x) v += shift;
-      }
-      score_pixel(px, x, ref, lit, irradiance, chosen == KemppinenLevel::kK16Exact,
-                  pixel_decision, o.tau);
+  for_each_surface_pixel(g, shape, o, out, [&](ScenePixel& px, ModelQuery<double>& q, double d2,
+                                               std::vector<double>& x, std::vector<double>& ref) {
+    const double irradiance = kLightIntensity / d2;
+    px.facets = density * std::abs(q.footprint.duv_dx.x * q.footprint.duv_dy.y -
+                                   q.footprint.duv_dx.y * q.footprint.duv_dy.x);
+    px.p = 0;
+    px.level = o.kemppinen_chooser ? o.kemppinen_chooser(reference, q, o.chooser_tau)
+                                   : int(choose_kemppinen_model_level(reference, q, o.chooser_tau));
+    if (px.level < 0 || px.level >= kKemppinenLevels)
+      throw std::invalid_argument("adequacy scenes: the chooser returned no Kemppinen level");
+    const auto chosen = KemppinenLevel(px.level);
+    const KemppinenLevel twin = kemppinen_exact_twin(chosen);
+    const int n = o.realisations;
+    x.resize(std::size_t(n));
+    ref.resize(std::size_t(n));
+    std::size_t lit = 0;
+    double smooth = 0;
+    for (int j = 0; j < n; ++j) {
+      ModelQuery<double> at = q;
+      at.footprint.uv = kemppinen_realisation_uv(q, density, j);
+      const auto e = kemppinen_value(reference, at);
+      ref[std::size_t(j)] = e.value;
+      if (j == 0) smooth = kemppinen_smooth_value(e, at);
+      x[std::size_t(j)] = chosen == KemppinenLevel::kSmooth ? smooth
+                          : twin == KemppinenLevel::kK16Exact
+                              ? e.value
+                              : kemppinen_value(params[std::size_t(twin)], at).value;
+      lit += e.value != 0 ? 1 : 0;
     }
+    if (chosen != twin) {
+      const double shift = kemppinen_value(params[std::size_t(chosen)], q).value -
+                           (twin == KemppinenLevel::kK16Exact
+                                ? ref[0]
+                                : kemppinen_value(params[std::size_t(twin)], q).value);
+      for (double& v : x) v += shift;
+    }
+    score_pixel(px, x, ref, lit, irradiance, chosen == KemppinenLevel::kK16Exact,
+                pixel_decision, o.tau);
+  });
+}
+
+// The area family's pixels: kneiphof_klein_area with the square light at the pixel's light
+// distance, its level chosen by choose_binomial_level with the model's N_P and clamped p (its eval's
+// intermediates), against exact counting at the same realisations; the smooth level is the model's
+// L_o/L_i (the same at every realisation). The rendered radiance takes the light's radiance that
+// gives the point light's power.
+template <class Shape>
+void render_area_rows(const ChoiceScene& s, const SceneGeometry& g, const Shape& shape,
+                      const SceneOptions& o, SceneRender& out) {
+  using M = KneiphofKleinArea;
+  std::vector<double> v;
+  for (const ParamSpec& p : M::kParams) v.push_back(p.default_value);
+  v[param_index<M>("alpha")] = kSceneAlpha;
+  v[param_index<M>("density")] = s.log10_density;
+  v[param_index<M>("light_width")] = kRectLightSide;
+  v[param_index<M>("light_height")] = kRectLightSide;
+  v[param_index<M>("seed")] = double(o.seed % 4294967296ULL);
+  const M::Params<double> base = M::params<double>(v);
+  const double radiance = kLightIntensity / (kRectLightSide * kRectLightSide);
+  const Decision pixel_decision = decision_at_level(kPixelFlagRate / 2, o.tau);
+  for_each_surface_pixel(g, shape, o, out, [&](ScenePixel& px, ModelQuery<double>& q, double d2,
+                                               std::vector<double>& x, std::vector<double>& ref) {
+    M::Params<double> params = base;
+    params.distance = std::sqrt(d2);
+    params.sampler = BinomialSampler::kExact;
+    const auto e = M::eval<double>(params, q);
+    px.facets = e.intermediates[0];
+    px.p = e.intermediates[2];
+    const double smooth = e.intermediates[6];
+    px.level = o.chooser ? o.chooser(px.facets, px.p, o.chooser_tau)
+                         : int(choose_binomial_level(px.facets, px.p, o.chooser_tau));
+    if (px.level < 0 || px.level >= kBinomialLevels)
+      throw std::invalid_argument("adequacy scenes: the chooser returned no level of the family");
+    const auto chosen = BinomialLevel(px.level);
+    M::Params<double> chosen_params = params;
+    chosen_params.sampler = binomial_sampler_of(chosen);
+    const int n = o.realisations;
+    x.resize(std::size_t(n));
+    ref.resize(std::size_t(n));
+    std::size_t lit = 0;
+    for (int j = 0; j < n; ++j) {
+      ModelQuery<double> at = q;
+      at.footprint.uv = realisation_uv(q.footprint.uv, j);
+      ref[std::size_t(j)] = M::eval<double>(params, at).value;
+      x[std::size_t(j)] = chosen == BinomialLevel::kExact    ? ref[std::size_t(j)]
+                          : chosen == BinomialLevel::kSmooth ? smooth
+                                                             : M::eval<double>(chosen_params, at).value;
+      lit += ref[std::size_t(j)] != 0 ? 1 : 0;
+    }
+    score_pixel(px, x, ref, lit, radiance, chosen == BinomialLevel::kExact, pixel_decision,
+                o.tau);
   });
 }
 
@@ -321,7 +375,19 @@ std::vector<ChoiceScene> kemppinen_choice_scenes() {
   };
 }
 
+std::vector<ChoiceScene> area_choice_scenes() {
+  // The plane's footprints (4.7e-4 to 1.9 uv units² at 64 pixels) at 10^6 and 10^8 facets per unit
+  // area, as plane-area-low and -high: on both sides of the smooth boundary.
+  return {
+      {"area-plane-rect-low", "kneiphof_klein_area", SceneShape::kPlane, SceneLight::kRectLight, 6,
+       "low"},
+      {"area-plane-rect-high", "kneiphof_klein_area", SceneShape::kPlane, SceneLight::kRectLight,
+       8, "high"},
+  };
+}
+
 bool is_kemppinen_scene(const ChoiceScene& s) { return s.model == "kemppinen_ggx"; }
+bool is_area_scene(const ChoiceScene& s) { return s.model == "kneiphof_klein_area"; }
 
 int most_complete_level(const ChoiceScene& s) {
   return is_kemppinen_scene(s) ? int(KemppinenLevel::kK16Exact) : int(BinomialLevel::kExact);
@@ -342,6 +408,10 @@ SceneRender render_choice_scene(const ChoiceScene& scene, const SceneOptions& op
     render_model<KneiphofKlein>(scene, g, options, out);
   else if (is_kemppinen_scene(scene))
     render_kemppinen(scene, g, options, out);
+  else if (is_area_scene(scene) && scene.shape == SceneShape::kPlane)
+    render_area_rows(scene, g, g.plane, options, out);
+  else if (is_area_scene(scene))
+    render_area_rows(scene, g, g.sphere, options, out);
   else
     throw std::invalid_argument(
         "adequacy scenes: not a model of the binomial or the Kemppinen family: " + scene.model);

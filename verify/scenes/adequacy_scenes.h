@@ -4,8 +4,10 @@
 // (area) light, and a sphere, each at two facet densities — rendered per pixel with the level the
 // engine chooser (core/glints/adequacy.h) picks for that pixel's footprint, and with the most
 // complete level everywhere: for the binomial family (deliot_belcour, kneiphof_klein) exact
-// counting, for the Kemppinen family (kemppinen_ggx) k = 16 with the exact erf. Chermain and
-// kneiphof_klein_area have no measured levels yet.
+// counting, for the Kemppinen family (kemppinen_ggx) k = 16 with the exact erf; and the area family
+// (kneiphof_klein_area: a plane under a rectangular light) against exact counting, chosen by the
+// binomial chooser with the model's LTC p (core has no area chooser yet). Chermain has no measured
+// levels yet.
 //
 // Per pixel, the difference is measured the way the adequacy rule defines "no one could tell"
 // (verify/adequacy/binomial_adequacy.h, compare_to_exact): over many realisations of the same
@@ -27,7 +29,7 @@
 namespace glintlab::verify::adequacy {
 
 enum class SceneShape { kPlane, kSphere };
-enum class SceneLight { kPoint, kSphereLight };
+enum class SceneLight { kPoint, kSphereLight, kRectLight };
 
 struct ChoiceScene {
   std::string name;   // e.g. "plane-point-low"
@@ -54,9 +56,19 @@ inline constexpr double kSceneAlpha = 0.15;
 // high K_P.
 std::vector<ChoiceScene> kemppinen_choice_scenes();
 
+// The area family's scenes, declared before anything is measured: the plane of choice_scenes()
+// under a square light of side kRectLightSide at the point light's position (kneiphof_klein_area's
+// rectangle, centred along ω_o at the light's distance and facing the shading point: the side
+// gives it the area of the spherical light's disk, so the two area-light planes subtend the same
+// solid angle to first order), GGX α = kSceneAlpha, at a low and a high facet density. The level
+// per pixel: choose_binomial_level(N_P, p, TAU) with the model's own N_P and (LTC) p.
+std::vector<ChoiceScene> area_choice_scenes();
+inline constexpr double kRectLightSide = 0.70898154036220639;  // 0.4 √π
+
 // Whether a scene's model is of the Kemppinen family (its levels are KemppinenLevel values, its
 // most complete level k16_exact) rather than the binomial one (BinomialLevel, exact).
 bool is_kemppinen_scene(const ChoiceScene& s);
+bool is_area_scene(const ChoiceScene& s);
 int most_complete_level(const ChoiceScene& s);
 
 // A pixel's "exceeds TAU" decision: each of the two lower bounds at one-sided level

@@ -173,5 +173,37 @@ TEST(AdequacyChoiceScenes, KemppinenPixelsAreTheSameForAnyThreadCount) {
   EXPECT_THROW(render_choice_scene(s, o), std::invalid_argument);
 }
 
+// The area family's scenes (kneiphof_klein_area, the plane under the square light): the binomial
+// chooser with the model's N_P and LTC p holds on 16² renders of both, a chooser told a footprint
+// 100 times too large fails, and the pixels are the same on one thread and on two.
+TEST(AdequacyChoiceScenes, AreaChooserHoldsAndABrokenChooserFailsOnAnyThreadCount) {
+  SceneOptions o = small_options();
+  o.width = o.height = 16;
+  o.realisations = 128;
+  SafetyTally genuine, broken_tally;
+  SceneOptions broken = o;
+  broken.chooser = [](double facets, double p, double tau) {
+    return int(choose_binomial_level(100 * facets, p, tau));
+  };
+  for (const ChoiceScene& s : area_choice_scenes()) {
+    EXPECT_EQ(most_complete_level(s), int(BinomialLevel::kExact));
+    add(genuine, tally(render_choice_scene(s, o)));
+    add(broken_tally, tally(render_choice_scene(s, broken)));
+  }
+  ASSERT_GT(genuine.lit, 300u);
+  ASSERT_GT(genuine.cheaper, genuine.lit / 2);
+  EXPECT_EQ(decide_choice_safety(genuine, 1e-3).verdict, Verdict::kHoldsInRegime)
+      << genuine.exceeds << " of " << genuine.lit;
+  EXPECT_EQ(decide_choice_safety(broken_tally, 1e-3).verdict, Verdict::kFails)
+      << broken_tally.exceeds << " of " << broken_tally.lit;
+  o.width = o.height = 8;
+  const auto [one, two] = on_one_and_two_threads(area_choice_scenes().back(), o);
+  for (std::size_t i = 0; i < one.pixels.size(); ++i) {
+    EXPECT_EQ(one.pixels[i].level, two.pixels[i].level);
+    EXPECT_EQ(one.pixels[i].chosen_value, two.pixels[i].chosen_value);
+    EXPECT_EQ(one.pixels[i].mean_diff, two.pixels[i].mean_diff);
+  }
+}
+
 }  // namespace
 }  // namespace glintlab::verify::adequacy

@@ -10,7 +10,9 @@
 // (surface positions): a lit pixel (the most complete level non-zero at ≥ kMinLitPositions
 // realisations) exceeds when its chosen level's mean or CV differs by more than TAU (a lower bound
 // at one-sided kPixelFlagRate / 2 each). For the binomial family (deliot_belcour, kneiphof_klein:
-// six scenes) and the Kemppinen family (kemppinen_ggx against k16_exact: four scenes), each family
+// six scenes), the Kemppinen family (kemppinen_ggx against k16_exact: four scenes) and the area
+// family (kneiphof_klein_area under a square light, the binomial chooser with its LTC p: two
+// scenes), each family
 // decided on its own at the Šidák share of the per-check level by an exact binomial count against
 // the rate kPixelFlagRate safe choices give; holds in regime when every family holds, fails when
 // any fails.
@@ -55,8 +57,10 @@ inline adequacy::SceneOptions scene_options(int side, int realisations) {
 // 90 µs of CPU per realisation of a pixel (k = 16 is 512 points): fewer pixels and realisations
 // (128 realisations still leave the lit condition, the exact level non-zero at >= 100 of them,
 // reachable).
+// The area scenes (an LTC integral per evaluation, some 2-3 µs) at `area_side`² pixels.
 inline std::vector<ChoiceFamily> choice_families(int side, int realisations, int kemppinen_side,
-                                                 int kemppinen_realisations) {
+                                                 int kemppinen_realisations, int area_side,
+                                                 int area_realisations) {
   return {{"binomial",
            adequacy::choice_scenes(),
            scene_options(side, realisations),
@@ -64,7 +68,11 @@ inline std::vector<ChoiceFamily> choice_families(int side, int realisations, int
           {"kemppinen",
            adequacy::kemppinen_choice_scenes(),
            scene_options(kemppinen_side, kemppinen_realisations),
-           {kKemppinenLevelNames.begin(), kKemppinenLevelNames.end()}}};
+           {kKemppinenLevelNames.begin(), kKemppinenLevelNames.end()}},
+          {"area",
+           adequacy::area_choice_scenes(),
+           scene_options(area_side, area_realisations),
+           {kBinomialLevelNames.begin(), kBinomialLevelNames.end()}}};
 }
 
 struct FamilyMeasured {
@@ -96,7 +104,8 @@ struct ChoiceIsSafe {
   static constexpr std::string_view kId = "adequacy.choice-is-safe";
   static constexpr std::string_view kPaper = "glintlab (adequacy of the binomial family)";
   static constexpr std::string_view kSource =
-      "core/glints/adequacy.h chooser; Kneiphof & Klein 2024 Eq. 16; Deliot & Belcour 2023";
+      "core/glints/adequacy.h chooser; Kneiphof & Klein 2024 Eq. 16 (Sec. 4 for the area light); "
+      "Deliot & Belcour 2023";
   // The decision is a count against the exact binomial test's critical count, reported as a bound
   // (the test's p-value is in the detail): a p-valued check would take a share of check_level()
   // and move every recorded claim's level.
@@ -112,12 +121,12 @@ struct ChoiceIsSafe {
     std::vector<ChoiceFamily> families;
   };
   static Sizes sizes(Budget b) {
-    return b == Budget::kQuick ? Sizes{choice_families(64, 256, 24, 128)}
-                               : Sizes{choice_families(128, 1024, 48, 256)};
+    return b == Budget::kQuick ? Sizes{choice_families(64, 256, 24, 128, 32, 256)}
+                               : Sizes{choice_families(128, 1024, 48, 256, 64, 512)};
   }
   // The tests' probe: every scene, at fewer pixels (the realisations keep the lit condition
   // reachable).
-  static Sizes probe_sizes() { return {choice_families(16, 128, 8, 128)}; }
+  static Sizes probe_sizes() { return {choice_families(16, 128, 8, 128, 8, 128)}; }
 
   // Configurations: the scenes of every family, in order (the binomial scenes first).
   static int configurations(const Sizes& z) {
@@ -199,6 +208,7 @@ struct ChoiceIsSafe {
   static std::string regime(const Sizes& z) {
     const adequacy::SceneOptions& o = z.families[0].options;
     const adequacy::SceneOptions& k = z.families[1].options;
+    const adequacy::SceneOptions& a = z.families[2].options;
     std::string densities;
     for (const adequacy::ChoiceScene& sc : z.families[1].scenes)
       densities += fmt::format("{}{} K_P 10^{:g}", densities.empty() ? "" : ", ",
@@ -212,10 +222,14 @@ struct ChoiceIsSafe {
         "facet densities), {}x{} pixels, {} realisations per pixel; the Kemppinen family "
         "(kemppinen_ggx; levels smooth, k = 1, 4, 9, 16 with the rational or the exact erf, "
         "against k16_exact) on {} scenes (the plane and the sphere under the point lights; {}), "
-        "{}x{} pixels, {} realisations per pixel; each family decided on its own at the Šidák "
-        "share of the per-check level; Chermain and kneiphof_klein_area have no measured levels",
+        "{}x{} pixels, {} realisations per pixel; the area family (kneiphof_klein_area; the "
+        "binomial levels, chosen by choose_binomial_level with the model's N_P and LTC p) on {} "
+        "scenes (the plane under a square light of side {:.3g} facing the point, at two facet "
+        "densities), {}x{} pixels, {} realisations per pixel; each family decided on its own at "
+        "the Šidák share of the per-check level; Chermain has no measured levels",
         o.tau, adequacy::kSceneAlpha, o.width, o.height, o.realisations,
-        z.families[1].scenes.size(), densities, k.width, k.height, k.realisations);
+        z.families[1].scenes.size(), densities, k.width, k.height, k.realisations,
+        z.families[2].scenes.size(), adequacy::kRectLightSide, a.width, a.height, a.realisations);
   }
 
   // The control's line as describe words it: it states its own rule for the verdict, so the

@@ -104,6 +104,10 @@ std::vector<Cell> prediction_cells() {
     cells.push_back({"deliot_belcour", n, 0.1, 0, 30, std::atan(0.2) * 180 / std::numbers::pi, 2});
     cells.push_back({"kneiphof_klein", n, 0.1, 1, 30, std::atan(0.1) * 180 / std::numbers::pi, 1});
   }
+  // The area family after them (so the cells above keep their configurations and seeds).
+  for (double n : {1.0, 10.0, 100.0, 1e3, 1e4, 1e6, 1e8})
+    cells.push_back(
+        {"kneiphof_klein_area", n, 0.1, 1, 30, std::atan(0.1) * 180 / std::numbers::pi, 1});
   return cells;
 }
 
@@ -123,7 +127,8 @@ PredictionRow measure_row(const Cell& c, int samples, std::uint64_t seed) {
 
 std::vector<Cell> boundary_cells() {
   return {{"deliot_belcour", 0, 0.1, 0, 30, std::atan(0.2) * 180 / std::numbers::pi, 2},
-          {"kneiphof_klein", 0, 0.1, 1, 30, std::atan(0.1) * 180 / std::numbers::pi, 1}};
+          {"kneiphof_klein", 0, 0.1, 1, 30, std::atan(0.1) * 180 / std::numbers::pi, 1},
+          {"kneiphof_klein_area", 0, 0.1, 1, 30, std::atan(0.1) * 180 / std::numbers::pi, 1}};
 }
 
 BoundaryRow measure_boundary(Cell c, int samples, std::uint64_t seed) {

@@ -70,9 +70,16 @@ inline constexpr std::array<KemppinenLevel, 3> kKemppinenSideLevels = {
 inline constexpr double kKemppinenSideControlScale = 1.25;
 
 // Cells away from the degenerate p = 1 of deliot_belcour's peak: its off-peak half-vector
-// (θ_h = atan 2α, p ≈ 0.04) and kneiphof_klein's 1° cap (p ≈ 1e-3 on the peak side), N_P 1 … 1e8.
+// (θ_h = atan 2α, p ≈ 0.04) and kneiphof_klein's 1° cap (p ≈ 1e-3 on the peak side), N_P 1 … 1e8;
+// then kneiphof_klein_area under the square light of a 1° cone's solid angle
+// (verify/adequacy/area_adequacy.h), the same half-vector. Its count is Binomial(N_P, p) too, with
+// p = D_Ωh/D_H the probability that a facet normal drawn from D/D_H lies in the light's half-vector
+// region Ω_h (Kneiphof & Klein 2024 Eq. 11–13; D_Ωh by the LTC polygon integral, Eq. 17–19) and
+// the value L_o/L_i · b/(N_P p) (Eq. 16): value / smooth = b/(N_P p), so the same closed forms,
+// CV = √((1 − p)/(N_P p)), P(no glint) = (1 − p)^N_P and N* = (1 − p)/(p TAU²), with the model's
+// own p (the LTC approximation enters p, not the binomial form).
 std::vector<Cell> prediction_cells();
-// The settings whose boundary is measured: the two families' cells of prediction_cells (their
+// The settings whose boundary is measured: the three models' cells of prediction_cells (their
 // N_P set to N*).
 std::vector<Cell> boundary_cells();
 // The Kemppinen quick grid's rows (θ_i 0°, 60°; α 0.1, 0.3; θ_h 0, atan α, atan 2α),

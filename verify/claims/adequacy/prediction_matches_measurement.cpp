@@ -8,8 +8,9 @@
 //
 // Measured: the closed forms the adequacy chooser (core/glints/adequacy.h) is built on — the
 // count's CV √((1 − p)/(N_P p)) and P(no glint) = (1 − p)^N_P — against the pixel values the
-// binomial glint models give over surface positions (verify/adequacy/binomial_adequacy.h), at the
-// exact counting level, N_P = 1 … 10^8 (CV where N_P p ≥ 1, P(no glint) everywhere); the boundary
+// binomial glint models give over surface positions (verify/adequacy/binomial_adequacy.h; and
+// kneiphof_klein_area's under a square light, area_adequacy.h: its count is binomial too, Eq.
+// 11–13, 16, with p = D_Ωh/D_H over the light's half-vector region), at the exact counting level, N_P = 1 … 10^8 (CV where N_P p ≥ 1, P(no glint) everywhere); the boundary
 // they predict, where the smooth level becomes indistinguishable (the CV falls to TAU:
 // N* = (1 − p)/(p·TAU²)), against the crossing measured on a ladder of footprints around it; and
 // the Kemppinen family's smooth-level boundary in points per footprint, row by row, against the
@@ -52,8 +53,8 @@ struct PredictionMatchesMeasurement {
   static constexpr std::string_view kId = "adequacy.prediction-matches-measurement";
   static constexpr std::string_view kPaper = "glintlab (adequacy of the binomial family)";
   static constexpr std::string_view kSource =
-      "Kneiphof & Klein 2024 Eq. 11, 16; Deliot & Belcour 2023; Kemppinen et al. 2025 Algorithm 1, "
-      "Eq. 8, 10";
+      "Kneiphof & Klein 2024 Eq. 11-13, 16 (and Sec. 4 for the area light); Deliot & Belcour 2023; "
+      "Kemppinen et al. 2025 Algorithm 1, Eq. 8, 10";
   static constexpr std::string_view kStatistic =
       "max |CV_measured / CV_predicted − 1| where N_P p ≥ 1, exact counting (the p-value: "
       "Holm–Šidák over the binomial CV and P(no glint) tests, the binomial boundary tests and the "
@@ -197,8 +198,9 @@ struct PredictionMatchesMeasurement {
   static std::string regime(const Sizes& z) {
     return fmt::format(
         "the exact counting level (its count is Binomial(N_P, p)); N_P in [1, 1e8]; CV tested "
-        "where N_P p >= 1, P(no glint) everywhere; the smooth level's boundary at TAU = {} for the "
-        "same two settings; the Kemppinen family (kemppinen_ggx, default material): the smooth "
+        "where N_P p >= 1, P(no glint) everywhere (deliot_belcour, kneiphof_klein, and "
+        "kneiphof_klein_area with p = D_Omega_h/D_H over a square light of a 1 deg cone's solid "
+        "angle); the smooth level's boundary at TAU = {} for the same three settings; the Kemppinen family (kemppinen_ggx, default material): the smooth "
         "level's boundary in points per footprint where k16_exact's CV crosses TAU, predicted as "
         "a point by the construction's exact CV (kemppinen_exact_moments, through the same line "
         "fit, two-sided) and bounded "
@@ -339,7 +341,8 @@ struct PredictionMatchesMeasurement {
     for (const BoundaryRow& r : m.boundaries)
       boundaries += (boundaries.empty() ? "" : "; ") + describe_boundary(r);
     return fmt::format(
-        "{} cells (deliot_belcour off-peak, kneiphof_klein 1° cap; N_P 1..1e8), {} positions "
+        "{} cells (deliot_belcour off-peak, kneiphof_klein 1° cap, kneiphof_klein_area under the "
+        "square of a 1° cone's solid angle; N_P 1..1e8), {} positions "
         "each, exact counting: CV and P(no glint) against the closed forms; the smooth level's "
         "boundary (CV = TAU = {}) where the exact CV crosses TAU on N*·{{0.5, 0.71, 1, 1.41, 2}} "
         "({} positions each; two-sided intervals at the per-test level): {}; {} of {} p-values "
