@@ -27,10 +27,10 @@ set(glintlab_slow_tests
   "Checks/QuickBudget.VerdictAndControl/chermain_lean_correlation* 5"
   "Checks/QuickBudget.VerdictAndControl/podee_stability* 3"
   # The six validation scenes rendered with the chosen and the exact level over 256 realisations.
-  "Checks/QuickBudget.VerdictAndControl/adequacy_choice_is_safe* 13"
+  "Checks/QuickBudget.VerdictAndControl/adequacy_choice_is_safe* 20"
   # The binomial boundary and the Kemppinen family's (k16_exact's CV crossing TAU on a ladder of
   # footprints at 12 cells).
-  "Checks/QuickBudget.VerdictAndControl/adequacy_prediction_matches_measurement* 14"
+  "Checks/QuickBudget.VerdictAndControl/adequacy_prediction_matches_measurement* 16"
   "Checks/QuickBudget.* 1"
   # Claims that share one measurement, run in one process (tests/verify/registry_test.cpp):
   # all.energy-gain, all.probability and all.variance on the stability sweep of every registered
@@ -100,7 +100,7 @@ set(glintlab_slow_tests
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::chermain_claims::KernelNormalized>> 1"
   # The adequacy claims at their probe sizes: the prediction's binomial and Kemppinen ladders, the
   # choice's validation scenes at 16² / 8² pixels.
-  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::adequacy_claims::PredictionMatchesMeasurement>> 9"
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::adequacy_claims::PredictionMatchesMeasurement>> 10"
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::adequacy_claims::ChoiceIsSafe>> 2"
   "ZirrKaplanyan.CountMeanAndVarianceMatchADirectlySimulatedBinomial 3"
   # The glintlab executable run end to end on a subcommand's quick budget (a figure, a sweep, a
@@ -109,6 +109,7 @@ set(glintlab_slow_tests
   "AdequacyTest.QuickRunWritesTableAndMaps 7"
   "AdequacyTest.AFailedMapChartIsOneLineAndNoMap 4"
   "AdequacyShardTest.MergedShardsAreTheFilesOfOneRun 30"
+  "AdequacyShardTest.AreaFamilyMergedIsTheFilesOfOneRun 30"
   "AdequacyShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 5"
   "AdequacyMapsFigureTest.QuickWritesSheetMapsCsvAndSummary 15"
   "AdequacySceneFigureTest.QuickWritesSheetExrCsvAndSummary 40"
