@@ -219,6 +219,18 @@ struct ChunkBuffers {
   RowGroups groups;
 };
 
+// Rows [0, n) in chunks of `rows` rows (a multiple of the CLI's kBatchChunk) on opts.threads
+// threads, f(begin, count): the CLI's loop (cli::for_each_chunk) run over the chunks' numbers, each
+// a range of kBatchChunk of its rows, so that the threads and their limit are the CLI's.
+void for_each_chunk_of(std::size_t n, std::size_t rows, const cli::BatchOptions& opts,
+                       const std::function<void(std::size_t begin, std::size_t count)>& f) {
+  const std::size_t chunks = (n + rows - 1) / rows;
+  cli::for_each_chunk(chunks * cli::kBatchChunk, opts, [&](std::size_t number, std::size_t) {
+    const std::size_t begin = number / cli::kBatchChunk * rows;
+    f(begin, std::min(rows, n - begin));
+  });
+}
+
 }  // namespace
 
 CallParams call_params(const ModelEntry& model, const py::object& params, std::size_t& rows,
@@ -289,7 +301,8 @@ void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams
   std::optional<std::pair<std::size_t, std::string>> first_bad;
   {
     py::gil_scoped_release release;
-    cli::for_each_chunk(n, opts, [&](std::size_t begin, std::size_t count) {
+    for_each_chunk_of(n, per_row_columns ? cli::kBatchChunk : kNumpyModelChunk, opts,
+                      [&](std::size_t begin, std::size_t count) {
       thread_local ChunkBuffers<S> b;
       std::vector<simd::Column<S>> inputs = chunk_columns<S>(q.columns, width, begin, count, b.gathered);
 

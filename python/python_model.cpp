@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <deque>
 #include <map>
@@ -80,21 +81,64 @@ std::string shape_text(const py::array& a) {
 
 // `result` checked as float64 of shape (n,) or (n, width) (width 0: one dimension), NaN-free;
 // its element (i, j) is then at(i, j).
+constexpr std::uint64_t kSignBit = 0x8000000000000000ULL;
+constexpr std::uint64_t kInfinityBits = 0x7ff0000000000000ULL;
+
 struct CheckedArray {
-  explicit CheckedArray(py::array a)
+  CheckedArray(py::array a, std::size_t n, std::size_t width)
       : array(std::move(a)),
         base(static_cast<const char*>(array.data())),
         row_stride(array.strides(0)),
-        column_stride(array.ndim() > 1 ? array.strides(1) : 0) {}
+        column_stride(array.ndim() > 1 ? array.strides(1) : 0),
+        columns(std::max<std::size_t>(width, 1)),
+        flat(n <= 1 ? columns == 1 || column_stride == py::ssize_t(sizeof(double))
+                    : row_stride == py::ssize_t(columns * sizeof(double)) &&
+                          (columns == 1 || column_stride == py::ssize_t(sizeof(double)))) {}
   py::array array;
   // The layout read once: at() runs on every element, without calls into numpy.
   const char* base;
   py::ssize_t row_stride, column_stride;
+  std::size_t columns;
+  // The n × columns values lie as one C-ordered block (numpy's usual result): read by the loops
+  // below at constant strides, which the compiler vectorises, rather than by at().
+  bool flat;
   double at(std::size_t i, std::size_t j = 0) const {
     const char* p = base + py::ssize_t(i) * row_stride + py::ssize_t(j) * column_stride;
     double v;
     std::memcpy(&v, p, sizeof v);
     return v;
+  }
+  bool any_nan(std::size_t n) const {
+    bool nan = false;
+    if (flat) {
+      // On the bits, so that the loop vectorises (a reduction over bool does not): |v| above
+      // infinity's pattern is a NaN, and 0x7ff0... - |v| then has its sign bit set.
+      std::uint64_t above = 0;
+      for (std::size_t k = 0; k < n * columns; ++k) {
+        std::uint64_t b;
+        std::memcpy(&b, base + k * sizeof(double), sizeof b);
+        above |= kInfinityBits - (b & ~kSignBit);
+      }
+      nan = (above & kSignBit) != 0;
+    } else {
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < columns; ++j) nan |= std::isnan(at(i, j));
+    }
+    return nan;
+  }
+  // Column j of rows [0, n) into out, as S.
+  template <class S>
+  void copy_column(std::size_t j, S* out, std::size_t n) const {
+    if (flat) {
+      const char* p = base + j * sizeof(double);
+      for (std::size_t i = 0; i < n; ++i) {
+        double v;
+        std::memcpy(&v, p + i * columns * sizeof(double), sizeof v);
+        out[i] = static_cast<S>(v);
+      }
+    } else {
+      for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<S>(at(i, j));
+    }
   }
 };
 
@@ -117,15 +161,11 @@ CheckedArray checked_array(const PythonModel& m, std::string_view function, cons
                                          std::size_t(a.shape(1)) == width;
   if (!shape_ok)
     fail(m, function, fmt::format("returned {} of shape {} (valid: {})", what, shape_text(a), want));
-  CheckedArray c{a};
+  CheckedArray c{a, n, width};
   // One branch-free pass; the row of the first NaN looked for only when there is one.
-  const std::size_t columns = std::max<std::size_t>(width, 1);
-  bool any_nan = false;
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < columns; ++j) any_nan |= std::isnan(c.at(i, j));
-  if (any_nan)
+  if (c.any_nan(n))
     for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = 0; j < columns; ++j)
+      for (std::size_t j = 0; j < c.columns; ++j)
         if (std::isnan(c.at(i, j))) {
           fail(m, function, fmt::format("returned NaN in {} at row {} of {} (valid: numbers, no NaN)",
                                         what, i, n));
@@ -253,10 +293,8 @@ void python_eval_rows(const PythonModel& m, const std::vector<double>& params,
   const CheckedArray v = checked_array(m, "eval", "its value", value, n);
   const py::object pdf = call(m, "pdf", m.pdf, q, p);
   const CheckedArray d = checked_array(m, "pdf", "its pdf", pdf, n);
-  for (std::size_t i = 0; i < n; ++i) {
-    outputs[0][i] = static_cast<S>(v.at(i));
-    outputs[1][i] = static_cast<S>(d.at(i));
-  }
+  v.copy_column(0, outputs[0], n);
+  d.copy_column(0, outputs[1], n);
 }
 
 template <class S>
@@ -295,11 +333,10 @@ void python_sample_rows(const PythonModel& m, const std::vector<double>& params,
     for (std::size_t i = 0; i < n; ++i)
       rejected[i] = *reinterpret_cast<const bool*>(base + py::ssize_t(i) * a.strides(0));
   }
-  for (std::size_t i = 0; i < n; ++i) {
-    const double row[6] = {wo.at(i, 0), wo.at(i, 1), wo.at(i, 2),
-                           pdf.at(i),   weight.at(i), rejected[i] ? 1.0 : 0.0};
-    for (std::size_t k = 0; k < 6; ++k) outputs[k][i] = static_cast<S>(row[k]);
-  }
+  for (std::size_t k = 0; k < 3; ++k) wo.copy_column(k, outputs[k], n);
+  pdf.copy_column(0, outputs[3], n);
+  weight.copy_column(0, outputs[4], n);
+  for (std::size_t i = 0; i < n; ++i) outputs[5][i] = rejected[i] ? S(1) : S(0);
 }
 
 template void python_eval_rows<float>(const PythonModel&, const std::vector<double>&,

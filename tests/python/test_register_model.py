@@ -73,9 +73,13 @@ def test_called_per_chunk():
 
     glintlab.register_model("py_counted", ev, nm.lambert_pdf, nm.lambert_sample,
                             params=[nm.ALBEDO])
-    glintlab.eval("py_counted", WI, directions(10000), threads=1)
-    # The CLI's chunks of 4096 rows: one call of eval per chunk, never one per row.
-    assert sorted(calls) == [1808, 4096, 4096]
+    glintlab.eval("py_counted", WI, directions(40000), threads=1)
+    # A numpy model's chunks of 16384 rows (four of the CLI's): one call of eval per chunk, never
+    # one per row.
+    assert sorted(calls) == [7232, 16384, 16384]
+    calls.clear()
+    glintlab.eval("py_counted", WI, directions(40000), threads=2)
+    assert sorted(calls) == [7232, 16384, 16384]
 
 
 def register_broken(name, **overrides):
