@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -44,10 +45,18 @@ cli::BatchOptions batch_options(const std::string& precision, const pybind11::ob
 // the extra columns (sample's uniforms), `count` rows each (stride 0 or 1); `outputs` count rows
 // each; `params` a column per parameter (resolve_params order): stride 0 for a value of every row,
 // stride 1 for a per-row array's values (only where run_chunks is told the work takes them).
+// `storage`: the memory a chunk's gathered input columns lie in when the chunk gives it away (a
+// numpy model's chunks, so that its functions can hold views of it), else empty.
+struct ChunkStorage {
+  std::shared_ptr<const void> owner;
+  const void* begin = nullptr;
+  const void* end = nullptr;
+};
 template <class S>
 using BatchFn = std::function<void(std::span<const simd::Column<S>> inputs,
                                    std::span<S* const> outputs, std::size_t count,
-                                   std::span<const simd::Column<double>> params)>;
+                                   std::span<const simd::Column<double>> params,
+                                   const ChunkStorage& storage)>;
 // Writes the extra input columns of rows [begin, begin + count): extra[k][i] for row begin + i.
 template <class S>
 using ExtraFn =
