@@ -64,9 +64,16 @@ using ExtraFn =
 // A check of row `row` besides eval --model's (sample's uniforms): the message, or nothing.
 using RowCheck = std::function<std::optional<std::string>(std::size_t row)>;
 
+// The rows of a chunk of a numpy model's call (four of the CLI's chunks): each call of its
+// functions costs the interpreter and numpy's dispatch a fixed time, about as long as the
+// numpy Lambertian's work on 4096 rows (its two functions on 10^6 rows: 1.6 ms in one call,
+// 3.4 ms in chunks of 4096, 2.1 ms in chunks of 16384); at 16384 rows the six direction columns
+// of a chunk (768 KiB) still fit a core's cache between the check and the functions.
+inline constexpr std::size_t kNumpyModelChunk = 4 * cli::kBatchChunk;
+
 // Rows [0, n) in the CLI's chunks (a numpy model's: kNumpyModelChunk) on opts.threads threads,
-// the GIL released. Each chunk: its
-// query columns read in place or gathered from the arrays' strides (chunk_columns), its rows
+// the GIL released. Each chunk: its query columns read in place or gathered from the arrays'
+// strides (chunk_columns; a numpy model's into storage given to f), its rows
 // checked as eval --model checks them by a pass over those columns (the exact row checks, and
 // their message, run only for a chunk where that pass finds a row that may be bad; the first bad
 // row, lowest index, becomes a ValueError after the loop), then f. With `per_row_columns` (the
@@ -79,12 +86,6 @@ using RowCheck = std::function<std::optional<std::string>(std::size_t row)>;
 // `unit_interval`: sources whose values extra_check requires in [0, 1) (sample's given
 // uniforms), tested by a pass over each chunk's rows, so that extra_check runs row by row only in
 // a chunk where that pass finds a value outside (or where the model has rules of its own).
-// The rows of a chunk of a numpy model's call (four of the CLI's chunks): each call of its
-// functions costs the interpreter and numpy's dispatch a fixed time, a tenth of the work of 4096
-// rows of a few ufuncs; at 16384 rows the chunk's columns (six directions, 768 KiB) still stay in
-// a core's cache between the check and the functions.
-inline constexpr std::size_t kNumpyModelChunk = 4 * cli::kBatchChunk;
-
 template <class S>
 void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams& p,
                 const cli::BatchOptions& opts, std::size_t width, std::span<S* const> outputs,

@@ -17,8 +17,16 @@ repeats of:
   numpy_model_eval        the same model registered (glintlab.register_model) and run by
                           glintlab.eval in chunks, one thread
 
+and, in "numpy_model_cases" (beside "cases", whose names the smoke test fixes):
+
+  numpy_model_direct_copying     the direct call on contiguous copies of the columns made in the
+                                 timed call (np.ascontiguousarray of each column view)
+  numpy_model_eval_f_1thread     glintlab.eval of the registered model on Fortran-ordered input
+                                 (its columns passed to the functions where they lie), one thread
+  numpy_model_eval_all_cores     glintlab.eval of it on the C-ordered input, all cores
+
 and the ratios of interest (Python eval over eval_batch; the numpy model's chunked calls over
-its direct calls). The cases take turns in each repeat, so that a shared machine's changing load
+its direct calls; "numpy_model_ratios" those of the numpy_model_cases). The cases take turns in each repeat, so that a shared machine's changing load
 reaches them alike. Speed is measured here, never asserted: tests/python runs this in its smoke
 mode (--rows 1000 --repeats 1) and checks the JSON's shape only. docs/python.md "Speed of eval
 from Python" holds the numbers.
@@ -140,6 +148,12 @@ def main():
     def direct_contiguous():
         return lambert_eval(columns, p), lambert_pdf(columns, p)
 
+    def direct_copying():
+        q = {"wi_x": np.ascontiguousarray(wi[:, 0]), "wi_y": np.ascontiguousarray(wi[:, 1]),
+             "wi_z": np.ascontiguousarray(wi[:, 2]), "wo_x": np.ascontiguousarray(wo[:, 0]),
+             "wo_y": np.ascontiguousarray(wo[:, 1]), "wo_z": np.ascontiguousarray(wo[:, 2])}
+        return lambert_eval(q, p), lambert_pdf(q, p)
+
     cases = round_robin({
         "cpp_eval_batch": cpp_eval_batch,
         "python_eval_c_1thread": py_eval(wi, wo),
@@ -151,10 +165,21 @@ def main():
         "numpy_model_direct": direct,
         "numpy_model_direct_contiguous": direct_contiguous,
         "numpy_model_eval_1thread": lambda: glintlab.eval(name, wi, wo, threads=1),
+        "numpy_model_direct_copying": direct_copying,
+        "numpy_model_eval_f_1thread": lambda: glintlab.eval(name, wi_f, wo_f, threads=1),
+        "numpy_model_eval_all_cores": lambda: glintlab.eval(name, wi, wo, threads=None),
     }, a.repeats)
+    numpy_model_cases = {k: cases.pop(k) for k in ("numpy_model_direct_copying",
+                                                    "numpy_model_eval_f_1thread",
+                                                    "numpy_model_eval_all_cores")}
 
-    median = {k: statistics.median(v) for k, v in cases.items()}
+    median = {k: statistics.median(v) for k, v in {**cases, **numpy_model_cases}.items()}
     ref = median["cpp_eval_batch"]
+
+    def timed(group):
+        return {k: {"seconds": v, "median_s": median[k], "us_per_1e6_rows": median[k] / n * 1e12}
+                for k, v in group.items()}
+
     result = {
         "benchmark": "python_eval",
         "machine": {"cpu": cpu_name(), "cores": os.cpu_count(), "python": platform.python_version(),
@@ -164,9 +189,8 @@ def main():
         "model": model,
         "rows": n,
         "repeats": a.repeats,
-        "cases": {k: {"seconds": v, "median_s": median[k],
-                      "us_per_1e6_rows": median[k] / n * 1e12}
-                  for k, v in cases.items()},
+        "cases": timed(cases),
+        "numpy_model_cases": timed(numpy_model_cases),
         "ratios": {
             "python_eval_c_1thread_over_cpp": median["python_eval_c_1thread"] / ref,
             "python_eval_c_over_cpp": median["python_eval_c"] / ref,
@@ -178,11 +202,19 @@ def main():
             "numpy_model_chunked_over_direct_contiguous":
                 median["numpy_model_eval_1thread"] / median["numpy_model_direct_contiguous"],
         },
+        "numpy_model_ratios": {
+            "chunked_over_direct_copying":
+                median["numpy_model_eval_1thread"] / median["numpy_model_direct_copying"],
+            "chunked_f_over_direct_contiguous":
+                median["numpy_model_eval_f_1thread"] / median["numpy_model_direct_contiguous"],
+            "chunked_all_cores_over_direct_contiguous":
+                median["numpy_model_eval_all_cores"] / median["numpy_model_direct_contiguous"],
+        },
     }
     with open(a.out, "w") as f:
         json.dump(result, f, indent=1)
         f.write("\n")
-    for k, v in result["ratios"].items():
+    for k, v in {**result["ratios"], **result["numpy_model_ratios"]}.items():
         print(f"{k}: {v:.2f}")
     return 0
 
