@@ -32,6 +32,9 @@ struct PythonModel {
   PyObject* sample = nullptr;
   std::vector<std::size_t> columns;  // the kQueryLayout columns passed to the callables
   std::vector<std::string> param_names;
+  // The dict keys of columns and param_names as Python strings, made once (borrowed for the life
+  // of the process, as the functions are).
+  std::vector<PyObject*> column_keys, param_keys;
 };
 
 namespace {
@@ -53,7 +56,7 @@ std::map<std::string, const PythonModel*, std::less<>>& python_models() {
 
 py::dict params_dict(const PythonModel& m, const std::vector<double>& values) {
   py::dict d;
-  for (std::size_t k = 0; k < m.param_names.size(); ++k) d[py::str(m.param_names[k])] = values[k];
+  for (std::size_t k = 0; k < m.param_keys.size(); ++k) d[py::handle(m.param_keys[k])] = values[k];
   return d;
 }
 
@@ -75,9 +78,10 @@ py::dict query_dict(const PythonModel& m, std::span<const simd::Column<S>> query
   static const S kZero = 0;  // a corner column the caller did not give
   py::dict d;
   py::object storage;  // the capsule keeping owners.storage alive, made for the first view into it
-  for (std::size_t c : m.columns) {
+  for (std::size_t k = 0; k < m.columns.size(); ++k) {
+    const std::size_t c = m.columns[k];
     const simd::Column<S> col = c < query.size() ? query[c] : simd::Column<S>{&kZero, 0};
-    const py::str key(std::string(kQueryLayout[c].name));
+    const py::handle key = m.column_keys[k];
     if (std::is_same_v<S, double> && col.stride == 1 && n > 0) {
       // A contiguous float64 column where it lies: a view of its owner's memory.
       py::handle base;
@@ -200,23 +204,28 @@ struct CheckedArray {
 // `result` checked as float64 of shape (n,) or (n, width) (width 0: one dimension).
 CheckedArray checked_shape(const PythonModel& m, std::string_view function, const std::string& what,
                            const py::handle& result, std::size_t n, std::size_t width) {
-  const std::string want =
-      width == 0 ? fmt::format("float64 of shape ({},)", n) : fmt::format("float64 of shape ({}, {})", n, width);
+  const auto want = [&] {
+    return width == 0 ? fmt::format("float64 of shape ({},)", n)
+                      : fmt::format("float64 of shape ({}, {})", n, width);
+  };
   if (!py::isinstance<py::array>(result)) {
     fail(m, function, fmt::format("returned {} of type {} (valid: a numpy array, {})", what,
-                                  std::string(py::str(py::type::handle_of(result).attr("__name__"))), want));
+                                  std::string(py::str(py::type::handle_of(result).attr("__name__"))), want()));
   }
   const auto a = py::reinterpret_borrow<py::array>(result);
   const py::dtype dt = a.dtype();
-  if (dt.kind() != 'f' || dt.itemsize() != 8 || !py::cast<bool>(dt.attr("isnative"))) {
+  const char order = dt.byteorder();
+  const bool native = order == '=' || order == '|' ||
+                      order == (std::endian::native == std::endian::little ? '<' : '>');
+  if (dt.kind() != 'f' || dt.itemsize() != 8 || !native) {
     fail(m, function, fmt::format("returned {} of dtype {} (valid: {})", what,
-                                  std::string(py::str(py::handle(dt))), want));
+                                  std::string(py::str(py::handle(dt))), want()));
   }
   const bool shape_ok = width == 0 ? a.ndim() == 1 && std::size_t(a.shape(0)) == n
                                    : a.ndim() == 2 && std::size_t(a.shape(0)) == n &&
                                          std::size_t(a.shape(1)) == width;
   if (!shape_ok)
-    fail(m, function, fmt::format("returned {} of shape {} (valid: {})", what, shape_text(a), want));
+    fail(m, function, fmt::format("returned {} of shape {} (valid: {})", what, shape_text(a), want()));
   return CheckedArray{a, n, width};
 }
 
@@ -549,6 +558,10 @@ void register_python_model(const std::string& name, const py::object& eval, cons
   Py_INCREF(m->eval);
   Py_INCREF(m->pdf);
   Py_INCREF(m->sample);
+  for (std::size_t c : m->columns)
+    m->column_keys.push_back(py::str(std::string(kQueryLayout[c].name)).release().ptr());
+  for (const std::string& param : m->param_names)
+    m->param_keys.push_back(py::str(param).release().ptr());
   python_models().emplace(name, m);
 }
 
