@@ -108,10 +108,11 @@ ColumnOwners column_owners(const QuerySources& q, std::span<const simd::Column<S
   arrays.assign(cols.size(), nullptr);
   for (std::size_t c = 0; c < cols.size() && c < q.columns.size(); ++c) {
     const ColumnSource& s = q.columns[c];
-    const auto* first = static_cast<const S*>(s.data);
-    if (s.in_place<S>() && cols[c].stride == 1 && cols[c].data >= first &&
-        cols[c].data < first + q.rows)
-      arrays[c] = s.owner;
+    if (!s.in_place<S>() || cols[c].stride != 1) continue;
+    // Addresses compared as integers: a gathered column lies in another allocation.
+    const auto at = reinterpret_cast<std::uintptr_t>(cols[c].data);
+    const auto first = reinterpret_cast<std::uintptr_t>(s.data);
+    if (at >= first && at < first + q.rows * sizeof(S)) arrays[c] = s.owner;
   }
   return ColumnOwners{arrays, storage.owner, storage.begin, storage.end};
 }
