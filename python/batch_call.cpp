@@ -105,19 +105,37 @@ std::optional<std::pair<std::size_t, std::string>> first_bad_row(
 constexpr double kUnitSquaredLo = (1 - cli::kUnitTolerance) * (1 - cli::kUnitTolerance) * (1 + 1e-9);
 constexpr double kUnitSquaredHi = (1 + cli::kUnitTolerance) * (1 + cli::kUnitTolerance) * (1 - 1e-9);
 
-// Whether |(x, y, z)|^2 of each row lies in [kLo, kHi] (NaN and infinity do not).
+constexpr std::uint64_t kSignBit = 0x8000000000000000ULL;
+constexpr std::uint64_t kInfinityBits = 0x7ff0000000000000ULL;
+
+// Whether |(x, y, z)|^2 of each row lies in [kUnitSquaredLo, kUnitSquaredHi] (NaN and infinity do
+// not). On the bits, so that the loop vectorises (a reduction over bool does not): for the
+// squared length's pattern u and the bounds' patterns lo <= hi (positive doubles order as their
+// patterns), u - lo and hi - u both have their sign bit clear exactly when lo <= u <= hi, for
+// every pattern (NaN of either sign, infinity and -0 included).
 template <bool kContiguous>
 bool squared_lengths_in_bounds(const simd::Column<double>& x, const simd::Column<double>& y,
                                const simd::Column<double>& z, std::size_t count) {
+  constexpr std::uint64_t lo = std::bit_cast<std::uint64_t>(kUnitSquaredLo);
+  constexpr std::uint64_t hi = std::bit_cast<std::uint64_t>(kUnitSquaredHi);
   const std::size_t sx = kContiguous ? 1 : x.stride, sy = kContiguous ? 1 : y.stride,
                     sz = kContiguous ? 1 : z.stride;
-  bool out = false;
+  std::uint64_t out = 0;
   for (std::size_t i = 0; i < count; ++i) {
     const double a = x.data[sx * i], b = y.data[sy * i], c = z.data[sz * i];
-    const double s = a * a + b * b + c * c;
-    out |= !(s >= kUnitSquaredLo) | !(s <= kUnitSquaredHi);
+    const std::uint64_t u = std::bit_cast<std::uint64_t>(a * a + b * b + c * c);
+    out |= (u - lo) | (hi - u);
   }
-  return !out;
+  return (out & kSignBit) == 0;
+}
+
+// Whether every value of a column is finite (on the bits, as above: |v|'s pattern minus
+// infinity's has its sign bit set exactly when v is finite).
+bool all_finite(const simd::Column<double>& c, std::size_t count) {
+  std::uint64_t not_finite = 0;
+  for (std::size_t i = 0; i < count; ++i)
+    not_finite |= ~((std::bit_cast<std::uint64_t>(c.data[i]) & ~kSignBit) - kInfinityBits);
+  return (not_finite & kSignBit) == 0;
 }
 
 // Whether every row of a chunk surely passes check_query_row's rules besides the model's own
@@ -129,7 +147,6 @@ bool squared_lengths_in_bounds(const simd::Column<double>& x, const simd::Column
 // any rounding (and is finite), and a row near the bound goes to the exact checks (which then
 // pass or name it).
 bool rows_surely_valid(std::span<const simd::Column<double>> cols, std::size_t count) {
-  constexpr double kMax = std::numeric_limits<double>::max();
   const auto rows_of = [count](const simd::Column<double>& c) { return c.stride == 0 ? 1 : count; };
   bool bad = false;
   std::vector<bool> direction(cols.size(), false);
@@ -146,12 +163,8 @@ bool rows_surely_valid(std::span<const simd::Column<double>> cols, std::size_t c
   for (std::size_t first = simd::kQueryColumns.size(); first + 2 < cols.size(); first += 3)
     unit(first);
   // Finite: the columns the unit tests did not already cover.
-  for (std::size_t j = 0; j < cols.size(); ++j) {
-    if (direction[j]) continue;
-    const simd::Column<double>& c = cols[j];
-    const std::size_t n = rows_of(c);
-    for (std::size_t i = 0; i < n; ++i) bad |= !(std::abs(c.data[i]) <= kMax);
-  }
+  for (std::size_t j = 0; j < cols.size(); ++j)
+    if (!direction[j]) bad |= !all_finite(cols[j], rows_of(cols[j]));
   const simd::Column<double>& cos = cols[query_column_index("light_cos_half_angle")];
   for (std::size_t i = 0; i < rows_of(cos); ++i)
     bad |= !(cos.data[i] >= -1) | !(cos.data[i] <= 1);
@@ -218,6 +231,18 @@ struct ChunkBuffers {
   std::vector<double> check, param_rows;
   RowGroups groups;
 };
+
+// Rows [0, n) in chunks of `rows` rows (a multiple of the CLI's kBatchChunk) on opts.threads
+// threads, f(begin, count): the CLI's loop (cli::for_each_chunk) run over the chunks' numbers, each
+// a range of kBatchChunk of its rows, so that the threads and their limit are the CLI's.
+void for_each_chunk_of(std::size_t n, std::size_t rows, const cli::BatchOptions& opts,
+                       const std::function<void(std::size_t begin, std::size_t count)>& f) {
+  const std::size_t chunks = (n + rows - 1) / rows;
+  cli::for_each_chunk(chunks * cli::kBatchChunk, opts, [&](std::size_t number, std::size_t) {
+    const std::size_t begin = number / cli::kBatchChunk * rows;
+    f(begin, std::min(rows, n - begin));
+  });
+}
 
 }  // namespace
 
@@ -289,9 +314,23 @@ void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams
   std::optional<std::pair<std::size_t, std::string>> first_bad;
   {
     py::gil_scoped_release release;
-    cli::for_each_chunk(n, opts, [&](std::size_t begin, std::size_t count) {
+    for_each_chunk_of(n, per_row_columns ? cli::kBatchChunk : kNumpyModelChunk, opts,
+                      [&](std::size_t begin, std::size_t count) {
       thread_local ChunkBuffers<S> b;
-      std::vector<simd::Column<S>> inputs = chunk_columns<S>(q.columns, width, begin, count, b.gathered);
+      // A numpy model's chunk gathers into memory of its own, which its functions get views of
+      // (python_model.h, ColumnOwners); the batches' into the thread's buffer.
+      ChunkStorage storage;
+      S* gather_into = nullptr;
+      if (per_row_columns) {
+        if (b.gathered.size() < width * count) b.gathered.resize(width * count);
+        gather_into = b.gathered.data();
+      } else {
+        std::shared_ptr<S[]> block(new S[width * count]);
+        gather_into = block.get();
+        storage = {block, block.get(), block.get() + width * count};
+      }
+      std::vector<simd::Column<S>> inputs =
+          chunk_columns<S>(q.columns, width, begin, count, gather_into);
 
       // The rules of check_query_row on the chunk's columns; the model's own (validate) and a
       // caller's extra check other than the unit interval's are per row, so they take the exact
@@ -342,7 +381,7 @@ void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams
         for (std::size_t c = 0; c < inputs.size(); ++c)
           at[c] = {inputs[c].data + inputs[c].stride * first, inputs[c].stride};
         for (std::size_t o = 0; o < n_out; ++o) out[o] = outputs[o] + begin + first;
-        f(at, out, rows, param_columns);
+        f(at, out, rows, param_columns, storage);
       };
       if (p.per_row.empty()) {
         in_place(0, count);
@@ -376,7 +415,7 @@ void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams
           at[c] = {dst, 1};
         }
         for (std::size_t o = 0; o < n_out; ++o) out[o] = b.group_out.data() + o * size;
-        f(at, out, size, param_columns);
+        f(at, out, size, param_columns, storage);
         for (std::size_t o = 0; o < n_out; ++o)
           for (std::size_t i = 0; i < size; ++i) outputs[o][begin + rows[i]] = out[o][i];
       }

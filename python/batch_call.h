@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -44,10 +45,18 @@ cli::BatchOptions batch_options(const std::string& precision, const pybind11::ob
 // the extra columns (sample's uniforms), `count` rows each (stride 0 or 1); `outputs` count rows
 // each; `params` a column per parameter (resolve_params order): stride 0 for a value of every row,
 // stride 1 for a per-row array's values (only where run_chunks is told the work takes them).
+// `storage`: the memory a chunk's gathered input columns lie in when the chunk gives it away (a
+// numpy model's chunks, so that its functions can hold views of it), else empty.
+struct ChunkStorage {
+  std::shared_ptr<const void> owner;
+  const void* begin = nullptr;
+  const void* end = nullptr;
+};
 template <class S>
 using BatchFn = std::function<void(std::span<const simd::Column<S>> inputs,
                                    std::span<S* const> outputs, std::size_t count,
-                                   std::span<const simd::Column<double>> params)>;
+                                   std::span<const simd::Column<double>> params,
+                                   const ChunkStorage& storage)>;
 // Writes the extra input columns of rows [begin, begin + count): extra[k][i] for row begin + i.
 template <class S>
 using ExtraFn =
@@ -55,8 +64,16 @@ using ExtraFn =
 // A check of row `row` besides eval --model's (sample's uniforms): the message, or nothing.
 using RowCheck = std::function<std::optional<std::string>(std::size_t row)>;
 
-// Rows [0, n) in the CLI's chunks on opts.threads threads, the GIL released. Each chunk: its
-// query columns read in place or gathered from the arrays' strides (chunk_columns), its rows
+// The rows of a chunk of a numpy model's call (four of the CLI's chunks): each call of its
+// functions costs the interpreter and numpy's dispatch a fixed time, about as long as the
+// numpy Lambertian's work on 4096 rows (its two functions on 10^6 rows: 1.6 ms in one call,
+// 3.4 ms in chunks of 4096, 2.1 ms in chunks of 16384); at 16384 rows the six direction columns
+// of a chunk (768 KiB) still fit a core's cache between the check and the functions.
+inline constexpr std::size_t kNumpyModelChunk = 4 * cli::kBatchChunk;
+
+// Rows [0, n) in the CLI's chunks (a numpy model's: kNumpyModelChunk) on opts.threads threads,
+// the GIL released. Each chunk: its query columns read in place or gathered from the arrays'
+// strides (chunk_columns; a numpy model's into storage given to f), its rows
 // checked as eval --model checks them by a pass over those columns (the exact row checks, and
 // their message, run only for a chunk where that pass finds a row that may be bad; the first bad
 // row, lowest index, becomes a ValueError after the loop), then f. With `per_row_columns` (the

@@ -100,6 +100,23 @@ std::vector<double> uniform_values(std::span<const simd::Column<double>> params)
   return values;
 }
 
+// Where a numpy model's chunk columns lie (python_model.h, ColumnOwners): a column read in place
+// lies in the caller's array (its source's owner), a gathered one in the chunk's storage.
+template <class S>
+ColumnOwners column_owners(const QuerySources& q, std::span<const simd::Column<S>> cols,
+                           const ChunkStorage& storage, std::vector<PyObject*>& arrays) {
+  arrays.assign(cols.size(), nullptr);
+  for (std::size_t c = 0; c < cols.size() && c < q.columns.size(); ++c) {
+    const ColumnSource& s = q.columns[c];
+    if (!s.in_place<S>() || cols[c].stride != 1) continue;
+    // Addresses compared as integers: a gathered column lies in another allocation.
+    const auto at = reinterpret_cast<std::uintptr_t>(cols[c].data);
+    const auto first = reinterpret_cast<std::uintptr_t>(s.data);
+    if (at >= first && at < first + q.rows * sizeof(S)) arrays[c] = s.owner;
+  }
+  return ColumnOwners{arrays, storage.owner, storage.begin, storage.end};
+}
+
 // The number of query columns the batch calls take for this model (with the corners or not).
 std::size_t query_width(const ModelEntry& m) {
   return (m.needs & kNeedsPixelCorners) != 0 ? simd::kQueryColumnsWithCorners
@@ -119,10 +136,12 @@ py::dict eval_in(const ModelEntry& model, const QuerySources& q, const CallParam
   run_chunks<S>(
       model, q, p, opts, width, out_data,
       [&](std::span<const simd::Column<S>> cols, std::span<S* const> o, std::size_t count,
-          std::span<const simd::Column<double>> params) {
-        if (numpy_model)  // one call per chunk (per set of its rows with equal parameters)
-          python_eval_rows<S>(*numpy_model, uniform_values(params), cols, o, count);
-        else
+          std::span<const simd::Column<double>> params, const ChunkStorage& storage) {
+        if (numpy_model) {  // one call per chunk (per set of its rows with equal parameters)
+          std::vector<PyObject*> arrays;
+          python_eval_rows<S>(*numpy_model, uniform_values(params), cols, o, count,
+                              column_owners<S>(q, cols, storage, arrays));
+        } else
           simd::eval_batch_with_param_columns(model, params, cols, o, count, opts.isa, opts.math);
       },
       numpy_model == nullptr);
@@ -173,12 +192,14 @@ py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallPar
   run_chunks<S>(
       model, q, p, opts, width, std::span<S* const>(out_data),
       [&](std::span<const simd::Column<S>> in, std::span<S* const> o, std::size_t count,
-          std::span<const simd::Column<double>> params) {
+          std::span<const simd::Column<double>> params, const ChunkStorage& storage) {
         const auto cols = in.first(width);
-        if (numpy_model)
+        if (numpy_model) {
+          std::vector<PyObject*> arrays;
           python_sample_rows<S>(*numpy_model, uniform_values(params), cols, in[width],
-                                in[width + 1], o, count);
-        else
+                                in[width + 1], o, count,
+                                column_owners<S>(q, cols, storage, arrays));
+        } else
           simd::sample_batch_with_param_columns(model, params, cols, in[width], in[width + 1], o,
                                                 count, opts.isa, opts.math);
       },

@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <deque>
 #include <map>
@@ -30,6 +32,9 @@ struct PythonModel {
   PyObject* sample = nullptr;
   std::vector<std::size_t> columns;  // the kQueryLayout columns passed to the callables
   std::vector<std::string> param_names;
+  // The dict keys of columns and param_names as Python strings, made once (borrowed for the life
+  // of the process, as the functions are).
+  std::vector<PyObject*> column_keys, param_keys;
 };
 
 namespace {
@@ -51,23 +56,58 @@ std::map<std::string, const PythonModel*, std::less<>>& python_models() {
 
 py::dict params_dict(const PythonModel& m, const std::vector<double>& values) {
   py::dict d;
-  for (std::size_t k = 0; k < m.param_names.size(); ++k) d[py::str(m.param_names[k])] = values[k];
+  for (std::size_t k = 0; k < m.param_keys.size(); ++k) d[py::handle(m.param_keys[k])] = values[k];
   return d;
 }
 
+// A read-only array (q's arrays are the model's inputs, never its scratch space).
+py::array read_only(py::array a) {
+  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return a;
+}
+
+// Whether p lies in [begin, end).
+bool within(const void* p, const void* begin, const void* end) {
+  const auto at = reinterpret_cast<std::uintptr_t>(p);
+  return at >= reinterpret_cast<std::uintptr_t>(begin) && at < reinterpret_cast<std::uintptr_t>(end);
+}
+
 template <class S>
-py::dict query_dict(const PythonModel& m, std::span<const simd::Column<S>> query, std::size_t n) {
+py::dict query_dict(const PythonModel& m, std::span<const simd::Column<S>> query, std::size_t n,
+                    const ColumnOwners& owners) {
   static const S kZero = 0;  // a corner column the caller did not give
   py::dict d;
-  for (std::size_t c : m.columns) {
+  py::object storage;  // the capsule keeping owners.storage alive, made for the first view into it
+  for (std::size_t k = 0; k < m.columns.size(); ++k) {
+    const std::size_t c = m.columns[k];
     const simd::Column<S> col = c < query.size() ? query[c] : simd::Column<S>{&kZero, 0};
+    const py::handle key = m.column_keys[k];
+    if (std::is_same_v<S, double> && col.stride == 1 && n > 0) {
+      // A contiguous float64 column where it lies: a view of its owner's memory.
+      py::handle base;
+      if (c < owners.arrays.size() && owners.arrays[c] != nullptr) {
+        base = owners.arrays[c];
+      } else if (owners.storage && within(col.data, owners.storage_begin, owners.storage_end)) {
+        if (!storage) {
+          storage = py::capsule(new std::shared_ptr<const void>(owners.storage), [](void* p) {
+            delete static_cast<std::shared_ptr<const void>*>(p);
+          });
+        }
+        base = storage;
+      }
+      if (base) {
+        d[key] = read_only(py::array(py::dtype::of<double>(), {py::ssize_t(n)}, {},
+                                     static_cast<const void*>(col.data), base));
+        continue;
+      }
+    }
     py::array_t<double> a(static_cast<py::ssize_t>(n));
     double* out = a.mutable_data();
     if (std::is_same_v<S, double> && col.stride == 1)
       std::memcpy(out, col.data, n * sizeof(double));
     else
       for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<double>(col.data[col.stride * i]);
-    d[py::str(std::string(kQueryLayout[c].name))] = a;
+    d[key] = read_only(std::move(a));
   }
   return d;
 }
@@ -78,59 +118,145 @@ std::string shape_text(const py::array& a) {
   return s + (a.ndim() == 1 ? ",)" : ")");
 }
 
-// `result` checked as float64 of shape (n,) or (n, width) (width 0: one dimension), NaN-free;
-// its element (i, j) is then at(i, j).
+constexpr std::uint64_t kSignBit = 0x8000000000000000ULL;
+constexpr std::uint64_t kInfinityBits = 0x7ff0000000000000ULL;
+
+// A result of float64 of shape (n,) or (n, width) (width 0: one dimension); its element (i, j)
+// is at(i, j).
 struct CheckedArray {
-  explicit CheckedArray(py::array a)
+  CheckedArray(py::array a, std::size_t n, std::size_t width)
       : array(std::move(a)),
         base(static_cast<const char*>(array.data())),
         row_stride(array.strides(0)),
-        column_stride(array.ndim() > 1 ? array.strides(1) : 0) {}
+        column_stride(array.ndim() > 1 ? array.strides(1) : 0),
+        columns(std::max<std::size_t>(width, 1)),
+        flat(n <= 1 ? columns == 1 || column_stride == py::ssize_t(sizeof(double))
+                    : row_stride == py::ssize_t(columns * sizeof(double)) &&
+                          (columns == 1 || column_stride == py::ssize_t(sizeof(double)))) {}
   py::array array;
   // The layout read once: at() runs on every element, without calls into numpy.
   const char* base;
   py::ssize_t row_stride, column_stride;
+  std::size_t columns;
+  // The n × columns values lie as one C-ordered block (numpy's usual result): read by the loops
+  // below at constant strides, which the compiler vectorises, rather than by at().
+  bool flat;
   double at(std::size_t i, std::size_t j = 0) const {
     const char* p = base + py::ssize_t(i) * row_stride + py::ssize_t(j) * column_stride;
     double v;
     std::memcpy(&v, p, sizeof v);
     return v;
   }
+  bool any_nan(std::size_t n) const {
+    bool nan = false;
+    if (flat) {
+      // On the bits, so that the loop vectorises (a reduction over bool does not): |v| above
+      // infinity's pattern is a NaN, and 0x7ff0... - |v| then has its sign bit set.
+      std::uint64_t above = 0;
+      for (std::size_t k = 0; k < n * columns; ++k) {
+        std::uint64_t b;
+        std::memcpy(&b, base + k * sizeof(double), sizeof b);
+        above |= kInfinityBits - (b & ~kSignBit);
+      }
+      nan = (above & kSignBit) != 0;
+    } else {
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < columns; ++j) nan |= std::isnan(at(i, j));
+    }
+    return nan;
+  }
+  // Every column j of rows [0, n) into outs[j], as S; whether a value was NaN. One pass over the
+  // values where they lie flat (the NaN test on the bits, as in any_nan).
+  template <class S>
+  bool copy_any_nan(std::span<S* const> outs, std::size_t n) const {
+    const auto pass = [&]<std::size_t kColumns>() {
+      std::uint64_t above = 0;
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < kColumns; ++j) {
+          double v;
+          std::memcpy(&v, base + (i * kColumns + j) * sizeof(double), sizeof v);
+          above |= kInfinityBits - (std::bit_cast<std::uint64_t>(v) & ~kSignBit);
+          outs[j][i] = static_cast<S>(v);
+        }
+      return (above & kSignBit) != 0;
+    };
+    if (flat && columns == 1) return pass.template operator()<1>();
+    if (flat && columns == 3) return pass.template operator()<3>();
+    for (std::size_t j = 0; j < columns; ++j) copy_column(j, outs[j], n);
+    return any_nan(n);
+  }
+  // Column j of rows [0, n) into out, as S.
+  template <class S>
+  void copy_column(std::size_t j, S* out, std::size_t n) const {
+    if (flat) {
+      const char* p = base + j * sizeof(double);
+      for (std::size_t i = 0; i < n; ++i) {
+        double v;
+        std::memcpy(&v, p + i * columns * sizeof(double), sizeof v);
+        out[i] = static_cast<S>(v);
+      }
+    } else {
+      for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<S>(at(i, j));
+    }
+  }
 };
 
-CheckedArray checked_array(const PythonModel& m, std::string_view function, const std::string& what,
-                           const py::handle& result, std::size_t n, std::size_t width = 0) {
-  const std::string want =
-      width == 0 ? fmt::format("float64 of shape ({},)", n) : fmt::format("float64 of shape ({}, {})", n, width);
+// `result` checked as float64 of shape (n,) or (n, width) (width 0: one dimension).
+CheckedArray checked_shape(const PythonModel& m, std::string_view function, const std::string& what,
+                           const py::handle& result, std::size_t n, std::size_t width) {
+  const auto want = [&] {
+    return width == 0 ? fmt::format("float64 of shape ({},)", n)
+                      : fmt::format("float64 of shape ({}, {})", n, width);
+  };
   if (!py::isinstance<py::array>(result)) {
     fail(m, function, fmt::format("returned {} of type {} (valid: a numpy array, {})", what,
-                                  std::string(py::str(py::type::handle_of(result).attr("__name__"))), want));
+                                  std::string(py::str(py::type::handle_of(result).attr("__name__"))), want()));
   }
   const auto a = py::reinterpret_borrow<py::array>(result);
   const py::dtype dt = a.dtype();
-  if (dt.kind() != 'f' || dt.itemsize() != 8 || !py::cast<bool>(dt.attr("isnative"))) {
+  const char order = dt.byteorder();
+  const bool native = order == '=' || order == '|' ||
+                      order == (std::endian::native == std::endian::little ? '<' : '>');
+  if (dt.kind() != 'f' || dt.itemsize() != 8 || !native) {
     fail(m, function, fmt::format("returned {} of dtype {} (valid: {})", what,
-                                  std::string(py::str(py::handle(dt))), want));
+                                  std::string(py::str(py::handle(dt))), want()));
   }
   const bool shape_ok = width == 0 ? a.ndim() == 1 && std::size_t(a.shape(0)) == n
                                    : a.ndim() == 2 && std::size_t(a.shape(0)) == n &&
                                          std::size_t(a.shape(1)) == width;
   if (!shape_ok)
-    fail(m, function, fmt::format("returned {} of shape {} (valid: {})", what, shape_text(a), want));
-  CheckedArray c{a};
-  // One branch-free pass; the row of the first NaN looked for only when there is one.
-  const std::size_t columns = std::max<std::size_t>(width, 1);
-  bool any_nan = false;
+    fail(m, function, fmt::format("returned {} of shape {} (valid: {})", what, shape_text(a), want()));
+  return CheckedArray{a, n, width};
+}
+
+// The row of the first NaN of `c` (which has one) as the function's error.
+[[noreturn]] void fail_nan(const PythonModel& m, std::string_view function, const std::string& what,
+                           const CheckedArray& c, std::size_t n) {
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < columns; ++j) any_nan |= std::isnan(c.at(i, j));
-  if (any_nan)
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = 0; j < columns; ++j)
-        if (std::isnan(c.at(i, j))) {
-          fail(m, function, fmt::format("returned NaN in {} at row {} of {} (valid: numbers, no NaN)",
-                                        what, i, n));
-        }
+    for (std::size_t j = 0; j < c.columns; ++j)
+      if (std::isnan(c.at(i, j))) {
+        fail(m, function, fmt::format("returned NaN in {} at row {} of {} (valid: numbers, no NaN)",
+                                      what, i, n));
+      }
+  fail(m, function, fmt::format("returned NaN in {} (valid: numbers, no NaN)", what));
+}
+
+// `result` checked by checked_shape and NaN-free (one branch-free pass; the row of the first NaN
+// looked for only when there is one).
+CheckedArray checked_array(const PythonModel& m, std::string_view function, const std::string& what,
+                           const py::handle& result, std::size_t n, std::size_t width = 0) {
+  CheckedArray c = checked_shape(m, function, what, result, n, width);
+  if (c.any_nan(n)) fail_nan(m, function, what, c, n);
   return c;
+}
+
+// `result` checked as checked_array checks it, its columns copied into outs (one pass).
+template <class S>
+void copy_checked(const PythonModel& m, std::string_view function, const std::string& what,
+                  const py::handle& result, std::size_t n, std::size_t width,
+                  std::span<S* const> outs) {
+  const CheckedArray c = checked_shape(m, function, what, result, n, width);
+  if (c.copy_any_nan(outs, n)) fail_nan(m, function, what, c, n);
 }
 
 // Calls one of the model's functions; a Python exception becomes PythonModelError (built while the
@@ -245,26 +371,21 @@ const PythonModel* python_model(const ModelEntry& entry) {
 template <class S>
 void python_eval_rows(const PythonModel& m, const std::vector<double>& params,
                       std::span<const simd::Column<S>> query, std::span<S* const> outputs,
-                      std::size_t n) {
+                      std::size_t n, const ColumnOwners& owners) {
   const py::gil_scoped_acquire gil;
-  const py::dict q = query_dict<S>(m, query, n);
+  const py::dict q = query_dict<S>(m, query, n, owners);
   const py::dict p = params_dict(m, params);
-  const py::object value = call(m, "eval", m.eval, q, p);
-  const CheckedArray v = checked_array(m, "eval", "its value", value, n);
-  const py::object pdf = call(m, "pdf", m.pdf, q, p);
-  const CheckedArray d = checked_array(m, "pdf", "its pdf", pdf, n);
-  for (std::size_t i = 0; i < n; ++i) {
-    outputs[0][i] = static_cast<S>(v.at(i));
-    outputs[1][i] = static_cast<S>(d.at(i));
-  }
+  copy_checked<S>(m, "eval", "its value", call(m, "eval", m.eval, q, p), n, 0, outputs.first(1));
+  copy_checked<S>(m, "pdf", "its pdf", call(m, "pdf", m.pdf, q, p), n, 0, outputs.subspan(1, 1));
 }
 
 template <class S>
 void python_sample_rows(const PythonModel& m, const std::vector<double>& params,
                         std::span<const simd::Column<S>> query, simd::Column<S> u1,
-                        simd::Column<S> u2, std::span<S* const> outputs, std::size_t n) {
+                        simd::Column<S> u2, std::span<S* const> outputs, std::size_t n,
+                        const ColumnOwners& owners) {
   const py::gil_scoped_acquire gil;
-  const py::dict q = query_dict<S>(m, query, n);
+  const py::dict q = query_dict<S>(m, query, n, owners);
   py::array_t<double> u({py::ssize_t(n), py::ssize_t(2)});
   double* ud = u.mutable_data();
   for (std::size_t i = 0; i < n; ++i) {
@@ -281,9 +402,9 @@ void python_sample_rows(const PythonModel& m, const std::vector<double>& params,
       fail(m, "sample", fmt::format("returned no '{}' (valid: a dict of wo (N, 3), pdf, weight "
                                     "and optionally rejected (N,) bool)",
                                     k));
-  const CheckedArray wo = checked_array(m, "sample", "its 'wo'", d["wo"], n, 3);
-  const CheckedArray pdf = checked_array(m, "sample", "its 'pdf'", d["pdf"], n);
-  const CheckedArray weight = checked_array(m, "sample", "its 'weight'", d["weight"], n);
+  copy_checked<S>(m, "sample", "its 'wo'", d["wo"], n, 3, outputs.first(3));
+  copy_checked<S>(m, "sample", "its 'pdf'", d["pdf"], n, 0, outputs.subspan(3, 1));
+  copy_checked<S>(m, "sample", "its 'weight'", d["weight"], n, 0, outputs.subspan(4, 1));
   std::vector<bool> rejected(n, false);
   if (d.contains("rejected")) {
     const py::object rej = d["rejected"];
@@ -295,26 +416,24 @@ void python_sample_rows(const PythonModel& m, const std::vector<double>& params,
     for (std::size_t i = 0; i < n; ++i)
       rejected[i] = *reinterpret_cast<const bool*>(base + py::ssize_t(i) * a.strides(0));
   }
-  for (std::size_t i = 0; i < n; ++i) {
-    const double row[6] = {wo.at(i, 0), wo.at(i, 1), wo.at(i, 2),
-                           pdf.at(i),   weight.at(i), rejected[i] ? 1.0 : 0.0};
-    for (std::size_t k = 0; k < 6; ++k) outputs[k][i] = static_cast<S>(row[k]);
-  }
+  for (std::size_t i = 0; i < n; ++i) outputs[5][i] = rejected[i] ? S(1) : S(0);
 }
 
 template void python_eval_rows<float>(const PythonModel&, const std::vector<double>&,
                                       std::span<const simd::Column<float>>, std::span<float* const>,
-                                      std::size_t);
+                                      std::size_t, const ColumnOwners&);
 template void python_eval_rows<double>(const PythonModel&, const std::vector<double>&,
                                        std::span<const simd::Column<double>>,
-                                       std::span<double* const>, std::size_t);
+                                       std::span<double* const>, std::size_t, const ColumnOwners&);
 template void python_sample_rows<float>(const PythonModel&, const std::vector<double>&,
                                         std::span<const simd::Column<float>>, simd::Column<float>,
-                                        simd::Column<float>, std::span<float* const>, std::size_t);
+                                        simd::Column<float>, std::span<float* const>, std::size_t,
+                                        const ColumnOwners&);
 template void python_sample_rows<double>(const PythonModel&, const std::vector<double>&,
                                          std::span<const simd::Column<double>>,
                                          simd::Column<double>, simd::Column<double>,
-                                         std::span<double* const>, std::size_t);
+                                         std::span<double* const>, std::size_t,
+                                         const ColumnOwners&);
 
 void register_python_model(const std::string& name, const py::object& eval, const py::object& pdf,
                            const py::object& sample, const py::object& params,
@@ -370,7 +489,7 @@ void register_python_model(const std::string& name, const py::object& eval, cons
     std::array<simd::Column<double>, kQueryLayout.size()> cols;
     for (std::size_t c = 0; c < cols.size(); ++c) cols[c] = {&row[c], 0};
     const py::gil_scoped_acquire gil;
-    const py::object r = call(*m, "pdf", m->pdf, query_dict<double>(*m, cols, 1),
+    const py::object r = call(*m, "pdf", m->pdf, query_dict<double>(*m, cols, 1, {}),
                               params_dict(*m, values));
     return checked_array(*m, "pdf", "its pdf", r, 1).at(0);
   };
@@ -406,7 +525,7 @@ void register_python_model(const std::string& name, const py::object& eval, cons
       std::array<simd::Column<double>, kQueryLayout.size()> cols;
       for (std::size_t c = 0; c < cols.size(); ++c) cols[c] = {&rows[0][c], kQueryLayout.size()};
       const py::gil_scoped_acquire gil;
-      const py::object r = call(*m, "pdf", m->pdf, query_dict<double>(*m, cols, qs.size()),
+      const py::object r = call(*m, "pdf", m->pdf, query_dict<double>(*m, cols, qs.size(), {}),
                                 params_dict(*m, values));
       const CheckedArray a = checked_array(*m, "pdf", "its pdf", r, qs.size());
       for (std::size_t i = 0; i < qs.size(); ++i) out[i] = a.at(i);
@@ -439,6 +558,10 @@ void register_python_model(const std::string& name, const py::object& eval, cons
   Py_INCREF(m->eval);
   Py_INCREF(m->pdf);
   Py_INCREF(m->sample);
+  for (std::size_t c : m->columns)
+    m->column_keys.push_back(py::str(std::string(kQueryLayout[c].name)).release().ptr());
+  for (const std::string& param : m->param_names)
+    m->param_keys.push_back(py::str(param).release().ptr());
   python_models().emplace(name, m);
 }
 

@@ -15,6 +15,7 @@
 #include <pybind11/pybind11.h>
 
 #include <cstddef>
+#include <memory>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -45,16 +46,30 @@ void register_python_model(const std::string& name, const pybind11::object& eval
 // The Python model behind a registry entry, or nullptr for any other entry.
 const PythonModel* python_model(const ModelEntry& entry);
 
+// Where the query columns of a call lie, so that the functions get read-only views of them rather
+// than copies: a contiguous float64 column (stride 1) whose memory lies in one of these is passed
+// as it lies, kept alive by the view; any other column is copied into a fresh array.
+struct ColumnOwners {
+  // Per query column (kQueryLayout order): the array the column's values lie in (borrowed; the
+  // caller keeps it alive for the call), or null.
+  std::span<PyObject* const> arrays;
+  // Storage the gathered columns lie in, given away by the chunk (shared with the views), or null.
+  std::shared_ptr<const void> storage;
+  const void* storage_begin = nullptr;
+  const void* storage_end = nullptr;
+};
+
 // value, pdf of rows [0, n) of the columns (kQueryLayout order, stride 0 or 1) into outputs[0],
 // outputs[1]: one call of eval and one of pdf. Takes the GIL; throws PythonModelError.
 template <class S>
 void python_eval_rows(const PythonModel& model, const std::vector<double>& params,
                       std::span<const simd::Column<S>> query, std::span<S* const> outputs,
-                      std::size_t n);
+                      std::size_t n, const ColumnOwners& owners = {});
 // One sample per row into the six columns of simd::kSampleColumns: one call of sample.
 template <class S>
 void python_sample_rows(const PythonModel& model, const std::vector<double>& params,
                         std::span<const simd::Column<S>> query, simd::Column<S> u1,
-                        simd::Column<S> u2, std::span<S* const> outputs, std::size_t n);
+                        simd::Column<S> u2, std::span<S* const> outputs, std::size_t n,
+                        const ColumnOwners& owners = {});
 
 }  // namespace glintlab::python

@@ -47,6 +47,7 @@ ColumnSource source_of(const py::array& a, std::ptrdiff_t offset_elements, py::s
   s.data = static_cast<const char*>(a.data()) + offset_elements * a.itemsize();
   s.stride = axis < 0 ? 0 : a.strides(axis) / a.itemsize();
   s.origin = std::move(origin);
+  s.owner = a.ptr();
   return s;
 }
 

@@ -7,7 +7,9 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -27,6 +29,7 @@ struct ColumnSource {
   bool is_float = false;
   double constant = 0;
   std::string origin;  // how an error names it: "wi[:, 0]", "footprint['u']"
+  PyObject* owner = nullptr;  // the array data points into (borrowed: QuerySources::keep_alive)
 
   double at(std::size_t row) const {
     if (data == nullptr) return constant;
@@ -63,13 +66,12 @@ ColumnSource column_source(const py::handle& value, const std::string& name, std
                            std::vector<py::object>& keep_alive);
 
 // The SoA columns of rows [begin, begin + count) in precision S, `ncols` first columns; columns
-// not in place are gathered into `buffer` (grown as needed, never cleared: every value read is
-// written first), a strided column by a typed strided load per row.
+// not in place are gathered into `buffer` (ncols * count values; only those read are written), a
+// strided column by a typed strided load per row.
 template <class S>
 std::vector<simd::Column<S>> chunk_columns(const std::vector<ColumnSource>& sources,
                                            std::size_t ncols, std::size_t begin, std::size_t count,
-                                           std::vector<S>& buffer) {
-  if (buffer.size() < ncols * count) buffer.resize(ncols * count);
+                                           S* buffer) {
   std::vector<simd::Column<S>> cols;
   cols.reserve(ncols);
   const auto gather = [count](auto* src, std::ptrdiff_t stride, S* dst) {
@@ -78,6 +80,27 @@ std::vector<simd::Column<S>> chunk_columns(const std::vector<ColumnSource>& sour
   // Three columns that are the adjacent elements of each row of one array (a C-ordered (N, 3)
   // direction array): transposed in one pass over its rows rather than three strided passes.
   const auto gather3 = [count](auto* src, std::ptrdiff_t stride, S* x, S* y, S* z) {
+    if (stride == 3) {  // a C-ordered (N, 3) array: constant strides, which the compiler vectorises
+      // In blocks of rows, each after asking for the same rows of the next chunk (a software
+      // prefetch, a hint that never faults: past the array's end it does nothing), so that they
+      // arrive while this chunk is checked and evaluated rather than when the next is gathered
+      // (measured, CPU time per 10^6 rows: 1.5 ms less for a numpy model's call, 1.4 ms for
+      // smooth_ggx's).
+      // The next chunk's address is computed as an integer: it may lie past the array.
+      constexpr std::size_t kBlock = 64, kLine = 64;
+      const auto next_chunk = reinterpret_cast<std::uintptr_t>(src + 0) + 3 * count * sizeof(*src);
+      for (std::size_t b = 0; b < count; b += kBlock) {
+        const std::size_t e = std::min(count, b + kBlock);
+        for (std::size_t k = 0; k < 3 * kBlock * sizeof(*src); k += kLine)
+          __builtin_prefetch(reinterpret_cast<const void*>(next_chunk + 3 * b * sizeof(*src) + k));
+        for (std::size_t i = b; i < e; ++i) {
+          x[i] = S(src[3 * i]);
+          y[i] = S(src[3 * i + 1]);
+          z[i] = S(src[3 * i + 2]);
+        }
+      }
+      return;
+    }
     for (std::size_t i = 0; i < count; ++i, src += stride) {
       x[i] = S(src[0]);
       y[i] = S(src[1]);
@@ -95,7 +118,7 @@ std::vector<simd::Column<S>> chunk_columns(const std::vector<ColumnSource>& sour
   };
   for (std::size_t c = 0; c < ncols; ++c) {
     const ColumnSource& s = sources[c];
-    S* gathered = buffer.data() + c * count;
+    S* gathered = buffer + c * count;
     if (rows_of_one_array(c)) {
       const std::ptrdiff_t first = std::ptrdiff_t(begin) * s.stride;
       if (s.is_float)
@@ -121,6 +144,15 @@ std::vector<simd::Column<S>> chunk_columns(const std::vector<ColumnSource>& sour
     }
   }
   return cols;
+}
+
+// The same into `buffer`, grown as needed (never cleared: every value read is written first).
+template <class S>
+std::vector<simd::Column<S>> chunk_columns(const std::vector<ColumnSource>& sources,
+                                           std::size_t ncols, std::size_t begin, std::size_t count,
+                                           std::vector<S>& buffer) {
+  if (buffer.size() < ncols * count) buffer.resize(ncols * count);
+  return chunk_columns<S>(sources, ncols, begin, count, buffer.data());
 }
 
 // The query row `row` in double, every column of the layout.

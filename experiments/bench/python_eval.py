@@ -17,8 +17,21 @@ repeats of:
   numpy_model_eval        the same model registered (glintlab.register_model) and run by
                           glintlab.eval in chunks, one thread
 
+and, in "numpy_model_cases" (beside "cases", whose names the smoke test fixes):
+
+  numpy_model_direct_copying     the direct call on contiguous copies of the columns made in the
+                                 timed call (np.ascontiguousarray of each column view)
+  numpy_model_eval_f_1thread     glintlab.eval of the registered model on Fortran-ordered input
+                                 (its columns passed to the functions where they lie), one thread
+  numpy_model_eval_all_cores     glintlab.eval of it on the C-ordered input, all cores
+
 and the ratios of interest (Python eval over eval_batch; the numpy model's chunked calls over
-its direct calls). The cases take turns in each repeat, so that a shared machine's changing load
+its direct calls; "numpy_model_ratios" those of the numpy_model_cases), on wall seconds; every
+case but the C++ reference (which times itself) also has its CPU seconds, and
+"numpy_model_cpu_ratios" the numpy model's one-thread ratios on them (on a loaded machine a
+longer call waits longer for a core, so wall-time ratios of a short and a long call grow with
+the load). --malloc fixed fixes glibc malloc's thresholds first (fix_malloc), so that the 8 MB
+arrays of every case reuse freed memory instead of page-faulting depending on what ran before. The cases take turns in each repeat, so that a shared machine's changing load
 reaches them alike. Speed is measured here, never asserted: tests/python runs this in its smoke
 mode (--rows 1000 --repeats 1) and checks the JSON's shape only. docs/python.md "Speed of eval
 from Python" holds the numbers.
@@ -50,20 +63,38 @@ def unit_rows(rng, n):
 
 
 def round_robin(cases, repeats):
-    """Seconds of each of `repeats` calls of every case, the cases taking turns in each round (so
-    that a change of load on a shared machine reaches every case alike); one untimed call of each
-    first (first-touch, caches). `cases`: name -> callable, or -> callable returning its own
-    seconds (a list of one)."""
+    """Wall and CPU seconds of each of `repeats` calls of every case, the cases taking turns in
+    each round (so that a change of load on a shared machine reaches every case alike); one
+    untimed call of each first (first-touch, caches). `cases`: name -> callable, or -> callable
+    returning its own wall seconds (a list of one; its CPU seconds are then None). CPU seconds
+    (time.process_time: this process's user and system time, page faults included) are what a
+    loaded machine changes least for a one-thread case: its wall time also counts the waits for a
+    core, which grow with the length of the call."""
     for f in cases.values():
         f()
     seconds = {name: [] for name in cases}
+    cpu = {name: [] for name in cases}
     for _ in range(repeats):
         for name, f in cases.items():
-            t0 = time.perf_counter()
+            c0, t0 = time.process_time(), time.perf_counter()
             r = f()
-            elapsed = time.perf_counter() - t0
+            elapsed, used = time.perf_counter() - t0, time.process_time() - c0
             seconds[name].append(r[0] if isinstance(r, list) else elapsed)
-    return seconds
+            cpu[name].append(None if isinstance(r, list) else used)
+    return seconds, cpu
+
+
+def fix_malloc():
+    """glibc's malloc with fixed thresholds: blocks up to 256 MiB from the heap and freed memory
+    kept, so that an array of 10^6 rows reuses freed pages rather than mapping fresh ones. By
+    default the thresholds move with what was freed before (a freed mapped block raises them),
+    so whether a case's 8 MB arrays page-fault depends on the cases before it."""
+    import ctypes
+    libc = ctypes.CDLL("libc.so.6")
+    m_trim_threshold, m_mmap_threshold = -1, -3
+    ok = libc.mallopt(m_mmap_threshold, 256 << 20) == 1 and \
+        libc.mallopt(m_trim_threshold, 1 << 30) == 1
+    return {"mmap_threshold": 256 << 20, "trim_threshold": 1 << 30} if ok else None
 
 
 def lambert_eval(q, p):
@@ -99,6 +130,9 @@ def main():
     ap.add_argument("--repeats", type=int, default=7, help="timed repeats per case (default 7)")
     ap.add_argument("--isa", default=None, help="scalar, sse4.2, avx2, avx512 (default: widest)")
     ap.add_argument("--out", required=True, help="the JSON file to write")
+    ap.add_argument("--malloc", choices=("default", "fixed"), default="default",
+                    help="glibc malloc's thresholds: as they are, or fixed so that freed memory "
+                         "is reused (fix_malloc; default: default)")
     a = ap.parse_args()
     for option, value in (("--rows", a.rows), ("--repeats", a.repeats)):
         if value < 1:
@@ -106,6 +140,13 @@ def main():
                   file=sys.stderr)
             return 2
 
+    malloc = {"mode": a.malloc}
+    if a.malloc == "fixed":
+        malloc["thresholds"] = fix_malloc()
+        if malloc["thresholds"] is None:
+            print("python_eval.py: error: --malloc fixed: mallopt failed (valid: glibc)",
+                  file=sys.stderr)
+            return 2
     rng = np.random.default_rng(20260405)
     n = a.rows
     wi, wo = unit_rows(rng, n), unit_rows(rng, n)
@@ -140,7 +181,13 @@ def main():
     def direct_contiguous():
         return lambert_eval(columns, p), lambert_pdf(columns, p)
 
-    cases = round_robin({
+    def direct_copying():
+        q = {"wi_x": np.ascontiguousarray(wi[:, 0]), "wi_y": np.ascontiguousarray(wi[:, 1]),
+             "wi_z": np.ascontiguousarray(wi[:, 2]), "wo_x": np.ascontiguousarray(wo[:, 0]),
+             "wo_y": np.ascontiguousarray(wo[:, 1]), "wo_z": np.ascontiguousarray(wo[:, 2])}
+        return lambert_eval(q, p), lambert_pdf(q, p)
+
+    cases, cpu = round_robin({
         "cpp_eval_batch": cpp_eval_batch,
         "python_eval_c_1thread": py_eval(wi, wo),
         "python_eval_c": py_eval(wi, wo, threads=None),
@@ -151,22 +198,39 @@ def main():
         "numpy_model_direct": direct,
         "numpy_model_direct_contiguous": direct_contiguous,
         "numpy_model_eval_1thread": lambda: glintlab.eval(name, wi, wo, threads=1),
+        "numpy_model_direct_copying": direct_copying,
+        "numpy_model_eval_f_1thread": lambda: glintlab.eval(name, wi_f, wo_f, threads=1),
+        "numpy_model_eval_all_cores": lambda: glintlab.eval(name, wi, wo, threads=None),
     }, a.repeats)
+    numpy_model_cases = {k: cases.pop(k) for k in ("numpy_model_direct_copying",
+                                                    "numpy_model_eval_f_1thread",
+                                                    "numpy_model_eval_all_cores")}
 
-    median = {k: statistics.median(v) for k, v in cases.items()}
+    median = {k: statistics.median(v) for k, v in {**cases, **numpy_model_cases}.items()}
+    median_cpu = {k: None if None in v else statistics.median(v) for k, v in cpu.items()}
     ref = median["cpp_eval_batch"]
+
+    def timed(group):
+        return {k: {"seconds": v, "median_s": median[k], "us_per_1e6_rows": median[k] / n * 1e12,
+                    "cpu_seconds": cpu[k], "median_cpu_s": median_cpu[k]}
+                for k, v in group.items()}
+
+    def cpu_ratio(a_case, b_case):
+        return median_cpu[a_case] / median_cpu[b_case]
+
     result = {
         "benchmark": "python_eval",
         "machine": {"cpu": cpu_name(), "cores": os.cpu_count(), "python": platform.python_version(),
                     "numpy": np.__version__},
         "isa": isa,
+        "malloc": malloc,
+        "load_average": list(os.getloadavg()),
         "precision": "double",
         "model": model,
         "rows": n,
         "repeats": a.repeats,
-        "cases": {k: {"seconds": v, "median_s": median[k],
-                      "us_per_1e6_rows": median[k] / n * 1e12}
-                  for k, v in cases.items()},
+        "cases": timed(cases),
+        "numpy_model_cases": timed(numpy_model_cases),
         "ratios": {
             "python_eval_c_1thread_over_cpp": median["python_eval_c_1thread"] / ref,
             "python_eval_c_over_cpp": median["python_eval_c"] / ref,
@@ -178,12 +242,32 @@ def main():
             "numpy_model_chunked_over_direct_contiguous":
                 median["numpy_model_eval_1thread"] / median["numpy_model_direct_contiguous"],
         },
+        "numpy_model_ratios": {
+            "chunked_over_direct_copying":
+                median["numpy_model_eval_1thread"] / median["numpy_model_direct_copying"],
+            "chunked_f_over_direct_contiguous":
+                median["numpy_model_eval_f_1thread"] / median["numpy_model_direct_contiguous"],
+            "chunked_all_cores_over_direct_contiguous":
+                median["numpy_model_eval_all_cores"] / median["numpy_model_direct_contiguous"],
+        },
+        # The same ratios of one-thread cases on CPU seconds.
+        "numpy_model_cpu_ratios": {
+            "chunked_over_direct": cpu_ratio("numpy_model_eval_1thread", "numpy_model_direct"),
+            "chunked_over_direct_contiguous":
+                cpu_ratio("numpy_model_eval_1thread", "numpy_model_direct_contiguous"),
+            "chunked_over_direct_copying":
+                cpu_ratio("numpy_model_eval_1thread", "numpy_model_direct_copying"),
+            "chunked_f_over_direct_contiguous":
+                cpu_ratio("numpy_model_eval_f_1thread", "numpy_model_direct_contiguous"),
+        },
     }
     with open(a.out, "w") as f:
         json.dump(result, f, indent=1)
         f.write("\n")
-    for k, v in result["ratios"].items():
+    for k, v in {**result["ratios"], **result["numpy_model_ratios"]}.items():
         print(f"{k}: {v:.2f}")
+    for k, v in result["numpy_model_cpu_ratios"].items():
+        print(f"{k} (CPU): {v:.2f}")
     return 0
 
 

@@ -24,6 +24,14 @@ import numpy as _np
 
 from . import _glintlab
 
+# An installed package carries the report scripts that figure, sweep and compare run to draw their
+# charts and pages (python/CMakeLists.txt): they are used unless GLINTLAB_REPORTS_DIR names
+# others. The build tree's package has none, and the source tree's reports/ is used.
+_REPORTS = _os.path.join(_os.path.dirname(_os.path.abspath(__file__)), "reports")
+if not _os.environ.get("GLINTLAB_REPORTS_DIR") and _os.path.isfile(
+        _os.path.join(_REPORTS, "figure_charts.py")):
+    _os.environ["GLINTLAB_REPORTS_DIR"] = _REPORTS
+
 __all__ = ["models", "eval", "sample", "load_plugin", "register_model", "verify", "figure",
            "sweep", "compare", "adequacy", "read_csv"]
 

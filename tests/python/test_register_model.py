@@ -73,9 +73,65 @@ def test_called_per_chunk():
 
     glintlab.register_model("py_counted", ev, nm.lambert_pdf, nm.lambert_sample,
                             params=[nm.ALBEDO])
-    glintlab.eval("py_counted", WI, directions(10000), threads=1)
-    # The CLI's chunks of 4096 rows: one call of eval per chunk, never one per row.
-    assert sorted(calls) == [1808, 4096, 4096]
+    glintlab.eval("py_counted", WI, directions(40000), threads=1)
+    # A numpy model's chunks of 16384 rows (four of the CLI's): one call of eval per chunk, never
+    # one per row.
+    assert sorted(calls) == [7232, 16384, 16384]
+    calls.clear()
+    glintlab.eval("py_counted", WI, directions(40000), threads=2)
+    assert sorted(calls) == [7232, 16384, 16384]
+
+
+def test_query_arrays_are_read_only_views():
+    """The functions get the query columns as read-only arrays: views of the caller's array where a
+    column lies contiguous in float64 (a Fortran-ordered (N, 3) array), else of the chunk's
+    gathered columns (a C-ordered one); an array a function keeps stays valid after the call. A
+    function that writes into one raises, naming the model and the function. Rows of per-row
+    parameters grouped from scattered rows get copies (the same values)."""
+    kept = []
+
+    def ev(q, p):
+        kept.append(q)
+        return nm.lambert_eval(q, p)
+
+    glintlab.register_model("py_kept", ev, nm.lambert_pdf, nm.lambert_sample, params=[nm.ALBEDO])
+    n = 40000
+    wi, wo = directions(n, seed=5), directions(n, seed=6)
+    albedo = np.random.default_rng(7).choice([0.25, 0.5, 0.75], size=n)  # scattered groups
+    for layout in (np.ascontiguousarray, np.asfortranarray):
+        for params in (None, {"albedo": albedo}):
+            kept.clear()
+            r = glintlab.eval("py_kept", layout(wi), layout(wo), params=params, threads=2)
+            expect = (0.8 if params is None else albedo) * wo[:, 2] / np.pi
+            np.testing.assert_array_equal(r["value"], expect)
+            seen = np.zeros(n, dtype=int)
+            for q in kept:
+                assert all(not a.flags.writeable and a.dtype == np.float64 and a.ndim == 1
+                           for a in q.values()), q
+                # Each call's rows: find them by value (wo_z of the kept array is the input's).
+                rows = np.flatnonzero(np.isin(wo[:, 2], q["wo_z"]))
+                assert len(rows) == len(q["wo_z"])
+                seen[rows] += 1
+                np.testing.assert_array_equal(np.sort(q["wi_x"]), np.sort(wi[rows, 0]))
+            assert (seen == 1).all()
+        if layout is np.asfortranarray:
+            # In place: the views of one call lie in the caller's arrays.
+            f = layout(wo)
+            kept.clear()
+            glintlab.eval("py_kept", wi, f, threads=1)
+            assert np.shares_memory(kept[0]["wo_z"], f)
+
+    def writes(q, p):
+        q["wo_z"][:] = 0
+        return nm.lambert_eval(q, p)
+
+    glintlab.register_model("py_writes", writes, nm.lambert_pdf, nm.lambert_sample,
+                            params=[nm.ALBEDO])
+    f = np.asfortranarray(wo)
+    with pytest.raises(RuntimeError, match="glintlab model 'py_writes': eval raised ValueError: "
+                                           "assignment destination is read-only"):
+        glintlab.eval("py_writes", wi, f)
+    np.testing.assert_array_equal(f, wo)
 
 
 def register_broken(name, **overrides):

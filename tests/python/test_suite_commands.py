@@ -207,3 +207,32 @@ def test_a_failing_numpy_model_raises_and_writes_nothing(two_dirs):
     with pytest.raises(RuntimeError, match="'py_suite_broken': eval raised ZeroDivisionError"):
         glintlab.sweep(out="sw", models="py_suite_broken", budget="quick")
     assert not (py / "sw").exists() or os.listdir(py / "sw") == []
+
+
+def test_installed_package_uses_its_own_report_scripts(tmp_path):
+    """cmake --install puts the report scripts (reports/) inside the package, and the installed
+    package points GLINTLAB_REPORTS_DIR at them, so that its sweep, figure and compare do not
+    depend on the source tree it was built from (the build tree's package has no copy and uses
+    the source tree's reports/)."""
+    build = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(glintlab.__file__))))
+    prefix = tmp_path / "prefix"
+    subprocess.run(["cmake", "--install", build, "--prefix", str(prefix)], check=True,
+                   capture_output=True)
+    [init] = [os.path.join(d, "__init__.py") for d, _, files in os.walk(prefix)
+              if d.endswith(os.sep + "glintlab") and "__init__.py" in files]
+    package = os.path.dirname(init)
+    for script in ("figure_charts.py", "compare_page.py", "charts.py", "templating.py",
+                   os.path.join("templates", "compare_page.html.j2")):
+        assert os.path.isfile(os.path.join(package, "reports", script)), script
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "GLINTLAB_REPORTS_DIR")}
+    env["PYTHONPATH"] = os.path.dirname(package)
+    env["MPLBACKEND"] = "Agg"
+    code = ("import os, sys, glintlab; print(glintlab.__file__); "
+            "print(os.environ['GLINTLAB_REPORTS_DIR']); "
+            "s = glintlab.sweep(sys.argv[1], models='smooth_ggx'); print(len(s['files']))")
+    r = subprocess.run(["/usr/bin/python3", "-c", code, str(tmp_path / "sweeps")], env=env,
+                       cwd=tmp_path, capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    where, reports, files = r.stdout.split()
+    assert where == init and reports == os.path.join(package, "reports")
+    assert int(files) > 0
