@@ -313,12 +313,14 @@ def compare(out, models="*", budget="quick", threads=None, claims_from=None, swe
 
 def adequacy(out, models="*", threshold=0.02, budget="quick", threads=None, calibrate=False,
              runs=None, tables=None, bench_from=None):
-    """Where each cheaper level of the binomial glint family is indistinguishable from the exact
-    count, as ``glintlab adequacy`` writes it (docs/adequacy.md); with calibrate=True the decision
+    """Where each cheaper level of a glint model family (binomial counting, Kemppinen's levels,
+    kneiphof_klein_area under square lights) is indistinguishable from its most complete level, as
+    ``glintlab adequacy`` writes it (docs/adequacy.md); with calibrate=True the decision
     rule's false-adequate rate on synthetic cells instead (``glintlab adequacy --calibrate``).
 
     out        the output folder.
-    models     comma-separated globs over the binomial family (deliot_belcour, kneiphof_klein).
+    models     comma-separated globs over the measured models (deliot_belcour, kneiphof_klein,
+               kemppinen_ggx, kemppinen_beckmann, kneiphof_klein_area).
     threshold  TAU, a number in (0, 1].
     budget     'quick' or 'full'.
     threads    as for figure.
