@@ -5,10 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <cstdlib>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <regex>
 #include <set>
 #include <string>
@@ -33,35 +31,6 @@ class SweepShardTest : public CliTest {
     if (!shard.empty()) args.insert(args.end(), {"--shard", shard});
     return run(args);
   }
-
-  // From here on the sweep's maps are "drawn" by a stand-in for reports/figure_charts.py that
-  // writes each spec's bytes and its CSV's as NAME.png (no matplotlib: about 0.1 s a map): what
-  // a merge must carry over byte for byte without the drawing's cost. The real drawing gives a
-  // map the same bytes whatever else the run draws (FigureChartsTest.SeveralFoldersInOneRun...).
-  void stand_in_charts() {
-    const fs::path reports = work().parent_path() / "stand_in_chart_reports";
-    fs::create_directories(reports);
-    write_text(reports / "figure_charts.py",
-               "import glob, os, sys\na = sys.argv\n"
-               "for i, d in enumerate(a):\n"
-               "    if i and a[i - 1] == '--dir':\n"
-               "        for spec in sorted(glob.glob(os.path.join(d, '*.chart.json'))):\n"
-               "            text = open(spec, 'rb').read()\n"
-               "            csv = text.split(b'\"csv\": \"')[1].split(b'\"')[0].decode()\n"
-               "            text += open(os.path.join(d, csv), 'rb').read()\n"
-               "            open(spec[:-len('.chart.json')] + '.png', 'wb').write(text)\n");
-    const char* old = std::getenv("GLINTLAB_REPORTS_DIR");
-    saved_ = old ? std::optional<std::string>(old) : std::nullopt;
-    ::setenv("GLINTLAB_REPORTS_DIR", reports.c_str(), 1);
-  }
-  void TearDown() override {
-    if (saved_)
-      ::setenv("GLINTLAB_REPORTS_DIR", saved_->c_str(), 1);
-    else
-      ::unsetenv("GLINTLAB_REPORTS_DIR");
-    CliTest::TearDown();
-  }
-  std::optional<std::string> saved_;
 };
 
 TEST_F(SweepShardTest, MergedShardsAreTheFilesOfOneRun) {
