@@ -142,7 +142,7 @@ set(glintlab_slow_tests
   "SweepShardTest.MergedShardsAreTheFilesOfOneRun 16"
   "SweepShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 3"
   "SweepTest.QuickSweepWritesMapsAndIndex 6"
-  "FigureTest.ModelsHemisphereMapsAreChartsOfTheirCsv 9"
+  "FigureTest.ModelsHemisphereMapsAreChartsOfTheirCsv 6"
   "KneiphofFigureTest.Fig6 3"
   "PluginTest.SweepFigureAndGenericClaimCoverThePluginModel 13"
   "PodeeCliTest.DistanceAndFlickerQuick 20"
