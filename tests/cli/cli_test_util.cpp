@@ -98,7 +98,9 @@ void CliTest::TearDown() {
 }
 
 RunResult CliTest::run(const std::vector<std::string>& args) const {
-  std::string cmd = "cd " + shell_quote(work_.string()) + " && " + shell_quote(kGlintlabExe);
+  std::string cmd = "cd " + shell_quote(work_.string()) + " && ";
+  if (!reports_.empty()) cmd += "GLINTLAB_REPORTS_DIR=" + shell_quote(reports_.string()) + " ";
+  cmd += shell_quote(kGlintlabExe);
   for (const std::string& a : args) cmd += " " + shell_quote(a);
   const fs::path out = capture_ / "stdout", err = capture_ / "stderr";
   cmd += " >" + shell_quote(out.string()) + " 2>" + shell_quote(err.string()) + " </dev/null";
@@ -108,6 +110,20 @@ RunResult CliTest::run(const std::vector<std::string>& args) const {
   r.out = read_text(out);
   r.err = read_text(err);
   return r;
+}
+
+void CliTest::stand_in_charts() {
+  reports_ = root_ / "stand_in_chart_reports";
+  fs::create_directories(reports_);
+  write_text(reports_ / "figure_charts.py",
+             "import glob, os, sys\na = sys.argv\n"
+             "for i, d in enumerate(a):\n"
+             "    if i and a[i - 1] == '--dir':\n"
+             "        for spec in sorted(glob.glob(os.path.join(d, '*.chart.json'))):\n"
+             "            text = open(spec, 'rb').read()\n"
+             "            csv = text.split(b'\"csv\": \"')[1].split(b'\"')[0].decode()\n"
+             "            text += open(os.path.join(d, csv), 'rb').read()\n"
+             "            open(spec[:-len('.chart.json')] + '.png', 'wb').write(text)\n");
 }
 
 void CliTest::expect_input_error(const RunResult& r, const std::vector<std::string>& needles,

@@ -65,10 +65,19 @@ class CliTest : public ::testing::Test {
   void expect_input_error(const RunResult& r, const std::vector<std::string>& needles,
                           const std::set<std::string>& expected_files) const;
 
+  // From this call to the end of the test, the runs' charts (reports/figure_charts.py: a figure's
+  // charts, a sweep's maps) are "drawn" by a stand-in that writes each chart spec's bytes followed
+  // by its CSV's as NAME.png, without matplotlib (its start-up and drawing cost 1–3 s of CPU per
+  // run). For tests of what runs compute and write, not of the drawing: a chart's bytes are then
+  // those of its spec and data, which the real drawing turns into the same PNG in any run
+  // (FigureChartsTest.SeveralFoldersInOneRunAreTheBytesOfSeparateRunsOrNone).
+  void stand_in_charts();
+
  private:
   std::filesystem::path root_;     // per-test temporary directory
   std::filesystem::path work_;     // root_/work: the executable's working directory
   std::filesystem::path capture_;  // root_/capture: stdout and stderr of the runs
+  std::filesystem::path reports_;  // GLINTLAB_REPORTS_DIR of the runs, when not empty
 };
 
 }  // namespace glintlab::cli_test

@@ -131,6 +131,11 @@ TEST_F(PluginTest, SampleWeightsAndPdfsMatchTheInProcessModel) {
 }
 
 TEST_F(PluginTest, SweepFigureAndGenericClaimCoverThePluginModel) {
+  // The sweep's maps and the figure's charts are drawn by the stand-in: this test reads what the
+  // runs compute for the plug-in model; matplotlib draws the same maps and charts of the built-in
+  // models in SweepTest.QuickSweepWritesMapsAndIndex and
+  // FigureTest.ModelsHemisphereMapsAreChartsOfTheirCsv.
+  stand_in_charts();
   const RunResult sweep = run({"--plugin", kTestPlugin, "sweep", "--models", "example_glints",
                                "--budget", "quick", "--out", "sweeps"});
   ASSERT_EQ(sweep.exit_code, 0) << sweep.err;

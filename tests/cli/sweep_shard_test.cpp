@@ -1,14 +1,13 @@
 // `glintlab sweep --shard K/N` and `glintlab merge`: the models of a sweep split into N shards
 // (N = 1, 2, 3 and 4, the 4th empty) and merged give the files of one unsharded run byte for byte
-// (the sweep writes no timing; its maps drawn by matplotlib for N = 2, by a stand-in otherwise); a missing, repeated or foreign shard, or one whose files are not
-// the models its manifest lists, is one error line naming it, and nothing is written.
+// (the sweep writes no timing; its maps drawn by matplotlib for N = 2 on two of the models, by a
+// stand-in otherwise); a missing, repeated or foreign shard, or one whose files are not the
+// models its manifest lists, is one error line naming it, and nothing is written.
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <cstdlib>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <regex>
 #include <set>
 #include <string>
@@ -33,54 +32,32 @@ class SweepShardTest : public CliTest {
     if (!shard.empty()) args.insert(args.end(), {"--shard", shard});
     return run(args);
   }
-
-  // From here on the sweep's maps are "drawn" by a stand-in for reports/figure_charts.py that
-  // writes each spec's bytes and its CSV's as NAME.png (no matplotlib: about 0.1 s a map): what
-  // a merge must carry over byte for byte without the drawing's cost. The real drawing gives a
-  // map the same bytes whatever else the run draws (FigureChartsTest.SeveralFoldersInOneRun...).
-  void stand_in_charts() {
-    const fs::path reports = work().parent_path() / "stand_in_chart_reports";
-    fs::create_directories(reports);
-    write_text(reports / "figure_charts.py",
-               "import glob, os, sys\na = sys.argv\n"
-               "for i, d in enumerate(a):\n"
-               "    if i and a[i - 1] == '--dir':\n"
-               "        for spec in sorted(glob.glob(os.path.join(d, '*.chart.json'))):\n"
-               "            text = open(spec, 'rb').read()\n"
-               "            csv = text.split(b'\"csv\": \"')[1].split(b'\"')[0].decode()\n"
-               "            text += open(os.path.join(d, csv), 'rb').read()\n"
-               "            open(spec[:-len('.chart.json')] + '.png', 'wb').write(text)\n");
-    const char* old = std::getenv("GLINTLAB_REPORTS_DIR");
-    saved_ = old ? std::optional<std::string>(old) : std::nullopt;
-    ::setenv("GLINTLAB_REPORTS_DIR", reports.c_str(), 1);
-  }
-  void TearDown() override {
-    if (saved_)
-      ::setenv("GLINTLAB_REPORTS_DIR", saved_->c_str(), 1);
-    else
-      ::unsetenv("GLINTLAB_REPORTS_DIR");
-    CliTest::TearDown();
-  }
-  std::optional<std::string> saved_;
 };
 
 TEST_F(SweepShardTest, MergedShardsAreTheFilesOfOneRun) {
   // Each N in turn merged and compared with one run; the maps drawn by matplotlib for N = 2 (the
-  // first pass), by the stand-in for the others.
-  const auto check = [&](const std::vector<int>& shard_counts, const std::string& tag) {
-    ASSERT_EQ(sweep("one" + tag).exit_code, 0);
+  // first pass: smooth_beckmann and podee, one model in each shard, 40 maps a run where the three
+  // models have 80), by the stand-in (CliTest::stand_in_charts) for the others.
+  const auto check = [&](const std::vector<std::string>& models, const std::vector<int>& counts,
+                         const std::string& tag) {
+    std::string list;
+    for (const std::string& m : models) list += (list.empty() ? "" : ",") + m;
+    ASSERT_EQ(sweep("one" + tag, "", list).exit_code, 0);
     const std::map<std::string, std::string> one = file_tree("one" + tag);
     ASSERT_TRUE(one.count("stability.json"));
-    for (int n : shard_counts) {
+    for (int n : counts) {
       std::vector<std::string> merge = {"merge"};
       for (int k = n; k >= 1; --k) {  // any order; shard 1 with one thread
         const std::string dir = "s" + tag + std::to_string(n) + "_" + std::to_string(k);
         const RunResult r =
-            sweep(dir, std::to_string(k) + "/" + std::to_string(n), kModels, k == 1 ? "1" : "2");
+            sweep(dir, std::to_string(k) + "/" + std::to_string(n), list, k == 1 ? "1" : "2");
         ASSERT_EQ(r.exit_code, 0) << r.err;
         const auto m = nlohmann::json::parse(read_text(path(dir + "/shard.json")));
         EXPECT_EQ(m["command"], "sweep");
-        EXPECT_EQ(m["selection"], nlohmann::json({"smooth_ggx", "smooth_beckmann", "podee"}));
+        EXPECT_EQ(m["selection"], nlohmann::json(models));
+        if (n == 2) {
+          EXPECT_EQ(m["covered"].size(), 1u) << dir;
+        }
         merge.push_back(dir);
       }
       const std::string out = "merged" + tag + std::to_string(n);
@@ -90,12 +67,14 @@ TEST_F(SweepShardTest, MergedShardsAreTheFilesOfOneRun) {
       EXPECT_TRUE(file_tree(out) == one) << n << " shards: the merged files differ from one run's";
     }
   };
-  check({2}, "");
+  check({"smooth_beckmann", "podee"}, {2}, "");
   // The maps of the first pass were matplotlib's: each with its chart record.
-  EXPECT_NE(read_text(path("one/smooth_ggx/ndf/alpha_variance.png")).find("glintlab:chart"),
+  EXPECT_NE(read_text(path("one/smooth_beckmann/ndf/alpha_variance.png")).find("glintlab:chart"),
+            std::string::npos);
+  EXPECT_NE(read_text(path("one/podee/default/footprint_variance.png")).find("glintlab:chart"),
             std::string::npos);
   stand_in_charts();
-  check({1, 3, 4}, "_");
+  check({"smooth_ggx", "smooth_beckmann", "podee"}, {1, 3, 4}, "_");
   EXPECT_EQ(read_text(path("one_/smooth_ggx/ndf/alpha_variance.png"))
                 .rfind(read_text(path("one_/smooth_ggx/ndf/alpha_maps.csv"))),
             read_text(path("one_/smooth_ggx/ndf/alpha_variance.png")).size() -

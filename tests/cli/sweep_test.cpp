@@ -53,7 +53,12 @@ TEST_F(SweepTest, QuickSweepWritesMapsAndIndex) {
   EXPECT_EQ(std::distance(fs::directory_iterator(path("s")), fs::directory_iterator()), 2);
 }
 
+// The maps drawn by the stand-in (CliTest::stand_in_charts): a map's PNG is then its spec's and
+// CSV's bytes, the same for any thread count exactly when the data are; matplotlib's drawing of
+// them is the same bytes in any run, also of a sweep shard on one thread against one on two
+// (SweepShardTest.MergedShardsAreTheFilesOfOneRun, its first pass).
 TEST_F(SweepTest, OutputDoesNotDependOnThreads) {
+  stand_in_charts();
   ASSERT_EQ(
       run({"sweep", "--budget", "quick", "--models", "smooth_ggx", "--out", "a", "--threads", "1"})
           .exit_code,
