@@ -37,14 +37,18 @@ fs::path self_exe() {
   return p;
 }
 
-// The folder of the report scripts: $GLINTLAB_REPORTS_DIR, else the source tree's reports/, else
-// <prefix>/share/glintlab/reports beside an installed executable.
+// The folder of the report scripts: $GLINTLAB_REPORTS_DIR, else <prefix>/share/glintlab/reports
+// beside an installed executable (the scripts installed with it, whatever became of the source tree
+// it was built from), else the source tree's reports/ (a program run from its build tree).
 fs::path reports_dir() {
   if (const char* env = std::getenv("GLINTLAB_REPORTS_DIR"); env && *env) return env;
   std::error_code ec;
+  const fs::path installed =
+      self_exe().parent_path().parent_path() / "share" / "glintlab" / "reports";
+  if (fs::exists(installed / "make_report.py", ec)) return installed;
   const fs::path src = GLINTLAB_REPORTS_SOURCE_DIR;
   if (fs::exists(src / "make_report.py", ec)) return src;
-  return self_exe().parent_path().parent_path() / "share" / "glintlab" / "reports";
+  return installed;
 }
 
 // Runs argv with stdout to `out_file` and stderr to `err_file` (empty: inherited, so a child's

@@ -134,3 +134,17 @@ if(r EQUAL 2 OR NOT swept OR CMAKE_MATCH_1 EQUAL 0 OR out MATCHES "NOT REJECTED"
   message(FATAL_ERROR "scalar plug-in not swept (exit ${r}, '${swept}'):\n${out}\n${err}")
 endif()
 message(STATUS "scalar plug-in: ${swept}")
+
+# The installed glintlab draws its charts with the report scripts installed beside it
+# (<prefix>/share/glintlab/reports), not with a source tree that may have moved or gone.
+if(NOT EXISTS "${WORK}/prefix/share/glintlab/reports/figure_charts.py")
+  message(FATAL_ERROR "the report scripts are not installed under ${WORK}/prefix/share/glintlab")
+endif()
+file(REMOVE_RECURSE "${WORK}/fig6")
+execute_process(COMMAND "${CMAKE_COMMAND}" -E env --unset=GLINTLAB_REPORTS_DIR "${glintlab}" figure
+                        kneiphof2024-fig6 --budget quick --out "${WORK}/fig6"
+                RESULT_VARIABLE r OUTPUT_VARIABLE out ERROR_VARIABLE err)
+file(GLOB_RECURSE charts "${WORK}/fig6/*.png")
+if(r OR NOT charts)
+  message(FATAL_ERROR "the installed glintlab could not draw a figure's charts (exit ${r}):\n${out}\n${err}")
+endif()
