@@ -10,8 +10,8 @@
 // (adequacy-scene.csv, adequacy-scene-kemppinen.csv, adequacy-scene-area.csv) and summary.md with
 // each family decided as claim adequacy.choice-is-safe decides it (the Šidák share over its three
 // families); given benchmark data (--bench-from), each scene's time per evaluation with the chosen
-// levels against exact counting everywhere (adequacy-scene-cost.csv, summary.md; binomial scenes
-// only: the benchmark prices the binomial levels).
+// levels against exact counting everywhere (adequacy-scene-cost.csv, summary.md; the binomial and
+// area scenes: the benchmark prices the binomial levels of both families).
 #include "experiments/figures/adequacy_scene.h"
 
 #include <fmt/format.h>
@@ -343,6 +343,31 @@ std::string write_scene_costs(const FigureContext& ctx, const std::vector<SceneR
            no_bench_data(src, kLevelCostsFile,
                          "glintlab_bench_glints --benchmark_filter=^adequacy/") +
            "\n";
+  // The area scenes' model where the file prices it too (an older file has the binomial rows only:
+  // the area scenes are then left unpriced, and the summary says why).
+  std::vector<std::string> area_models;
+  for (const SceneResult& r : results)
+    if (r.family == Family::kArea &&
+        std::find(area_models.begin(), area_models.end(), r.render.scene.model) ==
+            area_models.end())
+      area_models.push_back(r.render.scene.model);
+  std::string unpriced_area;
+  if (!area_models.empty()) {
+    try {
+      for (auto& [model, ns] :
+           read_level_costs(src.path.parent_path(),
+                            std::filesystem::path(src.shown_as).parent_path().string(),
+                            costs->isa, area_models)
+               .ns)
+        costs->ns.emplace(model, ns);
+    } catch (const std::invalid_argument& e) {
+      unpriced_area = std::string(
+          std::string_view(e.what()).substr(std::string_view("--bench-from: ").size()));
+    }
+  }
+  const auto priced = [&](const SceneResult& r) {
+    return r.family != Family::kKemppinen && costs->ns.count(r.render.scene.model) > 0;
+  };
   std::string md = fmt::format(
       "\n## Time per evaluation\n\nEach level priced by {} (rows adequacy/<model>/level=<level>/"
       "{}), summed over each scene's surface pixels: exact counting everywhere, the engine "
@@ -352,10 +377,12 @@ std::string write_scene_costs(const FigureContext& ctx, const std::vector<SceneR
       "|\n|---|---|---|---|---|---|\n",
       costs->source, costs->isa);
   if (std::any_of(results.begin(), results.end(),
-                  [](const SceneResult& r) { return r.family != Family::kBinomial; }))
+                  [](const SceneResult& r) { return r.family == Family::kKemppinen; }))
     md +=
-        "The Kemppinen and area scenes are not priced here: the figure prices the binomial "
-        "family's scenes only.\n\n";
+        "The Kemppinen scenes are not priced here: the benchmark's adequacy/ rows price the "
+        "binomial levels (of the binomial and area families) only.\n\n";
+  if (!unpriced_area.empty())
+    md += fmt::format("The area scenes are not priced here: {}.\n\n", unpriced_area);
   const auto saved = [](double t, double exact) { return exact > 0 ? 1 - t / exact : 0.0; };
   io::write_csv_atomic(
       ctx.dir / "adequacy-scene-cost.csv",
@@ -363,7 +390,7 @@ std::string write_scene_costs(const FigureContext& ctx, const std::vector<SceneR
        "by_cost_ns", "by_cost_saved_fraction"},
       [&](io::CsvWriter& w) {
         for (const SceneResult& r : results) {
-          if (r.family != Family::kBinomial) continue;
+          if (!priced(r)) continue;
           const SceneCost c = scene_cost(r.render, costs->ns.at(r.render.scene.model), tau);
           w.cell(r.render.scene.name).cell(r.render.scene.model).cell(costs->isa);
           w.cell(c.exact_ns).cell(c.chosen_ns).cell(saved(c.chosen_ns, c.exact_ns));
