@@ -422,6 +422,15 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
 
   AdequacySummary sum;
   sum.cells = rows.size();
+  // A cell's benchmark prices added to a family's sums (the binomial family's, the area's).
+  const auto add_bench_price = [&](auto& into, const CellResult& r) {
+    const BenchPrice b = bench_price(r, *o.costs);
+    into.benchmark_costs = true;
+    into.bench_exact_ns += b.ns[3];
+    into.bench_chosen_ns += b.ns[std::size_t(r.chosen)];
+    into.bench_cheapest_ns += b.ns[std::size_t(b.cheapest)];
+    ++into.cheapest_by_benchmark[std::size_t(b.cheapest)];
+  };
   for (const CellResult& r : rows) {
     ++sum.chosen[std::size_t(r.chosen)];
     sum.chooser_refuted += r.chooser_refuted ? 1 : 0;
@@ -431,14 +440,7 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
     sum.cheapest_ns += r.levels[std::size_t(r.cheapest_measured)].ns_per_eval;
     ++sum.cheapest_measured[std::size_t(r.cheapest_measured)];
     sum.undecided += r.levels[0].undecided ? 1 : 0;
-    if (o.costs) {
-      const BenchPrice b = bench_price(r, *o.costs);
-      sum.benchmark_costs = true;
-      sum.bench_exact_ns += b.ns[3];
-      sum.bench_chosen_ns += b.ns[std::size_t(r.chosen)];
-      sum.bench_cheapest_ns += b.ns[std::size_t(b.cheapest)];
-      ++sum.cheapest_by_benchmark[std::size_t(b.cheapest)];
-    }
+    if (o.costs) add_bench_price(sum, r);
   }
   sum.decisions = table_decisions(o);
   sum.z = decision.z;
@@ -467,14 +469,7 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
     a.exact_ns += r.levels[3].ns_per_eval;
     a.chosen_ns += r.levels[std::size_t(r.chosen)].ns_per_eval;
     a.cheapest_ns += r.levels[std::size_t(r.cheapest_measured)].ns_per_eval;
-    if (o.costs && o.costs->ns.count(r.cell.model) > 0) {
-      const BenchPrice b = bench_price(r, *o.costs);
-      a.benchmark_costs = true;
-      a.bench_exact_ns += b.ns[3];
-      a.bench_chosen_ns += b.ns[std::size_t(r.chosen)];
-      a.bench_cheapest_ns += b.ns[std::size_t(b.cheapest)];
-      ++a.cheapest_by_benchmark[std::size_t(b.cheapest)];
-    }
+    if (o.costs && o.costs->ns.count(r.cell.model) > 0) add_bench_price(a, r);
   }
   std::filesystem::create_directories(out);
   sum.csv = out / "adequacy.csv";
