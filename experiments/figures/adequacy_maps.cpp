@@ -82,8 +82,7 @@ void run_adequacy_maps(const FigureContext& ctx) {
   for (const AdequacyLevelMap& m : maps) {
     const bool area = m.stem.find(adq::kAreaFamilyModels[0]) != std::string::npos;
     write_level_maps_chart(ctx.dir / (m.stem + ".png"), levels_csv,
-                           area ? "adequacy-maps: cheapest adequate level per cell, area family "
-                                  "(square light of a cone's solid angle)"
+                           area ? "adequacy-maps: cheapest adequate level per cell, area family"
                                 : "adequacy-maps: cheapest adequate level per cell, binomial family",
                            {&m});
     io::write_exr(ctx.dir / (m.stem + ".exr"), m.exr,
