@@ -269,7 +269,7 @@ AdequacyRunSummary run_adequacy_request(const AdequacyRequest& o) {
     try {
       a.costs = experiments::read_level_costs(*o.bench_from, *o.bench_from,
                                               simd::isa_name(simd::default_isa()),
-                                              experiments::binomial_models(a.models));
+                                              experiments::priced_models(a.models));
     } catch (const std::invalid_argument& e) {
       throw InputError(e.what());
     }

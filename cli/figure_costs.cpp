@@ -15,7 +15,13 @@ namespace glintlab::cli {
 // recorded as 0.01. kemppinen2025-fig2-3, -fig6, -fig14 and podee-fig4-flicker re-measured at
 // quick on 2026-12-06 once their maps became matplotlib heat maps (the script's CPU included);
 // their full rows are the recorded ones plus that drawing's CPU at quick (a map has at most
-// 128 x 128 cells at either budget), not re-run. Only the ratios matter: the shards' balance, never a verdict or an output,
+// 128 x 128 cells at either budget), not re-run. adequacy-scene's quick row since its area scenes
+// (2026-12-06): the recorded 17.5 times the ratio of the new to the old build's CPU measured back
+// to back under the same load (25.37 s / 23.55 s); its full row the recorded 203 plus 8 times the
+// area scenes' quick CPU (4x the pixels, 2x the realisations), not re-run. adequacy-maps' rows
+// since it draws the area family: the recorded 5.14 and 250 times the ratio of the new to the old
+// build's quick CPU measured back to back under the same load (15.32 s / 7.85 s); the full row
+// not re-run. Only the ratios matter: the shards' balance, never a verdict or an output,
 // depends on these numbers. Re-measure a row when its figure's budget changes.
 const std::vector<FigureCost>& figure_costs() {
   // clang-format off
@@ -44,8 +50,8 @@ const std::vector<FigureCost>& figure_costs() {
       {"kemppinen2025-table3",            0.28,   6.73},
       {"kemppinen2025-speed-accuracy",    1.85,   23.2},
       {"kemppinen2025-fig7",             18.48,    588},
-      {"adequacy-maps",                   5.14,    250},
-      {"adequacy-scene",                  17.5,    203},
+      {"adequacy-maps",                   10.0,    488},
+      {"adequacy-scene",                  18.9,    218},
   };
   // clang-format on
   return kCosts;

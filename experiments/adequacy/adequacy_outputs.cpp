@@ -70,8 +70,8 @@ void write_csv(const std::filesystem::path& path, const std::vector<CellResult>&
   names.push_back("cheapest_measured");
   names.push_back("time_saved_ns");
   // With --bench-from: the levels priced by the benchmark (the same on every run of that file;
-  // the binomial family's rows only: the benchmark has no Kemppinen adequacy rows, whose fields
-  // there are `none` and `nan`).
+  // the binomial and area families' rows: the benchmark has no Kemppinen adequacy rows, whose
+  // fields there are `none` and `nan`).
   if (costs)
     for (const char* n : {"cheapest_by_benchmark", "bench_exact_ns", "bench_chosen_ns",
                           "bench_cheapest_ns"})
@@ -101,9 +101,9 @@ void write_csv(const std::filesystem::path& path, const std::vector<CellResult>&
     }
   };
   // A row of the binomial levels: the binomial family's, or the area family's (its light the
-  // square's cone-equivalent half-angle; no benchmark rows price it: `none` and `nan` there).
+  // square's cone-equivalent half-angle); `none` and `nan` where the costs lack its model.
   const auto counting_row = [&](io::CsvWriter& w, const CellResult& r, std::string_view family) {
-    const bool priced = family == kBinomialFamily;
+    const bool priced = costs && costs->ns.count(r.cell.model) > 0;
     w.cell(family).cell(r.cell.model).cell(r.cell.facets).cell(r.cell.alpha);
     w.cell(r.cell.light_half_angle_deg).cell(r.cell.theta_i_deg).cell(r.cell.theta_h_deg);
     w.cell(r.p).cell(r.smooth).cell(r.cv_predicted).cell(r.p_zero_predicted);
@@ -281,6 +281,12 @@ std::vector<std::string> binomial_models(const std::vector<std::string>& models)
   return out;
 }
 
+std::vector<std::string> priced_models(const std::vector<std::string>& models) {
+  std::vector<std::string> out = binomial_models(models);
+  for (std::string& m : area_models(models)) out.push_back(std::move(m));
+  return out;
+}
+
 std::vector<std::string> kemppinen_models(const std::vector<std::string>& models) {
   std::vector<std::string> out;
   for (std::string_view m : verify::adequacy::kKemppinenFamilyModels)
@@ -416,6 +422,15 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
 
   AdequacySummary sum;
   sum.cells = rows.size();
+  // A cell's benchmark prices added to a family's sums (the binomial family's, the area's).
+  const auto add_bench_price = [&](auto& into, const CellResult& r) {
+    const BenchPrice b = bench_price(r, *o.costs);
+    into.benchmark_costs = true;
+    into.bench_exact_ns += b.ns[3];
+    into.bench_chosen_ns += b.ns[std::size_t(r.chosen)];
+    into.bench_cheapest_ns += b.ns[std::size_t(b.cheapest)];
+    ++into.cheapest_by_benchmark[std::size_t(b.cheapest)];
+  };
   for (const CellResult& r : rows) {
     ++sum.chosen[std::size_t(r.chosen)];
     sum.chooser_refuted += r.chooser_refuted ? 1 : 0;
@@ -425,14 +440,7 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
     sum.cheapest_ns += r.levels[std::size_t(r.cheapest_measured)].ns_per_eval;
     ++sum.cheapest_measured[std::size_t(r.cheapest_measured)];
     sum.undecided += r.levels[0].undecided ? 1 : 0;
-    if (o.costs) {
-      const BenchPrice b = bench_price(r, *o.costs);
-      sum.benchmark_costs = true;
-      sum.bench_exact_ns += b.ns[3];
-      sum.bench_chosen_ns += b.ns[std::size_t(r.chosen)];
-      sum.bench_cheapest_ns += b.ns[std::size_t(b.cheapest)];
-      ++sum.cheapest_by_benchmark[std::size_t(b.cheapest)];
-    }
+    if (o.costs) add_bench_price(sum, r);
   }
   sum.decisions = table_decisions(o);
   sum.z = decision.z;
@@ -461,6 +469,7 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
     a.exact_ns += r.levels[3].ns_per_eval;
     a.chosen_ns += r.levels[std::size_t(r.chosen)].ns_per_eval;
     a.cheapest_ns += r.levels[std::size_t(r.cheapest_measured)].ns_per_eval;
+    if (o.costs && o.costs->ns.count(r.cell.model) > 0) add_bench_price(a, r);
   }
   std::filesystem::create_directories(out);
   sum.csv = out / "adequacy.csv";
@@ -711,6 +720,20 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
           {"exact_ns_total", a.exact_ns},
           {"chosen_ns_total", a.chosen_ns},
           {"cheapest_measured_ns_total", a.cheapest_ns}}}};
+    if (a.benchmark_costs) {
+      const auto saved = [&](double ns) {
+        return a.bench_exact_ns > 0 ? 1 - ns / a.bench_exact_ns : 0.0;
+      };
+      doc["families"][std::string(kAreaFamily)]["benchmark_costs"] = {
+          {"source", o.costs->source},
+          {"isa", o.costs->isa},
+          {"exact_ns_total", a.bench_exact_ns},
+          {"chosen_ns_total", a.bench_chosen_ns},
+          {"chosen_saved_fraction", saved(a.bench_chosen_ns)},
+          {"cheapest_ns_total", a.bench_cheapest_ns},
+          {"cheapest_saved_fraction", saved(a.bench_cheapest_ns)},
+          {"cheapest_by_benchmark", per_level(a.cheapest_by_benchmark)}};
+    }
   }
   for (const KemppinenCellResult& r : kemppinen_rows) {
     nlohmann::json levels = nlohmann::json::object();
@@ -734,6 +757,9 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
   for (const CellResult& r : cells.area) {
     table.push_back(counting_cell(r, kAreaFamily));
     table.back()["light_side"] = verify::adequacy::square_light_side(r.cell.light_half_angle_deg);
+    if (o.costs && o.costs->ns.count(r.cell.model) > 0)
+      table.back()["cheapest_by_benchmark"] =
+          kBinomialLevelNames[std::size_t(bench_price(r, *o.costs).cheapest)];
   }
   doc["cells"] = table;
   io::write_file_atomic(sum.json, doc.dump(1) + "\n");

@@ -92,12 +92,16 @@ struct AdequacySummary {
     double most_complete_ns = 0, chosen_ns = 0, cheapest_ns = 0;
   } kemppinen;
   // The area family (kneiphof_klein_area; zero cells when it is not selected): as the binomial
-  // family's, with the in-process times (no benchmark rows price it).
+  // family's, with the in-process times and, with benchmark costs, the benchmark's sums (its own
+  // adequacy/kneiphof_klein_area/ rows; not in the binomial family's bench_* sums).
   struct Area {
     std::size_t cells = 0, undecided = 0;
     std::size_t chooser_matches = 0, chooser_refuted = 0;
     std::array<std::size_t, kBinomialLevels> chosen{}, cheapest_measured{};
     double exact_ns = 0, chosen_ns = 0, cheapest_ns = 0;
+    bool benchmark_costs = false;
+    double bench_exact_ns = 0, bench_chosen_ns = 0, bench_cheapest_ns = 0;
+    std::array<std::size_t, kBinomialLevels> cheapest_by_benchmark{};
   } area;
 };
 
@@ -130,6 +134,9 @@ std::vector<verify::adequacy::KemppinenCellResult> measure_kemppinen_adequacy(
 std::vector<std::string> binomial_models(const std::vector<std::string>& models);
 std::vector<std::string> kemppinen_models(const std::vector<std::string>& models);
 std::vector<std::string> area_models(const std::vector<std::string>& models);
+// The models of `models` whose levels the benchmark prices (adequacy/<model>/level=<level>/<isa>
+// rows of glintlab_bench_glints): the binomial family's, then the area family's.
+std::vector<std::string> priced_models(const std::vector<std::string>& models);
 // The decision of the whole table for `o`: z by Šidák over every (cell, cheaper level) decision
 // of every family selected (binomial: 3 per cell, Kemppinen: 8 per cell, area: 3 per cell).
 verify::adequacy::Decision table_decision(const AdequacyOptions& o);

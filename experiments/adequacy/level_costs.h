@@ -1,7 +1,8 @@
 // Each binomial level's cost per evaluation on this machine, from the Google Benchmark JSON of
 // glintlab_bench_glints (its adequacy/<model>/level=<level>/<isa> rows: the quick adequacy grid's
-// cells through the registry's batch API), for `glintlab adequacy --bench-from DIR` and the
-// adequacy-scene figure: the level a cell needs priced by measurement rather than by the order of
+// cells through the registry's batch API; for the area family, kneiphof_klein_area, the model's
+// double thunk row by row and its smooth level's LTC call), for `glintlab adequacy --bench-from
+// DIR` and the adequacy-scene figure: the level a cell needs priced by measurement rather than by the order of
 // a GPU lane, and the time saved against the exact count everywhere.
 #pragma once
 

@@ -11,7 +11,11 @@
 // draw. Adequacy rows (adequacy/<model>/level=<level>/<isa>): each level of the binomial family
 // through the registry's batch API on every ISA this CPU has, over the quick adequacy grid's
 // cells, the cost per evaluation `glintlab adequacy --bench-from` and the adequacy-scene figure
-// read.
+// read; and of the area family (kneiphof_klein_area over the quick area grid's cells), whose model
+// has no SIMD batches: its counting levels go through the same batch API, which runs the model's
+// double thunk row by row on every ISA, and its smooth level is the LTC call a shader without
+// glints makes (the same code on every ISA; the rows are per ISA so that every ISA's costs are
+// complete).
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
@@ -31,6 +35,7 @@
 #include "core/models/smooth_ggx.h"
 #include "core/simd/model_batch.h"
 #include "experiments/bench/method_bench.h"
+#include "verify/adequacy/area_adequacy.h"
 #include "verify/adequacy/binomial_adequacy.h"
 
 namespace glintlab {
@@ -237,12 +242,26 @@ struct AdequacyRows {
   std::vector<std::vector<std::vector<double>>> query;   // per cell: the query columns
 };
 
+bool is_area_model(std::string_view model) {
+  return model == verify::adequacy::kAreaFamilyModels[0];
+}
+
+// The quick grid's cells of `model` (the area family's with its square lights).
+std::vector<verify::adequacy::Cell> adequacy_cells(const std::string& model) {
+  namespace adq = verify::adequacy;
+  return adq::make_grid({model}, is_area_model(model) ? adq::area_grid_axes(verify::Budget::kQuick)
+                                                      : adq::grid_axes(verify::Budget::kQuick));
+}
+
 AdequacyRows adequacy_rows(const std::string& model, BinomialLevel level) {
   namespace adq = verify::adequacy;
   const ModelEntry& smooth = find_model("smooth_ggx");
   AdequacyRows r;
-  for (const adq::Cell& c : adq::make_grid({model}, adq::grid_axes(verify::Budget::kQuick))) {
-    if (level == BinomialLevel::kSmooth) {
+  for (const adq::Cell& c : adequacy_cells(model)) {
+    if (is_area_model(model)) {
+      // Every level's parameters (the smooth level reads the light and roughness from them).
+      r.params.push_back(adq::area_level_param_values(c, level, 1));
+    } else if (level == BinomialLevel::kSmooth) {
       r.params.push_back(resolve_params(
           smooth, {{"alpha_x", fmt::format("{}", c.alpha)}, {"alpha_y", fmt::format("{}", c.alpha)}}));
     } else {
@@ -286,16 +305,62 @@ void adequacy_level_bm(benchmark::State& s, std::string model, BinomialLevel lev
   s.SetItemsProcessed(evals);
 }
 
+// The area family's smooth level: L_o/L_i by the BRDF LTC lobe over the cell's square light
+// (kneiphof2024::area_light_terms_ltc, one table lookup and one polygon integral: what a shader
+// without glints pays, and what verify/adequacy/area_adequacy.cpp measures as the smooth level),
+// scalar double over the same cells and positions; `isa` names the row only.
+void adequacy_area_smooth_bm(benchmark::State& s, std::string model) {
+  using M = KneiphofKleinArea;
+  std::vector<M::Params<double>> params;
+  std::vector<std::vector<ModelQuery<double>>> queries;
+  for (const verify::adequacy::Cell& c : adequacy_cells(model)) {
+    params.push_back(M::params<double>(verify::adequacy::area_level_param_values(
+        c, BinomialLevel::kSmooth, 1)));
+    queries.emplace_back();
+    for (int i = 0; i < kAdequacyPositions; ++i) {
+      const Vec2<double> uv = verify::adequacy::surface_position(i);
+      queries.back().push_back(verify::adequacy::cell_query(c, uv.x, uv.y));
+    }
+  }
+  std::vector<double> out(kAdequacyPositions);
+  std::int64_t evals = 0;
+  for (auto _ : s) {
+    for (std::size_t k = 0; k < params.size(); ++k) {
+      const M::Params<double>& p = params[k];
+      for (int i = 0; i < kAdequacyPositions; ++i) {
+        const ModelQuery<double>& q = queries[k][std::size_t(i)];
+        const auto rect =
+            kneiphof2024::facing_rectangle(q.wo, p.distance, p.width, p.height, p.rotation, p.tilt);
+        out[std::size_t(i)] =
+            kneiphof2024::area_light_terms_ltc(*p.table, p.alpha, q.wi, rect.data(), 4, p.area_p)
+                .lo_over_li;
+      }
+      benchmark::DoNotOptimize(out.data());
+      benchmark::ClobberMemory();
+    }
+    evals += std::int64_t(params.size()) * kAdequacyPositions;
+  }
+  s.SetItemsProcessed(evals);
+}
+
 void register_adequacy_levels() {
-  for (std::string_view model : verify::adequacy::kBinomialFamilyModels)
+  // The area family after the binomial one, each model's levels on every ISA.
+  std::vector<std::string_view> models(verify::adequacy::kBinomialFamilyModels.begin(),
+                                       verify::adequacy::kBinomialFamilyModels.end());
+  models.insert(models.end(), verify::adequacy::kAreaFamilyModels.begin(),
+                verify::adequacy::kAreaFamilyModels.end());
+  for (std::string_view model : models)
     for (int l = 0; l < kBinomialLevels; ++l)
       for (simd::Isa isa : simd::kAllIsas) {
         if (!simd::isa_supported(isa)) continue;
-        benchmark::RegisterBenchmark(
-            fmt::format("adequacy/{}/level={}/{}", model, kBinomialLevelNames[std::size_t(l)],
-                        simd::isa_name(isa))
-                .c_str(),
-            adequacy_level_bm, std::string(model), BinomialLevel(l), isa);
+        const std::string name = fmt::format(
+            "adequacy/{}/level={}/{}", model, kBinomialLevelNames[std::size_t(l)],
+            simd::isa_name(isa));
+        if (is_area_model(model) && l == int(BinomialLevel::kSmooth))
+          benchmark::RegisterBenchmark(name.c_str(), adequacy_area_smooth_bm, std::string(model));
+        else
+          benchmark::RegisterBenchmark(name.c_str(), adequacy_level_bm, std::string(model),
+                                       BinomialLevel(l), isa);
       }
 }
 

@@ -1,8 +1,10 @@
-// Figure adequacy-maps: the adequacy table of the binomial family measured at the budget's grid
-// (the table `glintlab adequacy` writes), drawn by matplotlib as one labelled sheet
-// (adequacy-maps.png: a title, then each model × light × incidence map with its own title, axes
-// with units, the levels' colour scale and the predicted smooth boundary), each map's PNG and EXR,
-// a CSV of every cell's chosen level and the chooser's, the maps' cells as drawn
+// Figure adequacy-maps: the adequacy table of the binomial family and of the area family
+// (kneiphof_klein_area under square lights, the binomial levels) measured at the budget's grids
+// (the table `glintlab adequacy --models deliot_belcour,kneiphof_klein,kneiphof_klein_area`
+// writes: one decision, z split over both families' decisions), drawn by matplotlib as one
+// labelled sheet (adequacy-maps.png: a title, then each model × light × incidence map with its own
+// title, axes with units, the levels' colour scale and the predicted smooth boundary), each map's
+// PNG and EXR, a CSV of every cell's chosen level and the chooser's, the maps' cells as drawn
 // (adequacy-maps-levels.csv, with the chart specs) and summary.md with the counts per model and
 // level.
 #include "experiments/figures/adequacy_maps.h"
@@ -38,9 +40,13 @@ void run_adequacy_maps(const FigureContext& ctx) {
                                                   std::size_t(ctx.threads));
   AdequacyOptions o;
   o.models.assign(adq::kBinomialFamilyModels.begin(), adq::kBinomialFamilyModels.end());
+  o.models.insert(o.models.end(), adq::kAreaFamilyModels.begin(), adq::kAreaFamilyModels.end());
   o.budget = ctx.quick ? verify::Budget::kQuick : verify::Budget::kFull;
   const adq::GridAxes axes = adq::grid_axes(o.budget);
-  const std::size_t total = adq::make_grid(o.models, axes).size();
+  const adq::GridAxes area_axes = area_axes_of(o);
+  const std::vector<adq::Cell> area_cells = adq::make_grid(area_models(o.models), area_axes);
+  const std::size_t total =
+      adq::make_grid(binomial_models(o.models), axes).size() + area_cells.size();
   std::atomic<long> done{0};
   std::mutex progress_mutex;
   o.progress = [&] {
@@ -50,8 +56,17 @@ void run_adequacy_maps(const FigureContext& ctx) {
       ctx.progress("adequacy-maps: cells", d, long(total));
     }
   };
-  const std::vector<adq::CellResult> rows = measure_adequacy(o);
-  const std::vector<AdequacyLevelMap> maps = adequacy_level_maps(rows, axes, o.threshold);
+  // Both families at the decision of their one table (measure_adequacy: the binomial cells; the
+  // area cells as `glintlab adequacy` measures them, seeded by their position in the area grid).
+  std::vector<adq::CellResult> rows = measure_adequacy(o);
+  std::vector<std::size_t> all(area_cells.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  const std::vector<adq::CellResult> area_rows = adq::measure_area_grid_at(
+      area_cells, all, area_axes.samples, table_decision(o), o.progress);
+  std::vector<AdequacyLevelMap> maps = adequacy_level_maps(rows, axes, o.threshold);
+  for (AdequacyLevelMap& m : adequacy_level_maps(area_rows, area_axes, o.threshold))
+    maps.push_back(std::move(m));
+  rows.insert(rows.end(), area_rows.begin(), area_rows.end());
 
   // The maps' cells as data; each map's chart and the sheet of all of them drawn from it by
   // reports/figure_charts.py (FigureContext::finish).
@@ -60,18 +75,22 @@ void run_adequacy_maps(const FigureContext& ctx) {
   for (const AdequacyLevelMap& m : maps) every_map.push_back(&m);
   write_level_maps_csv(ctx.dir / levels_csv, every_map);
   const std::string title = fmt::format(
-      "adequacy-maps: binomial family, cheapest level within TAU = {:g} per cell ({} positions "
-      "per cell, other families not measured)",
+      "adequacy-maps: binomial and area families, cheapest level within TAU = {:g} per cell ({} "
+      "positions per cell; the Kemppinen family's maps are glintlab adequacy's)",
       o.threshold, axes.samples);
   write_level_maps_chart(ctx.dir / "adequacy-maps.png", levels_csv, title, every_map, 2);
   for (const AdequacyLevelMap& m : maps) {
+    const bool area = m.stem.find(adq::kAreaFamilyModels[0]) != std::string::npos;
     write_level_maps_chart(ctx.dir / (m.stem + ".png"), levels_csv,
-                           "adequacy-maps: cheapest adequate level per cell, binomial family",
+                           area ? "adequacy-maps: cheapest adequate level per cell, area family"
+                                : "adequacy-maps: cheapest adequate level per cell, binomial family",
                            {&m});
     io::write_exr(ctx.dir / (m.stem + ".exr"), m.exr,
                   {{"glintlab_figure", std::string(kId)},
                    {"glintlab_version", std::string(glintlab_version())},
-                   {"glintlab_columns", "N_P: " + fmt::format("{}", fmt::join(axes.facets, ", "))},
+                   {"glintlab_columns",
+                    "N_P: " + fmt::format("{}", fmt::join(area ? area_axes.facets : axes.facets,
+                                                          ", "))},
                    {"glintlab_rows", fmt::format("{}", fmt::join(m.map.row_labels, "; "))},
                    {"glintlab_levels", "0 smooth, 1 realtime, 2 small_count, 3 exact"}});
   }
@@ -106,16 +125,19 @@ void run_adequacy_maps(const FigureContext& ctx) {
   }
   std::string md = fmt::format(
       "# adequacy-maps\n\nThe cheapest level of the binomial glint family (deliot_belcour, "
-      "kneiphof_klein: smooth, realtime, small_count, exact) whose mean and CV over {} surface "
-      "positions are within TAU = {:g} of exact counting, per cell of the adequacy grid (footprint "
-      "size N_P × roughness α × half-vector angle θ_h, one map per light half-angle and incidence "
-      "θ_i; docs/adequacy.md). The black bar on each row is the predicted smooth boundary "
-      "N* = (1 − p)/(p TAU²). The other families (Kemppinen, Chermain, kneiphof_klein_area) have "
-      "no measured levels yet and no maps.\n\n"
+      "kneiphof_klein: smooth, realtime, small_count, exact) and of the area family "
+      "(kneiphof_klein_area under a square light whose solid angle is the light half-angle's "
+      "cone's, the same levels) whose mean and CV over {} surface positions are within TAU = {:g} "
+      "of exact counting, per cell of the adequacy grid (footprint size N_P × roughness α × "
+      "half-vector angle θ_h, one map per model, light half-angle and incidence θ_i; "
+      "docs/adequacy.md), each decided at the one z of both families' decisions ({:.3f}). The "
+      "black bar on each row is the predicted smooth boundary N* = (1 − p)/(p TAU²) (the area "
+      "family's p by the LTC). The Kemppinen family's maps are `glintlab adequacy`'s; Chermain "
+      "has no measured levels yet and no maps.\n\n"
       "| model | cells | smooth | realtime | small_count | exact | undecided | chooser = measured "
       "| "
       "chooser refuted |\n|---|---|---|---|---|---|---|---|---|\n",
-      axes.samples, o.threshold);
+      axes.samples, o.threshold, table_decision(o).z);
   for (const auto& [model, c] : per_model)
     md +=
         fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", model, c.cells, c.chosen[0],
@@ -124,7 +146,8 @@ void run_adequacy_maps(const FigureContext& ctx) {
       "\nadequacy-maps.png: every map on one sheet; <map>.png and <map>.exr one map each (EXR "
       "channels chosen, chooser, cv_exact, cv_predicted, p_zero, p_zero_predicted; one pixel per "
       "cell, x = N_P, row 0 = the bottom row); adequacy-maps.csv every cell's chosen level and "
-      "the chooser's.\n";
+      "the chooser's (the binomial family's cells, then the area family's: light_half_angle_deg "
+      "the square's cone-equivalent half-angle).\n";
   io::write_file_atomic(ctx.dir / "summary.md", md);
 }
 

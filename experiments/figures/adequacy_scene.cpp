@@ -1,16 +1,17 @@
 // Figure adequacy-scene: per validation scene (verify/scenes/adequacy_scenes.h; the binomial
-// family's six and the Kemppinen family's four, rendered by the claim's own render_choice_scene)
-// the render with each pixel's chosen level, the render with the family's most complete level
-// everywhere (exact counting; k16_exact), the difference map (the larger of the mean's relative
-// difference and the CV difference over the pixel's realisations, in units of TAU) and the map of
-// the chosen level: the difference and level maps as one labelled sheet drawn by matplotlib
-// (adequacy-scene.png from adequacy-scene-pixels.csv and its chart spec: titles, axes, colour
-// scales, legends), the two renders as the plain montage panels.png with its panels.json, one EXR
-// per scene (every per-pixel quantity), a CSV of per-scene counts per family (adequacy-scene.csv,
-// adequacy-scene-kemppinen.csv) and summary.md; given benchmark data (--bench-from), each
-// scene's time per evaluation with the chosen levels against exact counting everywhere
-// (adequacy-scene-cost.csv, summary.md; binomial scenes only: the benchmark prices the binomial
-// levels).
+// family's six, the Kemppinen family's four and the area family's two, rendered by the claim's own
+// render_choice_scene) the render with each pixel's chosen level, the render with the family's most
+// complete level everywhere (exact counting; k16_exact; exact counting), the difference map (the
+// larger of the mean's relative difference and the CV difference over the pixel's realisations,
+// in units of TAU) and the map of the chosen level: the difference and level maps as one labelled
+// sheet drawn by matplotlib (adequacy-scene.png from adequacy-scene-pixels.csv and its chart spec:
+// titles, axes, colour scales, legends), the two renders as the plain montage panels.png with its
+// panels.json, one EXR per scene (every per-pixel quantity), a CSV of per-scene counts per family
+// (adequacy-scene.csv, adequacy-scene-kemppinen.csv, adequacy-scene-area.csv) and summary.md with
+// each family decided as claim adequacy.choice-is-safe decides it (the Šidák share over its three
+// families); given benchmark data (--bench-from), each scene's time per evaluation with the chosen
+// levels against exact counting everywhere (adequacy-scene-cost.csv, summary.md; the binomial and
+// area scenes: the benchmark prices the binomial levels of both families).
 #include "experiments/figures/adequacy_scene.h"
 
 #include <fmt/format.h>
@@ -53,11 +54,17 @@ const Vec3<double> kOffSurface{0.8, 0.8, 0.8};  // no surface, or the light belo
 const Vec3<double> kDark{0.45, 0.45, 0.45};     // exact level lit too rarely to measure
 const Vec3<double> kExceeds{0.9, 0.0, 0.9};     // a lower bound above TAU
 
+// The families of claim adequacy.choice-is-safe, in its order (its Šidák split is over all three).
+enum class Family { kBinomial, kKemppinen, kArea };
+constexpr int kFamilies = 3;
+
 struct SceneResult {
   adq::SceneRender render;
-  bool kemppinen = false;  // a Kemppinen-family scene (KemppinenLevel values, k16_exact complete)
+  // kKemppinen: KemppinenLevel values, k16_exact complete; else BinomialLevel values, exact.
+  Family family = Family::kBinomial;
+  bool kemppinen() const { return family == Family::kKemppinen; }
   int realisations = 0;
-  int zoom = 1;  // the sheet's pixels per render pixel (the Kemppinen scenes are smaller)
+  int zoom = 1;  // the sheet's pixels per render pixel (the Kemppinen and area scenes are smaller)
   adq::SafetyTally tally;
   double exposure = 1;
   double max_diff = 0;  // the largest difference estimate over the measured pixels, in TAU
@@ -107,7 +114,8 @@ void blit(Image& to, const Image& from, int ox, int oy) {
       for (std::size_t c = 0; c < 3; ++c) to.at(ox + x, oy + y, c) = from.at(x, y, c);
 }
 
-// Each pixel as a zoom × zoom block (the Kemppinen scenes' renders at the binomial panels' size).
+// Each pixel as a zoom × zoom block (the Kemppinen and area scenes' renders at the binomial
+// panels' size).
 Image enlarge(const Image& from, int zoom) {
   if (zoom == 1) return from;
   Image out(from.width * zoom, from.height * zoom, {"R", "G", "B"});
@@ -122,7 +130,7 @@ Image display_panel(const SceneResult& s, Render which) {
 }
 
 std::string_view most_complete_name(const SceneResult& r) {
-  return r.kemppinen ? kKemppinenLevelNames[std::size_t(KemppinenLevel::kK16Exact)]
+  return r.kemppinen() ? kKemppinenLevelNames[std::size_t(KemppinenLevel::kK16Exact)]
                      : kBinomialLevelNames[std::size_t(BinomialLevel::kExact)];
 }
 
@@ -131,11 +139,16 @@ const char* density_unit(const adq::ChoiceScene& s) {
   return adq::is_kemppinen_scene(s) ? "points (K_P)" : "facets";
 }
 
+const char* light_name(adq::SceneLight l) {
+  return l == adq::SceneLight::kPoint         ? "point"
+         : l == adq::SceneLight::kSphereLight ? "spherical"
+                                              : "square";
+}
+
 std::string scene_label(const adq::ChoiceScene& s) {
   return fmt::format("{} ({}, {} light, {} density, 1e{:g} {} per unit uv area)",
                      s.shape == adq::SceneShape::kPlane ? "plane" : "sphere", s.model,
-                     s.light == adq::SceneLight::kPoint ? "point" : "spherical", s.density_label,
-                     s.log10_density, density_unit(s));
+                     light_name(s.light), s.density_label, s.log10_density, density_unit(s));
 }
 
 const char* kColumnNames[4] = {"chosen level", "most complete level", "difference / TAU",
@@ -223,11 +236,12 @@ void write_sheet_spec(const std::filesystem::path& png, const std::string& csv,
     nlohmann::json categories = nlohmann::json::array();
     categories.push_back(
         {{"value", -1}, {"label", "off the surface"}, {"color", rgb(kOffSurface)}});
-    for (std::size_t l = 0; l < std::size_t(r.kemppinen ? kKemppinenLevels : kBinomialLevels); ++l)
+    for (std::size_t l = 0; l < std::size_t(r.kemppinen() ? kKemppinenLevels : kBinomialLevels);
+         ++l)
       categories.push_back(
           {{"value", l},
-           {"label", r.kemppinen ? kKemppinenLevelNames[l] : kBinomialLevelNames[l]},
-           {"color", rgb(r.kemppinen ? kKemppinenLevelColors[l] : kAdequacyLevelColors[l])}});
+           {"label", r.kemppinen() ? kKemppinenLevelNames[l] : kBinomialLevelNames[l]},
+           {"color", rgb(r.kemppinen() ? kKemppinenLevelColors[l] : kAdequacyLevelColors[l])}});
     panels.push_back({{"kind", "categories"},
                       {"title", fmt::format("{}: {}\n{}", name, kColumnNames[3], counts)},
                       {"where", where},
@@ -268,7 +282,7 @@ void write_scene_exr(const FigureContext& ctx, const SceneResult& s) {
       for (std::size_t c = 0; c < std::size(v); ++c) im.at(x, y, c) = v[c];
     }
   std::string levels;
-  if (s.kemppinen)
+  if (s.kemppinen())
     for (std::size_t l = 0; l < kKemppinenLevelNames.size(); ++l)
       levels += fmt::format("{} {}, ", l, kKemppinenLevelNames[l]);
   else
@@ -308,7 +322,7 @@ std::string write_scene_costs(const FigureContext& ctx, const std::vector<SceneR
   const BenchSource src = bench_source(ctx, kLevelCostsFile);
   std::vector<std::string> models;
   for (const SceneResult& r : results)
-    if (!r.kemppinen &&
+    if (r.family == Family::kBinomial &&
         std::find(models.begin(), models.end(), r.render.scene.model) == models.end())
       models.push_back(r.render.scene.model);
   std::optional<LevelCosts> costs;
@@ -329,18 +343,47 @@ std::string write_scene_costs(const FigureContext& ctx, const std::vector<SceneR
            no_bench_data(src, kLevelCostsFile,
                          "glintlab_bench_glints --benchmark_filter=^adequacy/") +
            "\n";
+  // The area scenes' model where the file prices it too (an older file has the binomial rows only:
+  // the area scenes are then left unpriced, and the summary says why).
+  std::vector<std::string> area_models;
+  for (const SceneResult& r : results)
+    if (r.family == Family::kArea &&
+        std::find(area_models.begin(), area_models.end(), r.render.scene.model) ==
+            area_models.end())
+      area_models.push_back(r.render.scene.model);
+  std::string unpriced_area;
+  if (!area_models.empty()) {
+    try {
+      for (auto& [model, ns] :
+           read_level_costs(src.path.parent_path(),
+                            std::filesystem::path(src.shown_as).parent_path().string(),
+                            costs->isa, area_models)
+               .ns)
+        costs->ns.emplace(model, ns);
+    } catch (const std::invalid_argument& e) {
+      unpriced_area = std::string(
+          std::string_view(e.what()).substr(std::string_view("--bench-from: ").size()));
+    }
+  }
+  const auto priced = [&](const SceneResult& r) {
+    return r.family != Family::kKemppinen && costs->ns.count(r.render.scene.model) > 0;
+  };
   std::string md = fmt::format(
       "\n## Time per evaluation\n\nEach level priced by {} (rows adequacy/<model>/level=<level>/"
       "{}), summed over each scene's surface pixels: exact counting everywhere, the engine "
       "chooser's levels (the GPU-lane order) and the levels the chooser for these costs picks "
-      "(choose_binomial_level_by_cost); saved = 1 − time / exact time.\n\n"
-      "| scene | exact everywhere (ns) | chosen levels (ns) | saved | by these costs (ns) | saved "
-      "|\n|---|---|---|---|---|---|\n",
+      "(choose_binomial_level_by_cost); saved = 1 − time / exact time.\n\n",
       costs->source, costs->isa);
-  if (std::any_of(results.begin(), results.end(), [](const SceneResult& r) { return r.kemppinen; }))
+  if (std::any_of(results.begin(), results.end(),
+                  [](const SceneResult& r) { return r.family == Family::kKemppinen; }))
     md +=
         "The Kemppinen scenes are not priced here: the benchmark's adequacy/ rows price the "
-        "binomial levels only.\n\n";
+        "binomial levels (of the binomial and area families) only.\n\n";
+  if (!unpriced_area.empty())
+    md += fmt::format("The area scenes are not priced here: {}.\n\n", unpriced_area);
+  md +=
+      "| scene | exact everywhere (ns) | chosen levels (ns) | saved | by these costs (ns) | saved "
+      "|\n|---|---|---|---|---|---|\n";
   const auto saved = [](double t, double exact) { return exact > 0 ? 1 - t / exact : 0.0; };
   io::write_csv_atomic(
       ctx.dir / "adequacy-scene-cost.csv",
@@ -348,7 +391,7 @@ std::string write_scene_costs(const FigureContext& ctx, const std::vector<SceneR
        "by_cost_ns", "by_cost_saved_fraction"},
       [&](io::CsvWriter& w) {
         for (const SceneResult& r : results) {
-          if (r.kemppinen) continue;
+          if (!priced(r)) continue;
           const SceneCost c = scene_cost(r.render, costs->ns.at(r.render.scene.model), tau);
           w.cell(r.render.scene.name).cell(r.render.scene.model).cell(costs->isa);
           w.cell(c.exact_ns).cell(c.chosen_ns).cell(saved(c.chosen_ns, c.exact_ns));
@@ -366,7 +409,8 @@ std::string write_scene_costs(const FigureContext& ctx, const std::vector<SceneR
 // The per-scene counts of one family as CSV: the scenes' settings, the tally and the lit pixels per
 // chosen level (the family's level names as columns).
 void write_family_csv(const std::filesystem::path& file, const std::vector<SceneResult>& results,
-                      bool kemppinen) {
+                      Family family) {
+  const bool kemppinen = family == Family::kKemppinen;
   std::vector<std::string_view> header = {"scene",         "model",   "shape",  "light",
                                           "log10_density", "width",   "height", "realisations",
                                           "lit",           "cheaper", "exceeds"};
@@ -377,12 +421,12 @@ void write_family_csv(const std::filesystem::path& file, const std::vector<Scene
   header.emplace_back("exposure");
   io::write_csv_atomic(file, header, [&](io::CsvWriter& w) {
     for (const SceneResult& r : results) {
-      if (r.kemppinen != kemppinen) continue;
+      if (r.family != family) continue;
       const adq::ChoiceScene& s = r.render.scene;
       w.cell(s.name)
           .cell(s.model)
           .cell(s.shape == adq::SceneShape::kPlane ? "plane" : "sphere")
-          .cell(s.light == adq::SceneLight::kPoint ? "point" : "spherical")
+          .cell(light_name(s.light))
           .cell(s.log10_density)
           .cell_int(r.render.width)
           .cell_int(r.render.height)
@@ -400,7 +444,8 @@ void write_family_csv(const std::filesystem::path& file, const std::vector<Scene
 // One family's section of summary.md: its scenes' table and the decision claim
 // adequacy.choice-is-safe takes on such counts (each family on its own at the Šidák share of the
 // per-check level, as the claim decides them).
-std::string family_summary(const std::vector<SceneResult>& results, bool kemppinen, double alpha) {
+std::string family_summary(const std::vector<SceneResult>& results, Family family, double alpha) {
+  const bool kemppinen = family == Family::kKemppinen;
   adq::SafetyTally total;
   std::string md = kemppinen
                        ? "| scene | model | lit pixels | cheaper than k16_exact | exceed TAU |"
@@ -412,7 +457,7 @@ std::string family_summary(const std::vector<SceneResult>& results, bool kemppin
   for (std::size_t c = 0; c < levels + 6; ++c) md += "---|";
   md += "\n";
   for (const SceneResult& r : results) {
-    if (r.kemppinen != kemppinen) continue;
+    if (r.family != family) continue;
     adq::add(total, r.tally);
     md += fmt::format("| {} | {} | {} | {} | {} |", r.render.scene.name, r.render.scene.model,
                       r.tally.lit, r.tally.cheaper, r.tally.exceeds);
@@ -423,10 +468,13 @@ std::string family_summary(const std::vector<SceneResult>& results, bool kemppin
   md += fmt::format(
       "\n{} family: {} of {} lit pixels exceed TAU (fraction {:.4g}); the decision of claim "
       "adequacy.choice-is-safe on these pixels allows at most {} ({:.4g}; one-sided exact "
-      "binomial test of rate ≤ {} at {:.3g}, the Šidák share of {:.3g} over the two families, "
+      "binomial test of rate ≤ {} at {:.3g}, the Šidák share of {:.3g} over the {} families, "
       "p = {:.3g}): {}.\n",
-      kemppinen ? "Kemppinen" : "Binomial", total.exceeds, total.lit, d.fraction, d.allowed,
-      d.allowed_fraction, adq::kPixelFlagRate, alpha, verify::check_level(), d.p_value,
+      family == Family::kKemppinen ? "Kemppinen"
+      : family == Family::kArea    ? "Area"
+                                   : "Binomial",
+      total.exceeds, total.lit, d.fraction, d.allowed,
+      d.allowed_fraction, adq::kPixelFlagRate, alpha, verify::check_level(), kFamilies, d.p_value,
       to_string(d.verdict));
   return md;
 }
@@ -448,20 +496,33 @@ void run_adequacy_scene(const FigureContext& ctx) {
   adq::SceneOptions ko;
   ko.width = ko.height = ctx.quick ? 32 : 64;
   ko.realisations = ctx.quick ? 128 : 256;
-  const int zoom = o.width / ko.width;
+  // The area scenes: kneiphof_klein_area's LTC polygon integral costs some 2-3 µs per evaluation,
+  // so 64² at quick and 128² at full (the claim: 32² and 64²), 256 and 512 realisations.
+  adq::SceneOptions ao;
+  ao.width = ao.height = ctx.quick ? 64 : 128;
+  ao.realisations = ctx.quick ? 256 : 512;
+  const adq::SceneOptions* options[kFamilies] = {&o, &ko, &ao};
+  // The scenes of every family in the claim's order (binomial, Kemppinen, area).
   std::vector<adq::ChoiceScene> scenes = adq::choice_scenes();
-  const std::size_t binomial_scenes = scenes.size();
-  for (adq::ChoiceScene& s : adq::kemppinen_choice_scenes()) scenes.push_back(std::move(s));
+  std::vector<Family> families(scenes.size(), Family::kBinomial);
+  for (adq::ChoiceScene& s : adq::kemppinen_choice_scenes()) {
+    scenes.push_back(std::move(s));
+    families.push_back(Family::kKemppinen);
+  }
+  for (adq::ChoiceScene& s : adq::area_choice_scenes()) {
+    scenes.push_back(std::move(s));
+    families.push_back(Family::kArea);
+  }
   std::vector<SceneResult> results;
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     if (ctx.progress) ctx.progress("adequacy-scene: scenes", long(i), long(scenes.size()));
     SceneResult r;
-    r.kemppinen = i >= binomial_scenes;
-    // Seeds from the figure id and the scene's index over both families (as the claim's).
-    adq::SceneOptions so = r.kemppinen ? ko : o;
+    r.family = families[i];
+    // Seeds from the figure id and the scene's index over all families (as the claim's).
+    adq::SceneOptions so = *options[int(r.family)];
     so.seed = verify::check_seed(std::string(kId), i);
     r.realisations = so.realisations;
-    r.zoom = r.kemppinen ? zoom : 1;
+    r.zoom = o.width / so.width;
     r.render = adq::render_choice_scene(scenes[i], so);
     r.tally = adq::tally(r.render);
     r.exposure = exposure_of(r.render);
@@ -478,7 +539,9 @@ void run_adequacy_scene(const FigureContext& ctx) {
                    {{"binomial", kBinomialLevelNames[std::size_t(BinomialLevel::kExact)], o.width,
                      o.height, o.realisations},
                     {"kemppinen", kKemppinenLevelNames[std::size_t(KemppinenLevel::kK16Exact)],
-                     ko.width, ko.height, ko.realisations}});
+                     ko.width, ko.height, ko.realisations},
+                    {"area", kBinomialLevelNames[std::size_t(BinomialLevel::kExact)], ao.width,
+                     ao.height, ao.realisations}});
   std::vector<Image> tiles;
   std::vector<std::string> labels;
   for (const SceneResult& r : results)
@@ -495,12 +558,14 @@ void run_adequacy_scene(const FigureContext& ctx) {
                       2,
                       labels});
 
-  write_family_csv(ctx.dir / "adequacy-scene.csv", results, false);
-  write_family_csv(ctx.dir / "adequacy-scene-kemppinen.csv", results, true);
+  write_family_csv(ctx.dir / "adequacy-scene.csv", results, Family::kBinomial);
+  write_family_csv(ctx.dir / "adequacy-scene-kemppinen.csv", results, Family::kKemppinen);
+  write_family_csv(ctx.dir / "adequacy-scene-area.csv", results, Family::kArea);
 
-  const double alpha = verify::sidak_level(verify::check_level(), 2);
+  // Each family at the Šidák share of the per-check level over the claim's families.
+  const double alpha = verify::sidak_level(verify::check_level(), kFamilies);
   std::string md = fmt::format(
-      "# adequacy-scene\n\nScenes the adequacy grid was not measured on (verify/claims/"
+      "# adequacy-scene\n\nScenes the adequacy grid was not measured on (verify/scenes/"
       "adequacy_scenes.h), rendered by the claim's own code (render_choice_scene): each pixel "
       "with the level the engine chooser (core/glints/adequacy.h) picks for its footprint and "
       "with the family's most complete level everywhere. The difference of a pixel is measured "
@@ -510,25 +575,34 @@ void run_adequacy_scene(const FigureContext& ctx) {
       "## Binomial family (deliot_belcour, kneiphof_klein; most complete: exact counting)\n\n"
       "{}×{} pixels, {} realisations per pixel.\n\n",
       o.tau, adq::kPixelFlagRate / 2, o.width, o.height, o.realisations);
-  md += family_summary(results, false, alpha);
+  md += family_summary(results, Family::kBinomial, alpha);
   md += fmt::format(
       "\n## Kemppinen family (kemppinen_ggx; most complete: k16_exact)\n\n"
       "{}×{} pixels (each shown {}×{} on the sheet), {} realisations per pixel; levels by "
       "choose_kemppinen_model_level; K_P is the points per unit uv area.\n\n",
-      ko.width, ko.height, zoom, zoom, ko.realisations);
-  md += family_summary(results, true, alpha);
+      ko.width, ko.height, o.width / ko.width, o.width / ko.width, ko.realisations);
+  md += family_summary(results, Family::kKemppinen, alpha);
+  md += fmt::format(
+      "\n## Area family (kneiphof_klein_area under a square light of side {:.3g}; most complete: "
+      "exact counting)\n\n"
+      "{}×{} pixels (each shown {}×{} on the sheet), {} realisations per pixel; levels by "
+      "choose_binomial_level with the model's N_P and LTC p (core has no area chooser).\n\n",
+      adq::kRectLightSide, ao.width, ao.height, o.width / ao.width, o.width / ao.width,
+      ao.realisations);
+  md += family_summary(results, Family::kArea, alpha);
   md += fmt::format(
       "\nadequacy-scene.png (drawn by matplotlib from adequacy-scene-pixels.csv): one row per "
       "scene; columns: the difference map (max of the two differences over TAU on its colour "
       "scale, 0 to 2 TAU; magenta where it exceeds TAU for sure; dark grey where the most "
       "complete level is lit at fewer than {:g} realisations; light grey off the surface) and the "
-      "chosen level (binomial: green smooth, blue realtime, orange small_count, red exact; "
+      "chosen level (binomial and area: green smooth, blue realtime, orange small_count, red "
+      "exact; "
       "Kemppinen: green smooth, then k = 1, 4, 9, 16 in blue, yellow, purple, red, the exact erf "
       "the darker shade). panels.png: per scene the chosen-level render and the most complete "
       "level's render (same exposure), two scenes a row, unlabelled (labels in "
       "panels.panels.json); <scene>.exr every per-pixel "
-      "quantity at the render's size; adequacy-scene.csv and adequacy-scene-kemppinen.csv the "
-      "per-scene counts.\n",
+      "quantity at the render's size; adequacy-scene.csv, adequacy-scene-kemppinen.csv and "
+      "adequacy-scene-area.csv the per-scene counts.\n",
       adq::kMinLitPositions);
   md += write_scene_costs(ctx, results, o.tau);
   io::write_file_atomic(ctx.dir / "summary.md", md);
@@ -537,11 +611,12 @@ void run_adequacy_scene(const FigureContext& ctx) {
 }  // namespace
 
 FigureEntry adequacy_scene_entry() {
-  return {kId, "glintlab (adequacy of the binomial family)", "claim adequacy.choice-is-safe",
-          "validation scenes of the binomial and Kemppinen families: each pixel's chosen level "
-          "against the family's most complete level, with the difference map and the "
-          "chosen-level map",
-          run_adequacy_scene};
+  return {
+      kId, "glintlab (adequacy of the binomial family)", "claim adequacy.choice-is-safe",
+      "validation scenes of the binomial, Kemppinen and area families: each pixel's chosen level "
+      "against the family's most complete level, with the difference map and the "
+      "chosen-level map",
+      run_adequacy_scene};
 }
 
 }  // namespace glintlab::experiments

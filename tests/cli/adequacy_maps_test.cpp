@@ -1,6 +1,7 @@
 // `glintlab figure adequacy-maps --budget quick`: the labelled sheet and one PNG per model × light
-// × incidence of the quick grid (drawn by matplotlib), its EXR, the CSV of every cell, whose chosen
-// levels are the EXRs' pixels, and summary.md naming the families not measured.
+// × incidence of the quick grids of the binomial and area families (drawn by matplotlib), its EXR,
+// the CSV of every cell, whose chosen levels are the EXRs' pixels, and summary.md naming the
+// families not drawn.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -29,16 +30,17 @@ TEST_F(AdequacyMapsFigureTest, QuickWritesSheetMapsCsvAndSummary) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/adequacy-maps");
   expect_png(d / "adequacy-maps.png");
-  // Drawn by matplotlib: the sheet's twelve maps and each map alone, labelled, with the levels as
-  // their colour scale; drawn from the maps' cells (one row per cell).
-  expect_labelled_chart(d / "adequacy-maps.png", 12);
-  EXPECT_EQ(io::read_csv(d / "adequacy-maps-levels.csv").num_rows(), 648u);
+  // Drawn by matplotlib: the sheet's eighteen maps and each map alone, labelled, with the levels
+  // as their colour scale; drawn from the maps' cells (one row per cell).
+  expect_labelled_chart(d / "adequacy-maps.png", 18);
+  EXPECT_EQ(io::read_csv(d / "adequacy-maps-levels.csv").num_rows(), 972u);
   const io::CsvTable t = io::read_csv(d / "adequacy-maps.csv");
-  // Quick grid: 2 models × 3 lights × 2 incidences × 2 α × 3 θ_h × 9 footprints.
-  ASSERT_EQ(t.num_rows(), 648u);
+  // Quick grid: 3 models × 3 lights × 2 incidences × 2 α × 3 θ_h × 9 footprints (the area
+  // family's lights: squares of the cones' solid angles, 0.26°, 1° and 10°).
+  ASSERT_EQ(t.num_rows(), 972u);
   int maps = 0;
-  for (const char* model : {"deliot_belcour", "kneiphof_klein"})
-    for (const char* light : {"0", "1", "10"})
+  for (const std::string model : {"deliot_belcour", "kneiphof_klein", "kneiphof_klein_area"})
+    for (const char* light : {model == "kneiphof_klein_area" ? "0.26" : "0", "1", "10"})
       for (const char* theta : {"0", "60"}) {
         const std::string stem = fmt::format("adequacy_{}_light{}_theta{}", model, light, theta);
         expect_png(d / (stem + ".png"));
@@ -49,7 +51,7 @@ TEST_F(AdequacyMapsFigureTest, QuickWritesSheetMapsCsvAndSummary) {
         im.channel("chosen");
         ++maps;
       }
-  EXPECT_EQ(maps, 12);
+  EXPECT_EQ(maps, 18);
   // The first map's bottom row is the CSV's first 9 cells (α = 0.05, θ_h = 0), N_P ascending.
   const Image first = io::read_exr(d / "adequacy_deliot_belcour_light0_theta0.exr").image;
   const std::string names[] = {"smooth", "realtime", "small_count", "exact"};
@@ -57,9 +59,28 @@ TEST_F(AdequacyMapsFigureTest, QuickWritesSheetMapsCsvAndSummary) {
     EXPECT_EQ(names[int(first.at(k, 0, first.channel("chosen")))],
               std::string(t.text(std::size_t(k), t.column("chosen"))))
         << k;
+  // The area family's first map is its first CSV rows (after the binomial family's 648): a level
+  // map read from the wrong family's rows (the binomial ones) does not match it.
+  const Image area = io::read_exr(d / "adequacy_kneiphof_klein_area_light0.26_theta0.exr").image;
+  int mismatches_as_binomial = 0;
+  for (int k = 0; k < 9; ++k) {
+    EXPECT_EQ(t.text(648 + std::size_t(k), t.column("model")), "kneiphof_klein_area");
+    EXPECT_EQ(names[int(area.at(k, 0, area.channel("chosen")))],
+              std::string(t.text(648 + std::size_t(k), t.column("chosen"))))
+        << k;
+  }
+  for (int y = 0; y < 6; ++y)
+    for (int k = 0; k < 9; ++k)
+      mismatches_as_binomial +=
+          names[int(area.at(k, y, area.channel("chosen")))] !=
+                  std::string(t.text(324 + std::size_t(y * 9 + k), t.column("chosen")))
+              ? 1
+              : 0;
+  EXPECT_GT(mismatches_as_binomial, 0);
   const std::string md = read_text(d / "summary.md");
   EXPECT_NE(md.find("no measured levels yet"), std::string::npos);
   EXPECT_NE(md.find("| kneiphof_klein | 324 |"), std::string::npos);
+  EXPECT_NE(md.find("| kneiphof_klein_area | 324 |"), std::string::npos);
 }
 
 }  // namespace

@@ -1,8 +1,8 @@
 // `glintlab figure adequacy-scene --budget quick`: the labelled sheet (matplotlib) and its pixels'
 // CSV, the montage and its panel labels, one EXR per validation scene with every per-pixel
-// quantity (the binomial scenes at 128 pixels, the Kemppinen scenes at 32), each family's
-// per-scene CSV whose counts are the EXRs' pixels, and summary.md with the claim's decision per
-// family.
+// quantity (the binomial scenes at 128 pixels, the Kemppinen scenes at 32, the area scenes at 64),
+// each family's per-scene CSV whose counts are the EXRs' pixels, and summary.md with the claim's
+// decision per family at the claim's Šidák share over its three families.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -59,10 +59,12 @@ std::set<int> expect_counts_match_exrs(const fs::path& d, const io::CsvTable& t,
 }
 
 TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
-  // Benchmark costs with the exact count cheaper than both approximations (as on CPUs).
+  // Benchmark costs with the exact count cheaper than both approximations (as on CPUs), for the
+  // binomial and the area family's models.
   std::filesystem::create_directories(path("bench"));
   write_text(path("bench/glints.json"),
-             level_costs_json({"deliot_belcour", "kneiphof_klein"}, {10, 200, 300, 100}));
+             level_costs_json({"deliot_belcour", "kneiphof_klein", "kneiphof_klein_area"},
+                              {10, 200, 300, 100}));
   const RunResult r = run(
       {"figure", "adequacy-scene", "--budget", "quick", "--out", "out", "--bench-from", "bench"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -70,13 +72,14 @@ TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
   expect_png(d / "adequacy-scene.png");
   // The sheet, drawn by matplotlib: per scene its difference map and its chosen-level map, each
   // titled, with pixel axes and a colour scale; the scenes named in the panels' titles.
-  expect_labelled_chart(d / "adequacy-scene.png", 20);
+  expect_labelled_chart(d / "adequacy-scene.png", 24);
   const nlohmann::json sheet = chart_manifest(d / "adequacy-scene.png");
   EXPECT_NE(sheet["axes"][0].value("title", "").find("plane-point-low"), std::string::npos);
   EXPECT_NE(sheet["axes"][19].value("title", "").find("kemppinen-sphere-high"), std::string::npos);
+  EXPECT_NE(sheet["axes"][23].value("title", "").find("area-plane-rect-high"), std::string::npos);
   // Its data: every pixel of every scene, image order, the level as in the scene's EXR.
   const io::CsvTable px = io::read_csv(d / "adequacy-scene-pixels.csv");
-  ASSERT_EQ(px.num_rows(), 6u * 128 * 128 + 4u * 32 * 32);
+  ASSERT_EQ(px.num_rows(), 6u * 128 * 128 + 4u * 32 * 32 + 2u * 64 * 64);
   const Image first = io::read_exr(d / "plane-point-low.exr").image;
   for (std::size_t i = 0; i < 128u * 128; ++i) {
     ASSERT_EQ(px.text(i, px.column("scene")), "plane-point-low");
@@ -91,12 +94,13 @@ TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
   EXPECT_EQ(layout.find("difference / TAU"), std::string::npos);
   EXPECT_EQ(layout.find("chosen level map"), std::string::npos);
   for (const char* name : {"plane-point-low", "kemppinen-plane-low", "kemppinen-plane-high",
-                           "kemppinen-sphere-low", "kemppinen-sphere-high"})
+                           "kemppinen-sphere-low", "kemppinen-sphere-high", "area-plane-rect-low",
+                           "area-plane-rect-high"})
     for (const char* column : {"chosen level", "most complete level"})
       EXPECT_NE(layout.find(fmt::format("\"{}: {}\"", name, column)), std::string::npos)
           << name << ": " << column;
   const nlohmann::json panels = nlohmann::json::parse(layout);
-  EXPECT_EQ(panels["labels"].size(), 2u * 10u);
+  EXPECT_EQ(panels["labels"].size(), 2u * 12u);
   const io::CsvTable t = io::read_csv(d / "adequacy-scene.csv");
   ASSERT_EQ(t.num_rows(), 6u);
   // The binomial scenes reach every level of the family.
@@ -110,17 +114,46 @@ TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
   EXPECT_TRUE(k_levels.count(7)) << "no Kemppinen pixel at k16_rational";
   for (std::size_t i = 0; i < k.num_rows(); ++i)
     EXPECT_EQ(k.text(i, k.column("model")), "kemppinen_ggx");
+  // The area scenes (kneiphof_klein_area under the square light): 64 pixels, the binomial levels
+  // (cheaper meaning below exact, 3), both sides of the smooth boundary reached.
+  const io::CsvTable a = io::read_csv(d / "adequacy-scene-area.csv");
+  ASSERT_EQ(a.num_rows(), 2u);
+  const std::set<int> a_levels = expect_counts_match_exrs(d, a, 64, 3, 2000);
+  EXPECT_TRUE(a_levels.count(0)) << "no area pixel at the smooth level";
+  EXPECT_TRUE(a_levels.count(3)) << "no area pixel at exact counting";
+  for (std::size_t i = 0; i < a.num_rows(); ++i) {
+    EXPECT_EQ(a.text(i, a.column("model")), "kneiphof_klein_area");
+    EXPECT_EQ(a.text(i, a.column("light")), "square");
+    // The same count read as the wrong family (the Kemppinen levels, k16_exact = 8, most
+    // complete) differs: every lit pixel would be "cheaper".
+    const Image im = io::read_exr(d / (std::string(a.text(i, a.column("scene"))) + ".exr")).image;
+    double as_kemppinen = 0;
+    for (int y = 0; y < im.height; ++y)
+      for (int x = 0; x < im.width; ++x)
+        as_kemppinen += im.at(x, y, im.channel("lit")) != 0 &&
+                                im.at(x, y, im.channel("level")) < 8
+                            ? 1
+                            : 0;
+    EXPECT_NE(as_kemppinen, a.number(i, a.column("cheaper")));
+  }
   const std::string md = read_text(d / "summary.md");
   EXPECT_NE(md.find("lit pixels exceed TAU"), std::string::npos);
   EXPECT_NE(md.find("Binomial family"), std::string::npos);
   EXPECT_NE(md.find("Kemppinen family"), std::string::npos);
   EXPECT_NE(md.find("most complete: k16_exact"), std::string::npos);
+  EXPECT_NE(md.find("Area family"), std::string::npos);
+  // Each family at the claim's Šidák share: over its three families, as the claim decides.
+  EXPECT_NE(md.find("over the 3 families"), std::string::npos);
+  EXPECT_EQ(md.find("over the 2 families"), std::string::npos);
+  EXPECT_EQ(md.find("over the two families"), std::string::npos);
   EXPECT_NE(md.find("The Kemppinen scenes are not priced"), std::string::npos);
+  EXPECT_EQ(md.find("The area scenes are not priced"), std::string::npos);
   // Each scene's time: exact everywhere = 100 ns per surface pixel; the chooser for these costs
   // never costs more than exact counting (it takes smooth where adequate, else exact).
   EXPECT_NE(md.find("## Time per evaluation"), std::string::npos);
   const io::CsvTable c = io::read_csv(d / "adequacy-scene-cost.csv");
-  ASSERT_EQ(c.num_rows(), 6u);
+  ASSERT_EQ(c.num_rows(), 8u);  // the binomial scenes, then the area scenes
+  EXPECT_EQ(c.text(7, c.column("model")), "kneiphof_klein_area");
   for (std::size_t i = 0; i < c.num_rows(); ++i) {
     const std::string name(c.text(i, c.column("scene")));
     const Image im = io::read_exr(d / (name + ".exr")).image;

@@ -152,6 +152,11 @@ TEST_F(AdequacyTest, BadInputIsOneLineAndWritesNothing) {
   expect_input_error(run({"adequacy", "--models", "deliot_belcour", "--bench-from", "partial",
                           "--out", "o"}),
                      {"--bench-from", "adequacy/deliot_belcour/level=exact/"}, given);
+  // The area family is priced by its own rows: a file of the binomial rows alone does not price it.
+  write_text(path("partial/glints.json"), level_costs_json({"deliot_belcour"}, {1, 2, 3, 4}));
+  expect_input_error(run({"adequacy", "--models", "deliot_belcour,kneiphof_klein_area",
+                          "--bench-from", "partial", "--out", "o"}),
+                     {"--bench-from", "adequacy/kneiphof_klein_area/level=smooth/"}, given);
   write_text(path("partial/glints.json"), "{\"benchmarks\": 3}");
   expect_input_error(run({"adequacy", "--bench-from", "partial", "--out", "o"}),
                      {"--bench-from", "benchmarks"}, given);

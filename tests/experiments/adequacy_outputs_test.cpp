@@ -179,5 +179,71 @@ TEST(AdequacyOutputs, AreaFamilyInTheTable) {
   fs::remove_all(out);
 }
 
+// The area family priced by benchmark costs (--bench-from's LevelCosts): with the exact count
+// cheaper than both approximations, the cheapest adequate level by the benchmark is smooth where
+// smooth is adequate and exact elsewhere, and the family's sums are the costs summed; costs
+// without the area model's rows leave its rows unpriced (`none`).
+TEST(AdequacyOutputs, AreaFamilyPricedByTheBenchmark) {
+  const fs::path out = fs::temp_directory_path() / "glintlab_adequacy_outputs_area_cost_test";
+  fs::remove_all(out);
+  AdequacyOptions o;
+  o.models = {"kneiphof_klein_area"};
+  verify::adequacy::GridAxes a;
+  a.facets = {1, 1e4, 1e8};
+  a.alpha = {0.3};
+  a.light_half_angle_deg = {1, 10};
+  a.theta_i_deg = {0};
+  a.theta_h_count = 1;
+  a.samples = 1000;
+  o.area_axes = a;
+  const std::size_t cells = 3 * 2;
+  for (const bool priced : {true, false}) {
+    LevelCosts c;
+    c.source = "bench/glints.json";
+    c.isa = "scalar";
+    c.ns[priced ? "kneiphof_klein_area" : "deliot_belcour"] = {10, 200, 300, 100};
+    o.costs = c;
+    const AdequacySummary s = run_adequacy(out, o);
+    ASSERT_EQ(s.area.cells, cells);
+    EXPECT_EQ(s.area.benchmark_costs, priced);
+    EXPECT_FALSE(s.benchmark_costs);  // the binomial family's sums: no binomial cells
+    const io::CsvTable csv = io::read_csv(out / "adequacy.csv");
+    ASSERT_EQ(csv.num_rows(), cells);
+    const auto& header = csv.header();
+    const std::size_t by_bench =
+        std::size_t(std::find(header.begin(), header.end(), "cheapest_by_benchmark") -
+                    header.begin());
+    ASSERT_LT(by_bench, header.size());
+    std::ifstream in(out / "adequacy.json");
+    const nlohmann::json doc = nlohmann::json::parse(in);
+    const nlohmann::json& fam = doc["families"]["area"];
+    if (!priced) {
+      EXPECT_FALSE(fam.contains("benchmark_costs"));
+      for (std::size_t r = 0; r < csv.num_rows(); ++r) EXPECT_EQ(csv.text(r, by_bench), "none");
+      continue;
+    }
+    std::size_t smooth = 0;
+    double cheapest_total = 0;
+    for (std::size_t r = 0; r < csv.num_rows(); ++r) {
+      const nlohmann::json& cell = doc["cells"][r];
+      const bool smooth_ok = cell["levels"]["smooth"]["adequate"].get<bool>();
+      const std::string expected = smooth_ok ? "smooth" : "exact";
+      EXPECT_EQ(csv.text(r, by_bench), expected) << r;
+      EXPECT_EQ(cell["cheapest_by_benchmark"], expected) << r;
+      smooth += smooth_ok ? 1 : 0;
+      cheapest_total += smooth_ok ? 10 : 100;
+    }
+    EXPECT_GT(smooth, 0u);
+    EXPECT_LT(smooth, cells);
+    const nlohmann::json& b = fam["benchmark_costs"];
+    EXPECT_EQ(b["isa"], "scalar");
+    EXPECT_EQ(b["exact_ns_total"], 100.0 * double(cells));
+    EXPECT_EQ(b["cheapest_ns_total"], cheapest_total);
+    EXPECT_EQ(b["cheapest_by_benchmark"]["smooth"], smooth);
+    EXPECT_EQ(b["cheapest_by_benchmark"]["exact"], cells - smooth);
+  }
+  fs::remove_all(out);
+}
+
 }  // namespace
 }  // namespace glintlab::experiments
