@@ -111,7 +111,7 @@ set(glintlab_slow_tests
   "AdequacyShardTest.MergedShardsAreTheFilesOfOneRun 30"
   "AdequacyShardTest.AreaFamilyMergedIsTheFilesOfOneRun 30"
   "AdequacyShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 5"
-  "AdequacyMapsFigureTest.QuickWritesSheetMapsCsvAndSummary 15"
+  "AdequacyMapsFigureTest.QuickWritesSheetMapsCsvAndSummary 22"
   "AdequacySceneFigureTest.QuickWritesSheetExrCsvAndSummary 40"
   "ChermainCli.Fig3Quick 3"
   "ChermainCli.Fig10Quick 3"
