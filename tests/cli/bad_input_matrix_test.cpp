@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <ostream>
 #include <set>
 #include <string>
 #include <utility>
@@ -434,6 +435,12 @@ struct CaseGroup {
   std::string prefix;
   std::vector<Case> cases;
 };
+
+// How GoogleTest prints a group in the ctest name's "GetParam() = ..." comment (by default the
+// object's bytes, pointers included, which would change the name from one build to the next).
+void PrintTo(const CaseGroup& g, std::ostream* os) {
+  *os << g.prefix << ": " << g.cases.size() << " cases";
+}
 
 std::vector<CaseGroup> case_groups() {
   std::vector<CaseGroup> groups;
