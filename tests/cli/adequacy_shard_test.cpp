@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/chart_png.h"
 #include "cli/cli_test_util.h"
 #include "core/io/csv.h"
 
@@ -69,10 +70,21 @@ std::vector<std::string> csv_without_timing(const fs::path& file) {
   return rows;
 }
 
+// The merges' maps drawn by matplotlib for N = 2 (the first pass, like the unsharded run), by the
+// stand-in (CliTest::stand_in_charts) for N = 1, 3 and 7: each of their maps is then the bytes of
+// its chart spec and data, compared with the unsharded run's spec and data, which matplotlib drew
+// as that run's map (the same spec and data are the same PNG in any run:
+// FigureChartsTest.SeveralFoldersInOneRunAreTheBytesOfSeparateRunsOrNone). The shards draw none.
 TEST_F(AdequacyShardTest, MergedShardsAreTheFilesOfOneRun) {
   ASSERT_EQ(adequacy("one").exit_code, 0);
   const std::map<std::string, std::string> one = file_tree("one");
-  for (int n : {1, 2, 3, 7}) {
+  // A map as the stand-in draws it from the unsharded run's spec and data.
+  const auto stand_in_map = [&](const std::string& png) {
+    const std::string spec = one.at(png.substr(0, png.size() - 4) + ".chart.json");
+    return spec + one.at(nlohmann::json::parse(spec).at("csv").get<std::string>());
+  };
+  for (int n : {2, 1, 3, 7}) {
+    if (n == 1) stand_in_charts();  // for this and the later passes
     std::vector<std::string> merge = {"merge"};
     for (int k = n; k >= 1; --k) {  // any order
       const std::string dir = "s" + std::to_string(n) + "_" + std::to_string(k);
@@ -104,10 +116,15 @@ TEST_F(AdequacyShardTest, MergedShardsAreTheFilesOfOneRun) {
         EXPECT_EQ(without_timing(nlohmann::json::parse(merged.at(file))),
                   without_timing(nlohmann::json::parse(bytes)))
             << n;
+      else if (n != 2 && file.ends_with(".png"))
+        EXPECT_TRUE(merged.at(file) == stand_in_map(file)) << n << " shards: " << file << " differs";
       else
         EXPECT_TRUE(merged.at(file) == bytes) << n << " shards: " << file << " differs";
     }
   }
+  // The unsharded run's and the first merge's maps were matplotlib's: each with its chart record.
+  EXPECT_TRUE(chart_manifest(path("one/adequacy_deliot_belcour_light0_theta0.png")).is_object());
+  EXPECT_TRUE(chart_manifest(path("merged2/adequacy_deliot_belcour_light0_theta0.png")).is_object());
 }
 
 // The area family (kneiphof_klein_area under square lights) through the command line: 2 shards

@@ -1,4 +1,6 @@
-// The bad-input matrix: malformed invocations of every subcommand, one ctest each. Every one must
+// The bad-input matrix: malformed invocations of every subcommand, one ctest per subcommand (the
+// cases named by its prefix, run one after the other in one process, each in a working folder
+// holding the fixture alone; a failure names its case). Every one must
 // exit 2, print nothing on stdout and exactly one stderr line "glintlab: error: ..." that names
 // the option (or the value) at fault, and leave the working folder exactly as it was (no output,
 // no staging or temporary file). The harness itself is tested below: a good invocation fed to it
@@ -7,8 +9,10 @@
 #include <gtest/gtest.h>
 #include <sys/statvfs.h>
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <ostream>
 #include <set>
 #include <string>
 #include <utility>
@@ -50,7 +54,7 @@ const std::vector<std::pair<std::string, std::string>> kFixture = {
 };
 
 struct Case {
-  std::string name;               // the ctest name's suffix
+  std::string name;               // its subcommand's prefix (the ctest name's suffix), '_', more
   std::vector<std::string> args;  // glintlab's arguments
   std::string needle;             // must appear in the message: the option or value at fault
 };
@@ -425,10 +429,39 @@ void expect_rejected(const RunResult& r, const std::string& needle, const fs::pa
       << "a rejected invocation left files behind";
 }
 
-class BadInputMatrix : public CliTest, public ::testing::WithParamInterface<Case> {
+// The cases whose names start with the same prefix (up to the first '_': the subcommand, or
+// "top" for the invocations without one), in the order of cases().
+struct CaseGroup {
+  std::string prefix;
+  std::vector<Case> cases;
+};
+
+// How GoogleTest prints a group in the ctest name's "GetParam() = ..." comment (by default the
+// object's bytes, pointers included, which would change the name from one build to the next).
+void PrintTo(const CaseGroup& g, std::ostream* os) {
+  *os << g.prefix << ": " << g.cases.size() << " cases";
+}
+
+std::vector<CaseGroup> case_groups() {
+  std::vector<CaseGroup> groups;
+  for (const Case& c : cases()) {
+    const std::string prefix = c.name.substr(0, c.name.find('_'));
+    auto g = std::find_if(groups.begin(), groups.end(),
+                          [&](const CaseGroup& x) { return x.prefix == prefix; });
+    if (g == groups.end()) g = groups.insert(groups.end(), CaseGroup{prefix, {}});
+    g->cases.push_back(c);
+  }
+  return groups;
+}
+
+// The working folder holding the fixture's files alone.
+class BadInputFixture : public CliTest {
  protected:
   void SetUp() override {
     CliTest::SetUp();
+    write_fixture();
+  }
+  void write_fixture() const {
     for (const auto& [name, text] : kFixture) {
       if (name.back() == '/') {
         fs::create_directories(path(name.substr(0, name.size() - 1)));
@@ -437,15 +470,27 @@ class BadInputMatrix : public CliTest, public ::testing::WithParamInterface<Case
       }
     }
   }
+  // Empties the working folder and writes the fixture again: each case starts as if alone.
+  void reset_work() const {
+    for (const auto& e : fs::directory_iterator(work())) fs::remove_all(e.path());
+    write_fixture();
+  }
 };
 
+class BadInputMatrix : public BadInputFixture, public ::testing::WithParamInterface<CaseGroup> {};
+
 TEST_P(BadInputMatrix, Rejected) {
-  const Case& c = GetParam();
-  expect_rejected(run(c.args), c.needle, work());
+  for (const Case& c : GetParam().cases) {
+    std::string invocation = "glintlab";
+    for (const std::string& a : c.args) invocation += " '" + a + "'";
+    SCOPED_TRACE("case " + c.name + ": " + invocation);
+    reset_work();
+    expect_rejected(run(c.args), c.needle, work());
+  }
 }
 
-INSTANTIATE_TEST_SUITE_P(Cli, BadInputMatrix, ::testing::ValuesIn(cases()),
-                         [](const ::testing::TestParamInfo<Case>& p) { return p.param.name; });
+INSTANTIATE_TEST_SUITE_P(Cli, BadInputMatrix, ::testing::ValuesIn(case_groups()),
+                         [](const ::testing::TestParamInfo<CaseGroup>& p) { return p.param.prefix; });
 
 TEST(BadInputMatrixSize, AtLeast150CasesOverEverySubcommand) {
   const std::vector<Case> all = cases();
@@ -454,6 +499,11 @@ TEST(BadInputMatrixSize, AtLeast150CasesOverEverySubcommand) {
   for (const Case& c : all) {
     EXPECT_TRUE(names.insert(c.name).second) << "duplicate case name " << c.name;
   }
+  // Every case is run in one group, and the groups are a few ctest tests.
+  std::size_t grouped = 0;
+  for (const CaseGroup& g : case_groups()) grouped += g.cases.size();
+  EXPECT_EQ(grouped, all.size());
+  EXPECT_LE(case_groups().size(), 20u);
   for (const std::string sub : {"eval", "sample", "verify", "figure", "models", "sweep", "report",
                                 "ltc-fit", "chermain-dictionary", "compare"}) {
     bool seen = false;
@@ -464,7 +514,7 @@ TEST(BadInputMatrixSize, AtLeast150CasesOverEverySubcommand) {
 
 // The harness catches an accepted invocation: a good one run through expect_rejected fails as
 // "not an error", and one that writes its output fails as "left files behind".
-using BadInputHarness = BadInputMatrix;
+using BadInputHarness = BadInputFixture;
 
 // The failure messages expect_rejected reports for `r` (intercepted, so they do not fail this
 // test).

@@ -24,6 +24,44 @@ EXE = os.environ.get("GLINTLAB_EXE", "glintlab")
 COMPARE_TIMING_FIELDS = {"scalar_ns_per_eval", "best_ns_per_eval", "seconds"}
 
 
+# A reports folder whose figure_charts.py "draws" each chart as the bytes of its spec followed by
+# its CSV's (as CliTest::stand_in_charts does for the CLI tests, tests/cli/cli_test_util.cpp),
+# without matplotlib's start-up and drawing (about 0.1 s a map, 40 maps a quick sweep of one
+# model). For the runs whose files are compared, not drawn: the same spec and data are the same
+# PNG in any run, and the real drawing from Python is run by
+# slow_register_model_conformance.py (a sweep and the models-hemisphere figure) and
+# test_installed_package_uses_its_own_report_scripts (a sweep with the installed scripts).
+STAND_IN_FIGURE_CHARTS = """import glob, os, sys
+a = sys.argv
+for i, d in enumerate(a):
+    if i and a[i - 1] == '--dir':
+        for spec in sorted(glob.glob(os.path.join(d, '*.chart.json'))):
+            text = open(spec, 'rb').read()
+            csv = text.split(b'"csv": "')[1].split(b'"')[0].decode()
+            text += open(os.path.join(d, csv), 'rb').read()
+            open(spec[:-len('.chart.json')] + '.png', 'wb').write(text)
+"""
+
+
+def stand_in_reports(folder):
+    """`folder` with the stand-in figure_charts.py in it, for GLINTLAB_REPORTS_DIR."""
+    (folder / "figure_charts.py").write_text(STAND_IN_FIGURE_CHARTS)
+    return folder
+
+
+def expect_stand_in_charts(folder):
+    """Every PNG below `folder` that has a chart spec is the spec's bytes and its CSV's; returns
+    how many there are."""
+    files, n = tree(folder), 0
+    for rel, spec in files.items():
+        if rel.endswith(".chart.json"):
+            csv_name = json.loads(spec)["csv"]
+            png = rel[:-len(".chart.json")] + ".png"
+            assert files[png] == spec + files[os.path.join(os.path.dirname(rel), csv_name)], png
+            n += 1
+    return n
+
+
 def run_cli(args, cwd):
     """The CLI on `args` in `cwd`; asserts success."""
     r = subprocess.run([EXE, *args], cwd=cwd, capture_output=True, text=True)
@@ -69,12 +107,15 @@ def two_dirs(tmp_path, monkeypatch):
     return py, cli
 
 
-def test_figure_writes_what_the_cli_writes(two_dirs):
+def test_figure_writes_what_the_cli_writes(two_dirs, tmp_path, monkeypatch):
     py, cli = two_dirs
+    # Both runs' chart (p_map) drawn by the stand-in: its spec and data compared.
+    monkeypatch.setenv("GLINTLAB_REPORTS_DIR", str(stand_in_reports(tmp_path)))
     fig = glintlab.figure("kneiphof2024-fig6", "figs", budget="quick", threads=2)
     run_cli(["figure", "kneiphof2024-fig6", "--out", "figs", "--budget", "quick", "--threads", "2"],
             cli)
     same_tree(py / "figs", cli / "figs")
+    assert expect_stand_in_charts(py / "figs") == 1
     assert os.path.samefile(fig["dir"], py / "figs" / "kneiphof2024-fig6")
     assert sorted(fig["files"]) == sorted(tree(py / "figs" / "kneiphof2024-fig6"))
     table = fig["data"]["fig6.csv"]
@@ -93,19 +134,26 @@ def swept(tmp_path_factory):
     """(py, cli, result): sweep(out="sw", models="smooth_ggx") run from `py` and the CLI's sweep
     on the same arguments run in `cli`; compare reads both folders."""
     py, cli = tmp_path_factory.mktemp("py"), tmp_path_factory.mktemp("cli")
-    here = os.getcwd()
+    here, reports = os.getcwd(), os.environ.get("GLINTLAB_REPORTS_DIR")
+    # Both sweeps' maps drawn by the stand-in: their specs and data compared.
+    os.environ["GLINTLAB_REPORTS_DIR"] = str(stand_in_reports(tmp_path_factory.mktemp("reports")))
     os.chdir(py)
     try:
         result = glintlab.sweep(out="sw", models="smooth_ggx", budget="quick")
+        run_cli(["sweep", "--out", "sw", "--models", "smooth_ggx", "--budget", "quick"], cli)
     finally:
         os.chdir(here)
-    run_cli(["sweep", "--out", "sw", "--models", "smooth_ggx", "--budget", "quick"], cli)
+        if reports is None:
+            os.environ.pop("GLINTLAB_REPORTS_DIR", None)
+        else:
+            os.environ["GLINTLAB_REPORTS_DIR"] = reports
     return py, cli, result
 
 
 def test_sweep_writes_what_the_cli_writes(swept):
     py, cli, s = swept
     same_tree(py / "sw", cli / "sw")
+    assert expect_stand_in_charts(py / "sw") == 40  # the maps, as the stand-in drew them
     assert s["targets"] == len(s["stability"]["models"]) > 0
     assert {m["model"] for m in s["stability"]["models"]} == {"smooth_ggx"}
     assert os.path.samefile(s["json"], py / "sw" / "stability.json")
