@@ -1,8 +1,10 @@
 // docs/adding_a_model.md against the program it documents: its member table has a row for every
 // member core/model.h lists for a model (kSmoothLimit and kNotClaimed included), the valid
 // not-claimed property names it gives are the program's list (kConformanceProperties) in its
-// order, and its example of a misspelled property is the line glintlab prints for one. So the
-// guide a plug-in author follows cannot go stale when a member or a property is added.
+// order, its example of a misspelled property is the line glintlab prints for one, and its
+// `eval --grid --query` example (run on the example plug-in, the same model as the guide's
+// my_glints) gives the rows and the error it shows. So the guide a plug-in author follows cannot go
+// stale when a member, a property or the grid's columns change.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -187,6 +189,151 @@ TEST_F(AddingAModelDocCli, MisspelledPropertyExampleIsTheProgramsLine) {
   ASSERT_FALSE(printed.empty()) << r.err;
   EXPECT_EQ(line_tail(guide(), from), printed)
       << "docs/adding_a_model.md (A4) shows another line than glintlab prints";
+}
+
+// The words of the guide's ```sh command that starts with `start` and contains `needle` (lines
+// joined at their trailing backslash, single quotes removed, the part before any "&&").
+std::vector<std::string> doc_command(const std::string& text, const std::string& start,
+                                     const std::string& needle) {
+  std::string joined;
+  bool in_sh = false;
+  for (const std::string& line : lines_of(text)) {
+    if (line == "```sh") {
+      in_sh = true;
+      joined.clear();
+      continue;
+    }
+    if (!in_sh) continue;
+    if (line == "```") {
+      in_sh = false;
+      continue;
+    }
+    joined += line;
+    if (!joined.empty() && joined.back() == '\\') {
+      joined.pop_back();
+      continue;
+    }
+    if (joined.rfind(start, 0) == 0 && joined.find(needle) != std::string::npos) {
+      const std::string command = joined.substr(0, joined.find("&&"));
+      std::vector<std::string> words;
+      std::string word;
+      for (char c : command + " ") {
+        if (c == ' ') {
+          if (!word.empty()) words.push_back(word);
+          word.clear();
+        } else if (c != '\'') {
+          word += c;
+        }
+      }
+      return words;
+    }
+    joined.clear();
+  }
+  return {};
+}
+
+// The ```text block of the guide whose first line is `first` (its lines, that one included).
+std::vector<std::string> doc_block(const std::string& text, const std::string& first) {
+  std::vector<std::string> block;
+  bool in = false, fresh = false;
+  for (const std::string& line : lines_of(text)) {
+    if (line == "```text") {
+      fresh = true;
+      continue;
+    }
+    if (fresh && line == first) in = true;
+    fresh = false;
+    if (!in) continue;
+    if (line == "```") break;
+    block.push_back(line);
+  }
+  return block;
+}
+
+std::vector<std::string> split_commas(const std::string& line) {
+  std::vector<std::string> cells(1);
+  for (char c : line) {
+    if (c == ',')
+      cells.emplace_back();
+    else
+      cells.back().push_back(c);
+  }
+  return cells;
+}
+
+// The rows of a CSV text restricted to the columns named in `header` (a comma-separated list).
+std::vector<std::string> select_columns(const std::string& csv, const std::string& header) {
+  const std::vector<std::string> lines = lines_of(csv);
+  if (lines.empty()) return {};
+  const std::vector<std::string> names = split_commas(lines[0]);
+  std::vector<std::size_t> pick;
+  for (const std::string& want : split_commas(header)) {
+    const auto at = std::find(names.begin(), names.end(), want);
+    if (at == names.end()) return {"no column " + want + " in " + lines[0]};
+    pick.push_back(std::size_t(at - names.begin()));
+  }
+  std::vector<std::string> out;
+  for (const std::string& line : lines) {
+    const std::vector<std::string> cells = split_commas(line);
+    std::string row;
+    for (std::size_t k : pick) row += (row.empty() ? "" : ",") + cells.at(k);
+    out.push_back(row);
+  }
+  return out;
+}
+
+std::string replace_all(std::string text, const std::string& from, const std::string& to) {
+  for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + 1))
+    text.replace(at, from.size(), to), at += to.size() - 1;
+  return text;
+}
+
+// A5's grid example: the guide's command, run with the example plug-in's model for my_glints,
+// writes the rows the guide shows (in its columns), and without --query stops with the guide's
+// error line.
+TEST_F(AddingAModelDocCli, GridExampleIsWhatTheProgramGives) {
+  const std::string text = guide();
+  std::vector<std::string> command = doc_command(text, "glintlab eval --model my_glints", "--grid");
+  ASSERT_GE(command.size(), 4u) << "no `glintlab eval --model my_glints ... --grid` example";
+  command.erase(command.begin());  // "glintlab"
+  for (std::string& w : command) w = replace_all(w, "my_glints", "example_glints");
+  command.insert(command.begin(), {"--plugin", kTestPlugin});
+  const auto out = std::find(command.begin(), command.end(), "--out");
+  ASSERT_TRUE(out != command.end() && out + 1 != command.end());
+  const std::string out_file = *(out + 1);
+  const std::string header = "theta_i,theta_o,value,pdf,expected_facets,p_hit";
+  const std::vector<std::string> shown = doc_block(text, header);
+  ASSERT_GT(shown.size(), 1u) << "no rows of the grid example in the guide";
+
+  const RunResult r = run(command);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(select_columns(read_text(path(out_file)), header), shown)
+      << "docs/adding_a_model.md (A5): the grid example's rows are not what glintlab writes";
+
+  std::vector<std::string> no_query = command;
+  const auto q = std::find(no_query.begin(), no_query.end(), "--query");
+  ASSERT_TRUE(q != no_query.end() && q + 1 != no_query.end());
+  no_query.erase(q, q + 2);
+  std::filesystem::remove(path(out_file));
+  const RunResult e = run(no_query);
+  expect_input_error(e, {"--query", "example_glints", "u, v, dudx, dvdx, dudy, dvdy"}, {});
+  const std::string from = "glintlab: error: --query: model ";
+  EXPECT_EQ(replace_all(line_tail(text, from + "my_glints"), "my_glints", "example_glints"),
+            line_tail(e.err, from))
+      << "docs/adding_a_model.md (A5) shows another error than glintlab prints without --query";
+}
+
+// The guide's command and block readers: a command split over lines, a block found by its header.
+TEST(AddingAModelDoc, CommandAndBlockReadersReadTheGuidesForm) {
+  const std::string text =
+      "```sh\nglintlab eval --model m \\\n  --grid 'a=1:2:3' --out g.csv && cut g.csv\n```\n"
+      "```text\nx,y\n1,2\n```\n";
+  EXPECT_EQ(doc_command(text, "glintlab eval --model m", "--grid"),
+            (std::vector<std::string>{"glintlab", "eval", "--model", "m", "--grid", "a=1:2:3",
+                                      "--out", "g.csv"}));
+  EXPECT_EQ(doc_command(text, "glintlab eval --model m", "--query"), std::vector<std::string>{});
+  EXPECT_EQ(doc_block(text, "x,y"), (std::vector<std::string>{"x,y", "1,2"}));
+  EXPECT_EQ(select_columns("a,b,c\n1,2,3\n", "c,a"), (std::vector<std::string>{"c,a", "3,1"}));
 }
 
 }  // namespace
