@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -11,8 +12,8 @@
 #include <vector>
 
 #include "cli/commands.h"
-#include "cli/schema.h"
 #include "cli/input.h"
+#include "cli/schema.h"
 #include "core/plugin_loader.h"
 
 namespace {
@@ -166,6 +167,19 @@ int main(int argc, char** argv) {
           fmt::format("unknown subcommand '{}' (valid: {}; see glintlab --help)", first, names));
     }
     if (first[0] == '-' && first != "-h" && first != "--help") {
+      // A subcommand's option placed before it (`glintlab --threads 2 verify`): name where it
+      // goes when the subcommand further on the line takes it.
+      const std::string option(first.substr(0, first.find('=')));
+      const std::vector<CLI::App*> subs = app.get_subcommands([](const CLI::App*) { return true; });
+      for (int i = 2; i < argc; ++i) {
+        const auto sub = std::find_if(subs.begin(), subs.end(),
+                                      [&](const CLI::App* s) { return s->get_name() == argv[i]; });
+        if (sub == subs.end()) continue;
+        if (option.size() > 2 && option[1] == '-' && (*sub)->get_option_no_throw(option) != nullptr)
+          return fail(fmt::format("{} goes after the subcommand (valid: glintlab {} {} ...)",
+                                  option, (*sub)->get_name(), option));
+        break;
+      }
       return fail(fmt::format(
           "unknown option '{}' before the subcommand (valid: --help, --plugin PATH, or a "
           "subcommand: {})",
