@@ -105,15 +105,15 @@ struct Check {
   // check_level()); "model.<name>" for a model's conformance checks (verify/conformance/), each
   // model's its own family, so adding a model or a plug-in changes no other check's level.
   std::string family = {};
-  // The paper's own sentence the claim tests, and what the check tests beyond it, from
-  // verify/claims/paper_quotes.cpp; for a model's conformance check, its property's statement,
+  // The paper's own sentence the claim tests, and what the check tests beyond it, from the claim
+  // type (kQuote, kStrongerReading); for a model's conformance check, its property's statement,
   // marked as not a paper's claim (verify/conformance/conformance.cpp).
   std::string paper_quote = {};
   std::string stronger_reading = {};
   // glintlab's own rule (the all.* stability rules, adequacy), not a paper's claim: its "fails"
   // is never reported as a paper found wrong.
   bool glintlab_rule = false;
-  // The competing causes of a "fails" reviewed for this claim (verify/claims/failure_reviews.cpp).
+  // The competing causes of a "fails" reviewed for this claim (its type's alternatives()).
   std::vector<Alternative> alternatives = {};
   std::string correction = {};  // the smallest change to the paper that makes it hold
 

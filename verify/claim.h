@@ -1,4 +1,5 @@
-// A claim is a type. It says what it tests (static id, paper, source, statistic), what it expects
+// A claim is a type. It says what it tests (static id, paper, source, statistic, and kQuote: the
+// paper's own sentence or equation it is judged against), what it expects
 // (the verdict per budget), how much it measures (its sizes per budget and a probe size for
 // tests), and four steps that the one runner, run_claim<C> (verify/claim_runner.h), strings
 // together for every claim the same way:
@@ -22,7 +23,10 @@
 // (`configurations(sizes)`, then an index), so a run can be split by configuration. The control
 // rule is the runner's alone: a claim that holds is shown to fail on a perturbed input, one that
 // does not hold to hold on the corrected input (Input::kCorrected, where the claim has one:
-// kHasCorrectedControl).
+// kHasCorrectedControl). Beside its quote a claim may say what it tests beyond it
+// (kStrongerReading), that the quote is glintlab's own rule (kGlintlabRule), and, where it can
+// measure "fails", the competing causes reviewed (alternatives()) and the smallest correction
+// (kCorrection) that the finding rule (verify/finding_rule.h) reads.
 //
 // Adding a claim: one file verify/claims/<paper>/<claim>.cpp that defines the type and ends in
 // GLINTLAB_CLAIM(Type), and one line in its paper's list (verify/claims/<paper>/list.h).
@@ -37,13 +41,9 @@
 #include <vector>
 
 #include "verify/check.h"
+#include "verify/control_rule.h"
 
 namespace glintlab::verify {
-
-// Which input a claim measures: the genuine one (the paper's method or formula), a perturbed one
-// (deliberately wrong by a little, which a holding claim must be seen to fail on) or the corrected
-// one (which a claim that does not hold must be seen to hold on).
-enum class Input { kGenuine, kPerturbed, kCorrected };
 
 // The verdicts recorded for a claim: at the quick budget, at the full budget where it differs
 // (with the reason, printed with every run), and at the probe size the tests run.
@@ -79,6 +79,7 @@ concept Claim = requires(Budget budget, const typename C::Sizes& z, int configur
   { C::kId } -> std::convertible_to<std::string_view>;
   { C::kPaper } -> std::convertible_to<std::string_view>;
   { C::kSource } -> std::convertible_to<std::string_view>;
+  { C::kQuote } -> std::convertible_to<std::string_view>;
   { C::kStatistic } -> std::convertible_to<std::string_view>;
   { C::kExpected } -> std::convertible_to<Expected>;
   { C::sizes(budget) } -> std::same_as<typename C::Sizes>;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "verify/claim.h"
+#include "verify/control_rule.h"
 
 namespace glintlab::verify {
 
@@ -27,32 +28,9 @@ constexpr bool has_corrected_control() {
     return false;
 }
 
-// The control rule, written once: "the control is the corrected input when the claim fails (or is
-// undecided), a perturbed one when it holds". A check without a corrected input keeps its
-// perturbed one, and its control then cannot oppose a genuine "fails" (the tests see that).
-inline Input control_input(Verdict genuine, bool has_corrected) {
-  return is_holding(genuine) || !has_corrected ? Input::kPerturbed : Input::kCorrected;
-}
-
 template <typename C>
 Input control_input(Verdict genuine) {
   return control_input(genuine, has_corrected_control<C>());
-}
-
-// Records the control's verdict (decided by the same function as the genuine one) and whether it
-// opposes the genuine verdict; after r.verdict is set.
-inline void record_control(CheckResult& r, Verdict control) {
-  r.control_verdict = control;
-  r.control_rejected = control_opposes(r.verdict, control);
-}
-
-// The control step of a check whose subject is a value known only at run time, not a Claim type (a
-// registered model's property, plug-ins included: verify/conformance). `measure_control(input)`
-// measures and decides the input the rule picks for the genuine verdict already in r, filling the
-// control's text and p-value, and returns its verdict; the runner records it as run_claim does.
-template <typename MeasureControl>
-void run_control(CheckResult& r, bool has_corrected, MeasureControl&& measure_control) {
-  record_control(r, measure_control(control_input(r.verdict, has_corrected)));
 }
 
 namespace detail {
@@ -131,6 +109,12 @@ Check claim_check() {
           [](Budget b) { return run_claim<C>(C::sizes(b)); }};
   c.expected_full = C::kExpected.full;
   c.budget_note = std::string(C::kExpected.why_full_differs);
+  c.paper_quote = std::string(C::kQuote);
+  if constexpr (requires { C::kStrongerReading; })
+    c.stronger_reading = std::string(C::kStrongerReading);
+  if constexpr (requires { C::kGlintlabRule; }) c.glintlab_rule = C::kGlintlabRule;
+  if constexpr (requires { C::alternatives(); }) c.alternatives = C::alternatives();
+  if constexpr (requires { C::kCorrection; }) c.correction = std::string(C::kCorrection);
   if constexpr (requires(std::uint64_t seed) { C::calibrate(seed); })
     c.calibration = [](std::uint64_t seed) { return C::calibrate(seed); };
   return c;

@@ -18,21 +18,10 @@
 namespace glintlab::verify {
 namespace {
 
-// Gives a claim the paper's sentence it is judged against and the competing causes reviewed for
-// its failure, and routes its result through the finding rule, so that every caller of run() sees
-// the verdict the rule gives; an exception escaping the run is the claim's error verdict.
-void attach_reading(Check& c) {
-  for (const PaperQuote& q : paper_quotes())
-    if (q.id == c.id) {
-      c.paper_quote = q.quote;
-      c.stronger_reading = q.stronger_reading;
-      c.glintlab_rule = q.glintlab_rule;
-    }
-  for (const FailureReview& f : failure_reviews())
-    if (f.id == c.id) {
-      c.alternatives = f.alternatives;
-      c.correction = f.correction;
-    }
+// Routes a claim's result through the finding rule (its quote and reviewed causes come with its
+// type: claim_check), so that every caller of run() sees the verdict the rule gives; an exception
+// escaping the run is the claim's error verdict.
+void apply_finding_rule_to(Check& c) {
   Check reviewed;  // what the rule reads: the id, the family and the alternatives
   reviewed.id = c.id;
   reviewed.family = c.family;
@@ -55,7 +44,7 @@ const std::vector<Check>& registered_checks() {
                        &list_checks<chermain_claims::Claims>, &list_checks<podee_claims::Claims>,
                        &list_checks<across_claims::Claims>, &list_checks<adequacy_claims::Claims>}) {
       for (Check& c : list()) {
-        attach_reading(c);
+        apply_finding_rule_to(c);
         all.push_back(std::move(c));
       }
     }

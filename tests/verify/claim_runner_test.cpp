@@ -31,6 +31,7 @@ struct ToyMean {
   static constexpr std::string_view kId = "toy.mean";
   static constexpr std::string_view kPaper = "toy paper";
   static constexpr std::string_view kSource = "Eq. 1";
+  static constexpr std::string_view kQuote = "the toy mean is zero";
   static constexpr std::string_view kStatistic = "|mean − 1|";
   static constexpr std::string_view kRegime = "toy regime";
   static constexpr Expected kExpected{.quick = kFailing ? Verdict::kFails : Verdict::kHolds,

@@ -75,29 +75,21 @@ TEST(FindingRule, LeavesHoldingClaimsAndConformanceAlone) {
   EXPECT_EQ(conformance.verdict, Verdict::kFails);
 }
 
+// A claim type without kQuote does not compile (the Claim concept); its quote reaches the check.
 TEST(FindingRule, EveryClaimQuotesItsPaper) {
-  std::map<std::string, int> quoted;
-  for (const PaperQuote& q : paper_quotes()) ++quoted[std::string(q.id)];
-  std::set<std::string> claims;
   for (const Check& c : registered_checks()) {
     if (!c.family.empty()) continue;
-    claims.insert(c.id);
     EXPECT_FALSE(c.paper_quote.empty()) << c.id << " has no paper_quote";
-    EXPECT_EQ(quoted[c.id], 1) << c.id << " is quoted " << quoted[c.id] << " times";
     const bool rule = c.id.rfind("all.", 0) == 0 || c.id.rfind("adequacy.", 0) == 0;
     EXPECT_EQ(c.glintlab_rule, rule) << c.id;
   }
-  for (const auto& [id, n] : quoted)
-    EXPECT_TRUE(claims.count(id)) << "quoted but not a claim: " << id;
 }
 
 // A recorded "fails" (at either budget) is a finding: its causes are reviewed and all excluded.
-// A review names a registered claim and says how each cause was excluded or why it is open.
+// A review says how each cause was excluded or why it is open.
 TEST(FindingRule, RecordedFailuresHaveEveryCauseExcluded) {
-  std::set<std::string> claims;
   for (const Check& c : registered_checks()) {
     if (!c.family.empty()) continue;
-    claims.insert(c.id);
     for (Budget b : {Budget::kQuick, Budget::kFull}) {
       if (c.expected_for(b) != Verdict::kFails) continue;
       EXPECT_FALSE(c.alternatives.empty()) << c.id;
@@ -106,14 +98,11 @@ TEST(FindingRule, RecordedFailuresHaveEveryCauseExcluded) {
         EXPECT_TRUE(a.excluded) << c.id << ": " << a.cause;
     }
   }
-  for (const FailureReview& f : failure_reviews()) {
-    EXPECT_TRUE(claims.count(std::string(f.id))) << "reviewed but not a claim: " << f.id;
-    EXPECT_FALSE(f.alternatives.empty()) << f.id;
-    for (const Alternative& a : f.alternatives) {
-      EXPECT_FALSE(a.cause.empty()) << f.id;
-      EXPECT_FALSE(a.how.empty()) << f.id << ": " << a.cause;
+  for (const Check& c : registered_checks())
+    for (const Alternative& a : c.alternatives) {
+      EXPECT_FALSE(a.cause.empty()) << c.id;
+      EXPECT_FALSE(a.how.empty()) << c.id << ": " << a.cause;
     }
-  }
 }
 
 }  // namespace

@@ -11,7 +11,7 @@
 #include <stdexcept>
 
 #include "core/simd/model_batch.h"
-#include "verify/claim_runner.h"
+#include "verify/control_rule.h"
 #include "verify/conformance/common.h"
 #include "verify/stability/nan_control.h"
 #include "verify/stats/multiple_testing.h"

@@ -19,7 +19,7 @@
 
 #include "core/model_registry.h"
 #include "verify/check.h"
-#include "verify/claim.h"
+#include "verify/control_rule.h"
 
 namespace glintlab::verify::conformance {
 
@@ -79,7 +79,7 @@ Assessment assess(std::string_view property, const ModelEntry& model, Budget b,
 
 // The control of a property: a copy of `model` deliberately wrong (input kPerturbed) or corrected
 // from what `genuine` measured (kCorrected), and its name; which one is the runner's rule
-// (control_input in verify/claim_runner.h). Its verdict comes from assess.
+// (control_input in verify/control_rule.h). Its verdict comes from assess.
 // batch_value_scale: what assess multiplies the SIMD batch's value by (simd-equivalence's
 // near-truth control perturbs the batch, the path under test; its scalar reference is unchanged).
 struct Control {

@@ -21,6 +21,14 @@ namespace glintlab::verify::across_claims {
 
 struct EnergyGain : SweepClaim<EnergyGain> {
   static constexpr std::string_view kId = "all.energy-gain";
+  // The paper's own sentence or equation the claim is judged against (glintlab's own rule).
+  static constexpr std::string_view kQuote =
+      "Not a paper's claim: glintlab's rule (shared/CLAIMS.md): \"where each method "
+      "breaks (NaN, Inf, negative values, energy gain, p > 1, huge variance)\" "
+      "(all.stability); per model: \"no NaN/Inf/negative, gain or variance blow-up in "
+      "the core domain\"; this check: energy gain (a white-furnace albedo significantly "
+      "above 1)";
+  static constexpr bool kGlintlabRule = true;
   static constexpr std::string_view kStatistic =
       "model×sampler targets with a significant energy gain in the core domain";
   static constexpr Expected kExpected{

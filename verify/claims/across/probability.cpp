@@ -26,6 +26,13 @@ namespace glintlab::verify::across_claims {
 
 struct Probability : SweepClaim<Probability> {
   static constexpr std::string_view kId = "all.probability";
+  // The paper's own sentence or equation the claim is judged against (glintlab's own rule).
+  static constexpr std::string_view kQuote =
+      "Not a paper's claim: glintlab's rule (shared/CLAIMS.md): \"where each method "
+      "breaks (NaN, Inf, negative values, energy gain, p > 1, huge variance)\" "
+      "(all.stability); per model: \"no NaN/Inf/negative, gain or variance blow-up in "
+      "the core domain\"; this check: p > 1";
+  static constexpr bool kGlintlabRule = true;
   static constexpr std::string_view kStatistic =
       "model×sampler targets with a probability above 1 in the core domain";
   static constexpr Expected kExpected{.quick = Verdict::kHolds};

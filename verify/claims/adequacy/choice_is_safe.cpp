@@ -106,6 +106,13 @@ struct ChoiceIsSafe {
   static constexpr std::string_view kSource =
       "core/glints/adequacy.h chooser; Kneiphof & Klein 2024 Eq. 16 (Sec. 4 for the area light); "
       "Deliot & Belcour 2023";
+  // The paper's own sentence or equation the claim is judged against (glintlab's own rule).
+  static constexpr std::string_view kQuote =
+      "Not a paper's claim: glintlab's rule (shared/CLAIMS.md): \"rendering each pixel "
+      "with the chosen level differs from the most complete level by more than TAU in "
+      "no more pixels than the confidence level allows, on scenes outside the fitting "
+      "grid\"";
+  static constexpr bool kGlintlabRule = true;
   // The decision is a count against the exact binomial test's critical count, reported as a bound
   // (the test's p-value is in the detail): a p-valued check would take a share of check_level()
   // and move every recorded claim's level.

@@ -1,28 +1,25 @@
-// adequacy.prediction-matches-measurement — glintlab's rule, on Kneiphof & Klein 2024 Eq. 11, 16
-// and Deliot & Belcour 2023.
-//
-// The rule (shared/CLAIMS.md): "the closed-form criterion of each family (binomial CV
-// √((1−p)/(N_P p)), P(no glint)) predicts where a cheaper level is indistinguishable"; it rests on
-// Kneiphof & Klein 2024 Eq. 11: ∫_Ωh D̂_P dh = D_H · b(N_P, p_Ωh)/N_P and Eq. 16:
-// L̂_o,P = L_o · b(N_P, p_Ωh)/(N_P p_Ωh).
+// adequacy.prediction-matches-measurement — glintlab's rule (kQuote below: "the closed-form
+// criterion of each family (binomial CV √((1−p)/(N_P p)), P(no glint)) predicts where a cheaper
+// level is indistinguishable"), on Kneiphof & Klein 2024 Eq. 11, 16 and Deliot & Belcour 2023.
 //
 // Measured: the closed forms the adequacy chooser (core/glints/adequacy.h) is built on — the
 // count's CV √((1 − p)/(N_P p)) and P(no glint) = (1 − p)^N_P — against the pixel values the
 // binomial glint models give over surface positions (verify/adequacy/binomial_adequacy.h; and
 // kneiphof_klein_area's under a square light, area_adequacy.h: its count is binomial too, Eq.
-// 11–13, 16, with p = D_Ωh/D_H over the light's half-vector region), at the exact counting level, N_P = 1 … 10^8 (CV where N_P p ≥ 1, P(no glint) everywhere); the boundary
-// they predict, where the smooth level becomes indistinguishable (the CV falls to TAU:
-// N* = (1 − p)/(p·TAU²)), against the crossing measured on a ladder of footprints around it; and
-// the Kemppinen family's smooth-level boundary in points per footprint, row by row, against the
-// footprint where k16_exact's CV crosses TAU, twice: as a point prediction, the CV of the
-// construction computed exactly (kemppinen_exact_moments: Algorithm 1's cells independent, E[X],
-// E[X²] of each and the law of total variance over positions; the line the measurement fits on
-// its ladder fitted through it too, since the CV is curved there; two-sided), and as a bound, the
-// chooser's (kemppinen_level_moments bounds the CV from above — E[X²] for Var X, E[R²] ≤ E[R],
-// standard deviations added — so its boundary is on the safe side by construction; one-sided,
-// refuted only where the measured boundary lies above it), with how conservative it is. Every
-// p-value in one Holm–Šidák family (the binomial boundaries first, the Kemppinen point predictions,
-// then the bounds): holds in regime with no rejection, fails with any.
+// 11–13, 16, with p = D_Ωh/D_H over the light's half-vector region), at the exact counting level,
+// N_P = 1 … 10^8 (CV where N_P p ≥ 1, P(no glint) everywhere); the boundary they predict, where the
+// smooth level becomes indistinguishable (the CV falls to TAU: N* = (1 − p)/(p·TAU²)), against the
+// crossing measured on a ladder of footprints around it; and the Kemppinen family's smooth-level
+// boundary in points per footprint, row by row, against the footprint where k16_exact's CV crosses
+// TAU, twice: as a point prediction, the CV of the construction computed exactly
+// (kemppinen_exact_moments: Algorithm 1's cells independent, E[X], E[X²] of each and the law of
+// total variance over positions; the line the measurement fits on its ladder fitted through it too,
+// since the CV is curved there; two-sided), and as a bound, the chooser's (kemppinen_level_moments
+// bounds the CV from above — E[X²] for Var X, E[R²] ≤ E[R], standard deviations added — so its
+// boundary is on the safe side by construction; one-sided, refuted only where the measured boundary
+// lies above it), with how conservative it is. Every p-value in one Holm–Šidák family (the binomial
+// boundaries first, the Kemppinen point predictions, then the bounds): holds in regime with no
+// rejection, fails with any.
 // Control (perturbed, while the genuine comparison holds): the predictions moved — N_P × 1.05,
 // N* × 1.05, the Kemppinen point prediction × 1.05 and a Kemppinen bound 5 % on the unsafe side
 // of it (× 0.95) — must be rejected. Control (corrected, where it fails): the Kemppinen point
@@ -55,13 +52,19 @@ struct PredictionMatchesMeasurement {
   static constexpr std::string_view kSource =
       "Kneiphof & Klein 2024 Eq. 11-13, 16 (and Sec. 4 for the area light); Deliot & Belcour 2023; "
       "Kemppinen et al. 2025 Algorithm 1, Eq. 8, 10";
+  // The paper's own sentence or equation the claim is judged against (glintlab's own rule).
+  static constexpr std::string_view kQuote =
+      "Not a paper's claim: glintlab's rule (shared/CLAIMS.md): \"the closed-form "
+      "criterion of each family (binomial CV √((1−p)/(N_P p)), P(no glint)) predicts "
+      "where a cheaper level is indistinguishable\"; it rests on Kneiphof & Klein 2024 "
+      "Eq. 11: ∫_Ωh D̂_P dh = D_H · b(N_P, p_Ωh)/N_P and Eq. 16: L̂_o,P = L_o · b(N_P, "
+      "p_Ωh)/(N_P p_Ωh), and on Deliot & Belcour 2023";
+  static constexpr bool kGlintlabRule = true;
   static constexpr std::string_view kStatistic =
       "max |CV_measured / CV_predicted − 1| where N_P p ≥ 1, exact counting (the p-value: "
       "Holm–Šidák over the binomial CV and P(no glint) tests, the binomial boundary tests and the "
       "Kemppinen point-prediction and bound tests)";
-  // The Kemppinen rows measured "fails" while their prediction was the chooser's bound tested as
-  // a point (1.4–1.9 times the line-fitted crossing); the construction's exact CV is the point
-  // prediction now, and the chooser's boundary is tested as the bound it is.
+  // The chooser's Kemppinen boundary is a bound (1.4–1.9 times the measured crossing), tested as one.
   static constexpr Expected kExpected{.quick = Verdict::kHoldsInRegime};
   static constexpr bool kHasCorrectedControl = true;
 
@@ -77,8 +80,7 @@ struct PredictionMatchesMeasurement {
     return b == Budget::kQuick ? Sizes{.samples = 100000, .kemppinen_samples = 2000}
                                : Sizes{.samples = 1000000, .kemppinen_samples = 16000};
   }
-  // The tests' probe: every row at a fifth of the quick positions (binomial) and half
-  // (Kemppinen).
+  // The tests' probe: every row at a fifth of the quick positions (binomial), half (Kemppinen).
   static Sizes probe_sizes() { return {.samples = 20000, .kemppinen_samples = 1000}; }
 
   // Configurations: the cells, then the boundary settings, then the Kemppinen rows, then the
@@ -200,16 +202,16 @@ struct PredictionMatchesMeasurement {
         "the exact counting level (its count is Binomial(N_P, p)); N_P in [1, 1e8]; CV tested "
         "where N_P p >= 1, P(no glint) everywhere (deliot_belcour, kneiphof_klein, and "
         "kneiphof_klein_area with p = D_Omega_h/D_H over a square light of a 1 deg cone's solid "
-        "angle); the smooth level's boundary at TAU = {} for the same three settings; the Kemppinen family (kemppinen_ggx, default material): the smooth "
-        "level's boundary in points per footprint where k16_exact's CV crosses TAU, predicted as "
-        "a point by the construction's exact CV (kemppinen_exact_moments, through the same line "
-        "fit, two-sided) and bounded "
-        "by the chooser's moments (kemppinen_level_moments at TAU, no margin; one-sided), on {} "
-        "rows (theta_i 0, 60 deg; alpha 0.1, 0.3; theta_h 0, atan alpha, atan 2 alpha), the "
-        "crossing fitted on N_pred x {{0.95, 0.975, 1, 1.025, 1.05}}, {} positions per ladder "
-        "point; the sides k = 1, 4, 9 (exact erf) of the same rows: mean_n / mean_16 - 1 and CV_n "
-        "- CV_16 at the boundary the construction's exact moments predict, against their "
-        "predicted values, {} positions",
+        "angle); the smooth level's boundary at TAU = {} for the same three settings; the "
+        "Kemppinen family (kemppinen_ggx, default material): the smooth level's boundary in "
+        "points per footprint where k16_exact's CV crosses TAU, predicted as a point by the "
+        "construction's exact CV (kemppinen_exact_moments, through the same line fit, two-sided) "
+        "and bounded by the chooser's moments (kemppinen_level_moments at TAU, no margin; "
+        "one-sided), on {} rows (theta_i 0, 60 deg; alpha 0.1, 0.3; theta_h 0, atan alpha, atan 2 "
+        "alpha), the crossing fitted on N_pred x {{0.95, 0.975, 1, 1.025, 1.05}}, {} positions "
+        "per ladder point; the sides k = 1, 4, 9 (exact erf) of the same rows: mean_n / mean_16 - "
+        "1 and CV_n - CV_16 at the boundary the construction's exact moments predict, against "
+        "their predicted values, {} positions",
         kBoundaryTau, z.kemppinen.size(), z.kemppinen_samples, z.kemppinen_samples);
   }
 

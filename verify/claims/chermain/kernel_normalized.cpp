@@ -84,6 +84,12 @@ struct KernelNormalized {
   static constexpr std::string_view kId = "chermain.kernel-normalized";
   static constexpr std::string_view kPaper = chermain_claims::kPaper;
   static constexpr std::string_view kSource = "Eq. 15, Sec. 6.1, 7";
+  // The paper's own sentence or equation the claim is judged against.
+  static constexpr std::string_view kQuote =
+      "Sec. 4 (Eq. 15): \"Since the marginal distributions P_o are normalized, the "
+      "filtered distribution P_M^22 is normalized and the BRDF is energy preserving if "
+      "the kernels are normalized.\" Sec. 7: \"We noticed no energy creation in our "
+      "experiments though we have not experimentally proved it.\"";
   static constexpr std::string_view kStatistic =
       "max |∫ filtered marginal − 1| over tables × MIP levels × kernels";
   static constexpr Expected kExpected{.quick = Verdict::kHolds};

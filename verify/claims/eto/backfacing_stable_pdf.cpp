@@ -166,6 +166,12 @@ struct BackfacingStablePdf {
   static constexpr std::string_view kId = "eto.backfacing-stable-pdf";
   static constexpr std::string_view kPaper = eto_claims::kPaper;
   static constexpr std::string_view kSource = "Eq. 7, Listing 2 (i_z < 0)";
+  // The paper's own sentence or equation the claim is judged against.
+  static constexpr std::string_view kQuote =
+      "Listing 2 caption: \"For i_z < 0, we calculate the previous PDF p(m)‖dm/do‖ "
+      "using a numerically stable form\"; Listing 2: \"return ndf * (t - i.z) / (2.0f * "
+      "len2); // = Eq. 7 * ||dm/do||\", with Eq. 7: p(m) = 2D(m) max(i·m, 0) / (i_z + "
+      "√(α_x² i_x² + α_y² i_y² + i_z²))";
   static constexpr std::string_view kStatistic =
       "max relative error of the stable factor (t − i_z)/(2 len2) vs Eq. 7's (50-digit), double";
   static constexpr Expected kExpected{.quick = Verdict::kHolds};

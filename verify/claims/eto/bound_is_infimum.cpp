@@ -136,6 +136,12 @@ struct BoundIsInfimum {
   static constexpr std::string_view kId = "eto.bound-is-infimum";
   static constexpr std::string_view kPaper = eto_claims::kPaper;
   static constexpr std::string_view kSource = "Eq. 1–6 (Sec. 3.2)";
+  // The paper's own sentence or equation the claim is judged against.
+  static constexpr std::string_view kQuote =
+      "Sec. 3.2.1, Eq. 5: min_φ ô_z(π/2, φ) = −k î_z, k = (1 − α²)s² / (s² + α² i_z²); "
+      "\"This lower bound −k î_z is the infimum for reflections if î_z > 0.\" Sec. "
+      "3.2.2 (Eq. 6): \"When α_x ≤ 1 or α_y ≤ 1, this conservative α produces a lower "
+      "bound slightly looser than the infimum for ô_z.\"";
   static constexpr std::string_view kStatistic =
       "max |min ô_z over upper-hemisphere reflections − (−k î_z)| (isotropic, Eq. 5)";
   static constexpr Expected kExpected{.quick = Verdict::kHolds};

@@ -128,6 +128,13 @@ struct FewerRejections {
   static constexpr std::string_view kPaper = kPaperVsCaps;
   static constexpr std::string_view kSource =
       "Sec. 1, 3.2 (α = 1, normal incidence: half rejected)";
+  // The paper's own sentence or equation the claim is judged against.
+  static constexpr std::string_view kQuote =
+      "Sec. 1: \"if the incoming direction is equal to the surface normal and the GGX "
+      "roughness parameter is 1, the reflection vectors given by VNDF sampling are "
+      "uniformly distributed on a unit sphere. … reflection vectors in the lower "
+      "hemisphere must be rejected …\"; \"Our method limits the sampling range of "
+      "visible normals to reduce the number of rejected samples\"";
   static constexpr std::string_view kStatistic =
       "Holm–Šidák adjusted p (binomial: measured vs exact rates, and r_caps = ½ at α=1, θi=0)";
   static constexpr Expected kExpected{.quick = Verdict::kHolds};

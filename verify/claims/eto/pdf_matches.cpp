@@ -304,6 +304,13 @@ struct PdfMatches : GofFamilyClaim<PdfMatches, Config> {
   static constexpr std::string_view kId = "eto.pdf-matches";
   static constexpr std::string_view kPaper = "Eto & Tokuyoshi 2023";
   static constexpr std::string_view kSource = "Eq. 8 (with χ⁺), Eq. 7 for i_z ≤ 0, Listing 2";
+  // The paper's own sentence or equation the claim is judged against.
+  static constexpr std::string_view kQuote =
+      "Sec. 3.3, Eq. 8: p_our(m) = 2D(m) max(i·m, 0) / (k i_z + √(α_x² i_x² + α_y² i_y² "
+      "+ i_z²)) · χ⁺(k î_z + ô_z); \"By multiplying the above PDF p_our(m) by the "
+      "Jacobian … ‖dm/do‖ = 1/(4|i·m|), we obtain the PDF for our reflection vector "
+      "sampling p_our(m)‖dm/do‖.\" Listing 2 for i_z ≥ 0; Eq. 7 (\"the previous PDF\") "
+      "for i_z < 0";
   static constexpr std::string_view kStatistic =
       "Holm–Šidák-corrected p of the chi-square of sampled ωo against Eq. 8 / Listing 2";
   // An earlier full-budget rejection at α = (0.1, 1), θi = 45° was the cubature's: it missed

@@ -76,6 +76,13 @@ struct Unbiased {
   static constexpr std::string_view kId = "eto.unbiased";
   static constexpr std::string_view kPaper = kPaperVsCaps;
   static constexpr std::string_view kSource = "Sec. 3.3, Eq. 8, Listings 1–2";
+  // The paper's own sentence or equation the claim is judged against.
+  static constexpr std::string_view kQuote =
+      "Abstract: \"This paper introduces an unbiased method to reduce the number of "
+      "rejected samples for Smith–GGX VNDF sampling.\" Sec. 3.3: \"If the reflection "
+      "vector o is in the lower hemisphere, the integrand in the lighting integral must "
+      "be zero. Therefore, omitting the Heaviside function does not affect Monte Carlo "
+      "integration.\"";
   static constexpr std::string_view kStatistic =
       "Holm–Šidák adjusted p (Welch vs spherical caps; t vs cubature albedo)";
   static constexpr Expected kExpected{.quick = Verdict::kHolds};

@@ -94,6 +94,12 @@ struct ConstantTime {
   static constexpr std::string_view kId = "kemppinen.constant-time";
   static constexpr std::string_view kPaper = kemppinen_claims::kPaper;
   static constexpr std::string_view kSource = "Sec. 3.3.2–3.3.4, Table 2";
+  // The paper's own sentence or equation the claim is judged against.
+  static constexpr std::string_view kQuote =
+      "Sec. 4 (Comparison): \"Like Deliot & Belcour, our method is constant-time to "
+      "evaluate regardless of viewing anisotropy\"; Table 2: Constant time \"y\"; Sec. "
+      "3.3.2: \"we effectively see the same number of points throughout the various "
+      "levels\"";
   static constexpr std::string_view kStatistic =
       "max/min number of (spatial, angular) cells visited per evaluation, per k, over footprints "
       "0.01 … 10⁶ cells and anisotropy 0.05 … 20";

@@ -9,12 +9,25 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "core/maps/beckmann_map.h"
 #include "core/maps/ggx_map.h"
 #include "verify/claims/kemppinen/common.h"
 
 namespace glintlab::verify::kemppinen_claims {
+
+// The roughnesses every part of the check is measured at.
+struct Alpha {
+  double x, y;
+};
+inline const std::vector<Alpha> kAlphas = {{0.1, 0.1}, {0.5, 0.5}, {1, 1}, {0.2, 0.6}, {1, 0.1}};
+
+// The density of the uniform disk inscribed in the unit square, where T takes the lobe.
+inline double uniform_disk_pdf(const V2& p) {
+  const double dx = p.x - 0.5, dy = p.y - 0.5;
+  return dx * dx + dy * dy <= 0.25 ? 4 / std::numbers::pi : 0.0;
+}
 
 // |det dT/dω| per steradian by central differences on the tangent plane at ω (ω(s, t) =
 // normalize(ω + s e1 + t e2), e1, e2 orthonormal ⊥ ω), step h ≪ the lobe width.

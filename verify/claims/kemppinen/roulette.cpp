@@ -138,6 +138,12 @@ struct Roulette {
   static constexpr std::string_view kId = "kemppinen.roulette";
   static constexpr std::string_view kPaper = kemppinen_claims::kPaper;
   static constexpr std::string_view kSource = "Eq. 8, Sec. 3.3.3, Fig. 6";
+  // The paper's own sentence or equation the claim is judged against.
+  static constexpr std::string_view kQuote =
+      "Sec. 3.3.3: \"we use a linearly blended weight for a per-point Russian roulette "
+      "(Figure 5), so that on expectation we get linear blending but individual points "
+      "get quickly enabled and disabled instead of being smoothly blended\"; Eq. 8: "
+      "R(r, w) = smoothstep(max(0, r − ε), min(1, r + ε), w), \"We use ε = 0.1\"";
   static constexpr std::string_view kStatistic =
       "paired t test: mean over positions of the explicit D★^f, roulette − linear, at w = ½";
   static constexpr Expected kExpected{.quick = Verdict::kHoldsWithin};

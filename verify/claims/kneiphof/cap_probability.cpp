@@ -114,6 +114,18 @@ struct CapProbability {
   static constexpr std::string_view kId = "kneiphof.cap-probability";
   static constexpr std::string_view kPaper = kneiphof_claims::kPaper;
   static constexpr std::string_view kSource = "Sec. 5, Eq. 20, Fig. 6";
+  // The paper's own sentence or equation the claim is judged against.
+  static constexpr std::string_view kQuote =
+      "Sec. 5: \"Assuming D_Ωi ≈ |Ω_i| · D(h)/(4 · ⟨h, ω_i⟩) is reasonable only when "
+      "the microfacet surface is sufficiently rough and the light source sufficiently "
+      "small. Otherwise the approximation might result in p_Ωi > 1.\" Eq. 20: p_Ωi ≈ "
+      "|Ω_i| D(h) / (D_H · 4⟨h, ω_i⟩)";
+  // What the check tests beyond the quote (so a verdict on it is never the paper failing).
+  static constexpr std::string_view kStrongerReading =
+      "\"Reasonable\" is read as p ≤ 1 and within 10 % of the exact cap "
+      "probability (a tolerance the project chose) at normal incidence, in "
+      "every cell of a regime the project derived (γ ≤ α/2, √α 0.1–0.9); the "
+      "paper names neither a tolerance nor a bound on γ.";
   static constexpr std::string_view kStatistic =
       "max |p_Eq20 / p_exact − 1| over the regime's cells (p_exact by cubature)";
   static constexpr std::string_view kRegime =

@@ -125,6 +125,12 @@ struct DiscreteNdfMean {
   static constexpr std::string_view kId = "kneiphof.discrete-ndf-mean";
   static constexpr std::string_view kPaper = kneiphof_claims::kPaper;
   static constexpr std::string_view kSource = "App. A, Eq. 6–7, 10";
+  // The paper's own sentence or equation the claim is judged against.
+  static constexpr std::string_view kQuote =
+      "Sec. 3, Eq. 7: \"For all measurable subsets A ⊆ H, the construction in Eq. (6) "
+      "yields the equality\" ∫_A E[D̂_P(h)] dh = ∫_A D(h) dh, with D̂_P(h) = D_H "
+      "(1/N_P) Σ_k δ(h − h^(k)) (Eq. 6) and h^(k) ∝ D(h^(k))/D_H; proof in App. A (Eq. "
+      "23–28)";
   static constexpr std::string_view kStatistic =
       "Holm–Šidák adjusted p of the multinomial test of facet counts per cell vs ∫_cell D/D_H";
   static constexpr Expected kExpected{.quick = Verdict::kHolds};

@@ -148,6 +148,13 @@ struct Subdivision {
   static constexpr std::string_view kId = "kneiphof.subdivision";
   static constexpr std::string_view kPaper = kneiphof_claims::kPaper;
   static constexpr std::string_view kSource = "App. C, Eq. 33–39, Fig. 9";
+  // The paper's own sentence or equation the claim is judged against.
+  static constexpr std::string_view kQuote =
+      "App. C: \"This appendix proves that the result of our model does not change upon "
+      "subdivision of the light source if the integrand of D_Ωh can be assumed "
+      "proportional to the continuous BRDF\"; Eq. 34: Σ_k b(N_P, p_Ωh^(k)) = b(N_P, "
+      "p_Ωh); Fig. 9: \"With our assumption, the method becomes invariant to the size "
+      "of the light source.\"";
   static constexpr std::string_view kStatistic =
       "max relative radiance difference, 1 vs 256 sub-lights with the shared lobe (Eq. 32); the "
       "counts (Σ b_k and three marginals b_k vs Binomial) decided by their Holm–Šidák adjusted "

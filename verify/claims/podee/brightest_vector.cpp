@@ -72,6 +72,13 @@ struct BrightestVector {
   static constexpr std::string_view kId = "podee.brightest-vector";
   static constexpr std::string_view kPaper = podee_claims::kPaper;
   static constexpr std::string_view kSource = "Sec. 3.1";
+  // The paper's own sentence or equation the claim is judged against.
+  static constexpr std::string_view kQuote =
+      "Sec. 3.1: \"We assume a reflection vector within a pixel is obtained by bilinear "
+      "interpolation of the four vectors.\" \"We then compute the most intense "
+      "reflection vector by finding the point inside the reflection space closest to "
+      "the center of the projected light source …\" \"The result is the brightest "
+      "highlight of any point within the pixel.\"";
   static constexpr std::string_view kStatistic =
       "max (d_selected − d_brute-force) / quad size over bilinear reflection spaces";
   static constexpr Expected kExpected{.quick = Verdict::kHolds};

@@ -39,6 +39,18 @@ struct FarFailure {
   static constexpr std::string_view kId = "podee.far-failure";
   static constexpr std::string_view kPaper = podee_claims::kPaper;
   static constexpr std::string_view kSource = "Sec. 4";
+  // The paper's own sentence or equation the claim is judged against.
+  static constexpr std::string_view kQuote =
+      "Sec. 4: \"However, our method fails to capture the reflection at far distances "
+      "because there is high normal variation within a pixel, so our curved surface "
+      "approximation with four reflection vectors is not accurate enough.\" Sec. 5: "
+      "\"it doesn't work well when there is a lot of detail inside one pixel.\"";
+  // What the check tests beyond the quote (so a verdict on it is never the paper failing).
+  static constexpr std::string_view kStrongerReading =
+      "The paper does not say against what the method fails; the check reads "
+      "it as an MSE above the better of LEAN and centre sampling, beyond the "
+      "references' noise, at the farthest distance (d = 10) and not at the "
+      "nearest (d = 2), on the project's own scene.";
   static constexpr std::string_view kStatistic =
       "MSE(method) − MSE(better baseline) at the far distance, two-reference estimate";
   static constexpr Expected kExpected{.quick = Verdict::kHolds};

@@ -48,6 +48,36 @@ struct Rmse {
   static constexpr std::string_view kId = "podee.rmse";
   static constexpr std::string_view kPaper = podee_claims::kPaper;
   static constexpr std::string_view kSource = "Table 1";
+  // The paper's own sentence or equation the claim is judged against.
+  static constexpr std::string_view kQuote =
+      "Sec. 4: \"Our method shows an improvement in both the quality and stability of a "
+      "specular highlight over the conventional method and LEAN mapping.\" Table 1 "
+      "(RMSE against \"tiling 64x supersampling\"): Conventional 0.0845, LEAN mapping "
+      "0.0977, Our Method 0.0826";
+  // What the check tests beyond the quote (so a verdict on it is never the paper failing).
+  static constexpr std::string_view kStrongerReading =
+      "Table 1 is one RMSE per method for Fig. 4's scene (distance not "
+      "stated; the method 2 % below centre sampling); the check requires a "
+      "lower MSE than both centre sampling and LEAN, beyond the references' "
+      "noise, at every distance of a regime it declared (d ≤ 4) on the "
+      "project's own normal-mapped sphere (core/scene/podee_scene.h), "
+      "against the pixel integral through two 256-spp references. At d = 4 "
+      "LEAN ties at the quick budget and is lower at the full one "
+      "(docs/data/claims-full.json: LEAN 0.0058, method 0.0059).";
+  // The competing causes reviewed for a "fails" (verify/finding_rule.h): how each was ruled
+  // out, or why it is still open.
+  static std::vector<Alternative> alternatives() {
+    return {{"tolerance",
+             "not excluded: at d = 4 LEAN's RMSE is 0.0058 against the method's 0.0059 (full "
+             "budget, ΔMSE +8.2e-07 ± 3.1e-07, 2.4 % of the MSE, about 1.2 % in RMSE), where "
+             "Table 1's medium-distance gap is 15 % (0.0826 against 0.0977); within a tolerance "
+             "of a few per cent the two tie",
+             false},
+            {"scene or regime mismatch",
+             "not excluded: the regime d ≤ 4 was declared by the project for the paper's "
+             "\"medium\" distance of Table 1, whose scene and camera distances are not ours",
+             false}};
+  }
   static constexpr std::string_view kStatistic =
       "MSE(method) − min over baselines of MSE, against the pixel integral (two 64-spp "
       "references), at the medium distance";

@@ -241,6 +241,12 @@ struct EvalPdfConsistency {
       "Walter et al. 2007; Heitz 2018; Dupuy & Benyoub 2023; Eto & Tokuyoshi 2023";
   static constexpr std::string_view kSource =
       "weight = f·cos/pdf (Walter Eq. 41, G2/G1, Eto Eq. 8); pdf(sample()) = pdf(ωo)";
+  // The paper's own sentence or equation the claim is judged against.
+  static constexpr std::string_view kQuote =
+      "Walter et al. 2007, Eq. 41: weight(o) = |i·m| G(i, o, m) / (|i·n| |m·n|); VNDF "
+      "sampling (Heitz & d'Eon 2014, Heitz 2018): weight = G2(ω_i, ω_o) / G1(ω_i); Eto "
+      "& Tokuyoshi 2023, Listing 2: \"return ndf / (2.0f * (k * i.z + t)); // Eq. 8 * "
+      "||dm/do||\" for Listing 1's samples";
   static constexpr std::string_view kStatistic =
       "max relative error of pdf(sample()) vs pdf(ωo) and of eval·cos/pdf vs closed form";
   static constexpr Expected kExpected{.quick = Verdict::kHolds};

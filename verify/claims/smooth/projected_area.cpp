@@ -23,6 +23,10 @@ struct ProjectedArea : NormalizationClaim<ProjectedArea> {
   static constexpr std::string_view kId = "smooth.projected-area";
   static constexpr std::string_view kPaper = "Walter et al. 2007; Heitz 2014";
   static constexpr std::string_view kSource = "∫ D(ω)(ω·n) dω = 1 (Heitz 2014 Eq. 4)";
+  // The paper's own sentence or equation the claim is judged against.
+  static constexpr std::string_view kQuote =
+      "Heitz 2014, Eq. 4: ∫_Ω D(ω_m) (ω_m·ω_g) dω_m = 1 (GGX and Beckmann of Walter et "
+      "al. 2007, isotropic and anisotropic)";
   static constexpr std::string_view kStatistic = "max |∫ D(m) m·n dm − 1|";
 
   static std::vector<NdfConfig> grid(Budget b) { return roughness_grid(b); }

@@ -309,6 +309,13 @@ struct SamplerMatchesPdf : GofFamilyClaim<SamplerMatchesPdf, Config> {
       "2023";
   static constexpr std::string_view kSource =
       "sampled ωo ~ pdf(ωi, ωo) (Walter Eq. 14, 24; Heitz 2018 Eq. 1; Eto & Tokuyoshi Eq. 8)";
+  // The paper's own sentence or equation the claim is judged against.
+  static constexpr std::string_view kQuote =
+      "Eto & Tokuyoshi 2023, Sec. 3.3: \"By multiplying the above PDF p_our(m) by the "
+      "Jacobian for the transformation between halfvectors and reflection vectors "
+      "‖dm/do‖ = 1/(4|i·m|), we obtain the PDF for our reflection vector sampling "
+      "p_our(m)‖dm/do‖.\" Walter et al. 2007 (Eq. 14, 24 as registered): p_o(o) = "
+      "p_m(m) / (4|o·m|); Heitz 2018: p_m(m) = D_ωi(m)";
   static constexpr std::string_view kStatistic =
       "Holm–Šidák-corrected p of the chi-square of sampled ωo against the sampler's pdf";
   static constexpr Expected kExpected{.quick = Verdict::kHolds};

@@ -27,6 +27,13 @@ struct VndfNormalized : NormalizationClaim<VndfNormalized> {
   static constexpr std::string_view kId = "smooth.vndf-normalized";
   static constexpr std::string_view kPaper = "Heitz 2018";
   static constexpr std::string_view kSource = "D_ωi(ω) integrates to 1 (Heitz 2018 Eq. 1)";
+  // The paper's own sentence or equation the claim is judged against.
+  static constexpr std::string_view kQuote =
+      "Eto & Tokuyoshi 2023, Sec. 3.3: \"The VNDF is the PDF for visible microfacet "
+      "normals. For the Smith-GGX model, this PDF is given by\" p(m) = 2D(m) max(i·m, "
+      "0) / (i_z + √(α_x² i_x² + α_y² i_y² + i_z²)) (Eq. 7); Heitz 2018 (Eq. 1 as "
+      "registered): D_ωi(ω_m) = G1(ω_i) max(0, ω_i·ω_m) D(ω_m) / (ω_i·ω_g), ∫_Ω "
+      "D_ωi(ω_m) dω_m = 1";
   static constexpr std::string_view kStatistic = "max |∫ D_ωi(m) dm − 1|";
 
   static std::vector<NdfConfig> grid(Budget b) {
