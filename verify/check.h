@@ -15,7 +15,7 @@ namespace glintlab::verify {
 
 enum class Budget { kQuick, kFull };
 
-// Verdicts as shared/CLAIMS.md defines them. kNotClaimed: a conformance property the model
+// Verdicts as docs/verification.md defines them. kNotClaimed: a conformance property the model
 // declares it does not claim (core/model.h NotClaimed); nothing is measured, the detail gives the
 // model's reason, and it never counts as holding. kError: the check could not compute its
 // statistic (an exception escaped its run, e.g. from a plug-in's eval, or it measured NaN/Inf
@@ -85,10 +85,13 @@ std::function<CheckResult(Budget)> contained(std::string subject,
                                              std::function<CheckResult(Budget)> run);
 
 struct Check {
-  std::string id;      // the id in shared/CLAIMS.md
+  std::string id;      // the id docs/claims.md lists
   std::string paper;   // paper (and baseline) it comes from
   std::string source;  // equation / figure
   Verdict expected;    // the verdict recorded for it today; a change is a regression or a finding
+  // False for a run-time model's conformance check (a plug-in, a Python model): nothing is
+  // recorded for it, and `expected` is what a conforming model gives.
+  bool recorded = true;
   std::function<CheckResult(Budget)> run;
   // For statistical checks: one run of the test on a known-correct input with the given seed,
   // returning its raw p-value (uniform on [0, 1] when the test is calibrated). Empty for
