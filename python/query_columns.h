@@ -67,11 +67,13 @@ ColumnSource column_source(const py::handle& value, const std::string& name, std
 
 // The SoA columns of rows [begin, begin + count) in precision S, `ncols` first columns; columns
 // not in place are gathered into `buffer` (ncols * count values; only those read are written), a
-// strided column by a typed strided load per row.
+// strided column by a typed strided load per row. With `strided`, a column of S at a positive
+// stride (a coordinate of a C-ordered (N, 3) array) is passed where it lies, with its stride, for
+// the batch API (core/simd/model_batch.h reads such columns block by block).
 template <class S>
 std::vector<simd::Column<S>> chunk_columns(const std::vector<ColumnSource>& sources,
                                            std::size_t ncols, std::size_t begin, std::size_t count,
-                                           S* buffer) {
+                                           S* buffer, bool strided = false) {
   std::vector<simd::Column<S>> cols;
   cols.reserve(ncols);
   const auto gather = [count](auto* src, std::ptrdiff_t stride, S* dst) {
@@ -119,7 +121,10 @@ std::vector<simd::Column<S>> chunk_columns(const std::vector<ColumnSource>& sour
   for (std::size_t c = 0; c < ncols; ++c) {
     const ColumnSource& s = sources[c];
     S* gathered = buffer + c * count;
-    if (rows_of_one_array(c)) {
+    if (strided && s.data != nullptr && s.stride > 0 && s.is_float == std::is_same_v<S, float>) {
+      cols.push_back({static_cast<const S*>(s.data) + std::ptrdiff_t(begin) * s.stride,
+                      std::size_t(s.stride)});
+    } else if (rows_of_one_array(c)) {
       const std::ptrdiff_t first = std::ptrdiff_t(begin) * s.stride;
       if (s.is_float)
         gather3(static_cast<const float*>(s.data) + first, s.stride, gathered, gathered + count,
@@ -150,9 +155,9 @@ std::vector<simd::Column<S>> chunk_columns(const std::vector<ColumnSource>& sour
 template <class S>
 std::vector<simd::Column<S>> chunk_columns(const std::vector<ColumnSource>& sources,
                                            std::size_t ncols, std::size_t begin, std::size_t count,
-                                           std::vector<S>& buffer) {
+                                           std::vector<S>& buffer, bool strided = false) {
   if (buffer.size() < ncols * count) buffer.resize(ncols * count);
-  return chunk_columns<S>(sources, ncols, begin, count, buffer.data());
+  return chunk_columns<S>(sources, ncols, begin, count, buffer.data(), strided);
 }
 
 // The query row `row` in double, every column of the layout.
