@@ -310,11 +310,6 @@ struct RowGroups {
 template <class S>
 struct ChunkBuffers {
   std::vector<S> gathered, extra, group_in, group_out;
-  // A numpy model's chunk storage (ChunkStorage), reused by the next chunk when nothing else holds
-  // it any more (no view of it kept by the model's functions): a fresh block of 768 KiB for every
-  // chunk would be fresh pages, page-faulted, whenever malloc returns it to the system.
-  std::shared_ptr<S[]> storage;
-  std::size_t storage_size = 0;
   std::vector<double> check, param_rows;
   RowGroups groups;
 };
@@ -412,13 +407,9 @@ void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams
         if (b.gathered.size() < width * count) b.gathered.resize(width * count);
         gather_into = b.gathered.data();
       } else {
-        // Only this thread's buffers hold it (use_count 1): no view of it outlives its chunk.
-        if (!b.storage || b.storage.use_count() != 1 || b.storage_size < width * count) {
-          b.storage.reset(new S[width * count]);
-          b.storage_size = width * count;
-        }
-        gather_into = b.storage.get();
-        storage = {b.storage, b.storage.get(), b.storage.get() + width * count};
+        std::shared_ptr<S[]> block(new S[width * count]);
+        gather_into = block.get();
+        storage = {block, block.get(), block.get() + width * count};
       }
       // The batches read a coordinate of a C-ordered (N, 3) array where it lies (stride 3:
       // core/simd/model_batch.h gathers it block by block); a numpy model's functions get
