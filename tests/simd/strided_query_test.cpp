@@ -159,10 +159,10 @@ void check_every_model(Math math) {
   }
 }
 
-TEST(SimdStridedQuery, DoubleEveryModelEveryIsaIsTheColumnsBitForBit) {
+TEST(SimdStridedQuery, DoubleEveryModelScalarAndWidestIsaIsTheColumnsBitForBit) {
   check_every_model<double>(Math::kExact);
 }
-TEST(SimdStridedQuery, FloatEveryModelEveryIsaIsTheColumnsBitForBit) {
+TEST(SimdStridedQuery, FloatEveryModelScalarAndWidestIsaIsTheColumnsBitForBit) {
   check_every_model<float>(Math::kExact);
   check_every_model<float>(Math::kFast);
 }
