@@ -210,13 +210,22 @@ RowsValidator rows_validator(const ModelEntry& model) {
 // tolerance, so a row it passes passes |length - 1| <= 1e-6 in any rounding (and is finite), and
 // a row near the bound goes to the exact checks (which then pass or name it).
 bool rows_surely_valid(const ModelEntry& model, const QuerySources& q,
-                       std::span<const simd::Column<double>> cols, std::size_t count) {
+                       std::span<const simd::Column<double>> cols, std::size_t count,
+                       const FusedUnitCheck* fused = nullptr) {
   const auto rows_of = [count](const simd::Column<double>& c) { return c.stride == 0 ? 1 : count; };
   bool bad = false;
   std::vector<bool> direction(cols.size(), false);
   const auto unit = [&](std::size_t first) {
     const simd::Column<double> &x = cols[first], &y = cols[first + 1], &z = cols[first + 2];
     direction[first] = direction[first + 1] = direction[first + 2] = true;
+    // Tested by the gather already (chunk_columns with `fused`).
+    if (fused != nullptr) {
+      for (const auto& [column, outside] : fused->found) {
+        if (column != first) continue;
+        bad |= (outside & kSignBit) != 0;
+        return;
+      }
+    }
     // The usual cases, three contiguous columns or the rows of a C-ordered (N, 3) array, as loops
     // of their own the compiler vectorises.
     if (x.stride == 1 && y.stride == 1 && z.stride == 1)
@@ -310,6 +319,7 @@ struct RowGroups {
 template <class S>
 struct ChunkBuffers {
   std::vector<S> gathered, extra, group_in, group_out;
+  FusedUnitCheck fused;
   std::vector<double> check, param_rows;
   RowGroups groups;
 };
@@ -414,8 +424,15 @@ void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams
       // The batches read a coordinate of a C-ordered (N, 3) array where it lies (stride 3:
       // core/simd/model_batch.h gathers it block by block); a numpy model's functions get
       // contiguous columns.
+      // A numpy model's gather of a C-ordered (N, 3) array in double tests the squared lengths
+      // of its rows on the way (one pass over them instead of two).
+      FusedUnitCheck& fused = b.fused;
+      fused.found.clear();
+      fused.lo = kUnitLoBits;
+      fused.hi = kUnitHiBits;
+      FusedUnitCheck* const fuse = per_row_columns ? nullptr : &fused;
       std::vector<simd::Column<S>> inputs =
-          chunk_columns<S>(q.columns, width, begin, count, gather_into, per_row_columns);
+          chunk_columns<S>(q.columns, width, begin, count, gather_into, per_row_columns, fuse);
 
       // The rules of check_query_row on the chunk's columns (the model's own where they have a
       // column form, rows_validator); those of a model without one and a caller's extra check
@@ -432,7 +449,7 @@ void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams
       }
       if (surely_valid) {
         if constexpr (std::is_same_v<S, double>) {
-          surely_valid = rows_surely_valid(model, q, inputs, count);
+          surely_valid = rows_surely_valid(model, q, inputs, count, fuse);
         } else {
           const auto in_double =
               chunk_columns<double>(q.columns, width, begin, count, b.check, true);

@@ -122,3 +122,38 @@ def test_the_check_catches_a_changed_row():
     got = glintlab.eval("smooth_ggx", wi, wo2)
     differ = np.flatnonzero(got["value"] != ref["value"])
     assert list(differ) == [5000]
+
+
+def numpy_lambert():
+    import numpy_models as nm
+    name = "py_chunk_check_lambert"
+    if name not in [m["name"] for m in glintlab.models()]:
+        nm.register_lambert(glintlab, name)
+    return name
+
+
+def test_a_numpy_models_c_ordered_rows_are_checked_by_the_gather():
+    # A numpy model's chunk (16384 rows) gathers a C-ordered (N, 3) array and tests its rows'
+    # lengths in the same pass: a row beyond the unit tolerance in the second chunk is named, one
+    # within it (but outside the pass's bounds, a little inside the tolerance) passes, and the
+    # values are those of the Fortran-ordered call.
+    name = numpy_lambert()
+    rows = 40_000
+    wi, wo = directions(rows, seed=11)
+    ref = glintlab.eval(name, np.asfortranarray(wi), np.asfortranarray(wo), threads=1)
+    got = glintlab.eval(name, wi, wo, threads=2)
+    for key in ref:
+        assert np.array_equal(got[key], ref[key]), key
+    near = wo.copy()
+    near[20_000] *= 1 + 0.9e-6  # |length - 1| = 0.9e-6 <= 1e-6: valid
+    glintlab.eval(name, wi, near)
+    far = wo.copy()
+    far[30_000] *= 1 + 1.1e-6  # beyond the tolerance
+    far[35_000] *= 1.5
+    for layout in (far, np.asfortranarray(far)):
+        message = error_of(name, wi, layout)
+        assert message.startswith("row 30000") and "wo" in message, message
+    bad_wi = wi.copy()
+    bad_wi[17_000] = [0.0, 0.0, np.nan]
+    message = error_of(name, bad_wi, wo)
+    assert message.startswith("row 17000") and "wi" in message, message
