@@ -89,9 +89,6 @@ struct Check {
   std::string paper;   // paper (and baseline) it comes from
   std::string source;  // equation / figure
   Verdict expected;    // the verdict recorded for it today; a change is a regression or a finding
-  // False for a run-time model's conformance check (a plug-in, a Python model): nothing is
-  // recorded for it, and `expected` is what a conforming model gives.
-  bool recorded = true;
   std::function<CheckResult(Budget)> run;
   // For statistical checks: one run of the test on a known-correct input with the given seed,
   // returning its raw p-value (uniform on [0, 1] when the test is calibrated). Empty for
@@ -119,6 +116,9 @@ struct Check {
   // The competing causes of a "fails" reviewed for this claim (its type's alternatives()).
   std::vector<Alternative> alternatives = {};
   std::string correction = {};  // the smallest change to the paper that makes it hold
+  // False for a run-time model's conformance check (a plug-in, a Python model): nothing is
+  // recorded for it, and `expected` is what a conforming model gives.
+  bool recorded = true;
 
   Verdict expected_for(Budget b) const {
     return b == Budget::kFull && expected_full ? *expected_full : expected;
