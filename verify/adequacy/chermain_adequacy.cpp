@@ -9,6 +9,7 @@
 #include <memory>
 #include <numbers>
 #include <stdexcept>
+#include <tuple>
 
 namespace glintlab::verify::adequacy {
 namespace {
@@ -216,33 +217,17 @@ ChermainCellResult measure_chermain_cell(const ChermainCell& cell, int samples, 
   ChermainCellResult r;
   r.cell = cell;
   r.lod = chermain_construction(cell).lod;
-  constexpr auto kRef = std::size_t(kChermainMostComplete);
-  std::vector<double> ref, x;
-  const double t_ref = chermain_level_values(cell, kChermainMostComplete, samples, seed, ref);
-  for (std::size_t l = 0; l < std::size_t(kChermainLevels); ++l) {
-    if (l == kRef) {
-      r.levels[l] = compare_to_exact(ref, ref, d);
-      r.levels[l].adequate = true;  // the reference itself
-      r.levels[l].undecided = false;
-      r.levels[l].ns_per_eval = t_ref;
-      continue;
-    }
-    const double t = chermain_level_values(cell, ChermainLevel(l), samples, seed, x);
-    if (edit) edit(ChermainLevel(l), x);
-    r.levels[l] = compare_to_exact(x, ref, d);
-    r.levels[l].ns_per_eval = t;
-    if (l == std::size_t(ChermainLevel::kSmooth)) r.smooth = x.empty() ? 0 : x[0];
-  }
-  for (int l = 0; l < kChermainLevels; ++l)
-    if (r.levels[std::size_t(l)].adequate) {
-      r.chosen = l;
-      break;
-    }
-  for (int l = 0; l < kChermainLevels; ++l)
-    if (r.levels[std::size_t(l)].adequate &&
-        r.levels[std::size_t(l)].ns_per_eval <
-            r.levels[std::size_t(r.cheapest_measured)].ns_per_eval)
-      r.cheapest_measured = l;
+  r.levels = measure_levels<kChermainLevels>(
+      int(kChermainMostComplete), d,
+      [&](int l, std::vector<double>& out) {
+        return chermain_level_values(cell, ChermainLevel(l), samples, seed, out);
+      },
+      [&](int l, std::vector<double>& x) {
+        if (edit) edit(ChermainLevel(l), x);
+        if (l == int(ChermainLevel::kSmooth)) r.smooth = x.empty() ? 0 : x[0];
+      });
+  std::tie(r.chosen, r.cheapest_measured) =
+      chosen_and_cheapest_measured(r.levels, int(kChermainMostComplete));
   r.construction = int(chermain_identical_level(cell));
   const LevelStats& c = r.levels[std::size_t(r.construction)];
   r.construction_refuted = c.mean_diff_lcb > d.threshold || c.cv_diff_lcb > d.threshold;
