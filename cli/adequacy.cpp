@@ -72,6 +72,31 @@ void print_counting_family(std::string_view family, std::string_view chooser, st
       cheapest[1], cheapest[2], cheapest[3]);
 }
 
+// A family of many levels (Kemppinen, Chermain): cells per level, its chooser's line, undecided
+// cells and the summed in-process times against its most complete level.
+template <std::size_t N>
+void print_leveled_family(std::string_view family, const std::array<std::string_view, N>& names,
+                          std::size_t cells, const std::array<std::size_t, N>& chosen,
+                          const std::string& chooser_line, std::size_t undecided,
+                          std::string_view most_complete, double most_complete_ns,
+                          double chosen_ns, double cheapest_ns) {
+  std::vector<std::string> counts;
+  for (std::size_t l = 0; l < N; ++l) counts.push_back(fmt::format("{} {}", names[l], chosen[l]));
+  fmt::print("{}: {} cells; cheapest adequate level: {}\n", family, cells, fmt::join(counts, ", "));
+  fmt::print("{}\n", chooser_line);
+  fmt::print("{} cells undecided (too few lit positions at {}: {} kept)\n", undecided,
+             most_complete, most_complete);
+  const auto saved = [&](double ns) {
+    return most_complete_ns > 0 ? 100 * (1 - ns / most_complete_ns) : 0.0;
+  };
+  fmt::print(
+      "time per evaluation summed over cells (this CPU, scalar double): {} everywhere "
+      "{:.0f} ns; chosen level {:.0f} ns ({:.1f} % saved); measured-cheapest adequate level "
+      "{:.0f} ns ({:.1f} % saved)\n",
+      most_complete, most_complete_ns, chosen_ns, saved(chosen_ns), cheapest_ns,
+      saved(cheapest_ns));
+}
+
 void print_calibration(const AdequacyRunSummary& run) {
   const auto& s = run.calibration;
   const auto& cal = s.calibration;
@@ -138,24 +163,12 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
                           s.chosen_ns, s.cheapest_ns, s.cheapest_measured);
   if (s.kemppinen.cells > 0) {
     const auto& k = s.kemppinen;
-    std::vector<std::string> counts;
-    for (std::size_t l = 0; l < k.chosen.size(); ++l)
-      counts.push_back(fmt::format("{} {}", kKemppinenLevelNames[l], k.chosen[l]));
-    fmt::print("Kemppinen family: {} cells; cheapest adequate level: {}\n", k.cells,
-               fmt::join(counts, ", "));
-    fmt::print(
-        "chooser (core/glints/adequacy.h): same level as measured in {} cells, refuted in {}\n",
-        k.chooser_matches, k.chooser_refuted);
-    fmt::print("{} cells undecided (too few lit positions at k16_exact: k16_exact kept)\n",
-               k.undecided);
-    const auto saved = [&](double ns) {
-      return k.most_complete_ns > 0 ? 100 * (1 - ns / k.most_complete_ns) : 0.0;
-    };
-    fmt::print(
-        "time per evaluation summed over cells (this CPU, scalar double): k16_exact everywhere "
-        "{:.0f} ns; chosen level {:.0f} ns ({:.1f} % saved); measured-cheapest adequate level "
-        "{:.0f} ns ({:.1f} % saved)\n",
-        k.most_complete_ns, k.chosen_ns, saved(k.chosen_ns), k.cheapest_ns, saved(k.cheapest_ns));
+    print_leveled_family(
+        "Kemppinen family", kKemppinenLevelNames, k.cells, k.chosen,
+        fmt::format("chooser (core/glints/adequacy.h): same level as measured in {} cells, "
+                    "refuted in {}",
+                    k.chooser_matches, k.chooser_refuted),
+        k.undecided, "k16_exact", k.most_complete_ns, k.chosen_ns, k.cheapest_ns);
   }
   if (s.area.cells > 0) {
     const auto& a = s.area;
@@ -166,25 +179,12 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
   }
   if (s.chermain.cells > 0) {
     const auto& c = s.chermain;
-    std::vector<std::string> counts;
-    for (std::size_t l = 0; l < c.chosen.size(); ++l)
-      counts.push_back(fmt::format("{} {}", verify::adequacy::kChermainLevelNames[l], c.chosen[l]));
-    fmt::print("Chermain family: {} cells; cheapest adequate level: {}\n", c.cells,
-               fmt::join(counts, ", "));
-    fmt::print(
-        "construction (the level equal to dict16_ggaa bit for bit): same level as measured in {} "
-        "cells, refuted in {}\n",
-        c.construction_matches, c.construction_refuted);
-    fmt::print("{} cells undecided (too few lit positions at dict16_ggaa: dict16_ggaa kept)\n",
-               c.undecided);
-    const auto saved = [&](double ns) {
-      return c.most_complete_ns > 0 ? 100 * (1 - ns / c.most_complete_ns) : 0.0;
-    };
-    fmt::print(
-        "time per evaluation summed over cells (this CPU, scalar double): dict16_ggaa everywhere "
-        "{:.0f} ns; chosen level {:.0f} ns ({:.1f} % saved); measured-cheapest adequate level "
-        "{:.0f} ns ({:.1f} % saved)\n",
-        c.most_complete_ns, c.chosen_ns, saved(c.chosen_ns), c.cheapest_ns, saved(c.cheapest_ns));
+    print_leveled_family(
+        "Chermain family", verify::adequacy::kChermainLevelNames, c.cells, c.chosen,
+        fmt::format("construction (the level equal to dict16_ggaa bit for bit): same level as "
+                    "measured in {} cells, refuted in {}",
+                    c.construction_matches, c.construction_refuted),
+        c.undecided, "dict16_ggaa", c.most_complete_ns, c.chosen_ns, c.cheapest_ns);
   }
   if (s.benchmark_costs) {
     const auto bench_saved = [&](double ns) {
