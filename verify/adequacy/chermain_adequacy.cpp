@@ -139,6 +139,140 @@ double chermain_identical_facets(int dictionary_levels, double theta_i_deg) {
   return kChermainDensity * std::pow(4.0, e) * std::cos(theta_i_deg * kDeg);
 }
 
+namespace {
+
+// E[Σ W_0 W_1] per axis over the fine and coarse cells that share their draws (fine index 2I and
+// coarse index I), the position uniform over a coarse cell (two fine ones), by the midpoint rule.
+double shared_weight_per_axis() {
+  constexpr int kNodes = 4096;
+  double sum = 0;
+  for (int q = 0; q < kNodes; ++q) {
+    const double v = 2.0 * (q + 0.5) / kNodes;  // in fine cells
+    const double s0 = v - 0.5, f0 = std::floor(s0), t0 = s0 - f0;
+    const double s1 = v / 2 - 0.5, f1 = std::floor(s1), t1 = s1 - f1;
+    for (int di = 0; di < 2; ++di)
+      for (int dj = 0; dj < 2; ++dj)
+        if (f0 + di == 2 * (f1 + dj)) sum += (di ? t0 : 1 - t0) * (dj ? t1 : 1 - t1);
+  }
+  return sum / kNodes;
+}
+
+// The moments of one cell's X at the LODs l0 and l0 + 1 (Eq. 4–6), over the rotation and the two
+// marginals; `smooth[j]` where the LOD's level is past the dictionary's last (X the Gaussian).
+struct LodMoments {
+  double mu[2] = {0, 0}, m2[2] = {0, 0}, cross = 0, gauss = 0;
+  bool smooth[2] = {false, false};
+};
+
+LodMoments lod_moments(const ChermainCell& c, int l0, int rotations) {
+  const auto p = chermain_level_params(c, kChermainMostComplete, 0);
+  const chermain2021::Dictionary& dict = *p.sdf.dictionary;
+  const ModelQuery<double> q = chermain_cell_query(c, {0, 0});
+  const Vec3<double> h = half_vector(q.wi, q.wo);
+  const double mxs = -h.x / h.z, mys = -h.y / h.z;
+  const chermain2021::Matrix M = chermain2021::matrix(p.sdf.sigma_x, p.sdf.sigma_y, p.sdf.rho,
+                                                      dict.sigma_o(), p.sdf.with_rho);
+  const bool ggaa = p.sdf.kernel != chermain2021::kNoGgaa;
+  const double sk = ggaa ? p.sdf.s_k : 0.0;
+  const auto& d = p.d;
+  const double ax = sk * (M.i00 * d.dx_x + M.i01 * d.dx_y), ay = sk * (M.i11 * d.dx_y);
+  const double bx = sk * (M.i00 * d.dy_x + M.i01 * d.dy_y), by = sk * (M.i11 * d.dy_y);
+  const double mx = M.i00 * mxs + M.i01 * mys, my = M.i11 * mys;
+  LodMoments r;
+  r.gauss = chermain2021::gaussian_sdf(mxs, mys, p.sdf.sigma_x, p.sdf.sigma_y,
+                                       p.sdf.with_rho ? p.sdf.rho : 0.0);
+  int k[2];
+  for (int j = 0; j < 2; ++j) {
+    k[j] = dictionary_level(double(l0 + j));
+    r.smooth[j] = k[j] >= dict.levels();
+  }
+  const int N = dict.distributions();
+  const auto lookup = [&](int n, int level, double x, double dx, double dy) {
+    return ggaa ? dict.lookup_grad(n, level, x, dx, dy, p.sdf.wrap, 16)
+                : dict.lookup_lod(n, level, x, 0, p.sdf.wrap);
+  };
+  for (int t = 0; t < rotations; ++t) {
+    const double theta = 2 * std::numbers::pi * (t + 0.5) / rotations;
+    const double ct = std::cos(theta), st = std::sin(theta);
+    const double xo = ct * mx + st * my, yo = -st * mx + ct * my;
+    const double dxx = ct * ax + st * ay, dxy = ct * bx + st * by;
+    const double dyx = -st * ax + ct * ay, dyy = -st * bx + ct * by;
+    double g[2][2] = {}, q2[2][2] = {}, cr[2] = {};  // [level][axis]
+    for (int n = 0; n < N; ++n) {
+      double v[2][2];
+      for (int j = 0; j < 2; ++j) {
+        if (r.smooth[j]) continue;
+        v[j][0] = lookup(n, k[j], xo, dxx, dxy);
+        v[j][1] = lookup(n, k[j], yo, dyx, dyy);
+        for (int a = 0; a < 2; ++a) g[j][a] += v[j][a], q2[j][a] += v[j][a] * v[j][a];
+      }
+      if (!r.smooth[0] && !r.smooth[1])
+        for (int a = 0; a < 2; ++a) cr[a] += v[0][a] * v[1][a];
+    }
+    for (int j = 0; j < 2; ++j) {
+      r.mu[j] += (g[j][0] / N) * (g[j][1] / N);
+      r.m2[j] += (q2[j][0] / N) * (q2[j][1] / N);
+    }
+    r.cross += (cr[0] / N) * (cr[1] / N);
+  }
+  for (int j = 0; j < 2; ++j) {
+    if (r.smooth[j]) {
+      r.mu[j] = r.gauss, r.m2[j] = r.gauss * r.gauss;
+      continue;
+    }
+    r.mu[j] /= rotations * M.det;
+    r.m2[j] /= rotations * M.det * M.det;
+  }
+  r.cross = r.smooth[0] || r.smooth[1] ? r.mu[0] * r.mu[1]
+                                       : r.cross / (rotations * M.det * M.det);
+  return r;
+}
+
+// The patch-SDF's moments at LOD fraction w1 (the coarse LOD's weight) from its cells' moments.
+ChermainExactMoments combine(const LodMoments& m, double w1, bool shared_draws) {
+  static const double shared = [] {
+    const double a = shared_weight_per_axis();
+    return a * a;
+  }();
+  const double w0 = 1 - w1;
+  ChermainExactMoments e;
+  e.smooth = m.gauss;
+  e.mean = w0 * m.mu[0] + w1 * m.mu[1];
+  const double v0 = m.m2[0] - m.mu[0] * m.mu[0], v1 = m.m2[1] - m.mu[1] * m.mu[1];
+  const double cov = m.cross - m.mu[0] * m.mu[1];
+  const double var = 4.0 / 9.0 * (w0 * w0 * v0 + w1 * w1 * v1) +
+                     (shared_draws ? 2 * w0 * w1 * cov * shared : 0.0);
+  e.sd = std::sqrt(std::max(var, 0.0));
+  return e;
+}
+
+}  // namespace
+
+ChermainExactMoments chermain_exact_moments(const ChermainCell& c, int rotations,
+                                            bool shared_draws) {
+  const double lod = chermain_construction(c).lod;
+  const double l0 = std::floor(lod);
+  return combine(lod_moments(c, int(l0), rotations), lod - l0, shared_draws);
+}
+
+double chermain_smooth_boundary(ChermainCell c, double tau, int rotations) {
+  const double stretch_cos = std::cos(c.theta_i_deg * kDeg);
+  // facets = density 4^l_P cos θ_i (the longer side 2^l_P, the shorter cos θ_i times it).
+  const auto facets_at = [&](double l) { return kChermainDensity * std::pow(4.0, l) * stretch_cos; };
+  int l0 = 39;
+  while (l0 > -20 && dictionary_level(double(l0 - 1)) >= 16) --l0;  // from here both LODs smooth
+  constexpr int kSteps = 256;
+  for (--l0; l0 >= -20; --l0) {
+    const LodMoments m = lod_moments(c, l0, rotations);
+    for (int s = kSteps - 1; s >= 0; --s) {
+      const ChermainExactMoments e = combine(m, double(s) / kSteps, true);
+      if (std::max(std::abs(e.mean_diff()), e.cv()) > tau)
+        return facets_at(l0 + double(s + 1) / kSteps);
+    }
+  }
+  return facets_at(-20);
+}
+
 Vec2<double> chermain_surface_position(const ChermainCell& c, int i) {
   // The coarser LOD's cell side 2^(⌊l_P⌋ + 1) is at most twice the footprint's longer side.
   const double cell = std::ldexp(1.0, int(std::floor(chermain_construction(c).lod)) + 1);

@@ -130,6 +130,33 @@ ChermainLevel chermain_identical_level(const ChermainCell& c);
 // below 2^(L − 1 − ⌊½ log2 density⌋), so facets < density 4^(L − 1 − ⌊½ log2 density⌋) cos θ_i.
 double chermain_identical_facets(int dictionary_levels, double theta_i_deg);
 
+// The construction's first two moments of the most complete level (dict16_ggaa) over surface
+// positions, computed from the dictionary rather than measured: per cell X = P_o(R(−θ) M⁻¹ m̃) /
+// det M (Eq. 4–6) with θ uniform (a midpoint rule of `rotations` nodes) and the two marginals
+// uniform over the N distributions (each read as the model reads it: textureLod, or textureGrad with
+// the cell's rotated GGAA derivatives), so E[X] = E_θ[ḡ(x_o) ḡ(y_o)], E[X²] = E_θ[s(x_o) s(y_o)]
+// (ḡ, s the mean over distributions of p and p²); the patch-SDF of Eq. 3 is w_0 Σ W X_0 + w_1 Σ W X_1
+// over the two LODs' 2 × 2 cells, cells independent but for the coarse cell that shares its draws
+// with its lower-left fine child (E[X_0 X_1] likewise), the bilinear weights W over a position
+// uniform on the cell lattice (E Σ W² = 4/9 per LOD; the shared pair's E[W_0 W_1] by a midpoint
+// rule); a level past the 16th is the constant Gaussian. So mean = w_0 μ_0 + w_1 μ_1 and
+// Var = (4/9)(w_0² σ_0² + w_1² σ_1²) + 2 w_0 w_1 Cov(X_0, X_1) E[Σ_shared W_0 W_1]. In slope space
+// (P22); `smooth` the Gaussian the smooth level evaluates. The positions' share of the variance
+// (the conditional mean does not depend on the position) is none. `shared_draws = false` drops the
+// coarse cell's shared draws (the tests' broken construction).
+struct ChermainExactMoments {
+  double mean = 0, sd = 0, smooth = 0;
+  double cv() const { return mean > 0 ? sd / mean : INFINITY; }
+  double mean_diff() const { return mean > 0 ? smooth / mean - 1 : INFINITY; }
+};
+ChermainExactMoments chermain_exact_moments(const ChermainCell& c, int rotations = 1024,
+                                            bool shared_draws = true);
+// The fewest expected microfacets per footprint from which the smooth level stays within `tau` of
+// dict16_ggaa by the construction's moments (max(|mean_diff|, CV) ≤ tau at every larger
+// footprint): the moments once per integer LOD (w_1 = frac(l_P) then enters in closed form),
+// scanned down from where both LODs are past the 16th level, each LOD's fraction in 1/256 steps.
+double chermain_smooth_boundary(ChermainCell c, double tau, int rotations = 1024);
+
 // The surface position of sample i: the R2 set of binomial_adequacy.h spread over a square
 // kChermainSpread cells of the footprint's coarser LOD wide, so that positions (about 22 such
 // cells apart at 8000 positions) never share a cell of either LOD (the model visits the 2 × 2 cells
