@@ -70,6 +70,30 @@ std::vector<std::string> csv_without_timing(const fs::path& file) {
   return rows;
 }
 
+// A merge's files against the unsharded run's: the same names, adequacy.csv and adequacy.json
+// apart from the timings, every other file byte for byte; returns how many maps (PNGs) there are.
+std::size_t expect_files_of_one_run(const std::map<std::string, std::string>& merged,
+                                    const std::map<std::string, std::string>& one,
+                                    const fs::path& merged_dir, const fs::path& one_dir) {
+  EXPECT_EQ(merged.size(), one.size());
+  std::size_t maps = 0;
+  for (const auto& [file, bytes] : one) {
+    if (!merged.count(file)) {
+      ADD_FAILURE() << file << " is not in the merge";
+      continue;
+    }
+    maps += file.ends_with(".png") ? 1 : 0;
+    if (file == "adequacy.csv")
+      EXPECT_EQ(csv_without_timing(merged_dir / file), csv_without_timing(one_dir / file));
+    else if (file == "adequacy.json")
+      EXPECT_EQ(without_timing(nlohmann::json::parse(merged.at(file))),
+                without_timing(nlohmann::json::parse(bytes)));
+    else
+      EXPECT_TRUE(merged.at(file) == bytes) << file << " differs";
+  }
+  return maps;
+}
+
 // The merges' maps drawn by matplotlib for N = 2 (the first pass, like the unsharded run), by the
 // stand-in (CliTest::stand_in_charts) for N = 1, 3 and 7: each of their maps is then the bytes of
 // its chart spec and data, compared with the unsharded run's spec and data, which matplotlib drew
@@ -147,21 +171,8 @@ TEST_F(AdequacyShardTest, AreaFamilyMergedIsTheFilesOfOneRun) {
   const RunResult r = run(merge);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("324 cells from 2 shards"), std::string::npos) << r.out;
-  const std::map<std::string, std::string> merged = file_tree("merged");
-  ASSERT_EQ(merged.size(), one.size());
-  std::size_t maps = 0;
-  for (const auto& [file, bytes] : one) {
-    ASSERT_TRUE(merged.count(file)) << file;
-    maps += file.ends_with(".png") ? 1 : 0;
-    if (file == "adequacy.csv")
-      EXPECT_EQ(csv_without_timing(path("merged/" + file)), csv_without_timing(path("one/" + file)));
-    else if (file == "adequacy.json")
-      EXPECT_EQ(without_timing(nlohmann::json::parse(merged.at(file))),
-                without_timing(nlohmann::json::parse(bytes)));
-    else
-      EXPECT_TRUE(merged.at(file) == bytes) << file << " differs";
-  }
-  EXPECT_EQ(maps, 6u);  // 3 lights × 2 incidences
+  EXPECT_EQ(expect_files_of_one_run(file_tree("merged"), one, path("merged"), path("one")),
+            6u);  // 3 lights × 2 incidences
 }
 
 // The Chermain family through the command line: its quick table (264 cells, nine levels, the
@@ -213,21 +224,7 @@ TEST_F(AdequacyShardTest, ChermainFamilyOnOneThreadMergedIsTheTwoThreadRun) {
   const RunResult r = run(merge);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("264 cells from 2 shards"), std::string::npos) << r.out;
-  const std::map<std::string, std::string> merged = file_tree("merged");
-  ASSERT_EQ(merged.size(), files.size());
-  std::size_t maps = 0;
-  for (const auto& [file, bytes] : files) {
-    ASSERT_TRUE(merged.count(file)) << file;
-    maps += file.ends_with(".png") ? 1 : 0;
-    if (file == "adequacy.csv")
-      EXPECT_EQ(csv_without_timing(path("merged/" + file)), csv_without_timing(path("one/" + file)));
-    else if (file == "adequacy.json")
-      EXPECT_EQ(without_timing(nlohmann::json::parse(merged.at(file))),
-                without_timing(nlohmann::json::parse(bytes)));
-    else
-      EXPECT_TRUE(merged.at(file) == bytes) << file << " differs";
-  }
-  EXPECT_EQ(maps, 4u);
+  EXPECT_EQ(expect_files_of_one_run(file_tree("merged"), files, path("merged"), path("one")), 4u);
 }
 
 
