@@ -72,6 +72,31 @@ void print_counting_family(std::string_view family, std::string_view chooser, st
       cheapest[1], cheapest[2], cheapest[3]);
 }
 
+// A family of many levels (Kemppinen, Chermain): cells per level, its chooser's line, undecided
+// cells and the summed in-process times against its most complete level.
+template <std::size_t N>
+void print_leveled_family(std::string_view family, const std::array<std::string_view, N>& names,
+                          std::size_t cells, const std::array<std::size_t, N>& chosen,
+                          const std::string& chooser_line, std::size_t undecided,
+                          std::string_view most_complete, double most_complete_ns,
+                          double chosen_ns, double cheapest_ns) {
+  std::vector<std::string> counts;
+  for (std::size_t l = 0; l < N; ++l) counts.push_back(fmt::format("{} {}", names[l], chosen[l]));
+  fmt::print("{}: {} cells; cheapest adequate level: {}\n", family, cells, fmt::join(counts, ", "));
+  fmt::print("{}\n", chooser_line);
+  fmt::print("{} cells undecided (too few lit positions at {}: {} kept)\n", undecided,
+             most_complete, most_complete);
+  const auto saved = [&](double ns) {
+    return most_complete_ns > 0 ? 100 * (1 - ns / most_complete_ns) : 0.0;
+  };
+  fmt::print(
+      "time per evaluation summed over cells (this CPU, scalar double): {} everywhere "
+      "{:.0f} ns; chosen level {:.0f} ns ({:.1f} % saved); measured-cheapest adequate level "
+      "{:.0f} ns ({:.1f} % saved)\n",
+      most_complete, most_complete_ns, chosen_ns, saved(chosen_ns), cheapest_ns,
+      saved(cheapest_ns));
+}
+
 void print_calibration(const AdequacyRunSummary& run) {
   const auto& s = run.calibration;
   const auto& cal = s.calibration;
@@ -138,24 +163,12 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
                           s.chosen_ns, s.cheapest_ns, s.cheapest_measured);
   if (s.kemppinen.cells > 0) {
     const auto& k = s.kemppinen;
-    std::vector<std::string> counts;
-    for (std::size_t l = 0; l < k.chosen.size(); ++l)
-      counts.push_back(fmt::format("{} {}", kKemppinenLevelNames[l], k.chosen[l]));
-    fmt::print("Kemppinen family: {} cells; cheapest adequate level: {}\n", k.cells,
-               fmt::join(counts, ", "));
-    fmt::print(
-        "chooser (core/glints/adequacy.h): same level as measured in {} cells, refuted in {}\n",
-        k.chooser_matches, k.chooser_refuted);
-    fmt::print("{} cells undecided (too few lit positions at k16_exact: k16_exact kept)\n",
-               k.undecided);
-    const auto saved = [&](double ns) {
-      return k.most_complete_ns > 0 ? 100 * (1 - ns / k.most_complete_ns) : 0.0;
-    };
-    fmt::print(
-        "time per evaluation summed over cells (this CPU, scalar double): k16_exact everywhere "
-        "{:.0f} ns; chosen level {:.0f} ns ({:.1f} % saved); measured-cheapest adequate level "
-        "{:.0f} ns ({:.1f} % saved)\n",
-        k.most_complete_ns, k.chosen_ns, saved(k.chosen_ns), k.cheapest_ns, saved(k.cheapest_ns));
+    print_leveled_family(
+        "Kemppinen family", kKemppinenLevelNames, k.cells, k.chosen,
+        fmt::format("chooser (core/glints/adequacy.h): same level as measured in {} cells, "
+                    "refuted in {}",
+                    k.chooser_matches, k.chooser_refuted),
+        k.undecided, "k16_exact", k.most_complete_ns, k.chosen_ns, k.cheapest_ns);
   }
   if (s.area.cells > 0) {
     const auto& a = s.area;
@@ -163,6 +176,15 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
                           "binomial chooser with the area p", a.cells, a.chosen, a.chooser_matches,
                           a.chooser_refuted, a.undecided, a.exact_ns, a.chosen_ns, a.cheapest_ns,
                           a.cheapest_measured);
+  }
+  if (s.chermain.cells > 0) {
+    const auto& c = s.chermain;
+    print_leveled_family(
+        "Chermain family", verify::adequacy::kChermainLevelNames, c.cells, c.chosen,
+        fmt::format("construction (the level equal to dict16_ggaa bit for bit): same level as "
+                    "measured in {} cells, refuted in {}",
+                    c.construction_matches, c.construction_refuted),
+        c.undecided, "dict16_ggaa", c.most_complete_ns, c.chosen_ns, c.cheapest_ns);
   }
   if (s.benchmark_costs) {
     const auto bench_saved = [&](double ns) {
@@ -186,7 +208,7 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
 }
 
 constexpr const char* kFooter =
-    R"(Three families are measured. The binomial glint family (deliot_belcour, kneiphof_klein) has four levels, cheapest first:
+    R"(Four families are measured. The binomial glint family (deliot_belcour, kneiphof_klein) has four levels, cheapest first:
 smooth (the smooth GGX value), realtime, small_count and exact counting (the `binomial` parameter).
 Per cell of a grid (footprint size N_P = 1 .. 1e8 expected facets, roughness, light half-angle
 0 (delta) .. 10 deg, incidence, half-vector angle on and off the specular peak) each level is
@@ -220,6 +242,15 @@ its side chosen so that its solid angle is a cone's of half-angle 0.26, 1, 10 de
 the same decision against its exact level. Its rows share adequacy.csv (family `area`, the binomial
 level columns; light_half_angle_deg the cone-equivalent half-angle), with one map per light and
 incidence.
+The Chermain family (chermain: the procedural patch-SDF of Chermain et al. 2020 with 2021's GGAA)
+has nine levels, cheapest first: smooth (the Gaussian slope density of covariance Sigma, the
+model's smooth / LEAN fallback), then the model with a dictionary of its first 4, 8, 12, 16 levels
+(the smooth fallback past them), each with GGAA off (textureLod) before on (textureGrad, Eq. 21);
+the most complete is dict16_ggaa. Its grid: 1 .. 1e10 expected microfacets per footprint,
+roughness, incidence, half-vector angle and the GGAA derivative |d h_perp/dx| per pixel (column
+ggaa_dh); the same decision against dict16_ggaa. Its `chooser` is the construction's: the cheapest
+level equal to dict16_ggaa bit for bit (every weighted LOD's dictionary level below L). One map per
+dh and incidence.
 --calibrate measures the decision instead: on synthetic cells whose cheaper level differs from
 exact by exactly TAU (1 + delta) (in the mean, in the CV, or the smooth level at the boundary),
 delta = -0.5, -0.25, -0.1 (truly adequate: the power), 0 (the boundary), 0.05, 0.1, 0.25 (just
@@ -240,10 +271,12 @@ AdequacyRunSummary run_adequacy_request(const AdequacyRequest& o) {
                verify::adequacy::kKemppinenFamilyModels.end());
   names.insert(names.end(), verify::adequacy::kAreaFamilyModels.begin(),
                verify::adequacy::kAreaFamilyModels.end());
+  names.insert(names.end(), verify::adequacy::kChermainFamilyModels.begin(),
+               verify::adequacy::kChermainFamilyModels.end());
   experiments::AdequacyOptions a;
   a.models = select_by_globs(
       o.models, "--models", names,
-      fmt::format("models of the binomial, Kemppinen and area families: {}",
+      fmt::format("models of the binomial, Kemppinen, area and Chermain families: {}",
                   fmt::join(names, ", ")));
   a.threshold = number_option(o.threshold, "--threshold", 0, 1, true, false);
   a.budget = quick ? verify::Budget::kQuick : verify::Budget::kFull;
@@ -336,6 +369,9 @@ AdequacyRunSummary run_adequacy_request(const AdequacyRequest& o) {
                  .size() +
              verify::adequacy::make_grid(experiments::area_models(a.models),
                                          verify::adequacy::area_grid_axes(a.budget))
+                 .size() +
+             verify::adequacy::make_chermain_grid(experiments::chermain_models(a.models),
+                                                  verify::adequacy::chermain_grid_axes(a.budget))
                  .size());
     Progress bar("adequacy", total);
     a.progress = [&] {
@@ -383,7 +419,9 @@ void merge_adequacy_shards(const std::vector<std::string>& dirs,
   const experiments::AdequacySummary s = experiments::write_adequacy(out, o, cells);
   draw_figure_charts(out);  // the maps, drawn by matplotlib from their chart specs
   fmt::print("adequacy: {} cells from {} shards; wrote {}, {} and {} maps\n",
-             cells.binomial.size() + cells.kemppinen.size() + cells.area.size(), dirs.size(), s.csv.string(),
+             cells.binomial.size() + cells.kemppinen.size() + cells.area.size() +
+                 cells.chermain.size(),
+             dirs.size(), s.csv.string(),
              s.json.string(), s.maps.size());
 }
 
@@ -397,7 +435,7 @@ void add_adequacy_command(CLI::App& app) {
                     "quick = 9 footprint sizes x 12 settings (seconds), full = finer");
   add_text_option(cmd, "--models", o->models,
                   "comma-separated globs over the models (deliot_belcour, kneiphof_klein, "
-                  "kemppinen_ggx, kemppinen_beckmann, kneiphof_klein_area)",
+                  "kemppinen_ggx, kemppinen_beckmann, kneiphof_klein_area, chermain)",
                   "LIST");
   add_text_option(cmd, "--threshold", o->threshold,
                   "TAU, the largest relative difference no one sees: a number in (0, 1]", "NUMBER");

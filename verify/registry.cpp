@@ -1,4 +1,4 @@
-// The registry of every check, in the order of shared/CLAIMS.md.
+// The registry of every check, in the order docs/claims.md lists them.
 #include <algorithm>
 
 #include "verify/check.h"

@@ -16,6 +16,9 @@ namespace glintlab::experiments {
 namespace {
 
 using verify::adequacy::CellResult;
+using verify::adequacy::ChermainCellResult;
+using verify::adequacy::kChermainLevelNames;
+using verify::adequacy::kChermainLevels;
 using verify::adequacy::KemppinenCellResult;
 using verify::adequacy::LevelStats;
 
@@ -39,30 +42,39 @@ BenchPrice bench_price(const CellResult& r, const LevelCosts& costs) {
 }
 
 // The level names a table's columns carry: the binomial levels where that family is in the table,
-// then the Kemppinen levels (its smooth level shares the binomial family's `smooth` columns: the
-// same meaning, the family's smooth limit).
-std::vector<std::string_view> table_levels(bool binomial, bool kemppinen) {
+// then the Kemppinen levels, then the Chermain levels (a family's smooth level shares the `smooth`
+// columns of a family before it: the same meaning, the family's smooth limit).
+std::vector<std::string_view> table_levels(bool binomial, bool kemppinen, bool chermain) {
   std::vector<std::string_view> out;
-  if (binomial) out.assign(kBinomialLevelNames.begin(), kBinomialLevelNames.end());
-  if (kemppinen)
-    for (std::string_view l : kKemppinenLevelNames)
-      if (!binomial || l != "smooth") out.push_back(l);
+  const auto add = [&](const auto& names) {
+    for (std::string_view l : names)
+      if (std::find(out.begin(), out.end(), l) == out.end()) out.push_back(l);
+  };
+  if (binomial) add(kBinomialLevelNames);
+  if (kemppinen) add(kKemppinenLevelNames);
+  if (chermain) add(kChermainLevelNames);
   return out;
 }
 
 void write_csv(const std::filesystem::path& path, const std::vector<CellResult>& rows,
                const std::vector<KemppinenCellResult>& kemppinen_rows,
-               const std::vector<CellResult>& area_rows, const std::optional<LevelCosts>& costs) {
+               const std::vector<CellResult>& area_rows,
+               const std::vector<ChermainCellResult>& chermain_rows,
+               const std::optional<LevelCosts>& costs) {
   std::vector<std::string> names = {"family",       "model",            "facets",
                                     "alpha",        "light_half_angle_deg", "theta_i_deg",
                                     "theta_h_deg",  "p",                "smooth",
                                     "cv_predicted", "p_zero_predicted", "chosen",
                                     "chooser",      "chooser_refuted"};
+  // The Chermain family's GGAA derivative |dh_perp/dx| per pixel, after theta_h_deg, only where
+  // that family is in the table (nan in the other families' rows).
+  const bool with_dh = !chermain_rows.empty();
+  if (with_dh) names.insert(names.begin() + 7, "ggaa_dh");
   const std::array<std::string_view, 8> per_level = {
       "mean", "cv", "p_zero", "mean_diff", "mean_diff_ucb", "cv_diff", "cv_diff_ucb", "adequate"};
   // The area family's levels are the binomial ones (the same columns).
-  const std::vector<std::string_view> levels =
-      table_levels(!rows.empty() || !area_rows.empty(), !kemppinen_rows.empty());
+  const std::vector<std::string_view> levels = table_levels(
+      !rows.empty() || !area_rows.empty(), !kemppinen_rows.empty(), !chermain_rows.empty());
   for (std::string_view l : levels)
     for (std::string_view q : per_level) names.push_back(fmt::format("{}_{}", l, q));
   // Timing last: the only columns that change from run to run.
@@ -106,6 +118,7 @@ void write_csv(const std::filesystem::path& path, const std::vector<CellResult>&
     const bool priced = costs && costs->ns.count(r.cell.model) > 0;
     w.cell(family).cell(r.cell.model).cell(r.cell.facets).cell(r.cell.alpha);
     w.cell(r.cell.light_half_angle_deg).cell(r.cell.theta_i_deg).cell(r.cell.theta_h_deg);
+    if (with_dh) w.cell(NAN);
     w.cell(r.p).cell(r.smooth).cell(r.cv_predicted).cell(r.p_zero_predicted);
     w.cell(kBinomialLevelNames[std::size_t(r.chosen)]);
     w.cell(kBinomialLevelNames[std::size_t(r.chooser)]);
@@ -130,6 +143,7 @@ void write_csv(const std::filesystem::path& path, const std::vector<CellResult>&
       // k16_exact's CV; no predicted P(0) (nan).
       w.cell(kKemppinenFamily).cell(r.cell.model).cell(r.cell.points).cell(r.cell.alpha);
       w.cell(NAN).cell(r.cell.theta_i_deg).cell(r.cell.theta_h_deg);
+      if (with_dh) w.cell(NAN);
       w.cell(NAN).cell(r.smooth).cell(r.cv_bound).cell(NAN);
       w.cell(kKemppinenLevelNames[std::size_t(r.chosen)]);
       w.cell(kKemppinenLevelNames[std::size_t(r.chooser)]).cell_int(r.chooser_refuted ? 1 : 0);
@@ -140,6 +154,22 @@ void write_csv(const std::filesystem::path& path, const std::vector<CellResult>&
       w.end_row();
     }
     for (const CellResult& r : area_rows) counting_row(w, r, kAreaFamily);
+    constexpr auto kMost = std::size_t(verify::adequacy::kChermainMostComplete);
+    for (const ChermainCellResult& r : chermain_rows) {
+      // No light size nor p: nan; no predicted CV nor P(0) (nan); `chooser` the construction's
+      // identical level (chermain_identical_level), `chooser_refuted` the table refuting it.
+      w.cell(kChermainFamily).cell(r.cell.model).cell(r.cell.facets).cell(r.cell.alpha);
+      w.cell(NAN).cell(r.cell.theta_i_deg).cell(r.cell.theta_h_deg).cell(r.cell.dh);
+      w.cell(NAN).cell(r.smooth).cell(NAN).cell(NAN);
+      w.cell(kChermainLevelNames[std::size_t(r.chosen)]);
+      w.cell(kChermainLevelNames[std::size_t(r.construction)]);
+      w.cell_int(r.construction_refuted ? 1 : 0);
+      level_cells(w, r.levels, kChermainLevelNames);
+      w.cell(kChermainLevelNames[std::size_t(r.cheapest_measured)]);
+      w.cell(r.levels[kMost].ns_per_eval - r.levels[std::size_t(r.cheapest_measured)].ns_per_eval);
+      if (costs) w.cell("none").cell(NAN).cell(NAN).cell(NAN);
+      w.end_row();
+    }
   });
 }
 
@@ -301,6 +331,17 @@ std::vector<std::string> area_models(const std::vector<std::string>& models) {
   return out;
 }
 
+std::vector<std::string> chermain_models(const std::vector<std::string>& models) {
+  std::vector<std::string> out;
+  for (std::string_view m : verify::adequacy::kChermainFamilyModels)
+    if (std::find(models.begin(), models.end(), m) != models.end()) out.emplace_back(m);
+  return out;
+}
+
+verify::adequacy::ChermainGridAxes chermain_axes_of(const AdequacyOptions& o) {
+  return o.chermain_axes ? *o.chermain_axes : verify::adequacy::chermain_grid_axes(o.budget);
+}
+
 verify::adequacy::GridAxes area_axes_of(const AdequacyOptions& o) {
   return o.area_axes ? *o.area_axes : verify::adequacy::area_grid_axes(o.budget);
 }
@@ -319,8 +360,11 @@ std::size_t table_decisions(const AdequacyOptions& o) {
           .size();
   const std::size_t area =
       verify::adequacy::make_grid(area_models(o.models), area_axes_of(o)).size();
+  const std::size_t chermain =
+      verify::adequacy::make_chermain_grid(chermain_models(o.models), chermain_axes_of(o)).size();
   return (binomial + area) * std::size_t(kBinomialLevels - 1) +
-         kemppinen * std::size_t(kKemppinenLevels - 1);
+         kemppinen * std::size_t(kKemppinenLevels - 1) +
+         chermain * std::size_t(kChermainLevels - 1);
 }
 
 verify::adequacy::Decision table_decision(const AdequacyOptions& o) {
@@ -392,6 +436,53 @@ std::vector<AdequacyLevelMap> kemppinen_level_maps(
   return out;
 }
 
+std::vector<AdequacyLevelMap> chermain_level_maps(const std::vector<ChermainCellResult>& rows,
+                                                   const verify::adequacy::ChermainGridAxes& axes,
+                                                   double threshold) {
+  // Per model × dh × incidence, rows (α, θ_h) bottom to top, columns the expected microfacets.
+  std::vector<AdequacyLevelMap> out;
+  const std::size_t n_cols = axes.facets.size();
+  const std::size_t n_rows = axes.alpha.size() * std::size_t(axes.theta_h_count);
+  const std::size_t per_map = n_cols * n_rows;
+  constexpr auto kMost = std::size_t(verify::adequacy::kChermainMostComplete);
+  for (std::size_t start = 0; start + per_map <= rows.size(); start += per_map) {
+    const ChermainCellResult& first = rows[start];
+    AdequacyLevelMap m;
+    m.model = first.cell.model;
+    m.theta_i_deg = first.cell.theta_i_deg;
+    m.ggaa_dh = first.cell.dh;
+    m.stem = fmt::format("adequacy_{}_dh{:g}_theta{:g}", first.cell.model, first.cell.dh,
+                         first.cell.theta_i_deg);
+    LevelChart& map = m.map;
+    map.title = fmt::format(
+        "{}: cheapest within TAU = {:g} of dict16_ggaa (dh {:g}/px, theta_i {:g} deg)",
+        first.cell.model, threshold, first.cell.dh, first.cell.theta_i_deg);
+    map.x_label = "footprint size [expected microfacets]";
+    map.y_label = "alpha [1], theta_h [deg]";
+    map.columns = axes.facets;
+    for (std::string_view l : kChermainLevelNames) map.category_names.emplace_back(l);
+    map.category_colors.assign(kChermainLevelColors.begin(), kChermainLevelColors.end());
+    map.marker_name = "construction: smooth fallback from here";
+    m.exr = Image(int(n_cols), int(n_rows), {"chosen", "construction", "cv_most_complete", "lod"});
+    for (std::size_t r = 0; r < n_rows; ++r) {
+      const ChermainCellResult& row0 = rows[start + r * n_cols];
+      map.row_labels.push_back(
+          fmt::format("a={:g} th={:.1f}", row0.cell.alpha, row0.cell.theta_h_deg));
+      std::vector<int> cats;
+      for (std::size_t k = 0; k < n_cols; ++k) {
+        const ChermainCellResult& c = rows[start + r * n_cols + k];
+        cats.push_back(c.chosen);
+        const double v[] = {double(c.chosen), double(c.construction), c.levels[kMost].cv, c.lod};
+        for (std::size_t ch = 0; ch < 4; ++ch) m.exr.at(int(k), int(r), ch) = v[ch];
+      }
+      map.cells.push_back(cats);
+      map.marker.push_back(verify::adequacy::chermain_identical_facets(16, row0.cell.theta_i_deg));
+    }
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
 AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOptions& o) {
   const verify::adequacy::GridAxes axes = verify::adequacy::grid_axes(o.budget);
   const verify::adequacy::KemppinenGridAxes kemppinen_axes = kemppinen_axes_of(o);
@@ -409,6 +500,10 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
   cells.area = verify::adequacy::measure_area_grid_at(area_cells, all, area_axes.samples, decision,
                                                       o.progress);
+  const verify::adequacy::ChermainGridAxes chermain_axes = chermain_axes_of(o);
+  cells.chermain = verify::adequacy::measure_chermain_grid(
+      verify::adequacy::make_chermain_grid(chermain_models(o.models), chermain_axes),
+      chermain_axes.samples, decision, o.progress);
   return write_adequacy(out, o, cells);
 }
 
@@ -471,10 +566,24 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
     a.cheapest_ns += r.levels[std::size_t(r.cheapest_measured)].ns_per_eval;
     if (o.costs && o.costs->ns.count(r.cell.model) > 0) add_bench_price(a, r);
   }
+  const verify::adequacy::ChermainGridAxes chermain_axes = chermain_axes_of(o);
+  constexpr auto kMost = std::size_t(verify::adequacy::kChermainMostComplete);
+  for (const ChermainCellResult& r : cells.chermain) {
+    auto& c = sum.chermain;
+    ++c.cells;
+    ++c.chosen[std::size_t(r.chosen)];
+    ++c.cheapest_measured[std::size_t(r.cheapest_measured)];
+    c.construction_matches += r.construction == r.chosen ? 1 : 0;
+    c.construction_refuted += r.construction_refuted ? 1 : 0;
+    c.undecided += r.levels[0].undecided ? 1 : 0;
+    c.most_complete_ns += r.levels[kMost].ns_per_eval;
+    c.chosen_ns += r.levels[std::size_t(r.chosen)].ns_per_eval;
+    c.cheapest_ns += r.levels[std::size_t(r.cheapest_measured)].ns_per_eval;
+  }
   std::filesystem::create_directories(out);
   sum.csv = out / "adequacy.csv";
   sum.json = out / "adequacy.json";
-  write_csv(sum.csv, rows, kemppinen_rows, cells.area, o.costs);
+  write_csv(sum.csv, rows, kemppinen_rows, cells.area, cells.chermain, o.costs);
 
   const std::vector<AdequacyLevelMap> binomial_maps = adequacy_level_maps(rows, axes, o.threshold);
   const std::vector<verify::adequacy::KemppinenBoundary> boundaries =
@@ -483,8 +592,10 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
       kemppinen_level_maps(kemppinen_rows, kemppinen_axes, o.threshold, boundaries);
   const std::vector<AdequacyLevelMap> area_maps =
       adequacy_level_maps(cells.area, area_axes, o.threshold);
+  const std::vector<AdequacyLevelMap> chermain_maps =
+      chermain_level_maps(cells.chermain, chermain_axes, o.threshold);
   std::vector<const AdequacyLevelMap*> every_map;
-  for (const auto* family : {&binomial_maps, &kemppinen_maps, &area_maps})
+  for (const auto* family : {&binomial_maps, &kemppinen_maps, &area_maps, &chermain_maps})
     for (const AdequacyLevelMap& m : *family) every_map.push_back(&m);
   if (!every_map.empty()) write_level_maps_csv(out / kLevelsCsv, every_map);
   nlohmann::json maps = nlohmann::json::array();
@@ -541,6 +652,25 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
     maps.push_back({{"family", kAreaFamily},
                     {"model", m.model},
                     {"light_half_angle_deg", m.light_half_angle_deg},
+                    {"theta_i_deg", m.theta_i_deg},
+                    {"png", m.stem + ".png"},
+                    {"exr", m.stem + ".exr"}});
+  }
+  for (const AdequacyLevelMap& m : chermain_maps) {
+    io::write_exr(
+        out / (m.stem + ".exr"), m.exr,
+        {{"glintlab_columns",
+          "expected microfacets: " + fmt::format("{}", fmt::join(chermain_axes.facets, ", "))},
+         {"glintlab_rows", fmt::format("{}", fmt::join(m.map.row_labels, "; "))},
+         {"glintlab_levels", "0 smooth, 1 dict4, 2 dict4_ggaa, 3 dict8, 4 dict8_ggaa, 5 dict12, "
+                             "6 dict12_ggaa, 7 dict16, 8 dict16_ggaa"},
+         {"glintlab_ggaa_dh", fmt::format("{:g}", m.ggaa_dh)}});
+    write_level_maps_chart(out / (m.stem + ".png"), kLevelsCsv,
+                           "cheapest adequate level per cell, Chermain family", {&m});
+    sum.maps.push_back(m.stem + ".png");
+    maps.push_back({{"family", kChermainFamily},
+                    {"model", m.model},
+                    {"ggaa_dh", m.ggaa_dh},
                     {"theta_i_deg", m.theta_i_deg},
                     {"png", m.stem + ".png"},
                     {"exr", m.stem + ".exr"}});
@@ -735,6 +865,49 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
           {"cheapest_by_benchmark", per_level(a.cheapest_by_benchmark)}};
     }
   }
+  if (!chermain_models(o.models).empty()) {
+    const auto& c = sum.chermain;
+    nlohmann::json chosen = nlohmann::json::object(), cheapest = nlohmann::json::object();
+    for (std::size_t l = 0; l < std::size_t(kChermainLevels); ++l) {
+      chosen[std::string(kChermainLevelNames[l])] = c.chosen[l];
+      cheapest[std::string(kChermainLevelNames[l])] = c.cheapest_measured[l];
+    }
+    nlohmann::json identical = nlohmann::json::array();
+    for (double ti : chermain_axes.theta_i_deg)
+      for (int L : {4, 8, 12, 16})
+        identical.push_back({{"theta_i_deg", ti},
+                             {"dictionary_levels", L},
+                             {"facets", verify::adequacy::chermain_identical_facets(L, ti)}});
+    doc["families"][std::string(kChermainFamily)] = {
+        {"models", chermain_models(o.models)},
+        {"levels", kChermainLevelNames},
+        {"most_complete", kChermainLevelNames[kMost]},
+        {"cells", c.cells},
+        {"samples_per_cell", chermain_axes.samples},
+        {"material",
+         {{"density", verify::adequacy::kChermainDensity},
+          {"dictionary", "model default (192 distributions, 16 levels, alpha_dict 0.5, lobe std "
+                         "0.02); dictL its first L levels (the same tables), the smooth fallback "
+                         "past them"},
+          {"ggaa", "projected_half (Eq. 21), s_K model default; off: textureLod"}}},
+        {"facets", "expected microfacets per footprint (density x footprint area); the footprint "
+                   "stretched by 1/cos(theta_i) along the plane of incidence"},
+        {"ggaa_dh", "|d h_perp / dx| = |d h_perp / dy| per pixel (dx along x, dy along y)"},
+        {"construction",
+         "chooser: the cheapest level equal to dict16_ggaa bit for bit by construction (every "
+         "weighted LOD's dictionary level below L; GGAA off where ggaa_dh = 0)"},
+        {"identical_up_to", identical},
+        {"summary",
+         {{"cells", c.cells},
+          {"chosen", chosen},
+          {"cheapest_measured", cheapest},
+          {"undecided", c.undecided},
+          {"construction_matches", c.construction_matches},
+          {"construction_refuted", c.construction_refuted},
+          {"most_complete_ns_total", c.most_complete_ns},
+          {"chosen_ns_total", c.chosen_ns},
+          {"cheapest_measured_ns_total", c.cheapest_ns}}}};
+  }
   for (const KemppinenCellResult& r : kemppinen_rows) {
     nlohmann::json levels = nlohmann::json::object();
     for (std::size_t l = 0; l < std::size_t(kKemppinenLevels); ++l)
@@ -760,6 +933,25 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
     if (o.costs && o.costs->ns.count(r.cell.model) > 0)
       table.back()["cheapest_by_benchmark"] =
           kBinomialLevelNames[std::size_t(bench_price(r, *o.costs).cheapest)];
+  }
+  for (const ChermainCellResult& r : cells.chermain) {
+    nlohmann::json levels = nlohmann::json::object();
+    for (std::size_t l = 0; l < std::size_t(kChermainLevels); ++l)
+      levels[std::string(kChermainLevelNames[l])] = level_json(r.levels[l]);
+    table.push_back({{"family", kChermainFamily},
+                     {"model", r.cell.model},
+                     {"facets", r.cell.facets},
+                     {"alpha", r.cell.alpha},
+                     {"theta_i_deg", r.cell.theta_i_deg},
+                     {"theta_h_deg", r.cell.theta_h_deg},
+                     {"ggaa_dh", r.cell.dh},
+                     {"lod", r.lod},
+                     {"smooth", r.smooth},
+                     {"chosen", kChermainLevelNames[std::size_t(r.chosen)]},
+                     {"chooser", kChermainLevelNames[std::size_t(r.construction)]},
+                     {"chooser_refuted", r.construction_refuted},
+                     {"cheapest_measured", kChermainLevelNames[std::size_t(r.cheapest_measured)]},
+                     {"levels", levels}});
   }
   doc["cells"] = table;
   io::write_file_atomic(sum.json, doc.dump(1) + "\n");

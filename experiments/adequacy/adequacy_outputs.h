@@ -22,6 +22,7 @@
 #include "experiments/adequacy/level_costs.h"
 #include "verify/adequacy/area_adequacy.h"
 #include "verify/adequacy/binomial_adequacy.h"
+#include "verify/adequacy/chermain_adequacy.h"
 #include "verify/adequacy/decision_calibration.h"
 #include "verify/adequacy/kemppinen_adequacy.h"
 
@@ -39,9 +40,13 @@ inline constexpr std::array<Vec3<double>, 9> kKemppinenLevelColors = {
     Vec3<double>{0.95, 0.8, 0.4},   Vec3<double>{0.85, 0.6, 0.15},  Vec3<double>{0.85, 0.6, 0.85},
     Vec3<double>{0.6, 0.3, 0.65},   Vec3<double>{0.95, 0.45, 0.45}, Vec3<double>{0.75, 0.15, 0.15}};
 
+// The colours of the Chermain levels (smooth, then dictionaries of 4, 8, 12, 16 levels, GGAA off
+// and on: GGAA a darker shade of its dictionary's colour), the Kemppinen levels' colours in order.
+inline constexpr std::array<Vec3<double>, 9> kChermainLevelColors = kKemppinenLevelColors;
+
 // The family names in the table's `family` column.
 inline constexpr std::string_view kBinomialFamily = "binomial", kKemppinenFamily = "kemppinen",
-                                  kAreaFamily = "area";
+                                  kAreaFamily = "area", kChermainFamily = "chermain";
 
 struct AdequacyOptions {
   // Models of any family (verify::adequacy::kBinomialFamilyModels, kKemppinenFamilyModels,
@@ -58,6 +63,8 @@ struct AdequacyOptions {
   std::optional<verify::adequacy::KemppinenGridAxes> kemppinen_axes;
   // The area family's grid; unset: the budget's (area_grid_axes). Set by the tests.
   std::optional<verify::adequacy::GridAxes> area_axes;
+  // The Chermain family's grid; unset: the budget's (chermain_grid_axes). Set by the tests.
+  std::optional<verify::adequacy::ChermainGridAxes> chermain_axes;
 };
 
 struct AdequacySummary {
@@ -103,6 +110,15 @@ struct AdequacySummary {
     double bench_exact_ns = 0, bench_chosen_ns = 0, bench_cheapest_ns = 0;
     std::array<std::size_t, kBinomialLevels> cheapest_by_benchmark{};
   } area;
+  // The Chermain family (zero cells when chermain is not selected): as the Kemppinen family's, the
+  // most complete level dict16_ggaa; `construction_*` the construction's identical level
+  // (chermain_identical_level) against the table.
+  struct Chermain {
+    std::size_t cells = 0, undecided = 0;
+    std::size_t construction_matches = 0, construction_refuted = 0;
+    std::array<std::size_t, verify::adequacy::kChermainLevels> chosen{}, cheapest_measured{};
+    double most_complete_ns = 0, chosen_ns = 0, cheapest_ns = 0;
+  } chermain;
 };
 
 // Measures every cell and writes the files into `out` (created), each atomically.
@@ -114,6 +130,7 @@ struct AdequacyCells {
   std::vector<verify::adequacy::CellResult> binomial;
   std::vector<verify::adequacy::KemppinenCellResult> kemppinen;
   std::vector<verify::adequacy::CellResult> area;
+  std::vector<verify::adequacy::ChermainCellResult> chermain;
 };
 // The files of run_adequacy from cells measured already (by run_adequacy, or by the shards of a
 // run joined: experiments/adequacy/adequacy_shards.h).
@@ -123,6 +140,8 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
 verify::adequacy::KemppinenGridAxes kemppinen_axes_of(const AdequacyOptions& o);
 // The area family's grid axes for `o`: its override, else the budget's.
 verify::adequacy::GridAxes area_axes_of(const AdequacyOptions& o);
+// The Chermain family's grid axes for `o`: its override, else the budget's.
+verify::adequacy::ChermainGridAxes chermain_axes_of(const AdequacyOptions& o);
 
 // The table alone (for the tests and the maps figure): the binomial family's cells of the budget's
 // grid for `models`, measured with the decision of the whole table (table_decision).
@@ -134,11 +153,13 @@ std::vector<verify::adequacy::KemppinenCellResult> measure_kemppinen_adequacy(
 std::vector<std::string> binomial_models(const std::vector<std::string>& models);
 std::vector<std::string> kemppinen_models(const std::vector<std::string>& models);
 std::vector<std::string> area_models(const std::vector<std::string>& models);
+std::vector<std::string> chermain_models(const std::vector<std::string>& models);
 // The models of `models` whose levels the benchmark prices (adequacy/<model>/level=<level>/<isa>
 // rows of glintlab_bench_glints): the binomial family's, then the area family's.
 std::vector<std::string> priced_models(const std::vector<std::string>& models);
 // The decision of the whole table for `o`: z by Šidák over every (cell, cheaper level) decision
-// of every family selected (binomial: 3 per cell, Kemppinen: 8 per cell, area: 3 per cell).
+// of every family selected (binomial: 3 per cell, Kemppinen: 8 per cell, area: 3 per cell,
+// Chermain: 8 per cell).
 verify::adequacy::Decision table_decision(const AdequacyOptions& o);
 std::size_t table_decisions(const AdequacyOptions& o);
 
@@ -165,6 +186,7 @@ struct AdequacyLevelMap {
   std::string stem;  // adequacy_<model>_light<deg>_theta<deg>
   std::string model;
   double light_half_angle_deg = 0, theta_i_deg = 0;
+  double ggaa_dh = 0;  // the Chermain maps' GGAA derivative per pixel
   LevelChart map;
   Image exr;
 };
@@ -194,6 +216,15 @@ std::vector<AdequacyLevelMap> kemppinen_level_maps(
     const std::vector<verify::adequacy::KemppinenCellResult>& rows,
     const verify::adequacy::KemppinenGridAxes& axes, double threshold,
     const std::vector<verify::adequacy::KemppinenBoundary>& boundaries = {});
+
+// The Chermain maps, per model × dh × incidence: the chosen level over expected microfacets per
+// footprint (columns) × (α, θ_h) (rows, bottom to top), with the construction's smooth fallback
+// (the coarser LOD past the 16th level, chermain_identical_facets(16, θ_i)) drawn per row, and an
+// EXR of one pixel per cell (channels chosen, construction, cv_most_complete, lod). `rows` in
+// make_chermain_grid's order for `axes`.
+std::vector<AdequacyLevelMap> chermain_level_maps(
+    const std::vector<verify::adequacy::ChermainCellResult>& rows,
+    const verify::adequacy::ChermainGridAxes& axes, double threshold);
 
 // `glintlab adequacy --calibrate`: the decision rule's false-adequate rate (and, on truly
 // adequate cells, its power) on synthetic cells whose truth is known

@@ -17,10 +17,11 @@ namespace {
 
 using nlohmann::json;
 using verify::adequacy::CellResult;
+using verify::adequacy::ChermainCellResult;
 using verify::adequacy::KemppinenCellResult;
 using verify::adequacy::LevelStats;
 
-constexpr const char* kFormat = "glintlab adequacy cells 2";  // 2: the area family
+constexpr const char* kFormat = "glintlab adequacy cells 3";  // 2: the area family, 3: Chermain
 // A level's fields, in the order of its array in the file.
 constexpr const char* kLevelFields =
     "mean cv p_zero mean_diff mean_diff_ucb mean_diff_lcb cv_diff cv_diff_ucb cv_diff_lcb "
@@ -129,6 +130,28 @@ KemppinenCellResult kemppinen_from_json(const json& j) {
   return r;
 }
 
+json chermain_to_json(std::size_t position, const ChermainCellResult& r) {
+  return {{"position", position},
+          {"smooth", bits(r.smooth)},
+          {"lod", bits(r.lod)},
+          {"levels", levels_to_json(r.levels)},
+          {"chosen", r.chosen},
+          {"cheapest_measured", r.cheapest_measured},
+          {"construction", r.construction},
+          {"construction_refuted", r.construction_refuted}};
+}
+ChermainCellResult chermain_from_json(const json& j) {
+  ChermainCellResult r;
+  r.smooth = from_bits(j.at("smooth"));
+  r.lod = from_bits(j.at("lod"));
+  r.levels = levels_from_json<verify::adequacy::kChermainLevels>(j.at("levels"));
+  r.chosen = j.at("chosen").get<int>();
+  r.cheapest_measured = j.at("cheapest_measured").get<int>();
+  r.construction = j.at("construction").get<int>();
+  r.construction_refuted = j.at("construction_refuted").get<bool>();
+  return r;
+}
+
 std::vector<verify::adequacy::Cell> binomial_grid(const AdequacyOptions& o) {
   return verify::adequacy::make_grid(binomial_models(o.models),
                                      verify::adequacy::grid_axes(o.budget));
@@ -138,6 +161,9 @@ std::vector<verify::adequacy::KemppinenCell> kemppinen_grid(const AdequacyOption
 }
 std::vector<verify::adequacy::Cell> area_grid(const AdequacyOptions& o) {
   return verify::adequacy::make_grid(area_models(o.models), area_axes_of(o));
+}
+std::vector<verify::adequacy::ChermainCell> chermain_grid(const AdequacyOptions& o) {
+  return verify::adequacy::make_chermain_grid(chermain_models(o.models), chermain_axes_of(o));
 }
 
 // Each position once and inside the grid; the cell of each.
@@ -159,6 +185,7 @@ AdequacyPart adequacy_shard_part(const AdequacyOptions& o, std::size_t k, std::s
   for (std::size_t i = k - 1; i < binomial_grid(o).size(); i += n) part.binomial.push_back(i);
   for (std::size_t i = k - 1; i < kemppinen_grid(o).size(); i += n) part.kemppinen.push_back(i);
   for (std::size_t i = k - 1; i < area_grid(o).size(); i += n) part.area.push_back(i);
+  for (std::size_t i = k - 1; i < chermain_grid(o).size(); i += n) part.chermain.push_back(i);
   return part;
 }
 
@@ -167,6 +194,7 @@ std::vector<std::string> adequacy_part_ids(const AdequacyPart& part) {
   for (std::size_t i : part.binomial) ids.push_back(fmt::format("binomial/{}", i));
   for (std::size_t i : part.kemppinen) ids.push_back(fmt::format("kemppinen/{}", i));
   for (std::size_t i : part.area) ids.push_back(fmt::format("area/{}", i));
+  for (std::size_t i : part.chermain) ids.push_back(fmt::format("chermain/{}", i));
   return ids;
 }
 
@@ -200,6 +228,10 @@ std::string adequacy_run_text(const AdequacyOptions& o) {
     t += fmt::format("{} {} {} {} {} {} {}\n", c.model, bits(c.facets), bits(c.alpha),
                      bits(c.light_half_angle_deg), bits(c.theta_i_deg), bits(c.theta_h_deg),
                      c.theta_h_index);
+  t += fmt::format("chermain samples {}\n", chermain_axes_of(o).samples);
+  for (const auto& c : chermain_grid(o))
+    t += fmt::format("{} {} {} {} {} {} {}\n", c.model, bits(c.facets), bits(c.alpha),
+                     bits(c.theta_i_deg), bits(c.theta_h_deg), c.theta_h_index, bits(c.dh));
   return t;
 }
 
@@ -213,13 +245,16 @@ AdequacyCells measure_adequacy_part(const AdequacyOptions& o, const AdequacyPart
       kemppinen_grid(o), part.kemppinen, kemppinen_axes_of(o).samples, decision, o.progress);
   cells.area = verify::adequacy::measure_area_grid_at(area_grid(o), part.area,
                                                       area_axes_of(o).samples, decision, o.progress);
+  cells.chermain = verify::adequacy::measure_chermain_grid_at(
+      chermain_grid(o), part.chermain, chermain_axes_of(o).samples, decision, o.progress);
   return cells;
 }
 
 void write_adequacy_part(const std::filesystem::path& file, const AdequacyOptions& o,
                          const AdequacyPart& part, const AdequacyCells& cells) {
   if (cells.binomial.size() != part.binomial.size() ||
-      cells.kemppinen.size() != part.kemppinen.size() || cells.area.size() != part.area.size())
+      cells.kemppinen.size() != part.kemppinen.size() || cells.area.size() != part.area.size() ||
+      cells.chermain.size() != part.chermain.size())
     throw std::logic_error("write_adequacy_part: cells and part differ in size");
   const verify::adequacy::KemppinenGridAxes k = kemppinen_axes_of(o);
   json doc;
@@ -239,6 +274,13 @@ void write_adequacy_part(const std::filesystem::path& file, const AdequacyOption
                       {"theta_i_deg", bits_of(a.theta_i_deg)},
                       {"theta_h_count", a.theta_h_count},
                       {"samples", a.samples}};
+  const verify::adequacy::ChermainGridAxes ch = chermain_axes_of(o);
+  doc["chermain_axes"] = {{"facets", bits_of(ch.facets)},
+                          {"alpha", bits_of(ch.alpha)},
+                          {"theta_i_deg", bits_of(ch.theta_i_deg)},
+                          {"dh", bits_of(ch.dh)},
+                          {"theta_h_count", ch.theta_h_count},
+                          {"samples", ch.samples}};
   if (o.costs) {
     json ns = json::object();
     for (const auto& [model, v] : o.costs->ns)
@@ -248,16 +290,20 @@ void write_adequacy_part(const std::filesystem::path& file, const AdequacyOption
     doc["costs"] = nullptr;
   }
   doc["level_fields"] = kLevelFields;
-  json binomial = json::array(), kemppinen = json::array(), area = json::array();
+  json binomial = json::array(), kemppinen = json::array(), area = json::array(),
+       chermain = json::array();
   for (std::size_t j = 0; j < part.binomial.size(); ++j)
     binomial.push_back(binomial_to_json(part.binomial[j], cells.binomial[j]));
   for (std::size_t j = 0; j < part.kemppinen.size(); ++j)
     kemppinen.push_back(kemppinen_to_json(part.kemppinen[j], cells.kemppinen[j]));
   for (std::size_t j = 0; j < part.area.size(); ++j)
     area.push_back(binomial_to_json(part.area[j], cells.area[j]));
+  for (std::size_t j = 0; j < part.chermain.size(); ++j)
+    chermain.push_back(chermain_to_json(part.chermain[j], cells.chermain[j]));
   doc["binomial"] = binomial;
   doc["kemppinen"] = kemppinen;
   doc["area"] = area;
+  doc["chermain"] = chermain;
   io::write_file_atomic(file, doc.dump() + "\n");
 }
 
@@ -295,6 +341,15 @@ AdequacyPartFile read_adequacy_part(const std::filesystem::path& file) {
     a.theta_h_count = aa.at("theta_h_count").get<int>();
     a.samples = aa.at("samples").get<int>();
     o.area_axes = a;
+    const json& ca = doc.at("chermain_axes");
+    verify::adequacy::ChermainGridAxes ch;
+    ch.facets = doubles_of(ca.at("facets"));
+    ch.alpha = doubles_of(ca.at("alpha"));
+    ch.theta_i_deg = doubles_of(ca.at("theta_i_deg"));
+    ch.dh = doubles_of(ca.at("dh"));
+    ch.theta_h_count = ca.at("theta_h_count").get<int>();
+    ch.samples = ca.at("samples").get<int>();
+    o.chermain_axes = ch;
     if (!doc.at("costs").is_null()) {
       const json& c = doc.at("costs");
       LevelCosts costs;
@@ -322,7 +377,12 @@ AdequacyPartFile read_adequacy_part(const std::filesystem::path& file) {
     }
     place(f.part.binomial, binomial_grid(o), f.cells.binomial, "binomial");
     place(f.part.kemppinen, kemppinen_grid(o), f.cells.kemppinen, "kemppinen");
+    for (const json& j : doc.at("chermain")) {
+      f.part.chermain.push_back(j.at("position").get<std::size_t>());
+      f.cells.chermain.push_back(chermain_from_json(j));
+    }
     place(f.part.area, area_grid(o), f.cells.area, "area");
+    place(f.part.chermain, chermain_grid(o), f.cells.chermain, "chermain");
     return f;
   } catch (const json::exception& e) {
     throw std::invalid_argument(
@@ -338,8 +398,10 @@ AdequacyCells join_adequacy_parts(const AdequacyOptions& o,
   const auto binomial = binomial_grid(o);
   const auto kemppinen = kemppinen_grid(o);
   const auto area = area_grid(o);
+  const auto chermain = chermain_grid(o);
   std::vector<std::optional<CellResult>> b(binomial.size()), a(area.size());
   std::vector<std::optional<KemppinenCellResult>> k(kemppinen.size());
+  std::vector<std::optional<ChermainCellResult>> c(chermain.size());
   const auto put = [](auto& slots, std::size_t position, const auto& cell, const char* family) {
     if (position >= slots.size())
       throw std::invalid_argument(fmt::format("{}/{} is outside the run's grid of {} cells", family,
@@ -355,6 +417,8 @@ AdequacyCells join_adequacy_parts(const AdequacyOptions& o,
       put(k, f.part.kemppinen[j], f.cells.kemppinen[j], "kemppinen");
     for (std::size_t j = 0; j < f.part.area.size(); ++j)
       put(a, f.part.area[j], f.cells.area[j], "area");
+    for (std::size_t j = 0; j < f.part.chermain.size(); ++j)
+      put(c, f.part.chermain[j], f.cells.chermain[j], "chermain");
   }
   AdequacyCells cells;
   for (std::size_t i = 0; i < b.size(); ++i) {
@@ -368,6 +432,10 @@ AdequacyCells join_adequacy_parts(const AdequacyOptions& o,
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (!a[i]) throw std::invalid_argument(fmt::format("no shard holds area/{}", i));
     cells.area.push_back(*a[i]);
+  }
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    if (!c[i]) throw std::invalid_argument(fmt::format("no shard holds chermain/{}", i));
+    cells.chermain.push_back(*c[i]);
   }
   return cells;
 }

@@ -19,7 +19,7 @@ inline constexpr const char* kAdequacyCellsFile = "adequacy-cells.json";
 
 // A part of a run's grid: positions of each family's cells in that family's whole grid.
 struct AdequacyPart {
-  std::vector<std::size_t> binomial, kemppinen, area;
+  std::vector<std::size_t> binomial, kemppinen, area, chermain;
 };
 
 // Shard k of n (1 <= k <= n): each family's cells dealt round-robin from the k-th, so every shard
@@ -28,7 +28,7 @@ struct AdequacyPart {
 AdequacyPart adequacy_shard_part(const AdequacyOptions& o, std::size_t k, std::size_t n);
 
 // Every cell of the run's grid, in order: "binomial/<position>", then "kemppinen/<position>", then
-// "area/<position>".
+// "area/<position>", then "chermain/<position>".
 std::vector<std::string> adequacy_cell_ids(const AdequacyOptions& o);
 // The ids of `part`'s cells, in the order of adequacy_cell_ids.
 std::vector<std::string> adequacy_part_ids(const AdequacyPart& part);
@@ -39,14 +39,15 @@ std::string adequacy_run_text(const AdequacyOptions& o);
 // The cells of `part` (TBB over the cells; `o.progress` once per cell).
 AdequacyCells measure_adequacy_part(const AdequacyOptions& o, const AdequacyPart& part);
 
-// adequacy-cells.json: the options the cells depend on (models, TAU, budget, the Kemppinen and the
-// area axes, the benchmark costs), the part, and every field of every cell, each number as the hexadecimal
+// adequacy-cells.json: the options the cells depend on (models, TAU, budget, the Kemppinen, the
+// area and the Chermain axes, the benchmark costs), the part, and every field of every cell, each number as the hexadecimal
 // bits of its double (exact, NaN and infinities included). Written atomically.
 void write_adequacy_part(const std::filesystem::path& file, const AdequacyOptions& o,
                          const AdequacyPart& part, const AdequacyCells& cells);
 
 struct AdequacyPartFile {
-  AdequacyOptions options;  // models, threshold, budget, kemppinen_axes, area_axes, costs
+  AdequacyOptions options;  // models, threshold, budget, kemppinen_axes, area_axes, chermain_axes,
+                            // costs
   AdequacyPart part;
   AdequacyCells cells;  // the part's cells, in its order
 };

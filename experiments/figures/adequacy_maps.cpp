@@ -1,12 +1,14 @@
-// Figure adequacy-maps: the adequacy table of the binomial family and of the area family
-// (kneiphof_klein_area under square lights, the binomial levels) measured at the budget's grids
-// (the table `glintlab adequacy --models deliot_belcour,kneiphof_klein,kneiphof_klein_area`
-// writes: one decision, z split over both families' decisions), drawn by matplotlib as one
-// labelled sheet (adequacy-maps.png: a title, then each model × light × incidence map with its own
-// title, axes with units, the levels' colour scale and the predicted smooth boundary), each map's
-// PNG and EXR, a CSV of every cell's chosen level and the chooser's, the maps' cells as drawn
-// (adequacy-maps-levels.csv, with the chart specs) and summary.md with the counts per model and
-// level.
+// Figure adequacy-maps: the adequacy table of the binomial family, of the area family
+// (kneiphof_klein_area under square lights, the binomial levels) and of the Chermain family
+// (chermain: smooth, dictionaries of 4 … 16 levels, GGAA off / on) measured at the budget's grids
+// (the table `glintlab adequacy --models deliot_belcour,kneiphof_klein,kneiphof_klein_area,chermain`
+// writes: one decision, z split over the three families' decisions), drawn by matplotlib as one
+// labelled sheet (adequacy-maps.png: a title, then each model × light × incidence map — Chermain:
+// GGAA derivative × incidence — with its own title, axes with units, the levels' colour scale and
+// the predicted boundary), each map's PNG and EXR, a CSV of every cell's chosen level and the
+// chooser's (adequacy-maps.csv; the Chermain cells in adequacy-maps-chermain.csv with the
+// construction's level), the maps' cells as drawn (adequacy-maps-levels.csv, with the chart specs)
+// and summary.md with the counts per model and level.
 #include "experiments/figures/adequacy_maps.h"
 
 #include <fmt/format.h>
@@ -41,12 +43,17 @@ void run_adequacy_maps(const FigureContext& ctx) {
   AdequacyOptions o;
   o.models.assign(adq::kBinomialFamilyModels.begin(), adq::kBinomialFamilyModels.end());
   o.models.insert(o.models.end(), adq::kAreaFamilyModels.begin(), adq::kAreaFamilyModels.end());
+  o.models.insert(o.models.end(), adq::kChermainFamilyModels.begin(),
+                  adq::kChermainFamilyModels.end());
   o.budget = ctx.quick ? verify::Budget::kQuick : verify::Budget::kFull;
   const adq::GridAxes axes = adq::grid_axes(o.budget);
   const adq::GridAxes area_axes = area_axes_of(o);
   const std::vector<adq::Cell> area_cells = adq::make_grid(area_models(o.models), area_axes);
-  const std::size_t total =
-      adq::make_grid(binomial_models(o.models), axes).size() + area_cells.size();
+  const adq::ChermainGridAxes chermain_axes = chermain_axes_of(o);
+  const std::vector<adq::ChermainCell> chermain_cells =
+      adq::make_chermain_grid(chermain_models(o.models), chermain_axes);
+  const std::size_t total = adq::make_grid(binomial_models(o.models), axes).size() +
+                            area_cells.size() + chermain_cells.size();
   std::atomic<long> done{0};
   std::mutex progress_mutex;
   o.progress = [&] {
@@ -56,15 +63,21 @@ void run_adequacy_maps(const FigureContext& ctx) {
       ctx.progress("adequacy-maps: cells", d, long(total));
     }
   };
-  // Both families at the decision of their one table (measure_adequacy: the binomial cells; the
-  // area cells as `glintlab adequacy` measures them, seeded by their position in the area grid).
+  // The families at the decision of their one table (measure_adequacy: the binomial cells; the
+  // area and Chermain cells as `glintlab adequacy` measures them, seeded by their position in
+  // their family's grid).
   std::vector<adq::CellResult> rows = measure_adequacy(o);
   std::vector<std::size_t> all(area_cells.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
   const std::vector<adq::CellResult> area_rows = adq::measure_area_grid_at(
       area_cells, all, area_axes.samples, table_decision(o), o.progress);
+  const std::vector<adq::ChermainCellResult> chermain_rows = adq::measure_chermain_grid(
+      chermain_cells, chermain_axes.samples, table_decision(o), o.progress);
   std::vector<AdequacyLevelMap> maps = adequacy_level_maps(rows, axes, o.threshold);
   for (AdequacyLevelMap& m : adequacy_level_maps(area_rows, area_axes, o.threshold))
+    maps.push_back(std::move(m));
+  const std::size_t counting_maps = maps.size();
+  for (AdequacyLevelMap& m : chermain_level_maps(chermain_rows, chermain_axes, o.threshold))
     maps.push_back(std::move(m));
   rows.insert(rows.end(), area_rows.begin(), area_rows.end());
 
@@ -75,11 +88,28 @@ void run_adequacy_maps(const FigureContext& ctx) {
   for (const AdequacyLevelMap& m : maps) every_map.push_back(&m);
   write_level_maps_csv(ctx.dir / levels_csv, every_map);
   const std::string title = fmt::format(
-      "adequacy-maps: binomial and area families, cheapest level within TAU = {:g} per cell ({} "
-      "positions per cell; the Kemppinen family's maps are glintlab adequacy's)",
+      "adequacy-maps: binomial, area and Chermain families, cheapest level within TAU = {:g} per "
+      "cell ({} positions per cell; the Kemppinen family's maps are glintlab adequacy's)",
       o.threshold, axes.samples);
   write_level_maps_chart(ctx.dir / "adequacy-maps.png", levels_csv, title, every_map, 2);
-  for (const AdequacyLevelMap& m : maps) {
+  for (std::size_t i = 0; i < maps.size(); ++i) {
+    const AdequacyLevelMap& m = maps[i];
+    if (i >= counting_maps) {
+      write_level_maps_chart(ctx.dir / (m.stem + ".png"), levels_csv,
+                             "adequacy-maps: cheapest adequate level per cell, Chermain family",
+                             {&m});
+      io::write_exr(
+          ctx.dir / (m.stem + ".exr"), m.exr,
+          {{"glintlab_figure", std::string(kId)},
+           {"glintlab_version", std::string(glintlab_version())},
+           {"glintlab_columns",
+            "expected microfacets: " + fmt::format("{}", fmt::join(chermain_axes.facets, ", "))},
+           {"glintlab_rows", fmt::format("{}", fmt::join(m.map.row_labels, "; "))},
+           {"glintlab_levels", "0 smooth, 1 dict4, 2 dict4_ggaa, 3 dict8, 4 dict8_ggaa, 5 dict12, "
+                               "6 dict12_ggaa, 7 dict16, 8 dict16_ggaa"},
+           {"glintlab_ggaa_dh", fmt::format("{:g}", m.ggaa_dh)}});
+      continue;
+    }
     const bool area = m.stem.find(adq::kAreaFamilyModels[0]) != std::string::npos;
     write_level_maps_chart(ctx.dir / (m.stem + ".png"), levels_csv,
                            area ? "adequacy-maps: cheapest adequate level per cell, area family"
@@ -109,6 +139,22 @@ void run_adequacy_maps(const FigureContext& ctx) {
         }
       });
 
+  // The Chermain cells, with their own levels and the construction's level (`chooser`).
+  io::write_csv_atomic(
+      ctx.dir / "adequacy-maps-chermain.csv",
+      {"model", "ggaa_dh", "theta_i_deg", "alpha", "theta_h_deg", "facets", "chosen", "chooser",
+       "chooser_refuted", "undecided"},
+      [&](io::CsvWriter& w) {
+        for (const adq::ChermainCellResult& r : chermain_rows) {
+          w.cell(r.cell.model).cell(r.cell.dh).cell(r.cell.theta_i_deg).cell(r.cell.alpha);
+          w.cell(r.cell.theta_h_deg).cell(r.cell.facets);
+          w.cell(adq::kChermainLevelNames[std::size_t(r.chosen)]);
+          w.cell(adq::kChermainLevelNames[std::size_t(r.construction)]);
+          w.cell_int(r.construction_refuted ? 1 : 0).cell_int(r.levels[0].undecided ? 1 : 0);
+          w.end_row();
+        }
+      });
+
   // Counts per model: cells per chosen level, the chooser's agreement.
   struct Counts {
     std::array<std::size_t, 4> chosen{};
@@ -130,10 +176,10 @@ void run_adequacy_maps(const FigureContext& ctx) {
       "cone's, the same levels) whose mean and CV over {} surface positions are within TAU = {:g} "
       "of exact counting, per cell of the adequacy grid (footprint size N_P × roughness α × "
       "half-vector angle θ_h, one map per model, light half-angle and incidence θ_i; "
-      "docs/adequacy.md), each decided at the one z of both families' decisions ({:.3f}). The "
-      "black bar on each row is the predicted smooth boundary N* = (1 − p)/(p TAU²) (the area "
-      "family's p by the LTC). The Kemppinen family's maps are `glintlab adequacy`'s; Chermain "
-      "has no measured levels yet and no maps.\n\n"
+      "docs/adequacy.md), each decided at the one z of the three families' decisions ({:.3f}). "
+      "The black bar on each row is the predicted smooth boundary N* = (1 − p)/(p TAU²) (the "
+      "area family's p by the LTC). The Kemppinen family's maps are `glintlab adequacy`'s; the "
+      "Chermain family's are below.\n\n"
       "| model | cells | smooth | realtime | small_count | exact | undecided | chooser = measured "
       "| "
       "chooser refuted |\n|---|---|---|---|---|---|---|---|---|\n",
@@ -142,12 +188,36 @@ void run_adequacy_maps(const FigureContext& ctx) {
     md +=
         fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", model, c.cells, c.chosen[0],
                     c.chosen[1], c.chosen[2], c.chosen[3], c.undecided, c.matches, c.refuted);
+  std::array<std::size_t, adq::kChermainLevels> chermain_chosen{};
+  std::size_t construction_matches = 0, construction_refuted = 0;
+  for (const adq::ChermainCellResult& r : chermain_rows) {
+    ++chermain_chosen[std::size_t(r.chosen)];
+    construction_matches += r.construction == r.chosen ? 1 : 0;
+    construction_refuted += r.construction_refuted ? 1 : 0;
+  }
+  md += fmt::format(
+      "\nThe Chermain family (chermain; one map per GGAA derivative |dh_perp/dx| per pixel and "
+      "incidence, x the expected microfacets per footprint): the cheapest level within TAU of "
+      "dict16_ggaa (all 16 dictionary levels, GGAA on); the black bar is where the construction's "
+      "smooth fallback begins (the coarser LOD past the 16th level). The construction's level "
+      "(the cheapest equal to dict16_ggaa bit for bit) is the measured one in {} of {} cells and "
+      "refuted in {}.\n\n| level | {} |\n|---|{}\n| cells | {} |\n",
+      construction_matches, chermain_rows.size(), construction_refuted,
+      fmt::join(adq::kChermainLevelNames, " | "),
+      [] {
+        std::string s;
+        for (int l = 0; l < adq::kChermainLevels; ++l) s += "---|";
+        return s;
+      }(),
+      fmt::join(chermain_chosen, " | "));
   md +=
       "\nadequacy-maps.png: every map on one sheet; <map>.png and <map>.exr one map each (EXR "
       "channels chosen, chooser, cv_exact, cv_predicted, p_zero, p_zero_predicted; one pixel per "
       "cell, x = N_P, row 0 = the bottom row); adequacy-maps.csv every cell's chosen level and "
       "the chooser's (the binomial family's cells, then the area family's: light_half_angle_deg "
-      "the square's cone-equivalent half-angle).\n";
+      "the square's cone-equivalent half-angle); adequacy-maps-chermain.csv the Chermain cells "
+      "(chooser: the construction's level; Chermain EXR channels chosen, construction, "
+      "cv_most_complete, lod).\n";
   io::write_file_atomic(ctx.dir / "summary.md", md);
 }
 

@@ -1,7 +1,7 @@
 // `glintlab figure adequacy-maps --budget quick`: the labelled sheet and one PNG per model × light
-// × incidence of the quick grids of the binomial and area families (drawn by matplotlib), its EXR,
-// the CSV of every cell, whose chosen levels are the EXRs' pixels, and summary.md naming the
-// families not drawn.
+// × incidence of the quick grids of the binomial and area families, and per GGAA derivative ×
+// incidence of the Chermain family (drawn by matplotlib), its EXR, the CSVs of every cell, whose
+// chosen levels are the EXRs' pixels, and summary.md naming the family not drawn.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -30,10 +30,10 @@ TEST_F(AdequacyMapsFigureTest, QuickWritesSheetMapsCsvAndSummary) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/adequacy-maps");
   expect_png(d / "adequacy-maps.png");
-  // Drawn by matplotlib: the sheet's eighteen maps and each map alone, labelled, with the levels
-  // as their colour scale; drawn from the maps' cells (one row per cell).
-  expect_labelled_chart(d / "adequacy-maps.png", 18);
-  EXPECT_EQ(io::read_csv(d / "adequacy-maps-levels.csv").num_rows(), 972u);
+  // Drawn by matplotlib: the sheet's 22 maps and each map alone, labelled, with the levels as
+  // their colour scale; drawn from the maps' cells (one row per cell).
+  expect_labelled_chart(d / "adequacy-maps.png", 22);
+  EXPECT_EQ(io::read_csv(d / "adequacy-maps-levels.csv").num_rows(), 972u + 264u);
   const io::CsvTable t = io::read_csv(d / "adequacy-maps.csv");
   // Quick grid: 3 models × 3 lights × 2 incidences × 2 α × 3 θ_h × 9 footprints (the area
   // family's lights: squares of the cones' solid angles, 0.26°, 1° and 10°).
@@ -77,8 +77,30 @@ TEST_F(AdequacyMapsFigureTest, QuickWritesSheetMapsCsvAndSummary) {
               ? 1
               : 0;
   EXPECT_GT(mismatches_as_binomial, 0);
+  // The Chermain family: 11 footprints × 2 α × 2 θ_i × 3 θ_h × 2 GGAA derivatives, one map per
+  // derivative and incidence, its first map's bottom row the first 11 cells of its CSV.
+  const io::CsvTable ch = io::read_csv(d / "adequacy-maps-chermain.csv");
+  ASSERT_EQ(ch.num_rows(), 264u);
+  for (const char* dh : {"0", "0.02"})
+    for (const char* theta : {"0", "60"}) {
+      const std::string stem = fmt::format("adequacy_chermain_dh{}_theta{}", dh, theta);
+      expect_labelled_chart(d / (stem + ".png"), 1);
+      const Image im = io::read_exr(d / (stem + ".exr")).image;
+      EXPECT_EQ(im.width, 11);
+      EXPECT_EQ(im.height, 6);
+    }
+  const Image cfirst = io::read_exr(d / "adequacy_chermain_dh0_theta0.exr").image;
+  const std::string chermain_names[] = {"smooth", "dict4",  "dict4_ggaa",  "dict8",      "dict8_ggaa",
+                                        "dict12", "dict12_ggaa", "dict16", "dict16_ggaa"};
+  for (int k = 0; k < 11; ++k) {
+    EXPECT_EQ(chermain_names[int(cfirst.at(k, 0, cfirst.channel("chosen")))],
+              std::string(ch.text(std::size_t(k), ch.column("chosen"))))
+        << k;
+    EXPECT_EQ(std::string(ch.text(std::size_t(k), ch.column("chooser_refuted"))), "0");
+  }
   const std::string md = read_text(d / "summary.md");
-  EXPECT_NE(md.find("no measured levels yet"), std::string::npos);
+  EXPECT_NE(md.find("The Chermain family"), std::string::npos);
+  EXPECT_NE(md.find("refuted in 0"), std::string::npos);
   EXPECT_NE(md.find("| kneiphof_klein | 324 |"), std::string::npos);
   EXPECT_NE(md.find("| kneiphof_klein_area | 324 |"), std::string::npos);
 }

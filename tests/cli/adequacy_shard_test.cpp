@@ -70,6 +70,30 @@ std::vector<std::string> csv_without_timing(const fs::path& file) {
   return rows;
 }
 
+// A merge's files against the unsharded run's: the same names, adequacy.csv and adequacy.json
+// apart from the timings, every other file byte for byte; returns how many maps (PNGs) there are.
+std::size_t expect_files_of_one_run(const std::map<std::string, std::string>& merged,
+                                    const std::map<std::string, std::string>& one,
+                                    const fs::path& merged_dir, const fs::path& one_dir) {
+  EXPECT_EQ(merged.size(), one.size());
+  std::size_t maps = 0;
+  for (const auto& [file, bytes] : one) {
+    if (!merged.count(file)) {
+      ADD_FAILURE() << file << " is not in the merge";
+      continue;
+    }
+    maps += file.ends_with(".png") ? 1 : 0;
+    if (file == "adequacy.csv")
+      EXPECT_EQ(csv_without_timing(merged_dir / file), csv_without_timing(one_dir / file));
+    else if (file == "adequacy.json")
+      EXPECT_EQ(without_timing(nlohmann::json::parse(merged.at(file))),
+                without_timing(nlohmann::json::parse(bytes)));
+    else
+      EXPECT_TRUE(merged.at(file) == bytes) << file << " differs";
+  }
+  return maps;
+}
+
 // The merges' maps drawn by matplotlib for N = 2 (the first pass, like the unsharded run), by the
 // stand-in (CliTest::stand_in_charts) for N = 1, 3 and 7: each of their maps is then the bytes of
 // its chart spec and data, compared with the unsharded run's spec and data, which matplotlib drew
@@ -147,22 +171,62 @@ TEST_F(AdequacyShardTest, AreaFamilyMergedIsTheFilesOfOneRun) {
   const RunResult r = run(merge);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("324 cells from 2 shards"), std::string::npos) << r.out;
-  const std::map<std::string, std::string> merged = file_tree("merged");
-  ASSERT_EQ(merged.size(), one.size());
-  std::size_t maps = 0;
-  for (const auto& [file, bytes] : one) {
-    ASSERT_TRUE(merged.count(file)) << file;
-    maps += file.ends_with(".png") ? 1 : 0;
-    if (file == "adequacy.csv")
-      EXPECT_EQ(csv_without_timing(path("merged/" + file)), csv_without_timing(path("one/" + file)));
-    else if (file == "adequacy.json")
-      EXPECT_EQ(without_timing(nlohmann::json::parse(merged.at(file))),
-                without_timing(nlohmann::json::parse(bytes)));
-    else
-      EXPECT_TRUE(merged.at(file) == bytes) << file << " differs";
-  }
-  EXPECT_EQ(maps, 6u);  // 3 lights × 2 incidences
+  EXPECT_EQ(expect_files_of_one_run(file_tree("merged"), one, path("merged"), path("one")),
+            6u);  // 3 lights × 2 incidences
 }
+
+// The Chermain family through the command line: its quick table (264 cells, nine levels, the
+// ggaa_dh column, four maps, families.chermain, the construction's level never refuted), and the
+// same table in two shards measured on one thread and merged: the files of the unsharded two-thread
+// run (its maps byte for byte), so its cells depend on neither the shard nor the thread count.
+TEST_F(AdequacyShardTest, ChermainFamilyOnOneThreadMergedIsTheTwoThreadRun) {
+  const auto chermain = [&](const std::string& out, const std::string& threads,
+                            const std::string& shard) {
+    std::vector<std::string> args = {"adequacy", "--models", "chermain", "--budget", "quick",
+                                     "--threads", threads,   "--out",    out};
+    if (!shard.empty()) args.insert(args.end(), {"--shard", shard});
+    return run(args);
+  };
+  const RunResult one = chermain("one", "2", "");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  EXPECT_NE(one.out.find("Chermain family: 264 cells"), std::string::npos) << one.out;
+  const auto doc = nlohmann::json::parse(read_text(path("one/adequacy.json")));
+  EXPECT_EQ(doc["cells"].size(), 264u);  // 11 footprints × 2 α × 2 θ_i × 3 θ_h × 2 dh
+  EXPECT_EQ(doc["bound"]["decisions"], 264 * 8);
+  const auto& family = doc["families"]["chermain"];
+  EXPECT_EQ(family["most_complete"], "dict16_ggaa");
+  EXPECT_EQ(family["levels"].size(), 9u);
+  EXPECT_EQ(family["summary"]["construction_refuted"], 0);
+  EXPECT_EQ(doc["maps"].size(), 4u);  // 2 dh × 2 incidences
+  const io::CsvTable csv = io::read_csv(path("one/adequacy.csv"));
+  EXPECT_EQ(csv.num_rows(), 264u);
+  EXPECT_EQ(csv.header()[7], "ggaa_dh");
+  std::size_t smooth = 0, short_dictionary = 0;
+  for (const auto& c : doc["cells"]) {
+    EXPECT_EQ(c["family"], "chermain");
+    smooth += c["chosen"] == "smooth" ? 1 : 0;
+    short_dictionary += c["chosen"] == "dict4" || c["chosen"] == "dict4_ggaa" ? 1 : 0;
+  }
+  EXPECT_GT(smooth, 0u);            // the largest footprints
+  EXPECT_GT(short_dictionary, 0u);  // the smallest
+  const std::map<std::string, std::string> files = file_tree("one");
+  std::vector<std::string> merge = {"merge"};
+  for (int k : {2, 1}) {
+    const std::string dir = "c2_" + std::to_string(k);
+    const RunResult r = chermain(dir, "1", std::to_string(k) + "/2");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto m = nlohmann::json::parse(read_text(path(dir + "/shard.json")));
+    EXPECT_EQ(m["selection"].size(), 264u);
+    EXPECT_EQ(m["covered"][0], "chermain/" + std::to_string(k - 1));
+    merge.push_back(dir);
+  }
+  merge.insert(merge.end(), {"--out", "merged"});
+  const RunResult r = run(merge);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("264 cells from 2 shards"), std::string::npos) << r.out;
+  EXPECT_EQ(expect_files_of_one_run(file_tree("merged"), files, path("merged"), path("one")), 4u);
+}
+
 
 TEST_F(AdequacyShardTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing) {
   ASSERT_EQ(adequacy("a1", "1/2").exit_code, 0);

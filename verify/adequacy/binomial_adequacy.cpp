@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <tuple>
 
 #include "core/model_registry.h"
 #include "verify/adequacy/area_adequacy.h"
@@ -252,31 +253,14 @@ CellResult measure_cell(const Cell& cell, int samples, std::uint64_t seed, const
   r.cell = cell;
   const auto [p, smooth] = cell_probability_and_smooth(cell);
   r.p = p, r.smooth = smooth;
-  std::vector<double> ref, x;
-  const double t_exact = level_values(cell, BinomialLevel::kExact, samples, seed, ref);
-  for (int l = 0; l < kBinomialLevels; ++l) {
-    const auto level = BinomialLevel(l);
-    if (level == BinomialLevel::kExact) {
-      r.levels[std::size_t(l)] = compare_to_exact(ref, ref, d);
-      r.levels[std::size_t(l)].adequate = true;  // the reference itself
-      r.levels[std::size_t(l)].undecided = false;
-      r.levels[std::size_t(l)].ns_per_eval = t_exact;
-      continue;
-    }
-    const double t = level_values(cell, level, samples, seed, x);
-    r.levels[std::size_t(l)] = compare_to_exact(x, ref, d);
-    r.levels[std::size_t(l)].ns_per_eval = t;
-  }
-  for (int l = 0; l < kBinomialLevels; ++l)
-    if (r.levels[std::size_t(l)].adequate) {
-      r.chosen = l;
-      break;
-    }
-  for (int l = 0; l < kBinomialLevels; ++l)
-    if (r.levels[std::size_t(l)].adequate &&
-        r.levels[std::size_t(l)].ns_per_eval <
-            r.levels[std::size_t(r.cheapest_measured)].ns_per_eval)
-      r.cheapest_measured = l;
+  r.levels = measure_levels<kBinomialLevels>(
+      int(BinomialLevel::kExact), d,
+      [&](int l, std::vector<double>& out) {
+        return level_values(cell, BinomialLevel(l), samples, seed, out);
+      },
+      [](int, std::vector<double>&) {});
+  std::tie(r.chosen, r.cheapest_measured) =
+      chosen_and_cheapest_measured(r.levels, int(BinomialLevel::kExact));
   r.cv_predicted = binomial_count_cv(cell.facets, p);
   r.p_zero_predicted = binomial_zero_probability(cell.facets, p);
   r.chooser = int(choose_binomial_level(cell.facets, p, d.threshold));

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/glints/adequacy.h"
@@ -116,6 +117,48 @@ std::pair<double, double> cell_probability_and_smooth(const Cell& cell);
 // Statistics of `x` against the exact level's `ref` (paired by position).
 LevelStats compare_to_exact(const std::vector<double>& x, const std::vector<double>& ref,
                             const Decision& d);
+
+// Every level of a cell compared with the family's most complete level `most` at the same
+// positions: `values(level, out)` fills a level's values and returns its ns per evaluation,
+// `edit(level, values)` sees each cheaper level's values before they are compared (the tests'
+// broken levels). The most complete level is adequate by definition, with its own time.
+template <std::size_t N, class Values, class Edit>
+std::array<LevelStats, N> measure_levels(int most, const Decision& d, Values&& values,
+                                         Edit&& edit) {
+  std::array<LevelStats, N> levels{};
+  std::vector<double> ref, x;
+  const double t_ref = values(most, ref);
+  for (int l = 0; l < int(N); ++l) {
+    LevelStats& s = levels[std::size_t(l)];
+    if (l == most) {
+      s = compare_to_exact(ref, ref, d);
+      s.adequate = true;  // the reference itself
+      s.undecided = false;
+      s.ns_per_eval = t_ref;
+      continue;
+    }
+    const double t = values(l, x);
+    edit(l, x);
+    s = compare_to_exact(x, ref, d);
+    s.ns_per_eval = t;
+  }
+  return levels;
+}
+
+// The cheapest adequate level in the family's order (the first adequate one; `most` when none
+// is) and the adequate level with the least measured time (not deterministic).
+template <std::size_t N>
+std::pair<int, int> chosen_and_cheapest_measured(const std::array<LevelStats, N>& levels,
+                                                 int most) {
+  int chosen = most, cheapest = most;
+  for (int l = int(N); l-- > 0;)
+    if (levels[std::size_t(l)].adequate) chosen = l;
+  for (int l = 0; l < int(N); ++l)
+    if (levels[std::size_t(l)].adequate &&
+        levels[std::size_t(l)].ns_per_eval < levels[std::size_t(cheapest)].ns_per_eval)
+      cheapest = l;
+  return {chosen, cheapest};
+}
 
 // One cell: every level measured and compared, the decision, the prediction and the chooser.
 CellResult measure_cell(const Cell& cell, int samples, std::uint64_t seed, const Decision& d);

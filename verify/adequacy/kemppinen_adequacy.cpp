@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <tuple>
 
 #include "core/models/kemppinen_beckmann.h"
 #include "core/models/kemppinen_ggx.h"
@@ -168,33 +169,17 @@ KemppinenCellResult measure_kemppinen_cell(const KemppinenCell& cell, int sample
                                            const KemppinenLevelEdit& edit) {
   KemppinenCellResult r;
   r.cell = cell;
-  constexpr auto kRef = std::size_t(KemppinenLevel::kK16Exact);
-  std::vector<double> ref, x;
-  const double t_ref = kemppinen_level_values(cell, KemppinenLevel::kK16Exact, samples, seed, ref);
-  for (std::size_t l = 0; l < std::size_t(kKemppinenLevels); ++l) {
-    if (l == kRef) {
-      r.levels[l] = compare_to_exact(ref, ref, d);
-      r.levels[l].adequate = true;  // the reference itself
-      r.levels[l].undecided = false;
-      r.levels[l].ns_per_eval = t_ref;
-      continue;
-    }
-    const double t = kemppinen_level_values(cell, KemppinenLevel(l), samples, seed, x);
-    if (edit) edit(KemppinenLevel(l), x);
-    r.levels[l] = compare_to_exact(x, ref, d);
-    r.levels[l].ns_per_eval = t;
-    if (l == std::size_t(KemppinenLevel::kSmooth)) r.smooth = x.empty() ? 0 : x[0];
-  }
-  for (int l = 0; l < kKemppinenLevels; ++l)
-    if (r.levels[std::size_t(l)].adequate) {
-      r.chosen = l;
-      break;
-    }
-  for (int l = 0; l < kKemppinenLevels; ++l)
-    if (r.levels[std::size_t(l)].adequate &&
-        r.levels[std::size_t(l)].ns_per_eval <
-            r.levels[std::size_t(r.cheapest_measured)].ns_per_eval)
-      r.cheapest_measured = l;
+  r.levels = measure_levels<kKemppinenLevels>(
+      int(KemppinenLevel::kK16Exact), d,
+      [&](int l, std::vector<double>& out) {
+        return kemppinen_level_values(cell, KemppinenLevel(l), samples, seed, out);
+      },
+      [&](int l, std::vector<double>& x) {
+        if (edit) edit(KemppinenLevel(l), x);
+        if (l == int(KemppinenLevel::kSmooth)) r.smooth = x.empty() ? 0 : x[0];
+      });
+  std::tie(r.chosen, r.cheapest_measured) =
+      chosen_and_cheapest_measured(r.levels, int(KemppinenLevel::kK16Exact));
   with_model(cell.model, [&](auto m) {
     using M = decltype(m);
     const auto p =

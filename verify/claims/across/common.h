@@ -17,8 +17,8 @@ namespace glintlab::verify::across_claims {
 
 inline constexpr std::string_view kPaper = "every registered model (core/model_registry.cpp)";
 inline constexpr std::string_view kSource =
-    "CLAIMS.md all.stability: sweeps of α, θi, anisotropy, density, microroughness, footprint "
-    "and light size";
+    "glintlab's rule all.stability (docs/verification.md): sweeps of α, θi, anisotropy, density, "
+    "microroughness, footprint and light size";
 inline constexpr std::string_view kCoreDomain =
     "the core domain: α ≥ 1e-3, anisotropy ≤ 100:1, front-facing θi ≤ 89°";
 

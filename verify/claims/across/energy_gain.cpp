@@ -1,4 +1,4 @@
-// all.energy-gain — glintlab's own rule (shared/CLAIMS.md), not a paper's claim.
+// all.energy-gain — glintlab's own rule (docs/verification.md), not a paper's claim.
 //
 // The rule: "where each method breaks (NaN, Inf, negative values, energy gain, p > 1, huge
 // variance)"; per model: "no NaN/Inf/negative, gain or variance blow-up in the core domain". This
@@ -23,7 +23,7 @@ struct EnergyGain : SweepClaim<EnergyGain> {
   static constexpr std::string_view kId = "all.energy-gain";
   // The paper's own sentence or equation the claim is judged against (glintlab's own rule).
   static constexpr std::string_view kQuote =
-      "Not a paper's claim: glintlab's rule (shared/CLAIMS.md): \"where each method "
+      "Not a paper's claim: glintlab's rule (docs/verification.md): \"where each method "
       "breaks (NaN, Inf, negative values, energy gain, p > 1, huge variance)\" "
       "(all.stability); per model: \"no NaN/Inf/negative, gain or variance blow-up in "
       "the core domain\"; this check: energy gain (a white-furnace albedo significantly "

@@ -1,4 +1,4 @@
-// all.probability — glintlab's own rule (shared/CLAIMS.md), not a paper's claim.
+// all.probability — glintlab's own rule (docs/verification.md), not a paper's claim.
 //
 // The rule: "where each method breaks (NaN, Inf, negative values, energy gain, p > 1, huge
 // variance)"; per model: "no NaN/Inf/negative, gain or variance blow-up in the core domain". This
@@ -28,7 +28,7 @@ struct Probability : SweepClaim<Probability> {
   static constexpr std::string_view kId = "all.probability";
   // The paper's own sentence or equation the claim is judged against (glintlab's own rule).
   static constexpr std::string_view kQuote =
-      "Not a paper's claim: glintlab's rule (shared/CLAIMS.md): \"where each method "
+      "Not a paper's claim: glintlab's rule (docs/verification.md): \"where each method "
       "breaks (NaN, Inf, negative values, energy gain, p > 1, huge variance)\" "
       "(all.stability); per model: \"no NaN/Inf/negative, gain or variance blow-up in "
       "the core domain\"; this check: p > 1";

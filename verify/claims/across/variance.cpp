@@ -1,4 +1,4 @@
-// all.variance — glintlab's own rule (shared/CLAIMS.md), not a paper's claim.
+// all.variance — glintlab's own rule (docs/verification.md), not a paper's claim.
 //
 // The rule: "where each method breaks (NaN, Inf, negative values, energy gain, p > 1, huge
 // variance)"; per model: "no NaN/Inf/negative, gain or variance blow-up in the core domain". This
@@ -29,13 +29,13 @@ struct Variance : SweepClaim<Variance> {
   static constexpr std::string_view kId = "all.variance";
   // The paper's own sentence or equation the claim is judged against (glintlab's own rule).
   static constexpr std::string_view kQuote =
-      "Not a paper's claim: glintlab's rule (shared/CLAIMS.md): \"where each method "
+      "Not a paper's claim: glintlab's rule (docs/verification.md): \"where each method "
       "breaks (NaN, Inf, negative values, energy gain, p > 1, huge variance)\" "
       "(all.stability); per model: \"no NaN/Inf/negative, gain or variance blow-up in "
       "the core domain\"; this check: huge variance";
   // What the check tests beyond the quote (so a verdict on it is never the paper failing).
   static constexpr std::string_view kStrongerReading =
-      "CLAIMS.md names \"huge variance\" without a threshold; the check "
+      "The rule names \"huge variance\" without a threshold; the check "
       "fails a target where, at a fixed surface position and footprint (the "
       "estimator a renderer has at one pixel), Var(w)/max(E(w), 1/256)² "
       "exceeds 81.92 in the core domain: a pixel still noisier than 10 % at "

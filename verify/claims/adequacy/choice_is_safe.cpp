@@ -1,7 +1,7 @@
 // adequacy.choice-is-safe — glintlab's rule, on the chooser of core/glints/adequacy.h (Kneiphof &
 // Klein 2024 Eq. 16; Deliot & Belcour 2023).
 //
-// The rule (shared/CLAIMS.md): "rendering each pixel with the chosen level differs from the most
+// The rule (docs/verification.md, glintlab's own rules): "rendering each pixel with the chosen level differs from the most
 // complete level by more than TAU in no more pixels than the confidence level allows, on scenes
 // outside the fitting grid".
 //
@@ -108,7 +108,7 @@ struct ChoiceIsSafe {
       "Deliot & Belcour 2023";
   // The paper's own sentence or equation the claim is judged against (glintlab's own rule).
   static constexpr std::string_view kQuote =
-      "Not a paper's claim: glintlab's rule (shared/CLAIMS.md): \"rendering each pixel "
+      "Not a paper's claim: glintlab's rule (docs/verification.md): \"rendering each pixel "
       "with the chosen level differs from the most complete level by more than TAU in "
       "no more pixels than the confidence level allows, on scenes outside the fitting "
       "grid\"";

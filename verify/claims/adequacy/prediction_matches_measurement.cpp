@@ -54,7 +54,7 @@ struct PredictionMatchesMeasurement {
       "Kemppinen et al. 2025 Algorithm 1, Eq. 8, 10";
   // The paper's own sentence or equation the claim is judged against (glintlab's own rule).
   static constexpr std::string_view kQuote =
-      "Not a paper's claim: glintlab's rule (shared/CLAIMS.md): \"the closed-form "
+      "Not a paper's claim: glintlab's rule (docs/verification.md): \"the closed-form "
       "criterion of each family (binomial CV √((1−p)/(N_P p)), P(no glint)) predicts "
       "where a cheaper level is indistinguishable\"; it rests on Kneiphof & Klein 2024 "
       "Eq. 11: ∫_Ωh D̂_P dh = D_H · b(N_P, p_Ωh)/N_P and Eq. 16: L̂_o,P = L_o · b(N_P, "

@@ -166,7 +166,7 @@ int find(const std::vector<Config>& g, const std::string& name, double ax, doubl
   return -1;
 }
 
-// The negative controls (shared/CLAIMS.md): each a wrong pdf or a wrong sampler on a few
+// The negative controls: each a wrong pdf or a wrong sampler on a few
 // configurations of the grid, all present in both budgets' grids.
 std::vector<GofControl> controls(const std::vector<Config>& g) {
   std::vector<GofControl> out;
