@@ -103,6 +103,13 @@ set(glintlab_slow_tests
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::adequacy_claims::PredictionMatchesMeasurement>> 10"
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::adequacy_claims::ChoiceIsSafe>> 2"
   "ZirrKaplanyan.CountMeanAndVarianceMatchADirectlySimulatedBinomial 3"
+  # The Chermain adequacy family: each builds the default dictionary (16 levels) and its
+  # prefixes, then measures or computes the construction's moments.
+  "ChermainExactMoments.MatchTheModelsCvAndMeanAndABrokenConstructionDoesNot 2"
+  "ChermainExactMoments.* 1"
+  "ChermainAdequacyGrid.* 1"
+  "ChermainAdequacyCell.* 1"
+  "ChermainAdequacy.* 1"
   # The glintlab executable run end to end on a subcommand's quick budget (a figure, a sweep, a
   # report, compare, adequacy), or a fuzz loop of a fixed number of inputs.
   "AdequacyTest.OutputDoesNotDependOnThreads 20"
@@ -111,7 +118,8 @@ set(glintlab_slow_tests
   "AdequacyShardTest.MergedShardsAreTheFilesOfOneRun 30"
   "AdequacyShardTest.AreaFamilyMergedIsTheFilesOfOneRun 30"
   "AdequacyShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 5"
-  "AdequacyMapsFigureTest.QuickWritesSheetMapsCsvAndSummary 22"
+  "AdequacyShardTest.ChermainFamilyOnOneThreadMergedIsTheTwoThreadRun 39"
+  "AdequacyMapsFigureTest.QuickWritesSheetMapsCsvAndSummary 36"
   "AdequacySceneFigureTest.QuickWritesSheetExrCsvAndSummary 40"
   "ChermainCli.Fig3Quick 3"
   "ChermainCli.Fig10Quick 3"
