@@ -26,7 +26,11 @@ int write_verify_run(std::vector<verify::RunRecord>& records, const verify::RunI
     const auto& x = r.result;
     const bool ok = verify::as_expected(r);
     unexpected += ok ? 0 : 1;
-    fmt::print("{:<30} {:<16} {:>10} {:>10}  {:<8}  {:.3g} = {}{}\n", r.check->id,
+    // A property that ran nothing (not claimed) or could not compute has no measured value.
+    const bool measured =
+        x.verdict != verify::Verdict::kNotClaimed && x.verdict != verify::Verdict::kError;
+    const verify::Verdict expected = r.check->expected_for(r.budget);
+    fmt::print("{:<30} {:<16} {:>10} {:>10}  {:<8}  {}{}\n", r.check->id,
                verify::to_string(x.verdict), x.p_value ? fmt::format("{:.3g}", *x.p_value) : "—",
                x.control_p_value ? fmt::format("{:.3g}", *x.control_p_value) : "—",
                x.verdict == verify::Verdict::kNotClaimed ? "none (not claimed)"
@@ -37,11 +41,12 @@ int write_verify_run(std::vector<verify::RunRecord>& records, const verify::RunI
                        x.control_verdict == verify::Verdict::kInconclusive
                    ? "undecided (both inconclusive)"
                    : "NOT REJECTED (check is broken)",
-               x.value, x.statistic,
-               x.verdict == r.check->expected_for(r.budget)
-                   ? ""
-                   : fmt::format("  [recorded verdict: {}]",
-                                 verify::to_string(r.check->expected_for(r.budget))));
+               measured ? fmt::format("{:.3g} = {}", x.value, x.statistic) : x.statistic,
+               x.verdict == expected ? ""
+               : r.check->recorded
+                   ? fmt::format("  [recorded verdict: {}]", verify::to_string(expected))
+                   : fmt::format("  [a conforming model: {}; nothing recorded for this model]",
+                                 verify::to_string(expected)));
   }
   for (const auto& r : records)
     if (!r.check->budget_note.empty())

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -14,6 +15,7 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/eval_model.h"
+#include "core/model_list.h"
 #include "core/simd/model_batch.h"
 
 namespace glintlab::python {
@@ -113,18 +115,38 @@ constexpr std::uint64_t kInfinityBits = 0x7ff0000000000000ULL;
 // squared length's pattern u and the bounds' patterns lo <= hi (positive doubles order as their
 // patterns), u - lo and hi - u both have their sign bit clear exactly when lo <= u <= hi, for
 // every pattern (NaN of either sign, infinity and -0 included).
+constexpr std::uint64_t kUnitLoBits = std::bit_cast<std::uint64_t>(kUnitSquaredLo);
+constexpr std::uint64_t kUnitHiBits = std::bit_cast<std::uint64_t>(kUnitSquaredHi);
+inline std::uint64_t outside_unit_bits(double a, double b, double c) {
+  const std::uint64_t u = std::bit_cast<std::uint64_t>(a * a + b * b + c * c);
+  return (u - kUnitLoBits) | (kUnitHiBits - u);
+}
 template <bool kContiguous>
 bool squared_lengths_in_bounds(const simd::Column<double>& x, const simd::Column<double>& y,
                                const simd::Column<double>& z, std::size_t count) {
-  constexpr std::uint64_t lo = std::bit_cast<std::uint64_t>(kUnitSquaredLo);
-  constexpr std::uint64_t hi = std::bit_cast<std::uint64_t>(kUnitSquaredHi);
   const std::size_t sx = kContiguous ? 1 : x.stride, sy = kContiguous ? 1 : y.stride,
                     sz = kContiguous ? 1 : z.stride;
   std::uint64_t out = 0;
-  for (std::size_t i = 0; i < count; ++i) {
-    const double a = x.data[sx * i], b = y.data[sy * i], c = z.data[sz * i];
-    const std::uint64_t u = std::bit_cast<std::uint64_t>(a * a + b * b + c * c);
-    out |= (u - lo) | (hi - u);
+  for (std::size_t i = 0; i < count; ++i)
+    out |= outside_unit_bits(x.data[sx * i], y.data[sy * i], z.data[sz * i]);
+  return (out & kSignBit) == 0;
+}
+// The same for the rows of a C-ordered (N, 3) array read where it lies (row i at p[3i .. 3i+2]:
+// constant strides, which the compiler vectorises), in blocks of rows, each after asking for the
+// same rows of the next chunk (a software prefetch, a hint that never faults: past the array's
+// end it does nothing), so that they arrive while this chunk is evaluated (as chunk_columns'
+// transposing gather does, query_columns.h).
+bool rows_in_bounds(const double* p, std::size_t count) {
+  constexpr std::size_t kBlock = 64, kLine = 64;
+  // The next chunk's address as an integer: it may lie past the array.
+  const auto next_chunk = reinterpret_cast<std::uintptr_t>(p) + 3 * count * sizeof(double);
+  std::uint64_t out = 0;
+  for (std::size_t b = 0; b < count; b += kBlock) {
+    const std::size_t e = std::min(count, b + kBlock);
+    for (std::size_t k = 0; k < 3 * kBlock * sizeof(double); k += kLine)
+      __builtin_prefetch(reinterpret_cast<const void*>(next_chunk + 3 * b * sizeof(double) + k));
+    for (std::size_t i = b; i < e; ++i)
+      out |= outside_unit_bits(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
   }
   return (out & kSignBit) == 0;
 }
@@ -132,31 +154,87 @@ bool squared_lengths_in_bounds(const simd::Column<double>& x, const simd::Column
 // Whether every value of a column is finite (on the bits, as above: |v|'s pattern minus
 // infinity's has its sign bit set exactly when v is finite).
 bool all_finite(const simd::Column<double>& c, std::size_t count) {
-  std::uint64_t not_finite = 0;
-  for (std::size_t i = 0; i < count; ++i)
-    not_finite |= ~((std::bit_cast<std::uint64_t>(c.data[i]) & ~kSignBit) - kInfinityBits);
-  return (not_finite & kSignBit) == 0;
+  const auto not_finite = [](double v) {
+    return ~((std::bit_cast<std::uint64_t>(v) & ~kSignBit) - kInfinityBits);
+  };
+  std::uint64_t out = 0;
+  if (c.stride <= 1) {
+    for (std::size_t i = 0; i < count; ++i) out |= not_finite(c.data[i]);
+  } else {
+    for (std::size_t i = 0; i < count; ++i) out |= not_finite(c.data[c.stride * i]);
+  }
+  return (out & kSignBit) == 0;
 }
 
-// Whether every row of a chunk surely passes check_query_row's rules besides the model's own
-// (validate): every checked column finite, unit wi and wo (and the corner vectors where the model
-// reads them), the light's range. `cols`: the chunk's columns in double (the values the rules
-// read), `width` of them (the corners only where the model reads them, as check_query_row skips
-// them otherwise). Branch-free passes over the columns; a squared length is tested against
-// bounds a little inside the unit tolerance, so a row it passes passes |length - 1| <= 1e-6 in
-// any rounding (and is finite), and a row near the bound goes to the exact checks (which then
-// pass or name it).
-bool rows_surely_valid(std::span<const simd::Column<double>> cols, std::size_t count) {
+// The model's own rules (ModelEntry::validate) over rows [0, count) of query columns (kQueryLayout
+// order, every column of the layout, any stride) in one pass: the first row they refuse, or
+// count. The column form of the rules the registry holds per query, for the built-in models (found
+// by their static_model tag): each row's query read column by column and M::validate inlined into
+// the loop, so that only the columns its rules read are loaded. Nothing for a model without rules
+// of its own, and for one whose rules have no column form here (a plug-in's, an entry built by
+// hand), whose rows the caller checks one by one.
+template <class M>
+std::size_t first_invalid_row_of(std::span<const simd::Column<double>> cols, std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i) {
+    ModelQuery<double> query{};
+    for_each_query_column(query, [&](std::size_t k, const QueryColumn&, double& member) {
+      member = cols[k].data[cols[k].stride * i];
+    });
+    if (M::validate(query)) return i;
+  }
+  return count;
+}
+using RowsValidator = std::size_t (*)(std::span<const simd::Column<double>>, std::size_t);
+template <class... Ms>
+RowsValidator rows_validator_of(const ModelEntry& model, ModelList<Ms...>) {
+  RowsValidator found = nullptr;
+  const auto match = [&]<class M>() {
+    if constexpr (ValidatesQuery<M>) {
+      if (model.static_model == static_model_tag<M>() && model.validate)
+        found = &first_invalid_row_of<M>;
+    }
+  };
+  (match.template operator()<Ms>(), ...);
+  return found;
+}
+RowsValidator rows_validator(const ModelEntry& model) {
+  return rows_validator_of(model, BuiltinModels{});
+}
+
+// Whether every row of a chunk surely passes check_query_row's rules: every checked column
+// finite, unit wi and wo (and the corner vectors where the model reads them), the light's range,
+// and the model's own rules (validate) by their pass over the columns (rows_validator). `cols`:
+// the chunk's columns in double (the values the rules read; any stride), `width` of them (the
+// corners only where the model reads them, as check_query_row skips them otherwise). Branch-free
+// passes over the columns; a squared length is tested against bounds a little inside the unit
+// tolerance, so a row it passes passes |length - 1| <= 1e-6 in any rounding (and is finite), and
+// a row near the bound goes to the exact checks (which then pass or name it).
+bool rows_surely_valid(const ModelEntry& model, const QuerySources& q,
+                       std::span<const simd::Column<double>> cols, std::size_t count,
+                       const FusedUnitCheck* fused = nullptr) {
   const auto rows_of = [count](const simd::Column<double>& c) { return c.stride == 0 ? 1 : count; };
   bool bad = false;
   std::vector<bool> direction(cols.size(), false);
   const auto unit = [&](std::size_t first) {
     const simd::Column<double> &x = cols[first], &y = cols[first + 1], &z = cols[first + 2];
     direction[first] = direction[first + 1] = direction[first + 2] = true;
-    // The usual case, three contiguous columns, as its own loop the compiler vectorises.
-    bad |= x.stride == 1 && y.stride == 1 && z.stride == 1
-               ? !squared_lengths_in_bounds<true>(x, y, z, count)
-               : !squared_lengths_in_bounds<false>(x, y, z, count);
+    // Tested by the gather already (chunk_columns with `fused`).
+    if (fused != nullptr) {
+      for (const auto& [column, outside] : fused->found) {
+        if (column != first) continue;
+        bad |= (outside & kSignBit) != 0;
+        return;
+      }
+    }
+    // The usual cases, three contiguous columns or the rows of a C-ordered (N, 3) array, as loops
+    // of their own the compiler vectorises.
+    if (x.stride == 1 && y.stride == 1 && z.stride == 1)
+      bad |= !squared_lengths_in_bounds<true>(x, y, z, count);
+    else if (x.stride == 3 && y.stride == 3 && z.stride == 3 && y.data == x.data + 1 &&
+             z.data == x.data + 2)
+      bad |= !rows_in_bounds(x.data, count);
+    else
+      bad |= !squared_lengths_in_bounds<false>(x, y, z, count);
   };
   unit(query_column_index("wi_x"));
   unit(query_column_index("wo_x"));
@@ -167,9 +245,22 @@ bool rows_surely_valid(std::span<const simd::Column<double>> cols, std::size_t c
     if (!direction[j]) bad |= !all_finite(cols[j], rows_of(cols[j]));
   const simd::Column<double>& cos = cols[query_column_index("light_cos_half_angle")];
   for (std::size_t i = 0; i < rows_of(cos); ++i)
-    bad |= !(cos.data[i] >= -1) | !(cos.data[i] <= 1);
+    bad |= !(cos.data[cos.stride * i] >= -1) | !(cos.data[cos.stride * i] <= 1);
   const simd::Column<double>& intensity = cols[query_column_index("light_intensity")];
-  for (std::size_t i = 0; i < rows_of(intensity); ++i) bad |= !(intensity.data[i] >= 0);
+  for (std::size_t i = 0; i < rows_of(intensity); ++i)
+    bad |= !(intensity.data[intensity.stride * i] >= 0);
+  if (!bad && model.validate) {
+    // The model's own rules over every column of the layout: the columns the batch does not
+    // take (the corners of a model that does not read them) are the layout's defaults unless the
+    // caller gave them, which leaves them to the exact checks.
+    std::array<simd::Column<double>, kQueryLayout.size()> all;
+    for (std::size_t j = 0; j < all.size(); ++j) {
+      all[j] = j < cols.size() ? cols[j] : simd::Column<double>{&q.columns[j].constant, 0};
+      bad |= j >= cols.size() && q.columns[j].data != nullptr;
+    }
+    const RowsValidator validate_rows = rows_validator(model);
+    bad = bad || validate_rows == nullptr || validate_rows(all, count) != count;
+  }
   return !bad;
 }
 
@@ -228,6 +319,7 @@ struct RowGroups {
 template <class S>
 struct ChunkBuffers {
   std::vector<S> gathered, extra, group_in, group_out;
+  FusedUnitCheck fused;
   std::vector<double> check, param_rows;
   RowGroups groups;
 };
@@ -329,13 +421,24 @@ void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams
         gather_into = block.get();
         storage = {block, block.get(), block.get() + width * count};
       }
+      // The batches read a coordinate of a C-ordered (N, 3) array where it lies (stride 3:
+      // core/simd/model_batch.h gathers it block by block); a numpy model's functions get
+      // contiguous columns.
+      // A numpy model's gather of a C-ordered (N, 3) array in double tests the squared lengths
+      // of its rows on the way (one pass over them instead of two).
+      FusedUnitCheck& fused = b.fused;
+      fused.found.clear();
+      fused.lo = kUnitLoBits;
+      fused.hi = kUnitHiBits;
+      FusedUnitCheck* const fuse = per_row_columns ? nullptr : &fused;
       std::vector<simd::Column<S>> inputs =
-          chunk_columns<S>(q.columns, width, begin, count, gather_into);
+          chunk_columns<S>(q.columns, width, begin, count, gather_into, per_row_columns, fuse);
 
-      // The rules of check_query_row on the chunk's columns; the model's own (validate) and a
-      // caller's extra check other than the unit interval's are per row, so they take the exact
-      // route.
-      bool surely_valid = !model.validate && (!extra_check || !unit_interval.empty());
+      // The rules of check_query_row on the chunk's columns (the model's own where they have a
+      // column form, rows_validator); those of a model without one and a caller's extra check
+      // other than the unit interval's are per row, so they take the exact route.
+      bool surely_valid = (!model.validate || rows_validator(model) != nullptr) &&
+                          (!extra_check || !unit_interval.empty());
       for (const ColumnSource* u : unit_interval) {
         bool outside = false;
         for (std::size_t i = 0; i < count; ++i) {
@@ -346,10 +449,11 @@ void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams
       }
       if (surely_valid) {
         if constexpr (std::is_same_v<S, double>) {
-          surely_valid = rows_surely_valid(inputs, count);
+          surely_valid = rows_surely_valid(model, q, inputs, count, fuse);
         } else {
-          const auto in_double = chunk_columns<double>(q.columns, width, begin, count, b.check);
-          surely_valid = rows_surely_valid(in_double, count);
+          const auto in_double =
+              chunk_columns<double>(q.columns, width, begin, count, b.check, true);
+          surely_valid = rows_surely_valid(model, q, in_double, count);
         }
       }
       if (!surely_valid) {

@@ -269,8 +269,10 @@ py::dict sample(const std::string& name, const py::object& wi, const py::object&
                               : sample_in<double>(model, q, p, opts, p1, p2, s);
 }
 
-// Where each query column of an eval call would be read from in `precision`: the array's own
-// memory (its address), or None (gathered or a constant). For the tests of the no-copy path.
+// Where each query column of an eval call would be read from in `precision` as a contiguous
+// column: the array's own memory (its address), or None (strided, so gathered by the batches block
+// by block or by a numpy model's chunk; converted; or a constant). For the tests of the no-copy
+// path.
 py::dict column_addresses(const std::string& name, const py::object& wi, const py::object& wo,
                           const py::object& footprint, const py::object& light,
                           const std::string& precision) {

@@ -8,9 +8,12 @@
 #include <pybind11/pybind11.h>
 
 #include <algorithm>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/model_layout.h"
@@ -65,13 +68,28 @@ QuerySources query_sources(const ModelEntry& model, const py::object& wi, const 
 ColumnSource column_source(const py::handle& value, const std::string& name, std::size_t& rows,
                            std::vector<py::object>& keep_alive);
 
+// A test of the squared lengths of a C-ordered (N, 3) float64 array's rows, fused into
+// chunk_columns' transposing gather of it into double (one pass over the rows instead of a gather
+// and then a pass over the gathered columns): `lo` <= `hi`, the bit patterns of positive bounds;
+// for each array so gathered, its first column and the OR over its rows of (u - lo) | (hi - u), u
+// the pattern of x^2 + y^2 + z^2 (its sign bit clear exactly when every u lies within the bounds:
+// python/batch_call.cpp, squared_lengths_in_bounds).
+struct FusedUnitCheck {
+  std::uint64_t lo = 0, hi = 0;
+  std::vector<std::pair<std::size_t, std::uint64_t>> found;  // (first column, OR of the bits)
+};
+
 // The SoA columns of rows [begin, begin + count) in precision S, `ncols` first columns; columns
 // not in place are gathered into `buffer` (ncols * count values; only those read are written), a
-// strided column by a typed strided load per row.
+// strided column by a typed strided load per row. With `strided`, a column of S at a positive
+// stride (a coordinate of a C-ordered (N, 3) array) is passed where it lies, with its stride, for
+// the batch API (core/simd/model_batch.h reads such columns block by block). With `fused`, the
+// gather of a C-ordered (N, 3) float64 array into double also tests its rows' squared lengths.
 template <class S>
 std::vector<simd::Column<S>> chunk_columns(const std::vector<ColumnSource>& sources,
                                            std::size_t ncols, std::size_t begin, std::size_t count,
-                                           S* buffer) {
+                                           S* buffer, bool strided = false,
+                                           FusedUnitCheck* fused = nullptr) {
   std::vector<simd::Column<S>> cols;
   cols.reserve(ncols);
   const auto gather = [count](auto* src, std::ptrdiff_t stride, S* dst) {
@@ -79,7 +97,8 @@ std::vector<simd::Column<S>> chunk_columns(const std::vector<ColumnSource>& sour
   };
   // Three columns that are the adjacent elements of each row of one array (a C-ordered (N, 3)
   // direction array): transposed in one pass over its rows rather than three strided passes.
-  const auto gather3 = [count](auto* src, std::ptrdiff_t stride, S* x, S* y, S* z) {
+  const auto gather3 = [count, fused](auto* src, std::ptrdiff_t stride, S* x, S* y, S* z,
+                                     std::size_t first_column) {
     if (stride == 3) {  // a C-ordered (N, 3) array: constant strides, which the compiler vectorises
       // In blocks of rows, each after asking for the same rows of the next chunk (a software
       // prefetch, a hint that never faults: past the array's end it does nothing), so that they
@@ -89,6 +108,29 @@ std::vector<simd::Column<S>> chunk_columns(const std::vector<ColumnSource>& sour
       // The next chunk's address is computed as an integer: it may lie past the array.
       constexpr std::size_t kBlock = 64, kLine = 64;
       const auto next_chunk = reinterpret_cast<std::uintptr_t>(src + 0) + 3 * count * sizeof(*src);
+      if constexpr (std::is_same_v<S, double> &&
+                    std::is_same_v<std::remove_cv_t<std::remove_pointer_t<decltype(src)>>, double>) {
+        if (fused != nullptr) {  // the same loop, testing each row's squared length on the way
+          const std::uint64_t lo = fused->lo, hi = fused->hi;
+          std::uint64_t outside = 0;
+          for (std::size_t b = 0; b < count; b += kBlock) {
+            const std::size_t e = std::min(count, b + kBlock);
+            for (std::size_t k = 0; k < 3 * kBlock * sizeof(*src); k += kLine)
+              __builtin_prefetch(
+                  reinterpret_cast<const void*>(next_chunk + 3 * b * sizeof(*src) + k));
+            for (std::size_t i = b; i < e; ++i) {
+              const double a = src[3 * i], bb = src[3 * i + 1], c = src[3 * i + 2];
+              x[i] = a;
+              y[i] = bb;
+              z[i] = c;
+              const std::uint64_t u = std::bit_cast<std::uint64_t>(a * a + bb * bb + c * c);
+              outside |= (u - lo) | (hi - u);
+            }
+          }
+          fused->found.emplace_back(first_column, outside);
+          return;
+        }
+      }
       for (std::size_t b = 0; b < count; b += kBlock) {
         const std::size_t e = std::min(count, b + kBlock);
         for (std::size_t k = 0; k < 3 * kBlock * sizeof(*src); k += kLine)
@@ -119,14 +161,17 @@ std::vector<simd::Column<S>> chunk_columns(const std::vector<ColumnSource>& sour
   for (std::size_t c = 0; c < ncols; ++c) {
     const ColumnSource& s = sources[c];
     S* gathered = buffer + c * count;
-    if (rows_of_one_array(c)) {
+    if (strided && s.data != nullptr && s.stride > 0 && s.is_float == std::is_same_v<S, float>) {
+      cols.push_back({static_cast<const S*>(s.data) + std::ptrdiff_t(begin) * s.stride,
+                      std::size_t(s.stride)});
+    } else if (rows_of_one_array(c)) {
       const std::ptrdiff_t first = std::ptrdiff_t(begin) * s.stride;
       if (s.is_float)
         gather3(static_cast<const float*>(s.data) + first, s.stride, gathered, gathered + count,
-                gathered + 2 * count);
+                gathered + 2 * count, c);
       else
         gather3(static_cast<const double*>(s.data) + first, s.stride, gathered, gathered + count,
-                gathered + 2 * count);
+                gathered + 2 * count, c);
       for (std::size_t k = 0; k < 3; ++k) cols.push_back({gathered + k * count, 1});
       c += 2;
     } else if (s.in_place<S>()) {
@@ -150,9 +195,9 @@ std::vector<simd::Column<S>> chunk_columns(const std::vector<ColumnSource>& sour
 template <class S>
 std::vector<simd::Column<S>> chunk_columns(const std::vector<ColumnSource>& sources,
                                            std::size_t ncols, std::size_t begin, std::size_t count,
-                                           std::vector<S>& buffer) {
+                                           std::vector<S>& buffer, bool strided = false) {
   if (buffer.size() < ncols * count) buffer.resize(ncols * count);
-  return chunk_columns<S>(sources, ncols, begin, count, buffer.data());
+  return chunk_columns<S>(sources, ncols, begin, count, buffer.data(), strided);
 }
 
 // The query row `row` in double, every column of the layout.

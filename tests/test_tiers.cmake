@@ -180,6 +180,8 @@ set(glintlab_slow_tests
   "SimdParamColumns.FastFloatEveryModelEveryIsaIsEachRowAlone 7"
   "SimdParamColumns.DoubleEveryModelEveryIsaIsEachRowAlone 4"
   "SimdModelEquivalence.* 11"
+  # Every model, scalar and the widest ISA, float and double: strided columns against copies.
+  "SimdStridedQuery.* 3"
   # Over a second of CPU in the fast tier (measured one at a time, release, 2 cores): the
   # Kneiphof Fig. 9 figure at quick (the Monte Carlo and LTC subdivisions at two half-widths); a
   # conformance property and its control at its sample count; Algorithm 1's block-by-block

@@ -15,7 +15,7 @@ namespace glintlab::verify {
 
 enum class Budget { kQuick, kFull };
 
-// Verdicts as shared/CLAIMS.md defines them. kNotClaimed: a conformance property the model
+// Verdicts as docs/verification.md defines them. kNotClaimed: a conformance property the model
 // declares it does not claim (core/model.h NotClaimed); nothing is measured, the detail gives the
 // model's reason, and it never counts as holding. kError: the check could not compute its
 // statistic (an exception escaped its run, e.g. from a plug-in's eval, or it measured NaN/Inf
@@ -85,7 +85,7 @@ std::function<CheckResult(Budget)> contained(std::string subject,
                                              std::function<CheckResult(Budget)> run);
 
 struct Check {
-  std::string id;      // the id in shared/CLAIMS.md
+  std::string id;      // the id docs/claims.md lists
   std::string paper;   // paper (and baseline) it comes from
   std::string source;  // equation / figure
   Verdict expected;    // the verdict recorded for it today; a change is a regression or a finding
@@ -116,6 +116,9 @@ struct Check {
   // The competing causes of a "fails" reviewed for this claim (its type's alternatives()).
   std::vector<Alternative> alternatives = {};
   std::string correction = {};  // the smallest change to the paper that makes it hold
+  // False for a run-time model's conformance check (a plug-in, a Python model): nothing is
+  // recorded for it, and `expected` is what a conforming model gives.
+  bool recorded = true;
 
   Verdict expected_for(Budget b) const {
     return b == Budget::kFull && expected_full ? *expected_full : expected;

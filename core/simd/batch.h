@@ -47,7 +47,8 @@ struct KernelInfo {
 };
 KernelInfo kernel_info(int kernel);
 
-// One input column: n values (stride 1) or one value for every row (stride 0).
+// One input column: n values (stride 1) or one value for every row (stride 0). The model batches'
+// query columns may have any stride (core/simd/model_batch.h gathers those above 1).
 template <class S>
 struct Column {
   const S* data;

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <stdexcept>
 #include <string>
@@ -51,7 +52,64 @@ void check_model(const char* what, const ModelEntry& model, std::size_t n_params
         what, model.name, kQueryColumns.size(), kQueryColumnsWithCorners, want_out, query.size(),
         n_out));
   }
-  detail::check_call(what, query, &query_label, isa, math);
+  // Query columns may have any stride (run_in_blocks gathers those above 1); the shared checks
+  // see them as stride 1.
+  std::array<Column<S>, kQueryColumnsWithCorners> checked{};
+  for (std::size_t j = 0; j < query.size(); ++j)
+    checked[j] = {query[j].data, std::min<std::size_t>(query[j].stride, 1)};
+  detail::check_call(what, std::span<const Column<S>>(checked.data(), query.size()), &query_label,
+                     isa, math);
+}
+
+// Rows per block of a call with query columns of stride above 1: a multiple of every ISA's lanes
+// (16 floats for AVX-512), so that every block but the last runs full batches, and few enough
+// that a block's gathered columns (at most 26 of them, 52 KiB in double) are still in the core's
+// cache when the batch reads them.
+constexpr std::size_t kStridedBlock = 256;
+
+// Values src[stride * i] of rows i < count into dst (a C-ordered (N, 3) array's coordinate, stride
+// 3, as its own loop: a constant stride the compiler vectorises).
+template <class S>
+void gather_strided(const S* src, std::size_t stride, S* dst, std::size_t count) {
+  if (stride == 3) {
+    for (std::size_t i = 0; i < count; ++i) dst[i] = src[3 * i];
+    return;
+  }
+  for (std::size_t i = 0; i < count; ++i) dst[i] = src[stride * i];
+}
+
+// run(query, params, outputs, rows) over rows [0, n): in one call where every query column has
+// stride 0 or 1, else block by block (kStridedBlock rows), each block's columns of stride above 1
+// gathered into a buffer of stride-1 columns and every other column, parameter column and output
+// advanced to the block's first row. Row i's result depends only on its own inputs (the batch
+// contract), so the blocks give the rows of one call bit for bit.
+template <class S, std::size_t N, class Run>
+void run_in_blocks(const std::array<Column<S>, N>& q, std::span<const Column<double>> params,
+                   std::span<S* const> outputs, std::size_t n, const Run& run) {
+  const std::size_t strided = static_cast<std::size_t>(
+      std::count_if(q.begin(), q.end(), [](const Column<S>& c) { return c.stride > 1; }));
+  if (strided == 0) return run(std::span<const Column<S>>(q), params, outputs, n);
+  std::vector<S> buffer(strided * std::min(n, kStridedBlock));
+  std::array<Column<S>, N> block_q;
+  std::vector<Column<double>> block_params(params.size());
+  std::vector<S*> block_out(outputs.size());
+  for (std::size_t begin = 0; begin < n; begin += kStridedBlock) {
+    const std::size_t count = std::min(kStridedBlock, n - begin);
+    S* next = buffer.data();
+    for (std::size_t j = 0; j < N; ++j) {
+      const Column<S>& c = q[j];
+      block_q[j] = {c.data + c.stride * begin, c.stride};
+      if (c.stride <= 1) continue;
+      gather_strided(block_q[j].data, c.stride, next, count);
+      block_q[j] = {next, 1};
+      next += count;
+    }
+    for (std::size_t k = 0; k < params.size(); ++k)
+      block_params[k] = {params[k].data + params[k].stride * begin, params[k].stride};
+    for (std::size_t o = 0; o < outputs.size(); ++o) block_out[o] = outputs[o] + begin;
+    run(std::span<const Column<S>>(block_q), std::span<const Column<double>>(block_params),
+        std::span<S* const>(block_out), count);
+  }
 }
 
 // The query padded to kQueryColumnsWithCorners columns (zero corners where the caller gave none),
@@ -134,11 +192,14 @@ void eval_any(const ModelEntry& model, std::span<const double> params,
               Math math) {
   check_model<S>("eval_batch", model, params.size(), query, outputs.size(),
                  2 + model.intermediates.size(), isa, math);
-  const auto q = full_query(query);
-  if (run_batched<S>(model, false, params, q, outputs, n, isa, math)) return;
-  // Not batched: the entry's double thunks, row by row.
   const std::vector<double> values(params.begin(), params.end());
-  for (std::size_t i = 0; i < n; ++i) eval_row<S>(model, values, q, outputs, i);
+  run_in_blocks<S>(full_query(query), {}, outputs, n,
+                   [&](std::span<const Column<S>> q, std::span<const Column<double>>,
+                       std::span<S* const> out, std::size_t rows) {
+                     if (run_batched<S>(model, false, params, q, out, rows, isa, math)) return;
+                     // Not batched: the entry's double thunks, row by row.
+                     for (std::size_t i = 0; i < rows; ++i) eval_row<S>(model, values, q, out, i);
+                   });
 }
 
 template <class S>
@@ -155,10 +216,13 @@ void sample_any(const ModelEntry& model, std::span<const double> params,
   check_model<S>("sample_batch", model, params.size(), query, outputs.size(), kSampleColumns.size(),
                  isa, math);
   check_uniform_columns<S>("sample_batch", u1, u2);
-  const auto q = full_query(query, std::array{u1, u2});
-  if (run_batched<S>(model, true, params, q, outputs, n, isa, math)) return;
   const std::vector<double> values(params.begin(), params.end());
-  for (std::size_t i = 0; i < n; ++i) sample_row<S>(model, values, q, outputs, i);
+  run_in_blocks<S>(full_query(query, std::array{u1, u2}), {}, outputs, n,
+                   [&](std::span<const Column<S>> q, std::span<const Column<double>>,
+                       std::span<S* const> out, std::size_t rows) {
+                     if (run_batched<S>(model, true, params, q, out, rows, isa, math)) return;
+                     for (std::size_t i = 0; i < rows; ++i) sample_row<S>(model, values, q, out, i);
+                   });
 }
 
 // Parameter columns: one per parameter (the count is check_model's), each of stride 0 or 1.
@@ -243,12 +307,15 @@ void eval_columns(const ModelEntry& model, std::span<const Column<double>> param
   if (uniform_values(params, values)) return eval_any<S>(model, values, query, outputs, n, isa, math);
   check_model<S>("eval_batch", model, params.size(), query, outputs.size(),
                  2 + model.intermediates.size(), isa, math);
-  const auto q = full_query(query);
-  if (run_batched_lanes<S>(model, false, params, q, outputs, n, isa, math)) return;
-  for (std::size_t i = 0; i < n; ++i) {
-    row_values(params, i, values);
-    eval_row<S>(model, values, q, outputs, i);
-  }
+  run_in_blocks<S>(full_query(query), params, outputs, n,
+                   [&](std::span<const Column<S>> q, std::span<const Column<double>> p,
+                       std::span<S* const> out, std::size_t rows) {
+                     if (run_batched_lanes<S>(model, false, p, q, out, rows, isa, math)) return;
+                     for (std::size_t i = 0; i < rows; ++i) {
+                       row_values(p, i, values);
+                       eval_row<S>(model, values, q, out, i);
+                     }
+                   });
 }
 
 template <class S>
@@ -262,12 +329,15 @@ void sample_columns(const ModelEntry& model, std::span<const Column<double>> par
   check_model<S>("sample_batch", model, params.size(), query, outputs.size(), kSampleColumns.size(),
                  isa, math);
   check_uniform_columns<S>("sample_batch", u1, u2);
-  const auto q = full_query(query, std::array{u1, u2});
-  if (run_batched_lanes<S>(model, true, params, q, outputs, n, isa, math)) return;
-  for (std::size_t i = 0; i < n; ++i) {
-    row_values(params, i, values);
-    sample_row<S>(model, values, q, outputs, i);
-  }
+  run_in_blocks<S>(full_query(query, std::array{u1, u2}), params, outputs, n,
+                   [&](std::span<const Column<S>> q, std::span<const Column<double>> p,
+                       std::span<S* const> out, std::size_t rows) {
+                     if (run_batched_lanes<S>(model, true, p, q, out, rows, isa, math)) return;
+                     for (std::size_t i = 0; i < rows; ++i) {
+                       row_values(p, i, values);
+                       sample_row<S>(model, values, q, out, i);
+                     }
+                   });
 }
 
 }  // namespace

@@ -52,7 +52,7 @@ inline constexpr std::array<std::string_view, 6> kSampleColumns = {"wo_x", "wo_y
 bool is_batched(const ModelEntry& model);
 
 // outputs[k][i] for row i < n of the queries (query: kQueryColumns.size() columns, or
-// kQueryColumnsWithCorners with the corner reflection vectors; stride 0 or 1),
+// kQueryColumnsWithCorners with the corner vectors; any stride, above 1 gathered block by block),
 // with the parameter values `params` (ModelEntry::params order, as resolve_params returns them)
 // for every row; outputs: 2 + model.intermediates.size() columns. Throws std::invalid_argument
 // on wrong column counts or parameter count, Math::kFast with double, or an ISA this CPU lacks.

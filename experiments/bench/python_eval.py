@@ -25,6 +25,13 @@ and, in "numpy_model_cases" (beside "cases", whose names the smoke test fixes):
                                  (its columns passed to the functions where they lie), one thread
   numpy_model_eval_all_cores     glintlab.eval of it on the C-ordered input, all cores
 
+and, in "model_rules_cases", a model with query rules of its own (podee: a disk light of radius
+above 0 and its centre above the surface, checked by the chunk check's pass over the columns):
+
+  podee_eval_1thread             glintlab.eval("podee", ...) on the same rows, Fortran-ordered,
+                                 with a per-row footprint, its four corner reflection vectors
+                                 near wo and a per-row light, one thread
+
 and the ratios of interest (Python eval over eval_batch; the numpy model's chunked calls over
 its direct calls; "numpy_model_ratios" those of the numpy_model_cases), on wall seconds; every
 case but the C++ reference (which times itself) also has its CPU seconds, and
@@ -113,6 +120,22 @@ def lambert_sample(q, u, p):
     return {"wo": wo, "pdf": z / np.pi, "weight": np.full(len(z), p["albedo"])}
 
 
+def podee_columns(rng, wo):
+    """podee's footprint (uv, its Jacobian, the corner reflection vectors: wo perturbed by 1e-3,
+    normalised) and light (a cone of cos 0.999), an (N,) float64 array each."""
+    n = len(wo)
+    footprint = {"u": rng.uniform(0, 1, n), "v": rng.uniform(0, 1, n),
+                 "dudx": np.full(n, 2e-3), "dvdx": np.zeros(n),
+                 "dudy": np.zeros(n), "dvdy": np.full(n, 2e-3)}
+    for k in range(4):
+        r = wo + rng.normal(scale=1e-3, size=(n, 3))
+        r /= np.linalg.norm(r, axis=1, keepdims=True)
+        for a, axis in enumerate("xyz"):
+            footprint[f"r{k}_{axis}"] = np.ascontiguousarray(r[:, a])
+    light = {"light_cos_half_angle": np.full(n, 0.999), "light_intensity": np.ones(n)}
+    return footprint, light
+
+
 def cpu_name():
     try:
         with open("/proc/cpuinfo") as f:
@@ -187,6 +210,8 @@ def main():
              "wo_y": np.ascontiguousarray(wo[:, 1]), "wo_z": np.ascontiguousarray(wo[:, 2])}
         return lambert_eval(q, p), lambert_pdf(q, p)
 
+    podee_footprint, podee_light = podee_columns(rng, wo)
+
     cases, cpu = round_robin({
         "cpp_eval_batch": cpp_eval_batch,
         "python_eval_c_1thread": py_eval(wi, wo),
@@ -201,12 +226,16 @@ def main():
         "numpy_model_direct_copying": direct_copying,
         "numpy_model_eval_f_1thread": lambda: glintlab.eval(name, wi_f, wo_f, threads=1),
         "numpy_model_eval_all_cores": lambda: glintlab.eval(name, wi, wo, threads=None),
+        "podee_eval_1thread": lambda: glintlab.eval("podee", wi_f, wo_f, footprint=podee_footprint,
+                                                    light=podee_light, isa=a.isa, threads=1),
     }, a.repeats)
     numpy_model_cases = {k: cases.pop(k) for k in ("numpy_model_direct_copying",
                                                     "numpy_model_eval_f_1thread",
                                                     "numpy_model_eval_all_cores")}
+    model_rules_cases = {"podee_eval_1thread": cases.pop("podee_eval_1thread")}
 
-    median = {k: statistics.median(v) for k, v in {**cases, **numpy_model_cases}.items()}
+    median = {k: statistics.median(v)
+              for k, v in {**cases, **numpy_model_cases, **model_rules_cases}.items()}
     median_cpu = {k: None if None in v else statistics.median(v) for k, v in cpu.items()}
     ref = median["cpp_eval_batch"]
 
@@ -231,6 +260,7 @@ def main():
         "repeats": a.repeats,
         "cases": timed(cases),
         "numpy_model_cases": timed(numpy_model_cases),
+        "model_rules_cases": timed(model_rules_cases),
         "ratios": {
             "python_eval_c_1thread_over_cpp": median["python_eval_c_1thread"] / ref,
             "python_eval_c_over_cpp": median["python_eval_c"] / ref,

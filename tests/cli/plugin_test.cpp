@@ -264,6 +264,34 @@ TEST_F(PluginTest, FaultyEvalIsReportedAsErrorAndTheRunGoesOn) {
   EXPECT_TRUE(rows.at("model.nan_eval.stability")["control_rejected"].get<bool>());
   EXPECT_NE(read_text(path("verify/claims.csv")).find(",error,"), std::string::npos);
   EXPECT_NE(read_text(path("verify/claims.md")).find("**error**"), std::string::npos);
+
+  // The printed table: a row that measured nothing prints no number, and a plug-in has no recorded
+  // verdict to be compared with, only what a conforming model gives.
+  auto line = [&](const std::string& id) {
+    const std::size_t at = r.out.find("\n" + id + " ");
+    if (at == std::string::npos) return std::string();
+    return r.out.substr(at + 1, r.out.find('\n', at + 1) - at - 1);
+  };
+  const std::string error_row = line("model.throwing_eval.eval-pdf-consistency");
+  ASSERT_FALSE(error_row.empty()) << r.out;
+  EXPECT_EQ(error_row.find(" = "), std::string::npos) << error_row;
+  EXPECT_EQ(error_row.find("recorded verdict"), std::string::npos) << error_row;
+  EXPECT_NE(error_row.find("[a conforming model: holds; nothing recorded for this model]"),
+            std::string::npos)
+      << error_row;
+  const std::string fails_row = line("model.nan_eval.stability");
+  EXPECT_NE(fails_row.find(" = "), std::string::npos) << fails_row;
+  EXPECT_NE(fails_row.find("[a conforming model: holds; nothing recorded for this model]"),
+            std::string::npos)
+      << fails_row;
+  const std::string paper_row = line("smooth.projected-area");
+  EXPECT_NE(paper_row.find(" = "), std::string::npos) << paper_row;
+  EXPECT_EQ(paper_row.find('['), std::string::npos) << paper_row;
+  for (const auto& [id, row] : rows)
+    if (row["verdict"] == "not claimed") {
+      EXPECT_EQ(line(id).find(" = "), std::string::npos) << line(id);
+      EXPECT_NE(line(id).find("none (not claimed)"), std::string::npos) << line(id);
+    }
 }
 
 TEST_F(PluginTest, MissingFileIsRefused) {

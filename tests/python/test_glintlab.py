@@ -127,7 +127,8 @@ def test_arrays_of_the_right_dtype_and_layout_are_read_in_place():
     at = glintlab._glintlab.column_addresses("smooth_ggx", f_order, wo)
     assert at["wi_x"] == f_order[:, 0].ctypes.data
     assert at["wi_z"] == f_order[:, 2].ctypes.data
-    # C order: each column strided, gathered per chunk; float32 gathered for double precision.
+    # C order: each column strided, not a contiguous column (the batches gather it block by
+    # block, a numpy model's chunk gathers it); float32 gathered for double precision.
     assert at["wo_x"] is None
     f32 = np.asfortranarray(wi, dtype=np.float32)
     assert glintlab._glintlab.column_addresses("smooth_ggx", f32, wo)["wi_x"] is None

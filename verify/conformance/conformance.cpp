@@ -290,6 +290,7 @@ std::vector<Check> conformance_checks(const ModelEntry& model) {
     const auto rec = recorded_verdict(m->name, property);
     c.expected = !claimed ? Verdict::kNotClaimed : rec ? rec->quick : Verdict::kHolds;
     if (claimed && rec) c.expected_full = rec->full;
+    c.recorded = !claimed || rec;
     c.run = contained(fmt::format("model {}: {}", m->name, property),
                       [m, p = std::string(property)](Budget b) { return run_property(p, *m, b); });
     if (claimed && is_statistical_property(property))

@@ -1,6 +1,7 @@
-// What the stability sweeps (claim all.stability, CLAIMS.md) sweep for one registered model: the
-// model × sampler targets and, per target, the 2-D planes (a parameter axis × the incidence angle)
-// derived from the model's ParamSpec ranges and needs (core/model.h), never from its name.
+// What the stability sweeps (claim all.stability, docs/verification.md) sweep for one registered
+// model: the model × sampler targets and, per target, the 2-D planes (a parameter axis × the
+// incidence angle) derived from the model's ParamSpec ranges and needs (core/model.h), never from
+// its name.
 #pragma once
 
 #include <cstddef>
