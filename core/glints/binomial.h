@@ -11,7 +11,7 @@
 #include <type_traits>
 
 #include "core/glints/binomial_kernel.h"
-#include "core/math/lane_rng.h"
+#include "core/math/hash32.h"
 #include "core/math/ops.h"
 #include "core/math/rng.h"
 
@@ -166,25 +166,21 @@ GLINTLAB_FN T binomial_small_count(T n, T p, T u) {
   return min(select(found, k, tail), n);
 }
 
-// One count drawn with the chosen sampler for n trials of probability p, keyed by (seed, index)
-// (dims 0.. of the counter RNG; one index per lane on a batch). The exact sampler is double
-// precision with a variable number of uniforms: binomial_exact on scalars, its masked-loop form
-// (core/glints/binomial_kernel.h, the same draw per lane) on batches; the others are kernels on T.
+// One count drawn with the chosen sampler for n trials of probability p, from the hash32 stream
+// of each lane's key (core/math/hash32.h: hash32_key and hash32_nest; dims 0.., computed on the
+// batch's own integer lanes). The exact sampler is binomial_exact's algorithm in double precision
+// with a variable number of uniforms, its masked-loop form (core/glints/binomial_kernel.h) on
+// scalars and batches alike; the others are kernels on T.
 template <class T>
-GLINTLAB_FN T draw_binomial(BinomialSampler sampler, T n, T p, std::uint64_t seed,
-                            RngIndex<T> index) {
+GLINTLAB_FN T draw_binomial(BinomialSampler sampler, T n, T p, const HashLanes<T>& key) {
+  const HashStream<T> stream{key};
   switch (sampler) {
     case BinomialSampler::kExact:
-      if constexpr (std::is_floating_point_v<T>) {
-        return T(binomial_exact(std::uint64_t(n), double(p), seed, index));
-      } else {
-        return binomial_exact_lanes(n, p, seed, index);
-      }
+      return binomial_exact_lanes(n, p, key);
     case BinomialSampler::kRealTime:
-      return binomial_realtime(n, p, lane_uniform<T>(seed, index, 0),
-                               lane_uniform<T>(seed, index, 1));
+      return binomial_realtime(n, p, stream.uniform(0), stream.uniform(1));
     default:
-      return binomial_small_count(n, p, lane_uniform<T>(seed, index, 0));
+      return binomial_small_count(n, p, stream.uniform(0));
   }
 }
 
