@@ -72,14 +72,18 @@ const std::vector<std::pair<std::uint64_t, double>> kExactCases = {
 
 TEST(BinomialExactKernel, DrawsTheHostCountsFromTheHostUniforms) {
   // The masked-loop kernel on a scalar double with binomial_exact's uniforms (CounterStream) gives
-  // binomial_exact's count, draw for draw, on every branch and edge; a stream one index off does
-  // not (the control).
+  // binomial_exact's count, draw for draw, on every branch and edge, and on a hash32 stream
+  // binomial_exact_from's (the glint models' scalar draw); a stream one index off does not (the
+  // control).
   auto cases = kExactCases;
   cases.insert(cases.end(), {{12, 0.97}, {0, 0.3}, {10, 0.0}, {10, 1.0}, {1000, 0.5}});
   const std::uint64_t seed = hash_string("binomial_kernel");
   for (auto [n, p] : cases) {
     int differ = 0, differ_shifted = 0;
     for (std::uint64_t i = 0; i < 2000; ++i) {
+      const HashStream<double> hashed{hash32_key(7u, std::uint32_t(i))};
+      differ += detail::binomial_exact_double_lanes(double(n), p, hashed) !=
+                double(binomial_exact_from(n, p, hashed));
       const double host = double(binomial_exact(n, p, seed, i));
       differ += detail::binomial_exact_double_lanes(double(n), p,
                                                     CounterStream<double>{seed, i}) != host;
