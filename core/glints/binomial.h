@@ -11,7 +11,7 @@
 #include <type_traits>
 
 #include "core/glints/binomial_kernel.h"
-#include "core/math/hash32.h"
+#include "core/math/hash32_stream.h"
 #include "core/math/ops.h"
 #include "core/math/rng.h"
 
@@ -174,8 +174,8 @@ GLINTLAB_FN T binomial_small_count(T n, T p, T u) {
 }
 
 // One count drawn with the chosen sampler for n trials of probability p, from the hash32 stream
-// of each lane's key (core/math/hash32.h: hash32_key and hash32_nest; dims 0.., computed on the
-// batch's own integer lanes). The exact sampler is double precision with a variable number of
+// of each lane's key (core/math/hash32_stream.h: hash32_key and hash32_nest; dims 0.., computed
+// on the batch's own integer lanes). The exact sampler is double precision with a variable number of
 // uniforms: binomial_exact_from on scalars, its masked-loop form (core/glints/binomial_kernel.h,
 // the same draw per lane) on batches; the others are kernels on T.
 template <class T>

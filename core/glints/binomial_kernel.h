@@ -13,7 +13,7 @@
 #include <cstdint>
 #include <type_traits>
 
-#include "core/math/hash32.h"
+#include "core/math/hash32_stream.h"
 #include "core/math/lane_rng.h"
 #include "core/math/ops.h"
 #include "core/math/rng.h"

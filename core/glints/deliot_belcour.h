@@ -14,7 +14,7 @@
 #include <type_traits>
 
 #include "core/glints/binomial.h"
-#include "core/math/hash32.h"
+#include "core/math/hash32_stream.h"
 #include "core/math/rng.h"
 #include "core/model.h"
 #include "core/ndf/ggx.h"

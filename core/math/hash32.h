@@ -70,28 +70,13 @@ template <class U>
   return x ^ (x >> 16);
 }
 
-// The key of the counter stream (seed, index): seed and index mixed in turn (nested hashing,
-// Jarzynski & Olano Sec. 2), the seed offset so that all-zero counters do not hit hash32's fixed
-// point. hash32_nest mixes one more counter into a key (a stream keyed by several indices).
-template <class U>
-[[gnu::always_inline]] GLINTLAB_FN U hash32_key(const U& seed, const U& index) {
-  return hash32(hash32(detail::wrap32(seed + U(0x9e3779b9u))) ^ index);
-}
-template <class U>
-[[gnu::always_inline]] GLINTLAB_FN U hash32_nest(const U& key, const U& counter) {
-  return hash32(key ^ counter);
-}
-
-// 32 random bits of dimension dim of a key's stream.
-template <class U>
-[[gnu::always_inline]] GLINTLAB_FN U hash32_draw(const U& key, const U& dim) {
-  return hash32(key ^ detail::wrap32(dim * U(0x85ebca6bu) + U(0xc2b2ae35u)));
-}
-
-// 32 random bits for (seed, index, dim): hash32_draw(hash32_key(seed, index), dim).
+// 32 random bits for (seed, index, dim), each counter mixed in turn (nested hashing, Jarzynski &
+// Olano Sec. 2), offset so that all-zero counters do not hit hash32's fixed point.
 template <class U>
 [[gnu::always_inline]] GLINTLAB_FN U hash32_counter(const U& seed, const U& index, const U& dim) {
-  return hash32_draw(hash32_key(seed, index), dim);
+  U h = hash32(detail::wrap32(seed + U(0x9e3779b9u)));
+  h = hash32(h ^ index);
+  return hash32(h ^ detail::wrap32(dim * U(0x85ebca6bu) + U(0xc2b2ae35u)));
 }
 
 // A uniform of T in [0, 1) in every lane from its hash.

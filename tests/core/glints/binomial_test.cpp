@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/glints/binomial_distribution.h"
-#include "core/math/hash32.h"
+#include "core/math/hash32_stream.h"
 #include "verify/stats/count_tests.h"
 
 namespace glintlab {
