@@ -4,7 +4,11 @@
 // "device" results here are the CPU batches' own, written by the device check's writer.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
 #include <cmath>
+#include <cstdlib>
+#include <iterator>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -262,6 +266,49 @@ TEST(GpuComparison, AMalformedFolderIsNamed) {
       << message();
   fs::remove(dir / "results.json");
   EXPECT_NE(message().find("results.json: cannot be read"), std::string::npos) << message();
+}
+
+// The report's GPU section reads the folder the device check writes (gpu/results_format.cpp):
+// a folder written by that writer, in a report's gpu/ part, gives one rate row per model and
+// precision and one row per Table 3 cell; the same folder with a field gone is a one-line error.
+TEST(GpuResultsFolder, TheReportShowsWhatTheDeviceCheckWrites) {
+  const fs::path folder = write_folder("gpu_for_report", 16, kUnchanged);
+  const fs::path stage = fs::path(::testing::TempDir()) / "gpu_report_stage";
+  fs::remove_all(stage);
+  fs::create_directories(stage);
+  fs::copy(folder, stage / "gpu", fs::copy_options::recursive);
+  const std::string make = std::string("/usr/bin/python3 ") + GLINTLAB_SOURCE_DIR +
+                           "/reports/make_report.py --dir " + stage.string() + " > " +
+                           (stage.parent_path() / "gpu_report.log").string() + " 2>&1";
+  ASSERT_EQ(std::system(make.c_str()), 0);
+  std::ifstream in(stage / "report.md");
+  const std::string md((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(md.find("Models on a GPU"), std::string::npos);
+  EXPECT_NE(md.find("CPU standing in for a device"), std::string::npos);
+  for (const char* row : {"| smooth_ggx | float |", "| smooth_ggx | double |",
+                          "| smooth_beckmann | float |", "| smooth_beckmann | double |"})
+    EXPECT_NE(md.find(row), std::string::npos) << row;
+  for (const kemppinen_table3::Cell& cell : kemppinen_table3::cells())
+    EXPECT_NE(md.find("| " + kemppinen_table3::cell_name(cell) + " |"), std::string::npos)
+        << kemppinen_table3::cell_name(cell);
+
+  std::ifstream json_in(stage / "gpu" / "results.json");
+  std::string json((std::istreambuf_iterator<char>(json_in)), std::istreambuf_iterator<char>());
+  json_in.close();
+  const std::size_t at = json.find("\"rows_per_second\"");
+  ASSERT_NE(at, std::string::npos);
+  json.replace(at, std::string("\"rows_per_second\"").size(), "\"rows_per_sec\"");
+  { std::ofstream(stage / "gpu" / "results.json") << json; }
+  fs::remove(stage / "report.md");
+  fs::remove(stage / "index.html");
+  EXPECT_EQ(WEXITSTATUS(std::system(make.c_str())), 2);
+  EXPECT_FALSE(fs::exists(stage / "report.md"));
+  std::ifstream log(stage.parent_path() / "gpu_report.log");
+  const std::string err((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  EXPECT_NE(err.find("glintlab: error: report: gpu/results.json is malformed: runs[0] has no "
+                     "valid \"rows_per_second\""),
+            std::string::npos)
+      << err;
 }
 
 }  // namespace
