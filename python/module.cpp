@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cstdint>
 #include <optional>
 #include <thread>
@@ -299,11 +300,19 @@ py::dict column_addresses(const std::string& name, const py::object& wi, const p
 // The reference time of eval(): seconds of simd::eval_batch alone, one thread, over the same rows
 // as eval(model, wi, wo) with the model's defaults, the columns laid out beforehand (untimed) as
 // contiguous SoA columns of `precision`, run in the CLI's chunks: {"isa": the ISA's name,
-// "seconds": one entry per repeat}. For the
+// "seconds": one entry per repeat, "cpu_seconds": the same repeats' CPU time of the thread}. For the
 // benchmark experiments/bench/python_eval.py, which compares eval() against it.
+// This thread's CPU seconds (user and system).
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
 template <class S>
 std::vector<double> eval_batch_seconds_in(const ModelEntry& model, const QuerySources& q,
-                                          const cli::BatchOptions& opts, int repeats) {
+                                          const cli::BatchOptions& opts, int repeats,
+                                          std::vector<double>& cpu_seconds) {
   const std::size_t n = q.rows, width = query_width(model);
   const std::vector<double> params = resolve_params(model, {});
   std::vector<std::vector<S>> data(width);
@@ -323,6 +332,7 @@ std::vector<double> eval_batch_seconds_in(const ModelEntry& model, const QuerySo
   std::vector<double> seconds;
   const py::gil_scoped_release release;
   for (int r = 0; r < repeats; ++r) {
+    const double c0 = thread_cpu_seconds();
     const auto t0 = std::chrono::steady_clock::now();
     for (std::size_t begin = 0; begin < n; begin += cli::kBatchChunk) {
       const std::size_t count = std::min(cli::kBatchChunk, n - begin);
@@ -333,6 +343,7 @@ std::vector<double> eval_batch_seconds_in(const ModelEntry& model, const QuerySo
       simd::eval_batch(model, params, chunk, o, count, opts.isa, opts.math);
     }
     seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    cpu_seconds.push_back(thread_cpu_seconds() - c0);
   }
   return seconds;
 }
@@ -347,8 +358,10 @@ py::dict eval_batch_seconds(const std::string& name, const py::object& wi,
   if (q.rows == 0) q.rows = 1;
   py::dict d;
   d["isa"] = std::string(simd::isa_name(opts.isa));
-  d["seconds"] = opts.float_precision ? eval_batch_seconds_in<float>(model, q, opts, repeats)
-                                      : eval_batch_seconds_in<double>(model, q, opts, repeats);
+  std::vector<double> cpu;
+  d["seconds"] = opts.float_precision ? eval_batch_seconds_in<float>(model, q, opts, repeats, cpu)
+                                      : eval_batch_seconds_in<double>(model, q, opts, repeats, cpu);
+  d["cpu_seconds"] = cpu;
   return d;
 }
 

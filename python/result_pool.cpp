@@ -34,11 +34,12 @@ class Pool {
     const std::size_t want = round_up(bytes);
     {
       const std::lock_guard<std::mutex> lock(mutex_);
-      // The smallest idle block that fits, at most a quarter larger (the oldest of equal ones).
+      // The smallest idle block that fits, at most a quarter larger; of equal ones the one freed
+      // last (its lines the likeliest to be still cached).
       std::size_t best = idle_.size();
       for (std::size_t k = 0; k < idle_.size(); ++k)
         if (idle_[k].bytes >= want && idle_[k].bytes - want <= want / 4 &&
-            (best == idle_.size() || idle_[k].bytes < idle_[best].bytes))
+            (best == idle_.size() || idle_[k].bytes <= idle_[best].bytes))
           best = k;
       if (best != idle_.size()) {
         const Block b = idle_[best];
