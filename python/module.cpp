@@ -119,6 +119,13 @@ ColumnOwners column_owners(const QuerySources& q, std::span<const simd::Column<S
   return ColumnOwners{arrays, storage.owner, storage.begin, storage.end};
 }
 
+// Whether p lies in the n values from `first` (compared as integers: p may lie elsewhere).
+template <class S>
+bool in_results(const S* p, const S* first, std::size_t n) {
+  const auto at = reinterpret_cast<std::uintptr_t>(p), begin = reinterpret_cast<std::uintptr_t>(first);
+  return at >= begin && at < begin + n * sizeof(S);
+}
+
 // The number of query columns the batch calls take for this model (with the corners or not).
 std::size_t query_width(const ModelEntry& m) {
   return (m.needs & kNeedsPixelCorners) != 0 ? simd::kQueryColumnsWithCorners
@@ -144,8 +151,10 @@ py::dict eval_in(const ModelEntry& model, const QuerySources& q, const CallParam
           std::span<const simd::Column<double>> params, const ChunkStorage& storage) {
         if (numpy_model) {  // one call per chunk (per set of its rows with equal parameters)
           std::vector<PyObject*> arrays;
+          // Streamed where o is a part of the result arrays (not a group's scratch, read next).
           python_eval_rows<S>(*numpy_model, uniform_values(params), cols, o, count,
-                              column_owners<S>(q, cols, storage, arrays), true);
+                              column_owners<S>(q, cols, storage, arrays),
+                              in_results(o[0], out_data[0], n));
         } else
           simd::eval_batch_with_param_columns(model, params, cols, o, count, opts.isa, opts.math);
       },
@@ -206,7 +215,8 @@ py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallPar
           std::vector<PyObject*> arrays;
           python_sample_rows<S>(*numpy_model, uniform_values(params), cols, in[width],
                                 in[width + 1], o, count,
-                                column_owners<S>(q, cols, storage, arrays), true);
+                                column_owners<S>(q, cols, storage, arrays),
+                                in_results(o[3], out_data[3], n));
         } else
           simd::sample_batch_with_param_columns(model, params, cols, in[width], in[width + 1], o,
                                                 count, opts.isa, opts.math);
