@@ -273,6 +273,20 @@ double chermain_smooth_boundary(ChermainCell c, double tau, int rotations) {
   return facets_at(-20);
 }
 
+int chermain_chooser_level(const ChermainCell& c, double tau) {
+  const auto p = chermain_level_params(c, kChermainMostComplete, 0);
+  return int(choose_chermain_model_level(p, chermain_cell_query(c, chermain_surface_position(c, 0)),
+                                         tau));
+}
+
+double chermain_chooser_cv(const ChermainCell& c) {
+  const auto p = chermain_level_params(c, kChermainMostComplete, 0);
+  const ModelQuery<double> q = chermain_cell_query(c, chermain_surface_position(c, 0));
+  const Vec3<double> h = half_vector(q.wi, q.wo);
+  return chermain_smooth_cv(p.sdf, p.d, Vec2<double>{-h.x / h.z, -h.y / h.z},
+                            chermain_lods(p.sdf, q.footprint));
+}
+
 Vec2<double> chermain_surface_position(const ChermainCell& c, int i) {
   // The coarser LOD's cell side 2^(⌊l_P⌋ + 1) is at most twice the footprint's longer side.
   const double cell = std::ldexp(1.0, int(std::floor(chermain_construction(c).lod)) + 1);
@@ -365,6 +379,10 @@ ChermainCellResult measure_chermain_cell(const ChermainCell& cell, int samples, 
   r.construction = int(chermain_identical_level(cell));
   const LevelStats& c = r.levels[std::size_t(r.construction)];
   r.construction_refuted = c.mean_diff_lcb > d.threshold || c.cv_diff_lcb > d.threshold;
+  r.chooser = chermain_chooser_level(cell, d.threshold);
+  const LevelStats& e = r.levels[std::size_t(r.chooser)];
+  r.chooser_refuted = e.mean_diff_lcb > d.threshold || e.cv_diff_lcb > d.threshold;
+  r.cv_predicted = chermain_chooser_cv(cell);
   return r;
 }
 

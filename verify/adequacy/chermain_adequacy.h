@@ -30,35 +30,21 @@
 #include <vector>
 
 #include "core/glints/chermain.h"
+#include "core/glints/chermain_chooser.h"
 #include "verify/adequacy/binomial_adequacy.h"
 
 namespace glintlab::verify::adequacy {
 
 inline constexpr std::array<std::string_view, 1> kChermainFamilyModels = {"chermain"};
 
-enum class ChermainLevel : int {
-  kSmooth = 0,
-  kDict4,
-  kDict4Ggaa,
-  kDict8,
-  kDict8Ggaa,
-  kDict12,
-  kDict12Ggaa,
-  kDict16,
-  kDict16Ggaa,
-};
-inline constexpr int kChermainLevels = 9;
-inline constexpr std::array<std::string_view, kChermainLevels> kChermainLevelNames = {
-    "smooth", "dict4", "dict4_ggaa", "dict8", "dict8_ggaa", "dict12", "dict12_ggaa", "dict16",
-    "dict16_ggaa"};
-inline constexpr ChermainLevel kChermainMostComplete = ChermainLevel::kDict16Ggaa;
-// The dictionary levels a counting level keeps (0 for the smooth level).
-constexpr int chermain_dictionary_levels(ChermainLevel l) {
-  return l == ChermainLevel::kSmooth ? 0 : 4 * ((int(l) + 1) / 2);
-}
-constexpr bool chermain_level_ggaa(ChermainLevel l) {
-  return l != ChermainLevel::kSmooth && int(l) % 2 == 0;
-}
+// The levels (ChermainLevel, their names, the most complete one) are the engine chooser's
+// (core/glints/chermain_chooser.h).
+using ::glintlab::ChermainLevel;
+using ::glintlab::chermain_dictionary_levels;
+using ::glintlab::chermain_level_ggaa;
+using ::glintlab::kChermainLevelNames;
+using ::glintlab::kChermainLevels;
+using ::glintlab::kChermainMostComplete;
 
 // The material every cell shares: the model's defaults (density e^15 microfacets per unit uv area,
 // the default dictionary: 192 distributions, 16 levels, α_dict 0.5, lobe std 0.02; ρ = 0; the GGAA
@@ -106,6 +92,12 @@ struct ChermainCellResult {
   // lower bound above TAU: the construction would be wrong).
   int construction = int(kChermainMostComplete);
   bool construction_refuted = false;
+  // The engine chooser's level (choose_chermain_model_level, core/glints/chermain_chooser.h: the
+  // construction's identical level, or the smooth one where its closed-form CV is at most
+  // kChooserMargin · TAU), whether the table refutes it, and that CV (cv_predicted).
+  int chooser = int(kChermainMostComplete);
+  bool chooser_refuted = false;
+  double cv_predicted = 0;
 };
 
 // The construction's boundaries (2021 Eq. 3 with the dictionary level k = ⌊l + ½ log2 density⌋ of
@@ -156,6 +148,10 @@ ChermainExactMoments chermain_exact_moments(const ChermainCell& c, int rotations
 // footprint): the moments once per integer LOD (w_1 = frac(l_P) then enters in closed form),
 // scanned down from where both LODs are past the 16th level, each LOD's fraction in 1/256 steps.
 double chermain_smooth_boundary(ChermainCell c, double tau, int rotations = 1024);
+// The engine chooser at a cell (its first position, the most complete level's parameters) and its
+// closed-form CV of dict16_ggaa (chermain_smooth_cv).
+int chermain_chooser_level(const ChermainCell& c, double tau);
+double chermain_chooser_cv(const ChermainCell& c);
 
 // The surface position of sample i: the R2 set of binomial_adequacy.h spread over a square
 // kChermainSpread cells of the footprint's coarser LOD wide, so that positions (about 22 such
