@@ -1,9 +1,10 @@
 // Which level of the Chermain family (model `chermain`: Chermain et al. 2020's procedural
 // patch-SDF with 2021's slope correlation and GGAA, core/glints/chermain.h) a pixel needs: the
-// cheapest of the smooth / LEAN fallback and the model with a dictionary of its first 4, 8, 12 or 16
-// levels, GGAA off or on, that no one could tell from the most complete one (all the dictionary's
-// levels, GGAA as the shader's parameters say). The measured table (`glintlab adequacy`,
-// verify/adequacy/chermain_adequacy.h) checks it; docs/adequacy.md "The Chermain chooser".
+// cheapest of the smooth / LEAN fallback and the model with a dictionary of its first 4, 8, 12 or
+// 16 levels, GGAA off or on, that no one could tell from the most complete one (all the
+// dictionary's levels, GGAA as the shader's parameters say). The measured table (`glintlab
+// adequacy`, verify/adequacy/chermain_adequacy.h) checks it; docs/adequacy.md "The Chermain
+// chooser".
 //
 // What the construction says (2021 Eq. 3 with k = ⌊l + ½ log2 density⌋, chermain.h):
 // - A dictionary of L levels is the whole dictionary, bit for bit, wherever every LOD with a
@@ -44,8 +45,8 @@ enum class ChermainLevel : int {
 };
 inline constexpr int kChermainLevels = 9;
 inline constexpr std::array<std::string_view, kChermainLevels> kChermainLevelNames = {
-    "smooth", "dict4", "dict4_ggaa", "dict8", "dict8_ggaa", "dict12", "dict12_ggaa", "dict16",
-    "dict16_ggaa"};
+    "smooth", "dict4",       "dict4_ggaa", "dict8",      "dict8_ggaa",
+    "dict12", "dict12_ggaa", "dict16",     "dict16_ggaa"};
 inline constexpr ChermainLevel kChermainMostComplete = ChermainLevel::kDict16Ggaa;
 // The dictionary levels a counting level keeps (0 for the smooth level).
 constexpr int chermain_dictionary_levels(ChermainLevel l) {
@@ -118,8 +119,9 @@ GLINTLAB_FN T chermain_filter_widening(const chermain2021::Dictionary& dict, T d
   const T ratio = pmax / select(has_min, pmin, T(1));
   T probes = select(has_min, min(-floor(-ratio), T(16)), select(has_max, T(16), T(1)));
   probes = max(probes, T(1));
-  const T lambda = min(select(has_max, max(T(0), chermain2021::log2(select(has_max, pmax, T(1)) / probes)), T(0)),
-                       T(dict.mip_levels() - 1));
+  const T lambda = min(
+      select(has_max, max(T(0), chermain2021::log2(select(has_max, pmax, T(1)) / probes)), T(0)),
+      T(dict.mip_levels() - 1));
   const T mip_texel = T(texel) * exp(lambda * T(0.69314718055994530942));
   return T(0.25) * mip_texel * mip_texel + sqr(pmax * T(texel)) / T(12);
 }
@@ -127,7 +129,8 @@ GLINTLAB_FN T chermain_filter_widening(const chermain2021::Dictionary& dict, T d
 // The CV of the patch-SDF (2021 Eq. 3) over surface positions at slope m̃, by the construction:
 // per cell X = P_o(R(−θ) M⁻¹ m̃)/det M (Eq. 4–6), θ uniform, the two marginals independent draws
 // from the dictionary's ensemble (chermain_marginal), so with ḡ and V the marginal's mean and per-
-// pair variance and a = 2^(−k) the level's share: E[X²] − E[X]² = (a P + a² Q)/det², P = E_θ[ḡ_x² V_y
+// pair variance and a = 2^(−k) the level's share: E[X²] − E[X]² = (a P + a² Q)/det², P = E_θ[ḡ_x²
+// V_y
 // + V_x ḡ_y²], Q = E_θ[V_x V_y]; a coarse cell shares its draws with its lower-left fine child
 // (levels k and k + 1: a prefix, covariance with a = 2^(−k−1)); the bilinear weights over positions
 // give E Σ W² = 4/9 per LOD and kChermainSharedWeight for the shared pair, so
@@ -172,8 +175,9 @@ GLINTLAB_FN T chermain_smooth_cv(const chermain2021::SdfParams& p,
   };
   const T a0 = share(lods.k_fine), a1 = share(lods.k_coarse), ac = min(a0, a1);
   const T w1 = lods.w_coarse, w0 = T(1) - w1;
-  const T var = T(4.0 / 9.0) * (w0 * w0 * (a0 * P + a0 * a0 * Q) + w1 * w1 * (a1 * P + a1 * a1 * Q)) +
-                T(2 * kChermainSharedWeight) * w0 * w1 * (ac * P + ac * ac * Q);
+  const T var =
+      T(4.0 / 9.0) * (w0 * w0 * (a0 * P + a0 * a0 * Q) + w1 * w1 * (a1 * P + a1 * a1 * Q)) +
+      T(2 * kChermainSharedWeight) * w0 * w1 * (ac * P + ac * ac * Q);
   return safe_div(safe_sqrt(var), G);
 }
 
@@ -183,8 +187,8 @@ GLINTLAB_FN T chermain_smooth_cv(const chermain2021::SdfParams& p,
 // complete level (its whole dictionary; GGAA as it renders with). Returns the level as T.
 template <class T>
 GLINTLAB_FN T choose_chermain_level(const chermain2021::SdfParams& p,
-                                    const chermain2021::SlopeDerivatives& d,
-                                    const ModelQuery<T>& q, T tau) {
+                                    const chermain2021::SlopeDerivatives& d, const ModelQuery<T>& q,
+                                    T tau) {
   const Vec3<T> h = half_vector(q.wi, q.wo);
   const Mask<T> up = q.wi.z > T(0) && q.wo.z > T(0) && h.z > T(0);
   const T hz = select(up, h.z, T(1));
@@ -204,18 +208,16 @@ GLINTLAB_FN T choose_chermain_level(const chermain2021::SdfParams& p,
   level = select(identical(12), T(int(ChermainLevel::kDict12) + ggaa), level);
   level = select(identical(8), T(int(ChermainLevel::kDict8) + ggaa), level);
   level = select(identical(4), T(int(ChermainLevel::kDict4) + ggaa), level);
-  const Mask<T> all_smooth =
-      lods.k_fine >= last && (!coarse_on || lods.k_coarse >= last);
-  const Mask<T> smooth_cv =
-      chermain_smooth_cv(p, d, m, lods) <= T(kChooserMargin) * tau;
+  const Mask<T> all_smooth = lods.k_fine >= last && (!coarse_on || lods.k_coarse >= last);
+  const Mask<T> smooth_cv = chermain_smooth_cv(p, d, m, lods) <= T(kChooserMargin) * tau;
   // Below the horizon every level is 0: the smooth one is exact.
   return select(all_smooth || smooth_cv || !up, T(int(ChermainLevel::kSmooth)), level);
 }
 
 // The same on what a shader of the model has: its parameters and the query.
 template <class T>
-GLINTLAB_FN T choose_chermain_model_level(const Chermain::Params<T>& params,
-                                          const ModelQuery<T>& q, T tau) {
+GLINTLAB_FN T choose_chermain_model_level(const Chermain::Params<T>& params, const ModelQuery<T>& q,
+                                          T tau) {
   return choose_chermain_level(params.sdf, params.d, q, tau);
 }
 

@@ -29,7 +29,9 @@ void expect_chermain_lanes_match_scalar(double dh) {
     alignas(64) S side[kL], stretch[kL], ti[kL], hx[kL], hy[kL], tau[kL], out[kL];
     const double alpha = 0.05 + 0.45 * counter_uniform<double>(47, g, 0);
     for (std::size_t l = 0; l < kL; ++l) {
-      const auto u = [&](int d) { return counter_uniform<double>(53, g * kL + l, std::uint64_t(d)); };
+      const auto u = [&](int d) {
+        return counter_uniform<double>(53, g * kL + l, std::uint64_t(d));
+      };
       side[l] = S(std::sqrt(std::pow(10.0, 11 * u(0)) / density));
       stretch[l] = S(1 + 3 * u(1));
       ti[l] = S(1.2 * u(5));
@@ -60,11 +62,11 @@ void expect_chermain_lanes_match_scalar(double dh) {
               LaneTraits<W>::load(hx), LaneTraits<W>::load(hy));
     LaneTraits<W>::store(choose_chermain_model_level(pw, qw, LaneTraits<W>::load(tau)), out);
     for (std::size_t l = 0; l < kL; ++l) {
-      const ModelQuery<double> qs = query(double(side[l]), double(stretch[l]), double(ti[l]),
-                                          double(hx[l]), double(hy[l]));
+      const ModelQuery<double> qs =
+          query(double(side[l]), double(stretch[l]), double(ti[l]), double(hx[l]), double(hy[l]));
       const double expected = choose_chermain_model_level(ps, qs, double(tau[l]));
-      EXPECT_EQ(out[l], S(expected)) << side[l] << " " << stretch[l] << " " << ti[l] << " "
-                                     << hx[l] << " " << hy[l] << " " << tau[l];
+      EXPECT_EQ(out[l], S(expected)) << side[l] << " " << stretch[l] << " " << ti[l] << " " << hx[l]
+                                     << " " << hy[l] << " " << tau[l];
       smooth += expected == 0 ? 1 : 0;
       ++total;
     }

@@ -3,12 +3,13 @@
 // a chooser told TAU × 10 and one whose dictionary boundary is moved by a level; its dictionary
 // choice the construction's identical level; its closed-form CV against the construction's exact
 // moments (verify/adequacy/chermain_adequacy.h), and a broken closed form that misses them.
+#include "core/glints/chermain_chooser.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
-#include "core/glints/chermain_chooser.h"
 #include "verify/adequacy/chermain_adequacy.h"
 
 namespace glintlab::verify::adequacy {
@@ -21,8 +22,8 @@ constexpr double kTau = 0.02;
 int chooser_at(const ChermainCell& c, double tau, double density_shift = 0) {
   auto p = chermain_level_params(c, kChermainMostComplete, 0);
   p.sdf.log2_density += density_shift;
-  return int(choose_chermain_model_level(p, chermain_cell_query(c, chermain_surface_position(c, 0)),
-                                         tau));
+  return int(
+      choose_chermain_model_level(p, chermain_cell_query(c, chermain_surface_position(c, 0)), tau));
 }
 
 bool refuted(const ChermainCellResult& r, int level) {
@@ -36,8 +37,8 @@ TEST(ChermainChooser, NeverRefutedOnTheQuickGridAndTenfoldTauOrAMovedBoundaryIs)
   ChermainGridAxes a = chermain_grid_axes(Budget::kQuick);
   a.samples = 2000;
   const auto cells = make_chermain_grid({"chermain"}, a);
-  const auto rows = measure_chermain_grid(cells, a.samples,
-                                          decision_for_decisions(cells.size() * 8, kTau));
+  const auto rows =
+      measure_chermain_grid(cells, a.samples, decision_for_decisions(cells.size() * 8, kTau));
   int matches = 0, more_complete = 0, refuted_tenfold = 0, refuted_moved = 0, refuted_one = 0;
   for (const ChermainCellResult& r : rows) {
     const int chosen = chooser_at(r.cell, kTau);
@@ -89,8 +90,9 @@ TEST(ChermainChooser, ClosedFormCvMatchesTheExactMomentsAndABrokenOneDoesNot) {
     for (double ti : {0.0, 60.0})
       for (int h : {0, 1, 2})
         for (double dh : {0.0, 0.02}) {
-          const ChermainCell c{"chermain", facets, 0.1, ti,
-                               std::atan(0.1 * h) * 180 / 3.14159265358979323846, h, dh};
+          const ChermainCell c{
+              "chermain", facets, 0.1, ti, std::atan(0.1 * h) * 180 / 3.14159265358979323846,
+              h,          dh};
           const ChermainExactMoments e = chermain_exact_moments(c, 256);
           const auto p = chermain_level_params(c, kChermainMostComplete, 0);
           const ModelQuery<double> q = chermain_cell_query(c, {0, 0});
