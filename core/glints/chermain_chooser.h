@@ -15,10 +15,11 @@
 // - The smooth level (the Gaussian of covariance Σ, Eq. 16) is the whole model bit for bit where
 //   both weighted LODs are past the last level, and adequate where the model's CV over surface
 //   positions is small: that CV follows from the dictionary's construction in closed form
-//   (chermain_smooth_cv below), and the smooth level is taken where it is at most kChooserMargin ·
-//   TAU, as the other choosers take their levels. Its mean difference is taken as 0: the
-//   dictionary's lobe mixture converges to the Gaussian (the means drawn from N(0, σ_o² − s²)), and
-//   the table measures the smooth level's mean within 0.005 of the model's from 10⁵ microfacets on.
+//   (chermain_smooth_prediction below), and the smooth level is taken where it and the smooth
+//   level's mean difference are at most kChooserMargin · TAU, as the other choosers take their
+//   levels. The mean difference is the lookup filter's: the dictionary's lobe mixture converges to
+//   the Gaussian (the means drawn from N(0, σ_o² − s²)), but the texels and GGAA's kernel widen it,
+//   which matters in the lobe's tail (the smooth fallback is not filtered).
 #pragma once
 
 #include <array>
@@ -126,23 +127,31 @@ GLINTLAB_FN T chermain_filter_widening(const chermain2021::Dictionary& dict, T d
   return T(0.25) * mip_texel * mip_texel + sqr(pmax * T(texel)) / T(12);
 }
 
-// The CV of the patch-SDF (2021 Eq. 3) over surface positions at slope m̃, by the construction:
-// per cell X = P_o(R(−θ) M⁻¹ m̃)/det M (Eq. 4–6), θ uniform, the two marginals independent draws
-// from the dictionary's ensemble (chermain_marginal), so with ḡ and V the marginal's mean and per-
-// pair variance and a = 2^(−k) the level's share: E[X²] − E[X]² = (a P + a² Q)/det², P = E_θ[ḡ_x²
-// V_y
-// + V_x ḡ_y²], Q = E_θ[V_x V_y]; a coarse cell shares its draws with its lower-left fine child
+// The mean and CV of the patch-SDF (2021 Eq. 3) over surface positions at slope m̃, by the
+// construction: per cell X = P_o(R(−θ) M⁻¹ m̃)/det M (Eq. 4–6), θ uniform, the two marginals
+// independent draws from the dictionary's ensemble (chermain_marginal), so with ḡ and V the
+// marginal's mean and per-pair variance and a = 2^(−k) the level's share: E[X] = E_θ[ḡ_x ḡ_y]/det,
+// E[X²] − E[X]² = (a P + a² Q)/det², P = E_θ[ḡ_x² V_y + V_x ḡ_y²], Q = E_θ[V_x V_y]; a coarse cell
+// shares its draws with its lower-left fine child
 // (levels k and k + 1: a prefix, covariance with a = 2^(−k−1)); the bilinear weights over positions
 // give E Σ W² = 4/9 per LOD and kChermainSharedWeight for the shared pair, so
 //   Var = (4/9)(w_0² v_0 + w_1² v_1) + 2 w_0 w_1 kChermainSharedWeight c_01,
-// and the mean the Gaussian ḡ(x)ḡ(y)/det. A LOD past the dictionary's last level is the smooth
-// fallback (a = 0). What verify/adequacy's chermain_exact_moments computes from the dictionary's
-// own tables, here from the ensemble it is drawn from (its 192 distributions taken as many, the
-// lobe means as untruncated), so a shader needs no table for it.
+// and the mean w_0 μ_0 + w_1 μ_1. A LOD past the dictionary's last level is the smooth fallback
+// (a = 0, μ the unfiltered Gaussian). The lookup's filter widens ḡ too (texels; GGAA's kernel,
+// which the smooth fallback does not get): the smooth level's mean difference g/mean − 1, g the
+// unfiltered Gaussian ḡ(x)ḡ(y)/det = the smooth level's value, grows in the lobe's tail (about
+// (x²/σ_o² − 1) w²/(2σ_o²) per marginal for a widening w²). What verify/adequacy's
+// chermain_exact_moments computes from the dictionary's own tables, here from the ensemble it is
+// drawn from (its 192 distributions taken as many, the lobe means as untruncated), so a shader
+// needs no table for it.
 template <class T>
-GLINTLAB_FN T chermain_smooth_cv(const chermain2021::SdfParams& p,
-                                 const chermain2021::SlopeDerivatives& d, Vec2<T> m,
-                                 const ChermainLods<T>& lods) {
+struct ChermainSmoothPrediction {
+  T cv, mean_diff;
+};
+template <class T>
+GLINTLAB_FN ChermainSmoothPrediction<T> chermain_smooth_prediction(
+    const chermain2021::SdfParams& p, const chermain2021::SlopeDerivatives& d, Vec2<T> m,
+    const ChermainLods<T>& lods) {
   const chermain2021::Dictionary& dict = *p.dictionary;
   const chermain2021::Matrix M =
       chermain2021::matrix(p.sigma_x, p.sigma_y, p.rho, dict.sigma_o(), p.with_rho);
@@ -178,13 +187,25 @@ GLINTLAB_FN T chermain_smooth_cv(const chermain2021::SdfParams& p,
   const T var =
       T(4.0 / 9.0) * (w0 * w0 * (a0 * P + a0 * a0 * Q) + w1 * w1 * (a1 * P + a1 * a1 * Q)) +
       T(2 * kChermainSharedWeight) * w0 * w1 * (ac * P + ac * ac * Q);
-  return safe_div(safe_sqrt(var), G);
+  // The unfiltered Gaussian (the smooth level and the fallback's value) and each LOD's mean.
+  const T g = exp(T(-0.5 / (so * so)) * (mx * mx + my * my)) * T(1 / (6.283185307179586 * so * so));
+  const T mean = w0 * select(lods.k_fine < last, G, g) + w1 * select(lods.k_coarse < last, G, g);
+  return {safe_div(safe_sqrt(var), mean), safe_div(g, mean) - T(1)};
+}
+
+// The CV alone (the chooser's tests and verify's table).
+template <class T>
+GLINTLAB_FN T chermain_smooth_cv(const chermain2021::SdfParams& p,
+                                 const chermain2021::SlopeDerivatives& d, Vec2<T> m,
+                                 const ChermainLods<T>& lods) {
+  return chermain_smooth_prediction(p, d, m, lods).cv;
 }
 
 // The chooser: the first level in ChermainLevel order that is the most complete one bit for bit
 // (the dictionary's boundary; GGAA off where the kernel is empty) or, for the smooth level, whose
-// predicted CV is at most kChooserMargin · tau. `p` are the shader's parameters of the most
-// complete level (its whole dictionary; GGAA as it renders with). Returns the level as T.
+// predicted CV and mean difference are at most kChooserMargin · tau. `p` are the shader's
+// parameters of the most complete level (its whole dictionary; GGAA as it renders with). Returns
+// the level as T.
 template <class T>
 GLINTLAB_FN T choose_chermain_level(const chermain2021::SdfParams& p,
                                     const chermain2021::SlopeDerivatives& d, const ModelQuery<T>& q,
@@ -209,7 +230,9 @@ GLINTLAB_FN T choose_chermain_level(const chermain2021::SdfParams& p,
   level = select(identical(8), T(int(ChermainLevel::kDict8) + ggaa), level);
   level = select(identical(4), T(int(ChermainLevel::kDict4) + ggaa), level);
   const Mask<T> all_smooth = lods.k_fine >= last && (!coarse_on || lods.k_coarse >= last);
-  const Mask<T> smooth_cv = chermain_smooth_cv(p, d, m, lods) <= T(kChooserMargin) * tau;
+  const ChermainSmoothPrediction<T> sp = chermain_smooth_prediction(p, d, m, lods);
+  const Mask<T> smooth_cv =
+      sp.cv <= T(kChooserMargin) * tau && abs(sp.mean_diff) <= T(kChooserMargin) * tau;
   // Below the horizon every level is 0: the smooth one is exact.
   return select(all_smooth || smooth_cv || !up, T(int(ChermainLevel::kSmooth)), level);
 }

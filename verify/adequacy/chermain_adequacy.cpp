@@ -47,15 +47,19 @@ double value_at(const Chermain::Params<double>& p, const ModelQuery<double>& q) 
   return Chermain::eval<double>(p, q).value;
 }
 
+}  // namespace
+
 // The smooth level: the Gaussian slope density of covariance Σ (Eq. 16) in place of the
 // patch-SDF, with the same V-cavity G2 (what the model falls back to past its last level).
-double smooth_value(const Chermain::Params<double>& p, const ModelQuery<double>& q) {
+double chermain_smooth_value(const Chermain::Params<double>& p, const ModelQuery<double>& q) {
   const Vec3<double> h = half_vector(q.wi, q.wo);
   if (!(q.wi.z > 0 && q.wo.z > 0 && h.z > 0)) return 0;
   const double D = Chermain::smooth_d(p.sdf, h);
   const double G2 = chermain2021::v_cavity_g2(q.wi, q.wo, h);
   return D * G2 / (4 * q.wi.z * q.wo.z) * q.wo.z;
 }
+
+namespace {
 
 double half_log2_density() { return 0.5 * std::log2(kChermainDensity); }
 
@@ -375,7 +379,8 @@ double chermain_level_values(const ChermainCell& cell, ChermainLevel level, int 
     // Independent of the position: one evaluation.
     const auto p = Chermain::params<double>(param_values(cell, false, seed));
     const auto t0 = Clock::now();
-    const double v = smooth_value(p, chermain_cell_query(cell, chermain_surface_position(cell, 0)));
+    const double v =
+        chermain_smooth_value(p, chermain_cell_query(cell, chermain_surface_position(cell, 0)));
     for (int i = 0; i < samples; ++i) out[std::size_t(i)] = v;
     return std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / samples;
   }

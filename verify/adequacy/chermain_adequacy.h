@@ -185,6 +185,10 @@ Chermain::Params<double> chermain_level_params(const ChermainCell& c, ChermainLe
 // The dictionary of a counting level's L levels (the default one for L = 16), generated once.
 const chermain2021::Dictionary& chermain_level_dictionary(int levels);
 
+// The smooth level's value at a query: the Gaussian slope density of covariance Σ with the model's
+// V-cavity G2 (what the model falls back to past its last level), times cos θ_o as the model's.
+double chermain_smooth_value(const Chermain::Params<double>& p, const ModelQuery<double>& q);
+
 // The pixel values of one level at `samples` positions; returns the loop's ns per evaluation.
 double chermain_level_values(const ChermainCell& cell, ChermainLevel level, int samples,
                              std::uint64_t seed, std::vector<double>& out);
