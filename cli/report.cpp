@@ -49,6 +49,7 @@ struct ReportOptions {
   std::string models = "*";  // the models the stability and compare parts cover
   std::string conformance;  // globs over model names: whose conformance suite the report runs
   std::string claims_from;  // a `glintlab verify --out` folder to read instead of running it
+  std::string gpu_from;     // a glintlab_gpu_check results folder (docs/gpu.md) to show
   std::string skip;         // comma-separated parts
 };
 
@@ -169,6 +170,7 @@ class ReportRun {
   void run_bench(json& part);
   void run_stability(json& part);
   void run_compare(json& part);
+  json gpu_part(const fs::path& cached, const json& previous);
   // Runs a child; stderr goes to the terminal when there is one (its progress), else to a log.
   int child(const std::vector<std::string>& args, const std::string& log_name);
   [[noreturn]] void child_failed(const std::string& what, int rc, const std::string& log_name);
@@ -230,6 +232,11 @@ void ReportRun::validate() {
   for (const std::string& n : models_)
     if (std::find(conformance.begin(), conformance.end(), n) != conformance.end())
       conformance_models_.push_back(n);
+  if (!o_.gpu_from.empty() && !fs::is_regular_file(fs::path(o_.gpu_from) / "results.json"))
+    throw InputError(
+        fmt::format("--gpu-from: '{}' holds no results.json (valid: a folder written by "
+                    "glintlab_gpu_check, scripts/device_check.sh; docs/gpu.md)",
+                    o_.gpu_from));
   if (!o_.claims_from.empty() && !fs::is_regular_file(fs::path(o_.claims_from) / "claims.json"))
     throw InputError(
         fmt::format("--claims-from: '{}' holds no claims.json (a glintlab verify --out "
@@ -454,6 +461,26 @@ void ReportRun::run_compare(json& part) {
   part["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The GPU section's data: a device check's results folder (--gpu-from), else with --reuse the
+// folder a previous report copied (it has no other source: no GPU runs here), else none.
+json ReportRun::gpu_part(const fs::path& cached, const json& previous) {
+  json part = {{"status", "skipped"},
+               {"note", "no device check results given (--gpu-from DIR: a folder written by "
+                        "glintlab_gpu_check on a GPU machine, docs/gpu.md)"}};
+  if (!o_.gpu_from.empty()) {
+    fs::copy(o_.gpu_from, stage_ / "gpu", fs::copy_options::recursive);
+    part = {{"status", "read"},
+            {"note", fmt::format("read from {} (glintlab_gpu_check results folder)", o_.gpu_from)}};
+  } else if (o_.reuse && fs::is_regular_file(cached / "results.json")) {
+    fs::copy(cached, stage_ / "gpu", fs::copy_options::recursive);
+    if (previous.contains("parts") && previous["parts"].contains("gpu") &&
+        previous["parts"]["gpu"].is_object())
+      part = previous["parts"]["gpu"];
+    part["status"] = "reused";
+  }
+  return part;
+}
+
 void ReportRun::run() {
   validate();
   out_ = fs::path(o_.out);
@@ -552,6 +579,7 @@ void ReportRun::run() {
     parts[name] = part;
     progress_->step(name);
   }
+  parts["gpu"] = gpu_part(out_ / "gpu", previous);
   const json run_info = {{"glintlab_version", experiments::glintlab_version()},
                          {"date", date},
                          {"budget", budget_},
@@ -613,7 +641,7 @@ conformance/ (the same files for the --conformance models' suites, model.<name>.
 figures/<id>/ (EXR, PNG, CSV of each figure), bench/ (bench.json, accuracy.csv, glints.json and
 kemppinen.json, run before the figures, whose timing tables read them, methods/*.json), stability/
 (stability.json and its maps), compare/ (glintlab compare of the --models, from the conformance,
-verify and stability parts' outputs: compare.json, compare.csv, equal_time.csv), schemas/
+verify and stability parts' outputs: compare.json, compare.csv, equal_time.csv), gpu/ (the --gpu-from folder as given), schemas/
 (claims.schema.json, the schema every claims.json is checked against: glintlab schema), plots/ (the charts drawn by reports/make_report.py: convergence
 log-log plots, speed_accuracy.png, speed_accuracy_methods.png and speed_accuracy.csv), logs/ and run.json (machine, budget,
 date and status of each part). The report is staged in a hidden folder beside DIR and replaces DIR only when it is
@@ -653,6 +681,11 @@ void add_report_command(CLI::App& app) {
   add_text_option(cmd, "--claims-from", o->claims_from,
                   "a glintlab verify --out folder whose claims.json the report shows instead of "
                   "running the suite",
+                  "DIR");
+  add_text_option(cmd, "--gpu-from", o->gpu_from,
+                  "a results folder of the device check (glintlab_gpu_check, "
+                  "scripts/device_check.sh: results.json and its CSVs, docs/gpu.md) whose GPU "
+                  "timings the report shows; without it the report has no GPU section",
                   "DIR");
   add_text_option(cmd, "--skip", o->skip,
                   "comma-separated parts to leave out: claims, conformance, bench, figures, "

@@ -11,6 +11,7 @@
 
 #include "core/models/kemppinen_beckmann.h"
 #include "core/models/kemppinen_ggx.h"
+#include "core/models/podee.h"
 #include "core/models/smooth_beckmann.h"
 #include "core/models/smooth_ggx.h"
 #include "gpu/device_kernels.cuh"
@@ -22,7 +23,8 @@ namespace {
 
 template <class... Ms>
 struct DeviceModelList {};
-using DeviceModels = DeviceModelList<SmoothGGX, SmoothBeckmann, KemppinenGGX, KemppinenBeckmann>;
+using DeviceModels =
+    DeviceModelList<SmoothGGX, SmoothBeckmann, Podee, KemppinenGGX, KemppinenBeckmann>;
 
 void check(cudaError_t status, const char* call) {
   if (status != cudaSuccess)

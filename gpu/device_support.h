@@ -22,7 +22,7 @@ inline constexpr std::string_view kParameterCheckReason =
 inline constexpr std::array<DeviceSupport, 9> kDeviceSupport = {{
     {"smooth_ggx", ""},
     {"smooth_beckmann", ""},
-    {"podee", kParameterCheckReason},
+    {"podee", ""},
     {"deliot_belcour",
      "its default count sampler, binomial_exact (core/glints/binomial.h), is host-only (not "
      "marked GLINTLAB_FN: a variable number of uniforms and double-precision BTRS)"},

@@ -6,6 +6,9 @@
 // Half of the rows put ω_o near the mirror direction of ω_i (within about 10°), where a lobe's
 // value, pdf and intermediates are non-zero and their rounding is what the comparison sees; the
 // other half spread ω_o over the upper hemisphere (and a few below it: the models' zero branch).
+// Every row also carries a disk light of 0.5° to 5° half-angle about ω_o and four pixel-corner
+// reflection vectors (read only by Podee et al.'s model): on the near-mirror rows the corners
+// surround ω_o (a pixel that sees the light), on the others they surround the mirror direction.
 #pragma once
 
 #include <cmath>
@@ -13,6 +16,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/math/orthonormal_basis.h"
 #include "core/math/rng.h"
 #include "core/model_layout.h"
 
@@ -58,7 +62,18 @@ inline QuerySet make_query_set(std::size_t rows, std::uint64_t seed) {
     const double scale = std::pow(10.0, -4.0 + 2.0 * u(7));
     q.footprint.duv_dx = Vec2<double>{scale, 0.25 * scale * (u(8) - 0.5)};
     q.footprint.duv_dy = Vec2<double>{0.25 * scale * (u(9) - 0.5), scale};
-    q.light = LightQuery<double>{1.0, 1.0};
+    q.light = LightQuery<double>{std::cos((0.5 + 4.5 * u(12)) * kPi / 180.0), 1.0};
+    // Pixel corners (core/scene/footprint.h's order) 0.2° to 10° about a centre, each jittered.
+    const Vec3<double> mirror{-q.wi.x, -q.wi.y, q.wi.z};
+    const OrthonormalBasis<double> frame = basis_from_z(i % 2 == 0 ? q.wo : mirror);
+    const double spread = std::tan((0.2 + 9.8 * u(13)) * kPi / 180.0);
+    for (int c = 0; c < 4; ++c) {
+      const double sx = (c % 2 == 0 ? -1.0 : 1.0) * spread * (1.0 + 0.3 * (u(14 + 2 * c) - 0.5));
+      const double sy = (c < 2 ? -1.0 : 1.0) * spread * (1.0 + 0.3 * (u(15 + 2 * c) - 0.5));
+      const Vec3<double> w = frame.to_world(Vec3<double>{sx, sy, 1.0});
+      const double len = std::sqrt(w.x * w.x + w.y * w.y + w.z * w.z);
+      q.footprint.corner_r[std::size_t(c)] = Vec3<double>{w.x / len, w.y / len, w.z / len};
+    }
     const QueryRow<double> row = to_row(q);
     for (std::size_t k = 0; k < row.size(); ++k) set.columns[k][i] = row[k];
     set.u1[i] = u(10);

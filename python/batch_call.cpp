@@ -17,6 +17,7 @@
 #include "cli/eval_model.h"
 #include "core/model_list.h"
 #include "core/simd/model_batch.h"
+#include "python/result_pool.h"
 
 namespace glintlab::python {
 namespace {
@@ -132,22 +133,15 @@ bool squared_lengths_in_bounds(const simd::Column<double>& x, const simd::Column
   return (out & kSignBit) == 0;
 }
 // The same for the rows of a C-ordered (N, 3) array read where it lies (row i at p[3i .. 3i+2]:
-// constant strides, which the compiler vectorises), in blocks of rows, each after asking for the
-// same rows of the next chunk (a software prefetch, a hint that never faults: past the array's
-// end it does nothing), so that they arrive while this chunk is evaluated (as chunk_columns'
-// transposing gather does, query_columns.h).
+// constant strides, which the compiler vectorises), asking for the next chunk's rows on the way
+// (for_row_blocks_prefetching, query_columns.h), so that they arrive while this chunk is evaluated.
+GLINTLAB_PYTHON_CLONES
 bool rows_in_bounds(const double* p, std::size_t count) {
-  constexpr std::size_t kBlock = 64, kLine = 64;
-  // The next chunk's address as an integer: it may lie past the array.
-  const auto next_chunk = reinterpret_cast<std::uintptr_t>(p) + 3 * count * sizeof(double);
   std::uint64_t out = 0;
-  for (std::size_t b = 0; b < count; b += kBlock) {
-    const std::size_t e = std::min(count, b + kBlock);
-    for (std::size_t k = 0; k < 3 * kBlock * sizeof(double); k += kLine)
-      __builtin_prefetch(reinterpret_cast<const void*>(next_chunk + 3 * b * sizeof(double) + k));
+  for_row_blocks_prefetching(p, count, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i)
       out |= outside_unit_bits(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
-  }
+  });
   return (out & kSignBit) == 0;
 }
 
@@ -417,9 +411,11 @@ void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams
         if (b.gathered.size() < width * count) b.gathered.resize(width * count);
         gather_into = b.gathered.data();
       } else {
-        std::shared_ptr<S[]> block(new S[width * count]);
-        gather_into = block.get();
-        storage = {block, block.get(), block.get() + width * count};
+        // From the pool (result_pool.h): the block the previous chunk gave back, its pages mapped
+        // and its lines likely still cached, whatever malloc would do with a block of this size.
+        const std::shared_ptr<void> block = pooled_block(width * count * sizeof(S));
+        gather_into = static_cast<S*>(block.get());
+        storage = {block, gather_into, gather_into + width * count};
       }
       // The batches read a coordinate of a C-ordered (N, 3) array where it lies (stride 3:
       // core/simd/model_batch.h gathers it block by block); a numpy model's functions get

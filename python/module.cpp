@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cstdint>
 #include <optional>
 #include <thread>
@@ -30,6 +31,7 @@
 #include "python/batch_call.h"
 #include "python/python_model.h"
 #include "python/query_columns.h"
+#include "python/result_pool.h"
 
 namespace glintlab::python {
 namespace {
@@ -117,6 +119,13 @@ ColumnOwners column_owners(const QuerySources& q, std::span<const simd::Column<S
   return ColumnOwners{arrays, storage.owner, storage.begin, storage.end};
 }
 
+// Whether p lies in the n values from `first` (compared as integers: p may lie elsewhere).
+template <class S>
+bool in_results(const S* p, const S* first, std::size_t n) {
+  const auto at = reinterpret_cast<std::uintptr_t>(p), begin = reinterpret_cast<std::uintptr_t>(first);
+  return at >= begin && at < begin + n * sizeof(S);
+}
+
 // The number of query columns the batch calls take for this model (with the corners or not).
 std::size_t query_width(const ModelEntry& m) {
   return (m.needs & kNeedsPixelCorners) != 0 ? simd::kQueryColumnsWithCorners
@@ -128,8 +137,11 @@ py::dict eval_in(const ModelEntry& model, const QuerySources& q, const CallParam
                  const cli::BatchOptions& opts) {
   const std::size_t n = q.rows, width = query_width(model);
   std::vector<py::array_t<S>> outs;
-  for (std::size_t k = 0; k < 2 + model.intermediates.size(); ++k)
-    outs.emplace_back(py::ssize_t(n));
+  {
+    const PooledArrays pooled;  // memory kept mapped between calls (result_pool.h)
+    for (std::size_t k = 0; k < 2 + model.intermediates.size(); ++k)
+      outs.emplace_back(py::ssize_t(n));
+  }
   std::vector<S*> out_data;
   for (auto& a : outs) out_data.push_back(a.mutable_data());
   const PythonModel* const numpy_model = python_model(model);  // looked up once, with the GIL
@@ -139,8 +151,10 @@ py::dict eval_in(const ModelEntry& model, const QuerySources& q, const CallParam
           std::span<const simd::Column<double>> params, const ChunkStorage& storage) {
         if (numpy_model) {  // one call per chunk (per set of its rows with equal parameters)
           std::vector<PyObject*> arrays;
+          // Streamed where o is a part of the result arrays (not a group's scratch, read next).
           python_eval_rows<S>(*numpy_model, uniform_values(params), cols, o, count,
-                              column_owners<S>(q, cols, storage, arrays));
+                              column_owners<S>(q, cols, storage, arrays),
+                              in_results(o[0], out_data[0], n));
         } else
           simd::eval_batch_with_param_columns(model, params, cols, o, count, opts.isa, opts.math);
       },
@@ -172,13 +186,16 @@ py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallPar
                    const cli::BatchOptions& opts, const ColumnSource* u1, const ColumnSource* u2,
                    std::uint64_t seed) {
   const std::size_t n = q.rows, width = query_width(model);
+  std::optional<PooledArrays> pooled(std::in_place);  // result_pool.h
   py::array_t<S, py::array::f_style> wo({py::ssize_t(n), py::ssize_t(3)});
   auto pdf = py::array_t<S>(py::ssize_t(n));
   auto weight = py::array_t<S>(py::ssize_t(n));
-  std::vector<S> rejected(n);
+  auto rejected = py::array_t<S>(py::ssize_t(n));  // scratch, as 0 or 1 (given back on return)
+  auto rej = py::array_t<bool>(py::ssize_t(n));
+  pooled.reset();
   S* wo_data = wo.mutable_data();
   S* const out_data[6] = {wo_data, wo_data + n, wo_data + 2 * n, pdf.mutable_data(),
-                          weight.mutable_data(), rejected.data()};
+                          weight.mutable_data(), rejected.mutable_data()};
   const ColumnSource* const given_u[2] = {u1, u2};
   const auto check_u = [&](std::size_t r) -> std::optional<std::string> {
     for (const ColumnSource* u : {u1, u2}) {
@@ -198,7 +215,8 @@ py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallPar
           std::vector<PyObject*> arrays;
           python_sample_rows<S>(*numpy_model, uniform_values(params), cols, in[width],
                                 in[width + 1], o, count,
-                                column_owners<S>(q, cols, storage, arrays));
+                                column_owners<S>(q, cols, storage, arrays),
+                                in_results(o[3], out_data[3], n));
         } else
           simd::sample_batch_with_param_columns(model, params, cols, in[width], in[width + 1], o,
                                                 count, opts.isa, opts.math);
@@ -215,9 +233,9 @@ py::dict sample_in(const ModelEntry& model, const QuerySources& q, const CallPar
       },
       u1 ? RowCheck(check_u) : RowCheck(),
       u1 ? std::span<const ColumnSource* const>(given_u) : std::span<const ColumnSource* const>());
-  auto rej = py::array_t<bool>(py::ssize_t(n));
   bool* rd = rej.mutable_data();
-  for (std::size_t i = 0; i < n; ++i) rd[i] = rejected[i] != 0;
+  const S* rejected_data = rejected.data();
+  for (std::size_t i = 0; i < n; ++i) rd[i] = rejected_data[i] != 0;
   py::dict r;
   r["wo"] = wo;
   r["pdf"] = pdf;
@@ -292,11 +310,19 @@ py::dict column_addresses(const std::string& name, const py::object& wi, const p
 // The reference time of eval(): seconds of simd::eval_batch alone, one thread, over the same rows
 // as eval(model, wi, wo) with the model's defaults, the columns laid out beforehand (untimed) as
 // contiguous SoA columns of `precision`, run in the CLI's chunks: {"isa": the ISA's name,
-// "seconds": one entry per repeat}. For the
+// "seconds": one entry per repeat, "cpu_seconds": the same repeats' CPU time of the thread}. For the
 // benchmark experiments/bench/python_eval.py, which compares eval() against it.
+// This thread's CPU seconds (user and system).
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
 template <class S>
 std::vector<double> eval_batch_seconds_in(const ModelEntry& model, const QuerySources& q,
-                                          const cli::BatchOptions& opts, int repeats) {
+                                          const cli::BatchOptions& opts, int repeats,
+                                          std::vector<double>& cpu_seconds) {
   const std::size_t n = q.rows, width = query_width(model);
   const std::vector<double> params = resolve_params(model, {});
   std::vector<std::vector<S>> data(width);
@@ -316,6 +342,7 @@ std::vector<double> eval_batch_seconds_in(const ModelEntry& model, const QuerySo
   std::vector<double> seconds;
   const py::gil_scoped_release release;
   for (int r = 0; r < repeats; ++r) {
+    const double c0 = thread_cpu_seconds();
     const auto t0 = std::chrono::steady_clock::now();
     for (std::size_t begin = 0; begin < n; begin += cli::kBatchChunk) {
       const std::size_t count = std::min(cli::kBatchChunk, n - begin);
@@ -326,6 +353,7 @@ std::vector<double> eval_batch_seconds_in(const ModelEntry& model, const QuerySo
       simd::eval_batch(model, params, chunk, o, count, opts.isa, opts.math);
     }
     seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    cpu_seconds.push_back(thread_cpu_seconds() - c0);
   }
   return seconds;
 }
@@ -340,8 +368,33 @@ py::dict eval_batch_seconds(const std::string& name, const py::object& wi,
   if (q.rows == 0) q.rows = 1;
   py::dict d;
   d["isa"] = std::string(simd::isa_name(opts.isa));
-  d["seconds"] = opts.float_precision ? eval_batch_seconds_in<float>(model, q, opts, repeats)
-                                      : eval_batch_seconds_in<double>(model, q, opts, repeats);
+  std::vector<double> cpu;
+  d["seconds"] = opts.float_precision ? eval_batch_seconds_in<float>(model, q, opts, repeats, cpu)
+                                      : eval_batch_seconds_in<double>(model, q, opts, repeats, cpu);
+  d["cpu_seconds"] = cpu;
+  return d;
+}
+
+// The result pool's counters (result_pool.h), after setting its idle limit when one is given.
+py::dict result_pool(const py::object& idle_limit) {
+  if (!idle_limit.is_none()) {
+    const long long bytes = py::cast<long long>(idle_limit);
+    if (bytes < 0)
+      throw py::value_error(fmt::format(
+          "idle_limit: {} is out of range (valid: bytes >= 0, or None to leave it)", bytes));
+    set_result_pool_limit(std::size_t(bytes));
+  }
+  const ResultPoolStats s = result_pool_stats();
+  py::dict d;
+  d["idle_bytes"] = s.idle_bytes;
+  d["idle_blocks"] = s.idle_blocks;
+  d["live_bytes"] = s.live_bytes;
+  d["live_blocks"] = s.live_blocks;
+  d["reused"] = s.reused;
+  d["mapped"] = s.mapped;
+  d["unmapped"] = s.unmapped;
+  d["idle_limit"] = s.idle_limit;
+  d["min_block_bytes"] = kPoolMinBytes;
   return d;
 }
 
@@ -521,6 +574,7 @@ PYBIND11_MODULE(_glintlab, m) {
     }
   });
   m.doc() = "glintlab's C++ layer (see the glintlab package for the documented functions)";
+  init_result_pool();
   m.def("models", &models);
   m.def("eval", &eval, arg("model"), arg("wi"), arg("wo"), arg("params") = py::none(),
         arg("footprint") = py::none(), arg("light") = py::none(), arg("precision") = "double",
@@ -535,6 +589,7 @@ PYBIND11_MODULE(_glintlab, m) {
         arg("precision") = "double", arg("isa") = py::none(), arg("math") = "exact",
         arg("repeats") = 5);
   m.def("load_plugin", &load_plugin, arg("path"));
+  m.def("result_pool", &result_pool, arg("idle_limit") = py::none());
   m.def("register_model", &register_python_model, arg("name"), arg("eval"), arg("pdf"),
         arg("sample"), arg("params") = py::none(), arg("needs") = py::none(),
         arg("smooth_limit") = py::none(), arg("description") = "", arg("source") = "",

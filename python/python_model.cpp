@@ -16,8 +16,13 @@
 #include <type_traits>
 #include <utility>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "core/model_layout.h"
 #include "core/simd/model_batch.h"
+#include "python/result_pool.h"
 
 namespace glintlab::python {
 
@@ -167,8 +172,11 @@ struct CheckedArray {
   }
   // Every column j of rows [0, n) into outs[j], as S; whether a value was NaN. One pass over the
   // values where they lie flat (the NaN test on the bits, as in any_nan).
+  // With `stream`, a single column of double is stored around the caches (streamed).
   template <class S>
-  bool copy_any_nan(std::span<S* const> outs, std::size_t n) const {
+  bool copy_any_nan(std::span<S* const> outs, std::size_t n, bool stream = false) const {
+    if constexpr (std::is_same_v<S, double>)
+      if (stream && flat && columns == 1) return stream_copy_any_nan(outs[0], n);
     const auto pass = [&]<std::size_t kColumns>() {
       std::uint64_t above = 0;
       for (std::size_t i = 0; i < n; ++i)
@@ -184,6 +192,34 @@ struct CheckedArray {
     if (flat && columns == 3) return pass.template operator()<3>();
     for (std::size_t j = 0; j < columns; ++j) copy_column(j, outs[j], n);
     return any_nan(n);
+  }
+  // The single column of rows [0, n) into out by non-temporal stores, which write whole lines to
+  // memory without reading them first: for a part of a result array far larger than the caches,
+  // which nothing reads before the call returns (a plain store first reads each line of it from
+  // memory, doubling the traffic). Whether a value was NaN.
+  bool stream_copy_any_nan(double* out, std::size_t n) const {
+    const double* in = reinterpret_cast<const double*>(base);
+    std::size_t i = 0;
+    bool nan = false;
+#if defined(__SSE2__)
+    for (; i < n && reinterpret_cast<std::uintptr_t>(out + i) % 16 != 0; ++i) {
+      nan |= std::isnan(in[i]);
+      out[i] = in[i];
+    }
+    __m128d unordered = _mm_setzero_pd();
+    for (; i + 2 <= n; i += 2) {
+      const __m128d v = _mm_loadu_pd(in + i);
+      unordered = _mm_or_pd(unordered, _mm_cmpunord_pd(v, v));
+      _mm_stream_pd(out + i, v);
+    }
+    _mm_sfence();  // the streamed stores ordered before what follows (another thread's reads)
+    nan |= _mm_movemask_pd(unordered) != 0;
+#endif
+    for (; i < n; ++i) {
+      nan |= std::isnan(in[i]);
+      out[i] = in[i];
+    }
+    return nan;
   }
   // Column j of rows [0, n) into out, as S.
   template <class S>
@@ -254,9 +290,9 @@ CheckedArray checked_array(const PythonModel& m, std::string_view function, cons
 template <class S>
 void copy_checked(const PythonModel& m, std::string_view function, const std::string& what,
                   const py::handle& result, std::size_t n, std::size_t width,
-                  std::span<S* const> outs) {
+                  std::span<S* const> outs, bool stream = false) {
   const CheckedArray c = checked_shape(m, function, what, result, n, width);
-  if (c.copy_any_nan(outs, n)) fail_nan(m, function, what, c, n);
+  if (c.copy_any_nan(outs, n, stream)) fail_nan(m, function, what, c, n);
 }
 
 // Calls one of the model's functions; a Python exception becomes PythonModelError (built while the
@@ -371,20 +407,26 @@ const PythonModel* python_model(const ModelEntry& entry) {
 template <class S>
 void python_eval_rows(const PythonModel& m, const std::vector<double>& params,
                       std::span<const simd::Column<S>> query, std::span<S* const> outputs,
-                      std::size_t n, const ColumnOwners& owners) {
+                      std::size_t n, const ColumnOwners& owners, bool stream_results) {
   const py::gil_scoped_acquire gil;
+  // The arrays made here and by the functions (numpy's temporaries of a chunk's size) take
+  // blocks the pool keeps mapped, which the previous chunk's gave back (result_pool.h).
+  const PooledArrays pooled;
   const py::dict q = query_dict<S>(m, query, n, owners);
   const py::dict p = params_dict(m, params);
-  copy_checked<S>(m, "eval", "its value", call(m, "eval", m.eval, q, p), n, 0, outputs.first(1));
-  copy_checked<S>(m, "pdf", "its pdf", call(m, "pdf", m.pdf, q, p), n, 0, outputs.subspan(1, 1));
+  copy_checked<S>(m, "eval", "its value", call(m, "eval", m.eval, q, p), n, 0, outputs.first(1),
+                  stream_results);
+  copy_checked<S>(m, "pdf", "its pdf", call(m, "pdf", m.pdf, q, p), n, 0, outputs.subspan(1, 1),
+                  stream_results);
 }
 
 template <class S>
 void python_sample_rows(const PythonModel& m, const std::vector<double>& params,
                         std::span<const simd::Column<S>> query, simd::Column<S> u1,
                         simd::Column<S> u2, std::span<S* const> outputs, std::size_t n,
-                        const ColumnOwners& owners) {
+                        const ColumnOwners& owners, bool stream_results) {
   const py::gil_scoped_acquire gil;
+  const PooledArrays pooled;  // as in python_eval_rows
   const py::dict q = query_dict<S>(m, query, n, owners);
   py::array_t<double> u({py::ssize_t(n), py::ssize_t(2)});
   double* ud = u.mutable_data();
@@ -403,8 +445,10 @@ void python_sample_rows(const PythonModel& m, const std::vector<double>& params,
                                     "and optionally rejected (N,) bool)",
                                     k));
   copy_checked<S>(m, "sample", "its 'wo'", d["wo"], n, 3, outputs.first(3));
-  copy_checked<S>(m, "sample", "its 'pdf'", d["pdf"], n, 0, outputs.subspan(3, 1));
-  copy_checked<S>(m, "sample", "its 'weight'", d["weight"], n, 0, outputs.subspan(4, 1));
+  copy_checked<S>(m, "sample", "its 'pdf'", d["pdf"], n, 0, outputs.subspan(3, 1),
+                  stream_results);
+  copy_checked<S>(m, "sample", "its 'weight'", d["weight"], n, 0, outputs.subspan(4, 1),
+                  stream_results);
   std::vector<bool> rejected(n, false);
   if (d.contains("rejected")) {
     const py::object rej = d["rejected"];
@@ -421,19 +465,20 @@ void python_sample_rows(const PythonModel& m, const std::vector<double>& params,
 
 template void python_eval_rows<float>(const PythonModel&, const std::vector<double>&,
                                       std::span<const simd::Column<float>>, std::span<float* const>,
-                                      std::size_t, const ColumnOwners&);
+                                      std::size_t, const ColumnOwners&, bool);
 template void python_eval_rows<double>(const PythonModel&, const std::vector<double>&,
                                        std::span<const simd::Column<double>>,
-                                       std::span<double* const>, std::size_t, const ColumnOwners&);
+                                       std::span<double* const>, std::size_t,
+                                       const ColumnOwners&, bool);
 template void python_sample_rows<float>(const PythonModel&, const std::vector<double>&,
                                         std::span<const simd::Column<float>>, simd::Column<float>,
                                         simd::Column<float>, std::span<float* const>, std::size_t,
-                                        const ColumnOwners&);
+                                        const ColumnOwners&, bool);
 template void python_sample_rows<double>(const PythonModel&, const std::vector<double>&,
                                          std::span<const simd::Column<double>>,
                                          simd::Column<double>, simd::Column<double>,
                                          std::span<double* const>, std::size_t,
-                                         const ColumnOwners&);
+                                         const ColumnOwners&, bool);
 
 void register_python_model(const std::string& name, const py::object& eval, const py::object& pdf,
                            const py::object& sample, const py::object& params,

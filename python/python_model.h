@@ -60,16 +60,19 @@ struct ColumnOwners {
 };
 
 // value, pdf of rows [0, n) of the columns (kQueryLayout order, stride 0 or 1) into outputs[0],
-// outputs[1]: one call of eval and one of pdf. Takes the GIL; throws PythonModelError.
+// outputs[1]: one call of eval and one of pdf. Takes the GIL; throws PythonModelError. With
+// `stream_results` (outputs that are parts of result arrays larger than the caches, read only
+// after the call: the module's eval), double outputs are written by non-temporal stores.
 template <class S>
 void python_eval_rows(const PythonModel& model, const std::vector<double>& params,
                       std::span<const simd::Column<S>> query, std::span<S* const> outputs,
-                      std::size_t n, const ColumnOwners& owners = {});
-// One sample per row into the six columns of simd::kSampleColumns: one call of sample.
+                      std::size_t n, const ColumnOwners& owners = {}, bool stream_results = false);
+// One sample per row into the six columns of simd::kSampleColumns: one call of sample
+// (`stream_results` as above, for the pdf and weight columns).
 template <class S>
 void python_sample_rows(const PythonModel& model, const std::vector<double>& params,
                         std::span<const simd::Column<S>> query, simd::Column<S> u1,
                         simd::Column<S> u2, std::span<S* const> outputs, std::size_t n,
-                        const ColumnOwners& owners = {});
+                        const ColumnOwners& owners = {}, bool stream_results = false);
 
 }  // namespace glintlab::python

@@ -155,4 +155,21 @@ QuerySources query_sources(const ModelEntry& model, const py::object& wi, const 
   return q;
 }
 
+GLINTLAB_PYTHON_CLONES
+std::uint64_t transpose_rows_checked(const double* src, std::size_t count, double* x, double* y,
+                                     double* z, std::uint64_t lo, std::uint64_t hi) {
+  std::uint64_t outside = 0;
+  for_row_blocks_prefetching(src, count, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      const double a = src[3 * i], bb = src[3 * i + 1], c = src[3 * i + 2];
+      x[i] = a;
+      y[i] = bb;
+      z[i] = c;
+      const std::uint64_t u = std::bit_cast<std::uint64_t>(a * a + bb * bb + c * c);
+      outside |= (u - lo) | (hi - u);
+    }
+  });
+  return outside;
+}
+
 }  // namespace glintlab::python

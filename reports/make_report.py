@@ -55,13 +55,14 @@ import figure_charts  # noqa: E402
 import json_schema  # noqa: E402
 import templating  # noqa: E402
 
-PARTS = ["claims", "conformance", "figures", "bench", "stability", "compare"]
+PARTS = ["claims", "conformance", "figures", "bench", "stability", "compare", "gpu"]
 PART_TITLES = {"claims": "Claims (glintlab verify)",
                "conformance": "Models' conformance (glintlab verify --claims 'model.<name>.*')",
                "figures": "Figures (glintlab figure)",
                "bench": "Benchmarks (glintlab_bench_kernels, glintlab_accuracy)",
                "stability": "Stability maps (glintlab sweep)",
-               "compare": "Models compared (glintlab compare)"}
+               "compare": "Models compared (glintlab compare)",
+               "gpu": "Models on a GPU (glintlab_gpu_check, --gpu-from)"}
 PARAM_COLUMNS = {"density", "microroughness", "reference_spp", "model", "sampler", "light"}
 TABLE_ROW_LIMIT = 80
 
@@ -313,6 +314,34 @@ def load_compare(root):
     return data
 
 
+# The device check's results.json (gpu/results_format.cpp writes it): the fields the GPU section
+# reads, each with its type; a missing or mistyped one is a malformed input.
+GPU_FIELDS = {"device": str, "compute_capability": str, "cuda_version": str, "rows": int,
+              "timing_rows": int, "repetitions": int, "runs": list, "table3": list}
+GPU_RUN_FIELDS = {"model": str, "precision": str, "function": str, "median_ms": (int, float),
+                  "min_ms": (int, float), "rows_per_second": (int, float)}
+GPU_FRAME_FIELDS = {"cell": str, "median_ms": (int, float), "min_ms": (int, float),
+                    "pixels_per_second": (int, float)}
+
+
+def load_gpu(root):
+    data = load_json(root, "gpu/results.json")
+
+    def need(obj, fields, where):
+        if not isinstance(obj, dict):
+            raise ReportError(f"gpu/results.json is malformed: {where} is not an object")
+        for name, kind in fields.items():
+            if not isinstance(obj.get(name), kind) or isinstance(obj.get(name), bool):
+                raise ReportError(f"gpu/results.json is malformed: {where} has no valid "
+                                  f"\"{name}\"")
+    need(data, GPU_FIELDS, "the top level")
+    for i, r in enumerate(data["runs"]):
+        need(r, GPU_RUN_FIELDS, f"runs[{i}]")
+    for i, f in enumerate(data["table3"]):
+        need(f, GPU_FRAME_FIELDS, f"table3[{i}]")
+    return data
+
+
 def load_all(root):
     run = load_run(root)
     parts = run.get("parts", {})
@@ -322,7 +351,8 @@ def load_all(root):
                "figures": ("figures/figures.json", load_figures),
                "bench": ("bench/bench.json", load_bench),
                "stability": ("stability/stability.json", load_stability),
-               "compare": ("compare/compare.json", load_compare)}
+               "compare": ("compare/compare.json", load_compare),
+               "gpu": ("gpu/results.json", load_gpu)}
     for name, (index, loader) in loaders.items():
         if os.path.exists(os.path.join(root, index)):
             got[name] = loader(root)
@@ -1159,6 +1189,50 @@ def write_compare(doc, data, plots_tmp, plots_rel, made, manifest):
                         ("equal_time.csv", "compare/equal_time.csv")])
 
 
+# Kemppinen et al. 2025, Table 3: the paper's frame times (1080p, 3 point lights, k = 4).
+PAPER_TABLE3_RANGE_MS = "1.6–3.4"
+PAPER_TABLE3 = f"{PAPER_TABLE3_RANGE_MS} ms per frame on an RTX 3090 (the range of the paper's Table 3)"
+
+
+def write_gpu(doc, data, part):
+    """The device check's timings (docs/gpu.md): each model's rate per precision and function, and
+    the Table 3 analogue's frames beside the paper's, the hardware named, nothing normalised."""
+    doc.heading(2, PART_TITLES["gpu"], "gpu")
+    doc.para(f"{data['device']} (compute capability {data['compute_capability']}, CUDA "
+             f"{data['cuda_version']}): each launch runs {data['timing_rows']} query rows, one "
+             f"thread per row, timed with CUDA events after a warm-up launch, median of "
+             f"{data['repetitions']}. The CPU = GPU comparison of the first {data['rows']} rows "
+             "is ctest gpu.committed_runs_match_cpu (docs/gpu.md).")
+    functions = ["eval", "pdf", "sample"]
+    rates = {}
+    for r in data["runs"]:
+        rates[(r["model"], r["precision"], r["function"])] = r
+    keys = []
+    for r in data["runs"]:
+        if (r["model"], r["precision"]) not in keys:
+            keys.append((r["model"], r["precision"]))
+    rows = []
+    for model, precision in keys:
+        row = [model, precision]
+        for fn in functions:
+            r = rates.get((model, precision, fn))
+            row.append(f"{r['rows_per_second'] / 1e6:.4g} ({r['median_ms']:.4g} ms)" if r else "—")
+        rows.append(row)
+    doc.table(["model", "precision"] + [f"{fn}: Mrows/s (median ms)" for fn in functions], rows)
+    if data["table3"]:
+        doc.para("The Table 3 analogue (experiments/bench/kemppinen2025_table3_scene.h) as whole "
+                 "1920×1080 frames on this device, one thread per pixel running the CPU "
+                 f"benchmark's own shade_pixel in double precision. The paper: {PAPER_TABLE3}, "
+                 "single precision in its shader — other hardware and another precision, shown "
+                 "side by side, not normalised.")
+        doc.table(["cell", "median ms per frame", "min ms", "Mpixels/s",
+                   "paper, ms per frame (RTX 3090, Table 3's range)"],
+                  [[f["cell"], f"{f['median_ms']:.4g}", f"{f['min_ms']:.4g}",
+                    f"{f['pixels_per_second'] / 1e6:.4g}", PAPER_TABLE3_RANGE_MS]
+                   for f in data["table3"]])
+    doc.links("Files", [("results.json", "gpu/results.json")])
+
+
 def build(root, run, got, plots_tmp):
     parts = run.get("parts", {})
     doc = Doc()
@@ -1193,6 +1267,8 @@ def build(root, run, got, plots_tmp):
                         plots_rel, made, manifest)
     if "compare" in got:
         write_compare(doc, got["compare"], plots_tmp, plots_rel, made, manifest)
+    if "gpu" in got:
+        write_gpu(doc, got["gpu"], parts.get("gpu", {}))
     for n in PARTS:
         if n not in got:
             doc.heading(2, PART_TITLES[n], "absent-" + n)

@@ -12,6 +12,8 @@ packages=(
   chromium
   # A single-node Slurm cluster for scripts/slurm/'s test (tests/slurm/).
   slurm-wlm munge
+  # GNU parallel, for docs/scale-out.md's shards-as-processes recipe and its test (tests/scale_out/).
+  parallel
 )
 
 missing=()

@@ -27,10 +27,10 @@ set(glintlab_slow_tests
   "Checks/QuickBudget.VerdictAndControl/chermain_lean_correlation* 5"
   "Checks/QuickBudget.VerdictAndControl/podee_stability* 3"
   # The six validation scenes rendered with the chosen and the exact level over 256 realisations.
-  "Checks/QuickBudget.VerdictAndControl/adequacy_choice_is_safe* 20"
+  "Checks/QuickBudget.VerdictAndControl/adequacy_choice_is_safe* 21"
   # The binomial boundary and the Kemppinen family's (k16_exact's CV crossing TAU on a ladder of
   # footprints at 12 cells).
-  "Checks/QuickBudget.VerdictAndControl/adequacy_prediction_matches_measurement* 16"
+  "Checks/QuickBudget.VerdictAndControl/adequacy_prediction_matches_measurement* 20"
   "Checks/QuickBudget.* 1"
   # Claims that share one measurement, run in one process (tests/verify/registry_test.cpp):
   # all.energy-gain, all.probability and all.variance on the stability sweep of every registered
@@ -100,14 +100,23 @@ set(glintlab_slow_tests
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::chermain_claims::KernelNormalized>> 1"
   # The adequacy claims at their probe sizes: the prediction's binomial and Kemppinen ladders, the
   # choice's validation scenes at 16² / 8² pixels.
-  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::adequacy_claims::PredictionMatchesMeasurement>> 10"
-  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::adequacy_claims::ChoiceIsSafe>> 2"
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::adequacy_claims::PredictionMatchesMeasurement>> 14"
+  "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::adequacy_claims::ChoiceIsSafe>> 3"
   "ZirrKaplanyan.CountMeanAndVarianceMatchADirectlySimulatedBinomial 3"
   # The Chermain adequacy family: each builds the default dictionary (16 levels) and its
   # prefixes, then measures or computes the construction's moments.
   "ChermainExactMoments.MatchTheModelsCvAndMeanAndABrokenConstructionDoesNot 2"
   "ChermainExactMoments.* 1"
   "ChermainAdequacyGrid.* 1"
+  # The Chermain engine chooser (core/glints/chermain_chooser.h) against the measured quick grid,
+  # its closed-form moments, its scenes and its prediction ladder.
+  "ChermainChooser.NeverRefutedOnTheQuickGridAndTenfoldTauOrAMovedBoundaryIs 5"
+  "ChermainChooser.ClosedFormCvMatchesTheExactMomentsAndABrokenOneDoesNot 3"
+  "ChermainChooser.* 1"
+  "ChermainChooserWide.* 1"
+  "ChermainChoiceScenes.EngineChooserHoldsAndABrokenChooserFails 1"
+  "ChermainChoiceScenes.PixelsAreTheSameForAnyThreadCount 1"
+  "ChermainPrediction.BoundariesHoldAndMovedOnesAreRejected 1"
   "ChermainAdequacyCell.* 1"
   "ChermainAdequacy.* 1"
   # The glintlab executable run end to end on a subcommand's quick budget (a figure, a sweep, a

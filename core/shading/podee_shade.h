@@ -20,11 +20,9 @@
 
 #include <array>
 #include <cmath>
-#include <string>
 
 #include "core/math/orthonormal_basis.h"
 #include "core/math/vec.h"
-#include "core/parameter_check.h"
 #include "core/shading/circle_intersection_area.h"
 
 namespace glintlab::podee {
@@ -164,17 +162,6 @@ template <class T>
 GLINTLAB_FN T tan_radius(T cos_half_angle) {
   const T c = clamp(cos_half_angle, T(-1), T(1));
   return safe_sqrt(T(1) - c * c) / max(c, T(1e-30));
-}
-
-// Host-side check of the method's assumptions about its light (one-line ParameterError): a disk
-// of positive radius whose centre lies above the shaded surface (the light plane at p + l faces
-// the surface's side, Sec. 3.1).
-inline void require_light(const std::string& what, double radius, double centre_height) {
-  glintlab::detail::require(std::isfinite(radius) && radius > 0, what, "disk radius", radius,
-                            "a finite radius > 0");
-  glintlab::detail::require(std::isfinite(centre_height) && centre_height > 0, what,
-                            "light height above the surface", centre_height,
-                            "> 0: the disk's centre above the surface");
 }
 
 }  // namespace glintlab::podee

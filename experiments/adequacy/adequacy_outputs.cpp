@@ -156,14 +156,16 @@ void write_csv(const std::filesystem::path& path, const std::vector<CellResult>&
     for (const CellResult& r : area_rows) counting_row(w, r, kAreaFamily);
     constexpr auto kMost = std::size_t(verify::adequacy::kChermainMostComplete);
     for (const ChermainCellResult& r : chermain_rows) {
-      // No light size nor p: nan; no predicted CV nor P(0) (nan); `chooser` the construction's
-      // identical level (chermain_identical_level), `chooser_refuted` the table refuting it.
+      // No light size nor p: nan; cv_predicted the engine chooser's closed-form CV of dict16_ggaa,
+      // no predicted P(0) (nan); `chooser` the engine chooser's level (choose_chermain_model_level:
+      // the construction's identical level or the smooth one by that CV), `chooser_refuted` the
+      // table refuting it.
       w.cell(kChermainFamily).cell(r.cell.model).cell(r.cell.facets).cell(r.cell.alpha);
       w.cell(NAN).cell(r.cell.theta_i_deg).cell(r.cell.theta_h_deg).cell(r.cell.dh);
-      w.cell(NAN).cell(r.smooth).cell(NAN).cell(NAN);
+      w.cell(NAN).cell(r.smooth).cell(r.cv_predicted).cell(NAN);
       w.cell(kChermainLevelNames[std::size_t(r.chosen)]);
-      w.cell(kChermainLevelNames[std::size_t(r.construction)]);
-      w.cell_int(r.construction_refuted ? 1 : 0);
+      w.cell(kChermainLevelNames[std::size_t(r.chooser)]);
+      w.cell_int(r.chooser_refuted ? 1 : 0);
       level_cells(w, r.levels, kChermainLevelNames);
       w.cell(kChermainLevelNames[std::size_t(r.cheapest_measured)]);
       w.cell(r.levels[kMost].ns_per_eval - r.levels[std::size_t(r.cheapest_measured)].ns_per_eval);
@@ -575,6 +577,8 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
     ++c.cheapest_measured[std::size_t(r.cheapest_measured)];
     c.construction_matches += r.construction == r.chosen ? 1 : 0;
     c.construction_refuted += r.construction_refuted ? 1 : 0;
+    c.chooser_matches += r.chooser == r.chosen ? 1 : 0;
+    c.chooser_refuted += r.chooser_refuted ? 1 : 0;
     c.undecided += r.levels[0].undecided ? 1 : 0;
     c.most_complete_ns += r.levels[kMost].ns_per_eval;
     c.chosen_ns += r.levels[std::size_t(r.chosen)].ns_per_eval;
@@ -894,8 +898,12 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
                    "stretched by 1/cos(theta_i) along the plane of incidence"},
         {"ggaa_dh", "|d h_perp / dx| = |d h_perp / dy| per pixel (dx along x, dy along y)"},
         {"construction",
-         "chooser: the cheapest level equal to dict16_ggaa bit for bit by construction (every "
+         "the cheapest level equal to dict16_ggaa bit for bit by construction (every "
          "weighted LOD's dictionary level below L; GGAA off where ggaa_dh = 0)"},
+        {"chooser",
+         "choose_chermain_model_level of core/glints/chermain_chooser.h: the construction's "
+         "identical level, or smooth where the closed-form CV of dict16_ggaa (cv_predicted) is at "
+         "most kChooserMargin x TAU"},
         {"identical_up_to", identical},
         {"summary",
          {{"cells", c.cells},
@@ -904,6 +912,8 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
           {"undecided", c.undecided},
           {"construction_matches", c.construction_matches},
           {"construction_refuted", c.construction_refuted},
+          {"chooser_matches", c.chooser_matches},
+          {"chooser_refuted", c.chooser_refuted},
           {"most_complete_ns_total", c.most_complete_ns},
           {"chosen_ns_total", c.chosen_ns},
           {"cheapest_measured_ns_total", c.cheapest_ns}}}};
@@ -948,8 +958,11 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
                      {"lod", r.lod},
                      {"smooth", r.smooth},
                      {"chosen", kChermainLevelNames[std::size_t(r.chosen)]},
-                     {"chooser", kChermainLevelNames[std::size_t(r.construction)]},
-                     {"chooser_refuted", r.construction_refuted},
+                     {"chooser", kChermainLevelNames[std::size_t(r.chooser)]},
+                     {"chooser_refuted", r.chooser_refuted},
+                     {"cv_predicted", r.cv_predicted},
+                     {"construction", kChermainLevelNames[std::size_t(r.construction)]},
+                     {"construction_refuted", r.construction_refuted},
                      {"cheapest_measured", kChermainLevelNames[std::size_t(r.cheapest_measured)]},
                      {"levels", levels}});
   }

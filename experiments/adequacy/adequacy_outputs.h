@@ -116,6 +116,7 @@ struct AdequacySummary {
   struct Chermain {
     std::size_t cells = 0, undecided = 0;
     std::size_t construction_matches = 0, construction_refuted = 0;
+    std::size_t chooser_matches = 0, chooser_refuted = 0;  // the engine chooser
     std::array<std::size_t, verify::adequacy::kChermainLevels> chosen{}, cheapest_measured{};
     double most_complete_ns = 0, chosen_ns = 0, cheapest_ns = 0;
   } chermain;

@@ -138,7 +138,10 @@ json chermain_to_json(std::size_t position, const ChermainCellResult& r) {
           {"chosen", r.chosen},
           {"cheapest_measured", r.cheapest_measured},
           {"construction", r.construction},
-          {"construction_refuted", r.construction_refuted}};
+          {"construction_refuted", r.construction_refuted},
+          {"chooser", r.chooser},
+          {"chooser_refuted", r.chooser_refuted},
+          {"cv_predicted", bits(r.cv_predicted)}};
 }
 ChermainCellResult chermain_from_json(const json& j) {
   ChermainCellResult r;
@@ -149,6 +152,9 @@ ChermainCellResult chermain_from_json(const json& j) {
   r.cheapest_measured = j.at("cheapest_measured").get<int>();
   r.construction = j.at("construction").get<int>();
   r.construction_refuted = j.at("construction_refuted").get<bool>();
+  r.chooser = j.at("chooser").get<int>();
+  r.chooser_refuted = j.at("chooser_refuted").get<bool>();
+  r.cv_predicted = from_bits(j.at("cv_predicted"));
   return r;
 }
 

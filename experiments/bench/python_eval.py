@@ -34,10 +34,11 @@ above 0 and its centre above the surface, checked by the chunk check's pass over
 
 and the ratios of interest (Python eval over eval_batch; the numpy model's chunked calls over
 its direct calls; "numpy_model_ratios" those of the numpy_model_cases), on wall seconds; every
-case but the C++ reference (which times itself) also has its CPU seconds, and
+case also has its CPU seconds (the C++ reference its thread's, measured by the module; None from
+a module that does not), "cpu_ratios" the one-thread eval cases over the reference and
 "numpy_model_cpu_ratios" the numpy model's one-thread ratios on them (on a loaded machine a
 longer call waits longer for a core, so wall-time ratios of a short and a long call grow with
-the load). --malloc fixed fixes glibc malloc's thresholds first (fix_malloc), so that the 8 MB
+the load). Each case's timer starts after the previous case's result is freed. --malloc fixed fixes glibc malloc's thresholds first (fix_malloc), so that the 8 MB
 arrays of every case reuse freed memory instead of page-faulting depending on what ran before. The cases take turns in each repeat, so that a shared machine's changing load
 reaches them alike. Speed is measured here, never asserted: tests/python runs this in its smoke
 mode (--rows 1000 --repeats 1) and checks the JSON's shape only. docs/python.md "Speed of eval
@@ -73,7 +74,7 @@ def round_robin(cases, repeats):
     """Wall and CPU seconds of each of `repeats` calls of every case, the cases taking turns in
     each round (so that a change of load on a shared machine reaches every case alike); one
     untimed call of each first (first-touch, caches). `cases`: name -> callable, or -> callable
-    returning its own wall seconds (a list of one; its CPU seconds are then None). CPU seconds
+    returning its own wall and CPU seconds (a list [wall, cpu]; cpu None where not measured). CPU seconds
     (time.process_time: this process's user and system time, page faults included) are what a
     loaded machine changes least for a one-thread case: its wall time also counts the waits for a
     core, which grow with the length of the call."""
@@ -83,11 +84,14 @@ def round_robin(cases, repeats):
     cpu = {name: [] for name in cases}
     for _ in range(repeats):
         for name, f in cases.items():
+            # The previous case's result freed before the timer starts: freeing it (glibc unmaps a
+            # large array) is not this case's cost.
+            r = None
             c0, t0 = time.process_time(), time.perf_counter()
             r = f()
             elapsed, used = time.perf_counter() - t0, time.process_time() - c0
             seconds[name].append(r[0] if isinstance(r, list) else elapsed)
-            cpu[name].append(None if isinstance(r, list) else used)
+            cpu[name].append(r[1] if isinstance(r, list) else used)
     return seconds, cpu
 
 
@@ -181,7 +185,9 @@ def main():
     isa = _glintlab.eval_batch_seconds(model, wi[:1], wo[:1], isa=a.isa, repeats=1)["isa"]
 
     def cpp_eval_batch():
-        return _glintlab.eval_batch_seconds(model, wi, wo, isa=a.isa, repeats=1)["seconds"]
+        # Its wall seconds and, where the module measures it, its thread's CPU seconds.
+        r = _glintlab.eval_batch_seconds(model, wi, wo, isa=a.isa, repeats=1)
+        return [r["seconds"][0], r["cpu_seconds"][0] if "cpu_seconds" in r else None]
 
     def py_eval(wi_, wo_, threads=1, params=None):
         return lambda: glintlab.eval(model, wi_, wo_, params=params, isa=a.isa, threads=threads)
@@ -254,6 +260,8 @@ def main():
         "isa": isa,
         "malloc": malloc,
         "load_average": list(os.getloadavg()),
+        # The result arrays' memory pool's counters at the end (None for a module without one).
+        "result_pool": glintlab.result_pool() if hasattr(glintlab, "result_pool") else None,
         "precision": "double",
         "model": model,
         "rows": n,
@@ -280,6 +288,16 @@ def main():
             "chunked_all_cores_over_direct_contiguous":
                 median["numpy_model_eval_all_cores"] / median["numpy_model_direct_contiguous"],
         },
+        # The one-thread ratios over the C++ reference on CPU seconds (None where the module does
+        # not measure the reference's): on a loaded machine wall times wait for a core.
+        "cpu_ratios": {k: (None if median_cpu["cpp_eval_batch"] is None else
+                           median_cpu[case] / median_cpu["cpp_eval_batch"])
+                       for k, case in (("python_eval_c_1thread_over_cpp", "python_eval_c_1thread"),
+                                       ("python_eval_f_1thread_over_cpp", "python_eval_f_1thread"),
+                                       ("per_row_16_values_over_cpp",
+                                        "python_eval_per_row_16_values_1thread"),
+                                       ("per_row_distinct_over_cpp",
+                                        "python_eval_per_row_distinct_1thread"))},
         # The same ratios of one-thread cases on CPU seconds.
         "numpy_model_cpu_ratios": {
             "chunked_over_direct": cpu_ratio("numpy_model_eval_1thread", "numpy_model_direct"),
@@ -296,8 +314,9 @@ def main():
         f.write("\n")
     for k, v in {**result["ratios"], **result["numpy_model_ratios"]}.items():
         print(f"{k}: {v:.2f}")
-    for k, v in result["numpy_model_cpu_ratios"].items():
-        print(f"{k} (CPU): {v:.2f}")
+    for k, v in {**result["cpu_ratios"], **result["numpy_model_cpu_ratios"]}.items():
+        if v is not None:
+            print(f"{k} (CPU): {v:.2f}")
     return 0
 
 

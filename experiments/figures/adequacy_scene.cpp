@@ -1,5 +1,6 @@
 // Figure adequacy-scene: per validation scene (verify/scenes/adequacy_scenes.h; the binomial
-// family's six, the Kemppinen family's four and the area family's two, rendered by the claim's own
+// family's six, the Kemppinen family's four, the area family's two and the Chermain family's two,
+// rendered by the claim's own
 // render_choice_scene) the render with each pixel's chosen level, the render with the family's most
 // complete level everywhere (exact counting; k16_exact; exact counting), the difference map (the
 // larger of the mean's relative difference and the CV difference over the pixel's realisations,
@@ -7,9 +8,9 @@
 // sheet drawn by matplotlib (adequacy-scene.png from adequacy-scene-pixels.csv and its chart spec:
 // titles, axes, colour scales, legends), the two renders as the plain montage panels.png with its
 // panels.json, one EXR per scene (every per-pixel quantity), a CSV of per-scene counts per family
-// (adequacy-scene.csv, adequacy-scene-kemppinen.csv, adequacy-scene-area.csv) and summary.md with
-// each family decided as claim adequacy.choice-is-safe decides it (the Šidák share over its three
-// families); given benchmark data (--bench-from), each scene's time per evaluation with the chosen
+// (adequacy-scene.csv, adequacy-scene-kemppinen.csv, adequacy-scene-area.csv,
+// adequacy-scene-chermain.csv) and summary.md with each family decided as claim
+// adequacy.choice-is-safe decides it (the Šidák share over its four families); given benchmark data (--bench-from), each scene's time per evaluation with the chosen
 // levels against exact counting everywhere (adequacy-scene-cost.csv, summary.md; the binomial and
 // area scenes: the benchmark prices the binomial levels of both families).
 #include "experiments/figures/adequacy_scene.h"
@@ -23,11 +24,13 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "core/glints/chermain_chooser.h"
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"
@@ -54,15 +57,33 @@ const Vec3<double> kOffSurface{0.8, 0.8, 0.8};  // no surface, or the light belo
 const Vec3<double> kDark{0.45, 0.45, 0.45};     // exact level lit too rarely to measure
 const Vec3<double> kExceeds{0.9, 0.0, 0.9};     // a lower bound above TAU
 
-// The families of claim adequacy.choice-is-safe, in its order (its Šidák split is over all three).
-enum class Family { kBinomial, kKemppinen, kArea };
-constexpr int kFamilies = 3;
+// The families of claim adequacy.choice-is-safe, in its order (its Šidák split is over all four).
+enum class Family { kBinomial, kKemppinen, kArea, kChermain };
+constexpr int kFamilies = 4;
+
+// A family's level names and colours (the binomial levels for the binomial and area families).
+std::span<const std::string_view> family_level_names(Family f) {
+  if (f == Family::kKemppinen) return kKemppinenLevelNames;
+  if (f == Family::kChermain) return kChermainLevelNames;
+  return kBinomialLevelNames;
+}
+Vec3<double> family_level_color(Family f, std::size_t l) {
+  if (f == Family::kKemppinen) return kKemppinenLevelColors[l];
+  if (f == Family::kChermain) return kChermainLevelColors[l];
+  return kAdequacyLevelColors[l];
+}
+const char* family_title(Family f) {
+  return f == Family::kKemppinen ? "Kemppinen"
+         : f == Family::kArea    ? "Area"
+         : f == Family::kChermain ? "Chermain"
+                                  : "Binomial";
+}
 
 struct SceneResult {
   adq::SceneRender render;
-  // kKemppinen: KemppinenLevel values, k16_exact complete; else BinomialLevel values, exact.
+  // kKemppinen: KemppinenLevel values, k16_exact complete; kChermain: ChermainLevel values,
+  // dict16_ggaa complete; else BinomialLevel values, exact.
   Family family = Family::kBinomial;
-  bool kemppinen() const { return family == Family::kKemppinen; }
   int realisations = 0;
   int zoom = 1;  // the sheet's pixels per render pixel (the Kemppinen and area scenes are smaller)
   adq::SafetyTally tally;
@@ -130,13 +151,14 @@ Image display_panel(const SceneResult& s, Render which) {
 }
 
 std::string_view most_complete_name(const SceneResult& r) {
-  return r.kemppinen() ? kKemppinenLevelNames[std::size_t(KemppinenLevel::kK16Exact)]
-                     : kBinomialLevelNames[std::size_t(BinomialLevel::kExact)];
+  return family_level_names(r.family)[std::size_t(adq::most_complete_level(r.render.scene))];
 }
 
 // What log10_density counts: the binomial models' facets, Kemppinen's points (K_P).
 const char* density_unit(const adq::ChoiceScene& s) {
-  return adq::is_kemppinen_scene(s) ? "points (K_P)" : "facets";
+  return adq::is_kemppinen_scene(s) ? "points (K_P)"
+         : adq::is_chermain_scene(s) ? "microfacets"
+                                     : "facets";
 }
 
 const char* light_name(adq::SceneLight l) {
@@ -236,12 +258,10 @@ void write_sheet_spec(const std::filesystem::path& png, const std::string& csv,
     nlohmann::json categories = nlohmann::json::array();
     categories.push_back(
         {{"value", -1}, {"label", "off the surface"}, {"color", rgb(kOffSurface)}});
-    for (std::size_t l = 0; l < std::size_t(r.kemppinen() ? kKemppinenLevels : kBinomialLevels);
-         ++l)
-      categories.push_back(
-          {{"value", l},
-           {"label", r.kemppinen() ? kKemppinenLevelNames[l] : kBinomialLevelNames[l]},
-           {"color", rgb(r.kemppinen() ? kKemppinenLevelColors[l] : kAdequacyLevelColors[l])}});
+    for (std::size_t l = 0; l < family_level_names(r.family).size(); ++l)
+      categories.push_back({{"value", l},
+                            {"label", family_level_names(r.family)[l]},
+                            {"color", rgb(family_level_color(r.family, l))}});
     panels.push_back({{"kind", "categories"},
                       {"title", fmt::format("{}: {}\n{}", name, kColumnNames[3], counts)},
                       {"where", where},
@@ -282,12 +302,8 @@ void write_scene_exr(const FigureContext& ctx, const SceneResult& s) {
       for (std::size_t c = 0; c < std::size(v); ++c) im.at(x, y, c) = v[c];
     }
   std::string levels;
-  if (s.kemppinen())
-    for (std::size_t l = 0; l < kKemppinenLevelNames.size(); ++l)
-      levels += fmt::format("{} {}, ", l, kKemppinenLevelNames[l]);
-  else
-    for (std::size_t l = 0; l < kBinomialLevelNames.size(); ++l)
-      levels += fmt::format("{} {}, ", l, kBinomialLevelNames[l]);
+  for (std::size_t l = 0; l < family_level_names(s.family).size(); ++l)
+    levels += fmt::format("{} {}, ", l, family_level_names(s.family)[l]);
   io::write_exr(ctx.dir / (r.scene.name + ".exr"), im,
                 {{"glintlab_figure", std::string(kId)},
                  {"glintlab_version", std::string(glintlab_version())},
@@ -366,7 +382,8 @@ std::string write_scene_costs(const FigureContext& ctx, const std::vector<SceneR
     }
   }
   const auto priced = [&](const SceneResult& r) {
-    return r.family != Family::kKemppinen && costs->ns.count(r.render.scene.model) > 0;
+    return (r.family == Family::kBinomial || r.family == Family::kArea) &&
+           costs->ns.count(r.render.scene.model) > 0;
   };
   std::string md = fmt::format(
       "\n## Time per evaluation\n\nEach level priced by {} (rows adequacy/<model>/level=<level>/"
@@ -375,10 +392,12 @@ std::string write_scene_costs(const FigureContext& ctx, const std::vector<SceneR
       "(choose_binomial_level_by_cost); saved = 1 − time / exact time.\n\n",
       costs->source, costs->isa);
   if (std::any_of(results.begin(), results.end(),
-                  [](const SceneResult& r) { return r.family == Family::kKemppinen; }))
+                  [](const SceneResult& r) {
+                    return r.family == Family::kKemppinen || r.family == Family::kChermain;
+                  }))
     md +=
-        "The Kemppinen scenes are not priced here: the benchmark's adequacy/ rows price the "
-        "binomial levels (of the binomial and area families) only.\n\n";
+        "The Kemppinen and Chermain scenes are not priced here: the benchmark's adequacy/ rows "
+        "price the binomial levels (of the binomial and area families) only.\n\n";
   if (!unpriced_area.empty())
     md += fmt::format("The area scenes are not priced here: {}.\n\n", unpriced_area);
   md +=
@@ -410,13 +429,12 @@ std::string write_scene_costs(const FigureContext& ctx, const std::vector<SceneR
 // chosen level (the family's level names as columns).
 void write_family_csv(const std::filesystem::path& file, const std::vector<SceneResult>& results,
                       Family family) {
-  const bool kemppinen = family == Family::kKemppinen;
+  const std::span<const std::string_view> names = family_level_names(family);
   std::vector<std::string_view> header = {"scene",         "model",   "shape",  "light",
                                           "log10_density", "width",   "height", "realisations",
                                           "lit",           "cheaper", "exceeds"};
-  const std::size_t levels = kemppinen ? kKemppinenLevelNames.size() : kBinomialLevelNames.size();
-  for (std::size_t l = 0; l < levels; ++l)
-    header.emplace_back(kemppinen ? kKemppinenLevelNames[l] : kBinomialLevelNames[l]);
+  const std::size_t levels = names.size();
+  for (std::size_t l = 0; l < levels; ++l) header.emplace_back(names[l]);
   header.emplace_back("max_diff_over_tau");
   header.emplace_back("exposure");
   io::write_csv_atomic(file, header, [&](io::CsvWriter& w) {
@@ -445,14 +463,14 @@ void write_family_csv(const std::filesystem::path& file, const std::vector<Scene
 // adequacy.choice-is-safe takes on such counts (each family on its own at the Šidák share of the
 // per-check level, as the claim decides them).
 std::string family_summary(const std::vector<SceneResult>& results, Family family, double alpha) {
-  const bool kemppinen = family == Family::kKemppinen;
+  const std::span<const std::string_view> names = family_level_names(family);
   adq::SafetyTally total;
-  std::string md = kemppinen
-                       ? "| scene | model | lit pixels | cheaper than k16_exact | exceed TAU |"
-                       : "| scene | model | lit pixels | cheaper than exact | exceed TAU |";
-  const std::size_t levels = kemppinen ? kKemppinenLevelNames.size() : kBinomialLevelNames.size();
-  for (std::size_t l = 0; l < levels; ++l)
-    md += fmt::format(" {} |", kemppinen ? kKemppinenLevelNames[l] : kBinomialLevelNames[l]);
+  std::string md = fmt::format("| scene | model | lit pixels | cheaper than {} | exceed TAU |",
+                               family == Family::kKemppinen  ? "k16_exact"
+                               : family == Family::kChermain ? "dict16_ggaa"
+                                                             : "exact");
+  const std::size_t levels = names.size();
+  for (std::size_t l = 0; l < levels; ++l) md += fmt::format(" {} |", names[l]);
   md += " max difference / TAU |\n|";
   for (std::size_t c = 0; c < levels + 6; ++c) md += "---|";
   md += "\n";
@@ -470,10 +488,7 @@ std::string family_summary(const std::vector<SceneResult>& results, Family famil
       "adequacy.choice-is-safe on these pixels allows at most {} ({:.4g}; one-sided exact "
       "binomial test of rate ≤ {} at {:.3g}, the Šidák share of {:.3g} over the {} families, "
       "p = {:.3g}): {}.\n",
-      family == Family::kKemppinen ? "Kemppinen"
-      : family == Family::kArea    ? "Area"
-                                   : "Binomial",
-      total.exceeds, total.lit, d.fraction, d.allowed,
+      family_title(family), total.exceeds, total.lit, d.fraction, d.allowed,
       d.allowed_fraction, adq::kPixelFlagRate, alpha, verify::check_level(), kFamilies, d.p_value,
       to_string(d.verdict));
   return md;
@@ -501,8 +516,13 @@ void run_adequacy_scene(const FigureContext& ctx) {
   adq::SceneOptions ao;
   ao.width = ao.height = ctx.quick ? 64 : 128;
   ao.realisations = ctx.quick ? 256 : 512;
-  const adq::SceneOptions* options[kFamilies] = {&o, &ko, &ao};
-  // The scenes of every family in the claim's order (binomial, Kemppinen, area).
+  // The Chermain scenes: dict16_ggaa's 16-probe textureGrad costs some 2-4 µs per evaluation, so
+  // 32² with 128 realisations at quick and 64² with 256 at full (the claim's sizes).
+  adq::SceneOptions co;
+  co.width = co.height = ctx.quick ? 32 : 64;
+  co.realisations = ctx.quick ? 128 : 256;
+  const adq::SceneOptions* options[kFamilies] = {&o, &ko, &ao, &co};
+  // The scenes of every family in the claim's order (binomial, Kemppinen, area, Chermain).
   std::vector<adq::ChoiceScene> scenes = adq::choice_scenes();
   std::vector<Family> families(scenes.size(), Family::kBinomial);
   for (adq::ChoiceScene& s : adq::kemppinen_choice_scenes()) {
@@ -512,6 +532,10 @@ void run_adequacy_scene(const FigureContext& ctx) {
   for (adq::ChoiceScene& s : adq::area_choice_scenes()) {
     scenes.push_back(std::move(s));
     families.push_back(Family::kArea);
+  }
+  for (adq::ChoiceScene& s : adq::chermain_choice_scenes()) {
+    scenes.push_back(std::move(s));
+    families.push_back(Family::kChermain);
   }
   std::vector<SceneResult> results;
   for (std::size_t i = 0; i < scenes.size(); ++i) {
@@ -541,7 +565,9 @@ void run_adequacy_scene(const FigureContext& ctx) {
                     {"kemppinen", kKemppinenLevelNames[std::size_t(KemppinenLevel::kK16Exact)],
                      ko.width, ko.height, ko.realisations},
                     {"area", kBinomialLevelNames[std::size_t(BinomialLevel::kExact)], ao.width,
-                     ao.height, ao.realisations}});
+                     ao.height, ao.realisations},
+                    {"chermain", kChermainLevelNames[std::size_t(kChermainMostComplete)],
+                     co.width, co.height, co.realisations}});
   std::vector<Image> tiles;
   std::vector<std::string> labels;
   for (const SceneResult& r : results)
@@ -561,6 +587,7 @@ void run_adequacy_scene(const FigureContext& ctx) {
   write_family_csv(ctx.dir / "adequacy-scene.csv", results, Family::kBinomial);
   write_family_csv(ctx.dir / "adequacy-scene-kemppinen.csv", results, Family::kKemppinen);
   write_family_csv(ctx.dir / "adequacy-scene-area.csv", results, Family::kArea);
+  write_family_csv(ctx.dir / "adequacy-scene-chermain.csv", results, Family::kChermain);
 
   // Each family at the Šidák share of the per-check level over the claim's families.
   const double alpha = verify::sidak_level(verify::check_level(), kFamilies);
@@ -591,6 +618,13 @@ void run_adequacy_scene(const FigureContext& ctx) {
       ao.realisations);
   md += family_summary(results, Family::kArea, alpha);
   md += fmt::format(
+      "\n## Chermain family (chermain; most complete: dict16_ggaa)\n\n"
+      "{}×{} pixels (each shown {}×{} on the sheet), {} realisations per pixel; levels by "
+      "choose_chermain_model_level (core/glints/chermain_chooser.h) with the pixel's GGAA "
+      "derivatives; the density is microfacets per unit uv area.\n\n",
+      co.width, co.height, o.width / co.width, o.width / co.width, co.realisations);
+  md += family_summary(results, Family::kChermain, alpha);
+  md += fmt::format(
       "\nadequacy-scene.png (drawn by matplotlib from adequacy-scene-pixels.csv): one row per "
       "scene; columns: the difference map (max of the two differences over TAU on its colour "
       "scale, 0 to 2 TAU; magenta where it exceeds TAU for sure; dark grey where the most "
@@ -598,11 +632,12 @@ void run_adequacy_scene(const FigureContext& ctx) {
       "chosen level (binomial and area: green smooth, blue realtime, orange small_count, red "
       "exact; "
       "Kemppinen: green smooth, then k = 1, 4, 9, 16 in blue, yellow, purple, red, the exact erf "
-      "the darker shade). panels.png: per scene the chosen-level render and the most complete "
+      "the darker shade; Chermain: the same colours for smooth, dict4, 8, 12, 16, GGAA on the "
+      "darker shade). panels.png: per scene the chosen-level render and the most complete "
       "level's render (same exposure), two scenes a row, unlabelled (labels in "
       "panels.panels.json); <scene>.exr every per-pixel "
-      "quantity at the render's size; adequacy-scene.csv, adequacy-scene-kemppinen.csv and "
-      "adequacy-scene-area.csv the per-scene counts.\n",
+      "quantity at the render's size; adequacy-scene.csv, adequacy-scene-kemppinen.csv, "
+      "adequacy-scene-area.csv and adequacy-scene-chermain.csv the per-scene counts.\n",
       adq::kMinLitPositions);
   md += write_scene_costs(ctx, results, o.tau);
   io::write_file_atomic(ctx.dir / "summary.md", md);
@@ -613,7 +648,8 @@ void run_adequacy_scene(const FigureContext& ctx) {
 FigureEntry adequacy_scene_entry() {
   return {
       kId, "glintlab (adequacy of the binomial family)", "claim adequacy.choice-is-safe",
-      "validation scenes of the binomial, Kemppinen and area families: each pixel's chosen level "
+      "validation scenes of the binomial, Kemppinen, area and Chermain families: each pixel's "
+      "chosen level "
       "against the family's most complete level, with the difference map and the "
       "chosen-level map",
       run_adequacy_scene};

@@ -33,7 +33,7 @@ if not _os.environ.get("GLINTLAB_REPORTS_DIR") and _os.path.isfile(
     _os.environ["GLINTLAB_REPORTS_DIR"] = _REPORTS
 
 __all__ = ["models", "eval", "sample", "load_plugin", "register_model", "verify", "figure",
-           "sweep", "compare", "adequacy", "read_csv"]
+           "sweep", "compare", "adequacy", "read_csv", "result_pool"]
 
 _PRECISIONS = "precision: 'double' (float64 in, float64 out) or 'float' (float32)"
 
@@ -105,6 +105,22 @@ def sample(model, wi, u=None, params=None, footprint=None, light=None, n=None, s
     return _glintlab.sample(model, wi, u=u, params=params, footprint=footprint, light=light,
                             n=n, seed=seed, precision=precision, isa=isa, math=math,
                             threads=threads)
+
+
+def result_pool(idle_limit=None):
+    """The memory of the arrays eval and sample return: counters of its pool, after setting the
+    pool's bound on idle memory when idle_limit (bytes, >= 0) is given.
+
+    An array of at least min_block_bytes takes a block the pool keeps mapped after an earlier
+    result was freed (so its pages need not be faulted in again), else a freshly mapped one; the
+    arrays are ordinary numpy arrays owning their memory, which numpy gives back to the pool when
+    the last reference (or view) goes. Freed blocks stay mapped while their bytes together are
+    within idle_limit (default 256 MiB; the oldest are unmapped first); 0 unmaps every freed
+    block. Returns {'idle_bytes', 'idle_blocks' (kept for reuse), 'live_bytes', 'live_blocks'
+    (held by arrays now), 'reused', 'mapped', 'unmapped' (blocks so far), 'idle_limit',
+    'min_block_bytes'}.
+    """
+    return _glintlab.result_pool(idle_limit=idle_limit)
 
 
 def load_plugin(path):

@@ -1,8 +1,9 @@
 // `glintlab figure adequacy-scene --budget quick`: the labelled sheet (matplotlib) and its pixels'
 // CSV, the montage and its panel labels, one EXR per validation scene with every per-pixel
-// quantity (the binomial scenes at 128 pixels, the Kemppinen scenes at 32, the area scenes at 64),
-// each family's per-scene CSV whose counts are the EXRs' pixels, and summary.md with the claim's
-// decision per family at the claim's Šidák share over its three families.
+// quantity (the binomial scenes at 128 pixels, the Kemppinen scenes at 32, the area scenes at 64,
+// the Chermain scenes at 32), each family's per-scene CSV whose counts are the EXRs' pixels, and
+// summary.md with the claim's decision per family at the claim's Šidák share over its four
+// families.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -72,14 +73,15 @@ TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
   expect_png(d / "adequacy-scene.png");
   // The sheet, drawn by matplotlib: per scene its difference map and its chosen-level map, each
   // titled, with pixel axes and a colour scale; the scenes named in the panels' titles.
-  expect_labelled_chart(d / "adequacy-scene.png", 24);
+  expect_labelled_chart(d / "adequacy-scene.png", 28);
   const nlohmann::json sheet = chart_manifest(d / "adequacy-scene.png");
   EXPECT_NE(sheet["axes"][0].value("title", "").find("plane-point-low"), std::string::npos);
   EXPECT_NE(sheet["axes"][19].value("title", "").find("kemppinen-sphere-high"), std::string::npos);
   EXPECT_NE(sheet["axes"][23].value("title", "").find("area-plane-rect-high"), std::string::npos);
+  EXPECT_NE(sheet["axes"][27].value("title", "").find("chermain-plane-high"), std::string::npos);
   // Its data: every pixel of every scene, image order, the level as in the scene's EXR.
   const io::CsvTable px = io::read_csv(d / "adequacy-scene-pixels.csv");
-  ASSERT_EQ(px.num_rows(), 6u * 128 * 128 + 4u * 32 * 32 + 2u * 64 * 64);
+  ASSERT_EQ(px.num_rows(), 6u * 128 * 128 + 4u * 32 * 32 + 2u * 64 * 64 + 2u * 32 * 32);
   const Image first = io::read_exr(d / "plane-point-low.exr").image;
   for (std::size_t i = 0; i < 128u * 128; ++i) {
     ASSERT_EQ(px.text(i, px.column("scene")), "plane-point-low");
@@ -93,14 +95,14 @@ TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
   const std::string layout = read_text(d / "panels.panels.json");
   EXPECT_EQ(layout.find("difference / TAU"), std::string::npos);
   EXPECT_EQ(layout.find("chosen level map"), std::string::npos);
-  for (const char* name : {"plane-point-low", "kemppinen-plane-low", "kemppinen-plane-high",
-                           "kemppinen-sphere-low", "kemppinen-sphere-high", "area-plane-rect-low",
-                           "area-plane-rect-high"})
+  for (const char* name :
+       {"plane-point-low", "kemppinen-plane-low", "kemppinen-plane-high", "kemppinen-sphere-low",
+        "kemppinen-sphere-high", "area-plane-rect-low", "area-plane-rect-high"})
     for (const char* column : {"chosen level", "most complete level"})
       EXPECT_NE(layout.find(fmt::format("\"{}: {}\"", name, column)), std::string::npos)
           << name << ": " << column;
   const nlohmann::json panels = nlohmann::json::parse(layout);
-  EXPECT_EQ(panels["labels"].size(), 2u * 12u);
+  EXPECT_EQ(panels["labels"].size(), 2u * 14u);
   const io::CsvTable t = io::read_csv(d / "adequacy-scene.csv");
   ASSERT_EQ(t.num_rows(), 6u);
   // The binomial scenes reach every level of the family.
@@ -130,23 +132,33 @@ TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
     double as_kemppinen = 0;
     for (int y = 0; y < im.height; ++y)
       for (int x = 0; x < im.width; ++x)
-        as_kemppinen += im.at(x, y, im.channel("lit")) != 0 &&
-                                im.at(x, y, im.channel("level")) < 8
-                            ? 1
-                            : 0;
+        as_kemppinen +=
+            im.at(x, y, im.channel("lit")) != 0 && im.at(x, y, im.channel("level")) < 8 ? 1 : 0;
     EXPECT_NE(as_kemppinen, a.number(i, a.column("cheaper")));
   }
+  // The Chermain scenes (the plane at two microfacet densities): 32 pixels, cheaper meaning below
+  // dict16_ggaa (8); the chooser takes shorter dictionaries (GGAA twins) where they are identical.
+  const io::CsvTable ch = io::read_csv(d / "adequacy-scene-chermain.csv");
+  ASSERT_EQ(ch.num_rows(), 2u);
+  const std::set<int> c_levels = expect_counts_match_exrs(d, ch, 32, 8, 400);
+  EXPECT_TRUE(c_levels.count(8)) << "no Chermain pixel at dict16_ggaa";
+  EXPECT_TRUE(c_levels.count(4) || c_levels.count(6))
+      << "no Chermain pixel at a shorter dictionary";
+  for (std::size_t i = 0; i < ch.num_rows(); ++i)
+    EXPECT_EQ(ch.text(i, ch.column("model")), "chermain");
   const std::string md = read_text(d / "summary.md");
   EXPECT_NE(md.find("lit pixels exceed TAU"), std::string::npos);
   EXPECT_NE(md.find("Binomial family"), std::string::npos);
   EXPECT_NE(md.find("Kemppinen family"), std::string::npos);
   EXPECT_NE(md.find("most complete: k16_exact"), std::string::npos);
   EXPECT_NE(md.find("Area family"), std::string::npos);
-  // Each family at the claim's Šidák share: over its three families, as the claim decides.
-  EXPECT_NE(md.find("over the 3 families"), std::string::npos);
+  EXPECT_NE(md.find("Chermain family"), std::string::npos);
+  // Each family at the claim's Šidák share: over its four families, as the claim decides.
+  EXPECT_NE(md.find("over the 4 families"), std::string::npos);
+  EXPECT_EQ(md.find("over the 3 families"), std::string::npos);
   EXPECT_EQ(md.find("over the 2 families"), std::string::npos);
   EXPECT_EQ(md.find("over the two families"), std::string::npos);
-  EXPECT_NE(md.find("The Kemppinen scenes are not priced"), std::string::npos);
+  EXPECT_NE(md.find("The Kemppinen and Chermain scenes are not priced"), std::string::npos);
   EXPECT_EQ(md.find("The area scenes are not priced"), std::string::npos);
   // Each scene's time: exact everywhere = 100 ns per surface pixel; the chooser for these costs
   // never costs more than exact counting (it takes smooth where adequate, else exact).

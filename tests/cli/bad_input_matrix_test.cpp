@@ -363,6 +363,9 @@ std::vector<Case> cases() {
   add("report_reuse_with_value", {"report", "--reuse=2", "--out", "r"}, "--reuse");
   add("report_claims_from_nowhere", join(re, {"--claims-from", "nowhere"}), "--claims-from");
   add("report_claims_from_empty", join(re, {"--claims-from", ""}), "--claims-from");
+  add("report_gpu_from_nowhere", join(re, {"--gpu-from", "nowhere"}), "--gpu-from");
+  add("report_gpu_from_empty", join(re, {"--gpu-from", ""}), "--gpu-from");
+  add("report_gpu_from_emptydir", join(re, {"--gpu-from", "emptydir"}), "results.json");
   add("report_out_under_file", {"report", "--out", "blocker/r"}, "--out");
   add("report_out_unwritable", {"report", "--out", "/proc/x"}, "--out");
   add("report_out_dot", {"report", "--out", "."}, "--out");

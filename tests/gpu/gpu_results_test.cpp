@@ -4,7 +4,11 @@
 // "device" results here are the CPU batches' own, written by the device check's writer.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
 #include <cmath>
+#include <cstdlib>
+#include <iterator>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -54,11 +58,10 @@ TEST(GpuQuerySet, IsAPrefixOfALargerSetAndUnitDirections) {
   EXPECT_NE(make_query_set(4, kQuerySeed + 1).columns[wi_x][0], small.columns[wi_x][0]);
 }
 
-// Half the rows sit near the mirror direction: there a smooth lobe is non-zero, so the
-// comparison compares values, not zeros.
-TEST(GpuQuerySet, MostRowsGiveANonZeroValue) {
+// The share of the set's rows where `model`'s value is non-zero (CPU batch, scalar, defaults).
+double nonzero_share(const char* model) {
   const QuerySet q = make_query_set(2048, kQuerySeed);
-  const ModelEntry& m = find_model("smooth_ggx");
+  const ModelEntry& m = find_model(model);
   std::vector<simd::Column<double>> query;
   for (const auto& c : q.columns) query.push_back({c.data(), 1});
   std::vector<std::vector<double>> out(2 + m.intermediates.size(), std::vector<double>(q.rows));
@@ -67,7 +70,19 @@ TEST(GpuQuerySet, MostRowsGiveANonZeroValue) {
   simd::eval_batch(m, resolve_params(m, {}), query, outputs, q.rows, simd::Isa::kScalar);
   std::size_t nonzero = 0;
   for (double v : out[0]) nonzero += v > 0 ? 1 : 0;
-  EXPECT_GT(nonzero, q.rows / 2);
+  return double(nonzero) / double(q.rows);
+}
+
+// Half the rows sit near the mirror direction: there a smooth lobe is non-zero, so the
+// comparison compares values, not zeros.
+TEST(GpuQuerySet, MostRowsGiveANonZeroValue) { EXPECT_GT(nonzero_share("smooth_ggx"), 0.5); }
+
+// Podee et al.'s model reads the light's cone and the pixel-corner reflections: on the rows whose
+// corners surround ω_o the pixel sees the light, so its value is compared where it is non-zero.
+TEST(GpuQuerySet, PodeeSeesTheLightOnAboutHalfTheRows) {
+  const double share = nonzero_share("podee");
+  EXPECT_GT(share, 0.4);
+  EXPECT_LT(share, 0.9);  // the other rows keep the zero branch (the light outside the pixel)
 }
 
 // A results folder as the device check writes it, with the CPU batches' results standing in for
@@ -251,6 +266,49 @@ TEST(GpuComparison, AMalformedFolderIsNamed) {
       << message();
   fs::remove(dir / "results.json");
   EXPECT_NE(message().find("results.json: cannot be read"), std::string::npos) << message();
+}
+
+// The report's GPU section reads the folder the device check writes (gpu/results_format.cpp):
+// a folder written by that writer, in a report's gpu/ part, gives one rate row per model and
+// precision and one row per Table 3 cell; the same folder with a field gone is a one-line error.
+TEST(GpuResultsFolder, TheReportShowsWhatTheDeviceCheckWrites) {
+  const fs::path folder = write_folder("gpu_for_report", 16, kUnchanged);
+  const fs::path stage = fs::path(::testing::TempDir()) / "gpu_report_stage";
+  fs::remove_all(stage);
+  fs::create_directories(stage);
+  fs::copy(folder, stage / "gpu", fs::copy_options::recursive);
+  const std::string make = std::string("/usr/bin/python3 ") + GLINTLAB_SOURCE_DIR +
+                           "/reports/make_report.py --dir " + stage.string() + " > " +
+                           (stage.parent_path() / "gpu_report.log").string() + " 2>&1";
+  ASSERT_EQ(std::system(make.c_str()), 0);
+  std::ifstream in(stage / "report.md");
+  const std::string md((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(md.find("Models on a GPU"), std::string::npos);
+  EXPECT_NE(md.find("CPU standing in for a device"), std::string::npos);
+  for (const char* row : {"| smooth_ggx | float |", "| smooth_ggx | double |",
+                          "| smooth_beckmann | float |", "| smooth_beckmann | double |"})
+    EXPECT_NE(md.find(row), std::string::npos) << row;
+  for (const kemppinen_table3::Cell& cell : kemppinen_table3::cells())
+    EXPECT_NE(md.find("| " + kemppinen_table3::cell_name(cell) + " |"), std::string::npos)
+        << kemppinen_table3::cell_name(cell);
+
+  std::ifstream json_in(stage / "gpu" / "results.json");
+  std::string json((std::istreambuf_iterator<char>(json_in)), std::istreambuf_iterator<char>());
+  json_in.close();
+  const std::size_t at = json.find("\"rows_per_second\"");
+  ASSERT_NE(at, std::string::npos);
+  json.replace(at, std::string("\"rows_per_second\"").size(), "\"rows_per_sec\"");
+  { std::ofstream(stage / "gpu" / "results.json") << json; }
+  fs::remove(stage / "report.md");
+  fs::remove(stage / "index.html");
+  EXPECT_EQ(WEXITSTATUS(std::system(make.c_str())), 2);
+  EXPECT_FALSE(fs::exists(stage / "report.md"));
+  std::ifstream log(stage.parent_path() / "gpu_report.log");
+  const std::string err((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  EXPECT_NE(err.find("glintlab: error: report: gpu/results.json is malformed: runs[0] has no "
+                     "valid \"rows_per_second\""),
+            std::string::npos)
+      << err;
 }
 
 }  // namespace

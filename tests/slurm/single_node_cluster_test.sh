@@ -187,15 +187,8 @@ echo "$states" | grep -q "^$merge_id COMPLETED$" ||
   { timeout 5 scontrol show job "$merge_id"; cat "$WORK"/run1/logs/* 2> /dev/null; fail "the merge job did not complete"; }
 echo "jobs ended after $((SECONDS - start)) s"
 
-# The timing fields blanked as in tests/cli/shard_merge_test.cpp: "seconds" in claims.json, the
-# last column of claims.csv, the time column of claims.md.
-without_timing() {
-  case "$1" in
-    *.json) sed -E 's/"seconds": [-0-9.e+]+/"seconds": T/' "$1" ;;
-    *.csv) sed -E 's/,[0-9.]+$/,T/' "$1" ;;
-    *) sed -E 's/\| [0-9.]+ s \|/| T |/' "$1" ;;
-  esac
-}
+# The timing fields blanked as in tests/cli/shard_merge_test.cpp (without_timing).
+. "$(dirname "$(readlink -f "${BASH_SOURCE[0]}")")/../scale_out/claims_without_timing.sh"
 same_as_one() {  # FOLDER: its claims.{json,csv,md} are the single run's apart from timing?
   for f in claims.json claims.csv claims.md; do
     [ -f "$1/$f" ] || return 1

@@ -47,9 +47,11 @@ double value_at(const Chermain::Params<double>& p, const ModelQuery<double>& q) 
   return Chermain::eval<double>(p, q).value;
 }
 
+}  // namespace
+
 // The smooth level: the Gaussian slope density of covariance Σ (Eq. 16) in place of the
 // patch-SDF, with the same V-cavity G2 (what the model falls back to past its last level).
-double smooth_value(const Chermain::Params<double>& p, const ModelQuery<double>& q) {
+double chermain_smooth_value(const Chermain::Params<double>& p, const ModelQuery<double>& q) {
   const Vec3<double> h = half_vector(q.wi, q.wo);
   if (!(q.wi.z > 0 && q.wo.z > 0 && h.z > 0)) return 0;
   const double D = Chermain::smooth_d(p.sdf, h);
@@ -57,12 +59,12 @@ double smooth_value(const Chermain::Params<double>& p, const ModelQuery<double>&
   return D * G2 / (4 * q.wi.z * q.wo.z) * q.wo.z;
 }
 
+namespace {
+
 double half_log2_density() { return 0.5 * std::log2(kChermainDensity); }
 
 // k = ⌊l + ½ log2 density⌋, at least 0 (chermain2021::dictionary_level).
-int dictionary_level(double l) {
-  return int(std::max(0.0, std::floor(l + half_log2_density())));
-}
+int dictionary_level(double l) { return int(std::max(0.0, std::floor(l + half_log2_density()))); }
 
 }  // namespace
 
@@ -120,8 +122,7 @@ ChermainLevel chermain_identical_level(const ChermainCell& c) {
   // A weighted LOD's term is the same in dictL as in the whole dictionary when its level is below
   // L (the same tables), or when it is past the whole dictionary's last level (both smooth).
   const auto same = [&](int level, int L) { return level < L || level >= kLast; };
-  const bool both_smooth =
-      k.level_fine >= kLast && (!k.coarse_weighted || k.level_coarse >= kLast);
+  const bool both_smooth = k.level_fine >= kLast && (!k.coarse_weighted || k.level_coarse >= kLast);
   if (both_smooth) return ChermainLevel::kSmooth;
   for (int L : {4, 8, 12, 16})
     if (same(k.level_fine, L) && (!k.coarse_weighted || same(k.level_coarse, L))) {
@@ -164,14 +165,15 @@ struct LodMoments {
   bool smooth[2] = {false, false};
 };
 
-LodMoments lod_moments(const ChermainCell& c, int l0, int rotations) {
-  const auto p = chermain_level_params(c, kChermainMostComplete, 0);
+LodMoments lod_moments(const ChermainCell& c, int l0, int rotations,
+                       ChermainLevel level = kChermainMostComplete) {
+  const auto p = chermain_level_params(c, level, 0);
   const chermain2021::Dictionary& dict = *p.sdf.dictionary;
   const ModelQuery<double> q = chermain_cell_query(c, {0, 0});
   const Vec3<double> h = half_vector(q.wi, q.wo);
   const double mxs = -h.x / h.z, mys = -h.y / h.z;
-  const chermain2021::Matrix M = chermain2021::matrix(p.sdf.sigma_x, p.sdf.sigma_y, p.sdf.rho,
-                                                      dict.sigma_o(), p.sdf.with_rho);
+  const chermain2021::Matrix M =
+      chermain2021::matrix(p.sdf.sigma_x, p.sdf.sigma_y, p.sdf.rho, dict.sigma_o(), p.sdf.with_rho);
   const bool ggaa = p.sdf.kernel != chermain2021::kNoGgaa;
   const double sk = ggaa ? p.sdf.s_k : 0.0;
   const auto& d = p.d;
@@ -187,9 +189,9 @@ LodMoments lod_moments(const ChermainCell& c, int l0, int rotations) {
     r.smooth[j] = k[j] >= dict.levels();
   }
   const int N = dict.distributions();
-  const auto lookup = [&](int n, int level, double x, double dx, double dy) {
-    return ggaa ? dict.lookup_grad(n, level, x, dx, dy, p.sdf.wrap, 16)
-                : dict.lookup_lod(n, level, x, 0, p.sdf.wrap);
+  const auto lookup = [&](int n, int lv, double x, double dx, double dy) {
+    return ggaa ? dict.lookup_grad(n, lv, x, dx, dy, p.sdf.wrap, 16)
+                : dict.lookup_lod(n, lv, x, 0, p.sdf.wrap);
   };
   for (int t = 0; t < rotations; ++t) {
     const double theta = 2 * std::numbers::pi * (t + 0.5) / rotations;
@@ -223,8 +225,7 @@ LodMoments lod_moments(const ChermainCell& c, int l0, int rotations) {
     r.mu[j] /= rotations * M.det;
     r.m2[j] /= rotations * M.det * M.det;
   }
-  r.cross = r.smooth[0] || r.smooth[1] ? r.mu[0] * r.mu[1]
-                                       : r.cross / (rotations * M.det * M.det);
+  r.cross = r.smooth[0] || r.smooth[1] ? r.mu[0] * r.mu[1] : r.cross / (rotations * M.det * M.det);
   return r;
 }
 
@@ -240,25 +241,55 @@ ChermainExactMoments combine(const LodMoments& m, double w1, bool shared_draws) 
   e.mean = w0 * m.mu[0] + w1 * m.mu[1];
   const double v0 = m.m2[0] - m.mu[0] * m.mu[0], v1 = m.m2[1] - m.mu[1] * m.mu[1];
   const double cov = m.cross - m.mu[0] * m.mu[1];
-  const double var = 4.0 / 9.0 * (w0 * w0 * v0 + w1 * w1 * v1) +
-                     (shared_draws ? 2 * w0 * w1 * cov * shared : 0.0);
+  const double var =
+      4.0 / 9.0 * (w0 * w0 * v0 + w1 * w1 * v1) + (shared_draws ? 2 * w0 * w1 * cov * shared : 0.0);
   e.sd = std::sqrt(std::max(var, 0.0));
   return e;
 }
 
 }  // namespace
 
-ChermainExactMoments chermain_exact_moments(const ChermainCell& c, int rotations,
-                                            bool shared_draws) {
+ChermainExactMoments chermain_exact_moments(const ChermainCell& c, int rotations, bool shared_draws,
+                                            ChermainLevel level) {
   const double lod = chermain_construction(c).lod;
   const double l0 = std::floor(lod);
-  return combine(lod_moments(c, int(l0), rotations), lod - l0, shared_draws);
+  return combine(lod_moments(c, int(l0), rotations, level), lod - l0, shared_draws);
+}
+
+namespace {
+ChermainExactDifference difference(const ChermainExactMoments& a, const ChermainExactMoments& b) {
+  return {a.mean / b.mean - 1, a.cv() - b.cv()};
+}
+}  // namespace
+
+ChermainExactDifference chermain_exact_difference(const ChermainCell& c, ChermainLevel level,
+                                                  int rotations) {
+  return difference(chermain_exact_moments(c, rotations, true, level),
+                    chermain_exact_moments(c, rotations, true, kChermainMostComplete));
+}
+
+double chermain_dictionary_boundary(const ChermainCell& c, ChermainLevel level, double tau,
+                                    int rotations) {
+  const int L = chermain_dictionary_levels(level);
+  const int l0 = L - 1 - int(std::floor(half_log2_density()));
+  const LodMoments ml = lod_moments(c, l0, rotations, level);
+  const LodMoments m16 = lod_moments(c, l0, rotations, kChermainMostComplete);
+  constexpr int kSteps = 1024;
+  for (int s = 1; s < kSteps; ++s) {
+    const double w1 = double(s) / kSteps;
+    const ChermainExactDifference d = difference(combine(ml, w1, true), combine(m16, w1, true));
+    if (std::max(std::abs(d.mean_diff), std::abs(d.cv_diff)) > tau)
+      return chermain_identical_facets(L, c.theta_i_deg) * std::pow(4.0, w1);
+  }
+  return NAN;
 }
 
 double chermain_smooth_boundary(ChermainCell c, double tau, int rotations) {
   const double stretch_cos = std::cos(c.theta_i_deg * kDeg);
   // facets = density 4^l_P cos θ_i (the longer side 2^l_P, the shorter cos θ_i times it).
-  const auto facets_at = [&](double l) { return kChermainDensity * std::pow(4.0, l) * stretch_cos; };
+  const auto facets_at = [&](double l) {
+    return kChermainDensity * std::pow(4.0, l) * stretch_cos;
+  };
   int l0 = 39;
   while (l0 > -20 && dictionary_level(double(l0 - 1)) >= 16) --l0;  // from here both LODs smooth
   constexpr int kSteps = 256;
@@ -271,6 +302,20 @@ double chermain_smooth_boundary(ChermainCell c, double tau, int rotations) {
     }
   }
   return facets_at(-20);
+}
+
+int chermain_chooser_level(const ChermainCell& c, double tau) {
+  const auto p = chermain_level_params(c, kChermainMostComplete, 0);
+  return int(
+      choose_chermain_model_level(p, chermain_cell_query(c, chermain_surface_position(c, 0)), tau));
+}
+
+double chermain_chooser_cv(const ChermainCell& c) {
+  const auto p = chermain_level_params(c, kChermainMostComplete, 0);
+  const ModelQuery<double> q = chermain_cell_query(c, chermain_surface_position(c, 0));
+  const Vec3<double> h = half_vector(q.wi, q.wo);
+  return chermain_smooth_cv(p.sdf, p.d, Vec2<double>{-h.x / h.z, -h.y / h.z},
+                            chermain_lods(p.sdf, q.footprint));
 }
 
 Vec2<double> chermain_surface_position(const ChermainCell& c, int i) {
@@ -313,8 +358,7 @@ const chermain2021::Dictionary& chermain_level_dictionary(int levels) {
     });
     return d;
   };
-  static const std::unique_ptr<chermain2021::Dictionary> d4 = make(4), d8 = make(8),
-                                                          d12 = make(12);
+  static const std::unique_ptr<chermain2021::Dictionary> d4 = make(4), d8 = make(8), d12 = make(12);
   return levels == 4 ? *d4 : levels == 8 ? *d8 : *d12;
 }
 
@@ -335,14 +379,16 @@ double chermain_level_values(const ChermainCell& cell, ChermainLevel level, int 
     // Independent of the position: one evaluation.
     const auto p = Chermain::params<double>(param_values(cell, false, seed));
     const auto t0 = Clock::now();
-    const double v = smooth_value(p, chermain_cell_query(cell, chermain_surface_position(cell, 0)));
+    const double v =
+        chermain_smooth_value(p, chermain_cell_query(cell, chermain_surface_position(cell, 0)));
     for (int i = 0; i < samples; ++i) out[std::size_t(i)] = v;
     return std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / samples;
   }
   const auto p = chermain_level_params(cell, level, seed);
   const auto t0 = Clock::now();
   for (int i = 0; i < samples; ++i)
-    out[std::size_t(i)] = value_at(p, chermain_cell_query(cell, chermain_surface_position(cell, i)));
+    out[std::size_t(i)] =
+        value_at(p, chermain_cell_query(cell, chermain_surface_position(cell, i)));
   return std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / samples;
 }
 
@@ -365,6 +411,10 @@ ChermainCellResult measure_chermain_cell(const ChermainCell& cell, int samples, 
   r.construction = int(chermain_identical_level(cell));
   const LevelStats& c = r.levels[std::size_t(r.construction)];
   r.construction_refuted = c.mean_diff_lcb > d.threshold || c.cv_diff_lcb > d.threshold;
+  r.chooser = chermain_chooser_level(cell, d.threshold);
+  const LevelStats& e = r.levels[std::size_t(r.chooser)];
+  r.chooser_refuted = e.mean_diff_lcb > d.threshold || e.cv_diff_lcb > d.threshold;
+  r.cv_predicted = chermain_chooser_cv(cell);
   return r;
 }
 
@@ -376,9 +426,10 @@ std::vector<ChermainCellResult> measure_chermain_grid(const std::vector<Chermain
   return measure_chermain_grid_at(cells, all, samples, d, progress);
 }
 
-std::vector<ChermainCellResult> measure_chermain_grid_at(
-    const std::vector<ChermainCell>& cells, const std::vector<std::size_t>& positions, int samples,
-    const Decision& d, const std::function<void()>& progress) {
+std::vector<ChermainCellResult> measure_chermain_grid_at(const std::vector<ChermainCell>& cells,
+                                                         const std::vector<std::size_t>& positions,
+                                                         int samples, const Decision& d,
+                                                         const std::function<void()>& progress) {
   std::vector<ChermainCellResult> out(positions.size());
   if (positions.empty()) return out;
   for (int levels : {4, 8, 12, 16}) chermain_level_dictionary(levels);  // generated before the loop

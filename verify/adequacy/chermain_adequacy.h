@@ -1,7 +1,7 @@
 // Where a cheaper level of the Chermain family (chermain: Chermain et al. 2020's procedural
 // patch-SDF with 2021's GGAA and slope correlation, core/glints/chermain.h) is indistinguishable
-// from the most complete one (all 16 dictionary levels, GGAA on): per cell of a grid (footprint size
-// in expected microfacets, roughness, incidence, the half-vector's angle from the normal, the
+// from the most complete one (all 16 dictionary levels, GGAA on): per cell of a grid (footprint
+// size in expected microfacets, roughness, incidence, the half-vector's angle from the normal, the
 // screen-space derivative of the projected half vector that GGAA filters with) the pixel value over
 // many surface positions, its mean, CV and P(value = 0) per level, and the binomial family's
 // decision (compare_to_exact, binomial_adequacy.h) against the most complete level.
@@ -30,35 +30,21 @@
 #include <vector>
 
 #include "core/glints/chermain.h"
+#include "core/glints/chermain_chooser.h"
 #include "verify/adequacy/binomial_adequacy.h"
 
 namespace glintlab::verify::adequacy {
 
 inline constexpr std::array<std::string_view, 1> kChermainFamilyModels = {"chermain"};
 
-enum class ChermainLevel : int {
-  kSmooth = 0,
-  kDict4,
-  kDict4Ggaa,
-  kDict8,
-  kDict8Ggaa,
-  kDict12,
-  kDict12Ggaa,
-  kDict16,
-  kDict16Ggaa,
-};
-inline constexpr int kChermainLevels = 9;
-inline constexpr std::array<std::string_view, kChermainLevels> kChermainLevelNames = {
-    "smooth", "dict4", "dict4_ggaa", "dict8", "dict8_ggaa", "dict12", "dict12_ggaa", "dict16",
-    "dict16_ggaa"};
-inline constexpr ChermainLevel kChermainMostComplete = ChermainLevel::kDict16Ggaa;
-// The dictionary levels a counting level keeps (0 for the smooth level).
-constexpr int chermain_dictionary_levels(ChermainLevel l) {
-  return l == ChermainLevel::kSmooth ? 0 : 4 * ((int(l) + 1) / 2);
-}
-constexpr bool chermain_level_ggaa(ChermainLevel l) {
-  return l != ChermainLevel::kSmooth && int(l) % 2 == 0;
-}
+// The levels (ChermainLevel, their names, the most complete one) are the engine chooser's
+// (core/glints/chermain_chooser.h).
+using ::glintlab::chermain_dictionary_levels;
+using ::glintlab::chermain_level_ggaa;
+using ::glintlab::ChermainLevel;
+using ::glintlab::kChermainLevelNames;
+using ::glintlab::kChermainLevels;
+using ::glintlab::kChermainMostComplete;
 
 // The material every cell shares: the model's defaults (density e^15 microfacets per unit uv area,
 // the default dictionary: 192 distributions, 16 levels, α_dict 0.5, lobe std 0.02; ρ = 0; the GGAA
@@ -106,6 +92,12 @@ struct ChermainCellResult {
   // lower bound above TAU: the construction would be wrong).
   int construction = int(kChermainMostComplete);
   bool construction_refuted = false;
+  // The engine chooser's level (choose_chermain_model_level, core/glints/chermain_chooser.h: the
+  // construction's identical level, or the smooth one where its closed-form CV is at most
+  // kChooserMargin · TAU), whether the table refutes it, and that CV (cv_predicted).
+  int chooser = int(kChermainMostComplete);
+  bool chooser_refuted = false;
+  double cv_predicted = 0;
 };
 
 // The construction's boundaries (2021 Eq. 3 with the dictionary level k = ⌊l + ½ log2 density⌋ of
@@ -114,10 +106,10 @@ struct ChermainCellResult {
 // dictionary of L levels is the whole dictionary wherever the coarser LOD with a non-zero weight
 // uses a level below L. With kDict16Ggaa's GGAA: off is the same where dh = 0.
 struct ChermainConstruction {
-  double lod = 0;           // l_P
-  int level_fine = 0;       // k at ⌊l_P⌋ (16 or more: the smooth fallback)
-  int level_coarse = 0;     // k at ⌊l_P⌋ + 1
-  bool coarse_weighted = true;  // frac(l_P) > 0
+  double lod = 0;                  // l_P
+  int level_fine = 0;              // k at ⌊l_P⌋ (16 or more: the smooth fallback)
+  int level_coarse = 0;            // k at ⌊l_P⌋ + 1
+  bool coarse_weighted = true;     // frac(l_P) > 0
   double cells_per_footprint = 0;  // footprint area / the fine LOD's cell area (2^⌊l_P⌋)²
   double lobes_per_cell = 0;       // 4^k at the fine LOD (2^k per marginal, k < 16)
 };
@@ -133,13 +125,13 @@ double chermain_identical_facets(int dictionary_levels, double theta_i_deg);
 // The construction's first two moments of the most complete level (dict16_ggaa) over surface
 // positions, computed from the dictionary rather than measured: per cell X = P_o(R(−θ) M⁻¹ m̃) /
 // det M (Eq. 4–6) with θ uniform (a midpoint rule of `rotations` nodes) and the two marginals
-// uniform over the N distributions (each read as the model reads it: textureLod, or textureGrad with
-// the cell's rotated GGAA derivatives), so E[X] = E_θ[ḡ(x_o) ḡ(y_o)], E[X²] = E_θ[s(x_o) s(y_o)]
-// (ḡ, s the mean over distributions of p and p²); the patch-SDF of Eq. 3 is w_0 Σ W X_0 + w_1 Σ W X_1
-// over the two LODs' 2 × 2 cells, cells independent but for the coarse cell that shares its draws
-// with its lower-left fine child (E[X_0 X_1] likewise), the bilinear weights W over a position
-// uniform on the cell lattice (E Σ W² = 4/9 per LOD; the shared pair's E[W_0 W_1] by a midpoint
-// rule); a level past the 16th is the constant Gaussian. So mean = w_0 μ_0 + w_1 μ_1 and
+// uniform over the N distributions (each read as the model reads it: textureLod, or textureGrad
+// with the cell's rotated GGAA derivatives), so E[X] = E_θ[ḡ(x_o) ḡ(y_o)], E[X²] = E_θ[s(x_o)
+// s(y_o)] (ḡ, s the mean over distributions of p and p²); the patch-SDF of Eq. 3 is w_0 Σ W X_0 +
+// w_1 Σ W X_1 over the two LODs' 2 × 2 cells, cells independent but for the coarse cell that shares
+// its draws with its lower-left fine child (E[X_0 X_1] likewise), the bilinear weights W over a
+// position uniform on the cell lattice (E Σ W² = 4/9 per LOD; the shared pair's E[W_0 W_1] by a
+// midpoint rule); a level past the 16th is the constant Gaussian. So mean = w_0 μ_0 + w_1 μ_1 and
 // Var = (4/9)(w_0² σ_0² + w_1² σ_1²) + 2 w_0 w_1 Cov(X_0, X_1) E[Σ_shared W_0 W_1]. In slope space
 // (P22); `smooth` the Gaussian the smooth level evaluates. The positions' share of the variance
 // (the conditional mean does not depend on the position) is none. `shared_draws = false` drops the
@@ -149,13 +141,35 @@ struct ChermainExactMoments {
   double cv() const { return mean > 0 ? sd / mean : INFINITY; }
   double mean_diff() const { return mean > 0 ? smooth / mean - 1 : INFINITY; }
 };
+// `level` another counting level's moments the same way (dictL: its LODs at level L or more the
+// smooth fallback; GGAA as the level says).
 ChermainExactMoments chermain_exact_moments(const ChermainCell& c, int rotations = 1024,
-                                            bool shared_draws = true);
+                                            bool shared_draws = true,
+                                            ChermainLevel level = kChermainMostComplete);
+// The table's two statistics of a counting level against dict16_ggaa by the construction's exact
+// moments: mean_L / mean_16 − 1 and CV_L − CV_16 (signed).
+struct ChermainExactDifference {
+  double mean_diff = 0, cv_diff = 0;
+};
+ChermainExactDifference chermain_exact_difference(const ChermainCell& c, ChermainLevel level,
+                                                  int rotations = 1024);
+// A dictionary's boundary by the construction: dictL (L = 4, 8, 12) is dict16_ggaa bit for bit
+// below chermain_identical_facets(L, θ_i), where the longer footprint side is 2^(L − 11) (LOD
+// l_0 = L − 11: the finer LOD at level L − 1, the coarser at L, which dictL replaces by the smooth
+// fallback); past it the coarser LOD's weight w_1 = frac(l_P) grows and with it the two statistics.
+// Returns the fewest microfacets past the identity where max(|mean_diff|, |cv_diff|) exceeds
+// `tau` (w_1 in 1/1024 steps; NaN where it stays within tau over the whole LOD).
+double chermain_dictionary_boundary(const ChermainCell& c, ChermainLevel level, double tau,
+                                    int rotations = 1024);
 // The fewest expected microfacets per footprint from which the smooth level stays within `tau` of
 // dict16_ggaa by the construction's moments (max(|mean_diff|, CV) ≤ tau at every larger
 // footprint): the moments once per integer LOD (w_1 = frac(l_P) then enters in closed form),
 // scanned down from where both LODs are past the 16th level, each LOD's fraction in 1/256 steps.
 double chermain_smooth_boundary(ChermainCell c, double tau, int rotations = 1024);
+// The engine chooser at a cell (its first position, the most complete level's parameters) and its
+// closed-form CV of dict16_ggaa (chermain_smooth_cv).
+int chermain_chooser_level(const ChermainCell& c, double tau);
+double chermain_chooser_cv(const ChermainCell& c);
 
 // The surface position of sample i: the R2 set of binomial_adequacy.h spread over a square
 // kChermainSpread cells of the footprint's coarser LOD wide, so that positions (about 22 such
@@ -170,6 +184,10 @@ Chermain::Params<double> chermain_level_params(const ChermainCell& c, ChermainLe
                                                std::uint64_t seed);
 // The dictionary of a counting level's L levels (the default one for L = 16), generated once.
 const chermain2021::Dictionary& chermain_level_dictionary(int levels);
+
+// The smooth level's value at a query: the Gaussian slope density of covariance Σ with the model's
+// V-cavity G2 (what the model falls back to past its last level), times cos θ_o as the model's.
+double chermain_smooth_value(const Chermain::Params<double>& p, const ModelQuery<double>& q);
 
 // The pixel values of one level at `samples` positions; returns the loop's ns per evaluation.
 double chermain_level_values(const ChermainCell& cell, ChermainLevel level, int samples,

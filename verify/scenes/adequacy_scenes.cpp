@@ -9,10 +9,13 @@
 #include <cmath>
 #include <stdexcept>
 #include <tuple>
+#include <type_traits>
 
 #include "core/glints/kneiphof_ltc.h"
 #include "core/model_registry.h"
 #include "core/scene/footprint.h"
+#include "core/glints/chermain_chooser.h"
+#include "verify/adequacy/chermain_adequacy.h"
 #include "verify/adequacy/kemppinen_adequacy.h"
 #include "verify/adequacy/kemppinen_levels.h"
 
@@ -114,9 +117,8 @@ Vec2<double> realisation_uv(Vec2<double> uv, int j) {
 // False where the ray misses the shape or the view or the light is below the horizon.
 template <class Shape>
 bool pixel_query(const SceneGeometry& g, const Shape& shape, int col, int row,
-                 ModelQuery<double>& q, double& light_d2) {
-  const PixelFootprint<double> f =
-      pixel_footprint(g.camera, shape, col + 0.5, row + 0.5, LightPoint<double>{g.light, false});
+                 ModelQuery<double>& q, double& light_d2, PixelFootprint<double>& f) {
+  f = pixel_footprint(g.camera, shape, col + 0.5, row + 0.5, LightPoint<double>{g.light, false});
   if (!f.surface.hit || !(f.wi.z > 0) || !(f.wl.z > 0)) return false;
   const Vec3<double> to_light = g.light - f.surface.p;
   light_d2 = dot(to_light, to_light);
@@ -131,7 +133,7 @@ bool pixel_query(const SceneGeometry& g, const Shape& shape, int col, int row,
 
 // Every pixel whose camera ray hits the shape with the view and the light above its horizon (the
 // others stay off the surface), in parallel over rows: fn(pixel, its query, the squared distance
-// to the light, per-row scratch x and ref).
+// to the light, per-row scratch x and ref[, the pixel's footprint with its derivatives]).
 template <class Shape, class F>
 void for_each_surface_pixel(const SceneGeometry& g, const Shape& shape, const SceneOptions& o,
                             SceneRender& out, const F& fn) {
@@ -141,9 +143,15 @@ void for_each_surface_pixel(const SceneGeometry& g, const Shape& shape, const Sc
       ScenePixel& px = out.pixels[std::size_t(row) * std::size_t(o.width) + std::size_t(col)];
       ModelQuery<double> q;
       double d2 = 0;
-      if (!pixel_query(g, shape, col, row, q, d2)) continue;
+      PixelFootprint<double> f;
+      if (!pixel_query(g, shape, col, row, q, d2, f)) continue;
       px.surface = true;
-      fn(px, q, d2, x, ref);
+      if constexpr (std::is_invocable_v<const F&, ScenePixel&, ModelQuery<double>&, double,
+                                        std::vector<double>&, std::vector<double>&,
+                                        const PixelFootprint<double>&>)
+        fn(px, q, d2, x, ref, f);
+      else
+        fn(px, q, d2, x, ref);
     }
   });
 }
@@ -325,6 +333,78 @@ void render_area_rows(const ChoiceScene& s, const SceneGeometry& g, const Shape&
   });
 }
 
+// Realisation j of a Chermain pixel: j = 0 is the rendered pixel itself; the others move the
+// footprint's centre along the R2 sequence over a square kChermainSpread cells of its coarser LOD
+// wide (2^(⌊l_P⌋ + 1), chermain2021::lod), as the Chermain grid moves it: the model visits the
+// 2 × 2 cells nearest the position at each LOD, so realisations must not share them.
+Vec2<double> chermain_realisation_uv(const ModelQuery<double>& q, int j) {
+  if (j == 0) return q.footprint.uv;
+  const double cell = std::ldexp(1.0, int(std::floor(chermain2021::lod(q.footprint))) + 1);
+  const Vec2<double> r = surface_position(j);
+  return {q.footprint.uv.x + r.x * kChermainSpread * cell,
+          q.footprint.uv.y + r.y * kChermainSpread * cell};
+}
+
+// The Chermain family's pixels: the chosen level (choose_chermain_model_level on the pixel's
+// dict16_ggaa parameters, its GGAA derivatives those of the half vector, Eq. 21) against
+// dict16_ggaa at the same realisations; a dictL level is the model with the first L dictionary
+// levels (verify's chermain_level_dictionary), GGAA off or on; the smooth level the Gaussian of Σ
+// (chermain_smooth_value, the same at every realisation).
+template <class Shape>
+void render_chermain_rows(const ChoiceScene& s, const SceneGeometry& g, const Shape& shape,
+                          const SceneOptions& o, SceneRender& out) {
+  using M = Chermain;
+  const double density = std::pow(10.0, s.log10_density);
+  std::vector<double> v;
+  for (const ParamSpec& p : M::kParams) v.push_back(p.default_value);
+  v[param_index<M>("alpha_x")] = kSceneAlpha;
+  v[param_index<M>("alpha_y")] = kSceneAlpha;
+  v[param_index<M>("density")] = density;
+  v[param_index<M>("ggaa")] = double(chermain2021::kProjectedHalf);
+  v[param_index<M>("seed")] = double(o.seed % 1000000000ULL);
+  const M::Params<double> base = M::params<double>(v);
+  for (int levels : {4, 8, 12, 16}) chermain_level_dictionary(levels);  // before the loop
+  const Decision pixel_decision = decision_at_level(kPixelFlagRate / 2, o.tau);
+  for_each_surface_pixel(g, shape, o, out,
+                         [&](ScenePixel& px, ModelQuery<double>& q, double d2,
+                             std::vector<double>& x, std::vector<double>& ref,
+                             const PixelFootprint<double>& f) {
+    const double irradiance = kLightIntensity / d2;
+    M::Params<double> reference = base;
+    reference.d = {f.dh_dx.x, f.dh_dx.y, f.dh_dy.x, f.dh_dy.y};
+    px.facets = density * std::abs(q.footprint.duv_dx.x * q.footprint.duv_dy.y -
+                                   q.footprint.duv_dx.y * q.footprint.duv_dy.x);
+    px.p = 0;
+    px.level = o.chermain_chooser ? o.chermain_chooser(reference, q, o.chooser_tau)
+                                  : int(choose_chermain_model_level(reference, q, o.chooser_tau));
+    if (px.level < 0 || px.level >= kChermainLevels)
+      throw std::invalid_argument("adequacy scenes: the chooser returned no Chermain level");
+    const auto chosen = ChermainLevel(px.level);
+    M::Params<double> level = reference;
+    if (chosen != ChermainLevel::kSmooth) {
+      level.sdf.dictionary = &chermain_level_dictionary(chermain_dictionary_levels(chosen));
+      level.sdf.kernel = chermain_level_ggaa(chosen) ? chermain2021::kProjectedHalf
+                                                     : chermain2021::kNoGgaa;
+    }
+    const double smooth = chermain_smooth_value(reference, q);
+    const int n = o.realisations;
+    x.resize(std::size_t(n));
+    ref.resize(std::size_t(n));
+    std::size_t lit = 0;
+    for (int j = 0; j < n; ++j) {
+      ModelQuery<double> at = q;
+      at.footprint.uv = chermain_realisation_uv(q, j);
+      ref[std::size_t(j)] = M::eval<double>(reference, at).value;
+      x[std::size_t(j)] = chosen == kChermainMostComplete ? ref[std::size_t(j)]
+                          : chosen == ChermainLevel::kSmooth ? smooth
+                                                             : M::eval<double>(level, at).value;
+      lit += ref[std::size_t(j)] != 0 ? 1 : 0;
+    }
+    score_pixel(px, x, ref, lit, irradiance, chosen == kChermainMostComplete, pixel_decision,
+                o.tau);
+  });
+}
+
 template <class M>
 void render_model(const ChoiceScene& s, const SceneGeometry& g, const SceneOptions& o,
                   SceneRender& out) {
@@ -386,11 +466,24 @@ std::vector<ChoiceScene> area_choice_scenes() {
   };
 }
 
+std::vector<ChoiceScene> chermain_choice_scenes() {
+  // The plane's footprints (4.7e-4 to 1.9 uv units² at 64 pixels) at 10^6 microfacets per unit
+  // area: about 500 to 2·10^6 per footprint (dict8 and dict12 by the construction); at 10^9: 5·10^5
+  // to 2·10^9 (dict12, dict16 and the smooth level near its boundary, about 10^9).
+  return {
+      {"chermain-plane-low", "chermain", SceneShape::kPlane, SceneLight::kPoint, 6, "low"},
+      {"chermain-plane-high", "chermain", SceneShape::kPlane, SceneLight::kPoint, 9, "high"},
+  };
+}
+
 bool is_kemppinen_scene(const ChoiceScene& s) { return s.model == "kemppinen_ggx"; }
+bool is_chermain_scene(const ChoiceScene& s) { return s.model == "chermain"; }
 bool is_area_scene(const ChoiceScene& s) { return s.model == "kneiphof_klein_area"; }
 
 int most_complete_level(const ChoiceScene& s) {
-  return is_kemppinen_scene(s) ? int(KemppinenLevel::kK16Exact) : int(BinomialLevel::kExact);
+  return is_kemppinen_scene(s)  ? int(KemppinenLevel::kK16Exact)
+         : is_chermain_scene(s) ? int(kChermainMostComplete)
+                                : int(BinomialLevel::kExact);
 }
 
 SceneRender render_choice_scene(const ChoiceScene& scene, const SceneOptions& options) {
@@ -408,13 +501,18 @@ SceneRender render_choice_scene(const ChoiceScene& scene, const SceneOptions& op
     render_model<KneiphofKlein>(scene, g, options, out);
   else if (is_kemppinen_scene(scene))
     render_kemppinen(scene, g, options, out);
+  else if (is_chermain_scene(scene) && scene.shape == SceneShape::kPlane)
+    render_chermain_rows(scene, g, g.plane, options, out);
+  else if (is_chermain_scene(scene))
+    render_chermain_rows(scene, g, g.sphere, options, out);
   else if (is_area_scene(scene) && scene.shape == SceneShape::kPlane)
     render_area_rows(scene, g, g.plane, options, out);
   else if (is_area_scene(scene))
     render_area_rows(scene, g, g.sphere, options, out);
   else
     throw std::invalid_argument(
-        "adequacy scenes: not a model of the binomial or the Kemppinen family: " + scene.model);
+        "adequacy scenes: not a model of the binomial, Kemppinen, area or Chermain family: " +
+        scene.model);
   return out;
 }
 

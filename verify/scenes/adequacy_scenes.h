@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "core/glints/adequacy.h"
+#include "core/glints/chermain.h"
 #include "core/models/kemppinen_ggx.h"
 #include "verify/adequacy/binomial_adequacy.h"
 
@@ -67,7 +68,17 @@ inline constexpr double kRectLightSide = 0.70898154036220639;  // 0.4 √π
 
 // Whether a scene's model is of the Kemppinen family (its levels are KemppinenLevel values, its
 // most complete level k16_exact) rather than the binomial one (BinomialLevel, exact).
+// The Chermain family's scenes (model chermain, Chermain et al. 2021's defaults with isotropic
+// roughness kSceneAlpha): the plane of choice_scenes() under its point light at 10^6 and 10^9
+// microfacets per unit uv area, its GGAA derivatives those of the pixel's half vector (the corner
+// differences of core/scene/footprint.h, Eq. 21's h⊥): each pixel rendered with
+// choose_chermain_model_level's level and with dict16_ggaa at the same realisations (the footprint
+// moved along the R2 set over a square kChermainSpread cells of its coarser LOD wide, as the
+// Chermain grid moves it: realisations never share a cell).
+std::vector<ChoiceScene> chermain_choice_scenes();
+
 bool is_kemppinen_scene(const ChoiceScene& s);
+bool is_chermain_scene(const ChoiceScene& s);
 bool is_area_scene(const ChoiceScene& s);
 int most_complete_level(const ChoiceScene& s);
 
@@ -81,6 +92,8 @@ inline constexpr double kPixelFlagRate = 0.01;
 using LevelChooser = std::function<int(double facets, double p, double tau)>;
 // The same for the Kemppinen scenes: the level (a KemppinenLevel value) for the model's parameters
 // and the pixel's query.
+using ChermainLevelChooser =
+    std::function<int(const Chermain::Params<double>&, const ModelQuery<double>&, double tau)>;
 using KemppinenLevelChooser =
     std::function<int(const KemppinenGGX::Params<double>&, const ModelQuery<double>&, double tau)>;
 
@@ -92,6 +105,9 @@ struct SceneOptions {
   LevelChooser chooser;  // empty: the engine chooser, choose_<model>_level (core/glints/adequacy.h)
   // empty: choose_kemppinen_model_level (core/glints/adequacy.h)
   KemppinenLevelChooser kemppinen_chooser;
+  // empty: choose_chermain_model_level (core/glints/chermain_chooser.h), told the pixel's
+  // parameters of dict16_ggaa (its derivatives included)
+  ChermainLevelChooser chermain_chooser;
   std::uint64_t seed = 0;
 };
 

@@ -24,6 +24,7 @@
 #include "core/scene/shapes.h"
 #include "core/scene/sine_height_field.h"
 #include "core/scene/slope_moment_map.h"
+#include "core/shading/podee_light_check.h"
 #include "core/shading/podee_shade.h"
 
 namespace glintlab::podee {

@@ -1,6 +1,7 @@
 // Podee et al. Sec. 3 kernels: the circle–polygon and circle–circle areas against closed forms and
 // a dense grid count, the selected point against a brute-force search of the reflection space,
 // the weights' range, float/double agreement, and the host-side light check.
+#include "core/shading/podee_light_check.h"
 #include "core/shading/podee_shade.h"
 
 #include <gtest/gtest.h>

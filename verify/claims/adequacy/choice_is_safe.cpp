@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "verify/claim_runner.h"
+#include "core/glints/chermain_chooser.h"
 #include "verify/claims/adequacy/list.h"
 #include "verify/scenes/adequacy_scenes.h"
 #include "verify/stats/multiple_testing.h"
@@ -60,7 +61,8 @@ inline adequacy::SceneOptions scene_options(int side, int realisations) {
 // The area scenes (an LTC integral per evaluation, some 2-3 µs) at `area_side`² pixels.
 inline std::vector<ChoiceFamily> choice_families(int side, int realisations, int kemppinen_side,
                                                  int kemppinen_realisations, int area_side,
-                                                 int area_realisations) {
+                                                 int area_realisations, int chermain_side,
+                                                 int chermain_realisations) {
   return {{"binomial",
            adequacy::choice_scenes(),
            scene_options(side, realisations),
@@ -72,7 +74,11 @@ inline std::vector<ChoiceFamily> choice_families(int side, int realisations, int
           {"area",
            adequacy::area_choice_scenes(),
            scene_options(area_side, area_realisations),
-           {kBinomialLevelNames.begin(), kBinomialLevelNames.end()}}};
+           {kBinomialLevelNames.begin(), kBinomialLevelNames.end()}},
+          {"chermain",
+           adequacy::chermain_choice_scenes(),
+           scene_options(chermain_side, chermain_realisations),
+           {kChermainLevelNames.begin(), kChermainLevelNames.end()}}};
 }
 
 struct FamilyMeasured {
@@ -104,8 +110,9 @@ struct ChoiceIsSafe {
   static constexpr std::string_view kId = "adequacy.choice-is-safe";
   static constexpr std::string_view kPaper = "glintlab (adequacy of the binomial family)";
   static constexpr std::string_view kSource =
-      "core/glints/adequacy.h chooser; Kneiphof & Klein 2024 Eq. 16 (Sec. 4 for the area light); "
-      "Deliot & Belcour 2023";
+      "core/glints/adequacy.h and chermain_chooser.h choosers; Kneiphof & Klein 2024 Eq. 16 (Sec. 4 "
+      "for the area light); Deliot & Belcour 2023; Kemppinen et al. 2025; Chermain et al. 2021 "
+      "Eq. 3, 19-21";
   // The paper's own sentence or equation the claim is judged against (glintlab's own rule).
   static constexpr std::string_view kQuote =
       "Not a paper's claim: glintlab's rule (docs/verification.md): \"rendering each pixel "
@@ -128,12 +135,12 @@ struct ChoiceIsSafe {
     std::vector<ChoiceFamily> families;
   };
   static Sizes sizes(Budget b) {
-    return b == Budget::kQuick ? Sizes{choice_families(64, 256, 24, 128, 32, 256)}
-                               : Sizes{choice_families(128, 1024, 48, 256, 64, 512)};
+    return b == Budget::kQuick ? Sizes{choice_families(64, 256, 24, 128, 32, 256, 32, 128)}
+                               : Sizes{choice_families(128, 1024, 48, 256, 64, 512, 64, 256)};
   }
   // The tests' probe: every scene, at fewer pixels (the realisations keep the lit condition
   // reachable).
-  static Sizes probe_sizes() { return {choice_families(16, 128, 8, 128, 8, 128)}; }
+  static Sizes probe_sizes() { return {choice_families(16, 128, 8, 128, 8, 128, 8, 128)}; }
 
   // Configurations: the scenes of every family, in order (the binomial scenes first).
   static int configurations(const Sizes& z) {
@@ -216,6 +223,7 @@ struct ChoiceIsSafe {
     const adequacy::SceneOptions& o = z.families[0].options;
     const adequacy::SceneOptions& k = z.families[1].options;
     const adequacy::SceneOptions& a = z.families[2].options;
+    const adequacy::SceneOptions& c = z.families[3].options;
     std::string densities;
     for (const adequacy::ChoiceScene& sc : z.families[1].scenes)
       densities += fmt::format("{}{} K_P 10^{:g}", densities.empty() ? "" : ", ",
@@ -232,11 +240,16 @@ struct ChoiceIsSafe {
         "{}x{} pixels, {} realisations per pixel; the area family (kneiphof_klein_area; the "
         "binomial levels, chosen by choose_binomial_level with the model's N_P and LTC p) on {} "
         "scenes (the plane under a square light of side {:.3g} facing the point, at two facet "
-        "densities), {}x{} pixels, {} realisations per pixel; each family decided on its own at "
-        "the Šidák share of the per-check level; Chermain has no measured levels",
+        "densities), {}x{} pixels, {} realisations per pixel; the Chermain family (chermain; levels "
+        "smooth, dict4, 8, 12, 16 with GGAA off or on, against dict16_ggaa; chosen by "
+        "choose_chermain_model_level of core/glints/chermain_chooser.h with the pixel's GGAA "
+        "derivatives) on {} scenes (the plane under the point light at 10^6 and 10^9 microfacets "
+        "per unit area), {}x{} pixels, {} realisations per pixel; each family decided on its own at "
+        "the Šidák share of the per-check level",
         o.tau, adequacy::kSceneAlpha, o.width, o.height, o.realisations,
         z.families[1].scenes.size(), densities, k.width, k.height, k.realisations,
-        z.families[2].scenes.size(), adequacy::kRectLightSide, a.width, a.height, a.realisations);
+        z.families[2].scenes.size(), adequacy::kRectLightSide, a.width, a.height, a.realisations,
+        z.families[3].scenes.size(), c.width, c.height, c.realisations);
   }
 
   // The control's line as describe words it: it states its own rule for the verdict, so the

@@ -1,6 +1,8 @@
 // The measurements of adequacy.prediction-matches-measurement (verify/claims/adequacy/common.h).
 #include "verify/claims/adequacy/common.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -9,14 +11,13 @@
 #include <tuple>
 #include <vector>
 
+#include "verify/check.h"
 #include "verify/stats/count_tests.h"
+#include "verify/stats/mean_tests.h"
 
 namespace glintlab::verify::adequacy_claims {
-namespace {
-
 double two_sided_z(double z) { return std::erfc(std::abs(z) / std::sqrt(2.0)); }
 
-// The measured CV of `x` and its standard error (influence function of s/m).
 std::pair<double, double> cv_and_se(const std::vector<double>& x) {
   const double n = double(x.size());
   double m = 0;
@@ -35,6 +36,36 @@ std::pair<double, double> cv_and_se(const std::vector<double>& x) {
   return {cv, std::sqrt(std::max(ss / n - (s / n) * (s / n), 0.0) / n)};
 }
 
+PairedDifference paired_difference(const std::vector<double>& x, const std::vector<double>& ref) {
+  PairedDifference r;
+  const double n = double(x.size());
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) mx += x[i], my += ref[i];
+  mx /= n, my /= n;
+  double vx = 0, vy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    vx += (x[i] - mx) * (x[i] - mx), vy += (ref[i] - my) * (ref[i] - my);
+  vx /= n, vy /= n;
+  if (!(mx > 0) || !(my > 0) || !(vx > 0) || !(vy > 0)) return r;
+  const double cx = std::sqrt(vx) / mx, cy = std::sqrt(vy) / my;
+  double sm = 0, smm = 0, sc = 0, scc = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double dx = x[i] - mx, dy = ref[i] - my;
+    const double im = (dx - (mx / my) * dy) / my;
+    const double ic =
+        cx * ((dx * dx - vx) / (2 * vx) - dx / mx) - cy * ((dy * dy - vy) / (2 * vy) - dy / my);
+    sm += im, smm += im * im, sc += ic, scc += ic * ic;
+  }
+  r.ok = true;
+  r.mean_diff = mx / my - 1;
+  r.cv_diff = cx - cy;
+  r.mean_diff_se = std::sqrt(std::max(smm / n - (sm / n) * (sm / n), 0.0) / n);
+  r.cv_diff_se = std::sqrt(std::max(scc / n - (sc / n) * (sc / n), 0.0) / n);
+  return r;
+}
+
+namespace {
+
 // The two p-values of one cell's measurement against the prediction for N_P × scale.
 std::pair<double, double> test_row(const PredictionRow& r, double scale) {
   const double n = r.cell.facets * scale;
@@ -46,14 +77,8 @@ std::pair<double, double> test_row(const PredictionRow& r, double scale) {
   return {p_cv, p_zero};
 }
 
-// The crossing of log CV = log TAU by a weighted least-squares line through (log r, log CV) over
-// a ladder of footprints r × N_ref (weights 1 / Var(log CV)), as log(N̂ / N_ref), and its
-// standard error by the delta method. `ok` is false where a CV is not measurable.
-struct LadderFit {
-  bool ok = false;
-  double crossing = 0, log_se = 0;
-  double slope = 0;  // d log CV / d log N
-};
+}  // namespace
+
 LadderFit fit_crossing(std::span<const double> ladder,
                        const std::vector<std::pair<double, double>>& cv_se, double tau) {
   LadderFit f;
@@ -75,6 +100,8 @@ LadderFit fit_crossing(std::span<const double> ladder,
   f.ok = true;
   return f;
 }
+
+namespace {
 
 // The ladder fit of k16_exact's CV around `predicted`, and the smooth level's largest mean
 // difference on it.
@@ -238,35 +265,7 @@ KemppinenSideRow measure_kemppinen_side(const adequacy::KemppinenCell& row, Kemp
   adequacy::kemppinen_level_values(r.row, level, samples, seed, x);
   // The signed statistics and their errors by the empirical influence functions over the paired
   // positions (as compare_to_exact bounds them).
-  const double n = double(x.size());
-  double mx = 0, my = 0;
-  for (std::size_t i = 0; i < x.size(); ++i) mx += x[i], my += ref[i];
-  mx /= n, my /= n;
-  double vx = 0, vy = 0;
-  for (std::size_t i = 0; i < x.size(); ++i)
-    vx += (x[i] - mx) * (x[i] - mx), vy += (ref[i] - my) * (ref[i] - my);
-  vx /= n, vy /= n;
-  if (!(mx > 0) || !(my > 0) || !(vx > 0) || !(vy > 0)) return r;
-  const double cx = std::sqrt(vx) / mx, cy = std::sqrt(vy) / my;
-  double sm = 0, smm = 0, sc = 0, scc = 0;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const double dx = x[i] - mx, dy = ref[i] - my;
-    const double im = (dx - (mx / my) * dy) / my;
-    const double ic =
-        cx * ((dx * dx - vx) / (2 * vx) - dx / mx) - cy * ((dy * dy - vy) / (2 * vy) - dy / my);
-    sm += im, smm += im * im, sc += ic, scc += ic * ic;
-  }
-  r.mean_diff = mx / my - 1;
-  r.cv_diff = cx - cy;
-  r.mean_diff_se = std::sqrt(std::max(smm / n - (sm / n) * (sm / n), 0.0) / n);
-  r.cv_diff_se = std::sqrt(std::max(scc / n - (sc / n) * (sc / n), 0.0) / n);
-  const auto p = [](double measured, double predicted, double se) {
-    return se > 0 ? two_sided_z((measured - predicted) / se) : 1.0;
-  };
-  r.p_mean = p(r.mean_diff, r.expected.mean_diff, r.mean_diff_se);
-  r.p_cv = p(r.cv_diff, r.expected.cv_diff, r.cv_diff_se);
-  r.moved_p_mean = p(r.mean_diff, r.moved.mean_diff, r.mean_diff_se);
-  r.moved_p_cv = p(r.cv_diff, r.moved.cv_diff, r.cv_diff_se);
+  test_sides(r, paired_difference(x, ref));
   return r;
 }
 
@@ -275,6 +274,79 @@ std::size_t tail_rejections(const HolmSidakResult& hs, std::size_t count) {
   for (std::size_t i = hs.reject.size() - count; i < hs.reject.size(); ++i)
     n += hs.reject[i] ? 1 : 0;
   return n;
+}
+
+std::string describe_kemppinen_sides(int samples, std::span<const KemppinenSideRow> sides,
+                                     std::size_t rejected) {
+  std::string rows;
+  double worst_mean = 0, worst_cv = 0, ratio_lo = INFINITY, ratio_hi = 0;
+  for (const KemppinenSideRow& r : sides) {
+    rows += fmt::format(
+        "{}θ_i {:g}° α {:g} θ_h {:.1f}° {}: N_pred {:.4g} (bound {:.4g}); mean diff {:+.4f} "
+        "predicted {:+.4f} (se {:.4f}), CV diff {:+.4f} predicted {:+.4f} (se {:.4f})",
+        rows.empty() ? "" : "; ", r.row.theta_i_deg, r.row.alpha, r.row.theta_h_deg,
+        kKemppinenLevelNames[std::size_t(r.level)], r.predicted, r.bound, r.mean_diff,
+        r.expected.mean_diff, r.mean_diff_se, r.cv_diff, r.expected.cv_diff, r.cv_diff_se);
+    if (r.mean_diff_se > 0)
+      worst_mean = std::max(worst_mean, std::abs(r.mean_diff - r.expected.mean_diff));
+    if (r.cv_diff_se > 0) worst_cv = std::max(worst_cv, std::abs(r.cv_diff - r.expected.cv_diff));
+    if (r.predicted > 0) {
+      ratio_lo = std::min(ratio_lo, r.bound / r.predicted);
+      ratio_hi = std::max(ratio_hi, r.bound / r.predicted);
+    }
+  }
+  return fmt::format(
+      "Kemppinen sides k = 1, 4, 9 (exact erf) against k16_exact: each side's boundary predicted "
+      "by the construction's exact moments (both statistics within TAU from there on), the "
+      "side and k16_exact measured at it at the same {} positions, the signed mean difference "
+      "and CV difference tested against their predicted values, {} sides: {}; max |measured − "
+      "predicted| {:.4f} (mean difference), {:.4f} (CV difference); the chooser's boundary / "
+      "the predicted one {:.3g} to {:.3g}; {} of {} p-values rejected",
+      samples, sides.size(), rows, worst_mean, worst_cv, ratio_lo, ratio_hi, rejected,
+      2 * sides.size());
+}
+
+std::string describe_kemppinen_boundaries(int samples,
+                                          std::span<const KemppinenBoundaryRow> rows_in,
+                                          std::size_t point_rejected, std::size_t bound_rejected) {
+  const double q = normal_quantile(1 - check_level() / 2);
+  std::string rows;
+  double lo = INFINITY, hi = 0, raw_lo = INFINITY, raw_hi = 0, bound_lo = INFINITY, bound_hi = 0,
+         max_mean = 0, pred_mean = 0, slope_lo = 0, slope_hi = -INFINITY;
+  for (const KemppinenBoundaryRow& r : rows_in) {
+    slope_lo = std::min(slope_lo, r.slope);
+    slope_hi = std::max(slope_hi, r.slope);
+    rows += fmt::format(
+        "{}θ_i {:g}° α {:g} θ_h {:.1f}°: predicted {:.4g} (through the line fit {:.4g}), "
+        "measured {:.4g} (CI {:.4g}–{:.4g}, p = {:.3g}), bound {:.4g} (one-sided p = {:.3g})",
+        rows.empty() ? "" : "; ", r.row.theta_i_deg, r.row.alpha, r.row.theta_h_deg, r.predicted,
+        r.predicted_fit, r.measured, r.measured * std::exp(-q * r.log_se),
+        r.measured * std::exp(q * r.log_se), r.p_value, r.bound, r.bound_p_value);
+    if (r.measured > 0) {
+      lo = std::min(lo, r.predicted_fit / r.measured);
+      hi = std::max(hi, r.predicted_fit / r.measured);
+      raw_lo = std::min(raw_lo, r.predicted / r.measured);
+      raw_hi = std::max(raw_hi, r.predicted / r.measured);
+      bound_lo = std::min(bound_lo, r.bound / r.measured);
+      bound_hi = std::max(bound_hi, r.bound / r.measured);
+    }
+    max_mean = std::max(max_mean, r.max_mean_diff);
+    pred_mean = std::max(pred_mean, std::abs(1 / r.predicted_mean - 1));
+  }
+  const std::size_t n = rows_in.size();
+  return fmt::format(
+      "Kemppinen family (kemppinen_ggx, the smooth level against k16_exact): the points per "
+      "footprint where k16_exact's CV crosses TAU, fitted on N_pred·{{0.95, 0.975, 1, 1.025, "
+      "1.05}} ({} positions each), against the construction's exact CV (the point prediction, "
+      "passed through the same line fit, two-sided) and the chooser's bound (one-sided), {} "
+      "rows: {}; predicted through the fit / measured {:.4f} to {:.4f} (the prediction itself "
+      "/ measured {:.4f} to {:.4f}); the chooser's bound / measured {:.3g} to {:.3g} (how "
+      "conservative it is); "
+      "fitted d log CV / d log N {:.3g} to {:.3g}; the smooth level's mean difference at most "
+      "{:.3g} on the ladders, {:.3g} by the construction at the prediction (the CV decides); {} "
+      "of {} point predictions and {} of {} bounds rejected",
+      samples, n, rows, lo, hi, raw_lo, raw_hi, bound_lo, bound_hi, slope_lo, slope_hi, max_mean,
+      pred_mean, point_rejected, n, bound_rejected, n);
 }
 
 }  // namespace glintlab::verify::adequacy_claims

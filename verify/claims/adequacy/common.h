@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -148,6 +149,53 @@ KemppinenSideRow measure_kemppinen_side(const adequacy::KemppinenCell& row, Kemp
                                         int samples, std::uint64_t seed);
 // The rows × sides measured, rows outermost.
 std::vector<std::pair<adequacy::KemppinenCell, KemppinenLevel>> kemppinen_side_rows();
+
+// The two-sided p-value of a standard normal z.
+double two_sided_z(double z);
+// The measured CV of `x` and its standard error (influence function of s/m); {0, 0} where it is
+// not measurable.
+std::pair<double, double> cv_and_se(const std::vector<double>& x);
+// The crossing of log CV = log TAU by a weighted least-squares line through (log r, log CV) over
+// a ladder of footprints r × N_ref (weights 1 / Var(log CV)), as log(N̂ / N_ref), and its
+// standard error by the delta method. `ok` is false where a CV is not measurable.
+struct LadderFit {
+  bool ok = false;
+  double crossing = 0, log_se = 0;
+  double slope = 0;  // d log CV / d log N
+};
+LadderFit fit_crossing(std::span<const double> ladder,
+                       const std::vector<std::pair<double, double>>& cv_se, double tau);
+// A level's values `x` against the reference's `ref` at the same positions: the signed
+// mean_x / mean_ref − 1 and CV_x − CV_ref with their errors by the empirical influence functions
+// over the pairs (as compare_to_exact bounds them); `ok` false where a mean or variance is 0.
+struct PairedDifference {
+  bool ok = false;
+  double mean_diff = 0, mean_diff_se = 0, cv_diff = 0, cv_diff_se = 0;
+};
+PairedDifference paired_difference(const std::vector<double>& x, const std::vector<double>& ref);
+// A side's row (mean_diff, cv_diff, their _se, p_mean, p_cv, moved_p_mean, moved_p_cv) filled from
+// the measured differences, tested two-sided against the row's `expected` and `moved` predictions.
+template <class Row>
+void test_sides(Row& r, const PairedDifference& d) {
+  if (!d.ok) return;
+  r.mean_diff = d.mean_diff, r.cv_diff = d.cv_diff;
+  r.mean_diff_se = d.mean_diff_se, r.cv_diff_se = d.cv_diff_se;
+  const auto p = [](double measured, double predicted, double se) {
+    return se > 0 ? two_sided_z((measured - predicted) / se) : 1.0;
+  };
+  r.p_mean = p(r.mean_diff, r.expected.mean_diff, r.mean_diff_se);
+  r.p_cv = p(r.cv_diff, r.expected.cv_diff, r.cv_diff_se);
+  r.moved_p_mean = p(r.mean_diff, r.moved.mean_diff, r.mean_diff_se);
+  r.moved_p_cv = p(r.cv_diff, r.moved.cv_diff, r.cv_diff_se);
+}
+
+// The Kemppinen boundaries' sentence of the claim's description (the point predictions' and the
+// bounds' rejections).
+std::string describe_kemppinen_boundaries(int samples, std::span<const KemppinenBoundaryRow> rows,
+                                          std::size_t point_rejected, std::size_t bound_rejected);
+// The Kemppinen sides' sentence of the claim's description (`rejected`: their p-values rejected).
+std::string describe_kemppinen_sides(int samples, std::span<const KemppinenSideRow> sides,
+                                     std::size_t rejected);
 
 // Rejections among the family's last `count` p-values.
 std::size_t tail_rejections(const HolmSidakResult& hs, std::size_t count);

@@ -26,6 +26,10 @@
 // prediction replaced by the boundary measured again at independent positions (a prediction
 // right within its own error), the other predictions as they are — must hold: it shows the
 // rejections are the prediction's and not an interval too narrow.
+// The Chermain family (chermain_prediction.h), last in the family: the smooth level's boundary
+// (dict16_ggaa's CV crossing TAU) against the construction's exact moments, and each dictionary's
+// (dictL identical below density·4^(L−11)·cos θ_i, its two statistics at the construction's
+// boundary past it against their predicted values); its control moves them by 1.25.
 // Regime: the exact counting level (its count is Binomial(N_P, p)); the real-time and small-count
 // levels are not binomial; the Kemppinen family at kemppinen_ggx's default material, the quick
 // grid's twelve rows.
@@ -39,6 +43,7 @@
 #include <vector>
 
 #include "verify/claim_runner.h"
+#include "verify/claims/adequacy/chermain_prediction.h"
 #include "verify/claims/adequacy/common.h"
 #include "verify/claims/adequacy/list.h"
 #include "verify/stats/mean_tests.h"
@@ -64,38 +69,50 @@ struct PredictionMatchesMeasurement {
       "max |CV_measured / CV_predicted − 1| where N_P p ≥ 1, exact counting (the p-value: "
       "Holm–Šidák over the binomial CV and P(no glint) tests, the binomial boundary tests and the "
       "Kemppinen point-prediction and bound tests)";
-  // The chooser's Kemppinen boundary is a bound (1.4–1.9 times the measured crossing), tested as one.
+  // The chooser's Kemppinen boundary is a bound (1.4–1.9 times the measured crossing), tested as
+  // one.
   static constexpr Expected kExpected{.quick = Verdict::kHoldsInRegime};
   static constexpr bool kHasCorrectedControl = true;
 
   struct Sizes {
     int samples = 0;            // positions per cell and per ladder point (binomial)
     int kemppinen_samples = 0;  // positions per ladder point (Kemppinen)
+    int chermain_samples = 0;   // positions per ladder point and side (Chermain)
     std::vector<Cell> cells = prediction_cells();
     std::vector<Cell> settings = boundary_cells();
     std::vector<adequacy::KemppinenCell> kemppinen = kemppinen_boundary_rows();
     std::vector<std::pair<adequacy::KemppinenCell, KemppinenLevel>> sides = kemppinen_side_rows();
+    std::vector<adequacy::ChermainCell> chermain = chermain_boundary_rows();
+    std::vector<std::pair<adequacy::ChermainCell, ChermainLevel>> dicts =
+        chermain_dictionary_rows();
   };
   static Sizes sizes(Budget b) {
-    return b == Budget::kQuick ? Sizes{.samples = 100000, .kemppinen_samples = 2000}
-                               : Sizes{.samples = 1000000, .kemppinen_samples = 16000};
+    return b == Budget::kQuick
+               ? Sizes{.samples = 100000, .kemppinen_samples = 2000, .chermain_samples = 8000}
+               : Sizes{.samples = 1000000, .kemppinen_samples = 16000, .chermain_samples = 32000};
   }
-  // The tests' probe: every row at a fifth of the quick positions (binomial), half (Kemppinen).
-  static Sizes probe_sizes() { return {.samples = 20000, .kemppinen_samples = 1000}; }
+  // The tests' probe: a fifth of the quick positions (binomial), half (Kemppinen, Chermain).
+  static Sizes probe_sizes() {
+    return {.samples = 20000, .kemppinen_samples = 1000, .chermain_samples = 4000};
+  }
 
   // Configurations: the cells, then the boundary settings, then the Kemppinen rows, then the
   // Kemppinen rows' sides k = 1, 4, 9.
   static int configurations(const Sizes& z) {
-    return int(z.cells.size() + z.settings.size() + z.kemppinen.size() + z.sides.size());
+    return int(z.cells.size() + z.settings.size() + z.kemppinen.size() + z.sides.size() +
+               z.chermain.size() + z.dicts.size());
   }
   // One configuration's row (only the one of its kind is filled). Seeds: the cell's index, the
   // boundary's 100 + 10 i, the Kemppinen row's 200 + 10 i (each ladder point adds its index), the
-  // side's 2000 + i.
+  // side's 2000 + i, the Chermain row's 3000 + 10 i (as the Kemppinen row's), its side's 4000 + 10
+  // i.
   struct Evidence {
     PredictionRow row;
     BoundaryRow boundary;
     KemppinenBoundaryRow kemppinen;
     KemppinenSideRow side;
+    ChermainSmoothRow chermain;
+    ChermainDictionaryRow dict;
   };
   static Evidence observe(const Sizes& z, int k, std::uint64_t seed) {
     Evidence e;
@@ -117,8 +134,21 @@ struct PredictionMatchesMeasurement {
       return e;
     }
     i -= z.kemppinen.size();
-    e.side = measure_kemppinen_side(z.sides[i].first, z.sides[i].second, z.kemppinen_samples,
-                                    check_seed(std::string(kId), 2000 + i));
+    const auto seed_at = [](std::size_t s) { return check_seed(std::string(kId), s); };
+    if (i < z.sides.size()) {
+      e.side = measure_kemppinen_side(z.sides[i].first, z.sides[i].second, z.kemppinen_samples,
+                                      seed_at(2000 + i));
+      return e;
+    }
+    i -= z.sides.size();
+    if (i < z.chermain.size()) {
+      e.chermain =
+          measure_chermain_smooth_row(z.chermain[i], z.chermain_samples, seed_at(3000 + 10 * i));
+      return e;
+    }
+    i -= z.chermain.size();
+    e.dict = measure_chermain_dictionary_row(z.dicts[i].first, z.dicts[i].second,
+                                             z.chermain_samples, seed_at(4000 + 10 * i));
     return e;
   }
 
@@ -129,7 +159,9 @@ struct PredictionMatchesMeasurement {
     std::vector<BoundaryRow> boundaries;
     std::vector<KemppinenBoundaryRow> kemppinen;
     std::vector<KemppinenSideRow> sides;
-    std::size_t kemppinen_begin = 0;  // the family's first Kemppinen p-value
+    std::vector<ChermainSmoothRow> chermain;
+    std::vector<ChermainDictionaryRow> dicts;
+    std::size_t kemppinen_begin = 0, chermain_begin = 0;  // the family's first of each
     HolmSidakResult genuine, moved, replicate;
     double worst_cv_rel = 0;  // max |CV/CV_pred − 1|
     Input input = Input::kGenuine;
@@ -146,8 +178,11 @@ struct PredictionMatchesMeasurement {
       m.boundaries.push_back(evidence[z.cells.size() + i].boundary);
     for (std::size_t i = 0; i < z.kemppinen.size(); ++i)
       m.kemppinen.push_back(evidence[z.cells.size() + nb + i].kemppinen);
-    for (std::size_t i = 0; i < z.sides.size(); ++i)
-      m.sides.push_back(evidence[z.cells.size() + nb + z.kemppinen.size() + i].side);
+    std::size_t at = z.cells.size() + nb + z.kemppinen.size();
+    for (std::size_t i = 0; i < z.sides.size(); ++i) m.sides.push_back(evidence[at++].side);
+    for (std::size_t i = 0; i < z.chermain.size(); ++i)
+      m.chermain.push_back(evidence[at++].chermain);
+    for (std::size_t i = 0; i < z.dicts.size(); ++i) m.dicts.push_back(evidence[at++].dict);
     std::vector<double> genuine, control;
     for (const BoundaryRow& r : m.boundaries) {
       genuine.push_back(r.p_value);
@@ -179,6 +214,11 @@ struct PredictionMatchesMeasurement {
       control.insert(control.end(), {r.moved_p_mean, r.moved_p_cv});
       replicate.insert(replicate.end(), {r.p_mean, r.p_cv});
     }
+    // The Chermain family's boundaries last (the others' order and seeds unchanged).
+    m.chermain_begin = genuine.size();
+    append_chermain_p_values(m.chermain, m.dicts, genuine, control);
+    replicate.insert(replicate.end(), genuine.begin() + std::ptrdiff_t(m.chermain_begin),
+                     genuine.end());
     m.moved = holm_sidak(control, check_level());
     m.replicate = holm_sidak(replicate, check_level());
     m.genuine = holm_sidak(genuine, check_level());
@@ -211,8 +251,15 @@ struct PredictionMatchesMeasurement {
         "alpha), the crossing fitted on N_pred x {{0.95, 0.975, 1, 1.025, 1.05}}, {} positions "
         "per ladder point; the sides k = 1, 4, 9 (exact erf) of the same rows: mean_n / mean_16 - "
         "1 and CV_n - CV_16 at the boundary the construction's exact moments predict, against "
-        "their predicted values, {} positions",
-        kBoundaryTau, z.kemppinen.size(), z.kemppinen_samples, z.kemppinen_samples);
+        "their predicted values, {} positions; the Chermain family (chermain, default material, "
+        "alpha 0.1; {} rows: theta_i 0, 60 deg, theta_h 0, atan 2 alpha, dh 0, 0.02): "
+        "dict16_ggaa's "
+        "CV crossing TAU against the construction's exact moments (chermain_smooth_boundary, "
+        "through the same line fit, two-sided), and dict4, dict8, dict12 (GGAA twin where dh > 0) "
+        "identical below density 4^(L-11) cos theta_i, their mean and CV differences from "
+        "dict16_ggaa at the construction's boundary against its exact moments, {} positions",
+        kBoundaryTau, z.kemppinen.size(), z.kemppinen_samples, z.kemppinen_samples,
+        z.chermain.size(), z.chermain_samples);
   }
 
   // The control's line as describe words it: it states its own rule for the verdict, so the
@@ -267,77 +314,6 @@ struct PredictionMatchesMeasurement {
     return range_rejections(hs, m.kemppinen_begin + 2 * m.kemppinen.size(), 2 * m.sides.size());
   }
 
-  static std::string describe_kemppinen(const Sizes& z, const Measured& m) {
-    const double q = normal_quantile(1 - check_level() / 2);
-    std::string rows;
-    double lo = INFINITY, hi = 0, raw_lo = INFINITY, raw_hi = 0, bound_lo = INFINITY, bound_hi = 0,
-           max_mean = 0, pred_mean = 0, slope_lo = 0, slope_hi = -INFINITY;
-    for (const KemppinenBoundaryRow& r : m.kemppinen) {
-      slope_lo = std::min(slope_lo, r.slope);
-      slope_hi = std::max(slope_hi, r.slope);
-      rows += fmt::format(
-          "{}θ_i {:g}° α {:g} θ_h {:.1f}°: predicted {:.4g} (through the line fit {:.4g}), "
-          "measured {:.4g} (CI {:.4g}–{:.4g}, p = {:.3g}), bound {:.4g} (one-sided p = {:.3g})",
-          rows.empty() ? "" : "; ", r.row.theta_i_deg, r.row.alpha, r.row.theta_h_deg, r.predicted,
-          r.predicted_fit, r.measured, r.measured * std::exp(-q * r.log_se),
-          r.measured * std::exp(q * r.log_se), r.p_value, r.bound, r.bound_p_value);
-      if (r.measured > 0) {
-        lo = std::min(lo, r.predicted_fit / r.measured);
-        hi = std::max(hi, r.predicted_fit / r.measured);
-        raw_lo = std::min(raw_lo, r.predicted / r.measured);
-        raw_hi = std::max(raw_hi, r.predicted / r.measured);
-        bound_lo = std::min(bound_lo, r.bound / r.measured);
-        bound_hi = std::max(bound_hi, r.bound / r.measured);
-      }
-      max_mean = std::max(max_mean, r.max_mean_diff);
-      pred_mean = std::max(pred_mean, std::abs(1 / r.predicted_mean - 1));
-    }
-    const std::size_t n = m.kemppinen.size();
-    return fmt::format(
-        "Kemppinen family (kemppinen_ggx, the smooth level against k16_exact): the points per "
-        "footprint where k16_exact's CV crosses TAU, fitted on N_pred·{{0.95, 0.975, 1, 1.025, "
-        "1.05}} ({} positions each), against the construction's exact CV (the point prediction, "
-        "passed through the same line fit, two-sided) and the chooser's bound (one-sided), {} "
-        "rows: {}; predicted through the fit / measured {:.4f} to {:.4f} (the prediction itself "
-        "/ measured {:.4f} to {:.4f}); the chooser's bound / measured {:.3g} to {:.3g} (how "
-        "conservative it is); "
-        "fitted d log CV / d log N {:.3g} to {:.3g}; the smooth level's mean difference at most "
-        "{:.3g} on the ladders, {:.3g} by the construction at the prediction (the CV decides); {} "
-        "of {} point predictions and {} of {} bounds rejected",
-        z.kemppinen_samples, n, rows, lo, hi, raw_lo, raw_hi, bound_lo, bound_hi, slope_lo,
-        slope_hi, max_mean, pred_mean, point_rejections(m, m.genuine), n,
-        bound_rejections(m, m.genuine), n);
-  }
-
-  static std::string describe_sides(const Sizes& z, const Measured& m) {
-    std::string rows;
-    double worst_mean = 0, worst_cv = 0, ratio_lo = INFINITY, ratio_hi = 0;
-    for (const KemppinenSideRow& r : m.sides) {
-      rows += fmt::format(
-          "{}θ_i {:g}° α {:g} θ_h {:.1f}° {}: N_pred {:.4g} (bound {:.4g}); mean diff {:+.4f} "
-          "predicted {:+.4f} (se {:.4f}), CV diff {:+.4f} predicted {:+.4f} (se {:.4f})",
-          rows.empty() ? "" : "; ", r.row.theta_i_deg, r.row.alpha, r.row.theta_h_deg,
-          kKemppinenLevelNames[std::size_t(r.level)], r.predicted, r.bound, r.mean_diff,
-          r.expected.mean_diff, r.mean_diff_se, r.cv_diff, r.expected.cv_diff, r.cv_diff_se);
-      if (r.mean_diff_se > 0)
-        worst_mean = std::max(worst_mean, std::abs(r.mean_diff - r.expected.mean_diff));
-      if (r.cv_diff_se > 0) worst_cv = std::max(worst_cv, std::abs(r.cv_diff - r.expected.cv_diff));
-      if (r.predicted > 0) {
-        ratio_lo = std::min(ratio_lo, r.bound / r.predicted);
-        ratio_hi = std::max(ratio_hi, r.bound / r.predicted);
-      }
-    }
-    return fmt::format(
-        "Kemppinen sides k = 1, 4, 9 (exact erf) against k16_exact: each side's boundary predicted "
-        "by the construction's exact moments (both statistics within TAU from there on), the "
-        "side and k16_exact measured at it at the same {} positions, the signed mean difference "
-        "and CV difference tested against their predicted values, {} sides: {}; max |measured − "
-        "predicted| {:.4f} (mean difference), {:.4f} (CV difference); the chooser's boundary / "
-        "the predicted one {:.3g} to {:.3g}; {} of {} p-values rejected",
-        z.kemppinen_samples, m.sides.size(), rows, worst_mean, worst_cv, ratio_lo, ratio_hi,
-        side_rejections(m, m.genuine), 2 * m.sides.size());
-  }
-
   static std::string describe_genuine(const Sizes& z, const Measured& m) {
     std::string boundaries;
     for (const BoundaryRow& r : m.boundaries)
@@ -350,11 +326,15 @@ struct PredictionMatchesMeasurement {
         "({} positions each; two-sided intervals at the per-test level): {}; {} of {} p-values "
         "rejected (Holm–Šidák at {:.2e}); max |CV/CV_pred − 1| = {:.4f} where N_P p ≥ 1; the "
         "real-time and small-count levels are not binomial and are outside this regime (their "
-        "differences are the adequacy table's) | {} | {}",
+        "differences are the adequacy table's) | {} | {} | {}",
         m.rows.size(), m.rows.empty() ? 0 : m.rows.front().samples, kBoundaryTau,
         m.rows.empty() ? 0 : m.rows.front().samples, boundaries, m.genuine.rejections,
-        m.genuine.raw.size(), check_level(), m.worst_cv_rel, describe_kemppinen(z, m),
-        describe_sides(z, m));
+        m.genuine.raw.size(), check_level(), m.worst_cv_rel,
+        describe_kemppinen_boundaries(z.kemppinen_samples, m.kemppinen,
+                                      point_rejections(m, m.genuine),
+                                      bound_rejections(m, m.genuine)),
+        describe_kemppinen_sides(z.kemppinen_samples, m.sides, side_rejections(m, m.genuine)),
+        describe_chermain(m.chermain, m.dicts, z.chermain_samples, m.genuine, m.chermain_begin));
   }
 
   // The predictions moved by a stated amount (the boundary tests come first in the family, the
@@ -369,13 +349,13 @@ struct PredictionMatchesMeasurement {
         "prediction at N_pred × {:.2f} and a Kemppinen bound on the unsafe side at N_pred × "
         "{:.2f}: {} of {} p-values rejected (min adjusted p = {:.3g}), the boundary's {} of {}, "
         "the Kemppinen point predictions' {} of {}, the bounds' {} of {}, the sides' {} of {} "
-        "(their "
-        "boundaries at N_pred × {:.2f})",
+        "(their boundaries at N_pred × {:.2f}); {}",
         kControlFacetScale, kControlBoundaryScale, kKemppinenControlScale,
         kKemppinenBoundControlScale, m.moved.rejections, m.moved.raw.size(),
         *std::min_element(m.moved.adjusted.begin(), m.moved.adjusted.end()), boundary_rejections,
         m.boundaries.size(), point_rejections(m, m.moved), n, bound_rejections(m, m.moved), n,
-        side_rejections(m, m.moved), 2 * m.sides.size(), kKemppinenSideControlScale);
+        side_rejections(m, m.moved), 2 * m.sides.size(), kKemppinenSideControlScale,
+        chermain_moved_text(m.chermain, m.dicts, m.moved, m.chermain_begin));
   }
 
   // The Kemppinen point prediction replaced by its replicate, the other predictions as they are.
