@@ -11,7 +11,7 @@
 #include <type_traits>
 
 #include "core/glints/binomial_kernel.h"
-#include "core/math/lane_rng.h"
+#include "core/math/hash32_stream.h"
 #include "core/math/ops.h"
 #include "core/math/rng.h"
 
@@ -68,10 +68,10 @@ inline std::uint64_t binomial_inversion(std::uint64_t n, double p, double u) {
 
 // Hörmann 1993, "The generation of binomial random variates", J. Statist. Comput. Simul. 46, BTRS
 // (transformed rejection with squeeze), for n·p ≥ 10, p ≤ ½. Exact: the acceptance test compares
-// against the pmf ratio f(k)/f(m) computed by log_factorial_ratio. Uniforms come from the counter
-// RNG at dims 2j, 2j + 1 of attempt j, so the result depends only on (seed, index).
-inline std::uint64_t binomial_btrs(std::uint64_t n, double p, std::uint64_t seed,
-                                   std::uint64_t index) {
+// against the pmf ratio f(k)/f(m) computed by log_factorial_ratio. Uniforms come from the stream
+// (binomial_kernel.h) at dims 2j, 2j + 1 of attempt j, so the result depends only on its key.
+template <class Stream>
+std::uint64_t binomial_btrs(std::uint64_t n, double p, const Stream& stream) {
   const double nd = double(n), q = 1 - p;
   const double spq = std::sqrt(nd * p * q);
   const double b = 1.15 + 2.53 * spq;
@@ -82,8 +82,8 @@ inline std::uint64_t binomial_btrs(std::uint64_t n, double p, std::uint64_t seed
   const double lpq = std::log(p / q);
   const double m = std::floor((nd + 1) * p);
   for (std::uint64_t j = 0;; ++j) {
-    const double u = counter_uniform<double>(seed, index, 2 * j) - 0.5;
-    const double v = counter_uniform<double>(seed, index, 2 * j + 1);
+    const double u = stream.uniform(std::uint32_t(2 * j)) - 0.5;
+    const double v = stream.uniform(std::uint32_t(2 * j + 1));
     const double us = 0.5 - std::abs(u);
     const double kd = std::floor((2 * a / us + b) * u + c);
     if (kd < 0 || kd > nd) continue;
@@ -98,21 +98,28 @@ inline std::uint64_t binomial_btrs(std::uint64_t n, double p, std::uint64_t seed
 
 }  // namespace detail
 
-// An exact Binomial(n, p) draw, deterministic in (seed, index): by symmetry p ≤ ½ (n − X for
-// p > ½), then the inverse CDF for n·p < 10 and Hörmann's BTRS otherwise. Host-side (a variable
-// number of uniforms): not a kernel.
-inline std::uint64_t binomial_exact(std::uint64_t n, double p, std::uint64_t seed,
-                                    std::uint64_t index) {
+// An exact Binomial(n, p) draw from a stream of uniforms (binomial_kernel.h: dim 0 for the
+// inversion, dims 2j, 2j + 1 for BTRS's attempt j): by symmetry p ≤ ½ (n − X for p > ½), then the
+// inverse CDF for n·p < 10 and Hörmann's BTRS otherwise. Host-side (a variable number of
+// uniforms): not a kernel; binomial_exact_lanes is its kernel form.
+template <class Stream>
+std::uint64_t binomial_exact_from(std::uint64_t n, double p, const Stream& stream) {
   if (n == 0 || !(p > 0)) return 0;
   if (p >= 1) return n;
   const bool flip = p > 0.5;
   const double pp = flip ? 1 - p : p;
   std::uint64_t k;
   if (double(n) * pp < 10)
-    k = detail::binomial_inversion(n, pp, counter_uniform<double>(seed, index, 0));
+    k = detail::binomial_inversion(n, pp, stream.uniform(0));
   else
-    k = detail::binomial_btrs(n, pp, seed, index);
+    k = detail::binomial_btrs(n, pp, stream);
   return flip ? n - k : k;
+}
+
+// binomial_exact_from on core/math/rng.h's 64-bit counters: deterministic in (seed, index).
+inline std::uint64_t binomial_exact(std::uint64_t n, double p, std::uint64_t seed,
+                                    std::uint64_t index) {
+  return binomial_exact_from(n, p, CounterStream<double>{seed, index});
 }
 
 // The standard normal quantile Φ⁻¹(u) = √2·erfinv(2u − 1).
@@ -166,25 +173,25 @@ GLINTLAB_FN T binomial_small_count(T n, T p, T u) {
   return min(select(found, k, tail), n);
 }
 
-// One count drawn with the chosen sampler for n trials of probability p, keyed by (seed, index)
-// (dims 0.. of the counter RNG; one index per lane on a batch). The exact sampler is double
-// precision with a variable number of uniforms: binomial_exact on scalars, its masked-loop form
-// (core/glints/binomial_kernel.h, the same draw per lane) on batches; the others are kernels on T.
+// One count drawn with the chosen sampler for n trials of probability p, from the hash32 stream
+// of each lane's key (core/math/hash32_stream.h: hash32_key and hash32_nest; dims 0.., computed
+// on the batch's own integer lanes). The exact sampler is double precision with a variable number of
+// uniforms: binomial_exact_from on scalars, its masked-loop form (core/glints/binomial_kernel.h,
+// the same draw per lane) on batches; the others are kernels on T.
 template <class T>
-GLINTLAB_FN T draw_binomial(BinomialSampler sampler, T n, T p, std::uint64_t seed,
-                            RngIndex<T> index) {
+GLINTLAB_FN T draw_binomial(BinomialSampler sampler, T n, T p, const HashLanes<T>& key) {
+  const HashStream<T> stream{key};
   switch (sampler) {
     case BinomialSampler::kExact:
       if constexpr (std::is_floating_point_v<T>) {
-        return T(binomial_exact(std::uint64_t(n), double(p), seed, index));
+        return T(binomial_exact_from(std::uint64_t(n), double(p), HashStream<double>{key}));
       } else {
-        return binomial_exact_lanes(n, p, seed, index);
+        return binomial_exact_lanes(n, p, key);
       }
     case BinomialSampler::kRealTime:
-      return binomial_realtime(n, p, lane_uniform<T>(seed, index, 0),
-                               lane_uniform<T>(seed, index, 1));
+      return binomial_realtime(n, p, stream.uniform(0), stream.uniform(1));
     default:
-      return binomial_small_count(n, p, lane_uniform<T>(seed, index, 0));
+      return binomial_small_count(n, p, stream.uniform(0));
   }
 }
 

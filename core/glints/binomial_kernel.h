@@ -1,19 +1,43 @@
 // The exact Binomial(n, p) draw of core/glints/binomial.h (binomial_exact: inverse CDF for n·p <
 // 10, Hörmann 1993 BTRS otherwise) as a kernel on any float type: masked loops that run while any
-// lane is still drawing, every lane on its own counter-RNG index, so that each lane gets exactly
-// the count binomial_exact draws for it (the same uniforms, the same double-precision steps).
+// lane is still drawing, every lane on its own stream of uniforms, with binomial_exact's
+// double-precision steps. Given binomial_exact's uniforms (CounterStream: core/math/rng.h's
+// 64-bit counters, lane by lane) each lane gets exactly the count binomial_exact draws for it;
+// the glint models draw from HashStream (core/math/hash32.h's 32-bit counter hash on the batch's
+// own integer lanes), the same algorithm on other uniforms.
 #pragma once
 
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
+#include "core/math/hash32_stream.h"
 #include "core/math/lane_rng.h"
 #include "core/math/ops.h"
 #include "core/math/rng.h"
 
 namespace glintlab {
+
+// Uniforms in [0, 1) of dims 0, 1, … of each lane's hash32 stream (its key: hash32_key and
+// hash32_nest), computed in the integer lanes of T (HashLaneTraits): 24 bits for float, 32 for
+// double.
+template <class T>
+struct HashStream {
+  HashLanes<T> key;
+  GLINTLAB_FN T uniform(std::uint32_t dim) const {
+    return hash32_uniform<T>(hash32_draw(key, HashLanes<T>(dim)));
+  }
+};
+
+// counter_uniform(seed, index of each lane, dim) (core/math/rng.h), lane by lane.
+template <class T>
+struct CounterStream {
+  std::uint64_t seed;
+  RngIndex<T> index;
+  GLINTLAB_FN T uniform(std::uint32_t dim) const { return lane_uniform<T>(seed, index, dim); }
+};
 
 // Iteration bounds of the masked loops. Inversion: for n·p < 10 (p ≤ ½) the host loop stops by
 // k ≈ n·p + 60 at the latest (the pmf falls below 1e-18 of the CDF there; for p near ½, n < 20),
@@ -84,10 +108,9 @@ GLINTLAB_FN D binomial_inversion_lanes(D nd, D p, D u, Mask<D> active) {
 }
 
 // detail::binomial_btrs on the lanes of `active` (n·p ≥ 10, p ≤ ½): attempt j reads dims 2j and
-// 2j + 1 of each lane's index, as the host loop does; a lane stops at its first acceptance.
-template <class D>
-GLINTLAB_FN D binomial_btrs_lanes(D nd, D p, std::uint64_t seed, const RngIndex<D>& index,
-                                  Mask<D> active) {
+// 2j + 1 of each lane's stream, as the host loop does; a lane stops at its first acceptance.
+template <class D, class Stream>
+GLINTLAB_FN D binomial_btrs_lanes(D nd, D p, const Stream& stream, Mask<D> active) {
   const D q = D(1) - p;
   const D spq = sqrt(nd * p * q);
   const D b = D(1.15) + D(2.53) * spq;
@@ -100,8 +123,8 @@ GLINTLAB_FN D binomial_btrs_lanes(D nd, D p, std::uint64_t seed, const RngIndex<
   D result = m;
   Mask<D> left = active;
   for (int j = 0; j < kBinomialBtrsMaxAttempts && any_lane<D>(left); ++j) {
-    const D u = lane_uniform<D>(seed, index, 2 * std::uint64_t(j)) - D(0.5);
-    const D v = lane_uniform<D>(seed, index, 2 * std::uint64_t(j) + 1);
+    const D u = stream.uniform(2 * std::uint32_t(j)) - D(0.5);
+    const D v = stream.uniform(2 * std::uint32_t(j) + 1);
     const D us = D(0.5) - abs(u);
     const D kd = floor((D(2) * a / us + b) * u + c);
     const Mask<D> in_range = !(kd < D(0) || kd > nd);
@@ -116,53 +139,78 @@ GLINTLAB_FN D binomial_btrs_lanes(D nd, D p, std::uint64_t seed, const RngIndex<
   return result;
 }
 
-// binomial_exact(n, p, seed, index) on a double type D: n integer-valued in [0, 2^53).
-template <class D>
-GLINTLAB_FN D binomial_exact_double_lanes(D nd, D p, std::uint64_t seed, const RngIndex<D>& index) {
+// binomial_exact(n, p, seed, index) on a double type D with the uniforms of `stream` (dim 0 for
+// the inversion, dims 2j, 2j + 1 for BTRS's attempt j): n integer-valued in [0, 2^53).
+template <class D, class Stream>
+GLINTLAB_FN D binomial_exact_double_lanes(D nd, D p, const Stream& stream) {
   const Mask<D> none = nd == D(0) || !(p > D(0));
   const Mask<D> all_n = p >= D(1);
   const Mask<D> live = !none && !all_n;
   const Mask<D> flip = p > D(0.5);
   const D pp = select(flip, D(1) - p, p);
   const Mask<D> small = nd * pp < D(10);
-  const D k_inv = binomial_inversion_lanes(nd, pp, lane_uniform<D>(seed, index, 0), live && small);
-  const D k_btrs = binomial_btrs_lanes(nd, pp, seed, index, live && !small);
+  const D k_inv = binomial_inversion_lanes(nd, pp, stream.uniform(0), live && small);
+  const D k_btrs = binomial_btrs_lanes(nd, pp, stream, live && !small);
   D k = select(small, k_inv, k_btrs);
   k = select(flip, nd - k, k);
   return select(none, D(0), select(all_n, nd, k));
 }
 
+// The 32-bit values of a hash-lane type's lanes, stored to and loaded from plain arrays.
+template <class U>
+GLINTLAB_FN void store_hash_lanes(const U& h, std::uint32_t* out) {
+  if constexpr (std::is_integral_v<U>) {
+    out[0] = h;
+  } else {
+    alignas(64) typename U::value_type v[U::size];
+    h.store_aligned(v);
+    for (std::size_t l = 0; l < U::size; ++l) out[l] = static_cast<std::uint32_t>(v[l]);
+  }
+}
+template <class U>
+GLINTLAB_FN U load_hash_lanes(const std::uint32_t* in) {
+  if constexpr (std::is_integral_v<U>) {
+    return in[0];
+  } else {
+    alignas(64) typename U::value_type v[U::size];
+    for (std::size_t l = 0; l < U::size; ++l) v[l] = in[l];
+    return U::load_aligned(v);
+  }
+}
+
 }  // namespace detail
 
-// T(binomial_exact(uint64(n), double(p), seed, index of each lane)) in every lane, n a count
-// (integer-valued, ≥ 0): the lanes converted to double and drawn in the double batches of the
-// same ISA (LaneTraits::Double), parts of as many lanes as those hold.
+// The exact Binomial(n, p) draw on every lane of T, n a count (integer-valued, ≥ 0), from each
+// lane's hash32 stream (HashStream{key}): the lanes converted to double and drawn in the double
+// batches of the same ISA (LaneTraits::Double), parts of as many lanes as those hold, each part's
+// keys moved to that batch's hash lanes. On a scalar T: the same kernel in double.
 template <class T>
-GLINTLAB_FN T binomial_exact_lanes(T n, T p, std::uint64_t seed, const RngIndex<T>& index) {
+GLINTLAB_FN T binomial_exact_lanes(T n, T p, const HashLanes<T>& key) {
   using D = typename LaneTraits<T>::Double;
-  constexpr std::size_t kL = LaneTraits<T>::kLanes, kD = LaneTraits<D>::kLanes;
-  static_assert(kL % kD == 0);
-  alignas(64) Scalar<T> ns[kL], ps[kL], out[kL];
-  LaneTraits<T>::store(n, ns);
-  LaneTraits<T>::store(p, ps);
-  for (std::size_t part = 0; part < kL; part += kD) {
-    alignas(64) double nd[kD], pd[kD], kd[kD];
-    RngIndex<D> idx{};
-    for (std::size_t l = 0; l < kD; ++l) {
-      nd[l] = double(ns[part + l]);
-      pd[l] = double(ps[part + l]);
-      if constexpr (std::is_floating_point_v<D>) {
-        idx = rng_lane<T>(index, part + l);
-      } else {
-        idx[l] = rng_lane<T>(index, part + l);
+  if constexpr (std::is_floating_point_v<T>) {
+    return T(detail::binomial_exact_double_lanes(double(n), double(p), HashStream<double>{key}));
+  } else {
+    constexpr std::size_t kL = LaneTraits<T>::kLanes, kD = LaneTraits<D>::kLanes;
+    static_assert(kL % kD == 0);
+    alignas(64) Scalar<T> ns[kL], ps[kL], out[kL];
+    alignas(64) std::uint32_t keys[kL];
+    LaneTraits<T>::store(n, ns);
+    LaneTraits<T>::store(p, ps);
+    detail::store_hash_lanes(key, keys);
+    for (std::size_t part = 0; part < kL; part += kD) {
+      alignas(64) double nd[kD], pd[kD], kd[kD];
+      for (std::size_t l = 0; l < kD; ++l) {
+        nd[l] = double(ns[part + l]);
+        pd[l] = double(ps[part + l]);
       }
+      const D k = detail::binomial_exact_double_lanes(
+          LaneTraits<D>::load(nd), LaneTraits<D>::load(pd),
+          HashStream<D>{detail::load_hash_lanes<HashLanes<D>>(keys + part)});
+      LaneTraits<D>::store(k, kd);
+      for (std::size_t l = 0; l < kD; ++l) out[part + l] = Scalar<T>(kd[l]);
     }
-    const D k = detail::binomial_exact_double_lanes(LaneTraits<D>::load(nd),
-                                                    LaneTraits<D>::load(pd), seed, idx);
-    LaneTraits<D>::store(k, kd);
-    for (std::size_t l = 0; l < kD; ++l) out[part + l] = Scalar<T>(kd[l]);
+    return LaneTraits<T>::load(out);
   }
-  return LaneTraits<T>::load(out);
 }
 
 }  // namespace glintlab

@@ -14,7 +14,8 @@
 #include <type_traits>
 
 #include "core/glints/binomial.h"
-#include "core/math/lane_rng.h"
+#include "core/math/hash32_stream.h"
+#include "core/math/rng.h"
 #include "core/model.h"
 #include "core/ndf/ggx.h"
 #include "core/ndf/microfacet.h"
@@ -44,25 +45,38 @@ inline T facet_density_scale(double log10_density) {
   return T(std::exp(S(log10_density) * S(2.30258509299404568402)));
 }
 
-// The counter-RNG index of a footprint: its centre's uv quantized to 2^-24 (so a pixel's count is
-// the same whatever order pixels are shaded in; nearby footprints get unrelated counts, as Deliot &
-// Belcour's per-cell random numbers do at the finest level). One index per lane on a batch.
+// A footprint coordinate quantized to 2^-24 as a 32-bit hash counter: floor(x·2^24) mod 2^32,
+// from x's integer part i and its fraction (x − i exact; (x − i)·2^24 < 2^24 truncated) in the
+// integer lanes, so it wraps rather than saturates. Exact for |x| < 2^31 (beyond, i counts as 0);
+// a float x and the same value in double give the same counter.
 template <class T>
-GLINTLAB_FN RngIndex<T> footprint_rng_index(const FootprintQuery<T>& f) {
-  const auto q = [](Scalar<T> x) {
+GLINTLAB_FN HashLanes<T> footprint_hash_coordinate(T x) {
+  using U = HashLanes<T>;
+  const T i = floor(x);
+  return detail::wrap32(hash32_index(i) * U(16777216u) + hash32_index((x - i) * T(16777216)));
+}
+
+// The hash32 key of a footprint's counts (core/math/hash32.h; each lane its own, computed on the
+// batch's integer lanes): the seed, then its centre's u and v quantized to 2^-24, nested, so a
+// pixel's count is the same whatever order pixels are shaded in, and nearby footprints get
+// unrelated counts, as Deliot & Belcour's per-cell random numbers do at the finest level. The
+// seed enters modulo 2^32 (the parameter's range is 0..2^32 − 1).
+template <class T>
+GLINTLAB_FN HashLanes<T> footprint_hash_key(const FootprintQuery<T>& f, std::uint64_t seed) {
+  using U = HashLanes<T>;
+  return hash32_nest(hash32_key(U(static_cast<std::uint32_t>(seed)), footprint_hash_coordinate(f.uv.x)),
+                     footprint_hash_coordinate(f.uv.y));
+}
+
+// The 64-bit counter-RNG index of a footprint (core/math/rng.h), its centre's uv quantized to
+// 2^-24: the key of kneiphof_klein_area's host-side Monte Carlo light samples.
+template <class T>
+std::uint64_t footprint_rng_index(const FootprintQuery<T>& f) {
+  static_assert(std::is_floating_point_v<T>, "footprint_rng_index is host-side (scalar)");
+  const auto q = [](T x) {
     return static_cast<std::uint64_t>(static_cast<std::int64_t>(double(x) * 16777216.0));
   };
-  if constexpr (std::is_floating_point_v<T>) {
-    return mix64(q(f.uv.x) * 0x9e3779b97f4a7c15ULL ^ q(f.uv.y));
-  } else {
-    constexpr std::size_t kL = LaneTraits<T>::kLanes;
-    alignas(64) Scalar<T> u[kL], v[kL];
-    LaneTraits<T>::store(f.uv.x, u);
-    LaneTraits<T>::store(f.uv.y, v);
-    RngIndex<T> r{};
-    for (std::size_t l = 0; l < kL; ++l) r[l] = mix64(q(u[l]) * 0x9e3779b97f4a7c15ULL ^ q(v[l]));
-    return r;
-  }
+  return mix64(q(f.uv.x) * 0x9e3779b97f4a7c15ULL ^ q(f.uv.y));
 }
 
 // b/(N·p): the factor Kneiphof & Klein Eq. 16 applies to the smooth radiance; 0 without facets.
@@ -72,8 +86,9 @@ GLINTLAB_FN T binomial_radiance_factor(T count, T n, T p) {
 }
 
 // The counting steps every binomial glint model shares, whatever its reflection probability:
-// N_P from the footprint, p = saturate(p_raw), b ~ Binomial(N_P, p) keyed by the footprint and the
-// factor b/(N_P·p) of Kneiphof & Klein Eq. 16 (Deliot & Belcour 2023's scheme).
+// N_P from the footprint, p = saturate(p_raw), b ~ Binomial(N_P, p) drawn from the footprint's
+// hash32 stream (footprint_hash_key) and the factor b/(N_P·p) of Kneiphof & Klein Eq. 16 (Deliot
+// & Belcour 2023's scheme).
 template <class T>
 struct BinomialGlintCount {
   T n;       // N_P
@@ -88,7 +103,7 @@ GLINTLAB_FN BinomialGlintCount<T> binomial_glint_count(const FootprintQuery<T>& 
                                                        std::uint64_t seed) {
   const T n = footprint_facet_count_scaled(f, density_scale);
   const T prob = saturate(p_raw);
-  const T count = draw_binomial(sampler, n, prob, seed, footprint_rng_index(f));
+  const T count = draw_binomial(sampler, n, prob, footprint_hash_key(f, seed));
   return {n, prob, count, binomial_radiance_factor(count, n, prob)};
 }
 

@@ -215,7 +215,7 @@ void table1(benchmark::State& s) {
                                     ggx.D(Vec3<double>{0, 0, 1}))
                 : std::min(1.0, t.d_omega_h / dh);
         const double b =
-            draw_binomial(BinomialSampler::kRealTime, n, p, 5, footprint_rng_index(q.footprint));
+            draw_binomial(BinomialSampler::kRealTime, n, p, footprint_hash_key(q.footprint, 5));
         v = t.lo_over_li * binomial_radiance_factor(b, n, p);
       }
     }

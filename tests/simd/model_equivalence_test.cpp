@@ -496,8 +496,8 @@ Case glint_case(std::string_view model, std::string_view label, std::size_t sets
   return Case{};
 }
 
-// Each lane on the counter-RNG stream of a footprint 2^-18 away in u (16 quanta of
-// footprint_rng_index): N_P and p unchanged, the binomial count drawn from other uniforms — the
+// Each lane on the hash32 stream of a footprint 2^-18 away in u (16 quanta of
+// footprint_hash_coordinate): N_P and p unchanged, the binomial count drawn from other uniforms — the
 // error a batch kernel makes that feeds its lanes the wrong (e.g. lane-shifted) stream.
 struct PerturbedStreamDeliot : DeliotBelcour {
   template <class T>

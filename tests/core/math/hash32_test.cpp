@@ -4,6 +4,7 @@
 // high input bits). Its lanes on every ISA equal the scalar
 // bits: tests/simd/avx512_ops_test.cpp (op "hash32 uniform").
 #include "core/math/hash32.h"
+#include "core/math/hash32_stream.h"
 
 #include <gtest/gtest.h>
 
@@ -128,6 +129,29 @@ TEST(Hash32, UniformsAndIndicesFollowTheirRules) {
   EXPECT_EQ(hash32_index(2147483648.0), 0u);  // out of range
   EXPECT_EQ(hash32_index(std::numeric_limits<float>::quiet_NaN()), 0u);
   EXPECT_EQ(hash32_index(-std::numeric_limits<double>::infinity()), 0u);
+}
+
+// core/math/hash32_stream.h spells out hash32_counter's steps so a kernel can keep the key: the
+// same bits for every (seed, index, dim), counters at 0 and at the 32-bit edge included; a stream
+// whose key misses its seed offset differs.
+TEST(Hash32Stream, KeyThenDrawIsTheCounterHash) {
+  const std::vector<std::uint32_t> edge = {0u, 1u, 2u, 0x7fffffffu, 0x80000000u, 0xfffffffeu,
+                                           0xffffffffu, 0x9e3779b9u, 0x61c88647u};
+  std::vector<std::uint32_t> values = edge;
+  for (std::uint32_t i = 0; i < 40; ++i) values.push_back(hash32_counter(17u, i, 3u));
+  std::size_t checked = 0, broken_equal = 0;
+  for (std::uint32_t seed : values)
+    for (std::uint32_t index : edge)
+      for (std::uint32_t dim : {0u, 1u, 5u, 0xffffffffu}) {
+        const std::uint32_t key = hash32_key(seed, index);
+        EXPECT_EQ(hash32_draw(key, dim), hash32_counter(seed, index, dim));
+        EXPECT_EQ(hash32_nest(key, dim), hash32(key ^ dim));
+        const std::uint32_t no_offset = hash32(hash32(seed) ^ index);
+        broken_equal += hash32_draw(no_offset, dim) == hash32_counter(seed, index, dim) ? 1 : 0;
+        ++checked;
+      }
+  EXPECT_EQ(checked, std::size_t(49 * 9 * 4));
+  EXPECT_EQ(broken_equal, 0u);
 }
 
 }  // namespace
