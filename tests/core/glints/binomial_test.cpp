@@ -70,6 +70,24 @@ std::vector<double> draw_hashed(BinomialSampler sampler, double n, double p, int
 const std::vector<std::pair<std::uint64_t, double>> kExactCases = {
     {7, 0.2}, {200, 0.02}, {300, 0.3}, {40, 0.9}, {1000000, 0.001}, {1000000000000ULL, 3e-9}};
 
+// Total-variation distance between the empirical distribution of the counts x and the pmf e
+// (mass outside e's support counted in full).
+double empirical_tv(const BinomialPmf& e, const std::vector<double>& x) {
+  std::vector<double> hist(e.f.size(), 0.0);
+  double outside = 0;
+  const double w = 1.0 / double(x.size());
+  for (double xi : x) {
+    const double j = xi - double(e.lo);
+    if (j >= 0 && j < double(hist.size()))
+      hist[std::size_t(j)] += w;
+    else
+      outside += w;
+  }
+  double tv = outside;
+  for (std::size_t i = 0; i < hist.size(); ++i) tv += std::abs(hist[i] - e.f[i]);
+  return 0.5 * tv;
+}
+
 TEST(BinomialExactKernel, DrawsTheHostCountsFromTheHostUniforms) {
   // The masked-loop kernel on a scalar double with binomial_exact's uniforms (CounterStream) gives
   // binomial_exact's count, draw for draw, on every branch and edge, and on a hash32 stream
@@ -138,20 +156,7 @@ TEST(BinomialDrawHash32, RealTimeAndSmallCountFollowTheirDistributions) {
   const double p = 0.1;
   const int m = 50000;
   const BinomialPmf e = binomial_pmf(n, p);
-  const auto tv_of = [&](const std::vector<double>& x) {
-    std::vector<double> hist(e.f.size(), 0.0);
-    double outside = 0;
-    for (double xi : x) {
-      const double j = xi - double(e.lo);
-      if (j >= 0 && j < double(hist.size()))
-        hist[std::size_t(j)] += 1.0 / m;
-      else
-        outside += 1.0 / m;
-    }
-    double tv = outside;
-    for (std::size_t i = 0; i < hist.size(); ++i) tv += std::abs(hist[i] - e.f[i]);
-    return 0.5 * tv;
-  };
+  const auto tv_of = [&](const std::vector<double>& x) { return empirical_tv(e, x); };
   // As SamplerFollowsItsAnalyticPmf: sampling inflates the empirical TV by about 0.03.
   EXPECT_NEAR(tv_of(draw_hashed(BinomialSampler::kSmallCount, double(n), p, m, 6)),
               small_count_error(n, p).tv, 0.04);
@@ -217,22 +222,12 @@ TEST(BinomialSmallCount, SamplerFollowsItsAnalyticPmf) {
   const double p = 0.1;
   const int m = 50000;
   // Empirical TV against the exact binomial should match the analytic TV up to sampling noise.
-  const BinomialPmf e = binomial_pmf(n, p);
-  std::vector<double> hist(e.f.size(), 0.0);
-  double outside = 0;
-  for (int i = 0; i < m; ++i) {
-    const double x =
+  std::vector<double> x(std::size_t(m), 0.0);
+  for (int i = 0; i < m; ++i)
+    x[std::size_t(i)] =
         binomial_small_count(double(n), p, counter_uniform<double>(6, std::uint64_t(i), 0));
-    const double j = x - double(e.lo);
-    if (j >= 0 && j < double(hist.size()))
-      hist[std::size_t(j)] += 1.0 / m;
-    else
-      outside += 1.0 / m;
-  }
-  double tv = outside;
-  for (std::size_t i = 0; i < hist.size(); ++i) tv += std::abs(hist[i] - e.f[i]);
   // Sampling inflates the empirical TV by about Σ sqrt(f/m) ~ 0.03 here.
-  EXPECT_NEAR(0.5 * tv, small_count_error(n, p).tv, 0.04);
+  EXPECT_NEAR(empirical_tv(binomial_pmf(n, p), x), small_count_error(n, p).tv, 0.04);
 }
 
 }  // namespace
