@@ -9,10 +9,10 @@
 // them, then choose_binomial_level. docs/adequacy.md "The area chooser" has its counts against the
 // measured table.
 //
-// Scalar only (float or double; the model itself is double only, kDoubleOnly, and not batched):
-// the LTC table is indexed per lane (ltc_ggx_lookup). An engine on lanes computes p per lane with
-// kneiphof_klein_area_count_inputs and runs choose_binomial_level, which is templated and
-// branch-free, on the batch. No allocation, no exceptions, no virtual calls.
+// Scalar only (templated on the scalar type, used and tested in double; the model itself is double
+// only, kDoubleOnly, and not batched): the LTC table is indexed per lane (ltc_ggx_lookup). An engine
+// on lanes computes p per lane with kneiphof_klein_area_count_inputs and runs choose_binomial_level,
+// which is templated and branch-free, on the batch. No allocation, no exceptions, no virtual calls.
 #pragma once
 
 #include <type_traits>
