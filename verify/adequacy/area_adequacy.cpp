@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "core/glints/area_chooser.h"
 #include "core/glints/kneiphof_ltc.h"
 #include "core/model_registry.h"
 
@@ -96,6 +97,11 @@ std::pair<double, double> area_cell_probability_and_smooth(const Cell& c) {
   const auto p = area_params(c, BinomialLevel::kExact, 0);
   const auto e = KneiphofKleinArea::eval<double>(p, cell_query(c, 0.5, 0.5));
   return {e.intermediates[2], e.intermediates[6]};  // p (clamped), smooth
+}
+
+int area_cell_chooser(const Cell& c, double tau) {
+  return int(choose_kneiphof_klein_area_model_level(area_params(c, BinomialLevel::kExact, 0),
+                                                    cell_query(c, 0.5, 0.5), tau));
 }
 
 std::vector<CellResult> measure_area_grid_at(const std::vector<Cell>& cells,

@@ -50,6 +50,10 @@ double area_level_values(const Cell& cell, BinomialLevel level, int samples, std
                          std::vector<double>& out);
 // The clamped p and the smooth value L_o/L_i of an area cell.
 std::pair<double, double> area_cell_probability_and_smooth(const Cell& cell);
+// The engine chooser's level for an area cell at threshold tau (core/glints/area_chooser.h, on the
+// model's parameters of the cell and its query at the centre position; N_P and p are the cell's):
+// the table's `chooser` column of the area rows.
+int area_cell_chooser(const Cell& cell, double tau);
 
 // Every cell (measure_cell: the levels through level_values, which hands area cells to
 // area_level_values), in parallel, each seeded by its position in the whole area grid under its

@@ -263,7 +263,11 @@ CellResult measure_cell(const Cell& cell, int samples, std::uint64_t seed, const
       chosen_and_cheapest_measured(r.levels, int(BinomialLevel::kExact));
   r.cv_predicted = binomial_count_cv(cell.facets, p);
   r.p_zero_predicted = binomial_zero_probability(cell.facets, p);
-  r.chooser = int(choose_binomial_level(cell.facets, p, d.threshold));
+  // The engine chooser: the binomial one on the cell's N_P and p, the area family's on the model's
+  // parameters and query (its own N_P and LTC p, the same numbers).
+  r.chooser = cell.model == "kneiphof_klein_area"
+                  ? area_cell_chooser(cell, d.threshold)
+                  : int(choose_binomial_level(cell.facets, p, d.threshold));
   const LevelStats& c = r.levels[std::size_t(r.chooser)];
   r.chooser_refuted = c.mean_diff_lcb > d.threshold || c.cv_diff_lcb > d.threshold;
   return r;

@@ -77,7 +77,9 @@ struct CellResult {
   int chosen = int(BinomialLevel::kExact);
   int cheapest_measured = int(BinomialLevel::kExact);
   double cv_predicted = 0, p_zero_predicted = 0;
-  int chooser = int(BinomialLevel::kExact);  // choose_binomial_level at TAU
+  // The engine chooser at TAU: choose_binomial_level (core/glints/adequacy.h); for the area family
+  // choose_kneiphof_klein_area_model_level (core/glints/area_chooser.h, area_cell_chooser).
+  int chooser = int(BinomialLevel::kExact);
   bool chooser_refuted = false;  // the chooser's level differs by more than TAU for sure (a
                                  // lower bound above TAU)
 };

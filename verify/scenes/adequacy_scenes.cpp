@@ -11,6 +11,7 @@
 #include <tuple>
 #include <type_traits>
 
+#include "core/glints/area_chooser.h"
 #include "core/glints/kneiphof_ltc.h"
 #include "core/model_registry.h"
 #include "core/scene/footprint.h"
@@ -281,7 +282,8 @@ void render_kemppinen_rows(const ChoiceScene& s, const SceneGeometry& g, const S
 }
 
 // The area family's pixels: kneiphof_klein_area with the square light at the pixel's light
-// distance, its level chosen by choose_binomial_level with the model's N_P and clamped p (its eval's
+// distance, its level chosen by the engine chooser choose_kneiphof_klein_area_model_level
+// (core/glints/area_chooser.h: the binomial chooser on the model's own N_P and LTC p, its eval's
 // intermediates), against exact counting at the same realisations; the smooth level is the model's
 // L_o/L_i (the same at every realisation). The rendered radiance takes the light's radiance that
 // gives the point light's power.
@@ -309,7 +311,7 @@ void render_area_rows(const ChoiceScene& s, const SceneGeometry& g, const Shape&
     px.p = e.intermediates[2];
     const double smooth = e.intermediates[6];
     px.level = o.chooser ? o.chooser(px.facets, px.p, o.chooser_tau)
-                         : int(choose_binomial_level(px.facets, px.p, o.chooser_tau));
+                         : int(choose_kneiphof_klein_area_model_level(params, q, o.chooser_tau));
     if (px.level < 0 || px.level >= kBinomialLevels)
       throw std::invalid_argument("adequacy scenes: the chooser returned no level of the family");
     const auto chosen = BinomialLevel(px.level);

@@ -5,9 +5,9 @@
 // engine chooser (core/glints/adequacy.h) picks for that pixel's footprint, and with the most
 // complete level everywhere: for the binomial family (deliot_belcour, kneiphof_klein) exact
 // counting, for the Kemppinen family (kemppinen_ggx) k = 16 with the exact erf; and the area family
-// (kneiphof_klein_area: a plane under a rectangular light) against exact counting, chosen by the
-// binomial chooser with the model's LTC p (core has no area chooser yet). Chermain has no measured
-// levels yet.
+// (kneiphof_klein_area: a plane under a rectangular light) against exact counting, chosen by its
+// engine chooser (core/glints/area_chooser.h: the binomial chooser with the model's LTC p); and the
+// Chermain family's (chermain_choice_scenes) against dict16_ggaa.
 //
 // Per pixel, the difference is measured the way the adequacy rule defines "no one could tell"
 // (verify/adequacy/binomial_adequacy.h, compare_to_exact): over many realisations of the same
@@ -62,7 +62,8 @@ std::vector<ChoiceScene> kemppinen_choice_scenes();
 // rectangle, centred along ω_o at the light's distance and facing the shading point: the side
 // gives it the area of the spherical light's disk, so the two area-light planes subtend the same
 // solid angle to first order), GGX α = kSceneAlpha, at a low and a high facet density. The level
-// per pixel: choose_binomial_level(N_P, p, TAU) with the model's own N_P and (LTC) p.
+// per pixel: choose_kneiphof_klein_area_model_level (core/glints/area_chooser.h), i.e.
+// choose_binomial_level(N_P, p, TAU) with the model's own N_P and (LTC) p.
 std::vector<ChoiceScene> area_choice_scenes();
 inline constexpr double kRectLightSide = 0.70898154036220639;  // 0.4 √π
 
@@ -102,7 +103,8 @@ struct SceneOptions {
   int realisations = 256;                  // positions per pixel for the difference statistics
   double tau = kDefaultThreshold;          // what a pixel's difference is compared with
   double chooser_tau = kDefaultThreshold;  // the threshold the chooser is run with
-  LevelChooser chooser;  // empty: the engine chooser, choose_<model>_level (core/glints/adequacy.h)
+  // empty: the engine chooser, choose_<model>_level (core/glints/adequacy.h, area_chooser.h)
+  LevelChooser chooser;
   // empty: choose_kemppinen_model_level (core/glints/adequacy.h)
   KemppinenLevelChooser kemppinen_chooser;
   // empty: choose_chermain_model_level (core/glints/chermain_chooser.h), told the pixel's

@@ -1,0 +1,339 @@
+// Every engine chooser compiled per ISA (chooser_isa_<isa>.cpp, each with its ISA's flags) against
+// the scalar double chooser on the measured tables' cells, quick and full grids, at TAU and
+// TAU × 10: every lane's level equal to the scalar level bit for bit. The binomial chooser runs on
+// the binomial family's (N_P, p) and on the area family's (the model's LTC p: the area chooser,
+// core/glints/area_chooser.h, is scalar, its binomial step on lanes), by GPU order and by a
+// measured cost order; deliot_belcour's and kneiphof_klein's wrappers, the Kemppinen family's
+// (kemppinen_ggx, kemppinen_beckmann) and the Chermain family's on each cell's parameters and
+// query. An ISA this CPU lacks is skipped with the reason (GLINTLAB_MAX_ISA caps it too). The
+// comparison can fail: a lane path whose selects take the other arm in the batch's last lane
+// disagrees with the scalar chooser on every ISA.
+#include "verify/adequacy/chooser_isa.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <cstdio>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "core/glints/adequacy.h"
+#include "core/glints/chermain_chooser.h"
+#include "core/models/kemppinen_beckmann.h"
+#include "core/models/kemppinen_ggx.h"
+#include "core/simd/batch.h"
+#include "verify/adequacy/area_adequacy.h"
+#include "verify/adequacy/binomial_adequacy.h"
+#include "verify/adequacy/chermain_adequacy.h"
+#include "verify/adequacy/kemppinen_adequacy.h"
+
+namespace glintlab::verify::adequacy::isa_test {
+namespace {
+
+using simd::Isa;
+using simd::isa_name;
+using simd::isa_supported;
+
+constexpr std::array<double, 2> kTaus = {kDefaultThreshold, 10 * kDefaultThreshold};
+constexpr std::array<Budget, 2> kBudgets = {Budget::kQuick, Budget::kFull};
+
+struct IsaCase {
+  Isa isa;
+  const char* name;  // a test name's suffix
+  ChooserIsaFns (*fns)();
+};
+void PrintTo(const IsaCase& c, std::ostream* os) { *os << c.name; }
+constexpr IsaCase kCases[] = {{Isa::kScalar, "scalar", chooser_isa_scalar},
+                              {Isa::kSse42, "sse42", chooser_isa_sse42},
+                              {Isa::kAvx2, "avx2", chooser_isa_avx2},
+                              {Isa::kAvx512, "avx512", chooser_isa_avx512}};
+
+// Rows of one chooser call: parameters shared, a query and a TAU per row, the scalar level.
+struct Rows {
+  std::vector<double> facets, p;      // the binomial chooser's inputs
+  std::vector<ModelQuery<double>> q;  // the model wrappers' queries
+  std::vector<double> tau, scalar;
+};
+
+// Rows whose level differs from the scalar one, bit for bit (the first few printed).
+std::size_t differing(const std::vector<double>& got, const std::vector<double>& want,
+                      const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < got.size(); ++i)
+    if (std::bit_cast<std::uint64_t>(got[i]) != std::bit_cast<std::uint64_t>(want[i])) {
+      if (n < 3)
+        ADD_FAILURE() << what << " row " << i << ": lanes " << got[i] << ", scalar " << want[i];
+      ++n;
+    }
+  return n;
+}
+std::size_t count_differing(const std::vector<double>& got, const std::vector<double>& want) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < got.size(); ++i)
+    n += std::bit_cast<std::uint64_t>(got[i]) != std::bit_cast<std::uint64_t>(want[i]) ? 1 : 0;
+  return n;
+}
+
+// The binomial chooser's rows: every cell of the binomial and area tables (quick and full), its
+// clamped p as the table computes it, at both TAUs.
+const Rows& binomial_rows() {
+  static const Rows rows = [] {
+    Rows r;
+    for (Budget b : kBudgets) {
+      std::vector<Cell> cells = make_grid({"deliot_belcour", "kneiphof_klein"}, grid_axes(b));
+      const std::vector<Cell> area = make_grid({"kneiphof_klein_area"}, area_grid_axes(b));
+      cells.insert(cells.end(), area.begin(), area.end());
+      for (const Cell& c : cells) {
+        const double p = cell_probability_and_smooth(c).first;
+        for (double tau : kTaus) {
+          r.facets.push_back(c.facets);
+          r.p.push_back(p);
+          r.tau.push_back(tau);
+          r.scalar.push_back(choose_binomial_level(c.facets, p, tau));
+        }
+      }
+    }
+    return r;
+  }();
+  return rows;
+}
+
+// A model's table as groups of consecutive cells with the same parameters (the grids vary the
+// footprint fastest): one chooser call per group.
+struct Group {
+  std::vector<double> params;              // the model's parameter values (binomial, Kemppinen)
+  const ChermainCell* chermain = nullptr;  // the group's first cell (Chermain)
+  Rows rows;
+  // A query's rows at both TAUs, with the scalar chooser's levels.
+  template <class Scalar>
+  void add(const ModelQuery<double>& q, Scalar&& scalar) {
+    for (double tau : kTaus) {
+      rows.q.push_back(q);
+      rows.tau.push_back(tau);
+      rows.scalar.push_back(scalar(q, tau));
+    }
+  }
+};
+
+template <class M>
+std::vector<Group> binomial_model_groups(const std::vector<Cell>& cells) {
+  std::vector<Group> groups;
+  for (const Cell& c : cells) {
+    const std::vector<double> v = level_param_values(c, BinomialLevel::kExact, 0);
+    if (groups.empty() || groups.back().params != v) groups.push_back({v, nullptr, {}});
+    const auto ps = M::template params<double>(v);
+    groups.back().add(cell_query(c, 0.5, 0.5), [&](const ModelQuery<double>& q, double tau) {
+      if constexpr (std::is_same_v<M, DeliotBelcour>)
+        return choose_deliot_belcour_level(ps, q, tau);
+      else
+        return choose_kneiphof_klein_level(ps, q, tau);
+    });
+  }
+  return groups;
+}
+
+// The Kemppinen and Chermain tables at two surface positions per cell.
+template <class M>
+std::vector<Group> kemppinen_groups(const std::vector<KemppinenCell>& cells) {
+  std::vector<Group> groups;
+  for (const KemppinenCell& c : cells) {
+    const std::vector<double> v = kemppinen_level_param_values(c, KemppinenLevel::kK16Exact, 0);
+    if (groups.empty() || groups.back().params != v) groups.push_back({v, nullptr, {}});
+    const auto ps = M::template params<double>(v);
+    for (int i = 0; i < 2; ++i)
+      groups.back().add(kemppinen_cell_query(c, kemppinen_surface_position(c, i)),
+                        [&](const ModelQuery<double>& q, double tau) {
+                          return choose_kemppinen_model_level(ps, q, tau);
+                        });
+  }
+  return groups;
+}
+
+// The Chermain table's cells grouped by (roughness, dh), which make its parameters.
+std::vector<Group> chermain_groups(const std::vector<ChermainCell>& cells) {
+  std::vector<Group> groups;
+  Chermain::Params<double> ps{};
+  for (const ChermainCell& c : cells) {
+    if (groups.empty() || groups.back().chermain->alpha != c.alpha ||
+        groups.back().chermain->dh != c.dh) {
+      groups.push_back({{}, &c, {}});
+      ps = chermain_level_params(c, kChermainMostComplete, 0);
+    }
+    for (int i = 0; i < 2; ++i)
+      groups.back().add(chermain_cell_query(c, chermain_surface_position(c, i)),
+                        [&](const ModelQuery<double>& q, double tau) {
+                          return choose_chermain_model_level(ps, q, tau);
+                        });
+  }
+  return groups;
+}
+
+// Every family's groups over its quick and full grids, each built once (the cells outlive them).
+template <class CellT, class Make>
+std::vector<CellT> both_budgets(Make&& make) {
+  std::vector<CellT> cells;
+  for (Budget b : kBudgets) {
+    const std::vector<CellT> part = make(b);
+    cells.insert(cells.end(), part.begin(), part.end());
+  }
+  return cells;
+}
+const std::vector<Group>& db_groups() {
+  static const std::vector<Cell> cells =
+      both_budgets<Cell>([](Budget b) { return make_grid({"deliot_belcour"}, grid_axes(b)); });
+  static const std::vector<Group> groups = binomial_model_groups<DeliotBelcour>(cells);
+  return groups;
+}
+const std::vector<Group>& kk_groups() {
+  static const std::vector<Cell> cells =
+      both_budgets<Cell>([](Budget b) { return make_grid({"kneiphof_klein"}, grid_axes(b)); });
+  static const std::vector<Group> groups = binomial_model_groups<KneiphofKlein>(cells);
+  return groups;
+}
+template <class M>
+const std::vector<Group>& kemppinen_model_groups() {
+  static const std::vector<KemppinenCell> cells = both_budgets<KemppinenCell>([](Budget b) {
+    return make_kemppinen_grid({std::string(M::kName)}, kemppinen_grid_axes(b));
+  });
+  static const std::vector<Group> groups = kemppinen_groups<M>(cells);
+  return groups;
+}
+const std::vector<Group>& chermain_model_groups() {
+  static const std::vector<ChermainCell> cells = both_budgets<ChermainCell>(
+      [](Budget b) { return make_chermain_grid({"chermain"}, chermain_grid_axes(b)); });
+  static const std::vector<Group> groups = chermain_groups(cells);
+  return groups;
+}
+
+// A family's levels on one ISA (`call` runs one group), concatenated over its groups, with the
+// scalar levels in the same order.
+template <class F>
+std::pair<std::vector<double>, std::vector<double>> run_groups(const std::vector<Group>& groups,
+                                                               F&& call) {
+  std::vector<double> got, want;
+  for (const Group& g : groups) {
+    std::vector<double> out(g.rows.q.size());
+    call(g, out.data());
+    got.insert(got.end(), out.begin(), out.end());
+    want.insert(want.end(), g.rows.scalar.begin(), g.rows.scalar.end());
+  }
+  return {got, want};
+}
+
+class ChooserIsa : public ::testing::TestWithParam<IsaCase> {
+ protected:
+  void SetUp() override {
+    if (!isa_supported(GetParam().isa))
+      GTEST_SKIP() << isa_name(GetParam().isa)
+                   << ": this CPU lacks it; its choosers are compiled, not compared";
+    fns_ = GetParam().fns();
+  }
+  ChooserIsaFns fns_{};
+
+  std::pair<std::vector<double>, std::vector<double>> binomial_model(const std::vector<Group>& g,
+                                                                     bool db, LanePath path) {
+    return run_groups(g, [&](const Group& x, double* out) {
+      (db ? fns_.deliot_belcour : fns_.kneiphof_klein)(x.params, x.rows.q.data(), x.rows.tau.data(),
+                                                       out, x.rows.q.size(), path);
+    });
+  }
+  std::pair<std::vector<double>, std::vector<double>> chermain(LanePath path) {
+    return run_groups(chermain_model_groups(), [&](const Group& x, double* out) {
+      const auto ps = chermain_level_params(*x.chermain, kChermainMostComplete, 0);
+      fns_.chermain(ps.sdf, ps.d, x.rows.q.data(), x.rows.tau.data(), out, x.rows.q.size(), path);
+    });
+  }
+};
+
+TEST_P(ChooserIsa, BinomialLanesMatchScalarOnTheBinomialAndAreaTables) {
+  const Rows& r = binomial_rows();
+  const std::size_t n = r.tau.size();
+  std::vector<double> out(n);
+  fns_.binomial(r.facets.data(), r.p.data(), r.tau.data(), out.data(), n, LanePath::kLibrary);
+  EXPECT_EQ(differing(out, r.scalar, "binomial"), 0u) << n << " rows";
+  // The rows reach every level.
+  std::array<int, kBinomialLevels> seen{};
+  for (double l : r.scalar) ++seen[std::size_t(l)];
+  for (int s : seen) EXPECT_GT(s, 0);
+  // By a measured cost order (this CPU's order of the benchmark rows, exact cheaper than two
+  // counting levels).
+  const std::array<double, kBinomialLevels> cost = {25, 85, 90, 50};
+  std::vector<double> want(n);
+  for (std::size_t i = 0; i < n; ++i)
+    want[i] = choose_binomial_level_by_cost(r.facets[i], r.p[i], r.tau[i], cost);
+  fns_.binomial_by_cost(r.facets.data(), r.p.data(), r.tau.data(), cost, out.data(), n);
+  EXPECT_EQ(differing(out, want, "binomial by cost"), 0u) << n << " rows";
+}
+
+TEST_P(ChooserIsa, BinomialModelWrappersMatchScalarOnTheirTables) {
+  const auto [db, db_want] = binomial_model(db_groups(), true, LanePath::kLibrary);
+  EXPECT_EQ(differing(db, db_want, "deliot_belcour"), 0u) << db.size() << " rows";
+  const auto [kk, kk_want] = binomial_model(kk_groups(), false, LanePath::kLibrary);
+  EXPECT_EQ(differing(kk, kk_want, "kneiphof_klein"), 0u) << kk.size() << " rows";
+}
+
+TEST_P(ChooserIsa, KemppinenLanesMatchScalarOnItsTable) {
+  for (const bool ggx : {true, false}) {
+    const auto [got, want] = run_groups(
+        ggx ? kemppinen_model_groups<KemppinenGGX>() : kemppinen_model_groups<KemppinenBeckmann>(),
+        [&](const Group& x, double* out) {
+          (ggx ? fns_.kemppinen_ggx : fns_.kemppinen_beckmann)(
+              x.params, x.rows.q.data(), x.rows.tau.data(), out, x.rows.q.size());
+        });
+    EXPECT_EQ(differing(got, want, ggx ? "kemppinen_ggx" : "kemppinen_beckmann"), 0u)
+        << got.size() << " rows";
+    // The rows reach the smooth level and a counting one.
+    std::size_t smooth = 0;
+    for (double l : want) smooth += l == 0 ? 1 : 0;
+    EXPECT_GT(smooth, 0u);
+    EXPECT_LT(smooth, want.size());
+  }
+}
+
+// (With its control: the default dictionary's construction, about 1.5 s, is the cost of any
+// Chermain test, so it is paid once here.)
+TEST_P(ChooserIsa, ChermainLanesMatchScalarOnItsTableAndASwappedLaneIsCaught) {
+  const auto [got, want] = chermain(LanePath::kLibrary);
+  EXPECT_EQ(differing(got, want, "chermain"), 0u) << got.size() << " rows";
+  std::size_t smooth = 0;
+  for (double l : want) smooth += l == 0 ? 1 : 0;
+  EXPECT_GT(smooth, 0u);
+  EXPECT_LT(smooth, want.size());
+  const auto [broken, broken_want] = chermain(LanePath::kLastLaneSwapped);
+  const std::size_t differ = count_differing(broken, broken_want);
+  EXPECT_GT(differ, 0u);
+  std::printf("%s (%zu lanes), last lane swapped: chermain %zu of %zu rows differ\n",
+              GetParam().name, fns_.lanes, differ, broken.size());
+}
+
+// The control: the same comparisons fail a lane path whose selects are swapped in one lane.
+TEST_P(ChooserIsa, ALaneWithSwappedSelectsIsCaught) {
+  const Rows& r = binomial_rows();
+  const std::size_t n = r.tau.size();
+  std::vector<double> out(n);
+  fns_.binomial(r.facets.data(), r.p.data(), r.tau.data(), out.data(), n,
+                LanePath::kLastLaneSwapped);
+  const std::size_t binomial = count_differing(out, r.scalar);
+  const auto [db, db_want] = binomial_model(db_groups(), true, LanePath::kLastLaneSwapped);
+  const auto [kk, kk_want] = binomial_model(kk_groups(), false, LanePath::kLastLaneSwapped);
+  const std::size_t db_differ = count_differing(db, db_want),
+                    kk_differ = count_differing(kk, kk_want);
+  EXPECT_GT(binomial, 0u);
+  EXPECT_GT(db_differ, 0u);
+  EXPECT_GT(kk_differ, 0u);
+  std::printf(
+      "%s (%zu lanes), last lane swapped: binomial %zu of %zu rows differ, deliot_belcour "
+      "%zu of %zu, kneiphof_klein %zu of %zu\n",
+      GetParam().name, fns_.lanes, binomial, n, db_differ, db.size(), kk_differ, kk.size());
+}
+
+INSTANTIATE_TEST_SUITE_P(Isas, ChooserIsa, ::testing::ValuesIn(kCases),
+                         [](const ::testing::TestParamInfo<IsaCase>& i) {
+                           return std::string(i.param.name);
+                         });
+
+}  // namespace
+}  // namespace glintlab::verify::adequacy::isa_test
