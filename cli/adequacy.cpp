@@ -2,7 +2,8 @@
 // [--out DIR] [--bench-from DIR] [--calibrate [--runs N] [--tables N]]`: where each cheaper level
 // of the binomial
 // glint family is indistinguishable from the exact count, and each cheaper level of the Kemppinen
-// family from k = 16 with the exact erf (verify/adequacy/, experiments/adequacy/;
+// family from k = 16 with the exact erf, of the area and Chermain families likewise, each family's
+// levels priced by the benchmark with --bench-from (verify/adequacy/, experiments/adequacy/;
 // docs/adequacy.md); with --calibrate, the decision rule's false-adequate rate on synthetic cells
 // whose truth is known instead.
 #include <fmt/format.h>
@@ -173,7 +174,7 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
   if (s.area.cells > 0) {
     const auto& a = s.area;
     print_counting_family("area family (kneiphof_klein_area, square lights)",
-                          "binomial chooser with the area p", a.cells, a.chosen, a.chooser_matches,
+                          "chooser (core/glints/area_chooser.h)", a.cells, a.chosen, a.chooser_matches,
                           a.chooser_refuted, a.undecided, a.exact_ns, a.chosen_ns, a.cheapest_ns,
                           a.cheapest_measured);
   }
@@ -186,18 +187,20 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
                     c.construction_matches, c.construction_refuted),
         c.undecided, "dict16_ggaa", c.most_complete_ns, c.chosen_ns, c.cheapest_ns);
   }
-  if (s.benchmark_costs) {
-    const auto bench_saved = [&](double ns) {
-      return s.bench_exact_ns > 0 ? 100 * (1 - ns / s.bench_exact_ns) : 0.0;
+  if (!run.costs_source.empty()) {
+    // Each family's benchmark sums, in the order of the lines above.
+    const auto line = [&](std::size_t cells, std::string_view family,
+                          const experiments::BenchSums& b,
+                          std::span<const std::string_view> levels) {
+      if (cells > 0)
+        fmt::print("{}\n", experiments::bench_sums_line(family, b, levels, run.costs_source,
+                                                         run.costs_isa));
     };
-    fmt::print(
-        "time per evaluation summed over cells (benchmark {}, {}): exact everywhere {:.0f} ns; "
-        "chosen level {:.0f} ns ({:.1f} % saved); cheapest adequate level by the benchmark "
-        "{:.0f} ns ({:.1f} % saved; smooth {}, realtime {}, small_count {}, exact {} cells)\n",
-        run.costs_source, run.costs_isa, s.bench_exact_ns, s.bench_chosen_ns,
-        bench_saved(s.bench_chosen_ns), s.bench_cheapest_ns, bench_saved(s.bench_cheapest_ns),
-        s.cheapest_by_benchmark[0], s.cheapest_by_benchmark[1], s.cheapest_by_benchmark[2],
-        s.cheapest_by_benchmark[3]);
+    line(s.cells, "binomial family", s.bench, kBinomialLevelNames);
+    line(s.kemppinen.cells, "Kemppinen family", s.kemppinen.bench, kKemppinenLevelNames);
+    line(s.area.cells, "area family", s.area.bench, kBinomialLevelNames);
+    line(s.chermain.cells, "Chermain family", s.chermain.bench,
+         verify::adequacy::kChermainLevelNames);
   } else {
     fmt::print("no benchmark costs (--bench-from DIR, DIR/glints.json from "
                "glintlab_bench_glints --benchmark_filter=^adequacy/): levels priced by the GPU "
@@ -218,10 +221,11 @@ evaluated at the same surface positions (quick: 8000, full: 32000); a level is a
 suite's family-wise rate over every decision; a cell whose exact level is lit at fewer than 100
 positions is undecided and keeps exact. `chosen` takes the levels in the order above (the GPU-lane
 cost order); `cheapest_measured` is the adequate level timed fastest in this run (scalar double,
-in-process). --bench-from DIR prices the levels by Google Benchmark JSON instead: DIR/glints.json's
-adequacy/<model>/level=<level>/<isa> rows of glintlab_bench_glints at the ISA glintlab runs
-(GLINTLAB_ISA, else the widest), adding `cheapest_by_benchmark` and the time saved against the
-exact level everywhere. Writes DIR/adequacy.csv and adequacy.json (the
+in-process). --bench-from DIR prices the levels of every family by Google Benchmark JSON instead:
+DIR/glints.json's adequacy/<model>/level=<level>/<isa> rows of glintlab_bench_glints at the ISA
+glintlab runs (GLINTLAB_ISA, else the widest), adding `cheapest_by_benchmark` and per family the
+time saved against its most complete level everywhere (a file without a row of a selected model's
+level is refused, naming the row). Writes DIR/adequacy.csv and adequacy.json (the
 table, with each level's measured ns per evaluation: the only numbers that vary run to run) and
 per model x light x incidence an EXR and a labelled PNG map of the cheapest adequate level, with
 the predicted boundary CV = sqrt((1 - p)/(N_P p)) = TAU drawn over it (drawn by matplotlib,

@@ -27,18 +27,52 @@ const std::array<Vec3<double>, 4>& kLevelColors = kAdequacyLevelColors;
 // The cells of every map of a run (write_level_maps_csv), which their chart specs draw.
 constexpr const char* kLevelsCsv = "adequacy-levels.csv";
 
-// The adequate level of least benchmark cost in a cell, and the costs of its model.
+// The adequate level of least benchmark cost in a cell of any family, and the costs of its model
+// (its family's levels in order, the most complete last).
 struct BenchPrice {
-  int cheapest = int(BinomialLevel::kExact);
-  std::array<double, kBinomialLevels> ns{};
+  int cheapest = 0;
+  std::span<const double> ns;
+  double most_complete() const { return ns.back(); }
 };
-BenchPrice bench_price(const CellResult& r, const LevelCosts& costs) {
-  BenchPrice b;
-  b.ns = costs.ns.at(r.cell.model);
-  std::array<bool, kBinomialLevels> adequate{};
+// Unset without costs or where they lack the cell's model.
+template <class Row>
+std::optional<BenchPrice> bench_price(const Row& r, const std::optional<LevelCosts>& costs) {
+  if (!costs) return std::nullopt;
+  const auto it = costs->ns.find(r.cell.model);
+  if (it == costs->ns.end() || it->second.size() != r.levels.size()) return std::nullopt;
+  std::array<bool, std::tuple_size_v<decltype(r.levels)>> adequate{};
   for (std::size_t l = 0; l < adequate.size(); ++l) adequate[l] = r.levels[l].adequate;
-  b.cheapest = cheapest_adequate(adequate, b.ns);
-  return b;
+  return BenchPrice{cheapest_adequate(adequate, it->second), it->second};
+}
+
+// A cell's benchmark prices added to its family's sums.
+template <class Row>
+void add_bench_price(BenchSums& into, const Row& r, const std::optional<LevelCosts>& costs) {
+  const std::optional<BenchPrice> b = bench_price(r, costs);
+  if (!b) return;
+  into.priced = true;
+  into.cheapest_by_benchmark.resize(b->ns.size());
+  into.most_complete_ns += b->most_complete();
+  into.chosen_ns += b->ns[std::size_t(r.chosen)];
+  into.cheapest_ns += b->ns[std::size_t(b->cheapest)];
+  ++into.cheapest_by_benchmark[std::size_t(b->cheapest)];
+}
+
+// A family's benchmark sums in adequacy.json (`levels`: the family's level names).
+nlohmann::json bench_sums_json(const BenchSums& b, const LevelCosts& costs,
+                               std::span<const std::string_view> levels) {
+  nlohmann::json by = nlohmann::json::object();
+  for (std::size_t l = 0; l < levels.size(); ++l)
+    by[std::string(levels[l])] = l < b.cheapest_by_benchmark.size() ? b.cheapest_by_benchmark[l] : 0;
+  return {{"source", costs.source},
+          {"isa", costs.isa},
+          {"most_complete", levels.back()},
+          {"most_complete_ns_total", b.most_complete_ns},
+          {"chosen_ns_total", b.chosen_ns},
+          {"chosen_saved_fraction", b.chosen_saved()},
+          {"cheapest_ns_total", b.cheapest_ns},
+          {"cheapest_saved_fraction", b.cheapest_saved()},
+          {"cheapest_by_benchmark", by}};
 }
 
 // The level names a table's columns carry: the binomial levels where that family is in the table,
@@ -82,8 +116,8 @@ void write_csv(const std::filesystem::path& path, const std::vector<CellResult>&
   names.push_back("cheapest_measured");
   names.push_back("time_saved_ns");
   // With --bench-from: the levels priced by the benchmark (the same on every run of that file;
-  // the binomial and area families' rows: the benchmark has no Kemppinen adequacy rows, whose
-  // fields there are `none` and `nan`).
+  // bench_exact_ns is the family's most complete level: exact, k16_exact or dict16_ggaa; `none`
+  // and `nan` in the rows of a model the costs do not price).
   if (costs)
     for (const char* n : {"cheapest_by_benchmark", "bench_exact_ns", "bench_chosen_ns",
                           "bench_cheapest_ns"})
@@ -112,10 +146,19 @@ void write_csv(const std::filesystem::path& path, const std::vector<CellResult>&
         w.cell(NAN);
     }
   };
+  // The benchmark's columns of a row of any family (`level_names`: its level names).
+  const auto bench_cells = [&](io::CsvWriter& w, const auto& r, const auto& level_names) {
+    if (!costs) return;
+    if (const std::optional<BenchPrice> b = bench_price(r, costs)) {
+      w.cell(level_names[std::size_t(b->cheapest)]).cell(b->most_complete());
+      w.cell(b->ns[std::size_t(r.chosen)]).cell(b->ns[std::size_t(b->cheapest)]);
+    } else {
+      w.cell("none").cell(NAN).cell(NAN).cell(NAN);
+    }
+  };
   // A row of the binomial levels: the binomial family's, or the area family's (its light the
-  // square's cone-equivalent half-angle); `none` and `nan` where the costs lack its model.
+  // square's cone-equivalent half-angle).
   const auto counting_row = [&](io::CsvWriter& w, const CellResult& r, std::string_view family) {
-    const bool priced = costs && costs->ns.count(r.cell.model) > 0;
     w.cell(family).cell(r.cell.model).cell(r.cell.facets).cell(r.cell.alpha);
     w.cell(r.cell.light_half_angle_deg).cell(r.cell.theta_i_deg).cell(r.cell.theta_h_deg);
     if (with_dh) w.cell(NAN);
@@ -126,13 +169,7 @@ void write_csv(const std::filesystem::path& path, const std::vector<CellResult>&
     level_cells(w, r.levels, kBinomialLevelNames);
     w.cell(kBinomialLevelNames[std::size_t(r.cheapest_measured)]);
     w.cell(r.levels[3].ns_per_eval - r.levels[std::size_t(r.cheapest_measured)].ns_per_eval);
-    if (costs && priced) {
-      const BenchPrice b = bench_price(r, *costs);
-      w.cell(kBinomialLevelNames[std::size_t(b.cheapest)]);
-      w.cell(b.ns[3]).cell(b.ns[std::size_t(r.chosen)]).cell(b.ns[std::size_t(b.cheapest)]);
-    } else if (costs) {
-      w.cell("none").cell(NAN).cell(NAN).cell(NAN);
-    }
+    bench_cells(w, r, kBinomialLevelNames);
     w.end_row();
   };
   io::write_csv_atomic(path, header, [&](io::CsvWriter& w) {
@@ -150,7 +187,7 @@ void write_csv(const std::filesystem::path& path, const std::vector<CellResult>&
       level_cells(w, r.levels, kKemppinenLevelNames);
       w.cell(kKemppinenLevelNames[std::size_t(r.cheapest_measured)]);
       w.cell(r.levels[kRef].ns_per_eval - r.levels[std::size_t(r.cheapest_measured)].ns_per_eval);
-      if (costs) w.cell("none").cell(NAN).cell(NAN).cell(NAN);
+      bench_cells(w, r, kKemppinenLevelNames);
       w.end_row();
     }
     for (const CellResult& r : area_rows) counting_row(w, r, kAreaFamily);
@@ -169,7 +206,7 @@ void write_csv(const std::filesystem::path& path, const std::vector<CellResult>&
       level_cells(w, r.levels, kChermainLevelNames);
       w.cell(kChermainLevelNames[std::size_t(r.cheapest_measured)]);
       w.cell(r.levels[kMost].ns_per_eval - r.levels[std::size_t(r.cheapest_measured)].ns_per_eval);
-      if (costs) w.cell("none").cell(NAN).cell(NAN).cell(NAN);
+      bench_cells(w, r, kChermainLevelNames);
       w.end_row();
     }
   });
@@ -306,6 +343,24 @@ std::vector<AdequacyLevelMap> adequacy_level_maps(const std::vector<CellResult>&
   return out;
 }
 
+std::string bench_sums_line(std::string_view family, const BenchSums& b,
+                            std::span<const std::string_view> levels, std::string_view source,
+                            std::string_view isa) {
+  if (!b.priced)
+    return fmt::format("{}: no benchmark costs ({} prices none of its models)", family,
+                       source);
+  std::vector<std::string> cells;
+  for (std::size_t l = 0; l < levels.size(); ++l)
+    cells.push_back(fmt::format(
+        "{} {}", levels[l], l < b.cheapest_by_benchmark.size() ? b.cheapest_by_benchmark[l] : 0));
+  return fmt::format(
+      "{}: time per evaluation summed over cells (benchmark {}, {}): {} everywhere {:.0f} ns; "
+      "chosen level {:.0f} ns ({:.1f} % saved); cheapest adequate level by the benchmark {:.0f} "
+      "ns ({:.1f} % saved; {} cells)",
+      family, source, isa, levels.back(), b.most_complete_ns, b.chosen_ns,
+      100 * b.chosen_saved(), b.cheapest_ns, 100 * b.cheapest_saved(), fmt::join(cells, ", "));
+}
+
 std::vector<std::string> binomial_models(const std::vector<std::string>& models) {
   std::vector<std::string> out;
   for (std::string_view m : verify::adequacy::kBinomialFamilyModels)
@@ -315,7 +370,8 @@ std::vector<std::string> binomial_models(const std::vector<std::string>& models)
 
 std::vector<std::string> priced_models(const std::vector<std::string>& models) {
   std::vector<std::string> out = binomial_models(models);
-  for (std::string& m : area_models(models)) out.push_back(std::move(m));
+  for (auto* family : {&kemppinen_models, &area_models, &chermain_models})
+    for (std::string& m : (*family)(models)) out.push_back(std::move(m));
   return out;
 }
 
@@ -519,15 +575,6 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
 
   AdequacySummary sum;
   sum.cells = rows.size();
-  // A cell's benchmark prices added to a family's sums (the binomial family's, the area's).
-  const auto add_bench_price = [&](auto& into, const CellResult& r) {
-    const BenchPrice b = bench_price(r, *o.costs);
-    into.benchmark_costs = true;
-    into.bench_exact_ns += b.ns[3];
-    into.bench_chosen_ns += b.ns[std::size_t(r.chosen)];
-    into.bench_cheapest_ns += b.ns[std::size_t(b.cheapest)];
-    ++into.cheapest_by_benchmark[std::size_t(b.cheapest)];
-  };
   for (const CellResult& r : rows) {
     ++sum.chosen[std::size_t(r.chosen)];
     sum.chooser_refuted += r.chooser_refuted ? 1 : 0;
@@ -537,7 +584,7 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
     sum.cheapest_ns += r.levels[std::size_t(r.cheapest_measured)].ns_per_eval;
     ++sum.cheapest_measured[std::size_t(r.cheapest_measured)];
     sum.undecided += r.levels[0].undecided ? 1 : 0;
-    if (o.costs) add_bench_price(sum, r);
+    add_bench_price(sum.bench, r, o.costs);
   }
   sum.decisions = table_decisions(o);
   sum.z = decision.z;
@@ -553,6 +600,7 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
     k.most_complete_ns += r.levels[kRef].ns_per_eval;
     k.chosen_ns += r.levels[std::size_t(r.chosen)].ns_per_eval;
     k.cheapest_ns += r.levels[std::size_t(r.cheapest_measured)].ns_per_eval;
+    add_bench_price(k.bench, r, o.costs);
   }
   const verify::adequacy::GridAxes area_axes = area_axes_of(o);
   for (const CellResult& r : cells.area) {
@@ -566,7 +614,7 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
     a.exact_ns += r.levels[3].ns_per_eval;
     a.chosen_ns += r.levels[std::size_t(r.chosen)].ns_per_eval;
     a.cheapest_ns += r.levels[std::size_t(r.cheapest_measured)].ns_per_eval;
-    if (o.costs && o.costs->ns.count(r.cell.model) > 0) add_bench_price(a, r);
+    add_bench_price(a.bench, r, o.costs);
   }
   const verify::adequacy::ChermainGridAxes chermain_axes = chermain_axes_of(o);
   constexpr auto kMost = std::size_t(verify::adequacy::kChermainMostComplete);
@@ -583,6 +631,7 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
     c.most_complete_ns += r.levels[kMost].ns_per_eval;
     c.chosen_ns += r.levels[std::size_t(r.chosen)].ns_per_eval;
     c.cheapest_ns += r.levels[std::size_t(r.cheapest_measured)].ns_per_eval;
+    add_bench_price(c.bench, r, o.costs);
   }
   std::filesystem::create_directories(out);
   sum.csv = out / "adequacy.csv";
@@ -707,28 +756,20 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
                     {"undecided", sum.undecided},
                     {"timing_note", "ns columns are measured in-process and vary run to run"}};
   if (o.costs) {
+    // Every priced model's levels (each family's own names), and the binomial family's sums (each
+    // family's are under families.<family>.benchmark_costs).
     nlohmann::json per_model = nlohmann::json::object();
     for (const auto& [model, ns] : o.costs->ns) {
+      const std::span<const std::string_view> names = adequacy_level_names(model);
       nlohmann::json levels = nlohmann::json::object();
-      for (std::size_t l = 0; l < ns.size(); ++l) levels[std::string(kBinomialLevelNames[l])] = ns[l];
+      for (std::size_t l = 0; l < ns.size() && l < names.size(); ++l)
+        levels[std::string(names[l])] = ns[l];
       per_model[model] = levels;
     }
-    const auto saved = [&](double ns) {
-      return sum.bench_exact_ns > 0 ? 1 - ns / sum.bench_exact_ns : 0.0;
-    };
-    doc["benchmark_costs"] = {
-        {"source", o.costs->source},
-        {"isa", o.costs->isa},
-        {"ns_per_eval", per_model},
-        {"exact_ns_total", sum.bench_exact_ns},
-        {"chosen_ns_total", sum.bench_chosen_ns},
-        {"chosen_saved_fraction", saved(sum.bench_chosen_ns)},
-        {"cheapest_ns_total", sum.bench_cheapest_ns},
-        {"cheapest_saved_fraction", saved(sum.bench_cheapest_ns)},
-        {"cheapest_by_benchmark", {{"smooth", sum.cheapest_by_benchmark[0]},
-                                   {"realtime", sum.cheapest_by_benchmark[1]},
-                                   {"small_count", sum.cheapest_by_benchmark[2]},
-                                   {"exact", sum.cheapest_by_benchmark[3]}}}};
+    nlohmann::json b = bench_sums_json(sum.bench, *o.costs, kBinomialLevelNames);
+    b["ns_per_eval"] = per_model;
+    b["exact_ns_total"] = sum.bench.most_complete_ns;
+    doc["benchmark_costs"] = b;
   } else {
     doc["benchmark_costs"] = nullptr;
   }
@@ -755,11 +796,14 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
                      {"cheapest_measured", kBinomialLevelNames[std::size_t(r.cheapest_measured)]},
                      {"levels", levels}};
   };
+  // A cell's level of least benchmark cost, where the costs price its model.
+  const auto add_cheapest_by_benchmark = [&](const auto& r, const auto& names) {
+    if (const std::optional<BenchPrice> b = bench_price(r, o.costs))
+      table.back()["cheapest_by_benchmark"] = names[std::size_t(b->cheapest)];
+  };
   for (const CellResult& r : rows) {
     table.push_back(counting_cell(r, kBinomialFamily));
-    if (o.costs)
-      table.back()["cheapest_by_benchmark"] =
-          kBinomialLevelNames[std::size_t(bench_price(r, *o.costs).cheapest)];
+    add_cheapest_by_benchmark(r, kBinomialLevelNames);
   }
   {
     nlohmann::json chosen = nlohmann::json::object(), cheapest = nlohmann::json::object();
@@ -854,20 +898,16 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
           {"exact_ns_total", a.exact_ns},
           {"chosen_ns_total", a.chosen_ns},
           {"cheapest_measured_ns_total", a.cheapest_ns}}}};
-    if (a.benchmark_costs) {
-      const auto saved = [&](double ns) {
-        return a.bench_exact_ns > 0 ? 1 - ns / a.bench_exact_ns : 0.0;
-      };
-      doc["families"][std::string(kAreaFamily)]["benchmark_costs"] = {
-          {"source", o.costs->source},
-          {"isa", o.costs->isa},
-          {"exact_ns_total", a.bench_exact_ns},
-          {"chosen_ns_total", a.bench_chosen_ns},
-          {"chosen_saved_fraction", saved(a.bench_chosen_ns)},
-          {"cheapest_ns_total", a.bench_cheapest_ns},
-          {"cheapest_saved_fraction", saved(a.bench_cheapest_ns)},
-          {"cheapest_by_benchmark", per_level(a.cheapest_by_benchmark)}};
-    }
+    // Each family's benchmark sums where the costs price its models.
+    const auto family_costs = [&](std::string_view family, const BenchSums& b,
+                                  std::span<const std::string_view> levels) {
+      if (b.priced)
+        doc["families"][std::string(family)]["benchmark_costs"] =
+            bench_sums_json(b, *o.costs, levels);
+    };
+    family_costs(kBinomialFamily, sum.bench, kBinomialLevelNames);
+    family_costs(kKemppinenFamily, sum.kemppinen.bench, kKemppinenLevelNames);
+    family_costs(kAreaFamily, a.bench, kBinomialLevelNames);
   }
   if (!chermain_models(o.models).empty()) {
     const auto& c = sum.chermain;
@@ -917,6 +957,9 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
           {"most_complete_ns_total", c.most_complete_ns},
           {"chosen_ns_total", c.chosen_ns},
           {"cheapest_measured_ns_total", c.cheapest_ns}}}};
+    if (c.bench.priced)
+      doc["families"][std::string(kChermainFamily)]["benchmark_costs"] =
+          bench_sums_json(c.bench, *o.costs, kChermainLevelNames);
   }
   for (const KemppinenCellResult& r : kemppinen_rows) {
     nlohmann::json levels = nlohmann::json::object();
@@ -936,13 +979,12 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
                      {"cv_bound", r.cv_bound},
                      {"cheapest_measured", kKemppinenLevelNames[std::size_t(r.cheapest_measured)]},
                      {"levels", levels}});
+    add_cheapest_by_benchmark(r, kKemppinenLevelNames);
   }
   for (const CellResult& r : cells.area) {
     table.push_back(counting_cell(r, kAreaFamily));
     table.back()["light_side"] = verify::adequacy::square_light_side(r.cell.light_half_angle_deg);
-    if (o.costs && o.costs->ns.count(r.cell.model) > 0)
-      table.back()["cheapest_by_benchmark"] =
-          kBinomialLevelNames[std::size_t(bench_price(r, *o.costs).cheapest)];
+    add_cheapest_by_benchmark(r, kBinomialLevelNames);
   }
   for (const ChermainCellResult& r : cells.chermain) {
     nlohmann::json levels = nlohmann::json::object();
@@ -965,6 +1007,7 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
                      {"construction_refuted", r.construction_refuted},
                      {"cheapest_measured", kChermainLevelNames[std::size_t(r.cheapest_measured)]},
                      {"levels", levels}});
+    add_cheapest_by_benchmark(r, kChermainLevelNames);
   }
   doc["cells"] = table;
   io::write_file_atomic(sum.json, doc.dump(1) + "\n");

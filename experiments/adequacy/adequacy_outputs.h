@@ -14,6 +14,8 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <span>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -67,6 +69,21 @@ struct AdequacyOptions {
   std::optional<verify::adequacy::ChermainGridAxes> chermain_axes;
 };
 
+// A family's cells priced by the benchmark (--bench-from): Σ over cells of the benchmark's ns per
+// evaluation for the family's most complete level everywhere (exact, k16_exact, dict16_ggaa), the
+// chosen level (the GPU order) and the adequate level of least benchmark cost, with how many cells
+// each level is that for (the family's level order). `priced` false: no costs given, or none for
+// the family's models.
+struct BenchSums {
+  bool priced = false;
+  double most_complete_ns = 0, chosen_ns = 0, cheapest_ns = 0;
+  std::vector<std::size_t> cheapest_by_benchmark;
+  double chosen_saved() const { return most_complete_ns > 0 ? 1 - chosen_ns / most_complete_ns : 0; }
+  double cheapest_saved() const {
+    return most_complete_ns > 0 ? 1 - cheapest_ns / most_complete_ns : 0;
+  }
+};
+
 struct AdequacySummary {
   std::filesystem::path json, csv;
   std::vector<std::string> maps;  // PNG paths relative to the output folder
@@ -80,12 +97,8 @@ struct AdequacySummary {
   // the approximations; docs/benchmarks.md), with how many cells each level is that for.
   double exact_ns = 0, chosen_ns = 0, cheapest_ns = 0;
   std::array<std::size_t, 4> cheapest_measured{};
-  // With benchmark costs: Σ over cells of the benchmark's ns per evaluation for the exact level
-  // everywhere, the chosen level (GPU order) and the adequate level of least benchmark cost, with
-  // how many cells each level is that for.
-  bool benchmark_costs = false;
-  double bench_exact_ns = 0, bench_chosen_ns = 0, bench_cheapest_ns = 0;
-  std::array<std::size_t, 4> cheapest_by_benchmark{};
+  // With benchmark costs: the binomial family's cells priced (BenchSums).
+  BenchSums bench;
   // The decision's bounds: z of the Šidák split over every decision of the table (all families).
   std::size_t decisions = 0;
   double z = 0;
@@ -97,18 +110,17 @@ struct AdequacySummary {
     std::size_t chooser_matches = 0, chooser_refuted = 0;  // as the binomial family's
     std::array<std::size_t, kKemppinenLevels> chosen{}, cheapest_measured{};
     double most_complete_ns = 0, chosen_ns = 0, cheapest_ns = 0;
+    BenchSums bench;  // with benchmark costs: its adequacy/kemppinen_*/ rows
   } kemppinen;
   // The area family (kneiphof_klein_area; zero cells when it is not selected): as the binomial
   // family's, with the in-process times and, with benchmark costs, the benchmark's sums (its own
-  // adequacy/kneiphof_klein_area/ rows; not in the binomial family's bench_* sums).
+  // adequacy/kneiphof_klein_area/ rows; not in the binomial family's sums).
   struct Area {
     std::size_t cells = 0, undecided = 0;
     std::size_t chooser_matches = 0, chooser_refuted = 0;
     std::array<std::size_t, kBinomialLevels> chosen{}, cheapest_measured{};
     double exact_ns = 0, chosen_ns = 0, cheapest_ns = 0;
-    bool benchmark_costs = false;
-    double bench_exact_ns = 0, bench_chosen_ns = 0, bench_cheapest_ns = 0;
-    std::array<std::size_t, kBinomialLevels> cheapest_by_benchmark{};
+    BenchSums bench;
   } area;
   // The Chermain family (zero cells when chermain is not selected): as the Kemppinen family's, the
   // most complete level dict16_ggaa; `construction_*` the construction's identical level
@@ -119,8 +131,17 @@ struct AdequacySummary {
     std::size_t chooser_matches = 0, chooser_refuted = 0;  // the engine chooser
     std::array<std::size_t, verify::adequacy::kChermainLevels> chosen{}, cheapest_measured{};
     double most_complete_ns = 0, chosen_ns = 0, cheapest_ns = 0;
+    BenchSums bench;  // with benchmark costs: its adequacy/chermain/ rows
   } chermain;
 };
+
+// The summary line `glintlab adequacy --bench-from` prints for a family (`family` as the line
+// names it, `levels` its level names): its benchmark sums against its most complete level, the
+// cells per level of least benchmark cost, or that the costs (`source`, rows of `isa`) do not
+// price it.
+std::string bench_sums_line(std::string_view family, const BenchSums& b,
+                            std::span<const std::string_view> levels, std::string_view source,
+                            std::string_view isa);
 
 // Measures every cell and writes the files into `out` (created), each atomically.
 AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOptions& o);
@@ -156,7 +177,8 @@ std::vector<std::string> kemppinen_models(const std::vector<std::string>& models
 std::vector<std::string> area_models(const std::vector<std::string>& models);
 std::vector<std::string> chermain_models(const std::vector<std::string>& models);
 // The models of `models` whose levels the benchmark prices (adequacy/<model>/level=<level>/<isa>
-// rows of glintlab_bench_glints): the binomial family's, then the area family's.
+// rows of glintlab_bench_glints): every family's (binomial, Kemppinen, area, Chermain), in the
+// families' order.
 std::vector<std::string> priced_models(const std::vector<std::string>& models);
 // The decision of the whole table for `o`: z by Šidák over every (cell, cheaper level) decision
 // of every family selected (binomial: 3 per cell, Kemppinen: 8 per cell, area: 3 per cell,

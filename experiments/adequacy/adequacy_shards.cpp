@@ -214,11 +214,11 @@ std::string adequacy_run_text(const AdequacyOptions& o) {
                               bits(o.threshold), fmt::join(o.models, ","));
   if (o.costs) {
     t += fmt::format("costs {} {}\n", o.costs->source, o.costs->isa);
-    for (const auto& [model, ns] : o.costs->ns)
-      t += fmt::format(
-          "  {} {}\n", model,
-          fmt::join(std::vector<std::string>{bits(ns[0]), bits(ns[1]), bits(ns[2]), bits(ns[3])},
-                    " "));
+    for (const auto& [model, ns] : o.costs->ns) {
+      std::vector<std::string> b;
+      for (double x : ns) b.push_back(bits(x));
+      t += fmt::format("  {} {}\n", model, fmt::join(b, " "));
+    }
   }
   t += fmt::format("binomial samples {}\n", verify::adequacy::grid_axes(o.budget).samples);
   for (const auto& c : binomial_grid(o))
@@ -363,9 +363,9 @@ AdequacyPartFile read_adequacy_part(const std::filesystem::path& file) {
       costs.isa = c.at("isa").get<std::string>();
       for (const auto& [model, v] : c.at("ns").items()) {
         const std::vector<double> ns = doubles_of(v);
-        if (ns.size() != kBinomialLevels)
+        if (ns.size() != adequacy_level_names(model).size())
           throw std::invalid_argument(fmt::format("costs of {}: {} levels", model, ns.size()));
-        std::copy(ns.begin(), ns.end(), costs.ns[model].begin());
+        costs.ns[model] = ns;
       }
       o.costs = costs;
     }

@@ -2,11 +2,30 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <optional>
 #include <stdexcept>
 
+#include "core/glints/adequacy.h"
+#include "core/glints/chermain_chooser.h"
 #include "experiments/figures/bench_json.h"
+#include "verify/adequacy/area_adequacy.h"
+#include "verify/adequacy/binomial_adequacy.h"
+#include "verify/adequacy/chermain_adequacy.h"
+#include "verify/adequacy/kemppinen_adequacy.h"
 
 namespace glintlab::experiments {
+
+std::span<const std::string_view> adequacy_level_names(std::string_view model) {
+  namespace adq = verify::adequacy;
+  const auto in = [&](const auto& models) {
+    return std::find(models.begin(), models.end(), model) != models.end();
+  };
+  if (in(adq::kBinomialFamilyModels) || in(adq::kAreaFamilyModels)) return kBinomialLevelNames;
+  if (in(adq::kKemppinenFamilyModels)) return kKemppinenLevelNames;
+  if (in(adq::kChermainFamilyModels)) return kChermainLevelNames;
+  return {};
+}
 
 LevelCosts read_level_costs(const std::filesystem::path& dir, std::string_view shown_as,
                             std::string_view isa, const std::vector<std::string>& models) {
@@ -30,26 +49,28 @@ LevelCosts read_level_costs(const std::filesystem::path& dir, std::string_view s
   c.source = shown;
   c.isa = std::string(isa);
   for (const std::string& m : models) {
-    std::array<double, kBinomialLevels> ns{};
-    for (int l = 0; l < kBinomialLevels; ++l) {
-      const std::string name =
-          fmt::format("adequacy/{}/level={}/{}", m, kBinomialLevelNames[std::size_t(l)], isa);
+    const std::span<const std::string_view> levels = adequacy_level_names(m);
+    if (levels.empty())
+      throw std::invalid_argument(
+          fmt::format("--bench-from: {} is the model of no adequacy family", m));
+    std::vector<double> ns;
+    for (std::string_view level : levels) {
+      const std::string name = fmt::format("adequacy/{}/level={}/{}", m, level, isa);
       const BenchRow* r = find_bench_row(*rows, name);
       if (!r || !(r->ns_per_item() > 0))
         throw std::invalid_argument(fmt::format(
             "--bench-from: {} has no row {} (valid: a file written by {})", shown, name, writes));
-      ns[std::size_t(l)] = r->ns_per_item();
+      ns.push_back(r->ns_per_item());
     }
-    c.ns.emplace(m, ns);
+    c.ns.emplace(m, std::move(ns));
   }
   return c;
 }
 
-int cheapest_adequate(const std::array<bool, kBinomialLevels>& adequate,
-                      const std::array<double, kBinomialLevels>& ns) {
-  int best = int(BinomialLevel::kExact);
-  // Ties go to the level earlier in the GPU order (the cheaper one there).
-  for (int l = kBinomialLevels - 2; l >= 0; --l)
+int cheapest_adequate(std::span<const bool> adequate, std::span<const double> ns) {
+  const int n = int(std::min(adequate.size(), ns.size()));
+  int best = n - 1;
+  for (int l = n - 2; l >= 0; --l)
     if (adequate[std::size_t(l)] && ns[std::size_t(l)] <= ns[std::size_t(best)]) best = l;
   return best;
 }

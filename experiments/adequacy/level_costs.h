@@ -1,19 +1,17 @@
-// Each binomial level's cost per evaluation on this machine, from the Google Benchmark JSON of
+// Each adequacy level's cost per evaluation on this machine, from the Google Benchmark JSON of
 // glintlab_bench_glints (its adequacy/<model>/level=<level>/<isa> rows: the quick adequacy grid's
-// cells through the registry's batch API; for the area family, kneiphof_klein_area, the model's
-// double thunk row by row and its smooth level's LTC call), for `glintlab adequacy --bench-from
-// DIR` and the adequacy-scene figure: the level a cell needs priced by measurement rather than by the order of
-// a GPU lane, and the time saved against the exact count everywhere.
+// cells of every family — binomial, area (kneiphof_klein_area), Kemppinen, Chermain — each level
+// as the bench file's header says it is timed), for `glintlab adequacy --bench-from DIR` and the
+// adequacy-scene figure: the level a cell needs priced by measurement rather than by the order of
+// a GPU lane, and the time saved against the family's most complete level everywhere.
 #pragma once
 
-#include <array>
 #include <filesystem>
 #include <map>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include "core/glints/adequacy.h"
 
 namespace glintlab::experiments {
 
@@ -23,18 +21,25 @@ inline constexpr std::string_view kLevelCostsFile = "glints.json";
 struct LevelCosts {
   std::string source;  // the file, as the outputs name it
   std::string isa;     // the ISA whose rows price the levels
-  // ns per evaluation per level (BinomialLevel order), per model of the family.
-  std::map<std::string, std::array<double, kBinomialLevels>, std::less<>> ns;
+  // ns per evaluation per level (the order of adequacy_level_names(model)), per model.
+  std::map<std::string, std::vector<double>, std::less<>> ns;
 };
 
-// The rows of `isa` for every model in `models` from dir/glints.json (`shown_as`: the folder as
-// the outputs name it). Throws std::invalid_argument naming the file and the first missing row
-// (with the command that writes it) when the file is absent, not benchmark JSON or incomplete.
+// The level names of `model`'s adequacy family, cheapest first in the GPU order and the most
+// complete last: the binomial levels (binomial and area families), the Kemppinen levels or the
+// Chermain levels; empty for a model of no family.
+std::span<const std::string_view> adequacy_level_names(std::string_view model);
+
+// The rows of `isa` for every level of every model in `models` from dir/glints.json (`shown_as`:
+// the folder as the outputs name it). Throws std::invalid_argument naming the file and the first
+// missing row (with the command that writes it) when the file is absent, not benchmark JSON or
+// incomplete.
 LevelCosts read_level_costs(const std::filesystem::path& dir, std::string_view shown_as,
                             std::string_view isa, const std::vector<std::string>& models);
 
-// The adequate level of least cost (`adequate`: per level, BinomialLevel order; exact always).
-int cheapest_adequate(const std::array<bool, kBinomialLevels>& adequate,
-                      const std::array<double, kBinomialLevels>& ns);
+// The adequate level of least cost (`adequate` and `ns` per level in the family's order, the last
+// level the most complete, taken whether adequate or not); a tie goes to the level earlier in the
+// order (the cheaper one on a GPU lane).
+int cheapest_adequate(std::span<const bool> adequate, std::span<const double> ns);
 
 }  // namespace glintlab::experiments

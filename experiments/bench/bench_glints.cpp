@@ -8,20 +8,18 @@
 // this binary with --benchmark_out=FILE --benchmark_out_format=json. Method rows
 // (METHOD_BENCHMARKS.md): method/binomial.count_vs_exact.<regime>/sampler=..., the distribution
 // error of each sampler (core/glints/binomial_distribution.h, no sampling) beside its time per
-// draw. Adequacy rows (adequacy/<model>/level=<level>/<isa>): each level of the binomial family
-// through the registry's batch API on every ISA this CPU has, over the quick adequacy grid's
-// cells, the cost per evaluation `glintlab adequacy --bench-from` and the adequacy-scene figure
-// read; and of the area family (kneiphof_klein_area over the quick area grid's cells), whose model
-// has no SIMD batches: its counting levels go through the same batch API, which runs the model's
-// double thunk row by row on every ISA, and its smooth level is the LTC call a shader without
-// glints makes (the same code on every ISA; the rows are per ISA so that every ISA's costs are
-// complete).
+// draw. Adequacy rows (adequacy/<model>/level=<level>/<isa>): each level of every adequacy family
+// (binomial, Kemppinen, area, Chermain) on every ISA this CPU has, over the family's quick
+// adequacy grid's cells, the cost per evaluation `glintlab adequacy --bench-from` and the
+// adequacy-scene figure read (how each family's levels run: the section's comment).
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -37,6 +35,8 @@
 #include "experiments/bench/method_bench.h"
 #include "verify/adequacy/area_adequacy.h"
 #include "verify/adequacy/binomial_adequacy.h"
+#include "verify/adequacy/chermain_adequacy.h"
+#include "verify/adequacy/kemppinen_adequacy.h"
 
 namespace glintlab {
 namespace {
@@ -230,138 +230,202 @@ BENCHMARK(table1)
                    {kNone, kDirectional, kArea}});
 
 // --- Adequacy levels: adequacy/<model>/level=<level>/<isa> ---------------------------------------
-// A level's cost per evaluation where the adequacy table decides it: every cell of the quick grid
-// (verify/adequacy: footprints of 1 to 10^8 facets, on and near the specular peak, where the exact
-// count's loop runs long) at kAdequacyPositions surface positions, one batch per cell (a cell's
-// parameters are uniform, as a shader's material is over a pixel batch), in double. The smooth
-// level is smooth_ggx's value (the family's smooth limit) at the cell's roughness.
+// A level's cost per evaluation where the adequacy table decides it: every cell of the family's
+// quick grid (verify/adequacy: binomial and area, footprints of 1 to 10^8 facets on and near the
+// specular peak; Kemppinen, 1 to 10^6 expected points; Chermain, 1 to 10^10 expected microfacets,
+// both GGAA derivatives) at kAdequacyPositions surface positions of the family's own spread, one
+// batch per cell (a cell's parameters are uniform, as a shader's material is over a pixel batch),
+// in double. Each row is one shape (adequacy_bm): a list of cells, each evaluating its positions.
+// - Through the registry's batch API on the row's ISA: the binomial family's levels (the smooth
+//   level smooth_ggx's value at the cell's roughness, the family's smooth limit), the area family's
+//   counting levels (its model has no SIMD batches: the double thunk row by row), the Kemppinen
+//   family's counting levels (k and erf are the model's parameters) and its smooth level (the base
+//   NDF's smooth model, smooth_ggx or smooth_beckmann, at the cell's roughness).
+// - Scalar double on every ISA (the same code; the rows are per ISA so that every ISA's costs are
+//   complete): the area family's smooth level (the LTC call a shader without glints makes), and
+//   every Chermain level: a dictionary of L < 16 levels is a table the registered model cannot be
+//   given (its dictionary is the default one, not a parameter), so every level runs the model's
+//   eval template on double with the level's dictionary and GGAA kernel (chermain_level_params,
+//   as the table measures it), the smooth level the Gaussian slope density it falls back to
+//   (chermain_smooth_value) — one code path for the family, so its levels compare.
 constexpr int kAdequacyPositions = 64;
 
-struct AdequacyRows {
-  std::vector<std::vector<double>> params;               // per cell
-  std::vector<std::vector<std::vector<double>>> query;   // per cell: the query columns
-};
+// One cell of a row: its kAdequacyPositions values into `out`.
+using AdequacyCellRun = std::function<void(double* out)>;
 
-bool is_area_model(std::string_view model) {
-  return model == verify::adequacy::kAreaFamilyModels[0];
-}
-
-// The quick grid's cells of `model` (the area family's with its square lights).
-std::vector<verify::adequacy::Cell> adequacy_cells(const std::string& model) {
-  namespace adq = verify::adequacy;
-  return adq::make_grid({model}, is_area_model(model) ? adq::area_grid_axes(verify::Budget::kQuick)
-                                                      : adq::grid_axes(verify::Budget::kQuick));
-}
-
-AdequacyRows adequacy_rows(const std::string& model, BinomialLevel level) {
-  namespace adq = verify::adequacy;
-  const ModelEntry& smooth = find_model("smooth_ggx");
-  AdequacyRows r;
-  for (const adq::Cell& c : adequacy_cells(model)) {
-    if (is_area_model(model)) {
-      // Every level's parameters (the smooth level reads the light and roughness from them).
-      r.params.push_back(adq::area_level_param_values(c, level, 1));
-    } else if (level == BinomialLevel::kSmooth) {
-      r.params.push_back(resolve_params(
-          smooth, {{"alpha_x", fmt::format("{}", c.alpha)}, {"alpha_y", fmt::format("{}", c.alpha)}}));
-    } else {
-      r.params.push_back(adq::level_param_values(c, level, 1));
-    }
-    // Every column of the layout (the corner columns stay 0: the family does not read them).
-    std::vector<std::vector<double>> cols(simd::kQueryColumnsWithCorners,
-                                          std::vector<double>(kAdequacyPositions));
-    for (int i = 0; i < kAdequacyPositions; ++i) {
-      const Vec2<double> uv = adq::surface_position(i);
-      const ModelQuery<double> q = adq::cell_query(c, uv.x, uv.y);
-      for_each_query_column(q, [&](std::size_t k, const QueryColumn&, const double& v) {
-        cols[k][std::size_t(i)] = v;
-      });
-    }
-    r.query.push_back(std::move(cols));
-  }
-  return r;
-}
-
-void adequacy_level_bm(benchmark::State& s, std::string model, BinomialLevel level, simd::Isa isa) {
-  const ModelEntry& m = find_model(level == BinomialLevel::kSmooth ? "smooth_ggx" : model);
-  const AdequacyRows rows = adequacy_rows(model, level);
-  std::vector<std::vector<simd::Column<double>>> cols;
-  for (const auto& cell : rows.query) {
-    cols.emplace_back();
-    for (const auto& c : cell) cols.back().push_back({c.data(), 1});
-  }
-  std::vector<std::vector<double>> out(2 + m.intermediates.size(),
-                                       std::vector<double>(kAdequacyPositions));
-  std::vector<double*> outs;
-  for (auto& c : out) outs.push_back(c.data());
-  std::int64_t evals = 0;
-  for (auto _ : s) {
-    for (std::size_t k = 0; k < cols.size(); ++k)
-      simd::eval_batch(m, rows.params[k], cols[k], outs, kAdequacyPositions, isa);
-    benchmark::DoNotOptimize(out[0].data());
-    benchmark::ClobberMemory();
-    evals += std::int64_t(cols.size()) * kAdequacyPositions;
-  }
-  s.SetItemsProcessed(evals);
-}
-
-// The area family's smooth level: L_o/L_i by the BRDF LTC lobe over the cell's square light
-// (kneiphof2024::area_light_terms_ltc, one table lookup and one polygon integral: what a shader
-// without glints pays, and what verify/adequacy/area_adequacy.cpp measures as the smooth level),
-// scalar double over the same cells and positions; `isa` names the row only.
-void adequacy_area_smooth_bm(benchmark::State& s, std::string model) {
-  using M = KneiphofKleinArea;
-  std::vector<M::Params<double>> params;
-  std::vector<std::vector<ModelQuery<double>>> queries;
-  for (const verify::adequacy::Cell& c : adequacy_cells(model)) {
-    params.push_back(M::params<double>(verify::adequacy::area_level_param_values(
-        c, BinomialLevel::kSmooth, 1)));
-    queries.emplace_back();
-    for (int i = 0; i < kAdequacyPositions; ++i) {
-      const Vec2<double> uv = verify::adequacy::surface_position(i);
-      queries.back().push_back(verify::adequacy::cell_query(c, uv.x, uv.y));
-    }
-  }
+// A row: the cells `prepare` returns (built when the row runs, not when it is registered), each
+// evaluated once per iteration.
+void adequacy_bm(benchmark::State& s, const std::function<std::vector<AdequacyCellRun>()>& prepare) {
+  const std::vector<AdequacyCellRun> cells = prepare();
   std::vector<double> out(kAdequacyPositions);
   std::int64_t evals = 0;
   for (auto _ : s) {
-    for (std::size_t k = 0; k < params.size(); ++k) {
-      const M::Params<double>& p = params[k];
-      for (int i = 0; i < kAdequacyPositions; ++i) {
-        const ModelQuery<double>& q = queries[k][std::size_t(i)];
-        const auto rect =
-            kneiphof2024::facing_rectangle(q.wo, p.distance, p.width, p.height, p.rotation, p.tilt);
-        out[std::size_t(i)] =
-            kneiphof2024::area_light_terms_ltc(*p.table, p.alpha, q.wi, rect.data(), 4, p.area_p)
-                .lo_over_li;
-      }
+    for (const AdequacyCellRun& cell : cells) {
+      cell(out.data());
       benchmark::DoNotOptimize(out.data());
       benchmark::ClobberMemory();
     }
-    evals += std::int64_t(params.size()) * kAdequacyPositions;
+    evals += std::int64_t(cells.size()) * kAdequacyPositions;
   }
   s.SetItemsProcessed(evals);
 }
 
+// A cell through the registry's batch API: `m` with `params` at `queries` on `isa`.
+AdequacyCellRun batch_cell(const ModelEntry& m, std::vector<double> params,
+                           const std::vector<ModelQuery<double>>& queries, simd::Isa isa) {
+  // Every column of the layout (the corner columns stay 0: no adequacy model reads them).
+  auto cols = std::make_shared<std::vector<std::vector<double>>>(
+      simd::kQueryColumnsWithCorners, std::vector<double>(queries.size()));
+  for (std::size_t i = 0; i < queries.size(); ++i)
+    for_each_query_column(queries[i], [&](std::size_t k, const QueryColumn&, const double& v) {
+      (*cols)[k][i] = v;
+    });
+  std::vector<simd::Column<double>> spans;
+  for (const auto& c : *cols) spans.push_back({c.data(), 1});
+  auto scratch = std::make_shared<std::vector<std::vector<double>>>(
+      1 + m.intermediates.size(), std::vector<double>(queries.size()));
+  std::vector<double*> outs(2 + m.intermediates.size());
+  for (std::size_t k = 1; k < outs.size(); ++k) outs[k] = (*scratch)[k - 1].data();
+  return [&m, params = std::move(params), cols, spans, scratch, outs, isa,
+          n = queries.size()](double* out) mutable {
+    outs[0] = out;
+    simd::eval_batch(m, params, spans, outs, n, isa);
+  };
+}
+
+// A cell evaluated in scalar double: value(i) for each position.
+template <class Value>
+AdequacyCellRun scalar_cell(Value value) {
+  return [value = std::move(value)](double* out) {
+    for (int i = 0; i < kAdequacyPositions; ++i) out[i] = value(i);
+  };
+}
+
+// The smooth model of a family's smooth limit at isotropic roughness `alpha`.
+std::vector<double> smooth_params(const ModelEntry& smooth, double alpha) {
+  return resolve_params(smooth, {{"alpha_x", fmt::format("{}", alpha)},
+                                 {"alpha_y", fmt::format("{}", alpha)}});
+}
+
+// The binomial family's and the area family's rows (the binomial levels).
+std::vector<AdequacyCellRun> binomial_level_cells(const std::string& model, BinomialLevel level,
+                                                  simd::Isa isa) {
+  namespace adq = verify::adequacy;
+  const bool area = model == adq::kAreaFamilyModels[0];
+  const ModelEntry& m = find_model(model);
+  const ModelEntry& smooth = find_model("smooth_ggx");
+  std::vector<AdequacyCellRun> cells;
+  for (const adq::Cell& c : adq::make_grid({model}, area ? adq::area_grid_axes(verify::Budget::kQuick)
+                                                          : adq::grid_axes(verify::Budget::kQuick))) {
+    std::vector<ModelQuery<double>> queries;
+    for (int i = 0; i < kAdequacyPositions; ++i) {
+      const Vec2<double> uv = adq::surface_position(i);
+      queries.push_back(adq::cell_query(c, uv.x, uv.y));
+    }
+    if (area && level == BinomialLevel::kSmooth) {
+      // L_o/L_i by the BRDF LTC lobe over the cell's square light (kneiphof2024::
+      // area_light_terms_ltc, one table lookup and one polygon integral: what a shader without
+      // glints pays, and what verify/adequacy/area_adequacy.cpp measures as the smooth level).
+      using M = KneiphofKleinArea;
+      const M::Params<double> p =
+          M::params<double>(adq::area_level_param_values(c, BinomialLevel::kSmooth, 1));
+      cells.push_back(scalar_cell([p, queries](int i) {
+        const ModelQuery<double>& q = queries[std::size_t(i)];
+        const auto rect =
+            kneiphof2024::facing_rectangle(q.wo, p.distance, p.width, p.height, p.rotation, p.tilt);
+        return kneiphof2024::area_light_terms_ltc(*p.table, p.alpha, q.wi, rect.data(), 4,
+                                                  p.area_p)
+            .lo_over_li;
+      }));
+    } else if (area) {
+      cells.push_back(batch_cell(m, adq::area_level_param_values(c, level, 1), queries, isa));
+    } else if (level == BinomialLevel::kSmooth) {
+      cells.push_back(batch_cell(smooth, smooth_params(smooth, c.alpha), queries, isa));
+    } else {
+      cells.push_back(batch_cell(m, adq::level_param_values(c, level, 1), queries, isa));
+    }
+  }
+  return cells;
+}
+
+// The Kemppinen family's rows.
+std::vector<AdequacyCellRun> kemppinen_level_cells(const std::string& model, KemppinenLevel level,
+                                                   simd::Isa isa) {
+  namespace adq = verify::adequacy;
+  const ModelEntry& m = find_model(model);
+  const ModelEntry& smooth =
+      find_model(model == "kemppinen_beckmann" ? "smooth_beckmann" : "smooth_ggx");
+  std::vector<AdequacyCellRun> cells;
+  for (const adq::KemppinenCell& c : adq::make_kemppinen_grid(
+           {model}, adq::kemppinen_grid_axes(verify::Budget::kQuick))) {
+    std::vector<ModelQuery<double>> queries;
+    for (int i = 0; i < kAdequacyPositions; ++i)
+      queries.push_back(adq::kemppinen_cell_query(c, adq::kemppinen_surface_position(c, i)));
+    cells.push_back(level == KemppinenLevel::kSmooth
+                        ? batch_cell(smooth, smooth_params(smooth, c.alpha), queries, isa)
+                        : batch_cell(m, adq::kemppinen_level_param_values(c, level, 1), queries,
+                                     isa));
+  }
+  return cells;
+}
+
+// The Chermain family's rows (scalar double: see above).
+std::vector<AdequacyCellRun> chermain_level_cells(ChermainLevel level) {
+  namespace adq = verify::adequacy;
+  std::vector<AdequacyCellRun> cells;
+  for (const adq::ChermainCell& c :
+       adq::make_chermain_grid({"chermain"}, adq::chermain_grid_axes(verify::Budget::kQuick))) {
+    std::vector<ModelQuery<double>> queries;
+    for (int i = 0; i < kAdequacyPositions; ++i)
+      queries.push_back(adq::chermain_cell_query(c, adq::chermain_surface_position(c, i)));
+    // The smooth level reads Σ and G2 only: any counting level's parameters give them.
+    const Chermain::Params<double> p = adq::chermain_level_params(
+        c, level == ChermainLevel::kSmooth ? kChermainMostComplete : level, 1);
+    if (level == ChermainLevel::kSmooth)
+      cells.push_back(scalar_cell([p, queries](int i) {
+        return adq::chermain_smooth_value(p, queries[std::size_t(i)]);
+      }));
+    else
+      cells.push_back(scalar_cell([p, queries](int i) {
+        return Chermain::eval<double>(p, queries[std::size_t(i)]).value;
+      }));
+  }
+  return cells;
+}
+
 void register_adequacy_levels() {
-  // The area family after the binomial one, each model's levels on every ISA.
-  std::vector<std::string_view> models(verify::adequacy::kBinomialFamilyModels.begin(),
-                                       verify::adequacy::kBinomialFamilyModels.end());
-  models.insert(models.end(), verify::adequacy::kAreaFamilyModels.begin(),
-                verify::adequacy::kAreaFamilyModels.end());
-  for (std::string_view model : models)
+  namespace adq = verify::adequacy;
+  // One row per model × level × ISA this CPU has.
+  const auto add = [](std::string_view model, std::string_view level,
+                      std::function<std::vector<AdequacyCellRun>(simd::Isa)> cells) {
+    for (simd::Isa isa : simd::kAllIsas) {
+      if (!simd::isa_supported(isa)) continue;
+      const std::string name =
+          fmt::format("adequacy/{}/level={}/{}", model, level, simd::isa_name(isa));
+      benchmark::RegisterBenchmark(name.c_str(), adequacy_bm,
+                                   std::function<std::vector<AdequacyCellRun>()>(
+                                       [cells, isa] { return cells(isa); }));
+    }
+  };
+  // The families in the table's order: binomial, Kemppinen, area, Chermain.
+  for (std::string_view model : adq::kBinomialFamilyModels)
     for (int l = 0; l < kBinomialLevels; ++l)
-      for (simd::Isa isa : simd::kAllIsas) {
-        if (!simd::isa_supported(isa)) continue;
-        const std::string name = fmt::format(
-            "adequacy/{}/level={}/{}", model, kBinomialLevelNames[std::size_t(l)],
-            simd::isa_name(isa));
-        if (is_area_model(model) && l == int(BinomialLevel::kSmooth))
-          benchmark::RegisterBenchmark(name.c_str(), adequacy_area_smooth_bm, std::string(model));
-        else
-          benchmark::RegisterBenchmark(name.c_str(), adequacy_level_bm, std::string(model),
-                                       BinomialLevel(l), isa);
-      }
+      add(model, kBinomialLevelNames[std::size_t(l)], [m = std::string(model), l](simd::Isa isa) {
+        return binomial_level_cells(m, BinomialLevel(l), isa);
+      });
+  for (std::string_view model : adq::kKemppinenFamilyModels)
+    for (int l = 0; l < kKemppinenLevels; ++l)
+      add(model, kKemppinenLevelNames[std::size_t(l)], [m = std::string(model), l](simd::Isa isa) {
+        return kemppinen_level_cells(m, KemppinenLevel(l), isa);
+      });
+  for (std::string_view model : adq::kAreaFamilyModels)
+    for (int l = 0; l < kBinomialLevels; ++l)
+      add(model, kBinomialLevelNames[std::size_t(l)], [m = std::string(model), l](simd::Isa isa) {
+        return binomial_level_cells(m, BinomialLevel(l), isa);
+      });
+  for (int l = 0; l < kChermainLevels; ++l)
+    add(adq::kChermainFamilyModels[0], kChermainLevelNames[std::size_t(l)],
+        [l](simd::Isa) { return chermain_level_cells(ChermainLevel(l)); });
 }
 
 }  // namespace

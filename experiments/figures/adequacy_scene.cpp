@@ -10,9 +10,10 @@
 // panels.json, one EXR per scene (every per-pixel quantity), a CSV of per-scene counts per family
 // (adequacy-scene.csv, adequacy-scene-kemppinen.csv, adequacy-scene-area.csv,
 // adequacy-scene-chermain.csv) and summary.md with each family decided as claim
-// adequacy.choice-is-safe decides it (the Šidák share over its four families); given benchmark data (--bench-from), each scene's time per evaluation with the chosen
-// levels against exact counting everywhere (adequacy-scene-cost.csv, summary.md; the binomial and
-// area scenes: the benchmark prices the binomial levels of both families).
+// adequacy.choice-is-safe decides it (the Šidák share over its four families); given benchmark
+// data (--bench-from), each scene's time per evaluation with the chosen levels against its
+// family's most complete level everywhere (adequacy-scene-cost.csv, summary.md; every family's
+// scenes, each priced by its models' adequacy/ rows).
 #include "experiments/figures/adequacy_scene.h"
 
 #include <fmt/format.h>
@@ -314,95 +315,84 @@ void write_scene_exr(const FigureContext& ctx, const SceneResult& s) {
 }
 
 // A scene's time per evaluation summed over its surface pixels (where a shader runs), each level
-// priced by the benchmark: exact counting everywhere, the engine chooser's levels (the GPU order),
-// and the levels the chooser for these costs picks (choose_binomial_level_by_cost).
+// priced by the benchmark (`ns`: its family's levels, the most complete last): the most complete
+// level everywhere (exact counting, k16_exact, dict16_ggaa), the engine chooser's levels (the GPU
+// order) and, for the binomial levels, the levels the chooser for these costs picks
+// (choose_binomial_level_by_cost; the Kemppinen and Chermain families have no such chooser: NaN).
 struct SceneCost {
   double exact_ns = 0, chosen_ns = 0, by_cost_ns = 0;
 };
-SceneCost scene_cost(const adq::SceneRender& r, const std::array<double, kBinomialLevels>& ns,
+SceneCost scene_cost(const adq::SceneRender& r, Family family, std::span<const double> ns,
                      double tau) {
   SceneCost c;
+  const bool binomial = family == Family::kBinomial || family == Family::kArea;
+  std::array<double, kBinomialLevels> cost{};
+  if (binomial) std::copy_n(ns.begin(), kBinomialLevels, cost.begin());
+  c.by_cost_ns = binomial ? 0.0 : NAN;
   for (const adq::ScenePixel& p : r.pixels) {
     if (!p.surface || p.level < 0) continue;
-    c.exact_ns += ns[std::size_t(BinomialLevel::kExact)];
+    c.exact_ns += ns.back();
     c.chosen_ns += ns[std::size_t(p.level)];
-    c.by_cost_ns += ns[std::size_t(choose_binomial_level_by_cost(p.facets, p.p, tau, ns))];
+    if (binomial)
+      c.by_cost_ns += cost[std::size_t(choose_binomial_level_by_cost(p.facets, p.p, tau, cost))];
   }
   return c;
 }
 
 // The cost section of summary.md and adequacy-scene-cost.csv, or the one sentence saying why there
-// is none.
+// is none. Each family's scenes are priced by its models' rows; a family whose rows the file lacks
+// (an older file) is left unpriced, and the summary says why.
 std::string write_scene_costs(const FigureContext& ctx, const std::vector<SceneResult>& results,
                               double tau) {
   const BenchSource src = bench_source(ctx, kLevelCostsFile);
-  std::vector<std::string> models;
-  for (const SceneResult& r : results)
-    if (r.family == Family::kBinomial &&
-        std::find(models.begin(), models.end(), r.render.scene.model) == models.end())
-      models.push_back(r.render.scene.model);
-  std::optional<LevelCosts> costs;
-  if (!src.path.empty() && std::filesystem::exists(src.path)) {
-    try {
-      costs = read_level_costs(src.path.parent_path(),
-                               std::filesystem::path(src.shown_as).parent_path().string(),
-                               simd::isa_name(simd::default_isa()), models);
-    } catch (const std::invalid_argument& e) {
-      // A file without the adequacy rows: the figure says so rather than failing.
-      return fmt::format(
-          "\n## Time per evaluation\n\nNo benchmark data: {}.\n",
-          std::string_view(e.what()).substr(std::string_view("--bench-from: ").size()));
-    }
-  }
-  if (!costs)
+  if (src.path.empty() || !std::filesystem::exists(src.path))
     return "\n## Time per evaluation\n\n" +
            no_bench_data(src, kLevelCostsFile,
                          "glintlab_bench_glints --benchmark_filter=^adequacy/") +
            "\n";
-  // The area scenes' model where the file prices it too (an older file has the binomial rows only:
-  // the area scenes are then left unpriced, and the summary says why).
-  std::vector<std::string> area_models;
-  for (const SceneResult& r : results)
-    if (r.family == Family::kArea &&
-        std::find(area_models.begin(), area_models.end(), r.render.scene.model) ==
-            area_models.end())
-      area_models.push_back(r.render.scene.model);
-  std::string unpriced_area;
-  if (!area_models.empty()) {
+  LevelCosts costs;
+  costs.isa = simd::isa_name(simd::default_isa());
+  std::vector<std::string> unpriced, reasons;  // families without costs, and why
+  for (const Family f : {Family::kBinomial, Family::kKemppinen, Family::kArea, Family::kChermain}) {
+    std::vector<std::string> models;
+    for (const SceneResult& r : results)
+      if (r.family == f &&
+          std::find(models.begin(), models.end(), r.render.scene.model) == models.end())
+        models.push_back(r.render.scene.model);
+    if (models.empty()) continue;
     try {
-      for (auto& [model, ns] :
-           read_level_costs(src.path.parent_path(),
-                            std::filesystem::path(src.shown_as).parent_path().string(),
-                            costs->isa, area_models)
-               .ns)
-        costs->ns.emplace(model, ns);
+      LevelCosts c = read_level_costs(src.path.parent_path(),
+                                      std::filesystem::path(src.shown_as).parent_path().string(),
+                                      costs.isa, models);
+      costs.source = c.source;
+      for (auto& [model, ns] : c.ns) costs.ns.emplace(model, std::move(ns));
     } catch (const std::invalid_argument& e) {
-      unpriced_area = std::string(
+      const std::string_view title = family_title(f);
+      unpriced.push_back(f == Family::kArea ? "area" : std::string(title));
+      reasons.emplace_back(
           std::string_view(e.what()).substr(std::string_view("--bench-from: ").size()));
     }
   }
+  if (costs.ns.empty())
+    return fmt::format("\n## Time per evaluation\n\nNo benchmark data: {}.\n",
+                       fmt::join(reasons, "; "));
   const auto priced = [&](const SceneResult& r) {
-    return (r.family == Family::kBinomial || r.family == Family::kArea) &&
-           costs->ns.count(r.render.scene.model) > 0;
+    return costs.ns.count(r.render.scene.model) > 0;
   };
   std::string md = fmt::format(
       "\n## Time per evaluation\n\nEach level priced by {} (rows adequacy/<model>/level=<level>/"
-      "{}), summed over each scene's surface pixels: exact counting everywhere, the engine "
-      "chooser's levels (the GPU-lane order) and the levels the chooser for these costs picks "
-      "(choose_binomial_level_by_cost); saved = 1 − time / exact time.\n\n",
-      costs->source, costs->isa);
-  if (std::any_of(results.begin(), results.end(),
-                  [](const SceneResult& r) {
-                    return r.family == Family::kKemppinen || r.family == Family::kChermain;
-                  }))
-    md +=
-        "The Kemppinen and Chermain scenes are not priced here: the benchmark's adequacy/ rows "
-        "price the binomial levels (of the binomial and area families) only.\n\n";
-  if (!unpriced_area.empty())
-    md += fmt::format("The area scenes are not priced here: {}.\n\n", unpriced_area);
+      "{}), summed over each scene's surface pixels: the family's most complete level everywhere "
+      "(exact counting, k16_exact, dict16_ggaa), the engine chooser's levels (the GPU-lane order) "
+      "and, for the binomial levels, the levels the chooser for these costs picks "
+      "(choose_binomial_level_by_cost; the Kemppinen and Chermain families have no such chooser); "
+      "saved = 1 − time / most complete time.\n\n",
+      costs.source, costs.isa);
+  if (!unpriced.empty())
+    md += fmt::format("The {} scenes are not priced here: {}.\n\n", fmt::join(unpriced, " and "),
+                      fmt::join(reasons, "; "));
   md +=
-      "| scene | exact everywhere (ns) | chosen levels (ns) | saved | by these costs (ns) | saved "
-      "|\n|---|---|---|---|---|---|\n";
+      "| scene | most complete everywhere (ns) | chosen levels (ns) | saved | by these costs (ns) "
+      "| saved |\n|---|---|---|---|---|---|\n";
   const auto saved = [](double t, double exact) { return exact > 0 ? 1 - t / exact : 0.0; };
   io::write_csv_atomic(
       ctx.dir / "adequacy-scene-cost.csv",
@@ -411,15 +401,19 @@ std::string write_scene_costs(const FigureContext& ctx, const std::vector<SceneR
       [&](io::CsvWriter& w) {
         for (const SceneResult& r : results) {
           if (!priced(r)) continue;
-          const SceneCost c = scene_cost(r.render, costs->ns.at(r.render.scene.model), tau);
-          w.cell(r.render.scene.name).cell(r.render.scene.model).cell(costs->isa);
+          const SceneCost c =
+              scene_cost(r.render, r.family, costs.ns.at(r.render.scene.model), tau);
+          w.cell(r.render.scene.name).cell(r.render.scene.model).cell(costs.isa);
           w.cell(c.exact_ns).cell(c.chosen_ns).cell(saved(c.chosen_ns, c.exact_ns));
-          w.cell(c.by_cost_ns).cell(saved(c.by_cost_ns, c.exact_ns));
+          w.cell(c.by_cost_ns).cell(std::isnan(c.by_cost_ns) ? NAN : saved(c.by_cost_ns, c.exact_ns));
           w.end_row();
-          md += fmt::format("| {} | {:.4g} | {:.4g} | {:.1f} % | {:.4g} | {:.1f} % |\n",
+          md += fmt::format("| {} | {:.4g} | {:.4g} | {:.1f} % | {} | {} |\n",
                             r.render.scene.name, c.exact_ns, c.chosen_ns,
-                            100 * saved(c.chosen_ns, c.exact_ns), c.by_cost_ns,
-                            100 * saved(c.by_cost_ns, c.exact_ns));
+                            100 * saved(c.chosen_ns, c.exact_ns),
+                            std::isnan(c.by_cost_ns) ? "—" : fmt::format("{:.4g}", c.by_cost_ns),
+                            std::isnan(c.by_cost_ns)
+                                ? "—"
+                                : fmt::format("{:.1f} %", 100 * saved(c.by_cost_ns, c.exact_ns)));
         }
       });
   return md;

@@ -171,6 +171,14 @@ TEST_F(AdequacyTest, BadInputIsOneLineAndWritesNothing) {
   expect_input_error(run({"adequacy", "--models", "deliot_belcour,kneiphof_klein_area",
                           "--bench-from", "partial", "--out", "o"}),
                      {"--bench-from", "adequacy/kneiphof_klein_area/level=smooth/"}, given);
+  // So is every family: a file without the Kemppinen or Chermain rows is refused, naming the first
+  // row it lacks, rather than leaving the family unpriced.
+  expect_input_error(run({"adequacy", "--models", "deliot_belcour,kemppinen_ggx", "--bench-from",
+                          "partial", "--out", "o"}),
+                     {"--bench-from", "adequacy/kemppinen_ggx/level=smooth/"}, given);
+  expect_input_error(
+      run({"adequacy", "--models", "chermain", "--bench-from", "partial", "--out", "o"}),
+      {"--bench-from", "adequacy/chermain/level=smooth/"}, given);
   write_text(path("partial/glints.json"), "{\"benchmarks\": 3}");
   expect_input_error(run({"adequacy", "--bench-from", "partial", "--out", "o"}),
                      {"--bench-from", "benchmarks"}, given);
