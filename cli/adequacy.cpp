@@ -174,9 +174,9 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
   if (s.area.cells > 0) {
     const auto& a = s.area;
     print_counting_family("area family (kneiphof_klein_area, square lights)",
-                          "chooser (core/glints/area_chooser.h)", a.cells, a.chosen, a.chooser_matches,
-                          a.chooser_refuted, a.undecided, a.exact_ns, a.chosen_ns, a.cheapest_ns,
-                          a.cheapest_measured);
+                          "chooser (core/glints/area_chooser.h)", a.cells, a.chosen,
+                          a.chooser_matches, a.chooser_refuted, a.undecided, a.exact_ns,
+                          a.chosen_ns, a.cheapest_ns, a.cheapest_measured);
   }
   if (s.chermain.cells > 0) {
     const auto& c = s.chermain;
