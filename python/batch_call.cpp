@@ -162,21 +162,39 @@ bool all_finite(const simd::Column<double>& c, std::size_t count) {
 
 // The model's own rules (ModelEntry::validate) over rows [0, count) of query columns (kQueryLayout
 // order, every column of the layout, any stride) in one pass: the first row they refuse, or
-// count. The column form of the rules the registry holds per query, for the built-in models (found
-// by their static_model tag): each row's query read column by column and M::validate inlined into
-// the loop, so that only the columns its rules read are loaded. Nothing for a model without rules
-// of its own, and for one whose rules have no column form here (a plug-in's, an entry built by
-// hand), whose rows the caller checks one by one.
-template <class M>
-std::size_t first_invalid_row_of(std::span<const simd::Column<double>> cols, std::size_t count) {
+// count. Each row's query is read column by column into a ModelQuery; for the built-in models
+// (found by their static_model tag) M::validate is inlined into the loop, so that only the columns
+// its rules read are loaded (rows_validator); for any other entry with rules (a plug-in's, whose
+// M::validate is compiled into the plug-in, or an entry built by hand) the entry's function is
+// called on each loaded query (first_invalid_row_by_entry): through the plain function pointer it
+// holds where it holds one (what make_model_entry stores for M::validate), else through the
+// std::function. Either way the caller only learns whether a chunk may hold a refused row; the
+// row and its message come from the exact checks.
+template <class Validate>
+std::size_t first_invalid_row_calling(std::span<const simd::Column<double>> cols,
+                                      std::size_t count, Validate&& validate) {
   for (std::size_t i = 0; i < count; ++i) {
     ModelQuery<double> query{};
     for_each_query_column(query, [&](std::size_t k, const QueryColumn&, double& member) {
       member = cols[k].data[cols[k].stride * i];
     });
-    if (M::validate(query)) return i;
+    if (validate(query)) return i;
   }
   return count;
+}
+template <class M>
+std::size_t first_invalid_row_of(std::span<const simd::Column<double>> cols, std::size_t count) {
+  return first_invalid_row_calling(cols, count, [](const ModelQuery<double>& q) {
+    return M::validate(q);
+  });
+}
+std::size_t first_invalid_row_by_entry(const ModelEntry& model,
+                                       std::span<const simd::Column<double>> cols,
+                                       std::size_t count) {
+  using Rule = std::optional<QueryViolation> (*)(const ModelQuery<double>&);
+  if (const Rule* rule = model.validate.target<Rule>(); rule != nullptr && *rule != nullptr)
+    return first_invalid_row_calling(cols, count, *rule);
+  return first_invalid_row_calling(cols, count, model.validate);
 }
 using RowsValidator = std::size_t (*)(std::span<const simd::Column<double>>, std::size_t);
 template <class... Ms>
@@ -197,7 +215,8 @@ RowsValidator rows_validator(const ModelEntry& model) {
 
 // Whether every row of a chunk surely passes check_query_row's rules: every checked column
 // finite, unit wi and wo (and the corner vectors where the model reads them), the light's range,
-// and the model's own rules (validate) by their pass over the columns (rows_validator). `cols`:
+// and the model's own rules (validate) by their pass over the columns (rows_validator, or
+// first_invalid_row_by_entry for a model whose rules have no column form here). `cols`:
 // the chunk's columns in double (the values the rules read; any stride), `width` of them (the
 // corners only where the model reads them, as check_query_row skips them otherwise). Branch-free
 // passes over the columns; a squared length is tested against bounds a little inside the unit
@@ -252,8 +271,11 @@ bool rows_surely_valid(const ModelEntry& model, const QuerySources& q,
       all[j] = j < cols.size() ? cols[j] : simd::Column<double>{&q.columns[j].constant, 0};
       bad |= j >= cols.size() && q.columns[j].data != nullptr;
     }
-    const RowsValidator validate_rows = rows_validator(model);
-    bad = bad || validate_rows == nullptr || validate_rows(all, count) != count;
+    if (!bad) {
+      const RowsValidator validate_rows = rows_validator(model);
+      bad = (validate_rows != nullptr ? validate_rows(all, count)
+                                      : first_invalid_row_by_entry(model, all, count)) != count;
+    }
   }
   return !bad;
 }
@@ -430,11 +452,10 @@ void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams
       std::vector<simd::Column<S>> inputs =
           chunk_columns<S>(q.columns, width, begin, count, gather_into, per_row_columns, fuse);
 
-      // The rules of check_query_row on the chunk's columns (the model's own where they have a
-      // column form, rows_validator); those of a model without one and a caller's extra check
-      // other than the unit interval's are per row, so they take the exact route.
-      bool surely_valid = (!model.validate || rows_validator(model) != nullptr) &&
-                          (!extra_check || !unit_interval.empty());
+      // The rules of check_query_row on the chunk's columns (the model's own by a pass over
+      // them, rows_surely_valid); a caller's extra check other than the unit interval's is per
+      // row, so it takes the exact route.
+      bool surely_valid = !extra_check || !unit_interval.empty();
       for (const ColumnSource* u : unit_interval) {
         bool outside = false;
         for (std::size_t i = 0; i < count; ++i) {

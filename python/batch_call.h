@@ -85,8 +85,7 @@ inline constexpr std::size_t kNumpyModelChunk = 4 * cli::kBatchChunk;
 // results scattered back. `outputs`: n rows each.
 // `unit_interval`: sources whose values extra_check requires in [0, 1) (sample's given
 // uniforms), tested by a pass over each chunk's rows, so that extra_check runs row by row only in
-// a chunk where that pass finds a value outside (or where the model has rules of its own without
-// a column form: not a built-in model).
+// a chunk where that pass finds a value outside.
 template <class S>
 void run_chunks(const ModelEntry& model, const QuerySources& q, const CallParams& p,
                 const cli::BatchOptions& opts, std::size_t width, std::span<S* const> outputs,

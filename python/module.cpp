@@ -398,6 +398,21 @@ py::dict result_pool(const py::object& idle_limit) {
   return d;
 }
 
+// For the tests: a copy of registered model `model`'s entry under `name`, without its static
+// model, so that the module knows its batches and its own query rules only through the entry's
+// functions, as it knows a plug-in's rules (python/batch_call.cpp: no column form of them).
+void register_entry_copy(const std::string& model, const std::string& name) {
+  ModelEntry e = model_named(model);
+  e.name = keep_text(name);
+  e.static_model = nullptr;
+  e.plugin_batches = nullptr;
+  try {
+    register_model(std::move(e));
+  } catch (const ModelParamError& error) {
+    throw py::value_error(error.what());
+  }
+}
+
 std::vector<std::string> load_plugin(const std::string& path) {
   try {
     const std::vector<std::string_view> names = glintlab::load_plugin(path, "load_plugin");
@@ -589,6 +604,7 @@ PYBIND11_MODULE(_glintlab, m) {
         arg("precision") = "double", arg("isa") = py::none(), arg("math") = "exact",
         arg("repeats") = 5);
   m.def("load_plugin", &load_plugin, arg("path"));
+  m.def("_register_entry_copy", &register_entry_copy, arg("model"), arg("name"));
   m.def("result_pool", &result_pool, arg("idle_limit") = py::none());
   m.def("register_model", &register_python_model, arg("name"), arg("eval"), arg("pdf"),
         arg("sample"), arg("params") = py::none(), arg("needs") = py::none(),

@@ -42,13 +42,12 @@ struct PythonModel {
   std::vector<PyObject*> column_keys, param_keys;
 };
 
-namespace {
-
-// Text the registry's string views point into; never freed (the registry is never emptied).
-std::string_view keep(std::string text) {
+std::string_view keep_text(std::string text) {
   static std::deque<std::string> texts;
   return texts.emplace_back(std::move(text));
 }
+
+namespace {
 
 std::map<std::string, const PythonModel*, std::less<>>& python_models() {
   static std::map<std::string, const PythonModel*, std::less<>> models;
@@ -371,14 +370,14 @@ ParamSpec param_spec(const py::handle& item) {
                                         "default, lo, hi)",
                                         k));
   ParamSpec p{};
-  p.name = keep(py::str(d["name"]));
+  p.name = keep_text(py::str(d["name"]));
   p.default_value = py::cast<double>(d["default"]);
   p.lo = py::cast<double>(d["lo"]);
   p.hi = py::cast<double>(d["hi"]);
   p.lo_open = d.contains("lo_open") && py::cast<bool>(d["lo_open"]);
   p.hi_open = d.contains("hi_open") && py::cast<bool>(d["hi_open"]);
   p.integral = d.contains("integral") && py::cast<bool>(d["integral"]);
-  p.description = keep(d.contains("description") ? std::string(py::str(d["description"])) : "");
+  p.description = keep_text(d.contains("description") ? std::string(py::str(d["description"])) : "");
   const bool lo_ok = p.lo_open ? p.default_value > p.lo : p.default_value >= p.lo;
   const bool hi_ok = p.hi_open ? p.default_value < p.hi : p.default_value <= p.hi;
   if (p.name.empty() || !(p.lo <= p.hi) || !lo_ok || !hi_ok)
@@ -494,9 +493,9 @@ void register_python_model(const std::string& name, const py::object& eval, cons
   auto* m = new PythonModel;  // lives as long as the registry (the process)
   m->name = name;
   ModelEntry e;
-  e.name = keep(name);
-  e.description = keep(description);
-  e.source = keep(source.empty() ? "Python (glintlab.register_model)" : source);
+  e.name = keep_text(name);
+  e.description = keep_text(description);
+  e.source = keep_text(source.empty() ? "Python (glintlab.register_model)" : source);
   e.needs = needs_bits(needs);
   if (!params.is_none())
     for (const py::handle item : params) {
@@ -512,13 +511,13 @@ void register_python_model(const std::string& name, const py::object& eval, cons
     } catch (const ModelParamError& error) {
       throw py::value_error(fmt::format("smooth_limit: {}", error.what()));
     }
-    e.smooth_limit = keep(limit);
+    e.smooth_limit = keep_text(limit);
   }
   if (!not_claimed.is_none()) {
     if (!py::isinstance<py::dict>(not_claimed))
       throw py::value_error("not_claimed: not a dict (valid: conformance property -> reason)");
     for (const auto& [property, reason] : py::reinterpret_borrow<py::dict>(not_claimed))
-      e.not_claimed.push_back({keep(py::str(property)), keep(py::str(reason))});
+      e.not_claimed.push_back({keep_text(py::str(property)), keep_text(py::str(reason))});
   }
   e.eval = [m](const std::vector<double>& values, const ModelQuery<double>& q) {
     const QueryRow<double> row = to_row(q);

@@ -19,6 +19,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/model_registry.h"
@@ -42,6 +43,10 @@ void register_python_model(const std::string& name, const pybind11::object& eval
                            const pybind11::object& smooth_limit, const std::string& description,
                            const std::string& source, const pybind11::object& not_claimed,
                            bool chunked = true);
+
+// Text that a registry entry's string views point into, kept for the life of the process (the
+// registry is never emptied).
+std::string_view keep_text(std::string text);
 
 // The Python model behind a registry entry, or nullptr for any other entry.
 const PythonModel* python_model(const ModelEntry& entry);

@@ -52,8 +52,15 @@ class Pool {
         return b.data;
       }
     }
-    void* p = mmap(nullptr, want, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (p == MAP_FAILED) return nullptr;
+    // With a page on either side that no block uses (never touched, so never backed by memory):
+    // two blocks the system maps next to each other would otherwise lie end to end, and numpy's
+    // loops treat an input and an output that do as overlapping and take another path, whose
+    // results differ in their last bits (log1p of float64 in numpy 1.24), so that a numpy model's
+    // results would depend on where its temporaries were mapped.
+    void* m = mmap(nullptr, want + 2 * page(), PROT_READ | PROT_WRITE,
+                   MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (m == MAP_FAILED) return nullptr;
+    void* p = static_cast<char*>(m) + page();
     const std::lock_guard<std::mutex> lock(mutex_);
     ++stats_.mapped;
     live({p, want});
@@ -108,10 +115,11 @@ class Pool {
   }
 
  private:
-  static std::size_t round_up(std::size_t bytes) {
-    static const std::size_t page = std::size_t(sysconf(_SC_PAGESIZE));
-    return (bytes + page - 1) / page * page;
+  static std::size_t page() {
+    static const std::size_t bytes = std::size_t(sysconf(_SC_PAGESIZE));
+    return bytes;
   }
+  static std::size_t round_up(std::size_t bytes) { return (bytes + page() - 1) / page() * page(); }
   void live(const Block& b) {
     live_.emplace(b.data, b.bytes);
     stats_.live_bytes += b.bytes;
@@ -129,7 +137,7 @@ class Pool {
     idle_.erase(idle_.begin(), idle_.begin() + std::ptrdiff_t(drop));
   }
   void release(const std::vector<Block>& unmap) {
-    for (const Block& b : unmap) munmap(b.data, b.bytes);
+    for (const Block& b : unmap) munmap(static_cast<char*>(b.data) - page(), b.bytes + 2 * page());
     if (unmap.empty()) return;
     const std::lock_guard<std::mutex> lock(mutex_);
     stats_.unmapped += unmap.size();

@@ -9,7 +9,9 @@
 // back to the pool when the array (and every view of it) is deallocated, whatever the user did
 // with it (kept, written, sliced, pickled, resized). A block of at least kPoolMinBytes comes from
 // the pool's idle blocks (the smallest one that fits, at most a quarter larger than asked) or is
-// mapped fresh; a smaller one is malloc's. A freed block is kept idle while the idle blocks
+// mapped fresh, with an unused page on either side (so that no two blocks lie end to end, which
+// numpy's loops would take for an overlap of an input and an output: another path, other last
+// bits); a smaller one is malloc's. A freed block is kept idle while the idle blocks
 // together stay within the limit (default kDefaultIdleLimit; the oldest idle blocks are unmapped
 // to make room), else unmapped. Thread-safe (numpy may free without the GIL).
 #pragma once

@@ -24,6 +24,9 @@ and, in "numpy_model_cases" (beside "cases", whose names the smoke test fixes):
   numpy_model_eval_f_1thread     glintlab.eval of the registered model on Fortran-ordered input
                                  (its columns passed to the functions where they lie), one thread
   numpy_model_eval_all_cores     glintlab.eval of it on the C-ordered input, all cores
+  numpy_model_identity_eval_1thread  glintlab.eval of a numpy model whose eval and pdf return
+                                 their wo_z column as it is (no numpy work): the route's own cost,
+                                 C-ordered input, one thread
 
 and, in "model_rules_cases", a model with query rules of its own (podee: a disk light of radius
 above 0 and its centre above the surface, checked by the chunk check's pass over the columns):
@@ -31,6 +34,10 @@ above 0 and its centre above the surface, checked by the chunk check's pass over
   podee_eval_1thread             glintlab.eval("podee", ...) on the same rows, Fortran-ordered,
                                  with a per-row footprint, its four corner reflection vectors
                                  near wo and a per-row light, one thread
+  podee_entry_copy_eval_1thread  the same with podee's registry entry copied without its static
+                                 model (_glintlab._register_entry_copy: its rules known only
+                                 through the entry, as a plug-in's, and its batches the loop over
+                                 its thunks); absent with a module without that function
 
 and the ratios of interest (Python eval over eval_batch; the numpy model's chunked calls over
 its direct calls; "numpy_model_ratios" those of the numpy_model_cases), on wall seconds; every
@@ -197,6 +204,14 @@ def main():
         glintlab.register_model(name, lambert_eval, lambert_pdf, lambert_sample,
                                 params=[{"name": "albedo", "default": 0.8, "lo": 0, "hi": 1}],
                                 description="Lambertian in numpy (benchmark)")
+    identity = "bench_numpy_identity"
+    if identity not in [m["name"] for m in glintlab.models()]:
+        glintlab.register_model(identity, lambda q, p: q["wo_z"], lambda q, p: q["wo_z"],
+                                lambert_sample, description="wo_z as value and pdf (benchmark)")
+    entry_copy = "bench_podee_entry_copy"
+    if hasattr(_glintlab, "_register_entry_copy") and \
+            entry_copy not in [m["name"] for m in glintlab.models()]:
+        _glintlab._register_entry_copy("podee", entry_copy)
     p = {"albedo": 0.8}
 
     def direct():
@@ -218,6 +233,13 @@ def main():
 
     podee_footprint, podee_light = podee_columns(rng, wo)
 
+    rules_cases = {
+        "podee_eval_1thread": lambda: glintlab.eval("podee", wi_f, wo_f, footprint=podee_footprint,
+                                                    light=podee_light, isa=a.isa, threads=1)}
+    if entry_copy in [m["name"] for m in glintlab.models()]:
+        rules_cases["podee_entry_copy_eval_1thread"] = lambda: glintlab.eval(
+            entry_copy, wi_f, wo_f, footprint=podee_footprint, light=podee_light, isa=a.isa,
+            threads=1)
     cases, cpu = round_robin({
         "cpp_eval_batch": cpp_eval_batch,
         "python_eval_c_1thread": py_eval(wi, wo),
@@ -232,13 +254,14 @@ def main():
         "numpy_model_direct_copying": direct_copying,
         "numpy_model_eval_f_1thread": lambda: glintlab.eval(name, wi_f, wo_f, threads=1),
         "numpy_model_eval_all_cores": lambda: glintlab.eval(name, wi, wo, threads=None),
-        "podee_eval_1thread": lambda: glintlab.eval("podee", wi_f, wo_f, footprint=podee_footprint,
-                                                    light=podee_light, isa=a.isa, threads=1),
+        "numpy_model_identity_eval_1thread": lambda: glintlab.eval(identity, wi, wo, threads=1),
+        **rules_cases,
     }, a.repeats)
     numpy_model_cases = {k: cases.pop(k) for k in ("numpy_model_direct_copying",
                                                     "numpy_model_eval_f_1thread",
-                                                    "numpy_model_eval_all_cores")}
-    model_rules_cases = {"podee_eval_1thread": cases.pop("podee_eval_1thread")}
+                                                    "numpy_model_eval_all_cores",
+                                                    "numpy_model_identity_eval_1thread")}
+    model_rules_cases = {k: cases.pop(k) for k in rules_cases}
 
     median = {k: statistics.median(v)
               for k, v in {**cases, **numpy_model_cases, **model_rules_cases}.items()}
@@ -287,6 +310,9 @@ def main():
                 median["numpy_model_eval_f_1thread"] / median["numpy_model_direct_contiguous"],
             "chunked_all_cores_over_direct_contiguous":
                 median["numpy_model_eval_all_cores"] / median["numpy_model_direct_contiguous"],
+            "identity_over_direct_contiguous":
+                median["numpy_model_identity_eval_1thread"] /
+                median["numpy_model_direct_contiguous"],
         },
         # The one-thread ratios over the C++ reference on CPU seconds (None where the module does
         # not measure the reference's): on a loaded machine wall times wait for a core.
@@ -307,6 +333,8 @@ def main():
                 cpu_ratio("numpy_model_eval_1thread", "numpy_model_direct_copying"),
             "chunked_f_over_direct_contiguous":
                 cpu_ratio("numpy_model_eval_f_1thread", "numpy_model_direct_contiguous"),
+            "identity_over_direct_contiguous":
+                cpu_ratio("numpy_model_identity_eval_1thread", "numpy_model_direct_contiguous"),
         },
     }
     with open(a.out, "w") as f:

@@ -157,3 +157,42 @@ def test_a_numpy_models_c_ordered_rows_are_checked_by_the_gather():
     bad_wi[17_000] = [0.0, 0.0, np.nan]
     message = error_of(name, bad_wi, wo)
     assert message.startswith("row 17000") and "wi" in message, message
+
+
+def podee_by_entry():
+    # podee's registry entry under another name without its static model: the module knows its
+    # own rules only through the entry's validate function, as it knows a plug-in's (no column
+    # form of them in python/batch_call.cpp), and its batches are the loop over its thunks.
+    name = "podee_by_entry"
+    if name not in [m["name"] for m in glintlab.models()]:
+        glintlab._glintlab._register_entry_copy("podee", name)
+    return name
+
+
+@pytest.mark.parametrize("threads", [1, 2])
+def test_rules_known_only_through_the_entry_name_the_first_bad_row_of_any_chunk(threads):
+    """The chunk check's pass calls such a model's validate on each row's query: every row valid
+    passes, and a refused row anywhere (first, last, either side of a chunk boundary) is named
+    with the message podee itself gets; of two refused rows the lower one."""
+    name = podee_by_entry()
+    wi, wo, footprint, light = podee_queries()
+    kw = dict(footprint=footprint, light=light, threads=threads)
+    got = glintlab.eval(name, wi, wo, **kw)
+    assert np.all(np.isfinite(got["value"])) and np.all(np.isfinite(got["pdf"]))
+    cos = light["light_cos_half_angle"]
+    for row in (0, 4095, 4096, 8191, 8192, ROWS - 1):
+        cos[row] = 1.0  # a disk of radius 0
+        message = error_of(name, wi, wo, **kw)
+        assert message.startswith(f"row {row}") and "light_cos_half_angle" in message, message
+        assert message == error_of("podee", wi, wo, **kw)
+        cos[row] = 0.999
+    wo[7000] = unit(np.array([0.5, 0.0, -0.1]))  # its centre below the surface
+    cos[9000] = 1.0
+    message = error_of(name, wi, wo, **kw)
+    assert message.startswith("row 7000") and "> 0, the disk's centre above the surface" in message
+    assert message == error_of("podee", wi, wo, **kw)
+
+
+def test_an_entry_copy_needs_a_new_name():
+    with pytest.raises(ValueError, match="podee"):
+        glintlab._glintlab._register_entry_copy("podee", "podee")
