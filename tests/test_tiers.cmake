@@ -69,6 +69,12 @@ set(glintlab_slow_tests
   "KemppinenAdequacyCell.LevelsMadeTwoTauOffAreNotChosen 2"
   "KemppinenChooser.NeverRefutedByTheMeasuredTableAndTenfoldTauIs 6"
   "KemppinenChooser.MomentsBoundTheMeasuredCvAndMatchItsMean 1"
+  # The area chooser (core/glints/area_chooser.h) against the quick area grid at 2000 positions,
+  # with its TAU × 10 and moved-boundary controls.
+  "AreaChooser.NeverRefutedOnTheQuickAreaGridAndTenfoldTauOrAMovedBoundaryIs 3"
+  # The choosers compiled per ISA: the Chermain cases build the default dictionary once per
+  # process.
+  "Isas/ChooserIsa.ChermainLanesMatchScalarOnItsTableAndASwappedLaneIsCaught* 2"
   # The binomial family's quick grid for one model and 8 Kemppinen cells, written to files.
   "AdequacyOutputs.BothFamiliesInOneTable 7"
   # The Kemppinen validation scenes rendered with the chooser's level and k16_exact.
