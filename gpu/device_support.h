@@ -23,9 +23,7 @@ inline constexpr std::array<DeviceSupport, 9> kDeviceSupport = {{
     {"smooth_ggx", ""},
     {"smooth_beckmann", ""},
     {"podee", ""},
-    {"deliot_belcour",
-     "its default count sampler, binomial_exact (core/glints/binomial.h), is host-only (not "
-     "marked GLINTLAB_FN: a variable number of uniforms and double-precision BTRS)"},
+    {"deliot_belcour", ""},
     {"kneiphof_klein", kParameterCheckReason},
     {"kneiphof_klein_area",
      "kBatched = false (a host LTC table lookup), and its header reaches core/parameter_check.h"},
