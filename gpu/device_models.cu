@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/glints/deliot_belcour.h"
+#include "core/glints/kneiphof.h"
 #include "core/models/kemppinen_beckmann.h"
 #include "core/models/kemppinen_ggx.h"
 #include "core/models/podee.h"
@@ -25,7 +26,7 @@ namespace {
 template <class... Ms>
 struct DeviceModelList {};
 using DeviceModels =
-    DeviceModelList<SmoothGGX, SmoothBeckmann, Podee, DeliotBelcour, KemppinenGGX,
+    DeviceModelList<SmoothGGX, SmoothBeckmann, Podee, DeliotBelcour, KneiphofKlein, KemppinenGGX,
                     KemppinenBeckmann>;
 
 void check(cudaError_t status, const char* call) {
