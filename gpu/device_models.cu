@@ -9,6 +9,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/glints/deliot_belcour.h"
+#include "core/glints/kneiphof.h"
 #include "core/models/kemppinen_beckmann.h"
 #include "core/models/kemppinen_ggx.h"
 #include "core/models/podee.h"
@@ -24,7 +26,8 @@ namespace {
 template <class... Ms>
 struct DeviceModelList {};
 using DeviceModels =
-    DeviceModelList<SmoothGGX, SmoothBeckmann, Podee, KemppinenGGX, KemppinenBeckmann>;
+    DeviceModelList<SmoothGGX, SmoothBeckmann, Podee, DeliotBelcour, KneiphofKlein, KemppinenGGX,
+                    KemppinenBeckmann>;
 
 void check(cudaError_t status, const char* call) {
   if (status != cudaSuccess)

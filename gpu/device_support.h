@@ -15,20 +15,15 @@ struct DeviceSupport {
 };
 
 // Every built-in model, in registration order (a test checks it against core/model_list.h).
-inline constexpr std::string_view kParameterCheckReason =
-    "its header reaches core/parameter_check.h (scene and light input checks that format their "
-    "messages with fmt), which nvcc's front end rejects (fmt's consteval format strings): the "
-    "model needs its kernel headers separated from the host-side input checks";
 inline constexpr std::array<DeviceSupport, 9> kDeviceSupport = {{
     {"smooth_ggx", ""},
     {"smooth_beckmann", ""},
     {"podee", ""},
-    {"deliot_belcour",
-     "its default count sampler, binomial_exact (core/glints/binomial.h), is host-only (not "
-     "marked GLINTLAB_FN: a variable number of uniforms and double-precision BTRS)"},
-    {"kneiphof_klein", kParameterCheckReason},
+    {"deliot_belcour", ""},
+    {"kneiphof_klein", ""},
     {"kneiphof_klein_area",
-     "kBatched = false (a host LTC table lookup), and its header reaches core/parameter_check.h"},
+     "kBatched = false: its LTC table (core/ltc/ltc_table.h) is a host table read by a scalar "
+     "double lookup; the device would need a copy of the table"},
     {"chermain",
      "its multiscale dictionary is a host table built at first use (chermain2021::Dictionary): "
      "a device copy of the table would be needed"},

@@ -28,7 +28,7 @@ namespace detail {
 
 // log(k!) for k ≥ 0: a table to 15, then Stirling's series with three correction terms (error
 // below 1e-16 relative to log k! for k ≥ 16; Abramowitz & Stegun 6.1.41).
-inline double log_factorial(double k) {
+GLINTLAB_FN double log_factorial(double k) {
   if (k < 16) return std::lgamma(k + 1);
   const double x = k + 1, ix = 1 / x, ix2 = ix * ix;
   return (x - 0.5) * std::log(x) - x + 0.91893853320467274178 +
@@ -40,7 +40,7 @@ inline double log_factorial(double k) {
 // (a − b) plus the difference of the corrections), so the result keeps an absolute error of
 // ~1e-16 × its own size (+ (a − b)·log a) rather than of log a!. Needed by BTRS's acceptance test
 // at N ~ 1e12, where log N! ≈ 3e13 would otherwise lose 3e-3 of the log-acceptance.
-inline double log_factorial_ratio(double a, double b) {
+GLINTLAB_FN double log_factorial_ratio(double a, double b) {
   if (a < 16 || b < 16) return log_factorial(a) - log_factorial(b);
   const double xa = a + 1, xb = b + 1, d = a - b;
   auto corr = [](double x) {
@@ -53,7 +53,7 @@ inline double log_factorial_ratio(double a, double b) {
 // Sequential inverse CDF for n·p < 10 (p ≤ ½): k = min{k : u ≤ F(k)} with the pmf by its
 // recurrence f(k+1) = f(k)·(n − k)/(k + 1)·p/q from f(0) = exp(n·log1p(−p)) (≥ e^-20: no
 // underflow). Stops once the remaining mass is below rounding (f negligible past the mean).
-inline std::uint64_t binomial_inversion(std::uint64_t n, double p, double u) {
+GLINTLAB_FN std::uint64_t binomial_inversion(std::uint64_t n, double p, double u) {
   const double q = 1 - p, r = p / q, nd = double(n);
   double f = std::exp(nd * std::log1p(-p)), cdf = f;
   std::uint64_t k = 0;
@@ -71,7 +71,7 @@ inline std::uint64_t binomial_inversion(std::uint64_t n, double p, double u) {
 // against the pmf ratio f(k)/f(m) computed by log_factorial_ratio. Uniforms come from the stream
 // (binomial_kernel.h) at dims 2j, 2j + 1 of attempt j, so the result depends only on its key.
 template <class Stream>
-std::uint64_t binomial_btrs(std::uint64_t n, double p, const Stream& stream) {
+GLINTLAB_FN std::uint64_t binomial_btrs(std::uint64_t n, double p, const Stream& stream) {
   const double nd = double(n), q = 1 - p;
   const double spq = std::sqrt(nd * p * q);
   const double b = 1.15 + 2.53 * spq;
@@ -100,10 +100,11 @@ std::uint64_t binomial_btrs(std::uint64_t n, double p, const Stream& stream) {
 
 // An exact Binomial(n, p) draw from a stream of uniforms (binomial_kernel.h: dim 0 for the
 // inversion, dims 2j, 2j + 1 for BTRS's attempt j): by symmetry p ≤ ½ (n − X for p > ½), then the
-// inverse CDF for n·p < 10 and Hörmann's BTRS otherwise. Host-side (a variable number of
-// uniforms): not a kernel; binomial_exact_lanes is its kernel form.
+// inverse CDF for n·p < 10 and Hörmann's BTRS otherwise. A variable number of uniforms: on the
+// CPU's batches binomial_exact_lanes is its kernel form; one scalar per thread (a device thread,
+// the scalar instantiation) runs it as it is.
 template <class Stream>
-std::uint64_t binomial_exact_from(std::uint64_t n, double p, const Stream& stream) {
+GLINTLAB_FN std::uint64_t binomial_exact_from(std::uint64_t n, double p, const Stream& stream) {
   if (n == 0 || !(p > 0)) return 0;
   if (p >= 1) return n;
   const bool flip = p > 0.5;
@@ -122,6 +123,13 @@ inline std::uint64_t binomial_exact(std::uint64_t n, double p, std::uint64_t see
   return binomial_exact_from(n, p, CounterStream<double>{seed, index});
 }
 
+// The guard that keeps log(1 − p) finite: 1e-300 in double; in float that literal rounds to 0, so
+// float keeps 0 (written as 0: a float literal out of range is an error under nvcc).
+template <class T>
+GLINTLAB_FN T log_guard() {
+  return T(sizeof(Scalar<T>) > 4 ? 1e-300 : 0.0);
+}
+
 // The standard normal quantile Φ⁻¹(u) = √2·erfinv(2u − 1).
 template <class T>
 GLINTLAB_FN T normal_quantile(T u) {
@@ -137,7 +145,7 @@ template <class T>
 GLINTLAB_FN T binomial_realtime(T n, T p, T u_gate, T u_gauss) {
   const T one_minus_p = max(T(1) - p, T(0));
   // 1 − (1 − p)^n as −expm1(n log1p(−p)): keeps n·p when that is tiny.
-  const T p_any = -expm1(n * log(max(one_minus_p, T(1e-300))));
+  const T p_any = -expm1(n * log(max(one_minus_p, log_guard<T>())));
   const T m = max(n - T(1), T(0));
   const T y = fma(sqrt(m * p * one_minus_p),
                   normal_quantile(min(max(u_gauss, T(1e-12)), T(1) - T(1e-12))), m * p);
@@ -155,11 +163,11 @@ inline constexpr int kSmallCountTerms = 16;
 template <class T>
 GLINTLAB_FN T binomial_small_count(T n, T p, T u) {
   const T q = max(T(1) - p, T(0));
-  T f = exp(n * log(max(q, T(1e-300))));  // f(0) = q^n
+  T f = exp(n * log(max(q, log_guard<T>())));  // f(0) = q^n
   T cdf = f;
   T k = T(0);
   Mask<T> found = u <= cdf;
-  const T r = p / max(q, T(1e-300));
+  const T r = p / max(q, log_guard<T>());
   for (int j = 1; j < kSmallCountTerms; ++j) {
     f = f * max(n - T(j - 1), T(0)) / T(j) * r;
     cdf = cdf + f;

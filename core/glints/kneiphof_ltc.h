@@ -12,6 +12,7 @@
 #include <type_traits>
 
 #include "core/glints/kneiphof.h"
+#include "core/lights/polygon_light_check.h"
 #include "core/ltc/ltc.h"
 #include "core/ltc/ltc_table.h"
 

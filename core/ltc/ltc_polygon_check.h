@@ -7,7 +7,7 @@
 #include <cmath>
 #include <span>
 
-#include "core/lights/polygon_light.h"
+#include "core/lights/polygon_light_check.h"
 #include "core/parameter_check.h"
 
 namespace glintlab {

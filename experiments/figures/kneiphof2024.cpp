@@ -27,6 +27,7 @@
 #include "core/glints/deliot_belcour.h"
 #include "core/glints/kneiphof.h"
 #include "core/glints/kneiphof_ltc.h"
+#include "core/lights/polygon_light_check.h"
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"

@@ -9,6 +9,7 @@
 
 #include "core/glints/deliot_belcour.h"
 #include "core/glints/kneiphof.h"
+#include "core/lights/polygon_light_check.h"
 #include "core/model_registry.h"
 
 namespace glintlab {

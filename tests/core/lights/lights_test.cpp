@@ -14,7 +14,7 @@
 #include "core/lights/directional_light.h"
 #include "core/lights/disk_light.h"
 #include "core/lights/point_light.h"
-#include "core/lights/polygon_light.h"
+#include "core/lights/polygon_light_check.h"
 #include "core/lights/rectangle_light.h"
 #include "light_checks.h"
 

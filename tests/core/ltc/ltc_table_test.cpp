@@ -15,7 +15,7 @@
 #include <numbers>
 #include <vector>
 
-#include "core/lights/polygon_light.h"
+#include "core/lights/polygon_light_check.h"
 #include "core/ltc/ltc.h"
 #include "core/ltc/ltc_fit.h"
 #include "core/math/rng.h"

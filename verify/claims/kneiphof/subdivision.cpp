@@ -25,6 +25,7 @@
 
 #include "core/glints/binomial.h"
 #include "core/glints/kneiphof.h"
+#include "core/lights/polygon_light_check.h"
 #include "core/ndf/ggx.h"
 #include "core/ndf/total_area.h"
 #include "verify/claim_runner.h"
