@@ -1,5 +1,6 @@
 // Figure adequacy-scene: per validation scene (verify/scenes/adequacy_scenes.h; the binomial
-// family's six, the Kemppinen family's four, the area family's two and the Chermain family's two,
+// family's six, the Kemppinen family's four, the area family's four and the Chermain family's four
+// (each a plane and a sphere at two densities),
 // rendered by the claim's own
 // render_choice_scene) the render with each pixel's chosen level, the render with the family's most
 // complete level everywhere (exact counting; k16_exact; exact counting), the difference map (the
@@ -516,29 +517,34 @@ void run_adequacy_scene(const FigureContext& ctx) {
   co.width = co.height = ctx.quick ? 32 : 64;
   co.realisations = ctx.quick ? 128 : 256;
   const adq::SceneOptions* options[kFamilies] = {&o, &ko, &ao, &co};
-  // The scenes of every family in the claim's order (binomial, Kemppinen, area, Chermain).
-  std::vector<adq::ChoiceScene> scenes = adq::choice_scenes();
-  std::vector<Family> families(scenes.size(), Family::kBinomial);
-  for (adq::ChoiceScene& s : adq::kemppinen_choice_scenes()) {
-    scenes.push_back(std::move(s));
-    families.push_back(Family::kKemppinen);
-  }
-  for (adq::ChoiceScene& s : adq::area_choice_scenes()) {
-    scenes.push_back(std::move(s));
-    families.push_back(Family::kArea);
-  }
-  for (adq::ChoiceScene& s : adq::chermain_choice_scenes()) {
-    scenes.push_back(std::move(s));
-    families.push_back(Family::kChermain);
-  }
+  // The scenes of every family in the claim's order (binomial, Kemppinen, area, Chermain), each
+  // family's in its own order; a scene's seed index is its place in declaration order
+  // (adq::declaration_order: the scenes declared later, the area and Chermain spheres, after all
+  // the others, so that the others keep their seeds), as the claim's.
+  const std::vector<std::vector<adq::ChoiceScene>> lists = {
+      adq::choice_scenes(), adq::kemppinen_choice_scenes(), adq::area_choice_scenes(),
+      adq::chermain_choice_scenes()};
+  std::vector<std::vector<std::size_t>> seed_index(lists.size());
+  for (std::size_t f = 0; f < lists.size(); ++f) seed_index[f].resize(lists[f].size());
+  const auto declared = adq::declaration_order(lists);
+  for (std::size_t k = 0; k < declared.size(); ++k) seed_index[declared[k][0]][declared[k][1]] = k;
+  std::vector<adq::ChoiceScene> scenes;
+  std::vector<Family> families;
+  std::vector<std::size_t> seeds;
+  for (std::size_t f = 0; f < lists.size(); ++f)
+    for (std::size_t i = 0; i < lists[f].size(); ++i) {
+      scenes.push_back(lists[f][i]);
+      families.push_back(Family(f));
+      seeds.push_back(seed_index[f][i]);
+    }
   std::vector<SceneResult> results;
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     if (ctx.progress) ctx.progress("adequacy-scene: scenes", long(i), long(scenes.size()));
     SceneResult r;
     r.family = families[i];
-    // Seeds from the figure id and the scene's index over all families (as the claim's).
+    // Seeds from the figure id and the scene's index in declaration order (as the claim's).
     adq::SceneOptions so = *options[int(r.family)];
-    so.seed = verify::check_seed(std::string(kId), i);
+    so.seed = verify::check_seed(std::string(kId), seeds[i]);
     r.realisations = so.realisations;
     r.zoom = o.width / so.width;
     r.render = adq::render_choice_scene(scenes[i], so);
@@ -607,7 +613,8 @@ void run_adequacy_scene(const FigureContext& ctx) {
       "\n## Area family (kneiphof_klein_area under a square light of side {:.3g}; most complete: "
       "exact counting)\n\n"
       "{}×{} pixels (each shown {}×{} on the sheet), {} realisations per pixel; levels by "
-      "choose_binomial_level with the model's N_P and LTC p (core has no area chooser).\n\n",
+      "choose_kneiphof_klein_area_model_level (core/glints/area_chooser.h: choose_binomial_level "
+      "with the model's N_P and LTC p).\n\n",
       adq::kRectLightSide, ao.width, ao.height, o.width / ao.width, o.width / ao.width,
       ao.realisations);
   md += family_summary(results, Family::kArea, alpha);

@@ -1,7 +1,8 @@
 // `glintlab figure adequacy-scene --budget quick`: the labelled sheet (matplotlib) and its pixels'
 // CSV, the montage and its panel labels, one EXR per validation scene with every per-pixel
 // quantity (the binomial scenes at 128 pixels, the Kemppinen scenes at 32, the area scenes at 64,
-// the Chermain scenes at 32), each family's per-scene CSV whose counts are the EXRs' pixels, and
+// the Chermain scenes at 32; the area and Chermain families each a plane and a sphere at two
+// densities), each family's per-scene CSV whose counts are the EXRs' pixels, and
 // summary.md with the claim's decision per family at the claim's Šidák share over its four
 // families.
 #include <fmt/format.h>
@@ -73,15 +74,17 @@ TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
   expect_png(d / "adequacy-scene.png");
   // The sheet, drawn by matplotlib: per scene its difference map and its chosen-level map, each
   // titled, with pixel axes and a colour scale; the scenes named in the panels' titles.
-  expect_labelled_chart(d / "adequacy-scene.png", 28);
+  expect_labelled_chart(d / "adequacy-scene.png", 36);
   const nlohmann::json sheet = chart_manifest(d / "adequacy-scene.png");
   EXPECT_NE(sheet["axes"][0].value("title", "").find("plane-point-low"), std::string::npos);
   EXPECT_NE(sheet["axes"][19].value("title", "").find("kemppinen-sphere-high"), std::string::npos);
   EXPECT_NE(sheet["axes"][23].value("title", "").find("area-plane-rect-high"), std::string::npos);
-  EXPECT_NE(sheet["axes"][27].value("title", "").find("chermain-plane-high"), std::string::npos);
+  EXPECT_NE(sheet["axes"][27].value("title", "").find("area-sphere-rect-high"), std::string::npos);
+  EXPECT_NE(sheet["axes"][31].value("title", "").find("chermain-plane-high"), std::string::npos);
+  EXPECT_NE(sheet["axes"][35].value("title", "").find("chermain-sphere-high"), std::string::npos);
   // Its data: every pixel of every scene, image order, the level as in the scene's EXR.
   const io::CsvTable px = io::read_csv(d / "adequacy-scene-pixels.csv");
-  ASSERT_EQ(px.num_rows(), 6u * 128 * 128 + 4u * 32 * 32 + 2u * 64 * 64 + 2u * 32 * 32);
+  ASSERT_EQ(px.num_rows(), 6u * 128 * 128 + 4u * 32 * 32 + 4u * 64 * 64 + 4u * 32 * 32);
   const Image first = io::read_exr(d / "plane-point-low.exr").image;
   for (std::size_t i = 0; i < 128u * 128; ++i) {
     ASSERT_EQ(px.text(i, px.column("scene")), "plane-point-low");
@@ -95,14 +98,15 @@ TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
   const std::string layout = read_text(d / "panels.panels.json");
   EXPECT_EQ(layout.find("difference / TAU"), std::string::npos);
   EXPECT_EQ(layout.find("chosen level map"), std::string::npos);
-  for (const char* name :
-       {"plane-point-low", "kemppinen-plane-low", "kemppinen-plane-high", "kemppinen-sphere-low",
-        "kemppinen-sphere-high", "area-plane-rect-low", "area-plane-rect-high"})
+  for (const char* name : {"plane-point-low", "kemppinen-plane-low", "kemppinen-plane-high",
+                           "kemppinen-sphere-low", "kemppinen-sphere-high", "area-plane-rect-low",
+                           "area-plane-rect-high", "area-sphere-rect-low", "area-sphere-rect-high",
+                           "chermain-sphere-low", "chermain-sphere-high"})
     for (const char* column : {"chosen level", "most complete level"})
       EXPECT_NE(layout.find(fmt::format("\"{}: {}\"", name, column)), std::string::npos)
           << name << ": " << column;
   const nlohmann::json panels = nlohmann::json::parse(layout);
-  EXPECT_EQ(panels["labels"].size(), 2u * 14u);
+  EXPECT_EQ(panels["labels"].size(), 2u * 18u);
   const io::CsvTable t = io::read_csv(d / "adequacy-scene.csv");
   ASSERT_EQ(t.num_rows(), 6u);
   // The binomial scenes reach every level of the family.
@@ -116,11 +120,13 @@ TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
   EXPECT_TRUE(k_levels.count(7)) << "no Kemppinen pixel at k16_rational";
   for (std::size_t i = 0; i < k.num_rows(); ++i)
     EXPECT_EQ(k.text(i, k.column("model")), "kemppinen_ggx");
-  // The area scenes (kneiphof_klein_area under the square light): 64 pixels, the binomial levels
-  // (cheaper meaning below exact, 3), both sides of the smooth boundary reached.
+  // The area scenes (kneiphof_klein_area, the plane and the sphere under the square light): 64
+  // pixels, the binomial levels (cheaper meaning below exact, 3), both sides of the smooth
+  // boundary reached.
   const io::CsvTable a = io::read_csv(d / "adequacy-scene-area.csv");
-  ASSERT_EQ(a.num_rows(), 2u);
-  const std::set<int> a_levels = expect_counts_match_exrs(d, a, 64, 3, 2000);
+  ASSERT_EQ(a.num_rows(), 4u);  // the planes, then the spheres
+  EXPECT_EQ(a.text(3, a.column("shape")), "sphere");
+  const std::set<int> a_levels = expect_counts_match_exrs(d, a, 64, 3, 1000);
   EXPECT_TRUE(a_levels.count(0)) << "no area pixel at the smooth level";
   EXPECT_TRUE(a_levels.count(3)) << "no area pixel at exact counting";
   for (std::size_t i = 0; i < a.num_rows(); ++i) {
@@ -136,11 +142,13 @@ TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
             im.at(x, y, im.channel("lit")) != 0 && im.at(x, y, im.channel("level")) < 8 ? 1 : 0;
     EXPECT_NE(as_kemppinen, a.number(i, a.column("cheaper")));
   }
-  // The Chermain scenes (the plane at two microfacet densities): 32 pixels, cheaper meaning below
-  // dict16_ggaa (8); the chooser takes shorter dictionaries (GGAA twins) where they are identical.
+  // The Chermain scenes (the plane and the sphere at two microfacet densities): 32 pixels, cheaper
+  // meaning below dict16_ggaa (8); the chooser takes shorter dictionaries (GGAA twins) where they
+  // are identical.
   const io::CsvTable ch = io::read_csv(d / "adequacy-scene-chermain.csv");
-  ASSERT_EQ(ch.num_rows(), 2u);
-  const std::set<int> c_levels = expect_counts_match_exrs(d, ch, 32, 8, 400);
+  ASSERT_EQ(ch.num_rows(), 4u);  // the planes, then the spheres (fewer lit pixels at 32²)
+  EXPECT_EQ(ch.text(3, ch.column("shape")), "sphere");
+  const std::set<int> c_levels = expect_counts_match_exrs(d, ch, 32, 8, 60);
   EXPECT_TRUE(c_levels.count(8)) << "no Chermain pixel at dict16_ggaa";
   EXPECT_TRUE(c_levels.count(4) || c_levels.count(6))
       << "no Chermain pixel at a shorter dictionary";
@@ -164,8 +172,9 @@ TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
   // never costs more than exact counting (it takes smooth where adequate, else exact).
   EXPECT_NE(md.find("## Time per evaluation"), std::string::npos);
   const io::CsvTable c = io::read_csv(d / "adequacy-scene-cost.csv");
-  ASSERT_EQ(c.num_rows(), 8u);  // the binomial scenes, then the area scenes
-  EXPECT_EQ(c.text(7, c.column("model")), "kneiphof_klein_area");
+  ASSERT_EQ(c.num_rows(), 10u);  // the binomial scenes, then the area scenes
+  EXPECT_EQ(c.text(9, c.column("model")), "kneiphof_klein_area");
+  EXPECT_EQ(c.text(9, c.column("scene")), "area-sphere-rect-high");
   for (std::size_t i = 0; i < c.num_rows(); ++i) {
     const std::string name(c.text(i, c.column("scene")));
     const Image im = io::read_exr(d / (name + ".exr")).image;

@@ -460,11 +460,21 @@ std::vector<ChoiceScene> kemppinen_choice_scenes() {
 std::vector<ChoiceScene> area_choice_scenes() {
   // The plane's footprints (4.7e-4 to 1.9 uv units² at 64 pixels) at 10^6 and 10^8 facets per unit
   // area, as plane-area-low and -high: on both sides of the smooth boundary.
+  // The sphere's footprints (about 3.5e-5/sin θ uv units² at 64 pixels, 1.4e-4/sin θ at 32, the
+  // limb's larger) under the square light at kSphereSceneLight (some 3.6 units from the lit side:
+  // a half-angle near 6°, so p reaches about 0.1 at the highlight, some 500 times kneiphof_klein's
+  // 0.26° cap) at 10^8 and 10^10 facets per unit area: N_P p from a few to about 10^3 at 10^8 and
+  // to about 10^5 at the highlight at 10^10, on both sides of the smooth boundary (10^4; measured
+  // after declaring: the smooth level only at 10^10, realtime to exact at both).
   return {
       {"area-plane-rect-low", "kneiphof_klein_area", SceneShape::kPlane, SceneLight::kRectLight, 6,
        "low"},
       {"area-plane-rect-high", "kneiphof_klein_area", SceneShape::kPlane, SceneLight::kRectLight,
        8, "high"},
+      {"area-sphere-rect-low", "kneiphof_klein_area", SceneShape::kSphere, SceneLight::kRectLight,
+       8, "low", 1},
+      {"area-sphere-rect-high", "kneiphof_klein_area", SceneShape::kSphere,
+       SceneLight::kRectLight, 10, "high", 1},
   };
 }
 
@@ -472,10 +482,30 @@ std::vector<ChoiceScene> chermain_choice_scenes() {
   // The plane's footprints (4.7e-4 to 1.9 uv units² at 64 pixels) at 10^6 microfacets per unit
   // area: about 500 to 2·10^6 per footprint (dict8 and dict12 by the construction); at 10^9: 5·10^5
   // to 2·10^9 (dict12, dict16 and the smooth level near its boundary, about 10^9).
+  // The sphere under its point light at 100 times the planes' densities (its footprints, about
+  // 3.5e-5/sin θ uv units² at 64 pixels and 1.4e-4/sin θ at 32, are smaller than the plane's
+  // smallest): 10^8 and 10^11 microfacets per unit area. (Measured after declaring: the chooser
+  // takes dict12_ggaa at 10^8 at 32 pixels, dict8_ggaa at 64; dict16_ggaa and the smooth level at
+  // 10^11.)
   return {
       {"chermain-plane-low", "chermain", SceneShape::kPlane, SceneLight::kPoint, 6, "low"},
       {"chermain-plane-high", "chermain", SceneShape::kPlane, SceneLight::kPoint, 9, "high"},
+      {"chermain-sphere-low", "chermain", SceneShape::kSphere, SceneLight::kPoint, 8, "low", 1},
+      {"chermain-sphere-high", "chermain", SceneShape::kSphere, SceneLight::kPoint, 11, "high", 1},
   };
+}
+
+std::vector<std::array<std::size_t, 2>> declaration_order(
+    const std::vector<std::vector<ChoiceScene>>& families) {
+  std::vector<std::array<std::size_t, 2>> order;
+  int last_round = 0;
+  for (const auto& f : families)
+    for (const ChoiceScene& s : f) last_round = std::max(last_round, s.round);
+  for (int round = 0; round <= last_round; ++round)
+    for (std::size_t f = 0; f < families.size(); ++f)
+      for (std::size_t i = 0; i < families[f].size(); ++i)
+        if (families[f][i].round == round) order.push_back({f, i});
+  return order;
 }
 
 bool is_kemppinen_scene(const ChoiceScene& s) { return s.model == "kemppinen_ggx"; }

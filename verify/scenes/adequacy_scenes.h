@@ -41,7 +41,18 @@ struct ChoiceScene {
   // (Kemppinen: K_P) per unit uv area
   double log10_density;
   std::string density_label;  // "low" or "high"
+  // Declared with the claim (0) or later (1: the area and Chermain families' spheres): the
+  // scenes' order over the families (declaration_order) puts every later scene after every
+  // earlier one, so that a scene keeps its index and seed when another is declared.
+  int round = 0;
 };
+
+// The scenes of families (the claim's order: binomial, Kemppinen, area, Chermain) in declaration
+// order, as {family, scene} indices: the scenes of round 0 family by family, then those of round 1.
+// A scene's position here is its seed index (claim adequacy.choice-is-safe's configuration index,
+// figure adequacy-scene's seed).
+std::vector<std::array<std::size_t, 2>> declaration_order(
+    const std::vector<std::vector<ChoiceScene>>& families);
 
 // The six scenes, declared before anything is measured: plane under a point light
 // (deliot_belcour), plane under a spherical light (kneiphof_klein, the light's cone per pixel),
@@ -61,9 +72,11 @@ std::vector<ChoiceScene> kemppinen_choice_scenes();
 // under a square light of side kRectLightSide at the point light's position (kneiphof_klein_area's
 // rectangle, centred along ω_o at the light's distance and facing the shading point: the side
 // gives it the area of the spherical light's disk, so the two area-light planes subtend the same
-// solid angle to first order), GGX α = kSceneAlpha, at a low and a high facet density. The level
-// per pixel: choose_kneiphof_klein_area_model_level (core/glints/area_chooser.h), i.e.
-// choose_binomial_level(N_P, p, TAU) with the model's own N_P and (LTC) p.
+// solid angle to first order), GGX α = kSceneAlpha, at a low and a high facet density; and (round
+// 1) the sphere of choice_scenes() under the same square light at its point light's position, at a
+// low and a high density. The level per pixel: choose_kneiphof_klein_area_model_level
+// (core/glints/area_chooser.h), i.e. choose_binomial_level(N_P, p, TAU) with the model's own N_P
+// and (LTC) p.
 std::vector<ChoiceScene> area_choice_scenes();
 inline constexpr double kRectLightSide = 0.70898154036220639;  // 0.4 √π
 
@@ -71,7 +84,8 @@ inline constexpr double kRectLightSide = 0.70898154036220639;  // 0.4 √π
 // most complete level k16_exact) rather than the binomial one (BinomialLevel, exact).
 // The Chermain family's scenes (model chermain, Chermain et al. 2021's defaults with isotropic
 // roughness kSceneAlpha): the plane of choice_scenes() under its point light at 10^6 and 10^9
-// microfacets per unit uv area, its GGAA derivatives those of the pixel's half vector (the corner
+// microfacets per unit uv area and (round 1) the sphere under its point light at 10^8 and 10^11,
+// their GGAA derivatives those of the pixel's half vector (the corner
 // differences of core/scene/footprint.h, Eq. 21's h⊥): each pixel rendered with
 // choose_chermain_model_level's level and with dict16_ggaa at the same realisations (the footprint
 // moved along the R2 set over a square kChermainSpread cells of its coarser LOD wide, as the

@@ -1,10 +1,12 @@
 // The Chermain family's validation scenes of adequacy.choice-is-safe (chermain_choice_scenes,
 // verify/scenes/adequacy_scenes.h): the engine chooser (choose_chermain_model_level) holds on small
-// renders of both planes, a chooser that takes each dictionary some three levels early (told a
-// footprint 10 times wider) fails by the same decision, and the pixels are the same on one thread
-// and on two.
+// renders of both planes and of both spheres, a chooser that takes each dictionary some three
+// levels early (told a footprint 10 times wider) fails by the same decision, and the pixels are the
+// same on one thread and on two.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
+
+#include <cstdio>
 
 #include "core/glints/chermain_chooser.h"
 #include "verify/scenes/adequacy_scenes.h"
@@ -20,8 +22,9 @@ SceneOptions chermain_options() {
   return o;
 }
 
-TEST(ChermainChoiceScenes, EngineChooserHoldsAndABrokenChooserFails) {
-  const SceneOptions o = chermain_options();
+// The scenes of one shape with the engine chooser and with a chooser told a footprint 10 times
+// wider: the first holds, the second fails; returns the engine chooser's tally.
+SafetyTally expect_holds_and_wider_fails(SceneShape shape, const SceneOptions& o) {
   SceneOptions broken = o;
   broken.chermain_chooser = [](const Chermain::Params<double>& p, const ModelQuery<double>& q,
                                double tau) {
@@ -31,25 +34,44 @@ TEST(ChermainChoiceScenes, EngineChooserHoldsAndABrokenChooserFails) {
     return int(choose_chermain_model_level(p, wide, tau));
   };
   SafetyTally genuine, b;
+  int scenes = 0;
   for (const ChoiceScene& s : chermain_choice_scenes()) {
+    if (s.shape != shape) continue;
+    ++scenes;
     EXPECT_EQ(most_complete_level(s), int(kChermainMostComplete));
+    EXPECT_EQ(s.round, shape == SceneShape::kSphere ? 1 : 0);
     add(genuine, tally(render_choice_scene(s, o)));
     add(b, tally(render_choice_scene(s, broken)));
   }
-  ASSERT_GT(genuine.lit, 100u);
-  ASSERT_GT(genuine.cheaper, genuine.lit / 4);
+  EXPECT_EQ(scenes, 2);
+  EXPECT_GT(genuine.lit, 100u);
+  EXPECT_GT(genuine.cheaper, genuine.lit / 4);
   EXPECT_EQ(decide_choice_safety(genuine, 1e-3).verdict, Verdict::kHoldsInRegime)
       << genuine.exceeds << " of " << genuine.lit;
   EXPECT_EQ(decide_choice_safety(b, 1e-3).verdict, Verdict::kFails) << b.exceeds << " of " << b.lit;
-  std::printf("chermain scenes: %llu lit, %llu cheaper, %llu exceed; a footprint 10x wider: %llu\n",
-              (unsigned long long)genuine.lit, (unsigned long long)genuine.cheaper,
-              (unsigned long long)genuine.exceeds, (unsigned long long)b.exceeds);
+  std::printf("chermain %s: %llu lit, %llu cheaper, %llu exceed; a footprint 10x wider: %llu\n",
+              shape == SceneShape::kPlane ? "planes" : "spheres", (unsigned long long)genuine.lit,
+              (unsigned long long)genuine.cheaper, (unsigned long long)genuine.exceeds,
+              (unsigned long long)b.exceeds);
+  return genuine;
+}
+
+TEST(ChermainChoiceScenes, EngineChooserHoldsAndABrokenChooserFails) {
+  expect_holds_and_wider_fails(SceneShape::kPlane, chermain_options());
+}
+
+// The spheres (declared after the planes, at 10^8 and 10^11 microfacets per unit area): the same
+// on 24² renders of both (fewer pixels hit the sphere).
+TEST(ChermainChoiceScenes, SphereEngineChooserHoldsAndABrokenChooserFails) {
+  SceneOptions o = chermain_options();
+  o.width = o.height = 24;
+  expect_holds_and_wider_fails(SceneShape::kSphere, o);
 }
 
 TEST(ChermainChoiceScenes, PixelsAreTheSameForAnyThreadCount) {
   SceneOptions o = chermain_options();
   o.width = o.height = 6;
-  const ChoiceScene s = chermain_choice_scenes().back();
+  const ChoiceScene s = chermain_choice_scenes()[1];
   SceneRender one, two;
   {
     tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);

@@ -5,6 +5,10 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <array>
+#include <cstdio>
+#include <set>
+
 #include "verify/scenes/adequacy_scenes.h"
 
 namespace glintlab::verify::adequacy {
@@ -168,9 +172,52 @@ TEST(AdequacyChoiceScenes, KemppinenPixelsAreTheSameForAnyThreadCount) {
     EXPECT_EQ(one.pixels[i].exact_value, two.pixels[i].exact_value);
     EXPECT_EQ(one.pixels[i].cv_diff, two.pixels[i].cv_diff);
   }
-  o.kemppinen_chooser = [](const KemppinenGGX::Params<double>&, const ModelQuery<double>&,
-                           double) { return kKemppinenLevels; };
+  o.kemppinen_chooser = [](const KemppinenGGX::Params<double>&, const ModelQuery<double>&, double) {
+    return kKemppinenLevels;
+  };
   EXPECT_THROW(render_choice_scene(s, o), std::invalid_argument);
+}
+
+// The area family's scenes of one shape rendered with the engine chooser and with a chooser told a
+// footprint 100 times too large (it takes cheaper levels than the pixels need), each scene's most
+// complete level exact counting.
+struct GenuineAndBroken {
+  SafetyTally genuine, broken;
+  int scenes = 0;
+};
+GenuineAndBroken area_tallies(SceneShape shape, const SceneOptions& o) {
+  SceneOptions broken = o;
+  broken.chooser = [](double facets, double p, double tau) {
+    return int(choose_binomial_level(100 * facets, p, tau));
+  };
+  GenuineAndBroken t;
+  for (const ChoiceScene& s : area_choice_scenes()) {
+    if (s.shape != shape) continue;
+    ++t.scenes;
+    EXPECT_EQ(most_complete_level(s), int(BinomialLevel::kExact));
+    EXPECT_EQ(s.light, SceneLight::kRectLight);
+    add(t.genuine, tally(render_choice_scene(s, o)));
+    add(t.broken, tally(render_choice_scene(s, broken)));
+  }
+  EXPECT_EQ(t.scenes, 2);
+  EXPECT_GT(t.genuine.lit, 300u);
+  EXPECT_GT(t.genuine.cheaper, t.genuine.lit / 2);
+  EXPECT_EQ(decide_choice_safety(t.genuine, 1e-3).verdict, Verdict::kHoldsInRegime)
+      << t.genuine.exceeds << " of " << t.genuine.lit;
+  EXPECT_EQ(decide_choice_safety(t.broken, 1e-3).verdict, Verdict::kFails)
+      << t.broken.exceeds << " of " << t.broken.lit;
+  return t;
+}
+
+// Scene `s` at 8² on one thread and on two: the same pixels.
+void expect_same_on_one_and_two_threads(const ChoiceScene& s, SceneOptions o) {
+  o.width = o.height = 8;
+  const auto [one, two] = on_one_and_two_threads(s, o);
+  for (std::size_t i = 0; i < one.pixels.size(); ++i) {
+    EXPECT_EQ(one.pixels[i].level, two.pixels[i].level);
+    EXPECT_EQ(one.pixels[i].chosen_value, two.pixels[i].chosen_value);
+    EXPECT_EQ(one.pixels[i].mean_diff, two.pixels[i].mean_diff);
+  }
 }
 
 // The area family's scenes (kneiphof_klein_area, the plane under the square light): the binomial
@@ -180,29 +227,44 @@ TEST(AdequacyChoiceScenes, AreaChooserHoldsAndABrokenChooserFailsOnAnyThreadCoun
   SceneOptions o = small_options();
   o.width = o.height = 16;
   o.realisations = 128;
-  SafetyTally genuine, broken_tally;
-  SceneOptions broken = o;
-  broken.chooser = [](double facets, double p, double tau) {
-    return int(choose_binomial_level(100 * facets, p, tau));
-  };
-  for (const ChoiceScene& s : area_choice_scenes()) {
-    EXPECT_EQ(most_complete_level(s), int(BinomialLevel::kExact));
-    add(genuine, tally(render_choice_scene(s, o)));
-    add(broken_tally, tally(render_choice_scene(s, broken)));
-  }
-  ASSERT_GT(genuine.lit, 300u);
-  ASSERT_GT(genuine.cheaper, genuine.lit / 2);
-  EXPECT_EQ(decide_choice_safety(genuine, 1e-3).verdict, Verdict::kHoldsInRegime)
-      << genuine.exceeds << " of " << genuine.lit;
-  EXPECT_EQ(decide_choice_safety(broken_tally, 1e-3).verdict, Verdict::kFails)
-      << broken_tally.exceeds << " of " << broken_tally.lit;
-  o.width = o.height = 8;
-  const auto [one, two] = on_one_and_two_threads(area_choice_scenes().back(), o);
-  for (std::size_t i = 0; i < one.pixels.size(); ++i) {
-    EXPECT_EQ(one.pixels[i].level, two.pixels[i].level);
-    EXPECT_EQ(one.pixels[i].chosen_value, two.pixels[i].chosen_value);
-    EXPECT_EQ(one.pixels[i].mean_diff, two.pixels[i].mean_diff);
-  }
+  area_tallies(SceneShape::kPlane, o);
+  expect_same_on_one_and_two_threads(area_choice_scenes()[1], o);
+}
+
+// The area family's spheres (kneiphof_klein_area, the sphere under the square light, declared
+// after the planes): the same on 32² renders of both (fewer pixels hit the sphere), the spheres
+// reaching the smooth level.
+TEST(AdequacyChoiceScenes, AreaSphereChooserHoldsAndABrokenChooserFailsOnAnyThreadCount) {
+  SceneOptions o = small_options();
+  o.realisations = 128;
+  const GenuineAndBroken t = area_tallies(SceneShape::kSphere, o);
+  EXPECT_GT(t.genuine.by_level[std::size_t(BinomialLevel::kSmooth)], 0u);
+  for (const ChoiceScene& s : area_choice_scenes())
+    EXPECT_EQ(s.round, s.shape == SceneShape::kSphere ? 1 : 0);
+  std::printf("area spheres: %llu lit, %llu cheaper, %llu exceed; a footprint 100x larger: %llu\n",
+              (unsigned long long)t.genuine.lit, (unsigned long long)t.genuine.cheaper,
+              (unsigned long long)t.genuine.exceeds, (unsigned long long)t.broken.exceeds);
+  expect_same_on_one_and_two_threads(area_choice_scenes().back(), o);
+}
+
+// The declaration order (the claim's configurations, the figure's seeds): the scenes of round 0
+// family by family, then the later ones, so the fourteen scenes declared first keep their indices.
+TEST(AdequacyChoiceScenes, LaterScenesComeAfterEveryEarlierOne) {
+  const std::vector<std::vector<ChoiceScene>> lists = {
+      choice_scenes(), kemppinen_choice_scenes(), area_choice_scenes(), chermain_choice_scenes()};
+  const auto order = declaration_order(lists);
+  ASSERT_EQ(order.size(), 18u);
+  const char* first[] = {"plane-point-low",       "plane-point-high",     "plane-area-low",
+                         "plane-area-high",       "sphere-point-low",     "sphere-point-high",
+                         "kemppinen-plane-low",   "kemppinen-plane-high", "kemppinen-sphere-low",
+                         "kemppinen-sphere-high", "area-plane-rect-low",  "area-plane-rect-high",
+                         "chermain-plane-low",    "chermain-plane-high",  "area-sphere-rect-low",
+                         "area-sphere-rect-high", "chermain-sphere-low",  "chermain-sphere-high"};
+  for (std::size_t k = 0; k < order.size(); ++k)
+    EXPECT_EQ(lists[order[k][0]][order[k][1]].name, first[k]) << k;
+  // Every scene once.
+  std::set<std::array<std::size_t, 2>> seen(order.begin(), order.end());
+  EXPECT_EQ(seen.size(), order.size());
 }
 
 }  // namespace

@@ -10,18 +10,19 @@
 // (surface positions): a lit pixel (the most complete level non-zero at ≥ kMinLitPositions
 // realisations) exceeds when its chosen level's mean or CV differs by more than TAU (a lower bound
 // at one-sided kPixelFlagRate / 2 each). For the binomial family (deliot_belcour, kneiphof_klein:
-// six scenes), the Kemppinen family (kemppinen_ggx against k16_exact: four scenes) and the area
-// family (kneiphof_klein_area under a square light, the binomial chooser with its LTC p: two
-// scenes), each family
-// decided on its own at the Šidák share of the per-check level by an exact binomial count against
-// the rate kPixelFlagRate safe choices give; holds in regime when every family holds, fails when
-// any fails.
+// six scenes), the Kemppinen family (kemppinen_ggx against k16_exact: four scenes), the area
+// family (kneiphof_klein_area under a square light, the binomial chooser with its LTC p: the plane
+// and the sphere, four scenes) and the Chermain family (against dict16_ggaa: the plane and the
+// sphere, four scenes), each family decided on its own at the Šidák share of the per-check level
+// by an exact binomial count against the rate kPixelFlagRate safe choices give; holds in regime
+// when every family holds, fails when any fails.
 // Control (perturbed): the choosers run with TAU × 10 (they then take levels up to 10 TAU off),
 // rendered at the same positions; rejected only when every family fails.
 // Regime: the engine choosers at TAU = 0.02 on these scenes, GGX α = 0.15, at the sizes stated.
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <span>
 #include <string>
 #include <string_view>
@@ -142,21 +143,23 @@ struct ChoiceIsSafe {
   // reachable).
   static Sizes probe_sizes() { return {choice_families(16, 128, 8, 128, 8, 128, 8, 128)}; }
 
-  // Configurations: the scenes of every family, in order (the binomial scenes first).
-  static int configurations(const Sizes& z) {
-    std::size_t n = 0;
-    for (const ChoiceFamily& f : z.families) n += f.scenes.size();
-    return int(n);
+  // Configurations: the scenes of every family in declaration order (adequacy::declaration_order:
+  // the binomial, Kemppinen, area and Chermain planes and the binomial and Kemppinen spheres first,
+  // then the area and Chermain spheres, declared later: every earlier scene keeps its seed).
+  static std::vector<std::array<std::size_t, 2>> order(const Sizes& z) {
+    std::vector<std::vector<adequacy::ChoiceScene>> scenes;
+    for (const ChoiceFamily& f : z.families) scenes.push_back(f.scenes);
+    return adequacy::declaration_order(scenes);
   }
+  static int configurations(const Sizes& z) { return int(order(z).size()); }
   // One scene rendered with its family's engine chooser at TAU (genuine) and at TAU × 10 (the
-  // control), at the same positions (seed: the claim id and the scene's index over both
-  // families), differences compared with the rule's TAU.
+  // control), at the same positions (seed: the claim id and the scene's index in declaration
+  // order), differences compared with the rule's TAU.
   struct Evidence {
     adequacy::SafetyTally genuine, control;
   };
   static Evidence observe(const Sizes& z, int k, std::uint64_t seed) {
-    std::size_t f = 0, i = std::size_t(k);
-    while (i >= z.families[f].scenes.size()) i -= z.families[f++].scenes.size();
+    const auto [f, i] = order(z)[std::size_t(k)];
     const ChoiceFamily& family = z.families[f];
     adequacy::SceneOptions o = family.options;
     o.seed = seed;
@@ -181,13 +184,17 @@ struct ChoiceIsSafe {
     Measured run;
     run.input = input;
     const double alpha = sidak_level(check_level(), z.families.size());
-    std::size_t k = 0;
+    // Each family's scenes in its own order: the evidence of scene i of family f.
+    std::vector<std::vector<const Evidence*>> of(z.families.size());
+    for (std::size_t f = 0; f < z.families.size(); ++f) of[f].resize(z.families[f].scenes.size());
+    const auto configs = order(z);
+    for (std::size_t k = 0; k < configs.size(); ++k) of[configs[k][0]][configs[k][1]] = &evidence[k];
     bool all_hold = true, any_fails = false;
     double nearest = -1;
     for (std::size_t f = 0; f < z.families.size(); ++f) {
       FamilyMeasured m;
-      for (std::size_t i = 0; i < z.families[f].scenes.size(); ++i, ++k) {
-        m.scenes.push_back(input == Input::kGenuine ? evidence[k].genuine : evidence[k].control);
+      for (const Evidence* e : of[f]) {
+        m.scenes.push_back(input == Input::kGenuine ? e->genuine : e->control);
         adequacy::add(m.total, m.scenes.back());
       }
       m.decision = adequacy::decide_choice_safety(m.total, alpha);
@@ -224,11 +231,15 @@ struct ChoiceIsSafe {
     const adequacy::SceneOptions& k = z.families[1].options;
     const adequacy::SceneOptions& a = z.families[2].options;
     const adequacy::SceneOptions& c = z.families[3].options;
-    std::string densities;
-    for (const adequacy::ChoiceScene& sc : z.families[1].scenes)
-      densities += fmt::format("{}{} K_P 10^{:g}", densities.empty() ? "" : ", ",
-                               sc.shape == adequacy::SceneShape::kPlane ? "plane" : "sphere",
-                               sc.log10_density);
+    // A family's scenes as "plane K_P 10^4, sphere ..." (`unit`: what the density counts).
+    const auto densities = [&](std::size_t f, std::string_view unit) {
+      std::string out;
+      for (const adequacy::ChoiceScene& sc : z.families[f].scenes)
+        out += fmt::format("{}{} {}10^{:g}", out.empty() ? "" : ", ",
+                           sc.shape == adequacy::SceneShape::kPlane ? "plane" : "sphere", unit,
+                           sc.log10_density);
+      return out;
+    };
     return fmt::format(
         "the engine choosers of core/glints/adequacy.h at TAU = {} on scenes outside the adequacy "
         "grids, GGX alpha = {}: the binomial family (deliot_belcour, kneiphof_klein; levels "
@@ -239,17 +250,19 @@ struct ChoiceIsSafe {
         "against k16_exact) on {} scenes (the plane and the sphere under the point lights; {}), "
         "{}x{} pixels, {} realisations per pixel; the area family (kneiphof_klein_area; the "
         "binomial levels, chosen by choose_binomial_level with the model's N_P and LTC p) on {} "
-        "scenes (the plane under a square light of side {:.3g} facing the point, at two facet "
-        "densities), {}x{} pixels, {} realisations per pixel; the Chermain family (chermain; levels "
-        "smooth, dict4, 8, 12, 16 with GGAA off or on, against dict16_ggaa; chosen by "
-        "choose_chermain_model_level of core/glints/chermain_chooser.h with the pixel's GGAA "
-        "derivatives) on {} scenes (the plane under the point light at 10^6 and 10^9 microfacets "
-        "per unit area), {}x{} pixels, {} realisations per pixel; each family decided on its own at "
-        "the Šidák share of the per-check level",
+        "scenes (the plane and the sphere under a square light of side {:.3g} facing the point, "
+        "each at two facet densities: {} facets per unit area), {}x{} pixels, {} realisations per "
+        "pixel; the Chermain family (chermain; levels smooth, dict4, 8, 12, 16 with GGAA off or "
+        "on, against dict16_ggaa; chosen by choose_chermain_model_level of "
+        "core/glints/chermain_chooser.h with the pixel's GGAA derivatives) on {} scenes (the plane "
+        "and the sphere under the point lights: {} microfacets per unit area), {}x{} pixels, {} "
+        "realisations per pixel; each family decided on its own at the Šidák share of the "
+        "per-check level",
         o.tau, adequacy::kSceneAlpha, o.width, o.height, o.realisations,
-        z.families[1].scenes.size(), densities, k.width, k.height, k.realisations,
-        z.families[2].scenes.size(), adequacy::kRectLightSide, a.width, a.height, a.realisations,
-        z.families[3].scenes.size(), c.width, c.height, c.realisations);
+        z.families[1].scenes.size(), densities(1, "K_P "), k.width, k.height, k.realisations,
+        z.families[2].scenes.size(), adequacy::kRectLightSide, densities(2, ""), a.width, a.height,
+        a.realisations, z.families[3].scenes.size(), densities(3, ""), c.width, c.height,
+        c.realisations);
   }
 
   // The control's line as describe words it: it states its own rule for the verdict, so the
