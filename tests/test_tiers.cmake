@@ -130,7 +130,7 @@ set(glintlab_slow_tests
   "AdequacyTest.OutputDoesNotDependOnThreads 20"
   "AdequacyTest.QuickRunWritesTableAndMaps 7"
   "AdequacyTest.AFailedMapChartIsOneLineAndNoMap 4"
-  "AdequacyShardTest.MergedShardsAreTheFilesOfOneRun 30"
+  "AdequacyShardTest.MergedShardsAreTheFilesOfOneRun 13"
   "AdequacyShardTest.AreaFamilyMergedIsTheFilesOfOneRun 30"
   "AdequacyShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 5"
   "AdequacyShardTest.ChermainFamilyOnOneThreadMergedIsTheTwoThreadRun 39"
