@@ -182,9 +182,11 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
     const auto& c = s.chermain;
     print_leveled_family(
         "Chermain family", verify::adequacy::kChermainLevelNames, c.cells, c.chosen,
-        fmt::format("construction (the level equal to dict16_ggaa bit for bit): same level as "
-                    "measured in {} cells, refuted in {}",
-                    c.construction_matches, c.construction_refuted),
+        fmt::format("chooser (core/glints/chermain_chooser.h): same level as measured in {} "
+                    "cells, refuted in {}; construction alone (the level equal to dict16_ggaa bit "
+                    "for bit): {} and {}",
+                    c.chooser_matches, c.chooser_refuted, c.construction_matches,
+                    c.construction_refuted),
         c.undecided, "dict16_ggaa", c.most_complete_ns, c.chosen_ns, c.cheapest_ns);
   }
   if (!run.costs_source.empty()) {
