@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <numbers>
 
@@ -68,6 +69,16 @@ TEST(KemppinenGrid, BlockStartCoversTheNearestCells) {
   EXPECT_EQ(kemppinen2025::block_start(3.2, 3), 2);
   EXPECT_EQ(kemppinen2025::block_start(3.7, 4), 2);
   EXPECT_EQ(kemppinen2025::block_start(-0.2, 1), -1);
+}
+
+// The cell index is the SplitMix64 chain over (sx, sy, ax, ay, level, process) whichever way it is
+// written: the values an independent implementation of that chain gives (Python, outside this
+// code), so a change of the chain, which would move every point, is caught.
+TEST(KemppinenGrid, CellIndexIsTheRecordedChain) {
+  using kemppinen2025::Cell;
+  EXPECT_EQ(kemppinen2025::cell_index(Cell{3, -7, 12, 0, 5, 0}), 0xf1fd9281f8a04ef7ULL);
+  EXPECT_EQ(kemppinen2025::cell_index(Cell{-1, std::int64_t(1) << 40, -3, 9, 19, 2}),
+            0x95d6d183b9c1b5deULL);
 }
 
 TEST(DiskRectArea, KnownAreas) {
