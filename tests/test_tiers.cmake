@@ -75,6 +75,7 @@ set(glintlab_slow_tests
   # The choosers compiled per ISA: the Chermain cases build the default dictionary once per
   # process.
   "Isas/ChooserIsa.ChermainLanesMatchScalarOnItsTableAndASwappedLaneIsCaught* 2"
+  "Isas/ChooserIsaFloat.ChermainFloatLanesDifferOnlyAtBoundariesAndASwappedLaneExceedsTheCount* 3"
   # The binomial family's quick grid for one model and 8 Kemppinen cells, written to files.
   "AdequacyOutputs.BothFamiliesInOneTable 7"
   # The Kemppinen validation scenes rendered with the chooser's level and k16_exact.
