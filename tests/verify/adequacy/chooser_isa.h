@@ -46,6 +46,19 @@ struct ChooserIsaFns {
   void (*chermain)(const chermain2021::SdfParams& sdf, const chermain2021::SlopeDerivatives& d,
                    const ModelQuery<double>* q, const double* tau, double* out, std::size_t n,
                    LanePath path);
+  // The choosers for given costs (core/glints/cost_chooser.h) with the costs `cost` (the family's
+  // level order): choose_kemppinen_model_level_by_cost (kemppinen_ggx, kemppinen_beckmann),
+  // choose_chermain_model_level_by_cost.
+  void (*kemppinen_ggx_by_cost)(std::span<const double> params, const ModelQuery<double>* q,
+                                const double* tau, const std::array<double, 9>& cost,
+                                double* out, std::size_t n);
+  void (*kemppinen_beckmann_by_cost)(std::span<const double> params, const ModelQuery<double>* q,
+                                     const double* tau, const std::array<double, 9>& cost,
+                                     double* out, std::size_t n);
+  void (*chermain_by_cost)(const chermain2021::SdfParams& sdf,
+                           const chermain2021::SlopeDerivatives& d, const ModelQuery<double>* q,
+                           const double* tau, const std::array<double, 9>& cost, double* out,
+                           std::size_t n);
   std::size_t lanes;  // values per batch (the scalar unit: 1)
 };
 

@@ -5,8 +5,9 @@
 // core/glints/area_chooser.h, is scalar, its binomial step on lanes), by GPU order and by a
 // measured cost order; deliot_belcour's and kneiphof_klein's wrappers, the Kemppinen family's
 // (kemppinen_ggx, kemppinen_beckmann) and the Chermain family's on each cell's parameters and
-// query. An ISA this CPU lacks is skipped with the reason (GLINTLAB_MAX_ISA caps it too). The
-// comparison can fail: a lane path whose selects take the other arm in the batch's last lane
+// query, and those two families' choosers for given costs (core/glints/cost_chooser.h). An ISA
+// this CPU lacks is skipped with the reason (GLINTLAB_MAX_ISA caps it too). The comparison can
+// fail: a lane path whose selects take the other arm in the batch's last lane
 // disagrees with the scalar chooser on every ISA. The float batches of the same choosers
 // (`ChooserIsaFloat`) against the scalar double chooser: the rows where float chooses otherwise
 // counted, each explained by a boundary within a stated move, the counts stated.
@@ -25,6 +26,7 @@
 
 #include "core/glints/adequacy.h"
 #include "core/glints/chermain_chooser.h"
+#include "core/glints/cost_chooser.h"
 #include "core/models/kemppinen_beckmann.h"
 #include "core/models/kemppinen_ggx.h"
 #include "core/simd/batch.h"
@@ -294,6 +296,53 @@ TEST_P(ChooserIsa, KemppinenLanesMatchScalarOnItsTable) {
     EXPECT_GT(smooth, 0u);
     EXPECT_LT(smooth, want.size());
   }
+}
+
+// The choosers for given costs on every ISA, by a measured order (docs/adequacy.md "Cost from the
+// benchmarks", AVX-512: k16_exact below k16_rational, dict12 below dict4_ggaa), against the scalar.
+constexpr std::array<double, 9> kKemppinenMeasuredOrder = {15,    1094,  1120,  3555, 3581,
+                                                           15181, 15419, 51471, 50879};
+constexpr std::array<double, 9> kChermainMeasuredOrder = {34, 246, 534, 425, 991,
+                                                          530, 1357, 709, 1877};
+
+TEST_P(ChooserIsa, CostChoosersLanesMatchScalarOnTheirTables) {
+  for (const bool ggx : {true, false}) {
+    const std::vector<Group>& groups =
+        ggx ? kemppinen_model_groups<KemppinenGGX>() : kemppinen_model_groups<KemppinenBeckmann>();
+    std::vector<double> got, want;
+    for (const Group& g : groups) {
+      std::vector<double> out(g.rows.q.size());
+      (ggx ? fns_.kemppinen_ggx_by_cost : fns_.kemppinen_beckmann_by_cost)(
+          g.params, g.rows.q.data(), g.rows.tau.data(), kKemppinenMeasuredOrder, out.data(),
+          out.size());
+      got.insert(got.end(), out.begin(), out.end());
+      for (std::size_t i = 0; i < out.size(); ++i) {
+        if (ggx)
+          want.push_back(choose_kemppinen_model_level_by_cost(
+              KemppinenGGX::params<double>(g.params), g.rows.q[i], g.rows.tau[i],
+              kKemppinenMeasuredOrder));
+        else
+          want.push_back(choose_kemppinen_model_level_by_cost(
+              KemppinenBeckmann::params<double>(g.params), g.rows.q[i], g.rows.tau[i],
+              kKemppinenMeasuredOrder));
+      }
+    }
+    EXPECT_EQ(differing(got, want, ggx ? "kemppinen_ggx by cost" : "kemppinen_beckmann by cost"),
+              0u)
+        << got.size() << " rows";
+  }
+  std::vector<double> got, want;
+  for (const Group& g : chermain_model_groups()) {
+    const auto ps = chermain_level_params(*g.chermain, kChermainMostComplete, 0);
+    std::vector<double> out(g.rows.q.size());
+    fns_.chermain_by_cost(ps.sdf, ps.d, g.rows.q.data(), g.rows.tau.data(), kChermainMeasuredOrder,
+                          out.data(), out.size());
+    got.insert(got.end(), out.begin(), out.end());
+    for (std::size_t i = 0; i < out.size(); ++i)
+      want.push_back(choose_chermain_model_level_by_cost(ps, g.rows.q[i], g.rows.tau[i],
+                                                         kChermainMeasuredOrder));
+  }
+  EXPECT_EQ(differing(got, want, "chermain by cost"), 0u) << got.size() << " rows";
 }
 
 // (With its control: the default dictionary's construction, about 1.5 s, is the cost of any
