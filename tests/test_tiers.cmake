@@ -69,14 +69,24 @@ set(glintlab_slow_tests
   "KemppinenAdequacyCell.LevelsMadeTwoTauOffAreNotChosen 2"
   "KemppinenChooser.NeverRefutedByTheMeasuredTableAndTenfoldTauIs 6"
   "KemppinenChooser.MomentsBoundTheMeasuredCvAndMatchItsMean 1"
+  # The choosers for given costs (core/glints/cost_chooser.h) against the measured tables (the
+  # Kemppinen chooser test's 32 cells, the Chermain quick grid at 2000 positions) and, in the GPU
+  # order, on every Chermain cell (the default dictionary's construction).
+  "CostChooser.KemppinenMeasuredOrderNeverRefutedAndAnOffByOneTableIs 6"
+  "CostChooser.ChermainMeasuredOrderNeverRefutedAndAnOffByOneTableIs 4"
+  "CostChooser.ChermainGpuOrderChoosesAsTheGpuOrderChooserOnBothGrids 1"
   # The area chooser (core/glints/area_chooser.h) against the quick area grid at 2000 positions,
   # with its TAU × 10 and moved-boundary controls.
   "AreaChooser.NeverRefutedOnTheQuickAreaGridAndTenfoldTauOrAMovedBoundaryIs 3"
   # The choosers compiled per ISA: the Chermain cases build the default dictionary once per
   # process.
   "Isas/ChooserIsa.ChermainLanesMatchScalarOnItsTableAndASwappedLaneIsCaught* 2"
+  "Isas/ChooserIsaFloat.ChermainFloatLanesDifferOnlyAtBoundariesAndASwappedLaneExceedsTheCount* 3"
+  "Isas/ChooserIsa.CostChoosersLanesMatchScalarOnTheirTables* 3"
   # The binomial family's quick grid for one model and 8 Kemppinen cells, written to files.
   "AdequacyOutputs.BothFamiliesInOneTable 7"
+  # Two Chermain cells priced with the engine chooser for the costs: the default dictionary.
+  "AdequacyOutputs.KemppinenAndChermainPricedByTheBenchmark 2"
   # The Kemppinen validation scenes rendered with the chooser's level and k16_exact.
   "AdequacyChoiceScenes.KemppinenEngineChooserHoldsAndABrokenChooserFails 3"
   "AdequacyChoiceScenes.KemppinenPixelsAreTheSameForAnyThreadCount 2"

@@ -95,7 +95,10 @@ GLINTLAB_FN T binomial_zero_probability(T n, T p) {
 template <class T>
 GLINTLAB_FN CountMoments<T> realtime_count_moments(T n, T p) {
   const T q = max(T(1) - p, T(0));
-  const T p_any = -expm1(n * log(max(q, T(1e-300))));
+  // log(1 − p) as log1p(−p): 1 − p rounds to float's spacing near 1 (6e-8), which at the small p
+  // of a narrow light cone (1e-6 … 1e-4) would put percents of error into P(any) and the mean;
+  // −690.8 = log(1e-300) keeps p = 1 finite (P(any) = 1, and 0 · it = 0 where N_P = 0).
+  const T p_any = -expm1(n * max(log1p(-min(p, T(1))), T(-690.77552789821368)));
   const T m = max(n - T(1), T(0));
   const T mu = m * p, sigma = sqrt(m * p * q);
   const Mask<T> spread = sigma > T(0);

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <nlohmann/json.hpp>
 #include <string_view>
+#include <type_traits>
 
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
@@ -45,9 +47,11 @@ std::optional<BenchPrice> bench_price(const Row& r, const std::optional<LevelCos
   return BenchPrice{cheapest_adequate(adequate, it->second), it->second};
 }
 
-// A cell's benchmark prices added to its family's sums.
-template <class Row>
-void add_bench_price(BenchSums& into, const Row& r, const std::optional<LevelCosts>& costs) {
+// A cell's benchmark prices added to its family's sums; `engine_level(ns)`, where given, is the
+// engine chooser's level for these costs at the cell.
+template <class Row, class EngineLevel = std::nullptr_t>
+void add_bench_price(BenchSums& into, const Row& r, const std::optional<LevelCosts>& costs,
+                     double threshold = 0, EngineLevel engine_level = nullptr) {
   const std::optional<BenchPrice> b = bench_price(r, costs);
   if (!b) return;
   into.priced = true;
@@ -56,6 +60,15 @@ void add_bench_price(BenchSums& into, const Row& r, const std::optional<LevelCos
   into.chosen_ns += b->ns[std::size_t(r.chosen)];
   into.cheapest_ns += b->ns[std::size_t(b->cheapest)];
   ++into.cheapest_by_benchmark[std::size_t(b->cheapest)];
+  if constexpr (!std::is_same_v<EngineLevel, std::nullptr_t>) {
+    const int level = engine_level(b->ns);
+    const LevelStats& s = r.levels[std::size_t(level)];
+    into.engine = true;
+    into.engine_by_cost.resize(b->ns.size());
+    into.engine_ns += b->ns[std::size_t(level)];
+    ++into.engine_by_cost[std::size_t(level)];
+    into.engine_refuted += s.mean_diff_lcb > threshold || s.cv_diff_lcb > threshold ? 1 : 0;
+  }
 }
 
 // A family's benchmark sums in adequacy.json (`levels`: the family's level names).
@@ -64,15 +77,25 @@ nlohmann::json bench_sums_json(const BenchSums& b, const LevelCosts& costs,
   nlohmann::json by = nlohmann::json::object();
   for (std::size_t l = 0; l < levels.size(); ++l)
     by[std::string(levels[l])] = l < b.cheapest_by_benchmark.size() ? b.cheapest_by_benchmark[l] : 0;
-  return {{"source", costs.source},
-          {"isa", costs.isa},
-          {"most_complete", levels.back()},
-          {"most_complete_ns_total", b.most_complete_ns},
-          {"chosen_ns_total", b.chosen_ns},
-          {"chosen_saved_fraction", b.chosen_saved()},
-          {"cheapest_ns_total", b.cheapest_ns},
-          {"cheapest_saved_fraction", b.cheapest_saved()},
-          {"cheapest_by_benchmark", by}};
+  nlohmann::json j = {{"source", costs.source},
+                      {"isa", costs.isa},
+                      {"most_complete", levels.back()},
+                      {"most_complete_ns_total", b.most_complete_ns},
+                      {"chosen_ns_total", b.chosen_ns},
+                      {"chosen_saved_fraction", b.chosen_saved()},
+                      {"cheapest_ns_total", b.cheapest_ns},
+                      {"cheapest_saved_fraction", b.cheapest_saved()},
+                      {"cheapest_by_benchmark", by}};
+  if (b.engine) {
+    nlohmann::json e = nlohmann::json::object();
+    for (std::size_t l = 0; l < levels.size(); ++l)
+      e[std::string(levels[l])] = l < b.engine_by_cost.size() ? b.engine_by_cost[l] : 0;
+    j["engine_by_cost"] = {{"ns_total", b.engine_ns},
+                           {"saved_fraction", b.engine_saved()},
+                           {"refuted", b.engine_refuted},
+                           {"levels", e}};
+  }
+  return j;
 }
 
 // The level names a table's columns carry: the binomial levels where that family is in the table,
@@ -353,12 +376,23 @@ std::string bench_sums_line(std::string_view family, const BenchSums& b,
   for (std::size_t l = 0; l < levels.size(); ++l)
     cells.push_back(fmt::format(
         "{} {}", levels[l], l < b.cheapest_by_benchmark.size() ? b.cheapest_by_benchmark[l] : 0));
-  return fmt::format(
+  std::string line = fmt::format(
       "{}: time per evaluation summed over cells (benchmark {}, {}): {} everywhere {:.0f} ns; "
       "chosen level {:.0f} ns ({:.1f} % saved); cheapest adequate level by the benchmark {:.0f} "
       "ns ({:.1f} % saved; {} cells)",
       family, source, isa, levels.back(), b.most_complete_ns, b.chosen_ns,
       100 * b.chosen_saved(), b.cheapest_ns, 100 * b.cheapest_saved(), fmt::join(cells, ", "));
+  if (b.engine) {
+    std::vector<std::string> engine;
+    for (std::size_t l = 0; l < levels.size(); ++l)
+      engine.push_back(
+          fmt::format("{} {}", levels[l], l < b.engine_by_cost.size() ? b.engine_by_cost[l] : 0));
+    line += fmt::format(
+        "; engine chooser for these costs {:.0f} ns ({:.1f} % saved; refuted in {} cells; {} "
+        "cells)",
+        b.engine_ns, 100 * b.engine_saved(), b.engine_refuted, fmt::join(engine, ", "));
+  }
+  return line;
 }
 
 std::vector<std::string> binomial_models(const std::vector<std::string>& models) {
@@ -600,7 +634,9 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
     k.most_complete_ns += r.levels[kRef].ns_per_eval;
     k.chosen_ns += r.levels[std::size_t(r.chosen)].ns_per_eval;
     k.cheapest_ns += r.levels[std::size_t(r.cheapest_measured)].ns_per_eval;
-    add_bench_price(k.bench, r, o.costs);
+    add_bench_price(k.bench, r, o.costs, o.threshold, [&](std::span<const double> ns) {
+      return kemppinen_engine_level_by_cost(r.cell, o.threshold, ns);
+    });
   }
   const verify::adequacy::GridAxes area_axes = area_axes_of(o);
   for (const CellResult& r : cells.area) {
@@ -631,7 +667,9 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
     c.most_complete_ns += r.levels[kMost].ns_per_eval;
     c.chosen_ns += r.levels[std::size_t(r.chosen)].ns_per_eval;
     c.cheapest_ns += r.levels[std::size_t(r.cheapest_measured)].ns_per_eval;
-    add_bench_price(c.bench, r, o.costs);
+    add_bench_price(c.bench, r, o.costs, o.threshold, [&](std::span<const double> ns) {
+      return chermain_engine_level_by_cost(r.cell, o.threshold, ns);
+    });
   }
   std::filesystem::create_directories(out);
   sum.csv = out / "adequacy.csv";

@@ -78,6 +78,17 @@ struct BenchSums {
   bool priced = false;
   double most_complete_ns = 0, chosen_ns = 0, cheapest_ns = 0;
   std::vector<std::size_t> cheapest_by_benchmark;
+  // The Kemppinen and Chermain families: the engine chooser for these costs
+  // (core/glints/cost_chooser.h) at each cell, Σ of its level's cost, the cells per level it
+  // takes and where the table refutes it (its level's lower bound above TAU). `engine` false in
+  // the other families.
+  bool engine = false;
+  double engine_ns = 0;
+  std::vector<std::size_t> engine_by_cost;
+  std::size_t engine_refuted = 0;
+  double engine_saved() const {
+    return most_complete_ns > 0 ? 1 - engine_ns / most_complete_ns : 0;
+  }
   double chosen_saved() const { return most_complete_ns > 0 ? 1 - chosen_ns / most_complete_ns : 0; }
   double cheapest_saved() const {
     return most_complete_ns > 0 ? 1 - cheapest_ns / most_complete_ns : 0;

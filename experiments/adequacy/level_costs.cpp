@@ -8,6 +8,9 @@
 
 #include "core/glints/adequacy.h"
 #include "core/glints/chermain_chooser.h"
+#include "core/glints/cost_chooser.h"
+#include "core/models/kemppinen_beckmann.h"
+#include "core/models/kemppinen_ggx.h"
 #include "experiments/figures/bench_json.h"
 #include "verify/adequacy/area_adequacy.h"
 #include "verify/adequacy/binomial_adequacy.h"
@@ -73,6 +76,42 @@ int cheapest_adequate(std::span<const bool> adequate, std::span<const double> ns
   for (int l = n - 2; l >= 0; --l)
     if (adequate[std::size_t(l)] && ns[std::size_t(l)] <= ns[std::size_t(best)]) best = l;
   return best;
+}
+
+namespace {
+// The costs as the choosers take them (a file's row count was checked by read_level_costs).
+template <std::size_t N>
+std::array<double, N> cost_array(std::span<const double> ns) {
+  if (ns.size() != N)
+    throw std::invalid_argument(fmt::format("{} level costs for a family of {}", ns.size(), N));
+  std::array<double, N> a{};
+  std::copy(ns.begin(), ns.end(), a.begin());
+  return a;
+}
+}  // namespace
+
+int kemppinen_engine_level_by_cost(const verify::adequacy::KemppinenCell& c, double tau,
+                                   std::span<const double> ns) {
+  namespace adq = verify::adequacy;
+  const auto cost = cost_array<kKemppinenLevels>(ns);
+  const ModelQuery<double> q = adq::kemppinen_cell_query(c, adq::kemppinen_surface_position(c, 0));
+  const std::vector<double> v = adq::kemppinen_level_param_values(c, KemppinenLevel::kK16Exact, 0);
+  const auto level = [&](auto model) {
+    using M = decltype(model);
+    return int(choose_kemppinen_model_level_by_cost(M::template params<double>(v), q, tau, cost));
+  };
+  if (c.model == KemppinenGGX::kName) return level(KemppinenGGX{});
+  if (c.model == KemppinenBeckmann::kName) return level(KemppinenBeckmann{});
+  throw std::invalid_argument(fmt::format("{} is no model of the Kemppinen family", c.model));
+}
+
+int chermain_engine_level_by_cost(const verify::adequacy::ChermainCell& c, double tau,
+                                  std::span<const double> ns) {
+  namespace adq = verify::adequacy;
+  const auto p = adq::chermain_level_params(c, adq::kChermainMostComplete, 0);
+  return int(choose_chermain_model_level_by_cost(
+      p, adq::chermain_cell_query(c, adq::chermain_surface_position(c, 0)), tau,
+      cost_array<kChermainLevels>(ns)));
 }
 
 }  // namespace glintlab::experiments

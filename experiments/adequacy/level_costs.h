@@ -13,6 +13,11 @@
 #include <string_view>
 #include <vector>
 
+namespace glintlab::verify::adequacy {
+struct KemppinenCell;
+struct ChermainCell;
+}  // namespace glintlab::verify::adequacy
+
 namespace glintlab::experiments {
 
 // The benchmark's file in a --bench-from folder.
@@ -41,5 +46,15 @@ LevelCosts read_level_costs(const std::filesystem::path& dir, std::string_view s
 // level the most complete, taken whether adequate or not); a tie goes to the level earlier in the
 // order (the cheaper one on a GPU lane).
 int cheapest_adequate(std::span<const bool> adequate, std::span<const double> ns);
+
+// The engine chooser for these costs at a cell of the Kemppinen or the Chermain table
+// (choose_kemppinen_model_level_by_cost, choose_chermain_model_level_by_cost;
+// core/glints/cost_chooser.h) where the table computes its GPU-order chooser: at the cell's first
+// surface position, on the most complete level's parameters. `ns`: the cell's model's levels'
+// costs in the family's order (LevelCosts::ns). The level's index in that order.
+int kemppinen_engine_level_by_cost(const verify::adequacy::KemppinenCell& c, double tau,
+                                   std::span<const double> ns);
+int chermain_engine_level_by_cost(const verify::adequacy::ChermainCell& c, double tau,
+                                  std::span<const double> ns);
 
 }  // namespace glintlab::experiments

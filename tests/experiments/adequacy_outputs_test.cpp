@@ -388,9 +388,30 @@ TEST(AdequacyOutputs, KemppinenAndChermainPricedByTheBenchmark) {
       EXPECT_EQ(b->cheapest_by_benchmark[3], 1u);
       EXPECT_EQ(b->cheapest_by_benchmark[8], 1u);
       EXPECT_DOUBLE_EQ(b->cheapest_saved(), 0.4);
+      // The engine chooser for these costs (core/glints/cost_chooser.h) at each cell: its levels'
+      // costs summed, its levels counted, refuted where the table's bounds say so (the hand-made
+      // levels' bounds are 0: nowhere).
+      ASSERT_TRUE(b->engine);
+      double engine_ns = 0;
+      std::vector<std::size_t> engine(9);
+      const auto add = [&](int level) {
+        engine_ns += ns[std::size_t(level)];
+        ++engine[std::size_t(level)];
+      };
+      if (b == &s.kemppinen.bench)
+        for (const auto& r : cells.kemppinen)
+          add(kemppinen_engine_level_by_cost(r.cell, o.threshold, ns));
+      else
+        for (const auto& r : cells.chermain)
+          add(chermain_engine_level_by_cost(r.cell, o.threshold, ns));
+      EXPECT_EQ(b->engine_ns, engine_ns);
+      EXPECT_EQ(b->engine_by_cost, engine);
+      EXPECT_EQ(b->engine_refuted, 0u);
     }
     const std::string line = bench_sums_line("Kemppinen family", s.kemppinen.bench,
                                              kKemppinenLevelNames, costs.source, costs.isa);
+    EXPECT_NE(line.find("; engine chooser for these costs "), std::string::npos) << line;
+    EXPECT_NE(line.find("refuted in 0 cells; smooth "), std::string::npos) << line;
     EXPECT_NE(line.find("k16_exact everywhere 200 ns"), std::string::npos) << line;
     EXPECT_NE(line.find("chosen level 150 ns (25.0 % saved)"), std::string::npos) << line;
     EXPECT_NE(line.find("120 ns (40.0 % saved; smooth 0, k1_rational 0, k1_exact 0, "
@@ -413,6 +434,8 @@ TEST(AdequacyOutputs, KemppinenAndChermainPricedByTheBenchmark) {
     EXPECT_EQ(kb["most_complete"], "k16_exact");
     EXPECT_EQ(kb["cheapest_ns_total"], 120.0);
     EXPECT_EQ(kb["cheapest_by_benchmark"]["k4_rational"], 1);
+    EXPECT_EQ(kb["engine_by_cost"]["ns_total"], s.kemppinen.bench.engine_ns);
+    EXPECT_EQ(kb["engine_by_cost"]["refuted"], 0);
     EXPECT_EQ(doc["cells"][1]["cheapest_by_benchmark"], "k4_rational");
     EXPECT_EQ(doc["benchmark_costs"]["ns_per_eval"]["kemppinen_ggx"]["k4_rational"], 20.0);
     EXPECT_FALSE(doc["families"]["binomial"].contains("benchmark_costs"));  // no binomial cells

@@ -1,10 +1,10 @@
 // The engine choosers of every adequacy family (core/glints/adequacy.h: binomial, Kemppinen;
 // core/glints/chermain_chooser.h) compiled once per ISA, each in its own translation unit with that
 // ISA's flags (chooser_isa_<isa>.cpp, flags in tests/CMakeLists.txt as core/'s isa_*.cpp units get
-// them), on that ISA's double batches: chooser_isa_test.cpp runs each one the CPU has on the
-// measured tables' cells and compares every lane with the scalar double chooser. The area family's
-// chooser (core/glints/area_chooser.h) is scalar only: its binomial step runs here on the area
-// table's (N_P, p).
+// them), on that ISA's double and float batches: chooser_isa_test.cpp runs each one the CPU has on
+// the measured tables' cells and compares every lane with the scalar double chooser. The area
+// family's chooser (core/glints/area_chooser.h) is scalar only: its binomial step runs here on the
+// area table's (N_P, p).
 #pragma once
 
 #include <array>
@@ -46,13 +46,35 @@ struct ChooserIsaFns {
   void (*chermain)(const chermain2021::SdfParams& sdf, const chermain2021::SlopeDerivatives& d,
                    const ModelQuery<double>* q, const double* tau, double* out, std::size_t n,
                    LanePath path);
-  std::size_t lanes;  // doubles per batch (the scalar unit: 1)
+  // The choosers for given costs (core/glints/cost_chooser.h) with the costs `cost` (the family's
+  // level order): choose_kemppinen_model_level_by_cost (kemppinen_ggx, kemppinen_beckmann),
+  // choose_chermain_model_level_by_cost.
+  void (*kemppinen_ggx_by_cost)(std::span<const double> params, const ModelQuery<double>* q,
+                                const double* tau, const std::array<double, 9>& cost,
+                                double* out, std::size_t n);
+  void (*kemppinen_beckmann_by_cost)(std::span<const double> params, const ModelQuery<double>* q,
+                                     const double* tau, const std::array<double, 9>& cost,
+                                     double* out, std::size_t n);
+  void (*chermain_by_cost)(const chermain2021::SdfParams& sdf,
+                           const chermain2021::SlopeDerivatives& d, const ModelQuery<double>* q,
+                           const double* tau, const std::array<double, 9>& cost, double* out,
+                           std::size_t n);
+  std::size_t lanes;  // values per batch (the scalar unit: 1)
+};
+
+// An ISA unit's choosers on its double batches (the scalar unit: Wide<double>) and on its float
+// batches (the inputs rounded to float and every step of the chooser in float, as a float shader
+// runs it; the scalar unit: Wide<float>, on the C library's float functions, the batches on
+// xsimd's). The outputs are doubles either way. One getter per unit: its name carries the ISA
+// (verify.chooser_isa_objects_share_no_weak_symbols).
+struct ChooserIsaUnit {
+  ChooserIsaFns f64, f32;
 };
 
 // Call an ISA's functions only where isa_supported(isa) (core/simd/batch.h).
-ChooserIsaFns chooser_isa_scalar();
-ChooserIsaFns chooser_isa_sse42();
-ChooserIsaFns chooser_isa_avx2();
-ChooserIsaFns chooser_isa_avx512();
+ChooserIsaUnit chooser_isa_scalar();
+ChooserIsaUnit chooser_isa_sse42();
+ChooserIsaUnit chooser_isa_avx2();
+ChooserIsaUnit chooser_isa_avx512();
 
 }  // namespace glintlab::verify::adequacy::isa_test

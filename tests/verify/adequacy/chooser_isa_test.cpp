@@ -5,15 +5,19 @@
 // core/glints/area_chooser.h, is scalar, its binomial step on lanes), by GPU order and by a
 // measured cost order; deliot_belcour's and kneiphof_klein's wrappers, the Kemppinen family's
 // (kemppinen_ggx, kemppinen_beckmann) and the Chermain family's on each cell's parameters and
-// query. An ISA this CPU lacks is skipped with the reason (GLINTLAB_MAX_ISA caps it too). The
-// comparison can fail: a lane path whose selects take the other arm in the batch's last lane
-// disagrees with the scalar chooser on every ISA.
+// query, and those two families' choosers for given costs (core/glints/cost_chooser.h). An ISA
+// this CPU lacks is skipped with the reason (GLINTLAB_MAX_ISA caps it too). The comparison can
+// fail: a lane path whose selects take the other arm in the batch's last lane
+// disagrees with the scalar chooser on every ISA. The float batches of the same choosers
+// (`ChooserIsaFloat`) against the scalar double chooser: the rows where float chooses otherwise
+// counted, each explained by a boundary within a stated move, the counts stated.
 #include "verify/adequacy/chooser_isa.h"
 
 #include <gtest/gtest.h>
 
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <ostream>
@@ -22,6 +26,7 @@
 
 #include "core/glints/adequacy.h"
 #include "core/glints/chermain_chooser.h"
+#include "core/glints/cost_chooser.h"
 #include "core/models/kemppinen_beckmann.h"
 #include "core/models/kemppinen_ggx.h"
 #include "core/simd/batch.h"
@@ -43,7 +48,7 @@ constexpr std::array<Budget, 2> kBudgets = {Budget::kQuick, Budget::kFull};
 struct IsaCase {
   Isa isa;
   const char* name;  // a test name's suffix
-  ChooserIsaFns (*fns)();
+  ChooserIsaUnit (*unit)();
 };
 void PrintTo(const IsaCase& c, std::ostream* os) { *os << c.name; }
 constexpr IsaCase kCases[] = {{Isa::kScalar, "scalar", chooser_isa_scalar},
@@ -229,7 +234,7 @@ class ChooserIsa : public ::testing::TestWithParam<IsaCase> {
     if (!isa_supported(GetParam().isa))
       GTEST_SKIP() << isa_name(GetParam().isa)
                    << ": this CPU lacks it; its choosers are compiled, not compared";
-    fns_ = GetParam().fns();
+    fns_ = GetParam().unit().f64;
   }
   ChooserIsaFns fns_{};
 
@@ -293,6 +298,53 @@ TEST_P(ChooserIsa, KemppinenLanesMatchScalarOnItsTable) {
   }
 }
 
+// The choosers for given costs on every ISA, by a measured order (docs/adequacy.md "Cost from the
+// benchmarks", AVX-512: k16_exact below k16_rational, dict12 below dict4_ggaa), against the scalar.
+constexpr std::array<double, 9> kKemppinenMeasuredOrder = {15,    1094,  1120,  3555, 3581,
+                                                           15181, 15419, 51471, 50879};
+constexpr std::array<double, 9> kChermainMeasuredOrder = {34, 246, 534, 425, 991,
+                                                          530, 1357, 709, 1877};
+
+TEST_P(ChooserIsa, CostChoosersLanesMatchScalarOnTheirTables) {
+  for (const bool ggx : {true, false}) {
+    const std::vector<Group>& groups =
+        ggx ? kemppinen_model_groups<KemppinenGGX>() : kemppinen_model_groups<KemppinenBeckmann>();
+    std::vector<double> got, want;
+    for (const Group& g : groups) {
+      std::vector<double> out(g.rows.q.size());
+      (ggx ? fns_.kemppinen_ggx_by_cost : fns_.kemppinen_beckmann_by_cost)(
+          g.params, g.rows.q.data(), g.rows.tau.data(), kKemppinenMeasuredOrder, out.data(),
+          out.size());
+      got.insert(got.end(), out.begin(), out.end());
+      for (std::size_t i = 0; i < out.size(); ++i) {
+        if (ggx)
+          want.push_back(choose_kemppinen_model_level_by_cost(
+              KemppinenGGX::params<double>(g.params), g.rows.q[i], g.rows.tau[i],
+              kKemppinenMeasuredOrder));
+        else
+          want.push_back(choose_kemppinen_model_level_by_cost(
+              KemppinenBeckmann::params<double>(g.params), g.rows.q[i], g.rows.tau[i],
+              kKemppinenMeasuredOrder));
+      }
+    }
+    EXPECT_EQ(differing(got, want, ggx ? "kemppinen_ggx by cost" : "kemppinen_beckmann by cost"),
+              0u)
+        << got.size() << " rows";
+  }
+  std::vector<double> got, want;
+  for (const Group& g : chermain_model_groups()) {
+    const auto ps = chermain_level_params(*g.chermain, kChermainMostComplete, 0);
+    std::vector<double> out(g.rows.q.size());
+    fns_.chermain_by_cost(ps.sdf, ps.d, g.rows.q.data(), g.rows.tau.data(), kChermainMeasuredOrder,
+                          out.data(), out.size());
+    got.insert(got.end(), out.begin(), out.end());
+    for (std::size_t i = 0; i < out.size(); ++i)
+      want.push_back(choose_chermain_model_level_by_cost(ps, g.rows.q[i], g.rows.tau[i],
+                                                         kChermainMeasuredOrder));
+  }
+  EXPECT_EQ(differing(got, want, "chermain by cost"), 0u) << got.size() << " rows";
+}
+
 // (With its control: the default dictionary's construction, about 1.5 s, is the cost of any
 // Chermain test, so it is paid once here.)
 TEST_P(ChooserIsa, ChermainLanesMatchScalarOnItsTableAndASwappedLaneIsCaught) {
@@ -329,6 +381,270 @@ TEST_P(ChooserIsa, ALaneWithSwappedSelectsIsCaught) {
       "%zu of %zu, kneiphof_klein %zu of %zu\n",
       GetParam().name, fns_.lanes, binomial, n, db_differ, db.size(), kk_differ, kk.size());
 }
+
+// ---- The float batches ------------------------------------------------------------------------
+//
+// The same choosers on float lanes (the inputs rounded to float, every step in float) against the
+// scalar double chooser on the same rows. Float may choose another level where a predicted
+// quantity lies within float's rounding of its threshold; each differing row is explained by the
+// least relative move δ of the ladder kMoves under which the double chooser gives the float
+// level: TAU × (1 ± δ) and the footprint (its uv derivatives; for the binomial rows N_P and p) ×
+// (1 ± δ). The test states how many rows of each family may differ and the largest move that
+// explains them; a broken float lane path exceeds the count.
+constexpr std::array<double, 5> kMoves = {1e-6, 1e-5, 1e-4, 1e-3, 1e-2};
+
+// How many rows differ, and how many of them each move of kMoves explains first (the last
+// entry: none explains them).
+struct FloatDiff {
+  std::size_t rows = 0, differ = 0;
+  std::array<std::size_t, kMoves.size() + 1> by_move{};
+  std::string examples;  // the first differing rows
+  // The largest move that explains a differing row (infinity where one is unexplained).
+  double largest_move() const {
+    double m = 0;
+    for (std::size_t k = 0; k < by_move.size(); ++k)
+      if (by_move[k] > 0) m = k < kMoves.size() ? kMoves[k] : INFINITY;
+    return m;
+  }
+  std::string text() const {
+    std::string t = std::to_string(differ) + " of " + std::to_string(rows) + " rows differ";
+    for (std::size_t k = 0; k < by_move.size(); ++k)
+      if (by_move[k] > 0) {
+        char m[64];
+        if (k < kMoves.size())
+          std::snprintf(m, sizeof m, "; %zu explained by a move of %g", by_move[k], kMoves[k]);
+        else
+          std::snprintf(m, sizeof m, "; %zu unexplained", by_move[k]);
+        t += m;
+      }
+    return t + examples;
+  }
+};
+
+// The index in kMoves of the least move under which level_at(τ scale, footprint scale, p scale)
+// is `level` (kMoves.size() where none is).
+template <class F>
+std::size_t least_move(double level, F&& level_at) {
+  for (std::size_t k = 0; k < kMoves.size(); ++k)
+    for (int a = -1; a <= 1; ++a)
+      for (int b = -1; b <= 1; ++b)
+        for (int c = -1; c <= 1; ++c)
+          if (level_at(1 + a * kMoves[k], 1 + b * kMoves[k], 1 + c * kMoves[k]) == level)
+            return k;
+  return kMoves.size();
+}
+
+// A query with its footprint scaled (both uv derivatives: the area by scale²).
+ModelQuery<double> scaled_footprint(ModelQuery<double> q, double scale) {
+  q.footprint.duv_dx = scale * q.footprint.duv_dx;
+  q.footprint.duv_dy = scale * q.footprint.duv_dy;
+  return q;
+}
+
+// Every group's rows through `call` (float lanes) against the scalar double levels;
+// perturbed(group, row, τ scale, footprint scale, p scale) is the double chooser moved. The
+// broken lane path's rows are counted, not explained (`explain` false: thousands of rows).
+template <class Call, class Perturbed>
+FloatDiff float_against_double(const std::vector<Group>& groups, Call&& call,
+                               Perturbed&& perturbed, bool explain = true) {
+  FloatDiff d;
+  for (const Group& g : groups) {
+    std::vector<double> out(g.rows.tau.size());
+    call(g, out.data());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      ++d.rows;
+      if (std::bit_cast<std::uint64_t>(out[i]) == std::bit_cast<std::uint64_t>(g.rows.scalar[i]))
+        continue;
+      ++d.differ;
+      const std::size_t k = !explain ? kMoves.size()
+                                     : least_move(out[i], [&](double ts, double fs, double ps) {
+                                         return perturbed(g, i, ts, fs, ps);
+                                       });
+      ++d.by_move[k];
+      if (d.differ <= 5) {
+        char line[160];
+        std::snprintf(line, sizeof line, "; row %zu: double level %g, float %g, TAU %g, move %g", i,
+                      g.rows.scalar[i], out[i], g.rows.tau[i],
+                      k < kMoves.size() ? kMoves[k] : INFINITY);
+        d.examples += line;
+      }
+    }
+  }
+  return d;
+}
+
+// The binomial rows as one group.
+const std::vector<Group>& binomial_row_group() {
+  static const std::vector<Group> g = {Group{{}, nullptr, binomial_rows()}};
+  return g;
+}
+
+// The measured cost order of the by-cost rows (as in the double test).
+constexpr std::array<double, kBinomialLevels> kMeasuredOrder = {25, 85, 90, 50};
+
+// The double chooser moved, per family.
+double binomial_moved(const Group& g, std::size_t i, double ts, double fs, double ps) {
+  return choose_binomial_level(g.rows.facets[i] * fs, g.rows.p[i] * ps, g.rows.tau[i] * ts);
+}
+double binomial_by_cost_moved(const Group& g, std::size_t i, double ts, double fs, double ps) {
+  return choose_binomial_level_by_cost(g.rows.facets[i] * fs, g.rows.p[i] * ps,
+                                       g.rows.tau[i] * ts, kMeasuredOrder);
+}
+template <class M>
+double model_moved(const Group& g, std::size_t i, double ts, double fs, double) {
+  const auto ps = M::template params<double>(g.params);
+  const ModelQuery<double> q = scaled_footprint(g.rows.q[i], fs);
+  const double tau = g.rows.tau[i] * ts;
+  if constexpr (std::is_same_v<M, DeliotBelcour>)
+    return choose_deliot_belcour_level(ps, q, tau);
+  else if constexpr (std::is_same_v<M, KneiphofKlein>)
+    return choose_kneiphof_klein_level(ps, q, tau);
+  else
+    return choose_kemppinen_model_level(ps, q, tau);
+}
+double chermain_moved(const Group& g, std::size_t i, double ts, double fs, double) {
+  const auto ps = chermain_level_params(*g.chermain, kChermainMostComplete, 0);
+  return choose_chermain_model_level(ps, scaled_footprint(g.rows.q[i], fs), g.rows.tau[i] * ts);
+}
+
+class ChooserIsaFloat : public ::testing::TestWithParam<IsaCase> {
+ protected:
+  void SetUp() override {
+    if (!isa_supported(GetParam().isa))
+      GTEST_SKIP() << isa_name(GetParam().isa)
+                   << ": this CPU lacks it; its choosers are compiled, not compared";
+    fns_ = GetParam().unit().f32;
+  }
+  ChooserIsaFns fns_{};
+
+  FloatDiff binomial(LanePath path) {
+    return float_against_double(
+        binomial_row_group(),
+        [&](const Group& g, double* out) {
+          fns_.binomial(g.rows.facets.data(), g.rows.p.data(), g.rows.tau.data(), out,
+                        g.rows.tau.size(), path);
+        },
+        binomial_moved, path == LanePath::kLibrary);
+  }
+  FloatDiff binomial_by_cost() {
+    std::vector<Group> g = binomial_row_group();
+    for (std::size_t i = 0; i < g[0].rows.tau.size(); ++i)
+      g[0].rows.scalar[i] = choose_binomial_level_by_cost(g[0].rows.facets[i], g[0].rows.p[i],
+                                                          g[0].rows.tau[i], kMeasuredOrder);
+    return float_against_double(
+        g,
+        [&](const Group& x, double* out) {
+          fns_.binomial_by_cost(x.rows.facets.data(), x.rows.p.data(), x.rows.tau.data(),
+                                kMeasuredOrder, out, x.rows.tau.size());
+        },
+        binomial_by_cost_moved);
+  }
+  template <class M>
+  FloatDiff binomial_model(LanePath path) {
+    const bool db = std::is_same_v<M, DeliotBelcour>;
+    return float_against_double(
+        db ? db_groups() : kk_groups(),
+        [&](const Group& x, double* out) {
+          (db ? fns_.deliot_belcour : fns_.kneiphof_klein)(x.params, x.rows.q.data(),
+                                                           x.rows.tau.data(), out,
+                                                           x.rows.q.size(), path);
+        },
+        model_moved<M>, path == LanePath::kLibrary);
+  }
+  template <class M>
+  FloatDiff kemppinen() {
+    const bool ggx = std::is_same_v<M, KemppinenGGX>;
+    return float_against_double(
+        kemppinen_model_groups<M>(),
+        [&](const Group& x, double* out) {
+          (ggx ? fns_.kemppinen_ggx : fns_.kemppinen_beckmann)(
+              x.params, x.rows.q.data(), x.rows.tau.data(), out, x.rows.q.size());
+        },
+        model_moved<M>);
+  }
+  FloatDiff chermain(LanePath path) {
+    return float_against_double(
+        chermain_model_groups(),
+        [&](const Group& x, double* out) {
+          const auto ps = chermain_level_params(*x.chermain, kChermainMostComplete, 0);
+          fns_.chermain(ps.sdf, ps.d, x.rows.q.data(), x.rows.tau.data(), out, x.rows.q.size(),
+                        path);
+        },
+        chermain_moved, path == LanePath::kLibrary);
+  }
+  void report(const char* family, const FloatDiff& d) {
+    std::printf("%s float (%zu lanes), %s: %s\n", GetParam().name, fns_.lanes, family,
+                d.text().c_str());
+  }
+};
+
+// What each family's float lanes may differ by, on every ISA (the scalar unit on the C
+// library's float functions, the batches on xsimd's): the rows and the largest move.
+struct FloatAllowance {
+  std::size_t rows;
+  double move;
+};
+constexpr FloatAllowance kBinomialFloat = {0, 0};
+constexpr FloatAllowance kDeliotBelcourFloat = {0, 0};
+constexpr FloatAllowance kKneiphofKleinFloat = {1, 1e-4};
+constexpr FloatAllowance kKemppinenGgxFloat = {2, 1e-3};
+constexpr FloatAllowance kKemppinenBeckmannFloat = {0, 0};
+constexpr FloatAllowance kChermainFloat = {0, 0};
+
+void expect_within(const FloatDiff& d, const FloatAllowance& a, const char* family) {
+  EXPECT_LE(d.differ, a.rows) << family << ": " << d.text();
+  EXPECT_LE(d.largest_move(), a.move) << family << ": " << d.text();
+}
+
+TEST_P(ChooserIsaFloat, BinomialFloatLanesDifferOnlyAtBoundariesWithinFloatRounding) {
+  const FloatDiff b = binomial(LanePath::kLibrary), c = binomial_by_cost();
+  report("binomial", b);
+  report("binomial by cost", c);
+  expect_within(b, kBinomialFloat, "binomial");
+  expect_within(c, kBinomialFloat, "binomial by cost");
+  const FloatDiff db = binomial_model<DeliotBelcour>(LanePath::kLibrary);
+  const FloatDiff kk = binomial_model<KneiphofKlein>(LanePath::kLibrary);
+  report("deliot_belcour", db);
+  report("kneiphof_klein", kk);
+  expect_within(db, kDeliotBelcourFloat, "deliot_belcour");
+  expect_within(kk, kKneiphofKleinFloat, "kneiphof_klein");
+}
+
+TEST_P(ChooserIsaFloat, KemppinenFloatLanesDifferOnlyAtBoundariesWithinFloatRounding) {
+  const FloatDiff ggx = kemppinen<KemppinenGGX>(), beckmann = kemppinen<KemppinenBeckmann>();
+  report("kemppinen_ggx", ggx);
+  report("kemppinen_beckmann", beckmann);
+  expect_within(ggx, kKemppinenGgxFloat, "kemppinen_ggx");
+  expect_within(beckmann, kKemppinenBeckmannFloat, "kemppinen_beckmann");
+}
+
+// With its control (the dictionary's construction is paid once per test).
+TEST_P(ChooserIsaFloat, ChermainFloatLanesDifferOnlyAtBoundariesAndASwappedLaneExceedsTheCount) {
+  const FloatDiff d = chermain(LanePath::kLibrary);
+  report("chermain", d);
+  expect_within(d, kChermainFloat, "chermain");
+  const FloatDiff broken = chermain(LanePath::kLastLaneSwapped);
+  report("chermain, last lane swapped", broken);
+  EXPECT_GT(broken.differ, kChermainFloat.rows);
+}
+
+// The control: a float lane path whose selects are swapped in one lane exceeds the counts.
+TEST_P(ChooserIsaFloat, ALaneWithSwappedSelectsExceedsTheAllowedCounts) {
+  const FloatDiff b = binomial(LanePath::kLastLaneSwapped);
+  const FloatDiff db = binomial_model<DeliotBelcour>(LanePath::kLastLaneSwapped);
+  const FloatDiff kk = binomial_model<KneiphofKlein>(LanePath::kLastLaneSwapped);
+  report("binomial, last lane swapped", b);
+  report("deliot_belcour, last lane swapped", db);
+  report("kneiphof_klein, last lane swapped", kk);
+  EXPECT_GT(b.differ, kBinomialFloat.rows);
+  EXPECT_GT(db.differ, kDeliotBelcourFloat.rows);
+  EXPECT_GT(kk.differ, kKneiphofKleinFloat.rows);
+}
+
+INSTANTIATE_TEST_SUITE_P(Isas, ChooserIsaFloat, ::testing::ValuesIn(kCases),
+                         [](const ::testing::TestParamInfo<IsaCase>& i) {
+                           return std::string(i.param.name);
+                         });
 
 INSTANTIATE_TEST_SUITE_P(Isas, ChooserIsa, ::testing::ValuesIn(kCases),
                          [](const ::testing::TestParamInfo<IsaCase>& i) {
