@@ -102,8 +102,8 @@ TEST(ChermainChooser, GgaaOffPredictionNeverRefutedOnTheQuickGridAndAThinnerKern
   EXPECT_GT(thinner_refuted, 0);
   EXPECT_GT(tenfold_refuted, 0);
   std::printf(
-      "GGAA off: the chooser keeps GGAA on in %d filtering cells, GGAA off adequate by the table in "
-      "%d; predicted adequate in %d (adequate by the table %d, refuted 0); a 10 times thinner "
+      "GGAA off: the chooser keeps GGAA on in %d filtering cells, GGAA off adequate by the table "
+      "in %d; predicted adequate in %d (adequate by the table %d, refuted 0); a 10 times thinner "
       "kernel refuted in %d, TAU x 10 in %d\n",
       kept_on, off_adequate, predicted, predicted_adequate, thinner_refuted, tenfold_refuted);
 }
