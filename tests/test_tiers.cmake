@@ -128,6 +128,7 @@ set(glintlab_slow_tests
   # its closed-form moments, its scenes and its prediction ladder.
   "ChermainChooser.NeverRefutedOnTheQuickGridAndTenfoldTauOrAMovedBoundaryIs 5"
   "ChermainChooser.ClosedFormCvMatchesTheExactMomentsAndABrokenOneDoesNot 3"
+  "ChermainChooser.GgaaOffPredictionNeverRefutedOnTheQuickGridAndAThinnerKernelIs 5"
   "ChermainChooser.* 1"
   "ChermainChooserWide.* 1"
   "ChermainChoiceScenes.EngineChooserHoldsAndABrokenChooserFails 1"

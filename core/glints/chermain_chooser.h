@@ -193,6 +193,45 @@ GLINTLAB_FN ChermainSmoothPrediction<T> chermain_smooth_prediction(
   return {safe_div(safe_sqrt(var), mean), safe_div(g, mean) - T(1)};
 }
 
+// GGAA off against GGAA on where GGAA filters (a kernel and a derivative): both from the closed
+// form above, with and without the kernel's widening of the lobes, at the same LODs — the mean of
+// GGAA off relative to GGAA on's minus 1, and the difference of their CVs. Not used by
+// choose_chermain_level yet (docs/adequacy.md "The Chermain chooser"): GGAA off is adequate where
+// both are at most kChooserMargin · TAU (chermain_ggaa_off_adequate).
+template <class T>
+struct ChermainGgaaOffPrediction {
+  T mean_diff, cv_diff;
+};
+template <class T>
+GLINTLAB_FN ChermainGgaaOffPrediction<T> chermain_ggaa_off_prediction(
+    const chermain2021::SdfParams& p, const chermain2021::SlopeDerivatives& d, Vec2<T> m,
+    const ChermainLods<T>& lods) {
+  chermain2021::SdfParams off = p;
+  off.kernel = chermain2021::kNoGgaa;
+  const ChermainSmoothPrediction<T> on = chermain_smooth_prediction(p, d, m, lods);
+  const ChermainSmoothPrediction<T> of = chermain_smooth_prediction(off, d, m, lods);
+  // mean = g / (1 + mean_diff) for each, g the same smooth value.
+  return {safe_div(T(1) + on.mean_diff, T(1) + of.mean_diff) - T(1), of.cv - on.cv};
+}
+
+// Whether GGAA off is predicted adequate at a query (true where GGAA does not filter: then it is
+// GGAA on bit for bit; below the horizon every level is 0).
+template <class T>
+GLINTLAB_FN Mask<T> chermain_ggaa_off_adequate(const chermain2021::SdfParams& p,
+                                               const chermain2021::SlopeDerivatives& d,
+                                               const ModelQuery<T>& q, T tau) {
+  const bool filters = p.kernel != chermain2021::kNoGgaa && p.s_k != 0 &&
+                       (d.dx_x != 0 || d.dx_y != 0 || d.dy_x != 0 || d.dy_y != 0);
+  if (!filters) return Mask<T>(true);
+  const Vec3<T> h = half_vector(q.wi, q.wo);
+  const Mask<T> up = q.wi.z > T(0) && q.wo.z > T(0) && h.z > T(0);
+  const T hz = select(up, h.z, T(1));
+  const ChermainGgaaOffPrediction<T> g = chermain_ggaa_off_prediction(
+      p, d, Vec2<T>{-h.x / hz, -h.y / hz}, chermain_lods(p, q.footprint));
+  const T limit = T(kChooserMargin) * tau;
+  return (abs(g.mean_diff) <= limit && abs(g.cv_diff) <= limit) || !up;
+}
+
 // The CV alone (the chooser's tests and verify's table).
 template <class T>
 GLINTLAB_FN T chermain_smooth_cv(const chermain2021::SdfParams& p,

@@ -2,7 +2,8 @@
 // never refuted (no cell where the chosen level's lower bound is above TAU), the same check failing
 // a chooser told TAU × 10 and one whose dictionary boundary is moved by a level; its dictionary
 // choice the construction's identical level; its closed-form CV against the construction's exact
-// moments (verify/adequacy/chermain_adequacy.h), and a broken closed form that misses them.
+// moments (verify/adequacy/chermain_adequacy.h), and a broken closed form that misses them; the
+// closed form's GGAA-off prediction against the table, and a thinner kernel or TAU × 10 refuted.
 #include "core/glints/chermain_chooser.h"
 
 #include <gtest/gtest.h>
@@ -62,6 +63,49 @@ TEST(ChermainChooser, NeverRefutedOnTheQuickGridAndTenfoldTauOrAMovedBoundaryIs)
       "chermain chooser: %d of %zu cells the measured level, %d more complete, TAU x 10 refuted "
       "in %d, the boundary a level early refuted in %d, two levels early in %d\n",
       matches, rows.size(), more_complete, refuted_tenfold, refuted_one, refuted_moved);
+}
+
+TEST(ChermainChooser, GgaaOffPredictionNeverRefutedOnTheQuickGridAndAThinnerKernelIs) {
+  // Where GGAA filters (dh > 0) and the chooser keeps it on at a dictionary level, GGAA off at the
+  // same dictionary where chermain_ggaa_off_adequate predicts it: never refuted by the quick grid
+  // at 2000 positions. The check fails a prediction told a kernel 10 times thinner (the
+  // derivatives / 10: GGAA's widening taken as 100 times smaller) or TAU × 10.
+  ChermainGridAxes a = chermain_grid_axes(Budget::kQuick);
+  a.samples = 2000;
+  const auto cells = make_chermain_grid({"chermain"}, a);
+  const auto rows =
+      measure_chermain_grid(cells, a.samples, decision_for_decisions(cells.size() * 8, kTau));
+  int kept_on = 0, off_adequate = 0, predicted = 0, predicted_adequate = 0, thinner_refuted = 0,
+      tenfold_refuted = 0;
+  for (const ChermainCellResult& r : rows) {
+    const auto p = chermain_level_params(r.cell, kChermainMostComplete, 0);
+    const ModelQuery<double> q = chermain_cell_query(r.cell, chermain_surface_position(r.cell, 0));
+    const int level = chooser_at(r.cell, kTau);
+    if (r.cell.dh == 0 || !chermain_level_ggaa(ChermainLevel(level))) continue;
+    ++kept_on;
+    const int off = level - 1;
+    off_adequate += r.levels[std::size_t(off)].adequate ? 1 : 0;
+    if (chermain_ggaa_off_adequate(p.sdf, p.d, q, kTau)) {
+      ++predicted;
+      predicted_adequate += r.levels[std::size_t(off)].adequate ? 1 : 0;
+      EXPECT_FALSE(refuted(r, off))
+          << "facets " << r.cell.facets << " α " << r.cell.alpha << " θi " << r.cell.theta_i_deg
+          << " θh " << r.cell.theta_h_deg << " dh " << r.cell.dh << " GGAA off at "
+          << kChermainLevelNames[std::size_t(off)];
+    }
+    const chermain2021::SlopeDerivatives thinner{p.d.dx_x / 10, p.d.dx_y / 10, p.d.dy_x / 10,
+                                                 p.d.dy_y / 10};
+    if (chermain_ggaa_off_adequate(p.sdf, thinner, q, kTau) && refuted(r, off)) ++thinner_refuted;
+    if (chermain_ggaa_off_adequate(p.sdf, p.d, q, 10 * kTau) && refuted(r, off)) ++tenfold_refuted;
+  }
+  EXPECT_GT(predicted, 0);
+  EXPECT_GT(thinner_refuted, 0);
+  EXPECT_GT(tenfold_refuted, 0);
+  std::printf(
+      "GGAA off: the chooser keeps GGAA on in %d filtering cells, GGAA off adequate by the table "
+      "in %d; predicted adequate in %d (adequate by the table %d, refuted 0); a 10 times thinner "
+      "kernel refuted in %d, TAU x 10 in %d\n",
+      kept_on, off_adequate, predicted, predicted_adequate, thinner_refuted, tenfold_refuted);
 }
 
 TEST(ChermainChooser, DictionaryChoiceIsTheConstructionsIdenticalLevel) {
