@@ -28,7 +28,8 @@ struct ChooserIsaFns {
                    std::size_t n, LanePath path);
   // choose_binomial_level_by_cost with the costs `cost` (ns per evaluation, BinomialLevel order)
   void (*binomial_by_cost)(const double* facets, const double* p, const double* tau,
-                           const std::array<double, 4>& cost, double* out, std::size_t n);
+                           const std::array<double, 4>& cost, double* out, std::size_t n,
+                           LanePath path);
   // The model wrappers on the model's parameter values (its kParams order) and the queries:
   // choose_deliot_belcour_level, choose_kneiphof_klein_level, choose_kemppinen_model_level
   // (kemppinen_ggx, kemppinen_beckmann). The Kemppinen chooser has no broken path: its lanes turn
@@ -48,7 +49,7 @@ struct ChooserIsaFns {
                    LanePath path);
   // The choosers for given costs (core/glints/cost_chooser.h) with the costs `cost` (the family's
   // level order): choose_kemppinen_model_level_by_cost (kemppinen_ggx, kemppinen_beckmann),
-  // choose_chermain_model_level_by_cost.
+  // choose_chermain_model_level_by_cost (the Kemppinen ones have no broken path, as above).
   void (*kemppinen_ggx_by_cost)(std::span<const double> params, const ModelQuery<double>* q,
                                 const double* tau, const std::array<double, 9>& cost,
                                 double* out, std::size_t n);
@@ -58,7 +59,7 @@ struct ChooserIsaFns {
   void (*chermain_by_cost)(const chermain2021::SdfParams& sdf,
                            const chermain2021::SlopeDerivatives& d, const ModelQuery<double>* q,
                            const double* tau, const std::array<double, 9>& cost, double* out,
-                           std::size_t n);
+                           std::size_t n, LanePath path);
   std::size_t lanes;  // values per batch (the scalar unit: 1)
 };
 

@@ -269,8 +269,16 @@ TEST_P(ChooserIsa, BinomialLanesMatchScalarOnTheBinomialAndAreaTables) {
   std::vector<double> want(n);
   for (std::size_t i = 0; i < n; ++i)
     want[i] = choose_binomial_level_by_cost(r.facets[i], r.p[i], r.tau[i], cost);
-  fns_.binomial_by_cost(r.facets.data(), r.p.data(), r.tau.data(), cost, out.data(), n);
+  fns_.binomial_by_cost(r.facets.data(), r.p.data(), r.tau.data(), cost, out.data(), n,
+                        LanePath::kLibrary);
   EXPECT_EQ(differing(out, want, "binomial by cost"), 0u) << n << " rows";
+  // The control: the same chooser with the last lane's selects swapped is caught.
+  fns_.binomial_by_cost(r.facets.data(), r.p.data(), r.tau.data(), cost, out.data(), n,
+                        LanePath::kLastLaneSwapped);
+  const std::size_t broken = count_differing(out, want);
+  EXPECT_GT(broken, 0u);
+  std::printf("%s (%zu lanes), last lane swapped: binomial by cost %zu of %zu rows differ\n",
+              GetParam().name, fns_.lanes, broken, n);
 }
 
 TEST_P(ChooserIsa, BinomialModelWrappersMatchScalarOnTheirTables) {
@@ -305,7 +313,7 @@ constexpr std::array<double, 9> kKemppinenMeasuredOrder = {15,    1094,  1120,  
 constexpr std::array<double, 9> kChermainMeasuredOrder = {34, 246, 534, 425, 991,
                                                           530, 1357, 709, 1877};
 
-TEST_P(ChooserIsa, CostChoosersLanesMatchScalarOnTheirTables) {
+TEST_P(ChooserIsa, CostChoosersLanesMatchScalarOnTheirTablesAndASwappedLaneIsCaught) {
   for (const bool ggx : {true, false}) {
     const std::vector<Group>& groups =
         ggx ? kemppinen_model_groups<KemppinenGGX>() : kemppinen_model_groups<KemppinenBeckmann>();
@@ -331,18 +339,26 @@ TEST_P(ChooserIsa, CostChoosersLanesMatchScalarOnTheirTables) {
               0u)
         << got.size() << " rows";
   }
-  std::vector<double> got, want;
+  std::vector<double> got, want, broken;
   for (const Group& g : chermain_model_groups()) {
     const auto ps = chermain_level_params(*g.chermain, kChermainMostComplete, 0);
     std::vector<double> out(g.rows.q.size());
     fns_.chermain_by_cost(ps.sdf, ps.d, g.rows.q.data(), g.rows.tau.data(), kChermainMeasuredOrder,
-                          out.data(), out.size());
+                          out.data(), out.size(), LanePath::kLibrary);
     got.insert(got.end(), out.begin(), out.end());
+    fns_.chermain_by_cost(ps.sdf, ps.d, g.rows.q.data(), g.rows.tau.data(), kChermainMeasuredOrder,
+                          out.data(), out.size(), LanePath::kLastLaneSwapped);
+    broken.insert(broken.end(), out.begin(), out.end());
     for (std::size_t i = 0; i < out.size(); ++i)
       want.push_back(choose_chermain_model_level_by_cost(ps, g.rows.q[i], g.rows.tau[i],
                                                          kChermainMeasuredOrder));
   }
   EXPECT_EQ(differing(got, want, "chermain by cost"), 0u) << got.size() << " rows";
+  // The control: the same chooser with the last lane's selects swapped is caught.
+  const std::size_t differ = count_differing(broken, want);
+  EXPECT_GT(differ, 0u);
+  std::printf("%s (%zu lanes), last lane swapped: chermain by cost %zu of %zu rows differ\n",
+              GetParam().name, fns_.lanes, differ, broken.size());
 }
 
 // (With its control: the default dictionary's construction, about 1.5 s, is the cost of any
@@ -535,7 +551,7 @@ class ChooserIsaFloat : public ::testing::TestWithParam<IsaCase> {
         g,
         [&](const Group& x, double* out) {
           fns_.binomial_by_cost(x.rows.facets.data(), x.rows.p.data(), x.rows.tau.data(),
-                                kMeasuredOrder, out, x.rows.tau.size());
+                                kMeasuredOrder, out, x.rows.tau.size(), LanePath::kLibrary);
         },
         binomial_by_cost_moved);
   }
