@@ -240,15 +240,16 @@ GLINTLAB_FN T chermain_smooth_cv(const chermain2021::SdfParams& p,
   return chermain_smooth_prediction(p, d, m, lods).cv;
 }
 
-// The chooser: the first level in ChermainLevel order that is the most complete one bit for bit
-// (the dictionary's boundary; GGAA off where the kernel is empty) or, for the smooth level, whose
-// predicted CV and mean difference are at most kChooserMargin · tau. `p` are the shader's
-// parameters of the most complete level (its whole dictionary; GGAA as it renders with). Returns
-// the level as T.
+// Each ChermainLevel's predicted adequacy at a query (`p`: the shader's parameters of the most
+// complete level, its whole dictionary and GGAA as it renders with): dictL with GGAA on where it
+// is the most complete level bit for bit (the dictionary's boundary), dictL with GGAA off there
+// too where GGAA does not filter, the smooth level where its predicted CV and mean difference are
+// at most kChooserMargin · tau, every level below the horizon (all are 0 there), dict16_ggaa
+// always. choose_chermain_level takes the first; the choosers for given costs the cheapest.
 template <class T>
-GLINTLAB_FN T choose_chermain_level(const chermain2021::SdfParams& p,
-                                    const chermain2021::SlopeDerivatives& d, const ModelQuery<T>& q,
-                                    T tau) {
+GLINTLAB_FN std::array<Mask<T>, kChermainLevels> chermain_level_adequacy(
+    const chermain2021::SdfParams& p, const chermain2021::SlopeDerivatives& d,
+    const ModelQuery<T>& q, T tau) {
   const Vec3<T> h = half_vector(q.wi, q.wo);
   const Mask<T> up = q.wi.z > T(0) && q.wo.z > T(0) && h.z > T(0);
   const T hz = select(up, h.z, T(1));
@@ -260,20 +261,32 @@ GLINTLAB_FN T choose_chermain_level(const chermain2021::SdfParams& p,
   const auto identical = [&](int L) {
     return same(lods.k_fine, L) && (!coarse_on || same(lods.k_coarse, L));
   };
-  // GGAA changes the value only where it filters: a kernel and a derivative (uniform per batch).
+  // GGAA off is GGAA on bit for bit where it does not filter (uniform per batch).
   const bool filters = p.kernel != chermain2021::kNoGgaa && p.s_k != 0 &&
                        (d.dx_x != 0 || d.dx_y != 0 || d.dy_x != 0 || d.dy_y != 0);
-  const int ggaa = filters ? 1 : 0;
-  T level = T(int(ChermainLevel::kDict16) + ggaa);
-  level = select(identical(12), T(int(ChermainLevel::kDict12) + ggaa), level);
-  level = select(identical(8), T(int(ChermainLevel::kDict8) + ggaa), level);
-  level = select(identical(4), T(int(ChermainLevel::kDict4) + ggaa), level);
+  const Mask<T> off_too = Mask<T>(!filters);
   const Mask<T> all_smooth = lods.k_fine >= last && (!coarse_on || lods.k_coarse >= last);
   const ChermainSmoothPrediction<T> sp = chermain_smooth_prediction(p, d, m, lods);
-  const Mask<T> smooth_cv =
-      sp.cv <= T(kChooserMargin) * tau && abs(sp.mean_diff) <= T(kChooserMargin) * tau;
-  // Below the horizon every level is 0: the smooth one is exact.
-  return select(all_smooth || smooth_cv || !up, T(int(ChermainLevel::kSmooth)), level);
+  const T limit = T(kChooserMargin) * tau;
+  const Mask<T> smooth = all_smooth || (sp.cv <= limit && abs(sp.mean_diff) <= limit);
+  const Mask<T> down = !up;
+  const Mask<T> i4 = identical(4), i8 = identical(8), i12 = identical(12);
+  return {smooth || down, (i4 && off_too) || down,  i4 || down,  (i8 && off_too) || down,
+          i8 || down,     (i12 && off_too) || down, i12 || down, off_too || down,
+          Mask<T>(true)};
+}
+
+// The chooser: the first adequate level in ChermainLevel order (chermain_level_adequacy), the one
+// a GPU lane pays least for. Returns the level as T.
+template <class T>
+GLINTLAB_FN T choose_chermain_level(const chermain2021::SdfParams& p,
+                                    const chermain2021::SlopeDerivatives& d, const ModelQuery<T>& q,
+                                    T tau) {
+  const std::array<Mask<T>, kChermainLevels> adequate = chermain_level_adequacy(p, d, q, tau);
+  T level = T(kChermainLevels - 1);
+  for (int l = kChermainLevels - 2; l >= 0; --l)
+    level = select(adequate[std::size_t(l)], T(l), level);
+  return level;
 }
 
 // The same on what a shader of the model has: its parameters and the query.

@@ -84,39 +84,6 @@ GLINTLAB_FN T choose_kemppinen_model_level_by_cost(
 
 // ---- Chermain ---------------------------------------------------------------------------------
 
-// Each ChermainLevel's predicted adequacy at a query: what choose_chermain_level decides, per level
-// (`p`: the shader's parameters of the most complete level, its whole dictionary and GGAA as it
-// renders with).
-template <class T>
-GLINTLAB_FN std::array<Mask<T>, kChermainLevels> chermain_level_adequacy(
-    const chermain2021::SdfParams& p, const chermain2021::SlopeDerivatives& d,
-    const ModelQuery<T>& q, T tau) {
-  const Vec3<T> h = half_vector(q.wi, q.wo);
-  const Mask<T> up = q.wi.z > T(0) && q.wo.z > T(0) && h.z > T(0);
-  const T hz = select(up, h.z, T(1));
-  const Vec2<T> m{-h.x / hz, -h.y / hz};
-  const ChermainLods<T> lods = chermain_lods(p, q.footprint);
-  const T last = T(p.dictionary->levels());
-  const Mask<T> coarse_on = lods.w_coarse > T(0);
-  const auto same = [&](T k, int L) { return k < T(L) || k >= last; };
-  const auto identical = [&](int L) {
-    return same(lods.k_fine, L) && (!coarse_on || same(lods.k_coarse, L));
-  };
-  // GGAA off is GGAA on bit for bit where it does not filter (uniform per batch).
-  const bool filters = p.kernel != chermain2021::kNoGgaa && p.s_k != 0 &&
-                       (d.dx_x != 0 || d.dx_y != 0 || d.dy_x != 0 || d.dy_y != 0);
-  const Mask<T> off_too = Mask<T>(!filters);
-  const Mask<T> all_smooth = lods.k_fine >= last && (!coarse_on || lods.k_coarse >= last);
-  const ChermainSmoothPrediction<T> sp = chermain_smooth_prediction(p, d, m, lods);
-  const T limit = T(kChooserMargin) * tau;
-  const Mask<T> smooth = all_smooth || (sp.cv <= limit && abs(sp.mean_diff) <= limit);
-  const Mask<T> down = !up;
-  const Mask<T> i4 = identical(4), i8 = identical(8), i12 = identical(12);
-  return {smooth || down, (i4 && off_too) || down,  i4 || down,  (i8 && off_too) || down,
-          i8 || down,     (i12 && off_too) || down, i12 || down, off_too || down,
-          Mask<T>(true)};
-}
-
 // The cheapest adequate ChermainLevel by `cost` (ChermainLevel order). Returns the level as T.
 template <class T>
 GLINTLAB_FN T choose_chermain_level_by_cost(const chermain2021::SdfParams& p,
