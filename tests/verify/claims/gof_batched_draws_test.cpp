@@ -1,4 +1,4 @@
-// eto.pdf-matches draws every sample, its controls' too, through
+// The chi-square claims over the smooth samplers draw every sample, their controls' too, through
 // the batched samplers (core/simd/batch.h sample_batch on simd::default_isa()): on the scalar ISA
 // the scalar sampler's directions bit for bit, on the widest within the batches' budget. (The
 // chi-square's counts are integer sums over fixed chunks: the thread count does not change them,
@@ -59,20 +59,21 @@ void for_each_batched_case(const GofSpec& spec, F&& f) {
 class BatchedDraws : public testing::TestWithParam<const char*> {
  protected:
   static GofSpec spec() {
-    return eto_pdf_spec(Budget::kQuick);
+    return std::string(GetParam()) == "eto.pdf-matches" ? eto_pdf_spec(Budget::kQuick)
+                                                        : smooth_sampler_spec(Budget::kQuick);
   }
 };
 
 TEST_P(BatchedDraws, ScalarIsaIsTheScalarSamplerBitForBit) {
   with_isa("scalar", [] {
-    for_each_batched_case(spec(), [](const GofCase& c, const std::vector<V3>& s,
-                                     const std::vector<V3>& b) {
-      for (std::size_t j = 0; j < kDraws; ++j) {
-        ASSERT_EQ(b[j].x, s[j].x) << c.label << " draw " << j;
-        ASSERT_EQ(b[j].y, s[j].y) << c.label << " draw " << j;
-        ASSERT_EQ(b[j].z, s[j].z) << c.label << " draw " << j;
-      }
-    });
+    for_each_batched_case(spec(),
+                          [](const GofCase& c, const std::vector<V3>& s, const std::vector<V3>& b) {
+                            for (std::size_t j = 0; j < kDraws; ++j) {
+                              ASSERT_EQ(b[j].x, s[j].x) << c.label << " draw " << j;
+                              ASSERT_EQ(b[j].y, s[j].y) << c.label << " draw " << j;
+                              ASSERT_EQ(b[j].z, s[j].z) << c.label << " draw " << j;
+                            }
+                          });
   });
 }
 
@@ -81,22 +82,22 @@ TEST_P(BatchedDraws, ScalarIsaIsTheScalarSamplerBitForBit) {
 // a draw 2^-30 off is caught.
 TEST_P(BatchedDraws, WidestIsaIsTheScalarSamplerWithinTheBatchBudget) {
   const double budget = 1024 * std::numeric_limits<double>::epsilon();
-  for_each_batched_case(spec(), [&](const GofCase& c, const std::vector<V3>& s,
-                                    const std::vector<V3>& b) {
-    std::size_t outside = 0, outside_shifted = 0;
-    for (std::size_t j = 0; j < kDraws; ++j) {
-      const double d = std::max({std::abs(b[j].x - s[j].x), std::abs(b[j].y - s[j].y),
-                                 std::abs(b[j].z - s[j].z)});
-      outside += d > budget;
-      outside_shifted += std::abs(b[j].z + std::ldexp(1.0, -30) - s[j].z) > budget;
-    }
-    EXPECT_LE(outside, kDraws / 100) << c.label;
-    EXPECT_GT(outside_shifted, kDraws / 2) << c.label << ": the control";
-  });
+  for_each_batched_case(
+      spec(), [&](const GofCase& c, const std::vector<V3>& s, const std::vector<V3>& b) {
+        std::size_t outside = 0, outside_shifted = 0;
+        for (std::size_t j = 0; j < kDraws; ++j) {
+          const double d = std::max(
+              {std::abs(b[j].x - s[j].x), std::abs(b[j].y - s[j].y), std::abs(b[j].z - s[j].z)});
+          outside += d > budget;
+          outside_shifted += std::abs(b[j].z + std::ldexp(1.0, -30) - s[j].z) > budget;
+        }
+        EXPECT_LE(outside, kDraws / 100) << c.label;
+        EXPECT_GT(outside_shifted, kDraws / 2) << c.label << ": the control";
+      });
 }
 
 INSTANTIATE_TEST_SUITE_P(Claims, BatchedDraws,
-                         testing::Values("eto.pdf-matches"));
+                         testing::Values("eto.pdf-matches", "smooth.sampler-matches-pdf"));
 
 }  // namespace
 }  // namespace glintlab::verify

@@ -11,8 +11,8 @@
 // that density by chi-square, per configuration: Listing 1's k or the exact isotropic k of Eq. 5;
 // Eq. 8 with χ⁺ over the whole sphere (Eq. 7 for i_z ≤ 0), or Listing 2 over ωo_z > 0 with
 // rejected reflections counted as "no sample"; isotropic and anisotropic α, front- and back-facing
-// incidence. The family's p-values are
-// Holm–Šidák-corrected at the suite's level (verify/claims/gof_family.h).
+// incidence. The family's p-values are Holm–Šidák-corrected at the suite's level
+// (verify/claims/gof_family.h).
 // Control (perturbed): deliberately wrong densities and samplers (pdf × 1.02, the sampler's α ×
 // 1.02, Listing 2 without χ⁺ over the whole sphere, the full-cap density k = 1, the sign of i_z
 // flipped in Listing 2's back-facing form, ‖dm/do‖ dropped), each case decided in place of the
@@ -116,8 +116,8 @@ SeededDirectionBatch batched_directions(const Config& c, double alpha_scale = 1)
   const simd::Isa isa = simd::default_isa();
   const V3 wi = incidence(c.theta_deg);
   const bool hemisphere = c.form == Form::kListing2;
-  return [kernel = *kernel, isa, wi, ax = alpha_scale * c.ax, ay = alpha_scale * c.ay,
-          hemisphere](std::uint64_t seed, std::uint64_t begin, std::size_t count, V3* out) {
+  return [kernel = *kernel, isa, wi, ax = alpha_scale * c.ax, ay = alpha_scale * c.ay, hemisphere](
+             std::uint64_t seed, std::uint64_t begin, std::size_t count, V3* out) {
     std::vector<double> u1(count), u2(count), o(8 * count);
     for (std::size_t i = 0; i < count; ++i) {
       const Vec2<double> u = uniform_pair(seed, begin + i);
@@ -147,9 +147,10 @@ GofCase make_case(const Config& c) {
     // Pole at +z: the support's edge, the horizon, is then the parallel θ' = 90°.
     gc.options.lobe = {0, 0, 1};
     // pdf_bounded_vndf_listing2 with its k (Listing 1's, a function of ωi) computed once.
-    gc.direction_pdf = [g, wi, k = bounded_vndf_k(g, wi, BoundedVndfBound::kListing1)](
-                           const V3& wo) {
-      return wo.z > 0 ? glintlab::detail::bounded_vndf_density(g, wi, g.D(half_vector(wi, wo)), k) : 0.0;
+    gc.direction_pdf = [g, wi,
+                        k = bounded_vndf_k(g, wi, BoundedVndfBound::kListing1)](const V3& wo) {
+      return wo.z > 0 ? glintlab::detail::bounded_vndf_density(g, wi, g.D(half_vector(wi, wo)), k)
+                      : 0.0;
     };
   } else {
     gc.direction_pdf = Eq8ReflectionPdf(g, wi, c.bound);
@@ -202,18 +203,30 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
 
   GofControl scaled{"pdf × 1.02", {}};
   for (int i : {iso, rough, upper})
-    scaled.cases.push_back(
-        {{label(at(i)) + " pdf×1.02", {}, {}, {}, directions(at(i)), {}, {},
-          batched_directions(at(i))},
-         i, 1.02});
+    scaled.cases.push_back({{label(at(i)) + " pdf×1.02",
+                             {},
+                             {},
+                             {},
+                             directions(at(i)),
+                             {},
+                             {},
+                             batched_directions(at(i))},
+                            i,
+                            1.02});
   out.push_back(scaled);
 
   GofControl alpha{"sampler α × 1.02", {}};
   for (int i : {iso, aniso_front, upper_rough})
-    alpha.cases.push_back(
-        {{label(at(i)) + " α×1.02", {}, {}, {}, directions(at(i), 1.02), {}, {},
-          batched_directions(at(i), 1.02)},
-         i, 1});
+    alpha.cases.push_back({{label(at(i)) + " α×1.02",
+                            {},
+                            {},
+                            {},
+                            directions(at(i), 1.02),
+                            {},
+                            {},
+                            batched_directions(at(i), 1.02)},
+                           i,
+                           1});
   out.push_back(alpha);
 
   // Listing 2 as printed, without χ⁺, taken as the density over the whole sphere: it integrates
@@ -255,9 +268,10 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
   for (int i : {iso, aniso}) {
     const GGX<double> ggx{at(i).ax, at(i).ay};
     const V3 wi = incidence(at(i).theta_deg);
-    jacobian.cases.push_back(
-        replanned(i, "without ‖dm/do‖", [pdf = Eq8ReflectionPdf(ggx, wi, at(i).bound), wi](
-                                              const V3& wo) { return pdf(wo) * 2 * length(wi + wo); }));
+    jacobian.cases.push_back(replanned(
+        i, "without ‖dm/do‖", [pdf = Eq8ReflectionPdf(ggx, wi, at(i).bound), wi](const V3& wo) {
+          return pdf(wo) * 2 * length(wi + wo);
+        }));
   }
   out.push_back(jacobian);
   return out;
