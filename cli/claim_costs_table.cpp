@@ -16,9 +16,9 @@ const std::vector<ClaimCost>& claim_costs() {
       // id                                                      quick          full
       {"smooth.projected-area",                                  0.683,          1.37},
       {"smooth.vndf-normalized",                                  3.24,          15.7},
-      {"smooth.sampler-matches-pdf",                              24.9,         130.0},
+      {"smooth.sampler-matches-pdf",                              42.1,         342.0},
       {"smooth.eval-pdf-consistency",                             3.17,         128.0},
-      {"eto.pdf-matches",                                         18.2,         158.0},
+      {"eto.pdf-matches",                                         27.8,         325.0},
       {"eto.unbiased",                                            8.45,          79.4},
       {"eto.bound-is-infimum",                                   0.183,          17.6},
       {"eto.fewer-rejections",                                    3.78,          10.3},

@@ -65,11 +65,13 @@ ReferenceParts<double> point_by_point_parts(const P& p, const Angular<double>& a
       for (std::int64_t a = ax0; a <= ax1; ++a)
         for (std::int64_t b = ay0; b <= ay1; ++b) {
           const std::uint64_t ci = cell_index(Cell{i, j, a, b, level, 0});
-          const V2 g_a{(double(a) + cell_uniform<double>(p.seed, ci, kKemppinenDimAngularX)) / res_a,
-                       (double(b) + cell_uniform<double>(p.seed, ci, kKemppinenDimAngularY)) / res_a};
+          const V2 g_a{
+              (double(a) + cell_uniform<double>(p.seed, ci, kKemppinenDimAngularX)) / res_a,
+              (double(b) + cell_uniform<double>(p.seed, ci, kKemppinenDimAngularY)) / res_a};
           if (sqr(g_a.x - 0.5) + sqr(g_a.y - 0.5) > 0.25) continue;
-          const V2 g_s{(double(i) + cell_uniform<double>(p.seed, ci, kKemppinenDimSpatialX)) / res_s,
-                       (double(j) + cell_uniform<double>(p.seed, ci, kKemppinenDimSpatialY)) / res_s};
+          const V2 g_s{
+              (double(i) + cell_uniform<double>(p.seed, ci, kKemppinenDimSpatialX)) / res_s,
+              (double(j) + cell_uniform<double>(p.seed, ci, kKemppinenDimSpatialY)) / res_s};
           const double rr = cell_uniform<double>(p.seed, ci, kKemppinenDimRoulette);
           const double blend = p.blend == Blend::kRoulette ? roulette(rr, w_l) : w_l;
           const double w = blend * normal2(x_s - g_s, sigma_s) * normal2(ang.x_a - g_a, sigma_a2);

@@ -7,11 +7,12 @@
 // p_our(m)‖dm/do‖." Listing 2 omits χ⁺, "assuming that our method is applied only to
 // reflections".
 //
-// Measured: the bounded VNDF sampler's reflections ωo against that density by chi-square, per
-// configuration: Listing 1's k or the exact isotropic k of Eq. 5; Eq. 8 with χ⁺ over the whole
-// sphere (Eq. 7 for i_z ≤ 0), or Listing 2 over ωo_z > 0 with rejected reflections counted as "no
-// sample"; isotropic and anisotropic α, front- and back-facing incidence. The family's p-values are
-// Holm–Šidák-corrected at the suite's level (verify/claims/gof_family.h).
+// Measured: the bounded VNDF sampler's reflections ωo (drawn batched, core/simd/batch.h) against
+// that density by chi-square, per configuration: Listing 1's k or the exact isotropic k of Eq. 5;
+// Eq. 8 with χ⁺ over the whole sphere (Eq. 7 for i_z ≤ 0), or Listing 2 over ωo_z > 0 with
+// rejected reflections counted as "no sample"; isotropic and anisotropic α, front- and back-facing
+// incidence. The family's p-values are Holm–Šidák-corrected at the suite's level
+// (verify/claims/gof_family.h).
 // Control (perturbed): deliberately wrong densities and samplers (pdf × 1.02, the sampler's α ×
 // 1.02, Listing 2 without χ⁺ over the whole sphere, the full-cap density k = 1, the sign of i_z
 // flipped in Listing 2's back-facing form, ‖dm/do‖ dropped), each case decided in place of the
@@ -23,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -32,7 +34,9 @@
 #include "core/ndf/microfacet.h"
 #include "core/samplers/bounded_vndf.h"
 #include "core/samplers/spherical_caps.h"
+#include "core/simd/batch.h"
 #include "verify/claim_runner.h"
+#include "verify/claims/eto/eq8_density.h"
 #include "verify/claims/eto/list.h"
 #include "verify/claims/gof_family.h"
 #include "verify/claims/gof_family_claim.h"
@@ -41,6 +45,7 @@ namespace glintlab::verify {
 namespace {
 
 using V3 = Vec3<double>;
+using eto_claims::Eq8ReflectionPdf;
 
 // What a configuration compares the sampler with:
 //  kEq8: Eq. 8 × 1/(4|i·m|) transcribed as printed, Heaviside χ⁺(k î_z + ô_z) included (Eq. 7 for
@@ -57,24 +62,6 @@ struct Config {
 
 const char* bound_name(BoundedVndfBound b) {
   return b == BoundedVndfBound::kListing1 ? "Listing-1 k" : "exact isotropic k";
-}
-
-// Eq. 8 × ‖dm/do‖ = 2 D(m) max(i·m, 0) χ⁺(k î_z + ô_z) / (k i_z + t) / (4|i·m|), t = ‖(αx i_x,
-// αy i_y, i_z)‖, ô the stretched reflection of î about m̂ ∝ (m_x/αx, m_y/αy, m_z); for i_z ≤ 0,
-// Eq. 7 (the full cap) as printed.
-double eq8_reflection_pdf(const GGX<double>& g, const V3& i, const V3& o, BoundedVndfBound bound) {
-  if (i.z <= 0) return pdf_vndf_backfacing_eq7(g, i, o);
-  const V3 m = half_vector(i, o);
-  const double im = dot(i, m);
-  if (!(im > 0)) return 0;
-  const double k = bounded_vndf_k(g, i, bound);
-  const double t = std::sqrt(sqr(g.alpha_x * i.x) + sqr(g.alpha_y * i.y) + sqr(i.z));
-  const V3 i_std = normalize(V3{g.alpha_x * i.x, g.alpha_y * i.y, i.z});
-  const V3 m_std = normalize(V3{m.x / g.alpha_x, m.y / g.alpha_y, m.z});
-  const V3 o_std = 2 * dot(i_std, m_std) * m_std - i_std;
-  const double heaviside = k * i_std.z + o_std.z > 0 ? 1 : 0;
-  const double p_m = 2 * g.D(m) * im / (k * i.z + t) * heaviside;
-  return p_m / (4 * std::abs(im));
 }
 
 std::vector<Config> grid(Budget b) {
@@ -117,6 +104,39 @@ SeededDirections directions(const Config& c, double alpha_scale = 1) {
   };
 }
 
+// The same sampler, batched (core/simd/batch.h sample_batch, double, on simd::default_isa():
+// GLINTLAB_ISA or the widest ISA of this CPU), with the same uniforms: directions(c, alpha_scale)
+// bit for bit on the scalar ISA, within the batches' equivalence budgets on the others.
+SeededDirectionBatch batched_directions(const Config& c, double alpha_scale = 1) {
+  const char* name = c.bound == BoundedVndfBound::kListing1
+                         ? "sample.bounded_vndf_listing1/ggx"
+                         : "sample.bounded_vndf_exact_isotropic/ggx";
+  const std::optional<int> kernel = simd::find_kernel(name);
+  if (!kernel) throw std::logic_error(std::string("no batch kernel ") + name);
+  const simd::Isa isa = simd::default_isa();
+  const V3 wi = incidence(c.theta_deg);
+  const bool hemisphere = c.form == Form::kListing2;
+  return [kernel = *kernel, isa, wi, ax = alpha_scale * c.ax, ay = alpha_scale * c.ay, hemisphere](
+             std::uint64_t seed, std::uint64_t begin, std::size_t count, V3* out) {
+    std::vector<double> u1(count), u2(count), o(8 * count);
+    for (std::size_t i = 0; i < count; ++i) {
+      const Vec2<double> u = uniform_pair(seed, begin + i);
+      u1[i] = u.x;
+      u2[i] = u.y;
+    }
+    const double w[3] = {wi.x, wi.y, wi.z};
+    double* p = o.data();
+    simd::sample_batch<double>(kernel, ax, ay, w, u1.data(), u2.data(),
+                               {p, p + count, p + 2 * count, p + 3 * count, p + 4 * count,
+                                p + 5 * count, p + 6 * count, p + 7 * count},
+                               count, isa);
+    for (std::size_t i = 0; i < count; ++i) {
+      const V3 wo{p[i], p[count + i], p[2 * count + i]};
+      out[i] = hemisphere && !(wo.z > 0) ? V3{0, 0, 0} : wo;
+    }
+  };
+}
+
 GofCase make_case(const Config& c) {
   const GGX<double> g{c.ax, c.ay};
   const V3 wi = incidence(c.theta_deg);
@@ -126,19 +146,21 @@ GofCase make_case(const Config& c) {
   if (c.form == Form::kListing2) {
     // Pole at +z: the support's edge, the horizon, is then the parallel θ' = 90°.
     gc.options.lobe = {0, 0, 1};
-    gc.direction_pdf = [g, wi](const V3& wo) {
-      return wo.z > 0 ? pdf_bounded_vndf_listing2(g, wi, wo) : 0.0;
+    // pdf_bounded_vndf_listing2 with its k (Listing 1's, a function of ωi) computed once.
+    gc.direction_pdf = [g, wi,
+                        k = bounded_vndf_k(g, wi, BoundedVndfBound::kListing1)](const V3& wo) {
+      return wo.z > 0 ? glintlab::detail::bounded_vndf_density(g, wi, g.D(half_vector(wi, wo)), k)
+                      : 0.0;
     };
   } else {
-    gc.direction_pdf = [g, wi, bound = c.bound](const V3& wo) {
-      return eq8_reflection_pdf(g, wi, wo, bound);
-    };
+    gc.direction_pdf = Eq8ReflectionPdf(g, wi, c.bound);
   }
   // For anisotropic α the cap edge χ⁺ = 0 is far from a parallel: azimuth breaks resolve the thin
   // slivers of support near its extreme polar angle (see smooth/sampler_matches_pdf.cpp).
   if (c.ax != c.ay)
     for (int k = 1; k < 64; ++k) gc.options.phi_breaks.push_back(2 * std::numbers::pi * k / 64);
   gc.directions = directions(c);
+  gc.direction_batch = batched_directions(c);
   return gc;
 }
 
@@ -181,14 +203,30 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
 
   GofControl scaled{"pdf × 1.02", {}};
   for (int i : {iso, rough, upper})
-    scaled.cases.push_back(
-        {{label(at(i)) + " pdf×1.02", {}, {}, {}, directions(at(i)), {}, {}}, i, 1.02});
+    scaled.cases.push_back({{label(at(i)) + " pdf×1.02",
+                             {},
+                             {},
+                             {},
+                             directions(at(i)),
+                             {},
+                             {},
+                             batched_directions(at(i))},
+                            i,
+                            1.02});
   out.push_back(scaled);
 
   GofControl alpha{"sampler α × 1.02", {}};
   for (int i : {iso, aniso_front, upper_rough})
-    alpha.cases.push_back(
-        {{label(at(i)) + " α×1.02", {}, {}, {}, directions(at(i), 1.02), {}, {}}, i, 1});
+    alpha.cases.push_back({{label(at(i)) + " α×1.02",
+                            {},
+                            {},
+                            {},
+                            directions(at(i), 1.02),
+                            {},
+                            {},
+                            batched_directions(at(i), 1.02)},
+                           i,
+                           1});
   out.push_back(alpha);
 
   // Listing 2 as printed, without χ⁺, taken as the density over the whole sphere: it integrates
@@ -230,9 +268,9 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
   for (int i : {iso, aniso}) {
     const GGX<double> ggx{at(i).ax, at(i).ay};
     const V3 wi = incidence(at(i).theta_deg);
-    jacobian.cases.push_back(
-        replanned(i, "without ‖dm/do‖", [ggx, wi, bound = at(i).bound](const V3& wo) {
-          return eq8_reflection_pdf(ggx, wi, wo, bound) * 2 * length(wi + wo);
+    jacobian.cases.push_back(replanned(
+        i, "without ‖dm/do‖", [pdf = Eq8ReflectionPdf(ggx, wi, at(i).bound), wi](const V3& wo) {
+          return pdf(wo) * 2 * length(wi + wo);
         }));
   }
   out.push_back(jacobian);

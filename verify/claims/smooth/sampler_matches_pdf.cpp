@@ -105,15 +105,15 @@ int batch_kernel(const std::string& name) {
   throw std::logic_error("sampler " + name + " has no batch kernel");
 }
 
-// The same sampler as directions(c), batched (core/simd/batch.h sample_batch, double, on the ISA
-// of GLINTLAB_ISA or the widest of this CPU): the same uniforms; wo within the equivalence
-// budgets of tests/simd/ of the scalar one (bit-identical with GLINTLAB_ISA=scalar).
-SeededDirectionBatch batched_directions(const Config& c) {
+// The same sampler as directions(c, alpha_scale), batched (core/simd/batch.h sample_batch, double,
+// on the ISA of GLINTLAB_ISA or the widest of this CPU): the same uniforms; wo within the
+// equivalence budgets of tests/simd/ of the scalar one (bit-identical with GLINTLAB_ISA=scalar).
+SeededDirectionBatch batched_directions(const Config& c, double alpha_scale = 1) {
   const int kernel = batch_kernel(sampler_table()[c.sampler].name);
   const simd::Isa isa = simd::default_isa();
   const V3 wi = incidence(c.theta_deg);
-  return [kernel, isa, wi, ax = c.ax, ay = c.ay](std::uint64_t seed, std::uint64_t begin,
-                                                 std::size_t count, V3* out) {
+  return [kernel, isa, wi, ax = alpha_scale * c.ax, ay = alpha_scale * c.ay](
+             std::uint64_t seed, std::uint64_t begin, std::size_t count, V3* out) {
     std::vector<double> u1(count), u2(count), o(8 * count);
     for (std::size_t i = 0; i < count; ++i) {
       const Vec2<double> u = uniform_pair(seed, begin + i);
@@ -178,8 +178,16 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
   // Configuration i's plan with its expectations × pdf_scale, sampled with α × alpha_scale.
   auto sampled = [&](int i, const std::string& what, double alpha_scale, double pdf_scale) {
     const Config& c = g[std::size_t(i)];
-    return GofControlCase{
-        {label(c) + what, {}, {}, {}, directions(c, alpha_scale), {}, {}}, i, pdf_scale};
+    return GofControlCase{{label(c) + what,
+                           {},
+                           {},
+                           {},
+                           directions(c, alpha_scale),
+                           {},
+                           {},
+                           batched_directions(c, alpha_scale)},
+                          i,
+                          pdf_scale};
   };
   // A claimed pdf 2 % too large everywhere: the plan's expectations × 1.02.
   GofControl scaled{"pdf × 1.02", {}};
@@ -217,7 +225,9 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
                          ? GGX<double>{c.ax, c.ay}.projected_area(wi)
                          : Beckmann<double>{c.ax, c.ay}.projected_area(wi);
     g1.cases.push_back(
-        {{label(c) + " without G1", {}, {}, {}, directions(c), {}, {}}, i, a / wi.z});
+        {{label(c) + " without G1", {}, {}, {}, directions(c), {}, {}, batched_directions(c)},
+         i,
+         a / wi.z});
   }
   g1.gross = true;  // G1(ωi) ≈ 0.5 at θi = 89°, α = 1
   out.push_back(g1);
