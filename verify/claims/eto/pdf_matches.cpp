@@ -39,6 +39,7 @@
 #include "verify/claims/eto/eq8_density.h"
 #include "verify/claims/eto/list.h"
 #include "verify/claims/gof_family.h"
+#include "verify/claims/kernel_direction_batch.h"
 #include "verify/claims/gof_family_claim.h"
 
 namespace glintlab::verify {
@@ -113,28 +114,8 @@ SeededDirectionBatch batched_directions(const Config& c, double alpha_scale = 1)
                          : "sample.bounded_vndf_exact_isotropic/ggx";
   const std::optional<int> kernel = simd::find_kernel(name);
   if (!kernel) throw std::logic_error(std::string("no batch kernel ") + name);
-  const simd::Isa isa = simd::default_isa();
-  const V3 wi = incidence(c.theta_deg);
-  const bool hemisphere = c.form == Form::kListing2;
-  return [kernel = *kernel, isa, wi, ax = alpha_scale * c.ax, ay = alpha_scale * c.ay, hemisphere](
-             std::uint64_t seed, std::uint64_t begin, std::size_t count, V3* out) {
-    std::vector<double> u1(count), u2(count), o(8 * count);
-    for (std::size_t i = 0; i < count; ++i) {
-      const Vec2<double> u = uniform_pair(seed, begin + i);
-      u1[i] = u.x;
-      u2[i] = u.y;
-    }
-    const double w[3] = {wi.x, wi.y, wi.z};
-    double* p = o.data();
-    simd::sample_batch<double>(kernel, ax, ay, w, u1.data(), u2.data(),
-                               {p, p + count, p + 2 * count, p + 3 * count, p + 4 * count,
-                                p + 5 * count, p + 6 * count, p + 7 * count},
-                               count, isa);
-    for (std::size_t i = 0; i < count; ++i) {
-      const V3 wo{p[i], p[count + i], p[2 * count + i]};
-      out[i] = hemisphere && !(wo.z > 0) ? V3{0, 0, 0} : wo;
-    }
-  };
+  return kernel_direction_batch(*kernel, incidence(c.theta_deg), alpha_scale * c.ax,
+                                alpha_scale * c.ay, c.form == Form::kListing2);
 }
 
 GofCase make_case(const Config& c) {

@@ -35,6 +35,7 @@
 #include "verify/claim_runner.h"
 #include "verify/claims/gof_family.h"
 #include "verify/claims/gof_family_claim.h"
+#include "verify/claims/kernel_direction_batch.h"
 #include "verify/claims/sampler_table.h"
 #include "verify/claims/smooth/common.h"
 #include "verify/claims/smooth/list.h"
@@ -109,25 +110,9 @@ int batch_kernel(const std::string& name) {
 // on the ISA of GLINTLAB_ISA or the widest of this CPU): the same uniforms; wo within the
 // equivalence budgets of tests/simd/ of the scalar one (bit-identical with GLINTLAB_ISA=scalar).
 SeededDirectionBatch batched_directions(const Config& c, double alpha_scale = 1) {
-  const int kernel = batch_kernel(sampler_table()[c.sampler].name);
-  const simd::Isa isa = simd::default_isa();
-  const V3 wi = incidence(c.theta_deg);
-  return [kernel, isa, wi, ax = alpha_scale * c.ax, ay = alpha_scale * c.ay](
-             std::uint64_t seed, std::uint64_t begin, std::size_t count, V3* out) {
-    std::vector<double> u1(count), u2(count), o(8 * count);
-    for (std::size_t i = 0; i < count; ++i) {
-      const Vec2<double> u = uniform_pair(seed, begin + i);
-      u1[i] = u.x;
-      u2[i] = u.y;
-    }
-    const double w[3] = {wi.x, wi.y, wi.z};
-    double* p = o.data();
-    simd::sample_batch<double>(kernel, ax, ay, w, u1.data(), u2.data(),
-                               {p, p + count, p + 2 * count, p + 3 * count, p + 4 * count,
-                                p + 5 * count, p + 6 * count, p + 7 * count},
-                               count, isa);
-    for (std::size_t i = 0; i < count; ++i) out[i] = {p[i], p[count + i], p[2 * count + i]};
-  };
+  return kernel_direction_batch(batch_kernel(sampler_table()[c.sampler].name),
+                                incidence(c.theta_deg), alpha_scale * c.ax, alpha_scale * c.ay,
+                                /*upper_only=*/false);
 }
 
 GofCase make_case(const Config& c) {
