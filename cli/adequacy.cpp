@@ -1,5 +1,6 @@
-// `glintlab adequacy [--models GLOBS] [--threshold TAU] [--budget quick|full] [--threads N]
-// [--out DIR] [--bench-from DIR] [--calibrate [--runs N] [--tables N]]`: where each cheaper level
+// `glintlab adequacy [--models GLOBS] [--threshold TAU] [--budget quick|full] [--positions N]
+// [--threads N] [--out DIR] [--bench-from DIR] [--calibrate [--runs N] [--tables N]]`: where each
+// cheaper level
 // of the binomial
 // glint family is indistinguishable from the exact count, and each cheaper level of the Kemppinen
 // family from k = 16 with the exact erf, of the area and Chermain families likewise, each family's
@@ -38,6 +39,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// --positions: below 100 every cell is undecided (a cell's exact level must be lit at 100
+// positions); a million keeps a cell's level values (nine levels of doubles) within 100 MB.
+constexpr std::uint64_t kMinPositions = 100, kMaxPositions = 1000000;
+
 struct AdequacyCliOptions {
   std::string out = "out/adequacy";
   BudgetOption budget;
@@ -49,6 +54,7 @@ struct AdequacyCliOptions {
   std::string tables = "20";
   std::string bench_from;
   std::string shard;
+  std::string positions;
 };
 
 // A family of the binomial levels (the binomial and the area family): cells per level, the
@@ -141,6 +147,7 @@ void run(const CLI::App* cmd, const AdequacyCliOptions& o) {
   if (option_count(cmd, "--tables") > 0) r.tables = o.tables;
   if (option_count(cmd, "--bench-from") > 0) r.bench_from = o.bench_from;
   if (option_count(cmd, "--shard") > 0) r.shard = o.shard;
+  if (option_count(cmd, "--positions") > 0) r.positions = o.positions;
   const AdequacyRunSummary run = run_adequacy_request(r);
   if (run.shard) {
     fmt::print(
@@ -292,6 +299,9 @@ AdequacyRunSummary run_adequacy_request(const AdequacyRequest& o) {
   const std::uint64_t tables = integer_option(o.tables.value_or("20"), "--tables", 0, 100000);
   if (!o.calibrate && o.tables)
     throw InputError("--tables: only with --calibrate (whole tables per family-wise delta)");
+  if (o.positions)
+    experiments::set_positions_per_cell(
+        a, int(integer_option(*o.positions, "--positions", kMinPositions, kMaxPositions)));
   const int threads = resolve_threads(o.threads);
   if (o.calibrate && o.bench_from)
     throw InputError("--bench-from: only without --calibrate (it prices the table's levels)");
@@ -357,6 +367,7 @@ AdequacyRunSummary run_adequacy_request(const AdequacyRequest& o) {
     c.budget = a.budget;
     c.runs = std::size_t(runs);
     c.tables = std::size_t(tables);
+    if (o.positions) c.positions = a.binomial_axes->samples;
     Progress bar("adequacy calibration",
                  long(verify::adequacy::calibration_cells(
                      experiments::decision_calibration_options(c))));
@@ -463,6 +474,11 @@ void add_adequacy_command(CLI::App& app) {
                   "dealt round-robin) into DIR/adequacy-cells.json and shard.json; glintlab merge "
                   "joins the N folders into the files of one run",
                   "K/N");
+  add_text_option(cmd, "--positions", o->positions,
+                  fmt::format("surface positions per cell, an integer in [{}, {}]; default: the "
+                              "budget's (quick 8000, full 32000)",
+                              kMinPositions, kMaxPositions),
+                  "INT");
   set_footer(cmd, kFooter);
   set_callback(cmd, [cmd, o] { run(cmd, *o); });
 }

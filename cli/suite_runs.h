@@ -74,6 +74,7 @@ struct AdequacyRequest {
   std::optional<std::string> tables;  // unset: not given (20 with calibrate)
   std::optional<std::string> bench_from;  // a folder holding glints.json (the levels' costs)
   std::optional<std::string> shard;       // K/N: the K-th of N parts of the table's cells
+  std::optional<std::string> positions;   // surface positions per cell; unset: the budget's
 };
 struct AdequacyRunSummary {
   bool calibrate = false;

@@ -527,7 +527,7 @@ py::dict compare(const std::string& out, const std::string& budget, const std::s
 py::dict adequacy(const std::string& out, const std::string& budget, const std::string& models,
                   const std::string& threshold, const std::string& threads, bool calibrate,
                   const py::object& runs, const py::object& tables,
-                  const py::object& bench_from) {
+                  const py::object& bench_from, const py::object& positions) {
   cli::AdequacyRequest r;
   r.out = out;
   r.budget = budget;
@@ -538,6 +538,7 @@ py::dict adequacy(const std::string& out, const std::string& budget, const std::
   r.runs = optional_text(runs);
   r.tables = optional_text(tables);
   r.bench_from = optional_text(bench_from);
+  r.positions = optional_text(positions);
   cli::AdequacyRunSummary s;
   {
     const py::gil_scoped_release release;
@@ -617,5 +618,6 @@ PYBIND11_MODULE(_glintlab, m) {
   m.def("compare", &compare, arg("out"), arg("budget"), arg("models"), arg("threads"),
         arg("claims_from"), arg("sweeps_from"));
   m.def("adequacy", &adequacy, arg("out"), arg("budget"), arg("models"), arg("threshold"),
-        arg("threads"), arg("calibrate"), arg("runs"), arg("tables"), arg("bench_from"));
+        arg("threads"), arg("calibrate"), arg("runs"), arg("tables"), arg("bench_from"),
+        arg("positions"));
 }

@@ -442,9 +442,22 @@ verify::adequacy::KemppinenGridAxes kemppinen_axes_of(const AdequacyOptions& o) 
   return o.kemppinen_axes ? *o.kemppinen_axes : verify::adequacy::kemppinen_grid_axes(o.budget);
 }
 
+verify::adequacy::GridAxes binomial_axes_of(const AdequacyOptions& o) {
+  return o.binomial_axes ? *o.binomial_axes : verify::adequacy::grid_axes(o.budget);
+}
+
+void set_positions_per_cell(AdequacyOptions& o, int positions) {
+  o.binomial_axes = binomial_axes_of(o);
+  o.kemppinen_axes = kemppinen_axes_of(o);
+  o.area_axes = area_axes_of(o);
+  o.chermain_axes = chermain_axes_of(o);
+  o.binomial_axes->samples = o.kemppinen_axes->samples = o.area_axes->samples =
+      o.chermain_axes->samples = positions;
+}
+
 std::size_t table_decisions(const AdequacyOptions& o) {
   const std::size_t binomial =
-      verify::adequacy::make_grid(binomial_models(o.models), verify::adequacy::grid_axes(o.budget))
+      verify::adequacy::make_grid(binomial_models(o.models), binomial_axes_of(o))
           .size();
   const std::size_t kemppinen =
       verify::adequacy::make_kemppinen_grid(kemppinen_models(o.models),
@@ -464,7 +477,7 @@ verify::adequacy::Decision table_decision(const AdequacyOptions& o) {
 }
 
 std::vector<CellResult> measure_adequacy(const AdequacyOptions& o) {
-  const verify::adequacy::GridAxes axes = verify::adequacy::grid_axes(o.budget);
+  const verify::adequacy::GridAxes axes = binomial_axes_of(o);
   const auto cells = verify::adequacy::make_grid(binomial_models(o.models), axes);
   return verify::adequacy::measure_grid(cells, axes.samples, table_decision(o), o.progress);
 }
@@ -576,7 +589,7 @@ std::vector<AdequacyLevelMap> chermain_level_maps(const std::vector<ChermainCell
 }
 
 AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOptions& o) {
-  const verify::adequacy::GridAxes axes = verify::adequacy::grid_axes(o.budget);
+  const verify::adequacy::GridAxes axes = binomial_axes_of(o);
   const verify::adequacy::KemppinenGridAxes kemppinen_axes = kemppinen_axes_of(o);
   const auto decision = table_decision(o);
   AdequacyCells cells;
@@ -601,7 +614,7 @@ AdequacySummary run_adequacy(const std::filesystem::path& out, const AdequacyOpt
 
 AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyOptions& o,
                                const AdequacyCells& cells) {
-  const verify::adequacy::GridAxes axes = verify::adequacy::grid_axes(o.budget);
+  const verify::adequacy::GridAxes axes = binomial_axes_of(o);
   const verify::adequacy::KemppinenGridAxes kemppinen_axes = kemppinen_axes_of(o);
   const auto decision = table_decision(o);
   const std::vector<CellResult>& rows = cells.binomial;
@@ -1057,7 +1070,7 @@ verify::adequacy::DecisionCalibrationOptions decision_calibration_options(
   const verify::adequacy::GridAxes axes = verify::adequacy::grid_axes(o.budget);
   verify::adequacy::DecisionCalibrationOptions c;
   c.threshold = o.threshold;
-  c.samples = axes.samples;
+  c.samples = o.positions.value_or(axes.samples);
   AdequacyOptions table;
   table.models = o.models;
   table.budget = o.budget;

@@ -67,7 +67,13 @@ struct AdequacyOptions {
   std::optional<verify::adequacy::GridAxes> area_axes;
   // The Chermain family's grid; unset: the budget's (chermain_grid_axes). Set by the tests.
   std::optional<verify::adequacy::ChermainGridAxes> chermain_axes;
+  // The binomial family's grid; unset: the budget's (grid_axes).
+  std::optional<verify::adequacy::GridAxes> binomial_axes;
 };
+
+// Every family's grid as `o` has it, measured at `positions` surface positions per cell instead
+// of the budget's (quick 8000, full 32000): `glintlab adequacy --positions`.
+void set_positions_per_cell(AdequacyOptions& o, int positions);
 
 // A family's cells priced by the benchmark (--bench-from): Σ over cells of the benchmark's ns per
 // evaluation for the family's most complete level everywhere (exact, k16_exact, dict16_ggaa), the
@@ -169,6 +175,8 @@ struct AdequacyCells {
 // run joined: experiments/adequacy/adequacy_shards.h).
 AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyOptions& o,
                                const AdequacyCells& cells);
+// The binomial family's grid axes for `o`: its override, else the budget's.
+verify::adequacy::GridAxes binomial_axes_of(const AdequacyOptions& o);
 // The Kemppinen family's grid axes for `o`: its override, else the budget's.
 verify::adequacy::KemppinenGridAxes kemppinen_axes_of(const AdequacyOptions& o);
 // The area family's grid axes for `o`: its override, else the budget's.
@@ -272,6 +280,7 @@ struct AdequacyCalibrationOptions {
   verify::Budget budget = verify::Budget::kQuick;
   std::size_t runs = 2000;          // synthetic cells per (case, δ)
   std::size_t tables = 20;          // whole tables per family-wise δ
+  std::optional<int> positions;     // positions per synthetic cell; unset: the budget's
   std::function<void()> progress;   // once per synthetic cell, never concurrently
 };
 

@@ -21,7 +21,8 @@ using verify::adequacy::ChermainCellResult;
 using verify::adequacy::KemppinenCellResult;
 using verify::adequacy::LevelStats;
 
-constexpr const char* kFormat = "glintlab adequacy cells 3";  // 2: the area family, 3: Chermain
+constexpr const char* kFormat = "glintlab adequacy cells 4";  // 2: the area family, 3: Chermain,
+                                                             // 4: the binomial axes
 // A level's fields, in the order of its array in the file.
 constexpr const char* kLevelFields =
     "mean cv p_zero mean_diff mean_diff_ucb mean_diff_lcb cv_diff cv_diff_ucb cv_diff_lcb "
@@ -44,6 +45,26 @@ std::vector<double> doubles_of(const json& a) {
   std::vector<double> v;
   for (const json& x : a) v.push_back(from_bits(x));
   return v;
+}
+
+// The grid axes of the binomial or the area family as a part file holds them.
+json grid_axes_to_json(const verify::adequacy::GridAxes& a) {
+  return {{"facets", bits_of(a.facets)},
+          {"alpha", bits_of(a.alpha)},
+          {"light_half_angle_deg", bits_of(a.light_half_angle_deg)},
+          {"theta_i_deg", bits_of(a.theta_i_deg)},
+          {"theta_h_count", a.theta_h_count},
+          {"samples", a.samples}};
+}
+verify::adequacy::GridAxes grid_axes_of(const json& j) {
+  verify::adequacy::GridAxes a;
+  a.facets = doubles_of(j.at("facets"));
+  a.alpha = doubles_of(j.at("alpha"));
+  a.light_half_angle_deg = doubles_of(j.at("light_half_angle_deg"));
+  a.theta_i_deg = doubles_of(j.at("theta_i_deg"));
+  a.theta_h_count = j.at("theta_h_count").get<int>();
+  a.samples = j.at("samples").get<int>();
+  return a;
 }
 
 json level_to_json(const LevelStats& s) {
@@ -160,7 +181,7 @@ ChermainCellResult chermain_from_json(const json& j) {
 
 std::vector<verify::adequacy::Cell> binomial_grid(const AdequacyOptions& o) {
   return verify::adequacy::make_grid(binomial_models(o.models),
-                                     verify::adequacy::grid_axes(o.budget));
+                                     binomial_axes_of(o));
 }
 std::vector<verify::adequacy::KemppinenCell> kemppinen_grid(const AdequacyOptions& o) {
   return verify::adequacy::make_kemppinen_grid(kemppinen_models(o.models), kemppinen_axes_of(o));
@@ -220,7 +241,7 @@ std::string adequacy_run_text(const AdequacyOptions& o) {
       t += fmt::format("  {} {}\n", model, fmt::join(b, " "));
     }
   }
-  t += fmt::format("binomial samples {}\n", verify::adequacy::grid_axes(o.budget).samples);
+  t += fmt::format("binomial samples {}\n", binomial_axes_of(o).samples);
   for (const auto& c : binomial_grid(o))
     t += fmt::format("{} {} {} {} {} {} {}\n", c.model, bits(c.facets), bits(c.alpha),
                      bits(c.light_half_angle_deg), bits(c.theta_i_deg), bits(c.theta_h_deg),
@@ -245,7 +266,7 @@ AdequacyCells measure_adequacy_part(const AdequacyOptions& o, const AdequacyPart
   const auto decision = table_decision(o);
   AdequacyCells cells;
   cells.binomial = verify::adequacy::measure_grid_at(binomial_grid(o), part.binomial,
-                                                     verify::adequacy::grid_axes(o.budget).samples,
+                                                     binomial_axes_of(o).samples,
                                                      decision, o.progress);
   cells.kemppinen = verify::adequacy::measure_kemppinen_grid_at(
       kemppinen_grid(o), part.kemppinen, kemppinen_axes_of(o).samples, decision, o.progress);
@@ -268,18 +289,13 @@ void write_adequacy_part(const std::filesystem::path& file, const AdequacyOption
   doc["budget"] = o.budget == verify::Budget::kQuick ? "quick" : "full";
   doc["models"] = o.models;
   doc["threshold"] = bits(o.threshold);
+  doc["binomial_axes"] = grid_axes_to_json(binomial_axes_of(o));
   doc["kemppinen_axes"] = {{"points", bits_of(k.points)},
                            {"alpha", bits_of(k.alpha)},
                            {"theta_i_deg", bits_of(k.theta_i_deg)},
                            {"theta_h_count", k.theta_h_count},
                            {"samples", k.samples}};
-  const verify::adequacy::GridAxes a = area_axes_of(o);
-  doc["area_axes"] = {{"facets", bits_of(a.facets)},
-                      {"alpha", bits_of(a.alpha)},
-                      {"light_half_angle_deg", bits_of(a.light_half_angle_deg)},
-                      {"theta_i_deg", bits_of(a.theta_i_deg)},
-                      {"theta_h_count", a.theta_h_count},
-                      {"samples", a.samples}};
+  doc["area_axes"] = grid_axes_to_json(area_axes_of(o));
   const verify::adequacy::ChermainGridAxes ch = chermain_axes_of(o);
   doc["chermain_axes"] = {{"facets", bits_of(ch.facets)},
                           {"alpha", bits_of(ch.alpha)},
@@ -338,15 +354,8 @@ AdequacyPartFile read_adequacy_part(const std::filesystem::path& file) {
     k.theta_h_count = ka.at("theta_h_count").get<int>();
     k.samples = ka.at("samples").get<int>();
     o.kemppinen_axes = k;
-    const json& aa = doc.at("area_axes");
-    verify::adequacy::GridAxes a;
-    a.facets = doubles_of(aa.at("facets"));
-    a.alpha = doubles_of(aa.at("alpha"));
-    a.light_half_angle_deg = doubles_of(aa.at("light_half_angle_deg"));
-    a.theta_i_deg = doubles_of(aa.at("theta_i_deg"));
-    a.theta_h_count = aa.at("theta_h_count").get<int>();
-    a.samples = aa.at("samples").get<int>();
-    o.area_axes = a;
+    o.binomial_axes = grid_axes_of(doc.at("binomial_axes"));
+    o.area_axes = grid_axes_of(doc.at("area_axes"));
     const json& ca = doc.at("chermain_axes");
     verify::adequacy::ChermainGridAxes ch;
     ch.facets = doubles_of(ca.at("facets"));

@@ -46,7 +46,7 @@ void run_adequacy_maps(const FigureContext& ctx) {
   o.models.insert(o.models.end(), adq::kChermainFamilyModels.begin(),
                   adq::kChermainFamilyModels.end());
   o.budget = ctx.quick ? verify::Budget::kQuick : verify::Budget::kFull;
-  const adq::GridAxes axes = adq::grid_axes(o.budget);
+  const adq::GridAxes axes = binomial_axes_of(o);
   const adq::GridAxes area_axes = area_axes_of(o);
   const std::vector<adq::Cell> area_cells = adq::make_grid(area_models(o.models), area_axes);
   const adq::ChermainGridAxes chermain_axes = chermain_axes_of(o);

@@ -328,7 +328,7 @@ def compare(out, models="*", budget="quick", threads=None, claims_from=None, swe
 
 
 def adequacy(out, models="*", threshold=0.02, budget="quick", threads=None, calibrate=False,
-             runs=None, tables=None, bench_from=None):
+             runs=None, tables=None, bench_from=None, positions=None):
     """Where each cheaper level of a glint model family (binomial counting, Kemppinen's levels,
     kneiphof_klein_area under square lights) is indistinguishable from its most complete level, as
     ``glintlab adequacy`` writes it (docs/adequacy.md); with calibrate=True the decision
@@ -347,6 +347,8 @@ def adequacy(out, models="*", threshold=0.02, budget="quick", threads=None, cali
                (None: 20).
     bench_from a folder holding glints.json of glintlab_bench_glints (its adequacy/ rows): each
                level priced by the benchmark (``cheapest_by_benchmark``, the time saved).
+    positions  surface positions per cell, an integer in [100, 1000000] (None: the budget's,
+               quick 8000, full 32000).
 
     Returns a dict: ``json`` and ``csv`` (the paths of adequacy.json / adequacy.csv, or
     adequacy-calibration.json / .csv), ``summary`` (the JSON's content), ``table`` (the CSV as a
@@ -359,7 +361,8 @@ def adequacy(out, models="*", threshold=0.02, budget="quick", threads=None, cali
                            threshold=str(threshold), threads=_text(threads),
                            calibrate=bool(calibrate), runs=None if runs is None else str(runs),
                            tables=None if tables is None else str(tables),
-                           bench_from=None if bench_from is None else str(bench_from))
+                           bench_from=None if bench_from is None else str(bench_from),
+                           positions=None if positions is None else str(positions))
     s["json"], s["csv"] = _os.path.abspath(s["json"]), _os.path.abspath(s["csv"])
     s["summary"] = _read_json(s["json"])
     s["table"] = read_csv(s["csv"])

@@ -25,13 +25,16 @@ namespace fs = std::filesystem;
 
 class AdequacyShardTest : public CliTest {
  protected:
+  // At 1000 positions per cell, not the budget's 8000: what is compared is how the cells are split
+  // and joined, the same at any number of positions.
   RunResult adequacy(const std::string& out, const std::string& shard = "",
                      const std::string& threshold = "0.02",
-                     const std::string& models = "deliot_belcour") const {
-    std::vector<std::string> args = {"adequacy", "--models",    models,
-                                     "--budget", "quick",       "--threads",
-                                     "2",        "--threshold", threshold,
-                                     "--out",    out};
+                     const std::string& models = "deliot_belcour",
+                     const std::string& positions = "1000") const {
+    std::vector<std::string> args = {"adequacy",  "--models",    models,    "--budget",
+                                     "quick",     "--threads",   "2",       "--threshold",
+                                     threshold,   "--positions", positions, "--out",
+                                     out};
     if (!shard.empty()) args.insert(args.end(), {"--shard", shard});
     return run(args);
   }
@@ -182,10 +185,13 @@ TEST_F(AdequacyShardTest, AreaFamilyMergedIsTheFilesOfOneRun) {
 // same table in two shards measured on one thread and merged: the files of the unsharded two-thread
 // run (its maps byte for byte), so its cells depend on neither the shard nor the thread count.
 TEST_F(AdequacyShardTest, ChermainFamilyOnOneThreadMergedIsTheTwoThreadRun) {
+  // At 1000 positions per cell (the budget's 8000 take five times as long; the choosers are tested
+  // against the table in tests/verify/adequacy/chermain_chooser_test.cpp).
   const auto chermain = [&](const std::string& out, const std::string& threads,
                             const std::string& shard) {
-    std::vector<std::string> args = {"adequacy", "--models", "chermain", "--budget", "quick",
-                                     "--threads", threads,   "--out",    out};
+    std::vector<std::string> args = {"adequacy",  "--models", "chermain", "--budget",
+                                     "quick",     "--threads", threads,   "--positions",
+                                     "1000",      "--out",     out};
     if (!shard.empty()) args.insert(args.end(), {"--shard", shard});
     return run(args);
   };
@@ -195,6 +201,7 @@ TEST_F(AdequacyShardTest, ChermainFamilyOnOneThreadMergedIsTheTwoThreadRun) {
   const auto doc = nlohmann::json::parse(read_text(path("one/adequacy.json")));
   EXPECT_EQ(doc["cells"].size(), 264u);  // 11 footprints × 2 α × 2 θ_i × 3 θ_h × 2 dh
   EXPECT_EQ(doc["bound"]["decisions"], 264 * 8);
+  EXPECT_EQ(doc["families"]["chermain"]["samples_per_cell"], 1000);
   const auto& family = doc["families"]["chermain"];
   EXPECT_EQ(family["most_complete"], "dict16_ggaa");
   EXPECT_EQ(family["levels"].size(), 9u);
@@ -234,6 +241,7 @@ TEST_F(AdequacyShardTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing
   ASSERT_EQ(adequacy("a1", "1/2").exit_code, 0);
   ASSERT_EQ(adequacy("a2", "2/2").exit_code, 0);
   ASSERT_EQ(adequacy("t2", "2/2", "0.05").exit_code, 0);
+  ASSERT_EQ(adequacy("p2", "2/2", "0.02", "deliot_belcour", "1001").exit_code, 0);
   // A shard whose cells are the other shard's.
   fs::copy(path("a2"), path("x2"), fs::copy_options::recursive);
   write_text(path("x2/adequacy-cells.json"), read_text(path("a1/adequacy-cells.json")));
@@ -246,6 +254,8 @@ TEST_F(AdequacyShardTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing
                      {"shard 2/2 is given twice", "'a2'"}, before);
   expect_input_error(run({"merge", "a1", "t2", "--out", "m"}),
                      {"'t2' belongs to another run", "another selection of cells"}, before);
+  expect_input_error(run({"merge", "a1", "p2", "--out", "m"}),
+                     {"'p2' belongs to another run", "another selection of cells"}, before);
   expect_input_error(run({"merge", "a1", "x2", "--out", "m"}),
                      {"adequacy-cells.json does not hold the cells its shard.json lists"}, before);
   expect_input_error(run({"merge", "a1", "y2", "--out", "m"}),

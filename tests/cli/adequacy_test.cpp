@@ -75,15 +75,17 @@ TEST_F(AdequacyTest, QuickRunWritesTableAndMaps) {
 // The run on two threads draws its maps with matplotlib, the run on one thread with the stand-in
 // (CliTest::stand_in_charts): its PNG is then its chart spec's and data's bytes, compared with the
 // two-thread run's spec and data (the same spec and data are the same PNG in any run:
-// FigureChartsTest.SeveralFoldersInOneRunAreTheBytesOfSeparateRunsOrNone).
+// FigureChartsTest.SeveralFoldersInOneRunAreTheBytesOfSeparateRunsOrNone). At 1000 positions per
+// cell (--positions), which the table records.
 TEST_F(AdequacyTest, OutputDoesNotDependOnThreads) {
   for (const char* t : {"2", "1"}) {
     if (t[0] == '1') stand_in_charts();
-    ASSERT_EQ(run({"adequacy", "--models", "deliot_belcour", "--out", std::string("t") + t,
-                   "--threads", t})
+    ASSERT_EQ(run({"adequacy", "--models", "deliot_belcour", "--positions", "1000", "--out",
+                   std::string("t") + t, "--threads", t})
                   .exit_code,
               0);
   }
+  EXPECT_EQ(nlohmann::json::parse(read_text(path("t2/adequacy.json")))["samples_per_cell"], 1000);
   // Every line up to the four *_ns columns, cheapest_measured and time_saved_ns (timing, last) is identical.
   const auto without_timing = [](const std::string& line) {
     std::size_t cut = line.size();
@@ -122,7 +124,8 @@ TEST_F(AdequacyTest, AFailedMapChartIsOneLineAndNoMap) {
              "import sys\nprint('glintlab: error: charts: adequacy_x.chart.json: "
              "adequacy-levels.csv has no column \\'boundary\\'', file=sys.stderr)\nsys.exit(2)\n");
   ::setenv("GLINTLAB_REPORTS_DIR", reports.c_str(), 1);
-  const RunResult r = run({"adequacy", "--models", "deliot_belcour", "--out", "a"});
+  const RunResult r =
+      run({"adequacy", "--models", "deliot_belcour", "--positions", "500", "--out", "a"});
   ::unsetenv("GLINTLAB_REPORTS_DIR");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   const auto err = lines_of(r.err);
@@ -145,6 +148,9 @@ TEST_F(AdequacyTest, BadInputIsOneLineAndWritesNothing) {
                      {"--models", "deliot_belcour, kneiphof_klein", "chermain"}, {});
   expect_input_error(run({"adequacy", "--budget", "huge", "--out", "o"}), {"--budget"}, {});
   expect_input_error(run({"adequacy", "--threads", "-1", "--out", "o"}), {"--threads"}, {});
+  for (const char* bad : {"99", "1000001", "2.5", "many"})
+    expect_input_error(run({"adequacy", "--positions", bad, "--out", "o"}),
+                       {"--positions", "[100, 1000000]"}, {});
   expect_input_error(run({"adequacy", "--calibrate", "--runs", "0", "--out", "o"}),
                      {"--runs", "[1, 1000000]"}, {});
   expect_input_error(run({"adequacy", "--runs", "10", "--out", "o"}), {"--runs", "--calibrate"},
@@ -204,6 +210,14 @@ TEST_F(AdequacyTest, CalibrateWritesRatesForEveryCaseDeltaAndLevel) {
   EXPECT_EQ(doc["family_wise"][0]["tables"], 1);
   EXPECT_EQ(doc["family_wise"][0]["table_decisions"], 972);
   EXPECT_EQ(unexpected_files(path("c"), {}).size(), 2u);
+  // --positions: the synthetic cells drawn at that many positions.
+  ASSERT_EQ(run({"adequacy", "--calibrate", "--runs", "2", "--tables", "0", "--models",
+                 "deliot_belcour", "--positions", "300", "--out", "c300"})
+                .exit_code,
+            0);
+  EXPECT_EQ(nlohmann::json::parse(read_text(path("c300/adequacy-calibration.json")))
+                ["positions_per_cell"],
+            300);
 }
 
 }  // namespace

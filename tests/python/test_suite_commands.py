@@ -234,6 +234,8 @@ def test_adequacy_calibration_writes_what_the_cli_writes(two_dirs):
      ["adequacy", "--out", "a", "--threshold", "0"]),
     (lambda: glintlab.adequacy(out="a", runs=5),
      ["adequacy", "--out", "a", "--runs", "5"]),
+    (lambda: glintlab.adequacy(out="a", positions=50),
+     ["adequacy", "--out", "a", "--positions", "50"]),
 ])
 def test_bad_arguments_raise_the_cli_message(two_dirs, call, args):
     py, cli = two_dirs
