@@ -20,7 +20,7 @@ set(glintlab_slow_tests
   "Checks/QuickBudget.VerdictAndControl/smooth_eval_pdf_consistency* 5"
   # The brute-force Eq. 5 (every point within 5 σ) at 24–400 positions of each setting.
   "Checks/QuickBudget.VerdictAndControl/kemppinen_compensation_k16* 5"
-  "Checks/QuickBudget.VerdictAndControl/kemppinen_compensation* 24"
+  "Checks/QuickBudget.VerdictAndControl/kemppinen_compensation* 7"
   # Fits of the LTC probability at every (√α, θv) of its regime; renders of LEAN, LEAN with ρ and
   # the references; the PODEE sweep.
   "Checks/QuickBudget.VerdictAndControl/kneiphof_ltc_probability* 9"
