@@ -170,7 +170,7 @@ set(glintlab_slow_tests
   "PluginTest.ReportCoversThePluginModelInEveryPart 3"
   "ShardMergeTest.MergedShardsAreTheBytesOfOneRun 8"
   "ShardMergeTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 4"
-  "FigureShardTest.MergedShardsAreTheFoldersOfOneRun 16"
+  "FigureShardTest.MergedShardsAreTheFoldersOfOneRun 15"
   "FigureShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 4"
   "CompareShardTest.MergedShardsAreThePageOfOneRun 11"
   "CompareShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 5"
