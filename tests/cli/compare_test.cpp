@@ -112,25 +112,29 @@ TEST_F(CompareTest, ReadsVerdictsAndFailureRegionsFromEarlierRuns) {
 // Without --claims-from, compare runs the model's conformance checks itself, several at once
 // (the costliest first), constant-time alone afterwards: every verdict, control and detail is the
 // row `glintlab verify` writes for the same check, with one thread or two (constant-time's detail
-// is a timing).
+// is a timing). deliot_belcour: the cheapest suite (about 1 s at quick) that takes every path of
+// compare's scheduling: all ten properties (sampler-covers-value and energy in one job, stability
+// with the failure regions, constant-time in the timed phase), verdicts that hold and one that
+// fails.
 TEST_F(CompareTest, MeasuredConformanceIsVerifysRowsWithOneOrTwoThreads) {
   const RunResult v =
-      run({"verify", "--claims", "model.chermain.*", "--budget", "quick", "--out", "v"});
+      run({"verify", "--claims", "model.deliot_belcour.*", "--budget", "quick", "--out", "v"});
   ASSERT_TRUE(v.exit_code == 0 || v.exit_code == 1) << v.err;
   std::map<std::string, nlohmann::json> rows;
   for (const auto& row : nlohmann::json::parse(read_text(path("v/claims.json"))))
     rows[row["id"].get<std::string>()] = row;
-  ASSERT_FALSE(rows.empty());
+  ASSERT_EQ(rows.size(), 10u);  // every property, measured
   nlohmann::json first;
   for (const char* threads : {"1", "2"}) {
     const std::string out = std::string("c") + threads;
-    const RunResult r = run({"compare", "--models", "chermain", "--threads", threads, "--out", out});
+    const RunResult r =
+        run({"compare", "--models", "deliot_belcour", "--threads", threads, "--out", out});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto doc = nlohmann::json::parse(read_text(path(out + "/compare.json")));
-    const auto& conformance = model_named(doc, "chermain")["conformance"];
+    const auto& conformance = model_named(doc, "deliot_belcour")["conformance"];
     ASSERT_EQ(conformance.size(), rows.size());
     for (const auto& c : conformance) {
-      const std::string id = "model.chermain." + c["property"].get<std::string>();
+      const std::string id = "model.deliot_belcour." + c["property"].get<std::string>();
       ASSERT_TRUE(rows.count(id)) << id;
       const auto& row = rows.at(id);
       EXPECT_EQ(c["origin"], "measured") << id;
@@ -140,7 +144,7 @@ TEST_F(CompareTest, MeasuredConformanceIsVerifysRowsWithOneOrTwoThreads) {
         EXPECT_EQ(c["detail"], row["detail"]) << id;
       }
     }
-    EXPECT_EQ(model_named(doc, "chermain")["stability"][0]["origin"], "measured");
+    EXPECT_EQ(model_named(doc, "deliot_belcour")["stability"][0]["origin"], "measured");
     if (first.is_null()) {
       first = doc;
       continue;

@@ -80,15 +80,30 @@ class FigureShardTest : public CliTest {
 };
 
 TEST_F(FigureShardTest, MergedShardsAreTheFoldersOfOneRun) {
-  // Each N in turn merged and compared with one run; the charts drawn by matplotlib for N = 2
-  // (the first pass), by the stand-in (CliTest::stand_in_charts) for the others.
-  const auto check = [&](const std::vector<int>& shard_counts, const std::string& tag) {
-    ASSERT_EQ(figure("one" + tag).exit_code, 0);
-    const std::map<std::string, std::string> one = file_tree("one" + tag);
-    std::set<std::string> folders;
-    for (const auto& [file, bytes] : one) folders.insert(file.substr(0, file.find('/')));
-    ASSERT_EQ(folders, std::set<std::string>(kSelection.begin(), kSelection.end()));
-
+  // One unsharded run, its charts drawn by matplotlib. Each N in turn merged and compared with it;
+  // the charts drawn by matplotlib for N = 2 (the first pass), by the stand-in
+  // (CliTest::stand_in_charts) for the others, whose charts are then compared with the bytes of
+  // the one run's chart spec and data (matplotlib draws the same spec and data as the same PNG in
+  // any run: the first pass, and
+  // FigureChartsTest.SeveralFoldersInOneRunAreTheBytesOfSeparateRunsOrNone).
+  ASSERT_EQ(figure("one").exit_code, 0);
+  const std::map<std::string, std::string> one = file_tree("one");
+  std::set<std::string> folders;
+  for (const auto& [file, bytes] : one) folders.insert(file.substr(0, file.find('/')));
+  ASSERT_EQ(folders, std::set<std::string>(kSelection.begin(), kSelection.end()));
+  // The one run's folders as the stand-in draws them: each chart (a PNG beside its chart spec) the
+  // bytes of its spec and its CSV; the other PNGs are drawn by the figures themselves.
+  std::map<std::string, std::string> one_stand_in = one;
+  for (auto& [file, bytes] : one_stand_in) {
+    if (!file.ends_with(".png")) continue;
+    const auto spec = one.find(file.substr(0, file.size() - 4) + ".chart.json");
+    if (spec == one.end()) continue;
+    const std::string folder = file.substr(0, file.rfind('/') + 1);
+    bytes = spec->second +
+            one.at(folder + nlohmann::json::parse(spec->second).at("csv").get<std::string>());
+  }
+  const auto check = [&](const std::vector<int>& shard_counts, const std::string& tag,
+                         const std::map<std::string, std::string>& expected_tree) {
     for (int n : shard_counts) {
       std::vector<std::string> merge = {"merge"};
       std::map<std::string, int> shard_of;  // figure id -> K
@@ -130,20 +145,22 @@ TEST_F(FigureShardTest, MergedShardsAreTheFoldersOfOneRun) {
       merge.insert(merge.end(), {"--out", out});
       const RunResult r = run(merge);
       ASSERT_EQ(r.exit_code, 0) << r.err;
-      EXPECT_TRUE(file_tree(out) == one) << n << " shards: the merged folders differ from one run's";
+      EXPECT_TRUE(file_tree(out) == expected_tree)
+          << n << " shards: the merged folders differ from one run's";
       EXPECT_FALSE(fs::exists(path(out + "/shard.json")));
     }
   };
-  check({2}, "");
+  check({2}, "", one);
   // The charts of the first pass were matplotlib's: each with its chart record.
   EXPECT_NE(read_text(path("one/kemppinen2025-fig15/furnace.png")).find("glintlab:chart"),
             std::string::npos);
+  EXPECT_NE(one_stand_in, one);
   stand_in_charts();
-  check({1, 3, 7}, "_");
-  EXPECT_EQ(read_text(path("one_/kemppinen2025-fig15/furnace.png"))
-                .rfind(read_text(path("one_/kemppinen2025-fig15/furnace.csv"))),
-            read_text(path("one_/kemppinen2025-fig15/furnace.png")).size() -
-                read_text(path("one_/kemppinen2025-fig15/furnace.csv")).size());
+  check({1, 3, 7}, "_", one_stand_in);
+  EXPECT_EQ(read_text(path("merged_1/kemppinen2025-fig15/furnace.png"))
+                .rfind(read_text(path("one/kemppinen2025-fig15/furnace.csv"))),
+            read_text(path("merged_1/kemppinen2025-fig15/furnace.png")).size() -
+                read_text(path("one/kemppinen2025-fig15/furnace.csv")).size());
   // Six figures in 7 shards: one shard ran nothing and holds only its manifest.
   int empty = 0;
   for (int k = 1; k <= 7; ++k)

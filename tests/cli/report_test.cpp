@@ -152,11 +152,12 @@ TEST_F(ReportTest, TimingFiguresReadTheReportsOwnBenchmarks) {
 }
 
 TEST_F(ReportTest, SmallRealRun) {
-  // compare covers the --models only: one model with a cubature reference, one with Monte Carlo;
-  // the conformance part measures smooth_ggx's suite, kneiphof_klein's verdicts are recorded ones.
+  // compare covers the --models only: one model with a cubature reference (smooth_ggx), one with
+  // Monte Carlo (deliot_belcour); the conformance part measures deliot_belcour's suite (the
+  // cheapest with every property), smooth_ggx's verdicts are recorded ones.
   const RunResult r = run({"report", "--out", "r", "--claims", "kneiphof.total-area", "--figures",
-                           "eto2023-fig4", "--models", "smooth_ggx,kneiphof_klein", "--conformance",
-                           "smooth_ggx", "--skip", "bench,stability", "--threads", "2"});
+                           "eto2023-fig4", "--models", "smooth_ggx,deliot_belcour", "--conformance",
+                           "deliot_belcour", "--skip", "bench,stability", "--threads", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("report: wrote r/index.html and r/report.md"), std::string::npos) << r.out;
   for (const char* f : {"r/index.html", "r/report.md", "r/run.json", "r/verify/claims.json",
@@ -184,18 +185,20 @@ TEST_F(ReportTest, SmallRealRun) {
   EXPECT_EQ(cmp["settings"]["claims_from"], "r/verify");
   ASSERT_EQ(cmp["models"].size(), 2u);
   EXPECT_EQ(cmp["models"][0]["name"], "smooth_ggx");
-  EXPECT_EQ(cmp["models"][1]["name"], "kneiphof_klein");
+  EXPECT_EQ(cmp["models"][1]["name"], "deliot_belcour");
+  EXPECT_EQ(cmp["models"][0]["reference"][0]["method"], "cubature");
+  EXPECT_EQ(cmp["models"][1]["reference"][0]["method"], "monte-carlo");
   // Measured in this run (read from the conformance part) or recorded, never mixed.
   EXPECT_EQ(cmp["settings"]["conformance_from"], "r/conformance");
   EXPECT_EQ(info["parts"]["conformance"]["status"], "ran");
   EXPECT_EQ(info["parts"]["conformance"]["note"],
-            "not measured (left out by --conformance): kneiphof_klein");
-  for (const auto& v : cmp["models"][0]["conformance"]) EXPECT_EQ(v["origin"], "read") << v.dump();
-  for (const auto& v : cmp["models"][1]["conformance"])
+            "not measured (left out by --conformance): smooth_ggx");
+  for (const auto& v : cmp["models"][1]["conformance"]) EXPECT_EQ(v["origin"], "read") << v.dump();
+  for (const auto& v : cmp["models"][0]["conformance"])
     EXPECT_EQ(v["origin"], "recorded") << v.dump();
   EXPECT_NE(md.find("## Models' conformance"), std::string::npos);
-  EXPECT_NE(md.find("| smooth_ggx | holds | holds |"), std::string::npos) << md;
-  EXPECT_EQ(md.find("| kneiphof_klein | holds"), std::string::npos) << md;
+  EXPECT_NE(md.find("| deliot_belcour | holds | holds |"), std::string::npos) << md;
+  EXPECT_EQ(md.find("| smooth_ggx | holds"), std::string::npos) << md;
   EXPECT_EQ(html.find(".tmp."), std::string::npos) << "a staging path is shown in the report";
   // Nothing but the report itself is left in the working folder (no staging folder).
   for (const auto& e : fs::directory_iterator(work()))
