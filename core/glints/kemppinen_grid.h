@@ -35,14 +35,28 @@ enum Dim : std::uint64_t {
 
 // The counter index of a cell: the paper seeds an RNG with the cell index (Sec. 3.3.1, "a
 // congruential RNG as they are fast to seed"); here the SplitMix64 finalizer of core/math/rng.h
-// chained over the six integers, so neighbouring cells get unrelated streams.
+// chained over the six integers, so neighbouring cells get unrelated streams. One step per
+// coordinate, named so that a loop over cells can hoist the steps whose inputs it does not change
+// (the reference sum, kemppinen_reference.h).
+GLINTLAB_FN std::uint64_t cell_chain_sx(std::int64_t sx) {
+  return mix64(static_cast<std::uint64_t>(sx) + 0x9e3779b97f4a7c15ULL);
+}
+GLINTLAB_FN std::uint64_t cell_chain_sy(std::uint64_t h, std::int64_t sy) {
+  return mix64(h ^ (static_cast<std::uint64_t>(sy) * 0xd1b54a32d192ed03ULL));
+}
+GLINTLAB_FN std::uint64_t cell_chain_ax(std::uint64_t h, std::int64_t ax) {
+  return mix64(h ^ (static_cast<std::uint64_t>(ax) * 0x8cb92ba72f3d8dd7ULL));
+}
+GLINTLAB_FN std::uint64_t cell_chain_ay(std::uint64_t h, std::int64_t ay) {
+  return mix64(h ^ (static_cast<std::uint64_t>(ay) * 0xabc98388fb8fac03ULL));
+}
+GLINTLAB_FN std::uint64_t cell_chain_level(std::uint64_t h, int level, int process) {
+  return mix64(h ^ (static_cast<std::uint64_t>(level) << 8) ^ static_cast<std::uint64_t>(process));
+}
 GLINTLAB_FN std::uint64_t cell_index(const Cell& c) {
-  std::uint64_t h = mix64(static_cast<std::uint64_t>(c.sx) + 0x9e3779b97f4a7c15ULL);
-  h = mix64(h ^ (static_cast<std::uint64_t>(c.sy) * 0xd1b54a32d192ed03ULL));
-  h = mix64(h ^ (static_cast<std::uint64_t>(c.ax) * 0x8cb92ba72f3d8dd7ULL));
-  h = mix64(h ^ (static_cast<std::uint64_t>(c.ay) * 0xabc98388fb8fac03ULL));
-  return mix64(h ^ (static_cast<std::uint64_t>(c.level) << 8) ^
-               static_cast<std::uint64_t>(c.process));
+  return cell_chain_level(
+      cell_chain_ay(cell_chain_ax(cell_chain_sy(cell_chain_sx(c.sx), c.sy), c.ax), c.ay), c.level,
+      c.process);
 }
 
 // The uniform number of dimension `dim` of the point of the cell with index

@@ -67,22 +67,17 @@ ReferenceParts<T> reference_level_parts(const Params<T>& p, const Angular<T>& an
   const Sym2<T> sigma_a2{sqr(ang.sigma_a.x), T(0), sqr(ang.sigma_a.y)};
   if (visited) *visited += (sx1 - sx0 + 1) * (sy1 - sy0 + 1) * (ax1 - ax0 + 1) * (ay1 - ay0 + 1);
   ReferenceParts<T> sum{{T(0), T(0), T(0)}, {T(0), T(0), T(0)}, {T(0), T(0), T(0)}};
-  // cell_index(Cell{i, j, a, b, level, 0}) (kemppinen_grid.h), its chain of mixes hoisted out of
-  // the loops that do not change its inputs: the same bits, three fewer mixes per point.
-  const std::uint64_t level_bits = static_cast<std::uint64_t>(level) << 8;
+  // cell_index(Cell{i, j, a, b, level, 0}) (kemppinen_grid.h), its chain's steps hoisted out of
+  // the loops that do not change their inputs: the same bits, three fewer mixes per point.
   for (std::int64_t i = sx0; i <= sx1; ++i) {
-    const std::uint64_t hash_i = mix64(static_cast<std::uint64_t>(i) + 0x9e3779b97f4a7c15ULL);
+    const std::uint64_t hash_i = cell_chain_sx(i);
     for (std::int64_t j = sy0; j <= sy1; ++j) {
-      const std::uint64_t hash_ij =
-          mix64(hash_i ^ (static_cast<std::uint64_t>(j) * 0xd1b54a32d192ed03ULL));
+      const std::uint64_t hash_ij = cell_chain_sy(hash_i, j);
       const bool in_block = i >= bx0 && i < bx0 + side && j >= by0 && j < by0 + side;
       for (std::int64_t a = ax0; a <= ax1; ++a) {
-        const std::uint64_t hash_ija =
-            mix64(hash_ij ^ (static_cast<std::uint64_t>(a) * 0x8cb92ba72f3d8dd7ULL));
+        const std::uint64_t hash_ija = cell_chain_ax(hash_ij, a);
         for (std::int64_t b = ay0; b <= ay1; ++b) {
-          const std::uint64_t ci =
-              mix64(mix64(hash_ija ^ (static_cast<std::uint64_t>(b) * 0xabc98388fb8fac03ULL)) ^
-                    level_bits);
+          const std::uint64_t ci = cell_chain_level(cell_chain_ay(hash_ija, b), level, 0);
           const Vec2<T> g_a{(T(a) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) / res_a,
                             (T(b) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) / res_a};
           if (sqr(g_a.x - T(0.5)) + sqr(g_a.y - T(0.5)) > T(0.25)) continue;

@@ -35,6 +35,15 @@ GLINTLAB_FN double disk_rect_area_inline(double x0, double x1, double y0, double
     }
   for (int i = 1; i < nb; ++i)  // insertion sort of at most 6 breakpoints
     for (int j = i; j > 0 && br[j - 1] > br[j]; --j) std::swap(br[j - 1], br[j]);
+  // S at each breakpoint, computed once and only where a piece follows the circle (its atan2 is
+  // most of this function's time; two neighbouring pieces share a breakpoint).
+  double big_s_at[6];
+  bool known[6] = {false, false, false, false, false, false};
+  auto big_s_of = [&](int i) {
+    if (!known[i]) big_s_at[i] = big_s(br[i]);
+    known[i] = true;
+    return big_s_at[i];
+  };
   double area = 0;
   for (int i = 0; i + 1 < nb; ++i) {
     const double u0 = br[i], u1 = br[i + 1];
@@ -44,7 +53,7 @@ GLINTLAB_FN double disk_rect_area_inline(double x0, double x1, double y0, double
     const bool top_circle = sm <= hy, bottom_circle = -sm >= ly;
     const double top = top_circle ? sm : hy, bottom = bottom_circle ? -sm : ly;
     if (!(top > bottom)) continue;
-    const double circ = big_s(u1) - big_s(u0);
+    const double circ = top_circle || bottom_circle ? big_s_of(i + 1) - big_s_of(i) : 0.0;
     const double w = u1 - u0;
     area += (top_circle ? circ : hy * w) - (bottom_circle ? -circ : ly * w);
   }
