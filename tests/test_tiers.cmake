@@ -133,6 +133,7 @@ set(glintlab_slow_tests
   "ChermainChooserWide.* 1"
   "ChermainChoiceScenes.EngineChooserHoldsAndABrokenChooserFails 1"
   "ChermainChoiceScenes.PixelsAreTheSameForAnyThreadCount 1"
+  "ChermainChoiceScenes.PredictedAdequateLevelsGiveTheEngineAndTheCostChoosersLevels 2"
   "ChermainPrediction.BoundariesHoldAndMovedOnesAreRejected 1"
   "ChermainAdequacyCell.* 1"
   "ChermainAdequacy.* 1"
