@@ -83,6 +83,7 @@ set(glintlab_slow_tests
   "Isas/ChooserIsa.ChermainLanesMatchScalarOnItsTableAndASwappedLaneIsCaught* 2"
   "Isas/ChooserIsaFloat.ChermainFloatLanesDifferOnlyAtBoundariesAndASwappedLaneExceedsTheCount* 3"
   "Isas/ChooserIsa.CostChoosersLanesMatchScalarOnTheirTablesAndASwappedLaneIsCaught* 3"
+  "Isas/ChooserIsaFloat.CostChoosersFloatLanesDifferOnlyAtBoundariesAndASwappedLaneExceedsTheCount* 3"
   # The binomial family's quick grid for one model and 8 Kemppinen cells, written to files.
   "AdequacyOutputs.BothFamiliesInOneTable 7"
   # Two Chermain cells priced with the engine chooser for the costs: the default dictionary.
