@@ -88,6 +88,9 @@ set(glintlab_slow_tests
   "AdequacyOutputs.BothFamiliesInOneTable 7"
   # Two Chermain cells priced with the engine chooser for the costs: the default dictionary.
   "AdequacyOutputs.KemppinenAndChermainPricedByTheBenchmark 2"
+  # The benchmark's per-ISA Chermain units against the scalar eval on every quick Chermain cell
+  # and counting level (the default dictionary and its truncations).
+  "ChermainLevelIsa.EveryIsaMatchesTheScalarEvalAndAWrongDictionaryIsCaught 3"
   # The Kemppinen validation scenes rendered with the chooser's level and k16_exact.
   "AdequacyChoiceScenes.KemppinenEngineChooserHoldsAndABrokenChooserFails 3"
   "AdequacyChoiceScenes.KemppinenPixelsAreTheSameForAnyThreadCount 2"
