@@ -56,7 +56,7 @@ const std::vector<ClaimCost>& claim_costs() {
       {"all.probability",                                         1.45,          16.7},
       {"all.variance",                                            8.12,          77.7},
       {"adequacy.prediction-matches-measurement",                 13.3,          44.9},
-      {"adequacy.choice-is-safe",                                 36.9,         375.0},
+      {"adequacy.choice-is-safe",                                 27.6,         290.0},
       {"model.smooth_ggx.eval-pdf-consistency",                 0.0124,         0.228},
       {"model.smooth_ggx.sampler-matches-pdf",                    1.81,          20.4},
       {"model.smooth_ggx.sampler-covers-value",                  0.117,          2.24},

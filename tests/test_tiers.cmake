@@ -83,10 +83,14 @@ set(glintlab_slow_tests
   "Isas/ChooserIsa.ChermainLanesMatchScalarOnItsTableAndASwappedLaneIsCaught* 2"
   "Isas/ChooserIsaFloat.ChermainFloatLanesDifferOnlyAtBoundariesAndASwappedLaneExceedsTheCount* 3"
   "Isas/ChooserIsa.CostChoosersLanesMatchScalarOnTheirTablesAndASwappedLaneIsCaught* 3"
+  "Isas/ChooserIsaFloat.CostChoosersFloatLanesDifferOnlyAtBoundariesAndASwappedLaneExceedsTheCount* 3"
   # The binomial family's quick grid for one model and 8 Kemppinen cells, written to files.
   "AdequacyOutputs.BothFamiliesInOneTable 7"
   # Two Chermain cells priced with the engine chooser for the costs: the default dictionary.
   "AdequacyOutputs.KemppinenAndChermainPricedByTheBenchmark 2"
+  # The benchmark's per-ISA Chermain units against the scalar eval on every quick Chermain cell
+  # and counting level (the default dictionary and its truncations).
+  "ChermainLevelIsa.EveryIsaMatchesTheScalarEvalAndAWrongDictionaryIsCaught 3"
   # The Kemppinen validation scenes rendered with the chooser's level and k16_exact.
   "AdequacyChoiceScenes.KemppinenEngineChooserHoldsAndABrokenChooserFails 3"
   "AdequacyChoiceScenes.KemppinenPixelsAreTheSameForAnyThreadCount 2"
@@ -133,6 +137,7 @@ set(glintlab_slow_tests
   "ChermainChooserWide.* 1"
   "ChermainChoiceScenes.EngineChooserHoldsAndABrokenChooserFails 1"
   "ChermainChoiceScenes.PixelsAreTheSameForAnyThreadCount 1"
+  "ChermainChoiceScenes.PredictedAdequateLevelsGiveTheEngineAndTheCostChoosersLevels 2"
   "ChermainPrediction.BoundariesHoldAndMovedOnesAreRejected 1"
   "ChermainAdequacyCell.* 1"
   "ChermainAdequacy.* 1"

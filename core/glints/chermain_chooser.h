@@ -20,6 +20,9 @@
 //   levels. The mean difference is the lookup filter's: the dictionary's lobe mixture converges to
 //   the Gaussian (the means drawn from N(0, σ_o² − s²)), but the texels and GGAA's kernel widen it,
 //   which matters in the lobe's tail (the smooth fallback is not filtered).
+// - GGAA off where the kernel filters: the same closed form without the kernel's widening of the
+//   lobes, at the same LODs; GGAA off is taken where its mean and CV differences from GGAA on are
+//   at most kChooserMargin · TAU (chermain_ggaa_off_adequate).
 #pragma once
 
 #include <array>
@@ -195,23 +198,36 @@ GLINTLAB_FN ChermainSmoothPrediction<T> chermain_smooth_prediction(
 
 // GGAA off against GGAA on where GGAA filters (a kernel and a derivative): both from the closed
 // form above, with and without the kernel's widening of the lobes, at the same LODs — the mean of
-// GGAA off relative to GGAA on's minus 1, and the difference of their CVs. Not used by
-// choose_chermain_level yet (docs/adequacy.md "The Chermain chooser"): GGAA off is adequate where
-// both are at most kChooserMargin · TAU (chermain_ggaa_off_adequate).
+// GGAA off relative to GGAA on's minus 1, and the difference of their CVs. GGAA off is adequate
+// where both are at most kChooserMargin · TAU (chermain_ggaa_off_adequate; the choosers take it
+// through chermain_level_adequacy, docs/adequacy.md "The Chermain chooser").
 template <class T>
 struct ChermainGgaaOffPrediction {
   T mean_diff, cv_diff;
 };
+// From the closed form with GGAA (`on`, the shader's parameters) and without it (`off`).
+template <class T>
+GLINTLAB_FN ChermainGgaaOffPrediction<T> chermain_ggaa_off_difference(
+    const ChermainSmoothPrediction<T>& on, const ChermainSmoothPrediction<T>& off) {
+  // mean = g / (1 + mean_diff) for each, g the same smooth value.
+  return {safe_div(T(1) + on.mean_diff, T(1) + off.mean_diff) - T(1), off.cv - on.cv};
+}
 template <class T>
 GLINTLAB_FN ChermainGgaaOffPrediction<T> chermain_ggaa_off_prediction(
     const chermain2021::SdfParams& p, const chermain2021::SlopeDerivatives& d, Vec2<T> m,
     const ChermainLods<T>& lods) {
   chermain2021::SdfParams off = p;
   off.kernel = chermain2021::kNoGgaa;
-  const ChermainSmoothPrediction<T> on = chermain_smooth_prediction(p, d, m, lods);
-  const ChermainSmoothPrediction<T> of = chermain_smooth_prediction(off, d, m, lods);
-  // mean = g / (1 + mean_diff) for each, g the same smooth value.
-  return {safe_div(T(1) + on.mean_diff, T(1) + of.mean_diff) - T(1), of.cv - on.cv};
+  return chermain_ggaa_off_difference(chermain_smooth_prediction(p, d, m, lods),
+                                      chermain_smooth_prediction(off, d, m, lods));
+}
+
+// Whether GGAA filters at all: a kernel and a screen-space derivative (uniform per batch: the
+// shader's parameters). Where it does not, GGAA off is GGAA on bit for bit.
+inline bool chermain_ggaa_filters(const chermain2021::SdfParams& p,
+                                  const chermain2021::SlopeDerivatives& d) {
+  return p.kernel != chermain2021::kNoGgaa && p.s_k != 0 &&
+         (d.dx_x != 0 || d.dx_y != 0 || d.dy_x != 0 || d.dy_y != 0);
 }
 
 // Whether GGAA off is predicted adequate at a query (true where GGAA does not filter: then it is
@@ -220,9 +236,7 @@ template <class T>
 GLINTLAB_FN Mask<T> chermain_ggaa_off_adequate(const chermain2021::SdfParams& p,
                                                const chermain2021::SlopeDerivatives& d,
                                                const ModelQuery<T>& q, T tau) {
-  const bool filters = p.kernel != chermain2021::kNoGgaa && p.s_k != 0 &&
-                       (d.dx_x != 0 || d.dx_y != 0 || d.dy_x != 0 || d.dy_y != 0);
-  if (!filters) return Mask<T>(true);
+  if (!chermain_ggaa_filters(p, d)) return Mask<T>(true);
   const Vec3<T> h = half_vector(q.wi, q.wo);
   const Mask<T> up = q.wi.z > T(0) && q.wo.z > T(0) && h.z > T(0);
   const T hz = select(up, h.z, T(1));
@@ -243,9 +257,11 @@ GLINTLAB_FN T chermain_smooth_cv(const chermain2021::SdfParams& p,
 // Each ChermainLevel's predicted adequacy at a query (`p`: the shader's parameters of the most
 // complete level, its whole dictionary and GGAA as it renders with): dictL with GGAA on where it
 // is the most complete level bit for bit (the dictionary's boundary), dictL with GGAA off there
-// too where GGAA does not filter, the smooth level where its predicted CV and mean difference are
-// at most kChooserMargin · tau, every level below the horizon (all are 0 there), dict16_ggaa
-// always. choose_chermain_level takes the first; the choosers for given costs the cheapest.
+// too where GGAA does not filter or its predicted differences from GGAA on are at most
+// kChooserMargin · tau (chermain_ggaa_off_adequate: dictL off is dict16 off there, the same
+// LODs), the smooth level where its predicted CV and mean difference are at most
+// kChooserMargin · tau, every level below the horizon (all are 0 there), dict16_ggaa always.
+// choose_chermain_level takes the first; the choosers for given costs the cheapest.
 template <class T>
 GLINTLAB_FN std::array<Mask<T>, kChermainLevels> chermain_level_adequacy(
     const chermain2021::SdfParams& p, const chermain2021::SlopeDerivatives& d,
@@ -261,13 +277,20 @@ GLINTLAB_FN std::array<Mask<T>, kChermainLevels> chermain_level_adequacy(
   const auto identical = [&](int L) {
     return same(lods.k_fine, L) && (!coarse_on || same(lods.k_coarse, L));
   };
-  // GGAA off is GGAA on bit for bit where it does not filter (uniform per batch).
-  const bool filters = p.kernel != chermain2021::kNoGgaa && p.s_k != 0 &&
-                       (d.dx_x != 0 || d.dx_y != 0 || d.dy_x != 0 || d.dy_y != 0);
-  const Mask<T> off_too = Mask<T>(!filters);
   const Mask<T> all_smooth = lods.k_fine >= last && (!coarse_on || lods.k_coarse >= last);
   const ChermainSmoothPrediction<T> sp = chermain_smooth_prediction(p, d, m, lods);
   const T limit = T(kChooserMargin) * tau;
+  // GGAA off is GGAA on bit for bit where it does not filter (uniform per batch: no lane
+  // branch), else adequate where the closed form without the kernel stays within the margin
+  // (chermain_ggaa_off_adequate, sharing the closed form with GGAA computed above).
+  Mask<T> off_too = Mask<T>(true);
+  if (chermain_ggaa_filters(p, d)) {
+    chermain2021::SdfParams off = p;
+    off.kernel = chermain2021::kNoGgaa;
+    const ChermainGgaaOffPrediction<T> g =
+        chermain_ggaa_off_difference(sp, chermain_smooth_prediction(off, d, m, lods));
+    off_too = abs(g.mean_diff) <= limit && abs(g.cv_diff) <= limit;
+  }
   const Mask<T> smooth = all_smooth || (sp.cv <= limit && abs(sp.mean_diff) <= limit);
   const Mask<T> down = !up;
   const Mask<T> i4 = identical(4), i8 = identical(8), i12 = identical(12);

@@ -12,7 +12,8 @@
 //   1e-5 of the mean); k = 16 always.
 // - Chermain (core/glints/chermain_chooser.h): dictL with GGAA on where its dictionary is the whole
 //   one bit for bit (every weighted LOD's level below L or past the last), dictL with GGAA off
-//   there too where GGAA does not filter (no kernel or no derivative); the smooth level where both
+//   there too where GGAA does not filter (no kernel or no derivative) or where the closed form
+//   predicts GGAA off within kChooserMargin · TAU of GGAA on; the smooth level where both
 //   LODs are past the last level or its closed-form CV and mean difference are at most
 //   kChooserMargin · TAU; every level below the horizon (all are 0 there); dict16_ggaa always.
 // docs/adequacy.md "Choosers for given costs" has their counts against the measured table.

@@ -218,8 +218,8 @@ void write_csv(const std::filesystem::path& path, const std::vector<CellResult>&
     for (const ChermainCellResult& r : chermain_rows) {
       // No light size nor p: nan; cv_predicted the engine chooser's closed-form CV of dict16_ggaa,
       // no predicted P(0) (nan); `chooser` the engine chooser's level (choose_chermain_model_level:
-      // the construction's identical level or the smooth one by that CV), `chooser_refuted` the
-      // table refuting it.
+      // the construction's identical level, GGAA off by its prediction, or the smooth one by that
+      // CV), `chooser_refuted` the table refuting it.
       w.cell(kChermainFamily).cell(r.cell.model).cell(r.cell.facets).cell(r.cell.alpha);
       w.cell(NAN).cell(r.cell.theta_i_deg).cell(r.cell.theta_h_deg).cell(r.cell.dh);
       w.cell(NAN).cell(r.smooth).cell(r.cv_predicted).cell(NAN);
@@ -993,7 +993,8 @@ AdequacySummary write_adequacy(const std::filesystem::path& out, const AdequacyO
          "weighted LOD's dictionary level below L; GGAA off where ggaa_dh = 0)"},
         {"chooser",
          "choose_chermain_model_level of core/glints/chermain_chooser.h: the construction's "
-         "identical level, or smooth where the closed-form CV of dict16_ggaa (cv_predicted) is at "
+         "identical level (GGAA off where the closed form predicts it within kChooserMargin x "
+         "TAU of GGAA on), or smooth where the closed-form CV of dict16_ggaa (cv_predicted) is at "
          "most kChooserMargin x TAU"},
         {"identical_up_to", identical},
         {"summary",

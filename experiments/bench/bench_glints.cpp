@@ -32,6 +32,7 @@
 #include "core/model_registry.h"
 #include "core/models/smooth_ggx.h"
 #include "core/simd/model_batch.h"
+#include "experiments/bench/chermain_level_isa.h"
 #include "experiments/bench/method_bench.h"
 #include "verify/adequacy/area_adequacy.h"
 #include "verify/adequacy/binomial_adequacy.h"
@@ -241,13 +242,16 @@ BENCHMARK(table1)
 //   counting levels (its model has no SIMD batches: the double thunk row by row), the Kemppinen
 //   family's counting levels (k and erf are the model's parameters) and its smooth level (the base
 //   NDF's smooth model, smooth_ggx or smooth_beckmann, at the cell's roughness).
+// - On the row's ISA through the model's own eval template: every Chermain counting level. A
+//   dictionary of L < 16 levels is a table the registered model cannot be given (its dictionary is
+//   the default one, not a parameter), so the registry's batch API cannot run it; each level runs
+//   Chermain::eval on the ISA's double batches (chermain_level_isa.h: one unit per ISA, with
+//   core's flags for it, the batch core's batched Chermain uses) with the level's dictionary and
+//   GGAA kernel (chermain_level_params, as the table measures it).
 // - Scalar double on every ISA (the same code; the rows are per ISA so that every ISA's costs are
-//   complete): the area family's smooth level (the LTC call a shader without glints makes), and
-//   every Chermain level: a dictionary of L < 16 levels is a table the registered model cannot be
-//   given (its dictionary is the default one, not a parameter), so every level runs the model's
-//   eval template on double with the level's dictionary and GGAA kernel (chermain_level_params,
-//   as the table measures it), the smooth level the Gaussian slope density it falls back to
-//   (chermain_smooth_value) — one code path for the family, so its levels compare.
+//   complete): the area family's smooth level (the LTC call a shader without glints makes) and
+//   the Chermain smooth level, the Gaussian slope density it falls back to
+//   (chermain_smooth_value, one exp: scalar in the table too).
 constexpr int kAdequacyPositions = 64;
 
 // One cell of a row: its kAdequacyPositions values into `out`.
@@ -369,8 +373,18 @@ std::vector<AdequacyCellRun> kemppinen_level_cells(const std::string& model, Kem
   return cells;
 }
 
-// The Chermain family's rows (scalar double: see above).
-std::vector<AdequacyCellRun> chermain_level_cells(ChermainLevel level) {
+// Chermain::eval on `isa`'s double batches (chermain_level_isa.h).
+bench::ChermainLevelEval chermain_level_eval(simd::Isa isa) {
+  switch (isa) {
+    case simd::Isa::kSse42: return bench::chermain_level_isa_sse42();
+    case simd::Isa::kAvx2: return bench::chermain_level_isa_avx2();
+    case simd::Isa::kAvx512: return bench::chermain_level_isa_avx512();
+    default: return bench::chermain_level_isa_scalar();
+  }
+}
+
+// The Chermain family's rows (see above).
+std::vector<AdequacyCellRun> chermain_level_cells(ChermainLevel level, simd::Isa isa) {
   namespace adq = verify::adequacy;
   std::vector<AdequacyCellRun> cells;
   for (const adq::ChermainCell& c :
@@ -386,9 +400,9 @@ std::vector<AdequacyCellRun> chermain_level_cells(ChermainLevel level) {
         return adq::chermain_smooth_value(p, queries[std::size_t(i)]);
       }));
     else
-      cells.push_back(scalar_cell([p, queries](int i) {
-        return Chermain::eval<double>(p, queries[std::size_t(i)]).value;
-      }));
+      cells.push_back([p, queries, eval = chermain_level_eval(isa)](double* out) {
+        eval(p, queries.data(), out, queries.size());
+      });
   }
   return cells;
 }
@@ -425,7 +439,7 @@ void register_adequacy_levels() {
       });
   for (int l = 0; l < kChermainLevels; ++l)
     add(adq::kChermainFamilyModels[0], kChermainLevelNames[std::size_t(l)],
-        [l](simd::Isa) { return chermain_level_cells(ChermainLevel(l)); });
+        [l](simd::Isa isa) { return chermain_level_cells(ChermainLevel(l), isa); });
 }
 
 }  // namespace

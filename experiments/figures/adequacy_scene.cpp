@@ -21,7 +21,9 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -33,6 +35,7 @@
 #include <vector>
 
 #include "core/glints/chermain_chooser.h"
+#include "core/glints/cost_chooser.h"
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/io/exr.h"
@@ -318,24 +321,40 @@ void write_scene_exr(const FigureContext& ctx, const SceneResult& s) {
 // A scene's time per evaluation summed over its surface pixels (where a shader runs), each level
 // priced by the benchmark (`ns`: its family's levels, the most complete last): the most complete
 // level everywhere (exact counting, k16_exact, dict16_ggaa), the engine chooser's levels (the GPU
-// order) and, for the binomial levels, the levels the chooser for these costs picks
-// (choose_binomial_level_by_cost; the Kemppinen and Chermain families have no such chooser: NaN).
+// order) and the levels the family's chooser for these costs picks: choose_binomial_level_by_cost
+// (core/glints/adequacy.h) on the pixel's N_P and p; for the Kemppinen and Chermain families
+// cheapest_adequate_level (core/glints/cost_chooser.h) on the levels the engine chooser predicts
+// adequate at the pixel (ScenePixel::predicted_adequate), which is what
+// choose_kemppinen_model_level_by_cost and choose_chermain_model_level_by_cost compute.
 struct SceneCost {
   double exact_ns = 0, chosen_ns = 0, by_cost_ns = 0;
 };
+template <std::size_t N>
+std::array<bool, N> adequacy_from_bits(std::uint32_t bits) {
+  std::array<bool, N> a{};
+  for (std::size_t l = 0; l < N; ++l) a[l] = (bits >> l) & 1u;
+  return a;
+}
 SceneCost scene_cost(const adq::SceneRender& r, Family family, std::span<const double> ns,
                      double tau) {
+  static_assert(kKemppinenLevels == kChermainLevels);
   SceneCost c;
   const bool binomial = family == Family::kBinomial || family == Family::kArea;
   std::array<double, kBinomialLevels> cost{};
-  if (binomial) std::copy_n(ns.begin(), kBinomialLevels, cost.begin());
-  c.by_cost_ns = binomial ? 0.0 : NAN;
+  std::array<double, kChermainLevels> cost9{};
+  if (binomial)
+    std::copy_n(ns.begin(), kBinomialLevels, cost.begin());
+  else
+    std::copy_n(ns.begin(), kChermainLevels, cost9.begin());
   for (const adq::ScenePixel& p : r.pixels) {
     if (!p.surface || p.level < 0) continue;
     c.exact_ns += ns.back();
     c.chosen_ns += ns[std::size_t(p.level)];
-    if (binomial)
-      c.by_cost_ns += cost[std::size_t(choose_binomial_level_by_cost(p.facets, p.p, tau, cost))];
+    const std::size_t by_cost =
+        binomial ? std::size_t(choose_binomial_level_by_cost(p.facets, p.p, tau, cost))
+                 : std::size_t(cheapest_adequate_level<double, kChermainLevels>(
+                       adequacy_from_bits<kChermainLevels>(p.predicted_adequate), cost9));
+    c.by_cost_ns += ns[by_cost];
   }
   return c;
 }
@@ -384,9 +403,9 @@ std::string write_scene_costs(const FigureContext& ctx, const std::vector<SceneR
       "\n## Time per evaluation\n\nEach level priced by {} (rows adequacy/<model>/level=<level>/"
       "{}), summed over each scene's surface pixels: the family's most complete level everywhere "
       "(exact counting, k16_exact, dict16_ggaa), the engine chooser's levels (the GPU-lane order) "
-      "and, for the binomial levels, the levels the chooser for these costs picks "
-      "(choose_binomial_level_by_cost; the Kemppinen and Chermain families have no such chooser); "
-      "saved = 1 − time / most complete time.\n\n",
+      "and the levels the family's chooser for these costs picks (choose_binomial_level_by_cost; "
+      "choose_kemppinen_model_level_by_cost and choose_chermain_model_level_by_cost, "
+      "core/glints/cost_chooser.h); saved = 1 − time / most complete time.\n\n",
       costs.source, costs.isa);
   if (!unpriced.empty())
     md += fmt::format("The {} scenes are not priced here: {}.\n\n", fmt::join(unpriced, " and "),

@@ -9,8 +9,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "cli/chart_png.h"
 #include "cli/cli_test_util.h"
@@ -60,13 +62,34 @@ std::set<int> expect_counts_match_exrs(const fs::path& d, const io::CsvTable& t,
   return levels;
 }
 
+// Rows adequacy/<model>/level=<level>/<isa> of a nine-level family appended to a benchmark file.
+void add_level_costs(nlohmann::json& bench, const std::string& model,
+                     const std::vector<std::string>& levels, const std::vector<double>& ns) {
+  for (const char* isa : {"scalar", "sse4.2", "avx2", "avx512"})
+    for (std::size_t l = 0; l < levels.size(); ++l) {
+      const std::string name = "adequacy/" + model + "/level=" + levels[l] + "/" + isa;
+      bench["benchmarks"].push_back({{"name", name}, {"run_name", name}, {"run_type", "iteration"},
+                                     {"real_time", 1e6}, {"time_unit", "ns"},
+                                     {"items_per_second", 1e9 / ns[l]}});
+    }
+}
+
 TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
   // Benchmark costs with the exact count cheaper than both approximations (as on CPUs), for the
-  // binomial and the area family's models.
+  // binomial and the area family's models; for kemppinen_ggx k16_exact below k16_rational, for
+  // chermain dict16 below dict8_ggaa (orders of CPU rows), the most complete level 100 ns.
   std::filesystem::create_directories(path("bench"));
-  write_text(path("bench/glints.json"),
-             level_costs_json({"deliot_belcour", "kneiphof_klein", "kneiphof_klein_area"},
-                              {10, 200, 300, 100}));
+  nlohmann::json bench = nlohmann::json::parse(level_costs_json(
+      {"deliot_belcour", "kneiphof_klein", "kneiphof_klein_area"}, {10, 200, 300, 100}));
+  add_level_costs(bench, "kemppinen_ggx",
+                  {"smooth", "k1_rational", "k1_exact", "k4_rational", "k4_exact", "k9_rational",
+                   "k9_exact", "k16_rational", "k16_exact"},
+                  {1, 10, 11, 20, 21, 30, 31, 101, 100});
+  add_level_costs(bench, "chermain",
+                  {"smooth", "dict4", "dict4_ggaa", "dict8", "dict8_ggaa", "dict12", "dict12_ggaa",
+                   "dict16", "dict16_ggaa"},
+                  {1, 20, 30, 40, 50, 60, 70, 35, 100});
+  write_text(path("bench/glints.json"), bench.dump(1));
   const RunResult r = run(
       {"figure", "adequacy-scene", "--budget", "quick", "--out", "out", "--bench-from", "bench"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -166,15 +189,24 @@ TEST_F(AdequacySceneFigureTest, QuickWritesSheetExrCsvAndSummary) {
   EXPECT_EQ(md.find("over the 3 families"), std::string::npos);
   EXPECT_EQ(md.find("over the 2 families"), std::string::npos);
   EXPECT_EQ(md.find("over the two families"), std::string::npos);
-  EXPECT_NE(md.find("The Kemppinen and Chermain scenes are not priced"), std::string::npos);
-  EXPECT_EQ(md.find("The area scenes are not priced"), std::string::npos);
-  // Each scene's time: exact everywhere = 100 ns per surface pixel; the chooser for these costs
-  // never costs more than exact counting (it takes smooth where adequate, else exact).
+  EXPECT_EQ(md.find("are not priced"), std::string::npos);
+  // Each scene's time: the most complete level everywhere = 100 ns per surface pixel; the chooser
+  // for these costs never costs more than the most complete level nor than the GPU-order choice,
+  // and less than it where the costs order levels otherwise (k16_exact for k16_rational; dict16
+  // where GGAA off is predicted adequate).
   EXPECT_NE(md.find("## Time per evaluation"), std::string::npos);
   const io::CsvTable c = io::read_csv(d / "adequacy-scene-cost.csv");
-  ASSERT_EQ(c.num_rows(), 10u);  // the binomial scenes, then the area scenes
-  EXPECT_EQ(c.text(9, c.column("model")), "kneiphof_klein_area");
-  EXPECT_EQ(c.text(9, c.column("scene")), "area-sphere-rect-high");
+  ASSERT_EQ(c.num_rows(), 18u);  // binomial, Kemppinen, area, Chermain scenes
+  EXPECT_EQ(c.text(13, c.column("scene")), "area-sphere-rect-high");
+  EXPECT_EQ(c.text(17, c.column("scene")), "chermain-sphere-high");
+  std::set<std::string> cheaper_by_cost;
+  for (std::size_t i = 0; i < c.num_rows(); ++i) {
+    EXPECT_LE(c.number(i, c.column("by_cost_ns")), c.number(i, c.column("chosen_ns")));
+    if (c.number(i, c.column("by_cost_ns")) < c.number(i, c.column("chosen_ns")))
+      cheaper_by_cost.insert(std::string(c.text(i, c.column("model"))));
+  }
+  EXPECT_TRUE(cheaper_by_cost.count("kemppinen_ggx"));
+  EXPECT_TRUE(cheaper_by_cost.count("chermain"));
   for (std::size_t i = 0; i < c.num_rows(); ++i) {
     const std::string name(c.text(i, c.column("scene")));
     const Image im = io::read_exr(d / (name + ".exr")).image;

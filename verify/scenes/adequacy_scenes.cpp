@@ -12,10 +12,11 @@
 #include <type_traits>
 
 #include "core/glints/area_chooser.h"
+#include "core/glints/chermain_chooser.h"
+#include "core/glints/cost_chooser.h"
 #include "core/glints/kneiphof_ltc.h"
 #include "core/model_registry.h"
 #include "core/scene/footprint.h"
-#include "core/glints/chermain_chooser.h"
 #include "verify/adequacy/chermain_adequacy.h"
 #include "verify/adequacy/kemppinen_adequacy.h"
 #include "verify/adequacy/kemppinen_levels.h"
@@ -29,6 +30,14 @@ constexpr Vec3<double> kPlaneLight{0, 10, 1.5};
 constexpr Vec3<double> kSphereSceneLight{2.5, 2.5, 3.0};
 constexpr double kLightIntensity = 100;
 constexpr double kLightRadius = 0.4;
+
+// A family's predicted adequacy per level as ScenePixel::predicted_adequate's bits.
+template <std::size_t N>
+std::uint32_t adequacy_bits(const std::array<bool, N>& adequate) {
+  std::uint32_t bits = 0;
+  for (std::size_t l = 0; l < N; ++l) bits |= adequate[l] ? std::uint32_t(1) << l : 0;
+  return bits;
+}
 
 struct SceneGeometry {
   PinholeCamera<double> camera;
@@ -248,6 +257,10 @@ void render_kemppinen_rows(const ChoiceScene& s, const SceneGeometry& g, const S
     px.p = 0;
     px.level = o.kemppinen_chooser ? o.kemppinen_chooser(reference, q, o.chooser_tau)
                                    : int(choose_kemppinen_model_level(reference, q, o.chooser_tau));
+    px.predicted_adequate = adequacy_bits(kemppinen_level_adequacy(adequate_kemppinen_levels(
+        kemppinen_level_moments(reference.glint, reference.ndf, q.footprint,
+                                half_vector(q.wi, q.wo)),
+        o.chooser_tau)));
     if (px.level < 0 || px.level >= kKemppinenLevels)
       throw std::invalid_argument("adequacy scenes: the chooser returned no Kemppinen level");
     const auto chosen = KemppinenLevel(px.level);
@@ -379,6 +392,8 @@ void render_chermain_rows(const ChoiceScene& s, const SceneGeometry& g, const Sh
     px.p = 0;
     px.level = o.chermain_chooser ? o.chermain_chooser(reference, q, o.chooser_tau)
                                   : int(choose_chermain_model_level(reference, q, o.chooser_tau));
+    px.predicted_adequate =
+        adequacy_bits(chermain_level_adequacy(reference.sdf, reference.d, q, o.chooser_tau));
     if (px.level < 0 || px.level >= kChermainLevels)
       throw std::invalid_argument("adequacy scenes: the chooser returned no Chermain level");
     const auto chosen = ChermainLevel(px.level);

@@ -139,6 +139,11 @@ struct ScenePixel {
   // The exact level is non-zero at >= kMinLitPositions realisations: a difference is measurable.
   bool lit = false;
   bool exceeds = false;  // a lower bound above TAU: the chosen level differs by more, for sure
+  // The Kemppinen and Chermain families: bit l set where the engine chooser at the options'
+  // chooser_tau predicts level l adequate (kemppinen_level_adequacy, chermain_level_adequacy of
+  // core/glints/cost_chooser.h and chermain_chooser.h), so that a chooser for given costs
+  // (cheapest_adequate_level) can be priced on the pixel; 0 for the other families.
+  std::uint32_t predicted_adequate = 0;
 };
 
 struct SceneRender {

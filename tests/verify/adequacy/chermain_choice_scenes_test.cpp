@@ -1,14 +1,17 @@
 // The Chermain family's validation scenes of adequacy.choice-is-safe (chermain_choice_scenes,
 // verify/scenes/adequacy_scenes.h): the engine chooser (choose_chermain_model_level) holds on small
 // renders of both planes and of both spheres, a chooser that takes each dictionary some three
-// levels early (told a footprint 10 times wider) fails by the same decision, and the pixels are the
-// same on one thread and on two.
+// levels early (told a footprint 10 times wider) fails by the same decision, the pixels are the
+// same on one thread and on two, and each pixel's predicted adequate levels give the engine
+// chooser's level and the chooser for given costs' (what the figure prices the scenes with).
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <array>
 #include <cstdio>
 
 #include "core/glints/chermain_chooser.h"
+#include "core/glints/cost_chooser.h"
 #include "verify/scenes/adequacy_scenes.h"
 
 namespace glintlab::verify::adequacy {
@@ -66,6 +69,61 @@ TEST(ChermainChoiceScenes, SphereEngineChooserHoldsAndABrokenChooserFails) {
   SceneOptions o = chermain_options();
   o.width = o.height = 24;
   expect_holds_and_wider_fails(SceneShape::kSphere, o);
+}
+
+// ns per evaluation of the Chermain levels measured on this machine class (the AVX-512 rows of
+// 2026-12-06, docs/adequacy.md "Choosers for given costs"): dict12 below dict4_ggaa, dict16 below
+// dict8_ggaa.
+constexpr std::array<double, kChermainLevels> kChermainMeasured = {34,  246,  534, 425, 991,
+                                                                   530, 1357, 709, 1877};
+
+std::array<bool, kChermainLevels> adequate_from(std::uint32_t bits) {
+  std::array<bool, kChermainLevels> a{};
+  for (std::size_t l = 0; l < kChermainLevels; ++l) a[l] = (bits >> l) & 1u;
+  return a;
+}
+
+TEST(ChermainChoiceScenes, PredictedAdequateLevelsGiveTheEngineAndTheCostChoosersLevels) {
+  // Both planes at 12², 8 realisations (the statistics are not looked at): every surface pixel's
+  // ScenePixel::predicted_adequate, through cheapest_adequate_level, is the level the engine
+  // chooser picked (GPU order) and, with the chooser replaced by
+  // choose_chermain_model_level_by_cost for the measured order, that chooser's level. A table
+  // shifted by a level (each level taken where the next is adequate) gives other levels.
+  SceneOptions o = chermain_options();
+  o.realisations = 8;
+  SceneOptions by_cost = o;
+  by_cost.chermain_chooser = [](const Chermain::Params<double>& p, const ModelQuery<double>& q,
+                                double tau) {
+    return int(choose_chermain_model_level_by_cost(p, q, tau, kChermainMeasured));
+  };
+  constexpr auto gpu = gpu_cost_order<kChermainLevels>();
+  int surface = 0, differ_by_cost = 0, shifted_differ = 0;
+  for (const ChoiceScene& s : chermain_choice_scenes()) {
+    if (s.shape != SceneShape::kPlane) continue;
+    const SceneRender engine = render_choice_scene(s, o), cost = render_choice_scene(s, by_cost);
+    for (std::size_t i = 0; i < engine.pixels.size(); ++i) {
+      const ScenePixel& e = engine.pixels[i];
+      if (!e.surface) continue;
+      ++surface;
+      const auto adequate = adequate_from(e.predicted_adequate);
+      EXPECT_EQ(int(cheapest_adequate_level<double, kChermainLevels>(adequate, gpu)), e.level);
+      EXPECT_EQ(cost.pixels[i].predicted_adequate, e.predicted_adequate);
+      EXPECT_EQ(int(cheapest_adequate_level<double, kChermainLevels>(adequate, kChermainMeasured)),
+                cost.pixels[i].level);
+      differ_by_cost += cost.pixels[i].level != e.level ? 1 : 0;
+      std::array<bool, kChermainLevels> shifted{};
+      for (std::size_t l = 0; l + 1 < kChermainLevels; ++l) shifted[l] = adequate[l + 1];
+      shifted[kChermainLevels - 1] = true;
+      shifted_differ +=
+          int(cheapest_adequate_level<double, kChermainLevels>(shifted, gpu)) != e.level ? 1 : 0;
+    }
+  }
+  EXPECT_GT(surface, 100);
+  EXPECT_GT(shifted_differ, 0);
+  std::printf(
+      "chermain planes: %d surface pixels; the measured order's level differs from the GPU "
+      "order's in %d; a shifted table's in %d\n",
+      surface, differ_by_cost, shifted_differ);
 }
 
 TEST(ChermainChoiceScenes, PixelsAreTheSameForAnyThreadCount) {

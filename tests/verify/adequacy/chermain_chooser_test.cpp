@@ -66,10 +66,11 @@ TEST(ChermainChooser, NeverRefutedOnTheQuickGridAndTenfoldTauOrAMovedBoundaryIs)
 }
 
 TEST(ChermainChooser, GgaaOffPredictionNeverRefutedOnTheQuickGridAndAThinnerKernelIs) {
-  // Where GGAA filters (dh > 0) and the chooser keeps it on at a dictionary level, GGAA off at the
-  // same dictionary where chermain_ggaa_off_adequate predicts it: never refuted by the quick grid
-  // at 2000 positions. The check fails a prediction told a kernel 10 times thinner (the
-  // derivatives / 10: GGAA's widening taken as 100 times smaller) or TAU × 10.
+  // Where GGAA filters (dh > 0) and the chooser's dictionary is one with GGAA on by the
+  // construction, GGAA off at the same dictionary where chermain_ggaa_off_adequate predicts it
+  // (the chooser's level then): never refuted by the quick grid at 2000 positions. The check fails
+  // a prediction told a kernel 10 times thinner (the derivatives / 10: GGAA's widening taken as
+  // 100 times smaller) or TAU × 10.
   ChermainGridAxes a = chermain_grid_axes(Budget::kQuick);
   a.samples = 2000;
   const auto cells = make_chermain_grid({"chermain"}, a);
@@ -80,12 +81,17 @@ TEST(ChermainChooser, GgaaOffPredictionNeverRefutedOnTheQuickGridAndAThinnerKern
   for (const ChermainCellResult& r : rows) {
     const auto p = chermain_level_params(r.cell, kChermainMostComplete, 0);
     const ModelQuery<double> q = chermain_cell_query(r.cell, chermain_surface_position(r.cell, 0));
-    const int level = chooser_at(r.cell, kTau);
-    if (r.cell.dh == 0 || !chermain_level_ggaa(ChermainLevel(level))) continue;
+    const int chosen = chooser_at(r.cell, kTau);
+    if (r.cell.dh == 0 || chosen == int(ChermainLevel::kSmooth)) continue;
+    // The chooser's dictionary with GGAA on (where it took GGAA off, its twin).
+    const int level = chermain_level_ggaa(ChermainLevel(chosen)) ? chosen : chosen + 1;
+    if (!chermain_level_ggaa(ChermainLevel(level))) continue;
     ++kept_on;
     const int off = level - 1;
     off_adequate += r.levels[std::size_t(off)].adequate ? 1 : 0;
-    if (chermain_ggaa_off_adequate(p.sdf, p.d, q, kTau)) {
+    const bool predicted_off = chermain_ggaa_off_adequate(p.sdf, p.d, q, kTau);
+    EXPECT_EQ(chosen, predicted_off ? off : level) << "the chooser takes GGAA off as predicted";
+    if (predicted_off) {
       ++predicted;
       predicted_adequate += r.levels[std::size_t(off)].adequate ? 1 : 0;
       EXPECT_FALSE(refuted(r, off))
@@ -102,27 +108,38 @@ TEST(ChermainChooser, GgaaOffPredictionNeverRefutedOnTheQuickGridAndAThinnerKern
   EXPECT_GT(thinner_refuted, 0);
   EXPECT_GT(tenfold_refuted, 0);
   std::printf(
-      "GGAA off: the chooser keeps GGAA on in %d filtering cells, GGAA off adequate by the table "
-      "in %d; predicted adequate in %d (adequate by the table %d, refuted 0); a 10 times thinner "
+      "GGAA off: %d filtering cells at a dictionary with GGAA on by the construction, GGAA off "
+      "adequate by the table in %d; predicted adequate (the chooser's level) in %d (adequate by the table %d, refuted 0); a 10 times thinner "
       "kernel refuted in %d, TAU x 10 in %d\n",
       kept_on, off_adequate, predicted, predicted_adequate, thinner_refuted, tenfold_refuted);
 }
 
 TEST(ChermainChooser, DictionaryChoiceIsTheConstructionsIdenticalLevel) {
-  // Wherever the chooser does not take the smooth level by its CV, its level is the
-  // construction's identical one (verify's chermain_identical_level), on every cell of both grids.
+  // Wherever the chooser does not take the smooth level by its CV, its dictionary is the
+  // construction's identical one (verify's chermain_identical_level), on every cell of both grids,
+  // with GGAA as the construction has it or off where chermain_ggaa_off_adequate predicts so.
   for (Budget b : {Budget::kQuick, Budget::kFull}) {
-    int smooth_by_cv = 0;
+    int smooth_by_cv = 0, ggaa_off_predicted = 0;
     for (const ChermainCell& c : make_chermain_grid({"chermain"}, chermain_grid_axes(b))) {
       const int chosen = chooser_at(c, kTau);
-      const int same = int(chermain_identical_level(c));
+      int same = int(chermain_identical_level(c));
       if (chosen == int(ChermainLevel::kSmooth) && same != chosen) {
         ++smooth_by_cv;
         continue;
       }
+      const auto p = chermain_level_params(c, kChermainMostComplete, 0);
+      const ModelQuery<double> q = chermain_cell_query(c, chermain_surface_position(c, 0));
+      if (chermain_level_ggaa(ChermainLevel(same)) &&
+          chermain_ggaa_off_adequate(p.sdf, p.d, q, kTau)) {
+        --same;  // dictL for dictL_ggaa
+        ++ggaa_off_predicted;
+      }
       EXPECT_EQ(chosen, same) << c.facets << " " << c.theta_i_deg << " " << c.dh;
     }
     EXPECT_GT(smooth_by_cv, 0);
+    EXPECT_GT(ggaa_off_predicted, 0);
+    std::printf("%s grid: smooth by the CV in %d cells, GGAA off by the prediction in %d\n",
+                b == Budget::kQuick ? "quick" : "full", smooth_by_cv, ggaa_off_predicted);
   }
 }
 

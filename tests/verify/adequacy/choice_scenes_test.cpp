@@ -1,7 +1,8 @@
 // The validation scenes of adequacy.choice-is-safe (verify/scenes/adequacy_scenes.h): the
 // decision's critical count, the engine chooser held and a broken chooser caught by the same
-// decision on small renders, the chooser on (N_P, p) identical to the engine's, and the same
-// pixels for any thread count.
+// decision on small renders, the chooser on (N_P, p) identical to the engine's, the same
+// pixels for any thread count, and the Kemppinen pixels' predicted adequate levels giving the
+// engine chooser's level and the chooser for given costs'.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -9,6 +10,7 @@
 #include <cstdio>
 #include <set>
 
+#include "core/glints/cost_chooser.h"
 #include "verify/scenes/adequacy_scenes.h"
 
 namespace glintlab::verify::adequacy {
@@ -176,6 +178,51 @@ TEST(AdequacyChoiceScenes, KemppinenPixelsAreTheSameForAnyThreadCount) {
     return kKemppinenLevels;
   };
   EXPECT_THROW(render_choice_scene(s, o), std::invalid_argument);
+}
+
+TEST(AdequacyChoiceScenes, KemppinenPredictedAdequateLevelsGiveTheEngineAndTheCostChoosersLevels) {
+  // Every Kemppinen scene at 12², 8 realisations (the statistics are not looked at): every
+  // surface pixel's ScenePixel::predicted_adequate, through cheapest_adequate_level, is the engine
+  // chooser's level (GPU order) and, with the chooser replaced by
+  // choose_kemppinen_model_level_by_cost for an order measured on this machine class (k16_exact
+  // below k16_rational), that chooser's level. A table shifted by a level gives other levels.
+  constexpr std::array<double, kKemppinenLevels> measured = {15,    1094,  1120,  3555, 3581,
+                                                             15181, 15419, 51471, 50879};
+  constexpr auto gpu = gpu_cost_order<kKemppinenLevels>();
+  SceneOptions o = small_kemppinen_options();
+  o.realisations = 8;
+  SceneOptions by_cost = o;
+  by_cost.kemppinen_chooser = [&](const KemppinenGGX::Params<double>& p,
+                                  const ModelQuery<double>& q, double tau) {
+    return int(choose_kemppinen_model_level_by_cost(p, q, tau, measured));
+  };
+  int surface = 0, differ_by_cost = 0, shifted_differ = 0;
+  for (const ChoiceScene& s : kemppinen_choice_scenes()) {
+    const SceneRender engine = render_choice_scene(s, o), cost = render_choice_scene(s, by_cost);
+    for (std::size_t i = 0; i < engine.pixels.size(); ++i) {
+      const ScenePixel& e = engine.pixels[i];
+      if (!e.surface) continue;
+      ++surface;
+      std::array<bool, kKemppinenLevels> adequate{}, shifted{};
+      for (std::size_t l = 0; l < kKemppinenLevels; ++l)
+        adequate[l] = (e.predicted_adequate >> l) & 1u;
+      for (std::size_t l = 0; l + 1 < kKemppinenLevels; ++l) shifted[l] = adequate[l + 1];
+      shifted[kKemppinenLevels - 1] = true;
+      EXPECT_EQ(int(cheapest_adequate_level<double, kKemppinenLevels>(adequate, gpu)), e.level);
+      EXPECT_EQ(int(cheapest_adequate_level<double, kKemppinenLevels>(adequate, measured)),
+                cost.pixels[i].level);
+      differ_by_cost += cost.pixels[i].level != e.level ? 1 : 0;
+      shifted_differ +=
+          int(cheapest_adequate_level<double, kKemppinenLevels>(shifted, gpu)) != e.level ? 1 : 0;
+    }
+  }
+  EXPECT_GT(surface, 100);
+  EXPECT_GT(differ_by_cost, 0);  // k16_exact for k16_rational
+  EXPECT_GT(shifted_differ, 0);
+  std::printf(
+      "kemppinen scenes: %d surface pixels; the measured order's level differs from the GPU "
+      "order's in %d; a shifted table's in %d\n",
+      surface, differ_by_cost, shifted_differ);
 }
 
 // The area family's scenes of one shape rendered with the engine chooser and with a chooser told a

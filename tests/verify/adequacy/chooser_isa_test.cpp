@@ -10,7 +10,8 @@
 // fail: a lane path whose selects take the other arm in the batch's last lane
 // disagrees with the scalar chooser on every ISA. The float batches of the same choosers
 // (`ChooserIsaFloat`) against the scalar double chooser: the rows where float chooses otherwise
-// counted, each explained by a boundary within a stated move, the counts stated.
+// counted, each explained by a boundary within a stated move, the counts stated; so are the
+// choosers for given costs on float.
 #include "verify/adequacy/chooser_isa.h"
 
 #include <gtest/gtest.h>
@@ -522,6 +523,34 @@ double chermain_moved(const Group& g, std::size_t i, double ts, double fs, doubl
   const auto ps = chermain_level_params(*g.chermain, kChermainMostComplete, 0);
   return choose_chermain_model_level(ps, scaled_footprint(g.rows.q[i], fs), g.rows.tau[i] * ts);
 }
+template <class M>
+double kemppinen_by_cost_moved(const Group& g, std::size_t i, double ts, double fs, double) {
+  return choose_kemppinen_model_level_by_cost(M::template params<double>(g.params),
+                                              scaled_footprint(g.rows.q[i], fs),
+                                              g.rows.tau[i] * ts, kKemppinenMeasuredOrder);
+}
+double chermain_by_cost_moved(const Group& g, std::size_t i, double ts, double fs, double) {
+  const auto ps = chermain_level_params(*g.chermain, kChermainMostComplete, 0);
+  return choose_chermain_model_level_by_cost(ps, scaled_footprint(g.rows.q[i], fs),
+                                             g.rows.tau[i] * ts, kChermainMeasuredOrder);
+}
+
+// Groups whose scalar levels are the double chooser for given costs' (by a measured order).
+template <class M>
+std::vector<Group> kemppinen_by_cost_groups() {
+  std::vector<Group> groups = kemppinen_model_groups<M>();
+  for (Group& g : groups)
+    for (std::size_t i = 0; i < g.rows.q.size(); ++i)
+      g.rows.scalar[i] = kemppinen_by_cost_moved<M>(g, i, 1, 1, 1);
+  return groups;
+}
+std::vector<Group> chermain_by_cost_groups() {
+  std::vector<Group> groups = chermain_model_groups();
+  for (Group& g : groups)
+    for (std::size_t i = 0; i < g.rows.q.size(); ++i)
+      g.rows.scalar[i] = chermain_by_cost_moved(g, i, 1, 1, 1);
+  return groups;
+}
 
 class ChooserIsaFloat : public ::testing::TestWithParam<IsaCase> {
  protected:
@@ -588,6 +617,28 @@ class ChooserIsaFloat : public ::testing::TestWithParam<IsaCase> {
         },
         chermain_moved, path == LanePath::kLibrary);
   }
+  template <class M>
+  FloatDiff kemppinen_by_cost() {
+    const bool ggx = std::is_same_v<M, KemppinenGGX>;
+    return float_against_double(
+        kemppinen_by_cost_groups<M>(),
+        [&](const Group& x, double* out) {
+          (ggx ? fns_.kemppinen_ggx_by_cost : fns_.kemppinen_beckmann_by_cost)(
+              x.params, x.rows.q.data(), x.rows.tau.data(), kKemppinenMeasuredOrder, out,
+              x.rows.q.size());
+        },
+        kemppinen_by_cost_moved<M>);
+  }
+  FloatDiff chermain_by_cost(LanePath path) {
+    return float_against_double(
+        chermain_by_cost_groups(),
+        [&](const Group& x, double* out) {
+          const auto ps = chermain_level_params(*x.chermain, kChermainMostComplete, 0);
+          fns_.chermain_by_cost(ps.sdf, ps.d, x.rows.q.data(), x.rows.tau.data(),
+                                kChermainMeasuredOrder, out, x.rows.q.size(), path);
+        },
+        chermain_by_cost_moved, path == LanePath::kLibrary);
+  }
   void report(const char* family, const FloatDiff& d) {
     std::printf("%s float (%zu lanes), %s: %s\n", GetParam().name, fns_.lanes, family,
                 d.text().c_str());
@@ -606,6 +657,10 @@ constexpr FloatAllowance kKneiphofKleinFloat = {1, 1e-4};
 constexpr FloatAllowance kKemppinenGgxFloat = {2, 1e-3};
 constexpr FloatAllowance kKemppinenBeckmannFloat = {0, 0};
 constexpr FloatAllowance kChermainFloat = {0, 0};
+// The choosers for given costs by the measured order.
+constexpr FloatAllowance kKemppinenGgxByCostFloat = {2, 1e-3};
+constexpr FloatAllowance kKemppinenBeckmannByCostFloat = {0, 0};
+constexpr FloatAllowance kChermainByCostFloat = {0, 0};
 
 void expect_within(const FloatDiff& d, const FloatAllowance& a, const char* family) {
   EXPECT_LE(d.differ, a.rows) << family << ": " << d.text();
@@ -642,6 +697,24 @@ TEST_P(ChooserIsaFloat, ChermainFloatLanesDifferOnlyAtBoundariesAndASwappedLaneE
   const FloatDiff broken = chermain(LanePath::kLastLaneSwapped);
   report("chermain, last lane swapped", broken);
   EXPECT_GT(broken.differ, kChermainFloat.rows);
+}
+
+// The choosers for given costs (core/glints/cost_chooser.h) by the measured order, in float
+// against the scalar double chooser for the same costs, with the Chermain one's control (the
+// Kemppinen ones have no broken path, as in double).
+TEST_P(ChooserIsaFloat, CostChoosersFloatLanesDifferOnlyAtBoundariesAndASwappedLaneExceedsTheCount) {
+  const FloatDiff ggx = kemppinen_by_cost<KemppinenGGX>();
+  const FloatDiff beckmann = kemppinen_by_cost<KemppinenBeckmann>();
+  const FloatDiff ch = chermain_by_cost(LanePath::kLibrary);
+  report("kemppinen_ggx by cost", ggx);
+  report("kemppinen_beckmann by cost", beckmann);
+  report("chermain by cost", ch);
+  expect_within(ggx, kKemppinenGgxByCostFloat, "kemppinen_ggx by cost");
+  expect_within(beckmann, kKemppinenBeckmannByCostFloat, "kemppinen_beckmann by cost");
+  expect_within(ch, kChermainByCostFloat, "chermain by cost");
+  const FloatDiff broken = chermain_by_cost(LanePath::kLastLaneSwapped);
+  report("chermain by cost, last lane swapped", broken);
+  EXPECT_GT(broken.differ, kChermainByCostFloat.rows);
 }
 
 // The control: a float lane path whose selects are swapped in one lane exceeds the counts.
