@@ -47,7 +47,7 @@ std::vector<double> doubles_of(const json& a) {
   return v;
 }
 
-// The grid axes of the binomial or the area family as a part file holds them.
+// Each family's grid axes as a part file holds them (the binomial and the area family: GridAxes).
 json grid_axes_to_json(const verify::adequacy::GridAxes& a) {
   return {{"facets", bits_of(a.facets)},
           {"alpha", bits_of(a.alpha)},
@@ -56,7 +56,7 @@ json grid_axes_to_json(const verify::adequacy::GridAxes& a) {
           {"theta_h_count", a.theta_h_count},
           {"samples", a.samples}};
 }
-verify::adequacy::GridAxes grid_axes_of(const json& j) {
+verify::adequacy::GridAxes grid_axes_from_json(const json& j) {
   verify::adequacy::GridAxes a;
   a.facets = doubles_of(j.at("facets"));
   a.alpha = doubles_of(j.at("alpha"));
@@ -65,6 +65,40 @@ verify::adequacy::GridAxes grid_axes_of(const json& j) {
   a.theta_h_count = j.at("theta_h_count").get<int>();
   a.samples = j.at("samples").get<int>();
   return a;
+}
+json kemppinen_axes_to_json(const verify::adequacy::KemppinenGridAxes& k) {
+  return {{"points", bits_of(k.points)},
+          {"alpha", bits_of(k.alpha)},
+          {"theta_i_deg", bits_of(k.theta_i_deg)},
+          {"theta_h_count", k.theta_h_count},
+          {"samples", k.samples}};
+}
+verify::adequacy::KemppinenGridAxes kemppinen_axes_from_json(const json& j) {
+  verify::adequacy::KemppinenGridAxes k;
+  k.points = doubles_of(j.at("points"));
+  k.alpha = doubles_of(j.at("alpha"));
+  k.theta_i_deg = doubles_of(j.at("theta_i_deg"));
+  k.theta_h_count = j.at("theta_h_count").get<int>();
+  k.samples = j.at("samples").get<int>();
+  return k;
+}
+json chermain_axes_to_json(const verify::adequacy::ChermainGridAxes& c) {
+  return {{"facets", bits_of(c.facets)},
+          {"alpha", bits_of(c.alpha)},
+          {"theta_i_deg", bits_of(c.theta_i_deg)},
+          {"dh", bits_of(c.dh)},
+          {"theta_h_count", c.theta_h_count},
+          {"samples", c.samples}};
+}
+verify::adequacy::ChermainGridAxes chermain_axes_from_json(const json& j) {
+  verify::adequacy::ChermainGridAxes c;
+  c.facets = doubles_of(j.at("facets"));
+  c.alpha = doubles_of(j.at("alpha"));
+  c.theta_i_deg = doubles_of(j.at("theta_i_deg"));
+  c.dh = doubles_of(j.at("dh"));
+  c.theta_h_count = j.at("theta_h_count").get<int>();
+  c.samples = j.at("samples").get<int>();
+  return c;
 }
 
 json level_to_json(const LevelStats& s) {
@@ -283,26 +317,15 @@ void write_adequacy_part(const std::filesystem::path& file, const AdequacyOption
       cells.kemppinen.size() != part.kemppinen.size() || cells.area.size() != part.area.size() ||
       cells.chermain.size() != part.chermain.size())
     throw std::logic_error("write_adequacy_part: cells and part differ in size");
-  const verify::adequacy::KemppinenGridAxes k = kemppinen_axes_of(o);
   json doc;
   doc["format"] = kFormat;
   doc["budget"] = o.budget == verify::Budget::kQuick ? "quick" : "full";
   doc["models"] = o.models;
   doc["threshold"] = bits(o.threshold);
   doc["binomial_axes"] = grid_axes_to_json(binomial_axes_of(o));
-  doc["kemppinen_axes"] = {{"points", bits_of(k.points)},
-                           {"alpha", bits_of(k.alpha)},
-                           {"theta_i_deg", bits_of(k.theta_i_deg)},
-                           {"theta_h_count", k.theta_h_count},
-                           {"samples", k.samples}};
+  doc["kemppinen_axes"] = kemppinen_axes_to_json(kemppinen_axes_of(o));
   doc["area_axes"] = grid_axes_to_json(area_axes_of(o));
-  const verify::adequacy::ChermainGridAxes ch = chermain_axes_of(o);
-  doc["chermain_axes"] = {{"facets", bits_of(ch.facets)},
-                          {"alpha", bits_of(ch.alpha)},
-                          {"theta_i_deg", bits_of(ch.theta_i_deg)},
-                          {"dh", bits_of(ch.dh)},
-                          {"theta_h_count", ch.theta_h_count},
-                          {"samples", ch.samples}};
+  doc["chermain_axes"] = chermain_axes_to_json(chermain_axes_of(o));
   if (o.costs) {
     json ns = json::object();
     for (const auto& [model, v] : o.costs->ns)
@@ -346,25 +369,10 @@ AdequacyPartFile read_adequacy_part(const std::filesystem::path& file) {
     o.budget = budget == "quick" ? verify::Budget::kQuick : verify::Budget::kFull;
     o.models = doc.at("models").get<std::vector<std::string>>();
     o.threshold = from_bits(doc.at("threshold"));
-    const json& ka = doc.at("kemppinen_axes");
-    verify::adequacy::KemppinenGridAxes k;
-    k.points = doubles_of(ka.at("points"));
-    k.alpha = doubles_of(ka.at("alpha"));
-    k.theta_i_deg = doubles_of(ka.at("theta_i_deg"));
-    k.theta_h_count = ka.at("theta_h_count").get<int>();
-    k.samples = ka.at("samples").get<int>();
-    o.kemppinen_axes = k;
-    o.binomial_axes = grid_axes_of(doc.at("binomial_axes"));
-    o.area_axes = grid_axes_of(doc.at("area_axes"));
-    const json& ca = doc.at("chermain_axes");
-    verify::adequacy::ChermainGridAxes ch;
-    ch.facets = doubles_of(ca.at("facets"));
-    ch.alpha = doubles_of(ca.at("alpha"));
-    ch.theta_i_deg = doubles_of(ca.at("theta_i_deg"));
-    ch.dh = doubles_of(ca.at("dh"));
-    ch.theta_h_count = ca.at("theta_h_count").get<int>();
-    ch.samples = ca.at("samples").get<int>();
-    o.chermain_axes = ch;
+    o.binomial_axes = grid_axes_from_json(doc.at("binomial_axes"));
+    o.kemppinen_axes = kemppinen_axes_from_json(doc.at("kemppinen_axes"));
+    o.area_axes = grid_axes_from_json(doc.at("area_axes"));
+    o.chermain_axes = chermain_axes_from_json(doc.at("chermain_axes"));
     if (!doc.at("costs").is_null()) {
       const json& c = doc.at("costs");
       LevelCosts costs;
