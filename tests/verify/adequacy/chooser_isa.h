@@ -49,13 +49,15 @@ struct ChooserIsaFns {
                    LanePath path);
   // The choosers for given costs (core/glints/cost_chooser.h) with the costs `cost` (the family's
   // level order): choose_kemppinen_model_level_by_cost (kemppinen_ggx, kemppinen_beckmann),
-  // choose_chermain_model_level_by_cost (the Kemppinen ones have no broken path, as above).
+  // choose_chermain_model_level_by_cost. The Kemppinen ones' broken path swaps the last lane's
+  // selects only where the level is composed from the levels' adequacy by cost (their adequacy
+  // on the library's lanes, for the reason above).
   void (*kemppinen_ggx_by_cost)(std::span<const double> params, const ModelQuery<double>* q,
                                 const double* tau, const std::array<double, 9>& cost,
-                                double* out, std::size_t n);
+                                double* out, std::size_t n, LanePath path);
   void (*kemppinen_beckmann_by_cost)(std::span<const double> params, const ModelQuery<double>* q,
                                      const double* tau, const std::array<double, 9>& cost,
-                                     double* out, std::size_t n);
+                                     double* out, std::size_t n, LanePath path);
   void (*chermain_by_cost)(const chermain2021::SdfParams& sdf,
                            const chermain2021::SlopeDerivatives& d, const ModelQuery<double>* q,
                            const double* tau, const std::array<double, 9>& cost, double* out,

@@ -318,13 +318,16 @@ TEST_P(ChooserIsa, CostChoosersLanesMatchScalarOnTheirTablesAndASwappedLaneIsCau
   for (const bool ggx : {true, false}) {
     const std::vector<Group>& groups =
         ggx ? kemppinen_model_groups<KemppinenGGX>() : kemppinen_model_groups<KemppinenBeckmann>();
-    std::vector<double> got, want;
+    const auto by_cost = ggx ? fns_.kemppinen_ggx_by_cost : fns_.kemppinen_beckmann_by_cost;
+    std::vector<double> got, want, broken;
     for (const Group& g : groups) {
       std::vector<double> out(g.rows.q.size());
-      (ggx ? fns_.kemppinen_ggx_by_cost : fns_.kemppinen_beckmann_by_cost)(
-          g.params, g.rows.q.data(), g.rows.tau.data(), kKemppinenMeasuredOrder, out.data(),
-          out.size());
+      by_cost(g.params, g.rows.q.data(), g.rows.tau.data(), kKemppinenMeasuredOrder, out.data(),
+              out.size(), LanePath::kLibrary);
       got.insert(got.end(), out.begin(), out.end());
+      by_cost(g.params, g.rows.q.data(), g.rows.tau.data(), kKemppinenMeasuredOrder, out.data(),
+              out.size(), LanePath::kLastLaneSwapped);
+      broken.insert(broken.end(), out.begin(), out.end());
       for (std::size_t i = 0; i < out.size(); ++i) {
         if (ggx)
           want.push_back(choose_kemppinen_model_level_by_cost(
@@ -336,9 +339,13 @@ TEST_P(ChooserIsa, CostChoosersLanesMatchScalarOnTheirTablesAndASwappedLaneIsCau
               kKemppinenMeasuredOrder));
       }
     }
-    EXPECT_EQ(differing(got, want, ggx ? "kemppinen_ggx by cost" : "kemppinen_beckmann by cost"),
-              0u)
-        << got.size() << " rows";
+    const char* family = ggx ? "kemppinen_ggx by cost" : "kemppinen_beckmann by cost";
+    EXPECT_EQ(differing(got, want, family), 0u) << got.size() << " rows";
+    // The control: the level composed by cost with the last lane's selects swapped is caught.
+    const std::size_t differ = count_differing(broken, want);
+    EXPECT_GT(differ, 0u) << family;
+    std::printf("%s (%zu lanes), last lane swapped: %s %zu of %zu rows differ\n",
+                GetParam().name, fns_.lanes, family, differ, broken.size());
   }
   std::vector<double> got, want, broken;
   for (const Group& g : chermain_model_groups()) {
@@ -618,16 +625,16 @@ class ChooserIsaFloat : public ::testing::TestWithParam<IsaCase> {
         chermain_moved, path == LanePath::kLibrary);
   }
   template <class M>
-  FloatDiff kemppinen_by_cost() {
+  FloatDiff kemppinen_by_cost(LanePath path) {
     const bool ggx = std::is_same_v<M, KemppinenGGX>;
     return float_against_double(
         kemppinen_by_cost_groups<M>(),
         [&](const Group& x, double* out) {
           (ggx ? fns_.kemppinen_ggx_by_cost : fns_.kemppinen_beckmann_by_cost)(
               x.params, x.rows.q.data(), x.rows.tau.data(), kKemppinenMeasuredOrder, out,
-              x.rows.q.size());
+              x.rows.q.size(), path);
         },
-        kemppinen_by_cost_moved<M>);
+        kemppinen_by_cost_moved<M>, path == LanePath::kLibrary);
   }
   FloatDiff chermain_by_cost(LanePath path) {
     return float_against_double(
@@ -700,11 +707,11 @@ TEST_P(ChooserIsaFloat, ChermainFloatLanesDifferOnlyAtBoundariesAndASwappedLaneE
 }
 
 // The choosers for given costs (core/glints/cost_chooser.h) by the measured order, in float
-// against the scalar double chooser for the same costs, with the Chermain one's control (the
-// Kemppinen ones have no broken path, as in double).
+// against the scalar double chooser for the same costs, with their controls (the Kemppinen ones'
+// selects swapped where the level is composed by cost, as in double).
 TEST_P(ChooserIsaFloat, CostChoosersFloatLanesDifferOnlyAtBoundariesAndASwappedLaneExceedsTheCount) {
-  const FloatDiff ggx = kemppinen_by_cost<KemppinenGGX>();
-  const FloatDiff beckmann = kemppinen_by_cost<KemppinenBeckmann>();
+  const FloatDiff ggx = kemppinen_by_cost<KemppinenGGX>(LanePath::kLibrary);
+  const FloatDiff beckmann = kemppinen_by_cost<KemppinenBeckmann>(LanePath::kLibrary);
   const FloatDiff ch = chermain_by_cost(LanePath::kLibrary);
   report("kemppinen_ggx by cost", ggx);
   report("kemppinen_beckmann by cost", beckmann);
@@ -715,6 +722,12 @@ TEST_P(ChooserIsaFloat, CostChoosersFloatLanesDifferOnlyAtBoundariesAndASwappedL
   const FloatDiff broken = chermain_by_cost(LanePath::kLastLaneSwapped);
   report("chermain by cost, last lane swapped", broken);
   EXPECT_GT(broken.differ, kChermainByCostFloat.rows);
+  const FloatDiff ggx_broken = kemppinen_by_cost<KemppinenGGX>(LanePath::kLastLaneSwapped);
+  const FloatDiff beckmann_broken = kemppinen_by_cost<KemppinenBeckmann>(LanePath::kLastLaneSwapped);
+  report("kemppinen_ggx by cost, last lane swapped", ggx_broken);
+  report("kemppinen_beckmann by cost, last lane swapped", beckmann_broken);
+  EXPECT_GT(ggx_broken.differ, kKemppinenGgxByCostFloat.rows);
+  EXPECT_GT(beckmann_broken.differ, kKemppinenBeckmannByCostFloat.rows);
 }
 
 // The control: a float lane path whose selects are swapped in one lane exceeds the counts.
