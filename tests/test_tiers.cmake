@@ -177,7 +177,7 @@ set(glintlab_slow_tests
   "ShardMergeTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 4"
   "FigureShardTest.MergedShardsAreTheFoldersOfOneRun 15"
   "FigureShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 4"
-  "CompareShardTest.MergedShardsAreThePageOfOneRun 11"
+  "CompareShardTest.MergedShardsAreThePageOfOneRun 6"
   "CompareShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 5"
   "SweepShardTest.MergedShardsAreTheFilesOfOneRun 16"
   "SweepShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 3"
