@@ -178,7 +178,7 @@ set(glintlab_slow_tests
   "FigureShardTest.MergedShardsAreTheFoldersOfOneRun 15"
   "FigureShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 4"
   "CompareShardTest.MergedShardsAreThePageOfOneRun 6"
-  "CompareShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 5"
+  "CompareShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 2"
   "SweepShardTest.MergedShardsAreTheFilesOfOneRun 16"
   "SweepShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 3"
   "SweepTest.QuickSweepWritesMapsAndIndex 6"
