@@ -48,32 +48,53 @@ AlbedoReference by_suite_integral(const ModelEntry& m, const std::vector<double>
   return ref;
 }
 
-// N samples of the model's own sampler at query q through the batch dispatch; the estimate is the
-// mean weight, a sample counting 0 where it is rejected, below the horizon or outside the model's
-// domain (the reference integrates the same). Returns the estimate; adds the time to `seconds`.
+// N samples of the model's own sampler at query q; the estimate is the mean weight, a sample
+// counting 0 where it is rejected, below the horizon or outside the model's domain (the reference
+// integrates the same). Returns the estimate; adds the time to `seconds`. A batched model (every
+// built-in one, a plug-in with its batches) samples through the batch dispatch on `isa`; any other
+// (a model defined in Python) through sample_each, one call of its rows function per estimate,
+// where the batch dispatch would call its per-row thunk once per sample (same samples, bit for
+// bit: a Python model's every call costs far more than its arithmetic).
 struct SampleBuffers {
   std::vector<double> u1, u2;
+  std::vector<Vec2<double>> pairs;
+  std::vector<ModelSample<double>> samples;
   std::vector<std::vector<double>> out;
 };
 double sampler_estimate(const ModelEntry& m, const std::vector<double>& values,
                         const ModelQuery<double>& q, std::uint64_t n, std::uint64_t seed,
-                        simd::Isa isa, SampleBuffers& buf, double& seconds) {
-  buf.u1.resize(n);
-  buf.u2.resize(n);
-  for (std::uint64_t i = 0; i < n; ++i) {
-    const Vec2<double> u = cf::pair_at(seed, i);
-    buf.u1[i] = u.x;
-    buf.u2[i] = u.y;
-  }
-  const QueryRow<double> row = to_row(q);
-  std::vector<simd::Column<double>> query;
-  for (const double& c : row) query.push_back({&c, 0});
+                        simd::Isa isa, bool batched, SampleBuffers& buf, double& seconds) {
   buf.out.assign(simd::kSampleColumns.size(), std::vector<double>(n));
-  std::vector<double*> outputs;
-  for (auto& o : buf.out) outputs.push_back(o.data());
-  const auto start = std::chrono::steady_clock::now();
-  simd::sample_batch(m, values, query, {buf.u1.data(), 1}, {buf.u2.data(), 1}, outputs, n, isa);
-  seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (batched) {
+    buf.u1.resize(n);
+    buf.u2.resize(n);
+    for (std::uint64_t i = 0; i < n; ++i) {
+      const Vec2<double> u = cf::pair_at(seed, i);
+      buf.u1[i] = u.x;
+      buf.u2[i] = u.y;
+    }
+    const QueryRow<double> row = to_row(q);
+    std::vector<simd::Column<double>> query;
+    for (const double& c : row) query.push_back({&c, 0});
+    std::vector<double*> outputs;
+    for (auto& o : buf.out) outputs.push_back(o.data());
+    const auto start = std::chrono::steady_clock::now();
+    simd::sample_batch(m, values, query, {buf.u1.data(), 1}, {buf.u2.data(), 1}, outputs, n, isa);
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  } else {
+    buf.pairs.resize(n);
+    for (std::uint64_t i = 0; i < n; ++i) buf.pairs[i] = cf::pair_at(seed, i);
+    buf.samples.resize(n);
+    const auto start = std::chrono::steady_clock::now();
+    sample_each(m, values, q, buf.pairs, buf.samples);
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    // The columns sample_batch writes (kSampleColumns), rejected as 1 or 0.
+    for (std::uint64_t i = 0; i < n; ++i) {
+      const ModelSample<double>& s = buf.samples[i];
+      const double row[6] = {s.wo.x, s.wo.y, s.wo.z, s.pdf, s.weight, s.rejected ? 1.0 : 0.0};
+      for (std::size_t k = 0; k < 6; ++k) buf.out[k][i] = row[k];
+    }
+  }
   double sum = 0;
   for (std::uint64_t i = 0; i < n; ++i) {
     const V3 wo{buf.out[0][i], buf.out[1][i], buf.out[2][i]};
@@ -114,10 +135,11 @@ EqualTimeCurve equal_time_curve(const ModelEntry& m, const std::vector<AlbedoRef
   const std::vector<double> values = resolve_params(m, {});
   SampleBuffers buf;
   const std::vector<std::uint64_t> ladder = sample_ladder(b);
+  const bool batched = simd::is_batched(m);
   // One untimed call first, so the first timed estimate does not pay for cold caches.
   double warm_up = 0;
   (void)sampler_estimate(m, values, scene_query(m, refs.front().theta_deg), ladder.back(), seed,
-                         isa, buf, warm_up);
+                         isa, batched, buf, warm_up);
   for (std::uint64_t n : ladder) {
     double seconds = 0, squares = 0;
     verify::MeanAccumulator bias;
@@ -126,7 +148,7 @@ EqualTimeCurve equal_time_curve(const ModelEntry& m, const std::vector<AlbedoRef
       double scene_squares = 0;
       for (int rep = 0; rep < b.repetitions; ++rep) {
         const std::uint64_t stream = counter_bits(seed, (n << 20) ^ (s << 10) ^ std::uint64_t(rep), 0);
-        const double e = sampler_estimate(m, values, q, n, stream, isa, buf, seconds);
+        const double e = sampler_estimate(m, values, q, n, stream, isa, batched, buf, seconds);
         const double rel = (e - refs[s].value) / std::abs(refs[s].value);
         scene_squares += rel * rel;
         if (n == ladder.back()) bias.add(rel);

@@ -124,6 +124,12 @@ void CliTest::stand_in_charts() {
              "            csv = text.split(b'\"csv\": \"')[1].split(b'\"')[0].decode()\n"
              "            text += open(os.path.join(d, csv), 'rb').read()\n"
              "            open(spec[:-len('.chart.json')] + '.png', 'wb').write(text)\n");
+  // compare's page (reports/compare_page.py --dir DIR) is drawn from DIR/compare.json alone.
+  write_text(reports_ / "compare_page.py",
+             "import os, sys\nd = sys.argv[sys.argv.index('--dir') + 1]\n"
+             "text = open(os.path.join(d, 'compare.json'), 'rb').read()\n"
+             "for page in ('equal_time.png', 'index.html'):\n"
+             "    open(os.path.join(d, page), 'wb').write(text)\n");
 }
 
 void CliTest::expect_input_error(const RunResult& r, const std::vector<std::string>& needles,

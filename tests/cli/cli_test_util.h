@@ -70,7 +70,9 @@ class CliTest : public ::testing::Test {
   // by its CSV's as NAME.png, without matplotlib (its start-up and drawing cost 1–3 s of CPU per
   // run). For tests of what runs compute and write, not of the drawing: a chart's bytes are then
   // those of its spec and data, which the real drawing turns into the same PNG in any run
-  // (FigureChartsTest.SeveralFoldersInOneRunAreTheBytesOfSeparateRunsOrNone).
+  // (FigureChartsTest.SeveralFoldersInOneRunAreTheBytesOfSeparateRunsOrNone). Likewise compare's
+  // page (reports/compare_page.py, about 1 s a run): its index.html and equal_time.png are then
+  // the bytes of the compare.json they are drawn from, the page's only input.
   void stand_in_charts();
 
  private:

@@ -40,7 +40,15 @@ def test_sweep_compare_and_the_registry_figure_include_a_numpy_model(tmp_path):
     calls it once per query). The
     figure draws every model registered in the process, so this file runs in its own process
     (ctest), away from the broken models of the other test files."""
-    nm.register_lambert(glintlab, "py_lambert_drawn")
+    sampled_rows = []  # rows per call of the sampler
+
+    def counted_sample(q, u, p):
+        sampled_rows.append(len(u))
+        return nm.lambert_sample(q, u, p)
+
+    glintlab.register_model("py_lambert_drawn", nm.lambert_eval, nm.lambert_pdf, counted_sample,
+                            params=[nm.ALBEDO], description="Lambertian in numpy",
+                            source="cosine-weighted hemisphere sampling (Malley's method)")
     # Beside it a paper's model with few maps (smooth_beckmann: 20, smooth_ggx 40): matplotlib
     # draws them all, about 0.1 s a map; the paper's models' maps are checked in the CLI's tests.
     s = glintlab.sweep(out=tmp_path / "sw", models="smooth_beckmann,py_lambert_drawn",
@@ -57,6 +65,7 @@ def test_sweep_compare_and_the_registry_figure_include_a_numpy_model(tmp_path):
     # Compared beside a paper's model: its recorded verdicts are none (an empty claims.json) and
     # its failure regions are read from the sweep above.
     (tmp_path / "claims").mkdir()
+    sampled_rows.clear()
     (tmp_path / "claims" / "claims.json").write_text("[]\n")
     c = glintlab.compare(out=tmp_path / "cmp", models=["smooth_beckmann", "py_lambert_drawn"],
                          budget="quick", claims_from=tmp_path / "claims",
@@ -66,3 +75,6 @@ def test_sweep_compare_and_the_registry_figure_include_a_numpy_model(tmp_path):
     mine = c["table"][c["table"]["model"] == "py_lambert_drawn"][0]
     assert mine["reference_converged"] == "yes" and mine["stability"] == "default: holds", mine
     assert {"index.html", "equal_time.png"} <= set(c["files"])
+    # The equal-time curve calls the sampler once per estimate (an untimed warm-up of 1024
+    # samples, then 2 scenes × 8 repetitions of each N = 1, 4, …, 1024), never once per sample.
+    assert sorted(sampled_rows) == sorted([1024] + [4**k for k in range(6) for _ in range(16)])
