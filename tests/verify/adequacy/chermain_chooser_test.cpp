@@ -12,6 +12,7 @@
 #include <cstdio>
 
 #include "verify/adequacy/chermain_adequacy.h"
+#include "verify/adequacy/measured_tables.h"
 
 namespace glintlab::verify::adequacy {
 namespace {
@@ -33,13 +34,8 @@ bool refuted(const ChermainCellResult& r, int level) {
 }
 
 TEST(ChermainChooser, NeverRefutedOnTheQuickGridAndTenfoldTauOrAMovedBoundaryIs) {
-  // The quick grid's 264 cells at 2000 positions (the table measures 8000; its counts are in
-  // docs/adequacy.md), decided as the table decides them.
-  ChermainGridAxes a = chermain_grid_axes(Budget::kQuick);
-  a.samples = 2000;
-  const auto cells = make_chermain_grid({"chermain"}, a);
-  const auto rows =
-      measure_chermain_grid(cells, a.samples, decision_for_decisions(cells.size() * 8, kTau));
+  // The quick grid's 264 cells at 2000 positions, decided as the table decides them.
+  const auto rows = measured_chermain_quick_grid(kTau);
   int matches = 0, more_complete = 0, refuted_tenfold = 0, refuted_moved = 0, refuted_one = 0;
   for (const ChermainCellResult& r : rows) {
     const int chosen = chooser_at(r.cell, kTau);
@@ -71,11 +67,7 @@ TEST(ChermainChooser, GgaaOffPredictionNeverRefutedOnTheQuickGridAndAThinnerKern
   // (the chooser's level then): never refuted by the quick grid at 2000 positions. The check fails
   // a prediction told a kernel 10 times thinner (the derivatives / 10: GGAA's widening taken as
   // 100 times smaller) or TAU × 10.
-  ChermainGridAxes a = chermain_grid_axes(Budget::kQuick);
-  a.samples = 2000;
-  const auto cells = make_chermain_grid({"chermain"}, a);
-  const auto rows =
-      measure_chermain_grid(cells, a.samples, decision_for_decisions(cells.size() * 8, kTau));
+  const auto rows = measured_chermain_quick_grid(kTau);
   int kept_on = 0, off_adequate = 0, predicted = 0, predicted_adequate = 0, thinner_refuted = 0,
       tenfold_refuted = 0;
   for (const ChermainCellResult& r : rows) {

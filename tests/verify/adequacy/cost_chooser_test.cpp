@@ -15,6 +15,7 @@
 #include "core/models/kemppinen_ggx.h"
 #include "verify/adequacy/chermain_adequacy.h"
 #include "verify/adequacy/kemppinen_adequacy.h"
+#include "verify/adequacy/measured_tables.h"
 
 namespace glintlab::verify::adequacy {
 namespace {
@@ -102,15 +103,8 @@ TEST(CostChooser, ChermainGpuOrderChoosesAsTheGpuOrderChooserOnBothGrids) {
 }
 
 TEST(CostChooser, KemppinenMeasuredOrderNeverRefutedAndAnOffByOneTableIs) {
-  // The Kemppinen chooser test's grid (kemppinen_chooser_test.cpp): 32 cells, 1500 positions.
-  KemppinenGridAxes a;
-  a.points = {10, 1e3, 1e4, 1e5};
-  a.alpha = {0.1, 0.3};
-  a.theta_i_deg = {0, 60};
-  a.theta_h_count = 2;
-  const auto cells = make_kemppinen_grid({"kemppinen_ggx"}, a);
-  const auto rows =
-      measure_kemppinen_grid(cells, 1500, decision_for_decisions(cells.size() * 8, kTau));
+  // The Kemppinen chooser test's grid: 32 cells, 1500 positions.
+  const auto rows = measured_kemppinen_small_grid(kTau);
   std::array<int, kKemppinenLevels> chosen{};
   int decided = 0, broken_refuted = 0, as_gpu_order = 0;
   for (const KemppinenCellResult& r : rows) {
@@ -142,11 +136,7 @@ TEST(CostChooser, KemppinenMeasuredOrderNeverRefutedAndAnOffByOneTableIs) {
 
 TEST(CostChooser, ChermainMeasuredOrderNeverRefutedAndAnOffByOneTableIs) {
   // The quick grid's 264 cells at 2000 positions, as the Chermain chooser test measures them.
-  ChermainGridAxes a = chermain_grid_axes(Budget::kQuick);
-  a.samples = 2000;
-  const auto cells = make_chermain_grid({"chermain"}, a);
-  const auto rows =
-      measure_chermain_grid(cells, a.samples, decision_for_decisions(cells.size() * 8, kTau));
+  const auto rows = measured_chermain_quick_grid(kTau);
   std::array<int, kChermainLevels> chosen{};
   int decided = 0, broken_refuted = 0, as_gpu_order = 0;
   for (const ChermainCellResult& r : rows) {

@@ -10,21 +10,12 @@
 #include "core/glints/adequacy.h"
 #include "core/models/kemppinen_ggx.h"
 #include "verify/adequacy/kemppinen_adequacy.h"
+#include "verify/adequacy/measured_tables.h"
 
 namespace glintlab::verify::adequacy {
 namespace {
 
 constexpr double kTau = 0.02;
-
-std::vector<KemppinenCellResult> measured_small_grid() {
-  KemppinenGridAxes a;
-  a.points = {10, 1e3, 1e4, 1e5};
-  a.alpha = {0.1, 0.3};
-  a.theta_i_deg = {0, 60};
-  a.theta_h_count = 2;
-  const auto cells = make_kemppinen_grid({"kemppinen_ggx"}, a);
-  return measure_kemppinen_grid(cells, 1500, decision_for_decisions(cells.size() * 8, kTau));
-}
 
 int chooser_at(const KemppinenCell& c, double tau) {
   const auto p =
@@ -34,7 +25,7 @@ int chooser_at(const KemppinenCell& c, double tau) {
 }
 
 TEST(KemppinenChooser, NeverRefutedByTheMeasuredTableAndTenfoldTauIs) {
-  const auto rows = measured_small_grid();
+  const auto rows = measured_kemppinen_small_grid(kTau);
   int matches = 0, cheaper_than_needed = 0, refuted_tenfold = 0;
   for (const KemppinenCellResult& r : rows) {
     EXPECT_EQ(r.chooser, chooser_at(r.cell, kTau));
