@@ -6,6 +6,8 @@
 # precision, over code paths that the sanitized tests named beside each of them also take; the
 # sanitizers find memory and UB errors, which depend on the paths, not on the counts
 # (docs/building.md).
+# The executables are linked -no-pie (the asan preset): a start then applies none of the UBSan
+# check data's relocations (docs/building.md "The sanitizer run").
 # Usage: bash scripts/test_asan.sh (after scripts/setup.sh); scripts/test.sh (and so CI) ends with it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
