@@ -176,7 +176,7 @@ set(glintlab_slow_tests
   "ShardMergeTest.MergedShardsAreTheBytesOfOneRun 8"
   "ShardMergeTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 4"
   "FigureShardTest.MergedShardsAreTheFoldersOfOneRun 15"
-  "FigureShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 4"
+  "FigureShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 1"
   "CompareShardTest.MergedShardsAreThePageOfOneRun 6"
   "CompareShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 2"
   "SweepShardTest.MergedShardsAreTheFilesOfOneRun 16"
