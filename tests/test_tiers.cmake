@@ -158,7 +158,7 @@ set(glintlab_slow_tests
   "ChermainCli.Fig9Quick 1"
   "CompareTest.PluginModelBesideThePapersModelsAndThreadIndependent 8"
   "CompareTest.VerboseSaysWhereTheTimeWentAndChangesNothingElse 2"
-  "CompareTest.MeasuredConformanceIsVerifysRowsWithOneOrTwoThreads 9"
+  "CompareTest.MeasuredConformanceIsVerifysRowsWithOneOrTwoThreads 8"
   "CompareTest.ReadsVerdictsAndFailureRegionsFromEarlierRuns 1"
   "ExampleModel.GetsTheRegistryDrivenFigure 2"
   "FigureTest.EnvironmentMapFromExr 1"
