@@ -156,7 +156,7 @@ set(glintlab_slow_tests
   "ChermainCli.Fig10Quick 3"
   "ChermainCli.Fig7Quick 1"
   "ChermainCli.Fig9Quick 1"
-  "CompareTest.PluginModelBesideThePapersModelsAndThreadIndependent 8"
+  "CompareTest.PluginModelBesideThePapersModelsAndThreadIndependent 7"
   "CompareTest.VerboseSaysWhereTheTimeWentAndChangesNothingElse 2"
   "CompareTest.MeasuredConformanceIsVerifysRowsWithOneOrTwoThreads 8"
   "CompareTest.ReadsVerdictsAndFailureRegionsFromEarlierRuns 1"
