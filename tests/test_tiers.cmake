@@ -157,7 +157,6 @@ set(glintlab_slow_tests
   "ChermainCli.Fig7Quick 1"
   "ChermainCli.Fig9Quick 1"
   "CompareTest.PluginModelBesideThePapersModelsAndThreadIndependent 7"
-  "CompareTest.VerboseSaysWhereTheTimeWentAndChangesNothingElse 2"
   "CompareTest.MeasuredConformanceIsVerifysRowsWithOneOrTwoThreads 8"
   "CompareTest.ReadsVerdictsAndFailureRegionsFromEarlierRuns 1"
   "ExampleModel.GetsTheRegistryDrivenFigure 2"
