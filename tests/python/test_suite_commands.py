@@ -16,6 +16,7 @@ import pytest
 
 import glintlab
 import numpy_models as nm
+import stand_in_reports as stand_in
 
 EXE = os.environ.get("GLINTLAB_EXE", "glintlab")
 # compare's wall-clock fields (experiments/compare/compare.h kTimingFields): they differ between
@@ -24,29 +25,10 @@ EXE = os.environ.get("GLINTLAB_EXE", "glintlab")
 COMPARE_TIMING_FIELDS = {"scalar_ns_per_eval", "best_ns_per_eval", "seconds"}
 
 
-# A reports folder whose figure_charts.py "draws" each chart as the bytes of its spec followed by
-# its CSV's (as CliTest::stand_in_charts does for the CLI tests, tests/cli/cli_test_util.cpp),
-# without matplotlib's start-up and drawing (about 0.1 s a map, 40 maps a quick sweep of one
-# model). For the runs whose files are compared, not drawn: the same spec and data are the same
-# PNG in any run, and the real drawing from Python is run by
-# slow_register_model_conformance.py (a sweep and the models-hemisphere figure) and
-# test_installed_package_uses_its_own_report_scripts (a sweep with the installed scripts).
-STAND_IN_FIGURE_CHARTS = """import glob, os, sys
-a = sys.argv
-for i, d in enumerate(a):
-    if i and a[i - 1] == '--dir':
-        for spec in sorted(glob.glob(os.path.join(d, '*.chart.json'))):
-            text = open(spec, 'rb').read()
-            csv = text.split(b'"csv": "')[1].split(b'"')[0].decode()
-            text += open(os.path.join(d, csv), 'rb').read()
-            open(spec[:-len('.chart.json')] + '.png', 'wb').write(text)
-"""
-
-
 def stand_in_reports(folder):
-    """`folder` with the stand-in figure_charts.py in it, for GLINTLAB_REPORTS_DIR."""
-    (folder / "figure_charts.py").write_text(STAND_IN_FIGURE_CHARTS)
-    return folder
+    """`folder` with the stand-in figure_charts.py in it (stand_in_reports.py), for
+    GLINTLAB_REPORTS_DIR: the runs whose files are compared, not drawn."""
+    return stand_in.stand_in_reports(folder)
 
 
 def expect_stand_in_charts(folder):
