@@ -174,7 +174,7 @@ set(glintlab_slow_tests
   "PluginTest.ReportCoversThePluginModelInEveryPart 3"
   "ShardMergeTest.MergedShardsAreTheBytesOfOneRun 8"
   "ShardMergeTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 4"
-  "FigureShardTest.MergedShardsAreTheFoldersOfOneRun 15"
+  "FigureShardTest.MergedShardsAreTheFoldersOfOneRun 11"
   "FigureShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 1"
   "CompareShardTest.MergedShardsAreThePageOfOneRun 6"
   "CompareShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 2"
