@@ -174,7 +174,7 @@ set(glintlab_slow_tests
   "PluginTest.ReportCoversThePluginModelInEveryPart 3"
   "ShardMergeTest.MergedShardsAreTheBytesOfOneRun 8"
   "ShardMergeTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 4"
-  "FigureShardTest.MergedShardsAreTheFoldersOfOneRun 15"
+  "FigureShardTest.MergedShardsAreTheFoldersOfOneRun 11"
   "FigureShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 1"
   "CompareShardTest.MergedShardsAreThePageOfOneRun 6"
   "CompareShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 2"
@@ -193,7 +193,7 @@ set(glintlab_slow_tests
   "FigureChartsTest.LineChartsAreLabelledAndTheSameBytesOrFailInOneLine 5"
   "FigureChartsTest.HeatMapsHaveTheirColourScaleAndFlagsOrFailInOneLine 3"
   "FigureChartsTest.CategoryMapsHaveTheirColourScaleOrFailInOneLine 3"
-  "ReportTest.SmallRealRun 7"
+  "ReportTest.SmallRealRun 6"
   "FigureChartsTest.SeveralFoldersInOneRunAreTheBytesOfSeparateRunsOrNone 3"
   # Every batched kernel or model on every ISA against its scalar instantiation, on enough rows
   # to reach the recorded worst cases (tests/simd/).

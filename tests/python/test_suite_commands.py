@@ -26,8 +26,9 @@ COMPARE_TIMING_FIELDS = {"scalar_ns_per_eval", "best_ns_per_eval", "seconds"}
 
 
 def stand_in_reports(folder):
-    """`folder` with the stand-in figure_charts.py in it (stand_in_reports.py), for
-    GLINTLAB_REPORTS_DIR: the runs whose files are compared, not drawn."""
+    """`folder` with the stand-in figure_charts.py and compare_page.py in it
+    (stand_in_reports.py), for GLINTLAB_REPORTS_DIR: the runs whose files are compared, not
+    drawn."""
     return stand_in.stand_in_reports(folder)
 
 
@@ -166,10 +167,15 @@ def csv_without_timings(text):
     return [[r[k] for k in keep] for r in rows]
 
 
-def test_compare_writes_what_the_cli_writes(swept, monkeypatch):
+def test_compare_writes_what_the_cli_writes(swept, tmp_path, monkeypatch):
     py, cli, _ = swept
     # No conformance run here (an empty claims.json: the recorded verdicts) and the failure
     # regions read from the sweep's folder, so the comparison takes about a second per model.
+    # Both pages drawn by the stand-in (their compare.json's bytes; about 0.9 s of CPU each by
+    # compare_page.py): compare.json and the CSVs are compared, the pages by name only. The
+    # page drawn from Python by the real script: slow_register_model_conformance.py and
+    # test_example_my_glint_model.
+    monkeypatch.setenv("GLINTLAB_REPORTS_DIR", str(stand_in_reports(tmp_path)))
     for d in (py, cli):
         (d / "claims").mkdir()
         (d / "claims" / "claims.json").write_text("[]\n")
@@ -187,15 +193,18 @@ def test_compare_writes_what_the_cli_writes(swept, monkeypatch):
             csv_without_timings(theirs[name].decode()), name
     assert c["models"] == 1 and list(c["table"]["model"]) == ["smooth_ggx"]
     assert c["compare"] == json.loads(mine["compare.json"])
+    assert mine["index.html"] == mine["compare.json"]  # drawn by the stand-in
     assert c["equal_time"]["samples"][0] == 1 and c["equal_time"].dtype["seconds"] == np.float64
 
 
 def test_adequacy_calibration_writes_what_the_cli_writes(two_dirs):
     py, cli = two_dirs
+    # At 1000 positions per synthetic cell, not the quick budget's 8000 (0.2 s of CPU a run, not
+    # 0.9 s): the files are compared, whatever they hold.
     a = glintlab.adequacy(out="adq", models="kneiphof_klein", budget="quick", calibrate=True,
-                          runs=10, tables=1)
+                          runs=10, tables=1, positions=1000)
     run_cli(["adequacy", "--out", "adq", "--models", "kneiphof_klein", "--budget", "quick",
-             "--calibrate", "--runs", "10", "--tables", "1"], cli)
+             "--calibrate", "--runs", "10", "--tables", "1", "--positions", "1000"], cli)
     same_tree(py / "adq", cli / "adq")
     assert os.path.samefile(a["csv"], py / "adq" / "adequacy-calibration.csv")
     assert len(a["table"]) > 0 and "rate" in a["table"].dtype.names
