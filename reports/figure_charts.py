@@ -79,6 +79,24 @@ def _matches(row, where):
     return True
 
 
+def _matcher(where):
+    """_matches(row, where) as a function of the row that decides each distinct cell of a column
+    once: a figure's pixel CSV (10^5 rows) repeats a few names and values in its `where` columns,
+    and each panel filters every row."""
+    tests = [(col, want, _number(want), {}) for col, want in (where or {}).items()]
+
+    def match(row):
+        for col, want, b, seen in tests:
+            cell = row[col]
+            hit = seen.get(cell)
+            if hit is None:
+                hit = seen[cell] = _matches({col: cell}, {col: want})
+            if not hit:
+                return False
+        return True
+    return match
+
+
 def _need(spec_name, csv_name, header, columns):
     for c in columns:
         if c and c not in header:
@@ -122,15 +140,16 @@ def draw_panel(ax, spec_name, csv_name, header, rows, panel):
     _text(spec_name, "panel title", panel.get("title"))
     _need(spec_name, csv_name, header, [x.get("column"), *(panel.get("where") or {})])
     xlog, ylog = bool(x.get("log")), bool(y.get("log"))
-    mine = [r for r in rows if _matches(r, panel.get("where"))]
+    mine = list(filter(_matcher(panel.get("where")), rows))
     drawn, marks, firsts, x_max = 0, set(), [], -math.inf
     for s in panel.get("series") or []:
         label = _text(spec_name, "series label", s.get("label"))
         _need(spec_name, csv_name, header,
               [s.get("y"), s.get("yerr"), s.get("mark"), *(s.get("where") or {})])
         pts = []
+        in_series = _matcher(s.get("where"))
         for r in mine:
-            if not _matches(r, s.get("where")):
+            if not in_series(r):
                 continue
             px, py = _number(r[x["column"]]), _number(r[s["y"]])
             if _usable(px, xlog) and _usable(py, ylog):
@@ -283,7 +302,7 @@ def _cells(ax, grid, cmap, norm):
 def _grid_axes(spec_name, csv_name, header, rows, panel, ycols):
     """The panel's rows, its distinct x values (sorted) and y keys (in the CSV's order)."""
     x = panel.get("x") or {}
-    mine = [r for r in rows if _matches(r, panel.get("where"))]
+    mine = list(filter(_matcher(panel.get("where")), rows))
     if not mine:
         raise ChartError(f"{spec_name}: panel '{panel['title']}' has no point to draw (no row "
                          f"of {csv_name} matches it)")
@@ -359,12 +378,13 @@ def draw_heatmap(ax, fig, spec_name, csv_name, header, rows, panel):
     yi, xj = {k: i for i, k in enumerate(ykeys)}, {v: j for j, v in enumerate(xs)}
     grid = np.full((len(ykeys), len(xs)), np.nan)
     flagged = [np.zeros(grid.shape, dtype=bool) for _ in flags]
+    is_flagged = [_matcher({f["column"]: f["value"]}) for f in flags]
     for r in mine:
         i, j = yi[tuple(r[c] for c in ycols)], xj[_number(r[x["column"]])]
         v = _number(r[value["column"]])
         grid[i, j] = v if v is not None else np.nan
         for k, f in enumerate(flags):
-            flagged[k][i, j] = _matches(r, {f["column"]: f["value"]})
+            flagged[k][i, j] = is_flagged[k](r)
     filled = np.zeros(grid.shape, dtype=bool)
     for k, f in enumerate(flags):
         if f.get("style", "outline") == "fill":

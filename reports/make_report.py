@@ -947,6 +947,27 @@ def figure_chart_pngs(doc, f, root, base, manifest, replaced):
 
 # Figures shown in the adequacy section (write_adequacy) rather than among the papers' figures.
 ADEQUACY_FIGURES = ("adequacy-maps", "adequacy-scene")
+# The adequacy-maps figure's index of its maps (one row per map: map, family, model, ...), and the
+# families' names as the section writes them, in the order it lists them.
+ADEQUACY_MAP_INDEX = "adequacy-maps-index.csv"
+ADEQUACY_FAMILIES = (("binomial", "binomial"), ("kemppinen", "Kemppinen"), ("area", "area"),
+                     ("chermain", "Chermain"))
+
+
+def adequacy_map_families(f):
+    """The adequacy-maps figure's maps per family, {family: (maps, [models])}, from its index
+    CSV; None when the figure has no index (an older run)."""
+    header, rows = f["csvs"].get(ADEQUACY_MAP_INDEX, (None, None))
+    if not header or "family" not in header or "model" not in header:
+        return None
+    fam, model = header.index("family"), header.index("model")
+    out = {}
+    for r in rows:
+        maps, models = out.setdefault(r[fam], [0, []])
+        out[r[fam]][0] = maps + 1
+        if r[model] not in models:
+            models.append(r[model])
+    return out
 
 
 def write_figures(doc, figures, part, root, plots_tmp, plots_rel, made, manifest):
@@ -984,6 +1005,22 @@ def write_adequacy(doc, figures, claims, part, root, plots_tmp, plots_rel, made,
     if not shown:
         doc.para("The adequacy figures were not run in this report.")
     for f in shown:
+        if f["id"] == "adequacy-maps":
+            families = adequacy_map_families(f)
+            if families is None:
+                doc.para(f"adequacy-maps has no index of its maps ({ADEQUACY_MAP_INDEX}): "
+                         "which families it draws is not known.")
+            else:
+                parts = [f"{name} family {families[key][0]} (" + ", ".join(families[key][1]) + ")"
+                         for key, name in ADEQUACY_FAMILIES if key in families]
+                parts += [f"{key} {v[0]} (" + ", ".join(v[1]) + ")"
+                          for key, v in families.items() if key not in dict(ADEQUACY_FAMILIES)]
+                missing = [name for key, name in ADEQUACY_FAMILIES if key not in families]
+                doc.para(f"adequacy-maps draws {sum(v[0] for v in families.values())} maps of "
+                         "the chosen level, per family: " + "; ".join(parts) + ". Each map's "
+                         "title names its family; summary.md lists every map with its family." +
+                         (" Not drawn: the " + ", ".join(missing) + " famil" +
+                          ("y." if len(missing) == 1 else "ies.") if missing else ""))
         write_figure(doc, f, part, root, plots_tmp, plots_rel, made, manifest)
 
 

@@ -150,7 +150,7 @@ set(glintlab_slow_tests
   "AdequacyShardTest.AreaFamilyMergedIsTheFilesOfOneRun 5"
   "AdequacyShardTest.MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing 2"
   "AdequacyShardTest.ChermainFamilyOnOneThreadMergedIsTheTwoThreadRun 10"
-  "AdequacyMapsFigureTest.QuickWritesSheetMapsCsvAndSummary 36"
+  "AdequacyMapsFigureTest.QuickWritesSheetMapsCsvAndSummary 60"
   "AdequacySceneFigureTest.QuickWritesSheetExrCsvAndSummary 40"
   "ChermainCli.Fig3Quick 3"
   "ChermainCli.Fig10Quick 3"

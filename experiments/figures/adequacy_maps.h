@@ -1,6 +1,6 @@
 // Figure adequacy-maps: the cheapest adequate level of each glint family over the adequacy grid's
-// axes (verify/adequacy/binomial_adequacy.h), as labelled category maps. Only the binomial family
-// (deliot_belcour, kneiphof_klein) has measured levels so far.
+// axes (verify/adequacy/), as labelled category maps: the binomial, Kemppinen, area and Chermain
+// families, each map named with its family in summary.md and the CSVs.
 #pragma once
 
 #include "experiments/figures/figure_registry.h"

@@ -1,12 +1,16 @@
 // `glintlab figure adequacy-maps --budget quick`: the labelled sheet and one PNG per model × light
-// × incidence of the quick grids of the binomial and area families, and per GGAA derivative ×
-// incidence of the Chermain family (drawn by matplotlib), its EXR, the CSVs of every cell, whose
-// chosen levels are the EXRs' pixels, and summary.md naming the family not drawn.
+// × incidence of the quick grids of the binomial and area families, per model × incidence of the
+// Kemppinen family and per GGAA derivative × incidence of the Chermain family (drawn by
+// matplotlib), its EXR, the CSVs of every cell with its family, whose chosen levels are the EXRs'
+// pixels, and summary.md naming each map's family.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cli/chart_png.h"
 #include "cli/cli_test_util.h"
@@ -30,10 +34,10 @@ TEST_F(AdequacyMapsFigureTest, QuickWritesSheetMapsCsvAndSummary) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path d = path("out/adequacy-maps");
   expect_png(d / "adequacy-maps.png");
-  // Drawn by matplotlib: the sheet's 22 maps and each map alone, labelled, with the levels as
+  // Drawn by matplotlib: the sheet's 26 maps and each map alone, labelled, with the levels as
   // their colour scale; drawn from the maps' cells (one row per cell).
-  expect_labelled_chart(d / "adequacy-maps.png", 22);
-  EXPECT_EQ(io::read_csv(d / "adequacy-maps-levels.csv").num_rows(), 972u + 264u);
+  expect_labelled_chart(d / "adequacy-maps.png", 26);
+  EXPECT_EQ(io::read_csv(d / "adequacy-maps-levels.csv").num_rows(), 972u + 168u + 264u);
   const io::CsvTable t = io::read_csv(d / "adequacy-maps.csv");
   // Quick grid: 3 models × 3 lights × 2 incidences × 2 α × 3 θ_h × 9 footprints (the area
   // family's lights: squares of the cones' solid angles, 0.26°, 1° and 10°).
@@ -59,6 +63,8 @@ TEST_F(AdequacyMapsFigureTest, QuickWritesSheetMapsCsvAndSummary) {
     EXPECT_EQ(names[int(first.at(k, 0, first.channel("chosen")))],
               std::string(t.text(std::size_t(k), t.column("chosen"))))
         << k;
+  EXPECT_EQ(t.text(0, t.column("family")), "binomial");
+  EXPECT_EQ(t.text(648, t.column("family")), "area");
   // The area family's first map is its first CSV rows (after the binomial family's 648): a level
   // map read from the wrong family's rows (the binomial ones) does not match it.
   const Image area = io::read_exr(d / "adequacy_kneiphof_klein_area_light0.26_theta0.exr").image;
@@ -77,6 +83,40 @@ TEST_F(AdequacyMapsFigureTest, QuickWritesSheetMapsCsvAndSummary) {
               ? 1
               : 0;
   EXPECT_GT(mismatches_as_binomial, 0);
+  // The Kemppinen family: 7 footprints (1 … 10⁶ expected points) × 2 α × 2 θ_i × 3 θ_h per
+  // model, one map per model and incidence, its colour scale naming the nine levels (smooth, k =
+  // 1, 4, 9, 16 with the rational and the exact erf); the first map's bottom row is the first 7
+  // cells of its CSV, which names the family.
+  const io::CsvTable kt = io::read_csv(d / "adequacy-maps-kemppinen.csv");
+  ASSERT_EQ(kt.num_rows(), 168u);
+  const std::vector<std::string> kemppinen_names = {
+      "smooth",   "k1_rational", "k1_exact",     "k4_rational", "k4_exact",
+      "k9_rational", "k9_exact", "k16_rational", "k16_exact"};
+  for (const char* model : {"kemppinen_ggx", "kemppinen_beckmann"})
+    for (const char* theta : {"0", "60"}) {
+      const std::string stem = fmt::format("adequacy_{}_theta{}", model, theta);
+      expect_labelled_chart(d / (stem + ".png"), 1);
+      const io::ExrFile exr = io::read_exr(d / (stem + ".exr"));
+      EXPECT_EQ(exr.image.width, 7);
+      EXPECT_EQ(exr.image.height, 6);
+      EXPECT_EQ(exr.attributes.at("glintlab_family"), "kemppinen");
+      const nlohmann::json spec = nlohmann::json::parse(read_text(d / (stem + ".chart.json")));
+      std::vector<std::string> legend;
+      for (const nlohmann::json& c : spec["panels"][0]["categories"])
+        legend.push_back(c["label"].get<std::string>());
+      EXPECT_EQ(legend, kemppinen_names) << stem;
+      EXPECT_NE(spec["panels"][0]["x"]["label"].get<std::string>().find("[expected points]"),
+                std::string::npos);
+    }
+  const Image kfirst = io::read_exr(d / "adequacy_kemppinen_ggx_theta0.exr").image;
+  for (int k = 0; k < 7; ++k) {
+    EXPECT_EQ(kt.text(std::size_t(k), kt.column("family")), "kemppinen");
+    EXPECT_EQ(kt.text(std::size_t(k), kt.column("model")), "kemppinen_ggx");
+    EXPECT_EQ(kemppinen_names[std::size_t(kfirst.at(k, 0, kfirst.channel("chosen")))],
+              std::string(kt.text(std::size_t(k), kt.column("chosen"))))
+        << k;
+    EXPECT_EQ(std::string(kt.text(std::size_t(k), kt.column("chooser_refuted"))), "0");
+  }
   // The Chermain family: 11 footprints × 2 α × 2 θ_i × 3 θ_h × 2 GGAA derivatives, one map per
   // derivative and incidence, its first map's bottom row the first 11 cells of its CSV.
   const io::CsvTable ch = io::read_csv(d / "adequacy-maps-chermain.csv");
@@ -98,8 +138,22 @@ TEST_F(AdequacyMapsFigureTest, QuickWritesSheetMapsCsvAndSummary) {
         << k;
     EXPECT_EQ(std::string(ch.text(std::size_t(k), ch.column("chooser_refuted"))), "0");
   }
+  // The index names every map's family, in the sheet's order: binomial, Kemppinen, area, Chermain.
+  const io::CsvTable index = io::read_csv(d / "adequacy-maps-index.csv");
+  ASSERT_EQ(index.num_rows(), 26u);
+  const std::pair<std::size_t, const char*> families[] = {
+      {0, "binomial"}, {11, "binomial"}, {12, "kemppinen"}, {15, "kemppinen"},
+      {16, "area"},    {21, "area"},     {22, "chermain"},  {25, "chermain"}};
+  for (const auto& [row, family] : families)
+    EXPECT_EQ(index.text(row, index.column("family")), family) << row;
+  EXPECT_EQ(index.text(12, index.column("map")), "adequacy_kemppinen_ggx_theta0");
   const std::string md = read_text(d / "summary.md");
   EXPECT_NE(md.find("The Chermain family"), std::string::npos);
+  EXPECT_NE(md.find("The Kemppinen family"), std::string::npos);
+  EXPECT_NE(md.find("| adequacy_kemppinen_beckmann_theta60 | kemppinen | kemppinen_beckmann |"),
+            std::string::npos);
+  EXPECT_NE(md.find("| adequacy_chermain_dh0_theta0 | chermain | chermain |"), std::string::npos);
+  EXPECT_NE(md.find("| kemppinen_ggx | 84 |"), std::string::npos);
   EXPECT_NE(md.find("refuted in 0"), std::string::npos);
   EXPECT_NE(md.find("| kneiphof_klein | 324 |"), std::string::npos);
   EXPECT_NE(md.find("| kneiphof_klein_area | 324 |"), std::string::npos);

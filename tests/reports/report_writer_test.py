@@ -240,6 +240,18 @@ with tempfile.TemporaryDirectory() as tmp:
               os.path.join(d, "figures", "adequacy-scene"))
     figs = json.load(open(os.path.join(d, "figures", "figures.json")))
     figs[0]["id"] = "adequacy-scene"
+    # adequacy-maps with its index of maps: one binomial and two Kemppinen maps.
+    maps_dir = os.path.join(d, "figures", "adequacy-maps")
+    os.makedirs(maps_dir)
+    with open(os.path.join(maps_dir, "adequacy-maps-index.csv"), "w") as fh:
+        fh.write("map,family,model,theta_i_deg,light_half_angle_deg,ggaa_dh,png,exr\n"
+                 "adequacy_deliot_belcour_light0_theta0,binomial,deliot_belcour,0,0,nan,a.png,a.exr\n"
+                 "adequacy_kemppinen_ggx_theta0,kemppinen,kemppinen_ggx,0,nan,nan,b.png,b.exr\n"
+                 "adequacy_kemppinen_beckmann_theta0,kemppinen,kemppinen_beckmann,0,nan,nan,c.png,"
+                 "c.exr\n")
+    with open(os.path.join(maps_dir, "summary.md"), "w") as fh:
+        fh.write("# adequacy-maps\n\nthree maps\n")
+    figs.append({**figs[0], "id": "adequacy-maps"})
     json.dump(figs, open(os.path.join(d, "figures", "figures.json"), "w"))
     c = json.load(open(os.path.join(d, "verify", "claims.json")))
     c.append({**c[0], "id": "adequacy.choice-is-safe", "detail": "1 of 19423 lit pixels over TAU"})
@@ -255,6 +267,12 @@ with tempfile.TemporaryDirectory() as tmp:
           "and not among the papers' figures")
     check("adequacy.choice-is-safe: holds — 1 of 19423 lit pixels over TAU" in text,
           "the adequacy claims' verdicts are listed in the section")
+    section = text[text.index('id="adequacy"'):]
+    check('id="fig-adequacy-maps"' in section and
+          "adequacy-maps draws 3 maps of the chosen level, per family: binomial family 1 "
+          "(deliot_belcour); Kemppinen family 2 (kemppinen_ggx, kemppinen_beckmann)." in section and
+          "Not drawn: the area, Chermain families." in section,
+          "the adequacy section names the maps' families from adequacy-maps-index.csv")
 
     # --- a check that could not run (verdict error): shown with its cause, no control ---
     d = fresh(tmp, "error_row")
