@@ -266,6 +266,13 @@ set(glintlab_power_tests
   # their grids.
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::eto_claims::PdfMatches>>"
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::smooth_claims::SamplerMatchesPdf>>"
+  # smooth_ggx's sampler-matches-pdf at quick, its control beside it: 10^5 samples and the bins'
+  # cubature at each of its 8 settings, twice. ConformanceFaults.NanEvalIsAnErrorWhereANumberIs-
+  # Required runs the same measure (run_property, the chi-square and the weighted histogram at the
+  # same 8 settings of smooth_ggx, its NaN eval found after it); the control's copy (pdf and
+  # weights × 1.03) is ConformanceRows.AlteredCopiesChangeTheRowsLikeTheThunks's, and
+  # ReportTest.SmallRealRun measures a control of the property through run_property (deliot_belcour).
+  "Properties/ControlRejected.ByTheSameDecision/smooth_ggx_sampler_matches_pdf*"
   # 10^5 samples per light: LightsChiSquare.CapsMatchTheirPdfsAndControlsAreRejected and
   # .DiskMatchesItsPdfAndControlIsRejected take the same plan and fit; Lights.PdfsIntegrateToOne-
   # ByCubature and Lights.SamplesAgreeWithPdfRadianceAndGeometry every light's pdf and sampler,
