@@ -290,7 +290,12 @@ set(glintlab_power_tests
   # sampler-covers-value at 10^5 samples per compensation setting: KemppinenMixture.* samples the
   # same mixture (both models, both pdf forms and mappings) at those settings, and the
   # conformance properties' own tests run sampler-covers-value on cheaper models.
-  "KemppinenSampler.*")
+  "KemppinenSampler.*"
+  # The Chermain quick grid measured at 2000 positions (264 cells) and the engine chooser at each
+  # cell, at TAU, TAU × 10 and a shifted density: ChermainChooser.GgaaOffPredictionNeverRefuted-
+  # OnTheQuickGridAndAThinnerKernelIs measures the same grid (measured_chermain_quick_grid) and
+  # calls the same chooser (chooser_at, choose_chermain_model_level) at each of its cells.
+  "ChermainChooser.NeverRefutedOnTheQuickGridAndTenfoldTauOrAMovedBoundaryIs")
 
 # The test binaries and the layer label of their tests.
 set(glintlab_test_binaries
