@@ -266,6 +266,13 @@ set(glintlab_power_tests
   # their grids.
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::eto_claims::PdfMatches>>"
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::smooth_claims::SamplerMatchesPdf>>"
+  # smooth_ggx's sampler-matches-pdf at quick, its control beside it: 10^5 samples and the bins'
+  # cubature at each of its 8 settings, twice. ConformanceFaults.NanEvalIsAnErrorWhereANumberIs-
+  # Required runs the same measure (run_property, the chi-square and the weighted histogram at the
+  # same 8 settings of smooth_ggx, its NaN eval found after it); the control's copy (pdf and
+  # weights × 1.03) is ConformanceRows.AlteredCopiesChangeTheRowsLikeTheThunks's, and
+  # ReportTest.SmallRealRun measures a control of the property through run_property (deliot_belcour).
+  "Properties/ControlRejected.ByTheSameDecision/smooth_ggx_sampler_matches_pdf*"
   # 10^5 samples per light: LightsChiSquare.CapsMatchTheirPdfsAndControlsAreRejected and
   # .DiskMatchesItsPdfAndControlIsRejected take the same plan and fit; Lights.PdfsIntegrateToOne-
   # ByCubature and Lights.SamplesAgreeWithPdfRadianceAndGeometry every light's pdf and sampler,
@@ -283,7 +290,12 @@ set(glintlab_power_tests
   # sampler-covers-value at 10^5 samples per compensation setting: KemppinenMixture.* samples the
   # same mixture (both models, both pdf forms and mappings) at those settings, and the
   # conformance properties' own tests run sampler-covers-value on cheaper models.
-  "KemppinenSampler.*")
+  "KemppinenSampler.*"
+  # The Chermain quick grid measured at 2000 positions (264 cells) and the engine chooser at each
+  # cell, at TAU, TAU × 10 and a shifted density: ChermainChooser.GgaaOffPredictionNeverRefuted-
+  # OnTheQuickGridAndAThinnerKernelIs measures the same grid (measured_chermain_quick_grid) and
+  # calls the same chooser (chooser_at, choose_chermain_model_level) at each of its cells.
+  "ChermainChooser.NeverRefutedOnTheQuickGridAndTenfoldTauOrAMovedBoundaryIs")
 
 # The test binaries and the layer label of their tests.
 set(glintlab_test_binaries
