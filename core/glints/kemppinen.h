@@ -130,6 +130,37 @@ GLINTLAB_FN T normal2(Vec2<T> d, const Sym2<T>& s) {
   return exp(T(-0.5) * q) * (T(0.15915494309189533577) * rsqrt(det) * c);
 }
 
+// normal2 with Σ fixed and d varying: the factors of Σ alone (its power-of-two scaling, |Σ| and
+// the peak 1/(2π√|Σ|)) computed once, then normal2_at(form, d) = normal2(d, Σ) bit for bit (the
+// same operations in the same order). The spatial lobe of a query and its angular lobe in Eq. 11
+// have one Σ for every point of the neighbourhood.
+template <class T>
+struct Normal2Form {
+  Sym2<T> sc;  // Σ·c
+  T c, det, peak;
+};
+
+template <class T>
+GLINTLAB_FN Normal2Form<T> normal2_form(const Sym2<T>& s) {
+  const T trace = s.xx + s.yy;
+  const T c1 = select(trace < T(0x1p-40), T(0x1p64), T(1));
+  const T c = select(trace < T(0x1p-104), T(0x1p96), c1);
+  const Sym2<T> sc{s.xx * c, s.xy * c, s.yy * c};
+  const T det = sc.xx * sc.yy - sqr(sc.xy);
+  return {sc, c, det, T(0.15915494309189533577) * rsqrt(det) * c};
+}
+
+// The exponent's quadratic form dᵀΣ⁻¹d of normal2 (as normal2 rounds it).
+template <class T>
+GLINTLAB_FN T normal2_quadratic(const Normal2Form<T>& f, Vec2<T> d) {
+  return (f.sc.yy * sqr(d.x) - T(2) * f.sc.xy * d.x * d.y + f.sc.xx * sqr(d.y)) / f.det * f.c;
+}
+
+template <class T>
+GLINTLAB_FN T normal2_at(const Normal2Form<T>& f, Vec2<T> d) {
+  return exp(T(-0.5) * normal2_quadratic(f, d)) * f.peak;
+}
+
 // Eq. 8: R(r, w) = smoothstep(max(0, r − ε), min(1, r + ε), w), the mollified roulette.
 template <class T>
 GLINTLAB_FN T roulette(T r, T w) {
@@ -214,12 +245,29 @@ GLINTLAB_FN void level(const Params<T>& p, const Angular<T>& ang, Vec2<T> x_s,
   const LaneInt<T> ax0 = block_start(ang.x_a.x * res_a, n);
   const LaneInt<T> ay0 = block_start(ang.x_a.y * res_a, n);
   const Sym2<T> sigma_a2{sqr(ang.sigma_a.x), T(0), sqr(ang.sigma_a.y)};
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int a = 0; a < n; ++a)
+  // Both lobes have one Σ for every point (normal2_form), and a cell's hash chain is shared along
+  // its spatial row and column (cell_chain_*_lanes).
+  const Normal2Form<T> spatial_lobe = normal2_form(sigma_s);
+  const Normal2Form<T> angular_lobe = normal2_form(sigma_a2);
+  // A point whose roulette weight is 0 adds blend · N_s · N_a · 1/ρ = +0 when every factor is
+  // finite: each lobe is exp(−q/2) · peak with q ≥ 0 (exp ≤ 1) and a finite peak; its exps are
+  // skipped. (x − x == 0: x finite.)
+  const Mask<T> finite_factors = (spatial_lobe.peak - spatial_lobe.peak == T(0)) &&
+                                 (angular_lobe.peak - angular_lobe.peak == T(0)) &&
+                                 (inv_rho - inv_rho == T(0));
+  for (int i = 0; i < n; ++i) {
+    const LaneInt<T> sx = sx0 + i;
+    const LaneInt<T, std::uint64_t> hash_i = cell_chain_sx_lanes<T>(sx);
+    for (int j = 0; j < n; ++j) {
+      const LaneInt<T> sy = sy0 + j;
+      const LaneInt<T, std::uint64_t> hash_ij = cell_chain_sy_lanes<T>(hash_i, sy);
+      for (int a = 0; a < n; ++a) {
+        const LaneInt<T> ax = ax0 + a;
+        const LaneInt<T, std::uint64_t> hash_ija = cell_chain_ax_lanes<T>(hash_ij, ax);
         for (int b = 0; b < n; ++b) {
-          const LaneInt<T> sx = sx0 + i, sy = sy0 + j, ax = ax0 + a, ay = ay0 + b;
-          const LaneInt<T, std::uint64_t> ci = cell_index_lanes<T>(sx, sy, ax, ay, level, process);
+          const LaneInt<T> ay = ay0 + b;
+          const LaneInt<T, std::uint64_t> ci =
+              cell_chain_ay_level_lanes<T>(hash_ija, ay, level, process);
           const Mask<T> in_square = mask_lanes<T>([&](std::size_t l) {
             return lane(ax, l) >= 0 && lane(ax, l) < lane(n_a, l) && lane(ay, l) >= 0 &&
                    lane(ay, l) < lane(n_a, l);
@@ -234,11 +282,20 @@ GLINTLAB_FN void level(const Params<T>& p, const Angular<T>& ang, Vec2<T> x_s,
           const Mask<T> in_disk = sqr(g_a.x - T(0.5)) + sqr(g_a.y - T(0.5)) <= T(0.25);
           const T r = cell_uniform<T>(p.seed, ci, kKemppinenDimRoulette);
           const T blend = p.blend == Blend::kRoulette ? roulette(r, w_l) : w_l;
-          const T w =
-              blend * normal2(x_s - g_s, sigma_s) * normal2(ang.x_a - g_a, sigma_a2) * inv_rho;
+          const T q_s = normal2_quadratic(spatial_lobe, x_s - g_s);
+          const T q_a = normal2_quadratic(angular_lobe, ang.x_a - g_a);
+          const Mask<T> adds_zero =
+              (blend == T(0)) && finite_factors && (q_s >= T(0)) && (q_a >= T(0));
+          T w = T(0);
+          if (any_lane<T>(!adds_zero))  // uniform: some lane's point has weight
+            w = blend * (exp(T(-0.5) * q_s) * spatial_lobe.peak) *
+                (exp(T(-0.5) * q_a) * angular_lobe.peak) * inv_rho;
           const Vec3<T> col = color(p.colors, cell_uniform<T>(p.seed, ci, kKemppinenDimColor));
           explicit_sum = explicit_sum + select(in_disk && in_square, w, T(0)) * col;
         }
+      }
+    }
+  }
   // B(k) clipped to the square: the cells that exist.
   const Vec2<T> b_lo{int_to_float<T>(int_max(ax0, std::int64_t(0))) / res_a,
                      int_to_float<T>(int_max(ay0, std::int64_t(0))) / res_a};

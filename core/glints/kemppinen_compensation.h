@@ -3,6 +3,7 @@
 // rational polynomial approximation"), and the square-minus-neighbourhood integral of Eq. 10.
 #pragma once
 
+#include "core/math/lanes.h"
 #include "core/math/vec.h"
 
 namespace glintlab::kemppinen2025 {
@@ -43,6 +44,28 @@ GLINTLAB_FN T gaussian_interval_mass(T a, T b, T m, T s, Erf variant) {
   return select(b > a, max(v, T(0)), T(0));
 }
 
+// gaussian_interval_mass of one normal over [0, 1] (`whole`) and over [a, b] (`part`), bit for bit,
+// an erf that both need (a = 0 or b = 1 in every lane: B(k) at the square's edge, or all of it)
+// computed once.
+template <class T>
+struct UnitAndPartMass {
+  T whole, part;
+};
+
+template <class T>
+GLINTLAB_FN UnitAndPartMass<T> unit_and_part_mass(T a, T b, T m, T s, Erf variant) {
+  const T k = T(0.70710678118654752440) / s;
+  const T e0 = erf_variant((T(0) - m) * k, variant);
+  const T e1 = erf_variant((T(1) - m) * k, variant);
+  // The callers' bounds are quotients of non-negative integers (a zero is +0), so a == 0 and
+  // b == 1 are the same bits as the whole's bounds.
+  const T ea = any_lane<T>(!(a == T(0))) ? erf_variant((a - m) * k, variant) : e0;
+  const T eb = any_lane<T>(!(b == T(1))) ? erf_variant((b - m) * k, variant) : e1;
+  const T whole = T(0.5) * (e1 - e0);
+  const T part = T(0.5) * (eb - ea);
+  return {select(T(1) > T(0), max(whole, T(0)), T(0)), select(b > a, max(part, T(0)), T(0))};
+}
+
 // Mass of the axis-aligned normal N(m, diag(sx², sy²)) over the rectangle [lo, hi] (separable).
 template <class T>
 GLINTLAB_FN T gaussian_rect_mass(Vec2<T> lo, Vec2<T> hi, Vec2<T> m, Vec2<T> s, Erf variant) {
@@ -56,9 +79,11 @@ GLINTLAB_FN T gaussian_rect_mass(Vec2<T> lo, Vec2<T> hi, Vec2<T> m, Vec2<T> s, E
 // outside the disk (Sec. 5: "considers areas outside of U_Ω", Fig. 14 left).
 template <class T>
 GLINTLAB_FN T compensation(Vec2<T> x_a, Vec2<T> sigma_a, Vec2<T> b_lo, Vec2<T> b_hi, Erf variant) {
-  const T whole =
-      gaussian_rect_mass(Vec2<T>{T(0), T(0)}, Vec2<T>{T(1), T(1)}, x_a, sigma_a, variant);
-  const T near = gaussian_rect_mass(b_lo, b_hi, x_a, sigma_a, variant);
+  // gaussian_rect_mass over □ and over B(k), their shared erfs computed once.
+  const UnitAndPartMass<T> mx = unit_and_part_mass(b_lo.x, b_hi.x, x_a.x, sigma_a.x, variant);
+  const UnitAndPartMass<T> my = unit_and_part_mass(b_lo.y, b_hi.y, x_a.y, sigma_a.y, variant);
+  const T whole = mx.whole * my.whole;
+  const T near = mx.part * my.part;
   return max(whole - near, T(0));
 }
 

@@ -65,9 +65,11 @@ GLINTLAB_FN T level_explicit_share(const Params<T>& p, const Ndf& ndf, const Lan
                        int_to_float<T>(int_max(ay0, std::int64_t(0))) / res_a};
       const Vec2<T> hi{int_to_float<T>(int_min(ax0 + p.side, n_a)) / res_a,
                        int_to_float<T>(int_min(ay0 + p.side, n_a)) / res_a};
-      near_sum += gaussian_rect_mass(lo, hi, x_a, sigma, Erf::kExact);
-      whole_sum +=
-          gaussian_rect_mass(Vec2<T>{T(0), T(0)}, Vec2<T>{T(1), T(1)}, x_a, sigma, Erf::kExact);
+      // gaussian_rect_mass over B(k) and over □, their shared erfs computed once.
+      const UnitAndPartMass<T> mx = unit_and_part_mass(lo.x, hi.x, x_a.x, sigma.x, Erf::kExact);
+      const UnitAndPartMass<T> my = unit_and_part_mass(lo.y, hi.y, x_a.y, sigma.y, Erf::kExact);
+      near_sum += mx.part * my.part;
+      whole_sum += mx.whole * my.whole;
     }
   const Mask<T> has = whole_sum > T(0);
   return select(has, near_sum / select(has, whole_sum, T(1)), T(1));

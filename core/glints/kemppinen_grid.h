@@ -83,6 +83,31 @@ GLINTLAB_FN LaneInt<T, std::uint64_t> cell_index_lanes(const C& sx, const C& sy,
   });
 }
 
+// The chain steps of cell_index in every lane, so that a loop over the cells of a block hashes
+// each spatial row and column once rather than once per cell (cell_index_lanes = level step of the
+// ay step of the ax step of the sy step of the sx step, bit for bit).
+template <class T, class C>
+GLINTLAB_FN LaneInt<T, std::uint64_t> cell_chain_sx_lanes(const C& sx) {
+  return int_lanes<T, std::uint64_t>([&](std::size_t l) { return cell_chain_sx(lane(sx, l)); });
+}
+template <class T, class H, class C>
+GLINTLAB_FN LaneInt<T, std::uint64_t> cell_chain_sy_lanes(const H& h, const C& sy) {
+  return int_lanes<T, std::uint64_t>(
+      [&](std::size_t l) { return cell_chain_sy(lane(h, l), lane(sy, l)); });
+}
+template <class T, class H, class C>
+GLINTLAB_FN LaneInt<T, std::uint64_t> cell_chain_ax_lanes(const H& h, const C& ax) {
+  return int_lanes<T, std::uint64_t>(
+      [&](std::size_t l) { return cell_chain_ax(lane(h, l), lane(ax, l)); });
+}
+template <class T, class H, class C, class L>
+GLINTLAB_FN LaneInt<T, std::uint64_t> cell_chain_ay_level_lanes(const H& h, const C& ay,
+                                                                const L& level, int process) {
+  return int_lanes<T, std::uint64_t>([&](std::size_t l) {
+    return cell_chain_level(cell_chain_ay(lane(h, l), lane(ay, l)), lane(level, l), process);
+  });
+}
+
 // First cell index of the n consecutive cells closest to coordinate `x` (in cells) along one
 // axis: floor(x − (n − 1)/2). n odd: centred on the cell holding x; n even: the n cells whose
 // centre block is nearest x (the k-NeighbouringCells of Algorithm 1 lines 13–14, k = n²).

@@ -43,9 +43,10 @@ namespace glintlab::kemppinen2025 {
 // One candidate point of a block B(k) (Algorithm 2 lines 11–12).
 template <class T>
 struct Candidate {
-  Vec2<T> g_a, sigma;
+  Vec2<T> g_a;
+  Vec2<T> sigma;  // the lobe's; left 0 where s = 0 in every lane (each use is weighted by s)
   T s;            // R(r, w_λ) N(Σ_s, x_s − g_s) Luminance(c): the weight before the lobe's mass
-  T m;            // ∫_B N_j
+  T m;            // ∫_B N_j; left 0 where s = 0 in every lane (it only adds s·m = 0)
   Mask<T> valid;  // the cell is inside □ and its point inside U_Ω (else s = m = 0)
 };
 
@@ -88,15 +89,16 @@ GLINTLAB_FN Vec2<T> point_sigma(const Params<T>& p, const Ndf& ndf, Vec2<T> g_a)
   return {sigma / sa, sigma * sa};
 }
 
-// The candidate of spatial cell (sx, sy) and angular cell (ax, ay) at `level` (weight w_l), of
-// point process `process` (Algorithm 2 lines 11–12): everything but its mass in a block (m = 0).
-// res_a, res_s and n_a are the level's (angular_resolution, sp.res / res_a, level_cells).
+// The candidate of spatial cell (sx, sy) and angular cell (ax, ay), cell index ci (of its level
+// and point process: cell_index_lanes), at level weight w_l (Algorithm 2 lines 11–12): everything
+// but its mass in a block (m = 0). res_a, res_s and n_a are the level's (angular_resolution,
+// sp.res / res_a, level_cells), spatial_lobe normal2_form(sp.sigma_s).
 template <class Ndf, class T>
 GLINTLAB_FN Candidate<T> candidate(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp,
-                       const LaneInt<T, int>& level, T w_l, T res_a, T res_s, const LaneInt<T>& n_a,
-                       const LaneInt<T>& sx, const LaneInt<T>& sy, const LaneInt<T>& ax,
-                       const LaneInt<T>& ay, int process) {
-  const LaneInt<T, std::uint64_t> ci = cell_index_lanes<T>(sx, sy, ax, ay, level, process);
+                                   const Normal2Form<T>& spatial_lobe, T w_l, T res_a, T res_s,
+                                   const LaneInt<T>& n_a, const LaneInt<T>& sx,
+                                   const LaneInt<T>& sy, const LaneInt<T>& ax,
+                                   const LaneInt<T>& ay, const LaneInt<T, std::uint64_t>& ci) {
   Candidate<T> k;
   k.valid = mask_lanes<T>([&](std::size_t l) {
     return lane(ax, l) >= 0 && lane(ax, l) < lane(n_a, l) && lane(ay, l) >= 0 &&
@@ -115,10 +117,18 @@ GLINTLAB_FN Candidate<T> candidate(const Params<T>& p, const Ndf& ndf, const Spa
     const T r = cell_uniform<T>(p.seed, ci, kKemppinenDimRoulette);
     const T blend = p.blend == Blend::kRoulette ? roulette(r, w_l) : w_l;
     const Vec3<T> col = color(p.colors, cell_uniform<T>(p.seed, ci, kKemppinenDimColor));
-    k.sigma = point_sigma(p, ndf, k.g_a);
-    k.s = select(k.valid, blend * normal2(sp.x_s - g_s, sp.sigma_s) * luminance(col), T(0));
+    k.s = select(k.valid, blend * normal2_at(spatial_lobe, sp.x_s - g_s) * luminance(col), T(0));
+    // A point the roulette gives weight 0 (w_l below r − ε, Eq. 8) needs no lobe.
+    if (any_lane<T>(k.valid && !(k.s == T(0)))) k.sigma = point_sigma(p, ndf, k.g_a);
   }
   return k;
+}
+
+// Whether candidate k adds anything to a block's Σw★ (s ≠ 0 in some lane where it exists): else
+// its mass is not needed.
+template <class T>
+GLINTLAB_FN bool adds_weight(const Candidate<T>& k) {
+  return any_lane<T>(k.valid && !(k.s == T(0)));
 }
 
 // The candidates of block B with angular start cell (ax0, ay0) at `level` (weight w_l), of point
@@ -132,24 +142,38 @@ GLINTLAB_FN void block(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp,
   const LaneInt<T> n_a = level_cells<T>(level);
   const LaneInt<T> sx0 = block_start(sp.x_s.x * res_s, n);
   const LaneInt<T> sy0 = block_start(sp.x_s.y * res_s, n);
+  const Normal2Form<T> spatial_lobe = normal2_form(sp.sigma_s);
   out.lo = {int_to_float<T>(int_max(ax0, std::int64_t(0))) / res_a,
             int_to_float<T>(int_max(ay0, std::int64_t(0))) / res_a};
   out.hi = {int_to_float<T>(int_min(ax0 + n, n_a)) / res_a,
             int_to_float<T>(int_min(ay0 + n, n_a)) / res_a};
   out.count = 0;
   out.total = T(0);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int a = 0; a < n; ++a)
+  for (int i = 0; i < n; ++i) {
+    const LaneInt<T> sx = sx0 + i;
+    const LaneInt<T, std::uint64_t> hash_i = cell_chain_sx_lanes<T>(sx);
+    for (int j = 0; j < n; ++j) {
+      const LaneInt<T> sy = sy0 + j;
+      const LaneInt<T, std::uint64_t> hash_ij = cell_chain_sy_lanes<T>(hash_i, sy);
+      for (int a = 0; a < n; ++a) {
+        const LaneInt<T> ax = ax0 + a;
+        const LaneInt<T, std::uint64_t> hash_ija = cell_chain_ax_lanes<T>(hash_ij, ax);
         for (int b = 0; b < n; ++b) {
-          Candidate<T> k = candidate(p, ndf, sp, level, w_l, res_a, res_s, n_a, sx0 + i, sy0 + j,
-                                     ax0 + a, ay0 + b, process);
-          if (any_lane<T>(k.valid))
+          const LaneInt<T> ay = ay0 + b;
+          Candidate<T> k =
+              candidate(p, ndf, sp, spatial_lobe, w_l, res_a, res_s, n_a, sx, sy, ax, ay,
+                        cell_chain_ay_level_lanes<T>(hash_ija, ay, level, process));
+          if (adds_weight(k))
             k.m = select(k.valid, gaussian_rect_mass(out.lo, out.hi, k.g_a, k.sigma, Erf::kExact),
                          T(0));
-          out.total += k.s * k.m;  // invalid lanes add +0: the scalar sum is unchanged
+          // Invalid lanes and those of weight 0 add ±0 (m is finite: max(v, 0) drops a NaN), so
+          // the sum is unchanged.
+          out.total += k.s * k.m;
           out.c[std::size_t(out.count++)] = k;
         }
+      }
+    }
+  }
 }
 
 // Σ_j s_j N_j(x) / W over a block: the density in the square of the sample given the block.
@@ -161,12 +185,13 @@ GLINTLAB_FN T block_density(const Block<T>& b, Vec2<T> x) {
   T sum = T(0);
   for (int j = 0; j < b.count; ++j) {
     const Candidate<T>& k = b.c[std::size_t(j)];
-    const T t = k.s * normal2(x - k.g_a, Sym2<T>{sqr(k.sigma.x), T(0), sqr(k.sigma.y)});
     // A point of zero spatial weight adds nothing, and a point whose lobe collapsed (σ = 0: D
     // underflowed to 0 at g_a on the rim of U_Ω, in float well before double) is a delta that
     // adds nothing at any other x; masked, or 0 · N(0/0) made the density NaN (stability sweep,
     // float pdf at density ≥ 2.1e7). Every result that was finite before is unchanged.
     const Mask<T> live = k.valid && (k.s > T(0)) && (k.sigma.x > T(0)) && (k.sigma.y > T(0));
+    if (!any_lane<T>(live)) continue;  // it adds +0
+    const T t = k.s * normal2(x - k.g_a, Sym2<T>{sqr(k.sigma.x), T(0), sqr(k.sigma.y)});
     sum += select(live, t, T(0));
   }
   return select(inside, sum / b.total, T(0));
@@ -311,20 +336,36 @@ GLINTLAB_FN void level_points(const Params<T>& p, const Ndf& ndf, const Spatial<
   const LaneInt<T> n_a = level_cells<T>(level);
   const LaneInt<T> sx0 = block_start(sp.x_s.x * res_s, n);
   const LaneInt<T> sy0 = block_start(sp.x_s.y * res_s, n);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int a = 1 - n; a <= n - 1; ++a)
+  const Normal2Form<T> spatial_lobe = normal2_form(sp.sigma_s);
+  for (int i = 0; i < n; ++i) {
+    const LaneInt<T> sx = sx0 + i;
+    const LaneInt<T, std::uint64_t> hash_i = cell_chain_sx_lanes<T>(sx);
+    for (int j = 0; j < n; ++j) {
+      const LaneInt<T> sy = sy0 + j;
+      const LaneInt<T, std::uint64_t> hash_ij = cell_chain_sy_lanes<T>(hash_i, sy);
+      for (int a = 1 - n; a <= n - 1; ++a) {
+        const LaneInt<T> ax = cx + a;
+        const LaneInt<T, std::uint64_t> hash_ija = cell_chain_ax_lanes<T>(hash_ij, ax);
         for (int b = 1 - n; b <= n - 1; ++b) {
-          const Candidate<T> k = candidate(p, ndf, sp, level, w_l, res_a, res_s, n_a, sx0 + i,
-                                           sy0 + j, cx + a, cy + b, process);
-          const T t = k.s * normal2(x - k.g_a, Sym2<T>{sqr(k.sigma.x), T(0), sqr(k.sigma.y)});
+          const LaneInt<T> ay = cy + b;
+          const Candidate<T> k =
+              candidate(p, ndf, sp, spatial_lobe, w_l, res_a, res_s, n_a, sx, sy, ax, ay,
+                        cell_chain_ay_level_lanes<T>(hash_ija, ay, level, process));
           const Mask<T> live = k.valid && (k.s > T(0)) && (k.sigma.x > T(0)) && (k.sigma.y > T(0));
           const std::size_t at = out.index(i, j, a, b);
           out.c[at] = k;
-          out.term[at] = select(live, t, T(0));
+          out.term[at] =
+              any_lane<T>(live)
+                  ? select(live,
+                           k.s * normal2(x - k.g_a, Sym2<T>{sqr(k.sigma.x), T(0), sqr(k.sigma.y)}),
+                           T(0))
+                  : T(0);
           out.known[0][at].fill(false);
           out.known[1][at].fill(false);
         }
+      }
+    }
+  }
 }
 
 // The point at `at`'s mass along `axis` over [lo, hi], the range of the blocks whose start on that
@@ -363,7 +404,7 @@ GLINTLAB_FN T level_block_density(LevelPoints<T>& pts, const LaneInt<T, int>& le
           const std::size_t at = pts.index(i, j, dx + a, dy + b);
           const Candidate<T>& k = pts.c[at];
           // gaussian_rect_mass(lo, hi, k.g_a, k.sigma, Erf::kExact), its factors shared.
-          const T m = any_lane<T>(k.valid)
+          const T m = adds_weight(k)
                           ? select(k.valid,
                                    mass_along(pts, at, 0, dx, lo.x, hi.x) *
                                        mass_along(pts, at, 1, dy, lo.y, hi.y),
