@@ -136,56 +136,42 @@ void run_adequacy_maps(const FigureContext& ctx) {
       "TAU = {:g} per cell ({} positions per cell, Kemppinen {})",
       o.threshold, axes.samples, kemppinen_axes.samples);
   write_level_maps_chart(ctx.dir / "adequacy-maps.png", levels_csv, title, every_map, 2);
+  // What differs between the families' maps: the chart's title, the EXR's column axis and levels.
+  struct FamilyMapText {
+    std::string title, columns, levels;
+  };
+  const auto text_of = [&](std::string_view family) -> FamilyMapText {
+    const std::string per_cell = "adequacy-maps: cheapest adequate level per cell, ";
+    if (family == kKemppinenFamily)
+      return {per_cell + "Kemppinen family",
+              "expected points: " + fmt::format("{}", fmt::join(kemppinen_axes.points, ", ")),
+              "0 smooth, 1 k1_rational, 2 k1_exact, 3 k4_rational, 4 k4_exact, 5 k9_rational, "
+              "6 k9_exact, 7 k16_rational, 8 k16_exact"};
+    if (family == kChermainFamily)
+      return {per_cell + "Chermain family",
+              "expected microfacets: " + fmt::format("{}", fmt::join(chermain_axes.facets, ", ")),
+              "0 smooth, 1 dict4, 2 dict4_ggaa, 3 dict8, 4 dict8_ggaa, 5 dict12, 6 dict12_ggaa, "
+              "7 dict16, 8 dict16_ggaa"};
+    const bool area = family == kAreaFamily;
+    return {per_cell + (area ? "area family" : "binomial family"),
+            "N_P: " + fmt::format("{}", fmt::join(area ? area_axes.facets : axes.facets, ", ")),
+            "0 smooth, 1 realtime, 2 small_count, 3 exact"};
+  };
   for (std::size_t i = 0; i < maps.size(); ++i) {
     const AdequacyLevelMap& m = maps[i];
     const std::string_view family = family_of(i);
-    if (family == kKemppinenFamily) {
-      write_level_maps_chart(ctx.dir / (m.stem + ".png"), levels_csv,
-                             "adequacy-maps: cheapest adequate level per cell, Kemppinen family",
-                             {&m});
-      io::write_exr(
-          ctx.dir / (m.stem + ".exr"), m.exr,
-          {{"glintlab_figure", std::string(kId)},
-           {"glintlab_version", std::string(glintlab_version())},
-           {"glintlab_family", std::string(family)},
-           {"glintlab_columns",
-            "expected points: " + fmt::format("{}", fmt::join(kemppinen_axes.points, ", "))},
-           {"glintlab_rows", fmt::format("{}", fmt::join(m.map.row_labels, "; "))},
-           {"glintlab_levels", "0 smooth, 1 k1_rational, 2 k1_exact, 3 k4_rational, 4 k4_exact, "
-                               "5 k9_rational, 6 k9_exact, 7 k16_rational, 8 k16_exact"}});
-      continue;
-    }
-    if (family == kChermainFamily) {
-      write_level_maps_chart(ctx.dir / (m.stem + ".png"), levels_csv,
-                             "adequacy-maps: cheapest adequate level per cell, Chermain family",
-                             {&m});
-      io::write_exr(
-          ctx.dir / (m.stem + ".exr"), m.exr,
-          {{"glintlab_figure", std::string(kId)},
-           {"glintlab_version", std::string(glintlab_version())},
-           {"glintlab_family", std::string(family)},
-           {"glintlab_columns",
-            "expected microfacets: " + fmt::format("{}", fmt::join(chermain_axes.facets, ", "))},
-           {"glintlab_rows", fmt::format("{}", fmt::join(m.map.row_labels, "; "))},
-           {"glintlab_levels", "0 smooth, 1 dict4, 2 dict4_ggaa, 3 dict8, 4 dict8_ggaa, 5 dict12, "
-                               "6 dict12_ggaa, 7 dict16, 8 dict16_ggaa"},
-           {"glintlab_ggaa_dh", fmt::format("{:g}", m.ggaa_dh)}});
-      continue;
-    }
-    const bool area = family == kAreaFamily;
-    write_level_maps_chart(ctx.dir / (m.stem + ".png"), levels_csv,
-                           area ? "adequacy-maps: cheapest adequate level per cell, area family"
-                                : "adequacy-maps: cheapest adequate level per cell, binomial family",
-                           {&m});
-    io::write_exr(ctx.dir / (m.stem + ".exr"), m.exr,
-                  {{"glintlab_figure", std::string(kId)},
-                   {"glintlab_version", std::string(glintlab_version())},
-                   {"glintlab_family", std::string(family)},
-                   {"glintlab_columns",
-                    "N_P: " + fmt::format("{}", fmt::join(area ? area_axes.facets : axes.facets,
-                                                          ", "))},
-                   {"glintlab_rows", fmt::format("{}", fmt::join(m.map.row_labels, "; "))},
-                   {"glintlab_levels", "0 smooth, 1 realtime, 2 small_count, 3 exact"}});
+    const FamilyMapText text = text_of(family);
+    write_level_maps_chart(ctx.dir / (m.stem + ".png"), levels_csv, text.title, {&m});
+    io::ExrAttributes attributes = {
+        {"glintlab_figure", std::string(kId)},
+        {"glintlab_version", std::string(glintlab_version())},
+        {"glintlab_family", std::string(family)},
+        {"glintlab_columns", text.columns},
+        {"glintlab_rows", fmt::format("{}", fmt::join(m.map.row_labels, "; "))},
+        {"glintlab_levels", text.levels}};
+    if (family == kChermainFamily)
+      attributes.emplace_back("glintlab_ggaa_dh", fmt::format("{:g}", m.ggaa_dh));
+    io::write_exr(ctx.dir / (m.stem + ".exr"), m.exr, attributes);
   }
   io::write_csv_atomic(
       ctx.dir / "adequacy-maps.csv",
