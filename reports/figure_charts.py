@@ -97,6 +97,29 @@ def _matcher(where):
     return match
 
 
+_column_groups = {"rows": None, "column": None, "groups": None}
+
+
+def _rows_where(rows, where):
+    """The rows that match `where`, in their order: list(filter(_matcher(where), rows)). A
+    one-column `where` (a sheet's panel: one scene of its pixel CSV) is decided once per distinct
+    cell of the column, the rows grouped by it once per CSV and column, not every row per panel."""
+    if not where or len(where) != 1:
+        return list(filter(_matcher(where), rows))
+    (column, _), = where.items()
+    cache = _column_groups
+    if cache["rows"] is not rows or cache["column"] != column:
+        groups = {}
+        for k, r in enumerate(rows):
+            groups.setdefault(r[column], []).append(k)
+        cache.update(rows=rows, column=column, groups=groups)
+    match = _matcher(where)
+    hits = [ks for ks in cache["groups"].values() if match(rows[ks[0]])]
+    if len(hits) == 1:
+        return [rows[k] for k in hits[0]]
+    return [rows[k] for k in sorted(k for ks in hits for k in ks)]
+
+
 def _need(spec_name, csv_name, header, columns):
     for c in columns:
         if c and c not in header:
@@ -302,7 +325,7 @@ def _cells(ax, grid, cmap, norm):
 def _grid_axes(spec_name, csv_name, header, rows, panel, ycols):
     """The panel's rows, its distinct x values (sorted) and y keys (in the CSV's order)."""
     x = panel.get("x") or {}
-    mine = list(filter(_matcher(panel.get("where")), rows))
+    mine = _rows_where(rows, panel.get("where"))
     if not mine:
         raise ChartError(f"{spec_name}: panel '{panel['title']}' has no point to draw (no row "
                          f"of {csv_name} matches it)")

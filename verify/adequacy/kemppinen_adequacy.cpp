@@ -2,11 +2,14 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 #include <tuple>
+#include <vector>
 
 #include "core/models/kemppinen_beckmann.h"
 #include "core/models/kemppinen_ggx.h"
@@ -23,6 +26,12 @@ Vec2<double> footprint_axes(const KemppinenCell& c) {
   const double side = std::sqrt(c.points / kKemppinenDensity);
   const double stretch = std::sqrt(1 / std::cos(c.theta_i_deg * kDeg));
   return {side * stretch, side / stretch};
+}
+
+// The spread's unit: the coarser level's spatial cell is 2^(⌊λ⌋+1)/√K_P ≤ 4 f σ = 2σ for the
+// footprint's longer axis σ (f = 0.5), or 2/√K_P where λ is clamped at 0.
+double coarser_cell(const KemppinenCell& c) {
+  return 2 * std::max(footprint_axes(c).x, 1 / std::sqrt(kKemppinenDensity));
 }
 
 template <class M>
@@ -46,6 +55,51 @@ ModelEval<double, detail::kKemppinenIntermediates.size()> value_at(
   return kemppinen_value(params, kemppinen_cell_query(c, kemppinen_surface_position(c, i)));
 }
 
+// An exact-erf level's values at the cell's first `samples` positions; returns the loop's ns per
+// evaluation.
+template <class M>
+double exact_values_of(const KemppinenCell& c, KemppinenLevel exact, int samples,
+                       std::uint64_t seed, std::vector<double>& out) {
+  using Clock = std::chrono::steady_clock;
+  out.resize(std::size_t(samples));
+  const auto params = level_params<M>(c, exact, seed);
+  // The query at position i is kemppinen_cell_query(c, kemppinen_surface_position(c, i)): the
+  // directions, the footprint and the coarser cell set up once, its uv moved.
+  ModelQuery<double> q = kemppinen_cell_query(c, {0, 0});
+  const double cell = coarser_cell(c);
+  const auto t0 = Clock::now();
+  for (int i = 0; i < samples; ++i) {
+    const Vec2<double> r = surface_position(i);
+    q.footprint.uv = {r.x * kKemppinenSpread * cell, r.y * kKemppinenSpread * cell};
+    out[std::size_t(i)] = kemppinen_value(params, q).value;
+  }
+  return std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / samples;
+}
+
+// A rational-erf level's values, `out` holding its exact twin's on entry. The rational erf enters
+// only the compensation (Eq. 10), which depends on the half-vector and the LOD λ alone, not on
+// the position (λ is the footprint's, the same at every position of a cell): the rational level's
+// value is the exact level's plus a constant, taken here from one position
+// (KemppinenAdequacy.RationalLevelIsTheExactOnePlusAConstant checks it against the model at every
+// position). Its time is the model's own rational evaluation at the first
+// kRationalTimedPositions positions.
+template <class M>
+double rational_values_from_exact(const KemppinenCell& c, KemppinenLevel level, int samples,
+                                  std::uint64_t seed, std::vector<double>& out) {
+  using Clock = std::chrono::steady_clock;
+  const auto rational = level_params<M>(c, level, seed);
+  const double shift = value_at<M>(rational, c, 0).value - out[0];
+  for (double& v : out) v += shift;
+  const int timed = std::min(samples, kRationalTimedPositions);
+  double sink = 0;
+  const auto t0 = Clock::now();
+  for (int i = 0; i < timed; ++i) sink += value_at<M>(rational, c, i).value;
+  const auto t1 = Clock::now();
+  volatile double kept = sink;  // so the timed loop is not removed
+  (void)kept;
+  return std::chrono::duration<double, std::nano>(t1 - t0).count() / timed;
+}
+
 template <class M>
 double values_of(const KemppinenCell& c, KemppinenLevel level, int samples, std::uint64_t seed,
                  std::vector<double>& out) {
@@ -61,28 +115,9 @@ double values_of(const KemppinenCell& c, KemppinenLevel level, int samples, std:
     return std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / samples;
   }
   const KemppinenLevel exact = kemppinen_exact_twin(level);
-  const auto params = level_params<M>(c, exact, seed);
-  const auto t0 = Clock::now();
-  for (int i = 0; i < samples; ++i) out[std::size_t(i)] = value_at<M>(params, c, i).value;
-  const auto t1 = Clock::now();
-  if (exact == level) return std::chrono::duration<double, std::nano>(t1 - t0).count() / samples;
-  // The rational erf enters only the compensation (Eq. 10), which depends on the half-vector and
-  // the LOD λ alone, not on the position (λ is the footprint's, the same at every position of a
-  // cell): the rational level's value is the exact level's plus a constant, taken here from one
-  // position (KemppinenAdequacy.RationalLevelIsTheExactOnePlusAConstant checks it against the
-  // model at every position). Its time is the model's own rational evaluation at the first
-  // kRationalTimedPositions positions.
-  const auto rational = level_params<M>(c, level, seed);
-  const double shift = value_at<M>(rational, c, 0).value - out[0];
-  for (double& v : out) v += shift;
-  const int timed = std::min(samples, kRationalTimedPositions);
-  double sink = 0;
-  const auto t2 = Clock::now();
-  for (int i = 0; i < timed; ++i) sink += value_at<M>(rational, c, i).value;
-  const auto t3 = Clock::now();
-  volatile double kept = sink;  // so the timed loop is not removed
-  (void)kept;
-  return std::chrono::duration<double, std::nano>(t3 - t2).count() / timed;
+  const double t_exact = exact_values_of<M>(c, exact, samples, seed, out);
+  if (exact == level) return t_exact;
+  return rational_values_from_exact<M>(c, level, samples, seed, out);
 }
 
 template <class F>
@@ -124,9 +159,7 @@ std::vector<KemppinenCell> make_kemppinen_grid(const std::vector<std::string>& m
 }
 
 Vec2<double> kemppinen_surface_position(const KemppinenCell& c, int i) {
-  // The coarser level's spatial cell is 2^(⌊λ⌋+1)/√K_P ≤ 4 f σ = 2σ for the footprint's longer
-  // axis σ (f = 0.5), or 2/√K_P where λ is clamped at 0.
-  const double cell = 2 * std::max(footprint_axes(c).x, 1 / std::sqrt(kKemppinenDensity));
+  const double cell = coarser_cell(c);
   const Vec2<double> r = surface_position(i);
   return {r.x * kKemppinenSpread * cell, r.y * kKemppinenSpread * cell};
 }
@@ -169,10 +202,27 @@ KemppinenCellResult measure_kemppinen_cell(const KemppinenCell& cell, int sample
                                            const KemppinenLevelEdit& edit) {
   KemppinenCellResult r;
   r.cell = cell;
+  // Each exact-erf level evaluated once: its rational twin's values are the same plus a constant
+  // (rational_values_from_exact), the same values kemppinen_level_values gives, without
+  // evaluating Algorithm 1 at every position again.
+  std::array<std::vector<double>, kKemppinenLevels> exact_values;
+  std::array<double, kKemppinenLevels> exact_ns{};
   r.levels = measure_levels<kKemppinenLevels>(
       int(KemppinenLevel::kK16Exact), d,
       [&](int l, std::vector<double>& out) {
-        return kemppinen_level_values(cell, KemppinenLevel(l), samples, seed, out);
+        const auto level = KemppinenLevel(l);
+        if (level == KemppinenLevel::kSmooth)
+          return kemppinen_level_values(cell, level, samples, seed, out);
+        const KemppinenLevel exact = kemppinen_exact_twin(level);
+        std::vector<double>& e = exact_values[std::size_t(exact)];
+        return with_model(cell.model, [&](auto m) {
+          using M = decltype(m);
+          if (e.empty())
+            exact_ns[std::size_t(exact)] = exact_values_of<M>(cell, exact, samples, seed, e);
+          out = e;
+          if (exact == level) return exact_ns[std::size_t(exact)];
+          return rational_values_from_exact<M>(cell, level, samples, seed, out);
+        });
       },
       [&](int l, std::vector<double>& x) {
         if (edit) edit(KemppinenLevel(l), x);
