@@ -45,8 +45,9 @@ struct ModelEntry {
   // Optional: eval and pdf over many queries, and sample at one query for many uniform pairs, in
   // one call each, for a model whose every call costs far more than its arithmetic (a Python model
   // calls its numpy functions once per chunk). Row i of `out` is what the per-row thunk above gives
-  // for row i, bit for bit. Empty (every built-in model): eval_each / pdf_each / sample_each below
-  // loop over the thunks. A copy of an entry that replaces a thunk must replace or clear its rows
+  // for row i, bit for bit. Set by make_model_entry for a model that shares work between the rows
+  // of one call (detail::SharesRowWork: the Kemppinen models' mixture probability per footprint);
+  // empty otherwise: eval_each / pdf_each / sample_each below loop over the thunks. A copy of an entry that replaces a thunk must replace or clear its rows
   // function too (clear_rows), or callers that use it would bypass the replacement.
   std::function<void(const std::vector<double>& values, std::span<const ModelQuery<double>> queries,
                      std::span<ErasedEval> out)>
@@ -190,6 +191,18 @@ concept HasFloatInstantiation = !DoubleOnly<M> && requires(std::span<const doubl
     M::template sample<float>(M::template params<float>(v), ModelQuery<float>{}, Vec2<float>{})
     } -> std::same_as<ModelSample<float>>;
 };
+// A model whose rows of one call share work: M::RowsShared holds it (host-side, per call), and
+// M::pdf_row / eval_row / sample_row give each row's pdf / eval / sample in double with it, the
+// bits of M::pdf / eval / sample.
+template <class M>
+concept SharesRowWork = requires(std::span<const double> v, const ModelQuery<double>& q,
+                                 Vec2<double> u, typename M::RowsShared& shared) {
+  { M::pdf_row(M::template params<double>(v), q, shared) } -> std::same_as<double>;
+  {
+    M::eval_row(M::template params<double>(v), q, shared)
+    } -> std::same_as<ModelEval<double, M::kIntermediates.size()>>;
+  { M::sample_row(M::template params<double>(v), q, u, shared) } -> std::same_as<ModelSample<double>>;
+};
 }  // namespace detail
 
 // Builds the entry of a static model (model_registry.cpp makes one per type of BuiltinModels).
@@ -213,6 +226,29 @@ ModelEntry make_model_entry() {
   e.sample = [](const std::vector<double>& v, const ModelQuery<double>& q, Vec2<double> u) {
     return M::template sample<double>(M::template params<double>(v), q, u);
   };
+  if constexpr (detail::SharesRowWork<M>) {
+    e.eval_rows = [](const std::vector<double>& v, std::span<const ModelQuery<double>> qs,
+                     std::span<ErasedEval> out) {
+      const auto p = M::template params<double>(v);
+      typename M::RowsShared shared;
+      for (std::size_t i = 0; i < qs.size(); ++i) {
+        const auto r = M::eval_row(p, qs[i], shared);
+        out[i] = ErasedEval{r.value, r.pdf, {r.intermediates.begin(), r.intermediates.end()}};
+      }
+    };
+    e.pdf_rows = [](const std::vector<double>& v, std::span<const ModelQuery<double>> qs,
+                    std::span<double> out) {
+      const auto p = M::template params<double>(v);
+      typename M::RowsShared shared;
+      for (std::size_t i = 0; i < qs.size(); ++i) out[i] = M::pdf_row(p, qs[i], shared);
+    };
+    e.sample_rows = [](const std::vector<double>& v, const ModelQuery<double>& q,
+                       std::span<const Vec2<double>> u, std::span<ModelSample<double>> out) {
+      const auto p = M::template params<double>(v);
+      typename M::RowsShared shared;
+      for (std::size_t i = 0; i < u.size(); ++i) out[i] = M::sample_row(p, q, u[i], shared);
+    };
+  }
   if constexpr (ValidatesQuery<M>) e.validate = &M::validate;
   if constexpr (detail::DeclaresSmoothLimit<M>) e.smooth_limit = M::kSmoothLimit;
   if constexpr (detail::DeclaresNotClaimed<M>)

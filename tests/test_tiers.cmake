@@ -69,6 +69,11 @@ set(glintlab_slow_tests
   "KemppinenAdequacyCell.LevelsMadeTwoTauOffAreNotChosen 2"
   "KemppinenChooser.NeverRefutedByTheMeasuredTableAndTenfoldTauIs 6"
   "KemppinenChooser.MomentsBoundTheMeasuredCvAndMatchItsMean 1"
+  # The rows functions against the per-row thunks at k = 16 (Algorithm 2's marginal density over
+  # 16 blocks per level, ~1 ms a row): 3 footprint patterns × 2 mappings × 2 pdf choices, the
+  # fewest rows that hold runs of equal and alternating footprints.
+  "ModelAndK/KemppinenRows.EachRowIsThePerRowThunksBits/kemppinen_ggx_k16* 2"
+  "ModelAndK/KemppinenRows.EachRowIsThePerRowThunksBits/kemppinen_beckmann_k16* 2"
   # The choosers for given costs (core/glints/cost_chooser.h) against the measured tables (the
   # Kemppinen chooser test's 32 cells, the Chermain quick grid at 2000 positions) and, in the GPU
   # order, on every Chermain cell (the default dictionary's construction).

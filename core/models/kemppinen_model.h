@@ -10,6 +10,8 @@
 #pragma once
 
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <span>
 #include <string_view>
 
@@ -155,17 +157,26 @@ GLINTLAB_FN T kemppinen_model_mixture_probability(const KemppinenModelParams<Ndf
                      : kemppinen2025::mixture_probability(p.glint, p.ndf, q.footprint);
 }
 
-// pdf of ωo = reflect(ωi, ω_h) under the model's sampler: the mixture density of ω_h,
-// q p₁(ω_h) + (1 − q) D cosθ_h with p₁ Algorithm 2's marginal, / (4 |ωo·ω_h|).
-// (Generic over T: the early-outs are taken only when no lane needs the rest, and masked after.)
+// Whether some lane of q has a pdf to compute (ωi, ωo and ω_h above the surface, ωi·ω_h > 0):
+// where none has, kemppinen_model_pdf is 0 without the mixture probability.
+template <class T>
+GLINTLAB_FN bool kemppinen_model_pdf_needed(const ModelQuery<T>& q) {
+  const Mask<T> lit = (q.wi.z > T(0)) && (q.wo.z > T(0));
+  if (!any_lane<T>(lit)) return false;
+  const Vec3<T> h = half_vector(q.wi, q.wo);
+  return any_lane<T>(lit && (h.z > T(0)) && (dot(q.wi, h) > T(0)));
+}
+
+// kemppinen_model_pdf with the mixture probability mq = kemppinen_model_mixture_probability(p, q)
+// given: it depends on the parameters and the footprint only, so rows of one footprint share it.
 template <class Ndf, class T>
-GLINTLAB_FN T kemppinen_model_pdf(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q) {
+GLINTLAB_FN T kemppinen_model_pdf_with_mixture(const KemppinenModelParams<Ndf, T>& p,
+                                               const ModelQuery<T>& q, T mq) {
   const Mask<T> lit = (q.wi.z > T(0)) && (q.wo.z > T(0));
   if (!any_lane<T>(lit)) return T(0);
   const Vec3<T> h = half_vector(q.wi, q.wo);
   const Mask<T> ok = lit && (h.z > T(0)) && (dot(q.wi, h) > T(0));
   if (!any_lane<T>(ok)) return T(0);
-  const T mq = kemppinen_model_mixture_probability(p, q);
   const T d =
       p.triplanar
           ? kemppinen2025::mixture_density_half(
@@ -177,16 +188,27 @@ GLINTLAB_FN T kemppinen_model_pdf(const KemppinenModelParams<Ndf, T>& p, const M
   return select(ok, d * reflection_jacobian(q.wo, h), T(0));
 }
 
+// pdf of ωo = reflect(ωi, ω_h) under the model's sampler: the mixture density of ω_h,
+// q p₁(ω_h) + (1 − q) D cosθ_h with p₁ Algorithm 2's marginal, / (4 |ωo·ω_h|).
+// (Generic over T: the early-outs are taken only when no lane needs the rest, and masked after.)
+template <class Ndf, class T>
+GLINTLAB_FN T kemppinen_model_pdf(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q) {
+  if (!kemppinen_model_pdf_needed(q)) return T(0);
+  return kemppinen_model_pdf_with_mixture(p, q, kemppinen_model_mixture_probability(p, q));
+}
+
 // ωo = reflect(ωi, ω_h), ω_h from the mixture; the pdf the marginal (exact) or the printed
 // mixture density (pdf=printed), the weight value/pdf.
+// The mixture probability mq given (kemppinen_model_mixture_probability(p, q)), as in
+// kemppinen_model_pdf_with_mixture.
 template <class Ndf, class T>
-GLINTLAB_FN ModelSample<T> kemppinen_model_sample(const KemppinenModelParams<Ndf, T>& p, const ModelQuery<T>& q,
-                                      Vec2<T> u) {
+GLINTLAB_FN ModelSample<T> kemppinen_model_sample_with_mixture(const KemppinenModelParams<Ndf, T>& p,
+                                                               const ModelQuery<T>& q, Vec2<T> u,
+                                                               T mq) {
   const ModelSample<T> none{{T(0), T(0), T(0)}, T(0), T(0), Mask<T>(true)};
   const Mask<T> lit = q.wi.z > T(0);
   if (!any_lane<T>(lit)) return none;
   const LaneInt<T, std::uint64_t> key = kemppinen2025::key_from_uniforms(u);
-  const T mq = kemppinen_model_mixture_probability(p, q);
   const kemppinen2025::FullSample<T> s =
       p.triplanar
           ? kemppinen2025::sample_mixture(
@@ -208,6 +230,13 @@ GLINTLAB_FN ModelSample<T> kemppinen_model_sample(const KemppinenModelParams<Ndf
   const T value = kemppinen_model_eval(p, qo, pdf).value;
   return {select(ok, wo, none.wo), select(ok, pdf, T(0)),
           select(ok && (pdf > T(0)), value / pdf, T(0)), !ok};
+}
+
+template <class Ndf, class T>
+GLINTLAB_FN ModelSample<T> kemppinen_model_sample(const KemppinenModelParams<Ndf, T>& p,
+                                                  const ModelQuery<T>& q, Vec2<T> u) {
+  if (!any_lane<T>(q.wi.z > T(0))) return {{T(0), T(0), T(0)}, T(0), T(0), Mask<T>(true)};
+  return kemppinen_model_sample_with_mixture(p, q, u, kemppinen_model_mixture_probability(p, q));
 }
 
 // Algorithm 2 alone (the paper's sampler, which does not draw the compensation): the pdf of ωo,
@@ -292,6 +321,53 @@ struct KemppinenModel {
   template <class T>
   GLINTLAB_FN static ModelSample<T> sample(const Params<T>& p, const ModelQuery<T>& q, Vec2<T> u) {
     return kemppinen_model_sample(p, q, u);
+  }
+
+  // The work that the rows of one rows call (ModelEntry::pdf_rows, eval_rows, sample_rows; see
+  // make_model_entry) share: the mixture probability, which depends on the parameters and the
+  // footprint only (16 lobe widths and ~256 erfs), computed at the first row that needs it and
+  // again where a row's footprint differs from the last one's in any bit. The conformance suite
+  // asks for thousands of directions at one footprint. Host-side state of one call, no kernel's.
+  struct RowsShared {
+    bool known = false;
+    FootprintQuery<double> footprint{};
+    double mixture = 0;
+    double mixture_at(const Params<double>& p, const ModelQuery<double>& q) {
+      if (!known || !same_bits(footprint, q.footprint)) {
+        footprint = q.footprint;
+        mixture = kemppinen_model_mixture_probability(p, q);
+        known = true;
+      }
+      return mixture;
+    }
+    static bool same_bits(const FootprintQuery<double>& a, const FootprintQuery<double>& b) {
+      const auto same = [](double x, double y) {
+        return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y);
+      };
+      bool equal = same(a.uv.x, b.uv.x) && same(a.uv.y, b.uv.y) && same(a.duv_dx.x, b.duv_dx.x) &&
+                   same(a.duv_dx.y, b.duv_dx.y) && same(a.duv_dy.x, b.duv_dy.x) &&
+                   same(a.duv_dy.y, b.duv_dy.y);
+      for (std::size_t i = 0; i < a.corner_r.size(); ++i)
+        equal = equal && same(a.corner_r[i].x, b.corner_r[i].x) &&
+                same(a.corner_r[i].y, b.corner_r[i].y) && same(a.corner_r[i].z, b.corner_r[i].z);
+      return equal;
+    }
+  };
+  // pdf, eval and sample in double with the shared work of `shared`: the same bits (the mixture
+  // probability is asked only where the per-row function would compute it).
+  static double pdf_row(const Params<double>& p, const ModelQuery<double>& q, RowsShared& shared) {
+    return kemppinen_model_pdf_with_mixture(
+        p, q, kemppinen_model_pdf_needed(q) ? shared.mixture_at(p, q) : 0.0);
+  }
+  static ModelEval<double, kIntermediates.size()> eval_row(const Params<double>& p,
+                                                           const ModelQuery<double>& q,
+                                                           RowsShared& shared) {
+    return kemppinen_model_eval(p, q, pdf_row(p, q, shared));
+  }
+  static ModelSample<double> sample_row(const Params<double>& p, const ModelQuery<double>& q,
+                                        Vec2<double> u, RowsShared& shared) {
+    return kemppinen_model_sample_with_mixture(p, q, u,
+                                               q.wi.z > 0.0 ? shared.mixture_at(p, q) : 0.0);
   }
 };
 

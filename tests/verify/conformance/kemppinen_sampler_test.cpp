@@ -18,10 +18,11 @@ namespace glintlab::verify::conformance {
 namespace {
 
 // The registered entry with its sampler and pdf replaced by Algorithm 2 alone (the model's sampler
-// before it drew the compensation); eval's value is unchanged.
+// before it drew the compensation); eval's value is unchanged. Without its rows functions, which
+// would bypass the replaced thunks.
 template <class Model>
 ModelEntry with_explicit_only_sampler(const ModelEntry& m) {
-  ModelEntry e = m;
+  ModelEntry e = clear_rows(m);
   e.sample = [](const std::vector<double>& values, const ModelQuery<double>& q, Vec2<double> u) {
     return detail::kemppinen_model_explicit_sample(Model::template params<double>(values), q, u);
   };
