@@ -40,9 +40,10 @@ namespace adq = verify::adequacy;
 constexpr std::string_view kId = "adequacy-maps";
 
 // Surface positions per Kemppinen cell at quick. `glintlab adequacy --budget quick` measures 8000,
-// which costs the Kemppinen family some 85 CPU-seconds (Algorithm 1's points, scalar), more than
-// the three other families together; the figure's quick run (a preview, and a ctest) takes an
-// eighth of them. The decision's z is still the whole table's (it counts decisions, not
+// which costs the Kemppinen family some 56 CPU-seconds (Algorithm 1's points, scalar; 111 when
+// each exact-erf level was evaluated again for its rational twin, both at a load of 6 to 8 on 2
+// shared cores), more than the three other families together; the figure's quick run (a preview,
+// and a ctest) takes an eighth of them. The decision's z is still the whole table's (it counts decisions, not
 // positions); fewer positions widen the bounds, so a cell can keep a more complete level than at
 // 8000 (docs/adequacy.md, the figure adequacy-maps). The full budget measures glintlab adequacy's.
 constexpr int kQuickKemppinenPositions = 1000;
