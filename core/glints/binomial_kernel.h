@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -26,9 +27,7 @@ namespace glintlab {
 template <class T>
 struct HashStream {
   HashLanes<T> key;
-  GLINTLAB_FN T uniform(std::uint32_t dim) const {
-    return hash32_uniform<T>(hash32_draw(key, HashLanes<T>(dim)));
-  }
+  GLINTLAB_INLINE T uniform(std::uint32_t dim) const;
 };
 
 // counter_uniform(seed, index of each lane, dim) (core/math/rng.h), lane by lane.
@@ -38,6 +37,89 @@ struct CounterStream {
   RngIndex<T> index;
   GLINTLAB_FN T uniform(std::uint32_t dim) const { return lane_uniform<T>(seed, index, dim); }
 };
+
+namespace detail {
+
+// The same register as 32-bit lanes, for hash lanes of 64-bit integers (a double batch's:
+// xsimd::batch<std::uint64_t, A> → xsimd::batch<std::uint32_t, A>); void for other lane types.
+template <class U>
+struct HalfWidthLanes {
+  using type = void;
+};
+template <template <class, class> class Batch, class A>
+struct HalfWidthLanes<Batch<std::uint64_t, A>> {
+  using type = Batch<std::uint32_t, A>;
+};
+template <class T>
+concept WideHashLanes = !std::is_void_v<typename HalfWidthLanes<HashLanes<T>>::type>;
+
+// hash32_draw's counter term for dim (the wrap32 of dim · 0x85ebca6b + 0xc2b2ae35).
+GLINTLAB_FN std::uint32_t hash32_dim_term(std::uint32_t dim) {
+  return dim * 0x85ebca6bu + 0xc2b2ae35u;
+}
+
+// hash32 of 64-bit lanes holding 32-bit values, in the register's 32-bit lanes: the multiplies
+// are the ISA's 32-bit ones (AVX2 has no 64-bit multiply; xsimd would multiply lane by lane)
+// instead of 64-bit products wrapped to 32 bits, which have the same low 32 bits. A high half
+// holding 0 stays 0 (hash32(0) = 0); a high half holding another 32-bit value is hashed on its
+// own (two hashes per lane).
+template <class U64>
+GLINTLAB_INLINE U64 hash32_halves(const U64& x) {
+  using U32 = typename HalfWidthLanes<U64>::type;
+  return std::bit_cast<U64>(hash32(std::bit_cast<U32>(x)));
+}
+
+// HashLaneTraits<T>::to_uniform of 64-bit lanes below 2^32 (the double batches'): the value as
+// the low mantissa bits of 2^52 (exact, no int64 conversion, which AVX2 lacks), times 2^-32.
+template <class T>
+GLINTLAB_INLINE T uniform_from_low_bits(const HashLanes<T>& bits) {
+  using B = typename T::Raw;
+  const B two52(4503599627370496.0);
+  const B value = std::bit_cast<B>(bits | HashLanes<T>(0x4330000000000000ull)) - two52;
+  return T::wrap(value * B(1.0 / 4294967296.0));
+}
+
+}  // namespace detail
+
+// hash32_uniform(hash32_draw(key, dim)) in every lane: on double batches its 32-bit steps run in
+// the register's 32-bit lanes (detail::hash32_halves), the same bits.
+template <class T>
+GLINTLAB_INLINE T HashStream<T>::uniform(std::uint32_t dim) const {
+  if constexpr (detail::WideHashLanes<T>) {
+    const HashLanes<T> h =
+        detail::hash32_halves(key ^ HashLanes<T>(std::uint64_t(detail::hash32_dim_term(dim))));
+    return detail::uniform_from_low_bits<T>(h);
+  } else {
+    return hash32_uniform<T>(hash32_draw(key, HashLanes<T>(dim)));
+  }
+}
+
+namespace detail {
+
+// The uniforms of dims dim and dim + 1 of a stream (BTRS's u and v of one attempt).
+template <class T>
+struct UniformPair {
+  T first, second;
+};
+template <class T, class Stream>
+GLINTLAB_INLINE UniformPair<T> uniform_pair(const Stream& stream,
+                                                                std::uint32_t dim) {
+  return {stream.uniform(dim), stream.uniform(dim + 1)};
+}
+// On a double batch both in one hash32 of the register's 32-bit lanes: each 64-bit lane holds
+// its key ^ dim's term in the low half and key ^ (dim + 1)'s in the high half.
+template <class T>
+requires WideHashLanes<T>
+GLINTLAB_INLINE UniformPair<T> uniform_pair(const HashStream<T>& stream,
+                                                                std::uint32_t dim) {
+  using U = HashLanes<T>;
+  const std::uint64_t terms =
+      std::uint64_t(hash32_dim_term(dim)) | (std::uint64_t(hash32_dim_term(dim + 1)) << 32);
+  const U h = hash32_halves((stream.key | (stream.key << 32)) ^ U(terms));
+  return {uniform_from_low_bits<T>(h & U(0xffffffffu)), uniform_from_low_bits<T>(h >> 32)};
+}
+
+}  // namespace detail
 
 // Iteration bounds of the masked loops. Inversion: for n·p < 10 (p ≤ ½) the host loop stops by
 // k ≈ n·p + 60 at the latest (the pmf falls below 1e-18 of the CDF there; for p near ½, n < 20),
@@ -75,18 +157,33 @@ GLINTLAB_FN D stirling_correction(D x) {
   return ix * (D(1.0 / 12) - ix2 * (D(1.0 / 360) - ix2 * D(1.0 / 1260)));
 }
 
-// log_factorial_ratio on lanes (the differenced Stirling form where both are ≥ 16).
+// log_factorial_ratio(a, ·) on lanes (the differenced Stirling form where both are ≥ 16) for a
+// fixed a (BTRS's m and n − m, the same on every attempt): a's logs computed once. Of the two
+// forms, only the one some lane selects is computed (a uniform branch; the same values).
 template <class D>
-GLINTLAB_FN D log_factorial_ratio_lanes(D a, D b) {
-  const D xa = a + D(1), xb = b + D(1), d = a - b;
-  const D big = d * log(xa) + (xb - D(0.5)) * log1p(d / xb) - d + stirling_correction(xa) -
-                stirling_correction(xb);
-  return select(a < D(16) || b < D(16), log_factorial_lanes(a) - log_factorial_lanes(b), big);
-}
+struct LogFactorialRatioFrom {
+  D a, xa, log_xa, correction_a, log_factorial_a;
+  GLINTLAB_FN explicit LogFactorialRatioFrom(D a_)
+      : a(a_),
+        xa(a_ + D(1)),
+        log_xa(log(xa)),
+        correction_a(stirling_correction(xa)),
+        log_factorial_a(log_factorial_lanes(a_)) {}
+  GLINTLAB_FN D operator()(D b) const {
+    const Mask<D> small = a < D(16) || b < D(16);
+    if (!any_lane<D>(!small)) return log_factorial_a - log_factorial_lanes(b);
+    const D xb = b + D(1), d = a - b;
+    const D big = d * log_xa + (xb - D(0.5)) * log1p(d / xb) - d + correction_a -
+                  stirling_correction(xb);
+    if (!any_lane<D>(small)) return big;
+    return select(small, log_factorial_a - log_factorial_lanes(b), big);
+  }
+};
 
 // detail::binomial_inversion on the lanes of `active` (n·p < 10, p ≤ ½; others keep k = 0).
 template <class D>
 GLINTLAB_FN D binomial_inversion_lanes(D nd, D p, D u, Mask<D> active) {
+  if (!any_lane<D>(active)) return D(0);
   const D q = D(1) - p, r = p / q;
   D f = exp(nd * log1p(-p));
   D cdf = f;
@@ -107,10 +204,14 @@ GLINTLAB_FN D binomial_inversion_lanes(D nd, D p, D u, Mask<D> active) {
   return k;
 }
 
-// detail::binomial_btrs on the lanes of `active` (n·p ≥ 10, p ≤ ½): attempt j reads dims 2j and
-// 2j + 1 of each lane's stream, as the host loop does; a lane stops at its first acceptance.
+// detail::binomial_btrs on the lanes of `active` (n·p ≥ 10, p ≤ ½; others are left undefined):
+// attempt j reads dims 2j and 2j + 1 of each lane's stream, as the host loop does; a lane stops
+// at its first acceptance. The acceptance test's logs are computed only on attempts where some
+// lane still drawing is in range and fails the squeeze (a uniform branch: the lanes the squeeze
+// accepts do not read them).
 template <class D, class Stream>
 GLINTLAB_FN D binomial_btrs_lanes(D nd, D p, const Stream& stream, Mask<D> active) {
+  if (!any_lane<D>(active)) return D(0);
   const D q = D(1) - p;
   const D spq = sqrt(nd * p * q);
   const D b = D(1.15) + D(2.53) * spq;
@@ -120,19 +221,24 @@ GLINTLAB_FN D binomial_btrs_lanes(D nd, D p, const Stream& stream, Mask<D> activ
   const D alpha = (D(2.83) + D(5.1) / b) * spq;
   const D lpq = log(p / q);
   const D m = floor((nd + D(1)) * p);
+  const LogFactorialRatioFrom<D> ratio_from_m(m), ratio_from_n_minus_m(nd - m);
   D result = m;
   Mask<D> left = active;
   for (int j = 0; j < kBinomialBtrsMaxAttempts && any_lane<D>(left); ++j) {
-    const D u = stream.uniform(2 * std::uint32_t(j)) - D(0.5);
-    const D v = stream.uniform(2 * std::uint32_t(j) + 1);
+    const UniformPair<D> uv = uniform_pair<D>(stream, 2 * std::uint32_t(j));
+    const D u = uv.first - D(0.5);
+    const D v = uv.second;
     const D us = D(0.5) - abs(u);
     const D kd = floor((D(2) * a / us + b) * u + c);
     const Mask<D> in_range = !(kd < D(0) || kd > nd);
     const Mask<D> squeeze = us >= D(0.07) && v <= vr;
-    const D lv = log(v * alpha / (a / (us * us) + b));
-    const D lr = log_factorial_ratio_lanes(m, kd) + log_factorial_ratio_lanes(nd - m, nd - kd) +
-                 (kd - m) * lpq;
-    const Mask<D> accept = left && in_range && (squeeze || lv <= lr);
+    Mask<D> accept = left && in_range && squeeze;
+    const Mask<D> tested = left && in_range && !squeeze;
+    if (any_lane<D>(tested)) {
+      const D lv = log(v * alpha / (a / (us * us) + b));
+      const D lr = ratio_from_m(kd) + ratio_from_n_minus_m(nd - kd) + (kd - m) * lpq;
+      accept = accept || (tested && lv <= lr);
+    }
     result = select(accept, kd, result);
     left = left && !accept;
   }

@@ -25,7 +25,7 @@ const char* op_label(Op op) {
       "add",  "sub",   "mul",      "div",      "sqrt",   "fma",    "neg",        "abs",
       "min",  "max",   "floor",    "copysign", "sign_not_zero",   "less",       "less_equal",
       "greater",       "greater_equal",        "equal",  "not_equal",           "isfinite",
-      "hash32 uniform",
+      "hash32 uniform", "binomial exact", "binomial exact (reference loop)",
       "exp",  "expm1", "log",      "log1p",    "erf",    "erfc",   "atan",       "acos",
       "acosh", "atan2", "sin",     "cos",      "tan",    "fast rsqrt",
       "unfused_fma (xsimd 8.1 AVX-512)",

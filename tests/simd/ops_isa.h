@@ -16,6 +16,9 @@ enum class Op {
   // core/math/hash32.h in the batch's integer lanes: hash32_uniform(hash32_counter(index(a),
   // index(b), index(c))), bit for bit the scalar one.
   kHash32Uniform,
+  // core/glints/binomial_kernel.h's exact draw, n = a, p = b, keyed by hash32_index(c), and the
+  // loop it was before (simd/binomial_reference.h): bit for bit each other on every ISA.
+  kBinomialExact, kBinomialExactReference,
   // xsimd's vectorised libm: within a few ulp of glibc, never bit-identical to it.
   kExp, kExpm1, kLog, kLog1p, kErf, kErfc, kAtan, kAcos, kAcosh, kAtan2, kSin, kCos, kTan,
   // core/simd/fast_math.h's rsqrt (hardware estimate + one Newton step), float only (0 in double).

@@ -1,0 +1,135 @@
+// The exact binomial kernel (core/glints/binomial_kernel.h) on every ISA this CPU has, float and
+// double batches, against the loop it was before (simd/binomial_reference.h): the same count bit
+// for bit on rows where, in one batch, some lanes take the inversion and some BTRS, and of the
+// BTRS lanes some are accepted by the squeeze on their first attempt and some by the logs or on a
+// later attempt (so attempts that skip the logs and attempts that compute them both occur).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/glints/binomial_kernel.h"
+#include "core/simd/batch.h"
+#include "simd/ops_isa.h"
+
+namespace glintlab::simd::test {
+namespace {
+
+template <class S>
+struct Rows {
+  std::vector<S> n, p, key;
+};
+
+// n log-uniform in [1, n_max] (integers), p log-uniform in [1e-7, 1] with a quarter mirrored to
+// p > ½, keys 0, 1, …; a few rows of each edge (n = 0, p = 0, p = 1).
+template <class S>
+Rows<S> make_rows(double n_max) {
+  std::mt19937_64 rng(20261207);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Rows<S> r;
+  for (int i = 0; i < 16384; ++i) {
+    double n = std::floor(std::pow(n_max, u(rng)));
+    double p = std::pow(10.0, -7 * u(rng));
+    if (u(rng) < 0.25) p = 1 - p;
+    if (i % 509 == 0) n = 0;
+    if (i % 511 == 0) p = 0;
+    if (i % 513 == 0) p = 1;
+    r.n.push_back(S(n));
+    r.p.push_back(S(p));
+    r.key.push_back(S(i));
+  }
+  return r;
+}
+
+// How BTRS's first attempt decides a row (the host's arithmetic of detail::binomial_btrs): the
+// squeeze accepts, or it does not (the logs or a later attempt decide); not BTRS at all.
+enum class FirstAttempt { kNotBtrs, kSqueeze, kLogsOrLater };
+FirstAttempt first_attempt(double n, double p, std::uint32_t key) {
+  if (n == 0 || !(p > 0) || p >= 1) return FirstAttempt::kNotBtrs;
+  const double pp = p > 0.5 ? 1 - p : p;
+  if (n * pp < 10) return FirstAttempt::kNotBtrs;
+  const HashStream<double> stream{key};
+  const double spq = std::sqrt(n * pp * (1 - pp)), b = 1.15 + 2.53 * spq;
+  const double a = -0.0873 + 0.0248 * b + 0.01 * pp, c = n * pp + 0.5, vr = 0.92 - 4.2 / b;
+  const double u = stream.uniform(0) - 0.5, v = stream.uniform(1), us = 0.5 - std::abs(u);
+  const double k = std::floor((2 * a / us + b) * u + c);
+  const bool squeezed = !(k < 0 || k > n) && us >= 0.07 && v <= vr;
+  return squeezed ? FirstAttempt::kSqueeze : FirstAttempt::kLogsOrLater;
+}
+
+template <class S>
+std::vector<S> run(const IsaOps& ops, Op op, const Rows<S>& r) {
+  std::vector<S> out(r.n.size());
+  if constexpr (std::is_same_v<S, float>)
+    ops.f(op, r.n.data(), r.p.data(), r.key.data(), out.data(), out.size());
+  else
+    ops.d(op, r.n.data(), r.p.data(), r.key.data(), out.data(), out.size());
+  return out;
+}
+
+struct IsaEntry {
+  Isa isa;
+  const char* name;
+  IsaOps (*ops)();
+};
+constexpr IsaEntry kIsas[] = {{Isa::kScalar, "scalar", isa_ops_scalar},
+                              {Isa::kSse42, "sse4.2", isa_ops_sse42},
+                              {Isa::kAvx2, "avx2", isa_ops_avx2},
+                              {Isa::kAvx512, "avx512", isa_ops_avx512}};
+
+template <class S>
+void expect_counts_equal_reference(double n_max) {
+  const Rows<S> r = make_rows<S>(n_max);
+  std::size_t squeeze = 0, logs = 0, mixed_groups = 0;
+  // Groups of 8 rows (a double batch of AVX-512, two of AVX2) holding both kinds of BTRS lane.
+  for (std::size_t g = 0; g + 8 <= r.n.size(); g += 8) {
+    bool has[3] = {false, false, false};
+    for (std::size_t i = g; i < g + 8; ++i) {
+      const FirstAttempt f =
+          first_attempt(double(r.n[i]), double(r.p[i]), std::uint32_t(r.key[i]));
+      has[int(f)] = true;
+      squeeze += f == FirstAttempt::kSqueeze;
+      logs += f == FirstAttempt::kLogsOrLater;
+    }
+    mixed_groups += has[int(FirstAttempt::kSqueeze)] && has[int(FirstAttempt::kLogsOrLater)];
+  }
+  std::printf("%s rows: %zu BTRS rows squeezed on the first attempt, %zu not; %zu of %zu groups "
+              "of 8 hold both\n",
+              std::is_same_v<S, float> ? "float" : "double", squeeze, logs, mixed_groups,
+              r.n.size() / 8);
+  EXPECT_GT(squeeze, r.n.size() / 10);
+  EXPECT_GT(logs, r.n.size() / 50);
+  EXPECT_GT(mixed_groups, r.n.size() / 8 / 4);
+  for (const IsaEntry& e : kIsas) {
+    if (!isa_supported(e.isa)) {
+      std::printf("%s: this CPU lacks it, not compared\n", e.name);
+      continue;
+    }
+    const IsaOps ops = e.ops();
+    const std::vector<S> got = run<S>(ops, Op::kBinomialExact, r);
+    const std::vector<S> want = run<S>(ops, Op::kBinomialExactReference, r);
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < got.size(); ++i) {
+      if (std::memcmp(&got[i], &want[i], sizeof(S)) == 0) continue;
+      if (differ++ == 0)
+        ADD_FAILURE() << e.name << ": n=" << r.n[i] << " p=" << r.p[i] << " key=" << r.key[i]
+                      << " gives " << got[i] << ", the reference loop " << want[i];
+    }
+    EXPECT_EQ(differ, 0u) << e.name << ": rows that differ from the reference loop";
+  }
+}
+
+TEST(BinomialExactLanes, FloatCountsEqualTheReferenceLoopOnEveryIsa) {
+  expect_counts_equal_reference<float>(1e7);  // below 2^24: integers exact in float
+}
+TEST(BinomialExactLanes, DoubleCountsEqualTheReferenceLoopOnEveryIsa) {
+  expect_counts_equal_reference<double>(1e12);
+}
+
+}  // namespace
+}  // namespace glintlab::simd::test
