@@ -48,6 +48,27 @@ constexpr std::string_view kId = "adequacy-maps";
 // 8000 (docs/adequacy.md, the figure adequacy-maps). The full budget measures glintlab adequacy's.
 constexpr int kQuickKemppinenPositions = 1000;
 
+// A family's cells per model: how many, how many chose each of its Levels levels, how often the
+// chooser agreed with the measurement or was refuted, how many stayed undecided.
+template <std::size_t Levels>
+struct LevelCounts {
+  std::array<std::size_t, Levels> chosen{};
+  std::size_t cells = 0, matches = 0, refuted = 0, undecided = 0;
+};
+template <std::size_t Levels, class Rows>
+std::map<std::string, LevelCounts<Levels>> counts_per_model(const Rows& rows) {
+  std::map<std::string, LevelCounts<Levels>> out;
+  for (const auto& r : rows) {
+    LevelCounts<Levels>& c = out[r.cell.model];
+    ++c.cells;
+    ++c.chosen[std::size_t(r.chosen)];
+    c.matches += r.chooser == r.chosen ? 1 : 0;
+    c.refuted += r.chooser_refuted ? 1 : 0;
+    c.undecided += r.levels[0].undecided ? 1 : 0;
+  }
+  return out;
+}
+
 void run_adequacy_maps(const FigureContext& ctx) {
   std::unique_ptr<tbb::global_control> limit;
   if (ctx.threads > 0)
@@ -241,20 +262,7 @@ void run_adequacy_maps(const FigureContext& ctx) {
         }
       });
 
-  // Counts per model: cells per chosen level, the chooser's agreement.
-  struct Counts {
-    std::array<std::size_t, 4> chosen{};
-    std::size_t cells = 0, matches = 0, refuted = 0, undecided = 0;
-  };
-  std::map<std::string, Counts> per_model;
-  for (const adq::CellResult& r : rows) {
-    Counts& c = per_model[r.cell.model];
-    ++c.cells;
-    ++c.chosen[std::size_t(r.chosen)];
-    c.matches += r.chooser == r.chosen ? 1 : 0;
-    c.refuted += r.chooser_refuted ? 1 : 0;
-    c.undecided += r.levels[0].undecided ? 1 : 0;
-  }
+  const auto per_model = counts_per_model<4>(rows);
   std::string md =
       "# adequacy-maps\n\nEvery map, its family and its files (<map>.png, <map>.exr, its cells in "
       "adequacy-maps-levels.csv):\n\n| map | family | model | incidence θ_i [deg] | light "
@@ -287,19 +295,7 @@ void run_adequacy_maps(const FigureContext& ctx) {
     md +=
         fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", model, c.cells, c.chosen[0],
                     c.chosen[1], c.chosen[2], c.chosen[3], c.undecided, c.matches, c.refuted);
-  struct KemppinenCounts {
-    std::array<std::size_t, kKemppinenLevels> chosen{};
-    std::size_t cells = 0, matches = 0, refuted = 0, undecided = 0;
-  };
-  std::map<std::string, KemppinenCounts> per_kemppinen_model;
-  for (const adq::KemppinenCellResult& r : kemppinen_rows) {
-    KemppinenCounts& c = per_kemppinen_model[r.cell.model];
-    ++c.cells;
-    ++c.chosen[std::size_t(r.chosen)];
-    c.matches += r.chooser == r.chosen ? 1 : 0;
-    c.refuted += r.chooser_refuted ? 1 : 0;
-    c.undecided += r.levels[0].undecided ? 1 : 0;
-  }
+  const auto per_kemppinen_model = counts_per_model<kKemppinenLevels>(kemppinen_rows);
   const auto header_rule = [](std::size_t columns) {
     std::string s = "|";
     for (std::size_t c = 0; c < columns; ++c) s += "---|";
