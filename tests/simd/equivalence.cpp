@@ -148,6 +148,15 @@ Comparison compare_outputs(int kernel, const std::vector<std::vector<S>>& ref,
     pdf_at_wo = evaluate_columns<S>(pdf, in, Isa::kScalar, Math::kExact, n);
     pdf_budget = budget(pdf_name, dbl);
   }
+  // Each output's kind, decided once (not per row).
+  enum class Kind { kSkipped, kDirection, kSampledPdf, kValue };
+  std::vector<Kind> kinds;
+  for (const std::string_view name : info.outputs) {
+    kinds.push_back(name == "rejected"             ? Kind::kSkipped
+                    : is_direction_output(name)    ? Kind::kDirection
+                    : sampler && name == "pdf"     ? Kind::kSampledPdf
+                                                   : Kind::kValue);
+  }
   for (std::size_t i = 0; i < n; ++i) {
     if (sampler) {
       const bool rr = ref[7][i] != S(0), rg = got[7][i] != S(0);
@@ -157,13 +166,13 @@ Comparison compare_outputs(int kernel, const std::vector<std::vector<S>>& ref,
     ++compared;
     bool ok = true;
     for (std::size_t o = 0; o < info.outputs.size(); ++o) {
-      const std::string_view name = info.outputs[o];
-      if (name == "rejected") continue;
-      if (is_direction_output(name)) {
+      const Kind kind = kinds[o];
+      if (kind == Kind::kSkipped) continue;
+      if (kind == Kind::kDirection) {
         const double a = std::fabs(double(ref[o][i]) - double(got[o][i])) / eps;
         max_abs_eps = std::max(max_abs_eps, std::isnan(a) ? 1e300 : a);
         if (!(a <= b.abs_eps)) ok = false;
-      } else if (sampler && name == "pdf") {
+      } else if (kind == Kind::kSampledPdf) {
         double u = 0;
         if (!value_ok(pdf_at_wo[0][i], got[o][i], pdf_budget.ulp, &u)) ok = false;
         max_ulp = std::max(max_ulp, u);

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -257,14 +259,23 @@ struct Measured {
 };
 
 // The scalar instantiation's eval outputs (value, pdf, intermediates: `columns` per row, row-major)
-// and sample at every row of a case. It does not depend on the ISA, so each case computes it once
-// and compares every ISA's batch with it.
+// and sample at every row of a case, each row's query, and the scalar pdf and value at the
+// sampled wo (what a batch's sample is compared with where the batch samples the same wo, bit for
+// bit). It does not depend on the ISA, so each case computes it once and compares every ISA's
+// batch with it.
 template <class S>
 struct Reference {
   std::size_t columns = 0;
   std::vector<S> eval;
   std::vector<ModelSample<S>> sample;
+  std::vector<ModelQuery<S>> query;
+  std::vector<S> pdf_at_sampled_wo, value_at_sampled_wo;  // 0 where the sample is rejected
 };
+
+template <class S>
+bool same_bits(const Vec3<S>& a, const Vec3<S>& b) {
+  return std::bit_cast<std::array<S, 3>>(a) == std::bit_cast<std::array<S, 3>>(b);
+}
 
 template <class M, class S>
 Reference<S> reference(const ModelEntry& m, const Case& k) {
@@ -272,6 +283,9 @@ Reference<S> reference(const ModelEntry& m, const Case& k) {
   r.columns = 2 + m.intermediates.size();
   r.eval.reserve(k.rows() * r.columns);
   r.sample.reserve(k.rows());
+  r.query.reserve(k.rows());
+  r.pdf_at_sampled_wo.reserve(k.rows());
+  r.value_at_sampled_wo.reserve(k.rows());
   for (std::size_t s = 0; s < k.params.size(); ++s) {
     const auto p = M::template params<S>(k.params[s]);
     for (std::size_t i = s * kRowsPerSet; i < (s + 1) * kRowsPerSet; ++i) {
@@ -280,7 +294,18 @@ Reference<S> reference(const ModelEntry& m, const Case& k) {
       r.eval.push_back(e.value);
       r.eval.push_back(e.pdf);
       r.eval.insert(r.eval.end(), e.intermediates.begin(), e.intermediates.end());
-      r.sample.push_back(M::template sample<S>(p, q, Vec2<S>{S(k.u1[i]), S(k.u2[i])}));
+      const ModelSample<S> ss = M::template sample<S>(p, q, Vec2<S>{S(k.u1[i]), S(k.u2[i])});
+      r.sample.push_back(ss);
+      r.query.push_back(q);
+      S pdf = 0, value = 0;
+      if (!static_cast<bool>(ss.rejected)) {
+        ModelQuery<S> qo = q;
+        qo.wo = ss.wo;
+        pdf = M::template pdf<S>(p, qo);
+        value = pdf > S(0) ? M::template eval<S>(p, qo).value : S(0);
+      }
+      r.pdf_at_sampled_wo.push_back(pdf);
+      r.value_at_sampled_wo.push_back(value);
     }
   }
   return r;
@@ -310,7 +335,7 @@ Measured compare(const ModelEntry& m, const Case& k, const Reference<S>& referen
   for (std::size_t s = 0; s < k.params.size(); ++s) {
     const auto p = M::template params<S>(k.params[s]);
     for (std::size_t i = s * kRowsPerSet; i < (s + 1) * kRowsPerSet; ++i) {
-      const ModelQuery<S> q = row_query<S>(k, i);
+      const ModelQuery<S>& q = reference.query[i];
       const S* ref = &reference.eval[i * reference.columns];
       bool row_over = false;
       for (std::size_t c = 0; c < reference.columns; ++c) {
@@ -335,12 +360,17 @@ Measured compare(const ModelEntry& m, const Case& k, const Reference<S>& referen
             std::max(r.wo_eps, double(std::abs(got.sample[std::size_t(c)][i] - wo_ref[c]) / eps));
       // The sample's pdf and weight against the scalar model at the batch's own wo: the pdf
       // is M::pdf there, the weight value/pdf (the estimator the sample stands for).
+      // Where the batch sampled the reference's wo bit for bit, they are the reference's.
       ModelQuery<S> qo = q;
       qo.wo = {got.sample[0][i], got.sample[1][i], got.sample[2][i]};
-      const S pdf = M::template pdf<S>(p, qo);
+      const bool same_wo = same_bits(qo.wo, ss.wo);
+      const S pdf = same_wo ? reference.pdf_at_sampled_wo[i] : M::template pdf<S>(p, qo);
       const double dp = value_ulps(got.sample[3][i], pdf);
       r.pdf_ulp = std::max(r.pdf_ulp, dp);
-      const S weight = pdf > S(0) ? M::template eval<S>(p, qo).value / pdf : S(0);
+      const S value = same_wo           ? reference.value_at_sampled_wo[i]
+                      : pdf > S(0) ? M::template eval<S>(p, qo).value
+                                   : S(0);
+      const S weight = pdf > S(0) ? value / pdf : S(0);
       const double dw = error(got.sample[4][i], weight,
                               b.value_floor > 0 && pdf > S(0) ? b.value_floor / double(pdf) : 0.0);
       r.weight_ulp = std::max(r.weight_ulp, dw);
