@@ -152,10 +152,10 @@ Comparison compare_outputs(int kernel, const std::vector<std::vector<S>>& ref,
   enum class Kind { kSkipped, kDirection, kSampledPdf, kValue };
   std::vector<Kind> kinds;
   for (const std::string_view name : info.outputs) {
-    kinds.push_back(name == "rejected"             ? Kind::kSkipped
-                    : is_direction_output(name)    ? Kind::kDirection
-                    : sampler && name == "pdf"     ? Kind::kSampledPdf
-                                                   : Kind::kValue);
+    kinds.push_back(name == "rejected"          ? Kind::kSkipped
+                    : is_direction_output(name) ? Kind::kDirection
+                    : sampler && name == "pdf"  ? Kind::kSampledPdf
+                                                : Kind::kValue);
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (sampler) {

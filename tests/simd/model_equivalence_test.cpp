@@ -367,7 +367,7 @@ Measured compare(const ModelEntry& m, const Case& k, const Reference<S>& referen
       const S pdf = same_wo ? reference.pdf_at_sampled_wo[i] : M::template pdf<S>(p, qo);
       const double dp = value_ulps(got.sample[3][i], pdf);
       r.pdf_ulp = std::max(r.pdf_ulp, dp);
-      const S value = same_wo           ? reference.value_at_sampled_wo[i]
+      const S value = same_wo      ? reference.value_at_sampled_wo[i]
                       : pdf > S(0) ? M::template eval<S>(p, qo).value
                                    : S(0);
       const S weight = pdf > S(0) ? value / pdf : S(0);

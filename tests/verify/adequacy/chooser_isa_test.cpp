@@ -21,7 +21,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <ostream>
 #include <string>
 #include <vector>
 
@@ -48,10 +47,9 @@ constexpr std::array<Budget, 2> kBudgets = {Budget::kQuick, Budget::kFull};
 
 struct IsaCase {
   Isa isa;
-  const char* name;  // a test name's suffix
+  const char* name;  // in the test's output
   ChooserIsaUnit (*unit)();
 };
-void PrintTo(const IsaCase& c, std::ostream* os) { *os << c.name; }
 constexpr IsaCase kCases[] = {{Isa::kScalar, "scalar", chooser_isa_scalar},
                               {Isa::kSse42, "sse42", chooser_isa_sse42},
                               {Isa::kAvx2, "avx2", chooser_isa_avx2},
@@ -229,16 +227,36 @@ std::pair<std::vector<double>, std::vector<double>> run_groups(const std::vector
   return {got, want};
 }
 
-class ChooserIsa : public ::testing::TestWithParam<IsaCase> {
+// Each test runs its comparisons on every ISA case in turn, in one process: the tables and the
+// Chermain dictionary they read are built once for the four (one process per ISA built them four
+// times). A case this CPU lacks is said in one line and not compared.
+template <bool kFloat>
+class EveryIsa : public ::testing::Test {
  protected:
-  void SetUp() override {
-    if (!isa_supported(GetParam().isa))
-      GTEST_SKIP() << isa_name(GetParam().isa)
-                   << ": this CPU lacks it; its choosers are compiled, not compared";
-    fns_ = GetParam().unit().f64;
+  template <class Body>
+  void for_each_isa(Body&& body) {
+    int compared = 0;
+    for (const IsaCase& c : kCases) {
+      if (!isa_supported(c.isa)) {
+        std::printf("%s: this CPU lacks it; its choosers are compiled, not compared\n",
+                    std::string(isa_name(c.isa)).c_str());
+        continue;
+      }
+      SCOPED_TRACE(c.name);
+      case_ = &c;
+      fns_ = kFloat ? c.unit().f32 : c.unit().f64;
+      body();
+      ++compared;
+    }
+    EXPECT_GT(compared, 0);
   }
+  const IsaCase& param() const { return *case_; }
+  const IsaCase* case_ = nullptr;
   ChooserIsaFns fns_{};
+};
 
+class ChooserIsa : public EveryIsa<false> {
+ protected:
   std::pair<std::vector<double>, std::vector<double>> binomial_model(const std::vector<Group>& g,
                                                                      bool db, LanePath path) {
     return run_groups(g, [&](const Group& x, double* out) {
@@ -254,57 +272,64 @@ class ChooserIsa : public ::testing::TestWithParam<IsaCase> {
   }
 };
 
-TEST_P(ChooserIsa, BinomialLanesMatchScalarOnTheBinomialAndAreaTables) {
-  const Rows& r = binomial_rows();
-  const std::size_t n = r.tau.size();
-  std::vector<double> out(n);
-  fns_.binomial(r.facets.data(), r.p.data(), r.tau.data(), out.data(), n, LanePath::kLibrary);
-  EXPECT_EQ(differing(out, r.scalar, "binomial"), 0u) << n << " rows";
-  // The rows reach every level.
-  std::array<int, kBinomialLevels> seen{};
-  for (double l : r.scalar) ++seen[std::size_t(l)];
-  for (int s : seen) EXPECT_GT(s, 0);
-  // By a measured cost order (this CPU's order of the benchmark rows, exact cheaper than two
-  // counting levels).
-  const std::array<double, kBinomialLevels> cost = {25, 85, 90, 50};
-  std::vector<double> want(n);
-  for (std::size_t i = 0; i < n; ++i)
-    want[i] = choose_binomial_level_by_cost(r.facets[i], r.p[i], r.tau[i], cost);
-  fns_.binomial_by_cost(r.facets.data(), r.p.data(), r.tau.data(), cost, out.data(), n,
-                        LanePath::kLibrary);
-  EXPECT_EQ(differing(out, want, "binomial by cost"), 0u) << n << " rows";
-  // The control: the same chooser with the last lane's selects swapped is caught.
-  fns_.binomial_by_cost(r.facets.data(), r.p.data(), r.tau.data(), cost, out.data(), n,
-                        LanePath::kLastLaneSwapped);
-  const std::size_t broken = count_differing(out, want);
-  EXPECT_GT(broken, 0u);
-  std::printf("%s (%zu lanes), last lane swapped: binomial by cost %zu of %zu rows differ\n",
-              GetParam().name, fns_.lanes, broken, n);
+TEST_F(ChooserIsa, BinomialLanesMatchScalarOnTheBinomialAndAreaTables) {
+  for_each_isa([&] {
+    const Rows& r = binomial_rows();
+    const std::size_t n = r.tau.size();
+    std::vector<double> out(n);
+    fns_.binomial(r.facets.data(), r.p.data(), r.tau.data(), out.data(), n, LanePath::kLibrary);
+    EXPECT_EQ(differing(out, r.scalar, "binomial"), 0u) << n << " rows";
+    // The rows reach every level.
+    std::array<int, kBinomialLevels> seen{};
+    for (double l : r.scalar) ++seen[std::size_t(l)];
+    for (int s : seen) EXPECT_GT(s, 0);
+    // By a measured cost order (this CPU's order of the benchmark rows, exact cheaper than two
+    // counting levels).
+    const std::array<double, kBinomialLevels> cost = {25, 85, 90, 50};
+    std::vector<double> want(n);
+    for (std::size_t i = 0; i < n; ++i)
+      want[i] = choose_binomial_level_by_cost(r.facets[i], r.p[i], r.tau[i], cost);
+    fns_.binomial_by_cost(r.facets.data(), r.p.data(), r.tau.data(), cost, out.data(), n,
+                          LanePath::kLibrary);
+    EXPECT_EQ(differing(out, want, "binomial by cost"), 0u) << n << " rows";
+    // The control: the same chooser with the last lane's selects swapped is caught.
+    fns_.binomial_by_cost(r.facets.data(), r.p.data(), r.tau.data(), cost, out.data(), n,
+                          LanePath::kLastLaneSwapped);
+    const std::size_t broken = count_differing(out, want);
+    EXPECT_GT(broken, 0u);
+    std::printf("%s (%zu lanes), last lane swapped: binomial by cost %zu of %zu rows differ\n",
+                param().name, fns_.lanes, broken, n);
+  });
 }
 
-TEST_P(ChooserIsa, BinomialModelWrappersMatchScalarOnTheirTables) {
-  const auto [db, db_want] = binomial_model(db_groups(), true, LanePath::kLibrary);
-  EXPECT_EQ(differing(db, db_want, "deliot_belcour"), 0u) << db.size() << " rows";
-  const auto [kk, kk_want] = binomial_model(kk_groups(), false, LanePath::kLibrary);
-  EXPECT_EQ(differing(kk, kk_want, "kneiphof_klein"), 0u) << kk.size() << " rows";
+TEST_F(ChooserIsa, BinomialModelWrappersMatchScalarOnTheirTables) {
+  for_each_isa([&] {
+    const auto [db, db_want] = binomial_model(db_groups(), true, LanePath::kLibrary);
+    EXPECT_EQ(differing(db, db_want, "deliot_belcour"), 0u) << db.size() << " rows";
+    const auto [kk, kk_want] = binomial_model(kk_groups(), false, LanePath::kLibrary);
+    EXPECT_EQ(differing(kk, kk_want, "kneiphof_klein"), 0u) << kk.size() << " rows";
+  });
 }
 
-TEST_P(ChooserIsa, KemppinenLanesMatchScalarOnItsTable) {
-  for (const bool ggx : {true, false}) {
-    const auto [got, want] = run_groups(
-        ggx ? kemppinen_model_groups<KemppinenGGX>() : kemppinen_model_groups<KemppinenBeckmann>(),
-        [&](const Group& x, double* out) {
-          (ggx ? fns_.kemppinen_ggx : fns_.kemppinen_beckmann)(
-              x.params, x.rows.q.data(), x.rows.tau.data(), out, x.rows.q.size());
-        });
-    EXPECT_EQ(differing(got, want, ggx ? "kemppinen_ggx" : "kemppinen_beckmann"), 0u)
-        << got.size() << " rows";
-    // The rows reach the smooth level and a counting one.
-    std::size_t smooth = 0;
-    for (double l : want) smooth += l == 0 ? 1 : 0;
-    EXPECT_GT(smooth, 0u);
-    EXPECT_LT(smooth, want.size());
-  }
+TEST_F(ChooserIsa, KemppinenLanesMatchScalarOnItsTable) {
+  for_each_isa([&] {
+    for (const bool ggx : {true, false}) {
+      const auto [got, want] =
+          run_groups(ggx ? kemppinen_model_groups<KemppinenGGX>()
+                         : kemppinen_model_groups<KemppinenBeckmann>(),
+                     [&](const Group& x, double* out) {
+                       (ggx ? fns_.kemppinen_ggx : fns_.kemppinen_beckmann)(
+                           x.params, x.rows.q.data(), x.rows.tau.data(), out, x.rows.q.size());
+                     });
+      EXPECT_EQ(differing(got, want, ggx ? "kemppinen_ggx" : "kemppinen_beckmann"), 0u)
+          << got.size() << " rows";
+      // The rows reach the smooth level and a counting one.
+      std::size_t smooth = 0;
+      for (double l : want) smooth += l == 0 ? 1 : 0;
+      EXPECT_GT(smooth, 0u);
+      EXPECT_LT(smooth, want.size());
+    }
+  });
 }
 
 // The choosers for given costs on every ISA, by a measured order (docs/adequacy.md "Cost from the
@@ -314,96 +339,103 @@ constexpr std::array<double, 9> kKemppinenMeasuredOrder = {15,    1094,  1120,  
 constexpr std::array<double, 9> kChermainMeasuredOrder = {34, 246, 534, 425, 991,
                                                           530, 1357, 709, 1877};
 
-TEST_P(ChooserIsa, CostChoosersLanesMatchScalarOnTheirTablesAndASwappedLaneIsCaught) {
-  for (const bool ggx : {true, false}) {
-    const std::vector<Group>& groups =
-        ggx ? kemppinen_model_groups<KemppinenGGX>() : kemppinen_model_groups<KemppinenBeckmann>();
-    const auto by_cost = ggx ? fns_.kemppinen_ggx_by_cost : fns_.kemppinen_beckmann_by_cost;
-    std::vector<double> got, want, broken;
-    for (const Group& g : groups) {
-      std::vector<double> out(g.rows.q.size());
-      by_cost(g.params, g.rows.q.data(), g.rows.tau.data(), kKemppinenMeasuredOrder, out.data(),
-              out.size(), LanePath::kLibrary);
-      got.insert(got.end(), out.begin(), out.end());
-      by_cost(g.params, g.rows.q.data(), g.rows.tau.data(), kKemppinenMeasuredOrder, out.data(),
-              out.size(), LanePath::kLastLaneSwapped);
-      broken.insert(broken.end(), out.begin(), out.end());
-      for (std::size_t i = 0; i < out.size(); ++i) {
-        if (ggx)
-          want.push_back(choose_kemppinen_model_level_by_cost(
-              KemppinenGGX::params<double>(g.params), g.rows.q[i], g.rows.tau[i],
-              kKemppinenMeasuredOrder));
-        else
-          want.push_back(choose_kemppinen_model_level_by_cost(
-              KemppinenBeckmann::params<double>(g.params), g.rows.q[i], g.rows.tau[i],
-              kKemppinenMeasuredOrder));
+TEST_F(ChooserIsa, CostChoosersLanesMatchScalarOnTheirTablesAndASwappedLaneIsCaught) {
+  for_each_isa([&] {
+    for (const bool ggx : {true, false}) {
+      const std::vector<Group>& groups = ggx ? kemppinen_model_groups<KemppinenGGX>()
+                                             : kemppinen_model_groups<KemppinenBeckmann>();
+      const auto by_cost = ggx ? fns_.kemppinen_ggx_by_cost : fns_.kemppinen_beckmann_by_cost;
+      std::vector<double> got, want, broken;
+      for (const Group& g : groups) {
+        std::vector<double> out(g.rows.q.size());
+        by_cost(g.params, g.rows.q.data(), g.rows.tau.data(), kKemppinenMeasuredOrder, out.data(),
+                out.size(), LanePath::kLibrary);
+        got.insert(got.end(), out.begin(), out.end());
+        by_cost(g.params, g.rows.q.data(), g.rows.tau.data(), kKemppinenMeasuredOrder, out.data(),
+                out.size(), LanePath::kLastLaneSwapped);
+        broken.insert(broken.end(), out.begin(), out.end());
+        for (std::size_t i = 0; i < out.size(); ++i) {
+          if (ggx)
+            want.push_back(choose_kemppinen_model_level_by_cost(
+                KemppinenGGX::params<double>(g.params), g.rows.q[i], g.rows.tau[i],
+                kKemppinenMeasuredOrder));
+          else
+            want.push_back(choose_kemppinen_model_level_by_cost(
+                KemppinenBeckmann::params<double>(g.params), g.rows.q[i], g.rows.tau[i],
+                kKemppinenMeasuredOrder));
+        }
       }
+      const char* family = ggx ? "kemppinen_ggx by cost" : "kemppinen_beckmann by cost";
+      EXPECT_EQ(differing(got, want, family), 0u) << got.size() << " rows";
+      // The control: the level composed by cost with the last lane's selects swapped is caught.
+      const std::size_t differ = count_differing(broken, want);
+      EXPECT_GT(differ, 0u) << family;
+      std::printf("%s (%zu lanes), last lane swapped: %s %zu of %zu rows differ\n", param().name,
+                  fns_.lanes, family, differ, broken.size());
     }
-    const char* family = ggx ? "kemppinen_ggx by cost" : "kemppinen_beckmann by cost";
-    EXPECT_EQ(differing(got, want, family), 0u) << got.size() << " rows";
-    // The control: the level composed by cost with the last lane's selects swapped is caught.
+    std::vector<double> got, want, broken;
+    for (const Group& g : chermain_model_groups()) {
+      const auto ps = chermain_level_params(*g.chermain, kChermainMostComplete, 0);
+      std::vector<double> out(g.rows.q.size());
+      fns_.chermain_by_cost(ps.sdf, ps.d, g.rows.q.data(), g.rows.tau.data(),
+                            kChermainMeasuredOrder, out.data(), out.size(), LanePath::kLibrary);
+      got.insert(got.end(), out.begin(), out.end());
+      fns_.chermain_by_cost(ps.sdf, ps.d, g.rows.q.data(), g.rows.tau.data(),
+                            kChermainMeasuredOrder, out.data(), out.size(),
+                            LanePath::kLastLaneSwapped);
+      broken.insert(broken.end(), out.begin(), out.end());
+      for (std::size_t i = 0; i < out.size(); ++i)
+        want.push_back(choose_chermain_model_level_by_cost(ps, g.rows.q[i], g.rows.tau[i],
+                                                           kChermainMeasuredOrder));
+    }
+    EXPECT_EQ(differing(got, want, "chermain by cost"), 0u) << got.size() << " rows";
+    // The control: the same chooser with the last lane's selects swapped is caught.
     const std::size_t differ = count_differing(broken, want);
-    EXPECT_GT(differ, 0u) << family;
-    std::printf("%s (%zu lanes), last lane swapped: %s %zu of %zu rows differ\n",
-                GetParam().name, fns_.lanes, family, differ, broken.size());
-  }
-  std::vector<double> got, want, broken;
-  for (const Group& g : chermain_model_groups()) {
-    const auto ps = chermain_level_params(*g.chermain, kChermainMostComplete, 0);
-    std::vector<double> out(g.rows.q.size());
-    fns_.chermain_by_cost(ps.sdf, ps.d, g.rows.q.data(), g.rows.tau.data(), kChermainMeasuredOrder,
-                          out.data(), out.size(), LanePath::kLibrary);
-    got.insert(got.end(), out.begin(), out.end());
-    fns_.chermain_by_cost(ps.sdf, ps.d, g.rows.q.data(), g.rows.tau.data(), kChermainMeasuredOrder,
-                          out.data(), out.size(), LanePath::kLastLaneSwapped);
-    broken.insert(broken.end(), out.begin(), out.end());
-    for (std::size_t i = 0; i < out.size(); ++i)
-      want.push_back(choose_chermain_model_level_by_cost(ps, g.rows.q[i], g.rows.tau[i],
-                                                         kChermainMeasuredOrder));
-  }
-  EXPECT_EQ(differing(got, want, "chermain by cost"), 0u) << got.size() << " rows";
-  // The control: the same chooser with the last lane's selects swapped is caught.
-  const std::size_t differ = count_differing(broken, want);
-  EXPECT_GT(differ, 0u);
-  std::printf("%s (%zu lanes), last lane swapped: chermain by cost %zu of %zu rows differ\n",
-              GetParam().name, fns_.lanes, differ, broken.size());
+    EXPECT_GT(differ, 0u);
+    std::printf("%s (%zu lanes), last lane swapped: chermain by cost %zu of %zu rows differ\n",
+                param().name, fns_.lanes, differ, broken.size());
+  });
 }
 
 // (With its control: the default dictionary's construction, about 1.5 s, is the cost of any
 // Chermain test, so it is paid once here.)
-TEST_P(ChooserIsa, ChermainLanesMatchScalarOnItsTableAndASwappedLaneIsCaught) {
-  const auto [got, want] = chermain(LanePath::kLibrary);
-  EXPECT_EQ(differing(got, want, "chermain"), 0u) << got.size() << " rows";
-  std::size_t smooth = 0;
-  for (double l : want) smooth += l == 0 ? 1 : 0;
-  EXPECT_GT(smooth, 0u);
-  EXPECT_LT(smooth, want.size());
-  const auto [broken, broken_want] = chermain(LanePath::kLastLaneSwapped);
-  const std::size_t differ = count_differing(broken, broken_want);
-  EXPECT_GT(differ, 0u);
-  std::printf("%s (%zu lanes), last lane swapped: chermain %zu of %zu rows differ\n",
-              GetParam().name, fns_.lanes, differ, broken.size());
+TEST_F(ChooserIsa, ChermainLanesMatchScalarOnItsTableAndASwappedLaneIsCaught) {
+  for_each_isa([&] {
+    const auto [got, want] = chermain(LanePath::kLibrary);
+    EXPECT_EQ(differing(got, want, "chermain"), 0u) << got.size() << " rows";
+    std::size_t smooth = 0;
+    for (double l : want) smooth += l == 0 ? 1 : 0;
+    EXPECT_GT(smooth, 0u);
+    EXPECT_LT(smooth, want.size());
+    const auto [broken, broken_want] = chermain(LanePath::kLastLaneSwapped);
+    const std::size_t differ = count_differing(broken, broken_want);
+    EXPECT_GT(differ, 0u);
+    std::printf("%s (%zu lanes), last lane swapped: chermain %zu of %zu rows differ\n",
+                param().name, fns_.lanes, differ, broken.size());
+  });
 }
 
 // The control: the same comparisons fail a lane path whose selects are swapped in one lane.
-TEST_P(ChooserIsa, ALaneWithSwappedSelectsIsCaught) {
-  const Rows& r = binomial_rows();
-  const std::size_t n = r.tau.size();
-  std::vector<double> out(n);
-  fns_.binomial(r.facets.data(), r.p.data(), r.tau.data(), out.data(), n,
-                LanePath::kLastLaneSwapped);
-  const std::size_t binomial = count_differing(out, r.scalar);
-  const auto [db, db_want] = binomial_model(db_groups(), true, LanePath::kLastLaneSwapped);
-  const auto [kk, kk_want] = binomial_model(kk_groups(), false, LanePath::kLastLaneSwapped);
-  const std::size_t db_differ = count_differing(db, db_want),
-                    kk_differ = count_differing(kk, kk_want);
-  EXPECT_GT(binomial, 0u);
-  EXPECT_GT(db_differ, 0u);
-  EXPECT_GT(kk_differ, 0u);
-  std::printf(
-      "%s (%zu lanes), last lane swapped: binomial %zu of %zu rows differ, deliot_belcour "
-      "%zu of %zu, kneiphof_klein %zu of %zu\n",
-      GetParam().name, fns_.lanes, binomial, n, db_differ, db.size(), kk_differ, kk.size());
+TEST_F(ChooserIsa, ALaneWithSwappedSelectsIsCaught) {
+  for_each_isa([&] {
+    const Rows& r = binomial_rows();
+    const std::size_t n = r.tau.size();
+    std::vector<double> out(n);
+    fns_.binomial(r.facets.data(), r.p.data(), r.tau.data(), out.data(), n,
+                  LanePath::kLastLaneSwapped);
+    const std::size_t binomial = count_differing(out, r.scalar);
+    const auto [db, db_want] = binomial_model(db_groups(), true, LanePath::kLastLaneSwapped);
+    const auto [kk, kk_want] = binomial_model(kk_groups(), false, LanePath::kLastLaneSwapped);
+    const std::size_t db_differ = count_differing(db, db_want),
+                      kk_differ = count_differing(kk, kk_want);
+    EXPECT_GT(binomial, 0u);
+    EXPECT_GT(db_differ, 0u);
+    EXPECT_GT(kk_differ, 0u);
+    std::printf(
+        "%s (%zu lanes), last lane swapped: binomial %zu of %zu rows differ, deliot_belcour "
+        "%zu of %zu, kneiphof_klein %zu of %zu\n",
+        param().name, fns_.lanes, binomial, n, db_differ, db.size(), kk_differ, kk.size());
+  });
 }
 
 // ---- The float batches ------------------------------------------------------------------------
@@ -559,16 +591,8 @@ std::vector<Group> chermain_by_cost_groups() {
   return groups;
 }
 
-class ChooserIsaFloat : public ::testing::TestWithParam<IsaCase> {
+class ChooserIsaFloat : public EveryIsa<true> {
  protected:
-  void SetUp() override {
-    if (!isa_supported(GetParam().isa))
-      GTEST_SKIP() << isa_name(GetParam().isa)
-                   << ": this CPU lacks it; its choosers are compiled, not compared";
-    fns_ = GetParam().unit().f32;
-  }
-  ChooserIsaFns fns_{};
-
   FloatDiff binomial(LanePath path) {
     return float_against_double(
         binomial_row_group(),
@@ -647,7 +671,7 @@ class ChooserIsaFloat : public ::testing::TestWithParam<IsaCase> {
         chermain_by_cost_moved, path == LanePath::kLibrary);
   }
   void report(const char* family, const FloatDiff& d) {
-    std::printf("%s float (%zu lanes), %s: %s\n", GetParam().name, fns_.lanes, family,
+    std::printf("%s float (%zu lanes), %s: %s\n", param().name, fns_.lanes, family,
                 d.text().c_str());
   }
 };
@@ -674,84 +698,86 @@ void expect_within(const FloatDiff& d, const FloatAllowance& a, const char* fami
   EXPECT_LE(d.largest_move(), a.move) << family << ": " << d.text();
 }
 
-TEST_P(ChooserIsaFloat, BinomialFloatLanesDifferOnlyAtBoundariesWithinFloatRounding) {
-  const FloatDiff b = binomial(LanePath::kLibrary), c = binomial_by_cost();
-  report("binomial", b);
-  report("binomial by cost", c);
-  expect_within(b, kBinomialFloat, "binomial");
-  expect_within(c, kBinomialFloat, "binomial by cost");
-  const FloatDiff db = binomial_model<DeliotBelcour>(LanePath::kLibrary);
-  const FloatDiff kk = binomial_model<KneiphofKlein>(LanePath::kLibrary);
-  report("deliot_belcour", db);
-  report("kneiphof_klein", kk);
-  expect_within(db, kDeliotBelcourFloat, "deliot_belcour");
-  expect_within(kk, kKneiphofKleinFloat, "kneiphof_klein");
+TEST_F(ChooserIsaFloat, BinomialFloatLanesDifferOnlyAtBoundariesWithinFloatRounding) {
+  for_each_isa([&] {
+    const FloatDiff b = binomial(LanePath::kLibrary), c = binomial_by_cost();
+    report("binomial", b);
+    report("binomial by cost", c);
+    expect_within(b, kBinomialFloat, "binomial");
+    expect_within(c, kBinomialFloat, "binomial by cost");
+    const FloatDiff db = binomial_model<DeliotBelcour>(LanePath::kLibrary);
+    const FloatDiff kk = binomial_model<KneiphofKlein>(LanePath::kLibrary);
+    report("deliot_belcour", db);
+    report("kneiphof_klein", kk);
+    expect_within(db, kDeliotBelcourFloat, "deliot_belcour");
+    expect_within(kk, kKneiphofKleinFloat, "kneiphof_klein");
+  });
 }
 
-TEST_P(ChooserIsaFloat, KemppinenFloatLanesDifferOnlyAtBoundariesWithinFloatRounding) {
-  const FloatDiff ggx = kemppinen<KemppinenGGX>(), beckmann = kemppinen<KemppinenBeckmann>();
-  report("kemppinen_ggx", ggx);
-  report("kemppinen_beckmann", beckmann);
-  expect_within(ggx, kKemppinenGgxFloat, "kemppinen_ggx");
-  expect_within(beckmann, kKemppinenBeckmannFloat, "kemppinen_beckmann");
+TEST_F(ChooserIsaFloat, KemppinenFloatLanesDifferOnlyAtBoundariesWithinFloatRounding) {
+  for_each_isa([&] {
+    const FloatDiff ggx = kemppinen<KemppinenGGX>(), beckmann = kemppinen<KemppinenBeckmann>();
+    report("kemppinen_ggx", ggx);
+    report("kemppinen_beckmann", beckmann);
+    expect_within(ggx, kKemppinenGgxFloat, "kemppinen_ggx");
+    expect_within(beckmann, kKemppinenBeckmannFloat, "kemppinen_beckmann");
+  });
 }
 
 // With its control (the dictionary's construction is paid once per test).
-TEST_P(ChooserIsaFloat, ChermainFloatLanesDifferOnlyAtBoundariesAndASwappedLaneExceedsTheCount) {
-  const FloatDiff d = chermain(LanePath::kLibrary);
-  report("chermain", d);
-  expect_within(d, kChermainFloat, "chermain");
-  const FloatDiff broken = chermain(LanePath::kLastLaneSwapped);
-  report("chermain, last lane swapped", broken);
-  EXPECT_GT(broken.differ, kChermainFloat.rows);
+TEST_F(ChooserIsaFloat, ChermainFloatLanesDifferOnlyAtBoundariesAndASwappedLaneExceedsTheCount) {
+  for_each_isa([&] {
+    const FloatDiff d = chermain(LanePath::kLibrary);
+    report("chermain", d);
+    expect_within(d, kChermainFloat, "chermain");
+    const FloatDiff broken = chermain(LanePath::kLastLaneSwapped);
+    report("chermain, last lane swapped", broken);
+    EXPECT_GT(broken.differ, kChermainFloat.rows);
+  });
 }
 
 // The choosers for given costs (core/glints/cost_chooser.h) by the measured order, in float
 // against the scalar double chooser for the same costs, with their controls (the Kemppinen ones'
 // selects swapped where the level is composed by cost, as in double).
-TEST_P(ChooserIsaFloat, CostChoosersFloatLanesDifferOnlyAtBoundariesAndASwappedLaneExceedsTheCount) {
-  const FloatDiff ggx = kemppinen_by_cost<KemppinenGGX>(LanePath::kLibrary);
-  const FloatDiff beckmann = kemppinen_by_cost<KemppinenBeckmann>(LanePath::kLibrary);
-  const FloatDiff ch = chermain_by_cost(LanePath::kLibrary);
-  report("kemppinen_ggx by cost", ggx);
-  report("kemppinen_beckmann by cost", beckmann);
-  report("chermain by cost", ch);
-  expect_within(ggx, kKemppinenGgxByCostFloat, "kemppinen_ggx by cost");
-  expect_within(beckmann, kKemppinenBeckmannByCostFloat, "kemppinen_beckmann by cost");
-  expect_within(ch, kChermainByCostFloat, "chermain by cost");
-  const FloatDiff broken = chermain_by_cost(LanePath::kLastLaneSwapped);
-  report("chermain by cost, last lane swapped", broken);
-  EXPECT_GT(broken.differ, kChermainByCostFloat.rows);
-  const FloatDiff ggx_broken = kemppinen_by_cost<KemppinenGGX>(LanePath::kLastLaneSwapped);
-  const FloatDiff beckmann_broken = kemppinen_by_cost<KemppinenBeckmann>(LanePath::kLastLaneSwapped);
-  report("kemppinen_ggx by cost, last lane swapped", ggx_broken);
-  report("kemppinen_beckmann by cost, last lane swapped", beckmann_broken);
-  EXPECT_GT(ggx_broken.differ, kKemppinenGgxByCostFloat.rows);
-  EXPECT_GT(beckmann_broken.differ, kKemppinenBeckmannByCostFloat.rows);
+TEST_F(ChooserIsaFloat,
+       CostChoosersFloatLanesDifferOnlyAtBoundariesAndASwappedLaneExceedsTheCount) {
+  for_each_isa([&] {
+    const FloatDiff ggx = kemppinen_by_cost<KemppinenGGX>(LanePath::kLibrary);
+    const FloatDiff beckmann = kemppinen_by_cost<KemppinenBeckmann>(LanePath::kLibrary);
+    const FloatDiff ch = chermain_by_cost(LanePath::kLibrary);
+    report("kemppinen_ggx by cost", ggx);
+    report("kemppinen_beckmann by cost", beckmann);
+    report("chermain by cost", ch);
+    expect_within(ggx, kKemppinenGgxByCostFloat, "kemppinen_ggx by cost");
+    expect_within(beckmann, kKemppinenBeckmannByCostFloat, "kemppinen_beckmann by cost");
+    expect_within(ch, kChermainByCostFloat, "chermain by cost");
+    const FloatDiff broken = chermain_by_cost(LanePath::kLastLaneSwapped);
+    report("chermain by cost, last lane swapped", broken);
+    EXPECT_GT(broken.differ, kChermainByCostFloat.rows);
+    const FloatDiff ggx_broken = kemppinen_by_cost<KemppinenGGX>(LanePath::kLastLaneSwapped);
+    const FloatDiff beckmann_broken =
+        kemppinen_by_cost<KemppinenBeckmann>(LanePath::kLastLaneSwapped);
+    report("kemppinen_ggx by cost, last lane swapped", ggx_broken);
+    report("kemppinen_beckmann by cost, last lane swapped", beckmann_broken);
+    EXPECT_GT(ggx_broken.differ, kKemppinenGgxByCostFloat.rows);
+    EXPECT_GT(beckmann_broken.differ, kKemppinenBeckmannByCostFloat.rows);
+  });
 }
 
 // The control: a float lane path whose selects are swapped in one lane exceeds the counts.
-TEST_P(ChooserIsaFloat, ALaneWithSwappedSelectsExceedsTheAllowedCounts) {
-  const FloatDiff b = binomial(LanePath::kLastLaneSwapped);
-  const FloatDiff db = binomial_model<DeliotBelcour>(LanePath::kLastLaneSwapped);
-  const FloatDiff kk = binomial_model<KneiphofKlein>(LanePath::kLastLaneSwapped);
-  report("binomial, last lane swapped", b);
-  report("deliot_belcour, last lane swapped", db);
-  report("kneiphof_klein, last lane swapped", kk);
-  EXPECT_GT(b.differ, kBinomialFloat.rows);
-  EXPECT_GT(db.differ, kDeliotBelcourFloat.rows);
-  EXPECT_GT(kk.differ, kKneiphofKleinFloat.rows);
+TEST_F(ChooserIsaFloat, ALaneWithSwappedSelectsExceedsTheAllowedCounts) {
+  for_each_isa([&] {
+    const FloatDiff b = binomial(LanePath::kLastLaneSwapped);
+    const FloatDiff db = binomial_model<DeliotBelcour>(LanePath::kLastLaneSwapped);
+    const FloatDiff kk = binomial_model<KneiphofKlein>(LanePath::kLastLaneSwapped);
+    report("binomial, last lane swapped", b);
+    report("deliot_belcour, last lane swapped", db);
+    report("kneiphof_klein, last lane swapped", kk);
+    EXPECT_GT(b.differ, kBinomialFloat.rows);
+    EXPECT_GT(db.differ, kDeliotBelcourFloat.rows);
+    EXPECT_GT(kk.differ, kKneiphofKleinFloat.rows);
+  });
 }
-
-INSTANTIATE_TEST_SUITE_P(Isas, ChooserIsaFloat, ::testing::ValuesIn(kCases),
-                         [](const ::testing::TestParamInfo<IsaCase>& i) {
-                           return std::string(i.param.name);
-                         });
-
-INSTANTIATE_TEST_SUITE_P(Isas, ChooserIsa, ::testing::ValuesIn(kCases),
-                         [](const ::testing::TestParamInfo<IsaCase>& i) {
-                           return std::string(i.param.name);
-                         });
 
 }  // namespace
 }  // namespace glintlab::verify::adequacy::isa_test
