@@ -19,7 +19,8 @@
 //
 // Kernels generic over the float type (scalar and core/simd Wide<> batches): the 2 LODs × 4 cells
 // are masks (a zero weight adds nothing), the smooth fallback a per-lane select, the cell hash and
-// the texel fetches per-lane integer code and gathers (core/math/lanes.h, lane_rng.h). The scalar
+// the texel fetches in vector registers on the batches (core/glints/chermain_lanes.h: the integer
+// mixer on 64-bit lanes, hardware gathers; per-lane code elsewhere, core/math/lanes.h). The scalar
 // double instantiation is the host code this model always had, op for op; the model is offered in
 // double only (kDoubleOnly): cell coordinates at LOD −20 are uv·2^20, whose bilinear weights float
 // would round to 2^−3 at uv ≈ 1 (batched on Wide<double>, core/simd/instantiate.h).
@@ -34,6 +35,7 @@
 #include <type_traits>
 
 #include "core/glints/chermain_dictionary.h"
+#include "core/glints/chermain_lanes.h"
 #include "core/glints/chermain_lookup.h"
 #include "core/math/lane_rng.h"
 #include "core/math/lanes.h"
@@ -122,14 +124,32 @@ GLINTLAB_FN RngIndex<T> cell_keys(const T& cu, const T& cv, const T& scale) {
 
 // θ = 2π u_0 and the marginals ⌊u_d N⌋ (d = 1, 2, at most N − 1) from the cell's counters.
 template <class T>
-GLINTLAB_FN Cell<T> cell(std::uint64_t seed, const RngIndex<T>& key, int n) {
-  const T theta = T(2 * kPi<double>) * lane_uniform<T>(seed, key, 0);
+GLINTLAB_FN Cell<T> cell_from_uniforms(const lanes::CellUniforms<T>& u, int n) {
+  const T theta = T(2 * kPi<double>) * u.u0;
   Cell<T> c;
   sincos(theta, &c.sin_t, &c.cos_t);
   const T last = T(n - 1);
-  c.nx = std_min(floor(lane_uniform<T>(seed, key, 1) * T(n)), last);
-  c.ny = std_min(floor(lane_uniform<T>(seed, key, 2) * T(n)), last);
+  c.nx = std_min(floor(u.u1 * T(n)), last);
+  c.ny = std_min(floor(u.u2 * T(n)), last);
   return c;
+}
+template <class T>
+GLINTLAB_FN Cell<T> cell(std::uint64_t seed, const RngIndex<T>& key, int n) {
+  return cell_from_uniforms<T>(
+      {lane_uniform<T>(seed, key, 0), lane_uniform<T>(seed, key, 1), lane_uniform<T>(seed, key, 2)},
+      n);
+}
+
+// The draws of the cells with corners (cu, cv)·2^l (scale = 2^(l+20)): cell(seed, cell_keys(…), n),
+// on the batches with the key and the counter mixing in vector registers (core/glints/
+// chermain_lanes.h, the same bits).
+template <class T>
+GLINTLAB_FN Cell<T> cell_at(std::uint64_t seed, const T& cu, const T& cv, const T& scale, int n) {
+  if constexpr (lanes::kVectorDoubles < T >> 0) {
+    lanes::CellUniforms<T> u;
+    if (lanes::cell_uniforms(seed, cu, cv, scale, &u)) return cell_from_uniforms(u, n);
+  }
+  return cell<T>(seed, cell_keys(cu, cv, scale), n);
 }
 
 // Dictionary level of a cell at LOD l (integer-valued): it holds density·4^l microfacets, about
@@ -177,23 +197,22 @@ GLINTLAB_FN T lod(const FootprintQuery<T>& fp) {
   return std_clamp(select(pos, log2(select(pos, foot, T(1))), T(-20)), T(-20), T(39));
 }
 
-// 2^e per lane for an integer-valued e (exact).
+// 2^e per lane for an integer-valued e (exact; e in [−1022, 1023]).
 template <class T>
 GLINTLAB_FN T exp2_int(const T& e) {
-  const LanesOf<T> el(e);
-  return float_lanes<T>(
-      [&](std::size_t l) { return std::ldexp(Scalar<T>(1), static_cast<int>(el[l])); });
+  return lanes::exp2_int(e);
 }
 
 // Visits the terms of Eq. 3 / Eq. 10: visit(active, weight, k, cell) for each of the two LODs and
 // four cells, `active` where w(l) W_P(l, s_0) > 0 (its weights sum to 1 per lane). k ≥ L marks the
 // smooth fallback, visited once per LOD before that LOD's four cells (which are then inactive;
 // cell unused), so each lane sees its terms in the order of the scalar loop.
+// `lod` is chermain2021::lod(fp).
 template <class T, class Visit>
-GLINTLAB_FN void for_each_cell(const SdfParams& p, const FootprintQuery<T>& fp, Visit&& visit) {
+GLINTLAB_FN void for_each_cell(const SdfParams& p, const FootprintQuery<T>& fp, const T& lod,
+                               Visit&& visit) {
   const Dictionary& dict = *p.dictionary;
   const T levels = T(dict.levels());
-  const T lod = chermain2021::lod(fp);
   const T l0 = floor(lod);
   const T frac = lod - l0;
   for (int li = 0; li < 2; ++li) {
@@ -205,20 +224,24 @@ GLINTLAB_FN void for_each_cell(const SdfParams& p, const FootprintQuery<T>& fp, 
     visit(lod_on && smooth, wl, k, Cell<T>{T(1), T(0), T(0), T(0)});
     const Mask<T> cells_on = lod_on && !smooth;
     if (!any_lane<T>(cells_on)) continue;
-    const T cell = exp2_int(l);
+    const T inv_cell = exp2_int(-l);      // uv / 2^l = uv · 2^−l exactly
     const T scale = exp2_int(l + T(20));  // corners in units of 2^-20
-    const T su = fp.uv.x / cell - T(0.5), sv = fp.uv.y / cell - T(0.5);
+    const T su = fp.uv.x * inv_cell - T(0.5), sv = fp.uv.y * inv_cell - T(0.5);
     const T fu = floor(su), fv = floor(sv);
     const T tu = su - fu, tv = sv - fv;
     for (int c = 0; c < 4; ++c) {
       const int di = c & 1, dj = c >> 1;
       const T wu = di ? tu : T(1) - tu, wv = dj ? tv : T(1) - tv;
       const T W = wu * wv;
-      const RngIndex<T> key = cell_keys(fu + T(di), fv + T(dj), scale);
       visit(cells_on && W != T(0), wl * W, k,
-            chermain2021::cell<T>(p.seed, key, dict.distributions()));
+            cell_at<T>(p.seed, fu + T(di), fv + T(dj), scale, dict.distributions()));
     }
   }
+}
+
+template <class T, class Visit>
+GLINTLAB_FN void for_each_cell(const SdfParams& p, const FootprintQuery<T>& fp, Visit&& visit) {
+  for_each_cell(p, fp, chermain2021::lod(fp), visit);
 }
 
 // The (filtered) procedural patch-SDF at slope m̃ (2021 Eq. 3 without GGAA, Eq. 10 and 19 with
@@ -239,7 +262,8 @@ GLINTLAB_FN T patch_sdf(const SdfParams& p, Vec2<T> m, const FootprintQuery<T>& 
   const T mx = T(M.i00) * m.x + T(M.i01) * m.y, my = T(M.i11) * m.y;  // M⁻¹ m̃
   const T gauss = gaussian_sdf(m.x, m.y, p.sigma_x, p.sigma_y, rho_used);
   T total = T(0), lambda_sum = T(0), lambda_weight = T(0);
-  for_each_cell(p, fp, [&](Mask<T> on, T w, T k, const Cell<T>& s) {
+  const T lod = chermain2021::lod(fp);
+  for_each_cell(p, fp, lod, [&](Mask<T> on, T w, T k, const Cell<T>& s) {
     if (!any_lane<T>(on)) return;
     const Mask<T> smooth = k > last_level;
     const Mask<T> cell_on = on && !smooth;
@@ -266,7 +290,6 @@ GLINTLAB_FN T patch_sdf(const SdfParams& p, Vec2<T> m, const FootprintQuery<T>& 
     total = select(cell_on, total + w * px * py / T(M.det), total);
   });
   if (info) {
-    const T lod = chermain2021::lod(fp);
     info->lod = lod;
     info->dict_level = std_min(dictionary_level(floor(lod), p.log2_density), T(dict.levels()));
     const Mask<T> weighted = lambda_weight > T(0);
@@ -460,8 +483,9 @@ struct Chermain {
     if (!any_lane<T>(!s.rejected)) return s;
     ModelQuery<T> qq = q;
     qq.wo = s.wo;
-    const T pdf_o = pdf(p, qq);
-    const T v = eval(p, qq).value;
+    const ModelEval<T, kIntermediates.size()> e = eval(p, qq);  // its pdf is pdf(p, qq)
+    const T pdf_o = e.pdf;
+    const T v = e.value;
     const Mask<T> pos = pdf_o > T(0);
     s.pdf = select(s.rejected, T(0), pdf_o);
     s.weight = select(s.rejected || !pos, T(0), v / select(pos, pdf_o, T(1)));

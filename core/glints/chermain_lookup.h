@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "core/glints/chermain_lanes.h"
 #include "core/math/config.h"
 #include "core/math/lanes.h"
 #include "core/math/ops.h"
@@ -60,13 +61,20 @@ GLINTLAB_FN T log2(const T& x) {
   return float_lanes<T>([&](std::size_t l) { return std::log2(xl[l]); });
 }
 
+// log2 of the lanes of x that are above 1, 0 in the others: max(0, log2 x) (log2 x ≤ 0 there, and
+// max(0, NaN) = 0), without a libm call for a lane at or below 1.
+template <class T>
+GLINTLAB_FN T log2_above_one(const T& x) {
+  const LanesOf<T> xl(x);
+  return float_lanes<T>(
+      [&](std::size_t l) { return xl[l] > Scalar<T>(1) ? std::log2(xl[l]) : Scalar<T>(0); });
+}
+
 // table.texels[i] as T in every lane, i the lane's integer-valued index (in range: the callers
 // wrap or clamp it); a gather.
 template <class T>
 GLINTLAB_FN T gather(const float* texels, const T& index) {
-  const LanesOf<T> at(index);
-  return float_lanes<T>(
-      [&](std::size_t l) { return Scalar<T>(texels[static_cast<std::size_t>(at[l])]); });
+  return lanes::gather_texels(texels, index);
 }
 
 // First texel of table (n, k) (n, k integer-valued, k < levels).
@@ -75,17 +83,25 @@ GLINTLAB_FN T table_base(const Table& t, T n, T k) {
   return (n * T(t.levels) + k) * T(double(t.per_table));
 }
 
+// A MIP level's size in texels and the inverse of the mirrored period, 1/(2·size) (both powers of
+// two, so i·(1/(2·size)) is i/(2·size) exactly).
+template <class T>
+struct LevelSize {
+  T size, inv_period;
+};
+
 // Texel i (any integer) of the MIP level of `size` texels starting at `level_base`, wrapped.
 // Mirrored repeat: period 2·size, the second half reversed; the residue i − P⌊i/P⌋ is exact (P a
 // power of two).
 template <class T>
-GLINTLAB_FN T fetch(const Table& t, T level_base, T size, T i, TableWrap wrap) {
+GLINTLAB_FN T fetch(const Table& t, T level_base, const LevelSize<T>& level, T i, TableWrap wrap) {
+  const T size = level.size;
   T j;
   if (wrap == TableWrap::kClampToEdge) {
     j = std_clamp(i, T(0), size - T(1));
   } else {
     const T period = T(2) * size;
-    const T r = i - period * floor(i / period);
+    const T r = i - period * floor(i * level.inv_period);
     j = select(r >= size, period - T(1) - r, r);
   }
   return gather(t.texels, level_base + j);
@@ -94,21 +110,29 @@ GLINTLAB_FN T fetch(const Table& t, T level_base, T size, T i, TableWrap wrap) {
 // textureLod at MIP level m (integer-valued, size = resolution/2^m texels): linear interpolation
 // between texel centres, u = x / extent the normalized coordinate.
 template <class T>
-GLINTLAB_FN T linear(const Table& t, T base, T size, T u, TableWrap wrap) {
+GLINTLAB_FN T linear(const Table& t, T base, const LevelSize<T>& level, T u, TableWrap wrap) {
+  const T size = level.size;
   const T s = u * size - T(0.5);
   const T f = floor(s);
   const T w = s - f;
   const T level_base = base + T(2 * t.resolution) - T(2) * size;
-  return (T(1) - w) * fetch(t, level_base, size, f, wrap) +
-         w * fetch(t, level_base, size, f + T(1), wrap);
+  return (T(1) - w) * fetch(t, level_base, level, f, wrap) +
+         w * fetch(t, level_base, level, f + T(1), wrap);
 }
 
-// resolution / 2^m per lane (m integer-valued in [0, mip_levels)).
+// resolution / 2^m per lane (m integer-valued in [0, mip_levels)) and its inverse period: on the
+// batches 2^(mip_levels − 1 − m) and 2^(m − mip_levels) from the exponent bits (the resolution is
+// a power of two), else the integer shift.
 template <class T>
-GLINTLAB_FN T level_size(const Table& t, T m) {
-  const LanesOf<T> ml(m);
-  return float_lanes<T>(
-      [&](std::size_t l) { return Scalar<T>(t.resolution >> static_cast<int>(ml[l])); });
+GLINTLAB_FN LevelSize<T> level_size(const Table& t, T m) {
+  if constexpr (lanes::kVectorDoubles < T >> 0) {
+    return {lanes::exp2_int(T(t.mip_levels - 1) - m), lanes::exp2_int(m - T(t.mip_levels))};
+  } else {
+    const LanesOf<T> ml(m);
+    const T size = float_lanes<T>(
+        [&](std::size_t l) { return Scalar<T>(t.resolution >> static_cast<int>(ml[l])); });
+    return {size, T(0.5) / size};
+  }
 }
 
 // Trilinear lookup at level of detail lambda (clamped to the pyramid): linear within ⌊λ⌋ and
@@ -145,21 +169,33 @@ struct Grad {
 // footprint lengths in texels ρ_x = |dx/dpx|·res/extent, ρ_y likewise; N = min(⌈P_max/P_min⌉,
 // max_anisotropy) probes (max_anisotropy where P_min = 0 < P_max, 1 where both are 0);
 // λ = max(0, log2(P_max/N)); the mean of N trilinear lookups at x + ((i + ½)/N − ½)·d, d the
-// major-axis derivative. The probe loop runs to the largest N over the lanes, masked.
+// major-axis derivative. The probe loop runs to the largest N over the lanes, masked. Where every
+// lane has N = 1 the divisions by N are left out (x/1 = x), and the ratio P_max/P_min where no
+// lane has P_min > 0 (it is not used there). Forced inline: out of line, its batch arguments and
+// results crossed the call through memory.
 template <class T>
-GLINTLAB_FN Grad<T> lookup_grad(const Table& t, T base, T x, T dx_dpx, T dx_dpy, TableWrap wrap,
-                                int max_anisotropy) {
+GLINTLAB_INLINE Grad<T> lookup_grad(const Table& t, T base, T x, T dx_dpx, T dx_dpy, TableWrap wrap,
+                                    int max_anisotropy) {
   const T scale = T(double(t.resolution) / t.extent);  // texels per slope unit
   const T px = abs(dx_dpx) * scale, py = abs(dx_dpy) * scale;
   const T pmax = std_max(px, py), pmin = std_min(px, py);
   const T major = select(px >= py, dx_dpx, dx_dpy);  // slope units per pixel
   const T aniso = T(max_anisotropy);
   const Mask<T> has_min = pmin > T(0), has_max = pmax > T(0);
-  const T ratio = pmax / select(has_min, pmin, T(1));
-  const T ceil_ratio = -floor(-ratio);
-  T probes = select(has_min, std_min(ceil_ratio, aniso), select(has_max, aniso, T(1)));
+  T probes = select(has_max, aniso, T(1));
+  if (any_lane<T>(has_min)) {
+    const T ratio = pmax / select(has_min, pmin, T(1));
+    const T ceil_ratio = -floor(-ratio);
+    probes = select(has_min, std_min(ceil_ratio, aniso), probes);
+  }
   probes = std_max(probes, T(1));
-  const T lambda = select(has_max, std_max(T(0), log2(select(has_max, pmax, T(1)) / probes)), T(0));
+  const bool single = !any_lane<T>(probes != T(1));
+  // λ = max(0, log2(P_max/N)) where P_max > 0, else 0: log2 only on the lanes where P_max/N > 1
+  // (elsewhere it is 0 either way), none where no lane has a footprint over one texel.
+  const T texels_per_probe =
+      single ? select(has_max, pmax, T(1)) : select(has_max, pmax, T(1)) / probes;
+  const Mask<T> coarse = has_max && texels_per_probe > T(1);
+  const T lambda = any_lane<T>(coarse) ? log2_above_one(texels_per_probe) : T(0);
   Grad<T> r;
   r.lambda = std_min(lambda, T(t.mip_levels - 1));
   r.probes = probes;
@@ -171,11 +207,12 @@ GLINTLAB_FN Grad<T> lookup_grad(const Table& t, T base, T x, T dx_dpx, T dx_dpy,
     count = count < static_cast<int>(pl[l]) ? static_cast<int>(pl[l]) : count;
   T sum = T(0);
   for (int i = 0; i < count; ++i) {
-    const T xi = x + ((T(i) + T(0.5)) / probes - T(0.5)) * major;
+    const T offset = single ? T(i) + T(0.5) : (T(i) + T(0.5)) / probes;
+    const T xi = x + (offset - T(0.5)) * major;
     const T v = trilinear(t, base, xi / T(t.extent), lambda, wrap);
     sum = select(T(i) < probes, sum + v, sum);
   }
-  r.value = select(inside, sum / probes, T(0));
+  r.value = select(inside, single ? sum : sum / probes, T(0));
   return r;
 }
 
