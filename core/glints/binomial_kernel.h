@@ -144,11 +144,15 @@ GLINTLAB_FN D stirling_log_factorial(D k) {
          ix * (D(1.0 / 12) - ix2 * (D(1.0 / 360) - ix2 * D(1.0 / 1260)));
 }
 
-// log_factorial on lanes: the table below 16, Stirling above (both computed, one selected).
+// log_factorial on lanes: the table below 16, Stirling above; of the two, only what some lane
+// selects is computed (a uniform branch; the same values).
 template <class D>
 GLINTLAB_FN D log_factorial_lanes(D k) {
-  const D small = lane_gather(kLogFactorialTable.data(), clamp(k, D(0), D(15)));
-  return select(k < D(16), small, stirling_log_factorial(k));
+  const Mask<D> small = k < D(16);
+  if (!any_lane<D>(small)) return stirling_log_factorial(k);
+  const D table = lane_gather(kLogFactorialTable.data(), clamp(k, D(0), D(15)));
+  if (!any_lane<D>(!small)) return table;
+  return select(small, table, stirling_log_factorial(k));
 }
 
 template <class D>
@@ -163,6 +167,7 @@ GLINTLAB_FN D stirling_correction(D x) {
 template <class D>
 struct LogFactorialRatioFrom {
   D a, xa, log_xa, correction_a, log_factorial_a;
+  LogFactorialRatioFrom() = default;
   GLINTLAB_FN explicit LogFactorialRatioFrom(D a_)
       : a(a_),
         xa(a_ + D(1)),
@@ -180,10 +185,12 @@ struct LogFactorialRatioFrom {
   }
 };
 
-// detail::binomial_inversion on the lanes of `active` (n·p < 10, p ≤ ½; others keep k = 0).
-template <class D>
-GLINTLAB_FN D binomial_inversion_lanes(D nd, D p, D u, Mask<D> active) {
+// detail::binomial_inversion on the lanes of `active` (n·p < 10, p ≤ ½; others keep k = 0), u
+// dim 0 of the stream (not drawn where no lane is active).
+template <class D, class Stream>
+GLINTLAB_FN D binomial_inversion_lanes(D nd, D p, const Stream& stream, Mask<D> active) {
   if (!any_lane<D>(active)) return D(0);
+  const D u = stream.uniform(0);
   const D q = D(1) - p, r = p / q;
   D f = exp(nd * log1p(-p));
   D cdf = f;
@@ -208,7 +215,8 @@ GLINTLAB_FN D binomial_inversion_lanes(D nd, D p, D u, Mask<D> active) {
 // attempt j reads dims 2j and 2j + 1 of each lane's stream, as the host loop does; a lane stops
 // at its first acceptance. The acceptance test's logs are computed only on attempts where some
 // lane still drawing is in range and fails the squeeze (a uniform branch: the lanes the squeeze
-// accepts do not read them).
+// accepts do not read them), and its constants (alpha, log(p/q), the ratios' logs of m and
+// n − m) on the first such attempt: where the squeeze decides every lane, never.
 template <class D, class Stream>
 GLINTLAB_FN D binomial_btrs_lanes(D nd, D p, const Stream& stream, Mask<D> active) {
   if (!any_lane<D>(active)) return D(0);
@@ -218,10 +226,10 @@ GLINTLAB_FN D binomial_btrs_lanes(D nd, D p, const Stream& stream, Mask<D> activ
   const D a = D(-0.0873) + D(0.0248) * b + D(0.01) * p;
   const D c = nd * p + D(0.5);
   const D vr = D(0.92) - D(4.2) / b;
-  const D alpha = (D(2.83) + D(5.1) / b) * spq;
-  const D lpq = log(p / q);
   const D m = floor((nd + D(1)) * p);
-  const LogFactorialRatioFrom<D> ratio_from_m(m), ratio_from_n_minus_m(nd - m);
+  bool test_ready = false;
+  D alpha, lpq;
+  LogFactorialRatioFrom<D> ratio_from_m, ratio_from_n_minus_m;
   D result = m;
   Mask<D> left = active;
   for (int j = 0; j < kBinomialBtrsMaxAttempts && any_lane<D>(left); ++j) {
@@ -235,6 +243,13 @@ GLINTLAB_FN D binomial_btrs_lanes(D nd, D p, const Stream& stream, Mask<D> activ
     Mask<D> accept = left && in_range && squeeze;
     const Mask<D> tested = left && in_range && !squeeze;
     if (any_lane<D>(tested)) {
+      if (!test_ready) {
+        alpha = (D(2.83) + D(5.1) / b) * spq;
+        lpq = log(p / q);
+        ratio_from_m = LogFactorialRatioFrom<D>(m);
+        ratio_from_n_minus_m = LogFactorialRatioFrom<D>(nd - m);
+        test_ready = true;
+      }
       const D lv = log(v * alpha / (a / (us * us) + b));
       const D lr = ratio_from_m(kd) + ratio_from_n_minus_m(nd - kd) + (kd - m) * lpq;
       accept = accept || (tested && lv <= lr);
@@ -255,7 +270,7 @@ GLINTLAB_FN D binomial_exact_double_lanes(D nd, D p, const Stream& stream) {
   const Mask<D> flip = p > D(0.5);
   const D pp = select(flip, D(1) - p, p);
   const Mask<D> small = nd * pp < D(10);
-  const D k_inv = binomial_inversion_lanes(nd, pp, stream.uniform(0), live && small);
+  const D k_inv = binomial_inversion_lanes(nd, pp, stream, live && small);
   const D k_btrs = binomial_btrs_lanes(nd, pp, stream, live && !small);
   D k = select(small, k_inv, k_btrs);
   k = select(flip, nd - k, k);
