@@ -400,5 +400,67 @@ TEST(SimdChermainNegativeControl, UnperturbedBatchPassesPerturbedFail) {
   EXPECT_FALSE(bad_cells.within(kBudget));
 }
 
+// The vector forms of core/glints/chermain_lanes.h on this TU's baseline batch against the scalar
+// code they replace, bit for bit: each cell's three counter uniforms (keys over the whole exact
+// range of the int64 conversion, and the refusal beyond it that sends the batch to the per-lane
+// code) and 2^e over the normal exponents.
+TEST(SimdChermainLanes, CellUniformsAndPowersOfTwoAreTheScalarBits) {
+  using chermain2021::lanes::kVectorDoubles;
+  if constexpr (kVectorDoubles<BatchWide> == 0) {
+    GTEST_SKIP() << "no vector path for this TU's baseline batch";
+  } else {
+    constexpr std::size_t kL = BatchWide::kLanes;
+    const std::uint64_t seed = 2021;
+    const double limit = 0x1p51;  // the exact conversion's range without AVX-512
+    std::size_t checked = 0, refused = 0, bad = 0;
+    for (std::uint64_t i = 0; i < 20000; ++i) {
+      double cu[kL], cv[kL], scale[kL];
+      for (std::size_t l = 0; l < kL; ++l) {
+        const double u = counter_uniform<double>(seed, i, 10 + l);
+        const int e = int(counter_uniform<double>(seed, i, 20 + l) * 60.0);  // scale 2^0 … 2^59
+        scale[l] = std::ldexp(1.0, e);
+        // Corners up to about 2^53 in units of 2^-20: most in range, some at or past 2^51.
+        const double mag = std::ldexp(1.0, int(counter_uniform<double>(seed, i, 30 + l) * 54.0));
+        cu[l] = std::floor((2 * u - 1) * mag / scale[l]);
+        cv[l] = std::floor((counter_uniform<double>(seed, i, 40 + l) - 0.5) * mag / scale[l]);
+        if (i % 97 == 0) cu[l] = (l % 2 ? -1.0 : 1.0) * std::floor((limit - 1) / scale[l]);
+        if (i % 89 == 0) cv[l] = -0.0;
+      }
+      const BatchWide u = LaneAccess<BatchWide>::load(cu), v = LaneAccess<BatchWide>::load(cv);
+      const BatchWide s = LaneAccess<BatchWide>::load(scale);
+      bool in_range = true;
+      for (std::size_t l = 0; l < kL; ++l)
+        in_range =
+            in_range && std::abs(cu[l] * scale[l]) < limit && std::abs(cv[l] * scale[l]) < limit;
+      chermain2021::lanes::CellUniforms<BatchWide> got;
+      if (!chermain2021::lanes::cell_uniforms(seed, u, v, s, &got)) {
+        ++refused;
+        bad += in_range;  // refused although every lane converts exactly
+        continue;
+      }
+      bad += !in_range && kL != 8;  // accepted a lane past 2^51 (only AVX-512 converts those)
+      const LanesOf<BatchWide> u0(got.u0), u1(got.u1), u2(got.u2);
+      for (std::size_t l = 0; l < kL; ++l) {
+        const std::uint64_t key =
+            chermain2021::cell_key(std::int64_t(cu[l] * scale[l]), std::int64_t(cv[l] * scale[l]));
+        bad += u0[l] != counter_uniform<double>(seed, key, 0) ||
+               u1[l] != counter_uniform<double>(seed, key, 1) ||
+               u2[l] != counter_uniform<double>(seed, key, 2);
+        ++checked;
+      }
+    }
+    std::printf(
+        "chermain lanes (%zu lanes): %zu lanes' draws checked, %zu batches refused, %zu bad\n", kL,
+        checked, refused, bad);
+    EXPECT_EQ(bad, 0u);
+    EXPECT_GT(checked, 20000u);
+    EXPECT_GT(refused, 100u);
+    for (int e = -1022; e <= 1023; ++e) {
+      const LanesOf<BatchWide> p(chermain2021::lanes::exp2_int(BatchWide(double(e))));
+      for (std::size_t l = 0; l < kL; ++l) EXPECT_EQ(p[l], std::ldexp(1.0, e)) << e;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace glintlab::simd::test
