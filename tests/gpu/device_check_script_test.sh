@@ -1,21 +1,25 @@
 #!/usr/bin/env bash
 # scripts/device_check.sh from scratch (its own build folder): with a CUDA device it writes the
 # results folder; without one it must exit 3 with one error line and write nothing.
-# An optional third argument is the build tree's compiler launcher (the compiler cache,
-# cmake/glintlabCcache.cmake), its words joined by |: the script's own configure then compiles
-# through it (CMake reads CMAKE_<LANG>_COMPILER_LAUNCHER from the environment on a first
-# configure), so the same nvcc and C++ commands run from scratch in an empty build folder, and a
-# run after an earlier one with the same sources reads their objects from the cache instead of
-# compiling them again (about 100 s of nvcc on 2 cores).
+# The third argument is the script's build folder, a sibling of the build tree (build/<preset>-...):
+# at the same depth below the source tree, so the paths ccache hashes relative to its base_dir
+# (cmake/glintlabCcache.cmake) are the build tree's own, and the device objects the build tree has
+# just compiled are read from the cache instead of compiled again (about 90 s of nvcc on 2 cores
+# after a kernel header changes; a folder deeper in the tree missed every time).
+# An optional fourth argument is the build tree's compiler launcher (the compiler cache), its words
+# joined by |: the script's own configure then compiles through it (CMake reads
+# CMAKE_<LANG>_COMPILER_LAUNCHER from the environment on a first configure), so the same nvcc and
+# C++ commands run from scratch in an empty build folder.
 set -uo pipefail
 script=$1
 work=$2
-if [[ -n ${3:-} ]]; then
-  export CMAKE_CXX_COMPILER_LAUNCHER=${3//|/;} CMAKE_CUDA_COMPILER_LAUNCHER=${3//|/;}
+build=$3
+if [[ -n ${4:-} ]]; then
+  export CMAKE_CXX_COMPILER_LAUNCHER=${4//|/;} CMAKE_CUDA_COMPILER_LAUNCHER=${4//|/;}
 fi
-rm -rf "$work"
+rm -rf "$work" "$build"
 mkdir -p "$work"
-GLINTLAB_GPU_BUILD="$work/build" "$script" "$work/out" --rows 64 --timing-rows 4096 --repetitions 2 \
+GLINTLAB_GPU_BUILD="$build" "$script" "$work/out" --rows 64 --timing-rows 4096 --repetitions 2 \
   > "$work/stdout" 2> "$work/stderr"
 rc=$?
 cat "$work/stdout"
