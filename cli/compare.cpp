@@ -1,7 +1,8 @@
 // `glintlab compare --models A,B[,…] [--budget quick|full] [--out DIR] [--threads N]
 // [--claims-from DIR] [--sweeps-from DIR] [--shard K/N]`: the models side by side
-// (experiments/compare/), drawn as one page by reports/compare_page.py; with --shard, every N-th
-// model from the K-th, joined by `glintlab merge` (merge_compare_shards).
+// (experiments/compare/), drawn as one page by reports/compare_page.py; with --shard, the models
+// of shard K of N balanced by their recorded costs (compare_model_costs), joined by `glintlab
+// merge` (merge_compare_shards); with --list, the models a run (or its shard) would compare.
 #include "experiments/compare/compare.h"
 
 #include <fmt/format.h>
@@ -27,9 +28,11 @@
 #include "cli/progress.h"
 #include "cli/shard.h"
 #include "cli/shard_merge.h"
+#include "cli/shard_plan.h"
 #include "cli/suite_runs.h"
 #include "core/io/atomic_file.h"
 #include "core/model_registry.h"
+#include "verify/conformance/conformance.h"
 
 namespace glintlab::cli {
 namespace {
@@ -44,6 +47,7 @@ struct CompareCliOptions {
   std::string claims_from, sweeps_from;
   std::string shard;  // K/N: run the K-th of N shards of the selected models
   bool verbose = false;  // print where the time went (print_step_timings)
+  bool list = false;     // print the models (of the shard) and their weights; run nothing
 };
 
 // The files of the page, in the order they are moved into DIR (index.html last).
@@ -157,17 +161,63 @@ void print_step_timings(const experiments::compare::CompareFiles& f, int threads
              f.timed_seconds, f.timed_cpu_seconds, page_seconds, total_seconds);
 }
 
-// run_compare_request, or with `shard` its K-th of N parts: every N-th selected model from the
-// K-th (the models' costs are unknown before they run: a plug-in's or a numpy model's included),
-// and the shard's manifest beside the page. An empty shard writes its manifest alone.
+// run_compare_request, or with `shard` its K-th of N parts (the selected models balanced by
+// compare_model_costs), and the shard's manifest beside the page. An empty shard writes its
+// manifest alone.
+// The weights `glintlab compare --shard K/N` balances its shards by (cli/shard_plan.h), one per
+// model of `models`: 1, plus, where the run measures the models' conformance checks itself (no
+// --claims-from), the costs of the model's checks (model.<name>.*) at the budget as recorded
+// (cli/claim_costs.h: a check without a row, a plug-in's, costs the mean of the recorded ones). A
+// model's other parts (its reference albedos, its sweep, the timed phase) have no recorded time
+// and weigh the same for every model, so a run that reads the verdicts splits every N-th model.
+std::vector<double> compare_model_costs(const std::vector<std::string>& models,
+                                        bool conformance_measured, bool quick) {
+  std::vector<double> costs(models.size(), 1.0);
+  if (!conformance_measured) return costs;
+  for (const ModelEntry& m : registered_models()) {
+    const auto it = std::find(models.begin(), models.end(), m.name);
+    if (it == models.end()) continue;
+    for (const verify::Check& c : verify::conformance_checks(m))
+      costs[std::size_t(it - models.begin())] += claim_cost(c.id, quick).seconds;
+  }
+  return costs;
+}
+
+std::vector<std::string> selected_models(const std::string& globs) {
+  std::vector<std::string> names;
+  for (const ModelEntry& m : registered_models()) names.emplace_back(m.name);
+  return select_by_globs(globs, "--models", names,
+                         fmt::format("model names: {}", fmt::join(names, ", ")));
+}
+
+// `compare --list [--shard K/N]`: the models the run (or its shard) would compare, each with its
+// weight in the shard plan, and their share of the selection's weight. Runs nothing.
+void print_compare_plan(const CompareRequest& o, const Shard* shard) {
+  const bool quick = quick_budget(o.budget);
+  const std::vector<std::string> models = selected_models(o.models);
+  const std::vector<double> costs = compare_model_costs(models, o.claims_from.empty(), quick);
+  const Shard all{1, 1};
+  double total = 0, mine = 0;
+  for (double c : costs) total += c;
+  const std::vector<std::size_t> positions = cost_balanced_positions(costs, shard ? *shard : all);
+  for (std::size_t i : positions) {
+    fmt::print("{:<24} {:.1f}\n", models[i], costs[i]);
+    mine += costs[i];
+  }
+  fmt::print("{}{} of {} models, weight {:.1f} of {:.1f}: 1 per model{} (cli/claim_costs_table.cpp)\n",
+             shard ? fmt::format("shard {}/{}: ", shard->k, shard->n) : std::string(),
+             positions.size(), models.size(), mine, total,
+             o.claims_from.empty()
+                 ? fmt::format(" plus the recorded seconds of its conformance checks at --budget {}",
+                               quick ? "quick" : "full")
+                 : std::string(", the conformance verdicts read from --claims-from"));
+}
+
 CompareSummary run_compare(const CompareRequest& o, const Shard* shard, bool verbose = false) {
   const auto run_start = std::chrono::steady_clock::now();
   experiments::compare::CompareOptions c;
   c.budget = quick_budget(o.budget) ? verify::Budget::kQuick : verify::Budget::kFull;
-  std::vector<std::string> names;
-  for (const ModelEntry& m : registered_models()) names.emplace_back(m.name);
-  c.models = select_by_globs(o.models, "--models", names,
-                             fmt::format("model names: {}", fmt::join(names, ", ")));
+  c.models = selected_models(o.models);
   const int threads = resolve_threads(o.threads);
   check_input_folder(o.claims_from, "--claims-from", "claims.json", "glintlab verify --out");
   check_input_folder(o.sweeps_from, "--sweeps-from", "stability.json", "glintlab sweep --out");
@@ -190,7 +240,8 @@ CompareSummary run_compare(const CompareRequest& o, const Shard* shard, bool ver
     manifest.threads = threads;
     manifest.machine =
         fmt::format("{} hardware thread(s), {} used", std::thread::hardware_concurrency(), threads);
-    for (std::size_t i : shard_positions(c.models.size(), *shard))
+    const std::vector<double> costs = compare_model_costs(c.models, o.claims_from.empty(), quick);
+    for (std::size_t i : cost_balanced_positions(costs, *shard))
       manifest.covered.push_back(c.models[i]);
     c.models = manifest.covered;
     if (c.models.empty()) {
@@ -236,6 +287,11 @@ void run(const CLI::App* cmd, const CompareCliOptions& o) {
   r.threads = o.threads;
   r.claims_from = o.claims_from;
   r.sweeps_from = o.sweeps_from;
+  if (o.list) {
+    check_input_folder(o.claims_from, "--claims-from", "claims.json", "glintlab verify --out");
+    print_compare_plan(r, sharded ? &shard : nullptr);
+    return;
+  }
   const CompareSummary s = run_compare(r, sharded ? &shard : nullptr, o.verbose);
   if (s.models == 0)
     fmt::print("compare: shard {}/{} holds no model; wrote {}\n", shard.k, shard.n,
@@ -398,6 +454,9 @@ void add_compare_command(CLI::App& app) {
   add_bool_flag(cmd, "--verbose", o->verbose,
                 "print where the time went on stderr: each measurement of the parallel phase "
                 "(worker, start, seconds), the phase's tail, the timed phase per model, the page");
+  add_bool_flag(cmd, "--list", o->list,
+                "print the models the run (with --shard: the shard) would compare, each with its "
+                "weight in the shard plan; run nothing, write nothing");
   add_text_option(cmd, "--claims-from", o->claims_from,
                   "a glintlab verify --out folder whose claims.json gives the conformance verdicts",
                   "DIR");
@@ -405,10 +464,11 @@ void add_compare_command(CLI::App& app) {
                   "a glintlab sweep --out folder whose stability.json gives the failure regions",
                   "DIR");
   add_text_option(cmd, "--shard", o->shard,
-                  "K/N: run only the K-th of N shards of the selected models (every N-th model "
-                  "from the K-th, in glintlab models order) and write shard.json beside the page; "
-                  "glintlab merge joins the N folders into the page of one run. 1 <= K <= N <= "
-                  "10000",
+                  "K/N: run only the K-th of N shards of the selected models (balanced by the "
+                  "recorded seconds of each model's conformance checks where this run measures "
+                  "them, else every N-th model; --list prints the split) and write shard.json "
+                  "beside the page; glintlab merge joins the N folders into the page of one run. "
+                  "1 <= K <= N <= 10000",
                   "K/N");
   set_footer(cmd, kFooter);
   set_callback(cmd, [cmd, o] { run(cmd, *o); });

@@ -7,11 +7,16 @@
 // stand_in_charts: the page is the bytes of the compare.json it is drawn from) for the rest.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <regex>
 #include <set>
+#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli/cli_test_util.h"
@@ -104,6 +109,66 @@ TEST_F(CompareShardTest, MergedShardsAreThePageOfOneRun) {
   ASSERT_EQ(compare("ggx", "", "smooth_ggx").exit_code, 0);
   EXPECT_NE(without_timing("compare.csv", read_text(path("ggx/compare.csv"))),
             without_timing("compare.csv", read_text(path("one/compare.csv"))));
+}
+
+// `compare --list --shard K/N` prints the split without running it. Where the run measures the
+// conformance checks itself, the shards are balanced by the checks' recorded seconds: every model
+// in exactly one shard, the two costliest apart, the largest shard within the greedy bound and
+// below the every-N-th split's largest; with --claims-from every model weighs 1 and shard K holds
+// every N-th model from the K-th, as before.
+TEST_F(CompareShardTest, ListShowsTheShardsBalancedByTheRecordedCosts) {
+  const auto plan = [&](const std::string& shard, bool claims_from) {
+    std::vector<std::string> args = {"compare", "--list", "--budget", "quick", "--shard", shard};
+    if (claims_from) args.insert(args.end(), {"--claims-from", "verify"});
+    const RunResult r = run(args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::vector<std::pair<std::string, double>> rows;
+    std::istringstream in(r.out);
+    for (std::string line; std::getline(in, line);) {
+      if (line.starts_with("shard ")) continue;
+      std::istringstream words(line);
+      std::string model;
+      double weight = 0;
+      words >> model >> weight;
+      rows.emplace_back(model, weight);
+    }
+    return rows;
+  };
+  const auto all = plan("1/1", false);
+  ASSERT_EQ(all.size(), 9u);  // the registered models, in glintlab models order
+  std::vector<double> weights;
+  for (const auto& [m, w] : all) weights.push_back(w);
+  const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
+  const double costliest = *std::max_element(weights.begin(), weights.end());
+  const int n = 3;
+  double every_nth_largest = 0;
+  for (int k = 0; k < n; ++k) {
+    double sum = 0;
+    for (std::size_t i = std::size_t(k); i < weights.size(); i += n) sum += weights[i];
+    every_nth_largest = std::max(every_nth_largest, sum);
+  }
+  std::map<std::string, int> shard_of;
+  double largest = 0;
+  for (int k = 1; k <= n; ++k) {
+    double sum = 0;
+    for (const auto& [m, w] : plan(std::to_string(k) + "/3", false)) {
+      EXPECT_TRUE(shard_of.emplace(m, k).second) << m << " is in two shards";
+      sum += w;
+    }
+    largest = std::max(largest, sum);
+  }
+  EXPECT_EQ(shard_of.size(), all.size());
+  EXPECT_NE(shard_of["kemppinen_ggx"], shard_of["kemppinen_beckmann"]);
+  EXPECT_LE(largest, total / n + (1 - 1.0 / n) * costliest + 0.5);
+  EXPECT_LT(largest, every_nth_largest);
+  // Verdicts read from --claims-from: one per model, every N-th from the K-th.
+  const auto read = plan("2/3", true);
+  ASSERT_EQ(read.size(), 3u);
+  for (std::size_t j = 0; j < read.size(); ++j) {
+    EXPECT_EQ(read[j].first, all[1 + 3 * j].first);
+    EXPECT_EQ(read[j].second, 1.0);
+  }
+  EXPECT_EQ(unexpected_files(work(), {"verify", "verify/claims.json"}), std::vector<std::string>{});
 }
 
 TEST_F(CompareShardTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing) {
