@@ -24,7 +24,9 @@
 #include "cli/progress.h"
 #include "cli/shard.h"
 #include "cli/shard_merge.h"
+#include "cli/shard_plan.h"
 #include "cli/suite_runs.h"
+#include "cli/sweep_costs.h"
 #include "core/io/atomic_file.h"
 #include "core/model_registry.h"
 #include "experiments/sweeps/stability_run.h"
@@ -38,11 +40,43 @@ struct SweepOptions {
   std::string models = "*";
   std::string threads;
   std::string shard;  // K/N: run the K-th of N shards of the selected models
+  bool list = false;  // print the models (of the shard) and their costs; run nothing
 };
 
 namespace fs = std::filesystem;
 
 experiments::SweepRunSummary run_sweep(const SweepRequest& o, const Shard* shard);
+
+std::vector<std::string> selected_models(const std::string& globs) {
+  std::vector<std::string> names;
+  for (const ModelEntry& m : registered_models()) names.emplace_back(m.name);
+  return select_by_globs(globs, "--models", names,
+                         fmt::format("model names: {}", fmt::join(names, ", ")));
+}
+
+std::vector<double> sweep_model_costs(const std::vector<std::string>& models, bool quick) {
+  std::vector<double> costs;
+  for (const std::string& m : models) costs.push_back(sweep_cost_seconds(m, quick));
+  return costs;
+}
+
+// `sweep --list [--shard K/N]`: the models the run (or its shard) would sweep, each with its
+// measured cost, and their share of the selection's. Runs nothing.
+void print_sweep_plan(const SweepRequest& o, const Shard* shard) {
+  const bool quick = quick_budget(o.budget);
+  const std::vector<std::string> models = selected_models(o.models);
+  const std::vector<double> costs = sweep_model_costs(models, quick);
+  double total = 0, mine = 0;
+  for (double c : costs) total += c;
+  const std::vector<std::size_t> positions = cost_balanced_positions(costs, shard ? *shard : Shard{});
+  for (std::size_t i : positions) {
+    fmt::print("{:<24} {:g} s\n", models[i], costs[i]);
+    mine += costs[i];
+  }
+  fmt::print("{}{} of {} models, {:g} s of {:g} s measured at --budget {} (cli/sweep_costs.cpp)\n",
+             shard ? fmt::format("shard {}/{}: ", shard->k, shard->n) : std::string(),
+             positions.size(), models.size(), mine, total, quick ? "quick" : "full");
+}
 
 void run(const CLI::App* cmd, const SweepOptions& o) {
   const bool sharded = option_count(cmd, "--shard") > 0;
@@ -52,6 +86,10 @@ void run(const CLI::App* cmd, const SweepOptions& o) {
   r.budget = resolve_budget(cmd, o.budget);
   r.models = o.models;
   r.threads = o.threads;
+  if (o.list) {
+    print_sweep_plan(r, sharded ? &shard : nullptr);
+    return;
+  }
   const auto s = run_sweep(r, sharded ? &shard : nullptr);
   if (s.targets == 0) {
     fmt::print("sweep: shard {}/{} holds no model; wrote {}\n", shard.k, shard.n,
@@ -89,17 +127,13 @@ every target finished and its maps are drawn. Output is identical for any --thre
 
 namespace {
 
-// run_sweep_request, or with `shard` its K-th of N parts: every N-th selected model from the K-th
-// with all its samplers (a model's cost is not known before it runs: a plug-in's or a numpy
-// model's included), and the shard's manifest beside the maps. An empty shard writes its manifest
-// alone.
+// run_sweep_request, or with `shard` its K-th of N parts: the selected models (each with all its
+// samplers) balanced by their measured costs (cli/sweep_costs.h), and the shard's manifest beside
+// the maps. An empty shard writes its manifest alone.
 experiments::SweepRunSummary run_sweep(const SweepRequest& o, const Shard* shard) {
   const bool quick = quick_budget(o.budget);
-  std::vector<std::string> names;
-  for (const ModelEntry& m : registered_models()) names.emplace_back(m.name);
   // Every glob must name a model; the sweep gets the trimmed list.
-  const std::vector<std::string> selected = select_by_globs(
-      o.models, "--models", names, fmt::format("model names: {}", fmt::join(names, ", ")));
+  const std::vector<std::string> selected = selected_models(o.models);
   const std::vector<std::string> globs = split_list(o.models, "--models", "");
   const int threads = resolve_threads(o.threads);
   check_output_dir(o.out, "--out");
@@ -119,7 +153,7 @@ experiments::SweepRunSummary run_sweep(const SweepRequest& o, const Shard* shard
     manifest.threads = threads;
     manifest.machine =
         fmt::format("{} hardware thread(s), {} used", std::thread::hardware_concurrency(), threads);
-    for (std::size_t i : shard_positions(selected.size(), *shard))
+    for (std::size_t i : cost_balanced_positions(sweep_model_costs(selected, quick), *shard))
       manifest.covered.push_back(selected[i]);
     if (manifest.covered.empty()) {
       fs::create_directories(o.out);
@@ -266,11 +300,15 @@ void add_sweep_command(CLI::App& app) {
   add_text_option(cmd, "--models", o->models,
                   "comma-separated globs over model names (see glintlab models)", "LIST");
   add_threads_option(cmd, o->threads);
+  add_bool_flag(cmd, "--list", o->list,
+                "print the models the run (with --shard: the shard) would sweep, each with its "
+                "measured cost; run nothing, write nothing");
   add_text_option(cmd, "--shard", o->shard,
-                  "K/N: run only the K-th of N shards of the selected models (every N-th model "
-                  "from the K-th, in glintlab models order, each with all its samplers) and write "
-                  "shard.json beside the maps; glintlab merge joins the N folders into the files "
-                  "of one run. 1 <= K <= N <= 10000",
+                  "K/N: run only the K-th of N shards of the selected models (each with all its "
+                  "samplers), balanced by each model's measured cost at the budget "
+                  "(cli/sweep_costs.cpp; --list prints the split), and write shard.json beside the "
+                  "maps; glintlab merge joins the N folders into the files of one run. "
+                  "1 <= K <= N <= 10000",
                   "K/N");
   set_footer(cmd, kFooter);
   set_callback(cmd, [cmd, o] { run(cmd, *o); });

@@ -79,6 +79,16 @@ TEST_F(CompareShardTest, MergedShardsAreThePageOfOneRun) {
       const auto m = nlohmann::json::parse(read_text(path(dir + "/shard.json")));
       EXPECT_EQ(m["command"], "compare");
       EXPECT_EQ(m["selection"], nlohmann::json({"smooth_ggx", "smooth_beckmann"}));
+      // The plan that --list --shard prints, running nothing, is what the shard ran.
+      const RunResult listed = run({"compare", "--list", "--models", "smooth_ggx,smooth_beckmann",
+                                    "--claims-from", "verify", "--budget", "quick", "--shard",
+                                    std::to_string(k) + "/" + std::to_string(n)});
+      ASSERT_EQ(listed.exit_code, 0) << listed.err;
+      std::vector<std::string> names;
+      std::istringstream lines(listed.out);
+      for (std::string line; std::getline(lines, line);)
+        if (!line.starts_with("shard ")) names.push_back(line.substr(0, line.find(' ')));
+      EXPECT_EQ(nlohmann::json(names), m["covered"]) << dir;
       merge.push_back(dir);
     }
     const std::string out = "merged" + std::to_string(n);

@@ -5,12 +5,16 @@
 // the models its manifest lists, is one error line naming it, and nothing is written.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <regex>
 #include <set>
+#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli/cli_test_util.h"
@@ -32,6 +36,29 @@ class SweepShardTest : public CliTest {
                                      "--threads", threads,    "--out", out};
     if (!shard.empty()) args.insert(args.end(), {"--shard", shard});
     return run(args);
+  }
+
+  // `sweep --list`: the models the run (or its shard) would sweep and their costs, in order.
+  std::vector<std::pair<std::string, double>> plan(const std::string& shard,
+                                                   const std::string& budget,
+                                                   const std::string& models = "*") const {
+    const RunResult r =
+        run({"sweep", "--list", "--models", models, "--budget", budget, "--shard", shard});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::vector<std::pair<std::string, double>> rows;
+    std::istringstream in(r.out);
+    for (std::string line; std::getline(in, line);) {
+      if (line.starts_with("shard ")) {
+        EXPECT_NE(line.find("measured at --budget " + budget), std::string::npos) << line;
+        continue;
+      }
+      std::istringstream words(line);
+      std::string model;
+      double seconds = -1;
+      words >> model >> seconds;
+      rows.emplace_back(model, seconds);
+    }
+    return rows;
   }
 };
 
@@ -60,6 +87,12 @@ TEST_F(SweepShardTest, MergedShardsAreTheFilesOfOneRun) {
         if (n == 2) {
           EXPECT_EQ(m["covered"].size(), 1u) << dir;
         }
+        // The plan that --list --shard prints, running nothing, is what the shard ran.
+        std::vector<std::string> listed;
+        for (const auto& [model, seconds] :
+             plan(std::to_string(k) + "/" + std::to_string(n), "quick", list))
+          listed.push_back(model);
+        EXPECT_EQ(nlohmann::json(listed), m["covered"]) << dir;
         merge.push_back(dir);
       }
       const std::string out = "merged" + tag + std::to_string(n);
@@ -83,6 +116,50 @@ TEST_F(SweepShardTest, MergedShardsAreTheFilesOfOneRun) {
                 read_text(path("one_/smooth_ggx/ndf/alpha_maps.csv")).size());
   // Three models in 4 shards: the 4th swept none and holds its manifest alone.
   EXPECT_TRUE(unexpected_files(path("s_4_4"), {"shard.json"}).empty());
+}
+
+// `sweep --list --shard K/N` prints the split without running it: every registered model has a
+// measured cost (cli/sweep_costs.cpp) at both budgets, and the shards are balanced by it: every
+// model in exactly one shard, the two costliest apart, the largest shard within the greedy bound
+// and below the every-N-th split's largest.
+TEST_F(SweepShardTest, ListShowsTheShardsBalancedByTheMeasuredCosts) {
+  for (const std::string budget : {"quick", "full"}) {
+    const auto all = plan("1/1", budget);
+    ASSERT_EQ(all.size(), 9u) << budget;  // the registered models, in glintlab models order
+    std::vector<double> costs;
+    for (const auto& [m, c] : all) costs.push_back(c);
+    // Each a measured row, not the mean a model without one gets.
+    const double mean = std::accumulate(costs.begin(), costs.end(), 0.0) / double(costs.size());
+    for (const auto& [m, c] : all) EXPECT_NE(c, mean) << m << " at " << budget;
+    const double total = std::accumulate(costs.begin(), costs.end(), 0.0);
+    std::vector<std::size_t> order(costs.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return costs[a] > costs[b];
+    });
+    const int n = 4;
+    double every_nth_largest = 0;
+    for (int k = 0; k < n; ++k) {
+      double sum = 0;
+      for (std::size_t i = std::size_t(k); i < costs.size(); i += n) sum += costs[i];
+      every_nth_largest = std::max(every_nth_largest, sum);
+    }
+    std::map<std::string, int> shard_of;
+    double largest = 0;
+    for (int k = 1; k <= n; ++k) {
+      double sum = 0;
+      for (const auto& [m, c] : plan(std::to_string(k) + "/" + std::to_string(n), budget)) {
+        EXPECT_TRUE(shard_of.emplace(m, k).second) << m << " is in two shards";
+        sum += c;
+      }
+      largest = std::max(largest, sum);
+    }
+    EXPECT_EQ(shard_of.size(), all.size()) << budget;
+    EXPECT_NE(shard_of[all[order[0]].first], shard_of[all[order[1]].first]) << budget;
+    EXPECT_LE(largest, total / n + (1 - 1.0 / n) * costs[order[0]] + 0.5) << budget;
+    EXPECT_LT(largest, every_nth_largest) << budget;
+  }
+  EXPECT_EQ(unexpected_files(work(), {}), std::vector<std::string>{});
 }
 
 TEST_F(SweepShardTest, MissingRepeatedOrForeignShardsAreErrorsAndWriteNothing) {
