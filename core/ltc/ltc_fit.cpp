@@ -60,32 +60,88 @@ double target_norm(LtcTarget target, double alpha, double theta_o) {
   return target == LtcTarget::kBrdf ? ggx_ltc_albedo(alpha, c).albedo : ggx_d_pr(alpha, c);
 }
 
-// ∫ |f̂ − D_ltc|^power dω by the balance heuristic over both samplers' midpoint grids.
-double mis_distance(LtcTarget target, double alpha, double theta_o, double norm,
-                    const LtcCoefficients& c, int samples, double power) {
-  const GGX<double> ggx{alpha, alpha};
-  const V wo = view_dir(theta_o);
-  const LtcLobe<double> lobe = lobe_of(c);
-  const double inv_norm = norm > 0 ? 1.0 / norm : 0.0;
-  const auto term = [&](double f, double g, double pf) {
-    const double p = pf + g;
-    const double d = std::abs(f - g);
-    return p > 0 ? (power == 3 ? d * d * d : d) / p : 0.0;
-  };
-  double sum = 0;
+// The parts of the MIS estimator that do not depend on the lobe, computed once per fitted entry
+// (Nelder–Mead evaluates the objective hundreds of times for one entry): the target sampler's
+// points with their densities and target values, and the cosine directions the lobe's sampler
+// maps. Every value is computed by the same expressions as before the split, so the sums, and
+// the fitted tables, are bit for bit those of evaluating everything per call.
+struct MisGrid {
+  LtcTarget target;
+  double alpha;
+  GGX<double> ggx;
+  V wo;
+  double inv_norm;
+  int samples;
+  // Per midpoint (a, b), a-major: the clamped-cosine direction before M (ltc_sample's first half).
+  std::vector<V> cosine_dir;
+  // The target sampler's direction, density, value · inv_norm, and whether it counts (pdf > 0
+  // and finite).
+  std::vector<V> target_dir;
+  std::vector<double> target_pdf_at, target_value_at, target_raw_value;
+  std::vector<unsigned char> target_counts;
+};
+
+MisGrid make_mis_grid(LtcTarget target, double alpha, double theta_o, double norm, int samples) {
+  MisGrid g{target, alpha, GGX<double>{alpha, alpha}, view_dir(theta_o),
+            norm > 0 ? 1.0 / norm : 0.0, samples, {}, {}, {}, {}, {}, {}};
+  const std::size_t count = std::size_t(samples) * samples;
+  g.cosine_dir.resize(count), g.target_dir.resize(count), g.target_pdf_at.resize(count);
+  g.target_value_at.resize(count), g.target_raw_value.resize(count), g.target_counts.resize(count);
   for (int a = 0; a < samples; ++a)
     for (int b = 0; b < samples; ++b) {
+      const std::size_t k = std::size_t(a) * samples + b;
       const Vec2<double> u{(a + 0.5) / samples, (b + 0.5) / samples};
-      const LtcSample<double> s = ltc_sample(lobe, u);
-      if (s.pdf > 0)
-        sum += term(ltc_target_value(target, alpha, wo, s.dir) * inv_norm, s.pdf,
-                    target_pdf(target, ggx, wo, s.dir));
-      const TargetSample t = sample_target(target, ggx, wo, u);
-      if (t.pdf > 0 && std::isfinite(t.pdf))
-        sum += term(ltc_target_value(target, alpha, wo, t.dir) * inv_norm, ltc_density(lobe, t.dir),
-                    t.pdf);
+      // ltc_sample's cosine-distributed direction (Malley's method), as core/ltc/ltc.h forms it.
+      double s, c;
+      sincos(2 * kPiD * u.y, &s, &c);
+      const double r = sqrt(u.x);
+      g.cosine_dir[k] = V{r * c, r * s, safe_sqrt(1.0 - u.x)};
+      const TargetSample t = sample_target(target, g.ggx, g.wo, u);
+      g.target_dir[k] = t.dir;
+      g.target_pdf_at[k] = t.pdf;
+      g.target_counts[k] = t.pdf > 0 && std::isfinite(t.pdf);
+      g.target_raw_value[k] = ltc_target_value(target, alpha, g.wo, t.dir);
+      g.target_value_at[k] = g.target_raw_value[k] * g.inv_norm;
     }
-  return sum / (double(samples) * samples);
+  return g;
+}
+
+// ltc_sample (core/ltc/ltc.h) from its precomputed cosine direction: ω = Mω_o/|Mω_o| and its
+// density, the same operations in the same order.
+LtcSample<double> ltc_sample_from_cosine(const LtcLobe<double>& lobe, V cosine_dir) {
+  const V v = ltc_mul(lobe.m, cosine_dir);
+  const double l2 = dot(v, v);
+  const V w = rsqrt(select(l2 > 0.0, l2, 1.0)) * v;
+  return {w, ltc_density(lobe, w)};
+}
+
+// ∫ |f̂ − D_ltc|^power dω by the balance heuristic over both samplers' midpoint grids.
+template <int kPower>
+double mis_distance(const MisGrid& g, const LtcCoefficients& c) {
+  const LtcLobe<double> lobe = lobe_of(c);
+  const auto term = [](double f, double density, double pf) {
+    const double p = pf + density;
+    const double d = std::abs(f - density);
+    return p > 0 ? (kPower == 3 ? d * d * d : d) / p : 0.0;
+  };
+  const int n = g.samples;
+  double sum = 0;
+  // The order of the additions is the (a, b) order, lobe sample then target sample.
+  for (std::size_t k = 0; k < std::size_t(n) * n; ++k) {
+    const LtcSample<double> s = ltc_sample_from_cosine(lobe, g.cosine_dir[k]);
+    if (s.pdf > 0)
+      sum += term(ltc_target_value(g.target, g.alpha, g.wo, s.dir) * g.inv_norm, s.pdf,
+                  target_pdf(g.target, g.ggx, g.wo, s.dir));
+    if (g.target_counts[k])
+      sum += term(g.target_value_at[k], ltc_density(lobe, g.target_dir[k]), g.target_pdf_at[k]);
+  }
+  return sum / (double(n) * n);
+}
+
+double mis_distance(LtcTarget target, double alpha, double theta_o, double norm,
+                    const LtcCoefficients& c, int samples, int power) {
+  const MisGrid g = make_mis_grid(target, alpha, theta_o, norm, samples);
+  return power == 3 ? mis_distance<3>(g, c) : mis_distance<1>(g, c);
 }
 
 // Nelder–Mead (Nelder & Mead 1965; reflection 1, expansion 2, contraction 1/2, shrink 1/2) over
@@ -94,8 +150,9 @@ template <class F>
 std::array<double, 4> nelder_mead(F&& f, std::array<double, 4> x0, int dim,
                                   const std::array<double, 4>& step, int max_evaluations,
                                   double* best_value, int* evaluations) {
-  std::vector<std::array<double, 4>> x(dim + 1, x0);
-  std::vector<double> fx(dim + 1);
+  std::array<std::array<double, 4>, 5> x;
+  x.fill(x0);
+  std::array<double, 5> fx{};
   for (int k = 0; k < dim; ++k) x[k + 1][k] += step[k];
   int evals = 0;
   const auto eval = [&](const std::array<double, 4>& p) {
@@ -104,9 +161,9 @@ std::array<double, 4> nelder_mead(F&& f, std::array<double, 4> x0, int dim,
   };
   for (int k = 0; k <= dim; ++k) fx[k] = eval(x[k]);
   while (evals < max_evaluations) {
-    std::vector<int> order(dim + 1);
-    for (int k = 0; k <= dim; ++k) order[k] = k;
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return fx[a] < fx[b]; });
+    std::array<int, 5> order{0, 1, 2, 3, 4};
+    std::stable_sort(order.begin(), order.begin() + dim + 1,
+                     [&](int a, int b) { return fx[a] < fx[b]; });
     const int best = order[0], worst = order[dim], second = order[dim - 1];
     // Converged: the values agree to 1e-7 relative and the simplex is small.
     double size = 0;
@@ -248,18 +305,13 @@ namespace {
 
 // The target's mean direction E_f̂[ω] by its own sampler (Heitz et al. 2016 Sec. 4: the lobe's
 // frame), kept in the xz-plane by symmetry; the normal at normal incidence.
-V target_mean_direction(LtcTarget target, double alpha, double theta_o, int samples) {
+V target_mean_direction(const MisGrid& g, double theta_o) {
   if (theta_o <= 0) return {0, 0, 1};
-  const GGX<double> ggx{alpha, alpha};
-  const V wo = view_dir(theta_o);
   V sum{0, 0, 0};
-  for (int a = 0; a < samples; ++a)
-    for (int b = 0; b < samples; ++b) {
-      const TargetSample t =
-          sample_target(target, ggx, wo, Vec2<double>{(a + 0.5) / samples, (b + 0.5) / samples});
-      if (!(t.pdf > 0) || !std::isfinite(t.pdf)) continue;
-      sum = sum + (ltc_target_value(target, alpha, wo, t.dir) / t.pdf) * t.dir;
-    }
+  for (std::size_t k = 0; k < g.target_dir.size(); ++k) {
+    if (!g.target_counts[k]) continue;
+    sum = sum + (g.target_raw_value[k] / g.target_pdf_at[k]) * g.target_dir[k];
+  }
   sum.y = 0;
   return length(sum) > 0 ? normalize(sum) : V{0, 0, 1};
 }
@@ -278,7 +330,8 @@ LtcCoefficients coefficients_of(const LtcFitParameters& p, V z) {
 LtcFitResult fit_with_norm(LtcTarget target, double alpha, double theta_o, double norm,
                            const LtcFitParameters& warm, int samples) {
   const bool normal_incidence = theta_o <= 0;
-  const V z = target_mean_direction(target, alpha, theta_o, samples);
+  const MisGrid grid = make_mis_grid(target, alpha, theta_o, norm, samples);
+  const V z = target_mean_direction(grid, theta_o);
   // Logarithms of the scales, so one simplex step fits every α.
   const auto params = [&](const std::array<double, 4>& x) {
     if (normal_incidence) return LtcFitParameters{std::exp(x[0]), std::exp(x[0]), 0.0, 0.0};
@@ -289,7 +342,7 @@ LtcFitResult fit_with_norm(LtcTarget target, double alpha, double theta_o, doubl
     // det K > 0: the other sign is the same family mirrored.
     if (!(p.m11 - p.m13 * p.m31 > 0)) return 1e300;
     const LtcCoefficients c = coefficients_of(p, z);
-    const double value = mis_distance(target, alpha, theta_o, norm, c, samples, 3);
+    const double value = mis_distance<3>(grid, c);
     return std::isfinite(value) ? value : 1e300;
   };
   const std::array<double, 4> x0{std::log(warm.m11), std::log(warm.m22), warm.m13 / warm.m11,
