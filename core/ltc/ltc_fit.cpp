@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -51,10 +52,6 @@ TargetSample sample_target(LtcTarget target, const GGX<double>& ggx, V wo, Vec2<
   return {wi, pdf_walter(ggx, wo, wi)};
 }
 
-double target_pdf(LtcTarget target, const GGX<double>& ggx, V wo, V wi) {
-  return target == LtcTarget::kBrdf ? pdf_heitz_vndf(ggx, wo, wi) : pdf_walter(ggx, wo, wi);
-}
-
 double target_norm(LtcTarget target, double alpha, double theta_o) {
   const double c = std::cos(theta_o);
   return target == LtcTarget::kBrdf ? ggx_ltc_albedo(alpha, c).albedo : ggx_d_pr(alpha, c);
@@ -72,6 +69,8 @@ struct MisGrid {
   V wo;
   double inv_norm;
   int samples;
+  // The view's terms of the BRDF and of its VNDF density: Λ(ω_o) and A(ω_o).
+  double lambda_wo, view_area;
   // Per midpoint (a, b), a-major: the clamped-cosine direction before M (ltc_sample's first half).
   std::vector<V> cosine_dir;
   // The target sampler's direction, density, value · inv_norm, and whether it counts (pdf > 0
@@ -83,7 +82,9 @@ struct MisGrid {
 
 MisGrid make_mis_grid(LtcTarget target, double alpha, double theta_o, double norm, int samples) {
   MisGrid g{target, alpha, GGX<double>{alpha, alpha}, view_dir(theta_o),
-            norm > 0 ? 1.0 / norm : 0.0, samples, {}, {}, {}, {}, {}, {}};
+            norm > 0 ? 1.0 / norm : 0.0, samples, 0.0, 0.0, {}, {}, {}, {}, {}, {}};
+  g.lambda_wo = g.ggx.lambda(g.wo);
+  g.view_area = g.ggx.projected_area(g.wo);
   const std::size_t count = std::size_t(samples) * samples;
   g.cosine_dir.resize(count), g.target_dir.resize(count), g.target_pdf_at.resize(count);
   g.target_value_at.resize(count), g.target_raw_value.resize(count), g.target_counts.resize(count);
@@ -115,6 +116,41 @@ LtcSample<double> ltc_sample_from_cosine(const LtcLobe<double>& lobe, V cosine_d
   return {w, ltc_density(lobe, w)};
 }
 
+// The target's value and its sampler's density at ω_i, as ltc_target_value and target_pdf give
+// them, with what the two share computed once: the half vector (ω_i + ω_o or ω_o + ω_i, the same
+// sums) normalized by 1/√l2 in both, and D of it; the view's Λ and A from the grid.
+struct TargetAt {
+  double value, pdf;
+};
+
+TargetAt target_at(const MisGrid& g, V wi) {
+  const V sum = wi + g.wo;
+  const double l2 = dot(sum, sum);
+  const bool above = wi.z > 0 && g.wo.z > 0;
+  if (g.target == LtcTarget::kBrdf) {
+    // microfacet_brdf's half_vector and pdf_vndf_reflection's D(h)/(4 A(ω_o)) (core/samplers).
+    const V h = (l2 > 0 ? rsqrt(l2) : 0.0) * sum;
+    const double d = g.ggx.D(h);
+    const double pdf = g.view_area > 0 ? d / (4.0 * g.view_area) : 0.0;
+    if (!above) return {0.0, pdf};
+    // Height-correlated G2 (Heitz 2014 Eq. 99) and F G2 D/(4 ω_i.z ω_o.z) · ω_i.z with F = 1.
+    const bool visible = dot(wi, h) > 0 && dot(g.wo, h) > 0;
+    const double g2 = visible ? 1.0 / (1.0 + g.ggx.lambda(wi) + g.lambda_wo) : 0.0;
+    const double denom = 4.0 * (wi.z * g.wo.z);
+    return {1.0 * g2 * d / denom * wi.z, pdf};
+  }
+  // pdf_walter's D(h⁺) h⁺.z/(2|ω_o + ω_i|); above the horizon h⁺ is the half vector itself.
+  const bool nonzero = l2 > 0;
+  const double len = sqrt(nonzero ? l2 : 1.0);
+  const V h = (1.0 / len) * sum;
+  const V hp = h.z < 0 ? -h : h;
+  const double d = g.ggx.D(hp);
+  const double pdf = nonzero ? d * hp.z / (2.0 * len) : 0.0;
+  if (!above) return {0.0, pdf};
+  const double c = dot(h, wi);
+  return {c > 0 ? d / (4 * c) : 0.0, pdf};
+}
+
 // ∫ |f̂ − D_ltc|^power dω by the balance heuristic over both samplers' midpoint grids.
 template <int kPower>
 double mis_distance(const MisGrid& g, const LtcCoefficients& c) {
@@ -129,9 +165,10 @@ double mis_distance(const MisGrid& g, const LtcCoefficients& c) {
   // The order of the additions is the (a, b) order, lobe sample then target sample.
   for (std::size_t k = 0; k < std::size_t(n) * n; ++k) {
     const LtcSample<double> s = ltc_sample_from_cosine(lobe, g.cosine_dir[k]);
-    if (s.pdf > 0)
-      sum += term(ltc_target_value(g.target, g.alpha, g.wo, s.dir) * g.inv_norm, s.pdf,
-                  target_pdf(g.target, g.ggx, g.wo, s.dir));
+    if (s.pdf > 0) {
+      const TargetAt t = target_at(g, s.dir);
+      sum += term(t.value * g.inv_norm, s.pdf, t.pdf);
+    }
     if (g.target_counts[k])
       sum += term(g.target_value_at[k], ltc_density(lobe, g.target_dir[k]), g.target_pdf_at[k]);
   }
@@ -411,35 +448,50 @@ LtcTables fit_ltc_tables(const LtcFitOptions& o) {
       }
       report();
     });
-    for (const LtcTarget target : {LtcTarget::kBrdf, LtcTarget::kNdf}) {
-      std::vector<LtcCoefficients>& lobes = target == LtcTarget::kBrdf ? t.brdf : t.ndf;
-      std::vector<LtcFitParameters>& params =
-          target == LtcTarget::kBrdf ? t.brdf_params : t.ndf_params;
-      std::vector<double>& error = target == LtcTarget::kBrdf ? t.brdf_error : t.ndf_error;
-      const std::vector<double>& norm = target == LtcTarget::kBrdf ? t.albedo : t.d_pr;
-      // θ_o = 0 column, roughest first, from the clamped cosine (α = 1 at normal incidence).
+    struct TargetTables {
+      LtcTarget target;
+      std::vector<LtcCoefficients>& lobes;
+      std::vector<LtcFitParameters>& params;
+      std::vector<double>& error;
+      const std::vector<double>& norm;
+    };
+    const std::array<TargetTables, 2> targets{
+        TargetTables{LtcTarget::kBrdf, t.brdf, t.brdf_params, t.brdf_error, t.albedo},
+        TargetTables{LtcTarget::kNdf, t.ndf, t.ndf_params, t.ndf_error, t.d_pr}};
+    // θ_o = 0 column of each target, roughest first, from the clamped cosine (α = 1 at normal
+    // incidence): a chain, so the two targets' columns run side by side.
+    const auto fit_column = [&](const TargetTables& f) {
       LtcFitParameters warm{1, 1, 0, 0};
       for (int i = n - 1; i >= 0; --i) {
         const std::size_t k = std::size_t(i) * n;
-        const LtcFitResult r =
-            fit_with_norm(target, ltc_node_alpha(i, n), 0.0, norm[k], as_written(warm), o.samples);
-        lobes[k] = r.coefficients, params[k] = warm = r.parameters;
+        const LtcFitResult r = fit_with_norm(f.target, ltc_node_alpha(i, n), 0.0, f.norm[k],
+                                             as_written(warm), o.samples);
+        f.lobes[k] = r.coefficients, f.params[k] = warm = r.parameters;
       }
-      tbb::parallel_for(0, n, [&](int i) {
-        const double a = ltc_node_alpha(i, n);
-        for (int j = 1; j < n; ++j) {
-          const std::size_t k = std::size_t(i) * n + j;
-          const LtcFitResult r = fit_with_norm(target, a, ltc_node_theta(j, n), norm[k],
-                                               as_written(params[k - 1]), o.samples);
-          lobes[k] = r.coefficients, params[k] = r.parameters;
-        }
-        for (int j = 0; j < n; ++j) {
-          const std::size_t k = std::size_t(i) * n + j;
-          error[k] = mis_distance(target, a, ltc_node_theta(j, n), norm[k], lobes[k], 64, 1);
-        }
-        report();
-      });
-    }
+    };
+    tbb::parallel_invoke([&] { fit_column(targets[0]); }, [&] { fit_column(targets[1]); });
+    // Then every row of both targets, one task each (2N tasks of unequal cost: one pool, so a
+    // thread that finishes a cheap row takes the next one of either target).
+    tbb::parallel_for(
+        0, 2 * n,
+        [&](int task) {
+          const TargetTables& f = targets[task / n];
+          const int i = task % n;
+          const double a = ltc_node_alpha(i, n);
+          for (int j = 1; j < n; ++j) {
+            const std::size_t k = std::size_t(i) * n + j;
+            const LtcFitResult r = fit_with_norm(f.target, a, ltc_node_theta(j, n), f.norm[k],
+                                                 as_written(f.params[k - 1]), o.samples);
+            f.lobes[k] = r.coefficients, f.params[k] = r.parameters;
+          }
+          for (int j = 0; j < n; ++j) {
+            const std::size_t k = std::size_t(i) * n + j;
+            f.error[k] =
+                mis_distance(f.target, a, ltc_node_theta(j, n), f.norm[k], f.lobes[k], 64, 1);
+          }
+          report();
+        },
+        tbb::simple_partitioner{});
   });
   return t;
 }
