@@ -20,6 +20,7 @@
 #include "core/parameter_check.h"
 #include "core/samplers/heitz_vndf.h"
 #include "core/samplers/walter.h"
+#include "core/simd/batch.h"
 
 namespace glintlab {
 namespace {
@@ -109,7 +110,7 @@ MisGrid make_mis_grid(LtcTarget target, double alpha, double theta_o, double nor
 
 // ltc_sample (core/ltc/ltc.h) from its precomputed cosine direction: ω = Mω_o/|Mω_o| and its
 // density, the same operations in the same order.
-LtcSample<double> ltc_sample_from_cosine(const LtcLobe<double>& lobe, V cosine_dir) {
+GLINTLAB_INLINE LtcSample<double> ltc_sample_from_cosine(const LtcLobe<double>& lobe, V cosine_dir) {
   const V v = ltc_mul(lobe.m, cosine_dir);
   const double l2 = dot(v, v);
   const V w = rsqrt(select(l2 > 0.0, l2, 1.0)) * v;
@@ -123,7 +124,7 @@ struct TargetAt {
   double value, pdf;
 };
 
-TargetAt target_at(const MisGrid& g, V wi) {
+GLINTLAB_INLINE TargetAt target_at(const MisGrid& g, V wi) {
   const V sum = wi + g.wo;
   const double l2 = dot(sum, sum);
   const bool above = wi.z > 0 && g.wo.z > 0;
@@ -153,7 +154,7 @@ TargetAt target_at(const MisGrid& g, V wi) {
 
 // ∫ |f̂ − D_ltc|^power dω by the balance heuristic over both samplers' midpoint grids.
 template <int kPower>
-double mis_distance(const MisGrid& g, const LtcCoefficients& c) {
+GLINTLAB_INLINE double mis_distance_body(const MisGrid& g, const LtcCoefficients& c) {
   const LtcLobe<double> lobe = lobe_of(c);
   const auto term = [](double f, double density, double pf) {
     const double p = pf + density;
@@ -173,6 +174,20 @@ double mis_distance(const MisGrid& g, const LtcCoefficients& c) {
       sum += term(g.target_value_at[k], ltc_density(lobe, g.target_dir[k]), g.target_pdf_at[k]);
   }
   return sum / (double(n) * n);
+}
+
+// The same loop compiled for FMA3: the LTC matrix products' std::fma is a libm call on baseline
+// x86-64 and one instruction here, correctly rounded either way, so the sums are the same bits
+// (nothing else is fused: the library builds with contraction off).
+template <int kPower>
+[[gnu::target("avx2,fma")]] double mis_distance_fma3(const MisGrid& g, const LtcCoefficients& c) {
+  return mis_distance_body<kPower>(g, c);
+}
+
+template <int kPower>
+double mis_distance(const MisGrid& g, const LtcCoefficients& c) {
+  static const bool fma3 = simd::isa_supported(simd::Isa::kAvx2);
+  return fma3 ? mis_distance_fma3<kPower>(g, c) : mis_distance_body<kPower>(g, c);
 }
 
 double mis_distance(LtcTarget target, double alpha, double theta_o, double norm,
@@ -288,7 +303,9 @@ double ltc_target_value(LtcTarget target, double alpha, V wo, V wi) {
   return c > 0 ? ggx.D(h) / (4 * c) : 0.0;
 }
 
-LtcAlbedo ggx_ltc_albedo(double alpha, double cos_theta_o, int grid) {
+namespace {
+
+GLINTLAB_INLINE LtcAlbedo ggx_ltc_albedo_body(double alpha, double cos_theta_o, int grid) {
   const GGX<double> ggx{alpha, alpha};
   const double c = std::clamp(cos_theta_o, 0.0, 1.0);
   const V wo{std::sqrt(1 - c * c), 0.0, c};
@@ -303,6 +320,21 @@ LtcAlbedo ggx_ltc_albedo(double alpha, double cos_theta_o, int grid) {
     }
   const double n = double(grid) * grid;
   return {albedo / n, fresnel / n};
+}
+
+// FMA3 build of the same loop (the sampler's and the dot products' std::fma in one instruction;
+// see mis_distance_fma3).
+[[gnu::target("avx2,fma")]] LtcAlbedo ggx_ltc_albedo_fma3(double alpha, double cos_theta_o,
+                                                         int grid) {
+  return ggx_ltc_albedo_body(alpha, cos_theta_o, grid);
+}
+
+}  // namespace
+
+LtcAlbedo ggx_ltc_albedo(double alpha, double cos_theta_o, int grid) {
+  static const bool fma3 = simd::isa_supported(simd::Isa::kAvx2);
+  return fma3 ? ggx_ltc_albedo_fma3(alpha, cos_theta_o, grid)
+              : ggx_ltc_albedo_body(alpha, cos_theta_o, grid);
 }
 
 double ggx_d_pr(double alpha, double cos_theta_o, double tolerance) {
