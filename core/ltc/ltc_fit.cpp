@@ -61,8 +61,8 @@ double target_norm(LtcTarget target, double alpha, double theta_o) {
 // The parts of the MIS estimator that do not depend on the lobe, computed once per fitted entry
 // (Nelder–Mead evaluates the objective hundreds of times for one entry): the target sampler's
 // points with their densities and target values, and the cosine directions the lobe's sampler
-// maps. Every value is computed by the same expressions as before the split, so the sums, and
-// the fitted tables, are bit for bit those of evaluating everything per call.
+// maps. Every value comes from the same expressions as when everything is evaluated per call, so
+// the sums, and the fitted tables, are the same bits.
 struct MisGrid {
   LtcTarget target;
   double alpha;
@@ -117,8 +117,8 @@ GLINTLAB_INLINE LtcSample<double> ltc_sample_from_cosine(const LtcLobe<double>& 
   return {w, ltc_density(lobe, w)};
 }
 
-// The target's value and its sampler's density at ω_i, as ltc_target_value and target_pdf give
-// them, with what the two share computed once: the half vector (ω_i + ω_o or ω_o + ω_i, the same
+// The target's value and its sampler's density at ω_i, as ltc_target_value and pdf_heitz_vndf /
+// pdf_walter give them, with what the two share computed once: the half vector (ω_i + ω_o or ω_o + ω_i, the same
 // sums) normalized by 1/√l2 in both, and D of it; the view's Λ and A from the grid.
 struct TargetAt {
   double value, pdf;
@@ -178,7 +178,7 @@ GLINTLAB_INLINE double mis_distance_body(const MisGrid& g, const LtcCoefficients
 
 // The same loop compiled for FMA3: the LTC matrix products' std::fma is a libm call on baseline
 // x86-64 and one instruction here, correctly rounded either way, so the sums are the same bits
-// (nothing else is fused: the library builds with contraction off).
+// (nothing else is fused: core/CMakeLists.txt builds this file with -ffp-contract=off).
 template <int kPower>
 [[gnu::target("avx2,fma")]] double mis_distance_fma3(const MisGrid& g, const LtcCoefficients& c) {
   return mis_distance_body<kPower>(g, c);
