@@ -74,8 +74,9 @@ struct LtcFitOptions {
 
 // Every table: per target, the θ_o = 0 column is fitted from the roughest entry (identity start)
 // down to the smoothest, each from the previous one; then each roughness row from θ_o = 0 upwards,
-// each entry from its neighbour at the previous θ_o (Heitz et al. 2016's warm starts). Rows run
-// in parallel; every entry depends only on its fixed predecessor, so threads do not change it.
+// each entry from its neighbour at the previous θ_o (Heitz et al. 2016's warm starts). The two
+// targets' columns run side by side, then the rows of both in one pool; every entry depends only
+// on its fixed predecessor, so threads do not change it.
 LtcTables fit_ltc_tables(const LtcFitOptions& options);
 
 }  // namespace glintlab

@@ -1,9 +1,11 @@
 // `glintlab ltc-fit` (cli/ltc_fit.cpp): a tiny table is written with the documented columns and
-// matches a second run with another thread count; bad sizes, threads and sample counts get one
-// line, exit 2 and no output.
+// matches a second run with another thread count, and one on the baseline (non-FMA3) path;
+// bad sizes, threads and sample counts get one line, exit 2 and no output.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <string>
 
 #include "cli/cli_test_util.h"
@@ -30,6 +32,33 @@ TEST_F(LtcFitCliTest, WritesBothTablesIdenticallyForAnyThreadCount) {
     EXPECT_NE(a.find("sqrt_alpha,theta_o,m00,m02,m20,m22,"), std::string::npos) << f;
     EXPECT_EQ(a, slurp(work() / "b" / f)) << f;
   }
+}
+
+// Sets GLINTLAB_MAX_ISA for a scope (the child processes inherit it), restoring its old value.
+struct MaxIsaGuard {
+  explicit MaxIsaGuard(const char* value) {
+    if (const char* old = std::getenv("GLINTLAB_MAX_ISA")) old_ = old;
+    setenv("GLINTLAB_MAX_ISA", value, 1);
+  }
+  ~MaxIsaGuard() {
+    if (old_)
+      setenv("GLINTLAB_MAX_ISA", old_->c_str(), 1);
+    else
+      unsetenv("GLINTLAB_MAX_ISA");
+  }
+  std::optional<std::string> old_;
+};
+
+// The objective and the albedo cubature also run compiled for FMA3 where the CPU has it; the
+// baseline build of the same loops (GLINTLAB_MAX_ISA=scalar) writes the same bytes.
+TEST_F(LtcFitCliTest, FmaPathWritesTheBaselinePathsBytes) {
+  ASSERT_EQ(run({"ltc-fit", "--size", "3", "--samples", "8", "--out", "fast"}).exit_code, 0);
+  {
+    const MaxIsaGuard scalar("scalar");
+    ASSERT_EQ(run({"ltc-fit", "--size", "3", "--samples", "8", "--out", "base"}).exit_code, 0);
+  }
+  for (const char* f : {"ggx_brdf.csv", "ggx_ndf.csv"})
+    EXPECT_EQ(slurp(work() / "fast" / f), slurp(work() / "base" / f)) << f;
 }
 
 TEST_F(LtcFitCliTest, BadOptionsAreOneLineErrors) {
