@@ -29,6 +29,7 @@
 
 #include "core/glints/kemppinen_compensation.h"
 #include "core/glints/kemppinen_grid.h"
+#include "core/glints/kemppinen_lanes.h"
 #include "core/maps/beckmann_map.h"
 #include "core/maps/disk_square.h"
 #include "core/maps/ggx_map.h"
@@ -217,13 +218,13 @@ GLINTLAB_FN Angular<T> angular(const Params<T>& p, const Ndf& ndf, Vec3<T> h) {
 
 // 2^l per lane: the angular cells per axis at level l (Alg. 1 lines 9–10).
 template <class T>
-GLINTLAB_FN LaneInt<T> level_cells(const LaneInt<T, int>& level) {
+GLINTLAB_INLINE LaneInt<T> level_cells(const LaneInt<T, int>& level) {
   return int_lanes<T>([&](std::size_t l) { return std::int64_t(1) << lane(level, l); });
 }
 
 // Cell side of the angular grid and of the spatial grid at level l (Alg. 1 lines 9–10).
 template <class T>
-GLINTLAB_FN T angular_resolution(const LaneInt<T, int>& level) {
+GLINTLAB_INLINE T angular_resolution(const LaneInt<T, int>& level) {
   return int_to_float<T>(level_cells<T>(level));
 }
 
@@ -255,6 +256,8 @@ GLINTLAB_FN void level(const Params<T>& p, const Angular<T>& ang, Vec2<T> x_s,
   const Mask<T> finite_factors = (spatial_lobe.peak - spatial_lobe.peak == T(0)) &&
                                  (angular_lobe.peak - angular_lobe.peak == T(0)) &&
                                  (inv_rho - inv_rho == T(0));
+  // The uniforms of a point share the seed's and the cell's hash steps (kemppinen_lanes.h).
+  const std::uint64_t seed_key = cell_seed_key(p.seed);
   for (int i = 0; i < n; ++i) {
     const LaneInt<T> sx = sx0 + i;
     const LaneInt<T, std::uint64_t> hash_i = cell_chain_sx_lanes<T>(sx);
@@ -266,21 +269,21 @@ GLINTLAB_FN void level(const Params<T>& p, const Angular<T>& ang, Vec2<T> x_s,
         const LaneInt<T, std::uint64_t> hash_ija = cell_chain_ax_lanes<T>(hash_ij, ax);
         for (int b = 0; b < n; ++b) {
           const LaneInt<T> ay = ay0 + b;
-          const LaneInt<T, std::uint64_t> ci =
-              cell_chain_ay_level_lanes<T>(hash_ija, ay, level, process);
+          const LaneInt<T, std::uint64_t> key =
+              cell_key<T>(seed_key, cell_chain_ay_level_vector<T>(hash_ija, ay, level, process));
           const Mask<T> in_square = mask_lanes<T>([&](std::size_t l) {
             return lane(ax, l) >= 0 && lane(ax, l) < lane(n_a, l) && lane(ay, l) >= 0 &&
                    lane(ay, l) < lane(n_a, l);
           });
           const Vec2<T> g_s{
-              (int_to_float<T>(sx) + cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialX)) / res_s,
-              (int_to_float<T>(sy) + cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialY)) / res_s};
+              (int_to_float<T>(sx) + key_uniform<T>(key, kKemppinenDimSpatialX)) / res_s,
+              (int_to_float<T>(sy) + key_uniform<T>(key, kKemppinenDimSpatialY)) / res_s};
           const Vec2<T> g_a{
-              (int_to_float<T>(ax) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) / res_a,
-              (int_to_float<T>(ay) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) / res_a};
+              (int_to_float<T>(ax) + key_uniform<T>(key, kKemppinenDimAngularX)) / res_a,
+              (int_to_float<T>(ay) + key_uniform<T>(key, kKemppinenDimAngularY)) / res_a};
           // Points outside U_Ω are rejected (Sec. 3.3.1).
           const Mask<T> in_disk = sqr(g_a.x - T(0.5)) + sqr(g_a.y - T(0.5)) <= T(0.25);
-          const T r = cell_uniform<T>(p.seed, ci, kKemppinenDimRoulette);
+          const T r = key_uniform<T>(key, kKemppinenDimRoulette);
           const T blend = p.blend == Blend::kRoulette ? roulette(r, w_l) : w_l;
           const T q_s = normal2_quadratic(spatial_lobe, x_s - g_s);
           const T q_a = normal2_quadratic(angular_lobe, ang.x_a - g_a);
@@ -290,7 +293,7 @@ GLINTLAB_FN void level(const Params<T>& p, const Angular<T>& ang, Vec2<T> x_s,
           if (any_lane<T>(!adds_zero))  // uniform: some lane's point has weight
             w = blend * (exp(T(-0.5) * q_s) * spatial_lobe.peak) *
                 (exp(T(-0.5) * q_a) * angular_lobe.peak) * inv_rho;
-          const Vec3<T> col = color(p.colors, cell_uniform<T>(p.seed, ci, kKemppinenDimColor));
+          const Vec3<T> col = color(p.colors, key_uniform<T>(key, kKemppinenDimColor));
           explicit_sum = explicit_sum + select(in_disk && in_square, w, T(0)) * col;
         }
       }

@@ -31,7 +31,7 @@ GLINTLAB_FN T erf_rational(T x) {
 }
 
 template <class T>
-GLINTLAB_FN T erf_variant(T x, Erf variant) {
+GLINTLAB_INLINE T erf_variant(T x, Erf variant) {
   return variant == Erf::kExact ? erf(x) : erf_rational(x);
 }
 

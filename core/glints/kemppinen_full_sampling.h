@@ -34,7 +34,9 @@
 // early-outs, never per-lane branches). For double the results are those of the scalar code.
 #pragma once
 
+#include <bit>
 #include <cstdint>
+#include <type_traits>
 
 #include "core/glints/kemppinen.h"
 #include "core/glints/kemppinen_sampling.h"
@@ -47,38 +49,125 @@ namespace glintlab::kemppinen2025 {
 inline constexpr double kMixtureMin = 0.1;
 inline constexpr double kMixtureMax = 0.9;
 
+// One grid point (fi, fj) ∈ {0…3}² of level_explicit_share at `level`: its lobe's mass inside B(k)
+// (`near`) and in □ (`whole`), x_a = (c + (fi + ½)/4, c + (fj + ½)/4)/res_a.
+template <class T>
+struct ShareTerms {
+  T near, whole;
+};
+
+template <class Ndf, class T>
+GLINTLAB_FN ShareTerms<T> level_share_terms(const Params<T>& p, const Ndf& ndf,
+                                            const LaneInt<T, int>& level, T fi, T fj) {
+  const LaneInt<T> n_a = level_cells<T>(level);
+  const T res_a = angular_resolution<T>(level);
+  const T c = max(floor(res_a * T(0.5)) - T(1), T(0));
+  const Vec2<T> x_a{(c + (fi + T(0.5)) / T(4)) / res_a, (c + (fj + T(0.5)) / T(4)) / res_a};
+  const Vec2<T> sigma = point_sigma(p, ndf, x_a);
+  const LaneInt<T> ax0 = block_start(x_a.x * res_a, p.side);
+  const LaneInt<T> ay0 = block_start(x_a.y * res_a, p.side);
+  const Vec2<T> lo{int_to_float<T>(int_max(ax0, std::int64_t(0))) / res_a,
+                   int_to_float<T>(int_max(ay0, std::int64_t(0))) / res_a};
+  const Vec2<T> hi{int_to_float<T>(int_min(ax0 + p.side, n_a)) / res_a,
+                   int_to_float<T>(int_min(ay0 + p.side, n_a)) / res_a};
+  // gaussian_rect_mass over B(k) and over □, their shared erfs computed once.
+  const UnitAndPartMass<T> mx = unit_and_part_mass(lo.x, hi.x, x_a.x, sigma.x, Erf::kExact);
+  const UnitAndPartMass<T> my = unit_and_part_mass(lo.y, hi.y, x_a.y, sigma.y, Erf::kExact);
+  return {mx.part * my.part, mx.whole * my.whole};
+}
+
 // The fraction of the lobe mass inside B(k) at level `level`, averaged over a 4 × 4 grid of x_a in
 // the angular cell at the centre of □ (index max(n_a/2 − 1, 0) on both axes).
 template <class Ndf, class T>
 GLINTLAB_FN T level_explicit_share(const Params<T>& p, const Ndf& ndf, const LaneInt<T, int>& level) {
-  const LaneInt<T> n_a = level_cells<T>(level);
-  const T res_a = angular_resolution<T>(level);
-  const T c = max(floor(res_a * T(0.5)) - T(1), T(0));
   T near_sum = T(0), whole_sum = T(0);
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) {
-      const Vec2<T> x_a{(c + (T(i) + T(0.5)) / T(4)) / res_a, (c + (T(j) + T(0.5)) / T(4)) / res_a};
-      const Vec2<T> sigma = point_sigma(p, ndf, x_a);
-      const LaneInt<T> ax0 = block_start(x_a.x * res_a, p.side);
-      const LaneInt<T> ay0 = block_start(x_a.y * res_a, p.side);
-      const Vec2<T> lo{int_to_float<T>(int_max(ax0, std::int64_t(0))) / res_a,
-                       int_to_float<T>(int_max(ay0, std::int64_t(0))) / res_a};
-      const Vec2<T> hi{int_to_float<T>(int_min(ax0 + p.side, n_a)) / res_a,
-                       int_to_float<T>(int_min(ay0 + p.side, n_a)) / res_a};
-      // gaussian_rect_mass over B(k) and over □, their shared erfs computed once.
-      const UnitAndPartMass<T> mx = unit_and_part_mass(lo.x, hi.x, x_a.x, sigma.x, Erf::kExact);
-      const UnitAndPartMass<T> my = unit_and_part_mass(lo.y, hi.y, x_a.y, sigma.y, Erf::kExact);
-      near_sum += mx.part * my.part;
-      whole_sum += mx.whole * my.whole;
+      const ShareTerms<T> t = level_share_terms(p, ndf, level, T(i), T(j));
+      near_sum += t.near;
+      whole_sum += t.whole;
     }
   const Mask<T> has = whole_sum > T(0);
   return select(has, near_sum / select(has, whole_sum, T(1)), T(1));
+}
+
+// Whether every lane of x has the bits of lane 0.
+template <class T>
+GLINTLAB_FN bool same_in_every_lane(const T& x) {
+  using Bits = std::conditional_t<sizeof(Scalar<T>) == 4, std::uint32_t, std::uint64_t>;
+  const LanesOf<T> v(x);
+  for (std::size_t l = 1; l < kLaneCount<T>; ++l)
+    if (std::bit_cast<Bits>(v[l]) != std::bit_cast<Bits>(v[0])) return false;
+  return true;
+}
+
+// level_explicit_share at levels l0 and l0 + 1 of a batch, bit for bit, where the share's
+// parameters (α★, a, the NDF's α) are the same in every lane: the share is then a function of the
+// level alone, so each distinct level's 16 grid points are computed once, spread over the lanes
+// (16 per level instead of a batch of lanes per grid point), and summed per level in the loop's
+// order. False (nothing written) where a parameter differs between lanes or a level is outside
+// [0, kMaxLevel].
+template <class Ndf, class T>
+GLINTLAB_FN bool level_explicit_shares_by_level(const Params<T>& p, const Ndf& ndf,
+                                                const LaneInt<T, int>& l0, T& share0, T& share1) {
+  using S = Scalar<T>;
+  constexpr std::size_t kLanes = kLaneCount<T>;
+  constexpr std::size_t kGrid = 16;
+  if (!same_in_every_lane(p.microroughness) || !same_in_every_lane(p.anisotropy) ||
+      !same_in_every_lane(ndf.alpha_x) || !same_in_every_lane(ndf.alpha_y))
+    return false;
+  bool present[kMaxLevel + 1] = {};
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    const int level = lane(l0, l);
+    if (level < 0 || level + 1 > kMaxLevel) return false;
+    present[level] = present[level + 1] = true;
+  }
+  int levels[kMaxLevel + 1] = {};
+  int slot[kMaxLevel + 1] = {};
+  std::size_t count = 0;
+  for (int level = 0; level <= kMaxLevel; ++level)
+    if (present[level]) {
+      slot[level] = int(count);
+      levels[count++] = level;
+    }
+  constexpr std::size_t kItems = (kMaxLevel + 1) * kGrid;
+  S near[kItems + kLanes], whole[kItems + kLanes];
+  const std::size_t items = count * kGrid;
+  for (std::size_t first = 0; first < items; first += kLanes) {
+    // Item t: level levels[t / 16], grid point (i, j) = ((t % 16) / 4, t % 4); lanes past the
+    // last item repeat item 0.
+    const auto item = [&](std::size_t l) { return first + l < items ? first + l : 0; };
+    const LaneInt<T, int> level =
+        int_lanes<T, int>([&](std::size_t l) { return levels[item(l) / kGrid]; });
+    const T fi = float_lanes<T>([&](std::size_t l) { return S(int(item(l) % kGrid / 4)); });
+    const T fj = float_lanes<T>([&](std::size_t l) { return S(int(item(l) % 4)); });
+    const ShareTerms<T> t = level_share_terms(p, ndf, level, fi, fj);
+    LaneAccess<T>::store(t.near, near + first);
+    LaneAccess<T>::store(t.whole, whole + first);
+  }
+  S share[kMaxLevel + 1];
+  for (std::size_t k = 0; k < count; ++k) {
+    S near_sum = S(0), whole_sum = S(0);
+    for (std::size_t g = 0; g < kGrid; ++g) {
+      near_sum += near[k * kGrid + g];
+      whole_sum += whole[k * kGrid + g];
+    }
+    share[k] = whole_sum > S(0) ? near_sum / whole_sum : S(1);
+  }
+  share0 = float_lanes<T>([&](std::size_t l) { return share[slot[lane(l0, l)]]; });
+  share1 = float_lanes<T>([&](std::size_t l) { return share[slot[lane(l0, l) + 1]]; });
+  return true;
 }
 
 // The explicit share at a footprint, both levels with their weights (before the clamp of q).
 template <class Ndf, class T>
 GLINTLAB_FN T explicit_share(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp) {
   const Spatial<T> sp = spatial(p, fp);
+  if constexpr (kLaneCount<T> > 1) {
+    T share0, share1;
+    if (level_explicit_shares_by_level(p, ndf, sp.l0, share0, share1))
+      return (T(1) - sp.w1) * share0 + sp.w1 * share1;
+  }
   return (T(1) - sp.w1) * level_explicit_share(p, ndf, sp.l0) +
          sp.w1 * level_explicit_share(p, ndf, sp.l0 + 1);
 }

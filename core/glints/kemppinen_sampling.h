@@ -30,11 +30,16 @@
 // `if (!any_lane<T>(...))` early-outs are uniform (all lanes), never per-lane branches.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 #include "core/glints/kemppinen.h"
+#include "core/glints/kemppinen_lanes.h"
 #include "core/math/disk_rect_area.h"
 #include "core/ndf/microfacet.h"
 
@@ -93,30 +98,33 @@ GLINTLAB_FN Vec2<T> point_sigma(const Params<T>& p, const Ndf& ndf, Vec2<T> g_a)
 // and point process: cell_index_lanes), at level weight w_l (Algorithm 2 lines 11–12): everything
 // but its mass in a block (m = 0). res_a, res_s and n_a are the level's (angular_resolution,
 // sp.res / res_a, level_cells), spatial_lobe normal2_form(sp.sigma_s).
+// (Forced inline: its Vec2 and lane-integer arguments would otherwise pass through memory.)
 template <class Ndf, class T>
-GLINTLAB_FN Candidate<T> candidate(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp,
+GLINTLAB_INLINE Candidate<T> candidate(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp,
                                    const Normal2Form<T>& spatial_lobe, T w_l, T res_a, T res_s,
                                    const LaneInt<T>& n_a, const LaneInt<T>& sx,
                                    const LaneInt<T>& sy, const LaneInt<T>& ax,
                                    const LaneInt<T>& ay, const LaneInt<T, std::uint64_t>& ci) {
+  // Its uniforms from one key per cell (kemppinen_lanes.h).
+  const LaneInt<T, std::uint64_t> key = cell_key<T>(cell_seed_key(p.seed), ci);
   Candidate<T> k;
   k.valid = mask_lanes<T>([&](std::size_t l) {
     return lane(ax, l) >= 0 && lane(ax, l) < lane(n_a, l) && lane(ay, l) >= 0 &&
            lane(ay, l) < lane(n_a, l);
   });
-  k.g_a = {(int_to_float<T>(ax) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularX)) / res_a,
-           (int_to_float<T>(ay) + cell_uniform<T>(p.seed, ci, kKemppinenDimAngularY)) / res_a};
+  k.g_a = {(int_to_float<T>(ax) + key_uniform<T>(key, kKemppinenDimAngularX)) / res_a,
+           (int_to_float<T>(ay) + key_uniform<T>(key, kKemppinenDimAngularY)) / res_a};
   k.valid = k.valid && (sqr(k.g_a.x - T(0.5)) + sqr(k.g_a.y - T(0.5)) <= T(0.25));
   k.s = T(0);
   k.m = T(0);
   k.sigma = {T(0), T(0)};
   if (any_lane<T>(k.valid)) {  // uniform: some lane has the point
     const Vec2<T> g_s{
-        (int_to_float<T>(sx) + cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialX)) / res_s,
-        (int_to_float<T>(sy) + cell_uniform<T>(p.seed, ci, kKemppinenDimSpatialY)) / res_s};
-    const T r = cell_uniform<T>(p.seed, ci, kKemppinenDimRoulette);
+        (int_to_float<T>(sx) + key_uniform<T>(key, kKemppinenDimSpatialX)) / res_s,
+        (int_to_float<T>(sy) + key_uniform<T>(key, kKemppinenDimSpatialY)) / res_s};
+    const T r = key_uniform<T>(key, kKemppinenDimRoulette);
     const T blend = p.blend == Blend::kRoulette ? roulette(r, w_l) : w_l;
-    const Vec3<T> col = color(p.colors, cell_uniform<T>(p.seed, ci, kKemppinenDimColor));
+    const Vec3<T> col = color(p.colors, key_uniform<T>(key, kKemppinenDimColor));
     k.s = select(k.valid, blend * normal2_at(spatial_lobe, sp.x_s - g_s) * luminance(col), T(0));
     // A point the roulette gives weight 0 (w_l below r − ε, Eq. 8) needs no lobe.
     if (any_lane<T>(k.valid && !(k.s == T(0)))) k.sigma = point_sigma(p, ndf, k.g_a);
@@ -162,7 +170,7 @@ GLINTLAB_FN void block(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp,
           const LaneInt<T> ay = ay0 + b;
           Candidate<T> k =
               candidate(p, ndf, sp, spatial_lobe, w_l, res_a, res_s, n_a, sx, sy, ax, ay,
-                        cell_chain_ay_level_lanes<T>(hash_ija, ay, level, process));
+                        cell_chain_ay_level_vector<T>(hash_ija, ay, level, process));
           if (adds_weight(k))
             k.m = select(k.valid, gaussian_rect_mass(out.lo, out.hi, k.g_a, k.sigma, Erf::kExact),
                          T(0));
@@ -323,6 +331,55 @@ struct LevelPoints {
   }
 };
 
+// disk_rect_area(x0, x1, y0, y1, ½, ½, ½) (core/math/disk_rect_area.h), the area of the rectangle
+// inside U_Ω, bit for bit: where the rectangle lies inside the disk, or outside it, by a relative
+// margin of 10⁻⁶ in squared distance (far above the rounding of the function's breakpoints and
+// chords), the function takes one piece with no circular part (hy·w − ly·w) or adds none (0), and
+// that is computed here without its call; elsewhere (the rectangle meets the circle, or an input
+// is not finite) the function itself. Most of the marginal pdf's selecting squares are cells far
+// smaller than U_Ω, and the function's atan2s were a fifth of a batched eval. Forced inline: an
+// out-of-line copy would be a weak symbol that each ISA unit compiles with its own flags.
+GLINTLAB_INLINE double square_disk_area(double x0, double x1, double y0, double y1) {
+  const double cx = 0.5, cy = 0.5, r = 0.5;
+  const double ax = x0 - cx, bx = x1 - cx, ly = y0 - cy, hy = y1 - cy;
+  const bool finite =
+      std::isfinite(ax) && std::isfinite(bx) && std::isfinite(ly) && std::isfinite(hy);
+  if (finite && bx > ax && hy > ly) {
+    const double far_x = std::max(ax * ax, bx * bx), far_y = std::max(ly * ly, hy * hy);
+    if (far_x + far_y < r * r * (1.0 - 1e-6)) {
+      const double w = bx - ax;  // the one piece [a, b] = [x0 − cx, x1 − cx]
+      return hy * w - ly * w;
+    }
+    const double near_x = ax > 0.0 ? ax : (bx < 0.0 ? -bx : 0.0);
+    const double near_y = ly > 0.0 ? ly : (hy < 0.0 ? -hy : 0.0);
+    if (near_x * near_x + near_y * near_y > r * r * (1.0 + 1e-6)) return 0.0;
+  }
+  return disk_rect_area_in_kernel(x0, x1, y0, y1, cx, cy, r);
+}
+
+// square_disk_area of each lane's square [x0, x1] × [y0, y1], computed once per distinct square
+// (lanes with the same four values' bits take the first such lane's area).
+template <class T>
+GLINTLAB_INLINE T lane_square_disk_areas(const LanesOf<T>& x0, const LanesOf<T>& x1,
+                                         const LanesOf<T>& y0, const LanesOf<T>& y1) {
+  using S = Scalar<T>;
+  using Bits = std::conditional_t<sizeof(S) == 4, std::uint32_t, std::uint64_t>;
+  const auto same = [](S a, S b) { return std::bit_cast<Bits>(a) == std::bit_cast<Bits>(b); };
+  S area[kLaneCount<T>];
+  for (std::size_t l = 0; l < kLaneCount<T>; ++l) {
+    std::size_t first = l;
+    for (std::size_t m = 0; m < l; ++m)
+      if (same(x0[m], x0[l]) && same(x1[m], x1[l]) && same(y0[m], y0[l]) && same(y1[m], y1[l])) {
+        first = m;
+        break;
+      }
+    area[l] = first < l ? area[first]
+                        : S(square_disk_area(double(x0[l]), double(x1[l]), double(y0[l]),
+                                             double(y1[l])));
+  }
+  return LaneAccess<T>::load(area);
+}
+
 // The points of LevelPoints around x's angular cell (cx, cy) at `level` (weight w_l): the same
 // arithmetic as block() and block_density(), in the same lane order.
 template <class Ndf, class T>
@@ -350,7 +407,7 @@ GLINTLAB_FN void level_points(const Params<T>& p, const Ndf& ndf, const Spatial<
           const LaneInt<T> ay = cy + b;
           const Candidate<T> k =
               candidate(p, ndf, sp, spatial_lobe, w_l, res_a, res_s, n_a, sx, sy, ax, ay,
-                        cell_chain_ay_level_lanes<T>(hash_ija, ay, level, process));
+                        cell_chain_ay_level_vector<T>(hash_ija, ay, level, process));
           const Mask<T> live = k.valid && (k.s > T(0)) && (k.sigma.x > T(0)) && (k.sigma.y > T(0));
           const std::size_t at = out.index(i, j, a, b);
           out.c[at] = k;
@@ -453,12 +510,11 @@ GLINTLAB_FN T sample_density_square(const Params<T>& p, const Ndf& ndf, const Fo
         const T fx = int_to_float<T>(bx) + half, fy = int_to_float<T>(by) + half;
         const LanesOf<T> x0(fx / res_a), x1((fx + T(1)) / res_a), y0(fy / res_a),
             y1((fy + T(1)) / res_a);
-        // The exact disk ∩ rectangle area (scalar code, core/math/disk_rect_area.h), lane by
-        // lane.
-        const T area = float_lanes<T>([&](std::size_t l) {
-          return Scalar<T>(disk_rect_area_in_kernel(double(x0[l]), double(x1[l]), double(y0[l]),
-                                          double(y1[l]), 0.5, 0.5, 0.5));
-        });
+        // The exact disk ∩ rectangle area lane by lane, the scalar code only where the square
+        // meets the circle (square_disk_area), once per distinct square: at the low levels,
+        // where the squares are large and meet the circle, a level has few cells, so lanes
+        // share them.
+        const T area = lane_square_disk_areas<T>(x0, x1, y0, y1);
         const Mask<T> use = w_positive && (area > T(0));
         if (!any_lane<T>(use)) continue;
         if (!have_points) level_points(p, ndf, sp, level, w_l, cx, cy, x, points, process);

@@ -14,7 +14,9 @@
 
 #include "core/glints/kemppinen.h"
 #include "core/glints/kemppinen_full_sampling.h"
+#include "core/glints/kemppinen_lanes.h"
 #include "core/glints/kemppinen_sampling.h"
+#include "core/math/disk_rect_area.h"
 #include "core/math/rng.h"
 #include "core/ndf/beckmann.h"
 #include "core/ndf/ggx.h"
@@ -568,6 +570,65 @@ TEST(KemppinenSharedWork, CompensationIsBitIdenticalAtAndInsideTheSquaresEdges) 
                             old_compensation(mf, sf, lof, hif, e)))
           << i;
     }
+  }
+}
+
+
+// The marginal pdf's disk ∩ square area with its closed-form shortcuts is the exact function's
+// bits: squares of the marginal's kind (cells of levels 0–20 at random offsets, inside, across and
+// outside U_Ω), squares grazing the circle within 10⁻⁷, and random rectangles.
+TEST(KemppinenSharedWork, SquareDiskAreaIsTheExactFunctionsBits) {
+  int inside = 0, outside = 0;
+  for (std::uint64_t i = 0; i < 400000; ++i) {
+    const auto u = [i](std::uint64_t dim) { return counter_uniform<double>(0x61726561, i, dim); };
+    const double side = std::ldexp(1.0, -int(i % 21));
+    double x0 = u(0) * 1.2 - 0.1, y0 = u(1) * 1.2 - 0.1;
+    double x1 = x0 + side, y1 = y0 + side;
+    if (i % 5 == 3) {  // a corner within 1e-7 of the circle
+      const double phi = 6.283185307179586 * u(2), d = 1e-7 * (2 * u(3) - 1);
+      x0 = 0.5 + (0.5 + d) * std::cos(phi);
+      y0 = 0.5 + (0.5 + d) * std::sin(phi);
+      x1 = x0 + side;
+      y1 = y0 + side;
+    } else if (i % 5 == 4) {  // any rectangle
+      x1 = u(4) * 1.2 - 0.1;
+      y1 = u(5) * 1.2 - 0.1;
+    }
+    for (const float f : {0.0f, 1.0f}) {  // double inputs, and the float marginal's
+      const double a = f != 0 ? double(float(x0)) : x0, b = f != 0 ? double(float(x1)) : x1;
+      const double c = f != 0 ? double(float(y0)) : y0, d = f != 0 ? double(float(y1)) : y1;
+      const double fast = kemppinen2025::square_disk_area(a, b, c, d);
+      ASSERT_TRUE(same_bits(fast, disk_rect_area(a, b, c, d, 0.5, 0.5, 0.5)))
+          << i << ": " << a << " " << b << " " << c << " " << d;
+      inside += fast > 0 && fast == (d - 0.5) * (b - a) - (c - 0.5) * (b - a);
+      outside += fast == 0;
+    }
+  }
+  // Both shortcuts are taken (and so checked) many times.
+  EXPECT_GT(inside, 100000);
+  EXPECT_GT(outside, 100000);
+}
+
+
+// kemppinen_lanes.h's split of the hash gives rng.h's and kemppinen_grid.h's bits: a cell key's
+// uniforms are counter_uniform's, and the vector chain step is cell_chain_level ∘ cell_chain_ay.
+TEST(KemppinenSharedWork, CellKeysGiveTheCounterUniformsBits) {
+  for (std::uint64_t i = 0; i < 100000; ++i) {
+    const std::uint64_t seed = mix64(i * 3 + 1), ci = mix64(i * 5 + 2);
+    const std::uint64_t key = kemppinen2025::cell_key<double>(kemppinen2025::cell_seed_key(seed), ci);
+    for (std::uint64_t dim = 0; dim < 8; ++dim) {
+      ASSERT_TRUE(same_bits(kemppinen2025::key_uniform<double>(key, dim),
+                            counter_uniform<double>(seed, ci, dim)))
+          << i << " " << dim;
+      ASSERT_TRUE(same_bits(kemppinen2025::key_uniform<float>(key, dim),
+                            counter_uniform<float>(seed, ci, dim)))
+          << i << " " << dim;
+    }
+    const std::int64_t ay = std::int64_t(mix64(i)) >> (i % 60);
+    const int level = int(i % 21), process = int(i % 3);
+    ASSERT_EQ(kemppinen2025::cell_chain_ay_level_vector<double>(ci, ay, level, process),
+              kemppinen2025::cell_chain_level(kemppinen2025::cell_chain_ay(ci, ay), level, process))
+        << i;
   }
 }
 
