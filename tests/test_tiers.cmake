@@ -52,6 +52,9 @@ set(glintlab_slow_tests
   # Chi-square and integration checks whose sample sizes set what they can detect.
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::eto_claims::PdfMatches>> 8"
   "ChiSquareClaims.IdenticalWithOneAndTwoThreads 2"
+  # Three smooth.sampler-matches-pdf configurations planned with the scalar pdf, its batch and a
+  # wrong batch (2·10^4 samples: the coarse bins' cubature, the cost of the comparison).
+  "BatchedPdfCubature.PlansMatchTheScalarPdfsAndAWrongBatchIsCaught 3"
   "ClaimProbes.VerdictAndControlsAtProbeSize<glintlab::verify::Probe<glintlab::verify::smooth_claims::SamplerMatchesPdf>> 11"
   "LightsChiSquare.PolygonSamplersMatchTheirPdfsAndControlsAreRejected 3"
   "LightsChiSquare.RectangleSamplersMatchTheirPdfsAndControlsAreRejected 5"

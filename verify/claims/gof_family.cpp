@@ -41,6 +41,12 @@ ChiSquarePlan scaled_plan(const ChiSquarePlan& p, double s) {
   }
   if (p.direction_pdf)
     q.direction_pdf = [f = p.direction_pdf, s](const Vec3<double>& w) { return s * f(w); };
+  if (p.options.direction_pdf_rows)
+    q.options.direction_pdf_rows = [f = p.options.direction_pdf_rows, s](
+                                       std::span<const Vec3<double>> w, std::span<double> out) {
+      f(w, out);
+      for (double& v : out) v *= s;
+    };
   if (p.point_pdf) q.point_pdf = [f = p.point_pdf, s](const Vec2<double>& x) { return s * f(x); };
   return q;
 }

@@ -30,4 +30,45 @@ SeededDirectionBatch kernel_direction_batch(int kernel, Vec3<double> wi, double 
   };
 }
 
+DirectionPdfRows kernel_direction_pdf_rows(int kernel, Vec3<double> wi, double ax, double ay,
+                                           bool upper_only) {
+  const simd::Isa isa = simd::default_isa();
+  return [kernel, isa, wi, ax, ay, upper_only](std::span<const Vec3<double>> w,
+                                               std::span<double> out) {
+    const std::size_t n = w.size();
+    std::vector<double> wo(3 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      wo[i] = w[i].x;
+      wo[n + i] = w[i].y;
+      wo[2 * n + i] = w[i].z;
+    }
+    const double params[5] = {ax, ay, wi.x, wi.y, wi.z};
+    const double* columns[3] = {wo.data(), wo.data() + n, wo.data() + 2 * n};
+    double* outputs[1] = {out.data()};
+    simd::eval_batch<double>(kernel, params, columns, outputs, n, isa);
+    if (upper_only)
+      for (std::size_t i = 0; i < n; ++i)
+        if (!(w[i].z > 0)) out[i] = 0.0;
+  };
+}
+
+DirectionPdfRows kernel_swapped_pdf_rows(int kernel, Vec3<double> wi, double ax, double ay) {
+  const simd::Isa isa = simd::default_isa();
+  return [kernel, isa, wi, ax, ay](std::span<const Vec3<double>> w, std::span<double> out) {
+    const std::size_t n = w.size();
+    std::vector<double> wo(3 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      wo[i] = w[i].x;
+      wo[n + i] = w[i].y;
+      wo[2 * n + i] = w[i].z;
+    }
+    const simd::Column<double> inputs[8] = {{&ax, 0},          {&ay, 0},
+                                            {wo.data(), 1},    {wo.data() + n, 1},
+                                            {wo.data() + 2 * n, 1}, {&wi.x, 0},
+                                            {&wi.y, 0},        {&wi.z, 0}};
+    double* outputs[1] = {out.data()};
+    simd::eval_batch(kernel, inputs, outputs, n, isa);
+  };
+}
+
 }  // namespace glintlab::verify

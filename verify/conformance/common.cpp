@@ -551,9 +551,7 @@ void for_chunks(std::uint64_t n,
 
 ModelEntry with_pdf_scaled(const ModelEntry& m, double scale) {
   ModelEntry e = m;
-  e.pdf = [f = m.pdf, scale](const std::vector<double>& v, const ModelQuery<double>& q) {
-    return scale * f(v, q);
-  };
+  e.pdf = ScaledPdf{m.pdf, scale, is_registered(m) ? &m : nullptr};
   if (m.pdf_float)
     e.pdf_float = [f = m.pdf_float, scale](const std::vector<double>& v,
                                            const ModelQuery<double>& q) { return scale * f(v, q); };

@@ -215,6 +215,17 @@ void for_chunks(std::uint64_t n, const std::function<void(std::uint64_t, std::ui
 // Copies of an entry changed in one way (the controls and the tests' broken models); each changes
 // the entry's rows functions (ModelEntry::eval_rows, ...) the same way as its per-row thunks.
 ModelEntry with_pdf_scaled(const ModelEntry& m, double scale);
+// with_pdf_scaled's pdf thunk: scale × the original's, and the entry it was made from where that
+// is a registered one (whose SIMD batches then give the original density: sampler-matches-pdf's
+// cubature takes the batch × scale).
+struct ScaledPdf {
+  std::function<double(const std::vector<double>&, const ModelQuery<double>&)> pdf;
+  double scale = 1;
+  const ModelEntry* registered = nullptr;
+  double operator()(const std::vector<double>& v, const ModelQuery<double>& q) const {
+    return scale * pdf(v, q);
+  }
+};
 ModelEntry with_value_scaled(const ModelEntry& m, double scale);   // eval value and sample weight
 ModelEntry with_weight_scaled(const ModelEntry& m, double scale);  // sample weight only
 // The sampler never reaches a part of its primary sample space of measure `share` (the pairs u

@@ -8,8 +8,11 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 #include <utility>
 
+#include "core/model_layout.h"
+#include "core/simd/model_batch.h"
 #include "verify/conformance/common.h"
 #include "verify/claims/gof_family.h"
 #include "verify/stats/chi_square.h"
@@ -237,6 +240,38 @@ std::uint64_t gof_samples(Budget b) { return b == Budget::kQuick ? 100'000 : 2'0
 // and, at the quick budget, no fine resolution. A glint model's pdf() can cost 10–100 µs (Kemppinen's
 // marginal density, a total-area integral per call), and the default 1e-7 relative tolerance
 // over 256 fine bins made one configuration take a minute.
+// The model's pdf at many ωo through its SIMD batch (core/simd/model_batch.h eval_batch in double
+// on simd::default_isa()): eval's pdf column, which every built-in model computes with its pdf
+// template, so within the batches' equivalence budgets of m.pdf. The parameters are resolved once
+// per call, where the thunk resolves them per direction (Kneiphof & Klein's total area: an
+// azimuthal integral). Only for a registered entry (a control's copy replaces thunks that the
+// batch would not see), or with_pdf_scaled's copy of one, as that entry's batch × the scale.
+DirectionPdfRows batch_pdf_rows(const ModelEntry& m, const Setting& s) {
+  static const std::size_t wo_column = [] {
+    for (std::size_t k = 0; k < kQueryLayout.size(); ++k)
+      if (kQueryLayout[k].name == "wo_x") return k;
+    throw std::logic_error("the query layout has no wo_x column");
+  }();
+  return [&m, &s, row = to_row(s.query), isa = simd::default_isa()](std::span<const V3> w,
+                                                                    std::span<double> out) {
+    const std::size_t n = w.size();
+    std::vector<double> wo(3 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      wo[i] = w[i].x;
+      wo[n + i] = w[i].y;
+      wo[2 * n + i] = w[i].z;
+    }
+    std::vector<simd::Column<double>> query;
+    for (const double& v : row) query.push_back({&v, 0});
+    for (std::size_t d = 0; d < 3; ++d) query[wo_column + d] = {wo.data() + d * n, 1};
+    std::vector<double> columns((2 + m.intermediates.size()) * n);
+    std::vector<double*> outputs;
+    for (std::size_t k = 0; k < 2 + m.intermediates.size(); ++k) outputs.push_back(columns.data() + k * n);
+    simd::eval_batch(m, s.values, query, outputs, n, isa);
+    std::copy(outputs[1], outputs[1] + n, out.begin());
+  };
+}
+
 ChiSquareResult sampler_chi_square(const ModelEntry& m, const Setting& setting, std::uint64_t seed,
                                    Budget b) {
   // At the sweep's footprint 1e-3, not the settings' 0.1: there a glint model's pdf has thousands
@@ -266,6 +301,16 @@ ChiSquareResult sampler_chi_square(const ModelEntry& m, const Setting& setting, 
       std::vector<ModelQuery<double>> at(w.size(), s.query);
       for (std::size_t i = 0; i < w.size(); ++i) at[i].wo = w[i];
       pdf_each(m, s.values, at, out);
+    };
+  else if (is_registered(m) && simd::is_batched(m))
+    o.direction_pdf_rows = batch_pdf_rows(m, s);
+  else if (const ScaledPdf* scaled = m.pdf.target<ScaledPdf>();
+           scaled && scaled->registered && !scaled->registered->pdf_rows &&
+           simd::is_batched(*scaled->registered))
+    o.direction_pdf_rows = [f = batch_pdf_rows(*scaled->registered, s), c = scaled->scale](
+                               std::span<const V3> w, std::span<double> out) {
+      f(w, out);
+      for (double& v : out) v = c * v;
     };
   const ChiSquarePlan plan =
       plan_direction_chi_square(SampleDomain::kSphere, pdf, share_of(gof_samples(b), s), o);

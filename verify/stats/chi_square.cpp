@@ -11,6 +11,7 @@
 #include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <sstream>
 #include <utility>
@@ -74,15 +75,6 @@ Piece gk_combine(const ValErr* f, double a, double b) {
   return {a, b, k * h, std::abs((k - g) * h), std::abs(carried * h)};
 }
 
-template <class F>
-Piece gk_piece(F& f, double a, double b) {
-  double x[kGkPoints];
-  gk_abscissae(a, b, x);
-  ValErr v[kGkPoints];
-  for (std::size_t i = 0; i < kGkPoints; ++i) v[i] = f(x[i]);
-  return gk_combine(v, a, b);
-}
-
 bool finite(const Piece& p) {
   return std::isfinite(p.value) && std::isfinite(p.rule_error) && std::isfinite(p.carried_error);
 }
@@ -90,15 +82,30 @@ bool finite(const Piece& p) {
 // Globally adaptive: bisect the piece with the largest rule error until the summed rule error is
 // ≤ max(abs_tol, rel_tol·|I|) or max_subdivisions bisections are spent. The returned error is the
 // summed rule error plus the carried errors. Non-finite integrands give NaN.
-// A step machine, so that many integrations can run in lockstep with their integrand evaluated
-// for all of them at once (integrate_bin with a pdf over many directions): wanted() is the pieces
-// whose rule the next step needs, feed() takes them, in that order.
+// A step machine, so that many integrations run in lockstep with their integrand evaluated for
+// all of them at once (integrate_bin): wanted() is the pieces whose rule the next step needs,
+// feed() takes them, in that order.
 class AdaptiveGk {
  public:
+  AdaptiveGk() = default;
   AdaptiveGk(const std::vector<double>& nodes, double abs_tol, double rel_tol,
-             unsigned max_subdivisions)
-      : abs_tol_(abs_tol), rel_tol_(rel_tol), max_subdivisions_(max_subdivisions) {
-    heap_.reserve(nodes.size() + 2 * std::size_t(max_subdivisions));
+             unsigned max_subdivisions) {
+    start(nodes, abs_tol, rel_tol, max_subdivisions);
+  }
+  // A new integration, keeping the storage of the last one (the cubature starts millions).
+  void start(const std::vector<double>& nodes, double abs_tol, double rel_tol,
+             unsigned max_subdivisions) {
+    abs_tol_ = abs_tol;
+    rel_tol_ = rel_tol;
+    max_subdivisions_ = max_subdivisions;
+    subdivisions_ = 0;
+    heap_.clear();
+    wanted_.clear();
+    worst_ = {};
+    value_ = rule_ = 0;
+    initial_ = true;
+    done_ = false;
+    result_ = {};
     for (std::size_t i = 0; i + 1 < nodes.size(); ++i) wanted_.push_back({nodes[i], nodes[i + 1]});
     if (wanted_.empty()) finish();
   }
@@ -164,8 +171,8 @@ class AdaptiveGk {
     done_ = true;
   }
 
-  double abs_tol_, rel_tol_;
-  unsigned max_subdivisions_, subdivisions_ = 0;
+  double abs_tol_ = 0, rel_tol_ = 0;
+  unsigned max_subdivisions_ = 0, subdivisions_ = 0;
   std::vector<Piece> heap_;
   std::vector<std::pair<double, double>> wanted_;
   Piece worst_{};
@@ -173,20 +180,6 @@ class AdaptiveGk {
   bool initial_ = true, done_ = false;
   ValErr result_;
 };
-
-// One integration, its integrand called one point at a time.
-template <class F>
-ValErr adaptive_gk(F& f, const std::vector<double>& nodes, double abs_tol, double rel_tol,
-                   unsigned max_subdivisions) {
-  AdaptiveGk gk(nodes, abs_tol, rel_tol, max_subdivisions);
-  std::vector<Piece> pieces;
-  while (!gk.done()) {
-    pieces.clear();
-    for (const auto& [a, b] : gk.wanted()) pieces.push_back(gk_piece(f, a, b));
-    gk.feed(pieces);
-  }
-  return gk.result();
-}
 
 // ---- Polar coordinates of the sampling domain ---------------------------------------------------
 
@@ -199,7 +192,7 @@ struct PolarMap {
   bool tilted = false;    // hemisphere in a tilted frame: mask z ≥ 0, split at the horizon
   Vec3<double> up{0, 0, 1};  // world +z in frame coordinates
   const DirectionPdf* dpdf = nullptr;
-  const DirectionPdfRows* dpdf_rows = nullptr;  // set: integrate_bin asks for many points at once
+  const DirectionPdfRows* dpdf_rows = nullptr;  // optional: the pdf at many directions per call
   const PointPdf* ppdf = nullptr;
 
   bool disk() const { return domain == SampleDomain::kDisk; }
@@ -221,6 +214,35 @@ struct PolarMap {
     const Vec3<double> w = direction(u, c, s);
     if (tilted && w.z < 0) return 0.0;
     return (*dpdf)(w);
+  }
+  struct Node {
+    double u, c, s;
+  };
+  // density() at many nodes: one call of the direction pdf's rows function where there is one
+  // (the batched pdf: its values may differ from the pdf's by a few ULPs), else node by node.
+  void densities(std::span<const Node> nodes, std::vector<double>& out,
+                 std::vector<Vec3<double>>& w, std::vector<double>& rows) const {
+    out.assign(nodes.size(), 0.0);
+    if (!dpdf_rows) {
+      for (std::size_t k = 0; k < nodes.size(); ++k)
+        out[k] = density(nodes[k].u, nodes[k].c, nodes[k].s);
+      return;
+    }
+    w.resize(nodes.size());
+    const PolarMap frame = *this;  // locals: the stores to w cannot alias the frame
+    Vec3<double>* out_w = w.data();
+    for (std::size_t k = 0; k < nodes.size(); ++k)
+      out_w[k] = frame.direction(nodes[k].u, nodes[k].c, nodes[k].s);
+    if (!tilted) return (*dpdf_rows)(w, out);
+    // Below the horizon density() is 0 without asking the pdf.
+    std::size_t above = 0;
+    for (std::size_t k = 0; k < w.size(); ++k)
+      if (!(w[k].z < 0)) w[above++] = w[k];
+    rows.assign(above, 0.0);
+    if (above > 0) (*dpdf_rows)(std::span<const Vec3<double>>(w.data(), above), rows);
+    std::size_t next = 0;
+    for (std::size_t k = 0; k < nodes.size(); ++k)
+      if (!(direction(nodes[k].u, nodes[k].c, nodes[k].s).z < 0)) out[k] = rows[next++];
   }
   Vec3<double> direction(double u, double c, double s) const {
     const double st = std::sqrt(std::max(0.0, u * (2 - u)));
@@ -259,92 +281,89 @@ ValErr integrate_bin(const PolarMap& pm, const CubatureSetup& cs, double u0, dou
   const double abs_tol = o.abs_tol_counts / cs.n;
   const double inner_abs = 0.5 * abs_tol / (p1 - p0);
   // The inner rule's nodes at azimuth (c, s): the breaks, and the horizon of a tilted hemisphere.
-  auto inner_nodes = [&](double c, double s) {
-    std::vector<double> nodes = base;
+  auto inner_nodes = [&](double c, double s, std::vector<double>& nodes) {
+    nodes.assign(base.begin(), base.end());
     double uh = 0;
     if (pm.horizon_u(c, s, uh) && uh > u0 && uh < u1)
       nodes.insert(std::upper_bound(nodes.begin(), nodes.end(), uh), uh);
-    return nodes;
   };
-  if (!pm.dpdf_rows) {
-    auto outer = [&](double phi) -> ValErr {
-      const double c = std::cos(phi), s = std::sin(phi);
-      auto inner = [&](double u) { return ValErr{pm.density(u, c, s), 0.0}; };
-      return adaptive_gk(inner, inner_nodes(c, s), inner_abs, 0.5 * o.rel_tol, o.max_subdivisions);
-    };
-    return adaptive_gk(outer, pnodes, 0.5 * abs_tol, 0.5 * o.rel_tol, o.max_subdivisions);
-  }
-  // The same integrals with the pdf asked for many directions at once: each step of the outer
-  // rule runs the inner integrals at all of its azimuths in lockstep, one call of the pdf per
-  // round of their bisections. Every integration takes the steps it takes above, in the same
-  // order and arithmetic, so the result is the same bit for bit.
+  // Each step of the outer rule over φ runs the inner integrals over u at all of its azimuths in
+  // lockstep; each round of their bisections evaluates the density at the nodes of all of their
+  // rules in one call (PolarMap::densities), so a batched pdf sees hundreds of directions at once.
+  // Every integration takes the steps it would take alone, in the same order and arithmetic.
+  // Scratch kept per thread across bins: the inner integrations' storage is reused, not
+  // allocated anew for each of the millions of integrations a plan runs. One per nesting level: a
+  // pdf that waits on a parallel loop may have this thread run another bin meanwhile.
   struct Inner {
-    double c, s;
+    double c = 0, s = 0;
     AdaptiveGk gk;
   };
+  struct Scratch {
+    std::vector<Inner> inners;
+    std::vector<Piece> outer_pieces, pieces;
+    std::vector<PolarMap::Node> nodes;
+    std::vector<double> density, rows, u_nodes;
+    std::vector<Vec3<double>> w;
+  };
+  thread_local std::vector<std::unique_ptr<Scratch>> pool;
+  thread_local std::size_t depth = 0;
+  if (depth == pool.size()) pool.push_back(std::make_unique<Scratch>());
+  Scratch& z = *pool[depth];
+  struct Nest {
+    std::size_t& d;
+    explicit Nest(std::size_t& level) : d(level) { ++d; }
+    ~Nest() { --d; }
+    Nest(const Nest&) = delete;
+    Nest& operator=(const Nest&) = delete;
+  } nest(depth);
   AdaptiveGk outer(pnodes, 0.5 * abs_tol, 0.5 * o.rel_tol, o.max_subdivisions);
-  std::vector<Piece> outer_pieces, pieces;
-  std::vector<Inner> inners;
-  std::vector<Vec3<double>> w;
-  std::vector<double> pdf;
-  std::vector<std::size_t> asked;  // per point of the round: its index in w, or kNoPdf
-  constexpr std::size_t kNoPdf = std::numeric_limits<std::size_t>::max();
   while (!outer.done()) {
-    inners.clear();
+    std::size_t count = 0;
     for (const auto& [a, b] : outer.wanted()) {
       double phis[kGkPoints];
       gk_abscissae(a, b, phis);
       for (double phi : phis) {
-        const double c = std::cos(phi), s = std::sin(phi);
-        inners.push_back({c, s, AdaptiveGk(inner_nodes(c, s), inner_abs, 0.5 * o.rel_tol,
-                                           o.max_subdivisions)});
+        if (count == z.inners.size()) z.inners.emplace_back();
+        Inner& in = z.inners[count++];
+        in.c = std::cos(phi);
+        in.s = std::sin(phi);
+        inner_nodes(in.c, in.s, z.u_nodes);
+        in.gk.start(z.u_nodes, inner_abs, 0.5 * o.rel_tol, o.max_subdivisions);
       }
     }
+    const std::span<Inner> inners(z.inners.data(), count);
     for (;;) {
-      w.clear();
-      asked.clear();
+      z.nodes.clear();
       for (const Inner& in : inners) {
         if (in.gk.done()) continue;
         for (const auto& [a, b] : in.gk.wanted()) {
           double us[kGkPoints];
           gk_abscissae(a, b, us);
-          for (double u : us) {
-            const Vec3<double> d = pm.direction(u, in.c, in.s);
-            if (pm.tilted && d.z < 0) {  // density() is 0 there without asking the pdf
-              asked.push_back(kNoPdf);
-              continue;
-            }
-            asked.push_back(w.size());
-            w.push_back(d);
-          }
+          for (double u : us) z.nodes.push_back({u, in.c, in.s});
         }
       }
-      if (asked.empty()) break;
-      pdf.assign(w.size(), 0.0);
-      (*pm.dpdf_rows)(w, pdf);
+      if (z.nodes.empty()) break;
+      pm.densities(z.nodes, z.density, z.w, z.rows);
       std::size_t next = 0;
       for (Inner& in : inners) {
         if (in.gk.done()) continue;
-        pieces.clear();
+        z.pieces.clear();
         for (const auto& [a, b] : in.gk.wanted()) {
           ValErr v[kGkPoints];
-          for (ValErr& x : v) {
-            const std::size_t k = asked[next++];
-            x = {k == kNoPdf ? 0.0 : pdf[k], 0.0};
-          }
-          pieces.push_back(gk_combine(v, a, b));
+          for (ValErr& x : v) x = {z.density[next++], 0.0};
+          z.pieces.push_back(gk_combine(v, a, b));
         }
-        in.gk.feed(pieces);
+        in.gk.feed(z.pieces);
       }
     }
-    outer_pieces.clear();
+    z.outer_pieces.clear();
     std::size_t next = 0;
     for (const auto& [a, b] : outer.wanted()) {
       ValErr v[kGkPoints];
       for (ValErr& x : v) x = inners[next++].gk.result();
-      outer_pieces.push_back(gk_combine(v, a, b));
+      z.outer_pieces.push_back(gk_combine(v, a, b));
     }
-    outer.feed(outer_pieces);
+    outer.feed(z.outer_pieces);
   }
   return outer.result();
 }

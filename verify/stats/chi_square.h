@@ -136,7 +136,8 @@ double min_detectable_relative_error(double n, double dof, double level, double 
 
 using DirectionSampler = std::function<Vec3<double>(std::uint64_t index)>;
 using DirectionPdf = std::function<double(const Vec3<double>&)>;  // per unit solid angle
-// The same pdf at many directions in one call: out[i] = pdf(w[i]), bit for bit.
+// The same pdf at many directions in one call: out[i] = pdf(w[i]), to within its rounding (a SIMD
+// batch of the pdf's kernel may differ from the scalar pdf by a few ULPs).
 using DirectionPdfRows =
     std::function<void(std::span<const Vec3<double>> w, std::span<double> out)>;
 using PointSampler = std::function<Vec2<double>(std::uint64_t index)>;
@@ -169,10 +170,12 @@ struct ChiSquareOptions {
   double level = kFamilyWiseRate;       // significance level for the power report
   double power = 0.9;
   std::uint64_t chunk = 1 << 14;        // samples per parallel task (results do not depend on it)
-  // Optional, directions only: the pdf over many directions per call (a pdf whose every call costs
-  // far more than its arithmetic, such as a Python model's). The planner's cubature then runs the
-  // inner integrals of each round of its outer rule in lockstep and asks for all of their points at
-  // once; the plan is the same, bit for bit, as with the pdf alone.
+  // Optional, directions only: the pdf over many directions per call (a SIMD batch of the pdf, or
+  // a pdf whose every call costs far more than its arithmetic, such as a Python model's). The
+  // planner's cubature always runs the inner integrals of each step of its outer rule in lockstep
+  // and evaluates the nodes of all of their rules at once: through this where it is set (the plan
+  // then moves by the rows' rounding only), else through the pdf one direction at a time. The run
+  // (samples landing in zero-expectation bins) uses the pdf alone.
   DirectionPdfRows direction_pdf_rows;
 };
 

@@ -133,6 +133,12 @@ GofCase make_case(const Config& c) {
       return wo.z > 0 ? glintlab::detail::bounded_vndf_density(g, wi, g.D(half_vector(wi, wo)), k)
                       : 0.0;
     };
+    // The same density through Listing 2's batch kernel for the expected counts' cubature (within
+    // the batches' equivalence budgets). Eq. 8 below is this claim's own transcription, kept scalar.
+    const std::optional<int> kernel = simd::find_kernel("pdf.bounded_vndf_listing2_printed/ggx");
+    if (!kernel) throw std::logic_error("no batch kernel pdf.bounded_vndf_listing2_printed/ggx");
+    gc.options.direction_pdf_rows =
+        kernel_direction_pdf_rows(*kernel, wi, c.ax, c.ay, /*upper_only=*/true);
   } else {
     gc.direction_pdf = Eq8ReflectionPdf(g, wi, c.bound);
   }
@@ -178,6 +184,7 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
     GofCase w = make_case(at(i));
     w.label += " " + what;
     w.direction_pdf = std::move(pdf);
+    w.options.direction_pdf_rows = {};  // the wrong pdf, one direction at a time
     return GofControlCase{w, -1, 1, i};
   };
   std::vector<GofControl> out;

@@ -106,6 +106,12 @@ int batch_kernel(const std::string& name) {
   throw std::logic_error("sampler " + name + " has no batch kernel");
 }
 
+// The batch kernel of the sampler's standalone pdf, "pdf.<function>/<ndf>".
+int pdf_kernel(const std::string& name) {
+  if (const auto k = simd::find_kernel("pdf." + name)) return *k;
+  throw std::logic_error("sampler " + name + " has no batch pdf kernel");
+}
+
 // The same sampler as directions(c, alpha_scale), batched (core/simd/batch.h sample_batch, double,
 // on the ISA of GLINTLAB_ISA or the widest of this CPU): the same uniforms; wo within the
 // equivalence budgets of tests/simd/ of the scalar one (bit-identical with GLINTLAB_ISA=scalar).
@@ -137,6 +143,10 @@ GofCase make_case(const Config& c) {
   if (e.name.starts_with("bounded_vndf_") && c.ax != c.ay)
     for (int k = 1; k < 64; ++k) g.options.phi_breaks.push_back(2 * std::numbers::pi * k / 64);
   g.direction_pdf = [&e, wi, ax = c.ax, ay = c.ay](const V3& wo) { return e.pdf(ax, ay, wi, wo); };
+  // The expected counts' cubature asks for the same pdf at many directions at once, through its
+  // batch kernel (within the batches' equivalence budgets of e.pdf).
+  g.options.direction_pdf_rows =
+      kernel_direction_pdf_rows(pdf_kernel(e.name), wi, c.ax, c.ay, /*upper_only=*/false);
   g.directions = directions(c);
   g.direction_batch = batched_directions(c);
   return g;
@@ -196,6 +206,11 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
     w.direction_pdf = [f = w.direction_pdf, wi](const V3& wo) {
       return f(wo) * 2 * length(wi + wo);
     };
+    w.options.direction_pdf_rows = [f = w.options.direction_pdf_rows, wi](
+                                       std::span<const V3> wo, std::span<double> pdf) {
+      f(wo, pdf);
+      for (std::size_t k = 0; k < wo.size(); ++k) pdf[k] = pdf[k] * 2 * length(wi + wo[k]);
+    };
     jacobian.cases.push_back({w, -1, 1, i});
   }
   jacobian.gross = true;
@@ -224,6 +239,8 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
     GofCase w = make_case(c);
     const SamplerEntry& e = sampler_table()[c.sampler];
     w.label += " with ωi ↔ ωo";
+    w.options.direction_pdf_rows =
+        kernel_swapped_pdf_rows(pdf_kernel(e.name), incidence(c.theta_deg), c.ax, c.ay);
     w.direction_pdf = [&e, wi = incidence(c.theta_deg), ax = c.ax, ay = c.ay](const V3& wo) {
       return e.pdf(ax, ay, wo, wi);
     };
@@ -239,6 +256,7 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
     const Config& c = g[std::size_t(i)];
     GofCase w = make_case(c);
     w.label += " with (t + i_z)";
+    w.options.direction_pdf_rows = {};  // the claimed pdf below, one direction at a time
     const GGX<double> ggx{c.ax, c.ay};
     w.direction_pdf = [ggx, wi = incidence(c.theta_deg)](const V3& wo) {
       const double s2 = ggx.sigma2(wi), t = std::sqrt(s2 + wi.z * wi.z);
