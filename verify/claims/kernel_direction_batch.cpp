@@ -30,18 +30,29 @@ SeededDirectionBatch kernel_direction_batch(int kernel, Vec3<double> wi, double 
   };
 }
 
+namespace {
+
+// The directions as three columns (x, then y, then z), the layout the batch kernels read.
+std::vector<double> direction_columns(std::span<const Vec3<double>> w) {
+  const std::size_t n = w.size();
+  std::vector<double> wo(3 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    wo[i] = w[i].x;
+    wo[n + i] = w[i].y;
+    wo[2 * n + i] = w[i].z;
+  }
+  return wo;
+}
+
+}  // namespace
+
 DirectionPdfRows kernel_direction_pdf_rows(int kernel, Vec3<double> wi, double ax, double ay,
                                            bool upper_only) {
   const simd::Isa isa = simd::default_isa();
   return [kernel, isa, wi, ax, ay, upper_only](std::span<const Vec3<double>> w,
                                                std::span<double> out) {
     const std::size_t n = w.size();
-    std::vector<double> wo(3 * n);
-    for (std::size_t i = 0; i < n; ++i) {
-      wo[i] = w[i].x;
-      wo[n + i] = w[i].y;
-      wo[2 * n + i] = w[i].z;
-    }
+    const std::vector<double> wo = direction_columns(w);
     const double params[5] = {ax, ay, wi.x, wi.y, wi.z};
     const double* columns[3] = {wo.data(), wo.data() + n, wo.data() + 2 * n};
     double* outputs[1] = {out.data()};
@@ -56,12 +67,7 @@ DirectionPdfRows kernel_swapped_pdf_rows(int kernel, Vec3<double> wi, double ax,
   const simd::Isa isa = simd::default_isa();
   return [kernel, isa, wi, ax, ay](std::span<const Vec3<double>> w, std::span<double> out) {
     const std::size_t n = w.size();
-    std::vector<double> wo(3 * n);
-    for (std::size_t i = 0; i < n; ++i) {
-      wo[i] = w[i].x;
-      wo[n + i] = w[i].y;
-      wo[2 * n + i] = w[i].z;
-    }
+    const std::vector<double> wo = direction_columns(w);
     const simd::Column<double> inputs[8] = {{&ax, 0},          {&ay, 0},
                                             {wo.data(), 1},    {wo.data() + n, 1},
                                             {wo.data() + 2 * n, 1}, {&wi.x, 0},
