@@ -1,14 +1,19 @@
 // eto.pdf-matches's density (verify/claims/eto/eq8_density.h) computes what depends on ωi alone
-// once and returns 0 where χ⁺ = 0 without D(m): the density as it was written before, per call,
-// bit for bit.
+// once: the density as it was written before, per call, bit for bit; and its rows, in double lanes
+// of every ISA this CPU has, the same bits again.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
 
 #include "core/math/rng.h"
 #include "core/ndf/microfacet.h"
+#include "core/simd/batch.h"
 #include "verify/claims/eto/eq8_density.h"
 #include "verify/claims/gof_family.h"  // incidence
 
@@ -62,6 +67,66 @@ TEST(EtoPdfMatchesDensity, IsThePerCallDensityBitForBit) {
   EXPECT_EQ(compared, 144000u);
   EXPECT_GT(positive, 10000u);
   EXPECT_GT(zero_by_heaviside, 1000u) << "the χ⁺ = 0 branch is exercised";
+}
+
+// Runs f with GLINTLAB_ISA set to `isa` (the rows use simd::default_isa()).
+template <class F>
+void with_isa(simd::Isa isa, F&& f) {
+  const char* old = std::getenv("GLINTLAB_ISA");
+  const std::string saved = old ? old : "";
+  setenv("GLINTLAB_ISA", std::string(simd::isa_name(isa)).c_str(), 1);
+  f();
+  if (old)
+    setenv("GLINTLAB_ISA", saved.c_str(), 1);
+  else
+    unsetenv("GLINTLAB_ISA");
+}
+
+// The density's rows on every ISA of this CPU against the per-call density, bit for bit; row
+// counts that leave a partial last batch of lanes, and directions where i·m ≤ 0, χ⁺ = 0 and
+// ωo = −ωi (the half vector 0) among them. Returns the number of rows that differ.
+std::size_t rows_differing(simd::Isa isa, bool one_row_one_ulp_up) {
+  std::size_t differing = 0;
+  const GGX<double> ggxs[] = {{0.05, 0.05}, {0.3, 0.3}, {1.5, 1.5}, {0.6, 0.2}};
+  with_isa(isa, [&] {
+    for (const GGX<double>& g : ggxs)
+      for (BoundedVndfBound bound : {BoundedVndfBound::kListing1, BoundedVndfBound::kExactIsotropic})
+        for (double theta : {0.0, 45.0, 89.0, 150.0}) {
+          const V3 wi = incidence(theta);
+          const Eq8ReflectionPdf pdf(g, wi, bound);
+          std::vector<V3> wo;
+          for (std::uint64_t n = 0; n < 1001; ++n) wo.push_back(uniform_direction(11, n));
+          wo[500] = -wi;
+          std::vector<double> out(wo.size());
+          pdf.rows()(wo, out);
+          if (one_row_one_ulp_up) out[777] = std::nextafter(out[777], HUGE_VAL);
+          for (std::size_t r = 0; r < wo.size(); ++r) {
+            const double before = eq8_reflection_pdf_per_call(g, wi, wo[r], bound);
+            differing += std::signbit(out[r]) != std::signbit(before) ||
+                         !(out[r] == before || (std::isnan(out[r]) && std::isnan(before)));
+          }
+        }
+  });
+  return differing;
+}
+
+TEST(EtoPdfMatchesDensity, RowsAreThePerCallDensityBitForBitOnEveryIsa) {
+  int isas = 0;
+  for (simd::Isa isa : simd::kAllIsas) {
+    if (!simd::isa_supported(isa)) {
+      std::printf("%s: not supported by this CPU, not compared\n",
+                  std::string(simd::isa_name(isa)).c_str());
+      continue;
+    }
+    EXPECT_EQ(rows_differing(isa, false), 0u) << simd::isa_name(isa);
+    ++isas;
+  }
+  EXPECT_GE(isas, 2);
+}
+
+// The comparison above catches one row in each 1001 one ulp up (32 configurations).
+TEST(EtoPdfMatchesDensity, ARowOneUlpOffIsCaught) {
+  EXPECT_EQ(rows_differing(simd::best_isa(), true), 32u);
 }
 
 }  // namespace

@@ -134,13 +134,16 @@ GofCase make_case(const Config& c) {
                       : 0.0;
     };
     // The same density through Listing 2's batch kernel for the expected counts' cubature (within
-    // the batches' equivalence budgets). Eq. 8 below is this claim's own transcription, kept scalar.
+    // the batches' equivalence budgets).
     const std::optional<int> kernel = simd::find_kernel("pdf.bounded_vndf_listing2_printed/ggx");
     if (!kernel) throw std::logic_error("no batch kernel pdf.bounded_vndf_listing2_printed/ggx");
     gc.options.direction_pdf_rows =
         kernel_direction_pdf_rows(*kernel, wi, c.ax, c.ay, /*upper_only=*/true);
   } else {
-    gc.direction_pdf = Eq8ReflectionPdf(g, wi, c.bound);
+    // Eq. 8 is this claim's own transcription; its rows run in double lanes, bit for bit.
+    const Eq8ReflectionPdf pdf(g, wi, c.bound);
+    gc.direction_pdf = pdf;
+    gc.options.direction_pdf_rows = pdf.rows();
   }
   // For anisotropic α the cap edge χ⁺ = 0 is far from a parallel: azimuth breaks resolve the thin
   // slivers of support near its extreme polar angle (see smooth/sampler_matches_pdf.cpp).
@@ -180,11 +183,14 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
     if (i < 0) throw std::logic_error("control built on a configuration missing from the grid");
     return g[std::size_t(i)];
   };
-  auto replanned = [&](int i, const std::string& what, DirectionPdf pdf) {
+  // A control's case planned with its wrong pdf: one direction at a time, or through `rows` (the
+  // same wrong pdf at many directions per call) where given.
+  auto replanned = [&](int i, const std::string& what, DirectionPdf pdf,
+                       DirectionPdfRows rows = {}) {
     GofCase w = make_case(at(i));
     w.label += " " + what;
     w.direction_pdf = std::move(pdf);
-    w.options.direction_pdf_rows = {};  // the wrong pdf, one direction at a time
+    w.options.direction_pdf_rows = std::move(rows);
     return GofControlCase{w, -1, 1, i};
   };
   std::vector<GofControl> out;
@@ -256,9 +262,14 @@ std::vector<GofControl> controls(const std::vector<Config>& g) {
   for (int i : {iso, aniso}) {
     const GGX<double> ggx{at(i).ax, at(i).ay};
     const V3 wi = incidence(at(i).theta_deg);
+    const Eq8ReflectionPdf pdf(ggx, wi, at(i).bound);
     jacobian.cases.push_back(replanned(
-        i, "without ‖dm/do‖", [pdf = Eq8ReflectionPdf(ggx, wi, at(i).bound), wi](const V3& wo) {
-          return pdf(wo) * 2 * length(wi + wo);
+        i, "without ‖dm/do‖",
+        [pdf, wi](const V3& wo) { return pdf(wo) * 2 * length(wi + wo); },
+        [rows = pdf.rows(), wi](std::span<const V3> wo, std::span<double> density) {
+          rows(wo, density);
+          for (std::size_t r = 0; r < wo.size(); ++r)
+            density[r] = density[r] * 2 * length(wi + wo[r]);
         }));
   }
   out.push_back(jacobian);
