@@ -30,6 +30,7 @@
 #include "cli/shard_merge.h"
 #include "cli/shard_plan.h"
 #include "cli/suite_runs.h"
+#include "cli/sweep_costs.h"
 #include "core/io/atomic_file.h"
 #include "core/model_registry.h"
 #include "verify/conformance/conformance.h"
@@ -167,13 +168,22 @@ void print_step_timings(const experiments::compare::CompareFiles& f, int threads
 // The weights `glintlab compare --shard K/N` balances its shards by (cli/shard_plan.h), one per
 // model of `models`: 1, plus, where the run measures the models' conformance checks itself (no
 // --claims-from), the costs of the model's checks (model.<name>.*) at the budget as recorded
-// (cli/claim_costs.h: a check without a row, a plug-in's, costs the mean of the recorded ones). A
-// model's other parts (its reference albedos, its sweep, the timed phase) have no recorded time
-// and weigh the same for every model, so a run that reads the verdicts splits every N-th model.
+// (cli/claim_costs.h: a check without a row, a plug-in's, costs the mean of the recorded ones),
+// whose stability check's sweep the run reuses for the failure regions; else, where it sweeps the
+// model itself (no --sweeps-from), half the sweep's measured CPU seconds on one thread
+// (cli/sweep_costs.h): about its wall seconds on two, the threads the recorded checks ran on. The
+// reference albedos and the timed phase have no recorded time and weigh the same for every model,
+// so a run that reads both the verdicts and the sweeps splits every N-th model.
 std::vector<double> compare_model_costs(const std::vector<std::string>& models,
-                                        bool conformance_measured, bool quick) {
+                                        bool conformance_measured, bool sweeps_measured,
+                                        bool quick) {
   std::vector<double> costs(models.size(), 1.0);
-  if (!conformance_measured) return costs;
+  if (!conformance_measured) {
+    if (sweeps_measured)
+      for (std::size_t i = 0; i < models.size(); ++i)
+        costs[i] += 0.5 * sweep_cost_seconds(models[i], quick);
+    return costs;
+  }
   for (const ModelEntry& m : registered_models()) {
     const auto it = std::find(models.begin(), models.end(), m.name);
     if (it == models.end()) continue;
@@ -195,7 +205,8 @@ std::vector<std::string> selected_models(const std::string& globs) {
 void print_compare_plan(const CompareRequest& o, const Shard* shard) {
   const bool quick = quick_budget(o.budget);
   const std::vector<std::string> models = selected_models(o.models);
-  const std::vector<double> costs = compare_model_costs(models, o.claims_from.empty(), quick);
+  const std::vector<double> costs =
+      compare_model_costs(models, o.claims_from.empty(), o.sweeps_from.empty(), quick);
   const Shard all{1, 1};
   double total = 0, mine = 0;
   for (double c : costs) total += c;
@@ -204,13 +215,21 @@ void print_compare_plan(const CompareRequest& o, const Shard* shard) {
     fmt::print("{:<24} {:.1f}\n", models[i], costs[i]);
     mine += costs[i];
   }
-  fmt::print("{}{} of {} models, weight {:.1f} of {:.1f}: 1 per model{} (cli/claim_costs_table.cpp)\n",
+  const std::string budget = quick ? "quick" : "full";
+  fmt::print("{}{} of {} models, weight {:.1f} of {:.1f}: 1 per model{}\n",
              shard ? fmt::format("shard {}/{}: ", shard->k, shard->n) : std::string(),
              positions.size(), models.size(), mine, total,
              o.claims_from.empty()
-                 ? fmt::format(" plus the recorded seconds of its conformance checks at --budget {}",
-                               quick ? "quick" : "full")
-                 : std::string(", the conformance verdicts read from --claims-from"));
+                 ? fmt::format(" plus the recorded seconds of its conformance checks at --budget {} "
+                               "(cli/claim_costs_table.cpp)",
+                               budget)
+             : o.sweeps_from.empty()
+                 ? fmt::format(" plus half its sweep's measured CPU seconds at --budget {} "
+                               "(cli/sweep_costs.cpp); the conformance verdicts read from "
+                               "--claims-from",
+                               budget)
+                 : std::string(", the conformance verdicts and sweeps read from --claims-from and "
+                               "--sweeps-from"));
 }
 
 CompareSummary run_compare(const CompareRequest& o, const Shard* shard, bool verbose = false) {
@@ -240,7 +259,8 @@ CompareSummary run_compare(const CompareRequest& o, const Shard* shard, bool ver
     manifest.threads = threads;
     manifest.machine =
         fmt::format("{} hardware thread(s), {} used", std::thread::hardware_concurrency(), threads);
-    const std::vector<double> costs = compare_model_costs(c.models, o.claims_from.empty(), quick);
+    const std::vector<double> costs =
+        compare_model_costs(c.models, o.claims_from.empty(), o.sweeps_from.empty(), quick);
     for (std::size_t i : cost_balanced_positions(costs, *shard))
       manifest.covered.push_back(c.models[i]);
     c.models = manifest.covered;
@@ -466,7 +486,8 @@ void add_compare_command(CLI::App& app) {
   add_text_option(cmd, "--shard", o->shard,
                   "K/N: run only the K-th of N shards of the selected models (balanced by the "
                   "recorded seconds of each model's conformance checks where this run measures "
-                  "them, else every N-th model; --list prints the split) and write shard.json "
+                  "them, else by its sweep's measured cost where it sweeps, else every N-th "
+                  "model; --list prints the split) and write shard.json "
                   "beside the page; glintlab merge joins the N folders into the page of one run. "
                   "1 <= K <= N <= 10000",
                   "K/N");

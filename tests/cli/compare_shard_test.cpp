@@ -124,12 +124,15 @@ TEST_F(CompareShardTest, MergedShardsAreThePageOfOneRun) {
 // `compare --list --shard K/N` prints the split without running it. Where the run measures the
 // conformance checks itself, the shards are balanced by the checks' recorded seconds: every model
 // in exactly one shard, the two costliest apart, the largest shard within the greedy bound and
-// below the every-N-th split's largest; with --claims-from every model weighs 1 and shard K holds
-// every N-th model from the K-th, as before.
+// below the every-N-th split's largest. With --claims-from the run still sweeps every model, and
+// the shards are balanced by the sweeps' measured costs (the two Kemppinen models apart); with
+// --sweeps-from too every model weighs 1 and shard K holds every N-th model from the K-th.
 TEST_F(CompareShardTest, ListShowsTheShardsBalancedByTheRecordedCosts) {
-  const auto plan = [&](const std::string& shard, bool claims_from) {
+  enum Reads { kNothing, kClaims, kClaimsAndSweeps };
+  const auto plan = [&](const std::string& shard, Reads reads) {
     std::vector<std::string> args = {"compare", "--list", "--budget", "quick", "--shard", shard};
-    if (claims_from) args.insert(args.end(), {"--claims-from", "verify"});
+    if (reads != kNothing) args.insert(args.end(), {"--claims-from", "verify"});
+    if (reads == kClaimsAndSweeps) args.insert(args.end(), {"--sweeps-from", "sweeps"});
     const RunResult r = run(args);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     std::vector<std::pair<std::string, double>> rows;
@@ -144,35 +147,48 @@ TEST_F(CompareShardTest, ListShowsTheShardsBalancedByTheRecordedCosts) {
     }
     return rows;
   };
-  const auto all = plan("1/1", false);
-  ASSERT_EQ(all.size(), 9u);  // the registered models, in glintlab models order
-  std::vector<double> weights;
-  for (const auto& [m, w] : all) weights.push_back(w);
-  const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
-  const double costliest = *std::max_element(weights.begin(), weights.end());
-  const int n = 3;
-  double every_nth_largest = 0;
-  for (int k = 0; k < n; ++k) {
-    double sum = 0;
-    for (std::size_t i = std::size_t(k); i < weights.size(); i += n) sum += weights[i];
-    every_nth_largest = std::max(every_nth_largest, sum);
-  }
-  std::map<std::string, int> shard_of;
-  double largest = 0;
-  for (int k = 1; k <= n; ++k) {
-    double sum = 0;
-    for (const auto& [m, w] : plan(std::to_string(k) + "/3", false)) {
-      EXPECT_TRUE(shard_of.emplace(m, k).second) << m << " is in two shards";
-      sum += w;
+  // The shards of 3 balanced by the plan's weights: each model in one shard, the two Kemppinen
+  // models apart, the largest within the greedy bound, and for the conformance checks' weights
+  // below every N-th's largest (which puts two costly models together there; for the quick
+  // sweeps' nearly equal weights every N-th happens to be as good).
+  const auto expect_balanced = [&](Reads reads) {
+    const auto all = plan("1/1", reads);
+    ASSERT_EQ(all.size(), 9u);  // the registered models, in glintlab models order
+    std::vector<double> weights;
+    for (const auto& [m, w] : all) weights.push_back(w);
+    const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
+    const double costliest = *std::max_element(weights.begin(), weights.end());
+    const int n = 3;
+    double every_nth_largest = 0;
+    for (int k = 0; k < n; ++k) {
+      double sum = 0;
+      for (std::size_t i = std::size_t(k); i < weights.size(); i += n) sum += weights[i];
+      every_nth_largest = std::max(every_nth_largest, sum);
     }
-    largest = std::max(largest, sum);
-  }
-  EXPECT_EQ(shard_of.size(), all.size());
-  EXPECT_NE(shard_of["kemppinen_ggx"], shard_of["kemppinen_beckmann"]);
-  EXPECT_LE(largest, total / n + (1 - 1.0 / n) * costliest + 0.5);
-  EXPECT_LT(largest, every_nth_largest);
-  // Verdicts read from --claims-from: one per model, every N-th from the K-th.
-  const auto read = plan("2/3", true);
+    std::map<std::string, int> shard_of;
+    double largest = 0;
+    for (int k = 1; k <= n; ++k) {
+      double sum = 0;
+      for (const auto& [m, w] : plan(std::to_string(k) + "/3", reads)) {
+        EXPECT_TRUE(shard_of.emplace(m, k).second) << m << " is in two shards";
+        sum += w;
+      }
+      largest = std::max(largest, sum);
+    }
+    EXPECT_EQ(shard_of.size(), all.size());
+    EXPECT_NE(shard_of["kemppinen_ggx"], shard_of["kemppinen_beckmann"]);
+    EXPECT_LE(largest, total / n + (1 - 1.0 / n) * costliest + 0.5);
+    if (reads == kNothing) {
+      EXPECT_LT(largest, every_nth_largest);
+    }
+  };
+  expect_balanced(kNothing);
+  expect_balanced(kClaims);
+  // A model that sweeps weighs more than 1: the sweep's cost is counted.
+  for (const auto& [m, w] : plan("1/1", kClaims)) EXPECT_GT(w, 1.5) << m;
+  // Verdicts and sweeps read: one per model, every N-th from the K-th.
+  const auto all = plan("1/1", kClaimsAndSweeps);
+  const auto read = plan("2/3", kClaimsAndSweeps);
   ASSERT_EQ(read.size(), 3u);
   for (std::size_t j = 0; j < read.size(); ++j) {
     EXPECT_EQ(read[j].first, all[1 + 3 * j].first);
