@@ -203,6 +203,18 @@ GLINTLAB_FN T exp2_int(const T& e) {
   return lanes::exp2_int(e);
 }
 
+// The shared key parts of a LOD's four cells on a vector path (an empty struct elsewhere).
+template <class T, bool = (lanes::kVectorDoubles<T> > 0)>
+struct BlockKeysOf {
+  struct type {};
+};
+template <class T>
+struct BlockKeysOf<T, true> {
+  using type = lanes::CellBlockKeys<T>;
+};
+template <class T>
+using BlockKeys = typename BlockKeysOf<T>::type;
+
 // Visits the terms of Eq. 3 / Eq. 10: visit(active, weight, k, cell) for each of the two LODs and
 // four cells, `active` where w(l) W_P(l, s_0) > 0 (its weights sum to 1 per lane). k ≥ L marks the
 // smooth fallback, visited once per LOD before that LOD's four cells (which are then inactive;
@@ -229,12 +241,24 @@ GLINTLAB_FN void for_each_cell(const SdfParams& p, const FootprintQuery<T>& fp, 
     const T su = fp.uv.x * inv_cell - T(0.5), sv = fp.uv.y * inv_cell - T(0.5);
     const T fu = floor(su), fv = floor(sv);
     const T tu = su - fu, tv = sv - fv;
+    // On the batches the four cells' keys share their column and row parts (cell_block_keys).
+    [[maybe_unused]] bool block = false;
+    [[maybe_unused]] BlockKeys<T> keys{};
+    if constexpr (lanes::kVectorDoubles < T >> 0)
+      block = lanes::cell_block_keys(p.seed, fu, fv, scale, &keys);
     for (int c = 0; c < 4; ++c) {
       const int di = c & 1, dj = c >> 1;
       const T wu = di ? tu : T(1) - tu, wv = dj ? tv : T(1) - tv;
       const T W = wu * wv;
-      visit(cells_on && W != T(0), wl * W, k,
-            cell_at<T>(p.seed, fu + T(di), fv + T(dj), scale, dict.distributions()));
+      Cell<T> s;
+      if constexpr (lanes::kVectorDoubles < T >> 0) {
+        s = block
+                ? cell_from_uniforms(lanes::block_cell_uniforms(keys, di, dj), dict.distributions())
+                : cell_at<T>(p.seed, fu + T(di), fv + T(dj), scale, dict.distributions());
+      } else {
+        s = cell_at<T>(p.seed, fu + T(di), fv + T(dj), scale, dict.distributions());
+      }
+      visit(cells_on && W != T(0), wl * W, k, s);
     }
   }
 }
@@ -260,14 +284,21 @@ GLINTLAB_FN T patch_sdf(const SdfParams& p, Vec2<T> m, const FootprintQuery<T>& 
   const T ax = sk * (T(M.i00) * d.dx_x + T(M.i01) * d.dx_y), ay = sk * (T(M.i11) * d.dx_y);
   const T bx = sk * (T(M.i00) * d.dy_x + T(M.i01) * d.dy_y), by = sk * (T(M.i11) * d.dy_y);
   const T mx = T(M.i00) * m.x + T(M.i01) * m.y, my = T(M.i11) * m.y;  // M⁻¹ m̃
-  const T gauss = gaussian_sdf(m.x, m.y, p.sigma_x, p.sigma_y, rho_used);
+  // The smooth limit at m̃, computed when a lane first needs it (rarely: only footprints whose
+  // dictionary level passes the last).
+  T gauss = T(0);
+  bool have_gauss = false;
   T total = T(0), lambda_sum = T(0), lambda_weight = T(0);
   const T lod = chermain2021::lod(fp);
   for_each_cell(p, fp, lod, [&](Mask<T> on, T w, T k, const Cell<T>& s) {
     if (!any_lane<T>(on)) return;
     const Mask<T> smooth = k > last_level;
     const Mask<T> cell_on = on && !smooth;
-    total = select(on && smooth, total + w * gauss, total);
+    if (any_lane<T>(on && smooth)) {
+      if (!have_gauss) gauss = gaussian_sdf(m.x, m.y, p.sigma_x, p.sigma_y, rho_used);
+      have_gauss = true;
+      total = select(on && smooth, total + w * gauss, total);
+    }
     if (!any_lane<T>(cell_on)) return;
     const T kc = std_min(k, last_level);  // in range on the smooth lanes too (discarded)
     const T base_x = table_base(table, s.nx, kc);

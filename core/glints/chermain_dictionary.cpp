@@ -107,7 +107,9 @@ Dictionary::Dictionary(const DictionaryConfig& config) : config_(config) {
     per_table_ += std::size_t(res >> m);
   }
   const int N = config_.distributions, L = config_.levels;
-  mips_.assign(std::size_t(N) * std::size_t(L) * per_table_, 0.0f);
+  // One float past the last table: the batched lookups read texel pairs (core/glints/
+  // chermain_lanes.h, gather_texel_pair), whose second float may lie one past the table's end.
+  mips_.assign(std::size_t(N) * std::size_t(L) * per_table_ + 1, 0.0f);
   const double delta = extent() / res;
   const double s = config_.lobe_std;
   const double inv = 1 / s;

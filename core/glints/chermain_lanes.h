@@ -77,6 +77,43 @@ GLINTLAB_INLINE T gather_texels(const float* table, const T& index) {
   }
 }
 
+// table[i0] and table[i1] per lane from one 64-bit gather of the pair at lo = min(i0, i1): the two
+// taps of a linear lookup, whose wrapped indices are equal or adjacent (|i0 − i1| ≤ 1), so each
+// is the pair's first or second float. table[lo + 1] must be readable (the dictionary keeps one
+// float past its last table). Integer-valued indices in [0, 2^31); 8 or 4 lanes only (the SSE2
+// batch has no gather: the caller reads the taps one by one).
+template <class T>
+GLINTLAB_INLINE void gather_texel_pair(const float* table, const T& i0, const T& i1, T* t0, T* t1) {
+  constexpr std::size_t n = kVectorDoubles<T>;
+  static_assert(n == 8 || n == 4, "gather_texel_pair: the AVX-512 and AVX2 batches only");
+  if constexpr (n == 8) {
+#if defined(__AVX512F__) && defined(__AVX512DQ__)
+    const __m512d lo = _mm512_min_pd(i0.v, i1.v);
+    const __m512i pair = _mm512_i32gather_epi64(_mm512_cvttpd_epi32(lo), table, 4);
+    const __m512d first = _mm512_cvtps_pd(_mm256_castsi256_ps(_mm512_cvtepi64_epi32(pair)));
+    const __m512d second =
+        _mm512_cvtps_pd(_mm256_castsi256_ps(_mm512_cvtepi64_epi32(_mm512_srli_epi64(pair, 32))));
+    *t0 = from_register<T>(
+        _mm512_mask_blend_pd(_mm512_cmp_pd_mask(i0.v, lo, _CMP_EQ_OQ), second, first));
+    *t1 = from_register<T>(
+        _mm512_mask_blend_pd(_mm512_cmp_pd_mask(i1.v, lo, _CMP_EQ_OQ), second, first));
+#endif
+  } else {
+#if defined(__AVX2__)
+    const __m256d lo = _mm256_min_pd(i0.v, i1.v);
+    const __m256i pair = _mm256_i32gather_epi64(reinterpret_cast<const long long*>(table),
+                                                _mm256_cvttpd_epi32(lo), 4);
+    // Floats 0, 2, 4, 6 (the pairs' first) to the low half, 1, 3, 5, 7 to the high half.
+    const __m256i split =
+        _mm256_permutevar8x32_epi32(pair, _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7));
+    const __m256d first = _mm256_cvtps_pd(_mm_castsi128_ps(_mm256_castsi256_si128(split)));
+    const __m256d second = _mm256_cvtps_pd(_mm_castsi128_ps(_mm256_extracti128_si256(split, 1)));
+    *t0 = from_register<T>(_mm256_blendv_pd(second, first, _mm256_cmp_pd(i0.v, lo, _CMP_EQ_OQ)));
+    *t1 = from_register<T>(_mm256_blendv_pd(second, first, _mm256_cmp_pd(i1.v, lo, _CMP_EQ_OQ)));
+#endif
+  }
+}
+
 // 2^e per lane for an integer-valued e in [−1022, 1023] (exact): e + 2^52 + 1023 holds e + 1023 in
 // its low mantissa bits, which the shift moves into the exponent field.
 template <class T>
@@ -252,6 +289,52 @@ template <class T>
 struct CellUniforms {
   T u0, u1, u2;
 };
+
+// On a vector path: the parts of the cell keys (cell_key, core/glints/chermain.h) of the four
+// cells with lower-left corners (cu + di, cv + dj)·scale, di, dj ∈ {0, 1}, that two of them share:
+// mix64(ci·φ) per column di and cj per row dj, and the step of counter_bits common to the batch.
+template <class T>
+struct CellBlockKeys {
+  using U = typename VectorOf<kVectorDoubles<T>>::U;
+  U column[2], row[2];
+  U seed_step;
+};
+
+// The shared key parts of the 2 × 2 cells at (cu, cv) (see cell_uniforms); false (nothing written)
+// where a lane's corner is beyond the exact integer conversion: the caller then takes the per-lane
+// code.
+template <class T>
+GLINTLAB_INLINE bool cell_block_keys(std::uint64_t seed, const T& cu, const T& cv, const T& scale,
+                                     CellBlockKeys<T>* out) {
+  using V = VectorOf<kVectorDoubles<T>>;
+  using U = typename V::U;
+  U ci[2], cj[2];
+  if (!V::to_int(V::mul(cu.v, scale.v), &ci[0]) ||
+      !V::to_int(V::mul((cu + T(1)).v, scale.v), &ci[1]) ||
+      !V::to_int(V::mul(cv.v, scale.v), &cj[0]) ||
+      !V::to_int(V::mul((cv + T(1)).v, scale.v), &cj[1]))
+    return false;
+  for (int d = 0; d < 2; ++d) {
+    out->column[d] = mix64_lanes(ci[d] * 0x9e3779b97f4a7c15ULL);
+    out->row[d] = cj[d];
+  }
+  out->seed_step = U::set1(mix64(seed + 0x9e3779b97f4a7c15ULL));
+  return true;
+}
+
+// The uniforms of cell (di, dj) of a block (cell_block_keys): as cell_uniforms.
+template <class T>
+GLINTLAB_INLINE CellUniforms<T> block_cell_uniforms(const CellBlockKeys<T>& keys, int di, int dj) {
+  using V = VectorOf<kVectorDoubles<T>>;
+  using U = typename V::U;
+  const U key = keys.column[di] ^ keys.row[dj];
+  const U h = mix64_lanes(keys.seed_step ^ (key + U::set1(0x632be59bd9b4e019ULL)));
+  const auto uniform = [&](std::uint64_t dim) {
+    const U bits = mix64_lanes(h ^ U::set1(dim * 0xd1b54a32d192ed03ULL + 0x8cb92ba72f3d8dd7ULL));
+    return from_register<T>(V::mul(V::to_double(bits.template shr<11>()), V::set1(0x1p-53)));
+  };
+  return {uniform(0), uniform(1), uniform(2)};
+}
 
 // On a vector path (kVectorDoubles<T> > 0): the uniforms of the cells with lower-left corners
 // (cu, cv)·scale in units of 2^-20 (integer-valued products), the key of each as cell_key

@@ -94,30 +94,37 @@ struct LevelSize {
 // Mirrored repeat: period 2·size, the second half reversed; the residue i − P⌊i/P⌋ is exact (P a
 // power of two).
 template <class T>
-GLINTLAB_FN T fetch(const Table& t, T level_base, const LevelSize<T>& level, T i, TableWrap wrap) {
+GLINTLAB_FN T wrapped(const LevelSize<T>& level, T i, TableWrap wrap) {
   const T size = level.size;
-  T j;
-  if (wrap == TableWrap::kClampToEdge) {
-    j = std_clamp(i, T(0), size - T(1));
-  } else {
-    const T period = T(2) * size;
-    const T r = i - period * floor(i * level.inv_period);
-    j = select(r >= size, period - T(1) - r, r);
-  }
-  return gather(t.texels, level_base + j);
+  if (wrap == TableWrap::kClampToEdge) return std_clamp(i, T(0), size - T(1));
+  const T period = T(2) * size;
+  const T r = i - period * floor(i * level.inv_period);
+  return select(r >= size, period - T(1) - r, r);
+}
+template <class T>
+GLINTLAB_FN T fetch(const Table& t, T level_base, const LevelSize<T>& level, T i, TableWrap wrap) {
+  return gather(t.texels, level_base + wrapped(level, i, wrap));
 }
 
 // textureLod at MIP level m (integer-valued, size = resolution/2^m texels): linear interpolation
 // between texel centres, u = x / extent the normalized coordinate.
 template <class T>
-GLINTLAB_FN T linear(const Table& t, T base, const LevelSize<T>& level, T u, TableWrap wrap) {
+GLINTLAB_INLINE T linear(const Table& t, T base, const LevelSize<T>& level, T u, TableWrap wrap) {
   const T size = level.size;
   const T s = u * size - T(0.5);
   const T f = floor(s);
   const T w = s - f;
   const T level_base = base + T(2 * t.resolution) - T(2) * size;
-  return (T(1) - w) * fetch(t, level_base, level, f, wrap) +
-         w * fetch(t, level_base, level, f + T(1), wrap);
+  if constexpr (lanes::kVectorDoubles<T> >= 4) {
+    // The two taps, equal or adjacent after wrapping, from one gather of texel pairs.
+    T a, b;
+    lanes::gather_texel_pair(t.texels, level_base + wrapped(level, f, wrap),
+                             level_base + wrapped(level, f + T(1), wrap), &a, &b);
+    return (T(1) - w) * a + w * b;
+  } else {
+    return (T(1) - w) * fetch(t, level_base, level, f, wrap) +
+           w * fetch(t, level_base, level, f + T(1), wrap);
+  }
 }
 
 // resolution / 2^m per lane (m integer-valued in [0, mip_levels)) and its inverse period: on the
@@ -137,9 +144,11 @@ GLINTLAB_FN LevelSize<T> level_size(const Table& t, T m) {
 
 // Trilinear lookup at level of detail lambda (clamped to the pyramid): linear within ⌊λ⌋ and
 // ⌊λ⌋ + 1, linear between them. Where every lane sits exactly on a level (λ = ⌊λ⌋, e.g. λ = 0), the
-// second level is not read: a + 0·(b − a) = a for the finite, non-negative a here.
+// second level is not read: a + 0·(b − a) = a for the finite, non-negative a here. Forced inline
+// (as lookup_grad): out of line, each call waited for its own gathers, which inline overlap with
+// the other marginal's lookup and the next cell's draws.
 template <class T>
-GLINTLAB_FN T trilinear(const Table& t, T base, T u, T lambda, TableWrap wrap) {
+GLINTLAB_INLINE T trilinear(const Table& t, T base, T u, T lambda, TableWrap wrap) {
   const T top = T(t.mip_levels - 1);
   const T l = std_clamp(lambda, T(0), top);
   const T m0 = floor(l);

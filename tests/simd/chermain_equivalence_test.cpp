@@ -403,7 +403,8 @@ TEST(SimdChermainNegativeControl, UnperturbedBatchPassesPerturbedFail) {
 // The vector forms of core/glints/chermain_lanes.h on this TU's baseline batch against the scalar
 // code they replace, bit for bit: each cell's three counter uniforms (keys over the whole exact
 // range of the int64 conversion, and the refusal beyond it that sends the batch to the per-lane
-// code) and 2^e over the normal exponents.
+// code), the same draws through a LOD's 2 × 2 block of shared key parts (cell_block_keys), and 2^e
+// over the normal exponents.
 TEST(SimdChermainLanes, CellUniformsAndPowersOfTwoAreTheScalarBits) {
   using chermain2021::lanes::kVectorDoubles;
   if constexpr (kVectorDoubles<BatchWide> == 0) {
@@ -412,7 +413,7 @@ TEST(SimdChermainLanes, CellUniformsAndPowersOfTwoAreTheScalarBits) {
     constexpr std::size_t kL = BatchWide::kLanes;
     const std::uint64_t seed = 2021;
     const double limit = 0x1p51;  // the exact conversion's range without AVX-512
-    std::size_t checked = 0, refused = 0, bad = 0;
+    std::size_t checked = 0, refused = 0, bad = 0, block_checked = 0, block_refused = 0;
     for (std::uint64_t i = 0; i < 20000; ++i) {
       double cu[kL], cv[kL], scale[kL];
       for (std::size_t l = 0; l < kL; ++l) {
@@ -448,10 +449,40 @@ TEST(SimdChermainLanes, CellUniformsAndPowersOfTwoAreTheScalarBits) {
                u2[l] != counter_uniform<double>(seed, key, 2);
         ++checked;
       }
+      // The same draws through the 2 × 2 block's shared key parts (for_each_cell's path), for the
+      // cells (cu + di, cv + dj); refused where any of the four corners is past the range.
+      chermain2021::lanes::CellBlockKeys<BatchWide> keys;
+      bool block_in_range = true;
+      for (std::size_t l = 0; l < kL; ++l)
+        block_in_range = block_in_range && std::abs((cu[l] + 1) * scale[l]) < limit &&
+                         std::abs((cv[l] + 1) * scale[l]) < limit && in_range;
+      if (!chermain2021::lanes::cell_block_keys(seed, u, v, s, &keys)) {
+        ++block_refused;
+        bad += block_in_range;
+        continue;
+      }
+      bad += !block_in_range && kL != 8;
+      for (int c = 0; c < 4; ++c) {
+        const int di = c & 1, dj = c >> 1;
+        const chermain2021::lanes::CellUniforms<BatchWide> b =
+            chermain2021::lanes::block_cell_uniforms(keys, di, dj);
+        const LanesOf<BatchWide> b0(b.u0), b1(b.u1), b2(b.u2);
+        for (std::size_t l = 0; l < kL; ++l) {
+          const std::uint64_t key = chermain2021::cell_key(std::int64_t((cu[l] + di) * scale[l]),
+                                                           std::int64_t((cv[l] + dj) * scale[l]));
+          bad += b0[l] != counter_uniform<double>(seed, key, 0) ||
+                 b1[l] != counter_uniform<double>(seed, key, 1) ||
+                 b2[l] != counter_uniform<double>(seed, key, 2);
+          ++block_checked;
+        }
+      }
     }
     std::printf(
-        "chermain lanes (%zu lanes): %zu lanes' draws checked, %zu batches refused, %zu bad\n", kL,
-        checked, refused, bad);
+        "chermain lanes (%zu lanes): %zu lanes' draws checked, %zu batches refused, %zu bad; "
+        "blocks: %zu cells' draws checked, %zu blocks refused\n",
+        kL, checked, refused, bad, block_checked, block_refused);
+    EXPECT_GT(block_checked, 4 * 20000u);
+    EXPECT_GT(block_refused, 0u);
     EXPECT_EQ(bad, 0u);
     EXPECT_GT(checked, 20000u);
     EXPECT_GT(refused, 100u);
