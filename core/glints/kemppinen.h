@@ -258,29 +258,39 @@ GLINTLAB_FN void level(const Params<T>& p, const Angular<T>& ang, Vec2<T> x_s,
                                  (inv_rho - inv_rho == T(0));
   // The uniforms of a point share the seed's and the cell's hash steps (kemppinen_lanes.h).
   const std::uint64_t seed_key = cell_seed_key(p.seed);
+  // Each cell coordinate as a float, and whether an angular one lies in the square, once per
+  // coordinate rather than once per cell (lane by lane, the same values).
+  LaneInt<T> ay[kMaxSide];
+  T fay[kMaxSide];
+  Mask<T> in_y[kMaxSide];
+  for (int b = 0; b < n; ++b) {
+    ay[b] = ay0 + b;
+    fay[b] = int_to_float<T>(ay[b]);
+    in_y[b] = mask_lanes<T>(
+        [&](std::size_t l) { return lane(ay[b], l) >= 0 && lane(ay[b], l) < lane(n_a, l); });
+  }
   for (int i = 0; i < n; ++i) {
     const LaneInt<T> sx = sx0 + i;
+    const T fsx = int_to_float<T>(sx);
     const LaneInt<T, std::uint64_t> hash_i = cell_chain_sx_lanes<T>(sx);
     for (int j = 0; j < n; ++j) {
       const LaneInt<T> sy = sy0 + j;
+      const T fsy = int_to_float<T>(sy);
       const LaneInt<T, std::uint64_t> hash_ij = cell_chain_sy_lanes<T>(hash_i, sy);
       for (int a = 0; a < n; ++a) {
         const LaneInt<T> ax = ax0 + a;
-        const LaneInt<T, std::uint64_t> hash_ija = cell_chain_ax_lanes<T>(hash_ij, ax);
+        const T fax = int_to_float<T>(ax);
+        const Mask<T> in_x = mask_lanes<T>(
+            [&](std::size_t l) { return lane(ax, l) >= 0 && lane(ax, l) < lane(n_a, l); });
+        const LaneInt<T, std::uint64_t> hash_ija = cell_chain_ax_vector<T>(hash_ij, ax);
         for (int b = 0; b < n; ++b) {
-          const LaneInt<T> ay = ay0 + b;
-          const LaneInt<T, std::uint64_t> key =
-              cell_key<T>(seed_key, cell_chain_ay_level_vector<T>(hash_ija, ay, level, process));
-          const Mask<T> in_square = mask_lanes<T>([&](std::size_t l) {
-            return lane(ax, l) >= 0 && lane(ax, l) < lane(n_a, l) && lane(ay, l) >= 0 &&
-                   lane(ay, l) < lane(n_a, l);
-          });
-          const Vec2<T> g_s{
-              (int_to_float<T>(sx) + key_uniform<T>(key, kKemppinenDimSpatialX)) / res_s,
-              (int_to_float<T>(sy) + key_uniform<T>(key, kKemppinenDimSpatialY)) / res_s};
-          const Vec2<T> g_a{
-              (int_to_float<T>(ax) + key_uniform<T>(key, kKemppinenDimAngularX)) / res_a,
-              (int_to_float<T>(ay) + key_uniform<T>(key, kKemppinenDimAngularY)) / res_a};
+          const LaneInt<T, std::uint64_t> key = cell_key<T>(
+              seed_key, cell_chain_ay_level_vector<T>(hash_ija, ay[b], level, process));
+          const Mask<T> in_square = in_x && in_y[b];
+          const Vec2<T> g_s{(fsx + key_uniform<T>(key, kKemppinenDimSpatialX)) / res_s,
+                            (fsy + key_uniform<T>(key, kKemppinenDimSpatialY)) / res_s};
+          const Vec2<T> g_a{(fax + key_uniform<T>(key, kKemppinenDimAngularX)) / res_a,
+                            (fay[b] + key_uniform<T>(key, kKemppinenDimAngularY)) / res_a};
           // Points outside U_Ω are rejected (Sec. 3.3.1).
           const Mask<T> in_disk = sqr(g_a.x - T(0.5)) + sqr(g_a.y - T(0.5)) <= T(0.25);
           const T r = key_uniform<T>(key, kKemppinenDimRoulette);

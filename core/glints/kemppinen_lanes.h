@@ -29,7 +29,8 @@ inline constexpr std::uint64_t kCounterSeedAdd = 0x9e3779b97f4a7c15ULL;
 inline constexpr std::uint64_t kCounterIndexAdd = 0x632be59bd9b4e019ULL;
 inline constexpr std::uint64_t kCounterDimMul = 0xd1b54a32d192ed03ULL;
 inline constexpr std::uint64_t kCounterDimAdd = 0x8cb92ba72f3d8dd7ULL;
-// cell_chain_ay's multiplier (kemppinen_grid.h).
+// cell_chain_ax's and cell_chain_ay's multipliers (kemppinen_grid.h).
+inline constexpr std::uint64_t kChainAxMul = 0x8cb92ba72f3d8dd7ULL;
 inline constexpr std::uint64_t kChainAyMul = 0xabc98388fb8fac03ULL;
 
 // The seed's step of counter_bits, the same for every cell of a call.
@@ -107,6 +108,25 @@ GLINTLAB_INLINE T key_uniform(const LaneInt<T, std::uint64_t>& key, std::uint64_
       std::memcpy(s, &u, sizeof s);
     }
     return LaneAccess<T>::load(s);
+  }
+}
+
+// cell_chain_ax_lanes(h, ax) (kemppinen_grid.h): the ax step of the chain per lane.
+template <class T>
+GLINTLAB_INLINE LaneInt<T, std::uint64_t> cell_chain_ax_vector(const LaneInt<T, std::uint64_t>& h,
+                                                               const LaneInt<T>& ax) {
+  if constexpr (std::is_floating_point_v<T>) {
+    return cell_chain_ax(h, ax);
+  } else {
+    using V = typename HashVector<kLaneCount<T>>::type;
+    V v, a;
+    std::memcpy(&v, h.v, sizeof v);
+    std::memcpy(&a, ax.v, sizeof a);  // int64 lanes: static_cast<uint64_t> keeps the bits
+    v = v ^ (a * kChainAxMul);
+    mix64_vector(v);
+    LaneInt<T, std::uint64_t> out;
+    std::memcpy(out.v, &v, sizeof v);
+    return out;
   }
 }
 

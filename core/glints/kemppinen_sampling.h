@@ -479,12 +479,12 @@ GLINTLAB_FN T level_block_density(LevelPoints<T>& pts, const LaneInt<T, int>& le
   return select(inside, sum / total, T(0));
 }
 
-// The marginal density in □ of sample_half's x (defective: rejections excluded). Every block
-// B(k) whose selecting square of x_a meets U_Ω, at both levels; their points are computed once
-// per level (level_points).
+// The marginal density in □ of sample_half's x (defective: rejections excluded), every lane's
+// points computed on every lane: the loops sample_density_square takes on scalars (and the
+// reference of the packed batch loops).
 template <class Ndf, class T>
-GLINTLAB_FN T sample_density_square(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp, Vec2<T> x,
-                        int process = 0) {
+GLINTLAB_FN T sample_density_square_unpacked(const Params<T>& p, const Ndf& ndf,
+                                             const FootprintQuery<T>& fp, Vec2<T> x, int process = 0) {
   const Mask<T> in_disk = !(sqr(x.x - T(0.5)) + sqr(x.y - T(0.5)) > T(0.25));
   if (!any_lane<T>(in_disk)) return T(0);
   const Spatial<T> sp = spatial(p, fp);
@@ -528,6 +528,24 @@ GLINTLAB_FN T sample_density_square(const Params<T>& p, const Ndf& ndf, const Fo
   return select(in_disk, total, T(0));
 }
 
+// sample_density_square on a batch, its points' work packed by (point, lane): kemppinen_packed.h.
+template <class Ndf, class T>
+GLINTLAB_FN T sample_density_square_packed(const Params<T>& p, const Ndf& ndf,
+                                           const FootprintQuery<T>& fp, Vec2<T> x, int process);
+
+// The marginal density in □ of sample_half's x (defective: rejections excluded). Every block
+// B(k) whose selecting square of x_a meets U_Ω, at both levels; their points are computed once
+// per level (level_points). A batch takes the packed loops of kemppinen_packed.h (the same bits).
+template <class Ndf, class T>
+GLINTLAB_FN T sample_density_square(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp, Vec2<T> x,
+                        int process = 0) {
+  if constexpr (kLaneCount<T> > 1) {
+    return sample_density_square_packed(p, ndf, fp, x, process);
+  } else {
+    return sample_density_square_unpacked(p, ndf, fp, x, process);
+  }
+}
+
 // The marginal density of ω_h per steradian: the density in □ at T(ω_h) times |det dT/dω|.
 template <class Ndf, class T>
 GLINTLAB_FN T sample_density_half(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp, Vec3<T> h,
@@ -554,3 +572,6 @@ GLINTLAB_FN LaneInt<T, std::uint64_t> key_from_uniforms(Vec2<T> u) {
 }
 
 }  // namespace glintlab::kemppinen2025
+
+// The packed batch loops (they include this header first).
+#include "core/glints/kemppinen_packed.h"
