@@ -353,20 +353,9 @@ inline constexpr std::size_t kPackedBinomialLanes = [] {
 struct LanePermutations {
   std::array<std::array<std::uint8_t, 8>, 256> pack{}, unpack{};
 };
-inline constexpr LanePermutations kLanePermutations = [] {
-  LanePermutations t;
-  for (std::size_t m = 0; m < 256; ++m) {
-    std::size_t at = 0;
-    for (int set = 1; set >= 0; --set)
-      for (std::size_t l = 0; l < 8; ++l)
-        if (int((m >> l) & 1u) == set) {
-          t.pack[m][at] = std::uint8_t(l);
-          t.unpack[m][l] = std::uint8_t(at);
-          ++at;
-        }
-  }
-  return t;
-}();
+// Defined once in binomial_kernel.cpp: an inline variable would be a weak symbol of every ISA
+// object that reads it (tests/simd/isa_symbols_test.cmake).
+extern const LanePermutations kLanePermutations;
 
 // binomial_exact_double_lanes on the live lanes of a float batch (n ≠ 0, 0 < p < 1: those that
 // draw), packed to the front so that they fill as few double parts as their number needs: with a
