@@ -14,6 +14,10 @@
 #include <cstdint>
 #include <type_traits>
 
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
 #include "core/math/hash32_stream.h"
 #include "core/math/lane_rng.h"
 #include "core/math/ops.h"
@@ -136,12 +140,28 @@ namespace detail {
 // dynamic initializer would give every ISA object a shared weak guard symbol).
 extern const std::array<double, 16> kLogFactorialTable;
 
-// Stirling's series of log_factorial (A&S 6.1.41), in its operation order.
+// Stirling's series of log_factorial (A&S 6.1.41), in its operation order, for x = k + 1 and
+// its log.
+template <class D>
+GLINTLAB_FN D stirling_from_log(D x, D log_x) {
+  const D ix = D(1) / x, ix2 = ix * ix;
+  return (x - D(0.5)) * log_x - x + D(0.91893853320467274178) +
+         ix * (D(1.0 / 12) - ix2 * (D(1.0 / 360) - ix2 * D(1.0 / 1260)));
+}
 template <class D>
 GLINTLAB_FN D stirling_log_factorial(D k) {
-  const D x = k + D(1), ix = D(1) / x, ix2 = ix * ix;
-  return (x - D(0.5)) * log(x) - x + D(0.91893853320467274178) +
-         ix * (D(1.0 / 12) - ix2 * (D(1.0 / 360) - ix2 * D(1.0 / 1260)));
+  const D x = k + D(1);
+  return stirling_from_log(x, log(x));
+}
+
+// log_factorial on lanes from Stirling's value where k ≥ 16: the table below 16.
+template <class D>
+GLINTLAB_FN D log_factorial_lanes_from(D k, D stirling) {
+  const Mask<D> small = k < D(16);
+  if (!any_lane<D>(small)) return stirling;
+  const D table = lane_gather(kLogFactorialTable.data(), clamp(k, D(0), D(15)));
+  if (!any_lane<D>(!small)) return table;
+  return select(small, table, stirling);
 }
 
 // log_factorial on lanes: the table below 16, Stirling above; of the two, only what some lane
@@ -162,8 +182,9 @@ GLINTLAB_FN D stirling_correction(D x) {
 }
 
 // log_factorial_ratio(a, ·) on lanes (the differenced Stirling form where both are ≥ 16) for a
-// fixed a (BTRS's m and n − m, the same on every attempt): a's logs computed once. Of the two
-// forms, only the one some lane selects is computed (a uniform branch; the same values).
+// fixed a (BTRS's m and n − m, the same on every attempt): a's logs computed once, log(a + 1)
+// shared by the differenced form and log a! (Stirling's). Of the two forms, only the one some
+// lane selects is computed (a uniform branch; the same values).
 template <class D>
 struct LogFactorialRatioFrom {
   D a, xa, log_xa, correction_a, log_factorial_a;
@@ -173,7 +194,7 @@ struct LogFactorialRatioFrom {
         xa(a_ + D(1)),
         log_xa(log(xa)),
         correction_a(stirling_correction(xa)),
-        log_factorial_a(log_factorial_lanes(a_)) {}
+        log_factorial_a(log_factorial_lanes_from(a_, stirling_from_log(xa, log_xa))) {}
   GLINTLAB_FN D operator()(D b) const {
     const Mask<D> small = a < D(16) || b < D(16);
     if (!any_lane<D>(!small)) return log_factorial_a - log_factorial_lanes(b);
@@ -186,26 +207,31 @@ struct LogFactorialRatioFrom {
 };
 
 // detail::binomial_inversion on the lanes of `active` (n·p < 10, p ≤ ½; others keep k = 0), u
-// dim 0 of the stream (not drawn where no lane is active).
+// dim 0 of the stream (not drawn where no lane is active). A lane still running at step `it` has
+// stepped at every step before, so its k is `it`: the pmf recurrence runs on every lane with that
+// k (the same operations, so a running lane's f and cdf have the host loop's bits) and only the
+// count is selected per lane. That keeps the masks and the division off the loop-carried chain
+// (f·ratio, cdf + f), which otherwise waited on each step's compare and select.
 template <class D, class Stream>
 GLINTLAB_FN D binomial_inversion_lanes(D nd, D p, const Stream& stream, Mask<D> active) {
   if (!any_lane<D>(active)) return D(0);
   const D u = stream.uniform(0);
   const D q = D(1) - p, r = p / q;
-  D f = exp(nd * log1p(-p));
+  // Lanes not drawing start from 0 and stay 0 (no overflowing or denormal pmf on them).
+  D f = select(active, exp(nd * log1p(-p)), D(0));
   D cdf = f;
   D k = D(0);
+  const D stop_above = nd * p + D(1);
   Mask<D> running = active;
   for (int it = 0; it < kBinomialInversionMaxSteps; ++it) {
-    const Mask<D> step = running && (u > cdf) && (k < nd);
+    const D k_running = D(Scalar<D>(it));
+    const D k_next = D(Scalar<D>(it + 1));
+    const Mask<D> step = running && (u > cdf) && (k_running < nd);
     if (!any_lane<D>(step)) break;  // uniform: no lane is still stepping
-    const D f1 = f * ((nd - k) / (k + D(1)) * r);
-    const D k1 = k + D(1);
-    const D c1 = cdf + f1;
-    f = select(step, f1, f);
-    k = select(step, k1, k);
-    cdf = select(step, c1, cdf);
-    const Mask<D> stop = (k > nd * p + D(1)) && (f < D(1e-18) * cdf);
+    f = f * ((nd - k_running) / k_next * r);
+    cdf = cdf + f;
+    k = select(step, k_next, k);
+    const Mask<D> stop = (k_next > stop_above) && (f < D(1e-18) * cdf);
     running = step && !stop;
   }
   return k;
@@ -301,15 +327,143 @@ GLINTLAB_FN U load_hash_lanes(const std::uint32_t* in) {
 
 }  // namespace detail
 
+namespace detail {
+
+// Whether binomial_exact_lanes draws T's live lanes packed (binomial_exact_packed): float batches
+// of 16 lanes where this unit has AVX-512 (vcompressps / vexpandps), of 8 where it has AVX2 (a
+// permutation from a table). 0: the lanes in place, part by part.
+template <class T>
+inline constexpr std::size_t kPackedBinomialLanes = [] {
+  if constexpr (std::is_floating_point_v<T> || !std::is_same_v<Scalar<T>, float>) {
+    return std::size_t(0);
+  } else {
+    [[maybe_unused]] constexpr std::size_t n = LaneTraits<T>::kLanes;
+#if defined(__AVX512F__)
+    if (n == 16) return n;
+#endif
+#if defined(__AVX2__)
+    if (n == 8) return n;
+#endif
+    return std::size_t(0);
+  }
+}();
+
+// For each 8-bit mask of lanes: the permutation that puts its lanes first, in order, then the
+// others (pack: the lane at each place), and its inverse (unpack: the place of each lane).
+struct LanePermutations {
+  std::array<std::array<std::uint8_t, 8>, 256> pack{}, unpack{};
+};
+// Defined once in binomial_kernel.cpp: an inline variable would be a weak symbol of every ISA
+// object that reads it (tests/simd/isa_symbols_test.cmake).
+extern const LanePermutations kLanePermutations;
+
+// binomial_exact_double_lanes on the live lanes of a float batch (n ≠ 0, 0 < p < 1: those that
+// draw), packed to the front so that they fill as few double parts as their number needs: with a
+// few live lanes per batch (a footprint's N_P is often 0), one part where there were two (AVX-512:
+// 16 float lanes, 8 double; AVX2: 8 and 4), and no exp/log set-up paid for a part of dead lanes.
+// Each lane's draw depends on its own n, p and key alone (the loops mask per lane), so a lane
+// gets the count it got in place; the others get binomial_exact_double_lanes's 0 (n = 0 or
+// p ≤ 0 or NaN) or n (p ≥ 1). The float lanes convert to double exactly, so `live` is decided on
+// them.
+template <class T>
+GLINTLAB_INLINE T binomial_exact_packed(const T& n, const T& p, const HashLanes<T>& key) {
+  constexpr std::size_t kL = kPackedBinomialLanes<T>;
+  if constexpr (kL == 16) {
+#if defined(__AVX512F__)
+    using D = typename LaneTraits<T>::Double;
+    using DRaw = typename D::Raw;
+    using U = HashLanes<D>;
+    using Raw = typename T::Raw;
+    const __m512 nv = n.v, pv = p.v, zero = _mm512_setzero_ps();
+    const __m512i keys = key;
+    const __mmask16 live = _mm512_cmp_ps_mask(nv, zero, _CMP_NEQ_UQ) &
+                           _mm512_cmp_ps_mask(pv, zero, _CMP_GT_OQ) &
+                           _mm512_cmp_ps_mask(pv, _mm512_set1_ps(1.0f), _CMP_LT_OQ);
+    const __mmask16 none =
+        _mm512_cmp_ps_mask(nv, zero, _CMP_EQ_OQ) | _mm512_cmp_ps_mask(pv, zero, _CMP_NGT_UQ);
+    const __m512 dead = _mm512_mask_blend_ps(none, nv, zero);
+    if (live == 0) return T::wrap(Raw(dead));
+    const __m512 nc = _mm512_maskz_compress_ps(live, nv);
+    const __m512 pc = _mm512_maskz_compress_ps(live, pv);
+    const __m512i kc = _mm512_maskz_compress_epi32(live, keys);
+    const auto draw = [](__m256 n8, __m256 p8, __m256i k8) {
+      const D k = binomial_exact_double_lanes(D::wrap(DRaw(_mm512_cvtps_pd(n8))),
+                                              D::wrap(DRaw(_mm512_cvtps_pd(p8))),
+                                              HashStream<D>{U(_mm512_cvtepu32_epi64(k8))});
+      return _mm256_castps_si256(_mm512_cvtpd_ps(k.v));
+    };
+    const __m256i low = draw(_mm512_castps512_ps256(nc), _mm512_castps512_ps256(pc),
+                             _mm512_castsi512_si256(kc));
+    __m256i high = _mm256_setzero_si256();
+    if (std::popcount(unsigned(live)) > 8)
+      high = draw(_mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(nc), 1)),
+                  _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(pc), 1)),
+                  _mm512_extracti64x4_epi64(kc, 1));
+    const __m512 counts =
+        _mm512_castsi512_ps(_mm512_inserti64x4(_mm512_castsi256_si512(low), high, 1));
+    return T::wrap(Raw(_mm512_mask_expand_ps(dead, live, counts)));
+#endif
+  } else if constexpr (kL == 8) {
+#if defined(__AVX2__)
+    using D = typename LaneTraits<T>::Double;
+    using DRaw = typename D::Raw;
+    using U = HashLanes<D>;
+    using Raw = typename T::Raw;
+    const __m256 nv = n.v, pv = p.v, zero = _mm256_setzero_ps();
+    const __m256i keys = key;
+    const __m256 live_lanes = _mm256_and_ps(
+        _mm256_and_ps(_mm256_cmp_ps(nv, zero, _CMP_NEQ_UQ), _mm256_cmp_ps(pv, zero, _CMP_GT_OQ)),
+        _mm256_cmp_ps(pv, _mm256_set1_ps(1.0f), _CMP_LT_OQ));
+    const __m256 none =
+        _mm256_or_ps(_mm256_cmp_ps(nv, zero, _CMP_EQ_OQ), _mm256_cmp_ps(pv, zero, _CMP_NGT_UQ));
+    const __m256 dead = _mm256_blendv_ps(nv, zero, none);
+    const unsigned live = unsigned(_mm256_movemask_ps(live_lanes));
+    if (live == 0) return T::wrap(Raw(dead));
+    const __m256i pack = _mm256_cvtepu8_epi32(_mm_loadl_epi64(
+        reinterpret_cast<const __m128i*>(kLanePermutations.pack[live].data())));
+    const __m256 nc = _mm256_permutevar8x32_ps(nv, pack);
+    const __m256 pc = _mm256_permutevar8x32_ps(pv, pack);
+    const __m256i kc = _mm256_permutevar8x32_epi32(keys, pack);
+    const auto draw = [](__m128 n4, __m128 p4, __m128i k4) {
+      const D k = binomial_exact_double_lanes(D::wrap(DRaw(_mm256_cvtps_pd(n4))),
+                                              D::wrap(DRaw(_mm256_cvtps_pd(p4))),
+                                              HashStream<D>{U(_mm256_cvtepu32_epi64(k4))});
+      return _mm256_cvtpd_ps(k.v);
+    };
+    // Lanes packed after the live ones are dead ones (the permutation's rest): drawn, they cost
+    // nothing and their result is replaced by `dead`.
+    const __m128 low = draw(_mm256_castps256_ps128(nc), _mm256_castps256_ps128(pc),
+                            _mm256_castsi256_si128(kc));
+    __m128 high = _mm_setzero_ps();
+    if (std::popcount(live) > 4)
+      high = draw(_mm256_extractf128_ps(nc, 1), _mm256_extractf128_ps(pc, 1),
+                  _mm256_extracti128_si256(kc, 1));
+    const __m256i unpack = _mm256_cvtepu8_epi32(_mm_loadl_epi64(
+        reinterpret_cast<const __m128i*>(kLanePermutations.unpack[live].data())));
+    const __m256 counts = _mm256_permutevar8x32_ps(_mm256_set_m128(high, low), unpack);
+    return T::wrap(Raw(_mm256_blendv_ps(dead, counts, live_lanes)));
+#endif
+  }
+  // Not reached: kPackedBinomialLanes is 0 where this unit lacks these ISAs.
+  static_cast<void>(n), static_cast<void>(p), static_cast<void>(key);
+  return T(0);
+}
+
+}  // namespace detail
+
 // The exact Binomial(n, p) draw on every lane of T, n a count (integer-valued, ≥ 0), from each
 // lane's hash32 stream (HashStream{key}): the lanes converted to double and drawn in the double
 // batches of the same ISA (LaneTraits::Double), parts of as many lanes as those hold, each part's
-// keys moved to that batch's hash lanes. On a scalar T: the same kernel in double.
+// keys moved to that batch's hash lanes; on AVX2 and AVX-512 float batches the drawing lanes are
+// packed into as few parts as they fill first (detail::binomial_exact_packed). On a scalar T: the
+// same kernel in double.
 template <class T>
 GLINTLAB_FN T binomial_exact_lanes(T n, T p, const HashLanes<T>& key) {
   using D = typename LaneTraits<T>::Double;
   if constexpr (std::is_floating_point_v<T>) {
     return T(detail::binomial_exact_double_lanes(double(n), double(p), HashStream<double>{key}));
+  } else if constexpr (detail::kPackedBinomialLanes<T> != 0) {
+    return detail::binomial_exact_packed(n, p, key);
   } else {
     constexpr std::size_t kL = LaneTraits<T>::kLanes, kD = LaneTraits<D>::kLanes;
     static_assert(kL % kD == 0);
