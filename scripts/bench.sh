@@ -8,7 +8,6 @@
 # shared machine are noisy: medians of the repetitions.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-export CMAKE_CXX_COMPILER_LAUNCHER="${CMAKE_CXX_COMPILER_LAUNCHER:-}"
 cmake --preset release >/dev/null
 cmake --build --preset release --target glintlab_bench_kernels glintlab_bench_models \
   glintlab_bench_uarch >/dev/null
