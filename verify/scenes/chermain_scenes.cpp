@@ -6,28 +6,23 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "core/render/supersample.h"
 #include "core/scene/footprint.h"
 #include "core/scene/lean.h"
 #include "core/scene/sine_height_field.h"
 #include "core/scene/slope_moment_map.h"
+#include "verify/scenes/chermain_footprint_sdf.h"
 
 namespace glintlab::verify {
 namespace {
 
-// Eq. 1 with D from the patch-SDF at slope h̃ − `shift` (Eq. 2 / 8), V-cavity G2, F = 1, times
-// ω_o·n: the cosine-weighted BRDF for light from ω_l.
 double glint_value(const chermain2021::SdfParams& p, Vec3<double> wi, Vec3<double> wl,
                    const FootprintQuery<double>& fp, const chermain2021::SlopeDerivatives& d,
                    Vec2<double> shift = {0, 0}) {
-  if (!(wi.z > 0 && wl.z > 0)) return 0;
-  const Vec3<double> h = half_vector(wi, wl);
-  if (!(h.z > 0)) return 0;
-  const Vec2<double> m{-h.x / h.z - shift.x, -h.y / h.z - shift.y};
-  const double z2 = h.z * h.z;
-  const double D = chermain2021::patch_sdf(p, m, fp, d) / (z2 * z2);
-  return D * chermain2021::v_cavity_g2(wi, wl, h) / (4 * wi.z);  // f · ω_l.z
+  return glint_value_of([&](Vec2<double> m) { return chermain2021::patch_sdf(p, m, fp, d); }, wi,
+                        wl, shift);
 }
 
 // Three tubes (open cylinders) with distinct uv offsets, so that their cells differ.
@@ -115,14 +110,17 @@ Image render_tubes_reference(const TubeSceneOptions& o, int spp, std::uint64_t s
   const PinholeCamera<double> cam = tube_camera(o);
   const LightPoint<double> light{kTubeLight, false};
   const chermain2021::SdfParams p = tube_params(o, chermain2021::kNoGgaa, 0.5);
-  const chermain2021::SlopeDerivatives zero{0, 0, 0, 0};
   return render_image(
       o.width, o.height, {"R", "G", "B"}, o.threads, [&](int x, int y, double* out) {
         const PixelFootprint<double> f = pixel_footprint(cam, scene, x + 0.5, y + 0.5, light);
         if (!f.surface.hit) return;
         const std::uint64_t first =
             (std::uint64_t(y) * std::uint64_t(o.width) + std::uint64_t(x)) * std::uint64_t(spp);
-        double sum = 0;
+        // Every sample shades with the pixel's footprint: its cells are drawn once, and the
+        // samples' BRDF values are evaluated together.
+        const FootprintSdf sdf(p, f.footprint);
+        GlintSamples samples;
+        std::vector<double> irradiance;
         for (int s = 0; s < spp; ++s) {
           const Vec2<double> off = stratified_offset(seed, first + std::uint64_t(s), s, spp);
           const SurfaceHit<double> hit = scene.intersect(cam.ray(x + off.x, y + off.y));
@@ -131,9 +129,13 @@ Image render_tubes_reference(const TubeSceneOptions& o, int spp, std::uint64_t s
           const Vec3<double> wi = fr.to_local(normalize(cam.eye - hit.p));
           const Vec3<double> wl = fr.to_local(normalize(kTubeLight - hit.p));
           const Vec3<double> to_light = kTubeLight - hit.p;
-          const double E = kTubeLightIntensity / dot(to_light, to_light);
-          sum += E * glint_value(p, wi, wl, f.footprint, zero);
+          irradiance.push_back(kTubeLightIntensity / dot(to_light, to_light));
+          samples.push(wi, wl, {0, 0});
         }
+        std::vector<double> value(samples.size());
+        glint_values(sdf, samples, value);
+        double sum = 0;  // in sample order, as one loop over the samples would add them
+        for (std::size_t i = 0; i < value.size(); ++i) sum += irradiance[i] * value[i];
         set_grey(out, sum / spp);
       });
 }
@@ -224,7 +226,6 @@ Image render_bumpy_tubes_reference(const BumpyTubeOptions& o, int spp, std::uint
   const PinholeCamera<double> cam = tube_camera(o.tubes);
   const LightPoint<double> light{kTubeLight, false};
   const chermain2021::SdfParams p = tube_params(o.tubes, chermain2021::kNoGgaa, 0.5);
-  const chermain2021::SlopeDerivatives zero{0, 0, 0, 0};
   const double finest_lod = -0.5 * std::log2(o.tubes.density);  // one microfacet per cell
   return render_image(
       o.tubes.width, o.tubes.height, {"R", "G", "B"}, o.tubes.threads,
@@ -242,7 +243,10 @@ Image render_bumpy_tubes_reference(const BumpyTubeOptions& o, int spp, std::uint
         const std::uint64_t first =
             (std::uint64_t(y) * std::uint64_t(o.tubes.width) + std::uint64_t(x)) *
             std::uint64_t(spp);
-        double sum = 0;
+        // The samples' cells drawn one sample at a time, their BRDF values evaluated together.
+        SampleFootprints footprints(p);
+        GlintSamples samples;
+        std::vector<double> irradiance;
         for (int s = 0; s < spp; ++s) {
           const Vec2<double> off = stratified_offset(seed, first + std::uint64_t(s), s, spp);
           const SurfaceHit<double> hit = scene.intersect(cam.ray(x + off.x, y + off.y));
@@ -251,10 +255,15 @@ Image render_bumpy_tubes_reference(const BumpyTubeOptions& o, int spp, std::uint
           const Vec3<double> wi = fr.to_local(normalize(cam.eye - hit.p));
           const Vec3<double> wl = fr.to_local(normalize(kTubeLight - hit.p));
           const Vec3<double> to_light = kTubeLight - hit.p;
-          const double E = kTubeLightIntensity / dot(to_light, to_light);
+          irradiance.push_back(kTubeLightIntensity / dot(to_light, to_light));
           sub.uv = hit.uv;
-          sum += E * glint_value(p, wi, wl, sub, zero);
+          footprints.push(sub);
+          samples.push(wi, wl, {0, 0});
         }
+        std::vector<double> value(samples.size());
+        glint_values(footprints, samples, value);
+        double sum = 0;  // in sample order, as one loop over the samples would add them
+        for (std::size_t i = 0; i < value.size(); ++i) sum += irradiance[i] * value[i];
         set_grey(out, sum / spp);
       });
 }
@@ -323,7 +332,6 @@ Image render_normal_map(const NormalMapSceneOptions& o, NormalMapMethod method) 
 Image render_normal_map_reference(const NormalMapSceneOptions& o, int spp, std::uint64_t seed) {
   const MapScene s = map_scene(o);
   const LightPoint<double> light{kMapLightDir, true};
-  const chermain2021::SlopeDerivatives zero{0, 0, 0, 0};
   const double base = o.base_alpha / std::sqrt(2.0);
   const chermain2021::SdfParams p = map_params(o, base, base, 0);
   const Vec3<double> wl_world = normalize(kMapLightDir);
@@ -334,16 +342,23 @@ Image render_normal_map_reference(const NormalMapSceneOptions& o, int spp, std::
         if (!f.surface.hit) return;
         const std::uint64_t first =
             (std::uint64_t(y) * std::uint64_t(o.width) + std::uint64_t(x)) * std::uint64_t(spp);
-        double sum = 0;
+        // Every sample shades with the pixel's footprint: its cells are drawn once, and the
+        // samples' BRDF values are evaluated together.
+        const FootprintSdf sdf(p, f.footprint);
+        GlintSamples samples;
         for (int k = 0; k < spp; ++k) {
           const Vec2<double> off = stratified_offset(seed, first + std::uint64_t(k), k, spp);
           const SurfaceHit<double> hit = s.plane.intersect(s.camera.ray(x + off.x, y + off.y));
           if (!hit.hit) continue;
           const Frame<double> fr = hit.frame();
           const SurfacePoint<double> q = s.field.eval(hit.uv.x, hit.uv.y);
-          sum += glint_value(p, fr.to_local(normalize(s.camera.eye - hit.p)), fr.to_local(wl_world),
-                             f.footprint, zero, {q.slope_u, q.slope_v});
+          samples.push(fr.to_local(normalize(s.camera.eye - hit.p)), fr.to_local(wl_world),
+                       {q.slope_u, q.slope_v});
         }
+        std::vector<double> value(samples.size());
+        glint_values(sdf, samples, value);
+        double sum = 0;  // in sample order, as one loop over the samples would add them
+        for (const double v : value) sum += v;
         set_grey(out, sum / spp);
       });
 }
