@@ -120,7 +120,9 @@ Image render_tubes_reference(const TubeSceneOptions& o, int spp, std::uint64_t s
         // samples' BRDF values are evaluated together.
         const FootprintSdf sdf(p, f.footprint);
         GlintSamples samples;
+        samples.reserve(std::size_t(spp));
         std::vector<double> irradiance;
+        irradiance.reserve(std::size_t(spp));
         for (int s = 0; s < spp; ++s) {
           const Vec2<double> off = stratified_offset(seed, first + std::uint64_t(s), s, spp);
           const SurfaceHit<double> hit = scene.intersect(cam.ray(x + off.x, y + off.y));
@@ -245,8 +247,11 @@ Image render_bumpy_tubes_reference(const BumpyTubeOptions& o, int spp, std::uint
             std::uint64_t(spp);
         // The samples' cells drawn one sample at a time, their BRDF values evaluated together.
         SampleFootprints footprints(p);
+        footprints.reserve(std::size_t(spp));
         GlintSamples samples;
+        samples.reserve(std::size_t(spp));
         std::vector<double> irradiance;
+        irradiance.reserve(std::size_t(spp));
         for (int s = 0; s < spp; ++s) {
           const Vec2<double> off = stratified_offset(seed, first + std::uint64_t(s), s, spp);
           const SurfaceHit<double> hit = scene.intersect(cam.ray(x + off.x, y + off.y));
@@ -346,6 +351,7 @@ Image render_normal_map_reference(const NormalMapSceneOptions& o, int spp, std::
         // samples' BRDF values are evaluated together.
         const FootprintSdf sdf(p, f.footprint);
         GlintSamples samples;
+        samples.reserve(std::size_t(spp));
         for (int k = 0; k < spp; ++k) {
           const Vec2<double> off = stratified_offset(seed, first + std::uint64_t(k), k, spp);
           const SurfaceHit<double> hit = s.plane.intersect(s.camera.ray(x + off.x, y + off.y));
