@@ -306,14 +306,20 @@ chermain2021::SdfParams map_params(const NormalMapSceneOptions& o, double sx, do
 
 }  // namespace
 
-Image render_normal_map(const NormalMapSceneOptions& o, NormalMapMethod method) {
-  const MapScene s = map_scene(o);
-  const SlopeMomentMap map(
+namespace {
+
+// The normal map's slope moments (LEAN's MIP pyramid), the same for every method.
+SlopeMomentMap normal_map_moments(const NormalMapSceneOptions& o, const MapScene& s) {
+  return SlopeMomentMap(
       [&](double u, double v) {
         const SurfacePoint<double> q = s.field.eval(u, v);
         return Vec2<double>{q.slope_u, q.slope_v};
       },
       o.map_size, 4);
+}
+
+Image render_normal_map_with(const NormalMapSceneOptions& o, const MapScene& s,
+                             const SlopeMomentMap& map, NormalMapMethod method) {
   const LightPoint<double> light{kMapLightDir, true};
   const chermain2021::SlopeDerivatives zero{0, 0, 0, 0};
   const double base = o.base_alpha / std::sqrt(2.0);
@@ -332,6 +338,13 @@ Image render_normal_map(const NormalMapSceneOptions& o, NormalMapMethod method) 
         }
         set_grey(out, glint_value(p, f.wi, f.wl, f.footprint, zero, {lp.mean_x, lp.mean_y}));
       });
+}
+
+}  // namespace
+
+Image render_normal_map(const NormalMapSceneOptions& o, NormalMapMethod method) {
+  const MapScene s = map_scene(o);
+  return render_normal_map_with(o, s, normal_map_moments(o, s), method);
 }
 
 Image render_normal_map_reference(const NormalMapSceneOptions& o, int spp, std::uint64_t seed) {
@@ -450,9 +463,12 @@ LeanMeasurement measure_lean(const LeanBudget& b, std::uint64_t seed) {
   o.groove_p = b.groove_p, o.groove_q = b.groove_q;
   LeanMeasurement m;
   m.reference = render_normal_map_reference(o, b.reference_spp, seed);
-  m.no_lean = render_normal_map(o, NormalMapMethod::kNoLean);
-  m.lean_rho0 = render_normal_map(o, NormalMapMethod::kLeanRhoZero);
-  m.lean = render_normal_map(o, NormalMapMethod::kLean);
+  // The three methods read one slope moment map (render_normal_map would build it for each).
+  const MapScene s = map_scene(o);
+  const SlopeMomentMap map = normal_map_moments(o, s);
+  m.no_lean = render_normal_map_with(o, s, map, NormalMapMethod::kNoLean);
+  m.lean_rho0 = render_normal_map_with(o, s, map, NormalMapMethod::kLeanRhoZero);
+  m.lean = render_normal_map_with(o, s, map, NormalMapMethod::kLean);
   m.rmse_no_lean = display_rmse_percent(m.no_lean, m.reference);
   m.rmse_lean_rho0 = display_rmse_percent(m.lean_rho0, m.reference);
   m.rmse_lean = display_rmse_percent(m.lean, m.reference);
