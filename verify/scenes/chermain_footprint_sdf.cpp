@@ -54,8 +54,7 @@ void glint_values(const SampleFootprints& footprints, const GlintSamples& sample
   }
   for (std::size_t i = 0; i < samples.size(); ++i)
     if (!has_lanes(isa) || footprints.smooth(i))
-      out[i] =
-          glint_value_at(FootprintSdf(footprints.params(), footprints.footprint(i)), samples, i);
+      out[i] = glint_value_at(footprints.sdf(i), samples, i);
 }
 
 void glint_values(const SampleFootprints& footprints, const GlintSamples& samples,

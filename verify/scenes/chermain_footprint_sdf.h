@@ -35,8 +35,25 @@ class FootprintSdf {
       : p_(without_ggaa(p)),
         table_(p.dictionary->table()),
         M_(chermain2021::matrix(p.sigma_x, p.sigma_y, p.rho, p.dictionary->sigma_o(), p.with_rho)) {
+    draw_terms(p, table_, fp, [&](const Term& t) {
+      has_smooth_ = has_smooth_ || t.smooth;
+      terms_[std::size_t(count_++)] = t;
+    });
+  }
+  // The footprint whose terms were drawn already (draw_terms, none of them smooth).
+  FootprintSdf(const chermain2021::SdfParams& p, std::span<const Term> terms)
+      : p_(without_ggaa(p)),
+        table_(p.dictionary->table()),
+        M_(chermain2021::matrix(p.sigma_x, p.sigma_y, p.rho, p.dictionary->sigma_o(), p.with_rho)) {
+    for (const Term& t : terms) terms_[std::size_t(count_++)] = t;
+  }
+
+  // The terms patch_sdf's visitor adds for footprint fp, in its order (its inactive visits add
+  // nothing): add(term) for each.
+  template <class Add>
+  static void draw_terms(const chermain2021::SdfParams& p, const chermain2021::Table& table,
+                         const FootprintQuery<double>& fp, Add&& add) {
     const double last_level = double(p.dictionary->levels() - 1);
-    // The terms patch_sdf's visitor adds, in its order (its inactive visits add nothing).
     chermain2021::for_each_cell(
         p, fp, [&](bool on, double w, double k, const chermain2021::Cell<double>& s) {
           if (!on) return;
@@ -45,12 +62,11 @@ class FootprintSdf {
           t.smooth = k > last_level;
           if (!t.smooth) {
             const double kc = chermain2021::std_min(k, last_level);
-            t.base_x = chermain2021::table_base(table_, s.nx, kc);
-            t.base_y = chermain2021::table_base(table_, s.ny, kc);
+            t.base_x = chermain2021::table_base(table, s.nx, kc);
+            t.base_y = chermain2021::table_base(table, s.ny, kc);
             t.cos_t = s.cos_t, t.sin_t = s.sin_t;
           }
-          has_smooth_ = has_smooth_ || t.smooth;
-          terms_[std::size_t(count_++)] = t;
+          add(t);
         });
   }
 
@@ -115,6 +131,10 @@ double glint_value_of(const Sdf& sdf, Vec3<double> wi, Vec3<double> wl, Vec2<dou
 struct GlintSamples {
   std::vector<double> wi_x, wi_y, wi_z, wl_x, wl_y, wl_z, shift_x, shift_y;
   std::size_t size() const { return wi_x.size(); }
+  void reserve(std::size_t n) {
+    for (std::vector<double>* c : {&wi_x, &wi_y, &wi_z, &wl_x, &wl_y, &wl_z, &shift_x, &shift_y})
+      c->reserve(n);
+  }
   void clear() {
     for (std::vector<double>* c : {&wi_x, &wi_y, &wi_z, &wl_x, &wl_y, &wl_z, &shift_x, &shift_y})
       c->clear();
@@ -133,34 +153,56 @@ struct GlintSamples {
 // evaluates it on the host.
 class SampleFootprints {
  public:
-  static constexpr int kSlots = 8;  // 2 LODs × 4 cells
-  explicit SampleFootprints(const chermain2021::SdfParams& p) : p_(p) {}
+  static constexpr int kSlots = 8;                                  // 2 LODs × 4 cells
+  static constexpr FootprintSdf::Term kNone{0, false, 0, 0, 0, 0};  // a slot past the count
+  explicit SampleFootprints(const chermain2021::SdfParams& p)
+      : p_(p), table_(p.dictionary->table()) {}
   void clear() {
     for (int t = 0; t < kSlots; ++t)
       for (std::vector<double>* c : {&w_[t], &base_x_[t], &base_y_[t], &cos_t_[t], &sin_t_[t]})
         c->clear();
     count_.clear(), footprints_.clear(), smooth_.clear();
   }
+  void reserve(std::size_t n) {
+    for (int t = 0; t < kSlots; ++t)
+      for (std::vector<double>* c : {&w_[t], &base_x_[t], &base_y_[t], &cos_t_[t], &sin_t_[t]})
+        c->reserve(n);
+    count_.reserve(n), footprints_.reserve(n), smooth_.reserve(n);
+  }
   void push(const FootprintQuery<double>& fp) {
-    const FootprintSdf sdf(p_, fp);
-    const std::span<const FootprintSdf::Term> terms = sdf.terms();
-    for (int t = 0; t < kSlots; ++t) {
-      const bool cell = std::size_t(t) < terms.size() && !sdf.has_smooth();
-      const FootprintSdf::Term none{0, false, 0, 0, 0, 0};
-      const FootprintSdf::Term& term = cell ? terms[std::size_t(t)] : none;
+    std::array<FootprintSdf::Term, 10> terms{};
+    std::size_t count = 0;
+    bool smooth = false;
+    FootprintSdf::draw_terms(p_, table_, fp, [&](const FootprintSdf::Term& t) {
+      smooth = smooth || t.smooth;
+      terms[count++] = t;
+    });
+    if (smooth) count = 0;  // evaluated on the host
+    for (std::size_t t = 0; t < std::size_t(kSlots); ++t) {
+      const FootprintSdf::Term& term = t < count ? terms[t] : kNone;
       w_[t].push_back(term.w), base_x_[t].push_back(term.base_x);
       base_y_[t].push_back(term.base_y);
       cos_t_[t].push_back(term.cos_t), sin_t_[t].push_back(term.sin_t);
     }
-    count_.push_back(sdf.has_smooth() ? 0 : int(terms.size()));
+    count_.push_back(int(count));
     footprints_.push_back(fp);
-    smooth_.push_back(sdf.has_smooth());
+    smooth_.push_back(smooth);
   }
   std::size_t size() const { return count_.size(); }
   const chermain2021::SdfParams& params() const { return p_; }
   int count(std::size_t i) const { return count_[i]; }
   bool smooth(std::size_t i) const { return smooth_[i] != 0; }
   const FootprintQuery<double>& footprint(std::size_t i) const { return footprints_[i]; }
+  // Sample i's footprint for the host: from its slots, or drawn again where a term is smooth.
+  FootprintSdf sdf(std::size_t i) const {
+    if (smooth(i)) return FootprintSdf(p_, footprints_[i]);
+    std::array<FootprintSdf::Term, kSlots> terms{};
+    for (int t = 0; t < count_[i]; ++t)
+      terms[std::size_t(t)] = {w_[t][i],      false,        base_x_[t][i],
+                               base_y_[t][i], cos_t_[t][i], sin_t_[t][i]};
+    return FootprintSdf(p_,
+                        std::span<const FootprintSdf::Term>(terms.data(), std::size_t(count_[i])));
+  }
   const double* w(int t) const { return w_[t].data(); }
   const double* base_x(int t) const { return base_x_[t].data(); }
   const double* base_y(int t) const { return base_y_[t].data(); }
@@ -169,6 +211,7 @@ class SampleFootprints {
 
  private:
   chermain2021::SdfParams p_;
+  chermain2021::Table table_;
   std::vector<double> w_[kSlots], base_x_[kSlots], base_y_[kSlots], cos_t_[kSlots], sin_t_[kSlots];
   std::vector<int> count_;
   std::vector<FootprintQuery<double>> footprints_;

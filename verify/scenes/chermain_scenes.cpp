@@ -120,7 +120,9 @@ Image render_tubes_reference(const TubeSceneOptions& o, int spp, std::uint64_t s
         // samples' BRDF values are evaluated together.
         const FootprintSdf sdf(p, f.footprint);
         GlintSamples samples;
+        samples.reserve(std::size_t(spp));
         std::vector<double> irradiance;
+        irradiance.reserve(std::size_t(spp));
         for (int s = 0; s < spp; ++s) {
           const Vec2<double> off = stratified_offset(seed, first + std::uint64_t(s), s, spp);
           const SurfaceHit<double> hit = scene.intersect(cam.ray(x + off.x, y + off.y));
@@ -245,8 +247,11 @@ Image render_bumpy_tubes_reference(const BumpyTubeOptions& o, int spp, std::uint
             std::uint64_t(spp);
         // The samples' cells drawn one sample at a time, their BRDF values evaluated together.
         SampleFootprints footprints(p);
+        footprints.reserve(std::size_t(spp));
         GlintSamples samples;
+        samples.reserve(std::size_t(spp));
         std::vector<double> irradiance;
+        irradiance.reserve(std::size_t(spp));
         for (int s = 0; s < spp; ++s) {
           const Vec2<double> off = stratified_offset(seed, first + std::uint64_t(s), s, spp);
           const SurfaceHit<double> hit = scene.intersect(cam.ray(x + off.x, y + off.y));
@@ -301,14 +306,20 @@ chermain2021::SdfParams map_params(const NormalMapSceneOptions& o, double sx, do
 
 }  // namespace
 
-Image render_normal_map(const NormalMapSceneOptions& o, NormalMapMethod method) {
-  const MapScene s = map_scene(o);
-  const SlopeMomentMap map(
+namespace {
+
+// The normal map's slope moments (LEAN's MIP pyramid), the same for every method.
+SlopeMomentMap normal_map_moments(const NormalMapSceneOptions& o, const MapScene& s) {
+  return SlopeMomentMap(
       [&](double u, double v) {
         const SurfacePoint<double> q = s.field.eval(u, v);
         return Vec2<double>{q.slope_u, q.slope_v};
       },
       o.map_size, 4);
+}
+
+Image render_normal_map_with(const NormalMapSceneOptions& o, const MapScene& s,
+                             const SlopeMomentMap& map, NormalMapMethod method) {
   const LightPoint<double> light{kMapLightDir, true};
   const chermain2021::SlopeDerivatives zero{0, 0, 0, 0};
   const double base = o.base_alpha / std::sqrt(2.0);
@@ -329,6 +340,13 @@ Image render_normal_map(const NormalMapSceneOptions& o, NormalMapMethod method) 
       });
 }
 
+}  // namespace
+
+Image render_normal_map(const NormalMapSceneOptions& o, NormalMapMethod method) {
+  const MapScene s = map_scene(o);
+  return render_normal_map_with(o, s, normal_map_moments(o, s), method);
+}
+
 Image render_normal_map_reference(const NormalMapSceneOptions& o, int spp, std::uint64_t seed) {
   const MapScene s = map_scene(o);
   const LightPoint<double> light{kMapLightDir, true};
@@ -346,6 +364,7 @@ Image render_normal_map_reference(const NormalMapSceneOptions& o, int spp, std::
         // samples' BRDF values are evaluated together.
         const FootprintSdf sdf(p, f.footprint);
         GlintSamples samples;
+        samples.reserve(std::size_t(spp));
         for (int k = 0; k < spp; ++k) {
           const Vec2<double> off = stratified_offset(seed, first + std::uint64_t(k), k, spp);
           const SurfaceHit<double> hit = s.plane.intersect(s.camera.ray(x + off.x, y + off.y));
@@ -444,9 +463,12 @@ LeanMeasurement measure_lean(const LeanBudget& b, std::uint64_t seed) {
   o.groove_p = b.groove_p, o.groove_q = b.groove_q;
   LeanMeasurement m;
   m.reference = render_normal_map_reference(o, b.reference_spp, seed);
-  m.no_lean = render_normal_map(o, NormalMapMethod::kNoLean);
-  m.lean_rho0 = render_normal_map(o, NormalMapMethod::kLeanRhoZero);
-  m.lean = render_normal_map(o, NormalMapMethod::kLean);
+  // The three methods read one slope moment map (render_normal_map would build it for each).
+  const MapScene s = map_scene(o);
+  const SlopeMomentMap map = normal_map_moments(o, s);
+  m.no_lean = render_normal_map_with(o, s, map, NormalMapMethod::kNoLean);
+  m.lean_rho0 = render_normal_map_with(o, s, map, NormalMapMethod::kLeanRhoZero);
+  m.lean = render_normal_map_with(o, s, map, NormalMapMethod::kLean);
   m.rmse_no_lean = display_rmse_percent(m.no_lean, m.reference);
   m.rmse_lean_rho0 = display_rmse_percent(m.lean_rho0, m.reference);
   m.rmse_lean = display_rmse_percent(m.lean, m.reference);
