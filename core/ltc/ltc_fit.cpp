@@ -370,6 +370,16 @@ double ltc_fit_l1_error(LtcTarget target, double alpha, double theta_o, const Lt
   return mis_distance(target, alpha, theta_o, target_norm(target, alpha, theta_o), c, samples, 1);
 }
 
+struct LtcL1Error::Grid {
+  MisGrid mis;
+};
+
+LtcL1Error::LtcL1Error(LtcTarget target, double alpha, double theta_o, int samples)
+    : grid_(std::make_shared<const Grid>(Grid{make_mis_grid(
+          target, alpha, theta_o, target_norm(target, alpha, theta_o), samples)})) {}
+
+double LtcL1Error::operator()(const LtcCoefficients& c) const { return mis_distance<1>(grid_->mis, c); }
+
 namespace {
 
 // The target's mean direction E_f̂[ω] by its own sampler (Heitz et al. 2016 Sec. 4: the lobe's

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "core/ltc/ltc_table.h"
@@ -44,6 +45,19 @@ double ltc_fit_objective(LtcTarget target, double alpha, double theta_o, const L
 // between the normalized target and the lobe), by the same MIS estimator.
 double ltc_fit_l1_error(LtcTarget target, double alpha, double theta_o, const LtcCoefficients& c,
                         int samples = 64);
+
+// ltc_fit_l1_error for many lobes at one (target, α, θ_o, samples): the target's normalization
+// (a 256² cubature for kBrdf) and its sampler's points are computed once, not per lobe, as a
+// search over lobes needs. Each call gives ltc_fit_l1_error's bits.
+class LtcL1Error {
+ public:
+  LtcL1Error(LtcTarget target, double alpha, double theta_o, int samples = 64);
+  double operator()(const LtcCoefficients& c) const;
+
+ private:
+  struct Grid;
+  std::shared_ptr<const Grid> grid_;
+};
 
 struct LtcFitResult {
   LtcCoefficients coefficients;  // the table's M⁻¹

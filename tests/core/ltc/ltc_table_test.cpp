@@ -181,6 +181,21 @@ TEST(LtcTable, CommittedEntriesMatchARefit) {
   }
 }
 
+// The error kept for a search over lobes is the one-call error, bit for bit, for both targets
+// and for lobes away from the table's (as a search visits).
+TEST(LtcTable, KeptL1ErrorIsTheOneCallErrorBitForBit) {
+  const LtcTables& t = ltc_ggx_tables();
+  const int n = t.size;
+  for (const LtcTarget target : {LtcTarget::kBrdf, LtcTarget::kNdf})
+    for (const Entry e : refit_entries(n)) {
+      const double a = ltc_node_alpha(e.i, n), theta = ltc_node_theta(e.j, n);
+      const LtcL1Error kept(target, a, theta, 16);
+      LtcCoefficients c = t.brdf[std::size_t(e.i) * n + e.j];
+      for (int step = 0; step < 3; ++step, c.m02 += 0.05, c.m20 -= 0.03)
+        EXPECT_EQ(kept(c), ltc_fit_l1_error(target, a, theta, c, 16)) << e.i << "," << e.j;
+    }
+}
+
 TEST(LtcTable, NegativeControlPerturbedEntryFailsTheRefitCheck) {
   const LtcTables& t = ltc_ggx_tables();
   const int n = t.size;

@@ -100,9 +100,7 @@ LtcCoefficients table_coefficients(LtcTarget target, double alpha, double theta)
 // table in L1 at that point.
 LtcCoefficients independent_fit(LtcTarget target, double alpha, double theta, int evaluations) {
   LtcCoefficients best = table_coefficients(target, alpha, theta);
-  auto at = [&](const LtcCoefficients& c) {
-    return ltc_fit_l1_error(target, alpha, theta, c, kRefitSamples);
-  };
+  const LtcL1Error at(target, alpha, theta, kRefitSamples);
   double f = at(best);
   std::array<double, 4> step = {
       0.1 * (std::abs(best.m00) + 0.05), 0.1 * (std::abs(best.m02) + 0.05),
