@@ -1,7 +1,6 @@
 #include "verify/claims/across/common.h"
 
 #include <fmt/format.h>
-#include <tbb/parallel_for.h>
 
 #include <map>
 #include <memory>
@@ -20,22 +19,16 @@ const std::vector<ModelSweep>& suite_sweeps(Budget b, FixedPositionVariance vari
       cache;
   const std::lock_guard lock(mutex);
   auto& base = cache[{b, FixedPositionVariance::kSkip}];
-  // The targets run side by side as well as each plane's cells: a thread that finishes its share
-  // of a plane takes another target's cells instead of waiting for the plane's last cell. Each
-  // target's sweep is deterministic and kept at its index, so the result is the serial one.
   if (!base) {
-    const std::vector<SweepTarget> targets = sweep_targets();
-    base = std::make_unique<std::vector<ModelSweep>>(targets.size());
-    tbb::parallel_for(std::size_t(0), targets.size(), [&](std::size_t i) {
-      (*base)[i] = sweep_model(targets[i], b, {}, FixedPositionVariance::kSkip);
-    });
+    base = std::make_unique<std::vector<ModelSweep>>();
+    for (const SweepTarget& t : sweep_targets())
+      base->push_back(sweep_model(t, b, {}, FixedPositionVariance::kSkip));
   }
   if (variance == FixedPositionVariance::kSkip) return *base;
   auto& full = cache[{b, FixedPositionVariance::kMeasure}];
   if (!full) {
     full = std::make_unique<std::vector<ModelSweep>>(*base);
-    tbb::parallel_for(std::size_t(0), full->size(),
-                      [&](std::size_t i) { add_fixed_position_variance((*full)[i], b); });
+    for (ModelSweep& s : *full) add_fixed_position_variance(s, b);
   }
   return *full;
 }
