@@ -1,7 +1,7 @@
 // Eto & Tokuyoshi's estimator claims draw their samples through the smooth_ggx model's SIMD batch
 // (verify/claims/eto/common.h draw_batch): on the scalar ISA that is the scalar sampler's weight
 // and rejection bit for bit, on the widest ISA within the batches' budget; the chunked sums do not
-// depend on the thread count.
+// depend on the thread count; the variance claims' measurement is kept per process.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -14,6 +14,7 @@
 
 #include "core/simd/batch.h"
 #include "verify/claims/eto/common.h"
+#include "verify/claims/eto/gain.h"
 
 namespace glintlab::verify::eto_claims {
 namespace {
@@ -98,6 +99,43 @@ TEST(EtoBatches, ChunkedSumsDoNotDependOnTheThreadCount) {
   EXPECT_EQ(one.m2, two.m2);
   EXPECT_EQ(rejected_one, rejected_two);
   EXPECT_GT(rejected_one, 0u);
+}
+
+// accumulate_weights sums several chunks side by side: each chunk's accumulator is still the
+// chunk's values added in order, merged in chunk order, bit for bit. 2·kChunksPerTask + 1 chunks
+// and a short last one: a full group, a group cut short and a chunk cut short.
+TEST(EtoBatches, ChunksSummedSideBySideAreTheChunksSummedOneByOne) {
+  const Config c{0.7, 0.35, 30};
+  const std::uint64_t n = (2 * kChunksPerTask + 1) * kBatchChunk - 100;
+  for (int power : {1, 2}) {
+    MeanAccumulator one_by_one;
+    for (std::uint64_t first = 0; first < n; first += kBatchChunk) {
+      const std::size_t count = std::size_t(std::min(n - first, kBatchChunk));
+      std::vector<double> w(count), rejected(count);
+      draw_batch(Technique::kBounded, c, 9, first, count, w.data(), rejected.data());
+      MeanAccumulator chunk;
+      for (double x : w) chunk.add(power == 2 ? x * x : x);
+      one_by_one.merge(chunk);
+    }
+    const MeanAccumulator side_by_side = accumulate_weights(Technique::kBounded, c, 9, n, power);
+    EXPECT_EQ(side_by_side.n, one_by_one.n);
+    EXPECT_EQ(side_by_side.mean, one_by_one.mean) << "power " << power;
+    EXPECT_EQ(side_by_side.m2, one_by_one.m2) << "power " << power;
+  }
+}
+
+// observe_gain keeps its measurements per process (eto.variance-rough and eto.variance-smooth read
+// one): a second call gives the first's numbers, and a grid of another sample count is measured
+// anew, not read back.
+TEST(EtoGain, KeptMeasurementsAreKeyedByConfigurationAndSampleCount) {
+  const GainSizes small{{{0.8, 0.8, 0}, {0.2, 0.2, 45}}, 1u << 12};
+  const GainSizes larger{small.grid, 1u << 13};
+  const GainMeasured first = observe_gain(small, 1), again = observe_gain(small, 1);
+  EXPECT_EQ(first.ratio, again.ratio);
+  EXPECT_EQ(first.log_se, again.log_se);
+  EXPECT_EQ(first.ratio_off, again.ratio_off);
+  EXPECT_NE(observe_gain(larger, 1).log_se, first.log_se);
+  EXPECT_NE(observe_gain(small, 0).ratio, first.ratio);
 }
 
 }  // namespace

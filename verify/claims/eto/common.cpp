@@ -124,13 +124,28 @@ void for_each_chunk(Technique t, const Config& c, std::uint64_t seed, std::uint6
 
 MeanAccumulator accumulate_weights(Technique t, const Config& c, std::uint64_t seed,
                                    std::uint64_t n, int power) {
-  std::vector<MeanAccumulator> parts((n + kBatchChunk - 1) / kBatchChunk);
-  for_each_chunk(t, c, seed, n,
-                 [&](std::uint64_t ch, const std::vector<double>& w, const std::vector<double>&) {
-                   MeanAccumulator a;
-                   for (double x : w) a.add(power == 2 ? x * x : x);
-                   parts[ch] = a;
-                 });
+  const std::uint64_t chunks = (n + kBatchChunk - 1) / kBatchChunk;
+  std::vector<MeanAccumulator> parts(chunks);
+  // Each chunk's sum is one serial chain of divisions (Welford); one task takes kChunksPerTask
+  // chunks and feeds their accumulators in turn, so the chains overlap. Every accumulator still
+  // gets its own chunk's values in order: the same sums, bit for bit, as one chunk per task.
+  const std::uint64_t tasks = (chunks + kChunksPerTask - 1) / kChunksPerTask;
+  tbb::parallel_for(std::uint64_t(0), tasks, [&](std::uint64_t task) {
+    const std::uint64_t first = task * kChunksPerTask;
+    const std::size_t group = std::size_t(std::min(chunks, first + kChunksPerTask) - first);
+    std::array<std::vector<double>, kChunksPerTask> w;
+    std::vector<double> rejected(kBatchChunk);
+    for (std::size_t g = 0; g < group; ++g) {
+      const std::uint64_t ch = first + g;
+      w[g].resize(std::size_t(std::min(n, (ch + 1) * kBatchChunk) - ch * kBatchChunk));
+      draw_batch(t, c, seed, ch * kBatchChunk, w[g].size(), w[g].data(), rejected.data());
+      if (power == 2)
+        for (double& x : w[g]) x = x * x;
+    }
+    for (std::size_t j = 0; j < w[0].size(); ++j)
+      for (std::size_t g = 0; g < group; ++g)
+        if (j < w[g].size()) parts[first + g].add(w[g][j]);
+  });
   MeanAccumulator all;
   for (const MeanAccumulator& a : parts) all.merge(a);
   return all;

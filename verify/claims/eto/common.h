@@ -63,6 +63,7 @@ void draw_batch(Technique t, const Config& c, std::uint64_t seed, std::uint64_t 
 // merged in chunk order, so the result does not depend on the thread count: the accumulated
 // weights (power 1) or squared weights (power 2), and the number of rejected samples.
 inline constexpr std::uint64_t kBatchChunk = 4096;
+inline constexpr std::size_t kChunksPerTask = 4;  // accumulate_weights: chunks summed side by side
 MeanAccumulator accumulate_weights(Technique t, const Config& c, std::uint64_t seed,
                                    std::uint64_t n, int power);
 std::uint64_t count_rejected(Technique t, const Config& c, std::uint64_t seed, std::uint64_t n);

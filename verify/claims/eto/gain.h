@@ -54,6 +54,7 @@ struct GainSizes {
 };
 // The quick grid holds the full grid's extremes (α 0.05 and 1, αx/αy 1 and 10, θi 0° and 89°).
 GainSizes gain_sizes(Budget b);
+// Kept per process: the claim that runs second in a process reads the first one's measurement.
 GainMeasured observe_gain(const GainSizes& z, int configuration);
 
 // The RMSE-reduction interval of a configuration: lower end, measured, upper end.
