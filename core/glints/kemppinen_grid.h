@@ -3,7 +3,9 @@
 // numbers from a counter hash of the cell index, and the k-neighbouring cells of Algorithm 1.
 //
 // Cell indices are integers per query: on a SIMD batch they are per-lane integers (LaneInt of
-// core/math/lanes.h), hashed lane by lane with the same scalar code.
+// core/math/lanes.h). The chain steps here hash them lane by lane with the scalar code
+// (cell_chain_*_lanes); the batch kernels' later steps (ax, ay and level), cell keys and uniforms
+// run on vector registers (kemppinen_lanes.h), the same bits lane by lane.
 #pragma once
 
 #include <cstdint>

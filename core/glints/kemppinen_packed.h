@@ -1,21 +1,30 @@
 // The marginal density of Algorithm 2 (sample_density_square, kemppinen_sampling.h) on a SIMD
-// batch with the work of its points packed by (point, lane): the same bits in every lane that the
-// result depends on, for a fraction of the work.
+// batch, per level either with the work of its points packed by (point, lane) or with every point
+// computed on every lane (the unpacked loops): the same bits in every lane that the result depends
+// on either way.
 //
-// Why: the batch's lanes are unrelated rows, each at its own level and angular cell. Unpacked,
-// level_points computes a point's lobe width (the map's inverse and D), its N_j(x) and its masses
-// in the blocks (erfs) on every lane whenever one lane needs them. Most lanes need few: at level 0
-// (every query whose footprint is below a cell, most of a typical call) only the centre cell of a
-// point's 3 × 3 angular cells exists, and the upper level of such a row has weight 0. Here the
-// cheap part of every point (its cell hash, angular position and whether it exists) stays on the
-// batch's lanes; the (point, lane) pairs that exist and lie in a block the lane uses are then
-// gathered into full vectors, which compute the rest: spatial weight s_j, σ_j, s_j N_j(x) and the
-// masses along x and y over the block starts that lane uses. The arithmetic of each pair is that of
-// candidate(), level_points() and mass_along() on its lane's inputs, and SIMD arithmetic is lane by
-// lane, so each value is the unpacked one bit for bit; a pair's s_j, term and masses are 0 where it
-// was not packed, which gives the same sums in every lane whose block is used (see
-// packed_block_density), and the other lanes' results are discarded by sample_density_square.
-// tests/simd/kemppinen_packed_density_test.cpp pins it to the unpacked loops on every ISA.
+// Why: unpacked, level_points computes a point's lobe width (the map's inverse and D), its N_j(x)
+// and its masses in the blocks (erfs) on every lane whenever one lane needs them. Where a batch's
+// lanes are unrelated rows, each at its own level and angular cell, most lanes need few of them:
+// at level 0 (every query whose footprint is below a cell, most of a typical call) only the centre
+// cell of a point's 3 × 3 angular cells exists, and the upper level of such a row has weight 0.
+// Packed, the cheap part of every point (its cell hash, angular position and whether it exists)
+// stays on the batch's lanes; the (point, lane) pairs that exist and lie in a block the lane uses
+// are then gathered into full vectors, which compute the rest: spatial weight s_j, σ_j, s_j N_j(x)
+// and the masses along x and y over the block starts that lane uses. But where the lanes are
+// neighbouring pixels of a frame they share their level, and most lanes need most of the points
+// that any lane needs: packing then only adds its bookkeeping (a Table 3 frame at 25° took 30–45 %
+// longer packed). So each level counts, from the angular cells that lie in the square and the
+// blocks each lane uses (no hashing), the (offset, lane) pairs the lanes need against the offsets
+// any lane needs, and packs only where the pairs fill less than kPackBelow of those offsets' lanes
+// (use_packed_level).
+//
+// The packed arithmetic of each pair is that of candidate(), level_points() and mass_along() on its
+// lane's inputs, and SIMD arithmetic is lane by lane, so each value is the unpacked one bit for
+// bit; a pair's s_j, term and masses are 0 where it was not packed, which gives the same sums in
+// every lane whose block is used (see packed_block_density), and the other lanes' results are
+// discarded by sample_density_square. tests/simd/kemppinen_packed_density_test.cpp pins it to the
+// unpacked loops with every level packed, every level unpacked and the choice.
 #pragma once
 
 #include <bit>
@@ -44,7 +53,12 @@ struct PackedLevelPoints {
   }
 };
 
-// The per-lane inputs of a level that a packed pair reads from its lane.
+// The bit of a mass needed along `axis` over the blocks of start offset slot `slot`.
+GLINTLAB_INLINE std::uint32_t mass_bit(int axis, int slot) {
+  return std::uint32_t(1) << (axis * kMaxSide + slot);
+}
+
+// The per-lane inputs of a level that a point's work reads from its lane.
 template <class T>
 struct PackedLevelInputs {
   using S = Scalar<T>;
@@ -59,32 +73,26 @@ struct PackedLevelInputs {
   S lo[2][kMaxSide][kLanes], hi[2][kMaxSide][kLanes];
   // Per angular offset (a, b) of a point from x's cell (index (a + n − 1)(2n − 1) + b + n − 1):
   // the lanes that use a block holding it (bit per lane), and per lane the masses it needs there
-  // (bit axis · kMaxSide + start slot: a block (dx, dy) that the lane uses holds the point where
-  // dx ≤ a ≤ dx + n − 1 and dy ≤ b ≤ dy + n − 1).
+  // (mass_bit: a block (dx, dy) that the lane uses holds the point where dx ≤ a ≤ dx + n − 1 and
+  // dy ≤ b ≤ dy + n − 1).
   static constexpr std::size_t kOffsets = (2 * kMaxSide - 1) * (2 * kMaxSide - 1);
   std::uint32_t lanes_at[kOffsets];
   std::uint32_t masses_at[kOffsets][kLanes];
 };
 
-// Pairs waiting for a full vector: point `at` (cell offsets i, j, a, b) in lane `lane`, its cell
-// key and angular position, and the (axis, slot) masses its lane needs (bit axis · kMaxSide + slot).
+// The bits of the lanes where m is set.
 template <class T>
-struct PackedPairs {
-  using S = Scalar<T>;
-  static constexpr std::size_t kLanes = kLaneCount<T>;
-  static constexpr std::size_t kCapacity = 2 * kLanes;
-  std::size_t count = 0;
-  std::uint32_t at[kCapacity];
-  std::int32_t i[kCapacity], j[kCapacity];
-  std::uint32_t lane[kCapacity], masses[kCapacity];
-  std::uint64_t key[kCapacity];
-  alignas(64) S g_x[kCapacity];
-  alignas(64) S g_y[kCapacity];
-};
+GLINTLAB_INLINE std::uint32_t lane_bits(const Mask<T>& m) {
+  const MaskLanesOf<T> ml(m);
+  std::uint32_t bits = 0;
+  for (std::size_t l = 0; l < kLaneCount<T>; ++l) bits |= std::uint32_t(ml[l]) << l;
+  return bits;
+}
 
-// Pairs of positive weight (s ≠ 0) waiting for a full vector: their σ_j, s_j N_j(x) and masses.
+// Pairs waiting for a full vector: point `at` in lane `lane`, its angular position and the masses
+// its lane needs (mass_bit); PackedPairs and LivePairs add what their stage reads.
 template <class T>
-struct LivePairs {
+struct PairQueue {
   using S = Scalar<T>;
   static constexpr std::size_t kLanes = kLaneCount<T>;
   static constexpr std::size_t kCapacity = 2 * kLanes;
@@ -93,39 +101,82 @@ struct LivePairs {
   std::uint32_t lane[kCapacity], masses[kCapacity];
   alignas(64) S g_x[kCapacity];
   alignas(64) S g_y[kCapacity];
-  alignas(64) S s[kCapacity];
-  GLINTLAB_FN void copy(std::size_t to, std::size_t from) {
+  GLINTLAB_FN void copy_pair(std::size_t to, std::size_t from) {
     at[to] = at[from];
     lane[to] = lane[from];
     masses[to] = masses[from];
     g_x[to] = g_x[from];
     g_y[to] = g_y[from];
+  }
+};
+
+// Pairs that exist: also their cell offsets (i, j) and cell key.
+template <class T>
+struct PackedPairs : PairQueue<T> {
+  using Base = PairQueue<T>;
+  std::int32_t i[Base::kCapacity], j[Base::kCapacity];
+  std::uint64_t key[Base::kCapacity];
+  GLINTLAB_FN void copy(std::size_t to, std::size_t from) {
+    this->copy_pair(to, from);
+    i[to] = i[from];
+    j[to] = j[from];
+    key[to] = key[from];
+  }
+};
+
+// Pairs of positive weight (s ≠ 0): also their s_j.
+template <class T>
+struct LivePairs : PairQueue<T> {
+  using Base = PairQueue<T>;
+  alignas(64) Scalar<T> s[Base::kCapacity];
+  GLINTLAB_FN void copy(std::size_t to, std::size_t from) {
+    this->copy_pair(to, from);
     s[to] = s[from];
   }
 };
 
-// The live pairs' σ_j (point_sigma), level_points' term s_j N_j(x) and mass_along over the block
-// starts their lane uses, on the first `count` ≤ kLanes pairs (the pairs past them, up to kLanes,
-// copies of pair 0: computed and not written back).
+// After a vector of the first kLanes pairs: the pairs past them moved to the front.
+template <class Pairs>
+GLINTLAB_FN void drop_computed_pairs(Pairs& pr) {
+  constexpr std::size_t kLanes = Pairs::kLanes;
+  const std::size_t rest = pr.count - kLanes;
+  for (std::size_t k = 0; k < rest; ++k) pr.copy(k, kLanes + k);
+  pr.count = rest;
+}
+
+// Before a vector of fewer than kLanes pairs: the lanes past them filled with copies of pair 0
+// (computed and not written back).
+template <class Pairs>
+GLINTLAB_FN void pad_pairs(Pairs& pr) {
+  for (std::size_t k = pr.count; k < Pairs::kLanes; ++k) pr.copy(k, 0);
+}
+
+// The level's per-lane inputs gathered from lanes `lane` (one per vector lane).
+template <class T>
+struct LaneGather {
+  const std::uint32_t* lane;
+  GLINTLAB_FN T operator()(const Scalar<T>* per_lane) const {
+    alignas(64) Scalar<T> v[kLaneCount<T>];
+    for (std::size_t l = 0; l < kLaneCount<T>; ++l) v[l] = per_lane[lane[l]];
+    return LaneAccess<T>::load(v);
+  }
+};
+
+// The live pairs' σ_j, term s_j N_j(x) and mass_along over the block starts their lane uses, on
+// the first `count` ≤ kLanes pairs (the pairs past them, up to kLanes, copies of pair 0).
 template <class Ndf, class T>
 GLINTLAB_FN void live_pairs_compute(const Params<T>& p, const Ndf& ndf,
                                     const PackedLevelInputs<T>& in, const LivePairs<T>& pr,
                                     std::size_t count, PackedLevelPoints<T>& out) {
-  using S = Scalar<T>;
-  constexpr std::size_t kLanes = kLaneCount<T>;
-  const auto gather = [&](const S* per_lane) {
-    alignas(64) S v[kLanes];
-    for (std::size_t l = 0; l < kLanes; ++l) v[l] = per_lane[pr.lane[l]];
-    return LaneAccess<T>::load(v);
-  };
+  const LaneGather<T> gather{pr.lane};
   const Vec2<T> g_a{LaneAccess<T>::load(pr.g_x), LaneAccess<T>::load(pr.g_y)};
-  const T s = LaneAccess<T>::load(pr.s);
   Params<T> lane_p = p;
   lane_p.microroughness = gather(in.microroughness);
   lane_p.anisotropy = gather(in.anisotropy);
   Ndf lane_ndf = ndf;
   lane_ndf.alpha_x = gather(in.alpha_x);
   lane_ndf.alpha_y = gather(in.alpha_y);
+  const T s = LaneAccess<T>::load(pr.s);
   const Vec2<T> sigma = point_sigma(lane_p, lane_ndf, g_a);
   // level_points' term.
   const Mask<T> live = (s > T(0)) && (sigma.x > T(0)) && (sigma.y > T(0));
@@ -139,22 +190,41 @@ GLINTLAB_FN void live_pairs_compute(const Params<T>& p, const Ndf& ndf,
   // mass_along, over the block starts of a block that the pair's lane uses.
   for (int axis = 0; axis < 2; ++axis)
     for (int slot = 0; slot < out.n; ++slot) {
-      const std::uint32_t bit = std::uint32_t(1) << (axis * kMaxSide + slot);
+      const std::uint32_t bit = mass_bit(axis, slot);
       bool any = false;
       for (std::size_t l = 0; l < count; ++l) any = any || (pr.masses[l] & bit) != 0;
       if (!any) continue;
       const T lo = gather(in.lo[axis][slot]), hi = gather(in.hi[axis][slot]);
-      const T m = axis == 0 ? gaussian_interval_mass(lo, hi, g_a.x, sigma.x, Erf::kExact)
-                            : gaussian_interval_mass(lo, hi, g_a.y, sigma.y, Erf::kExact);
-      const LanesOf<T> m_lanes(m);
+      const LanesOf<T> m_lanes(
+          axis == 0 ? gaussian_interval_mass(lo, hi, g_a.x, sigma.x, Erf::kExact)
+                    : gaussian_interval_mass(lo, hi, g_a.y, sigma.y, Erf::kExact));
       for (std::size_t l = 0; l < count; ++l)
         if (pr.masses[l] & bit) out.mass[axis][slot][pr.at[l]][pr.lane[l]] = m_lanes[l];
     }
 }
 
-// The pairs' candidate() values past the angular position, s_j N_j(x) and their masses, on the
-// first `count` ≤ kLanes pairs (the pairs past them, up to kLanes, copies of pair 0: computed and not
-// written back).
+// Pair (at, lane) of weight s at (g_x, g_y) queued for live_pairs_compute, which runs when a
+// vector is full.
+template <class Ndf, class T>
+GLINTLAB_FN void queue_live_pair(const Params<T>& p, const Ndf& ndf,
+                                 const PackedLevelInputs<T>& in, std::uint32_t at,
+                                 std::uint32_t lane, std::uint32_t masses, Scalar<T> g_x,
+                                 Scalar<T> g_y, Scalar<T> s, LivePairs<T>& live,
+                                 PackedLevelPoints<T>& out) {
+  const std::size_t k = live.count++;
+  live.at[k] = at;
+  live.lane[k] = lane;
+  live.masses[k] = masses;
+  live.g_x[k] = g_x;
+  live.g_y[k] = g_y;
+  live.s[k] = s;
+  if (live.count < kLaneCount<T>) return;
+  live_pairs_compute(p, ndf, in, live, kLaneCount<T>, out);
+  drop_computed_pairs(live);
+}
+
+// The pairs' candidate() weight s_j, on the first `count` ≤ kLanes pairs (the pairs past them, up
+// to kLanes, copies of pair 0); those of s_j ≠ 0 queued for their lobes and masses.
 template <class Ndf, class T>
 GLINTLAB_FN void packed_pairs_compute(const Params<T>& p, const Ndf& ndf,
                                       const PackedLevelInputs<T>& in, const PackedPairs<T>& pr,
@@ -162,12 +232,7 @@ GLINTLAB_FN void packed_pairs_compute(const Params<T>& p, const Ndf& ndf,
                                       PackedLevelPoints<T>& out) {
   using S = Scalar<T>;
   constexpr std::size_t kLanes = kLaneCount<T>;
-  // Each vector from kLanes pairs: those past `count` are copies of pair 0 (see the caller).
-  const auto gather = [&](const S* per_lane) {
-    alignas(64) S v[kLanes];
-    for (std::size_t l = 0; l < kLanes; ++l) v[l] = per_lane[pr.lane[l]];
-    return LaneAccess<T>::load(v);
-  };
+  const LaneGather<T> gather{pr.lane};
   LaneInt<T, std::uint64_t> key;
   LaneInt<T> sx, sy;
   for (std::size_t l = 0; l < kLanes; ++l) {
@@ -175,50 +240,29 @@ GLINTLAB_FN void packed_pairs_compute(const Params<T>& p, const Ndf& ndf,
     sx.v[l] = in.sx0[pr.lane[l]] + std::int64_t(pr.i[l]);
     sy.v[l] = in.sy0[pr.lane[l]] + std::int64_t(pr.j[l]);
   }
-  const T res_s = gather(in.res_s), w_l = gather(in.w_l);
-  const Vec2<T> x_s{gather(in.x_s_x), gather(in.x_s_y)};
   const Normal2Form<T> lobe{
       {gather(in.lobe_xx), gather(in.lobe_xy), gather(in.lobe_yy)},
       gather(in.lobe_c),
       gather(in.lobe_det),
       gather(in.lobe_peak)};
-  // candidate(), where the point exists.
-  const Vec2<T> g_s{
-      (int_to_float<T>(sx) + key_uniform<T>(key, kKemppinenDimSpatialX)) / res_s,
-      (int_to_float<T>(sy) + key_uniform<T>(key, kKemppinenDimSpatialY)) / res_s};
-  const T r = key_uniform<T>(key, kKemppinenDimRoulette);
-  const T blend = p.blend == Blend::kRoulette ? roulette(r, w_l) : w_l;
-  const Vec3<T> col = color(p.colors, key_uniform<T>(key, kKemppinenDimColor));
-  const T s = blend * normal2_at(lobe, x_s - g_s) * luminance(col);
-  const LanesOf<T> s_lanes(s);
+  const LanesOf<T> s_lanes(point_weight(p, key, sx, sy, gather(in.res_s), gather(in.w_l),
+                                        Vec2<T>{gather(in.x_s_x), gather(in.x_s_y)}, lobe));
   for (std::size_t l = 0; l < count; ++l) {
     out.s[pr.at[l]][pr.lane[l]] = s_lanes[l];
-    // A pair of weight 0 needs neither its lobe nor its masses (adds_weight); the others go on.
+    // A pair of weight 0 needs neither its lobe nor its masses (adds_weight).
     if (s_lanes[l] == S(0)) continue;
-    const std::size_t k = live.count++;
-    live.at[k] = pr.at[l];
-    live.lane[k] = pr.lane[l];
-    live.masses[k] = pr.masses[l];
-    live.g_x[k] = pr.g_x[l];
-    live.g_y[k] = pr.g_y[l];
-    live.s[k] = s_lanes[l];
-  }
-  if (live.count >= kLanes) {
-    live_pairs_compute(p, ndf, in, live, kLanes, out);
-    const std::size_t rest = live.count - kLanes;
-    for (std::size_t k = 0; k < rest; ++k) live.copy(k, kLanes + k);
-    live.count = rest;
+    queue_live_pair(p, ndf, in, pr.at[l], pr.lane[l], pr.masses[l], pr.g_x[l], pr.g_y[l],
+                    s_lanes[l], live, out);
   }
 }
 
 // The points of a level around x's angular cell (cx, cy), as level_points and mass_along give
-// them, for the pairs whose lane uses a block that holds them (in.lanes_at); 0 elsewhere.
+// them, for the lanes that use a block that holds them (in.lanes_at); 0 elsewhere.
 template <class Ndf, class T>
-GLINTLAB_FN void packed_level_points(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp,
+GLINTLAB_FN void packed_level_points(const Params<T>& p, const Ndf& ndf,
                                      const LaneInt<T, int>& level, const LaneInt<T>& cx,
                                      const LaneInt<T>& cy, const PackedLevelInputs<T>& in,
                                      PackedLevelPoints<T>& out, int process) {
-  using S = Scalar<T>;
   constexpr std::size_t kLanes = kLaneCount<T>;
   const int n = p.side;
   out.n = n;
@@ -230,8 +274,11 @@ GLINTLAB_FN void packed_level_points(const Params<T>& p, const Ndf& ndf, const S
       std::memset(out.mass[axis][slot], 0, points * sizeof out.mass[0][0][0]);
   const T res_a = angular_resolution<T>(level);
   const LaneInt<T> n_a = level_cells<T>(level);
-  const LaneInt<T> sx0 = block_start(sp.x_s.x * (sp.res / res_a), n);
-  const LaneInt<T> sy0 = block_start(sp.x_s.y * (sp.res / res_a), n);
+  LaneInt<T> sx0, sy0;
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    sx0.v[l] = in.sx0[l];
+    sy0.v[l] = in.sy0[l];
+  }
   const std::uint64_t seed_key = cell_seed_key(p.seed);
   PackedPairs<T> pairs;
   LivePairs<T> live;
@@ -273,15 +320,12 @@ GLINTLAB_FN void packed_level_points(const Params<T>& p, const Ndf& ndf, const S
           const Mask<T> valid =
               in_x[ka] && in_y[kb] && (sqr(g_a.x - T(0.5)) + sqr(g_a.y - T(0.5)) <= T(0.25));
           if (!any_lane<T>(valid)) continue;
-          const MaskLanesOf<T> valid_lanes(valid);
-          std::uint32_t todo = 0;
-          for (std::size_t l = 0; l < kLanes; ++l) todo |= std::uint32_t(valid_lanes[l]) << l;
-          todo &= in.lanes_at[ab];
+          const std::uint32_t todo = lane_bits<T>(valid) & in.lanes_at[ab];
           if (todo == 0) continue;
-          const LanesOf<T> gx(g_a.x), gy(g_a.y);
           const std::uint32_t at = std::uint32_t(out.index(i, j, a, b));
-          for (; todo != 0; todo &= todo - 1) {
-            const std::size_t l = std::size_t(std::countr_zero(todo));
+          const LanesOf<T> gx(g_a.x), gy(g_a.y);
+          for (std::uint32_t rest = todo; rest != 0; rest &= rest - 1) {
+            const std::size_t l = std::size_t(std::countr_zero(rest));
             const std::size_t k = pairs.count++;
             pairs.at[k] = at;
             pairs.i[k] = i;
@@ -294,46 +338,24 @@ GLINTLAB_FN void packed_level_points(const Params<T>& p, const Ndf& ndf, const S
           }
           if (pairs.count >= kLanes) {
             packed_pairs_compute(p, ndf, in, pairs, kLanes, live, out);
-            // Move the pairs past the first kLanes to the front.
-            const std::size_t rest = pairs.count - kLanes;
-            for (std::size_t k = 0; k < rest; ++k) {
-              pairs.at[k] = pairs.at[kLanes + k];
-              pairs.i[k] = pairs.i[kLanes + k];
-              pairs.j[k] = pairs.j[kLanes + k];
-              pairs.lane[k] = pairs.lane[kLanes + k];
-              pairs.masses[k] = pairs.masses[kLanes + k];
-              pairs.key[k] = pairs.key[kLanes + k];
-              pairs.g_x[k] = pairs.g_x[kLanes + k];
-              pairs.g_y[k] = pairs.g_y[kLanes + k];
-            }
-            pairs.count = rest;
+            drop_computed_pairs(pairs);
           }
         }
       }
     }
   }
   if (pairs.count > 0) {
-    for (std::size_t k = pairs.count; k < kLanes; ++k) {
-      pairs.at[k] = pairs.at[0];
-      pairs.i[k] = pairs.i[0];
-      pairs.j[k] = pairs.j[0];
-      pairs.lane[k] = pairs.lane[0];
-      pairs.masses[k] = pairs.masses[0];
-      pairs.key[k] = pairs.key[0];
-      pairs.g_x[k] = pairs.g_x[0];
-      pairs.g_y[k] = pairs.g_y[0];
-    }
+    pad_pairs(pairs);
     packed_pairs_compute(p, ndf, in, pairs, pairs.count, live, out);
   }
   if (live.count > 0) {
-    for (std::size_t k = live.count; k < kLanes; ++k) live.copy(k, 0);
+    pad_pairs(live);
     live_pairs_compute(p, ndf, in, live, live.count, out);
   }
-  (void)sizeof(S);
 }
 
 // level_block_density of the block with angular start (cx + dx, cy + dy) from packed points: the
-// same bits in every lane that uses the block. A lane's pair that was not packed (the point does
+// same bits in every lane that uses the block. A lane's pair that was not computed (the point does
 // not exist there, or adds no weight, or lies in no block the lane uses) has s = term = mass = 0,
 // where the unpacked sum adds s·m = ±0 and a term of 0, so each used lane's sums are the same.
 template <class T>
@@ -341,13 +363,9 @@ GLINTLAB_FN T packed_block_density(const PackedLevelPoints<T>& pts, const LaneIn
                                    const LaneInt<T>& cx, const LaneInt<T>& cy, int dx, int dy,
                                    Vec2<T> x) {
   const int n = pts.n;
-  const T res_a = angular_resolution<T>(level);
-  const LaneInt<T> n_a = level_cells<T>(level);
-  const LaneInt<T> ax0 = cx + dx, ay0 = cy + dy;
-  const Vec2<T> lo{int_to_float<T>(int_max(ax0, std::int64_t(0))) / res_a,
-                   int_to_float<T>(int_max(ay0, std::int64_t(0))) / res_a};
-  const Vec2<T> hi{int_to_float<T>(int_min(ax0 + n, n_a)) / res_a,
-                   int_to_float<T>(int_min(ay0 + n, n_a)) / res_a};
+  const BlockBounds<T> bounds =
+      block_bounds(cx + dx, cy + dy, n, level_cells<T>(level), angular_resolution<T>(level));
+  const Vec2<T> lo = bounds.lo, hi = bounds.hi;
   const std::size_t slot_x = std::size_t(dx + n - 1), slot_y = std::size_t(dy + n - 1);
   T total = T(0);
   for (int i = 0; i < n; ++i)
@@ -370,105 +388,141 @@ GLINTLAB_FN T packed_block_density(const PackedLevelPoints<T>& pts, const LaneIn
   return select(inside, sum / total, T(0));
 }
 
-// sample_density_square on a batch (more than one lane), its points packed.
+// Per angular offset a ∈ [1 − n, n − 1] (index a + n − 1): the bits of the lanes where the cell
+// cx + a lies in the level's cells [0, n_a).
+template <class T>
+GLINTLAB_FN void cells_in_square(const LaneInt<T>& cx, const LaneInt<T>& n_a, int n,
+                                 std::uint32_t (&out)[2 * kMaxSide - 1]) {
+  for (int a = 1 - n; a <= n - 1; ++a) {
+    std::uint32_t bits = 0;
+    for (std::size_t l = 0; l < kLaneCount<T>; ++l) {
+      const std::int64_t c = lane(cx, l) + a;
+      bits |= std::uint32_t(c >= 0 && c < lane(n_a, l)) << l;
+    }
+    out[a + n - 1] = bits;
+  }
+}
+
+// Packing pays where the (offset, lane) pairs that the lanes need fill less than this share of the
+// lanes of the offsets that some lane needs. Not tuned: the lanes of a Table 3 frame's level need
+// nearly every offset that any lane needs, while unrelated rows are at their own levels and cells;
+// with 0.5 the frames run at the unpacked loops' speed and glintlab_bench_models' random rows on
+// AVX-512 at the packed loops' (docs/benchmarks.md).
+inline constexpr double kPackBelow = 0.5;
+
+// Whether a level's points are packed: the angular offsets (a, b) whose cell lies in the square in
+// some lane that uses a block holding it (in.lanes_at), and the pairs of such lanes, counted.
+template <class T>
+GLINTLAB_FN bool use_packed_level(const PackedLevelInputs<T>& in, const LaneInt<T>& cx,
+                                  const LaneInt<T>& cy, const LaneInt<T>& n_a, int n) {
+  std::uint32_t in_x[2 * kMaxSide - 1], in_y[2 * kMaxSide - 1];
+  cells_in_square<T>(cx, n_a, n, in_x);
+  cells_in_square<T>(cy, n_a, n, in_y);
+  const std::size_t span = std::size_t(2 * n - 1);
+  std::size_t offsets = 0, pairs = 0;
+  for (std::size_t ka = 0; ka < span; ++ka)
+    for (std::size_t kb = 0; kb < span; ++kb) {
+      const std::uint32_t lanes = in.lanes_at[ka * span + kb] & in_x[ka] & in_y[kb];
+      offsets += lanes != 0;
+      pairs += std::size_t(std::popcount(lanes));
+    }
+  // No point in any lane: packed, nothing past the hashes is computed.
+  return offsets == 0 || double(pairs) < kPackBelow * double(offsets * kLaneCount<T>);
+}
+
+// sample_density_square on a batch (more than one lane): each level packed or unpacked (`path`).
 template <class Ndf, class T>
 GLINTLAB_FN T sample_density_square_packed(const Params<T>& p, const Ndf& ndf,
-                                           const FootprintQuery<T>& fp, Vec2<T> x, int process) {
+                                           const FootprintQuery<T>& fp, Vec2<T> x, int process,
+                                           DensityPath path) {
   constexpr std::size_t kLanes = kLaneCount<T>;
+  using A = LaneAccess<T>;
   const Mask<T> in_disk = !(sqr(x.x - T(0.5)) + sqr(x.y - T(0.5)) > T(0.25));
   if (!any_lane<T>(in_disk)) return T(0);
   const Spatial<T> sp = spatial(p, fp);
   const int n = p.side;
-  // On the stack, as LevelPoints in sample_density_square.
-  PackedLevelPoints<T> points;
+  const std::size_t span = std::size_t(2 * n - 1);
   PackedLevelInputs<T> in;
-  LaneAccess<T>::store(sp.x_s.x, in.x_s_x);
-  LaneAccess<T>::store(sp.x_s.y, in.x_s_y);
-  const Normal2Form<T> spatial_lobe = normal2_form(sp.sigma_s);
-  LaneAccess<T>::store(spatial_lobe.sc.xx, in.lobe_xx);
-  LaneAccess<T>::store(spatial_lobe.sc.xy, in.lobe_xy);
-  LaneAccess<T>::store(spatial_lobe.sc.yy, in.lobe_yy);
-  LaneAccess<T>::store(spatial_lobe.c, in.lobe_c);
-  LaneAccess<T>::store(spatial_lobe.det, in.lobe_det);
-  LaneAccess<T>::store(spatial_lobe.peak, in.lobe_peak);
-  LaneAccess<T>::store(x.x, in.x_x);
-  LaneAccess<T>::store(x.y, in.x_y);
-  LaneAccess<T>::store(p.microroughness, in.microroughness);
-  LaneAccess<T>::store(p.anisotropy, in.anisotropy);
-  LaneAccess<T>::store(ndf.alpha_x, in.alpha_x);
-  LaneAccess<T>::store(ndf.alpha_y, in.alpha_y);
   T total = T(0);
   for (int up = 0; up < 2; ++up) {
-    const LaneInt<T, int> level = sp.l0 + up;
-    const T w_l = up ? sp.w1 : T(1) - sp.w1;
-    const Mask<T> w_positive = w_l > T(0);
-    if (!any_lane<T>(w_positive)) continue;
-    const T res_a = angular_resolution<T>(level);
-    const LaneInt<T> cx = floor_int<T>(x.x * res_a);
-    const LaneInt<T> cy = floor_int<T>(x.y * res_a);
+    const DensityLevel<T> d = density_level(sp, up, x);
+    if (!any_lane<T>(d.w_positive)) continue;
     // Every block's area and use first, so that only the pairs in used blocks are packed.
-    T area[kMaxSide][kMaxSide];
-    Mask<T> use[kMaxSide][kMaxSide];
-    bool any_use = false;
-    const std::size_t span = std::size_t(2 * n - 1);
-    for (std::size_t ab = 0; ab < span * span; ++ab) {
-      in.lanes_at[ab] = 0;
-      for (std::size_t l = 0; l < kLanes; ++l) in.masses_at[ab][l] = 0;
-    }
+    LevelBlocks<T> blocks;
+    level_blocks(d, n, blocks);
+    if (!blocks.any_use) continue;
+    std::uint32_t use_bits[kMaxSide][kMaxSide];
+    for (std::size_t ab = 0; ab < span * span; ++ab) in.lanes_at[ab] = 0;
     for (int dx = 1 - n; dx <= 0; ++dx)
       for (int dy = 1 - n; dy <= 0; ++dy) {
-        const LaneInt<T> bx = cx + dx, by = cy + dy;
-        // x_a selects start b where x_a·res_a ∈ [b + (n−1)/2, b + (n+1)/2).
-        const T half = T(0.5) * T(n - 1);
-        const T fx = int_to_float<T>(bx) + half, fy = int_to_float<T>(by) + half;
-        const LanesOf<T> x0(fx / res_a), x1((fx + T(1)) / res_a), y0(fy / res_a),
-            y1((fy + T(1)) / res_a);
-        const std::size_t sx = std::size_t(dx + n - 1), sy = std::size_t(dy + n - 1);
-        area[sx][sy] = lane_square_disk_areas<T>(x0, x1, y0, y1);
-        use[sx][sy] = w_positive && (area[sx][sy] > T(0));
-        if (!any_lane<T>(use[sx][sy])) continue;
-        any_use = true;
-        const MaskLanesOf<T> use_lanes(use[sx][sy]);
-        const std::uint32_t bits =
-            (std::uint32_t(1) << sx) | (std::uint32_t(1) << (kMaxSide + sy));
+        const int sx = dx + n - 1, sy = dy + n - 1;
+        use_bits[sx][sy] = lane_bits<T>(blocks.use[sx][sy]);
+        for (int a = dx; a <= dx + n - 1; ++a)
+          for (int b = dy; b <= dy + n - 1; ++b)
+            in.lanes_at[std::size_t(a + n - 1) * span + std::size_t(b + n - 1)] |=
+                use_bits[sx][sy];
+      }
+    const LaneInt<T> n_a = level_cells<T>(d.level);
+    const bool packed = path == DensityPath::kChoose ? use_packed_level(in, d.cx, d.cy, n_a, n)
+                                                     : path == DensityPath::kPacked;
+    if (!packed) {
+      add_level_density_unpacked(p, ndf, sp, d, blocks, x, process, total);
+      continue;
+    }
+    for (std::size_t ab = 0; ab < span * span; ++ab)
+      for (std::size_t l = 0; l < kLanes; ++l) in.masses_at[ab][l] = 0;
+    for (int dx = 1 - n; dx <= 0; ++dx)
+      for (int dy = 1 - n; dy <= 0; ++dy) {
+        const int sx = dx + n - 1, sy = dy + n - 1;
+        const std::uint32_t bits = mass_bit(0, sx) | mass_bit(1, sy);
         for (int a = dx; a <= dx + n - 1; ++a)
           for (int b = dy; b <= dy + n - 1; ++b) {
             const std::size_t ab = std::size_t(a + n - 1) * span + std::size_t(b + n - 1);
-            for (std::size_t l = 0; l < kLanes; ++l)
-              if (use_lanes[l]) {
-                in.lanes_at[ab] |= std::uint32_t(1) << l;
-                in.masses_at[ab][l] |= bits;
-              }
+            for (std::uint32_t rest = use_bits[sx][sy]; rest != 0; rest &= rest - 1)
+              in.masses_at[ab][std::countr_zero(rest)] |= bits;
           }
       }
-    if (!any_use) continue;
-    LaneAccess<T>::store(sp.res / res_a, in.res_s);
-    LaneAccess<T>::store(w_l, in.w_l);
-    const LaneInt<T> n_a = level_cells<T>(level);
-    const LaneInt<T> sx0 = block_start(sp.x_s.x * (sp.res / res_a), n);
-    const LaneInt<T> sy0 = block_start(sp.x_s.y * (sp.res / res_a), n);
+    A::store(sp.x_s.x, in.x_s_x);
+    A::store(sp.x_s.y, in.x_s_y);
+    const Normal2Form<T> spatial_lobe = normal2_form(sp.sigma_s);
+    A::store(spatial_lobe.sc.xx, in.lobe_xx);
+    A::store(spatial_lobe.sc.xy, in.lobe_xy);
+    A::store(spatial_lobe.sc.yy, in.lobe_yy);
+    A::store(spatial_lobe.c, in.lobe_c);
+    A::store(spatial_lobe.det, in.lobe_det);
+    A::store(spatial_lobe.peak, in.lobe_peak);
+    A::store(x.x, in.x_x);
+    A::store(x.y, in.x_y);
+    A::store(p.microroughness, in.microroughness);
+    A::store(p.anisotropy, in.anisotropy);
+    A::store(ndf.alpha_x, in.alpha_x);
+    A::store(ndf.alpha_y, in.alpha_y);
+    const T res_s = sp.res / d.res_a;
+    A::store(res_s, in.res_s);
+    A::store(d.w_l, in.w_l);
+    const LaneInt<T> sx0 = block_start(sp.x_s.x * res_s, n);
+    const LaneInt<T> sy0 = block_start(sp.x_s.y * res_s, n);
     for (std::size_t l = 0; l < kLanes; ++l) {
       in.sx0[l] = lane(sx0, l);
       in.sy0[l] = lane(sy0, l);
     }
-    for (int d = 1 - n; d <= 0; ++d) {
-      const std::size_t slot = std::size_t(d + n - 1);
-      const LaneInt<T> ax0 = cx + d, ay0 = cy + d;
-      LaneAccess<T>::store(int_to_float<T>(int_max(ax0, std::int64_t(0))) / res_a, in.lo[0][slot]);
-      LaneAccess<T>::store(int_to_float<T>(int_max(ay0, std::int64_t(0))) / res_a, in.lo[1][slot]);
-      LaneAccess<T>::store(int_to_float<T>(int_min(ax0 + n, n_a)) / res_a, in.hi[0][slot]);
-      LaneAccess<T>::store(int_to_float<T>(int_min(ay0 + n, n_a)) / res_a, in.hi[1][slot]);
+    for (int off = 1 - n; off <= 0; ++off) {
+      const std::size_t slot = std::size_t(off + n - 1);
+      const BlockBounds<T> bounds = block_bounds(d.cx + off, d.cy + off, n, n_a, d.res_a);
+      A::store(bounds.lo.x, in.lo[0][slot]);
+      A::store(bounds.lo.y, in.lo[1][slot]);
+      A::store(bounds.hi.x, in.hi[0][slot]);
+      A::store(bounds.hi.y, in.hi[1][slot]);
     }
-    packed_level_points(p, ndf, sp, level, cx, cy, in, points, process);
-    for (int dx = 1 - n; dx <= 0; ++dx)
-      for (int dy = 1 - n; dy <= 0; ++dy) {
-        const std::size_t sx = std::size_t(dx + n - 1), sy = std::size_t(dy + n - 1);
-        if (!any_lane<T>(use[sx][sy])) continue;
-        total += select(use[sx][sy],
-                        w_l * area[sx][sy] / T(kMapDomainArea<T>) *
-                            packed_block_density(points, level, cx, cy, dx, dy, x),
-                        T(0));
-      }
+    // On the stack, as LevelPoints in add_level_density_unpacked.
+    PackedLevelPoints<T> points;
+    packed_level_points(p, ndf, d.level, d.cx, d.cy, in, points, process);
+    add_block_terms(
+        d, blocks, n,
+        [&](int dx, int dy) {
+          return packed_block_density(points, d.level, d.cx, d.cy, dx, dy, x);
+        },
+        total);
   }
   return select(in_disk, total, T(0));
 }

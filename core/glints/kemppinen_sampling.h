@@ -94,6 +94,37 @@ GLINTLAB_FN Vec2<T> point_sigma(const Params<T>& p, const Ndf& ndf, Vec2<T> g_a)
   return {sigma / sa, sigma * sa};
 }
 
+// The weight of Algorithm 2 line 12 before the lobe's mass, R(r, w_λ) N(Σ_s, x_s − g_s)
+// Luminance(c), of the point of cell key `key` (cell_key) in spatial cell (sx, sy); res_s is the
+// level's spatial resolution, spatial_lobe normal2_form(sp.sigma_s). candidate() and the packed
+// loops (kemppinen_packed.h) share it, so that their weights are the same bits.
+template <class T>
+GLINTLAB_INLINE T point_weight(const Params<T>& p, const LaneInt<T, std::uint64_t>& key,
+                               const LaneInt<T>& sx, const LaneInt<T>& sy, T res_s, T w_l,
+                               Vec2<T> x_s, const Normal2Form<T>& spatial_lobe) {
+  const Vec2<T> g_s{(int_to_float<T>(sx) + key_uniform<T>(key, kKemppinenDimSpatialX)) / res_s,
+                    (int_to_float<T>(sy) + key_uniform<T>(key, kKemppinenDimSpatialY)) / res_s};
+  const T r = key_uniform<T>(key, kKemppinenDimRoulette);
+  const T blend = p.blend == Blend::kRoulette ? roulette(r, w_l) : w_l;
+  const Vec3<T> col = color(p.colors, key_uniform<T>(key, kKemppinenDimColor));
+  return blend * normal2_at(spatial_lobe, x_s - g_s) * luminance(col);
+}
+
+// The bounds of the block of side n with angular start cell (ax0, ay0), clipped to □ (n_a cells
+// of side 1/res_a per axis).
+template <class T>
+struct BlockBounds {
+  Vec2<T> lo, hi;
+};
+template <class T>
+GLINTLAB_INLINE BlockBounds<T> block_bounds(const LaneInt<T>& ax0, const LaneInt<T>& ay0, int n,
+                                            const LaneInt<T>& n_a, T res_a) {
+  return {{int_to_float<T>(int_max(ax0, std::int64_t(0))) / res_a,
+           int_to_float<T>(int_max(ay0, std::int64_t(0))) / res_a},
+          {int_to_float<T>(int_min(ax0 + n, n_a)) / res_a,
+           int_to_float<T>(int_min(ay0 + n, n_a)) / res_a}};
+}
+
 // The candidate of spatial cell (sx, sy) and angular cell (ax, ay), cell index ci (of its level
 // and point process: cell_index_lanes), at level weight w_l (Algorithm 2 lines 11–12): everything
 // but its mass in a block (m = 0). res_a, res_s and n_a are the level's (angular_resolution,
@@ -119,13 +150,7 @@ GLINTLAB_INLINE Candidate<T> candidate(const Params<T>& p, const Ndf& ndf, const
   k.m = T(0);
   k.sigma = {T(0), T(0)};
   if (any_lane<T>(k.valid)) {  // uniform: some lane has the point
-    const Vec2<T> g_s{
-        (int_to_float<T>(sx) + key_uniform<T>(key, kKemppinenDimSpatialX)) / res_s,
-        (int_to_float<T>(sy) + key_uniform<T>(key, kKemppinenDimSpatialY)) / res_s};
-    const T r = key_uniform<T>(key, kKemppinenDimRoulette);
-    const T blend = p.blend == Blend::kRoulette ? roulette(r, w_l) : w_l;
-    const Vec3<T> col = color(p.colors, key_uniform<T>(key, kKemppinenDimColor));
-    k.s = select(k.valid, blend * normal2_at(spatial_lobe, sp.x_s - g_s) * luminance(col), T(0));
+    k.s = select(k.valid, point_weight(p, key, sx, sy, res_s, w_l, sp.x_s, spatial_lobe), T(0));
     // A point the roulette gives weight 0 (w_l below r − ε, Eq. 8) needs no lobe.
     if (any_lane<T>(k.valid && !(k.s == T(0)))) k.sigma = point_sigma(p, ndf, k.g_a);
   }
@@ -151,10 +176,9 @@ GLINTLAB_FN void block(const Params<T>& p, const Ndf& ndf, const Spatial<T>& sp,
   const LaneInt<T> sx0 = block_start(sp.x_s.x * res_s, n);
   const LaneInt<T> sy0 = block_start(sp.x_s.y * res_s, n);
   const Normal2Form<T> spatial_lobe = normal2_form(sp.sigma_s);
-  out.lo = {int_to_float<T>(int_max(ax0, std::int64_t(0))) / res_a,
-            int_to_float<T>(int_max(ay0, std::int64_t(0))) / res_a};
-  out.hi = {int_to_float<T>(int_min(ax0 + n, n_a)) / res_a,
-            int_to_float<T>(int_min(ay0 + n, n_a)) / res_a};
+  const BlockBounds<T> bounds = block_bounds(ax0, ay0, n, n_a, res_a);
+  out.lo = bounds.lo;
+  out.hi = bounds.hi;
   out.count = 0;
   out.total = T(0);
   for (int i = 0; i < n; ++i) {
@@ -380,6 +404,63 @@ GLINTLAB_INLINE T lane_square_disk_areas(const LanesOf<T>& x0, const LanesOf<T>&
   return LaneAccess<T>::load(area);
 }
 
+// One of the two levels sample_density_square visits (up = 0: ⌊λ⌋, 1: ⌊λ⌋ + 1): its weight
+// and x's angular cell (cx, cy) there.
+template <class T>
+struct DensityLevel {
+  LaneInt<T, int> level;
+  T w_l, res_a;
+  Mask<T> w_positive;
+  LaneInt<T> cx, cy;
+};
+template <class T>
+GLINTLAB_INLINE DensityLevel<T> density_level(const Spatial<T>& sp, int up, Vec2<T> x) {
+  DensityLevel<T> d;
+  d.level = sp.l0 + up;
+  d.w_l = up ? sp.w1 : T(1) - sp.w1;
+  d.w_positive = d.w_l > T(0);
+  d.res_a = angular_resolution<T>(d.level);
+  d.cx = floor_int<T>(x.x * d.res_a);
+  d.cy = floor_int<T>(x.y * d.res_a);
+  return d;
+}
+
+// The area in U_Ω of the square of x_a that selects the block with angular start (bx, by)
+// (x_a·res_a ∈ [b + (n−1)/2, b + (n+1)/2) per axis), lane by lane: the exact disk ∩ rectangle
+// area, the scalar code only where the square meets the circle (square_disk_area), once per
+// distinct square: at the low levels, where the squares are large and meet the circle, a level
+// has few cells, so lanes share them.
+template <class T>
+GLINTLAB_INLINE T selecting_square_area(const LaneInt<T>& bx, const LaneInt<T>& by, int n,
+                                        T res_a) {
+  const T half = T(0.5) * T(n - 1);
+  const T fx = int_to_float<T>(bx) + half, fy = int_to_float<T>(by) + half;
+  const LanesOf<T> x0(fx / res_a), x1((fx + T(1)) / res_a), y0(fy / res_a),
+      y1((fy + T(1)) / res_a);
+  return lane_square_disk_areas<T>(x0, x1, y0, y1);
+}
+
+// The blocks of a level that sample_density_square visits, per start offset slot (dx + n − 1,
+// dy + n − 1): the area of their selecting square in U_Ω and the lanes that use them (w_l > 0 and
+// an area > 0).
+template <class T>
+struct LevelBlocks {
+  T area[kMaxSide][kMaxSide];
+  Mask<T> use[kMaxSide][kMaxSide];
+  bool any_use = false;
+};
+template <class T>
+GLINTLAB_FN void level_blocks(const DensityLevel<T>& d, int n, LevelBlocks<T>& out) {
+  out.any_use = false;
+  for (int dx = 1 - n; dx <= 0; ++dx)
+    for (int dy = 1 - n; dy <= 0; ++dy) {
+      const std::size_t sx = std::size_t(dx + n - 1), sy = std::size_t(dy + n - 1);
+      out.area[sx][sy] = selecting_square_area(d.cx + dx, d.cy + dy, n, d.res_a);
+      out.use[sx][sy] = d.w_positive && (out.area[sx][sy] > T(0));
+      out.any_use = out.any_use || any_lane<T>(out.use[sx][sy]);
+    }
+}
+
 // The points of LevelPoints around x's angular cell (cx, cy) at `level` (weight w_l): the same
 // arithmetic as block() and block_density(), in the same lane order.
 template <class Ndf, class T>
@@ -448,11 +529,8 @@ GLINTLAB_FN T level_block_density(LevelPoints<T>& pts, const LaneInt<T, int>& le
   const int n = pts.n;
   const T res_a = angular_resolution<T>(level);
   const LaneInt<T> n_a = level_cells<T>(level);
-  const LaneInt<T> ax0 = cx + dx, ay0 = cy + dy;
-  const Vec2<T> lo{int_to_float<T>(int_max(ax0, std::int64_t(0))) / res_a,
-                   int_to_float<T>(int_max(ay0, std::int64_t(0))) / res_a};
-  const Vec2<T> hi{int_to_float<T>(int_min(ax0 + n, n_a)) / res_a,
-                   int_to_float<T>(int_min(ay0 + n, n_a)) / res_a};
+  const BlockBounds<T> bounds = block_bounds(cx + dx, cy + dy, n, n_a, res_a);
+  const Vec2<T> lo = bounds.lo, hi = bounds.hi;
   T total = T(0);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
@@ -479,63 +557,73 @@ GLINTLAB_FN T level_block_density(LevelPoints<T>& pts, const LaneInt<T, int>& le
   return select(inside, sum / total, T(0));
 }
 
+// Each used block's term of a level, w_l |R_B ∩ U_Ω|/|U_Ω| × density_of(dx, dy) (the density in □
+// given the block with angular start (cx + dx, cy + dy)), added to `total` in block order.
+template <class T, class DensityOf>
+GLINTLAB_FN void add_block_terms(const DensityLevel<T>& d, const LevelBlocks<T>& blocks, int n,
+                                 DensityOf density_of, T& total) {
+  for (int dx = 1 - n; dx <= 0; ++dx)
+    for (int dy = 1 - n; dy <= 0; ++dy) {
+      const std::size_t sx = std::size_t(dx + n - 1), sy = std::size_t(dy + n - 1);
+      if (!any_lane<T>(blocks.use[sx][sy])) continue;
+      total += select(blocks.use[sx][sy],
+                      d.w_l * blocks.area[sx][sy] / T(kMapDomainArea<T>) * density_of(dx, dy),
+                      T(0));
+    }
+}
+
+// One level's term of the marginal density in □ (blocks: level_blocks, some used), every lane's
+// points computed on every lane, added to `total` block by block.
+template <class Ndf, class T>
+GLINTLAB_FN void add_level_density_unpacked(const Params<T>& p, const Ndf& ndf,
+                                            const Spatial<T>& sp, const DensityLevel<T>& d,
+                                            const LevelBlocks<T>& blocks, Vec2<T> x, int process,
+                                            T& total) {
+  const int n = p.side;
+  // On the stack, not thread_local: static TLS is reserved in every thread's stack at its start,
+  // and this table at every (Ndf, T) would outgrow a worker thread's stack (pthread_create EINVAL).
+  LevelPoints<T> points;
+  level_points(p, ndf, sp, d.level, d.w_l, d.cx, d.cy, x, points, process);
+  add_block_terms(
+      d, blocks, n,
+      [&](int dx, int dy) { return level_block_density(points, d.level, d.cx, d.cy, dx, dy, x); },
+      total);
+}
+
 // The marginal density in □ of sample_half's x (defective: rejections excluded), every lane's
 // points computed on every lane: the loops sample_density_square takes on scalars (and the
 // reference of the packed batch loops).
 template <class Ndf, class T>
 GLINTLAB_FN T sample_density_square_unpacked(const Params<T>& p, const Ndf& ndf,
-                                             const FootprintQuery<T>& fp, Vec2<T> x, int process = 0) {
+                                             const FootprintQuery<T>& fp, Vec2<T> x,
+                                             int process = 0) {
   const Mask<T> in_disk = !(sqr(x.x - T(0.5)) + sqr(x.y - T(0.5)) > T(0.25));
   if (!any_lane<T>(in_disk)) return T(0);
   const Spatial<T> sp = spatial(p, fp);
-  const int n = p.side;
-  // On the stack, not thread_local: static TLS is reserved in every thread's stack at its start,
-  // and this table at every (Ndf, T) would outgrow a worker thread's stack (pthread_create EINVAL).
-  LevelPoints<T> points;
   T total = T(0);
   for (int up = 0; up < 2; ++up) {
-    const LaneInt<T, int> level = sp.l0 + up;
-    const T w_l = up ? sp.w1 : T(1) - sp.w1;
-    const Mask<T> w_positive = w_l > T(0);
-    if (!any_lane<T>(w_positive)) continue;
-    const T res_a = angular_resolution<T>(level);
-    const LaneInt<T> cx = floor_int<T>(x.x * res_a);
-    const LaneInt<T> cy = floor_int<T>(x.y * res_a);
-    bool have_points = false;
-    for (int dx = 1 - n; dx <= 0; ++dx)
-      for (int dy = 1 - n; dy <= 0; ++dy) {
-        const LaneInt<T> bx = cx + dx, by = cy + dy;
-        // x_a selects start b where x_a·res_a ∈ [b + (n−1)/2, b + (n+1)/2).
-        const T half = T(0.5) * T(n - 1);
-        const T fx = int_to_float<T>(bx) + half, fy = int_to_float<T>(by) + half;
-        const LanesOf<T> x0(fx / res_a), x1((fx + T(1)) / res_a), y0(fy / res_a),
-            y1((fy + T(1)) / res_a);
-        // The exact disk ∩ rectangle area lane by lane, the scalar code only where the square
-        // meets the circle (square_disk_area), once per distinct square: at the low levels,
-        // where the squares are large and meet the circle, a level has few cells, so lanes
-        // share them.
-        const T area = lane_square_disk_areas<T>(x0, x1, y0, y1);
-        const Mask<T> use = w_positive && (area > T(0));
-        if (!any_lane<T>(use)) continue;
-        if (!have_points) level_points(p, ndf, sp, level, w_l, cx, cy, x, points, process);
-        have_points = true;
-        total += select(use,
-                        w_l * area / T(kMapDomainArea<T>) *
-                            level_block_density(points, level, cx, cy, dx, dy, x),
-                        T(0));
-      }
+    const DensityLevel<T> d = density_level(sp, up, x);
+    if (!any_lane<T>(d.w_positive)) continue;
+    LevelBlocks<T> blocks;
+    level_blocks(d, p.side, blocks);
+    if (blocks.any_use) add_level_density_unpacked(p, ndf, sp, d, blocks, x, process, total);
   }
   return select(in_disk, total, T(0));
 }
 
-// sample_density_square on a batch, its points' work packed by (point, lane): kemppinen_packed.h.
+// sample_density_square on a batch: per level, its points' work packed by (point, lane) where the
+// lanes need few of the points that some lane needs, else every point on every lane
+// (kemppinen_packed.h); `path` forces one of the two at every level (the tests compare them).
+enum class DensityPath { kChoose, kPacked, kUnpacked };
 template <class Ndf, class T>
 GLINTLAB_FN T sample_density_square_packed(const Params<T>& p, const Ndf& ndf,
-                                           const FootprintQuery<T>& fp, Vec2<T> x, int process);
+                                           const FootprintQuery<T>& fp, Vec2<T> x, int process,
+                                           DensityPath path = DensityPath::kChoose);
 
 // The marginal density in □ of sample_half's x (defective: rejections excluded). Every block
 // B(k) whose selecting square of x_a meets U_Ω, at both levels; their points are computed once
-// per level (level_points). A batch takes the packed loops of kemppinen_packed.h (the same bits).
+// per level (level_points). A batch takes the loops of kemppinen_packed.h, which pack each level's
+// points by (point, lane) where that pays (the same bits).
 template <class Ndf, class T>
 GLINTLAB_FN T sample_density_square(const Params<T>& p, const Ndf& ndf, const FootprintQuery<T>& fp, Vec2<T> x,
                         int process = 0) {
